@@ -1,0 +1,124 @@
+//! Lexing + parsing throughput (`grammar::parse`), next to the `gcode`
+//! crate on the same generated text so the ratio shows in one run.
+//!
+//! Inputs: a generated program of 1M blocks (numbered `G01 X.. Z.. F..`
+//! moves with a few rapids and M/S/T words), the same program with a macro
+//! statement every few blocks, and the concatenated public corpus.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput};
+use std::fmt::Write;
+use std::hint::black_box;
+use std::time::Duration;
+
+const BLOCKS: usize = 1_000_000;
+
+/// A small deterministic generator, so every run parses the same text.
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 >> 33
+    }
+
+    /// A coordinate with three decimals, as a CAM system writes it.
+    fn coord(&mut self, max: u64) -> String {
+        let v = self.next() % (max * 1000);
+        let sign = if self.next() % 4 == 0 { "-" } else { "" };
+        format!("{sign}{}.{:03}", v / 1000, v % 1000)
+    }
+}
+
+/// Mostly feed moves; with `macros`, every fifth block is a macro statement.
+fn generate(macros: bool) -> String {
+    let mut rng = Lcg(0x9e37_79b9_7f4a_7c15);
+    let mut out = String::with_capacity(BLOCKS * 32);
+    out.push_str("%\nO0001 (GENERATED)\n");
+    for i in 0..BLOCKS {
+        let n = (i % 99_999) + 1;
+        if macros && i % 5 == 4 {
+            match (i / 5) % 4 {
+                0 => writeln!(out, "N{n} #{} = #{} + {} * 2", 100 + i % 50, 101 + i % 40, rng.coord(10)),
+                1 => writeln!(out, "N{n} IF [#{} GT {}] GOTO {}", 100 + i % 50, rng.coord(100), n + 1),
+                2 => writeln!(out, "N{n} #1 = SIN[#2 * 3.] + [#3 - #4] / 2"),
+                _ => writeln!(out, "N{n} G01 X[#100 + {}] Z-#101 F0.2", rng.coord(50)),
+            }
+        } else {
+            match i % 50 {
+                0 => writeln!(out, "N{n} G00 X{} Z{} T0101 M08", rng.coord(100), rng.coord(5)),
+                25 => writeln!(out, "N{n} G97 S1200 M03"),
+                _ => writeln!(out, "N{n} G01 X{} Z{} F0.{}", rng.coord(100), rng.coord(200), 1 + rng.next() % 3),
+            }
+        }
+        .expect("writing to a String cannot fail");
+    }
+    out.push_str("M30\n%\n");
+    out
+}
+
+/// Every public corpus file, one after the other.
+fn corpus() -> Vec<u8> {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/corpus/public");
+    let mut paths: Vec<_> = std::fs::read_dir(dir)
+        .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    paths.sort();
+    let mut all = Vec::new();
+    for p in paths {
+        if p.file_name().is_some_and(|n| n != "MANIFEST.tsv") {
+            if let Ok(bytes) = std::fs::read(&p) {
+                all.extend_from_slice(&bytes);
+                all.push(b'\n');
+            }
+        }
+    }
+    all
+}
+
+fn lex_parse(c: &mut Criterion) {
+    let plain = generate(false);
+    let mixed = generate(true);
+    let corpus = corpus();
+    eprintln!(
+        "lex_parse inputs: moves {} bytes / {} blocks, macros {} bytes / {} blocks, corpus {} bytes / {} lines",
+        plain.len(),
+        plain.lines().count(),
+        mixed.len(),
+        mixed.lines().count(),
+        corpus.len(),
+        corpus.split(|&b| b == b'\n').count(),
+    );
+
+    let mut group = c.benchmark_group("lex_parse");
+    group
+        .sample_size(10)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(4));
+
+    group.throughput(Throughput::Bytes(plain.len() as u64));
+    group.bench_with_input(BenchmarkId::new("grammar", "moves_1M"), &plain, |b, src| {
+        b.iter(|| grammar::parse(black_box(src.as_bytes())))
+    });
+    group.bench_with_input(BenchmarkId::new("gcode", "moves_1M"), &plain, |b, src| {
+        b.iter(|| gcode::parse(black_box(src)).map(|p| p.blocks.len()))
+    });
+
+    group.throughput(Throughput::Bytes(mixed.len() as u64));
+    group.bench_with_input(BenchmarkId::new("grammar", "macros_1M"), &mixed, |b, src| {
+        b.iter(|| grammar::parse(black_box(src.as_bytes())))
+    });
+
+    if corpus.is_empty() {
+        eprintln!("lex_parse: corpus folder not found, skipping the corpus bench");
+    } else {
+        group.throughput(Throughput::Bytes(corpus.len() as u64));
+        group.bench_with_input(BenchmarkId::new("grammar", "corpus"), &corpus, |b, src| {
+            b.iter(|| grammar::parse(black_box(src)))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, lex_parse);
+criterion_main!(benches);

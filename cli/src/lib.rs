@@ -1,0 +1,13 @@
+//! Shared pieces of the gbc command-line tools.
+
+use nc::Machine;
+use std::path::Path;
+
+/// Loads `--machine FILE`, or the reference machine.
+pub fn load_machine(path: Option<&Path>) -> Result<Machine, String> {
+    let Some(path) = path else {
+        return Ok(Machine::reference());
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    Machine::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+}

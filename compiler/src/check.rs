@@ -1,0 +1,126 @@
+//! Compile-time checks through the NC kernel: the rules of a block with
+//! literal words, and a dry run of a static program so that its geometry
+//! errors are compile errors (dialect.md §0).
+
+use crate::link::{self, Program, Unit};
+use crate::words::{self, Call, NcWord, WordValue};
+use grammar::ast::{Body, Value};
+use grammar::{Diagnostic, Span};
+use nc::words::Word;
+use nc::{Event, Machine, Nc, NcError, Sink};
+
+/// Checks the literal words of a block (a computed word is checked when
+/// it runs).
+pub fn literal_block(m: &Machine, ws: &[NcWord<'_>]) -> Result<(), NcError> {
+    let lits: Vec<Word> = literal_words(ws);
+    let p = nc::block::parse(&lits, m)?;
+    if let Some(t) = p.get(b'T') {
+        let t = nc::block::round_half_away(t).max(0.0) as u32;
+        nc::exec::check_tool(m, t / 100, t % 100)?;
+    }
+    Ok(())
+}
+
+fn literal_words(ws: &[NcWord<'_>]) -> Vec<Word> {
+    ws.iter()
+        .filter_map(|w| match w.value {
+            WordValue::Literal(v, flags) => Some(Word { addr: w.addr, value: v, flags }),
+            WordValue::Expr(_) => None,
+        })
+        .collect()
+}
+
+/// A static program: no macro statement and no computed word (§0).
+pub fn is_static(units: &[Unit], programs: &[Program]) -> bool {
+    programs.iter().all(|p| {
+        p.blocks.iter().filter_map(|&l| link::block(&units[p.unit], l)).all(|b| match &b.body {
+            Body::Stmt(_) => false,
+            Body::Words(ws) => ws.iter().all(|w| matches!(w.value, Value::Number(_))),
+        })
+    })
+}
+
+struct Discard;
+
+impl Sink for Discard {
+    fn emit(&mut self, _: Event) {}
+}
+
+/// Errors a dry run reports at compile time; the others (value and
+/// machine faults) stay run-time alarms.
+fn compile_time(code: u16) -> bool {
+    (1000..5000).contains(&code) || code == 7004
+}
+
+enum Flow {
+    Go,
+    End,
+}
+
+struct DryRun<'a> {
+    units: &'a [Unit],
+    programs: &'a [Program],
+    nc: Nc,
+    steps: u64,
+    skip: [bool; 9],
+}
+
+const STEP_LIMIT: u64 = 200_000;
+
+/// Runs a static program through the kernel; the first compile-time error
+/// with its unit.
+pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Option<(usize, Diagnostic)> {
+    let mut run = DryRun { units, programs, nc: Nc::new(m.clone()), steps: 0, skip: m.operator.block_skip };
+    run.program(0, 0).err()
+}
+
+impl DryRun<'_> {
+    fn program(&mut self, index: usize, depth: u32) -> Result<Flow, (usize, Diagnostic)> {
+        let Some(prog) = self.programs.get(index) else { return Ok(Flow::End) };
+        let unit = &self.units[prog.unit];
+        for &line in &prog.blocks {
+            let Some(block) = link::block(unit, line) else { continue };
+            if block.delete.is_some_and(|d| self.skip.get(d.switch.saturating_sub(1) as usize).copied().unwrap_or(false)) {
+                continue;
+            }
+            let Body::Words(ws) = &block.body else { continue };
+            self.steps += 1;
+            if self.steps > STEP_LIMIT {
+                return Ok(Flow::End);
+            }
+            let Ok(split) = words::classify(ws) else { return Ok(Flow::End) };
+            let lits = literal_words(&split.nc);
+            if !lits.is_empty() {
+                match self.nc.exec(&lits, &mut Discard) {
+                    Ok(out) if out.end.is_some() => return Ok(Flow::End),
+                    Ok(_) => {}
+                    Err(e) if compile_time(e.code) => return Err((prog.unit, error_at(&e, block.span))),
+                    Err(_) => return Ok(Flow::End),
+                }
+            }
+            match split.call {
+                None => {}
+                Some(Call::Sub { p: Some(p), l, .. }) => {
+                    let (Some(p), l) = (p.literal(), l.and_then(|l| l.literal())) else { return Ok(Flow::End) };
+                    let (number, count) = crate::calls::m98_target(p, l);
+                    let Some(sub) = self.programs.iter().position(|q| q.number == number) else { return Ok(Flow::End) };
+                    if depth >= 4 {
+                        return Ok(Flow::End);
+                    }
+                    for _ in 0..count.min(10_000) {
+                        if let Flow::End = self.program(sub, depth + 1)? {
+                            return Ok(Flow::End);
+                        }
+                    }
+                }
+                Some(Call::Ret { p: None }) if index != 0 => return Ok(Flow::Go),
+                Some(_) => return Ok(Flow::End),
+            }
+        }
+        Ok(if index == 0 { Flow::End } else { Flow::Go })
+    }
+}
+
+pub fn error_at(e: &NcError, span: Span) -> Diagnostic {
+    Diagnostic::error(crate::codes::name(e.code), span, e.message.clone())
+}

@@ -1,0 +1,152 @@
+//! The gbc compiler: parses a program file, links the programs it calls
+//! (from the file or from library folders), checks it and lowers it to a
+//! verified `.gbc` module.
+
+pub mod calls;
+pub mod check;
+pub mod codes;
+pub mod expr;
+pub mod link;
+pub mod lower;
+pub mod words;
+
+use grammar::{Diagnostic, SourceFile};
+use link::{Program, Unit};
+use nc::Machine;
+use std::path::PathBuf;
+
+/// What the driver passes in.
+#[derive(Debug, Clone)]
+pub struct Options {
+    pub machine: Machine,
+    /// Library folders searched for called programs (`-I`).
+    pub include: Vec<PathBuf>,
+    /// Constant folding (`-O1`, the default).
+    pub optimize: bool,
+    /// `-D '#100=5'`: variables preset at the start of the run.
+    pub defines: Vec<(u32, f64)>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            machine: Machine::reference(),
+            include: Vec::new(),
+            optimize: true,
+            defines: Vec::new(),
+        }
+    }
+}
+
+/// The result of a compilation: the module when there was no error, and
+/// every diagnostic with the file it belongs to.
+pub struct Compiled {
+    pub module: Option<isa::Module>,
+    pub files: Vec<SourceFile>,
+    pub diags: Vec<(usize, Diagnostic)>,
+}
+
+impl Compiled {
+    pub fn has_errors(&self) -> bool {
+        self.diags.iter().any(|(_, d)| d.is_error())
+    }
+
+    /// Every diagnostic rendered, in order.
+    pub fn render(&self) -> String {
+        self.diags
+            .iter()
+            .map(|(f, d)| self.files[*f].render(d))
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+}
+
+/// Compiles the program file `name` with contents `bytes`.
+pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
+    let mut diags = Vec::new();
+    let mut units = vec![parse_unit(name, bytes.to_vec(), 0, &mut diags)];
+    let mut programs = link::split(0, &units[0], &mut diags);
+    link_libraries(&mut units, &mut programs, opts, &mut diags);
+    let files: Vec<SourceFile> = units.iter().map(|u| SourceFile::new(u.name.clone(), &u.bytes)).collect();
+    if diags.iter().any(|(_, d): &(usize, Diagnostic)| d.is_error()) {
+        return Compiled { module: None, files, diags };
+    }
+    let mut gen = lower::Gen::new(&units, &files, &programs, &opts.machine, opts.optimize);
+    gen.lower_all(&opts.defines);
+    diags.append(&mut gen.diags);
+    let mut module = gen.module;
+    module.files = units
+        .iter()
+        .map(|u| isa::SourceFileInfo { name: u.name.clone(), hash: crc32fast::hash(&u.bytes) })
+        .collect();
+    let failed = diags.iter().any(|(_, d)| d.is_error());
+    if !failed && check::is_static(&units, &programs) {
+        if let Some(d) = check::dry_run(&units, &programs, &opts.machine) {
+            diags.push(d);
+        }
+    }
+    let failed = diags.iter().any(|(_, d)| d.is_error());
+    if !failed {
+        if let Err(e) = module.verify() {
+            let span = grammar::Span::default();
+            diags.push((0, Diagnostic::error("E0000", span, format!("internal error: the generated module does not verify: {e}"))));
+        }
+    }
+    let failed = diags.iter().any(|(_, d)| d.is_error());
+    Compiled { module: (!failed).then_some(module), files, diags }
+}
+
+fn parse_unit(name: &str, bytes: Vec<u8>, index: usize, diags: &mut Vec<(usize, Diagnostic)>) -> Unit {
+    let (ast, ds) = grammar::parse(&bytes);
+    diags.extend(ds.into_iter().map(|d| (index, d)));
+    Unit { name: name.to_string(), bytes, ast }
+}
+
+/// Literal call targets of a program.
+fn targets(unit: &Unit, prog: &Program) -> Vec<u32> {
+    let mut out = Vec::new();
+    for &line in &prog.blocks {
+        let Some(block) = link::block(unit, line) else { continue };
+        let grammar::ast::Body::Words(ws) = &block.body else { continue };
+        let Ok(split) = words::classify(ws) else { continue };
+        match split.call {
+            Some(words::Call::Sub { p: Some(p), l, .. }) => {
+                if let Some(p) = p.literal() {
+                    out.push(calls::m98_target(p, l.and_then(|l| l.literal())).0);
+                }
+            }
+            Some(words::Call::SubM { number, .. }) => out.push(number),
+            Some(words::Call::Macro { p: Some(p), .. }) => {
+                if let Some(p) = p.literal() {
+                    out.push(nc::block::round_half_away(p).max(0.0) as u32);
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// Adds the library files of every called program found in no unit yet.
+fn link_libraries(units: &mut Vec<Unit>, programs: &mut Vec<Program>, opts: &Options, diags: &mut Vec<(usize, Diagnostic)>) {
+    let mut dirs = opts.include.clone();
+    dirs.extend(opts.machine.r#macro.library_dirs.iter().map(PathBuf::from));
+    let mut i = 0;
+    while i < programs.len() {
+        let wanted = targets(&units[programs[i].unit], &programs[i]);
+        for number in wanted {
+            if programs.iter().any(|p| p.number == number) {
+                continue;
+            }
+            let Some(path) = link::find_library(&dirs, number) else { continue };
+            let Ok(bytes) = std::fs::read(&path) else { continue };
+            let index = units.len();
+            let unit = parse_unit(&path.display().to_string(), bytes, index, diags);
+            let mut found = link::split(index, &unit, diags);
+            units.push(unit);
+            found.retain(|p| !programs.iter().any(|q| q.number == p.number));
+            programs.extend(found);
+        }
+        i += 1;
+    }
+}

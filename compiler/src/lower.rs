@@ -1,0 +1,428 @@
+//! Lowering: every block of every linked program into bytecode.
+//!
+//! NC blocks become `word`/`wordk` instructions followed by `exec` (the VM
+//! hands the words to the NC kernel); macro statements become register
+//! arithmetic and jumps; M98/M99/G65/G66 become calls and returns.
+
+use crate::expr::ExprGen;
+use crate::link::{self, Program, Unit};
+use crate::words::{self, Call, WordValue};
+use grammar::ast::{Block, Body, Cond, Expr, Stmt};
+use grammar::{Diagnostic, SourceFile, Span};
+use isa::{Instr, Module, SourceLoc};
+use nc::Machine;
+use std::collections::HashMap;
+
+/// A diagnostic with the index of its unit (source file).
+pub type FileDiag = (usize, Diagnostic);
+
+pub struct Gen<'a> {
+    pub units: &'a [Unit],
+    pub files: &'a [SourceFile],
+    pub programs: &'a [Program],
+    pub machine: &'a Machine,
+    pub optimize: bool,
+    pub module: Module,
+    consts: HashMap<u64, u32>,
+    pub diags: Vec<FileDiag>,
+    pub unit: usize,
+    loc: SourceLoc,
+    pub expr: ExprGen,
+}
+
+/// An open DO loop of the program being lowered.
+struct Loop {
+    label: u32,
+    id: u32,
+    start: u32,
+    exits: Vec<usize>,
+    span: Span,
+}
+
+/// A literal jump waiting for its target.
+struct Pending {
+    at: usize,
+    seq: u32,
+    span: Span,
+    loops: Vec<u32>,
+}
+
+/// Per-program lowering state.
+#[derive(Default)]
+struct ProgState {
+    loops: Vec<Loop>,
+    next_loop: u32,
+    gotos: Vec<Pending>,
+    /// (sequence number, pc, loop ids open at that block).
+    seqs: Vec<(u32, u32, Vec<u32>, Span)>,
+}
+
+impl<'a> Gen<'a> {
+    pub fn new(
+        units: &'a [Unit],
+        files: &'a [SourceFile],
+        programs: &'a [Program],
+        machine: &'a Machine,
+        optimize: bool,
+    ) -> Gen<'a> {
+        let module = Module {
+            machine: machine.compile_keys(),
+            ..Module::default()
+        };
+        Gen {
+            units,
+            files,
+            programs,
+            machine,
+            optimize,
+            module,
+            consts: HashMap::new(),
+            diags: Vec::new(),
+            unit: 0,
+            loc: SourceLoc::default(),
+            expr: ExprGen::default(),
+        }
+    }
+
+    pub fn error(&mut self, code: &'static str, span: Span, msg: impl Into<String>) {
+        self.diags.push((self.unit, Diagnostic::error(code, span, msg)));
+    }
+
+    pub fn warn(&mut self, code: &'static str, span: Span, msg: impl Into<String>) {
+        self.diags.push((self.unit, Diagnostic::warning(code, span, msg)));
+    }
+
+    pub fn emit(&mut self, instr: Instr) -> usize {
+        self.module.code.push(instr);
+        self.module.lines.push(self.loc);
+        self.module.code.len() - 1
+    }
+
+    pub fn pc(&self) -> u32 {
+        self.module.code.len() as u32
+    }
+
+    pub fn konst(&mut self, v: f64) -> u32 {
+        let next = self.module.consts.len() as u32;
+        let k = *self.consts.entry(v.to_bits()).or_insert(next);
+        if k == next {
+            self.module.consts.push(v);
+        }
+        k
+    }
+
+    pub fn string(&mut self, s: &str) -> u32 {
+        if let Some(i) = self.module.strings.iter().position(|t| t == s) {
+            return i as u32;
+        }
+        self.module.strings.push(s.to_string());
+        (self.module.strings.len() - 1) as u32
+    }
+
+    fn set_loc(&mut self, span: Span) {
+        let (line, col) = self.files[self.unit].line_col(span.start);
+        self.loc = SourceLoc {
+            file: self.unit as u16,
+            line: line as u32,
+            col: col as u32,
+        };
+    }
+
+    /// The program table index of program `number`.
+    pub fn program_index(&self, number: u32) -> Option<u32> {
+        self.programs.iter().position(|p| p.number == number).map(|i| i as u32)
+    }
+
+    /// Lowers every program; `presets` are `-D` assignments run first.
+    pub fn lower_all(&mut self, presets: &[(u32, f64)]) {
+        for (i, prog) in self.programs.iter().enumerate() {
+            self.unit = prog.unit;
+            self.set_loc(prog.span);
+            let entry = self.pc();
+            if i == 0 {
+                for &(var, value) in presets {
+                    let k = self.konst(value);
+                    self.emit(Instr::LoadK { dst: 0, k });
+                    self.emit(Instr::StoreVar { var, src: 0 });
+                    self.expr.touch(1);
+                }
+            }
+            let seqs = self.lower_program(prog, i == 0);
+            let end = self.pc();
+            self.module.programs.push(isa::Program {
+                number: prog.number,
+                entry,
+                end,
+                seqs,
+            });
+        }
+        self.module.num_regs = self.expr.max_regs().max(1);
+    }
+
+    fn lower_program(&mut self, prog: &Program, main: bool) -> Vec<(u32, u32)> {
+        let mut st = ProgState::default();
+        let unit = &self.units[prog.unit];
+        for &line in &prog.blocks {
+            let Some(block) = link::block(unit, line) else {
+                continue;
+            };
+            self.set_loc(block.span);
+            if let Some(seq) = block.seq {
+                let loops = st.loops.iter().map(|l| l.id).collect();
+                st.seqs.push((seq.number, self.pc(), loops, block.span));
+            }
+            if let Some(d) = block.delete {
+                let on = self
+                    .machine
+                    .operator
+                    .block_skip
+                    .get(d.switch.saturating_sub(1) as usize)
+                    .copied()
+                    .unwrap_or(false);
+                if on {
+                    continue;
+                }
+            }
+            self.expr.reset();
+            match &block.body {
+                Body::Words(_) => self.lower_words(block, &mut st),
+                Body::Stmt(s) => self.lower_stmt(s, block, &mut st),
+            }
+        }
+        // Running off the end: the main program halts, a subprogram
+        // returns as if M99 (W101).
+        let end_span = prog.blocks.last().and_then(|&l| link::block(unit, l)).map_or(prog.span, |b| b.span);
+        self.set_loc(end_span);
+        self.emit(if main { Instr::Halt } else { Instr::Ret });
+        for open in std::mem::take(&mut st.loops) {
+            self.error("E2014", open.span, format!("DO {} has no END {}", open.label, open.label));
+        }
+        self.resolve_gotos(&mut st);
+        let mut seqs: Vec<(u32, u32)> = st.seqs.iter().map(|(n, pc, _, _)| (*n, *pc)).collect();
+        seqs.sort();
+        seqs
+    }
+
+    fn resolve_gotos(&mut self, st: &mut ProgState) {
+        for g in std::mem::take(&mut st.gotos) {
+            let mut found = st.seqs.iter().filter(|(n, ..)| *n == g.seq);
+            let Some((_, pc, loops, _)) = found.next() else {
+                self.error("E2010", g.span, format!("GOTO {}: there is no block N{} in this program", g.seq, g.seq));
+                continue;
+            };
+            if found.next().is_some() {
+                self.warn("W103", g.span, format!("N{} occurs more than once: the first block is used", g.seq));
+            }
+            if !loops.iter().all(|id| g.loops.contains(id)) {
+                self.error("E2015", g.span, format!("GOTO {} jumps into a DO loop from outside it", g.seq));
+                continue;
+            }
+            let target = *pc;
+            match &mut self.module.code[g.at] {
+                Instr::Jump { target: t } | Instr::JumpIfNot { target: t, .. } => *t = target,
+                _ => {}
+            }
+        }
+    }
+
+    fn lower_stmt(&mut self, s: &Stmt, block: &Block, st: &mut ProgState) {
+        match s {
+            Stmt::Assign { target, value, .. } => self.assign(target, value, block),
+            Stmt::Goto { target, span } => self.goto(target, None, *span, st),
+            Stmt::IfGoto { cond, target, span } => {
+                let c = self.cond(cond);
+                self.goto(target, c, *span, st);
+            }
+            Stmt::IfThen { cond, then, .. } => {
+                let Some(c) = self.cond(cond) else { return };
+                let skip = self.emit(Instr::JumpIfNot { cond: c, target: 0 });
+                self.lower_stmt(then, block, st);
+                let here = self.pc();
+                if let Instr::JumpIfNot { target, .. } = &mut self.module.code[skip] {
+                    *target = here;
+                }
+            }
+            Stmt::While { cond, label, span } => {
+                let start = self.pc();
+                let Some(c) = self.cond(cond) else { return };
+                let exit = self.emit(Instr::JumpIfNot { cond: c, target: 0 });
+                self.open_loop(label.value, start, vec![exit], *span, label.span, st);
+            }
+            Stmt::Do { label, span } => {
+                let start = self.pc();
+                self.open_loop(label.value, start, Vec::new(), *span, label.span, st);
+            }
+            Stmt::End { label, span } => self.close_loop(label.value, *span, st),
+        }
+    }
+
+    fn open_loop(&mut self, label: u32, start: u32, exits: Vec<usize>, span: Span, label_span: Span, st: &mut ProgState) {
+        if !(1..=3).contains(&label) {
+            self.error("E2013", label_span, format!("DO/END label {label}: labels are 1, 2 or 3"));
+            return;
+        }
+        if st.loops.iter().any(|l| l.label == label) {
+            self.error("E2014", span, format!("DO {label} is already open: nested loops need different labels"));
+            return;
+        }
+        if st.loops.len() == 3 {
+            self.error("E2014", span, "loops nest at most three deep");
+            return;
+        }
+        st.next_loop += 1;
+        st.loops.push(Loop { label, id: st.next_loop, start, exits, span });
+    }
+
+    fn close_loop(&mut self, label: u32, span: Span, st: &mut ProgState) {
+        if !(1..=3).contains(&label) {
+            self.error("E2013", span, format!("DO/END label {label}: labels are 1, 2 or 3"));
+            return;
+        }
+        let Some(open) = st.loops.pop() else {
+            self.error("E2014", span, format!("END {label} without a DO {label}"));
+            return;
+        };
+        if open.label != label {
+            self.error(
+                "E2014",
+                span,
+                format!("END {label} closes DO {}: loops are crossed", open.label),
+            );
+            return;
+        }
+        self.emit(Instr::Jump { target: open.start });
+        let here = self.pc();
+        for at in open.exits {
+            if let Instr::JumpIfNot { target, .. } = &mut self.module.code[at] {
+                *target = here;
+            }
+        }
+    }
+
+    /// `GOTO n` (conditional when `cond` holds the register of the test).
+    fn goto(&mut self, target: &Expr, cond: Option<u8>, span: Span, st: &mut ProgState) {
+        let skip = cond.map(|c| self.emit(Instr::JumpIfNot { cond: c, target: 0 }));
+        match self.expr.constant(target) {
+            Some(Ok(n)) => {
+                let n = nc::block::round_half_away(n);
+                if !(0.0..=99999.0).contains(&n) {
+                    self.error("E2010", target.span(), format!("GOTO {n}: sequence numbers are 1…99999"));
+                } else {
+                    let at = self.emit(Instr::Jump { target: 0 });
+                    let loops = st.loops.iter().map(|l| l.id).collect();
+                    st.gotos.push(Pending { at, seq: n as u32, span, loops });
+                }
+            }
+            _ => {
+                if let Some(r) = self.expr_reg(target) {
+                    self.emit(Instr::GotoSeq { seq: r });
+                }
+            }
+        }
+        if let Some(at) = skip {
+            let here = self.pc();
+            if let Instr::JumpIfNot { target, .. } = &mut self.module.code[at] {
+                *target = here;
+            }
+        }
+    }
+
+    fn assign(&mut self, target: &grammar::ast::VarRef, value: &Expr, block: &Block) {
+        let Some(src) = self.expr_reg(value) else { return };
+        if let Some(c) = block.comments.first() {
+            let s = self.string(&c.text);
+            self.emit(Instr::SetMsg { s });
+        } else if matches!(self.expr.constant(&target.index), Some(Ok(v)) if v == 3000.0 || v == 3006.0) {
+            let s = self.string("");
+            self.emit(Instr::SetMsg { s });
+        }
+        match self.expr.constant(&target.index) {
+            Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
+                if n == 0.0 {
+                    self.error("E5007", target.span, "#0 is always vacant and cannot be written");
+                    return;
+                }
+                self.emit(Instr::StoreVar { var: n as u32, src });
+            }
+            _ => {
+                let Some(idx) = self.expr_reg(&target.index) else { return };
+                self.emit(Instr::StoreVarInd { idx, src });
+            }
+        }
+    }
+
+    /// Compiles an expression into a register, reporting folding findings.
+    pub fn expr_reg(&mut self, e: &Expr) -> Option<u8> {
+        let mut expr = std::mem::take(&mut self.expr);
+        let r = expr.compile(self, e);
+        self.expr = expr;
+        r
+    }
+
+    fn cond(&mut self, c: &Cond) -> Option<u8> {
+        let mut expr = std::mem::take(&mut self.expr);
+        let r = expr.cond(self, c);
+        self.expr = expr;
+        r
+    }
+
+    fn lower_words(&mut self, block: &Block, st: &mut ProgState) {
+        let _ = st;
+        let Body::Words(ws) = &block.body else { return };
+        match words::classify(ws) {
+            Ok(split) => self.lower_split(block, split),
+            Err(d) => self.diags.push((self.unit, d)),
+        }
+    }
+
+    fn lower_split(&mut self, block: &Block, split: words::Split<'_>) {
+        if let Err(e) = crate::check::literal_block(self.machine, &split.nc) {
+            self.error(code_name(e.code), block.span, e.message);
+            return;
+        }
+        for w in &split.nc {
+            match w.value {
+                WordValue::Literal(v, flags) => {
+                    let k = self.konst(v);
+                    self.emit(Instr::WordK { addr: w.addr, k, flags });
+                }
+                WordValue::Expr(e) => {
+                    if let Some(src) = self.expr_reg(e) {
+                        self.emit(Instr::Word { addr: w.addr, src });
+                    }
+                }
+            }
+        }
+        if !split.nc.is_empty() {
+            if let Some(c) = block.comments.first() {
+                let s = self.string(&c.text);
+                self.emit(Instr::SetMsg { s });
+            }
+            self.emit(Instr::Exec { flags: 0 });
+        }
+        if let Some(call) = split.call {
+            crate::calls::lower_call(self, call, block.span);
+        }
+    }
+
+    pub fn value_reg(&mut self, v: &WordValue<'_>) -> Option<u8> {
+        match v {
+            WordValue::Literal(x, _) => {
+                let k = self.konst(*x);
+                let r = self.expr.alloc();
+                self.emit(Instr::LoadK { dst: r, k });
+                Some(r)
+            }
+            WordValue::Expr(e) => self.expr_reg(e),
+        }
+    }
+
+    pub fn call_kind(&self, c: &Call<'_>) -> &'static str {
+        c.kind_name()
+    }
+}
+
+/// `E4001` from 4001 (codes are static strings in diagnostics).
+pub fn code_name(code: u16) -> &'static str {
+    crate::codes::name(code)
+}

@@ -1,0 +1,209 @@
+//! Diagnostics: one type for every phase (lexer, parser, compiler, VM
+//! alarms), rendered gcc-style with a codespan-reporting snippet below.
+
+use crate::span::Span;
+use codespan_reporting::diagnostic as cs;
+use codespan_reporting::files::SimpleFile;
+use codespan_reporting::term;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    Warning,
+    Error,
+}
+
+/// A finding about the program at a place in its source.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagnostic {
+    pub severity: Severity,
+    /// The dialect's code: `E1001`, `W102` (dialect.md §8).
+    pub code: &'static str,
+    pub message: String,
+    /// The exact place; the header's line and column come from its start.
+    pub span: Span,
+    /// The label under the snippet (defaults to nothing).
+    pub label: String,
+    /// Extra lines such as "expected one of …".
+    pub notes: Vec<String>,
+    /// A likely fix.
+    pub help: Option<String>,
+}
+
+impl Diagnostic {
+    pub fn error(code: &'static str, span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Error,
+            code,
+            message: message.into(),
+            span,
+            label: String::new(),
+            notes: Vec::new(),
+            help: None,
+        }
+    }
+
+    pub fn warning(code: &'static str, span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::error(code, span, message)
+        }
+    }
+
+    pub fn with_label(mut self, label: impl Into<String>) -> Diagnostic {
+        self.label = label.into();
+        self
+    }
+
+    pub fn with_note(mut self, note: impl Into<String>) -> Diagnostic {
+        self.notes.push(note.into());
+        self
+    }
+
+    pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
+        self.help = Some(help.into());
+        self
+    }
+
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+}
+
+/// A source file as the renderer needs it: its name, and its bytes made
+/// printable one byte for one character, so byte offsets stay valid.
+pub struct SourceFile {
+    pub name: String,
+    text: String,
+    line_starts: Vec<usize>,
+}
+
+impl SourceFile {
+    pub fn new(name: impl Into<String>, bytes: &[u8]) -> SourceFile {
+        let text: String = bytes
+            .iter()
+            .map(|&b| {
+                if b.is_ascii() && (b >= b' ' || b == b'\n' || b == b'\r' || b == b'\t') {
+                    b as char
+                } else {
+                    '?'
+                }
+            })
+            .collect();
+        let mut line_starts = vec![0];
+        for (i, b) in bytes.iter().enumerate() {
+            // A lone CR ends a line too (dialect.md §1.3).
+            let ends = *b == b'\n' || (*b == b'\r' && bytes.get(i + 1) != Some(&b'\n'));
+            if ends {
+                line_starts.push(i + 1);
+            }
+        }
+        SourceFile {
+            name: name.into(),
+            text,
+            line_starts,
+        }
+    }
+
+    /// 1-based line and column (in bytes) of a byte offset.
+    pub fn line_col(&self, offset: u32) -> (usize, usize) {
+        let offset = offset as usize;
+        let line = match self.line_starts.binary_search(&offset) {
+            Ok(i) => i,
+            Err(i) => i - 1,
+        };
+        (line + 1, offset - self.line_starts[line] + 1)
+    }
+
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The one-line gcc-style header of a diagnostic.
+    pub fn header(&self, d: &Diagnostic) -> String {
+        let (line, col) = self.line_col(d.span.start);
+        let kind = match d.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        format!(
+            "{}:{}:{}: {}[{}]: {}",
+            self.name, line, col, kind, d.code, d.message
+        )
+    }
+
+    /// Header, then the snippet with the label, notes and help; no colour.
+    pub fn render(&self, d: &Diagnostic) -> String {
+        let mut out = self.header(d);
+        out.push('\n');
+        out.push_str(&self.snippet(d));
+        out
+    }
+
+    fn snippet(&self, d: &Diagnostic) -> String {
+        let file = SimpleFile::new(self.name.as_str(), self.text.as_str());
+        let len = self.text.len();
+        let start = (d.span.start as usize).min(len);
+        let end = (d.span.end as usize).clamp(start, len);
+        let mut notes = d.notes.clone();
+        if let Some(help) = &d.help {
+            notes.push(format!("help: {help}"));
+        }
+        let diag = match d.severity {
+            Severity::Error => cs::Diagnostic::error(),
+            Severity::Warning => cs::Diagnostic::warning(),
+        }
+        .with_code(d.code)
+        .with_message(d.message.clone())
+        .with_labels(vec![
+            cs::Label::primary((), start..end).with_message(d.label.clone())
+        ])
+        .with_notes(notes);
+        let config = term::Config {
+            display_style: term::DisplayStyle::Rich,
+            ..term::Config::default()
+        };
+        let mut buffer = String::new();
+        // Rendering into a String cannot fail for in-range spans; report the
+        // header alone if it ever does.
+        let _ = term::emit_to_string(&mut buffer, &config, &file, &diag);
+        // Drop codespan's own first line: our header replaces it.
+        match buffer.split_once('\n') {
+            Some((_, rest)) => rest.to_string(),
+            None => String::new(),
+        }
+    }
+
+    /// One JSON object for editors.
+    pub fn json(&self, d: &Diagnostic) -> String {
+        let (line, col) = self.line_col(d.span.start);
+        let severity = match d.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        format!(
+            "{{\"file\":{},\"line\":{},\"column\":{},\"severity\":\"{}\",\"code\":\"{}\",\"message\":{},\"span\":{{\"start\":{},\"end\":{}}}}}",
+            json_string(&self.name),
+            line,
+            col,
+            severity,
+            d.code,
+            json_string(&d.message),
+            d.span.start,
+            d.span.end
+        )
+    }
+}
+
+fn json_string(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}

@@ -1,0 +1,450 @@
+//! Tokens of one block, lexed with logos from the block's compacted text
+//! (blanks and comments already taken out by [`crate::compact`]), with
+//! their spans mapped back to offsets in the original source.
+//!
+//! Keywords win by longest match, so `DO1` is a loop and `D01` a word,
+//! `GOTO` is not `G` + `OTO`, and `ANDSIN` is `AND` `SIN`. A letter followed
+//! by a letter is therefore never a keyword split by accident: in NC words a
+//! letter always needs a value, so such a pair is an error either way.
+
+use crate::ast::{Comment, Func, RelOp};
+use crate::compact::OffsetMap;
+use crate::diag::Diagnostic;
+use crate::span::Span;
+use logos::Logos;
+
+/// A numeric literal without its sign and span (the grammar adds both).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NumLit {
+    pub value: f64,
+    pub has_point: bool,
+    pub decimals: u8,
+}
+
+/// A token. `N` and `O` are tokens of their own because the grammar treats
+/// them apart from the other address letters (sequence and program numbers).
+#[derive(Logos, Debug, Clone, Copy, PartialEq)]
+#[logos(utf8 = false)]
+pub enum Tok {
+    #[regex("[A-MP-Za-mp-z]", |lex| lex.slice()[0].to_ascii_uppercase())]
+    Letter(u8),
+    #[token("N", ignore(case))]
+    N,
+    #[token("O", ignore(case))]
+    O,
+    #[token(":")]
+    Colon,
+    #[regex(r"[0-9]+(\.[0-9]*)?", |lex| number(lex.slice()))]
+    #[regex(r"\.[0-9]+", |lex| number(lex.slice()))]
+    Num(NumLit),
+    #[token(",")]
+    Comma,
+    #[token("+")]
+    Plus,
+    #[token("-")]
+    Minus,
+    #[token("*")]
+    Star,
+    #[token("/")]
+    Slash,
+    #[token("#")]
+    Hash,
+    #[token("[")]
+    LBrack,
+    #[token("]")]
+    RBrack,
+    #[token("=")]
+    Assign,
+    #[token("IF", ignore(case))]
+    If,
+    #[token("THEN", ignore(case))]
+    Then,
+    #[token("GOTO", ignore(case))]
+    Goto,
+    #[token("WHILE", ignore(case))]
+    While,
+    #[token("DO", ignore(case))]
+    Do,
+    #[token("END", ignore(case))]
+    End,
+    #[token("EQ", |_| RelOp::Eq, ignore(case))]
+    #[token("NE", |_| RelOp::Ne, ignore(case))]
+    #[token("GT", |_| RelOp::Gt, ignore(case))]
+    #[token("LT", |_| RelOp::Lt, ignore(case))]
+    #[token("GE", |_| RelOp::Ge, ignore(case))]
+    #[token("LE", |_| RelOp::Le, ignore(case))]
+    Rel(RelOp),
+    #[token("AND", ignore(case))]
+    And,
+    #[token("OR", ignore(case))]
+    Or,
+    #[token("XOR", ignore(case))]
+    Xor,
+    #[token("MOD", ignore(case))]
+    Mod,
+    /// `ATAN` apart from the other functions: it has a two-argument form.
+    #[token("ATAN", ignore(case))]
+    Atan,
+    #[token("SIN", |_| Func::Sin, ignore(case))]
+    #[token("COS", |_| Func::Cos, ignore(case))]
+    #[token("TAN", |_| Func::Tan, ignore(case))]
+    #[token("ASIN", |_| Func::Asin, ignore(case))]
+    #[token("ACOS", |_| Func::Acos, ignore(case))]
+    #[token("SQRT", |_| Func::Sqrt, ignore(case))]
+    #[token("ABS", |_| Func::Abs, ignore(case))]
+    #[token("ROUND", |_| Func::Round, ignore(case))]
+    #[token("FIX", |_| Func::Fix, ignore(case))]
+    #[token("FUP", |_| Func::Fup, ignore(case))]
+    #[token("LN", |_| Func::Ln, ignore(case))]
+    #[token("EXP", |_| Func::Exp, ignore(case))]
+    #[token("BIN", |_| Func::Bin, ignore(case))]
+    #[token("BCD", |_| Func::Bcd, ignore(case))]
+    Func(Func),
+}
+
+impl Tok {
+    /// How the token is written, for messages.
+    pub fn describe(&self) -> String {
+        match self {
+            Tok::Letter(c) => format!("letter `{}`", *c as char),
+            Tok::N => "`N`".into(),
+            Tok::O => "`O`".into(),
+            Tok::Colon => "`:`".into(),
+            Tok::Num(_) => "a number".into(),
+            Tok::Comma => "`,`".into(),
+            Tok::Plus => "`+`".into(),
+            Tok::Minus => "`-`".into(),
+            Tok::Star => "`*`".into(),
+            Tok::Slash => "`/`".into(),
+            Tok::Hash => "`#`".into(),
+            Tok::LBrack => "`[`".into(),
+            Tok::RBrack => "`]`".into(),
+            Tok::Assign => "`=`".into(),
+            Tok::If => "`IF`".into(),
+            Tok::Then => "`THEN`".into(),
+            Tok::Goto => "`GOTO`".into(),
+            Tok::While => "`WHILE`".into(),
+            Tok::Do => "`DO`".into(),
+            Tok::End => "`END`".into(),
+            Tok::Rel(op) => format!("`{}`", rel_name(*op)),
+            Tok::And => "`AND`".into(),
+            Tok::Or => "`OR`".into(),
+            Tok::Xor => "`XOR`".into(),
+            Tok::Mod => "`MOD`".into(),
+            Tok::Atan => "`ATAN`".into(),
+            Tok::Func(f) => format!("`{}`", func_name(*f)),
+        }
+    }
+
+    /// An address letter (including `N` and `O`): the start of a word.
+    pub fn is_letter(&self) -> bool {
+        matches!(self, Tok::Letter(_) | Tok::N | Tok::O)
+    }
+
+    /// A token that can only start a macro statement.
+    pub fn starts_statement(&self) -> bool {
+        matches!(
+            self,
+            Tok::Hash | Tok::If | Tok::Goto | Tok::While | Tok::Do | Tok::End
+        )
+    }
+}
+
+pub fn rel_name(op: RelOp) -> &'static str {
+    match op {
+        RelOp::Eq => "EQ",
+        RelOp::Ne => "NE",
+        RelOp::Gt => "GT",
+        RelOp::Lt => "LT",
+        RelOp::Ge => "GE",
+        RelOp::Le => "LE",
+    }
+}
+
+pub fn func_name(f: Func) -> &'static str {
+    match f {
+        Func::Sin => "SIN",
+        Func::Cos => "COS",
+        Func::Tan => "TAN",
+        Func::Asin => "ASIN",
+        Func::Acos => "ACOS",
+        Func::Atan => "ATAN",
+        Func::Sqrt => "SQRT",
+        Func::Abs => "ABS",
+        Func::Round => "ROUND",
+        Func::Fix => "FIX",
+        Func::Fup => "FUP",
+        Func::Ln => "LN",
+        Func::Exp => "EXP",
+        Func::Bin => "BIN",
+        Func::Bcd => "BCD",
+    }
+}
+
+/// Exact powers of ten as doubles (10^22 is the largest exact one).
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// Reads `digits[.digits]` or `.digits` (the regex guarantees the shape).
+///
+/// Short literals, nearly all of them, take the exact fast path: an integer
+/// mantissa below 2^53 divided by an exact power of ten is correctly
+/// rounded, so it equals what the standard parser returns; longer ones go
+/// through the standard parser.
+pub fn number(s: &[u8]) -> NumLit {
+    let point = s.iter().position(|&b| b == b'.');
+    let decimals = point.map_or(0, |p| s.len() - p - 1);
+    let mut mantissa: u64 = 0;
+    let mut digits = 0usize;
+    for &b in s {
+        if b != b'.' {
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b.wrapping_sub(b'0')));
+            digits += 1;
+        }
+    }
+    let value = if digits <= 15 {
+        mantissa as f64 / POW10[decimals]
+    } else {
+        std::str::from_utf8(s)
+            .ok()
+            .and_then(|t| t.parse::<f64>().ok())
+            .unwrap_or(f64::INFINITY)
+    };
+    NumLit {
+        value,
+        has_point: point.is_some(),
+        decimals: decimals.min(u8::MAX as usize) as u8,
+    }
+}
+
+/// A lexed token with its source span.
+pub type Spanned = (usize, Tok, usize);
+
+/// Brackets may nest 32 deep (dialect.md §7.4).
+pub const MAX_DEPTH: usize = 32;
+
+/// Operators (and `#`, functions) allowed in one block. Not in the spec:
+/// it bounds the depth of expression trees so that nothing that walks them
+/// recursively (drop, the compiler) can overflow the stack on hostile input;
+/// real blocks stay far below it.
+pub const MAX_OPERATORS: usize = 256;
+
+/// Lexes one compacted block into `out` (cleared first), checking what
+/// needs the token stream but not the grammar: stray characters, comments
+/// inside words, bracket depth.
+pub fn lex_block(
+    text: &[u8],
+    map: &OffsetMap,
+    comments: &[Comment],
+    out: &mut Vec<Spanned>,
+) -> Result<(), Box<Diagnostic>> {
+    out.clear();
+    let mut cursor = map.cursor();
+    let mut lex = Tok::lexer(text);
+    let mut depth = 0usize;
+    let mut operators = 0usize;
+    while let Some(next) = lex.next() {
+        let range = lex.span();
+        let start = cursor.start(range.start);
+        let end = cursor.end(range.end);
+        let tok = match next {
+            Ok(tok) => tok,
+            Err(()) => {
+                // `X-12.8.`: a second point right after a number.
+                let after_number = match out.last() {
+                    Some(&(l, Tok::Num(_), r)) if r == start => Some(l),
+                    _ => None,
+                };
+                return Err(Box::new(match (text[range.start], after_number) {
+                    (b'.', Some(l)) => Diagnostic::error(
+                        "E1007",
+                        Span::new(l, end),
+                        "malformed number: a second decimal point",
+                    )
+                    .with_label("a number has at most one `.`"),
+                    (byte, _) => bad_char(byte, start, end),
+                }));
+            }
+        };
+        match tok {
+            Tok::LBrack => {
+                depth += 1;
+                if depth > MAX_DEPTH {
+                    return Err(Box::new(
+                        Diagnostic::error(
+                            "E1014",
+                            Span::new(start, end),
+                            format!("brackets nested more than {MAX_DEPTH} deep"),
+                        )
+                        .with_label("too deep"),
+                    ));
+                }
+            }
+            Tok::RBrack => depth = depth.saturating_sub(1),
+            Tok::Plus | Tok::Minus | Tok::Hash => {
+                // A sign or `#` right after an address is part of a word value
+                // and cannot nest.
+                if !matches!(out.last(), Some((_, t, _)) if t.is_letter() || *t == Tok::Comma) {
+                    operators += 1;
+                }
+            }
+            Tok::Star
+            | Tok::Slash
+            | Tok::And
+            | Tok::Or
+            | Tok::Xor
+            | Tok::Mod
+            | Tok::Func(_)
+            | Tok::Atan => operators += 1,
+            _ => {}
+        }
+        if operators > MAX_OPERATORS {
+            return Err(Box::new(
+                Diagnostic::error(
+                    "E1014",
+                    Span::new(start, end),
+                    format!("expression too long: more than {MAX_OPERATORS} operators in one block"),
+                )
+                .with_help("split the computation over several assignments"),
+            ));
+        }
+        out.push((start, tok, end));
+    }
+    for comment in comments {
+        check_comment_place(comment, out)?;
+    }
+    Ok(())
+}
+
+fn bad_char(byte: u8, start: usize, end: usize) -> Diagnostic {
+    let span = Span::new(start, end);
+    match byte {
+        b'.' => Diagnostic::error("E1007", span, "malformed number: `.` without digits")
+            .with_label("a point needs a digit before or after it")
+            .with_help("write `0.` or `.0`"),
+        b'%' => Diagnostic::error(
+            "E1001",
+            span,
+            "`%` is only allowed alone on its own line",
+        )
+        .with_label("not allowed here"),
+        b')' => Diagnostic::error("E1002", span, "`)` without `(`").with_label("no comment open"),
+        _ => Diagnostic::error(
+            "E1001",
+            span,
+            format!("character `{}` not allowed outside a comment", byte as char),
+        )
+        .with_label("not part of the language"),
+    }
+}
+
+/// A comment may stand between words, not inside one (`X1(c)0`,
+/// `X(c)10`: E1007). Tokens are lexed from the text without the comment,
+/// so a comment inside a number or keyword lies inside one token's span.
+fn check_comment_place(comment: &Comment, toks: &[Spanned]) -> Result<(), Box<Diagnostic>> {
+    let at = comment.span.start as usize;
+    let k = toks.partition_point(|t| t.0 < at);
+    let inside = match (k.checked_sub(1).map(|i| &toks[i]), toks.get(k)) {
+        (Some(prev), _) if prev.2 > at => true,
+        (Some(prev), Some(next)) => {
+            // (A `,` before a comment is left to the parser: `(a), (b)` is a
+            // stray comma, not a split word.)
+            let after_address = prev.1.is_letter() || prev.1 == Tok::Hash;
+            let after_sign = matches!(prev.1, Tok::Plus | Tok::Minus)
+                && k >= 2
+                && (toks[k - 2].1.is_letter() || toks[k - 2].1 == Tok::Comma);
+            let split_number = matches!(prev.1, Tok::Num(_)) && matches!(next.1, Tok::Num(_));
+            after_address || after_sign || split_number
+        }
+        _ => false,
+    };
+    if inside {
+        return Err(Box::new(
+            Diagnostic::error("E1007", comment.span, "comment inside a word")
+                .with_label("this comment splits a word")
+                .with_help("put the comment between words"),
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn toks(s: &str) -> Vec<Tok> {
+        Tok::lexer(s.as_bytes()).map(|t| t.unwrap()).collect()
+    }
+
+    fn num(s: &str) -> NumLit {
+        match toks(s).as_slice() {
+            [Tok::Num(n)] => *n,
+            other => panic!("{s}: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn number_forms() {
+        assert_eq!(num("30"), NumLit { value: 30.0, has_point: false, decimals: 0 });
+        assert_eq!(num("30."), NumLit { value: 30.0, has_point: true, decimals: 0 });
+        assert_eq!(num("30.0"), NumLit { value: 30.0, has_point: true, decimals: 1 });
+        assert_eq!(num(".05"), NumLit { value: 0.05, has_point: true, decimals: 2 });
+        assert_eq!(num("0030").value, 30.0);
+        assert_eq!(num("6.2").decimals, 1);
+        assert_eq!(num("13.64").value, 13.64);
+        assert_eq!(num("0.1").value, 0.1);
+    }
+
+    #[test]
+    fn fast_path_matches_std() {
+        for s in ["0.1", "123.456", "99999.999", "1.7976931348", "0.000000000000001", "3.14159265358979"] {
+            assert_eq!(number(s.as_bytes()).value, s.parse::<f64>().unwrap(), "{s}");
+        }
+        let long = "12345678901234567890.123456789";
+        assert_eq!(number(long.as_bytes()).value, long.parse::<f64>().unwrap());
+    }
+
+    #[test]
+    fn no_exponent() {
+        assert_eq!(
+            toks("X1E5"),
+            vec![
+                Tok::Letter(b'X'),
+                Tok::Num(number(b"1")),
+                Tok::Letter(b'E'),
+                Tok::Num(number(b"5"))
+            ]
+        );
+    }
+
+    #[test]
+    fn keywords_versus_words() {
+        assert_eq!(toks("DO1")[0], Tok::Do);
+        assert_eq!(toks("D01")[0], Tok::Letter(b'D'));
+        assert_eq!(toks("GOTO10")[0], Tok::Goto);
+        assert_eq!(toks("goto10")[0], Tok::Goto);
+        assert_eq!(toks("END1")[0], Tok::End);
+        assert_eq!(toks("E1")[0], Tok::Letter(b'E'));
+        assert_eq!(toks("ANDSIN"), vec![Tok::And, Tok::Func(Func::Sin)]);
+        assert_eq!(toks("ATAN"), vec![Tok::Atan]);
+        assert_eq!(toks("ASIN"), vec![Tok::Func(Func::Asin)]);
+        assert_eq!(toks("n10"), vec![Tok::N, Tok::Num(number(b"10"))]);
+        assert_eq!(toks("O1")[0], Tok::O);
+        assert_eq!(
+            toks("N10IF[#859LT300]THEN#1100=1")
+                .iter()
+                .filter(|t| matches!(t, Tok::If | Tok::Rel(RelOp::Lt) | Tok::Then))
+                .count(),
+            3
+        );
+    }
+
+    #[test]
+    fn malformed_numbers_split() {
+        // `1.2.3` lexes as two numbers; the parser reports the pair.
+        assert_eq!(toks("1.2.3"), vec![Tok::Num(number(b"1.2")), Tok::Num(number(b".3"))]);
+        assert!(Tok::lexer(b"X.".as_slice()).any(|t| t.is_err()));
+    }
+}

@@ -1,0 +1,28 @@
+//! The front end of gbc: bytes in, syntax tree and diagnostics out.
+//!
+//! [`parse`] is the only entry point; how it works (blank removal, a logos
+//! lexer, one LALRPOP parse per block) can change behind it.
+
+pub mod ast;
+pub mod diag;
+pub mod span;
+
+mod compact;
+mod errors;
+mod lexer;
+mod parser;
+
+pub use ast::Ast;
+pub use diag::{Diagnostic, Severity, SourceFile};
+pub use span::Span;
+
+/// Parses a whole program file.
+///
+/// `src` is taken as bytes (comments may hold Latin-1, GBK or UTF-8 text).
+/// Every span in the tree and the diagnostics is a byte range of `src`.
+/// A faulty block is reported and left out of the tree; the blocks after it
+/// are still parsed, so one run reports every syntax error of the file.
+/// Never panics.
+pub fn parse(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
+    parser::parse(src)
+}

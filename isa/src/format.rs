@@ -1,0 +1,313 @@
+//! The `.gbc` container layout.
+//!
+//! ```text
+//! magic    "GBC\0"
+//! version  u16                         (VERSION)
+//! section  × 8, in the order of Section::ALL:
+//!          tag u8, length u32, payload[length]
+//! crc      u32                         CRC32 of every byte before it
+//! ```
+//!
+//! All integers are little-endian. Payloads:
+//!
+//! | section    | payload                                                   |
+//! |------------|-----------------------------------------------------------|
+//! | `Code`     | the instructions back to back (their count is implied)    |
+//! | `Consts`   | count u32, then each `f64` as its `u64` bits              |
+//! | `Strings`  | count u32, then each: length u32, UTF-8 bytes             |
+//! | `Programs` | count u32, then each: number, entry, end, seq count u32,  |
+//! |            | then `(number u32, pc u32)` per sequence entry            |
+//! | `Lines`    | count u32, then each: file u16, line u32, col u32         |
+//! | `Files`    | count u32, then each: length u32, UTF-8 name, hash u32    |
+//! | `Machine`  | UTF-8 text, the whole payload                             |
+//! | `Regs`     | num_regs u16                                              |
+//!
+//! The order is fixed and nothing may be left over, so every accepted file
+//! has exactly one encoding: `from_bytes(b)?.to_bytes() == b`. New sections
+//! come with a new [`VERSION`].
+
+use alloc::string::String;
+use alloc::vec::Vec;
+
+use crate::encoding::{len_to_u32, Le, Reader};
+use crate::{Instr, LoadError, Module, Program, SourceFileInfo, SourceLoc};
+
+/// The first four bytes of every `.gbc` file.
+pub const MAGIC: [u8; 4] = *b"GBC\0";
+
+/// The format version this build reads and writes.
+pub const VERSION: u16 = 1;
+
+/// Bytes before the first section: magic and version.
+pub const HEADER_LEN: usize = 6;
+
+/// Bytes of the CRC32 trailer.
+pub const CRC_LEN: usize = 4;
+
+/// Section tags, in the order they appear in a file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum Section {
+    /// Instructions.
+    Code = 1,
+    /// Constant pool.
+    Consts = 2,
+    /// String table.
+    Strings = 3,
+    /// Program table.
+    Programs = 4,
+    /// One source location per instruction.
+    Lines = 5,
+    /// Source files.
+    Files = 6,
+    /// Machine settings text.
+    Machine = 7,
+    /// Register count.
+    Regs = 8,
+}
+
+impl Section {
+    /// Every section, in file order.
+    pub const ALL: [Section; 8] = [
+        Section::Code,
+        Section::Consts,
+        Section::Strings,
+        Section::Programs,
+        Section::Lines,
+        Section::Files,
+        Section::Machine,
+        Section::Regs,
+    ];
+}
+
+// Smallest encoded record of each counted table, used to bound counts
+// against the bytes present before allocating.
+const CONST_LEN: usize = 8;
+const STRING_MIN: usize = 4;
+const PROGRAM_MIN: usize = 16;
+const SEQ_LEN: usize = 8;
+const LINE_LEN: usize = 10;
+const FILE_MIN: usize = 8;
+
+/// Parses the container; does not verify cross-references.
+pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
+    let head = bytes.get(..bytes.len().min(MAGIC.len())).unwrap_or(&[]);
+    if !MAGIC.starts_with(head) {
+        return Err(LoadError::BadMagic);
+    }
+    if bytes.len() < MAGIC.len() {
+        return Err(LoadError::Truncated { at: bytes.len() });
+    }
+    let mut r = Reader::new(bytes, MAGIC.len());
+    let version = r.u16()?;
+    if version != VERSION {
+        return Err(LoadError::UnsupportedVersion { found: version });
+    }
+    let body_len = bytes
+        .len()
+        .checked_sub(CRC_LEN)
+        .filter(|&n| n >= HEADER_LEN)
+        .ok_or(LoadError::Truncated { at: bytes.len() })?;
+    let (body, trailer) = bytes
+        .split_at_checked(body_len)
+        .ok_or(LoadError::Truncated { at: bytes.len() })?;
+    let stored = Reader::new(trailer, 0).u32()?;
+    if crc32fast::hash(body) != stored {
+        return Err(LoadError::BadChecksum);
+    }
+
+    let mut r = Reader::new(body, HEADER_LEN);
+    let code = section(&mut r, Section::Code, read_code)?;
+    let consts = section(&mut r, Section::Consts, |s| {
+        table(s, CONST_LEN, |s| s.u64().map(f64::from_bits))
+    })?;
+    let strings = section(&mut r, Section::Strings, |s| {
+        table(s, STRING_MIN, read_string)
+    })?;
+    let programs = section(&mut r, Section::Programs, |s| {
+        table(s, PROGRAM_MIN, read_program)
+    })?;
+    let lines = section(&mut r, Section::Lines, |s| {
+        table(s, LINE_LEN, |s| {
+            Ok(SourceLoc {
+                file: s.u16()?,
+                line: s.u32()?,
+                col: s.u32()?,
+            })
+        })
+    })?;
+    let files = section(&mut r, Section::Files, |s| {
+        table(s, FILE_MIN, |s| {
+            Ok(SourceFileInfo {
+                name: read_string(s)?,
+                hash: s.u32()?,
+            })
+        })
+    })?;
+    let machine = section(&mut r, Section::Machine, |s| {
+        let at = s.pos();
+        utf8(s.rest(), at)
+    })?;
+    let num_regs = section(&mut r, Section::Regs, Reader::u16)?;
+    if !r.is_empty() {
+        return Err(LoadError::TrailingBytes { at: r.pos() });
+    }
+    Ok(Module {
+        code,
+        consts,
+        strings,
+        programs,
+        lines,
+        files,
+        machine,
+        num_regs,
+    })
+}
+
+/// Reads one section header of the expected kind and its payload with
+/// `payload`, which must consume it exactly.
+fn section<'a, T>(
+    r: &mut Reader<'a>,
+    want: Section,
+    payload: impl FnOnce(&mut Reader<'a>) -> Result<T, LoadError>,
+) -> Result<T, LoadError> {
+    let at = r.pos();
+    let tag = r.u8()?;
+    if tag != want as u8 {
+        return Err(LoadError::UnexpectedSection {
+            at,
+            found: tag,
+            expected: want as u8,
+        });
+    }
+    let mut s = r.split_sized()?;
+    let value = payload(&mut s)?;
+    if !s.is_empty() {
+        return Err(LoadError::TrailingBytes { at: s.pos() });
+    }
+    Ok(value)
+}
+
+/// A counted table; the count is checked against the bytes present before
+/// anything is reserved.
+fn table<'a, T>(
+    s: &mut Reader<'a>,
+    min_record: usize,
+    mut record: impl FnMut(&mut Reader<'a>) -> Result<T, LoadError>,
+) -> Result<Vec<T>, LoadError> {
+    let count = s.count(min_record)?;
+    let mut items = Vec::with_capacity(count);
+    for _ in 0..count {
+        items.push(record(s)?);
+    }
+    Ok(items)
+}
+
+fn read_code(s: &mut Reader<'_>) -> Result<Vec<Instr>, LoadError> {
+    // Every instruction takes at least one byte, so this grows to at most
+    // `size_of::<Instr>()` times the section length.
+    let mut code = Vec::new();
+    while !s.is_empty() {
+        let pc = len_to_u32(code.len());
+        code.push(Instr::read(s, pc)?);
+    }
+    Ok(code)
+}
+
+fn read_string(s: &mut Reader<'_>) -> Result<String, LoadError> {
+    let at = s.pos().saturating_add(4);
+    utf8(s.sized()?, at)
+}
+
+fn utf8(bytes: &[u8], at: usize) -> Result<String, LoadError> {
+    core::str::from_utf8(bytes)
+        .map(String::from)
+        .map_err(|_| LoadError::BadUtf8 { at })
+}
+
+fn read_program(s: &mut Reader<'_>) -> Result<Program, LoadError> {
+    let number = s.u32()?;
+    let entry = s.u32()?;
+    let end = s.u32()?;
+    let seqs = table(s, SEQ_LEN, |s| Ok((s.u32()?, s.u32()?)))?;
+    Ok(Program {
+        number,
+        entry,
+        end,
+        seqs,
+    })
+}
+
+/// Serializes `m` as laid out above.
+pub(crate) fn write(m: &Module) -> Vec<u8> {
+    let mut out = Vec::new();
+    out.extend_from_slice(&MAGIC);
+    VERSION.put(&mut out);
+    section_out(&mut out, Section::Code, |out| {
+        for instr in &m.code {
+            instr.encode(out);
+        }
+    });
+    section_out(&mut out, Section::Consts, |out| {
+        len_to_u32(m.consts.len()).put(out);
+        for k in &m.consts {
+            k.to_bits().put(out);
+        }
+    });
+    section_out(&mut out, Section::Strings, |out| {
+        len_to_u32(m.strings.len()).put(out);
+        for s in &m.strings {
+            string_out(out, s);
+        }
+    });
+    section_out(&mut out, Section::Programs, |out| {
+        len_to_u32(m.programs.len()).put(out);
+        for p in &m.programs {
+            p.number.put(out);
+            p.entry.put(out);
+            p.end.put(out);
+            len_to_u32(p.seqs.len()).put(out);
+            for &(seq, pc) in &p.seqs {
+                seq.put(out);
+                pc.put(out);
+            }
+        }
+    });
+    section_out(&mut out, Section::Lines, |out| {
+        len_to_u32(m.lines.len()).put(out);
+        for loc in &m.lines {
+            loc.file.put(out);
+            loc.line.put(out);
+            loc.col.put(out);
+        }
+    });
+    section_out(&mut out, Section::Files, |out| {
+        len_to_u32(m.files.len()).put(out);
+        for f in &m.files {
+            string_out(out, &f.name);
+            f.hash.put(out);
+        }
+    });
+    section_out(&mut out, Section::Machine, |out| {
+        out.extend_from_slice(m.machine.as_bytes());
+    });
+    section_out(&mut out, Section::Regs, |out| m.num_regs.put(out));
+    crc32fast::hash(&out).put(&mut out);
+    out
+}
+
+fn section_out(out: &mut Vec<u8>, tag: Section, payload: impl FnOnce(&mut Vec<u8>)) {
+    out.push(tag as u8);
+    let len_at = out.len();
+    0u32.put(out);
+    payload(out);
+    let len = len_to_u32(out.len() - len_at - 4);
+    if let Some(slot) = out.get_mut(len_at..len_at + 4) {
+        slot.copy_from_slice(&len.to_le_bytes());
+    }
+}
+
+fn string_out(out: &mut Vec<u8>, s: &str) {
+    len_to_u32(s.len()).put(out);
+    out.extend_from_slice(s.as_bytes());
+}

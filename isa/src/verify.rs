@@ -1,0 +1,178 @@
+//! The verifier: after it accepts a module, every index an instruction or
+//! table holds points at something that exists, so the VM may index without
+//! checking and trust that no file can make it panic.
+
+use alloc::vec::Vec;
+
+use crate::encoding::len_to_u32;
+use crate::{addr, CmpOp, LoadError, MathFunc, Module, Operand, TableError};
+
+/// Registers are addressed by a `u8`.
+const MAX_REGS: u16 = 256;
+
+/// The local variables a macro-call argument can set: `#1..=#33` (the
+/// compiler maps argument letters onto them).
+const ARG_VARS: core::ops::RangeInclusive<u8> = 1..=33;
+
+impl Module {
+    /// Checks every cross-reference; the first problem found is returned.
+    ///
+    /// [`Module::from_bytes`] runs this, and the compiler may run it on what
+    /// it built. What is checked: sizes fit the format; `num_regs <= 256`;
+    /// every operand is in range for its kind; one source location per
+    /// instruction, each naming a listed file; a non-empty program table with
+    /// distinct numbers, code ranges inside the code and sorted sequence
+    /// tables pointing into their own program.
+    pub fn verify(&self) -> Result<(), LoadError> {
+        self.verify_sizes()?;
+        if self.num_regs > MAX_REGS {
+            return Err(TableError::TooManyRegisters {
+                num_regs: self.num_regs,
+            }
+            .into());
+        }
+        // Tables first: an operand error is only meaningful once the table
+        // it indexes is known to be sound.
+        self.verify_programs()?;
+        self.verify_lines()?;
+        for (pc, instr) in self.code.iter().enumerate() {
+            let pc = len_to_u32(pc);
+            instr.try_visit_operands(|op| self.check_operand(pc, op))?;
+        }
+        Ok(())
+    }
+
+    /// Every count must fit the format's `u32` fields (only reachable by an
+    /// in-memory module: a file cannot express more).
+    fn verify_sizes(&self) -> Result<(), LoadError> {
+        let too_large = |what| Err(TableError::TooLarge { what }.into());
+        let fits = |n: usize| u32::try_from(n).is_ok();
+        if !fits(self.code.len()) {
+            return too_large("code");
+        }
+        if !fits(self.consts.len()) {
+            return too_large("constant pool");
+        }
+        if !fits(self.strings.len()) || !self.strings.iter().all(|s| fits(s.len())) {
+            return too_large("string table");
+        }
+        if !fits(self.programs.len()) || !self.programs.iter().all(|p| fits(p.seqs.len())) {
+            return too_large("program table");
+        }
+        if !fits(self.lines.len()) {
+            return too_large("line table");
+        }
+        if !fits(self.files.len()) || !self.files.iter().all(|f| fits(f.name.len())) {
+            return too_large("file table");
+        }
+        if !fits(self.machine.len()) {
+            return too_large("machine text");
+        }
+        Ok(())
+    }
+
+    fn check_operand(&self, pc: u32, op: Operand) -> Result<(), LoadError> {
+        let below = |index: u32, len: usize| usize::try_from(index).is_ok_and(|i| i < len);
+        let ok = match op {
+            Operand::Reg(r) => u16::from(r) < self.num_regs,
+            Operand::Pc(target) => below(target, self.code.len()),
+            Operand::Const(k) => below(k, self.consts.len()),
+            Operand::Str(s) => below(s, self.strings.len()),
+            Operand::Prog(p) => below(p, self.programs.len()),
+            Operand::FuncCode(f) => MathFunc::from_code(f).is_some(),
+            Operand::CmpCode(c) => CmpOp::from_code(c).is_some(),
+            Operand::Addr(a) => a <= addr::MAX,
+            Operand::ArgVar(v) => ARG_VARS.contains(&v),
+            // Flags, alarm codes and variable numbers: any value; the VM
+            // gives them meaning (an unknown #var is a run-time alarm).
+            Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => true,
+        };
+        if ok {
+            return Ok(());
+        }
+        Err(match op {
+            Operand::Reg(_) => LoadError::RegisterOutOfRange { pc },
+            Operand::Pc(_) => LoadError::JumpOutOfRange { pc },
+            Operand::Const(_) => LoadError::ConstOutOfRange { pc },
+            Operand::Str(_) => LoadError::StringOutOfRange { pc },
+            Operand::Prog(_) => LoadError::ProgramOutOfRange { pc },
+            Operand::FuncCode(_) => LoadError::BadOperand {
+                pc,
+                what: "math function",
+            },
+            Operand::CmpCode(_) => LoadError::BadOperand {
+                pc,
+                what: "comparison",
+            },
+            Operand::Addr(_) => LoadError::BadOperand {
+                pc,
+                what: "word address",
+            },
+            Operand::ArgVar(_) => LoadError::BadOperand {
+                pc,
+                what: "argument variable",
+            },
+            Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => {
+                LoadError::BadOperand { pc, what: "plain" }
+            }
+        })
+    }
+
+    fn verify_lines(&self) -> Result<(), LoadError> {
+        if self.lines.len() != self.code.len() {
+            return Err(TableError::LinesMismatch {
+                lines: self.lines.len(),
+                code: self.code.len(),
+            }
+            .into());
+        }
+        match self
+            .lines
+            .iter()
+            .position(|loc| usize::from(loc.file) >= self.files.len())
+        {
+            Some(pc) => Err(TableError::FileOutOfRange { pc: len_to_u32(pc) }.into()),
+            None => Ok(()),
+        }
+    }
+
+    fn verify_programs(&self) -> Result<(), LoadError> {
+        if self.programs.is_empty() {
+            return Err(TableError::NoPrograms.into());
+        }
+        let code_len = self.code.len();
+        for (index, p) in self.programs.iter().enumerate() {
+            let index = len_to_u32(index);
+            let end_ok = usize::try_from(p.end).is_ok_and(|end| end <= code_len);
+            if p.entry > p.end || !end_ok {
+                return Err(TableError::ProgramRange {
+                    index,
+                    entry: p.entry,
+                    end: p.end,
+                }
+                .into());
+            }
+            // Strictly increasing (number, pc): sorted, and no entry twice.
+            if !p.seqs.is_sorted_by(|a, b| a < b) {
+                return Err(TableError::SeqsUnsorted { index }.into());
+            }
+            if let Some(&(seq, pc)) = p
+                .seqs
+                .iter()
+                .find(|&&(_, pc)| !(p.entry..p.end).contains(&pc))
+            {
+                return Err(TableError::SeqOutOfRange { index, seq, pc }.into());
+            }
+        }
+        let mut numbers: Vec<u32> = self.programs.iter().map(|p| p.number).collect();
+        numbers.sort_unstable();
+        let duplicate = numbers.windows(2).find_map(|w| match *w {
+            [a, b] if a == b => Some(a),
+            _ => None,
+        });
+        match duplicate {
+            Some(number) => Err(TableError::DuplicateProgram { number }.into()),
+            None => Ok(()),
+        }
+    }
+}

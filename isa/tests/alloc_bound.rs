@@ -1,0 +1,116 @@
+//! Loading never reserves memory because a length field says so: what
+//! `from_bytes` allocates stays proportional to the bytes it was given.
+//!
+//! A separate test binary, because it installs a counting global allocator.
+
+mod common;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+use common::{put_u32, reseal, sample_module, section};
+use isa::format::Section;
+use isa::Module;
+
+struct Counting;
+
+thread_local! {
+    // `const` initialisers without destructors: reading them from inside
+    // the allocator never allocates.
+    static TRACKING: Cell<bool> = const { Cell::new(false) };
+    static BYTES: Cell<usize> = const { Cell::new(0) };
+}
+
+fn note(size: usize) {
+    let _ = TRACKING.try_with(|on| {
+        if on.get() {
+            let _ = BYTES.try_with(|b| b.set(b.get().saturating_add(size)));
+        }
+    });
+}
+
+// SAFETY: forwards every call to `System` unchanged; only counts sizes.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        note(layout.size());
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        note(layout.size());
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        note(new_size);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// Total bytes requested (counting every growth) while loading `bytes`.
+fn allocated_by_load(bytes: &[u8]) -> usize {
+    BYTES.with(|b| b.set(0));
+    TRACKING.with(|t| t.set(true));
+    let result = Module::from_bytes(bytes);
+    TRACKING.with(|t| t.set(false));
+    drop(result);
+    BYTES.with(Cell::get)
+}
+
+#[test]
+fn allocation_is_bounded_by_input_size() {
+    let bytes = sample_module().to_bytes();
+    // An instruction is 8 bytes in memory and at least 1 in the file, and
+    // the code vector may double while growing: 32x plus change is the
+    // budget for any input.
+    let budget = |len: usize| 32 * len + 4096;
+
+    let valid = allocated_by_load(&bytes);
+    assert!(valid > 0, "the counting allocator saw nothing");
+    assert!(valid <= budget(bytes.len()), "valid file: {valid} bytes");
+    eprintln!(
+        "valid file of {} bytes: {valid} bytes allocated",
+        bytes.len()
+    );
+
+    let strings = section(&bytes, Section::Strings);
+    let programs = section(&bytes, Section::Programs);
+    let fields = [
+        section(&bytes, Section::Code).len_field,
+        section(&bytes, Section::Consts).payload,
+        strings.payload,
+        strings.payload + 4,
+        programs.payload,
+        programs.payload + 16,
+        section(&bytes, Section::Lines).payload,
+        section(&bytes, Section::Files).payload,
+        section(&bytes, Section::Machine).len_field,
+    ];
+    for at in fields {
+        let mut bad = bytes.clone();
+        put_u32(&mut bad, at, u32::MAX);
+        let bad = reseal(bad);
+        let used = allocated_by_load(&bad);
+        assert!(used <= budget(bad.len()), "length at {at}: {used} bytes");
+        eprintln!("u32::MAX at byte {at}: {used} bytes allocated");
+    }
+
+    // A large file of one-byte instructions costs in proportion.
+    let mut big = sample_module();
+    big.code
+        .extend(std::iter::repeat_n(isa::Instr::Ret, 100_000));
+    big.lines.resize(big.code.len(), big.lines[0]);
+    big.programs[1].end = big.code.len() as u32;
+    let big = big.to_bytes();
+    let used = allocated_by_load(&big);
+    assert!(
+        used <= budget(big.len()),
+        "big file: {used} bytes for {}",
+        big.len()
+    );
+    eprintln!("file of {} bytes: {used} bytes allocated", big.len());
+}

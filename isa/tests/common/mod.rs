@@ -1,0 +1,160 @@
+//! Shared fixtures: a small module that uses every opcode, and helpers to
+//! forge files byte by byte.
+
+#![allow(dead_code)] // each test binary uses a different subset
+
+use isa::format::{Section, CRC_LEN, HEADER_LEN};
+use isa::{addr, Instr, Module, Program, SourceFileInfo, SourceLoc};
+
+/// A main program `O0001` and a macro `O9010`, together using every opcode
+/// at least once (checked by `sample_uses_every_opcode`).
+pub fn sample_module() -> Module {
+    use Instr::*;
+    // Comments: pc, and what a test relies on.
+    #[rustfmt::skip]
+    let main = vec![
+        LoadK { dst: 0, k: 0 },                         // 0  N10
+        LoadNull { dst: 1 },                            // 1
+        Mov { dst: 2, src: 0 },                         // 2
+        LoadVar { dst: 3, var: 100 },                   // 3
+        LoadVarInd { dst: 4, idx: 3 },                  // 4
+        StoreVar { var: 500, src: 2 },                  // 5
+        StoreVarInd { idx: 3, src: 2 },                 // 6
+        Neg { dst: 5, a: 0 },                           // 7
+        Add { dst: 5, a: 0, b: 2 },                     // 8
+        Sub { dst: 5, a: 5, b: 2 },                     // 9
+        Mul { dst: 5, a: 5, b: 2 },                     // 10
+        Div { dst: 5, a: 5, b: 2 },                     // 11
+        Mod { dst: 5, a: 5, b: 2 },                     // 12
+        BitAnd { dst: 5, a: 5, b: 2 },                  // 13
+        BitOr { dst: 5, a: 5, b: 2 },                   // 14
+        BitXor { dst: 5, a: 5, b: 2 },                  // 15
+        Func { dst: 5, a: 0, f: 14 },                   // 16 BCD, the last code
+        Atan2 { dst: 5, y: 0, x: 2 },                   // 17
+        Cmp { dst: 6, a: 0, b: 2, op: 5 },              // 18 LE, the last code; r6 = top reg
+        JumpIfNot { cond: 6, target: 22 },              // 19
+        WordK { addr: 23, k: 1, flags: 1 },             // 20 X100 (no decimal point)
+        Word { addr: addr::COMMA_R, src: 5 },           // 21 ,R[#5]
+        SetMsg { s: 0 },                                // 22 N20
+        Exec { flags: 0 },                              // 23
+        GotoSeq { seq: 3 },                             // 24
+        CallSub { prog: 1, count: 1 },                  // 25
+        CallSubDyn { num: 3, count: 1 },                // 26
+        Arg { var: 1, src: 0 },                         // 27 first argument
+        Arg { var: 33, src: 2 },                        // 28 last argument
+        CallMacro { prog: 1, count: 1 },                // 29
+        CallMacroDyn { num: 3, count: 1 },              // 30 N20 again
+        ModalCall { prog: 1, count: 1 },                // 31
+        ModalCallDyn { num: 3, count: 1 },              // 32
+        ModalCancel,                                    // 33
+        Alarm { code: 5001, msg: 1 },                   // 34 the last string
+        Jump { target: 37 },                            // 35
+        WordK { addr: addr::COMMA_C, k: 2, flags: 0 },  // 36
+        Halt,                                           // 37
+    ];
+    let sub = vec![
+        LoadK { dst: 0, k: 3 }, // 38 N1
+        RetSeq { seq: 0 },      // 39
+        Ret,                    // 40
+    ];
+    let main_len = main.len() as u32;
+    let mut lines: Vec<SourceLoc> = (0..main_len)
+        .map(|pc| SourceLoc {
+            file: 0,
+            line: pc + 1,
+            col: 1 + pc % 3,
+        })
+        .collect();
+    lines.extend((0..sub.len() as u32).map(|i| SourceLoc {
+        file: 1,
+        line: i + 2,
+        col: 1,
+    }));
+    let code: Vec<Instr> = main.into_iter().chain(sub).collect();
+    let code_len = code.len() as u32;
+    Module {
+        code,
+        consts: vec![12.5, 100.0, -0.0, f64::from_bits(0x7ff8_0000_dead_beef)],
+        strings: vec!["CHECK PART".to_string(), "TOO BIG".to_string()],
+        programs: vec![
+            Program {
+                number: 1,
+                entry: 0,
+                end: main_len,
+                seqs: vec![(10, 0), (20, 22), (20, 30)],
+            },
+            Program {
+                number: 9010,
+                entry: main_len,
+                end: code_len,
+                seqs: vec![(1, main_len)],
+            },
+        ],
+        lines,
+        files: vec![
+            SourceFileInfo {
+                name: "part.nc".to_string(),
+                hash: 0x1234_abcd,
+            },
+            SourceFileInfo {
+                name: "O9010.nc".to_string(),
+                hash: 0xdead_beef,
+            },
+        ],
+        machine: "control=gsk980tdi\nunits=mm\n".to_string(),
+        num_regs: 7,
+    }
+}
+
+/// Recomputes the CRC trailer, so a forged change reaches the parser and the
+/// verifier instead of being caught by the checksum.
+pub fn reseal(mut bytes: Vec<u8>) -> Vec<u8> {
+    let body = bytes.len() - CRC_LEN;
+    let crc = crc32fast::hash(&bytes[..body]);
+    bytes[body..].copy_from_slice(&crc.to_le_bytes());
+    bytes
+}
+
+/// Appends a CRC trailer to a body.
+pub fn seal(mut body: Vec<u8>) -> Vec<u8> {
+    let crc = crc32fast::hash(&body);
+    body.extend_from_slice(&crc.to_le_bytes());
+    body
+}
+
+/// Where a section sits in a well-formed file.
+#[derive(Debug, Clone, Copy)]
+pub struct SectionAt {
+    /// Offset of the tag byte.
+    pub tag: usize,
+    /// Offset of the u32 length.
+    pub len_field: usize,
+    /// Offset of the payload.
+    pub payload: usize,
+    /// Payload length.
+    pub len: usize,
+}
+
+/// Locates `which` by walking the section headers.
+pub fn section(bytes: &[u8], which: Section) -> SectionAt {
+    let mut at = HEADER_LEN;
+    loop {
+        let tag = bytes[at];
+        let len = u32::from_le_bytes(bytes[at + 1..at + 5].try_into().unwrap()) as usize;
+        let here = SectionAt {
+            tag: at,
+            len_field: at + 1,
+            payload: at + 5,
+            len,
+        };
+        if tag == which as u8 {
+            return here;
+        }
+        at = here.payload + len;
+    }
+}
+
+/// Overwrites a little-endian u32 at `at`.
+pub fn put_u32(bytes: &mut [u8], at: usize, value: u32) {
+    bytes[at..at + 4].copy_from_slice(&value.to_le_bytes());
+}

@@ -1,0 +1,255 @@
+//! Checking one block's words: which G and M codes it holds, which other
+//! addresses, and the rules that need no machine state (dialect.md §1.7,
+//! §1.9, §3, §4.13, §6). The compiler runs these checks on literal blocks,
+//! the kernel on every block it executes.
+
+use crate::error::{fail, NcError};
+use crate::gcode::{self, Code};
+use crate::machine::Machine;
+use crate::words::{addr, addr_name, Word, ADDR_COUNT, COMMA_A, COMMA_C, COMMA_R};
+
+/// At most this many G words fit a block (one per modal group).
+const MAX_G: usize = 16;
+
+/// The words of a block sorted by kind, each remembering its position.
+#[derive(Debug, Clone)]
+pub struct Parsed {
+    /// G codes in written order with the word index.
+    pub g: [(Code, u8); MAX_G],
+    pub g_len: usize,
+    /// M codes in written order with the word index.
+    pub m: [(u32, u8); 3],
+    pub m_len: usize,
+    /// Every other address: its word (value in program units).
+    pub val: [Option<Word>; ADDR_COUNT],
+    /// Index of the word of each address in the block (for word order).
+    pub pos: [u8; ADDR_COUNT],
+}
+
+impl Parsed {
+    pub fn gs(&self) -> &[(Code, u8)] {
+        &self.g[..self.g_len]
+    }
+
+    pub fn ms(&self) -> &[(u32, u8)] {
+        &self.m[..self.m_len]
+    }
+
+    pub fn has_g(&self, code: Code) -> bool {
+        self.gs().iter().any(|&(c, _)| c == code)
+    }
+
+    pub fn has_m(&self, code: u32) -> bool {
+        self.ms().iter().any(|&(c, _)| c == code)
+    }
+
+    /// The value of a letter address.
+    pub fn get(&self, letter: u8) -> Option<f64> {
+        self.val[addr(letter) as usize].map(|w| w.value)
+    }
+
+    pub fn word(&self, letter: u8) -> Option<Word> {
+        self.val[addr(letter) as usize]
+    }
+
+    pub fn has(&self, letter: u8) -> bool {
+        self.val[addr(letter) as usize].is_some()
+    }
+
+    /// The group-00 code of the block, if any.
+    pub fn one_shot(&self) -> Option<Code> {
+        self.gs()
+            .iter()
+            .map(|&(c, _)| c)
+            .find(|&c| gcode::group(c) == Some(gcode::ONE_SHOT))
+    }
+
+    /// The last group-01 code written in the block.
+    pub fn motion(&self) -> Option<Code> {
+        self.gs()
+            .iter()
+            .rev()
+            .map(|&(c, _)| c)
+            .find(|&c| gcode::group(c) == Some(gcode::MOTION))
+    }
+
+    pub fn has_axis(&self) -> bool {
+        [b'X', b'Z', b'U', b'W'].iter().any(|&l| self.has(l))
+    }
+}
+
+/// Rounds half away from zero, as every integer address does (§7.6).
+pub fn round_half_away(v: f64) -> f64 {
+    if v < 0.0 {
+        -((-v) + 0.5).floor()
+    } else {
+        (v + 0.5).floor()
+    }
+}
+
+/// Sorts the words of a block and checks what needs no state.
+pub fn parse(words: &[Word], m: &Machine) -> Result<Parsed, NcError> {
+    let mut p = Parsed {
+        g: [(0, 0); MAX_G],
+        g_len: 0,
+        m: [(0, 0); 3],
+        m_len: 0,
+        val: [None; ADDR_COUNT],
+        pos: [0; ADDR_COUNT],
+    };
+    for (i, w) in words.iter().enumerate() {
+        let idx = i.min(255) as u8;
+        match w.addr {
+            a if a == addr(b'G') => add_g(&mut p, w, idx)?,
+            a if a == addr(b'M') => add_m(&mut p, w, idx)?,
+            a if (a as usize) < ADDR_COUNT => {
+                if p.val[a as usize].is_some() {
+                    return fail(1011, format!("address {} written twice in the block", addr_name(a)));
+                }
+                p.val[a as usize] = Some(*w);
+                p.pos[a as usize] = idx;
+            }
+            a => return fail(1008, format!("unknown address number {a}")),
+        }
+    }
+    check_words(&p, m)?;
+    Ok(p)
+}
+
+fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
+    if w.value < 0.0 || w.value > 9999.0 {
+        return fail(2001, format!("G{} is not a G code", crate::event::Num(w.value)));
+    }
+    let code = round_half_away(w.value * 10.0) as Code;
+    if let Some((err, hint)) = gcode::foreign(code) {
+        return fail(err, format!("{} is not in this dialect: {hint}", gcode::name(code)));
+    }
+    let Some(group) = gcode::group(code) else {
+        return fail(2001, format!("unknown G code {}", gcode::name(code)));
+    };
+    if group == gcode::ONE_SHOT {
+        if let Some(other) = p.one_shot() {
+            return fail(
+                2002,
+                format!(
+                    "{} and {} are both one-shot (group 00) codes: write them in separate blocks",
+                    gcode::name(other),
+                    gcode::name(code)
+                ),
+            );
+        }
+    }
+    if p.g_len == MAX_G {
+        return fail(1011, "too many G codes in one block");
+    }
+    p.g[p.g_len] = (code, idx);
+    p.g_len += 1;
+    Ok(())
+}
+
+fn add_m(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
+    let code = round_half_away(w.value);
+    if !(0.0..=9999.0).contains(&code) {
+        return fail(1010, format!("M{} is out of range (M0…M9999)", crate::event::Num(w.value)));
+    }
+    if p.m_len == 3 {
+        return fail(1012, "more than three M codes in one block");
+    }
+    p.m[p.m_len] = (code as u32, idx);
+    p.m_len += 1;
+    Ok(())
+}
+
+/// Addresses that only take integers (§1.9), by the block's function.
+fn integer_only(p: &Parsed, letter: u8) -> bool {
+    match letter {
+        // Every use of P and Q is a count, a number or 0.001 units (§1.9).
+        b'T' | b'H' | b'O' | b'N' | b'P' | b'Q' => true,
+        // L is a count except as the chamfer of G01–G03.
+        b'L' => p.has_m(98) || [330, 780, 920, 921].iter().any(|&c| p.has_g(c)),
+        _ => false,
+    }
+}
+
+fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
+    for letter in [b'T', b'P', b'L', b'Q', b'H'] {
+        if let Some(w) = p.word(letter) {
+            if w.literal_with_point() && integer_only(p, letter) {
+                return fail(
+                    1009,
+                    format!(
+                        "{} takes an integer here; a decimal point is not allowed (write {}{})",
+                        letter as char,
+                        letter as char,
+                        crate::event::Num(w.value)
+                    ),
+                );
+            }
+        }
+    }
+    for letter in [b'F', b'S'] {
+        if let Some(v) = p.get(letter) {
+            if v < 0.0 {
+                return fail(1010, format!("{} must not be negative", letter as char));
+            }
+        }
+    }
+    if p.has(b'X') && p.has(b'U') {
+        return fail(2007, "X and U in one block: write the X end point either absolute or incremental");
+    }
+    if p.has(b'Z') && p.has(b'W') {
+        return fail(2007, "Z and W in one block: write the Z end point either absolute or incremental");
+    }
+    if p.has(b'Y') || p.has(b'V') {
+        return fail(2005, "this machine has no Y axis");
+    }
+    if !m.axes.c.enabled && p.has(b'C') && p.one_shot().is_none() && p.motion() != Some(321) {
+        return fail(2005, "this machine has no C axis");
+    }
+    if p.val[COMMA_A as usize].is_some() && p.has(b'Q') {
+        return fail(2007, "Q and ,A both give the angle: write one of them");
+    }
+    if p.val[COMMA_C as usize].is_some() && p.has(b'L') {
+        return fail(2007, "L and ,C both give the chamfer: write one of them");
+    }
+    if p.val[COMMA_R as usize].is_some() && p.has(b'D') {
+        return fail(2007, "D and ,R both give the corner radius: write one of them");
+    }
+    check_m_codes(p)?;
+    check_foreign(p)
+}
+
+fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
+    let calls = p
+        .ms()
+        .iter()
+        .filter(|&&(c, _)| c == 98 || c == 99 || (9000..=9999).contains(&c))
+        .count();
+    let ends = p.ms().iter().any(|&(c, _)| matches!(c, 0 | 1 | 2 | 30));
+    if calls > 1 {
+        return fail(1012, "at most one of M98, M99 and M9000…M9999 in a block");
+    }
+    if calls == 1 && ends {
+        return fail(1012, "M98/M99 cannot share a block with M00, M01, M02 or M30");
+    }
+    if p.has_m(97) {
+        return fail(
+            2004,
+            "M97 is a Haas/Citizen local subprogram call: put the block in an O program and call it with M98",
+        );
+    }
+    Ok(())
+}
+
+fn check_foreign(p: &Parsed) -> Result<(), NcError> {
+    if p.has_g(920) && p.has(b'S') && !p.has_axis() {
+        return fail(2004, "G92 S is the speed clamp of systems B/C: use G50 S");
+    }
+    if (p.has_g(740) || p.has_g(750)) && (p.has(b'I') || p.has(b'K')) {
+        return fail(2004, "GSK pecks are P/Q in 0.001 mm, not Haas I/K words");
+    }
+    if p.has_g(170) || p.has_g(190) {
+        return fail(2003, "G17/G19 need a Y axis; this lathe works in the ZX plane (G18)");
+    }
+    Ok(())
+}

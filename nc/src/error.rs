@@ -1,0 +1,39 @@
+//! The alarm the kernel raises: a dialect error code and a message.
+
+use std::fmt;
+
+/// An error of dialect.md §8 found while checking or executing a block.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct NcError {
+    /// The number of the code: E4001 → 4001.
+    pub code: u16,
+    pub message: String,
+}
+
+impl NcError {
+    #[cold]
+    pub fn new(code: u16, message: impl Into<String>) -> NcError {
+        NcError {
+            code,
+            message: message.into(),
+        }
+    }
+
+    /// `E4001` as diagnostics print it.
+    pub fn code_name(&self) -> String {
+        format!("E{:04}", self.code)
+    }
+}
+
+impl fmt::Display for NcError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "E{:04}: {}", self.code, self.message)
+    }
+}
+
+impl std::error::Error for NcError {}
+
+/// Shorthand for `Err(NcError::new(..))`.
+pub fn fail<T>(code: u16, message: impl Into<String>) -> Result<T, NcError> {
+    Err(NcError::new(code, message))
+}

@@ -1,0 +1,209 @@
+//! The events a run produces, and their canon text (canon.md).
+
+use std::fmt::{self, Display, Write};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dir {
+    Cw,
+    Ccw,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpindleDir {
+    Cw,
+    Ccw,
+    Stop,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopKind {
+    M00,
+    M01,
+    M02,
+    M30,
+    M99,
+}
+
+/// One canon event. Coordinates are work coordinates in mm, X as a
+/// diameter, exactly as printed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    Rapid { x: f64, z: f64 },
+    Line { x: f64, z: f64 },
+    Arc { dir: Dir, x: f64, z: f64, cx: f64, cz: f64 },
+    Thread { x: f64, z: f64, lead: f64, dlead: Option<f64>, q: Option<f64> },
+    Dwell { s: f64 },
+    Feed { f: f64, per_rev: bool },
+    Speed { s: f64, css: bool, max: Option<f64> },
+    Spindle(SpindleDir),
+    Tool { t: u32, d: u32 },
+    M(u32),
+    Origin { x: f64, z: f64 },
+    Home { n: u32, x: bool, z: bool },
+    Stop(StopKind),
+    Skip { x: f64, z: f64 },
+    Gear { n: u32 },
+    Message(String),
+    Alarm { code: u32, msg: String },
+}
+
+impl Event {
+    /// Feed events are preceded by `FEED` when the feed changed.
+    pub fn is_feed(&self) -> bool {
+        matches!(self, Event::Line { .. } | Event::Arc { .. } | Event::Skip { .. })
+    }
+
+    /// A motion of the tool (for G66 and the block counter).
+    pub fn is_motion(&self) -> bool {
+        matches!(
+            self,
+            Event::Rapid { .. }
+                | Event::Line { .. }
+                | Event::Arc { .. }
+                | Event::Thread { .. }
+                | Event::Skip { .. }
+        )
+    }
+}
+
+/// A number as the canon prints it: at most 4 decimals, no trailing zeros,
+/// no trailing point, `-0` as `0`.
+pub struct Num(pub f64);
+
+impl Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut s = format!("{:.4}", self.0);
+        if s.contains('.') {
+            while s.ends_with('0') {
+                s.pop();
+            }
+            if s.ends_with('.') {
+                s.pop();
+            }
+        }
+        if s == "-0" {
+            s = "0".into();
+        }
+        f.write_str(&s)
+    }
+}
+
+fn dir(d: Dir) -> &'static str {
+    match d {
+        Dir::Cw => "CW",
+        Dir::Ccw => "CCW",
+    }
+}
+
+/// A string field: `"` and every byte outside printable ASCII as `?`.
+fn quoted(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        if c == '"' || !(' '..='~').contains(&c) {
+            out.push('?');
+        } else {
+            out.push(c);
+        }
+    }
+    out.push('"');
+    out
+}
+
+impl Display for Event {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Event::Rapid { x, z } => write!(f, "RAPID X={} Z={}", Num(*x), Num(*z)),
+            Event::Line { x, z } => write!(f, "LINE X={} Z={}", Num(*x), Num(*z)),
+            Event::Arc { dir: d, x, z, cx, cz } => write!(
+                f,
+                "ARC DIR={} X={} Z={} CX={} CZ={}",
+                dir(*d),
+                Num(*x),
+                Num(*z),
+                Num(*cx),
+                Num(*cz)
+            ),
+            Event::Thread { x, z, lead, dlead, q } => {
+                write!(f, "THREAD X={} Z={} LEAD={}", Num(*x), Num(*z), Num(*lead))?;
+                if let Some(d) = dlead {
+                    write!(f, " DLEAD={}", Num(*d))?;
+                }
+                if let Some(q) = q {
+                    write!(f, " Q={}", Num(*q))?;
+                }
+                Ok(())
+            }
+            Event::Dwell { s } => write!(f, "DWELL S={}", Num(*s)),
+            Event::Feed { f: feed, per_rev } => write!(
+                f,
+                "FEED F={} MODE={}",
+                Num(*feed),
+                if *per_rev { "REV" } else { "MIN" }
+            ),
+            Event::Speed { s, css, max } => {
+                write!(f, "SPEED S={} MODE={}", Num(*s), if *css { "CSS" } else { "RPM" })?;
+                if let Some(m) = max {
+                    write!(f, " MAX={}", Num(*m))?;
+                }
+                Ok(())
+            }
+            Event::Spindle(d) => f.write_str(match d {
+                SpindleDir::Cw => "SPINDLE DIR=CW",
+                SpindleDir::Ccw => "SPINDLE DIR=CCW",
+                SpindleDir::Stop => "SPINDLE DIR=STOP",
+            }),
+            Event::Tool { t, d } => write!(f, "TOOL T={t} D={d}"),
+            Event::M(code) => write!(f, "M CODE={code}"),
+            Event::Origin { x, z } => write!(f, "ORIGIN X={} Z={}", Num(*x), Num(*z)),
+            Event::Home { n, x, z } => {
+                f.write_str("HOME N=")?;
+                write!(f, "{n} AXES=")?;
+                if *x {
+                    f.write_char('X')?;
+                }
+                if *z {
+                    f.write_char('Z')?;
+                }
+                Ok(())
+            }
+            Event::Stop(k) => write!(f, "STOP KIND={k:?}"),
+            Event::Skip { x, z } => write!(f, "SKIP X={} Z={}", Num(*x), Num(*z)),
+            Event::Gear { n } => write!(f, "GEAR N={n}"),
+            Event::Message(t) => write!(f, "MESSAGE TEXT={}", quoted(t)),
+            Event::Alarm { code, msg } => write!(f, "ALARM CODE={code} MSG={}", quoted(msg)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_print_as_the_canon_wants() {
+        let p = |v: f64| Num(v).to_string();
+        assert_eq!(p(12.5), "12.5");
+        assert_eq!(p(-3.0), "-3");
+        assert_eq!(p(0.0125), "0.0125");
+        assert_eq!(p(-0.00001), "0");
+        assert_eq!(p(1145.91559), "1145.9156");
+        assert_eq!(p(100.0), "100");
+    }
+
+    #[test]
+    fn strings_replace_quotes_and_non_ascii() {
+        let e = Event::Message("CHECK \"INSERT\" \u{e9}".into());
+        assert_eq!(e.to_string(), "MESSAGE TEXT=\"CHECK ?INSERT? ?\"");
+    }
+
+    #[test]
+    fn events_print_their_fields_in_order() {
+        let e = Event::Arc { dir: Dir::Ccw, x: 30.0, z: -5.0, cx: 20.0, cz: -5.0 };
+        assert_eq!(e.to_string(), "ARC DIR=CCW X=30 Z=-5 CX=20 CZ=-5");
+        let e = Event::Home { n: 1, x: true, z: false };
+        assert_eq!(e.to_string(), "HOME N=1 AXES=X");
+        let e = Event::Speed { s: 600.0, css: false, max: Some(2000.0) };
+        assert_eq!(e.to_string(), "SPEED S=600 MODE=RPM MAX=2000");
+    }
+}

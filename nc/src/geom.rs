@@ -1,0 +1,124 @@
+//! Plane geometry of arcs in the ZX plane (z horizontal, r up; G02 is
+//! clockwise in this view, dialect.md §2.4).
+
+use crate::error::{fail, NcError};
+use crate::state::Pt;
+
+/// Half a chord may exceed |R| by this much and still be a half circle.
+const RADIUS_SLACK_MM: f64 = 0.001;
+
+/// The centre of an arc from `from` to `to` with signed radius `r`
+/// (R > 0: the arc of at most 180°, R < 0: the larger one). `None` for a
+/// 0° arc (end = start), which is no move.
+pub fn centre_from_radius(from: Pt, to: Pt, r: f64, cw: bool) -> Result<Option<Pt>, NcError> {
+    let (dz, dr) = (to.z - from.z, to.r - from.r);
+    let chord = dz.hypot(dr);
+    if chord < 1e-9 {
+        return Ok(None);
+    }
+    let half = chord / 2.0;
+    if half > r.abs() + RADIUS_SLACK_MM {
+        return fail(
+            4001,
+            format!(
+                "arc radius {:.4} is too small: the end point is {:.4} mm away (half the chord exceeds |R|)",
+                r.abs(),
+                chord
+            ),
+        );
+    }
+    let h = (r * r - half * half).max(0.0).sqrt();
+    // Unit chord direction (z, r) and its right-hand normal (r, -z): a
+    // clockwise minor arc has its centre on the right of the chord.
+    let (uz, ur) = (dz / chord, dr / chord);
+    let (nz, nr) = (ur, -uz);
+    let side = if cw == (r > 0.0) { 1.0 } else { -1.0 };
+    let mid = Pt::new((from.r + to.r) / 2.0, (from.z + to.z) / 2.0);
+    Ok(Some(Pt::new(mid.r + side * h * nr, mid.z + side * h * nz)))
+}
+
+/// E4002: with I/K the end point must lie on the circle within the
+/// tolerance.
+pub fn check_on_circle(from: Pt, to: Pt, centre: Pt, tolerance: f64) -> Result<(), NcError> {
+    let (r0, r1) = (from.dist(centre), to.dist(centre));
+    if (r0 - r1).abs() > tolerance {
+        return fail(
+            4002,
+            format!(
+                "the end point is off the arc: its distance from the centre is {r1:.4}, the start's {r0:.4}"
+            ),
+        );
+    }
+    Ok(())
+}
+
+/// The circle through three points and whether start → mid → end runs
+/// clockwise (G05).
+pub fn circle_through(a: Pt, b: Pt, c: Pt) -> Result<(Pt, bool), NcError> {
+    if a.dist(c) < 1e-9 {
+        return fail(4004, "G05: the end point equals the start point");
+    }
+    // Cross product of (b - a) × (c - a) in (z, r): negative is clockwise.
+    let cross = (b.z - a.z) * (c.r - a.r) - (b.r - a.r) * (c.z - a.z);
+    if cross.abs() < 1e-9 {
+        return fail(4004, "G05: the three points lie on one line");
+    }
+    let d = 2.0 * cross;
+    let (sa, sb, sc) = (
+        a.z * a.z + a.r * a.r,
+        b.z * b.z + b.r * b.r,
+        c.z * c.z + c.r * c.r,
+    );
+    let z = (sa * (b.r - c.r) + sb * (c.r - a.r) + sc * (a.r - b.r)) / d;
+    let r = (sa * (c.z - b.z) + sb * (a.z - c.z) + sc * (b.z - a.z)) / d;
+    Ok((Pt::new(r, z), cross < 0.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Pt, r: f64, z: f64) -> bool {
+        (a.r - r).abs() < 1e-4 && (a.z - z).abs() < 1e-4
+    }
+
+    #[test]
+    fn radius_centres_match_the_hand_checks() {
+        // arc_r_form: G03 X30 Z-5 R5 from X20 Z0 → centre r10 z-5.
+        let c = centre_from_radius(Pt::new(10.0, 0.0), Pt::new(15.0, -5.0), 5.0, false).unwrap();
+        assert!(close(c.unwrap(), 10.0, -5.0));
+        // G02 X40 Z-20 R5 from X30 Z-15 → centre r20 z-15.
+        let c = centre_from_radius(Pt::new(15.0, -15.0), Pt::new(20.0, -20.0), 5.0, true).unwrap();
+        assert!(close(c.unwrap(), 20.0, -15.0));
+        // G03 X30 Z-40 R10 from X40 Z-30 → r 10.0838 z -31.2919.
+        let c = centre_from_radius(Pt::new(20.0, -30.0), Pt::new(15.0, -40.0), 10.0, false).unwrap();
+        assert!(close(c.unwrap(), 10.0838, -31.2919));
+    }
+
+    #[test]
+    fn negative_radius_takes_the_other_centre() {
+        let a = centre_from_radius(Pt::new(0.0, 0.0), Pt::new(0.0, -10.0), 10.0, true).unwrap().unwrap();
+        let b = centre_from_radius(Pt::new(0.0, 0.0), Pt::new(0.0, -10.0), -10.0, true).unwrap().unwrap();
+        assert!((a.r + b.r).abs() < 1e-9 && (a.z - b.z).abs() < 1e-9);
+    }
+
+    #[test]
+    fn too_small_a_radius_is_e4001() {
+        let e = centre_from_radius(Pt::new(0.0, 0.0), Pt::new(0.0, -10.0), 4.0, true).unwrap_err();
+        assert_eq!(e.code, 4001);
+        // Within 0.001 mm it is a half circle.
+        assert!(centre_from_radius(Pt::new(0.0, 0.0), Pt::new(0.0, -10.0), 4.9995, true).is_ok());
+    }
+
+    #[test]
+    fn three_points_give_centre_and_direction() {
+        // (z,r): (0,0) → (5,5) → (10,0): over the top, clockwise in ZX.
+        let (c, cw) = circle_through(Pt::new(0.0, 0.0), Pt::new(5.0, 5.0), Pt::new(0.0, 10.0)).unwrap();
+        assert!(close(c, 0.0, 5.0));
+        assert!(cw);
+        assert_eq!(
+            circle_through(Pt::new(0.0, 0.0), Pt::new(0.0, 5.0), Pt::new(0.0, 10.0)).unwrap_err().code,
+            4004
+        );
+    }
+}

@@ -1,0 +1,21 @@
+//! The NC kernel of gbc: the machine configuration, the modal state and
+//! the meaning of one block (dialect.md §2–§6, canon.md). The compiler
+//! uses it to check and pre-run static programs; the VM executes every
+//! block through it, so both share one implementation.
+
+pub mod block;
+pub mod error;
+pub mod event;
+pub mod exec;
+pub mod gcode;
+pub mod geom;
+pub mod machine;
+pub mod state;
+pub mod sysvar;
+pub mod value;
+pub mod words;
+
+pub use error::NcError;
+pub use event::Event;
+pub use exec::{Nc, Outcome, Sink};
+pub use machine::Machine;

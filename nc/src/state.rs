@@ -1,0 +1,167 @@
+//! The modal state of the control between blocks.
+
+use crate::event::SpindleDir;
+use crate::gcode::{self, Code, GROUPS};
+use crate::machine::{Machine, Units};
+
+/// A point in the ZX plane: `r` is the radial coordinate (X / 2), in mm.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pt {
+    pub r: f64,
+    pub z: f64,
+}
+
+impl Pt {
+    pub const fn new(r: f64, z: f64) -> Pt {
+        Pt { r, z }
+    }
+
+    /// From a diameter X and a Z.
+    pub fn xz(x: f64, z: f64) -> Pt {
+        Pt { r: x / 2.0, z }
+    }
+
+    pub fn x(self) -> f64 {
+        self.r * 2.0
+    }
+
+    pub fn dist(self, o: Pt) -> f64 {
+        (self.r - o.r).hypot(self.z - o.z)
+    }
+
+    pub fn add(self, o: Pt) -> Pt {
+        Pt::new(self.r + o.r, self.z + o.z)
+    }
+
+    pub fn sub(self, o: Pt) -> Pt {
+        Pt::new(self.r - o.r, self.z - o.z)
+    }
+}
+
+/// Everything a block can change and a later block can see.
+#[derive(Debug, Clone)]
+pub struct State {
+    /// The programmed point, local coordinates (mm).
+    pub pos: Pt,
+    /// The code in force in each modal group.
+    pub modal: [Code; GROUPS],
+    /// EXOFS, the six work offsets, the G50 shift, the G52 origin (all in
+    /// machine coordinates, r/z).
+    pub exofs: Pt,
+    pub work: [Pt; 6],
+    pub shift: Pt,
+    pub local: Pt,
+    /// Modal F as written (program units).
+    pub feed: f64,
+    /// The (F in mm, per-rev) last printed by `FEED`.
+    pub feed_printed: Option<(f64, bool)>,
+    /// Spindle: rpm (G97), surface speed m/min (G96), `G50 S` limit.
+    pub rpm: f64,
+    pub css: f64,
+    pub rpm_limit: Option<f64>,
+    pub spindle: SpindleDir,
+    pub tool: u32,
+    pub offset: u32,
+    /// Tool offset tables #2001… (wear X, Z, R, tip) and #2701… (geometry).
+    pub wear: [[f64; 4]; 32],
+    pub geom: [[f64; 3]; 32],
+    /// The last G31 skip position.
+    pub skip: Option<Pt>,
+    /// Virtual clock (#3001, ms): the sum of dwells.
+    pub clock_ms: f64,
+    /// Last value of B D E F H M N O S T (#4102 …), NaN when never set.
+    pub last: [f64; 26],
+    pub parts: f64,
+    /// Output signals UO0–UO15 (#1100…).
+    pub outputs: u32,
+    pub parts_required: f64,
+}
+
+impl State {
+    pub fn power_on(m: &Machine) -> State {
+        let mut modal = [0; GROUPS];
+        for (g, slot) in modal.iter_mut().enumerate() {
+            *slot = gcode::power_on(g as u8).unwrap_or(0);
+        }
+        if m.machine.power_on_units == Units::Inch {
+            modal[gcode::UNITS as usize] = 200;
+        }
+        let c = &m.coords;
+        let p = |v: crate::machine::Xz| Pt::xz(v.x, v.z);
+        let mut wear = [[0.0; 4]; 32];
+        let mut geom = [[0.0; 3]; 32];
+        for o in &m.tools.offset {
+            if let Some(i) = (o.number as usize).checked_sub(1).filter(|&i| i < 32) {
+                wear[i] = [o.wear_x, o.wear_z, o.wear_radius, o.tip as f64];
+                geom[i] = [o.x, o.z, o.radius];
+            }
+        }
+        State {
+            pos: Pt::default(),
+            modal,
+            exofs: p(c.exofs),
+            work: [p(c.g54), p(c.g55), p(c.g56), p(c.g57), p(c.g58), p(c.g59)],
+            shift: Pt::default(),
+            local: Pt::default(),
+            feed: 0.0,
+            feed_printed: None,
+            rpm: 0.0,
+            css: 0.0,
+            rpm_limit: None,
+            spindle: SpindleDir::Stop,
+            tool: 1,
+            offset: 0,
+            wear,
+            geom,
+            skip: None,
+            clock_ms: 0.0,
+            last: [f64::NAN; 26],
+            parts: 0.0,
+            outputs: 0,
+            parts_required: 0.0,
+        }
+    }
+
+    pub fn group(&self, g: u8) -> Code {
+        self.modal[g as usize]
+    }
+
+    pub fn inch(&self) -> bool {
+        self.group(gcode::UNITS) == 200
+    }
+
+    pub fn per_rev(&self) -> bool {
+        self.group(gcode::FEED_MODE) == 990
+    }
+
+    pub fn css_mode(&self) -> bool {
+        self.group(gcode::SPEED_MODE) == 960
+    }
+
+    /// Index 0..6 of the active work system (G54 = 0).
+    pub fn work_index(&self) -> usize {
+        ((self.group(gcode::WORK).saturating_sub(540)) / 10).min(5) as usize
+    }
+
+    /// The local zero in machine coordinates: EXOFS + G5x + G50 + G52.
+    pub fn origin(&self) -> Pt {
+        self.exofs
+            .add(self.work[self.work_index()])
+            .add(self.shift)
+            .add(self.local)
+    }
+
+    /// The tool point in machine coordinates.
+    pub fn machine_pos(&self) -> Pt {
+        self.pos.add(self.origin())
+    }
+
+    /// Length unit factor of the words (mm per program unit).
+    pub fn unit(&self) -> f64 {
+        if self.inch() {
+            25.4
+        } else {
+            1.0
+        }
+    }
+}

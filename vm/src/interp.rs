@@ -1,0 +1,556 @@
+//! The interpreter loop.
+
+use crate::vars::{slot, Vars};
+use isa::{Instr, Module};
+use nc::block::round_half_away;
+use nc::event::StopKind;
+use nc::value::{self, is_vacant, Bin, Func, Rel, VACANT};
+use nc::words::Words;
+use nc::{Event, Machine, Nc, NcError, Sink};
+
+/// A run-time alarm with the place of the block that raised it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Alarm {
+    /// The canon's `CODE=`: 5001 for E5001, 3000 + n for `#3000 = n`.
+    pub code: u32,
+    pub message: String,
+    pub file: String,
+    pub line: u32,
+    pub col: u32,
+}
+
+impl Alarm {
+    /// `FILE:LINE:COL: alarm[E5001]: message` (`alarm[3005]` for user
+    /// alarms, canon.md).
+    pub fn header(&self) -> String {
+        let code = if (500..1000).contains(&self.code) || (3000..4000).contains(&self.code) {
+            self.code.to_string()
+        } else {
+            format!("E{:04}", self.code)
+        };
+        format!("{}:{}:{}: alarm[{}]: {}", self.file, self.line, self.col, code, self.message)
+    }
+}
+
+/// What one call of [`Vm::step`] ended with.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Status {
+    /// The program ended (M02/M30, past its last block, or the M99 of the
+    /// last pass).
+    Done,
+    /// A block executed; its events are in the sink.
+    Event,
+    /// The instruction budget is used up; call again to go on.
+    OutOfBudget,
+    /// A run-time alarm; the `ALARM` event is in the sink.
+    Alarm(Alarm),
+}
+
+/// A call in progress.
+#[derive(Debug, Clone)]
+struct Frame {
+    return_pc: u32,
+    /// The caller's program index.
+    caller: u32,
+    /// The called program's index.
+    callee: u32,
+    remaining: u32,
+    macro_level: bool,
+    modal: bool,
+    args: Vec<(u8, f64)>,
+}
+
+/// Nesting limits (dialect.md §7.12).
+const MAX_MACRO_LEVELS: usize = 4;
+const MAX_SUB_LEVELS: usize = 4;
+const MAX_CALLS: usize = 8;
+
+struct ModalCall {
+    prog: u32,
+    count: u32,
+    args: Vec<(u8, f64)>,
+}
+
+pub struct Vm {
+    module: Module,
+    pub nc: Nc,
+    regs: Vec<f64>,
+    vars: Vars,
+    pc: u32,
+    prog: u32,
+    frames: Vec<Frame>,
+    words: Words,
+    args: Vec<(u8, f64)>,
+    msg: Option<u32>,
+    modal: Option<ModalCall>,
+    blocks: u64,
+    pub max_blocks: u64,
+    pass: u32,
+    pub repeat: u32,
+    done: bool,
+}
+
+type Fault = NcError;
+
+fn fault<T>(code: u16, msg: impl Into<String>) -> Result<T, Fault> {
+    Err(NcError::new(code, msg))
+}
+
+enum Next {
+    Go,
+    Event,
+    Done,
+}
+
+impl Vm {
+    /// A VM for a verified module on a machine.
+    pub fn new(module: Module, machine: Machine) -> Vm {
+        let regs = vec![VACANT; module.num_regs.max(1) as usize];
+        let max_blocks = machine.run.max_blocks;
+        let pc = module.programs.first().map_or(0, |p| p.entry);
+        Vm {
+            module,
+            nc: Nc::new(machine),
+            regs,
+            vars: Vars::default(),
+            pc,
+            prog: 0,
+            frames: Vec::new(),
+            words: Words::default(),
+            args: Vec::new(),
+            msg: None,
+            modal: None,
+            blocks: 0,
+            max_blocks,
+            pass: 1,
+            repeat: 1,
+            done: false,
+        }
+    }
+
+    pub fn module(&self) -> &Module {
+        &self.module
+    }
+
+    /// Runs at most `budget` instructions.
+    pub fn step(&mut self, budget: u64, sink: &mut dyn Sink) -> Status {
+        if self.done {
+            return Status::Done;
+        }
+        for _ in 0..budget {
+            let pc = self.pc;
+            match self.exec_one(sink) {
+                Ok(Next::Go) => {}
+                Ok(Next::Event) => return Status::Event,
+                Ok(Next::Done) => {
+                    self.done = true;
+                    return Status::Done;
+                }
+                Err(e) => {
+                    self.done = true;
+                    return Status::Alarm(self.alarm(pc, e, sink));
+                }
+            }
+        }
+        Status::OutOfBudget
+    }
+
+    /// Runs to the end; the final status (never `Event`/`OutOfBudget`).
+    pub fn run(&mut self, sink: &mut dyn Sink) -> Status {
+        loop {
+            match self.step(1 << 16, sink) {
+                Status::Event | Status::OutOfBudget => continue,
+                other => return other,
+            }
+        }
+    }
+
+    fn alarm(&self, pc: u32, e: Fault, sink: &mut dyn Sink) -> Alarm {
+        let loc = self.module.lines.get(pc as usize).copied().unwrap_or_default();
+        let file = self
+            .module
+            .files
+            .get(loc.file as usize)
+            .map_or_else(String::new, |f| f.name.clone());
+        let msg = if (3000..4000).contains(&(e.code as u32)) || (500..1000).contains(&(e.code as u32)) {
+            self.msg_text()
+        } else {
+            e.message.clone()
+        };
+        sink.emit(Event::Alarm { code: e.code as u32, msg: msg.clone() });
+        Alarm { code: e.code as u32, message: if msg.is_empty() { e.message } else { msg }, file, line: loc.line, col: loc.col }
+    }
+
+    fn msg_text(&self) -> String {
+        self.msg
+            .and_then(|s| self.module.strings.get(s as usize))
+            .cloned()
+            .unwrap_or_default()
+    }
+
+    fn count_block(&mut self) -> Result<(), Fault> {
+        self.blocks += 1;
+        if self.blocks > self.max_blocks {
+            return fault(6005, format!("the block budget of {} blocks is used up", self.max_blocks));
+        }
+        Ok(())
+    }
+
+    fn reg(&self, r: u8) -> f64 {
+        self.regs.get(r as usize).copied().unwrap_or(VACANT)
+    }
+
+    fn set(&mut self, r: u8, v: f64) {
+        if let Some(slot) = self.regs.get_mut(r as usize) {
+            *slot = v;
+        }
+    }
+
+    fn konst(&self, k: u32) -> f64 {
+        self.module.consts.get(k as usize).copied().unwrap_or(VACANT)
+    }
+
+    fn exec_one(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
+        let Some(&instr) = self.module.code.get(self.pc as usize) else {
+            return fault(6001, "execution ran outside the program");
+        };
+        self.pc += 1;
+        match instr {
+            Instr::LoadK { dst, k } => self.set(dst, self.konst(k)),
+            Instr::LoadNull { dst } => self.set(dst, VACANT),
+            Instr::Mov { dst, src } => self.set(dst, self.reg(src)),
+            Instr::LoadVar { dst, var } => {
+                let v = self.read_var(var)?;
+                self.set(dst, v);
+            }
+            Instr::LoadVarInd { dst, idx } => {
+                let n = var_number(self.reg(idx))?;
+                let v = self.read_var(n)?;
+                self.set(dst, v);
+            }
+            Instr::StoreVar { var, src } => {
+                self.count_block()?;
+                self.write_var(var, self.reg(src), sink)?;
+            }
+            Instr::StoreVarInd { idx, src } => {
+                self.count_block()?;
+                let n = var_number(self.reg(idx))?;
+                self.write_var(n, self.reg(src), sink)?;
+            }
+            Instr::Neg { dst, a } => self.set(dst, value::neg(self.reg(a))),
+            Instr::Add { dst, a, b } => self.bin(Bin::Add, dst, a, b)?,
+            Instr::Sub { dst, a, b } => self.bin(Bin::Sub, dst, a, b)?,
+            Instr::Mul { dst, a, b } => self.bin(Bin::Mul, dst, a, b)?,
+            Instr::Div { dst, a, b } => self.bin(Bin::Div, dst, a, b)?,
+            Instr::Mod { dst, a, b } => self.bin(Bin::Mod, dst, a, b)?,
+            Instr::BitAnd { dst, a, b } => self.bin(Bin::And, dst, a, b)?,
+            Instr::BitOr { dst, a, b } => self.bin(Bin::Or, dst, a, b)?,
+            Instr::BitXor { dst, a, b } => self.bin(Bin::Xor, dst, a, b)?,
+            Instr::Func { dst, a, f } => {
+                let Some(f) = Func::from_code(f) else {
+                    return fault(2099, "unknown function code");
+                };
+                let v = value::func(f, self.reg(a))?;
+                self.set(dst, v);
+            }
+            Instr::Atan2 { dst, y, x } => {
+                let v = value::atan2(self.reg(y), self.reg(x))?;
+                self.set(dst, v);
+            }
+            Instr::Cmp { dst, a, b, op } => {
+                let Some(op) = Rel::from_code(op) else {
+                    return fault(2099, "unknown comparison code");
+                };
+                self.set(dst, value::compare(op, self.reg(a), self.reg(b)));
+            }
+            Instr::Jump { target } => {
+                if target < self.pc {
+                    self.count_block()?;
+                }
+                self.pc = target;
+            }
+            Instr::JumpIfNot { cond, target } => {
+                if value::compare(Rel::Eq, self.reg(cond), 0.0) == 1.0 || is_vacant(self.reg(cond)) {
+                    self.pc = target;
+                }
+            }
+            Instr::GotoSeq { seq } => {
+                self.count_block()?;
+                let n = target_number(self.reg(seq))?;
+                match self.module.pc_of_seq(self.prog as usize, n) {
+                    Some(pc) => self.pc = pc,
+                    None => return fault(6001, format!("GOTO {n}: there is no block N{n} in this program")),
+                }
+            }
+            Instr::Word { addr, src } => {
+                let v = self.reg(src);
+                // A word whose value is vacant is left out (§7.5).
+                if !is_vacant(v) {
+                    self.words.push(addr, v, 0);
+                }
+            }
+            Instr::WordK { addr, k, flags } => {
+                let v = self.konst(k);
+                self.words.push(addr, v, flags);
+            }
+            Instr::SetMsg { s } => self.msg = Some(s),
+            Instr::Exec { .. } => return self.exec_block(sink),
+            Instr::CallSub { prog, count } => {
+                let n = count_of(self.reg(count))?;
+                self.call(prog, n, false, false, Vec::new())?;
+            }
+            Instr::CallSubDyn { num, count } => {
+                let prog = self.program_by_number(self.reg(num))?;
+                let n = count_of(self.reg(count))?;
+                self.call(prog, n, false, false, Vec::new())?;
+            }
+            Instr::CallMacro { prog, count } => {
+                let n = count_of(self.reg(count))?;
+                let args = std::mem::take(&mut self.args);
+                self.modal = None;
+                self.call(prog, n, true, false, args)?;
+            }
+            Instr::CallMacroDyn { num, count } => {
+                let prog = self.program_by_number(self.reg(num))?;
+                let n = count_of(self.reg(count))?;
+                let args = std::mem::take(&mut self.args);
+                self.modal = None;
+                self.call(prog, n, true, false, args)?;
+            }
+            Instr::Arg { var, src } => {
+                let v = self.reg(src);
+                if !is_vacant(v) {
+                    self.args.retain(|(a, _)| *a != var);
+                    self.args.push((var, v));
+                }
+            }
+            Instr::ModalCall { prog, count } => {
+                let count = count_of(self.reg(count))?;
+                let args = std::mem::take(&mut self.args);
+                self.modal = Some(ModalCall { prog, count, args });
+            }
+            Instr::ModalCallDyn { num, count } => {
+                let prog = self.program_by_number(self.reg(num))?;
+                let count = count_of(self.reg(count))?;
+                let args = std::mem::take(&mut self.args);
+                self.modal = Some(ModalCall { prog, count, args });
+            }
+            Instr::ModalCancel => self.modal = None,
+            Instr::Ret => return self.ret(None, sink),
+            Instr::RetSeq { seq } => {
+                let n = target_number(self.reg(seq))?;
+                return self.ret(Some(n), sink);
+            }
+            Instr::Alarm { code, msg } => {
+                self.msg = Some(msg);
+                return fault(code, self.msg_text());
+            }
+            Instr::Halt => return Ok(Next::Done),
+        }
+        Ok(Next::Go)
+    }
+
+    fn bin(&mut self, op: Bin, dst: u8, a: u8, b: u8) -> Result<(), Fault> {
+        let v = value::binary(op, self.reg(a), self.reg(b))?;
+        self.set(dst, v);
+        Ok(())
+    }
+
+    fn exec_block(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
+        self.count_block()?;
+        let result = self.nc.exec(&self.words.list, sink);
+        self.words.clear();
+        self.msg = None;
+        let out = result?;
+        if let Some(p) = out.skip {
+            self.vars.persistent[495] = p.x();
+            self.vars.persistent[496] = p.z;
+            self.vars.persistent[497] = VACANT;
+            self.vars.persistent[498] = VACANT;
+            self.vars.persistent[499] = VACANT;
+        }
+        if out.end.is_some() {
+            return Ok(Next::Done);
+        }
+        if out.moved && !self.frames.iter().any(|f| f.modal) {
+            if let Some(m) = &self.modal {
+                let (prog, count, args) = (m.prog, m.count, m.args.clone());
+                self.call(prog, count, true, true, args)?;
+            }
+        }
+        Ok(Next::Event)
+    }
+
+    fn program_by_number(&self, v: f64) -> Result<u32, Fault> {
+        let n = target_number(v)?;
+        self.module
+            .programs
+            .iter()
+            .position(|p| p.number == n)
+            .map(|i| i as u32)
+            .ok_or_else(|| NcError::new(6003, format!("the called program O{n:04} does not exist")))
+    }
+
+    fn call(&mut self, callee: u32, count: u32, macro_level: bool, modal: bool, args: Vec<(u8, f64)>) -> Result<(), Fault> {
+        self.count_block()?;
+        let macros = self.frames.iter().filter(|f| f.macro_level).count();
+        let subs = self.frames.len() - macros;
+        if self.frames.len() >= MAX_CALLS || (macro_level && macros >= MAX_MACRO_LEVELS) || (!macro_level && subs >= MAX_SUB_LEVELS) {
+            return fault(6004, "calls nested too deep (4 macro levels, 4 subprogram levels, 8 in all)");
+        }
+        let Some(entry) = self.module.programs.get(callee as usize).map(|p| p.entry) else {
+            return fault(6003, "the called program does not exist");
+        };
+        if macro_level {
+            self.vars.push_level(&args);
+        }
+        self.frames.push(Frame {
+            return_pc: self.pc,
+            caller: self.prog,
+            callee,
+            remaining: count.saturating_sub(1),
+            macro_level,
+            modal,
+            args,
+        });
+        self.prog = callee;
+        self.pc = entry;
+        Ok(())
+    }
+
+    /// M99 (with `seq`: M99 P n).
+    fn ret(&mut self, seq: Option<u32>, sink: &mut dyn Sink) -> Result<Next, Fault> {
+        self.count_block()?;
+        let Some(frame) = self.frames.last_mut() else {
+            return self.end_pass(seq, sink);
+        };
+        if frame.remaining > 0 {
+            frame.remaining -= 1;
+            let (callee, macro_level, args) = (frame.callee, frame.macro_level, frame.args.clone());
+            if macro_level {
+                self.vars.refresh_level(&args);
+            }
+            self.pc = self.module.programs.get(callee as usize).map_or(self.pc, |p| p.entry);
+            return Ok(Next::Go);
+        }
+        let Some(frame) = self.frames.pop() else { return Ok(Next::Done) };
+        if frame.macro_level {
+            self.vars.pop_level();
+        }
+        self.prog = frame.caller;
+        self.pc = frame.return_pc;
+        if let Some(n) = seq {
+            match self.module.pc_of_seq(frame.caller as usize, n) {
+                Some(pc) => self.pc = pc,
+                None => return fault(6002, format!("M99 P{n}: the calling program has no block N{n}")),
+            }
+        }
+        Ok(Next::Go)
+    }
+
+    /// A main-program M99: the pass ends; the last one ends the run.
+    fn end_pass(&mut self, seq: Option<u32>, sink: &mut dyn Sink) -> Result<Next, Fault> {
+        if self.pass >= self.repeat {
+            sink.emit(Event::Stop(StopKind::M99));
+            return Ok(Next::Done);
+        }
+        self.pass += 1;
+        self.pc = self.module.programs.first().map_or(0, |p| p.entry);
+        if let Some(n) = seq {
+            match self.module.pc_of_seq(0, n) {
+                Some(pc) => self.pc = pc,
+                None => return fault(6002, format!("M99 P{n}: the main program has no block N{n}")),
+            }
+        }
+        Ok(Next::Go)
+    }
+
+    fn read_var(&self, n: u32) -> Result<f64, Fault> {
+        if n == 0 {
+            return Ok(VACANT);
+        }
+        if let Some(s) = slot(n) {
+            return Ok(self.vars.get(&s));
+        }
+        if nc::sysvar::is_system(n) {
+            return Ok(self.nc.read_var(n)?.unwrap_or(VACANT));
+        }
+        fault(5008, format!("#{n} names no variable"))
+    }
+
+    fn write_var(&mut self, n: u32, v: f64, sink: &mut dyn Sink) -> Result<(), Fault> {
+        if let Some(s) = slot(n) {
+            self.vars.set(&s, v);
+            return Ok(());
+        }
+        match n {
+            0 => fault(5007, "#0 is always vacant and cannot be written"),
+            3000 => {
+                let code = if is_vacant(v) { 0.0 } else { round_half_away(v) };
+                if !(0.0..=999.0).contains(&code) {
+                    return fault(5010, format!("#3000 = {code}: the alarm number must be 0…999"));
+                }
+                fault(3000 + code as u16, self.msg_text())
+            }
+            3006 => {
+                sink.emit(Event::Message(self.msg_text()));
+                self.msg = None;
+                Ok(())
+            }
+            n if nc::sysvar::is_system(n) => {
+                self.nc.write_var(n, (!is_vacant(v)).then_some(v), sink)
+            }
+            _ => fault(5008, format!("#{n} names no variable")),
+        }
+    }
+
+    /// The persistent variables #500–#999 (vacant as NaN).
+    pub fn persistent(&self) -> &[f64; 500] {
+        &self.vars.persistent
+    }
+
+    pub fn persistent_mut(&mut self) -> &mut [f64; 500] {
+        &mut self.vars.persistent
+    }
+
+    /// Whether #500–#999 changed since the flag was last cleared.
+    pub fn take_persistent_dirty(&mut self) -> bool {
+        std::mem::take(&mut self.vars.persistent_dirty)
+    }
+}
+
+/// A variable number from a value: rounded; vacant E5009, negative E5008.
+fn var_number(v: f64) -> Result<u32, Fault> {
+    if is_vacant(v) {
+        return fault(5009, "a vacant value cannot name a variable");
+    }
+    let n = round_half_away(v);
+    if !(0.0..=u32::MAX as f64).contains(&n) {
+        return fault(5008, format!("#{n} names no variable"));
+    }
+    Ok(n as u32)
+}
+
+/// A jump or call target: vacant is E5009.
+fn target_number(v: f64) -> Result<u32, Fault> {
+    if is_vacant(v) {
+        return fault(5009, "a vacant value cannot be a jump or call target");
+    }
+    let n = round_half_away(v);
+    if !(0.0..=99_999_999.0).contains(&n) {
+        return fault(5010, format!("{n} is not a valid sequence or program number"));
+    }
+    Ok(n as u32)
+}
+
+/// A repeat count: vacant or 0 is once.
+fn count_of(v: f64) -> Result<u32, Fault> {
+    if is_vacant(v) {
+        return Ok(1);
+    }
+    let n = round_half_away(v);
+    if !(0.0..=9999.0).contains(&n) {
+        return fault(5010, format!("the repeat count {n} is outside 1…9999"));
+    }
+    Ok((n as u32).max(1))
+}

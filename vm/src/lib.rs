@@ -1,0 +1,11 @@
+//! The gbc register VM. It runs a verified [`isa::Module`]: macro
+//! arithmetic in registers, control flow and calls itself, and every NC
+//! block through the kernel ([`nc::Nc`]), whose events go to a sink the VM
+//! does not know. Execution is resumable and budgeted ([`Vm::step`]) so a
+//! controller's loop can drive it without blocking.
+
+mod interp;
+mod vars;
+
+pub use interp::{Alarm, Status, Vm};
+pub use nc::{Event, Sink};
