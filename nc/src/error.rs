@@ -8,6 +8,9 @@ pub struct NcError {
     /// The number of the code: E4001 → 4001.
     pub code: u16,
     pub message: String,
+    /// The tag of the profile block (`Nc::push_profile`) that the error is
+    /// about, when it is about one rather than the block executing.
+    pub at: Option<u32>,
 }
 
 impl NcError {
@@ -16,7 +19,14 @@ impl NcError {
         NcError {
             code,
             message: message.into(),
+            at: None,
         }
+    }
+
+    /// The same error, about profile block `tag`.
+    pub fn at(mut self, tag: u32) -> NcError {
+        self.at = Some(tag);
+        self
     }
 
     /// `E4001` as diagnostics print it.

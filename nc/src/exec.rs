@@ -37,6 +37,10 @@ pub struct Outcome {
 pub struct Nc {
     pub machine: Machine,
     pub st: State,
+    /// The ns…nf blocks handed over for the next G70–G73 block, each with
+    /// the tag its errors carry (the VM uses the pc, the compiler the block
+    /// index).
+    pub profile: Vec<(Vec<Word>, u32)>,
 }
 
 /// M codes that act after the motion (canon group 3).
@@ -57,12 +61,17 @@ fn is_call(m: u32) -> bool {
 impl Nc {
     pub fn new(machine: Machine) -> Nc {
         let st = State::power_on(&machine);
-        Nc { machine, st }
+        Nc { machine, st, profile: Vec::new() }
     }
 
     /// Back to the power-on state (a new run).
     pub fn reset(&mut self) {
         self.st = State::power_on(&self.machine);
+    }
+
+    /// Hands over one ns…nf block for the next G70–G73 block.
+    pub fn push_profile(&mut self, words: &[Word], tag: u32) {
+        self.profile.push((words.to_vec(), tag));
     }
 
     /// Executes one block of NC words.
@@ -75,6 +84,7 @@ impl Nc {
         self.motion(&p, sink, &mut out)?;
         self.after_motion(&p, sink);
         self.stops(&p, sink, &mut out);
+        self.profile.clear();
         Ok(out)
     }
 
@@ -98,9 +108,6 @@ impl Nc {
                     // Any group-01 code cancels the drilling cycles.
                     self.st.modal[gcode::DRILL as usize] = 800;
                 }
-                gcode::DRILL if code != 800 => {
-                    return fail(2099, format!("{} is not implemented yet", gcode::name(code)))
-                }
                 gcode::POLAR if code == 121 => {
                     return fail(2003, "G12.1 polar interpolation needs a C axis")
                 }
@@ -114,17 +121,15 @@ impl Nc {
     }
 
     fn unsupported_motion(&self, code: Code) -> Result<(), NcError> {
-        match code {
-            0 | 10 | 20 | 30 | 50 | 51 => Ok(()),
-            _ => fail(2099, format!("{} is not implemented yet", gcode::name(code))),
-        }
+        let _ = code;
+        Ok(())
     }
 
     fn unsupported_one_shot(&self, code: Code) -> Result<(), NcError> {
         match code {
-            40 | 90 | 280 | 300 | 310 | 500 | 520 | 530 => Ok(()),
             71 => fail(2003, "G7.1 cylindrical interpolation needs a C axis"),
-            _ => fail(2099, format!("{} is not implemented yet", gcode::name(code))),
+            100 | 110 => fail(2099, format!("{} is not implemented yet", gcode::name(code))),
+            _ => Ok(()),
         }
     }
 
@@ -145,7 +150,7 @@ impl Nc {
     }
 
     /// The rpm of constant surface speed at diameter x, clamped.
-    fn css_rpm(&self, x: f64) -> f64 {
+    pub(crate) fn css_rpm(&self, x: f64) -> f64 {
         let limit = self
             .st
             .rpm_limit
@@ -238,7 +243,18 @@ impl Nc {
         if let Some(code) = p.one_shot() {
             return self.one_shot(code, p, sink, out);
         }
+        let drill = self.st.group(gcode::DRILL);
+        if drill != 800 {
+            return crate::cycles::drill(self, drill, p, sink, out);
+        }
         let code = self.st.group(gcode::MOTION);
+        if !matches!(code, 0 | 10 | 20 | 30 | 50 | 51) {
+            return if matches!(code, 62 | 63 | 72 | 73) {
+                crate::contour::conic(self, code, p, sink, out)
+            } else {
+                crate::cycles::motion(self, code, p, sink, out)
+            };
+        }
         let arc_words = matches!(code, 20 | 30) && (p.has(b'I') || p.has(b'K') || p.has(b'R'));
         if !p.has_axis() && !arc_words {
             return Ok(());
@@ -248,8 +264,7 @@ impl Nc {
             0 => self.rapid(target, sink),
             10 => self.line(target, sink)?,
             20 | 30 => self.arc(code == 20, target, p, sink)?,
-            50 | 51 => self.three_point_arc(code == 51, target, p, sink)?,
-            _ => return fail(2099, format!("{} is not implemented yet", gcode::name(code))),
+            _ => self.three_point_arc(code == 51, target, p, sink)?,
         }
         out.moved = true;
         Ok(())
@@ -257,7 +272,7 @@ impl Nc {
 
     /// A length word in mm: the unit, and the decimal-point rule for
     /// literals written without a point in increment mode.
-    fn length(&self, w: Word) -> f64 {
+    pub(crate) fn length(&self, w: Word) -> f64 {
         let mut v = w.value;
         if w.flags & NO_POINT != 0 && self.machine.machine.decimal_point == DecimalPoint::Increment {
             v *= if self.st.inch() { 0.0001 } else { 0.001 };
@@ -265,13 +280,13 @@ impl Nc {
         v * self.st.unit()
     }
 
-    fn len_of(&self, p: &Parsed, letter: u8) -> Option<f64> {
+    pub(crate) fn len_of(&self, p: &Parsed, letter: u8) -> Option<f64> {
         p.word(letter).map(|w| self.length(w))
     }
 
     /// The end point of a move: X/Z absolute, U/W incremental, axes left
     /// out keep their coordinate.
-    fn target(&self, p: &Parsed) -> Pt {
+    pub(crate) fn target(&self, p: &Parsed) -> Pt {
         let mut t = self.st.pos;
         if let Some(x) = self.len_of(p, b'X') {
             t.r = x / 2.0;
@@ -286,14 +301,14 @@ impl Nc {
         t
     }
 
-    fn rapid(&mut self, to: Pt, sink: &mut dyn Sink) {
+    pub(crate) fn rapid(&mut self, to: Pt, sink: &mut dyn Sink) {
         self.st.pos = to;
         sink.emit(Event::Rapid { x: to.x(), z: to.z });
     }
 
     /// Prints `FEED` when the feed of the next feed event differs from the
     /// last one printed.
-    fn feed_due(&mut self, sink: &mut dyn Sink) {
+    pub(crate) fn feed_due(&mut self, sink: &mut dyn Sink) {
         let f = self.st.feed * self.st.unit();
         let now = (f, self.st.per_rev());
         if self.st.feed_printed != Some(now) {
@@ -302,14 +317,14 @@ impl Nc {
         }
     }
 
-    fn line(&mut self, to: Pt, sink: &mut dyn Sink) -> Result<(), NcError> {
+    pub(crate) fn line(&mut self, to: Pt, sink: &mut dyn Sink) -> Result<(), NcError> {
         self.feed_due(sink);
         self.st.pos = to;
         sink.emit(Event::Line { x: to.x(), z: to.z });
         Ok(())
     }
 
-    fn arc(&mut self, cw: bool, to: Pt, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    pub(crate) fn arc(&mut self, cw: bool, to: Pt, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
         let from = self.st.pos;
         let centre = if let Some(r) = self.len_of(p, b'R') {
             match geom::centre_from_radius(from, to, r, cw)? {
@@ -336,7 +351,7 @@ impl Nc {
         Ok(())
     }
 
-    fn emit_arc(&mut self, cw: bool, to: Pt, c: Pt, sink: &mut dyn Sink) {
+    pub(crate) fn emit_arc(&mut self, cw: bool, to: Pt, c: Pt, sink: &mut dyn Sink) {
         self.feed_due(sink);
         self.st.pos = to;
         let dir = if cw { Dir::Cw } else { Dir::Ccw };
@@ -402,6 +417,8 @@ impl Nc {
                 }
                 self.rapid(m.sub(origin), sink);
             }
+            700..=730 => return crate::compound::run(self, code, p, sink, out),
+            740 | 750 | 760 | 780 => return crate::cycles::one_shot(self, code, p, sink, out),
             _ => return fail(2099, format!("{} is not implemented yet", gcode::name(code))),
         }
         out.moved = matches!(code, 280 | 300 | 310 | 530);

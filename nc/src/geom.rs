@@ -122,3 +122,24 @@ mod tests {
         );
     }
 }
+
+/// One element of a contour: the geometry a block moves along.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Element {
+    Line { from: Pt, to: Pt },
+    Arc { from: Pt, to: Pt, centre: Pt, cw: bool },
+}
+
+impl Element {
+    pub fn start(&self) -> Pt {
+        match *self {
+            Element::Line { from, .. } | Element::Arc { from, .. } => from,
+        }
+    }
+
+    pub fn end(&self) -> Pt {
+        match *self {
+            Element::Line { to, .. } | Element::Arc { to, .. } => to,
+        }
+    }
+}

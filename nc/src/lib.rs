@@ -4,6 +4,9 @@
 //! block through it, so both share one implementation.
 
 pub mod block;
+pub mod compound;
+pub mod contour;
+pub mod cycles;
 pub mod error;
 pub mod event;
 pub mod exec;

@@ -75,6 +75,12 @@ pub struct State {
     /// Output signals UO0–UO15 (#1100…).
     pub outputs: u32,
     pub parts_required: f64,
+    /// State of the single cycles and threads (cycles module).
+    pub cycles: crate::cycles::CycleState,
+    /// State of G70–G73 (compound module).
+    pub compound: crate::compound::CompoundState,
+    /// Pending corners (contour module).
+    pub contour: crate::contour::ContourState,
 }
 
 impl State {
@@ -119,6 +125,9 @@ impl State {
             parts: 0.0,
             outputs: 0,
             parts_required: 0.0,
+            cycles: Default::default(),
+            compound: Default::default(),
+            contour: Default::default(),
         }
     }
 

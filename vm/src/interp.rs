@@ -60,6 +60,10 @@ struct Frame {
     args: Vec<(u8, f64)>,
 }
 
+/// `Exec` flag: hand the block to the kernel as a G70–G73 profile block
+/// (its tag is its pc) instead of executing it.
+pub const PROFILE: u8 = 1;
+
 /// Nesting limits (dialect.md §7.12).
 const MAX_MACRO_LEVELS: usize = 4;
 const MAX_SUB_LEVELS: usize = 4;
@@ -166,6 +170,8 @@ impl Vm {
     }
 
     fn alarm(&self, pc: u32, e: Fault, sink: &mut dyn Sink) -> Alarm {
+        // An error about a profile block names that block.
+        let pc = e.at.unwrap_or(pc);
         let loc = self.module.lines.get(pc as usize).copied().unwrap_or_default();
         let file = self
             .module
@@ -294,6 +300,11 @@ impl Vm {
                 self.words.push(addr, v, flags);
             }
             Instr::SetMsg { s } => self.msg = Some(s),
+            Instr::Exec { flags } if flags & PROFILE != 0 => {
+                self.nc.push_profile(&self.words.list, self.pc - 1);
+                self.words.clear();
+                self.msg = None;
+            }
             Instr::Exec { .. } => return self.exec_block(sink),
             Instr::CallSub { prog, count } => {
                 let n = count_of(self.reg(count))?;
