@@ -92,6 +92,8 @@ pub struct Vm {
     pass: u32,
     pub repeat: u32,
     done: bool,
+    /// The pc of the last `Exec` that ran.
+    last_exec: u32,
 }
 
 type Fault = NcError;
@@ -129,11 +131,17 @@ impl Vm {
             pass: 1,
             repeat: 1,
             done: false,
+            last_exec: 0,
         }
     }
 
     pub fn module(&self) -> &Module {
         &self.module
+    }
+
+    /// The source place of the block executed last (for traces).
+    pub fn last_loc(&self) -> isa::SourceLoc {
+        self.module.lines.get(self.last_exec as usize).copied().unwrap_or_default()
     }
 
     /// Runs at most `budget` instructions.
@@ -369,6 +377,7 @@ impl Vm {
 
     fn exec_block(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
         self.count_block()?;
+        self.last_exec = self.pc - 1;
         let result = self.nc.exec(&self.words.list, sink);
         self.words.clear();
         self.msg = None;
