@@ -1,5 +1,7 @@
 //! Shared pieces of the gbc command-line tools.
 
+pub mod vars;
+
 use nc::Machine;
 use std::path::Path;
 

@@ -3,7 +3,7 @@
 //! the rules that span a whole line (`%` lines, simulator directives, the O
 //! line).
 
-use crate::ast::{Ast, Block, Body, Line};
+use crate::ast::{Ast, Block, BlockDelete, Body, Line, ProgramStart, Seq, Stmt, Word};
 use crate::compact::{Compactor, Scanned, Terminator};
 use crate::diag::Diagnostic;
 use crate::errors;
@@ -16,6 +16,24 @@ lalrpop_util::lalrpop_mod!(
     grammar
 );
 
+/// What the generated parser returns for one block; the driver adds the
+/// comments and the block span and builds the AST's [`Line`].
+pub enum Parsed {
+    Program {
+        number: u32,
+    },
+    Words {
+        delete: Option<BlockDelete>,
+        seq: Option<Seq>,
+        words: Vec<Word>,
+    },
+    Stmt {
+        delete: Option<BlockDelete>,
+        seq: Option<Seq>,
+        stmt: Box<Stmt>,
+    },
+}
+
 /// What the generated parser returns on failure.
 pub type PError = ParseError<usize, Tok, Box<Diagnostic>>;
 
@@ -24,11 +42,16 @@ pub type BlockParser = grammar::LineParser;
 
 /// Parses a whole file. See [`crate::parse`].
 pub fn parse(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
+    // About one syntax-tree line per LF: counting is cheap and saves growing
+    // (copying) a large vector again and again.
+    let newlines = src.iter().filter(|&&b| b == b'\n').count();
     let mut driver = Driver {
         compactor: Compactor::default(),
         sink: Sink {
             src,
-            ast: Ast::default(),
+            ast: Ast {
+                lines: Vec::with_capacity(newlines + 1),
+            },
             diags: Vec::new(),
             tokens: Vec::new(),
             parser: BlockParser::new(),
@@ -207,14 +230,12 @@ impl Sink<'_> {
         }
         let tokens = self.tokens.iter().map(|&t| Ok::<_, Box<Diagnostic>>(t));
         match self.parser.parse(tokens) {
-            Ok(Line::ProgramStart(mut p)) => {
-                p.comments = scanned.comments;
-                p.span = span;
+            Ok(Parsed::Program { number, .. }) => {
                 if line.other {
                     self.diags.push(
                         Diagnostic::error(
                             "E1004",
-                            p.span,
+                            span,
                             "a program number must start its own line",
                         )
                         .with_label("other blocks stand before it on this line")
@@ -223,9 +244,13 @@ impl Sink<'_> {
                     return;
                 }
                 line.program = true;
-                self.ast.lines.push(Line::ProgramStart(p));
+                self.ast.lines.push(Line::ProgramStart(ProgramStart {
+                    number,
+                    comments: scanned.comments,
+                    span,
+                }));
             }
-            Ok(Line::Block(mut b)) => {
+            Ok(parsed) => {
                 line.other = true;
                 if line.program {
                     self.diags.push(
@@ -239,11 +264,19 @@ impl Sink<'_> {
                     );
                     return;
                 }
-                b.comments = scanned.comments;
-                b.span = span;
-                self.ast.lines.push(Line::Block(b));
+                let (delete, seq, body) = match parsed {
+                    Parsed::Words { delete, seq, words } => (delete, seq, Body::Words(words)),
+                    Parsed::Stmt { delete, seq, stmt } => (delete, seq, Body::Stmt(*stmt)),
+                    Parsed::Program { .. } => return,
+                };
+                self.ast.lines.push(Line::Block(Block {
+                    delete,
+                    seq,
+                    body,
+                    comments: scanned.comments,
+                    span,
+                }));
             }
-            Ok(Line::Percent(s)) => self.ast.lines.push(Line::Percent(s)),
             Err(e) => {
                 line.other = true;
                 let d = errors::convert(e, &self.tokens, self.src, &self.parser);
@@ -280,7 +313,7 @@ impl Sink<'_> {
 /// The semantic actions that can fail, and the small builders the grammar
 /// uses; each failure names its own code.
 pub(crate) mod actions {
-    use super::PError;
+    use super::{PError, Parsed};
     use crate::ast::*;
     use crate::diag::Diagnostic;
     use crate::span::Span;
@@ -297,7 +330,7 @@ pub(crate) mod actions {
     /// Largest sequence number (dialect.md §1.6).
     const MAX_SEQ: f64 = 99_999.0;
 
-    pub fn program_start(n: Number, span: Span) -> R<Line> {
+    pub fn program_start(n: Number) -> R<Parsed> {
         if n.has_point {
             return fail(
                 Diagnostic::error("E1004", n.span, "program number with a decimal point")
@@ -310,11 +343,9 @@ pub(crate) mod actions {
                     .with_label("more than 8 digits"),
             );
         }
-        Ok(Line::ProgramStart(ProgramStart {
+        Ok(Parsed::Program {
             number: n.value as u32,
-            comments: Vec::new(),
-            span,
-        }))
+        })
     }
 
     pub fn block_delete(n: Number, span: Span) -> R<BlockDelete> {
@@ -418,10 +449,10 @@ pub(crate) mod actions {
     }
 
     /// `[[c1]AND[c2]]`: the outer brackets belong to the combined condition.
-    pub fn widen(c: Cond, span: Span) -> Cond {
-        match c {
-            Cond::Rel { op, lhs, rhs, .. } => Cond::Rel { op, lhs, rhs, span },
-            Cond::Logic { op, lhs, rhs, .. } => Cond::Logic { op, lhs, rhs, span },
+    pub fn widen(mut c: Box<Cond>, outer: Span) -> Box<Cond> {
+        match &mut *c {
+            Cond::Rel { span, .. } | Cond::Logic { span, .. } => *span = outer,
         }
+        c
     }
 }

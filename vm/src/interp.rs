@@ -46,6 +46,12 @@ pub enum Status {
     Alarm(Alarm),
 }
 
+/// Where #500–#999 persist: the VM hands the whole set over whenever a
+/// block changed one of them (vacant values are NaN).
+pub trait Storage {
+    fn store(&mut self, persistent: &[f64; 500]) -> Result<(), String>;
+}
+
 /// A call in progress.
 #[derive(Debug, Clone)]
 struct Frame {
@@ -94,6 +100,7 @@ pub struct Vm {
     done: bool,
     /// The pc of the last `Exec` that ran.
     last_exec: u32,
+    storage: Option<Box<dyn Storage>>,
 }
 
 type Fault = NcError;
@@ -132,6 +139,7 @@ impl Vm {
             repeat: 1,
             done: false,
             last_exec: 0,
+            storage: None,
         }
     }
 
@@ -144,6 +152,11 @@ impl Vm {
         self.module.lines.get(self.last_exec as usize).copied().unwrap_or_default()
     }
 
+    /// Persists #500–#999 through `storage` from now on.
+    pub fn set_storage(&mut self, storage: Box<dyn Storage>) {
+        self.storage = Some(storage);
+    }
+
     /// Runs at most `budget` instructions.
     pub fn step(&mut self, budget: u64, sink: &mut dyn Sink) -> Status {
         if self.done {
@@ -151,7 +164,8 @@ impl Vm {
         }
         for _ in 0..budget {
             let pc = self.pc;
-            match self.exec_one(sink) {
+            let result = self.exec_one(sink).and_then(|next| self.persist().map(|()| next));
+            match result {
                 Ok(Next::Go) => {}
                 Ok(Next::Event) => return Status::Event,
                 Ok(Next::Done) => {
@@ -160,11 +174,26 @@ impl Vm {
                 }
                 Err(e) => {
                     self.done = true;
+                    let _ = self.persist();
                     return Status::Alarm(self.alarm(pc, e, sink));
                 }
             }
         }
         Status::OutOfBudget
+    }
+
+    /// Hands changed persistent variables to the storage.
+    fn persist(&mut self) -> Result<(), Fault> {
+        if !self.vars.persistent_dirty {
+            return Ok(());
+        }
+        let Some(storage) = self.storage.as_mut() else {
+            return Ok(());
+        };
+        self.vars.persistent_dirty = false;
+        storage
+            .store(&self.vars.persistent)
+            .map_err(|e| NcError::new(5007, format!("cannot store #500–#999: {e}")))
     }
 
     /// Runs to the end; the final status (never `Event`/`OutOfBudget`).
@@ -533,10 +562,6 @@ impl Vm {
         &mut self.vars.persistent
     }
 
-    /// Whether #500–#999 changed since the flag was last cleared.
-    pub fn take_persistent_dirty(&mut self) -> bool {
-        std::mem::take(&mut self.vars.persistent_dirty)
-    }
 }
 
 /// A variable number from a value: rounded; vacant E5009, negative E5008.

@@ -7,5 +7,5 @@
 mod interp;
 mod vars;
 
-pub use interp::{Alarm, Status, Vm, PROFILE};
+pub use interp::{Alarm, Status, Storage, Vm, PROFILE};
 pub use nc::{Event, Sink};

@@ -36,6 +36,10 @@ enum Command {
         /// Passes a main-program M99 makes before the run ends.
         #[arg(long, value_name = "N", default_value_t = 1)]
         repeat: u32,
+        /// Keep #500–#999 in FILE (loaded at the start, rewritten
+        /// crash-safely whenever the program changes them).
+        #[arg(long, value_name = "FILE")]
+        vars: Option<PathBuf>,
     },
     /// Print the annotated listing of a module.
     Disasm { file: PathBuf },
@@ -84,16 +88,16 @@ fn main() -> ExitCode {
             }
             Err(e) => fail(&e),
         },
-        Command::Run { file, emit, machine, max_blocks, repeat } => {
+        Command::Run { file, emit, machine, max_blocks, repeat, vars } => {
             if let Emit::Trace = emit {
                 return fail("--emit trace needs the interpolation runtime, which this build does not have yet");
             }
-            run(&file, machine.as_deref(), max_blocks, repeat)
+            run(&file, machine.as_deref(), max_blocks, repeat, vars.as_deref())
         }
     }
 }
 
-fn run(file: &Path, machine: Option<&Path>, max_blocks: Option<u64>, repeat: u32) -> ExitCode {
+fn run(file: &Path, machine: Option<&Path>, max_blocks: Option<u64>, repeat: u32, vars: Option<&Path>) -> ExitCode {
     let module = match load(file) {
         Ok(m) => m,
         Err(e) => return fail(&e),
@@ -113,6 +117,17 @@ fn run(file: &Path, machine: Option<&Path>, max_blocks: Option<u64>, repeat: u32
         vm.max_blocks = n;
     }
     vm.repeat = repeat.max(1);
+    let store = vars.map(Path::to_path_buf).or_else(|| {
+        let f = &vm.nc.machine.r#macro.persistent_file;
+        (!f.is_empty()).then(|| PathBuf::from(f))
+    });
+    if let Some(path) = store {
+        match cli::vars::load(&path) {
+            Ok(values) => *vm.persistent_mut() = values,
+            Err(e) => return fail(&e),
+        }
+        vm.set_storage(Box::new(cli::vars::FileStorage(path)));
+    }
     let stdout = std::io::stdout();
     let mut sink = Canon { out: BufWriter::new(stdout.lock()), broken: false };
     let status = vm.run(&mut sink);
