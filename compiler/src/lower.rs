@@ -310,7 +310,7 @@ impl<'a> Gen<'a> {
                 } else {
                     let at = self.emit(Instr::Jump { target: 0 });
                     let loops = st.loops.iter().map(|l| l.id).collect();
-                    st.gotos.push(Pending { at, seq: n as u32, span, loops });
+                    st.gotos.push(Pending { at, seq: n as u32, span: target.span(), loops });
                 }
             }
             _ => {

@@ -553,6 +553,12 @@ impl Vm {
         }
     }
 
+    /// The value of variable `n` as the program would read it (vacant as
+    /// NaN), for hosts and tests.
+    pub fn variable(&self, n: u32) -> Result<f64, NcError> {
+        self.read_var(n)
+    }
+
     /// The persistent variables #500–#999 (vacant as NaN).
     pub fn persistent(&self) -> &[f64; 500] {
         &self.vars.persistent
