@@ -5,7 +5,9 @@
 //! moves with a few rapids and M/S/T words), the same program with a macro
 //! statement every few blocks, and the concatenated public corpus.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput};
+use criterion::{
+    criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
+};
 use std::fmt::Write;
 use std::hint::black_box;
 use std::time::Duration;
@@ -17,7 +19,10 @@ struct Lcg(u64);
 
 impl Lcg {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         self.0 >> 33
     }
 
@@ -38,16 +43,39 @@ fn generate(macros: bool) -> String {
         let n = (i % 99_999) + 1;
         if macros && i % 5 == 4 {
             match (i / 5) % 4 {
-                0 => writeln!(out, "N{n} #{} = #{} + {} * 2", 100 + i % 50, 101 + i % 40, rng.coord(10)),
-                1 => writeln!(out, "N{n} IF [#{} GT {}] GOTO {}", 100 + i % 50, rng.coord(100), n + 1),
+                0 => writeln!(
+                    out,
+                    "N{n} #{} = #{} + {} * 2",
+                    100 + i % 50,
+                    101 + i % 40,
+                    rng.coord(10)
+                ),
+                1 => writeln!(
+                    out,
+                    "N{n} IF [#{} GT {}] GOTO {}",
+                    100 + i % 50,
+                    rng.coord(100),
+                    n + 1
+                ),
                 2 => writeln!(out, "N{n} #1 = SIN[#2 * 3.] + [#3 - #4] / 2"),
                 _ => writeln!(out, "N{n} G01 X[#100 + {}] Z-#101 F0.2", rng.coord(50)),
             }
         } else {
             match i % 50 {
-                0 => writeln!(out, "N{n} G00 X{} Z{} T0101 M08", rng.coord(100), rng.coord(5)),
+                0 => writeln!(
+                    out,
+                    "N{n} G00 X{} Z{} T0101 M08",
+                    rng.coord(100),
+                    rng.coord(5)
+                ),
                 25 => writeln!(out, "N{n} G97 S1200 M03"),
-                _ => writeln!(out, "N{n} G01 X{} Z{} F0.{}", rng.coord(100), rng.coord(200), 1 + rng.next() % 3),
+                _ => writeln!(
+                    out,
+                    "N{n} G01 X{} Z{} F0.{}",
+                    rng.coord(100),
+                    rng.coord(200),
+                    1 + rng.next() % 3
+                ),
             }
         }
         .expect("writing to a String cannot fail");
@@ -105,9 +133,11 @@ fn lex_parse(c: &mut Criterion) {
     });
 
     group.throughput(Throughput::Bytes(mixed.len() as u64));
-    group.bench_with_input(BenchmarkId::new("grammar", "macros_1M"), &mixed, |b, src| {
-        b.iter(|| grammar::parse(black_box(src.as_bytes())))
-    });
+    group.bench_with_input(
+        BenchmarkId::new("grammar", "macros_1M"),
+        &mixed,
+        |b, src| b.iter(|| grammar::parse(black_box(src.as_bytes()))),
+    );
 
     if corpus.is_empty() {
         eprintln!("lex_parse: corpus folder not found, skipping the corpus bench");

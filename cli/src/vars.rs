@@ -19,8 +19,17 @@ pub fn load(path: &Path) -> Result<[f64; 500], String> {
         if line.is_empty() {
             continue;
         }
-        let bad = || format!("{}:{}: expected '#n=value' with n in 500…999, got '{line}'", path.display(), i + 1);
-        let (n, v) = line.strip_prefix('#').and_then(|l| l.split_once('=')).ok_or_else(bad)?;
+        let bad = || {
+            format!(
+                "{}:{}: expected '#n=value' with n in 500…999, got '{line}'",
+                path.display(),
+                i + 1
+            )
+        };
+        let (n, v) = line
+            .strip_prefix('#')
+            .and_then(|l| l.split_once('='))
+            .ok_or_else(bad)?;
         let n: usize = n.trim().parse().map_err(|_| bad())?;
         let v: f64 = v.trim().parse().map_err(|_| bad())?;
         if !(500..=999).contains(&n) || !v.is_finite() {
@@ -61,7 +70,10 @@ pub fn save(path: &Path, vars: &[f64; 500]) -> Result<(), String> {
 }
 
 fn temp_name(path: &Path) -> PathBuf {
-    let mut name = path.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+    let mut name = path
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_default();
     name.push(".tmp");
     path.with_file_name(name)
 }
@@ -99,7 +111,10 @@ mod tests {
         let back = load(&file).unwrap();
         assert_eq!(back[499].to_bits(), v[499].to_bits());
         assert!(back[0].is_nan());
-        assert!(load(&dir.join("missing")).unwrap().iter().all(|x| x.is_nan()));
+        assert!(load(&dir.join("missing"))
+            .unwrap()
+            .iter()
+            .all(|x| x.is_nan()));
         fs::write(&file, "#100=1\n").unwrap();
         assert!(load(&file).is_err());
         fs::write(&file, "#500=abc\n").unwrap();

@@ -17,7 +17,10 @@ fn check(text: &str) -> f64 {
     let mut counter = None;
     let mut marker = None;
     for line in text.lines() {
-        let (n, v) = line.strip_prefix('#').and_then(|l| l.split_once('=')).expect("a #n=value line");
+        let (n, v) = line
+            .strip_prefix('#')
+            .and_then(|l| l.split_once('='))
+            .expect("a #n=value line");
         let v: f64 = v.parse().expect("a number");
         match n {
             "500" => counter = Some(v),
@@ -26,7 +29,11 @@ fn check(text: &str) -> f64 {
         }
     }
     let c = counter.expect("#500 present");
-    assert_eq!(marker, Some(12345.678), "the marker line is damaged: {text:?}");
+    assert_eq!(
+        marker,
+        Some(12345.678),
+        "the marker line is damaged: {text:?}"
+    );
     assert!(text.ends_with('\n'), "the file is cut short: {text:?}");
     c
 }
@@ -42,7 +49,12 @@ fn killed_runs_never_leave_a_torn_file() {
     )
     .unwrap();
     let gbc = dir.join("count.gbc");
-    let status = Command::new(env!("CARGO_BIN_EXE_gbcc")).arg(&src).arg("-o").arg(&gbc).status().unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_gbcc"))
+        .arg(&src)
+        .arg("-o")
+        .arg(&gbc)
+        .status()
+        .unwrap();
     assert!(status.success());
     let vars = dir.join("vars.txt");
     let mut last = 0.0;
@@ -69,6 +81,9 @@ fn killed_runs_never_leave_a_torn_file() {
         seen_progress |= c > 0.0;
         last = c;
     }
-    assert!(seen_progress, "no run got far enough to store anything (last {last})");
+    assert!(
+        seen_progress,
+        "no run got far enough to store anything (last {last})"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -12,7 +12,10 @@ use nc::block::round_half_away;
 pub fn m98_target(p: f64, l: Option<f64>) -> (u32, u32) {
     let p = round_half_away(p).max(0.0) as u64;
     match l {
-        Some(l) => (p.min(u32::MAX as u64) as u32, round_half_away(l).max(1.0) as u32),
+        Some(l) => (
+            p.min(u32::MAX as u64) as u32,
+            round_half_away(l).max(1.0) as u32,
+        ),
         // P<cccc><pppp>: four digits of count, four of program.
         None => ((p % 10_000) as u32, ((p / 10_000) as u32).max(1)),
     }
@@ -22,7 +25,9 @@ pub fn lower_call(g: &mut Gen<'_>, call: Call<'_>, span: Span) {
     match call {
         Call::Sub { p, l, span } => sub_call(g, p, l, span),
         Call::SubM { number, span } => {
-            let Some(prog) = known(g, number, span, "M") else { return };
+            let Some(prog) = known(g, number, span, "M") else {
+                return;
+            };
             let count = load(g, 1.0);
             g.emit(Instr::CallSub { prog, count });
         }
@@ -34,8 +39,20 @@ pub fn lower_call(g: &mut Gen<'_>, call: Call<'_>, span: Span) {
                 g.emit(Instr::RetSeq { seq });
             }
         }
-        Call::Macro { modal, p, l, args, span } => macro_call(g, modal, p, l, &args, span),
-        Call::MacroA { h, p, q, r, span: s } => macro_a(g, h, p, q, r, s.to(span)),
+        Call::Macro {
+            modal,
+            p,
+            l,
+            args,
+            span,
+        } => macro_call(g, modal, p, l, &args, span),
+        Call::MacroA {
+            h,
+            p,
+            q,
+            r,
+            span: s,
+        } => macro_a(g, h, p, q, r, s.to(span)),
         Call::ModalCancel => {
             g.emit(Instr::ModalCancel);
         }
@@ -70,7 +87,9 @@ fn sub_call(g: &mut Gen<'_>, p: Option<WordValue<'_>>, l: Option<WordValue<'_>>,
     match (p.literal(), l.map(|l| l.literal())) {
         (Some(pv), None) | (Some(pv), Some(Some(_))) => {
             let (number, count) = m98_target(pv, l.and_then(|l| l.literal()));
-            let Some(prog) = known(g, number, span, "M98") else { return };
+            let Some(prog) = known(g, number, span, "M98") else {
+                return;
+            };
             let count = load(g, count as f64);
             g.emit(Instr::CallSub { prog, count });
         }
@@ -87,11 +106,27 @@ fn sub_call(g: &mut Gen<'_>, p: Option<WordValue<'_>>, l: Option<WordValue<'_>>,
                     let k = g.konst(10_000.0);
                     let ten_k = g.expr.alloc();
                     g.emit(Instr::LoadK { dst: ten_k, k });
-                    g.emit(Instr::Div { dst: count, a: num, b: ten_k });
-                    g.emit(Instr::Func { dst: count, a: count, f: nc::value::Func::Fix as u8 });
+                    g.emit(Instr::Div {
+                        dst: count,
+                        a: num,
+                        b: ten_k,
+                    });
+                    g.emit(Instr::Func {
+                        dst: count,
+                        a: count,
+                        f: nc::value::Func::Fix as u8,
+                    });
                     let tmp = g.expr.alloc();
-                    g.emit(Instr::Mul { dst: tmp, a: count, b: ten_k });
-                    g.emit(Instr::Sub { dst: num, a: num, b: tmp });
+                    g.emit(Instr::Mul {
+                        dst: tmp,
+                        a: count,
+                        b: ten_k,
+                    });
+                    g.emit(Instr::Sub {
+                        dst: num,
+                        a: num,
+                        b: tmp,
+                    });
                     count
                 }
             };
@@ -110,7 +145,11 @@ fn macro_call(
 ) {
     let name = if modal { "G66" } else { "G65" };
     let Some(p) = p else {
-        g.error("E2002", span, format!("{name} must be followed by P (the program) or H"));
+        g.error(
+            "E2002",
+            span,
+            format!("{name} must be followed by P (the program) or H"),
+        );
         return;
     };
     let count = match l {
@@ -126,12 +165,22 @@ fn macro_call(
     match p.literal() {
         Some(pv) => {
             let number = round_half_away(pv).max(0.0) as u32;
-            let Some(prog) = known(g, number, span, name) else { return };
-            g.emit(if modal { Instr::ModalCall { prog, count } } else { Instr::CallMacro { prog, count } });
+            let Some(prog) = known(g, number, span, name) else {
+                return;
+            };
+            g.emit(if modal {
+                Instr::ModalCall { prog, count }
+            } else {
+                Instr::CallMacro { prog, count }
+            });
         }
         None => {
             let Some(num) = g.value_reg(&p) else { return };
-            g.emit(if modal { Instr::ModalCallDyn { num, count } } else { Instr::CallMacroDyn { num, count } });
+            g.emit(if modal {
+                Instr::ModalCallDyn { num, count }
+            } else {
+                Instr::CallMacroDyn { num, count }
+            });
         }
     }
 }
@@ -145,7 +194,11 @@ fn destination(g: &mut Gen<'_>, p: Option<&Word>, span: Span) -> Option<u32> {
     match var {
         Some(n) if n >= 1.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => Some(n as u32),
         _ => {
-            g.error("E2060", p.map_or(span, |w| w.span), "G65 H: P must name the destination variable as #i");
+            g.error(
+                "E2060",
+                p.map_or(span, |w| w.span),
+                "G65 H: P must name the destination variable as #i",
+            );
             None
         }
     }
@@ -167,7 +220,11 @@ fn macro_a(
     span: Span,
 ) {
     let Some(h) = h.literal().map(round_half_away) else {
-        g.error("E2060", span, "G65 H: the operation number must be written as a literal");
+        g.error(
+            "E2060",
+            span,
+            "G65 H: the operation number must be written as a literal",
+        );
         return;
     };
     let h = h as u32;
@@ -175,53 +232,171 @@ fn macro_a(
         return macro_a_jump(g, h, p, q, r, span);
     }
     if h == 99 {
-        let code = q.and_then(|q| q.literal()).map_or(500.0, |q| 500.0 + round_half_away(q));
+        let code = q
+            .and_then(|q| q.literal())
+            .map_or(500.0, |q| 500.0 + round_half_away(q));
         let msg = g.string("G65 H99 user alarm");
-        g.emit(Instr::Alarm { code: code.clamp(0.0, 65535.0) as u16, msg });
+        g.emit(Instr::Alarm {
+            code: code.clamp(0.0, 65535.0) as u16,
+            msg,
+        });
         return;
     }
-    let Some(dst) = destination(g, p, span) else { return };
-    let (Some(j), Some(k)) = (operand(g, q), operand(g, r)) else { return };
+    let Some(dst) = destination(g, p, span) else {
+        return;
+    };
+    let (Some(j), Some(k)) = (operand(g, q), operand(g, r)) else {
+        return;
+    };
     let out = g.expr.alloc();
     use nc::value::Func as F;
     let ops: Vec<Instr> = match h {
-        1 => vec![Instr::LoadK { dst: out, k: g.konst(0.0) }, Instr::Add { dst: out, a: j, b: out }],
-        2 => vec![Instr::Add { dst: out, a: j, b: k }],
-        3 => vec![Instr::Sub { dst: out, a: j, b: k }],
-        4 => vec![Instr::Mul { dst: out, a: j, b: k }],
-        5 => vec![Instr::Div { dst: out, a: j, b: k }],
-        11 => vec![Instr::BitOr { dst: out, a: j, b: k }],
-        12 => vec![Instr::BitAnd { dst: out, a: j, b: k }],
-        13 => vec![Instr::BitXor { dst: out, a: j, b: k }],
-        21 => vec![Instr::Func { dst: out, a: j, f: F::Sqrt as u8 }],
-        22 => vec![Instr::Func { dst: out, a: j, f: F::Abs as u8 }],
+        1 => vec![
+            Instr::LoadK {
+                dst: out,
+                k: g.konst(0.0),
+            },
+            Instr::Add {
+                dst: out,
+                a: j,
+                b: out,
+            },
+        ],
+        2 => vec![Instr::Add {
+            dst: out,
+            a: j,
+            b: k,
+        }],
+        3 => vec![Instr::Sub {
+            dst: out,
+            a: j,
+            b: k,
+        }],
+        4 => vec![Instr::Mul {
+            dst: out,
+            a: j,
+            b: k,
+        }],
+        5 => vec![Instr::Div {
+            dst: out,
+            a: j,
+            b: k,
+        }],
+        11 => vec![Instr::BitOr {
+            dst: out,
+            a: j,
+            b: k,
+        }],
+        12 => vec![Instr::BitAnd {
+            dst: out,
+            a: j,
+            b: k,
+        }],
+        13 => vec![Instr::BitXor {
+            dst: out,
+            a: j,
+            b: k,
+        }],
+        21 => vec![Instr::Func {
+            dst: out,
+            a: j,
+            f: F::Sqrt as u8,
+        }],
+        22 => vec![Instr::Func {
+            dst: out,
+            a: j,
+            f: F::Abs as u8,
+        }],
         23 => vec![
-            Instr::Div { dst: out, a: j, b: k },
-            Instr::Func { dst: out, a: out, f: F::Fix as u8 },
-            Instr::Mul { dst: out, a: out, b: k },
-            Instr::Sub { dst: out, a: j, b: out },
+            Instr::Div {
+                dst: out,
+                a: j,
+                b: k,
+            },
+            Instr::Func {
+                dst: out,
+                a: out,
+                f: F::Fix as u8,
+            },
+            Instr::Mul {
+                dst: out,
+                a: out,
+                b: k,
+            },
+            Instr::Sub {
+                dst: out,
+                a: j,
+                b: out,
+            },
         ],
         26 => vec![
             Instr::LoadVar { dst: out, var: dst },
-            Instr::Mul { dst: out, a: out, b: j },
-            Instr::Div { dst: out, a: out, b: k },
+            Instr::Mul {
+                dst: out,
+                a: out,
+                b: j,
+            },
+            Instr::Div {
+                dst: out,
+                a: out,
+                b: k,
+            },
         ],
         27 | 28 => {
             let t = g.expr.alloc();
             vec![
-                Instr::Mul { dst: out, a: j, b: j },
+                Instr::Mul {
+                    dst: out,
+                    a: j,
+                    b: j,
+                },
                 Instr::Mul { dst: t, a: k, b: k },
-                if h == 27 { Instr::Add { dst: out, a: out, b: t } } else { Instr::Sub { dst: out, a: out, b: t } },
-                Instr::Func { dst: out, a: out, f: F::Sqrt as u8 },
+                if h == 27 {
+                    Instr::Add {
+                        dst: out,
+                        a: out,
+                        b: t,
+                    }
+                } else {
+                    Instr::Sub {
+                        dst: out,
+                        a: out,
+                        b: t,
+                    }
+                },
+                Instr::Func {
+                    dst: out,
+                    a: out,
+                    f: F::Sqrt as u8,
+                },
             ]
         }
         31..=33 => {
             let f = [F::Sin, F::Cos, F::Tan][(h - 31) as usize];
-            vec![Instr::Func { dst: out, a: k, f: f as u8 }, Instr::Mul { dst: out, a: j, b: out }]
+            vec![
+                Instr::Func {
+                    dst: out,
+                    a: k,
+                    f: f as u8,
+                },
+                Instr::Mul {
+                    dst: out,
+                    a: j,
+                    b: out,
+                },
+            ]
         }
-        34 => vec![Instr::Atan2 { dst: out, y: j, x: k }],
+        34 => vec![Instr::Atan2 {
+            dst: out,
+            y: j,
+            x: k,
+        }],
         _ => {
-            g.error("E2060", span, format!("G65 H{h:02} is not an operation of this dialect"));
+            g.error(
+                "E2060",
+                span,
+                format!("G65 H{h:02} is not an operation of this dialect"),
+            );
             return;
         }
     };
@@ -240,17 +415,30 @@ fn macro_a_jump(
     span: Span,
 ) {
     let Some(p) = p else {
-        g.error("E2006", span, format!("G65 H{h}: P, the sequence number to jump to, is missing"));
+        g.error(
+            "E2006",
+            span,
+            format!("G65 H{h}: P, the sequence number to jump to, is missing"),
+        );
         return;
     };
-    let Some(seq) = g.value_reg(&crate::words::value_of(p)) else { return };
+    let Some(seq) = g.value_reg(&crate::words::value_of(p)) else {
+        return;
+    };
     let skip = if h == 80 {
         None
     } else {
-        let (Some(j), Some(k)) = (operand(g, q), operand(g, r)) else { return };
+        let (Some(j), Some(k)) = (operand(g, q), operand(g, r)) else {
+            return;
+        };
         let op = [0u8, 1, 2, 3, 4, 5][(h - 81) as usize];
         let c = g.expr.alloc();
-        g.emit(Instr::Cmp { dst: c, a: j, b: k, op });
+        g.emit(Instr::Cmp {
+            dst: c,
+            a: j,
+            b: k,
+            op,
+        });
         Some(g.emit(Instr::JumpIfNot { cond: c, target: 0 }))
     };
     g.emit(Instr::GotoSeq { seq });

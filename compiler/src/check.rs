@@ -24,7 +24,11 @@ pub fn literal_block(m: &Machine, ws: &[NcWord<'_>]) -> Result<(), NcError> {
 fn literal_words(ws: &[NcWord<'_>]) -> Vec<Word> {
     ws.iter()
         .filter_map(|w| match w.value {
-            WordValue::Literal(v, flags) => Some(Word { addr: w.addr, value: v, flags }),
+            WordValue::Literal(v, flags) => Some(Word {
+                addr: w.addr,
+                value: v,
+                flags,
+            }),
             WordValue::Expr(_) => None,
         })
         .collect()
@@ -33,10 +37,13 @@ fn literal_words(ws: &[NcWord<'_>]) -> Vec<Word> {
 /// A static program: no macro statement and no computed word (§0).
 pub fn is_static(units: &[Unit], programs: &[Program]) -> bool {
     programs.iter().all(|p| {
-        p.blocks.iter().filter_map(|&l| link::block(&units[p.unit], l)).all(|b| match &b.body {
-            Body::Stmt(_) => false,
-            Body::Words(ws) => ws.iter().all(|w| matches!(w.value, Value::Number(_))),
-        })
+        p.blocks
+            .iter()
+            .filter_map(|&l| link::block(&units[p.unit], l))
+            .all(|b| match &b.body {
+                Body::Stmt(_) => false,
+                Body::Words(ws) => ws.iter().all(|w| matches!(w.value, Value::Number(_))),
+            })
     })
 }
 
@@ -70,40 +77,65 @@ const STEP_LIMIT: u64 = 200_000;
 /// Runs a static program through the kernel; the first compile-time error
 /// with its unit.
 pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Option<(usize, Diagnostic)> {
-    let mut run = DryRun { units, programs, nc: Nc::new(m.clone()), steps: 0, skip: m.operator.block_skip };
+    let mut run = DryRun {
+        units,
+        programs,
+        nc: Nc::new(m.clone()),
+        steps: 0,
+        skip: m.operator.block_skip,
+    };
     run.program(0, 0).err()
 }
 
 impl DryRun<'_> {
     fn program(&mut self, index: usize, depth: u32) -> Result<Flow, (usize, Diagnostic)> {
-        let Some(prog) = self.programs.get(index) else { return Ok(Flow::End) };
+        let Some(prog) = self.programs.get(index) else {
+            return Ok(Flow::End);
+        };
         let unit = &self.units[prog.unit];
         for &line in &prog.blocks {
-            let Some(block) = link::block(unit, line) else { continue };
-            if block.delete.is_some_and(|d| self.skip.get(d.switch.saturating_sub(1) as usize).copied().unwrap_or(false)) {
+            let Some(block) = link::block(unit, line) else {
+                continue;
+            };
+            if block.delete.is_some_and(|d| {
+                self.skip
+                    .get(d.switch.saturating_sub(1) as usize)
+                    .copied()
+                    .unwrap_or(false)
+            }) {
                 continue;
             }
-            let Body::Words(ws) = &block.body else { continue };
+            let Body::Words(ws) = &block.body else {
+                continue;
+            };
             self.steps += 1;
             if self.steps > STEP_LIMIT {
                 return Ok(Flow::End);
             }
-            let Ok(split) = words::classify(ws) else { return Ok(Flow::End) };
+            let Ok(split) = words::classify(ws) else {
+                return Ok(Flow::End);
+            };
             let lits = literal_words(&split.nc);
             if !lits.is_empty() {
                 match self.nc.exec(&lits, &mut Discard) {
                     Ok(out) if out.end.is_some() => return Ok(Flow::End),
                     Ok(_) => {}
-                    Err(e) if compile_time(e.code) => return Err((prog.unit, error_at(&e, block.span))),
+                    Err(e) if compile_time(e.code) => {
+                        return Err((prog.unit, error_at(&e, block.span)))
+                    }
                     Err(_) => return Ok(Flow::End),
                 }
             }
             match split.call {
                 None => {}
                 Some(Call::Sub { p: Some(p), l, .. }) => {
-                    let (Some(p), l) = (p.literal(), l.and_then(|l| l.literal())) else { return Ok(Flow::End) };
+                    let (Some(p), l) = (p.literal(), l.and_then(|l| l.literal())) else {
+                        return Ok(Flow::End);
+                    };
                     let (number, count) = crate::calls::m98_target(p, l);
-                    let Some(sub) = self.programs.iter().position(|q| q.number == number) else { return Ok(Flow::End) };
+                    let Some(sub) = self.programs.iter().position(|q| q.number == number) else {
+                        return Ok(Flow::End);
+                    };
                     if depth >= 4 {
                         return Ok(Flow::End);
                     }

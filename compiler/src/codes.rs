@@ -14,7 +14,11 @@ const CODES: &[&str] = &[
 /// `E4001` for 4001; an unlisted number maps to `E0000` (never expected).
 pub fn name(code: u16) -> &'static str {
     let want = format!("E{code:04}");
-    CODES.iter().find(|c| **c == want).copied().unwrap_or("E0000")
+    CODES
+        .iter()
+        .find(|c| **c == want)
+        .copied()
+        .unwrap_or("E0000")
 }
 
 #[cfg(test)]

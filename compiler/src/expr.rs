@@ -122,7 +122,11 @@ impl ExprGen {
     pub fn compile(&mut self, g: &mut Gen<'_>, e: &Expr) -> Option<u8> {
         let r = self.node(g, e);
         if self.overflow {
-            g.error("E1014", e.span(), "expression too deep for the register file");
+            g.error(
+                "E1014",
+                e.span(),
+                "expression too deep for the register file",
+            );
             self.overflow = false;
             return None;
         }
@@ -147,7 +151,10 @@ impl ExprGen {
             Expr::Var(v) => match fold(&v.index) {
                 Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
                     let r = self.alloc();
-                    g.emit(Instr::LoadVar { dst: r, var: n as u32 });
+                    g.emit(Instr::LoadVar {
+                        dst: r,
+                        var: n as u32,
+                    });
                     r
                 }
                 _ => {
@@ -185,7 +192,11 @@ impl ExprGen {
             Expr::Call { func, arg, span } => {
                 self.warn_if_faulty(g, e, *span);
                 let a = self.node(g, arg);
-                g.emit(Instr::Func { dst: a, a, f: func_of(*func) as u8 });
+                g.emit(Instr::Func {
+                    dst: a,
+                    a,
+                    f: func_of(*func) as u8,
+                });
                 a
             }
             Expr::Atan2 { y, x, span } => {
@@ -203,7 +214,9 @@ impl ExprGen {
     /// will fire whenever the block is reached.
     fn warn_if_faulty(&self, g: &mut Gen<'_>, e: &Expr, span: grammar::Span) {
         let operands_ok = match e {
-            Expr::Binary { lhs, rhs, .. } => matches!((fold(lhs), fold(rhs)), (Some(Ok(_)), Some(Ok(_)))),
+            Expr::Binary { lhs, rhs, .. } => {
+                matches!((fold(lhs), fold(rhs)), (Some(Ok(_)), Some(Ok(_))))
+            }
             Expr::Call { arg, .. } => matches!(fold(arg), Some(Ok(_))),
             Expr::Atan2 { y, x, .. } => matches!((fold(y), fold(x)), (Some(Ok(_)), Some(Ok(_)))),
             _ => false,
@@ -212,7 +225,10 @@ impl ExprGen {
             g.warn(
                 "W116",
                 span,
-                format!("this always fails when reached: {} (alarm E{:04} at run time)", err.message, err.code),
+                format!(
+                    "this always fails when reached: {} (alarm E{:04} at run time)",
+                    err.message, err.code
+                ),
             );
         }
     }
@@ -220,7 +236,11 @@ impl ExprGen {
     pub fn cond(&mut self, g: &mut Gen<'_>, c: &Cond) -> Option<u8> {
         let r = self.cond_node(g, c);
         if self.overflow {
-            g.error("E1014", c.span(), "condition too deep for the register file");
+            g.error(
+                "E1014",
+                c.span(),
+                "condition too deep for the register file",
+            );
             self.overflow = false;
             return None;
         }
@@ -232,7 +252,12 @@ impl ExprGen {
             Cond::Rel { op, lhs, rhs, .. } => {
                 let a = self.node(g, lhs);
                 let b = self.node(g, rhs);
-                g.emit(Instr::Cmp { dst: a, a, b, op: rel_of(*op) as u8 });
+                g.emit(Instr::Cmp {
+                    dst: a,
+                    a,
+                    b,
+                    op: rel_of(*op) as u8,
+                });
                 self.free_to(a);
                 a
             }

@@ -67,9 +67,19 @@ pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
     let mut units = vec![parse_unit(name, bytes.to_vec(), 0, &mut diags)];
     let mut programs = link::split(0, &units[0], &mut diags);
     link_libraries(&mut units, &mut programs, opts, &mut diags);
-    let files: Vec<SourceFile> = units.iter().map(|u| SourceFile::new(u.name.clone(), &u.bytes)).collect();
-    if diags.iter().any(|(_, d): &(usize, Diagnostic)| d.is_error()) {
-        return Compiled { module: None, files, diags };
+    let files: Vec<SourceFile> = units
+        .iter()
+        .map(|u| SourceFile::new(u.name.clone(), &u.bytes))
+        .collect();
+    if diags
+        .iter()
+        .any(|(_, d): &(usize, Diagnostic)| d.is_error())
+    {
+        return Compiled {
+            module: None,
+            files,
+            diags,
+        };
     }
     let mut gen = lower::Gen::new(&units, &files, &programs, &opts.machine, opts.optimize);
     gen.lower_all(&opts.defines);
@@ -77,7 +87,10 @@ pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
     let mut module = gen.module;
     module.files = units
         .iter()
-        .map(|u| isa::SourceFileInfo { name: u.name.clone(), hash: crc32fast::hash(&u.bytes) })
+        .map(|u| isa::SourceFileInfo {
+            name: u.name.clone(),
+            hash: crc32fast::hash(&u.bytes),
+        })
         .collect();
     let failed = diags.iter().any(|(_, d)| d.is_error());
     if !failed && check::is_static(&units, &programs) {
@@ -89,26 +102,52 @@ pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
     if !failed {
         if let Err(e) = module.verify() {
             let span = grammar::Span::default();
-            diags.push((0, Diagnostic::error("E0000", span, format!("internal error: the generated module does not verify: {e}"))));
+            diags.push((
+                0,
+                Diagnostic::error(
+                    "E0000",
+                    span,
+                    format!("internal error: the generated module does not verify: {e}"),
+                ),
+            ));
         }
     }
     let failed = diags.iter().any(|(_, d)| d.is_error());
-    Compiled { module: (!failed).then_some(module), files, diags }
+    Compiled {
+        module: (!failed).then_some(module),
+        files,
+        diags,
+    }
 }
 
-fn parse_unit(name: &str, bytes: Vec<u8>, index: usize, diags: &mut Vec<(usize, Diagnostic)>) -> Unit {
+fn parse_unit(
+    name: &str,
+    bytes: Vec<u8>,
+    index: usize,
+    diags: &mut Vec<(usize, Diagnostic)>,
+) -> Unit {
     let (ast, ds) = grammar::parse(&bytes);
     diags.extend(ds.into_iter().map(|d| (index, d)));
-    Unit { name: name.to_string(), bytes, ast }
+    Unit {
+        name: name.to_string(),
+        bytes,
+        ast,
+    }
 }
 
 /// Literal call targets of a program.
 fn targets(unit: &Unit, prog: &Program) -> Vec<u32> {
     let mut out = Vec::new();
     for &line in &prog.blocks {
-        let Some(block) = link::block(unit, line) else { continue };
-        let grammar::ast::Body::Words(ws) = &block.body else { continue };
-        let Ok(split) = words::classify(ws) else { continue };
+        let Some(block) = link::block(unit, line) else {
+            continue;
+        };
+        let grammar::ast::Body::Words(ws) = &block.body else {
+            continue;
+        };
+        let Ok(split) = words::classify(ws) else {
+            continue;
+        };
         match split.call {
             Some(words::Call::Sub { p: Some(p), l, .. }) => {
                 if let Some(p) = p.literal() {
@@ -128,7 +167,12 @@ fn targets(unit: &Unit, prog: &Program) -> Vec<u32> {
 }
 
 /// Adds the library files of every called program found in no unit yet.
-fn link_libraries(units: &mut Vec<Unit>, programs: &mut Vec<Program>, opts: &Options, diags: &mut Vec<(usize, Diagnostic)>) {
+fn link_libraries(
+    units: &mut Vec<Unit>,
+    programs: &mut Vec<Program>,
+    opts: &Options,
+    diags: &mut Vec<(usize, Diagnostic)>,
+) {
     let mut dirs = opts.include.clone();
     dirs.extend(opts.machine.r#macro.library_dirs.iter().map(PathBuf::from));
     let mut i = 0;
@@ -138,8 +182,12 @@ fn link_libraries(units: &mut Vec<Unit>, programs: &mut Vec<Program>, opts: &Opt
             if programs.iter().any(|p| p.number == number) {
                 continue;
             }
-            let Some(path) = link::find_library(&dirs, number) else { continue };
-            let Ok(bytes) = std::fs::read(&path) else { continue };
+            let Some(path) = link::find_library(&dirs, number) else {
+                continue;
+            };
+            let Ok(bytes) = std::fs::read(&path) else {
+                continue;
+            };
             let index = units.len();
             let unit = parse_unit(&path.display().to_string(), bytes, index, diags);
             let mut found = link::split(index, &unit, diags);

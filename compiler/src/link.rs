@@ -50,7 +50,12 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
                     ));
                 }
                 let blocks = std::mem::take(&mut before_first_o);
-                programs.push(Program { number: p.number, unit: unit_index, blocks, span: p.span });
+                programs.push(Program {
+                    number: p.number,
+                    unit: unit_index,
+                    blocks,
+                    span: p.span,
+                });
             }
             Line::Block(_) => match programs.last_mut() {
                 Some(last) => last.blocks.push(i),
@@ -60,7 +65,12 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
         }
     }
     if programs.is_empty() {
-        programs.push(Program { number: 0, unit: unit_index, blocks: before_first_o, span: Span::default() });
+        programs.push(Program {
+            number: 0,
+            unit: unit_index,
+            blocks: before_first_o,
+            span: Span::default(),
+        });
     }
     programs
 }
@@ -105,7 +115,10 @@ fn names_program(path: &Path, number: u32) -> bool {
     let Some(digits) = stem.strip_prefix('o') else {
         return false;
     };
-    !digits.is_empty() && digits.len() <= 8 && digits.bytes().all(|b| b.is_ascii_digit()) && digits.parse::<u32>().ok() == Some(number)
+    !digits.is_empty()
+        && digits.len() <= 8
+        && digits.bytes().all(|b| b.is_ascii_digit())
+        && digits.parse::<u32>().ok() == Some(number)
 }
 
 #[cfg(test)]

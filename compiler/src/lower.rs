@@ -85,11 +85,13 @@ impl<'a> Gen<'a> {
     }
 
     pub fn error(&mut self, code: &'static str, span: Span, msg: impl Into<String>) {
-        self.diags.push((self.unit, Diagnostic::error(code, span, msg)));
+        self.diags
+            .push((self.unit, Diagnostic::error(code, span, msg)));
     }
 
     pub fn warn(&mut self, code: &'static str, span: Span, msg: impl Into<String>) {
-        self.diags.push((self.unit, Diagnostic::warning(code, span, msg)));
+        self.diags
+            .push((self.unit, Diagnostic::warning(code, span, msg)));
     }
 
     pub fn emit(&mut self, instr: Instr) -> usize {
@@ -130,7 +132,10 @@ impl<'a> Gen<'a> {
 
     /// The program table index of program `number`.
     pub fn program_index(&self, number: u32) -> Option<u32> {
-        self.programs.iter().position(|p| p.number == number).map(|i| i as u32)
+        self.programs
+            .iter()
+            .position(|p| p.number == number)
+            .map(|i| i as u32)
     }
 
     /// Lowers every program; `presets` are `-D` assignments run first.
@@ -161,6 +166,7 @@ impl<'a> Gen<'a> {
 
     fn lower_program(&mut self, prog: &Program, main: bool) -> Vec<(u32, u32)> {
         let mut st = ProgState::default();
+        let entry_pc = self.pc();
         let unit = &self.units[prog.unit];
         for &line in &prog.blocks {
             let Some(block) = link::block(unit, line) else {
@@ -191,11 +197,23 @@ impl<'a> Gen<'a> {
         }
         // Running off the end: the main program halts, a subprogram
         // returns as if M99 (W101).
-        let end_span = prog.blocks.last().and_then(|&l| link::block(unit, l)).map_or(prog.span, |b| b.span);
+        let end_span = prog
+            .blocks
+            .last()
+            .and_then(|&l| link::block(unit, l))
+            .map_or(prog.span, |b| b.span);
         self.set_loc(end_span);
-        self.emit(if main { Instr::Halt } else { Instr::Ret });
+        let ends = matches!(self.module.code.last(), Some(Instr::Ret | Instr::Halt))
+            && self.pc() > entry_pc;
+        if !ends || !st.gotos.is_empty() || !st.seqs.is_empty() {
+            self.emit(if main { Instr::Halt } else { Instr::Ret });
+        }
         for open in std::mem::take(&mut st.loops) {
-            self.error("E2014", open.span, format!("DO {} has no END {}", open.label, open.label));
+            self.error(
+                "E2014",
+                open.span,
+                format!("DO {} has no END {}", open.label, open.label),
+            );
         }
         self.resolve_gotos(&mut st);
         let mut seqs: Vec<(u32, u32)> = st.seqs.iter().map(|(n, pc, _, _)| (*n, *pc)).collect();
@@ -207,14 +225,29 @@ impl<'a> Gen<'a> {
         for g in std::mem::take(&mut st.gotos) {
             let mut found = st.seqs.iter().filter(|(n, ..)| *n == g.seq);
             let Some((_, pc, loops, _)) = found.next() else {
-                self.error("E2010", g.span, format!("GOTO {}: there is no block N{} in this program", g.seq, g.seq));
+                self.error(
+                    "E2010",
+                    g.span,
+                    format!(
+                        "GOTO {}: there is no block N{} in this program",
+                        g.seq, g.seq
+                    ),
+                );
                 continue;
             };
             if found.next().is_some() {
-                self.warn("W103", g.span, format!("N{} occurs more than once: the first block is used", g.seq));
+                self.warn(
+                    "W103",
+                    g.span,
+                    format!("N{} occurs more than once: the first block is used", g.seq),
+                );
             }
             if !loops.iter().all(|id| g.loops.contains(id)) {
-                self.error("E2015", g.span, format!("GOTO {} jumps into a DO loop from outside it", g.seq));
+                self.error(
+                    "E2015",
+                    g.span,
+                    format!("GOTO {} jumps into a DO loop from outside it", g.seq),
+                );
                 continue;
             }
             let target = *pc;
@@ -228,10 +261,10 @@ impl<'a> Gen<'a> {
     fn lower_stmt(&mut self, s: &Stmt, block: &Block, st: &mut ProgState) {
         match s {
             Stmt::Assign { target, value, .. } => self.assign(target, value, block),
-            Stmt::Goto { target, span } => self.goto(target, None, *span, st),
-            Stmt::IfGoto { cond, target, span } => {
+            Stmt::Goto { target, .. } => self.goto(target, None, st),
+            Stmt::IfGoto { cond, target, .. } => {
                 let c = self.cond(cond);
-                self.goto(target, c, *span, st);
+                self.goto(target, c, st);
             }
             Stmt::IfThen { cond, then, .. } => {
                 let Some(c) = self.cond(cond) else { return };
@@ -256,13 +289,29 @@ impl<'a> Gen<'a> {
         }
     }
 
-    fn open_loop(&mut self, label: u32, start: u32, exits: Vec<usize>, span: Span, label_span: Span, st: &mut ProgState) {
+    fn open_loop(
+        &mut self,
+        label: u32,
+        start: u32,
+        exits: Vec<usize>,
+        span: Span,
+        label_span: Span,
+        st: &mut ProgState,
+    ) {
         if !(1..=3).contains(&label) {
-            self.error("E2013", label_span, format!("DO/END label {label}: labels are 1, 2 or 3"));
+            self.error(
+                "E2013",
+                label_span,
+                format!("DO/END label {label}: labels are 1, 2 or 3"),
+            );
             return;
         }
         if st.loops.iter().any(|l| l.label == label) {
-            self.error("E2014", span, format!("DO {label} is already open: nested loops need different labels"));
+            self.error(
+                "E2014",
+                span,
+                format!("DO {label} is already open: nested loops need different labels"),
+            );
             return;
         }
         if st.loops.len() == 3 {
@@ -270,12 +319,22 @@ impl<'a> Gen<'a> {
             return;
         }
         st.next_loop += 1;
-        st.loops.push(Loop { label, id: st.next_loop, start, exits, span });
+        st.loops.push(Loop {
+            label,
+            id: st.next_loop,
+            start,
+            exits,
+            span,
+        });
     }
 
     fn close_loop(&mut self, label: u32, span: Span, st: &mut ProgState) {
         if !(1..=3).contains(&label) {
-            self.error("E2013", span, format!("DO/END label {label}: labels are 1, 2 or 3"));
+            self.error(
+                "E2013",
+                span,
+                format!("DO/END label {label}: labels are 1, 2 or 3"),
+            );
             return;
         }
         let Some(open) = st.loops.pop() else {
@@ -300,17 +359,26 @@ impl<'a> Gen<'a> {
     }
 
     /// `GOTO n` (conditional when `cond` holds the register of the test).
-    fn goto(&mut self, target: &Expr, cond: Option<u8>, span: Span, st: &mut ProgState) {
+    fn goto(&mut self, target: &Expr, cond: Option<u8>, st: &mut ProgState) {
         let skip = cond.map(|c| self.emit(Instr::JumpIfNot { cond: c, target: 0 }));
         match self.expr.constant(target) {
             Some(Ok(n)) => {
                 let n = nc::block::round_half_away(n);
                 if !(0.0..=99999.0).contains(&n) {
-                    self.error("E2010", target.span(), format!("GOTO {n}: sequence numbers are 1…99999"));
+                    self.error(
+                        "E2010",
+                        target.span(),
+                        format!("GOTO {n}: sequence numbers are 1…99999"),
+                    );
                 } else {
                     let at = self.emit(Instr::Jump { target: 0 });
                     let loops = st.loops.iter().map(|l| l.id).collect();
-                    st.gotos.push(Pending { at, seq: n as u32, span: target.span(), loops });
+                    st.gotos.push(Pending {
+                        at,
+                        seq: n as u32,
+                        span: target.span(),
+                        loops,
+                    });
                 }
             }
             _ => {
@@ -328,24 +396,33 @@ impl<'a> Gen<'a> {
     }
 
     fn assign(&mut self, target: &grammar::ast::VarRef, value: &Expr, block: &Block) {
-        let Some(src) = self.expr_reg(value) else { return };
+        let Some(src) = self.expr_reg(value) else {
+            return;
+        };
         if let Some(c) = block.comments.first() {
             let s = self.string(&c.text);
             self.emit(Instr::SetMsg { s });
-        } else if matches!(self.expr.constant(&target.index), Some(Ok(v)) if v == 3000.0 || v == 3006.0) {
+        } else if matches!(self.expr.constant(&target.index), Some(Ok(v)) if v == 3000.0 || v == 3006.0)
+        {
             let s = self.string("");
             self.emit(Instr::SetMsg { s });
         }
         match self.expr.constant(&target.index) {
             Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
                 if n == 0.0 {
-                    self.error("E5007", target.span, "#0 is always vacant and cannot be written");
+                    self.error(
+                        "E5007",
+                        target.span,
+                        "#0 is always vacant and cannot be written",
+                    );
                     return;
                 }
                 self.emit(Instr::StoreVar { var: n as u32, src });
             }
             _ => {
-                let Some(idx) = self.expr_reg(&target.index) else { return };
+                let Some(idx) = self.expr_reg(&target.index) else {
+                    return;
+                };
                 self.emit(Instr::StoreVarInd { idx, src });
             }
         }
@@ -381,10 +458,15 @@ impl<'a> Gen<'a> {
             return;
         }
         for w in &split.nc {
+            self.set_loc(w.span);
             match w.value {
                 WordValue::Literal(v, flags) => {
                     let k = self.konst(v);
-                    self.emit(Instr::WordK { addr: w.addr, k, flags });
+                    self.emit(Instr::WordK {
+                        addr: w.addr,
+                        k,
+                        flags,
+                    });
                 }
                 WordValue::Expr(e) => {
                     if let Some(src) = self.expr_reg(e) {
@@ -393,6 +475,7 @@ impl<'a> Gen<'a> {
                 }
             }
         }
+        self.set_loc(block.span);
         if !split.nc.is_empty() {
             if let Some(c) = block.comments.first() {
                 let s = self.string(&c.text);

@@ -32,15 +32,31 @@ pub struct NcWord<'a> {
 #[derive(Debug, Clone)]
 pub enum Call<'a> {
     /// M98 P [L].
-    Sub { p: Option<WordValue<'a>>, l: Option<WordValue<'a>>, span: Span },
+    Sub {
+        p: Option<WordValue<'a>>,
+        l: Option<WordValue<'a>>,
+        span: Span,
+    },
     /// M9000…M9999: O9000…O9999, no arguments.
     SubM { number: u32, span: Span },
     /// M99 [P].
     Ret { p: Option<WordValue<'a>> },
     /// G65 / G66 P [L] arguments.
-    Macro { modal: bool, p: Option<WordValue<'a>>, l: Option<WordValue<'a>>, args: Vec<(u8, WordValue<'a>, Span)>, span: Span },
+    Macro {
+        modal: bool,
+        p: Option<WordValue<'a>>,
+        l: Option<WordValue<'a>>,
+        args: Vec<(u8, WordValue<'a>, Span)>,
+        span: Span,
+    },
     /// G65 H m P #i Q R.
-    MacroA { h: WordValue<'a>, p: Option<&'a Word>, q: Option<WordValue<'a>>, r: Option<WordValue<'a>>, span: Span },
+    MacroA {
+        h: WordValue<'a>,
+        p: Option<&'a Word>,
+        q: Option<WordValue<'a>>,
+        r: Option<WordValue<'a>>,
+        span: Span,
+    },
     /// G67.
     ModalCancel,
 }
@@ -121,33 +137,68 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
     if let Some(g) = g65_like.filter(|g| *g == 650 || *g == 660) {
         return macro_call(words, g == 660);
     }
-    if words.iter().any(|w| is(w, 'G') && literal_code(w).map(round_g) == Some(670)) && words.len() == 1 {
-        return Ok(Split { nc: Vec::new(), call: Some(Call::ModalCancel) });
+    if words
+        .iter()
+        .any(|w| is(w, 'G') && literal_code(w).map(round_g) == Some(670))
+        && words.len() == 1
+    {
+        return Ok(Split {
+            nc: Vec::new(),
+            call: Some(Call::ModalCancel),
+        });
     }
     let m_call = words.iter().find(|w| {
-        is(w, 'M') && literal_code(w).is_some_and(|m| {
-            let m = round_half_away(m);
-            m == 98.0 || m == 99.0 || (9000.0..=9999.0).contains(&m)
-        })
+        is(w, 'M')
+            && literal_code(w).is_some_and(|m| {
+                let m = round_half_away(m);
+                m == 98.0 || m == 99.0 || (9000.0..=9999.0).contains(&m)
+            })
     });
     let Some(mw) = m_call else {
-        let nc = words.iter().map(|w| NcWord { addr: addr_code(w.addr), value: value_of(w), span: w.span }).collect();
+        let nc = words
+            .iter()
+            .map(|w| NcWord {
+                addr: addr_code(w.addr),
+                value: value_of(w),
+                span: w.span,
+            })
+            .collect();
         return Ok(Split { nc, call: None });
     };
     let m = literal_code(mw).map(round_half_away).unwrap_or(0.0) as u32;
     let find = |c: char| words.iter().find(|w| is(w, c)).map(value_of);
     let (call, consumed): (Call, &[char]) = match m {
-        98 => (Call::Sub { p: find('P'), l: find('L'), span: mw.span }, &['P', 'L']),
+        98 => (
+            Call::Sub {
+                p: find('P'),
+                l: find('L'),
+                span: mw.span,
+            },
+            &['P', 'L'],
+        ),
         99 => (Call::Ret { p: find('P') }, &['P']),
-        n => (Call::SubM { number: n, span: mw.span }, &[]),
+        n => (
+            Call::SubM {
+                number: n,
+                span: mw.span,
+            },
+            &[],
+        ),
     };
     let nc = words
         .iter()
         .filter(|w| !std::ptr::eq(*w, mw))
         .filter(|w| !consumed.iter().any(|&c| is(w, c)))
-        .map(|w| NcWord { addr: addr_code(w.addr), value: value_of(w), span: w.span })
+        .map(|w| NcWord {
+            addr: addr_code(w.addr),
+            value: value_of(w),
+            span: w.span,
+        })
         .collect();
-    Ok(Split { nc, call: Some(call) })
+    Ok(Split {
+        nc,
+        call: Some(call),
+    })
 }
 
 fn round_g(v: f64) -> u16 {
@@ -155,20 +206,42 @@ fn round_g(v: f64) -> u16 {
 }
 
 fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
-    let span = words.first().map_or(Span::default(), |w| w.span).to(words.last().map_or(Span::default(), |w| w.span));
+    let span = words
+        .first()
+        .map_or(Span::default(), |w| w.span)
+        .to(words.last().map_or(Span::default(), |w| w.span));
     let name = if modal { "G66" } else { "G65" };
     if !words.first().is_some_and(|w| is(w, 'G')) {
         let at = words.iter().find(|w| is(w, 'G')).map_or(span, |w| w.span);
-        return Err(Diagnostic::error("E2002", at, format!("{name} must be the first word of its block")));
+        return Err(Diagnostic::error(
+            "E2002",
+            at,
+            format!("{name} must be the first word of its block"),
+        ));
     }
     if let Some(other) = words.iter().skip(1).find(|w| is(w, 'G')) {
-        return Err(Diagnostic::error("E2002", other.span, format!("no other G code may stand in a {name} block")));
+        return Err(Diagnostic::error(
+            "E2002",
+            other.span,
+            format!("no other G code may stand in a {name} block"),
+        ));
     }
     let h = words.iter().find(|w| is(w, 'H'));
     if let (Some(h), false) = (h, modal) {
         let find = |c: char| words.iter().find(|w| is(w, c));
-        if let Some(extra) = words.iter().skip(1).find(|w| !matches!(w.addr, Addr::Letter('H' | 'P' | 'Q' | 'R'))) {
-            return Err(Diagnostic::error("E1011", extra.span, format!("only H, P, Q and R may follow G65 H: {} is not allowed here", extra.addr)));
+        if let Some(extra) = words
+            .iter()
+            .skip(1)
+            .find(|w| !matches!(w.addr, Addr::Letter('H' | 'P' | 'Q' | 'R')))
+        {
+            return Err(Diagnostic::error(
+                "E1011",
+                extra.span,
+                format!(
+                    "only H, P, Q and R may follow G65 H: {} is not allowed here",
+                    extra.addr
+                ),
+            ));
         }
         return Ok(Split {
             nc: Vec::new(),
@@ -188,19 +261,31 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
     let mut ijk = [0u8; 3];
     for w in words.iter().skip(1) {
         let Addr::Letter(c) = w.addr else {
-            return Err(Diagnostic::error("E2061", w.span, format!("{} is not a macro argument", w.addr)));
+            return Err(Diagnostic::error(
+                "E2061",
+                w.span,
+                format!("{} is not a macro argument", w.addr),
+            ));
         };
         match c {
             'P' => p = Some(value_of(w)),
             'L' => l = Some(value_of(w)),
             'G' | 'N' | 'O' => {
-                return Err(Diagnostic::error("E2061", w.span, format!("{c} cannot be a macro argument")))
+                return Err(Diagnostic::error(
+                    "E2061",
+                    w.span,
+                    format!("{c} cannot be a macro argument"),
+                ))
             }
             'I' | 'J' | 'K' => {
                 let k = (c as u8 - b'I') as usize;
                 ijk[k] += 1;
                 if ijk[k] > 10 {
-                    return Err(Diagnostic::error("E2061", w.span, format!("more than ten {c} arguments")));
+                    return Err(Diagnostic::error(
+                        "E2061",
+                        w.span,
+                        format!("more than ten {c} arguments"),
+                    ));
                 }
                 let var = 4 + 3 * (ijk[k] - 1) + k as u8;
                 args.push((var, value_of(w), w.span));
@@ -208,7 +293,11 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
             c => {
                 let i = (c as u8 - b'A') as usize;
                 if seen[i] {
-                    return Err(Diagnostic::error("E1011", w.span, format!("argument {c} is written twice")));
+                    return Err(Diagnostic::error(
+                        "E1011",
+                        w.span,
+                        format!("argument {c} is written twice"),
+                    ));
                 }
                 seen[i] = true;
                 if let Some(var) = arg_var_i(c) {
@@ -217,5 +306,14 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
             }
         }
     }
-    Ok(Split { nc: Vec::new(), call: Some(Call::Macro { modal, p, l, args, span }) })
+    Ok(Split {
+        nc: Vec::new(),
+        call: Some(Call::Macro {
+            modal,
+            p,
+            l,
+            args,
+            span,
+        }),
+    })
 }

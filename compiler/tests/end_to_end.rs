@@ -66,7 +66,10 @@ fn every_truncation_and_bit_flip_of_a_compiled_module_is_rejected() {
     let bytes = build("N1 G00 X10 Z2\n#1=#1+1\nIF[#1LT3]GOTO1\nM30\n").to_bytes();
     assert!(isa::Module::from_bytes(&bytes).is_ok());
     for len in 0..bytes.len() {
-        assert!(isa::Module::from_bytes(&bytes[..len]).is_err(), "truncated at {len}");
+        assert!(
+            isa::Module::from_bytes(&bytes[..len]).is_err(),
+            "truncated at {len}"
+        );
     }
     for bit in 0..bytes.len() * 8 {
         let mut b = bytes.clone();
@@ -79,17 +82,39 @@ fn every_truncation_and_bit_flip_of_a_compiled_module_is_rejected() {
 fn a_run_time_alarm_names_its_source_line() {
     let module = build("G00 X10\n#1=0\n#2=5/#1\nM30\n");
     let (canon, status) = canon_of(&module.to_bytes());
-    let Status::Alarm(a) = status else { panic!("expected an alarm, got {status:?}") };
+    let Status::Alarm(a) = status else {
+        panic!("expected an alarm, got {status:?}")
+    };
     assert_eq!((a.code, a.line), (5001, 3));
-    assert!(a.header().starts_with("test.nc:3:1: alarm[E5001]: "), "{}", a.header());
-    assert_eq!(canon.last().map(String::as_str).unwrap_or("").split(' ').next(), Some("ALARM"));
+    assert!(
+        a.header().starts_with("test.nc:3:1: alarm[E5001]: "),
+        "{}",
+        a.header()
+    );
+    assert_eq!(
+        canon
+            .last()
+            .map(String::as_str)
+            .unwrap_or("")
+            .split(' ')
+            .next(),
+        Some("ALARM")
+    );
 }
 
 #[test]
 fn a_literal_division_by_zero_warns_and_alarms_only_when_reached() {
-    let c = compile("w.nc", b"#1=1\nIF[#1EQ1]GOTO3\n#2=1/0\nN3 G00 X5\nM30\n", &Options::default());
+    let c = compile(
+        "w.nc",
+        b"#1=1\nIF[#1EQ1]GOTO3\n#2=1/0\nN3 G00 X5\nM30\n",
+        &Options::default(),
+    );
     assert!(!c.has_errors());
-    assert!(c.diags.iter().any(|(_, d)| d.code == "W116"), "{}", c.render());
+    assert!(
+        c.diags.iter().any(|(_, d)| d.code == "W116"),
+        "{}",
+        c.render()
+    );
     let (canon, status) = canon_of(&c.module.expect("module").to_bytes());
     assert_eq!(status, Status::Done);
     assert_eq!(canon, ["RAPID X=5 Z=0", "STOP KIND=M30"]);
@@ -107,7 +132,11 @@ fn structure_errors_are_compile_errors_at_their_line() {
     ];
     for (src, code, line) in cases {
         let c = compile("e.nc", src.as_bytes(), &Options::default());
-        let (f, d) = c.diags.iter().find(|(_, d)| d.is_error()).unwrap_or_else(|| panic!("no error for {src:?}"));
+        let (f, d) = c
+            .diags
+            .iter()
+            .find(|(_, d)| d.is_error())
+            .unwrap_or_else(|| panic!("no error for {src:?}"));
         assert_eq!(d.code, code, "{src:?}: {}", c.render());
         assert_eq!(c.files[*f].line_col(d.span.start).0, line, "{src:?}");
     }
@@ -117,7 +146,14 @@ fn structure_errors_are_compile_errors_at_their_line() {
 fn folding_off_and_on_run_the_same() {
     let src = "#1=[2+3]*SIN[30]\n#2=ATAN[1]/[-1]\nG01 X[#1*4] Z[-#2/10] F100\nM30\n";
     let run = |optimize| {
-        let c = compile("f.nc", src.as_bytes(), &Options { optimize, ..Options::default() });
+        let c = compile(
+            "f.nc",
+            src.as_bytes(),
+            &Options {
+                optimize,
+                ..Options::default()
+            },
+        );
         canon_of(&c.module.expect("module").to_bytes()).0
     };
     assert_eq!(run(false), run(true));

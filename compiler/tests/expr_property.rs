@@ -35,7 +35,13 @@ impl E {
 /// The reference: `Ok(None)` is vacant, `Err(code)` an alarm.
 fn eval(e: &E) -> Result<Option<f64>, u16> {
     let z = |v: Option<f64>| v.unwrap_or(0.0);
-    let round = |v: f64| if v < 0.0 { -((-v) + 0.5).floor() } else { (v + 0.5).floor() };
+    let round = |v: f64| {
+        if v < 0.0 {
+            -((-v) + 0.5).floor()
+        } else {
+            (v + 0.5).floor()
+        }
+    };
     let r = match e {
         E::Num(v) => *v,
         E::Var(1) => 2.5,
@@ -97,7 +103,10 @@ fn expr() -> impl Strategy<Value = E> {
                 inner.clone()
             )
                 .prop_map(|(op, a, b)| E::Bin(op, Box::new(a), Box::new(b))),
-            (prop::sample::select(vec!["ABS", "SQRT", "ROUND", "FIX", "FUP", "SIN", "COS"]), inner)
+            (
+                prop::sample::select(vec!["ABS", "SQRT", "ROUND", "FIX", "FUP", "SIN", "COS"]),
+                inner
+            )
                 .prop_map(|(f, a)| E::Fun(f, Box::new(a))),
         ]
     })
@@ -106,7 +115,14 @@ fn expr() -> impl Strategy<Value = E> {
 /// Runs `#100 = e` and reads #100, or the alarm code.
 fn run(e: &E, optimize: bool) -> Result<f64, u16> {
     let src = format!("{SETUP}#100={}\nM30\n", e.text());
-    let c = compile("p.nc", src.as_bytes(), &Options { optimize, ..Options::default() });
+    let c = compile(
+        "p.nc",
+        src.as_bytes(),
+        &Options {
+            optimize,
+            ..Options::default()
+        },
+    );
     assert!(!c.has_errors(), "{src}: {}", c.render());
     let mut vm = Vm::new(c.module.expect("module"), Machine::reference());
     let mut events: Vec<nc::Event> = Vec::new();

@@ -15,6 +15,8 @@ mod parser;
 pub use ast::Ast;
 pub use diag::{Diagnostic, Severity, SourceFile};
 pub use span::Span;
+#[doc(hidden)]
+pub use parser::lex_only;
 
 /// Parses a whole program file.
 ///

@@ -456,3 +456,18 @@ pub(crate) mod actions {
         c
     }
 }
+
+#[doc(hidden)]
+pub fn lex_only(src: &[u8]) -> usize {
+    let mut c = Compactor::default();
+    let mut toks = Vec::new();
+    let mut n = 0;
+    let mut pos = 0;
+    while pos < src.len() {
+        let s = c.scan(src, pos, src.len());
+        let _ = lexer::lex_block(s.text, s.map, &s.comments, &mut toks);
+        n += toks.len();
+        pos = s.end + 1;
+    }
+    n
+}

@@ -104,7 +104,10 @@ pub fn parse(words: &[Word], m: &Machine) -> Result<Parsed, NcError> {
             a if a == addr(b'M') => add_m(&mut p, w, idx)?,
             a if (a as usize) < ADDR_COUNT => {
                 if p.val[a as usize].is_some() {
-                    return fail(1011, format!("address {} written twice in the block", addr_name(a)));
+                    return fail(
+                        1011,
+                        format!("address {} written twice in the block", addr_name(a)),
+                    );
                 }
                 p.val[a as usize] = Some(*w);
                 p.pos[a as usize] = idx;
@@ -118,11 +121,17 @@ pub fn parse(words: &[Word], m: &Machine) -> Result<Parsed, NcError> {
 
 fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
     if w.value < 0.0 || w.value > 9999.0 {
-        return fail(2001, format!("G{} is not a G code", crate::event::Num(w.value)));
+        return fail(
+            2001,
+            format!("G{} is not a G code", crate::event::Num(w.value)),
+        );
     }
     let code = round_half_away(w.value * 10.0) as Code;
     if let Some((err, hint)) = gcode::foreign(code) {
-        return fail(err, format!("{} is not in this dialect: {hint}", gcode::name(code)));
+        return fail(
+            err,
+            format!("{} is not in this dialect: {hint}", gcode::name(code)),
+        );
     }
     let Some(group) = gcode::group(code) else {
         return fail(2001, format!("unknown G code {}", gcode::name(code)));
@@ -150,7 +159,10 @@ fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
 fn add_m(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
     let code = round_half_away(w.value);
     if !(0.0..=9999.0).contains(&code) {
-        return fail(1010, format!("M{} is out of range (M0…M9999)", crate::event::Num(w.value)));
+        return fail(
+            1010,
+            format!("M{} is out of range (M0…M9999)", crate::event::Num(w.value)),
+        );
     }
     if p.m_len == 3 {
         return fail(1012, "more than three M codes in one block");
@@ -195,10 +207,16 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
         }
     }
     if p.has(b'X') && p.has(b'U') {
-        return fail(2007, "X and U in one block: write the X end point either absolute or incremental");
+        return fail(
+            2007,
+            "X and U in one block: write the X end point either absolute or incremental",
+        );
     }
     if p.has(b'Z') && p.has(b'W') {
-        return fail(2007, "Z and W in one block: write the Z end point either absolute or incremental");
+        return fail(
+            2007,
+            "Z and W in one block: write the Z end point either absolute or incremental",
+        );
     }
     if p.has(b'Y') || p.has(b'V') {
         return fail(2005, "this machine has no Y axis");
@@ -213,7 +231,10 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
         return fail(2007, "L and ,C both give the chamfer: write one of them");
     }
     if p.val[COMMA_R as usize].is_some() && p.has(b'D') {
-        return fail(2007, "D and ,R both give the corner radius: write one of them");
+        return fail(
+            2007,
+            "D and ,R both give the corner radius: write one of them",
+        );
     }
     check_m_codes(p)?;
     check_foreign(p)
@@ -230,7 +251,10 @@ fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
         return fail(1012, "at most one of M98, M99 and M9000…M9999 in a block");
     }
     if calls == 1 && ends {
-        return fail(1012, "M98/M99 cannot share a block with M00, M01, M02 or M30");
+        return fail(
+            1012,
+            "M98/M99 cannot share a block with M00, M01, M02 or M30",
+        );
     }
     if p.has_m(97) {
         return fail(
@@ -249,7 +273,10 @@ fn check_foreign(p: &Parsed) -> Result<(), NcError> {
         return fail(2004, "GSK pecks are P/Q in 0.001 mm, not Haas I/K words");
     }
     if p.has_g(170) || p.has_g(190) {
-        return fail(2003, "G17/G19 need a Y axis; this lathe works in the ZX plane (G18)");
+        return fail(
+            2003,
+            "G17/G19 need a Y axis; this lathe works in the ZX plane (G18)",
+        );
     }
     Ok(())
 }

@@ -28,29 +28,100 @@ pub enum StopKind {
 /// diameter, exactly as printed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Event {
-    Rapid { x: f64, z: f64 },
-    Line { x: f64, z: f64 },
-    Arc { dir: Dir, x: f64, z: f64, cx: f64, cz: f64 },
-    Thread { x: f64, z: f64, lead: f64, dlead: Option<f64>, q: Option<f64> },
-    Dwell { s: f64 },
-    Feed { f: f64, per_rev: bool },
-    Speed { s: f64, css: bool, max: Option<f64> },
+    Rapid {
+        x: f64,
+        z: f64,
+    },
+    Line {
+        x: f64,
+        z: f64,
+    },
+    Arc {
+        dir: Dir,
+        x: f64,
+        z: f64,
+        cx: f64,
+        cz: f64,
+    },
+    /// G6.2/G6.3: end point, semi-axes A (along the axis at Q) and B in
+    /// mm, axis angle Q in degrees.
+    Ellipse {
+        dir: Dir,
+        x: f64,
+        z: f64,
+        a: f64,
+        b: f64,
+        q: f64,
+    },
+    /// G7.2/G7.3: end point, parameter p (mm) and symmetry-axis angle Q
+    /// in degrees.
+    Parabola {
+        dir: Dir,
+        x: f64,
+        z: f64,
+        p: f64,
+        q: f64,
+    },
+    Thread {
+        x: f64,
+        z: f64,
+        lead: f64,
+        dlead: Option<f64>,
+        q: Option<f64>,
+    },
+    Dwell {
+        s: f64,
+    },
+    Feed {
+        f: f64,
+        per_rev: bool,
+    },
+    Speed {
+        s: f64,
+        css: bool,
+        max: Option<f64>,
+    },
     Spindle(SpindleDir),
-    Tool { t: u32, d: u32 },
+    Tool {
+        t: u32,
+        d: u32,
+    },
     M(u32),
-    Origin { x: f64, z: f64 },
-    Home { n: u32, x: bool, z: bool },
+    Origin {
+        x: f64,
+        z: f64,
+    },
+    Home {
+        n: u32,
+        x: bool,
+        z: bool,
+    },
     Stop(StopKind),
-    Skip { x: f64, z: f64 },
-    Gear { n: u32 },
+    Skip {
+        x: f64,
+        z: f64,
+    },
+    Gear {
+        n: u32,
+    },
     Message(String),
-    Alarm { code: u32, msg: String },
+    Alarm {
+        code: u32,
+        msg: String,
+    },
 }
 
 impl Event {
     /// Feed events are preceded by `FEED` when the feed changed.
     pub fn is_feed(&self) -> bool {
-        matches!(self, Event::Line { .. } | Event::Arc { .. } | Event::Skip { .. })
+        matches!(
+            self,
+            Event::Line { .. }
+                | Event::Arc { .. }
+                | Event::Ellipse { .. }
+                | Event::Parabola { .. }
+                | Event::Skip { .. }
+        )
     }
 
     /// A motion of the tool (for G66 and the block counter).
@@ -60,6 +131,8 @@ impl Event {
             Event::Rapid { .. }
                 | Event::Line { .. }
                 | Event::Arc { .. }
+                | Event::Ellipse { .. }
+                | Event::Parabola { .. }
                 | Event::Thread { .. }
                 | Event::Skip { .. }
         )
@@ -115,7 +188,13 @@ impl Display for Event {
         match self {
             Event::Rapid { x, z } => write!(f, "RAPID X={} Z={}", Num(*x), Num(*z)),
             Event::Line { x, z } => write!(f, "LINE X={} Z={}", Num(*x), Num(*z)),
-            Event::Arc { dir: d, x, z, cx, cz } => write!(
+            Event::Arc {
+                dir: d,
+                x,
+                z,
+                cx,
+                cz,
+            } => write!(
                 f,
                 "ARC DIR={} X={} Z={} CX={} CZ={}",
                 dir(*d),
@@ -124,7 +203,39 @@ impl Display for Event {
                 Num(*cx),
                 Num(*cz)
             ),
-            Event::Thread { x, z, lead, dlead, q } => {
+            Event::Ellipse {
+                dir: d,
+                x,
+                z,
+                a,
+                b,
+                q,
+            } => write!(
+                f,
+                "ELLIPSE DIR={} X={} Z={} A={} B={} Q={}",
+                dir(*d),
+                Num(*x),
+                Num(*z),
+                Num(*a),
+                Num(*b),
+                Num(*q)
+            ),
+            Event::Parabola { dir: d, x, z, p, q } => write!(
+                f,
+                "PARABOLA DIR={} X={} Z={} P={} Q={}",
+                dir(*d),
+                Num(*x),
+                Num(*z),
+                Num(*p),
+                Num(*q)
+            ),
+            Event::Thread {
+                x,
+                z,
+                lead,
+                dlead,
+                q,
+            } => {
                 write!(f, "THREAD X={} Z={} LEAD={}", Num(*x), Num(*z), Num(*lead))?;
                 if let Some(d) = dlead {
                     write!(f, " DLEAD={}", Num(*d))?;
@@ -142,7 +253,12 @@ impl Display for Event {
                 if *per_rev { "REV" } else { "MIN" }
             ),
             Event::Speed { s, css, max } => {
-                write!(f, "SPEED S={} MODE={}", Num(*s), if *css { "CSS" } else { "RPM" })?;
+                write!(
+                    f,
+                    "SPEED S={} MODE={}",
+                    Num(*s),
+                    if *css { "CSS" } else { "RPM" }
+                )?;
                 if let Some(m) = max {
                     write!(f, " MAX={}", Num(*m))?;
                 }
@@ -199,11 +315,44 @@ mod tests {
 
     #[test]
     fn events_print_their_fields_in_order() {
-        let e = Event::Arc { dir: Dir::Ccw, x: 30.0, z: -5.0, cx: 20.0, cz: -5.0 };
+        let e = Event::Arc {
+            dir: Dir::Ccw,
+            x: 30.0,
+            z: -5.0,
+            cx: 20.0,
+            cz: -5.0,
+        };
         assert_eq!(e.to_string(), "ARC DIR=CCW X=30 Z=-5 CX=20 CZ=-5");
-        let e = Event::Home { n: 1, x: true, z: false };
+        let e = Event::Ellipse {
+            dir: Dir::Cw,
+            x: 40.0,
+            z: -10.0,
+            a: 10.0,
+            b: 5.0,
+            q: 30.0,
+        };
+        assert_eq!(e.to_string(), "ELLIPSE DIR=CW X=40 Z=-10 A=10 B=5 Q=30");
+        assert!(e.is_feed() && e.is_motion());
+        let e = Event::Parabola {
+            dir: Dir::Ccw,
+            x: 20.0,
+            z: -8.0,
+            p: 2.5,
+            q: 0.0,
+        };
+        assert_eq!(e.to_string(), "PARABOLA DIR=CCW X=20 Z=-8 P=2.5 Q=0");
+        assert!(e.is_feed() && e.is_motion());
+        let e = Event::Home {
+            n: 1,
+            x: true,
+            z: false,
+        };
         assert_eq!(e.to_string(), "HOME N=1 AXES=X");
-        let e = Event::Speed { s: 600.0, css: false, max: Some(2000.0) };
+        let e = Event::Speed {
+            s: 600.0,
+            css: false,
+            max: Some(2000.0),
+        };
         assert_eq!(e.to_string(), "SPEED S=600 MODE=RPM MAX=2000");
     }
 }

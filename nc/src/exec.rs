@@ -61,7 +61,11 @@ fn is_call(m: u32) -> bool {
 impl Nc {
     pub fn new(machine: Machine) -> Nc {
         let st = State::power_on(&machine);
-        Nc { machine, st, profile: Vec::new() }
+        Nc {
+            machine,
+            st,
+            profile: Vec::new(),
+        }
     }
 
     /// Back to the power-on state (a new run).
@@ -128,7 +132,10 @@ impl Nc {
     fn unsupported_one_shot(&self, code: Code) -> Result<(), NcError> {
         match code {
             71 => fail(2003, "G7.1 cylindrical interpolation needs a C axis"),
-            100 | 110 => fail(2099, format!("{} is not implemented yet", gcode::name(code))),
+            100 | 110 => fail(
+                2099,
+                format!("{} is not implemented yet", gcode::name(code)),
+            ),
             _ => Ok(()),
         }
     }
@@ -142,19 +149,26 @@ impl Nc {
             return;
         }
         if now_css {
-            sink.emit(Event::Speed { s: self.st.css, css: true, max: None });
+            sink.emit(Event::Speed {
+                s: self.st.css,
+                css: true,
+                max: None,
+            });
         } else {
             self.st.rpm = self.css_rpm(self.st.pos.x());
-            sink.emit(Event::Speed { s: self.st.rpm, css: false, max: None });
+            sink.emit(Event::Speed {
+                s: self.st.rpm,
+                css: false,
+                max: None,
+            });
         }
     }
 
     /// The rpm of constant surface speed at diameter x, clamped.
     pub(crate) fn css_rpm(&self, x: f64) -> f64 {
-        let limit = self
-            .st
-            .rpm_limit
-            .map_or(self.machine.spindle.max_rpm, |l| l.min(self.machine.spindle.max_rpm));
+        let limit = self.st.rpm_limit.map_or(self.machine.spindle.max_rpm, |l| {
+            l.min(self.machine.spindle.max_rpm)
+        });
         if x.abs() < 1e-9 {
             return limit;
         }
@@ -164,12 +178,20 @@ impl Nc {
     fn print_origin_if_moved(&self, before: Pt, sink: &mut dyn Sink) {
         let now = self.st.origin();
         if (now.r - before.r).abs() * 2.0 > 1e-6 || (now.z - before.z).abs() > 1e-6 {
-            sink.emit(Event::Origin { x: now.x(), z: now.z });
+            sink.emit(Event::Origin {
+                x: now.x(),
+                z: now.z,
+            });
         }
     }
 
     /// Group 1: spindle start, PLC M codes, S and T, in written order.
-    fn before_motion(&mut self, p: &Parsed, words: &[Word], sink: &mut dyn Sink) -> Result<(), NcError> {
+    fn before_motion(
+        &mut self,
+        p: &Parsed,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<(), NcError> {
         let g50 = p.one_shot() == Some(500);
         for w in words {
             match w.addr {
@@ -203,7 +225,11 @@ impl Nc {
         if g50 {
             self.st.rpm_limit = Some(s);
             let current = if css { self.st.css } else { self.st.rpm };
-            sink.emit(Event::Speed { s: current, css, max: Some(s) });
+            sink.emit(Event::Speed {
+                s: current,
+                css,
+                max: Some(s),
+            });
             return Ok(());
         }
         if self.machine.spindle.r#type == SpindleType::Gear {
@@ -217,10 +243,18 @@ impl Nc {
         if css {
             // G20 surface speeds are ft/min.
             self.st.css = if self.st.inch() { s * 0.3048 } else { s };
-            sink.emit(Event::Speed { s: self.st.css, css: true, max: None });
+            sink.emit(Event::Speed {
+                s: self.st.css,
+                css: true,
+                max: None,
+            });
         } else {
             self.st.rpm = s;
-            sink.emit(Event::Speed { s, css: false, max: None });
+            sink.emit(Event::Speed {
+                s,
+                css: false,
+                max: None,
+            });
         }
         Ok(())
     }
@@ -239,7 +273,12 @@ impl Nc {
     }
 
     /// Group 2: the motion or the one-shot function.
-    fn motion(&mut self, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+    fn motion(
+        &mut self,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+        out: &mut Outcome,
+    ) -> Result<(), NcError> {
         if let Some(code) = p.one_shot() {
             return self.one_shot(code, p, sink, out);
         }
@@ -274,7 +313,8 @@ impl Nc {
     /// literals written without a point in increment mode.
     pub(crate) fn length(&self, w: Word) -> f64 {
         let mut v = w.value;
-        if w.flags & NO_POINT != 0 && self.machine.machine.decimal_point == DecimalPoint::Increment {
+        if w.flags & NO_POINT != 0 && self.machine.machine.decimal_point == DecimalPoint::Increment
+        {
             v *= if self.st.inch() { 0.0001 } else { 0.001 };
         }
         v * self.st.unit()
@@ -324,7 +364,13 @@ impl Nc {
         Ok(())
     }
 
-    pub(crate) fn arc(&mut self, cw: bool, to: Pt, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    pub(crate) fn arc(
+        &mut self,
+        cw: bool,
+        to: Pt,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+    ) -> Result<(), NcError> {
         let from = self.st.pos;
         let centre = if let Some(r) = self.len_of(p, b'R') {
             match geom::centre_from_radius(from, to, r, cw)? {
@@ -343,7 +389,10 @@ impl Nc {
                 ArcWithoutCenter::Line => self.line(to, sink),
                 ArcWithoutCenter::Alarm => fail(
                     2006,
-                    format!("{} needs R or I/K to define its centre", if cw { "G02" } else { "G03" }),
+                    format!(
+                        "{} needs R or I/K to define its centre",
+                        if cw { "G02" } else { "G03" }
+                    ),
                 ),
             };
         };
@@ -355,11 +404,23 @@ impl Nc {
         self.feed_due(sink);
         self.st.pos = to;
         let dir = if cw { Dir::Cw } else { Dir::Ccw };
-        sink.emit(Event::Arc { dir, x: to.x(), z: to.z, cx: c.x(), cz: c.z });
+        sink.emit(Event::Arc {
+            dir,
+            x: to.x(),
+            z: to.z,
+            cx: c.x(),
+            cz: c.z,
+        });
     }
 
     /// G05 (I/K relative to the start) and G05.1 (absolute mid point).
-    fn three_point_arc(&mut self, absolute: bool, to: Pt, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    fn three_point_arc(
+        &mut self,
+        absolute: bool,
+        to: Pt,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+    ) -> Result<(), NcError> {
         if !p.has(b'I') && !p.has(b'K') {
             return fail(2006, "G05 needs the mid point I/K");
         }
@@ -376,7 +437,13 @@ impl Nc {
         Ok(())
     }
 
-    fn one_shot(&mut self, code: Code, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+    fn one_shot(
+        &mut self,
+        code: Code,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+        out: &mut Outcome,
+    ) -> Result<(), NcError> {
         match code {
             40 => self.dwell(p, sink),
             90 => {
@@ -419,7 +486,12 @@ impl Nc {
             }
             700..=730 => return crate::compound::run(self, code, p, sink, out),
             740 | 750 | 760 | 780 => return crate::cycles::one_shot(self, code, p, sink, out),
-            _ => return fail(2099, format!("{} is not implemented yet", gcode::name(code))),
+            _ => {
+                return fail(
+                    2099,
+                    format!("{} is not implemented yet", gcode::name(code)),
+                )
+            }
         }
         out.moved = matches!(code, 280 | 300 | 310 | 530);
         Ok(())
@@ -430,7 +502,9 @@ impl Nc {
             ms / 1000.0
         } else if let Some(w) = p.word(b'X').or(p.word(b'U')) {
             let mut s = w.value;
-            if w.flags & NO_POINT != 0 && self.machine.machine.decimal_point == DecimalPoint::Increment {
+            if w.flags & NO_POINT != 0
+                && self.machine.machine.decimal_point == DecimalPoint::Increment
+            {
                 s *= 0.001;
             }
             s
@@ -464,7 +538,11 @@ impl Nc {
         if named_z {
             self.st.pos.z = rp.z - origin.z;
         }
-        sink.emit(Event::Home { n, x: named_x, z: named_z });
+        sink.emit(Event::Home {
+            n,
+            x: named_x,
+            z: named_z,
+        });
     }
 
     fn reference_point(&self, n: u32) -> Pt {
@@ -556,7 +634,6 @@ impl Nc {
             self.st.last[(b'M' - b'A') as usize] = m as f64;
         }
     }
-
 }
 
 /// E7004: a tool or offset number outside the machine's table.
@@ -564,13 +641,19 @@ pub fn check_tool(m: &Machine, tool: u32, offset: u32) -> Result<(), NcError> {
     if tool > m.tools.count {
         return fail(
             7004,
-            format!("tool {tool} is outside the tool table (1…{})", m.tools.count),
+            format!(
+                "tool {tool} is outside the tool table (1…{})",
+                m.tools.count
+            ),
         );
     }
     if offset > m.tools.offsets && offset != 88 && offset != 99 {
         return fail(
             7004,
-            format!("offset {offset} is outside the offset table (1…{})", m.tools.offsets),
+            format!(
+                "offset {offset} is outside the offset table (1…{})",
+                m.tools.offsets
+            ),
         );
     }
     Ok(())

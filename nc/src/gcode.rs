@@ -79,7 +79,7 @@ pub fn power_on(group: u8) -> Option<Code> {
 
 /// `G6.2`, `G01` for messages.
 pub fn name(code: Code) -> String {
-    if code % 10 == 0 {
+    if code.is_multiple_of(10) {
         format!("G{:02}", code / 10)
     } else {
         format!("G{}.{}", code / 10, code % 10)

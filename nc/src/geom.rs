@@ -91,14 +91,19 @@ mod tests {
         let c = centre_from_radius(Pt::new(15.0, -15.0), Pt::new(20.0, -20.0), 5.0, true).unwrap();
         assert!(close(c.unwrap(), 20.0, -15.0));
         // G03 X30 Z-40 R10 from X40 Z-30 → r 10.0838 z -31.2919.
-        let c = centre_from_radius(Pt::new(20.0, -30.0), Pt::new(15.0, -40.0), 10.0, false).unwrap();
+        let c =
+            centre_from_radius(Pt::new(20.0, -30.0), Pt::new(15.0, -40.0), 10.0, false).unwrap();
         assert!(close(c.unwrap(), 10.0838, -31.2919));
     }
 
     #[test]
     fn negative_radius_takes_the_other_centre() {
-        let a = centre_from_radius(Pt::new(0.0, 0.0), Pt::new(0.0, -10.0), 10.0, true).unwrap().unwrap();
-        let b = centre_from_radius(Pt::new(0.0, 0.0), Pt::new(0.0, -10.0), -10.0, true).unwrap().unwrap();
+        let a = centre_from_radius(Pt::new(0.0, 0.0), Pt::new(0.0, -10.0), 10.0, true)
+            .unwrap()
+            .unwrap();
+        let b = centre_from_radius(Pt::new(0.0, 0.0), Pt::new(0.0, -10.0), -10.0, true)
+            .unwrap()
+            .unwrap();
         assert!((a.r + b.r).abs() < 1e-9 && (a.z - b.z).abs() < 1e-9);
     }
 
@@ -113,11 +118,14 @@ mod tests {
     #[test]
     fn three_points_give_centre_and_direction() {
         // (z,r): (0,0) → (5,5) → (10,0): over the top, clockwise in ZX.
-        let (c, cw) = circle_through(Pt::new(0.0, 0.0), Pt::new(5.0, 5.0), Pt::new(0.0, 10.0)).unwrap();
+        let (c, cw) =
+            circle_through(Pt::new(0.0, 0.0), Pt::new(5.0, 5.0), Pt::new(0.0, 10.0)).unwrap();
         assert!(close(c, 0.0, 5.0));
         assert!(cw);
         assert_eq!(
-            circle_through(Pt::new(0.0, 0.0), Pt::new(0.0, 5.0), Pt::new(0.0, 10.0)).unwrap_err().code,
+            circle_through(Pt::new(0.0, 0.0), Pt::new(0.0, 5.0), Pt::new(0.0, 10.0))
+                .unwrap_err()
+                .code,
             4004
         );
     }
@@ -126,8 +134,16 @@ mod tests {
 /// One element of a contour: the geometry a block moves along.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Element {
-    Line { from: Pt, to: Pt },
-    Arc { from: Pt, to: Pt, centre: Pt, cw: bool },
+    Line {
+        from: Pt,
+        to: Pt,
+    },
+    Arc {
+        from: Pt,
+        to: Pt,
+        centre: Pt,
+        cw: bool,
+    },
 }
 
 impl Element {

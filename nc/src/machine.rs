@@ -108,7 +108,9 @@ section!(Axes {
     c: RotaryAxis = RotaryAxis::default(),
 });
 
-section!(Feed { max_mm_min: f64 = 5000.0 });
+section!(Feed {
+    max_mm_min: f64 = 5000.0
+});
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -146,7 +148,9 @@ section!(Cycles {
     g71_retract_mm: f64 = 0.5,
 });
 
-section!(Motion { always_exact_stop: bool = false });
+section!(Motion {
+    always_exact_stop: bool = false
+});
 
 section!(Coords {
     aprs: bool = false,
@@ -177,7 +181,9 @@ section!(Measure {
     signal_active_low: bool = false,
 });
 
-section!(Skip { inputs: [u32; 4] = [0, 1, 2, 3] });
+section!(Skip {
+    inputs: [u32; 4] = [0, 1, 2, 3]
+});
 
 section!(StrokeCheck2 {
     enabled: bool = true,
@@ -241,7 +247,9 @@ section!(Host {
     time: u32 = 0,
 });
 
-section!(Run { max_blocks: u64 = 2_000_000 });
+section!(Run {
+    max_blocks: u64 = 2_000_000
+});
 
 section!(
     /// The whole machine file.
@@ -284,7 +292,10 @@ impl Machine {
     fn validate(&self) -> Result<(), MachineError> {
         let bad = |what: &str| Err(MachineError::Invalid(what.to_string()));
         let positive = [
-            ("machine.interpolation_period_ms", self.machine.interpolation_period_ms),
+            (
+                "machine.interpolation_period_ms",
+                self.machine.interpolation_period_ms,
+            ),
             ("machine.resolution_mm", self.machine.resolution_mm),
             ("machine.arc_tolerance_mm", self.machine.arc_tolerance_mm),
             ("axes.x.rapid_mm_min", self.axes.x.rapid_mm_min),
@@ -389,7 +400,8 @@ mod tests {
         let m = Machine::from_toml("[machine]\narc_without_center = \"line\"\n").unwrap();
         assert_eq!(m.machine.arc_without_center, ArcWithoutCenter::Line);
         assert_eq!(m.machine.arc_tolerance_mm, 0.02);
-        let m = Machine::from_toml("[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n").unwrap();
+        let m =
+            Machine::from_toml("[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n").unwrap();
         assert_eq!(m.tools.offset[0].radius, 0.8);
         assert_eq!(m.tools.count, 32);
     }

@@ -29,11 +29,27 @@ impl Pt {
         (self.r - o.r).hypot(self.z - o.z)
     }
 
+    #[allow(clippy::should_implement_trait)] // also `+` below; the method reads well in chains
     pub fn add(self, o: Pt) -> Pt {
         Pt::new(self.r + o.r, self.z + o.z)
     }
 
+    #[allow(clippy::should_implement_trait)]
     pub fn sub(self, o: Pt) -> Pt {
+        Pt::new(self.r - o.r, self.z - o.z)
+    }
+}
+
+impl std::ops::Add for Pt {
+    type Output = Pt;
+    fn add(self, o: Pt) -> Pt {
+        Pt::new(self.r + o.r, self.z + o.z)
+    }
+}
+
+impl std::ops::Sub for Pt {
+    type Output = Pt;
+    fn sub(self, o: Pt) -> Pt {
         Pt::new(self.r - o.r, self.z - o.z)
     }
 }

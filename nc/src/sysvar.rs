@@ -51,10 +51,19 @@ impl Nc {
                 gcode::power_on(g as u8).map(|_| st.modal[g] as f64 / 10.0)
             }
             4102 | 4107 | 4108 | 4109 | 4111 | 4113 | 4119 | 4120 => {
-                let letter = [(4102, b'B'), (4107, b'D'), (4108, b'E'), (4109, b'F'), (4111, b'H'), (4113, b'M'), (4119, b'S'), (4120, b'T')]
-                    .iter()
-                    .find(|(v, _)| *v == n)
-                    .map_or(b'A', |(_, l)| *l);
+                let letter = [
+                    (4102, b'B'),
+                    (4107, b'D'),
+                    (4108, b'E'),
+                    (4109, b'F'),
+                    (4111, b'H'),
+                    (4113, b'M'),
+                    (4119, b'S'),
+                    (4120, b'T'),
+                ]
+                .iter()
+                .find(|(v, _)| *v == n)
+                .map_or(b'A', |(_, l)| *l);
                 let v = st.last[(letter - b'A') as usize];
                 (!v.is_nan()).then_some(v)
             }
@@ -100,7 +109,11 @@ impl Nc {
         match n {
             1100..=1115 => {
                 let bit = 1u32 << (n - 1100);
-                st.outputs = if x != 0.0 { st.outputs | bit } else { st.outputs & !bit };
+                st.outputs = if x != 0.0 {
+                    st.outputs | bit
+                } else {
+                    st.outputs & !bit
+                };
             }
             1132 => st.outputs = (x.max(0.0) as u32) & 0xffff,
             2001..=2032 => st.wear[(n - 2001) as usize][0] = x,
@@ -125,7 +138,9 @@ impl Nc {
                     _ => return Err(read_only(n)),
                 }
             }
-            1000..=1015 | 1032 | 3011 | 3012 | 4001..=4120 | 5001..=5082 => return Err(read_only(n)),
+            1000..=1015 | 1032 | 3011 | 3012 | 4001..=4120 | 5001..=5082 => {
+                return Err(read_only(n))
+            }
             _ => return fail(5007, format!("#{n} is not a writable variable")),
         }
         // The tool stays where it is on the machine; its work coordinates
@@ -135,7 +150,10 @@ impl Nc {
             let machine = self.st.pos.add(before);
             self.st.pos = machine.sub(after);
             if (after.r - before.r).abs() * 2.0 > 1e-6 || (after.z - before.z).abs() > 1e-6 {
-                sink.emit(Event::Origin { x: after.x(), z: after.z });
+                sink.emit(Event::Origin {
+                    x: after.x(),
+                    z: after.z,
+                });
             }
         }
         Ok(())

@@ -153,7 +153,11 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
             if !(-1.0..=1.0).contains(&x) {
                 return fail(5003, format!("{f:?} of {x}: the argument must lie in −1…1"));
             }
-            let r = if f == Func::Asin { libm::asin(x) } else { libm::acos(x) };
+            let r = if f == Func::Asin {
+                libm::asin(x)
+            } else {
+                libm::acos(x)
+            };
             r.to_degrees()
         }
         Func::Atan => libm::atan(x).to_degrees(),

@@ -28,7 +28,10 @@ impl Alarm {
         } else {
             format!("E{:04}", self.code)
         };
-        format!("{}:{}:{}: alarm[{}]: {}", self.file, self.line, self.col, code, self.message)
+        format!(
+            "{}:{}:{}: alarm[{}]: {}",
+            self.file, self.line, self.col, code, self.message
+        )
     }
 }
 
@@ -149,7 +152,11 @@ impl Vm {
 
     /// The source place of the block executed last (for traces).
     pub fn last_loc(&self) -> isa::SourceLoc {
-        self.module.lines.get(self.last_exec as usize).copied().unwrap_or_default()
+        self.module
+            .lines
+            .get(self.last_exec as usize)
+            .copied()
+            .unwrap_or_default()
     }
 
     /// Persists #500–#999 through `storage` from now on.
@@ -164,7 +171,9 @@ impl Vm {
         }
         for _ in 0..budget {
             let pc = self.pc;
-            let result = self.exec_one(sink).and_then(|next| self.persist().map(|()| next));
+            let result = self
+                .exec_one(sink)
+                .and_then(|next| self.persist().map(|()| next));
             match result {
                 Ok(Next::Go) => {}
                 Ok(Next::Event) => return Status::Event,
@@ -209,19 +218,34 @@ impl Vm {
     fn alarm(&self, pc: u32, e: Fault, sink: &mut dyn Sink) -> Alarm {
         // An error about a profile block names that block.
         let pc = e.at.unwrap_or(pc);
-        let loc = self.module.lines.get(pc as usize).copied().unwrap_or_default();
+        let loc = self
+            .module
+            .lines
+            .get(pc as usize)
+            .copied()
+            .unwrap_or_default();
         let file = self
             .module
             .files
             .get(loc.file as usize)
             .map_or_else(String::new, |f| f.name.clone());
-        let msg = if (3000..4000).contains(&(e.code as u32)) || (500..1000).contains(&(e.code as u32)) {
-            self.msg_text()
-        } else {
-            e.message.clone()
-        };
-        sink.emit(Event::Alarm { code: e.code as u32, msg: msg.clone() });
-        Alarm { code: e.code as u32, message: if msg.is_empty() { e.message } else { msg }, file, line: loc.line, col: loc.col }
+        let msg =
+            if (3000..4000).contains(&(e.code as u32)) || (500..1000).contains(&(e.code as u32)) {
+                self.msg_text()
+            } else {
+                e.message.clone()
+            };
+        sink.emit(Event::Alarm {
+            code: e.code as u32,
+            msg: msg.clone(),
+        });
+        Alarm {
+            code: e.code as u32,
+            message: if msg.is_empty() { e.message } else { msg },
+            file,
+            line: loc.line,
+            col: loc.col,
+        }
     }
 
     fn msg_text(&self) -> String {
@@ -234,7 +258,10 @@ impl Vm {
     fn count_block(&mut self) -> Result<(), Fault> {
         self.blocks += 1;
         if self.blocks > self.max_blocks {
-            return fault(6005, format!("the block budget of {} blocks is used up", self.max_blocks));
+            return fault(
+                6005,
+                format!("the block budget of {} blocks is used up", self.max_blocks),
+            );
         }
         Ok(())
     }
@@ -250,7 +277,11 @@ impl Vm {
     }
 
     fn konst(&self, k: u32) -> f64 {
-        self.module.consts.get(k as usize).copied().unwrap_or(VACANT)
+        self.module
+            .consts
+            .get(k as usize)
+            .copied()
+            .unwrap_or(VACANT)
     }
 
     fn exec_one(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
@@ -313,7 +344,8 @@ impl Vm {
                 self.pc = target;
             }
             Instr::JumpIfNot { cond, target } => {
-                if value::compare(Rel::Eq, self.reg(cond), 0.0) == 1.0 || is_vacant(self.reg(cond)) {
+                if value::compare(Rel::Eq, self.reg(cond), 0.0) == 1.0 || is_vacant(self.reg(cond))
+                {
                     self.pc = target;
                 }
             }
@@ -322,7 +354,12 @@ impl Vm {
                 let n = target_number(self.reg(seq))?;
                 match self.module.pc_of_seq(self.prog as usize, n) {
                     Some(pc) => self.pc = pc,
-                    None => return fault(6001, format!("GOTO {n}: there is no block N{n} in this program")),
+                    None => {
+                        return fault(
+                            6001,
+                            format!("GOTO {n}: there is no block N{n} in this program"),
+                        )
+                    }
                 }
             }
             Instr::Word { addr, src } => {
@@ -440,12 +477,25 @@ impl Vm {
             .ok_or_else(|| NcError::new(6003, format!("the called program O{n:04} does not exist")))
     }
 
-    fn call(&mut self, callee: u32, count: u32, macro_level: bool, modal: bool, args: Vec<(u8, f64)>) -> Result<(), Fault> {
+    fn call(
+        &mut self,
+        callee: u32,
+        count: u32,
+        macro_level: bool,
+        modal: bool,
+        args: Vec<(u8, f64)>,
+    ) -> Result<(), Fault> {
         self.count_block()?;
         let macros = self.frames.iter().filter(|f| f.macro_level).count();
         let subs = self.frames.len() - macros;
-        if self.frames.len() >= MAX_CALLS || (macro_level && macros >= MAX_MACRO_LEVELS) || (!macro_level && subs >= MAX_SUB_LEVELS) {
-            return fault(6004, "calls nested too deep (4 macro levels, 4 subprogram levels, 8 in all)");
+        if self.frames.len() >= MAX_CALLS
+            || (macro_level && macros >= MAX_MACRO_LEVELS)
+            || (!macro_level && subs >= MAX_SUB_LEVELS)
+        {
+            return fault(
+                6004,
+                "calls nested too deep (4 macro levels, 4 subprogram levels, 8 in all)",
+            );
         }
         let Some(entry) = self.module.programs.get(callee as usize).map(|p| p.entry) else {
             return fault(6003, "the called program does not exist");
@@ -479,10 +529,16 @@ impl Vm {
             if macro_level {
                 self.vars.refresh_level(&args);
             }
-            self.pc = self.module.programs.get(callee as usize).map_or(self.pc, |p| p.entry);
+            self.pc = self
+                .module
+                .programs
+                .get(callee as usize)
+                .map_or(self.pc, |p| p.entry);
             return Ok(Next::Go);
         }
-        let Some(frame) = self.frames.pop() else { return Ok(Next::Done) };
+        let Some(frame) = self.frames.pop() else {
+            return Ok(Next::Done);
+        };
         if frame.macro_level {
             self.vars.pop_level();
         }
@@ -491,7 +547,12 @@ impl Vm {
         if let Some(n) = seq {
             match self.module.pc_of_seq(frame.caller as usize, n) {
                 Some(pc) => self.pc = pc,
-                None => return fault(6002, format!("M99 P{n}: the calling program has no block N{n}")),
+                None => {
+                    return fault(
+                        6002,
+                        format!("M99 P{n}: the calling program has no block N{n}"),
+                    )
+                }
             }
         }
         Ok(Next::Go)
@@ -508,7 +569,12 @@ impl Vm {
         if let Some(n) = seq {
             match self.module.pc_of_seq(0, n) {
                 Some(pc) => self.pc = pc,
-                None => return fault(6002, format!("M99 P{n}: the main program has no block N{n}")),
+                None => {
+                    return fault(
+                        6002,
+                        format!("M99 P{n}: the main program has no block N{n}"),
+                    )
+                }
             }
         }
         Ok(Next::Go)
@@ -535,9 +601,16 @@ impl Vm {
         match n {
             0 => fault(5007, "#0 is always vacant and cannot be written"),
             3000 => {
-                let code = if is_vacant(v) { 0.0 } else { round_half_away(v) };
+                let code = if is_vacant(v) {
+                    0.0
+                } else {
+                    round_half_away(v)
+                };
                 if !(0.0..=999.0).contains(&code) {
-                    return fault(5010, format!("#3000 = {code}: the alarm number must be 0…999"));
+                    return fault(
+                        5010,
+                        format!("#3000 = {code}: the alarm number must be 0…999"),
+                    );
                 }
                 fault(3000 + code as u16, self.msg_text())
             }
@@ -567,7 +640,6 @@ impl Vm {
     pub fn persistent_mut(&mut self) -> &mut [f64; 500] {
         &mut self.vars.persistent
     }
-
 }
 
 /// A variable number from a value: rounded; vacant E5009, negative E5008.
@@ -589,7 +661,10 @@ fn target_number(v: f64) -> Result<u32, Fault> {
     }
     let n = round_half_away(v);
     if !(0.0..=99_999_999.0).contains(&n) {
-        return fault(5010, format!("{n} is not a valid sequence or program number"));
+        return fault(
+            5010,
+            format!("{n} is not a valid sequence or program number"),
+        );
     }
     Ok(n as u32)
 }

@@ -7,7 +7,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "gbcc", version, about = "Compile GSK980TDi lathe G-code into .gbc bytecode")]
+#[command(
+    name = "gbcc",
+    version,
+    about = "Compile GSK980TDi lathe G-code into .gbc bytecode"
+)]
 struct Args {
     /// Program files (.nc).
     #[arg(required = true)]
@@ -86,7 +90,12 @@ fn main() -> ExitCode {
     if args.output.is_some() && args.files.len() > 1 && !syntax_only {
         return usage("-o with several input files");
     }
-    let opts = Options { machine, include: args.include.clone(), optimize, defines };
+    let opts = Options {
+        machine,
+        include: args.include.clone(),
+        optimize,
+        defines,
+    };
     let mut failed = false;
     for file in &args.files {
         let bytes = match std::fs::read(file) {
@@ -148,15 +157,27 @@ fn report(c: &Compiled, json: bool, werror: bool, quiet: bool) -> bool {
     failed || c.has_errors()
 }
 
-fn write_output(c: &Compiled, input: &Path, output: Option<&Path>, listing: bool) -> Result<(), String> {
+fn write_output(
+    c: &Compiled,
+    input: &Path,
+    output: Option<&Path>,
+    listing: bool,
+) -> Result<(), String> {
     let Some(module) = &c.module else {
         return Err("no module was produced".into());
     };
     let out = output.map(Path::to_path_buf).unwrap_or_else(|| {
-        let name = input.file_name().map(PathBuf::from).unwrap_or_else(|| PathBuf::from("a"));
+        let name = input
+            .file_name()
+            .map(PathBuf::from)
+            .unwrap_or_else(|| PathBuf::from("a"));
         name.with_extension(if listing { "s" } else { "gbc" })
     });
-    let bytes = if listing { module.disassemble().into_bytes() } else { module.to_bytes() };
+    let bytes = if listing {
+        module.disassemble().into_bytes()
+    } else {
+        module.to_bytes()
+    };
     if listing && out.as_os_str() == "-" {
         print!("{}", module.disassemble());
         return Ok(());

@@ -49,7 +49,8 @@ enum Command {
 
 fn load(path: &Path) -> Result<isa::Module, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    isa::Module::from_bytes(&bytes).map_err(|e| format!("{}: not a valid .gbc module: {e}", path.display()))
+    isa::Module::from_bytes(&bytes)
+        .map_err(|e| format!("{}: not a valid .gbc module: {e}", path.display()))
 }
 
 fn fail(msg: &str) -> ExitCode {
@@ -88,16 +89,35 @@ fn main() -> ExitCode {
             }
             Err(e) => fail(&e),
         },
-        Command::Run { file, emit, machine, max_blocks, repeat, vars } => {
+        Command::Run {
+            file,
+            emit,
+            machine,
+            max_blocks,
+            repeat,
+            vars,
+        } => {
             if let Emit::Trace = emit {
                 return fail("--emit trace needs the interpolation runtime, which this build does not have yet");
             }
-            run(&file, machine.as_deref(), max_blocks, repeat, vars.as_deref())
+            run(
+                &file,
+                machine.as_deref(),
+                max_blocks,
+                repeat,
+                vars.as_deref(),
+            )
         }
     }
 }
 
-fn run(file: &Path, machine: Option<&Path>, max_blocks: Option<u64>, repeat: u32, vars: Option<&Path>) -> ExitCode {
+fn run(
+    file: &Path,
+    machine: Option<&Path>,
+    max_blocks: Option<u64>,
+    repeat: u32,
+    vars: Option<&Path>,
+) -> ExitCode {
     let module = match load(file) {
         Ok(m) => m,
         Err(e) => return fail(&e),
@@ -129,7 +149,10 @@ fn run(file: &Path, machine: Option<&Path>, max_blocks: Option<u64>, repeat: u32
         vm.set_storage(Box::new(cli::vars::FileStorage(path)));
     }
     let stdout = std::io::stdout();
-    let mut sink = Canon { out: BufWriter::new(stdout.lock()), broken: false };
+    let mut sink = Canon {
+        out: BufWriter::new(stdout.lock()),
+        broken: false,
+    };
     let status = vm.run(&mut sink);
     let _ = sink.out.flush();
     match status {

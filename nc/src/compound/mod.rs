@@ -11,7 +11,16 @@ use crate::gcode::{self, Code};
 pub struct CompoundState {}
 
 /// A G70–G73 block; `nc.profile` holds the ns…nf blocks for a cycle block.
-pub fn run(nc: &mut Nc, code: Code, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+pub fn run(
+    nc: &mut Nc,
+    code: Code,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
     let _ = (nc, p, sink, out);
-    fail(2099, format!("{} is not implemented yet", gcode::name(code)))
+    fail(
+        2099,
+        format!("{} is not implemented yet", gcode::name(code)),
+    )
 }

@@ -12,7 +12,16 @@ use crate::gcode::{self, Code};
 pub struct ContourState {}
 
 /// G6.2, G6.3, G7.2, G7.3 blocks.
-pub fn conic(nc: &mut Nc, code: Code, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+pub fn conic(
+    nc: &mut Nc,
+    code: Code,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
     let _ = (nc, p, sink, out);
-    fail(2099, format!("{} is not implemented yet", gcode::name(code)))
+    fail(
+        2099,
+        format!("{} is not implemented yet", gcode::name(code)),
+    )
 }

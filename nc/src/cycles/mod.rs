@@ -12,20 +12,47 @@ use crate::gcode::{self, Code};
 pub struct CycleState {}
 
 /// A block whose group-01 code is one of this module's.
-pub fn motion(nc: &mut Nc, code: Code, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+pub fn motion(
+    nc: &mut Nc,
+    code: Code,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
     let _ = (nc, p, sink, out);
-    fail(2099, format!("{} is not implemented yet", gcode::name(code)))
+    fail(
+        2099,
+        format!("{} is not implemented yet", gcode::name(code)),
+    )
 }
 
 /// G74, G75, G76, G78 blocks (group 00).
-pub fn one_shot(nc: &mut Nc, code: Code, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+pub fn one_shot(
+    nc: &mut Nc,
+    code: Code,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
     let _ = (nc, p, sink, out);
-    fail(2099, format!("{} is not implemented yet", gcode::name(code)))
+    fail(
+        2099,
+        format!("{} is not implemented yet", gcode::name(code)),
+    )
 }
 
 /// A block while a drilling/tapping cycle (group 10) is in force, or the
 /// block that selects it.
-pub fn drill(nc: &mut Nc, code: Code, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+pub fn drill(
+    nc: &mut Nc,
+    code: Code,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
     let _ = (nc, p, sink, out);
-    fail(2099, format!("{} is not implemented yet", gcode::name(code)))
+    fail(
+        2099,
+        format!("{} is not implemented yet", gcode::name(code)),
+    )
 }
