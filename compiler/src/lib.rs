@@ -93,7 +93,8 @@ pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
         })
         .collect();
     let failed = diags.iter().any(|(_, d)| d.is_error());
-    if !failed && check::is_static(&units, &programs) {
+    let g_macros = uses_g_code_macros(&units, &programs, &opts.machine.r#macro.g_code_macros);
+    if !failed && !g_macros && check::is_static(&units, &programs) {
         if let Some(d) = check::dry_run(&units, &programs, &opts.machine) {
             diags.push(d);
         }
@@ -135,8 +136,21 @@ fn parse_unit(
     }
 }
 
+/// Does any block call a G-code macro (those programs are never static)?
+fn uses_g_code_macros(units: &[Unit], programs: &[Program], table: &[u32; 10]) -> bool {
+    programs.iter().any(|p| {
+        p.blocks
+            .iter()
+            .filter_map(|&l| link::block(&units[p.unit], l))
+            .any(|b| match &b.body {
+                grammar::ast::Body::Words(ws) => words::g_code_macro(ws, table, p.number).is_some(),
+                grammar::ast::Body::Stmt(_) => false,
+            })
+    })
+}
+
 /// Literal call targets of a program.
-fn targets(unit: &Unit, prog: &Program) -> Vec<u32> {
+fn targets(unit: &Unit, prog: &Program, table: &[u32; 10]) -> Vec<u32> {
     let mut out = Vec::new();
     for &line in &prog.blocks {
         let Some(block) = link::block(unit, line) else {
@@ -145,7 +159,11 @@ fn targets(unit: &Unit, prog: &Program) -> Vec<u32> {
         let grammar::ast::Body::Words(ws) = &block.body else {
             continue;
         };
-        let Ok(split) = words::classify(ws) else {
+        let split = match words::g_code_macro(ws, table, prog.number) {
+            Some(call) => call,
+            None => words::classify(ws),
+        };
+        let Ok(split) = split else {
             continue;
         };
         match split.call {
@@ -177,7 +195,7 @@ fn link_libraries(
     dirs.extend(opts.machine.r#macro.library_dirs.iter().map(PathBuf::from));
     let mut i = 0;
     while i < programs.len() {
-        let wanted = targets(&units[programs[i].unit], &programs[i]);
+        let wanted = targets(&units[programs[i].unit], &programs[i], &opts.machine.r#macro.g_code_macros);
         for number in wanted {
             if programs.iter().any(|p| p.number == number) {
                 continue;

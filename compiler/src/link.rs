@@ -1,7 +1,7 @@
 //! Programs: splitting a file into its O programs and finding the called
 //! ones in the file or in the library folders (dialect.md §1.2, §7.11).
 
-use grammar::ast::{Ast, Block, Line};
+use grammar::ast::{Ast, Block, Body, Line};
 use grammar::{Diagnostic, Span};
 use std::path::{Path, PathBuf};
 
@@ -49,7 +49,16 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
                         ),
                     ));
                 }
-                let blocks = std::mem::take(&mut before_first_o);
+                // Words before the first O line are a main program of
+                // their own; comments or bare N blocks there just lead
+                // into the first program.
+                let leading = std::mem::take(&mut before_first_o);
+                let blocks = if programs.is_empty() && has_words(unit, &leading) {
+                    programs.push(Program { number: 0, unit: unit_index, blocks: leading, span: Span::default() });
+                    Vec::new()
+                } else {
+                    leading
+                };
                 programs.push(Program {
                     number: p.number,
                     unit: unit_index,
@@ -73,6 +82,13 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
         });
     }
     programs
+}
+
+fn has_words(unit: &Unit, lines: &[usize]) -> bool {
+    lines.iter().filter_map(|&l| block(unit, l)).any(|b| match &b.body {
+        Body::Words(ws) => !ws.is_empty(),
+        Body::Stmt(_) => true,
+    })
 }
 
 /// The block of a program's i-th entry.

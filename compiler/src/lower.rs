@@ -28,6 +28,8 @@ pub struct Gen<'a> {
     pub unit: usize,
     loc: SourceLoc,
     pub expr: ExprGen,
+    /// The number of the program being lowered.
+    program_number: u32,
 }
 
 /// An open DO loop of the program being lowered.
@@ -81,6 +83,7 @@ impl<'a> Gen<'a> {
             unit: 0,
             loc: SourceLoc::default(),
             expr: ExprGen::default(),
+            program_number: 0,
         }
     }
 
@@ -142,6 +145,7 @@ impl<'a> Gen<'a> {
     pub fn lower_all(&mut self, presets: &[(u32, f64)]) {
         for (i, prog) in self.programs.iter().enumerate() {
             self.unit = prog.unit;
+            self.program_number = prog.number;
             self.set_loc(prog.span);
             let entry = self.pc();
             if i == 0 {
@@ -446,6 +450,14 @@ impl<'a> Gen<'a> {
     fn lower_words(&mut self, block: &Block, st: &mut ProgState) {
         let _ = st;
         let Body::Words(ws) = &block.body else { return };
+        let table = self.machine.r#macro.g_code_macros;
+        if let Some(call) = words::g_code_macro(ws, &table, self.program_number) {
+            match call {
+                Ok(split) => self.lower_split(block, split),
+                Err(d) => self.diags.push((self.unit, d)),
+            }
+            return;
+        }
         match words::classify(ws) {
             Ok(split) => self.lower_split(block, split),
             Err(d) => self.diags.push((self.unit, d)),

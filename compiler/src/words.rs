@@ -201,6 +201,29 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
     })
 }
 
+/// A G code that calls a macro through parameters №086–№095
+/// (O9010–O9019, dialect.md §7.10): the call, like G65 with P = the
+/// program. Not inside O9010–O9019 themselves (no recursion), and never for
+/// a standard G code.
+pub fn g_code_macro<'a>(words: &'a [Word], table: &[u32; 10], program: u32) -> Option<Result<Split<'a>, Diagnostic>> {
+    if (9010..=9019).contains(&program) {
+        return None;
+    }
+    let first = words.iter().find(|w| is(w, 'G'))?;
+    let g = literal_code(first)?;
+    if g.fract() != 0.0 || g <= 0.0 || nc::gcode::group(round_g(g)).is_some() {
+        return None;
+    }
+    let index = table.iter().position(|&n| n as f64 == g)?;
+    let target = 9010 + index as u32;
+    Some(macro_call(words, false).map(|mut split| {
+        if let Some(Call::Macro { p, .. }) = &mut split.call {
+            *p = Some(WordValue::Literal(target as f64, LITERAL));
+        }
+        split
+    }))
+}
+
 fn round_g(v: f64) -> u16 {
     round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16
 }

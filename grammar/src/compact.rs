@@ -14,44 +14,27 @@ use crate::span::Span;
 
 /// Maps positions in a block's compacted text back to source offsets.
 ///
-/// It holds one `(compact position, source offset)` pair for the block
-/// start and one for every place where text resumes after a removed gap, so
-/// a block without gaps costs a single entry.
-#[derive(Debug, Default)]
-pub struct OffsetMap {
-    breaks: Vec<(u32, u32)>,
+/// A block lexed in place needs only its start; a copied block keeps the
+/// source offset of every byte it copied (one table lookup per position,
+/// no search).
+#[derive(Debug, Clone, Copy)]
+pub enum OffsetMap<'a> {
+    InPlace(usize),
+    Copied(&'a [u32]),
 }
 
-impl OffsetMap {
-    /// A cursor for lookups in increasing order (tokens come in order).
-    pub fn cursor(&self) -> Cursor<'_> {
-        Cursor {
-            breaks: &self.breaks,
-            i: 0,
-        }
-    }
-}
-
-pub struct Cursor<'a> {
-    breaks: &'a [(u32, u32)],
-    i: usize,
-}
-
-impl Cursor<'_> {
+impl OffsetMap<'_> {
     /// The source offset of compacted byte `c`.
-    pub fn start(&mut self, c: usize) -> usize {
-        while self.i + 1 < self.breaks.len() && self.breaks[self.i + 1].0 as usize <= c {
-            self.i += 1;
-        }
-        match self.breaks.get(self.i) {
-            Some(&(at, src)) => src as usize + (c - at as usize),
-            None => c,
+    pub fn start(&self, c: usize) -> usize {
+        match self {
+            OffsetMap::InPlace(base) => base + c,
+            OffsetMap::Copied(table) => table.get(c).map_or(c, |&o| o as usize),
         }
     }
 
     /// The source end of a compacted range ending at `c`: just after its last
     /// byte, so a span never takes in the blanks that follow it.
-    pub fn end(&mut self, c: usize) -> usize {
+    pub fn end(&self, c: usize) -> usize {
         match c.checked_sub(1) {
             Some(last) => self.start(last) + 1,
             None => self.start(0),
@@ -73,7 +56,7 @@ pub enum Terminator {
 pub struct Scanned<'a> {
     /// The block without blanks and comments.
     pub text: &'a [u8],
-    pub map: &'a OffsetMap,
+    pub map: OffsetMap<'a>,
     pub comments: Vec<Comment>,
     /// From the first to the last byte that is not a blank (comments
     /// included); `None` for an empty block.
@@ -89,34 +72,57 @@ pub struct Scanned<'a> {
 #[derive(Default)]
 pub struct Compactor {
     buf: Vec<u8>,
-    map: OffsetMap,
+    offsets: Vec<u32>,
 }
 
-/// Bytes that can be copied as they are (and lexed in place).
-fn is_plain(b: u8) -> bool {
-    (0x21..=0x7E).contains(&b) && b != b'(' && b != b')' && b != b';'
+/// Byte classes for the scanner, looked up once per byte.
+const PLAIN: u8 = 0;
+const BLANK: u8 = 1;
+const OPEN: u8 = 2;
+const CLOSE: u8 = 3;
+const END: u8 = 4;
+const BAD: u8 = 5;
+
+static CLASS: [u8; 256] = {
+    let mut t = [BAD; 256];
+    let mut b = 0x21;
+    while b <= 0x7E {
+        t[b] = PLAIN;
+        b += 1;
+    }
+    t[b' ' as usize] = BLANK;
+    t[b'\t' as usize] = BLANK;
+    t[b'(' as usize] = OPEN;
+    t[b')' as usize] = CLOSE;
+    t[b';' as usize] = END;
+    t[b'\n' as usize] = END;
+    t[b'\r' as usize] = END;
+    t
+};
+
+fn class(b: u8) -> u8 {
+    CLASS[b as usize]
 }
 
-fn is_terminator(b: u8) -> bool {
-    b == b';' || b == b'\n' || b == b'\r'
+/// The end of the run of plain bytes starting at `i`.
+fn plain_run(src: &[u8], mut i: usize, limit: usize) -> usize {
+    while i < limit && class(src[i]) == PLAIN {
+        i += 1;
+    }
+    i
 }
 
 impl Compactor {
     /// Scans the block starting at `start`; `limit` is the end of the input
     /// (a final Ctrl-Z excluded).
     pub fn scan<'a>(&'a mut self, src: &'a [u8], start: usize, limit: usize) -> Scanned<'a> {
-        self.map.breaks.clear();
-        self.map.breaks.push((0, start as u32));
-        let mut i = start;
-        while i < limit && is_plain(src[i]) {
-            i += 1;
-        }
+        let mut i = plain_run(src, start, limit);
         let mut first = (i > start).then_some(start);
         let mut last = i;
-        if i >= limit || is_terminator(src[i]) {
+        if i >= limit || class(src[i]) == END {
             return Scanned {
                 text: &src[start..i],
-                map: &self.map,
+                map: OffsetMap::InPlace(start),
                 comments: Vec::new(),
                 span: first.map(|f| Span::new(f, last)),
                 end: i,
@@ -125,21 +131,26 @@ impl Compactor {
             };
         }
 
-        // Slow path: copy what is significant.
+        // Slow path: copy the runs of significant bytes.
         self.buf.clear();
+        self.offsets.clear();
         self.buf.extend_from_slice(&src[start..i]);
+        self.offsets.extend(start as u32..i as u32);
         let mut comments = Vec::new();
-        let mut gap = false;
         let mut error = None;
         while i < limit {
-            let b = src[i];
-            match b {
-                b';' | b'\n' | b'\r' => break,
-                b' ' | b'\t' => {
-                    gap = true;
-                    i += 1;
+            match class(src[i]) {
+                PLAIN => {
+                    let run = i;
+                    i = plain_run(src, i, limit);
+                    self.buf.extend_from_slice(&src[run..i]);
+                    self.offsets.extend(run as u32..i as u32);
+                    first.get_or_insert(run);
+                    last = i;
                 }
-                b'(' => match comment_end(src, i, limit) {
+                BLANK => i += 1,
+                END => break,
+                OPEN => match comment_end(src, i, limit) {
                     Ok(close) => {
                         comments.push(Comment {
                             text: comment_text(&src[i + 1..close]),
@@ -147,7 +158,6 @@ impl Compactor {
                         });
                         first.get_or_insert(i);
                         last = close + 1;
-                        gap = true;
                         i = close + 1;
                     }
                     Err(d) => {
@@ -155,7 +165,7 @@ impl Compactor {
                         break;
                     }
                 },
-                b')' => {
+                CLOSE => {
                     error = Some(
                         Diagnostic::error("E1002", Span::new(i, i + 1), "`)` without `(`")
                             .with_label("no comment is open here"),
@@ -163,18 +173,8 @@ impl Compactor {
                     i += 1;
                     break;
                 }
-                0x21..=0x7E => {
-                    if gap {
-                        self.map.breaks.push((self.buf.len() as u32, i as u32));
-                        gap = false;
-                    }
-                    self.buf.push(b);
-                    first.get_or_insert(i);
-                    last = i + 1;
-                    i += 1;
-                }
                 _ => {
-                    error = Some(bad_byte(b, i));
+                    error = Some(bad_byte(src[i], i));
                     break;
                 }
             }
@@ -186,7 +186,7 @@ impl Compactor {
         }
         Scanned {
             text: &self.buf,
-            map: &self.map,
+            map: OffsetMap::Copied(&self.offsets),
             comments,
             span: first.map(|f| Span::new(f, last)),
             end: i,
@@ -281,8 +281,7 @@ mod tests {
         let src = src.as_ref();
         let mut c = Compactor::default();
         let s = c.scan(src, 0, src.len());
-        let mut cur = s.map.cursor();
-        let offsets = (0..s.text.len()).map(|i| cur.start(i)).collect();
+        let offsets = (0..s.text.len()).map(|i| s.map.start(i)).collect();
         (
             s.text.to_vec(),
             offsets,

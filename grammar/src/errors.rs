@@ -155,23 +155,35 @@ impl<'a> Fault<'a> {
                 .is_ok()
     }
 
-    /// Tokens `i..j` are letters standing directly next to each other.
+    /// Tokens `start..end` are letters standing directly next to each other
+    /// (the last may be a word token: `GX10` is `G` and `X10`).
     fn letter_run(&self, i: usize) -> (usize, usize) {
         let adjacent = |a: usize, b: usize| self.toks[a].2 == self.toks[b].0;
         let is_letter = |k: usize| self.toks.get(k).is_some_and(|t| t.1.is_letter());
+        let is_word = |k: usize| matches!(self.toks.get(k), Some((_, Tok::Word(_), _)));
         let mut start = i;
         while start > 0 && is_letter(start - 1) && adjacent(start - 1, start) {
             start -= 1;
         }
         let mut end = i + 1;
-        while is_letter(end) && adjacent(end - 1, end) {
-            end += 1;
+        if !is_word(i) {
+            while (is_letter(end) || is_word(end)) && adjacent(end - 1, end) {
+                end += 1;
+                if is_word(end - 1) {
+                    break;
+                }
+            }
         }
         (start, end)
     }
 
+    /// The letters of a run (of a word token, only its letter).
     fn run_span(&self, start: usize, end: usize) -> Span {
-        self.span(start).to(self.span(end - 1))
+        let last = match self.toks[end - 1] {
+            (l, Tok::Word(_), _) => Span::new(l, l + 1),
+            _ => self.span(end - 1),
+        };
+        self.span(start).to(last)
     }
 
     fn expected_note(&self) -> Option<String> {
@@ -199,19 +211,26 @@ impl<'a> Fault<'a> {
             return self.program_fault();
         }
 
-        // Two numbers in a row can only be one malformed number: `X1.2.3`.
-        if let (Some(Tok::Num(_)), Some(Tok::Num(_))) = (prev, tok) {
-            let span = self.span(at - 1).to(here);
+        // A number right after a number can only be one malformed number:
+        // `X1.2.3`.
+        if let (Some(p), Some(Tok::Num(_))) = (prev, tok) {
+            if p.has_number() {
+                let start = match p {
+                    Tok::Word(w) => w.value_start as usize,
+                    _ => self.toks[at - 1].0,
+                };
+                let span = Span::new(start, here.end as usize);
             return Diagnostic::error(
                 "E1007",
                 span,
                 format!("malformed number `{}`", self.text(span)),
             )
             .with_label("a number has at most one decimal point");
+            }
         }
 
         if let Some(t) = tok {
-            if t.is_letter() {
+            if t.is_letter() || matches!(t, Tok::Word(_)) {
                 if let Some(d) = self.letter_fault(at) {
                     return d;
                 }
@@ -320,7 +339,9 @@ impl<'a> Fault<'a> {
         // NC words and a macro statement in one block (E1013).
         let mixed = match (kind, tok) {
             (Kind::Words, Some(t)) => t.starts_statement() && self.depth(at) == 0,
-            (Kind::Stmt, Some(t)) => (t.is_letter() || t == Tok::Comma) && self.prefix_parses(),
+            (Kind::Stmt, Some(t)) => {
+                (t.is_letter() || matches!(t, Tok::Word(_) | Tok::Comma)) && self.prefix_parses()
+            }
             _ => false,
         };
         if mixed {
@@ -415,6 +436,9 @@ impl<'a> Fault<'a> {
             return None;
         }
         let prev = at - 1;
+        if !self.toks[prev].1.is_letter() {
+            return None;
+        }
         if self.toks[prev].2 != self.toks[at].0 {
             // A blank stood between the letters: `G X10` is `G` without value.
             let letter = self.text(self.span(prev));

@@ -21,6 +21,24 @@ pub struct NumLit {
     pub decimals: u8,
 }
 
+/// A whole word with a literal value, `X-12.5`: one token rather than three,
+/// because such words are most of any program and every token costs a
+/// lexer step and a parser shift. A letter directly followed by a sign or a
+/// digit is always the start of a word (outside a word, letters only occur
+/// in keywords), so the lexer can take the word in one piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WordLit {
+    /// The value with its sign applied.
+    pub value: f64,
+    /// The source offset where the value (its sign, if any) starts; set by
+    /// [`lex_block`] (logos only knows the compacted text).
+    pub value_start: u32,
+    /// The upper-case address letter.
+    pub letter: u8,
+    pub has_point: bool,
+    pub decimals: u8,
+}
+
 /// A token. `N` and `O` are tokens of their own because the grammar treats
 /// them apart from the other address letters (sequence and program numbers).
 #[derive(Logos, Debug, Clone, Copy, PartialEq)]
@@ -28,6 +46,8 @@ pub struct NumLit {
 pub enum Tok {
     #[regex("[A-MP-Za-mp-z]", |lex| lex.slice()[0].to_ascii_uppercase())]
     Letter(u8),
+    #[regex(r"[A-MP-Za-mp-z][+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)", |lex| word(lex.slice()))]
+    Word(WordLit),
     #[token("N", ignore(case))]
     N,
     #[token("O", ignore(case))]
@@ -100,6 +120,9 @@ pub enum Tok {
     #[token("BIN", |_| Func::Bin, ignore(case))]
     #[token("BCD", |_| Func::Bcd, ignore(case))]
     Func(Func),
+    /// The end of a block in a batch of blocks parsed together (never
+    /// produced by logos: the driver puts it between blocks).
+    Eob,
 }
 
 impl Tok {
@@ -111,6 +134,7 @@ impl Tok {
             Tok::O => "`O`".into(),
             Tok::Colon => "`:`".into(),
             Tok::Num(_) => "a number".into(),
+            Tok::Word(w) => format!("word `{}…`", w.letter as char),
             Tok::Comma => "`,`".into(),
             Tok::Plus => "`+`".into(),
             Tok::Minus => "`-`".into(),
@@ -133,12 +157,18 @@ impl Tok {
             Tok::Mod => "`MOD`".into(),
             Tok::Atan => "`ATAN`".into(),
             Tok::Func(f) => format!("`{}`", func_name(*f)),
+            Tok::Eob => "end of block".into(),
         }
     }
 
     /// An address letter (including `N` and `O`): the start of a word.
     pub fn is_letter(&self) -> bool {
         matches!(self, Tok::Letter(_) | Tok::N | Tok::O)
+    }
+
+    /// A number, alone or as the value of a word token.
+    pub fn has_number(&self) -> bool {
+        matches!(self, Tok::Num(_) | Tok::Word(_))
     }
 
     /// A token that can only start a macro statement.
@@ -194,16 +224,20 @@ const POW10: [f64; 23] = [
 /// rounded, so it equals what the standard parser returns; longer ones go
 /// through the standard parser.
 pub fn number(s: &[u8]) -> NumLit {
-    let point = s.iter().position(|&b| b == b'.');
-    let decimals = point.map_or(0, |p| s.len() - p - 1);
     let mut mantissa: u64 = 0;
     let mut digits = 0usize;
-    for &b in s {
-        if b != b'.' {
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b.wrapping_sub(b'0')));
+    let mut point = None;
+    for (i, &b) in s.iter().enumerate() {
+        if b == b'.' {
+            point = Some(i);
+        } else {
+            mantissa = mantissa
+                .wrapping_mul(10)
+                .wrapping_add(u64::from(b.wrapping_sub(b'0')));
             digits += 1;
         }
     }
+    let decimals = point.map_or(0, |p| s.len() - p - 1);
     let value = if digits <= 15 {
         mantissa as f64 / POW10[decimals]
     } else {
@@ -219,6 +253,24 @@ pub fn number(s: &[u8]) -> NumLit {
     }
 }
 
+/// Reads a word token: letter, optional sign, number.
+fn word(s: &[u8]) -> WordLit {
+    let letter = s[0].to_ascii_uppercase();
+    let (negative, digits) = match s[1] {
+        b'-' => (true, &s[2..]),
+        b'+' => (false, &s[2..]),
+        _ => (false, &s[1..]),
+    };
+    let n = number(digits);
+    WordLit {
+        value: if negative { -n.value } else { n.value },
+        value_start: 1,
+        letter,
+        has_point: n.has_point,
+        decimals: n.decimals,
+    }
+}
+
 /// A lexed token with its source span.
 pub type Spanned = (usize, Tok, usize);
 
@@ -231,30 +283,48 @@ pub const MAX_DEPTH: usize = 32;
 /// real blocks stay far below it.
 pub const MAX_OPERATORS: usize = 256;
 
-/// Lexes one compacted block into `out` (cleared first), checking what
-/// needs the token stream but not the grammar: stray characters, comments
-/// inside words, bracket depth.
+/// Lexes one compacted block, appending its tokens to `out`, and checks
+/// what needs the token stream but not the grammar: stray characters,
+/// comments inside words, bracket depth. On failure `out` is left as it was.
 pub fn lex_block(
     text: &[u8],
-    map: &OffsetMap,
+    map: OffsetMap<'_>,
     comments: &[Comment],
     out: &mut Vec<Spanned>,
 ) -> Result<(), Box<Diagnostic>> {
-    out.clear();
-    let mut cursor = map.cursor();
+    let first = out.len();
+    let result = lex_into(text, map, comments, first, out);
+    if result.is_err() {
+        out.truncate(first);
+    }
+    result
+}
+
+fn lex_into(
+    text: &[u8],
+    map: OffsetMap<'_>,
+    comments: &[Comment],
+    first: usize,
+    out: &mut Vec<Spanned>,
+) -> Result<(), Box<Diagnostic>> {
     let mut lex = Tok::lexer(text);
     let mut depth = 0usize;
     let mut operators = 0usize;
     while let Some(next) = lex.next() {
         let range = lex.span();
-        let start = cursor.start(range.start);
-        let end = cursor.end(range.end);
+        let start = map.start(range.start);
+        let end = map.end(range.end);
         let tok = match next {
+            Ok(Tok::Word(mut w)) => {
+                w.value_start = map.start(range.start + 1) as u32;
+                Tok::Word(w)
+            }
             Ok(tok) => tok,
             Err(()) => {
                 // `X-12.8.`: a second point right after a number.
                 let after_number = match out.last() {
                     Some(&(l, Tok::Num(_), r)) if r == start => Some(l),
+                    Some(&(_, Tok::Word(w), r)) if r == start => Some(w.value_start as usize),
                     _ => None,
                 };
                 return Err(Box::new(match (text[range.start], after_number) {
@@ -313,7 +383,7 @@ pub fn lex_block(
         out.push((start, tok, end));
     }
     for comment in comments {
-        check_comment_place(comment, out)?;
+        check_comment_place(comment, &out[first..])?;
     }
     Ok(())
 }
@@ -355,7 +425,7 @@ fn check_comment_place(comment: &Comment, toks: &[Spanned]) -> Result<(), Box<Di
             let after_sign = matches!(prev.1, Tok::Plus | Tok::Minus)
                 && k >= 2
                 && (toks[k - 2].1.is_letter() || toks[k - 2].1 == Tok::Comma);
-            let split_number = matches!(prev.1, Tok::Num(_)) && matches!(next.1, Tok::Num(_));
+            let split_number = prev.1.has_number() && matches!(next.1, Tok::Num(_));
             after_address || after_sign || split_number
         }
         _ => false,
@@ -408,21 +478,16 @@ mod tests {
 
     #[test]
     fn no_exponent() {
-        assert_eq!(
-            toks("X1E5"),
-            vec![
-                Tok::Letter(b'X'),
-                Tok::Num(number(b"1")),
-                Tok::Letter(b'E'),
-                Tok::Num(number(b"5"))
-            ]
-        );
+        assert_eq!(toks("X1E5"), vec![Tok::Word(word(b"X1")), Tok::Word(word(b"E5"))]);
     }
 
     #[test]
     fn keywords_versus_words() {
         assert_eq!(toks("DO1")[0], Tok::Do);
-        assert_eq!(toks("D01")[0], Tok::Letter(b'D'));
+        assert_eq!(toks("D01")[0], Tok::Word(word(b"D01")));
+        assert_eq!(toks("x-.5")[0], Tok::Word(WordLit { value: -0.5, value_start: 1, letter: b'X', has_point: true, decimals: 1 }));
+        assert_eq!(toks("X#1")[0], Tok::Letter(b'X'));
+        assert_eq!(toks("X-#1")[..2], [Tok::Letter(b'X'), Tok::Minus]);
         assert_eq!(toks("GOTO10")[0], Tok::Goto);
         assert_eq!(toks("goto10")[0], Tok::Goto);
         assert_eq!(toks("END1")[0], Tok::End);
@@ -445,6 +510,7 @@ mod tests {
     fn malformed_numbers_split() {
         // `1.2.3` lexes as two numbers; the parser reports the pair.
         assert_eq!(toks("1.2.3"), vec![Tok::Num(number(b"1.2")), Tok::Num(number(b".3"))]);
+        assert_eq!(toks("X1.2.3"), vec![Tok::Word(word(b"X1.2")), Tok::Num(number(b".3"))]);
         assert!(Tok::lexer(b"X.".as_slice()).any(|t| t.is_err()));
     }
 }

@@ -1,14 +1,8 @@
-//! The driver: cuts the source into lines and blocks, lexes and parses one
-//! block at a time (so a syntax error costs only its own block), and applies
-//! the rules that span a whole line (`%` lines, simulator directives, the O
-//! line).
+//! The generated parser, what it returns, and its semantic actions.
 
-use crate::ast::{Ast, Block, BlockDelete, Body, Line, ProgramStart, Seq, Stmt, Word};
-use crate::compact::{Compactor, Scanned, Terminator};
+use crate::ast::{BlockDelete, Seq, Stmt, Word};
 use crate::diag::Diagnostic;
-use crate::errors;
-use crate::lexer::{self, Spanned, Tok};
-use crate::span::Span;
+use crate::lexer::Tok;
 use lalrpop_util::ParseError;
 
 lalrpop_util::lalrpop_mod!(
@@ -40,275 +34,8 @@ pub type PError = ParseError<usize, Tok, Box<Diagnostic>>;
 /// The parser of one block (the generated tables are static: this is free).
 pub type BlockParser = grammar::LineParser;
 
-/// Parses a whole file. See [`crate::parse`].
-pub fn parse(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
-    // About one syntax-tree line per LF: counting is cheap and saves growing
-    // (copying) a large vector again and again.
-    let newlines = src.iter().filter(|&&b| b == b'\n').count();
-    let mut driver = Driver {
-        compactor: Compactor::default(),
-        sink: Sink {
-            src,
-            ast: Ast {
-                lines: Vec::with_capacity(newlines + 1),
-            },
-            diags: Vec::new(),
-            tokens: Vec::new(),
-            parser: BlockParser::new(),
-        },
-    };
-    // A Ctrl-Z as the very last byte is the DOS end-of-file mark.
-    let limit = match src.last() {
-        Some(0x1A) => src.len() - 1,
-        _ => src.len(),
-    };
-    let mut pos = 0;
-    while pos < limit {
-        pos = driver.line(pos, limit);
-    }
-    (driver.sink.ast, driver.sink.diags)
-}
-
-struct Driver<'src> {
-    compactor: Compactor,
-    sink: Sink<'src>,
-}
-
-/// Everything but the compactor, so a scanned block (which borrows the
-/// compactor's buffers) can be handed over while it is alive.
-struct Sink<'src> {
-    src: &'src [u8],
-    ast: Ast,
-    diags: Vec<Diagnostic>,
-    /// The current block's tokens (reused).
-    tokens: Vec<Spanned>,
-    parser: BlockParser,
-}
-
-/// What the blocks of one physical line have seen so far.
-#[derive(Default)]
-struct LineState {
-    /// The number of blocks scanned on this line before the current one.
-    blocks: usize,
-    /// A program start stood on this line.
-    program: bool,
-    /// A block with words or a statement (or a faulty one) stood on it.
-    other: bool,
-}
-
-fn is_blank(b: u8) -> bool {
-    b == b' ' || b == b'\t'
-}
-
-impl Driver<'_> {
-    /// Handles the line starting at `pos`; returns where the next one starts.
-    fn line(&mut self, pos: usize, limit: usize) -> usize {
-        let src = self.sink.src;
-        let mut first = pos;
-        while first < limit && is_blank(src[first]) {
-            first += 1;
-        }
-        match src.get(first).filter(|_| first < limit) {
-            Some(b'%') => {
-                let end = line_end(src, first, limit);
-                self.sink.percent_line(first, end);
-                return next_line(src, end, limit);
-            }
-            Some(b'[') if is_directive(&src[first + 1..limit]) => {
-                let end = line_end(src, first, limit);
-                let mut last = end;
-                while last > first && is_blank(src[last - 1]) {
-                    last -= 1;
-                }
-                self.sink.diags.push(
-                    Diagnostic::warning(
-                        "W102",
-                        Span::new(first, last),
-                        "simulator directive ignored",
-                    )
-                    .with_label("this line is skipped")
-                    .with_note("a line starting with `[` and a letter is a simulator setting, not part of the program"),
-                );
-                return next_line(src, end, limit);
-            }
-            _ => {}
-        }
-        let mut state = LineState::default();
-        let mut start = pos;
-        loop {
-            let scanned = self.compactor.scan(src, start, limit);
-            let end = scanned.end;
-            let terminator = scanned.terminator;
-            self.sink.block(scanned, &mut state);
-            state.blocks += 1;
-            match terminator {
-                Terminator::Semicolon => start = end + 1,
-                Terminator::LineEnd => return next_line(src, end, limit),
-                Terminator::Eof => return limit,
-            }
-        }
-    }
-}
-
-/// `[` followed (after blanks) by a letter: `[BILLET X55 Z128`.
-fn is_directive(rest: &[u8]) -> bool {
-    rest.iter()
-        .find(|&&b| !is_blank(b))
-        .is_some_and(|b| b.is_ascii_alphabetic())
-}
-
-/// The offset of the end of the line that contains `from`.
-fn line_end(src: &[u8], from: usize, limit: usize) -> usize {
-    src[from..limit]
-        .iter()
-        .position(|&b| b == b'\n' || b == b'\r')
-        .map_or(limit, |i| from + i)
-}
-
-/// The start of the line after the terminator at `end` (CR LF counts once).
-fn next_line(src: &[u8], end: usize, limit: usize) -> usize {
-    if end >= limit {
-        limit
-    } else if src[end] == b'\r' && src.get(end + 1) == Some(&b'\n') && end + 1 < limit {
-        end + 2
-    } else {
-        end + 1
-    }
-}
-
-impl Sink<'_> {
-    fn percent_line(&mut self, at: usize, end: usize) {
-        self.ast.lines.push(Line::Percent(Span::new(at, at + 1)));
-        let rest = &self.src[at + 1..end];
-        if let Some(i) = rest.iter().position(|&b| !is_blank(b)) {
-            let mut last = rest.len();
-            while last > i && is_blank(rest[last - 1]) {
-                last -= 1;
-            }
-            self.diags.push(
-                Diagnostic::error(
-                    "E1003",
-                    Span::new(at + 1 + i, at + 1 + last),
-                    "text after `%` on a `%` line",
-                )
-                .with_label("a `%` line holds nothing else")
-                .with_help("put the text on a line of its own"),
-            );
-        }
-    }
-
-    fn block(&mut self, scanned: Scanned<'_>, line: &mut LineState) {
-        let after_semicolon = line.blocks > 0;
-        if let Some(d) = scanned.error {
-            line.other = true;
-            self.diags.push(d);
-            return;
-        }
-        let Some(span) = scanned.span else {
-            return; // an empty block
-        };
-        if scanned.text.is_empty() {
-            // Only comments: no tokens to parse.
-            self.ast.lines.push(Line::Block(Block {
-                delete: None,
-                seq: None,
-                body: Body::Words(Vec::new()),
-                comments: scanned.comments,
-                span,
-            }));
-            return;
-        }
-        if let Err(d) = lexer::lex_block(
-            scanned.text,
-            scanned.map,
-            &scanned.comments,
-            &mut self.tokens,
-        ) {
-            line.other = true;
-            self.report(*d, after_semicolon);
-            return;
-        }
-        let tokens = self.tokens.iter().map(|&t| Ok::<_, Box<Diagnostic>>(t));
-        match self.parser.parse(tokens) {
-            Ok(Parsed::Program { number, .. }) => {
-                if line.other {
-                    self.diags.push(
-                        Diagnostic::error(
-                            "E1004",
-                            span,
-                            "a program number must start its own line",
-                        )
-                        .with_label("other blocks stand before it on this line")
-                        .with_help("put the O line on a line of its own"),
-                    );
-                    return;
-                }
-                line.program = true;
-                self.ast.lines.push(Line::ProgramStart(ProgramStart {
-                    number,
-                    comments: scanned.comments,
-                    span,
-                }));
-            }
-            Ok(parsed) => {
-                line.other = true;
-                if line.program {
-                    self.diags.push(
-                        Diagnostic::error(
-                            "E1004",
-                            span,
-                            "the O line holds only the program number and comments",
-                        )
-                        .with_label("a block after the program number")
-                        .with_help("start a new line for this block"),
-                    );
-                    return;
-                }
-                let (delete, seq, body) = match parsed {
-                    Parsed::Words { delete, seq, words } => (delete, seq, Body::Words(words)),
-                    Parsed::Stmt { delete, seq, stmt } => (delete, seq, Body::Stmt(*stmt)),
-                    Parsed::Program { .. } => return,
-                };
-                self.ast.lines.push(Line::Block(Block {
-                    delete,
-                    seq,
-                    body,
-                    comments: scanned.comments,
-                    span,
-                }));
-            }
-            Err(e) => {
-                line.other = true;
-                let d = errors::convert(e, &self.tokens, self.src, &self.parser);
-                self.report(d, after_semicolon);
-            }
-        }
-    }
-
-    fn report(&mut self, mut d: Diagnostic, after_semicolon: bool) {
-        // `T0505 ;bedame de 3mm`: `;` ends a block, it does not start a comment.
-        if after_semicolon && d.code == "E1008" && d.help.is_none() {
-            d.help = Some(
-                "`;` ends a block, so this text is a block of its own: put comments in ( )".into(),
-            );
-        }
-        // `G00 3.7347` is `G003.7347`: say so when blanks made the number.
-        let spelled = self.src.get(d.span.range()).unwrap_or_default();
-        if d.help.is_none() && spelled.iter().any(|&b| is_blank(b)) && d.code != "E1013" {
-            let joined: String = spelled
-                .iter()
-                .filter(|&&b| !is_blank(b))
-                .map(|&b| (b as char).to_ascii_uppercase())
-                .collect();
-            if joined.bytes().all(|b| b.is_ascii_graphic()) {
-                d.help = Some(format!(
-                    "blanks are ignored, even inside numbers: this reads `{joined}`; is an address letter missing?"
-                ));
-            }
-        }
-        self.diags.push(d);
-    }
-}
+/// The parser of a batch of blocks separated by [`Tok::Eob`].
+pub type BatchParser = grammar::BatchParser;
 
 /// The semantic actions that can fail, and the small builders the grammar
 /// uses; each failure names its own code.
@@ -316,6 +43,7 @@ pub(crate) mod actions {
     use super::{PError, Parsed};
     use crate::ast::*;
     use crate::diag::Diagnostic;
+    use crate::lexer::WordLit;
     use crate::span::Span;
     use lalrpop_util::ParseError;
 
@@ -380,19 +108,36 @@ pub(crate) mod actions {
         })
     }
 
-    pub fn word(letter: u8, value: Value, span: Span) -> R<Word> {
-        if let (b'G', Value::Number(n)) = (letter, &value) {
-            if n.decimals > 1 {
-                return fail(
-                    Diagnostic::error(
-                        "E1010",
-                        span,
-                        format!("G value with {} decimals", n.decimals),
-                    )
-                    .with_label("G codes have at most one decimal (`G6.2`)"),
-                );
-            }
+    /// The number of a word token.
+    fn literal(w: WordLit, end: usize) -> Number {
+        Number {
+            value: w.value,
+            has_point: w.has_point,
+            decimals: w.decimals,
+            span: Span::new(w.value_start as usize, end),
         }
+    }
+
+    pub fn word(w: WordLit, span: Span) -> R<Word> {
+        let n = literal(w, span.end as usize);
+        if w.letter == b'G' && n.decimals > 1 {
+            return fail(
+                Diagnostic::error(
+                    "E1010",
+                    span,
+                    format!("G value with {} decimals", n.decimals),
+                )
+                .with_label("G codes have at most one decimal (`G6.2`)"),
+            );
+        }
+        Ok(Word {
+            addr: Addr::Letter(w.letter as char),
+            value: Value::Number(n),
+            span,
+        })
+    }
+
+    pub fn computed_word(letter: u8, value: Value, span: Span) -> R<Word> {
         Ok(Word {
             addr: Addr::Letter(letter as char),
             value,
@@ -400,20 +145,20 @@ pub(crate) mod actions {
         })
     }
 
-    pub fn comma_word(letter: u8, letter_span: Span, n: Number, span: Span) -> R<Word> {
-        if !matches!(letter, b'A' | b'C' | b'R') {
+    pub fn comma_word(w: WordLit, letter: usize, span: Span) -> R<Word> {
+        if !matches!(w.letter, b'A' | b'C' | b'R') {
             return fail(
                 Diagnostic::error(
                     "E1008",
-                    letter_span,
-                    format!("unknown comma word `,{}`", letter as char),
+                    Span::new(letter, letter + 1),
+                    format!("unknown comma word `,{}`", w.letter as char),
                 )
                 .with_label("only `,A`, `,C` and `,R` exist"),
             );
         }
         Ok(Word {
-            addr: Addr::Comma(letter as char),
-            value: Value::Number(n),
+            addr: Addr::Comma(w.letter as char),
+            value: Value::Number(literal(w, span.end as usize)),
             span,
         })
     }

@@ -69,6 +69,17 @@ pub enum Event {
         dlead: Option<f64>,
         q: Option<f64>,
     },
+    /// G32.2/G32.3: one arc cut at constant lead (end point and centre as
+    /// `Arc`, the lead along the arc's long axis).
+    ArcThread {
+        dir: Dir,
+        x: f64,
+        z: f64,
+        cx: f64,
+        cz: f64,
+        lead: f64,
+        q: Option<f64>,
+    },
     Dwell {
         s: f64,
     },
@@ -134,6 +145,7 @@ impl Event {
                 | Event::Ellipse { .. }
                 | Event::Parabola { .. }
                 | Event::Thread { .. }
+                | Event::ArcThread { .. }
                 | Event::Skip { .. }
         )
     }
@@ -240,6 +252,30 @@ impl Display for Event {
                 if let Some(d) = dlead {
                     write!(f, " DLEAD={}", Num(*d))?;
                 }
+                if let Some(q) = q {
+                    write!(f, " Q={}", Num(*q))?;
+                }
+                Ok(())
+            }
+            Event::ArcThread {
+                dir: d,
+                x,
+                z,
+                cx,
+                cz,
+                lead,
+                q,
+            } => {
+                write!(
+                    f,
+                    "ARCTHREAD DIR={} X={} Z={} CX={} CZ={} LEAD={}",
+                    dir(*d),
+                    Num(*x),
+                    Num(*z),
+                    Num(*cx),
+                    Num(*cz),
+                    Num(*lead)
+                )?;
                 if let Some(q) = q {
                     write!(f, " Q={}", Num(*q))?;
                 }

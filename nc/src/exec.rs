@@ -2,10 +2,11 @@
 //! it leaves behind.
 
 use crate::block::{self, round_half_away, Parsed};
+use crate::contour;
 use crate::error::{fail, NcError};
 use crate::event::{Dir, Event, SpindleDir, StopKind};
 use crate::gcode::{self, Code};
-use crate::geom;
+use crate::geom::{self, Element};
 use crate::machine::{ArcWithoutCenter, DecimalPoint, Machine, SpindleType};
 use crate::state::{Pt, State};
 use crate::words::{Word, NO_POINT};
@@ -82,12 +83,27 @@ impl Nc {
     pub fn exec(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
         let p = block::parse(words, &self.machine)?;
         let mut out = Outcome::default();
-        self.modal_settings(&p, sink)?;
-        self.before_motion(&p, words, sink)?;
+        // While an element waits for its corner (contour module), the
+        // block's events are held behind it so the canon keeps block order.
+        contour::in_order(self, sink, |nc, s| {
+            nc.modal_settings(&p, s)?;
+            nc.before_motion(&p, words, s)
+        })?;
         self.remember(&p);
         self.motion(&p, sink, &mut out)?;
-        self.after_motion(&p, sink);
-        self.stops(&p, sink, &mut out);
+        contour::in_order(self, sink, |nc, s| {
+            nc.after_motion(&p, s);
+            Ok(())
+        })?;
+        if p.has_m(2) || p.has_m(30) {
+            // The program ends: a waiting element is printed whole.
+            contour::flush(self, sink)?;
+        }
+        contour::in_order(self, sink, |nc, s| {
+            nc.stops(&p, s, &mut out);
+            Ok(())
+        })?;
+        contour::end_of_block(self)?;
         self.profile.clear();
         Ok(out)
     }
@@ -273,39 +289,57 @@ impl Nc {
     }
 
     /// Group 2: the motion or the one-shot function.
-    fn motion(
-        &mut self,
-        p: &Parsed,
-        sink: &mut dyn Sink,
-        out: &mut Outcome,
-    ) -> Result<(), NcError> {
+    fn motion(&mut self, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
         if let Some(code) = p.one_shot() {
-            return self.one_shot(code, p, sink, out);
+            if code == 90 {
+                // G09: its move decides about waiting corners.
+                return self.one_shot(code, p, sink, out);
+            }
+            contour::before_one_shot(self, code, sink)?;
+            return contour::in_order(self, sink, |nc, s| nc.one_shot(code, p, s, out));
         }
         let drill = self.st.group(gcode::DRILL);
         if drill != 800 {
+            self.flush_if_moving(p, sink)?;
             return crate::cycles::drill(self, drill, p, sink, out);
         }
         let code = self.st.group(gcode::MOTION);
         if !matches!(code, 0 | 10 | 20 | 30 | 50 | 51) {
             return if matches!(code, 62 | 63 | 72 | 73) {
-                crate::contour::conic(self, code, p, sink, out)
+                contour::conic(self, code, p, sink, out)
             } else {
+                self.flush_if_moving(p, sink)?;
                 crate::cycles::motion(self, code, p, sink, out)
             };
         }
+        let corner = contour::corner_word(self, code, p)?;
         let arc_words = matches!(code, 20 | 30) && (p.has(b'I') || p.has(b'K') || p.has(b'R'));
-        if !p.has_axis() && !arc_words {
+        let angle_words = matches!(code, 0 | 10) && contour::has_angle(p);
+        if !p.has_axis() && !arc_words && !angle_words {
             return Ok(());
         }
         let target = self.target(p);
         match code {
-            0 => self.rapid(target, sink),
-            10 => self.line(target, sink)?,
-            20 | 30 => self.arc(code == 20, target, p, sink)?,
-            _ => self.three_point_arc(code == 51, target, p, sink)?,
+            0 | 10 => contour::straight(self, code == 0, p, corner, sink)?,
+            20 | 30 => {
+                if let Some(e) = self.arc_element(code == 20, target, p)? {
+                    contour::feed_element(self, e, corner, sink)?;
+                }
+            }
+            _ => {
+                contour::flush(self, sink)?;
+                self.three_point_arc(code == 51, target, p, sink)?
+            }
         }
         out.moved = true;
+        Ok(())
+    }
+
+    /// A move that cannot take a corner prints what waits first.
+    fn flush_if_moving(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+        if p.has_axis() {
+            contour::flush(self, sink)?;
+        }
         Ok(())
     }
 
@@ -364,19 +398,27 @@ impl Nc {
         Ok(())
     }
 
-    pub(crate) fn arc(
-        &mut self,
-        cw: bool,
-        to: Pt,
-        p: &Parsed,
-        sink: &mut dyn Sink,
-    ) -> Result<(), NcError> {
+    /// A G02/G03 move without corners (cycle legs, profiles).
+    pub(crate) fn arc(&mut self, cw: bool, to: Pt, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+        match self.arc_element(cw, to, p)? {
+            None => Ok(()),
+            Some(Element::Line { to, .. }) => self.line(to, sink),
+            Some(Element::Arc { to, centre, .. }) => {
+                self.emit_arc(cw, to, centre, sink);
+                Ok(())
+            }
+        }
+    }
+
+    /// The element of a G02/G03 block from the current point: its arc
+    /// from R or I/K, or a line where `arc_without_center = "line"`.
+    /// `None` for a 0° arc with R (end = start), which is no move (W108).
+    pub(crate) fn arc_element(&self, cw: bool, to: Pt, p: &Parsed) -> Result<Option<Element>, NcError> {
         let from = self.st.pos;
         let centre = if let Some(r) = self.len_of(p, b'R') {
             match geom::centre_from_radius(from, to, r, cw)? {
                 Some(c) => c,
-                // A 0° arc with R: no move, nothing printed (W108).
-                None => return Ok(()),
+                None => return Ok(None),
             }
         } else if p.has(b'I') || p.has(b'K') {
             let i = self.len_of(p, b'I').unwrap_or(0.0);
@@ -386,18 +428,14 @@ impl Nc {
             c
         } else {
             return match self.machine.machine.arc_without_center {
-                ArcWithoutCenter::Line => self.line(to, sink),
+                ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
                 ArcWithoutCenter::Alarm => fail(
                     2006,
-                    format!(
-                        "{} needs R or I/K to define its centre",
-                        if cw { "G02" } else { "G03" }
-                    ),
+                    format!("{} needs R or I/K to define its centre", if cw { "G02" } else { "G03" }),
                 ),
             };
         };
-        self.emit_arc(cw, to, centre, sink);
-        Ok(())
+        Ok(Some(Element::Arc { from, to, centre, cw }))
     }
 
     pub(crate) fn emit_arc(&mut self, cw: bool, to: Pt, c: Pt, sink: &mut dyn Sink) {

@@ -1,0 +1,94 @@
+//! Macro calls (dialect.md §7.9–§7.12) end to end, canons checked by hand.
+
+use compiler::{compile, Options};
+use nc::{Event, Machine};
+use vm::{Status, Vm};
+
+fn run_with(src: &str, machine: Machine) -> (Vec<String>, Status) {
+    let opts = Options { machine: machine.clone(), ..Options::default() };
+    let c = compile("m.nc", src.as_bytes(), &opts);
+    assert!(!c.has_errors(), "{}", c.render());
+    let mut vm = Vm::new(c.module.expect("module"), machine);
+    let mut events: Vec<Event> = Vec::new();
+    let status = vm.run(&mut events);
+    (events.iter().map(|e| e.to_string()).collect(), status)
+}
+
+fn run(src: &str) -> (Vec<String>, Status) {
+    run_with(src, Machine::reference())
+}
+
+#[test]
+fn g65_arguments_of_both_specifications() {
+    // A→#1, B→#2, X→#24; the second I is I2 → #7, the second K is K2 → #9.
+    // The macro moves to X = #1 + #2 + #24 = 1 + 2 + 30 = 33, Z = #7 + #9 = -5.
+    let src = "G65 P9001 A1 B2 X30 I0 K0 I-2 K-3\nM30\nO9001\nG00 X[#1+#2+#24] Z[#7+#9]\nM99\n";
+    let (canon, status) = run(src);
+    assert_eq!(status, Status::Done);
+    assert_eq!(canon, ["RAPID X=33 Z=-5", "STOP KIND=M30"]);
+}
+
+#[test]
+fn g65_gives_a_fresh_local_level_and_m98_shares_it() {
+    // #1 = 7 in the main program; G65 sees A = 1 as #1 and no #2; after the
+    // call #1 is 7 again. M98 shares level 0: O0002 sets #1 = 9.
+    let src = "#1=7\nG65 P0001 A1\nG00 X#1\nM98 P0002\nG00 X#1\nM30\nO0001\nG00 X[#1*10] Z#2\nM99\nO0002\n#1=9\nM99\n";
+    let (canon, _) = run(src);
+    // Z#2 is vacant in the macro, so the word is left out (Z stays 0).
+    assert_eq!(canon, ["RAPID X=10 Z=0", "RAPID X=7 Z=0", "RAPID X=9 Z=0", "STOP KIND=M30"]);
+}
+
+#[test]
+fn g66_calls_after_every_move_until_g67() {
+    // Each move is followed by the macro, which dwells #17 ms: the argument
+    // Q lands in #17 (P names the program). M08 alone does not move.
+    let src = "G66 P9002 Q250\nG00 X10\nG01 Z-5 F100\nM08\nG67\nG00 X20\nM30\nO9002\nG04 P#17\nM99\n";
+    let (canon, _) = run(src);
+    assert_eq!(
+        canon,
+        [
+            "RAPID X=10 Z=0",
+            "DWELL S=0.25",
+            "FEED F=100 MODE=MIN",
+            "LINE X=10 Z=-5",
+            "DWELL S=0.25",
+            "M CODE=8",
+            "RAPID X=20 Z=-5",
+            "STOP KIND=M30"
+        ]
+    );
+}
+
+#[test]
+fn m9000_codes_call_o9000_programs() {
+    let src = "G00 X10\nM9005\nM30\nO9005\nG00 U4\nM99\n";
+    let (canon, _) = run(src);
+    assert_eq!(canon, ["RAPID X=10 Z=0", "RAPID X=14 Z=0", "STOP KIND=M30"]);
+}
+
+#[test]
+fn g_code_macros_call_o9010_onwards() {
+    let m = Machine::from_toml("[macro]\ng_code_macros = [0, 150, 0, 0, 0, 0, 0, 0, 0, 0]\n").expect("machine");
+    // №087 = 150 → G150 calls O9011 with A → #1.
+    let src = "G150 A12\nM30\nO9011\nG00 X#1\nM99\n";
+    let (canon, _) = run_with(src, m);
+    assert_eq!(canon, ["RAPID X=12 Z=0", "STOP KIND=M30"]);
+}
+
+#[test]
+fn the_fifth_macro_level_is_e6004() {
+    // Each level calls the next: levels 1–4 print, the fifth call alarms.
+    let src = "G65 P1\nM30\nO1\nG00 W-1\nG65 P2\nM99\nO2\nG00 W-1\nG65 P3\nM99\nO3\nG00 W-1\nG65 P4\nM99\nO4\nG00 W-1\nG65 P5\nM99\nO5\nG00 W-1\nM99\n";
+    let (canon, status) = run(src);
+    let Status::Alarm(a) = status else { panic!("{status:?}") };
+    assert_eq!(a.code, 6004);
+    assert_eq!(canon.iter().filter(|l| l.starts_with("RAPID")).count(), 4);
+}
+
+#[test]
+fn macro_a_h_codes_compute_and_jump() {
+    // H02 #100 = 3 + 4; H81 jumps to N20 when #100 = 7, skipping X99.
+    let src = "G65 H01 P#101 Q3\nG65 H02 P#100 Q#101 R4\nG65 H81 P20 Q#100 R7\nG00 X99\nN20 G00 X#100\nM30\n";
+    let (canon, _) = run(src);
+    assert_eq!(canon, ["RAPID X=7 Z=0", "STOP KIND=M30"]);
+}

@@ -1,0 +1,33 @@
+//! G70 finishing (cycles.md §8): the profile blocks run as ordinary
+//! blocks, so G00 stays rapid and their F, S and T act where they would in
+//! any block; only their M codes are dropped.
+
+use super::out::Out;
+use super::profile::{check_codes, corner_word};
+use crate::block;
+use crate::error::NcError;
+use crate::exec::{Nc, Sink};
+use crate::gcode;
+use crate::words::{addr, Word};
+
+pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Result<(), NcError> {
+    let a = nc.st.pos;
+    let motion = nc.st.group(gcode::MOTION);
+    let comp = nc.st.group(gcode::COMP);
+    for (words, tag) in blocks {
+        let tag = *tag;
+        let p = block::parse(words, &nc.machine).map_err(|e| e.at(tag))?;
+        check_codes(&p, tag)?;
+        if corner_word(&p) {
+            let msg = "chamfers and roundings (L, D, ,C, ,R) in a G70 profile are not supported yet";
+            return Err(NcError::new(2099, msg).at(tag));
+        }
+        let kept: Vec<Word> = words.iter().filter(|w| w.addr != addr(b'M')).copied().collect();
+        nc.exec(&kept, sink).map_err(|e| if e.at.is_some() { e } else { e.at(tag) })?;
+    }
+    Out { nc: &mut *nc, sink: &mut *sink, mirrored: false }.rapid(a);
+    // The modes in force before G70 are back (cycles.md §8, comp.md §8).
+    nc.st.modal[gcode::MOTION as usize] = motion;
+    nc.st.modal[gcode::COMP as usize] = comp;
+    Ok(())
+}

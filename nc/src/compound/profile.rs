@@ -1,0 +1,224 @@
+//! The ns…nf blocks handed over for a roughing cycle, read as contour
+//! elements (cycles.md §5, §7, §15). The blocks are not executed: only
+//! their geometry and their G00/G01 mode count; F, S, T and M words are
+//! ignored (cycles.md §5 "Decision (errors)").
+
+use super::geo::{Axis, Curve, EPS};
+use crate::block::{self, Parsed};
+use crate::error::{fail, NcError};
+use crate::exec::Nc;
+use crate::gcode::{self, Code};
+use crate::geom::{self, Element};
+use crate::machine::ArcWithoutCenter;
+use crate::state::Pt;
+use crate::words::{Word, COMMA_A, COMMA_C, COMMA_R};
+
+/// One element of a profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Seg {
+    pub curve: Curve,
+    /// Written as G00: the ns infeed of the cycles is then a rapid.
+    pub rapid: bool,
+    /// The element of the first (ns) block.
+    pub ns: bool,
+}
+
+impl Seg {
+    /// The same element with its curve changed (moved, mirrored).
+    pub fn map(self, f: impl Fn(&Curve) -> Curve) -> Seg {
+        Seg { curve: f(&self.curve), ..self }
+    }
+}
+
+/// The two types of G71/G72 (cycles.md §15): read from the ns block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// The ns block names only the infeed axis.
+    Plain,
+    /// The ns block names both axes: profiles with pockets.
+    Pockets,
+}
+
+/// A handed-over block, or E2020 when the compiler handed none.
+fn first(blocks: &[(Vec<Word>, u32)]) -> Result<&(Vec<Word>, u32), NcError> {
+    blocks
+        .first()
+        .ok_or_else(|| NcError::new(2020, "the cycle has no profile: P(ns) and Q(nf) name no blocks"))
+}
+
+fn parse_at(nc: &Nc, words: &[Word], tag: u32) -> Result<Parsed, NcError> {
+    block::parse(words, &nc.machine).map_err(|e| e.at(tag))
+}
+
+/// E2021, checked before anything else about the ns block of G71/G72
+/// (dialect.md §4.8): its motion code, its own or the one in force, must be
+/// G00/G01, and it must name the infeed axis. Returns the cycle type.
+pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kind, NcError> {
+    let (words, tag) = first(blocks)?;
+    let p = parse_at(nc, words, *tag)?;
+    let code = p.motion().unwrap_or(nc.st.group(gcode::MOTION));
+    let name = if facing { "G72" } else { "G71" };
+    if !matches!(code, 0 | 10) {
+        let msg = format!(
+            "the first profile block (ns) of {name} must move with G00 or G01, not {}",
+            gcode::name(code)
+        );
+        return Err(NcError::new(2021, msg).at(*tag));
+    }
+    let has_x = p.has(b'X') || p.has(b'U');
+    let has_z = p.has(b'Z') || p.has(b'W');
+    let (infeed, other, axis) = if facing { (has_z, has_x, "Z(W)") } else { (has_x, has_z, "X(U)") };
+    if !infeed {
+        let msg = format!("the first profile block (ns) of {name} must name {axis}");
+        return Err(NcError::new(2021, msg).at(*tag));
+    }
+    Ok(if other { Kind::Pockets } else { Kind::Plain })
+}
+
+/// Chamfer and rounding words: the corner geometry belongs to the contour
+/// module, which does not offer it over profile elements yet.
+pub fn corner_word(p: &Parsed) -> bool {
+    p.has(b'L') || p.has(b'D') || p.val[COMMA_C as usize].is_some() || p.val[COMMA_R as usize].is_some()
+}
+
+/// E2020 for the codes a profile may not hold: group 00 and the drilling
+/// cycles (dialect.md §4.8).
+pub fn check_codes(p: &Parsed, tag: u32) -> Result<(), NcError> {
+    if let Some(code) = p.one_shot() {
+        let msg = format!("{} (group 00) may not stand in a G70–G73 profile", gcode::name(code));
+        return Err(NcError::new(2020, msg).at(tag));
+    }
+    for &(code, _) in p.gs() {
+        if gcode::group(code) == Some(gcode::DRILL) && code != 800 {
+            let msg = format!("{} may not stand in a G70–G73 profile", gcode::name(code));
+            return Err(NcError::new(2020, msg).at(tag));
+        }
+    }
+    Ok(())
+}
+
+/// The profile of a roughing cycle (G71, G72, G73) from the tool position.
+pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
+    first(blocks)?;
+    let mut pos = nc.st.pos;
+    let mut code = nc.st.group(gcode::MOTION);
+    let mut segs = Vec::with_capacity(blocks.len());
+    for (i, (words, tag)) in blocks.iter().enumerate() {
+        let p = parse_at(nc, words, *tag)?;
+        check_codes(&p, *tag)?;
+        if let Some(c) = p.motion() {
+            code = c;
+        }
+        if corner_word(&p) {
+            let msg = "chamfers and roundings (L, D, ,C, ,R) in a G71–G73 profile are not supported yet";
+            return Err(NcError::new(2099, msg).at(*tag));
+        }
+        if let Some(el) = element(nc, code, &p, pos).map_err(|e| e.at(*tag))? {
+            pos = el.end();
+            segs.push(Seg { curve: Curve::new(el), rapid: code == 0, ns: i == 0 });
+        }
+    }
+    Ok(segs)
+}
+
+/// The end point of a profile block: U/W are relative to the previous
+/// profile point.
+fn target(nc: &Nc, p: &Parsed, from: Pt) -> Pt {
+    let mut t = from;
+    if let Some(x) = nc.len_of(p, b'X') {
+        t.r = x / 2.0;
+    } else if let Some(u) = nc.len_of(p, b'U') {
+        t.r += u / 2.0;
+    }
+    if let Some(z) = nc.len_of(p, b'Z') {
+        t.z = z;
+    } else if let Some(w) = nc.len_of(p, b'W') {
+        t.z += w;
+    }
+    t
+}
+
+/// The element one profile block describes, `None` when it does not move.
+fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>, NcError> {
+    let to = target(nc, p, from);
+    match code {
+        0 | 10 => {
+            if p.has(b'Q') || p.val[COMMA_A as usize].is_some() {
+                return fail(2099, "angle programming (Q, ,A) in a G71–G73 profile is not supported yet");
+            }
+            Ok(p.has_axis().then_some(Element::Line { from, to }))
+        }
+        20 | 30 => arc(nc, code == 20, p, from, to),
+        50 | 51 => three_point(nc, code == 51, p, from, to).map(Some),
+        62 | 63 | 72 | 73 => fail(
+            2099,
+            format!("{} in a G71–G73 profile is not supported yet", gcode::name(code)),
+        ),
+        _ => fail(
+            2020,
+            format!(
+                "{} may not stand in a G71–G73 profile: only G00, G01, G02, G03 (and G05) describe it",
+                gcode::name(code)
+            ),
+        ),
+    }
+}
+
+/// G02/G03 as `Nc::arc` reads them (dialect.md §4.1 rules 2–5).
+fn arc(nc: &Nc, cw: bool, p: &Parsed, from: Pt, to: Pt) -> Result<Option<Element>, NcError> {
+    if let Some(r) = nc.len_of(p, b'R') {
+        let centre = geom::centre_from_radius(from, to, r, cw)?;
+        return Ok(centre.map(|centre| Element::Arc { from, to, centre, cw }));
+    }
+    if p.has(b'I') || p.has(b'K') {
+        let i = nc.len_of(p, b'I').unwrap_or(0.0);
+        let k = nc.len_of(p, b'K').unwrap_or(0.0);
+        let centre = Pt::new(from.r + i, from.z + k);
+        geom::check_on_circle(from, to, centre, nc.machine.machine.arc_tolerance_mm)?;
+        return Ok(Some(Element::Arc { from, to, centre, cw }));
+    }
+    if !p.has_axis() {
+        return Ok(None);
+    }
+    match nc.machine.machine.arc_without_center {
+        ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
+        ArcWithoutCenter::Alarm => fail(
+            2006,
+            format!("{} needs R or I/K to define its centre", if cw { "G02" } else { "G03" }),
+        ),
+    }
+}
+
+/// G05 (mid point relative to the start) and G05.1 (absolute mid point).
+fn three_point(nc: &Nc, absolute: bool, p: &Parsed, from: Pt, to: Pt) -> Result<Element, NcError> {
+    if !p.has(b'I') && !p.has(b'K') {
+        return fail(2006, "G05 needs the mid point I/K");
+    }
+    let i = nc.len_of(p, b'I');
+    let k = nc.len_of(p, b'K');
+    let mid = if absolute {
+        Pt::new(i.map_or(from.r, |x| x / 2.0), k.unwrap_or(from.z))
+    } else {
+        Pt::new(from.r + i.unwrap_or(0.0), from.z + k.unwrap_or(0.0))
+    };
+    let (centre, cw) = geom::circle_through(from, mid, to)?;
+    Ok(Element::Arc { from, to, centre, cw })
+}
+
+/// The deepest point of a curve below the level `base` (r), infeed
+/// direction `sx`: sx·(r − base) at its largest.
+pub fn max_depth(c: &Curve, base: f64, sx: f64) -> f64 {
+    let (lo, hi) = c.range(Axis::R, 0.0, 1.0);
+    (sx * (lo - base)).max(sx * (hi - base))
+}
+
+/// Where the tail of a profile starts (cycles.md §5): the final elements
+/// that lie on or outside the start level `base` at every point. The ns
+/// element is never part of it, so `segs` holds the elements after it.
+pub fn tail_start(segs: &[Seg], base: f64, sx: f64) -> usize {
+    let mut t = segs.len();
+    while t > 0 && max_depth(&segs[t - 1].curve, base, sx) <= EPS {
+        t -= 1;
+    }
+    t
+}

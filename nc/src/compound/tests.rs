@@ -1,0 +1,1 @@
+//! Hand-checked paths of G70–G73 through `Nc::exec`.
