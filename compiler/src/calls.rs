@@ -140,7 +140,7 @@ fn macro_call(
     modal: bool,
     p: Option<WordValue<'_>>,
     l: Option<WordValue<'_>>,
-    args: &[(u8, WordValue<'_>, Span)],
+    args: &[crate::words::Arg<'_>],
     span: Span,
 ) {
     let name = if modal { "G66" } else { "G65" };
@@ -157,9 +157,17 @@ fn macro_call(
         None => Some(load(g, 1.0)),
     };
     let Some(count) = count else { return };
-    for (var, v, _) in args {
-        if let Some(src) = g.value_reg(v) {
-            g.emit(Instr::Arg { var: *var, src });
+    let increment = g.machine.machine.decimal_point == nc::machine::DecimalPoint::Increment;
+    for a in args {
+        let value = match a.value {
+            // In increment mode a length without a point is in 0.001 mm.
+            WordValue::Literal(v, flags) if increment && a.length && flags & nc::words::NO_POINT != 0 => {
+                WordValue::Literal(v * 0.001, flags)
+            }
+            v => v,
+        };
+        if let Some(src) = g.value_reg(&value) {
+            g.emit(Instr::Arg { var: a.var, src });
         }
     }
     match p.literal() {

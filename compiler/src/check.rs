@@ -93,7 +93,9 @@ impl DryRun<'_> {
             return Ok(Flow::End);
         };
         let unit = &self.units[prog.unit];
-        for &line in &prog.blocks {
+        let mut next = 0;
+        while let Some(&line) = prog.blocks.get(next) {
+            next += 1;
             let Some(block) = link::block(unit, line) else {
                 continue;
             };
@@ -116,16 +118,20 @@ impl DryRun<'_> {
                 return Ok(Flow::End);
             };
             let lits = literal_words(&split.nc);
+            // A G70–G73 cycle gets its profile; G71–G73 go on after nf.
+            let resume = crate::profile::hand_over(&mut self.nc, unit, prog, &split.nc, &self.skip);
             if !lits.is_empty() {
                 match self.nc.exec(&lits, &mut Discard) {
                     Ok(out) if out.end.is_some() => return Ok(Flow::End),
                     Ok(_) => {}
                     Err(e) if compile_time(e.code) => {
-                        return Err((prog.unit, error_at(&e, block.span)))
+                        let span = crate::profile::error_span(unit, e.at, block.span);
+                        return Err((prog.unit, error_at(&e, span)));
                     }
                     Err(_) => return Ok(Flow::End),
                 }
             }
+            next = resume.unwrap_or(next);
             match split.call {
                 None => {}
                 Some(Call::Sub { p: Some(p), l, .. }) => {

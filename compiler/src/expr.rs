@@ -7,6 +7,7 @@ use grammar::ast::{BinOp, Cond, Expr, Func, LogicOp, RelOp, UnOp};
 use isa::Instr;
 use nc::value::{self, Bin, Rel};
 use nc::NcError;
+use std::collections::HashMap;
 
 /// Register allocation for the statement being compiled: a stack, reset at
 /// every block (no value lives across blocks in a register).
@@ -15,6 +16,9 @@ pub struct ExprGen {
     next: u16,
     max: u16,
     overflow: bool,
+    /// Variables whose value is known at this point of straight-line code
+    /// (constant propagation, -O1); NaN is a known vacant value.
+    known: HashMap<u32, f64>,
 }
 
 pub fn bin_of(op: BinOp) -> Bin {
@@ -64,29 +68,84 @@ pub fn rel_of(op: RelOp) -> Rel {
 
 /// The value of an expression that reads no variable; `None` when it does.
 pub fn fold(e: &Expr) -> Option<Result<f64, NcError>> {
+    fold_with(e, &HashMap::new())
+}
+
+/// The value of an expression whose variables are all in `known`.
+pub fn fold_with(e: &Expr, known: &HashMap<u32, f64>) -> Option<Result<f64, NcError>> {
+    let f = |e: &Expr| fold_with(e, known);
     Some(match e {
         Expr::Num(n) => Ok(n.value),
-        Expr::Var(_) => return None,
-        Expr::Paren { inner, .. } => return fold(inner),
+        Expr::Var(v) => match f(&v.index)? {
+            Ok(n) if n.fract() == 0.0 && n >= 0.0 => return known.get(&(n as u32)).map(|v| Ok(*v)),
+            _ => return None,
+        },
+        Expr::Paren { inner, .. } => return f(inner),
         Expr::Unary { op, operand, .. } => {
-            let v = fold(operand)?;
+            let v = f(operand)?;
             v.map(|v| if *op == UnOp::Neg { value::neg(v) } else { v })
         }
         Expr::Binary { op, lhs, rhs, .. } => {
-            let (a, b) = (fold(lhs)?, fold(rhs)?);
+            let (a, b) = (f(lhs)?, f(rhs)?);
             a.and_then(|a| b.and_then(|b| value::binary(bin_of(*op), a, b)))
         }
-        Expr::Call { func, arg, .. } => fold(arg)?.and_then(|a| value::func(func_of(*func), a)),
+        Expr::Call { func, arg, .. } => f(arg)?.and_then(|a| value::func(func_of(*func), a)),
         Expr::Atan2 { y, x, .. } => {
-            let (a, b) = (fold(y)?, fold(x)?);
+            let (a, b) = (f(y)?, f(x)?);
             a.and_then(|y| b.and_then(|x| value::atan2(y, x)))
         }
     })
 }
 
+/// Plain variables a program can hold constants in (system variables
+/// change behind the compiler's back).
+fn propagatable(n: u32) -> bool {
+    matches!(n, 1..=33 | 100..=199 | 500..=999)
+}
+
 impl ExprGen {
     pub fn reset(&mut self) {
         self.next = 0;
+    }
+
+    /// A join point (a jump target, a loop head, a call): nothing is known.
+    pub fn forget_all(&mut self) {
+        self.known.clear();
+    }
+
+    pub fn forget(&mut self, var: u32) {
+        self.known.remove(&var);
+    }
+
+    pub fn snapshot(&self) -> HashMap<u32, f64> {
+        self.known.clone()
+    }
+
+    /// After a conditional statement: keep only what it left unchanged.
+    pub fn restore_minus_changes(&mut self, before: HashMap<u32, f64>) {
+        let now = std::mem::take(&mut self.known);
+        self.known = before
+            .into_iter()
+            .filter(|(k, v)| now.get(k).is_some_and(|w| w.to_bits() == v.to_bits()))
+            .collect();
+    }
+
+    /// After `#var = e`: remember its value when it is a constant.
+    pub fn assigned(&mut self, var: u32, value: &Expr, optimize: bool) {
+        match fold_with(value, &self.known) {
+            Some(Ok(v)) if optimize && propagatable(var) => {
+                self.known.insert(var, v);
+            }
+            _ => self.forget(var),
+        }
+    }
+
+    /// The value of `e` from constants and known variables (-O1).
+    pub fn known_value(&self, e: &Expr) -> Option<f64> {
+        match fold_with(e, &self.known) {
+            Some(Ok(v)) => Some(v),
+            _ => None,
+        }
     }
 
     pub fn touch(&mut self, n: u16) {
@@ -142,7 +201,8 @@ impl ExprGen {
 
     fn node(&mut self, g: &mut Gen<'_>, e: &Expr) -> u8 {
         if g.optimize || matches!(e, Expr::Num(_)) {
-            if let Some(Ok(v)) = fold(e) {
+            let folded = if g.optimize { fold_with(e, &self.known) } else { fold(e) };
+            if let Some(Ok(v)) = folded {
                 return self.load_const(g, v);
             }
         }

@@ -8,6 +8,7 @@ pub mod codes;
 pub mod expr;
 pub mod link;
 pub mod lower;
+pub mod profile;
 pub mod words;
 
 use grammar::{Diagnostic, SourceFile};

@@ -30,6 +30,8 @@ pub struct Gen<'a> {
     pub expr: ExprGen,
     /// The number of the program being lowered.
     program_number: u32,
+    /// G70–G73 profiles: block starts and jumps past nf.
+    pub(crate) profiles: crate::profile::Profiles,
 }
 
 /// An open DO loop of the program being lowered.
@@ -84,6 +86,7 @@ impl<'a> Gen<'a> {
             loc: SourceLoc::default(),
             expr: ExprGen::default(),
             program_number: 0,
+            profiles: Default::default(),
         }
     }
 
@@ -124,7 +127,7 @@ impl<'a> Gen<'a> {
         (self.module.strings.len() - 1) as u32
     }
 
-    fn set_loc(&mut self, span: Span) {
+    pub(crate) fn set_loc(&mut self, span: Span) {
         let (line, col) = self.files[self.unit].line_col(span.start);
         self.loc = SourceLoc {
             file: self.unit as u16,
@@ -170,14 +173,18 @@ impl<'a> Gen<'a> {
 
     fn lower_program(&mut self, prog: &Program, main: bool) -> Vec<(u32, u32)> {
         let mut st = ProgState::default();
+        self.expr.forget_all();
         let entry_pc = self.pc();
         let unit = &self.units[prog.unit];
         for &line in &prog.blocks {
+            crate::profile::block_start(self, line);
             let Some(block) = link::block(unit, line) else {
                 continue;
             };
             self.set_loc(block.span);
             if let Some(seq) = block.seq {
+                // A block with a number may be a jump target.
+                self.expr.forget_all();
                 let loops = st.loops.iter().map(|l| l.id).collect();
                 st.seqs.push((seq.number, self.pc(), loops, block.span));
             }
@@ -207,6 +214,7 @@ impl<'a> Gen<'a> {
             .and_then(|&l| link::block(unit, l))
             .map_or(prog.span, |b| b.span);
         self.set_loc(end_span);
+        crate::profile::program_end(self, prog);
         let ends = matches!(self.module.code.last(), Some(Instr::Ret | Instr::Halt))
             && self.pc() > entry_pc;
         if !ends || !st.gotos.is_empty() || !st.seqs.is_empty() {
@@ -273,23 +281,31 @@ impl<'a> Gen<'a> {
             Stmt::IfThen { cond, then, .. } => {
                 let Some(c) = self.cond(cond) else { return };
                 let skip = self.emit(Instr::JumpIfNot { cond: c, target: 0 });
+                let before = self.expr.snapshot();
                 self.lower_stmt(then, block, st);
+                // The assignment may not have happened.
+                self.expr.restore_minus_changes(before);
                 let here = self.pc();
                 if let Instr::JumpIfNot { target, .. } = &mut self.module.code[skip] {
                     *target = here;
                 }
             }
             Stmt::While { cond, label, span } => {
+                self.expr.forget_all();
                 let start = self.pc();
                 let Some(c) = self.cond(cond) else { return };
                 let exit = self.emit(Instr::JumpIfNot { cond: c, target: 0 });
                 self.open_loop(label.value, start, vec![exit], *span, label.span, st);
             }
             Stmt::Do { label, span } => {
+                self.expr.forget_all();
                 let start = self.pc();
                 self.open_loop(label.value, start, Vec::new(), *span, label.span, st);
             }
-            Stmt::End { label, span } => self.close_loop(label.value, *span, st),
+            Stmt::End { label, span } => {
+                self.close_loop(label.value, *span, st);
+                self.expr.forget_all();
+            }
         }
     }
 
@@ -422,12 +438,14 @@ impl<'a> Gen<'a> {
                     return;
                 }
                 self.emit(Instr::StoreVar { var: n as u32, src });
+                self.expr.assigned(n as u32, value, self.optimize);
             }
             _ => {
                 let Some(idx) = self.expr_reg(&target.index) else {
                     return;
                 };
                 self.emit(Instr::StoreVarInd { idx, src });
+                self.expr.forget_all();
             }
         }
     }
@@ -469,6 +487,7 @@ impl<'a> Gen<'a> {
             self.error(code_name(e.code), block.span, e.message);
             return;
         }
+        let after = crate::profile::before_exec(self, block, &split);
         for w in &split.nc {
             self.set_loc(w.span);
             match w.value {
@@ -480,11 +499,20 @@ impl<'a> Gen<'a> {
                         flags,
                     });
                 }
-                WordValue::Expr(e) => {
-                    if let Some(src) = self.expr_reg(e) {
-                        self.emit(Instr::Word { addr: w.addr, src });
+                WordValue::Expr(e) => match self.expr.known_value(e).filter(|_| self.optimize) {
+                    // Folded: a computed value (no decimal-point rule);
+                    // a vacant one leaves the word out.
+                    Some(v) if v.is_nan() => {}
+                    Some(v) => {
+                        let k = self.konst(v);
+                        self.emit(Instr::WordK { addr: w.addr, k, flags: 0 });
                     }
-                }
+                    None => {
+                        if let Some(src) = self.expr_reg(e) {
+                            self.emit(Instr::Word { addr: w.addr, src });
+                        }
+                    }
+                },
             }
         }
         self.set_loc(block.span);
@@ -494,9 +522,16 @@ impl<'a> Gen<'a> {
                 self.emit(Instr::SetMsg { s });
             }
             self.emit(Instr::Exec { flags: 0 });
+            // G31 writes the skip position into #995–#999.
+            for var in 995..=999 {
+                self.expr.forget(var);
+            }
         }
+        crate::profile::after_exec(self, after);
         if let Some(call) = split.call {
             crate::calls::lower_call(self, call, block.span);
+            // The called program may change any variable.
+            self.expr.forget_all();
         }
     }
 

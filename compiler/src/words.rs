@@ -46,7 +46,7 @@ pub enum Call<'a> {
         modal: bool,
         p: Option<WordValue<'a>>,
         l: Option<WordValue<'a>>,
-        args: Vec<(u8, WordValue<'a>, Span)>,
+        args: Vec<Arg<'a>>,
         span: Span,
     },
     /// G65 H m P #i Q R.
@@ -71,6 +71,15 @@ impl Call<'_> {
             Call::ModalCancel => "G67",
         }
     }
+}
+
+/// One macro argument: the local it sets, its value, and whether it is a
+/// length (scaled in increment mode when written without a point, §1.9).
+#[derive(Debug, Clone, Copy)]
+pub struct Arg<'a> {
+    pub var: u8,
+    pub value: WordValue<'a>,
+    pub length: bool,
 }
 
 pub struct Split<'a> {
@@ -311,7 +320,7 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
                     ));
                 }
                 let var = 4 + 3 * (ijk[k] - 1) + k as u8;
-                args.push((var, value_of(w), w.span));
+                args.push(Arg { var, value: value_of(w), length: true });
             }
             c => {
                 let i = (c as u8 - b'A') as usize;
@@ -324,7 +333,8 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
                 }
                 seen[i] = true;
                 if let Some(var) = arg_var_i(c) {
-                    args.push((var, value_of(w), w.span));
+                    let length = matches!(c, 'A' | 'B' | 'C' | 'E' | 'R' | 'U' | 'V' | 'W' | 'X' | 'Y' | 'Z');
+                    args.push(Arg { var, value: value_of(w), length });
                 }
             }
         }

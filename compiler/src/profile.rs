@@ -1,0 +1,415 @@
+//! G70–G73 profiles at compile time (dialect.md §4.8, §8.2 E2020–E2022;
+//! cycles.md §5): finding the ns…nf blocks of a cycle block, the checks
+//! that need no run, handing the blocks to the cycle in the bytecode and
+//! making the program go on after nf.
+//!
+//! The profile blocks stay where they are written (a GOTO may reach them)
+//! and are also emitted, as `Exec { flags: PROFILE }` blocks the VM hands
+//! to the kernel, just before the cycle block; their code carries their
+//! own source lines, so a run-time error names them. After a G71/G72/G73
+//! block a `Jump` skips to the block after nf; after G70 the program simply
+//! goes on.
+
+use crate::link::{self, Program, Unit};
+use crate::lower::Gen;
+use crate::words::{self, Call, NcWord, WordValue};
+use grammar::ast::{Block, Body};
+use grammar::Span;
+use isa::Instr;
+use nc::block::round_half_away;
+use nc::gcode;
+use nc::words::{addr, Word, COMMA_A, LITERAL, NO_POINT};
+use nc::Nc;
+use std::collections::{HashMap, HashSet};
+
+/// `Exec` flag of a profile block (the VM's `vm::PROFILE`).
+pub const PROFILE: u8 = 1;
+
+/// At most this many blocks from ns to nf (E2020).
+const MAX_BLOCKS: usize = 100;
+
+/// Lowering state: where blocks start and which jumps wait for a target.
+#[derive(Debug, Default)]
+pub struct Profiles {
+    /// The block being lowered: (unit, line).
+    current: Option<(usize, usize)>,
+    /// The pc at which each block's code starts, by (unit, line).
+    starts: HashMap<(usize, usize), u32>,
+    /// Jumps after a cycle block, with the line of the block after nf
+    /// (`None`: nf is the program's last block).
+    pending: Vec<(usize, Option<usize>)>,
+}
+
+/// What follows a cycle block's `Exec`.
+pub struct After {
+    /// The line of the block after nf; `None` when nf ends the program.
+    resume: Option<usize>,
+}
+
+/// A G70–G73 block's code and its P, Q words (`None`: absent; `Some(None)`:
+/// computed).
+struct CycleWords {
+    code: u16,
+    p: Option<Option<f64>>,
+    q: Option<Option<f64>>,
+}
+
+fn letter(w: &NcWord<'_>, l: u8) -> bool {
+    w.addr == addr(l)
+}
+
+fn literal_g(w: &NcWord<'_>) -> Option<u16> {
+    match w.value {
+        WordValue::Literal(v, _) if letter(w, b'G') => Some(round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16),
+        _ => None,
+    }
+}
+
+fn cycle_words(ws: &[NcWord<'_>]) -> Option<CycleWords> {
+    let code = ws.iter().filter_map(literal_g).find(|c| matches!(c, 700 | 710 | 720 | 730))?;
+    let value = |l: u8| ws.iter().find(|w| letter(w, l)).map(|w| w.value.literal());
+    Some(CycleWords { code, p: value(b'P'), q: value(b'Q') })
+}
+
+/// Whether the block-delete switch of a block is on (the block is skipped).
+fn skipped(skip: &[bool; 9], block: &Block) -> bool {
+    block
+        .delete
+        .is_some_and(|d| skip.get(d.switch.saturating_sub(1) as usize).copied().unwrap_or(false))
+}
+
+fn seq_of(unit: &Unit, line: usize) -> Option<u32> {
+    link::block(unit, line).and_then(|b| b.seq).map(|s| s.number)
+}
+
+/// The index in `prog.blocks` of the first block numbered `n`, and whether
+/// another block carries the same number (W103).
+fn first_numbered(unit: &Unit, prog: &Program, n: u32) -> (Option<usize>, bool) {
+    let mut found = prog.blocks.iter().enumerate().filter(|(_, &l)| seq_of(unit, l) == Some(n));
+    (found.next().map(|(i, _)| i), found.next().is_some())
+}
+
+/// ns…nf as indices into `prog.blocks`, or the E2020 message.
+fn resolve(unit: &Unit, prog: &Program, ns: u32, nf: u32) -> Result<(usize, usize), String> {
+    let (Some(i), _) = first_numbered(unit, prog, ns) else {
+        return Err(format!("P{ns}: there is no block N{ns} in this program"));
+    };
+    let (Some(j), _) = first_numbered(unit, prog, nf) else {
+        return Err(format!("Q{nf}: there is no block N{nf} in this program"));
+    };
+    if j < i {
+        return Err(format!("Q{nf}: the block N{nf} (nf) stands before N{ns} (ns)"));
+    }
+    if j - i + 1 > MAX_BLOCKS {
+        return Err(format!("the profile N{ns}…N{nf} has {} blocks; at most {MAX_BLOCKS} are allowed", j - i + 1));
+    }
+    Ok((i, j))
+}
+
+/// A sequence number as P/Q give it, or the E2020 message.
+fn sequence(v: Option<Option<f64>>, l: char) -> Result<u32, String> {
+    match v {
+        Some(Some(n)) if (0.0..=99999.0).contains(&round_half_away(n)) => Ok(round_half_away(n) as u32),
+        Some(Some(n)) => Err(format!("{l}{n} is not a sequence number")),
+        Some(None) => Err(format!("{l} of G70–G73 must be a literal sequence number")),
+        None => Err(format!("{l} is missing: a G70–G73 cycle block needs P (ns) and Q (nf)")),
+    }
+}
+
+/// At the start of every block of a program (before block delete).
+pub fn block_start(gen: &mut Gen<'_>, line: usize) {
+    let key = (gen.unit, line);
+    let pc = gen.pc();
+    gen.profiles.current = Some(key);
+    gen.profiles.starts.insert(key, pc);
+    let pending = std::mem::take(&mut gen.profiles.pending);
+    let (due, wait): (Vec<_>, Vec<_>) = pending.into_iter().partition(|&(_, t)| t == Some(line));
+    gen.profiles.pending = wait;
+    for (at, _) in due {
+        patch(gen, at, pc);
+    }
+}
+
+fn patch(gen: &mut Gen<'_>, at: usize, target: u32) {
+    if let Some(Instr::Jump { target: t }) = gen.module.code.get_mut(at) {
+        *t = target;
+    }
+}
+
+/// At the end of a program, before its final `Halt`/`Ret`: jumps past a
+/// last nf land there; E2022 for the whole program.
+pub fn program_end(gen: &mut Gen<'_>, prog: &Program) {
+    let pc = gen.pc();
+    for (at, _) in std::mem::take(&mut gen.profiles.pending) {
+        patch(gen, at, pc);
+    }
+    shared_numbers(gen, prog);
+}
+
+/// The program being lowered and its unit.
+fn current<'a>(gen: &Gen<'a>) -> Option<(&'a Unit, &'a Program, usize)> {
+    let (unit, line) = gen.profiles.current?;
+    let units: &'a [Unit] = gen.units;
+    let programs: &'a [Program] = gen.programs;
+    let prog = programs.iter().find(|p| p.unit == unit && p.blocks.contains(&line))?;
+    Some((&units[unit], prog, line))
+}
+
+/// Before the words of an NC block: for a G70–G73 cycle block, the checks
+/// and the profile blocks. `Some` for a cycle block whose program goes on
+/// after nf (G71–G73).
+pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -> Option<After> {
+    let cw = cycle_words(&split.nc)?;
+    integer_flags(gen, &cw, &split.nc, block.span);
+    if cw.p.is_none() && cw.q.is_none() {
+        if cw.code == 700 {
+            gen.error("E2006", block.span, "G70 needs P (ns) and Q (nf)");
+        }
+        return None;
+    }
+    let (unit, prog, _) = current(gen)?;
+    let (ns, nf) = match sequence(cw.p, 'P').and_then(|ns| Ok((ns, sequence(cw.q, 'Q')?))) {
+        Ok(v) => v,
+        Err(msg) => {
+            gen.error("E2020", block.span, msg);
+            return None;
+        }
+    };
+    let (i, j) = match resolve(unit, prog, ns, nf) {
+        Ok(r) => r,
+        Err(msg) => {
+            gen.error("E2020", block.span, msg);
+            return None;
+        }
+    };
+    for n in [ns, nf] {
+        if first_numbered(unit, prog, n).1 {
+            gen.warn("W103", block.span, format!("N{n} occurs more than once: the first block is used"));
+        }
+    }
+    let lines: Vec<usize> = prog.blocks[i..=j]
+        .iter()
+        .copied()
+        .filter(|&l| link::block(unit, l).is_some_and(|b| !skipped(&gen.machine.operator.block_skip, b)))
+        .collect();
+    if !check_blocks(gen, unit, cw.code, &lines, block.span) {
+        return None;
+    }
+    emit_profile(gen, unit, &lines);
+    gen.set_loc(block.span);
+    (cw.code != 700).then(|| After { resume: prog.blocks.get(j + 1).copied() })
+}
+
+/// After the cycle block's `Exec`: G71–G73 go on after nf.
+pub fn after_exec(gen: &mut Gen<'_>, after: Option<After>) {
+    let Some(after) = after else { return };
+    let at = gen.emit(Instr::Jump { target: 0 });
+    match after.resume.and_then(|l| gen.profiles.starts.get(&(gen.unit, l)).copied()) {
+        Some(pc) => patch(gen, at, pc),
+        None => gen.profiles.pending.push((at, after.resume)),
+    }
+}
+
+/// The profile blocks as `Word`/`WordK` + `Exec { flags: PROFILE }`.
+fn emit_profile(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
+    for &l in lines {
+        let Some(b) = link::block(unit, l) else { continue };
+        let Body::Words(ws) = &b.body else { continue };
+        let Ok(split) = words::classify(ws) else { continue };
+        if split.nc.is_empty() {
+            continue;
+        }
+        gen.expr.reset();
+        emit_words(gen, &split.nc);
+        gen.set_loc(b.span);
+        gen.emit(Instr::Exec { flags: PROFILE });
+    }
+    gen.expr.reset();
+}
+
+/// A profile block's words, each located at its own source. Computed
+/// words are evaluated when the cycle runs, like the cycle block's own.
+fn emit_words(gen: &mut Gen<'_>, ws: &[NcWord<'_>]) {
+    for w in ws {
+        gen.set_loc(w.span);
+        match w.value {
+            WordValue::Literal(v, flags) => {
+                let k = gen.konst(v);
+                gen.emit(Instr::WordK { addr: w.addr, k, flags });
+            }
+            WordValue::Expr(e) => {
+                if let Some(src) = gen.expr_reg(e) {
+                    gen.emit(Instr::Word { addr: w.addr, src });
+                }
+            }
+        }
+    }
+}
+
+/// E1009 for a decimal point on the integer-only J/K flags of G71/G72 and
+/// the pass count R of a G73 first block (dialect.md §1.9).
+fn integer_flags(gen: &mut Gen<'_>, cw: &CycleWords, ws: &[NcWord<'_>], span: Span) {
+    let cycle = cw.p.is_some() || cw.q.is_some();
+    let letters: &[u8] = match cw.code {
+        710 | 720 if cycle => b"JK",
+        730 if !cycle => b"R",
+        _ => b"",
+    };
+    for w in ws.iter().filter(|w| letters.iter().any(|&l| letter(w, l))) {
+        if let WordValue::Literal(_, flags) = w.value {
+            if flags & LITERAL != 0 && flags & NO_POINT == 0 {
+                let l = (b'A' + w.addr) as char;
+                gen.error("E1009", span, format!("{l} takes an integer here; a decimal point is not allowed"));
+            }
+        }
+    }
+}
+
+/// The static checks of the profile blocks; false after an error.
+fn check_blocks(gen: &mut Gen<'_>, unit: &Unit, code: u16, lines: &[usize], span: Span) -> bool {
+    let Some(&ns) = lines.first() else {
+        gen.error("E2020", span, "every block of the profile is skipped (block delete)");
+        return false;
+    };
+    if let Some((at, msg)) = ns_fault(unit, ns, code) {
+        gen.error("E2021", at, msg);
+        return false;
+    }
+    for (k, &l) in lines.iter().enumerate() {
+        let Some(b) = link::block(unit, l) else { continue };
+        if let Some(msg) = block_fault(b, k + 1 == lines.len()) {
+            gen.error("E2020", b.span, msg);
+            return false;
+        }
+    }
+    true
+}
+
+/// E2021 of the ns block of G71/G72 as far as its own words tell: a
+/// group-01 code other than G00/G01, or no word of the infeed axis. The
+/// modal code it inherits is checked by the kernel (at compile time in a
+/// static program, by the dry run).
+fn ns_fault(unit: &Unit, line: usize, code: u16) -> Option<(Span, String)> {
+    if !matches!(code, 710 | 720) {
+        return None;
+    }
+    let b = link::block(unit, line)?;
+    let Body::Words(ws) = &b.body else { return None };
+    let split = words::classify(ws).ok()?;
+    let name = gcode::name(code);
+    let motion = split.nc.iter().filter_map(literal_g).filter(|&c| gcode::group(c) == Some(gcode::MOTION)).last();
+    if let Some(m) = motion.filter(|m| !matches!(m, 0 | 10)) {
+        let msg = format!("the first profile block (ns) of {name} must move with G00 or G01, not {}", gcode::name(m));
+        return Some((b.span, msg));
+    }
+    let (axis, a, b2) = if code == 710 { ("X(U)", b'X', b'U') } else { ("Z(W)", b'Z', b'W') };
+    if !split.nc.iter().any(|w| letter(w, a) || letter(w, b2)) {
+        return Some((b.span, format!("the first profile block (ns) of {name} must name {axis}")));
+    }
+    None
+}
+
+/// E2020 for a profile block: a macro statement, a call, a group-00 code
+/// or a drilling cycle; the first block of an angle pair as nf.
+fn block_fault(b: &Block, last: bool) -> Option<String> {
+    let Body::Words(ws) = &b.body else {
+        return Some("a macro statement may not stand in a G70–G73 profile".into());
+    };
+    let split = words::classify(ws).ok()?;
+    match split.call {
+        None | Some(Call::ModalCancel) => {}
+        Some(c) => return Some(format!("{} may not stand in a G70–G73 profile", c.kind_name())),
+    }
+    for c in split.nc.iter().filter_map(literal_g) {
+        let group = gcode::group(c);
+        if group == Some(gcode::ONE_SHOT) || (group == Some(gcode::DRILL) && c != 800) {
+            return Some(format!("{} may not stand in a G70–G73 profile", gcode::name(c)));
+        }
+    }
+    let axis = split.nc.iter().any(|w| [b'X', b'U', b'Z', b'W'].iter().any(|&l| letter(w, l)));
+    let angle = split.nc.iter().any(|w| letter(w, b'Q') || w.addr == COMMA_A);
+    if last && angle && !axis {
+        return Some("the nf block may not be the first block of an angle-programming pair".into());
+    }
+    None
+}
+
+/// E2022: in a program with more than one G71/G72/G73 cycle block, a
+/// sequence number of a profile block that stands on another block too,
+/// reported at the later of the two.
+fn shared_numbers(gen: &mut Gen<'_>, prog: &Program) {
+    let units: &[Unit] = gen.units;
+    let unit = &units[prog.unit];
+    let cycles = cycle_ranges(unit, prog);
+    if cycles.iter().filter(|(code, _)| *code != 700).count() < 2 {
+        return;
+    }
+    let mut reported = HashSet::new();
+    for (_, (i, j)) in cycles {
+        for k in i..=j {
+            let Some(n) = seq_of(unit, prog.blocks[k]) else { continue };
+            let twins = (0..prog.blocks.len()).filter(|&m| m != k && seq_of(unit, prog.blocks[m]) == Some(n));
+            for m in twins {
+                let later = k.max(m);
+                let Some(b) = link::block(unit, prog.blocks[later]).filter(|_| reported.insert(later)) else {
+                    continue;
+                };
+                gen.error(
+                    "E2022",
+                    b.span,
+                    format!(
+                        "N{n} stands in a compound-cycle profile and on another block: with several G71/G72/G73 cycles in a program, profile numbers may not repeat"
+                    ),
+                );
+            }
+        }
+    }
+}
+
+/// Every cycle block of a program with its resolved ns…nf.
+fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(u16, (usize, usize))> {
+    let mut out = Vec::new();
+    for &l in &prog.blocks {
+        let Some(b) = link::block(unit, l) else { continue };
+        let Body::Words(ws) = &b.body else { continue };
+        let Ok(split) = words::classify(ws) else { continue };
+        let Some(cw) = cycle_words(&split.nc) else { continue };
+        let (Ok(ns), Ok(nf)) = (sequence(cw.p, 'P'), sequence(cw.q, 'Q')) else { continue };
+        if let Ok(r) = resolve(unit, prog, ns, nf) {
+            out.push((cw.code, r));
+        }
+    }
+    out
+}
+
+/// Dry run (check.rs): for a cycle block at `index` of `prog`, hands its
+/// profile to the kernel, each block tagged with its line, and returns the
+/// index of `prog.blocks` where the program goes on (G71–G73: after nf).
+pub fn hand_over(nc: &mut Nc, unit: &Unit, prog: &Program, ws: &[NcWord<'_>], skip: &[bool; 9]) -> Option<usize> {
+    let cw = cycle_words(ws)?;
+    let (ns, nf) = (sequence(cw.p, 'P').ok()?, sequence(cw.q, 'Q').ok()?);
+    let (i, j) = resolve(unit, prog, ns, nf).ok()?;
+    for &l in &prog.blocks[i..=j] {
+        let Some(b) = link::block(unit, l).filter(|b| !skipped(skip, b)) else { continue };
+        let Body::Words(bw) = &b.body else { continue };
+        let Ok(split) = words::classify(bw) else { continue };
+        let lits: Vec<Word> = split
+            .nc
+            .iter()
+            .filter_map(|w| match w.value {
+                WordValue::Literal(value, flags) => Some(Word { addr: w.addr, value, flags }),
+                WordValue::Expr(_) => None,
+            })
+            .collect();
+        if !lits.is_empty() {
+            nc.push_profile(&lits, l as u32);
+        }
+    }
+    (cw.code != 700).then_some(j + 1)
+}
+
+/// The span of the block an error is about: the tagged profile block, else
+/// the block that ran.
+pub fn error_span(unit: &Unit, at: Option<u32>, block: Span) -> Span {
+    at.and_then(|l| link::block(unit, l as usize)).map_or(block, |b| b.span)
+}
