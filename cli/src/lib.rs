@@ -1,5 +1,6 @@
 //! Shared pieces of the gbc command-line tools.
 
+pub mod expand;
 pub mod vars;
 
 use nc::Machine;

@@ -22,6 +22,10 @@ struct Args {
     /// Write the annotated bytecode listing instead of a .gbc.
     #[arg(short = 'S')]
     listing: bool,
+    /// Print the program as plain G-code after macros, subprograms and
+    /// cycles are resolved (a run on the reference host), on stdout.
+    #[arg(short = 'E')]
+    expand: bool,
     /// Library folder searched for called programs (repeatable).
     #[arg(short = 'I', value_name = "DIR")]
     include: Vec<PathBuf>,
@@ -120,12 +124,56 @@ fn main() -> ExitCode {
         if syntax_only {
             continue;
         }
+        if args.expand {
+            if let Err(e) = expand(&compiled, &bytes, &opts.machine) {
+                eprintln!("{e}");
+                failed = true;
+            }
+            continue;
+        }
         if let Err(e) = write_output(&compiled, file, args.output.as_deref(), args.listing) {
             eprintln!("gbcc: error: {e}");
             failed = true;
         }
     }
     ExitCode::from(if failed { 1 } else { 0 })
+}
+
+/// -E: runs the module on the reference host and prints what it did as
+/// G-code; a run-time alarm ends the listing with the alarm.
+fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> Result<(), String> {
+    let Some(module) = c.module.clone() else {
+        return Err("no module was produced".into());
+    };
+    let (ast, _) = grammar::parse(src);
+    let file = &c.files[0];
+    let mut seqs = std::collections::HashMap::new();
+    for line in &ast.lines {
+        if let grammar::ast::Line::Block(b) = line {
+            if let Some(s) = b.seq {
+                seqs.insert(file.line_col(b.span.start).0 as u32, s.number);
+            }
+        }
+    }
+    let mut out = cli::expand::Expand::new(seqs);
+    let mut vm = vm::Vm::new(module, machine.clone());
+    let mut events: Vec<nc::Event> = Vec::new();
+    loop {
+        let start = (vm.nc.st.pos.x(), vm.nc.st.pos.z);
+        let status = vm.step(1 << 16, &mut events);
+        out.block_events(&events, vm.last_loc().line, start);
+        events.clear();
+        match status {
+            vm::Status::Event | vm::Status::OutOfBudget => continue,
+            vm::Status::Done => break,
+            vm::Status::Alarm(a) => {
+                print!("{}", out.out);
+                return Err(a.header());
+            }
+        }
+    }
+    print!("{}", out.out);
+    Ok(())
 }
 
 /// -fsyntax-only: the parser's findings alone.

@@ -1,0 +1,136 @@
+//! `gbcc -E`: the program as plain G-code after macros, subprograms and
+//! cycles are resolved — what the machine is really told to do, block by
+//! block, with absolute coordinates and the source block as a comment.
+
+use nc::event::{Dir, SpindleDir, StopKind};
+use nc::event::Num;
+use nc::Event;
+use std::collections::HashMap;
+use std::fmt::Write;
+
+/// Turns canon events into G-code text.
+pub struct Expand {
+    pub out: String,
+    /// Source line → its sequence number (for the comment).
+    seqs: HashMap<u32, u32>,
+    /// The source line of the block being printed.
+    line: u32,
+    last_line: u32,
+    /// (X, Z) of the last point, for arc centres relative to the start.
+    at: (f64, f64),
+    feed: Option<(f64, bool)>,
+}
+
+impl Expand {
+    pub fn new(seqs: HashMap<u32, u32>) -> Expand {
+        Expand { out: String::new(), seqs, line: 0, last_line: 0, at: (0.0, 0.0), feed: None }
+    }
+
+    fn origin_comment(&mut self) -> String {
+        if self.line == self.last_line {
+            return String::new();
+        }
+        self.last_line = self.line;
+        match self.seqs.get(&self.line) {
+            Some(n) => format!(" (N{n}, LINE {})", self.line),
+            None => format!(" (LINE {})", self.line),
+        }
+    }
+
+    fn block(&mut self, text: String) {
+        let note = self.origin_comment();
+        let _ = writeln!(self.out, "{text}{note}");
+    }
+
+    fn mode(&mut self, f: f64, per_rev: bool) -> String {
+        let mut s = String::new();
+        if self.feed.map(|(_, r)| r) != Some(per_rev) {
+            s.push_str(if per_rev { "G99 " } else { "G98 " });
+        }
+        self.feed = Some((f, per_rev));
+        s
+    }
+}
+
+fn n(v: f64) -> Num {
+    Num(v)
+}
+
+impl Expand {
+    /// Prints the events of one block that ran at source `line`, the tool
+    /// starting at (`x`, `z`).
+    pub fn block_events(&mut self, events: &[Event], line: u32, start: (f64, f64)) {
+        self.line = line;
+        self.at = start;
+        for e in events {
+            self.event(e);
+        }
+    }
+
+    fn event(&mut self, e: &Event) {
+        let text = match e {
+            Event::Rapid { x, z } => format!("G00 X{} Z{}", n(*x), n(*z)),
+            Event::Line { x, z } => format!("G01 X{} Z{}", n(*x), n(*z)),
+            Event::Arc { dir, x, z, cx, cz } => {
+                let g = if *dir == Dir::Cw { "G02" } else { "G03" };
+                // I is a radius value relative to the start, K relative too.
+                let (i, k) = ((cx - self.at.0) / 2.0, cz - self.at.1);
+                format!("{g} X{} Z{} I{} K{}", n(*x), n(*z), n(i), n(k))
+            }
+            Event::Thread { x, z, lead, dlead, q } => {
+                let mut s = match dlead {
+                    Some(d) => format!("G34 X{} Z{} F{} R{}", n(*x), n(*z), n(*lead), n(*d)),
+                    None => format!("G32 X{} Z{} F{}", n(*x), n(*z), n(*lead)),
+                };
+                if let Some(q) = q {
+                    let _ = write!(s, " Q{}", n(q * 1000.0));
+                }
+                s
+            }
+            Event::Dwell { s } => format!("G04 X{}", n(*s)),
+            Event::Feed { f, per_rev } => {
+                let m = self.mode(*f, *per_rev);
+                format!("{m}F{}", n(*f))
+            }
+            Event::Speed { s, css, max: Some(m) } => format!("G50 S{} ({} S{})", n(*m), if *css { "G96" } else { "G97" }, n(*s)),
+            Event::Speed { s, css, max: None } => format!("{} S{}", if *css { "G96" } else { "G97" }, n(*s)),
+            Event::Spindle(d) => match d {
+                SpindleDir::Cw => "M03".into(),
+                SpindleDir::Ccw => "M04".into(),
+                SpindleDir::Stop => "M05".into(),
+            },
+            Event::Tool { t, d } => format!("T{t:02}{d:02}"),
+            Event::M(code) => format!("M{code:02}"),
+            Event::Origin { x, z } => format!("(WORK ZERO AT MACHINE X{} Z{})", n(*x), n(*z)),
+            Event::Home { n: p, x, z } => format!(
+                "(AT REFERENCE POINT {p}:{}{})",
+                if *x { " X" } else { "" },
+                if *z { " Z" } else { "" }
+            ),
+            Event::Stop(k) => match k {
+                StopKind::M00 => "M00".into(),
+                StopKind::M01 => "M01".into(),
+                StopKind::M02 => "M02".into(),
+                StopKind::M30 => "M30".into(),
+                StopKind::M99 => "M99".into(),
+            },
+            Event::Skip { x, z } => format!("G31 X{} Z{}", n(*x), n(*z)),
+            Event::Message(t) => format!("(MESSAGE: {t})"),
+            Event::Alarm { code, msg } => format!("(ALARM {code}: {msg})"),
+            other => format!("({other})"),
+        };
+        if let Some((x, z)) = end_point(e) {
+            self.at = (x, z);
+        }
+        self.block(text);
+    }
+}
+
+/// Where an event leaves the tool.
+fn end_point(e: &Event) -> Option<(f64, f64)> {
+    match *e {
+        Event::Rapid { x, z } | Event::Line { x, z } | Event::Skip { x, z } => Some((x, z)),
+        Event::Arc { x, z, .. } | Event::Thread { x, z, .. } => Some((x, z)),
+        _ => None,
+    }
+}
