@@ -214,6 +214,10 @@ impl<'a> Gen<'a> {
             .and_then(|&l| link::block(unit, l))
             .map_or(prog.span, |b| b.span);
         self.set_loc(end_span);
+        if !ends_explicitly(unit, prog) {
+            let what = if main { "the main program ends" } else { "the subprogram returns as if M99" };
+            self.warn("W101", end_span, format!("O{:04} runs off its last block without M02, M30 or M99: {what}", prog.number));
+        }
         crate::profile::program_end(self, prog);
         let ends = matches!(self.module.code.last(), Some(Instr::Ret | Instr::Halt))
             && self.pc() > entry_pc;
@@ -515,6 +519,7 @@ impl<'a> Gen<'a> {
                 },
             }
         }
+        self.warn_unlisted_m(&split);
         self.set_loc(block.span);
         if !split.nc.is_empty() {
             if let Some(c) = block.comments.first() {
@@ -535,6 +540,21 @@ impl<'a> Gen<'a> {
         }
     }
 
+    /// W113: an M code that the reference PLC table does not list.
+    fn warn_unlisted_m(&mut self, split: &words::Split<'_>) {
+        const LISTED: &[u32] = &[
+            0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13, 14, 15, 20, 21, 24, 25, 29, 30, 32, 33, 41, 42, 43, 44, 50, 51,
+            52, 53, 54, 55, 56, 57, 58, 63, 64, 65,
+        ];
+        for w in &split.nc {
+            let (true, WordValue::Literal(v, _)) = (w.addr == b'M' - b'A', w.value) else { continue };
+            let m = nc::block::round_half_away(v);
+            if (0.0..9000.0).contains(&m) && !LISTED.contains(&(m as u32)) {
+                self.warn("W113", w.span, format!("M{m} is not in the reference PLC table; it is handed to the PLC as it is"));
+            }
+        }
+    }
+
     pub fn value_reg(&mut self, v: &WordValue<'_>) -> Option<u8> {
         match v {
             WordValue::Literal(x, _) => {
@@ -549,6 +569,24 @@ impl<'a> Gen<'a> {
 
     pub fn call_kind(&self, c: &Call<'_>) -> &'static str {
         c.kind_name()
+    }
+}
+
+/// Does the program's last block end it (M02, M30, M99 or a GOTO)?
+fn ends_explicitly(unit: &Unit, prog: &Program) -> bool {
+    let Some(last) = prog.blocks.iter().rev().filter_map(|&l| link::block(unit, l)).find(|b| match &b.body {
+        Body::Words(ws) => !ws.is_empty(),
+        Body::Stmt(_) => true,
+    }) else {
+        return false;
+    };
+    match &last.body {
+        Body::Stmt(Stmt::Goto { .. }) => true,
+        Body::Stmt(_) => false,
+        Body::Words(ws) => ws.iter().any(|w| {
+            w.addr == grammar::ast::Addr::Letter('M')
+                && matches!(words::value_of(w).literal(), Some(m) if [2.0, 30.0, 99.0].contains(&m))
+        }),
     }
 }
 
