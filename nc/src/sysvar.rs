@@ -150,10 +150,12 @@ impl Nc {
             let machine = self.st.pos.add(before);
             self.st.pos = machine.sub(after);
             if (after.r - before.r).abs() * 2.0 > 1e-6 || (after.z - before.z).abs() > 1e-6 {
-                sink.emit(Event::Origin {
+                let origin = Event::Origin {
                     x: after.x(),
                     z: after.z,
-                });
+                };
+                // Behind a move that still waits for its corner.
+                self.emit_in_order(origin, sink);
             }
         }
         Ok(())

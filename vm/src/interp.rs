@@ -215,7 +215,10 @@ impl Vm {
         }
     }
 
-    fn alarm(&self, pc: u32, e: Fault, sink: &mut dyn Sink) -> Alarm {
+    fn alarm(&mut self, pc: u32, e: Fault, sink: &mut dyn Sink) -> Alarm {
+        // What was programmed before the faulty block still prints; a
+        // second fault while flushing changes nothing about the first.
+        let _ = self.nc.flush(sink);
         // An error about a profile block names that block.
         let pc = e.at.unwrap_or(pc);
         let loc = self
@@ -430,7 +433,12 @@ impl Vm {
                 self.msg = Some(msg);
                 return fault(code, self.msg_text());
             }
-            Instr::Halt => return Ok(Next::Done),
+            Instr::Halt => {
+                // Running past the last block: a waiting corner element is
+                // printed whole.
+                self.nc.flush(sink)?;
+                return Ok(Next::Done);
+            }
         }
         Ok(Next::Go)
     }
@@ -561,6 +569,7 @@ impl Vm {
     /// A main-program M99: the pass ends; the last one ends the run.
     fn end_pass(&mut self, seq: Option<u32>, sink: &mut dyn Sink) -> Result<Next, Fault> {
         if self.pass >= self.repeat {
+            self.nc.flush(sink)?;
             sink.emit(Event::Stop(StopKind::M99));
             return Ok(Next::Done);
         }
@@ -615,7 +624,8 @@ impl Vm {
                 fault(3000 + code as u16, self.msg_text())
             }
             3006 => {
-                sink.emit(Event::Message(self.msg_text()));
+                let text = self.msg_text();
+                self.nc.emit_in_order(Event::Message(text), sink);
                 self.msg = None;
                 Ok(())
             }
