@@ -179,12 +179,31 @@ fn integer_only(p: &Parsed, letter: u8) -> bool {
         b'T' | b'H' | b'O' | b'N' | b'P' | b'Q' => true,
         // L is a count except as the chamfer of G01–G03.
         b'L' => p.has_m(98) || [330, 780, 920, 921].iter().any(|&c| p.has_g(c)),
+        // G78 D (finishing passes) and the drilling repeats K are counts.
+        b'D' => p.has_g(780),
+        b'K' => [830, 840, 870, 880].iter().any(|&c| p.has_g(c)),
         _ => false,
     }
 }
 
+/// F < 0 is the left-hand lead of G32.1, G92.1, G84 and G88. A block that
+/// names another function (group 00, 01 or 10) cannot use it; a block that
+/// names none runs the modal function, which the kernel checks
+/// (`cycles::before_block`).
+fn negative_f_allowed(p: &Parsed) -> bool {
+    if [321, 921, 840, 880].iter().any(|&c| p.has_g(c)) {
+        return true;
+    }
+    !p.gs().iter().any(|&(c, _)| {
+        matches!(
+            gcode::group(c),
+            Some(gcode::ONE_SHOT | gcode::MOTION | gcode::DRILL)
+        )
+    })
+}
+
 fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
-    for letter in [b'T', b'P', b'L', b'Q', b'H'] {
+    for letter in [b'T', b'P', b'L', b'Q', b'H', b'D', b'K'] {
         if let Some(w) = p.word(letter) {
             if w.literal_with_point() && integer_only(p, letter) {
                 return fail(
@@ -201,7 +220,7 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     }
     for letter in [b'F', b'S'] {
         if let Some(v) = p.get(letter) {
-            if v < 0.0 {
+            if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) {
                 return fail(1010, format!("{} must not be negative", letter as char));
             }
         }
@@ -223,6 +242,13 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     }
     if !m.axes.c.enabled && p.has(b'C') && p.one_shot().is_none() && p.motion() != Some(321) {
         return fail(2005, "this machine has no C axis");
+    }
+    let drilling = [830, 840, 870, 880].iter().any(|&c| p.has_g(c));
+    if !m.axes.c.enabled && p.has(b'H') && drilling {
+        return fail(
+            2005,
+            "this machine has no C axis (H is the incremental hole angle)",
+        );
     }
     if p.val[COMMA_A as usize].is_some() && p.has(b'Q') {
         return fail(2007, "Q and ,A both give the angle: write one of them");

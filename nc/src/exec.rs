@@ -208,6 +208,8 @@ impl Nc {
         words: &[Word],
         sink: &mut dyn Sink,
     ) -> Result<(), NcError> {
+        // Thread chains, M29 rules; a drilling block's M is its clamp code.
+        let clamp = crate::cycles::before_block(self, p, sink)?;
         let g50 = p.one_shot() == Some(500);
         for w in words {
             match w.addr {
@@ -217,6 +219,7 @@ impl Nc {
                         3 => self.spindle(SpindleDir::Cw, sink),
                         4 => self.spindle(SpindleDir::Ccw, sink),
                         m if after_motion(m) || is_stop(m) || is_call(m) => {}
+                        m if clamp == Some(m) => {}
                         m => sink.emit(Event::M(m)),
                     }
                 }
@@ -289,7 +292,12 @@ impl Nc {
     }
 
     /// Group 2: the motion or the one-shot function.
-    fn motion(&mut self, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+    fn motion(
+        &mut self,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+        out: &mut Outcome,
+    ) -> Result<(), NcError> {
         if let Some(code) = p.one_shot() {
             if code == 90 {
                 // G09: its move decides about waiting corners.
@@ -391,6 +399,9 @@ impl Nc {
         }
     }
 
+    /// A straight feed leg without corners: cycle legs and profiles call
+    /// this (the corner-aware path of G01 blocks is `contour::straight`).
+    #[allow(dead_code)]
     pub(crate) fn line(&mut self, to: Pt, sink: &mut dyn Sink) -> Result<(), NcError> {
         self.feed_due(sink);
         self.st.pos = to;
@@ -399,7 +410,14 @@ impl Nc {
     }
 
     /// A G02/G03 move without corners (cycle legs, profiles).
-    pub(crate) fn arc(&mut self, cw: bool, to: Pt, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    #[allow(dead_code)]
+    pub(crate) fn arc(
+        &mut self,
+        cw: bool,
+        to: Pt,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+    ) -> Result<(), NcError> {
         match self.arc_element(cw, to, p)? {
             None => Ok(()),
             Some(Element::Line { to, .. }) => self.line(to, sink),
@@ -413,7 +431,12 @@ impl Nc {
     /// The element of a G02/G03 block from the current point: its arc
     /// from R or I/K, or a line where `arc_without_center = "line"`.
     /// `None` for a 0° arc with R (end = start), which is no move (W108).
-    pub(crate) fn arc_element(&self, cw: bool, to: Pt, p: &Parsed) -> Result<Option<Element>, NcError> {
+    pub(crate) fn arc_element(
+        &self,
+        cw: bool,
+        to: Pt,
+        p: &Parsed,
+    ) -> Result<Option<Element>, NcError> {
         let from = self.st.pos;
         let centre = if let Some(r) = self.len_of(p, b'R') {
             match geom::centre_from_radius(from, to, r, cw)? {
@@ -431,11 +454,19 @@ impl Nc {
                 ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
                 ArcWithoutCenter::Alarm => fail(
                     2006,
-                    format!("{} needs R or I/K to define its centre", if cw { "G02" } else { "G03" }),
+                    format!(
+                        "{} needs R or I/K to define its centre",
+                        if cw { "G02" } else { "G03" }
+                    ),
                 ),
             };
         };
-        Ok(Some(Element::Arc { from, to, centre, cw }))
+        Ok(Some(Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        }))
     }
 
     pub(crate) fn emit_arc(&mut self, cw: bool, to: Pt, c: Pt, sink: &mut dyn Sink) {
@@ -660,7 +691,8 @@ impl Nc {
 
     /// Before the motion: F is modal (the block's own move uses it); the last B D E F H M N O S T are kept for #4102….
     fn remember(&mut self, p: &Parsed) {
-        if let Some(f) = p.get(b'F') {
+        // The F of a thread block is its lead, not a feed (cycles.md §0).
+        if let Some(f) = p.get(b'F').filter(|_| !crate::cycles::f_is_lead(self, p)) {
             self.st.feed = f;
         }
         for letter in [b'B', b'D', b'E', b'F', b'H', b'S', b'T'] {

@@ -3,7 +3,7 @@
 //! any block; only their M codes are dropped.
 
 use super::out::Out;
-use super::profile::{check_codes, corner_word};
+use super::profile::check_codes;
 use crate::block;
 use crate::error::NcError;
 use crate::exec::{Nc, Sink};
@@ -18,14 +18,23 @@ pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Res
         let tag = *tag;
         let p = block::parse(words, &nc.machine).map_err(|e| e.at(tag))?;
         check_codes(&p, tag)?;
-        if corner_word(&p) {
-            let msg = "chamfers and roundings (L, D, ,C, ,R) in a G70 profile are not supported yet";
-            return Err(NcError::new(2099, msg).at(tag));
-        }
-        let kept: Vec<Word> = words.iter().filter(|w| w.addr != addr(b'M')).copied().collect();
-        nc.exec(&kept, sink).map_err(|e| if e.at.is_some() { e } else { e.at(tag) })?;
+        let kept: Vec<Word> = words
+            .iter()
+            .filter(|w| w.addr != addr(b'M'))
+            .copied()
+            .collect();
+        nc.exec(&kept, sink)
+            .map_err(|e| if e.at.is_some() { e } else { e.at(tag) })?;
     }
-    Out { nc: &mut *nc, sink: &mut *sink, mirrored: false }.rapid(a);
+    // An element still waiting for a corner word of the nf block is
+    // printed whole before the return (W112).
+    crate::contour::flush(nc, sink)?;
+    Out {
+        nc: &mut *nc,
+        sink: &mut *sink,
+        mirrored: false,
+    }
+    .rapid(a);
     // The modes in force before G70 are back (cycles.md §8, comp.md §8).
     nc.st.modal[gcode::MOTION as usize] = motion;
     nc.st.modal[gcode::COMP as usize] = comp;

@@ -66,7 +66,12 @@ impl Curve {
     pub fn new(e: Element) -> Curve {
         match e {
             Element::Line { from, to } => Curve::Line { from, to },
-            Element::Arc { from, to, centre, cw } => {
+            Element::Arc {
+                from,
+                to,
+                centre,
+                cw,
+            } => {
                 let a0 = angle(centre, from);
                 let a1 = angle(centre, to);
                 let mut turn = if cw { a0 - a1 } else { a1 - a0 }.rem_euclid(TAU);
@@ -89,7 +94,18 @@ impl Curve {
     pub fn element(&self) -> Element {
         match *self {
             Curve::Line { from, to } => Element::Line { from, to },
-            Curve::Arc { from, to, centre, cw, .. } => Element::Arc { from, to, centre, cw },
+            Curve::Arc {
+                from,
+                to,
+                centre,
+                cw,
+                ..
+            } => Element::Arc {
+                from,
+                to,
+                centre,
+                cw,
+            },
         }
     }
 
@@ -104,8 +120,16 @@ impl Curve {
     /// The same curve moved by `d` (arc centres too).
     pub fn shifted(&self, d: Pt) -> Curve {
         Curve::new(match self.element() {
-            Element::Line { from, to } => Element::Line { from: from.add(d), to: to.add(d) },
-            Element::Arc { from, to, centre, cw } => Element::Arc {
+            Element::Line { from, to } => Element::Line {
+                from: from.add(d),
+                to: to.add(d),
+            },
+            Element::Arc {
+                from,
+                to,
+                centre,
+                cw,
+            } => Element::Arc {
                 from: from.add(d),
                 to: to.add(d),
                 centre: centre.add(d),
@@ -120,8 +144,16 @@ impl Curve {
     pub fn swapped(&self) -> Curve {
         let s = swap;
         Curve::new(match self.element() {
-            Element::Line { from, to } => Element::Line { from: s(from), to: s(to) },
-            Element::Arc { from, to, centre, cw } => Element::Arc {
+            Element::Line { from, to } => Element::Line {
+                from: s(from),
+                to: s(to),
+            },
+            Element::Arc {
+                from,
+                to,
+                centre,
+                cw,
+            } => Element::Arc {
                 from: s(from),
                 to: s(to),
                 centre: s(centre),
@@ -142,7 +174,13 @@ impl Curve {
             Curve::Line { from, to } => {
                 Pt::new(from.r + (to.r - from.r) * s, from.z + (to.z - from.z) * s)
             }
-            Curve::Arc { centre, radius, a0, sweep, .. } => {
+            Curve::Arc {
+                centre,
+                radius,
+                a0,
+                sweep,
+                ..
+            } => {
                 let a = a0 + sweep * s;
                 Pt::new(centre.r + radius * a.sin(), centre.z + radius * a.cos())
             }
@@ -181,7 +219,13 @@ impl Curve {
                     Vec::new()
                 }
             }
-            Curve::Arc { centre, radius, a0, sweep, .. } => {
+            Curve::Arc {
+                centre,
+                radius,
+                a0,
+                sweep,
+                ..
+            } => {
                 if radius < 1e-12 {
                     return Vec::new();
                 }
@@ -220,7 +264,11 @@ impl Curve {
     /// extremes between them, in order.
     fn samples(&self, axis: Axis, s0: f64, s1: f64) -> Vec<f64> {
         let mut v = vec![s0];
-        v.extend(self.extremes(axis).into_iter().filter(|&s| s > s0 && s < s1));
+        v.extend(
+            self.extremes(axis)
+                .into_iter()
+                .filter(|&s| s > s0 && s < s1),
+        );
         v.push(s1);
         v
     }
@@ -230,7 +278,9 @@ impl Curve {
         self.samples(axis, s0, s1)
             .into_iter()
             .map(|s| coord(self.at(s), axis))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
     }
 
     /// Whether `axis` never moves against `dir` (by more than 1e-6) over
@@ -263,13 +313,23 @@ mod tests {
     use super::*;
 
     fn arc(from: Pt, to: Pt, centre: Pt, cw: bool) -> Curve {
-        Curve::new(Element::Arc { from, to, centre, cw })
+        Curve::new(Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        })
     }
 
     #[test]
     fn a_quarter_arc_has_its_midpoint_on_the_circle() {
         // G02 from r17 z-38 to r22 z-43 about r22 z-38 (g71_od_profile).
-        let c = arc(Pt::new(17.0, -38.0), Pt::new(22.0, -43.0), Pt::new(22.0, -38.0), true);
+        let c = arc(
+            Pt::new(17.0, -38.0),
+            Pt::new(22.0, -43.0),
+            Pt::new(22.0, -38.0),
+            true,
+        );
         let m = c.at(0.5);
         let h = 5.0 * std::f64::consts::FRAC_1_SQRT_2;
         assert!((m.r - (22.0 - h)).abs() < 1e-9 && (m.z - (-38.0 - h)).abs() < 1e-9);
@@ -283,7 +343,12 @@ mod tests {
     #[test]
     fn a_half_circle_has_an_extreme_inside() {
         // From z0 over the top (r = 5) to z10, clockwise, centre z5 r0.
-        let c = arc(Pt::new(0.0, 0.0), Pt::new(0.0, 10.0), Pt::new(0.0, 5.0), true);
+        let c = arc(
+            Pt::new(0.0, 0.0),
+            Pt::new(0.0, 10.0),
+            Pt::new(0.0, 5.0),
+            true,
+        );
         assert_eq!(c.extremes(Axis::R).len(), 1);
         assert!(c.monotone(Axis::Z, 1.0, 0.0, 1.0));
         assert!(!c.monotone(Axis::R, 1.0, 0.0, 1.0));
@@ -292,9 +357,16 @@ mod tests {
 
     #[test]
     fn mirroring_flips_the_direction_and_keeps_the_points() {
-        let c = arc(Pt::new(0.0, 0.0), Pt::new(5.0, 5.0), Pt::new(5.0, 0.0), true);
+        let c = arc(
+            Pt::new(0.0, 0.0),
+            Pt::new(5.0, 5.0),
+            Pt::new(5.0, 0.0),
+            true,
+        );
         let m = c.swapped();
-        let Curve::Arc { cw, .. } = m else { panic!("an arc") };
+        let Curve::Arc { cw, .. } = m else {
+            panic!("an arc")
+        };
         assert!(!cw);
         for s in [0.0, 0.25, 0.5, 0.9, 1.0] {
             assert!(m.at(s).dist(swap(c.at(s))) < 1e-9);

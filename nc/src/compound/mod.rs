@@ -56,7 +56,11 @@ impl Default for CompoundState {
         CompoundState {
             g71: Stock::default(),
             g72: Stock::default(),
-            g73: Relief { di: 0.0, dk: 0.0, passes: 1.0 },
+            g73: Relief {
+                di: 0.0,
+                dk: 0.0,
+                passes: 1.0,
+            },
         }
     }
 }
@@ -83,19 +87,32 @@ fn too_many(passes: f64) -> Result<(), NcError> {
     if passes <= MAX_PASSES {
         Ok(())
     } else {
-        fail(4009, format!("the cycle would make more than {MAX_PASSES} passes"))
+        fail(
+            4009,
+            format!("the cycle would make more than {MAX_PASSES} passes"),
+        )
     }
 }
 
 /// A G70–G73 block; `nc.profile` holds the ns…nf blocks for a cycle block.
-pub fn run(nc: &mut Nc, code: Code, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+pub fn run(
+    nc: &mut Nc,
+    code: Code,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
     let blocks = std::mem::take(&mut nc.profile);
     let (has_p, has_q) = (p.has(b'P'), p.has(b'Q'));
     if has_p != has_q {
         return fail(2020, "the cycle needs both P (ns) and Q (nf)");
     }
     if !has_p {
-        return if code == 700 { fail(2006, "G70 needs P (ns) and Q (nf)") } else { first_block(nc, code, p) };
+        return if code == 700 {
+            fail(2006, "G70 needs P (ns) and Q (nf)")
+        } else {
+            first_block(nc, code, p)
+        };
     }
     out.moved = true;
     match code {
@@ -111,7 +128,11 @@ fn first_block(nc: &mut Nc, code: Code, p: &Parsed) -> Result<(), NcError> {
     match code {
         710 | 720 => {
             let depth = nc.len_of(p, if code == 710 { b'U' } else { b'W' });
-            let st = if code == 710 { &mut nc.st.compound.g71 } else { &mut nc.st.compound.g72 };
+            let st = if code == 710 {
+                &mut nc.st.compound.g71
+            } else {
+                &mut nc.st.compound.g72
+            };
             st.depth = depth.unwrap_or(st.depth);
             st.retract = r.unwrap_or(st.retract);
         }
@@ -130,11 +151,16 @@ fn first_block(nc: &mut Nc, code: Code, p: &Parsed) -> Result<(), NcError> {
 /// An integer-only word (dialect.md §1.9): E1009 with a decimal point,
 /// rounded half away from zero when computed.
 fn count(p: &Parsed, letter: u8) -> Result<Option<f64>, NcError> {
-    let Some(w) = p.word(letter) else { return Ok(None) };
+    let Some(w) = p.word(letter) else {
+        return Ok(None);
+    };
     if w.literal_with_point() {
         return fail(
             1009,
-            format!("{} takes an integer here; a decimal point is not allowed", letter as char),
+            format!(
+                "{} takes an integer here; a decimal point is not allowed",
+                letter as char
+            ),
         );
     }
     Ok(Some(round_half_away(w.value)))
@@ -142,7 +168,10 @@ fn count(p: &Parsed, letter: u8) -> Result<Option<f64>, NcError> {
 
 /// The finishing allowance of a cycle block: U is a diameter.
 fn allowance(nc: &Nc, p: &Parsed) -> Pt {
-    Pt::new(nc.len_of(p, b'U').unwrap_or(0.0) / 2.0, nc.len_of(p, b'W').unwrap_or(0.0))
+    Pt::new(
+        nc.len_of(p, b'U').unwrap_or(0.0) / 2.0,
+        nc.len_of(p, b'W').unwrap_or(0.0),
+    )
 }
 
 /// G71 (`facing` false) and G72, types I and II.
@@ -154,7 +183,11 @@ fn stock_removal(
     sink: &mut dyn Sink,
 ) -> Result<(), NcError> {
     let kind = profile::ns_kind(nc, blocks, facing)?;
-    let first = if facing { nc.st.compound.g72 } else { nc.st.compound.g71 };
+    let first = if facing {
+        nc.st.compound.g72
+    } else {
+        nc.st.compound.g71
+    };
     // The one-block Fanuc form gives Δd as D, with the machine's retract
     // (dialect.md §4.12).
     let (dd, e) = match nc.len_of(p, b'D') {
@@ -162,7 +195,10 @@ fn stock_removal(
         None => (first.depth, first.retract),
     };
     if dd <= 0.0 || dd.is_nan() {
-        return fail(4009, "the depth of cut Δd is 0: give it in the first block (G71 U… R… / G72 W… R…)");
+        return fail(
+            4009,
+            "the depth of cut Δd is 0: give it in the first block (G71 U… R… / G72 W… R…)",
+        );
     }
     let k1 = count(p, b'K')? == Some(1.0);
     let j1 = count(p, b'J')? == Some(1.0);
@@ -183,8 +219,20 @@ fn stock_removal(
             })
         })
         .collect();
-    let job = Job { a: frame(a), a1: frame(a.add(shift)), segs, dd, e, k1, j1 };
-    let mut out = Out { nc, sink, mirrored: facing };
+    let job = Job {
+        a: frame(a),
+        a1: frame(a.add(shift)),
+        segs,
+        dd,
+        e,
+        k1,
+        j1,
+    };
+    let mut out = Out {
+        nc,
+        sink,
+        mirrored: facing,
+    };
     match kind {
         Kind::Plain => rough::run(&mut out, &job),
         Kind::Pockets => pockets::run(&mut out, &job),
@@ -200,7 +248,10 @@ fn pattern_repeat(
 ) -> Result<(), NcError> {
     let relief = nc.st.compound.g73;
     if relief.passes < 1.0 || relief.passes.is_nan() {
-        return fail(4009, format!("G73 needs at least one pass (R{})", relief.passes));
+        return fail(
+            4009,
+            format!("G73 needs at least one pass (R{})", relief.passes),
+        );
     }
     too_many(relief.passes)?;
     let segs = profile::build(nc, blocks)?;
@@ -210,6 +261,14 @@ fn pattern_repeat(
         passes: relief.passes as u32,
         allowance: allowance(nc, p),
     };
-    pattern::run(&mut Out { nc, sink, mirrored: false }, &segs, &pat);
+    pattern::run(
+        &mut Out {
+            nc,
+            sink,
+            mirrored: false,
+        },
+        &segs,
+        &pat,
+    );
     Ok(())
 }

@@ -81,10 +81,20 @@ impl Out<'_> {
                 }
                 let (to, centre) = (self.real(c.at(s1)), self.real(centre));
                 // A mirror turns the direction round.
-                let dir = if cw != self.mirrored { Dir::Cw } else { Dir::Ccw };
+                let dir = if cw != self.mirrored {
+                    Dir::Cw
+                } else {
+                    Dir::Ccw
+                };
                 self.nc.feed_due(self.sink);
                 self.nc.st.pos = to;
-                self.sink.emit(Event::Arc { dir, x: to.x(), z: to.z, cx: centre.x(), cz: centre.z });
+                self.sink.emit(Event::Arc {
+                    dir,
+                    x: to.x(),
+                    z: to.z,
+                    cx: centre.x(),
+                    cz: centre.z,
+                });
             }
         }
     }

@@ -19,7 +19,11 @@ pub fn run(out: &mut Out, segs: &[Seg], pat: &Pattern) {
     for n in 1..=pat.passes {
         // The first pass is Δi, Δk away from the allowance contour, the
         // last one on it.
-        let f = if pat.passes > 1 { f64::from(pat.passes - n) / f64::from(pat.passes - 1) } else { 0.0 };
+        let f = if pat.passes > 1 {
+            f64::from(pat.passes - n) / f64::from(pat.passes - 1)
+        } else {
+            0.0
+        };
         let delta = pat.allowance.add(Pt::new(pat.di * f, pat.dk * f));
         out.rapid(a.add(delta));
         for s in segs {

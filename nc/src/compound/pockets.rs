@@ -78,7 +78,13 @@ impl Contour<'_> {
 
     /// The intervals at a level: maximal runs of pieces deeper than it.
     fn intervals(&self, level: f64) -> Vec<Vec<Piece>> {
-        let whole: Vec<Piece> = (0..self.segs.len()).map(|seg| Piece { seg, s0: 0.0, s1: 1.0 }).collect();
+        let whole: Vec<Piece> = (0..self.segs.len())
+            .map(|seg| Piece {
+                seg,
+                s0: 0.0,
+                s1: 1.0,
+            })
+            .collect();
         let mut out: Vec<Vec<Piece>> = Vec::new();
         let mut open = false;
         for p in self.cut(&whole, level) {
@@ -135,7 +141,12 @@ pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
     if sz == 0.0 {
         return fail(4009, "the profile makes no move along the cut");
     }
-    let k = Contour { segs: trimmed, a1, sx, sz };
+    let k = Contour {
+        segs: trimmed,
+        a1,
+        sx,
+        sz,
+    };
     let deepest = check(&k)?;
     too_many(deepest / job.dd)?;
     out.rapid(a1);
@@ -179,7 +190,10 @@ fn check(k: &Contour) -> Result<f64, NcError> {
         }
     }
     if pockets > MAX_POCKETS {
-        return fail(4009, format!("the profile has {pockets} pockets; type II allows {MAX_POCKETS}"));
+        return fail(
+            4009,
+            format!("the profile has {pockets} pockets; type II allows {MAX_POCKETS}"),
+        );
     }
     Ok(deepest)
 }

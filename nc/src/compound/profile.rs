@@ -5,13 +5,14 @@
 
 use super::geo::{Axis, Curve, EPS};
 use crate::block::{self, Parsed};
+use crate::contour::{self, Corner};
 use crate::error::{fail, NcError};
 use crate::exec::Nc;
 use crate::gcode::{self, Code};
 use crate::geom::{self, Element};
 use crate::machine::ArcWithoutCenter;
 use crate::state::Pt;
-use crate::words::{Word, COMMA_A, COMMA_C, COMMA_R};
+use crate::words::{Word, COMMA_A};
 
 /// One element of a profile.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,7 +27,10 @@ pub struct Seg {
 impl Seg {
     /// The same element with its curve changed (moved, mirrored).
     pub fn map(self, f: impl Fn(&Curve) -> Curve) -> Seg {
-        Seg { curve: f(&self.curve), ..self }
+        Seg {
+            curve: f(&self.curve),
+            ..self
+        }
     }
 }
 
@@ -41,9 +45,12 @@ pub enum Kind {
 
 /// A handed-over block, or E2020 when the compiler handed none.
 fn first(blocks: &[(Vec<Word>, u32)]) -> Result<&(Vec<Word>, u32), NcError> {
-    blocks
-        .first()
-        .ok_or_else(|| NcError::new(2020, "the cycle has no profile: P(ns) and Q(nf) name no blocks"))
+    blocks.first().ok_or_else(|| {
+        NcError::new(
+            2020,
+            "the cycle has no profile: P(ns) and Q(nf) name no blocks",
+        )
+    })
 }
 
 fn parse_at(nc: &Nc, words: &[Word], tag: u32) -> Result<Parsed, NcError> {
@@ -67,7 +74,11 @@ pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kin
     }
     let has_x = p.has(b'X') || p.has(b'U');
     let has_z = p.has(b'Z') || p.has(b'W');
-    let (infeed, other, axis) = if facing { (has_z, has_x, "Z(W)") } else { (has_x, has_z, "X(U)") };
+    let (infeed, other, axis) = if facing {
+        (has_z, has_x, "Z(W)")
+    } else {
+        (has_x, has_z, "X(U)")
+    };
     if !infeed {
         let msg = format!("the first profile block (ns) of {name} must name {axis}");
         return Err(NcError::new(2021, msg).at(*tag));
@@ -75,17 +86,14 @@ pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kin
     Ok(if other { Kind::Pockets } else { Kind::Plain })
 }
 
-/// Chamfer and rounding words: the corner geometry belongs to the contour
-/// module, which does not offer it over profile elements yet.
-pub fn corner_word(p: &Parsed) -> bool {
-    p.has(b'L') || p.has(b'D') || p.val[COMMA_C as usize].is_some() || p.val[COMMA_R as usize].is_some()
-}
-
 /// E2020 for the codes a profile may not hold: group 00 and the drilling
 /// cycles (dialect.md §4.8).
 pub fn check_codes(p: &Parsed, tag: u32) -> Result<(), NcError> {
     if let Some(code) = p.one_shot() {
-        let msg = format!("{} (group 00) may not stand in a G70–G73 profile", gcode::name(code));
+        let msg = format!(
+            "{} (group 00) may not stand in a G70–G73 profile",
+            gcode::name(code)
+        );
         return Err(NcError::new(2020, msg).at(tag));
     }
     for &(code, _) in p.gs() {
@@ -98,27 +106,66 @@ pub fn check_codes(p: &Parsed, tag: u32) -> Result<(), NcError> {
 }
 
 /// The profile of a roughing cycle (G71, G72, G73) from the tool position.
+/// Chamfers and roundings (L, D, ,C, ,R) join an element and the next
+/// moving block's one with the contour module's corner geometry, as in
+/// ordinary blocks (cycles.md §13 "the same rules apply inside profiles").
 pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
     first(blocks)?;
     let mut pos = nc.st.pos;
     let mut code = nc.st.group(gcode::MOTION);
-    let mut segs = Vec::with_capacity(blocks.len());
+    let mut segs: Vec<Seg> = Vec::with_capacity(blocks.len());
+    // The element waiting for its corner: its index and the corner.
+    let mut waiting: Option<(usize, Corner)> = None;
     for (i, (words, tag)) in blocks.iter().enumerate() {
         let p = parse_at(nc, words, *tag)?;
         check_codes(&p, *tag)?;
         if let Some(c) = p.motion() {
             code = c;
         }
-        if corner_word(&p) {
-            let msg = "chamfers and roundings (L, D, ,C, ,R) in a G71–G73 profile are not supported yet";
-            return Err(NcError::new(2099, msg).at(*tag));
+        let corner = contour::corner_word(nc, code, &p).map_err(|e| e.at(*tag))?;
+        let Some(el) = element(nc, code, &p, pos).map_err(|e| e.at(*tag))? else {
+            continue;
+        };
+        pos = el.end();
+        let seg = Seg {
+            curve: Curve::new(el),
+            rapid: code == 0,
+            ns: i == 0,
+        };
+        match waiting.take() {
+            // A G00 takes no corner (W112): the waiting one is dropped.
+            Some((at, c)) if code != 0 => join(&mut segs, at, seg, c).map_err(|e| e.at(*tag))?,
+            _ => segs.push(seg),
         }
-        if let Some(el) = element(nc, code, &p, pos).map_err(|e| e.at(*tag))? {
-            pos = el.end();
-            segs.push(Seg { curve: Curve::new(el), rapid: code == 0, ns: i == 0 });
-        }
+        waiting = corner.map(|c| (segs.len() - 1, c));
     }
+    // A corner word on the nf block is ignored (W112).
     Ok(segs)
+}
+
+/// Puts `next` after the element at `at`, joined by corner `c`.
+fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcError> {
+    let Some(prev) = segs.get_mut(at) else {
+        segs.push(next);
+        return Ok(());
+    };
+    match contour::corner(&prev.curve.element(), &next.curve.element(), c)? {
+        Some((e1, inserted, e2)) => {
+            prev.curve = Curve::new(e1);
+            segs.push(Seg {
+                curve: Curve::new(inserted),
+                rapid: false,
+                ns: false,
+            });
+            segs.push(Seg {
+                curve: Curve::new(e2),
+                ..next
+            });
+        }
+        // Same direction, or a zero-length element: no corner (W112).
+        None => segs.push(next),
+    }
+    Ok(())
 }
 
 /// The end point of a profile block: U/W are relative to the previous
@@ -168,14 +215,24 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
 fn arc(nc: &Nc, cw: bool, p: &Parsed, from: Pt, to: Pt) -> Result<Option<Element>, NcError> {
     if let Some(r) = nc.len_of(p, b'R') {
         let centre = geom::centre_from_radius(from, to, r, cw)?;
-        return Ok(centre.map(|centre| Element::Arc { from, to, centre, cw }));
+        return Ok(centre.map(|centre| Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        }));
     }
     if p.has(b'I') || p.has(b'K') {
         let i = nc.len_of(p, b'I').unwrap_or(0.0);
         let k = nc.len_of(p, b'K').unwrap_or(0.0);
         let centre = Pt::new(from.r + i, from.z + k);
         geom::check_on_circle(from, to, centre, nc.machine.machine.arc_tolerance_mm)?;
-        return Ok(Some(Element::Arc { from, to, centre, cw }));
+        return Ok(Some(Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        }));
     }
     if !p.has_axis() {
         return Ok(None);
@@ -184,7 +241,10 @@ fn arc(nc: &Nc, cw: bool, p: &Parsed, from: Pt, to: Pt) -> Result<Option<Element
         ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
         ArcWithoutCenter::Alarm => fail(
             2006,
-            format!("{} needs R or I/K to define its centre", if cw { "G02" } else { "G03" }),
+            format!(
+                "{} needs R or I/K to define its centre",
+                if cw { "G02" } else { "G03" }
+            ),
         ),
     }
 }
@@ -202,7 +262,12 @@ fn three_point(nc: &Nc, absolute: bool, p: &Parsed, from: Pt, to: Pt) -> Result<
         Pt::new(from.r + i.unwrap_or(0.0), from.z + k.unwrap_or(0.0))
     };
     let (centre, cw) = geom::circle_through(from, mid, to)?;
-    Ok(Element::Arc { from, to, centre, cw })
+    Ok(Element::Arc {
+        from,
+        to,
+        centre,
+        cw,
+    })
 }
 
 /// The deepest point of a curve below the level `base` (r), infeed

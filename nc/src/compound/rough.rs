@@ -23,7 +23,10 @@ pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
     let cr = body.last().map_or(b1, |s| s.curve.end());
     let sz = sign(cr.z - b1.z);
     if sz == 0.0 {
-        return fail(4009, "the profile makes no move along Z (G71) / X (G72) to cut");
+        return fail(
+            4009,
+            "the profile makes no move along Z (G71) / X (G72) to cut",
+        );
     }
     if job.k1 {
         check_monotone(body, sx, sz)?;
@@ -87,6 +90,7 @@ fn level_end(rest: &[Seg], level: f64, sx: f64, sz: f64) -> Result<Option<f64>, 
         let upto = hit.unwrap_or(1.0);
         let c = &s.curve;
         if !c.monotone(Axis::Z, sz, 0.0, upto) || !c.monotone(Axis::R, -sx, 0.0, upto) {
+            eprintln!("DEBUG level {level} upto {upto} curve {c:?} z {} r {}", c.monotone(Axis::Z, sz, 0.0, upto), c.monotone(Axis::R, -sx, 0.0, upto));
             return fail(
                 4009,
                 "the profile is not monotonic: it turns back before the level pass reaches it",

@@ -32,7 +32,10 @@ fn off_axis(deg: f64) -> f64 {
 /// `deg`. Near-horizontal lines never reach another X: E4008.
 pub fn end_at_r(from: Pt, deg: f64, r: f64) -> Result<Pt, NcError> {
     if off_axis(deg) <= LIMIT_DEG {
-        return fail(4008, format!("angle {deg:.3}° is within 1° of the Z axis: it cannot end at a given X"));
+        return fail(
+            4008,
+            format!("angle {deg:.3}° is within 1° of the Z axis: it cannot end at a given X"),
+        );
     }
     let t = heading(deg);
     Ok(Pt::new(r, from.z + (r - from.r) * t.z / t.r))
@@ -41,7 +44,10 @@ pub fn end_at_r(from: Pt, deg: f64, r: f64) -> Result<Pt, NcError> {
 /// `Z(W) Q`: the point with this Z on the line through `from` at `deg`.
 pub fn end_at_z(from: Pt, deg: f64, z: f64) -> Result<Pt, NcError> {
     if (off_axis(deg) - 90.0).abs() <= LIMIT_DEG {
-        return fail(4008, format!("angle {deg:.3}° is within 1° of the X axis: it cannot end at a given Z"));
+        return fail(
+            4008,
+            format!("angle {deg:.3}° is within 1° of the X axis: it cannot end at a given Z"),
+        );
     }
     let t = heading(deg);
     Ok(Pt::new(from.r + (z - from.z) * t.r / t.z, z))
@@ -54,7 +60,9 @@ pub fn intersection(from: Pt, q1: f64, to: Pt, q2: f64) -> Result<Pt, NcError> {
     if diff.min(180.0 - diff) < LIMIT_DEG {
         return fail(
             4008,
-            format!("the two lines of angle programming ({q1:.3}° and {q2:.3}°) differ by less than 1°"),
+            format!(
+                "the two lines of angle programming ({q1:.3}° and {q2:.3}°) differ by less than 1°"
+            ),
         );
     }
     let (t1, t2) = (heading(q1), heading(q2));

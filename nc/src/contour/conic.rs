@@ -27,7 +27,14 @@ fn axis(deg: f64) -> Pt {
 /// the sense of travel, so the centre is that of the ≤ 180° circular arc
 /// there. `None` when `to` = `from` (no move). E4005 when no such ellipse
 /// exists (the chord longer than 2A, or too long across the axis).
-pub fn ellipse_centre(from: Pt, to: Pt, a: f64, b: f64, q_deg: f64, cw: bool) -> Result<Option<Pt>, NcError> {
+pub fn ellipse_centre(
+    from: Pt,
+    to: Pt,
+    a: f64,
+    b: f64,
+    q_deg: f64,
+    cw: bool,
+) -> Result<Option<Pt>, NcError> {
     if a <= 0.0 || b <= 0.0 {
         return fail(4005, "G6.2/G6.3 need semi-axes A and B greater than 0");
     }
@@ -36,14 +43,25 @@ pub fn ellipse_centre(from: Pt, to: Pt, a: f64, b: f64, q_deg: f64, cw: bool) ->
         return Ok(None);
     }
     if chord / 2.0 > a + SLACK_MM {
-        return fail(4005, format!("the end point is {chord:.4} mm away, more than 2A = {:.4}", 2.0 * a));
+        return fail(
+            4005,
+            format!(
+                "the end point is {chord:.4} mm away, more than 2A = {:.4}",
+                2.0 * a
+            ),
+        );
     }
     let (u, v) = (axis(q_deg), left(axis(q_deg)));
     // Ellipse frame, stretched: ξ along the axis, η across it × a/b.
     let to_circle = |p: Pt| Pt::new(dot(p, v) * a / b, dot(p, u));
     let centre = match geom::centre_from_radius(to_circle(from), to_circle(to), a, cw) {
         Ok(c) => c,
-        Err(_) => return fail(4005, "no ellipse with these semi-axes and axis angle joins the two points"),
+        Err(_) => {
+            return fail(
+                4005,
+                "no ellipse with these semi-axes and axis angle joins the two points",
+            )
+        }
     };
     Ok(centre.map(|c| scale(u, c.z).add(scale(v, c.r * b / a))))
 }
@@ -60,7 +78,10 @@ pub fn parabola_vertex(from: Pt, to: Pt, p: f64, q_deg: f64, cw: bool) -> Result
     let (u, v) = (axis(q_deg), left(axis(q_deg)));
     let (us, vs, ue, ve) = (dot(from, u), dot(from, v), dot(to, u), dot(to, v));
     if (ve - vs).abs() < 1e-9 {
-        return fail(4006, "the chord of the parabola is parallel to its symmetry axis");
+        return fail(
+            4006,
+            "the chord of the parabola is parallel to its symmetry axis",
+        );
     }
     // Opening towards +u the curve turns clockwise while v grows.
     let grows = ve > vs;
@@ -72,7 +93,13 @@ pub fn parabola_vertex(from: Pt, to: Pt, p: f64, q_deg: f64, cw: bool) -> Result
 }
 
 /// A G6.2, G6.3, G7.2 or G7.3 block that may move.
-pub fn run(nc: &mut Nc, ellipse: bool, cw: bool, p: &Parsed, sink: &mut dyn Sink) -> Result<bool, NcError> {
+pub fn run(
+    nc: &mut Nc,
+    ellipse: bool,
+    cw: bool,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+) -> Result<bool, NcError> {
     if !p.has_axis() {
         return Ok(false);
     }
@@ -88,9 +115,22 @@ pub fn run(nc: &mut Nc, ellipse: bool, cw: bool, p: &Parsed, sink: &mut dyn Sink
         super::flush(nc, sink)?;
         nc.feed_due(sink);
         sink.emit(if (a - b).abs() < 1e-9 {
-            Event::Arc { dir, x: to.x(), z: to.z, cx: c.x(), cz: c.z }
+            Event::Arc {
+                dir,
+                x: to.x(),
+                z: to.z,
+                cx: c.x(),
+                cz: c.z,
+            }
         } else {
-            Event::Ellipse { dir, x: to.x(), z: to.z, a, b, q }
+            Event::Ellipse {
+                dir,
+                x: to.x(),
+                z: to.z,
+                a,
+                b,
+                q,
+            }
         });
     } else {
         // P is an integer in increments, its sign ignored.
@@ -105,7 +145,13 @@ pub fn run(nc: &mut Nc, ellipse: bool, cw: bool, p: &Parsed, sink: &mut dyn Sink
         parabola_vertex(from, to, pp, q.abs(), cw)?;
         super::flush(nc, sink)?;
         nc.feed_due(sink);
-        sink.emit(Event::Parabola { dir, x: to.x(), z: to.z, p: pp, q: q.abs() });
+        sink.emit(Event::Parabola {
+            dir,
+            x: to.x(),
+            z: to.z,
+            p: pp,
+            q: q.abs(),
+        });
     }
     nc.st.pos = to;
     Ok(true)

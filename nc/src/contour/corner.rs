@@ -49,7 +49,11 @@ const PARALLEL: f64 = 1e-7;
 /// Errors: E4007 when T1 or T2 would not lie on its element (chamfer or
 /// radius too large) or when the path reverses at P (no inside of the turn,
 /// no chamfer line).
-pub fn corner(e1: &Element, e2: &Element, c: Corner) -> Result<Option<(Element, Element, Element)>, NcError> {
+pub fn corner(
+    e1: &Element,
+    e2: &Element,
+    c: Corner,
+) -> Result<Option<(Element, Element, Element)>, NcError> {
     let p = e1.end();
     if elem::length(e1) < EPS_LEN || elem::length(e2) < EPS_LEN {
         return Ok(None);
@@ -61,7 +65,10 @@ pub fn corner(e1: &Element, e2: &Element, c: Corner) -> Result<Option<(Element, 
         if dot(t1, t2) > 0.0 {
             return Ok(None);
         }
-        return fail(4007, "the path reverses at the corner: there is no corner to chamfer or round");
+        return fail(
+            4007,
+            "the path reverses at the corner: there is no corner to chamfer or round",
+        );
     }
     match c {
         Corner::Chamfer { size, kind } => chamfer(e1, e2, size, kind).map(Some),
@@ -90,7 +97,12 @@ fn reach(e: &Element, d: f64, from_end: bool) -> Option<Pt> {
             let t = unit(to.sub(from))?;
             Some(p.add(scale(t, if from_end { -d } else { d })))
         }
-        Element::Arc { from, to, centre, cw } => {
+        Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        } => {
             let rho = from.dist(centre);
             if d > 2.0 * rho + EPS_LEN {
                 return None;
@@ -111,7 +123,12 @@ fn reach(e: &Element, d: f64, from_end: bool) -> Option<Pt> {
 fn reach_limit(e: &Element) -> f64 {
     match *e {
         Element::Line { from, to } => from.dist(to),
-        Element::Arc { from, to, centre, cw } => {
+        Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        } => {
             let rho = from.dist(centre);
             let s = elem::sweep(from, to, centre, cw);
             if s >= std::f64::consts::PI {
@@ -131,7 +148,11 @@ fn chamfer(e1: &Element, e2: &Element, size: f64, kind: ChamferType) -> Result<J
     let (Some(a), Some(b)) = (reach(e1, d, true), reach(e2, d, false)) else {
         return Err(too_large("chamfer", size));
     };
-    Ok((elem::with_end(e1, a), Element::Line { from: a, to: b }, elem::with_start(e2, b)))
+    Ok((
+        elem::with_end(e1, a),
+        Element::Line { from: a, to: b },
+        elem::with_start(e2, b),
+    ))
 }
 
 /// Type I: the distance d from P at which the chamfer line T1T2 is `len`
@@ -176,9 +197,14 @@ fn offset(e: &Element, d: f64, side: f64) -> Result<Offset, NcError> {
     match *e {
         Element::Line { from, to } => {
             let t = unit(to.sub(from)).ok_or_else(|| too_large("corner radius", d))?;
-            Ok(Offset::Line { p: from.add(scale(left(t), side * d)), t })
+            Ok(Offset::Line {
+                p: from.add(scale(left(t), side * d)),
+                t,
+            })
         }
-        Element::Arc { from, centre, cw, .. } => {
+        Element::Arc {
+            from, centre, cw, ..
+        } => {
             let rho = from.dist(centre);
             // The centre lies left of the travel on a G03 arc.
             let centre_inside = (side > 0.0) != cw;
@@ -202,10 +228,11 @@ fn meet(a: &Offset, b: &Offset) -> Vec<Pt> {
             let lambda = cross(p2.sub(*p1), *t2) / det;
             vec![p1.add(scale(*t1, lambda))]
         }
-        (Offset::Line { p, t }, Offset::Circle { c, rad }) | (Offset::Circle { c, rad }, Offset::Line { p, t }) => {
-            line_circle(*p, *t, *c, *rad)
+        (Offset::Line { p, t }, Offset::Circle { c, rad })
+        | (Offset::Circle { c, rad }, Offset::Line { p, t }) => line_circle(*p, *t, *c, *rad),
+        (Offset::Circle { c: c1, rad: r1 }, Offset::Circle { c: c2, rad: r2 }) => {
+            circle_circle(*c1, *r1, *c2, *r2)
         }
-        (Offset::Circle { c: c1, rad: r1 }, Offset::Circle { c: c2, rad: r2 }) => circle_circle(*c1, *r1, *c2, *r2),
     }
 }
 
@@ -281,6 +308,11 @@ fn round(e1: &Element, e2: &Element, radius: f64, turns_left: bool) -> Result<Jo
     let Some((m, a, b)) = best else {
         return Err(too_large("corner radius", radius));
     };
-    let fillet = Element::Arc { from: a, to: b, centre: m, cw: !turns_left };
+    let fillet = Element::Arc {
+        from: a,
+        to: b,
+        centre: m,
+        cw: !turns_left,
+    };
     Ok((elem::with_end(e1, a), fillet, elem::with_start(e2, b)))
 }

@@ -60,7 +60,11 @@ pub fn rotate(p: Pt, c: Pt, phi: f64, ccw: bool) -> Pt {
 /// How far round an arc about `c` one travels from `a` to `b` in its
 /// direction, in [0, 2π).
 pub fn travel(c: Pt, a: Pt, b: Pt, cw: bool) -> f64 {
-    let d = if cw { polar(c, a) - polar(c, b) } else { polar(c, b) - polar(c, a) };
+    let d = if cw {
+        polar(c, a) - polar(c, b)
+    } else {
+        polar(c, b) - polar(c, a)
+    };
     d.rem_euclid(TAU)
 }
 
@@ -75,7 +79,12 @@ pub fn sweep(from: Pt, to: Pt, centre: Pt, cw: bool) -> f64 {
 pub fn length(e: &Element) -> f64 {
     match *e {
         Element::Line { from, to } => from.dist(to),
-        Element::Arc { from, to, centre, cw } => from.dist(centre) * sweep(from, to, centre, cw),
+        Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        } => from.dist(centre) * sweep(from, to, centre, cw),
     }
 }
 
@@ -95,7 +104,14 @@ pub fn tangent_at(e: &Element, p: Pt) -> Option<Pt> {
 pub fn with_end(e: &Element, p: Pt) -> Element {
     match *e {
         Element::Line { from, .. } => Element::Line { from, to: p },
-        Element::Arc { from, centre, cw, .. } => Element::Arc { from, to: p, centre, cw },
+        Element::Arc {
+            from, centre, cw, ..
+        } => Element::Arc {
+            from,
+            to: p,
+            centre,
+            cw,
+        },
     }
 }
 
@@ -103,7 +119,12 @@ pub fn with_end(e: &Element, p: Pt) -> Element {
 pub fn with_start(e: &Element, p: Pt) -> Element {
     match *e {
         Element::Line { to, .. } => Element::Line { from: p, to },
-        Element::Arc { to, centre, cw, .. } => Element::Arc { from: p, to, centre, cw },
+        Element::Arc { to, centre, cw, .. } => Element::Arc {
+            from: p,
+            to,
+            centre,
+            cw,
+        },
     }
 }
 
@@ -113,11 +134,18 @@ pub fn contains(e: &Element, p: Pt) -> bool {
     match *e {
         Element::Line { from, to } => {
             let len = from.dist(to);
-            let Some(t) = unit(to.sub(from)) else { return false };
+            let Some(t) = unit(to.sub(from)) else {
+                return false;
+            };
             let u = dot(p.sub(from), t);
             (-EPS_LEN..=len + EPS_LEN).contains(&u)
         }
-        Element::Arc { from, to, centre, cw } => {
+        Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        } => {
             let rho = from.dist(centre);
             let slack = EPS_LEN / rho.max(EPS_LEN);
             let a = travel(centre, from, p, cw);

@@ -34,7 +34,13 @@ pub(crate) use queue::in_order;
 use queue::{AngleFirst, Move};
 
 /// G6.2, G6.3, G7.2, G7.3 blocks.
-pub fn conic(nc: &mut Nc, code: Code, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) -> Result<(), NcError> {
+pub fn conic(
+    nc: &mut Nc,
+    code: Code,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
     let ellipse = matches!(code, 62 | 63);
     let cw = matches!(code, 62 | 72);
     if conic::run(nc, ellipse, cw, p, sink)? {
@@ -62,7 +68,10 @@ pub(crate) fn corner_word(nc: &Nc, code: Code, p: &Parsed) -> Result<Option<Corn
         return fail(2040, "a chamfer or corner rounding cannot be given on G00");
     }
     if chamfer.is_some() && round.is_some() {
-        return fail(2040, "a block takes either a chamfer or a corner rounding, not both");
+        return fail(
+            2040,
+            "a block takes either a chamfer or a corner rounding, not both",
+        );
     }
     let size = nc.length(word);
     // Written so that a NaN fails too.
@@ -71,8 +80,14 @@ pub(crate) fn corner_word(nc: &Nc, code: Code, p: &Parsed) -> Result<Option<Corn
     }
     Ok(Some(match chamfer {
         // ,C is always Fanuc's type II; L follows №181.0.
-        Some(_) if comma_c.is_some() => Corner::Chamfer { size, kind: ChamferType::II },
-        Some(_) => Corner::Chamfer { size, kind: nc.machine.cycles.chamfer_type },
+        Some(_) if comma_c.is_some() => Corner::Chamfer {
+            size,
+            kind: ChamferType::II,
+        },
+        Some(_) => Corner::Chamfer {
+            size,
+            kind: nc.machine.cycles.chamfer_type,
+        },
         None => Corner::Round { radius: size },
     }))
 }
@@ -112,13 +127,21 @@ pub(crate) fn straight(
 }
 
 /// `Q_` alone: the line's end waits for the next block.
-fn first_block(nc: &mut Nc, rapid: bool, q: f64, corner: Option<Corner>, sink: &mut dyn Sink) -> Result<(), NcError> {
+fn first_block(
+    nc: &mut Nc,
+    rapid: bool,
+    q: f64,
+    corner: Option<Corner>,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
     if rapid {
         // A G00 is not a move that can take a waiting corner.
         flush(nc, sink)?;
     }
     let feed = queue::feed_now(nc);
-    nc.st.contour.wait_angle(AngleFirst::new(nc.st.pos, q, rapid, feed, corner));
+    nc.st
+        .contour
+        .wait_angle(AngleFirst::new(nc.st.pos, q, rapid, feed, corner));
     Ok(())
 }
 
@@ -132,7 +155,10 @@ fn second_block(
     sink: &mut dyn Sink,
 ) -> Result<(), NcError> {
     let (Some(q2), Some(x), Some(z)) = (q, nc.len_of(p, b'X'), nc.len_of(p, b'Z')) else {
-        return fail(4008, "the second block of angle programming needs absolute X, Z and an angle Q (or ,A)");
+        return fail(
+            4008,
+            "the second block of angle programming needs absolute X, Z and an angle Q (or ,A)",
+        );
     };
     let end = Pt::xz(x, z);
     let template = Move::new(nc, Element::Line { from: end, to: end }, rapid, corner);
@@ -142,9 +168,17 @@ fn second_block(
 
 /// A G02/G03 block's element (an arc, or a line where
 /// `arc_without_center = "line"`), corner-aware.
-pub(crate) fn feed_element(nc: &mut Nc, e: Element, corner: Option<Corner>, sink: &mut dyn Sink) -> Result<(), NcError> {
+pub(crate) fn feed_element(
+    nc: &mut Nc,
+    e: Element,
+    corner: Option<Corner>,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
     if nc.st.contour.angle_waiting() {
-        return fail(4008, "the second block of angle programming must be a G01 (or G00) X_ Z_ Q_ block");
+        return fail(
+            4008,
+            "the second block of angle programming must be a G01 (or G00) X_ Z_ Q_ block",
+        );
     }
     nc.st.pos = e.end();
     let m = Move::new(nc, e, false, corner);
@@ -178,7 +212,10 @@ pub(crate) fn before_one_shot(nc: &mut Nc, code: Code, sink: &mut dyn Sink) -> R
 /// the two blocks of an angle pair (E4008 at the second one).
 pub(crate) fn end_of_block(nc: &mut Nc) -> Result<(), NcError> {
     if nc.st.contour.count_block_between() > 1 {
-        return fail(4008, "angle programming: at most one block may stand between its two blocks");
+        return fail(
+            4008,
+            "angle programming: at most one block may stand between its two blocks",
+        );
     }
     Ok(())
 }
@@ -193,6 +230,9 @@ impl Nc {
     /// printing the rest) when the first block of an angle pair is still
     /// waiting for its second block.
     pub fn flush(&mut self, sink: &mut dyn Sink) -> Result<(), NcError> {
+        // A thread block that waits to know whether it ends its chain
+        // does: nothing follows.
+        crate::cycles::flush(self, sink);
         flush(self, sink)
     }
 

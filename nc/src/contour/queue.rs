@@ -26,7 +26,13 @@ pub(crate) struct Move {
 impl Move {
     pub fn new(nc: &Nc, elem: Element, rapid: bool, corner: Option<Corner>) -> Move {
         let corner = if rapid { None } else { corner };
-        Move { elem, rapid, feed: feed_now(nc), corner, trimmed: false }
+        Move {
+            elem,
+            rapid,
+            feed: feed_now(nc),
+            corner,
+            trimmed: false,
+        }
     }
 
     /// Whether the move must wait for the next one before it is printed.
@@ -49,8 +55,22 @@ pub(crate) struct AngleFirst {
 }
 
 impl AngleFirst {
-    pub fn new(from: Pt, angle: f64, rapid: bool, feed: (f64, bool), corner: Option<Corner>) -> AngleFirst {
-        AngleFirst { from, angle, rapid, feed, corner, between: 0, fresh: true }
+    pub fn new(
+        from: Pt,
+        angle: f64,
+        rapid: bool,
+        feed: (f64, bool),
+        corner: Option<Corner>,
+    ) -> AngleFirst {
+        AngleFirst {
+            from,
+            angle,
+            rapid,
+            feed,
+            corner,
+            between: 0,
+            fresh: true,
+        }
     }
 }
 
@@ -159,7 +179,13 @@ fn join(prev: &mut Move, next: &mut Move) -> Result<Option<Move>, NcError> {
     prev.trimmed = true;
     next.elem = b;
     next.trimmed = true;
-    Ok(Some(Move { elem: inserted, rapid: false, feed: prev.feed, corner: None, trimmed: false }))
+    Ok(Some(Move {
+        elem: inserted,
+        rapid: false,
+        feed: prev.feed,
+        corner: None,
+        trimmed: false,
+    }))
 }
 
 /// Joins the waiting element at `i` (if it is a move) with `next` and
@@ -201,7 +227,13 @@ pub(crate) fn advance(nc: &mut Nc, mut next: Move, sink: &mut dyn Sink) -> Resul
 /// The second block of an angle pair ends at `end` on the line at `q2`:
 /// the first block's line ends at the intersection, then the second
 /// block's line (`template` gives its kind, feed and corner) runs to `end`.
-pub(crate) fn finish_angle(nc: &mut Nc, end: Pt, q2: f64, template: Move, sink: &mut dyn Sink) -> Result<(), NcError> {
+pub(crate) fn finish_angle(
+    nc: &mut Nc,
+    end: Pt,
+    q2: f64,
+    template: Move,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
     let items = &mut nc.st.contour.items;
     let Some(i) = items.iter().position(|it| matches!(it, Item::Angle(_))) else {
         return fail(4008, "angle programming: no first block waits for this one");
@@ -211,7 +243,10 @@ pub(crate) fn finish_angle(nc: &mut Nc, end: Pt, q2: f64, template: Move, sink: 
     };
     let meet = angle::intersection(a.from, a.angle, end, q2)?;
     let mut first = Move {
-        elem: Element::Line { from: a.from, to: meet },
+        elem: Element::Line {
+            from: a.from,
+            to: meet,
+        },
         rapid: a.rapid,
         feed: a.feed,
         corner: if a.rapid { None } else { a.corner },
@@ -224,7 +259,13 @@ pub(crate) fn finish_angle(nc: &mut Nc, end: Pt, q2: f64, template: Move, sink: 
         }
     }
     items.insert(at, Item::Move(first));
-    let second = Move { elem: Element::Line { from: meet, to: end }, ..template };
+    let second = Move {
+        elem: Element::Line {
+            from: meet,
+            to: end,
+        },
+        ..template
+    };
     advance(nc, second, sink)
 }
 
@@ -235,7 +276,10 @@ pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
     let incomplete = nc.st.contour.angle_waiting();
     drain(nc, sink);
     if incomplete {
-        return fail(4008, "angle programming: the block after a Q_ block must be X_ Z_ Q_");
+        return fail(
+            4008,
+            "angle programming: the block after a Q_ block must be X_ Z_ Q_",
+        );
     }
     Ok(())
 }
@@ -259,7 +303,10 @@ fn emit_move(nc: &mut Nc, m: &Move, sink: &mut dyn Sink) {
     }
     if !m.rapid && nc.st.feed_printed != Some(m.feed) {
         nc.st.feed_printed = Some(m.feed);
-        sink.emit(Event::Feed { f: m.feed.0, per_rev: m.feed.1 });
+        sink.emit(Event::Feed {
+            f: m.feed.0,
+            per_rev: m.feed.1,
+        });
     }
     let to = m.elem.end();
     sink.emit(match m.elem {
