@@ -135,6 +135,10 @@ impl DryRun<'_> {
             match split.call {
                 None => {}
                 Some(Call::Sub { p: Some(p), l, .. }) => {
+                    // E4035: M98 while nose-radius compensation is on.
+                    if let Err(e) = self.nc.check_call() {
+                        return Err((prog.unit, error_at(&e, block.span)));
+                    }
                     let (Some(p), l) = (p.literal(), l.and_then(|l| l.literal())) else {
                         return Ok(Flow::End);
                     };

@@ -60,32 +60,49 @@ fn letter(w: &NcWord<'_>, l: u8) -> bool {
 
 fn literal_g(w: &NcWord<'_>) -> Option<u16> {
     match w.value {
-        WordValue::Literal(v, _) if letter(w, b'G') => Some(round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16),
+        WordValue::Literal(v, _) if letter(w, b'G') => {
+            Some(round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16)
+        }
         _ => None,
     }
 }
 
 fn cycle_words(ws: &[NcWord<'_>]) -> Option<CycleWords> {
-    let code = ws.iter().filter_map(literal_g).find(|c| matches!(c, 700 | 710 | 720 | 730))?;
+    let code = ws
+        .iter()
+        .filter_map(literal_g)
+        .find(|c| matches!(c, 700 | 710 | 720 | 730))?;
     let value = |l: u8| ws.iter().find(|w| letter(w, l)).map(|w| w.value.literal());
-    Some(CycleWords { code, p: value(b'P'), q: value(b'Q') })
+    Some(CycleWords {
+        code,
+        p: value(b'P'),
+        q: value(b'Q'),
+    })
 }
 
 /// Whether the block-delete switch of a block is on (the block is skipped).
 fn skipped(skip: &[bool; 9], block: &Block) -> bool {
-    block
-        .delete
-        .is_some_and(|d| skip.get(d.switch.saturating_sub(1) as usize).copied().unwrap_or(false))
+    block.delete.is_some_and(|d| {
+        skip.get(d.switch.saturating_sub(1) as usize)
+            .copied()
+            .unwrap_or(false)
+    })
 }
 
 fn seq_of(unit: &Unit, line: usize) -> Option<u32> {
-    link::block(unit, line).and_then(|b| b.seq).map(|s| s.number)
+    link::block(unit, line)
+        .and_then(|b| b.seq)
+        .map(|s| s.number)
 }
 
 /// The index in `prog.blocks` of the first block numbered `n`, and whether
 /// another block carries the same number (W103).
 fn first_numbered(unit: &Unit, prog: &Program, n: u32) -> (Option<usize>, bool) {
-    let mut found = prog.blocks.iter().enumerate().filter(|(_, &l)| seq_of(unit, l) == Some(n));
+    let mut found = prog
+        .blocks
+        .iter()
+        .enumerate()
+        .filter(|(_, &l)| seq_of(unit, l) == Some(n));
     (found.next().map(|(i, _)| i), found.next().is_some())
 }
 
@@ -98,10 +115,15 @@ fn resolve(unit: &Unit, prog: &Program, ns: u32, nf: u32) -> Result<(usize, usiz
         return Err(format!("Q{nf}: there is no block N{nf} in this program"));
     };
     if j < i {
-        return Err(format!("Q{nf}: the block N{nf} (nf) stands before N{ns} (ns)"));
+        return Err(format!(
+            "Q{nf}: the block N{nf} (nf) stands before N{ns} (ns)"
+        ));
     }
     if j - i + 1 > MAX_BLOCKS {
-        return Err(format!("the profile N{ns}…N{nf} has {} blocks; at most {MAX_BLOCKS} are allowed", j - i + 1));
+        return Err(format!(
+            "the profile N{ns}…N{nf} has {} blocks; at most {MAX_BLOCKS} are allowed",
+            j - i + 1
+        ));
     }
     Ok((i, j))
 }
@@ -109,10 +131,14 @@ fn resolve(unit: &Unit, prog: &Program, ns: u32, nf: u32) -> Result<(usize, usiz
 /// A sequence number as P/Q give it, or the E2020 message.
 fn sequence(v: Option<Option<f64>>, l: char) -> Result<u32, String> {
     match v {
-        Some(Some(n)) if (0.0..=99999.0).contains(&round_half_away(n)) => Ok(round_half_away(n) as u32),
+        Some(Some(n)) if (0.0..=99999.0).contains(&round_half_away(n)) => {
+            Ok(round_half_away(n) as u32)
+        }
         Some(Some(n)) => Err(format!("{l}{n} is not a sequence number")),
         Some(None) => Err(format!("{l} of G70–G73 must be a literal sequence number")),
-        None => Err(format!("{l} is missing: a G70–G73 cycle block needs P (ns) and Q (nf)")),
+        None => Err(format!(
+            "{l} is missing: a G70–G73 cycle block needs P (ns) and Q (nf)"
+        )),
     }
 }
 
@@ -151,7 +177,9 @@ fn current<'a>(gen: &Gen<'a>) -> Option<(&'a Unit, &'a Program, usize)> {
     let (unit, line) = gen.profiles.current?;
     let units: &'a [Unit] = gen.units;
     let programs: &'a [Program] = gen.programs;
-    let prog = programs.iter().find(|p| p.unit == unit && p.blocks.contains(&line))?;
+    let prog = programs
+        .iter()
+        .find(|p| p.unit == unit && p.blocks.contains(&line))?;
     Some((&units[unit], prog, line))
 }
 
@@ -184,27 +212,38 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
     };
     for n in [ns, nf] {
         if first_numbered(unit, prog, n).1 {
-            gen.warn("W103", block.span, format!("N{n} occurs more than once: the first block is used"));
+            gen.warn(
+                "W103",
+                block.span,
+                format!("N{n} occurs more than once: the first block is used"),
+            );
         }
     }
     let lines: Vec<usize> = prog.blocks[i..=j]
         .iter()
         .copied()
-        .filter(|&l| link::block(unit, l).is_some_and(|b| !skipped(&gen.machine.operator.block_skip, b)))
+        .filter(|&l| {
+            link::block(unit, l).is_some_and(|b| !skipped(&gen.machine.operator.block_skip, b))
+        })
         .collect();
     if !check_blocks(gen, unit, cw.code, &lines, block.span) {
         return None;
     }
     emit_profile(gen, unit, &lines);
     gen.set_loc(block.span);
-    (cw.code != 700).then(|| After { resume: prog.blocks.get(j + 1).copied() })
+    (cw.code != 700).then(|| After {
+        resume: prog.blocks.get(j + 1).copied(),
+    })
 }
 
 /// After the cycle block's `Exec`: G71–G73 go on after nf.
 pub fn after_exec(gen: &mut Gen<'_>, after: Option<After>) {
     let Some(after) = after else { return };
     let at = gen.emit(Instr::Jump { target: 0 });
-    match after.resume.and_then(|l| gen.profiles.starts.get(&(gen.unit, l)).copied()) {
+    match after
+        .resume
+        .and_then(|l| gen.profiles.starts.get(&(gen.unit, l)).copied())
+    {
         Some(pc) => patch(gen, at, pc),
         None => gen.profiles.pending.push((at, after.resume)),
     }
@@ -213,9 +252,13 @@ pub fn after_exec(gen: &mut Gen<'_>, after: Option<After>) {
 /// The profile blocks as `Word`/`WordK` + `Exec { flags: PROFILE }`.
 fn emit_profile(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
     for &l in lines {
-        let Some(b) = link::block(unit, l) else { continue };
+        let Some(b) = link::block(unit, l) else {
+            continue;
+        };
         let Body::Words(ws) = &b.body else { continue };
-        let Ok(split) = words::classify(ws) else { continue };
+        let Ok(split) = words::classify(ws) else {
+            continue;
+        };
         if split.nc.is_empty() {
             continue;
         }
@@ -235,7 +278,11 @@ fn emit_words(gen: &mut Gen<'_>, ws: &[NcWord<'_>]) {
         match w.value {
             WordValue::Literal(v, flags) => {
                 let k = gen.konst(v);
-                gen.emit(Instr::WordK { addr: w.addr, k, flags });
+                gen.emit(Instr::WordK {
+                    addr: w.addr,
+                    k,
+                    flags,
+                });
             }
             WordValue::Expr(e) => {
                 if let Some(src) = gen.expr_reg(e) {
@@ -259,7 +306,11 @@ fn integer_flags(gen: &mut Gen<'_>, cw: &CycleWords, ws: &[NcWord<'_>], span: Sp
         if let WordValue::Literal(_, flags) = w.value {
             if flags & LITERAL != 0 && flags & NO_POINT == 0 {
                 let l = (b'A' + w.addr) as char;
-                gen.error("E1009", span, format!("{l} takes an integer here; a decimal point is not allowed"));
+                gen.error(
+                    "E1009",
+                    span,
+                    format!("{l} takes an integer here; a decimal point is not allowed"),
+                );
             }
         }
     }
@@ -268,7 +319,11 @@ fn integer_flags(gen: &mut Gen<'_>, cw: &CycleWords, ws: &[NcWord<'_>], span: Sp
 /// The static checks of the profile blocks; false after an error.
 fn check_blocks(gen: &mut Gen<'_>, unit: &Unit, code: u16, lines: &[usize], span: Span) -> bool {
     let Some(&ns) = lines.first() else {
-        gen.error("E2020", span, "every block of the profile is skipped (block delete)");
+        gen.error(
+            "E2020",
+            span,
+            "every block of the profile is skipped (block delete)",
+        );
         return false;
     };
     if let Some((at, msg)) = ns_fault(unit, ns, code) {
@@ -276,7 +331,9 @@ fn check_blocks(gen: &mut Gen<'_>, unit: &Unit, code: u16, lines: &[usize], span
         return false;
     }
     for (k, &l) in lines.iter().enumerate() {
-        let Some(b) = link::block(unit, l) else { continue };
+        let Some(b) = link::block(unit, l) else {
+            continue;
+        };
         if let Some(msg) = block_fault(b, k + 1 == lines.len()) {
             gen.error("E2020", b.span, msg);
             return false;
@@ -294,17 +351,34 @@ fn ns_fault(unit: &Unit, line: usize, code: u16) -> Option<(Span, String)> {
         return None;
     }
     let b = link::block(unit, line)?;
-    let Body::Words(ws) = &b.body else { return None };
+    let Body::Words(ws) = &b.body else {
+        return None;
+    };
     let split = words::classify(ws).ok()?;
     let name = gcode::name(code);
-    let motion = split.nc.iter().filter_map(literal_g).filter(|&c| gcode::group(c) == Some(gcode::MOTION)).last();
+    let motion = split
+        .nc
+        .iter()
+        .rev()
+        .filter_map(literal_g)
+        .find(|&c| gcode::group(c) == Some(gcode::MOTION));
     if let Some(m) = motion.filter(|m| !matches!(m, 0 | 10)) {
-        let msg = format!("the first profile block (ns) of {name} must move with G00 or G01, not {}", gcode::name(m));
+        let msg = format!(
+            "the first profile block (ns) of {name} must move with G00 or G01, not {}",
+            gcode::name(m)
+        );
         return Some((b.span, msg));
     }
-    let (axis, a, b2) = if code == 710 { ("X(U)", b'X', b'U') } else { ("Z(W)", b'Z', b'W') };
+    let (axis, a, b2) = if code == 710 {
+        ("X(U)", b'X', b'U')
+    } else {
+        ("Z(W)", b'Z', b'W')
+    };
     if !split.nc.iter().any(|w| letter(w, a) || letter(w, b2)) {
-        return Some((b.span, format!("the first profile block (ns) of {name} must name {axis}")));
+        return Some((
+            b.span,
+            format!("the first profile block (ns) of {name} must name {axis}"),
+        ));
     }
     None
 }
@@ -318,16 +392,30 @@ fn block_fault(b: &Block, last: bool) -> Option<String> {
     let split = words::classify(ws).ok()?;
     match split.call {
         None | Some(Call::ModalCancel) => {}
-        Some(c) => return Some(format!("{} may not stand in a G70–G73 profile", c.kind_name())),
+        Some(c) => {
+            return Some(format!(
+                "{} may not stand in a G70–G73 profile",
+                c.kind_name()
+            ))
+        }
     }
     for c in split.nc.iter().filter_map(literal_g) {
         let group = gcode::group(c);
         if group == Some(gcode::ONE_SHOT) || (group == Some(gcode::DRILL) && c != 800) {
-            return Some(format!("{} may not stand in a G70–G73 profile", gcode::name(c)));
+            return Some(format!(
+                "{} may not stand in a G70–G73 profile",
+                gcode::name(c)
+            ));
         }
     }
-    let axis = split.nc.iter().any(|w| [b'X', b'U', b'Z', b'W'].iter().any(|&l| letter(w, l)));
-    let angle = split.nc.iter().any(|w| letter(w, b'Q') || w.addr == COMMA_A);
+    let axis = split
+        .nc
+        .iter()
+        .any(|w| [b'X', b'U', b'Z', b'W'].iter().any(|&l| letter(w, l)));
+    let angle = split
+        .nc
+        .iter()
+        .any(|w| letter(w, b'Q') || w.addr == COMMA_A);
     if last && angle && !axis {
         return Some("the nf block may not be the first block of an angle-programming pair".into());
     }
@@ -347,11 +435,16 @@ fn shared_numbers(gen: &mut Gen<'_>, prog: &Program) {
     let mut reported = HashSet::new();
     for (_, (i, j)) in cycles {
         for k in i..=j {
-            let Some(n) = seq_of(unit, prog.blocks[k]) else { continue };
-            let twins = (0..prog.blocks.len()).filter(|&m| m != k && seq_of(unit, prog.blocks[m]) == Some(n));
+            let Some(n) = seq_of(unit, prog.blocks[k]) else {
+                continue;
+            };
+            let twins = (0..prog.blocks.len())
+                .filter(|&m| m != k && seq_of(unit, prog.blocks[m]) == Some(n));
             for m in twins {
                 let later = k.max(m);
-                let Some(b) = link::block(unit, prog.blocks[later]).filter(|_| reported.insert(later)) else {
+                let Some(b) =
+                    link::block(unit, prog.blocks[later]).filter(|_| reported.insert(later))
+                else {
                     continue;
                 };
                 gen.error(
@@ -370,11 +463,19 @@ fn shared_numbers(gen: &mut Gen<'_>, prog: &Program) {
 fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(u16, (usize, usize))> {
     let mut out = Vec::new();
     for &l in &prog.blocks {
-        let Some(b) = link::block(unit, l) else { continue };
+        let Some(b) = link::block(unit, l) else {
+            continue;
+        };
         let Body::Words(ws) = &b.body else { continue };
-        let Ok(split) = words::classify(ws) else { continue };
-        let Some(cw) = cycle_words(&split.nc) else { continue };
-        let (Ok(ns), Ok(nf)) = (sequence(cw.p, 'P'), sequence(cw.q, 'Q')) else { continue };
+        let Ok(split) = words::classify(ws) else {
+            continue;
+        };
+        let Some(cw) = cycle_words(&split.nc) else {
+            continue;
+        };
+        let (Ok(ns), Ok(nf)) = (sequence(cw.p, 'P'), sequence(cw.q, 'Q')) else {
+            continue;
+        };
         if let Ok(r) = resolve(unit, prog, ns, nf) {
             out.push((cw.code, r));
         }
@@ -385,19 +486,33 @@ fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(u16, (usize, usize))> {
 /// Dry run (check.rs): for a cycle block at `index` of `prog`, hands its
 /// profile to the kernel, each block tagged with its line, and returns the
 /// index of `prog.blocks` where the program goes on (G71–G73: after nf).
-pub fn hand_over(nc: &mut Nc, unit: &Unit, prog: &Program, ws: &[NcWord<'_>], skip: &[bool; 9]) -> Option<usize> {
+pub fn hand_over(
+    nc: &mut Nc,
+    unit: &Unit,
+    prog: &Program,
+    ws: &[NcWord<'_>],
+    skip: &[bool; 9],
+) -> Option<usize> {
     let cw = cycle_words(ws)?;
     let (ns, nf) = (sequence(cw.p, 'P').ok()?, sequence(cw.q, 'Q').ok()?);
     let (i, j) = resolve(unit, prog, ns, nf).ok()?;
     for &l in &prog.blocks[i..=j] {
-        let Some(b) = link::block(unit, l).filter(|b| !skipped(skip, b)) else { continue };
+        let Some(b) = link::block(unit, l).filter(|b| !skipped(skip, b)) else {
+            continue;
+        };
         let Body::Words(bw) = &b.body else { continue };
-        let Ok(split) = words::classify(bw) else { continue };
+        let Ok(split) = words::classify(bw) else {
+            continue;
+        };
         let lits: Vec<Word> = split
             .nc
             .iter()
             .filter_map(|w| match w.value {
-                WordValue::Literal(value, flags) => Some(Word { addr: w.addr, value, flags }),
+                WordValue::Literal(value, flags) => Some(Word {
+                    addr: w.addr,
+                    value,
+                    flags,
+                }),
                 WordValue::Expr(_) => None,
             })
             .collect();
@@ -411,5 +526,179 @@ pub fn hand_over(nc: &mut Nc, unit: &Unit, prog: &Program, ws: &[NcWord<'_>], sk
 /// The span of the block an error is about: the tagged profile block, else
 /// the block that ran.
 pub fn error_span(unit: &Unit, at: Option<u32>, block: Span) -> Span {
-    at.and_then(|l| link::block(unit, l as usize)).map_or(block, |b| b.span)
+    at.and_then(|l| link::block(unit, l as usize))
+        .map_or(block, |b| b.span)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{compile, Options};
+    use nc::{Event, Machine};
+    use vm::{Status, Vm};
+
+    /// The rendered diagnostics of a program that must not compile.
+    fn errors(src: &str) -> String {
+        let c = compile("t.nc", src.as_bytes(), &Options::default());
+        assert!(c.has_errors(), "expected an error:\n{src}");
+        c.render()
+    }
+
+    fn canon(src: &str) -> (Vec<String>, Status) {
+        let c = compile("t.nc", src.as_bytes(), &Options::default());
+        assert!(!c.has_errors(), "{}", c.render());
+        let mut vm = Vm::new(c.module.expect("a module"), Machine::reference());
+        let mut events: Vec<Event> = Vec::new();
+        let status = vm.run(&mut events);
+        (events.iter().map(|e| e.to_string()).collect(), status)
+    }
+
+    fn assert_error(src: &str, line: u32, code: &str) {
+        let out = errors(src);
+        assert!(
+            out.contains(&format!("t.nc:{line}:")) && out.contains(code),
+            "want {code} at line {line}:\n{out}"
+        );
+    }
+
+    const HEAD: &str = "G98 G00 X40 Z2\nG71 U3 R1\n";
+
+    #[test]
+    fn missing_and_reversed_numbers_are_e2020_at_the_cycle_block() {
+        assert_error(
+            &format!("{HEAD}G71 P1 Q9 F0.2\nN1 G00 X20\nN2 G01 Z-10\nM30\n"),
+            3,
+            "E2020",
+        );
+        assert_error(
+            &format!("{HEAD}G71 P2 Q1 F0.2\nN1 G00 X20\nN2 G01 Z-10\nM30\n"),
+            3,
+            "E2020",
+        );
+        assert_error(
+            &format!("{HEAD}G71 P1 F0.2\nN1 G00 X20\nN2 G01 Z-10\nM30\n"),
+            3,
+            "E2020",
+        );
+        assert_error("G00 X40 Z2\nG70\nM30\n", 2, "E2006");
+    }
+
+    #[test]
+    fn more_than_100_profile_blocks_is_e2020_at_the_cycle_block() {
+        let mut src = format!("{HEAD}G71 P1 Q2 F0.2\nN1 G00 X20\n");
+        for i in 0..99 {
+            src.push_str(&format!("G01 Z-{}\n", i + 1));
+        }
+        src.push_str("N2 X40\nM30\n");
+        assert_error(&src, 3, "E2020");
+    }
+
+    #[test]
+    fn calls_macros_and_group_00_in_a_profile_are_e2020_at_that_block() {
+        let body = |bad: &str| {
+            format!("{HEAD}G71 P1 Q2 F0.2\nN1 G00 X20\n{bad}\nN2 G01 Z-10\nM30\nO0010\nM99\n")
+        };
+        assert_error(&body("M98 P10"), 5, "E2020");
+        assert_error(&body("#1 = 5"), 5, "E2020");
+        assert_error(&body("G04 P100"), 5, "E2020");
+        // The nf block may not open an angle pair.
+        assert_error(
+            &format!("{HEAD}G71 P1 Q2 F0.2\nN1 G00 X20\nN2 G01 Q135000\nM30\n"),
+            5,
+            "E2020",
+        );
+    }
+
+    #[test]
+    fn e2021_at_the_ns_block() {
+        assert_error(
+            &format!("{HEAD}G71 P1 Q2 F0.2\nN1 G03 X20 Z0 R10\nN2 G01 Z-10\nM30\n"),
+            4,
+            "E2021",
+        );
+        assert_error(
+            &format!("{HEAD}G71 P1 Q2 F0.2\nN1 G00 Z0\nN2 G01 X20\nM30\n"),
+            4,
+            "E2021",
+        );
+        // In a program with macros the compiler cannot tell which code the
+        // ns block inherits (control flow is computed): the kernel finds
+        // the G02 when the cycle runs, still at the ns block.
+        let src =
+            "#1 = 20\nG98 G00 X40 Z2\nG02\nG71 U3 R1\nG71 P1 Q2 F0.2\nN1 X#1\nN2 G01 Z-10\nM30\n";
+        let (_, status) = canon(src);
+        let Status::Alarm(a) = status else {
+            panic!("an alarm")
+        };
+        assert_eq!((a.code, a.line), (2021, 6));
+    }
+
+    #[test]
+    fn shared_profile_numbers_with_two_roughing_cycles_are_e2022_at_the_later_block() {
+        let src = format!(
+            "{HEAD}G71 P1 Q2 F0.2\nN1 G00 X20\nN2 G01 Z-10\nG72 W2 R1\nG72 P5 Q6 F0.2\nN5 G00 Z-2\nN1 G01 X20\nN6 Z2\nM30\n"
+        );
+        // N1 of the first profile stands on line 9 too.
+        assert_error(&src, 9, "E2022");
+        // One roughing cycle and a G70: the numbers may repeat (W103).
+        let ok =
+            format!("{HEAD}G71 P1 Q2 F0.2\nN1 G00 X20\nN2 G01 Z-10\nG70 P1 Q2\nN1 G00 X50\nM30\n");
+        let c = compile("t.nc", ok.as_bytes(), &Options::default());
+        assert!(!c.has_errors(), "{}", c.render());
+    }
+
+    #[test]
+    fn the_program_goes_on_after_nf_and_after_g70() {
+        // G71 from X40 Z2 over N1 X30 / N2 Z-5 (Δd 3 > stock 5 → one level
+        // at X34): the profile blocks do not run again, the block after nf
+        // does. G70 then runs them and goes on after its own block.
+        let src = "#1 = 30\nG98 G00 X40 Z2\nG71 U3 R1\nG71 P1 Q2 F0.2\nN1 G00 X#1\nN2 G01 Z-5\nG00 X60\nG70 P1 Q2\nM30\n";
+        let (got, status) = canon(src);
+        assert_eq!(status, Status::Done);
+        let want = [
+            "RAPID X=40 Z=2",
+            "RAPID X=34 Z=2",
+            "FEED F=0.2 MODE=MIN",
+            "LINE X=34 Z=-5",
+            "LINE X=36 Z=-4",
+            "RAPID X=36 Z=2",
+            "RAPID X=30 Z=2",
+            "LINE X=30 Z=-5",
+            "RAPID X=40 Z=2",
+            "RAPID X=60 Z=2",
+            "RAPID X=30 Z=2",
+            "LINE X=30 Z=-5",
+            "RAPID X=60 Z=2",
+            "STOP KIND=M30",
+        ];
+        assert_eq!(got, want);
+    }
+
+    #[test]
+    fn a_geometry_error_in_a_profile_names_the_profile_block() {
+        // Static: the dry run makes it a compile error at line 5.
+        let src = format!("{HEAD}G71 P1 Q2 F0.2\nN1 G00 X20\nG02 X30 Z-20 R1\nN2 G01 Z-30\nM30\n");
+        assert_error(&src, 5, "E4001");
+        // With a macro: a run-time alarm, still at line 6.
+        let src = format!(
+            "#1 = 1\n{HEAD}G71 P1 Q2 F0.2\nN1 G00 X20\nG02 X30 Z-20 R#1\nN2 G01 Z-30\nM30\n"
+        );
+        let (_, status) = canon(&src);
+        let Status::Alarm(a) = status else {
+            panic!("an alarm")
+        };
+        assert_eq!((a.code, a.line), (4001, 6));
+    }
+
+    #[test]
+    fn skipped_blocks_leave_the_profile() {
+        // From X40 Z2 (Δd 3, stock 6): one level pass at X34. With the
+        // deleted taper /X34 Z-3 the profile is X28 → Z-10 and the pass
+        // never meets it again: it ends at C′, Z-10 (not Z-3).
+        let src = format!("{HEAD}G71 P1 Q2 F0.2\nN1 G00 X28\n/G01 X34 Z-3\nN2 G01 Z-10\nM30\n");
+        let (got, _) = canon(&src);
+        assert_eq!(
+            got[1..4],
+            ["RAPID X=34 Z=2", "FEED F=0.2 MODE=MIN", "LINE X=34 Z=-10"]
+        );
+    }
 }

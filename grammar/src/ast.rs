@@ -124,15 +124,31 @@ pub struct Number {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stmt {
     /// `#i = expr`.
-    Assign { target: VarRef, value: Expr, span: Span },
+    Assign {
+        target: VarRef,
+        value: Expr,
+        span: Span,
+    },
     /// `GOTO n`.
     Goto { target: Expr, span: Span },
     /// `IF [cond] GOTO n`.
-    IfGoto { cond: Cond, target: Expr, span: Span },
+    IfGoto {
+        cond: Cond,
+        target: Expr,
+        span: Span,
+    },
     /// `IF [cond] THEN #i = expr`.
-    IfThen { cond: Cond, then: Box<Stmt>, span: Span },
+    IfThen {
+        cond: Cond,
+        then: Box<Stmt>,
+        span: Span,
+    },
     /// `WHILE [cond] DO m`.
-    While { cond: Cond, label: Label, span: Span },
+    While {
+        cond: Cond,
+        label: Label,
+        span: Span,
+    },
     /// `DO m` (an endless loop).
     Do { label: Label, span: Span },
     /// `END m`.
@@ -173,12 +189,32 @@ pub enum Expr {
     Var(VarRef),
     /// `[e]`: kept so the null rules (a bracketed bare variable copies null)
     /// and spans stay faithful.
-    Paren { inner: Box<Expr>, span: Span },
-    Unary { op: UnOp, operand: Box<Expr>, span: Span },
-    Binary { op: BinOp, lhs: Box<Expr>, rhs: Box<Expr>, span: Span },
-    Call { func: Func, arg: Box<Expr>, span: Span },
+    Paren {
+        inner: Box<Expr>,
+        span: Span,
+    },
+    Unary {
+        op: UnOp,
+        operand: Box<Expr>,
+        span: Span,
+    },
+    Binary {
+        op: BinOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+        span: Span,
+    },
+    Call {
+        func: Func,
+        arg: Box<Expr>,
+        span: Span,
+    },
     /// `ATAN[a]/[b]`.
-    Atan2 { y: Box<Expr>, x: Box<Expr>, span: Span },
+    Atan2 {
+        y: Box<Expr>,
+        x: Box<Expr>,
+        span: Span,
+    },
 }
 
 impl Expr {
@@ -236,9 +272,19 @@ pub enum Func {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Cond {
     /// `[a EQ b]`.
-    Rel { op: RelOp, lhs: Expr, rhs: Expr, span: Span },
+    Rel {
+        op: RelOp,
+        lhs: Expr,
+        rhs: Expr,
+        span: Span,
+    },
     /// `[c1 AND c2 …]` folded left.
-    Logic { op: LogicOp, lhs: Box<Cond>, rhs: Box<Cond>, span: Span },
+    Logic {
+        op: LogicOp,
+        lhs: Box<Cond>,
+        rhs: Box<Cond>,
+        span: Span,
+    },
 }
 
 impl Cond {

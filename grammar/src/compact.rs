@@ -4,9 +4,11 @@
 //! and keywords (`X 3 0 . 5` = `X30.5`, dialect.md §1.1), so they are
 //! removed before tokenizing; comments are taken out in the same pass (their
 //! text goes to the syntax tree). Spans must still point into the original
-//! bytes, so the compacted text comes with an [`OffsetMap`]. A block without
-//! blanks or comments — most blocks of most files — is lexed in place,
-//! without a copy.
+//! bytes, so the compacted text comes with an [`OffsetMap`].
+//!
+//! Most blocks need no copy: when every blank only separates two tokens
+//! (`G01 X10 Z-5`, not `X 1 0`) and there is no comment, the block is lexed
+//! in place and the lexer skips the blanks.
 
 use crate::ast::Comment;
 use crate::diag::Diagnostic;
@@ -112,30 +114,67 @@ fn plain_run(src: &[u8], mut i: usize, limit: usize) -> usize {
     i
 }
 
+/// Can `a` and `b` be neighbours inside one token? A blank between such
+/// bytes (`X 10`, `F 0.25`, `GO TO`) must be removed before lexing; any
+/// other blank only separates tokens, and the lexer can skip it in place.
+fn joins(a: u8, b: u8) -> bool {
+    let letter = |c: u8| c.is_ascii_alphabetic();
+    let digit = |c: u8| c.is_ascii_digit() || c == b'.';
+    let sign = |c: u8| c == b'+' || c == b'-';
+    (letter(a) && (letter(b) || digit(b) || sign(b)))
+        || (digit(a) && digit(b))
+        || (sign(a) && digit(b))
+}
+
 impl Compactor {
     /// Scans the block starting at `start`; `limit` is the end of the input
     /// (a final Ctrl-Z excluded).
     pub fn scan<'a>(&'a mut self, src: &'a [u8], start: usize, limit: usize) -> Scanned<'a> {
-        let mut i = plain_run(src, start, limit);
-        let mut first = (i > start).then_some(start);
-        let mut last = i;
-        if i >= limit || class(src[i]) == END {
-            return Scanned {
-                text: &src[start..i],
-                map: OffsetMap::InPlace(start),
-                comments: Vec::new(),
-                span: first.map(|f| Span::new(f, last)),
-                end: i,
-                terminator: terminator_at(src, i, limit),
-                error: None,
-            };
+        // In place while the block holds only plain bytes and blanks that
+        // separate tokens (the lexer skips those).
+        let mut i = start;
+        let mut first = None;
+        let mut last = start;
+        loop {
+            let run = i;
+            i = plain_run(src, i, limit);
+            if i > run {
+                first.get_or_insert(run);
+                last = i;
+            }
+            if i >= limit || class(src[i]) == END {
+                return Scanned {
+                    text: &src[start..i],
+                    map: OffsetMap::InPlace(start),
+                    comments: Vec::new(),
+                    span: first.map(|f| Span::new(f, last)),
+                    end: i,
+                    terminator: terminator_at(src, i, limit),
+                    error: None,
+                };
+            }
+            if class(src[i]) != BLANK {
+                break;
+            }
+            let mut j = i + 1;
+            while j < limit && class(src[j]) == BLANK {
+                j += 1;
+            }
+            if i > start && last == i && j < limit && joins(src[i - 1], src[j]) {
+                break;
+            }
+            i = j;
         }
 
-        // Slow path: copy the runs of significant bytes.
+        // Slow path: copy the significant bytes.
         self.buf.clear();
         self.offsets.clear();
-        self.buf.extend_from_slice(&src[start..i]);
-        self.offsets.extend(start as u32..i as u32);
+        for (k, &b) in src[start..i].iter().enumerate() {
+            if class(b) != BLANK {
+                self.buf.push(b);
+                self.offsets.push((start + k) as u32);
+            }
+        }
         let mut comments = Vec::new();
         let mut error = None;
         while i < limit {
@@ -161,7 +200,7 @@ impl Compactor {
                         i = close + 1;
                     }
                     Err(d) => {
-                        error = Some(d);
+                        error = Some(*d);
                         break;
                     }
                 },
@@ -207,24 +246,28 @@ fn terminator_at(src: &[u8], i: usize, limit: usize) -> Terminator {
 }
 
 /// The `)` closing the comment opened at `open`, on the same line.
-fn comment_end(src: &[u8], open: usize, limit: usize) -> Result<usize, Diagnostic> {
+fn comment_end(src: &[u8], open: usize, limit: usize) -> Result<usize, Box<Diagnostic>> {
     let mut j = open + 1;
     loop {
         if j >= limit || src[j] == b'\n' || src[j] == b'\r' {
-            return Err(
-                Diagnostic::error("E1002", Span::new(open, j), "comment not closed on its line")
-                    .with_label("this `(` has no `)`")
-                    .with_help("close the comment with `)` before the end of the line"),
-            );
+            return Err(Box::new(
+                Diagnostic::error(
+                    "E1002",
+                    Span::new(open, j),
+                    "comment not closed on its line",
+                )
+                .with_label("this `(` has no `)`")
+                .with_help("close the comment with `)` before the end of the line"),
+            ));
         }
         match src[j] {
             b')' => return Ok(j),
             b'(' => {
-                return Err(
+                return Err(Box::new(
                     Diagnostic::error("E1002", Span::new(j, j + 1), "nested comment")
                         .with_label("`(` inside a comment")
                         .with_note("comments do not nest: a comment ends at the first `)`"),
-                )
+                ))
             }
             _ => j += 1,
         }
@@ -291,6 +334,19 @@ mod tests {
     }
 
     #[test]
+    fn in_place_when_blanks_separate_tokens() {
+        let mut c = Compactor::default();
+        let s = c.scan(b"G01 X10 Z-5 ;", 0, 13);
+        assert!(matches!(s.map, OffsetMap::InPlace(0)));
+        assert_eq!(s.text, b"G01 X10 Z-5 ");
+        assert_eq!(s.span, Some(Span::new(0, 11)));
+        for joined in ["X 10", "F 0.25", "GO TO", "X- 5", "X1 .5", "1 2"] {
+            let s = c.scan(joined.as_bytes(), 0, joined.len());
+            assert!(matches!(s.map, OffsetMap::Copied(_)), "{joined}");
+        }
+    }
+
+    #[test]
     fn in_place_without_blanks() {
         let (text, offsets, _, err) = scan("G01X10;G00");
         assert_eq!(text, b"G01X10");
@@ -319,6 +375,10 @@ mod tests {
         assert_eq!(scan("G01 (OPEN").3, Some("E1002"));
         assert_eq!(scan("G01 X1)").3, Some("E1002"));
         assert_eq!(scan(b"G01 X\x01").3, Some("E1001"));
-        assert_eq!(scan("G01 \"").3, None, "printable ASCII is the lexer's business");
+        assert_eq!(
+            scan("G01 \"").3,
+            None,
+            "printable ASCII is the lexer's business"
+        );
     }
 }

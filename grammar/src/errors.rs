@@ -12,12 +12,12 @@
 
 use crate::diag::Diagnostic;
 use crate::lexer::{func_name, Spanned, Tok};
-use crate::parser::{BlockParser, PError};
+use crate::parser::{self, BatchParser, PError};
 use crate::span::Span;
 use lalrpop_util::ParseError;
 
 /// Turns any parse error of the block `toks` into a diagnostic.
-pub fn convert(err: PError, toks: &[Spanned], src: &[u8], parser: &BlockParser) -> Diagnostic {
+pub fn convert(err: PError, toks: &[Spanned], src: &[u8], parser: &BatchParser) -> Diagnostic {
     match err {
         ParseError::User { error } => *error,
         ParseError::InvalidToken { location } => Diagnostic::error(
@@ -30,6 +30,10 @@ pub fn convert(err: PError, toks: &[Spanned], src: &[u8], parser: &BlockParser) 
             Span::new(l, r),
             format!("unexpected {}", t.describe()),
         ),
+        ParseError::UnrecognizedToken {
+            token: (_, Tok::Eob, _),
+            expected,
+        } => Fault::new(toks, toks.len(), &expected, src, parser).diagnose(),
         ParseError::UnrecognizedToken {
             token: (l, _, _),
             expected,
@@ -49,7 +53,7 @@ struct Fault<'a> {
     at: usize,
     expected: Vec<&'a str>,
     src: &'a [u8],
-    parser: &'a BlockParser,
+    parser: &'a BatchParser,
 }
 
 #[derive(PartialEq, Eq, Clone, Copy)]
@@ -68,7 +72,7 @@ impl<'a> Fault<'a> {
         at: usize,
         expected: &'a [String],
         src: &'a [u8],
-        parser: &'a BlockParser,
+        parser: &'a BatchParser,
     ) -> Fault<'a> {
         let mut names: Vec<&str> = expected.iter().map(|e| e.trim_matches('"')).collect();
         names.sort_unstable();
@@ -119,10 +123,20 @@ impl<'a> Fault<'a> {
                 i += 1;
             }
         }
-        if self.tok(i) == Some(Tok::N) && matches!(self.tok(i + 1), Some(Tok::Num(_))) {
-            i += 2;
+        if matches!(self.tok(i), Some(Tok::Seq(_))) {
+            i += 1;
         }
         i
+    }
+
+    /// Token `at` stands where a sequence number may: first, or after `/n`.
+    fn may_start_seq(&self, at: usize) -> bool {
+        match at {
+            0 => true,
+            1 => self.tok(0) == Some(Tok::Slash),
+            2 => self.tok(0) == Some(Tok::Slash) && matches!(self.tok(1), Some(Tok::Num(_))),
+            _ => false,
+        }
     }
 
     fn kind(&self) -> Kind {
@@ -148,11 +162,7 @@ impl<'a> Fault<'a> {
 
     /// Do the tokens before the fault form a complete block on their own?
     fn prefix_parses(&self) -> bool {
-        self.at > 0
-            && self
-                .parser
-                .parse(self.toks[..self.at].iter().map(|&t| Ok(t)))
-                .is_ok()
+        self.at > 0 && parser::parse_block(self.parser, &self.toks[..self.at]).is_ok()
     }
 
     /// Tokens `start..end` are letters standing directly next to each other
@@ -160,7 +170,7 @@ impl<'a> Fault<'a> {
     fn letter_run(&self, i: usize) -> (usize, usize) {
         let adjacent = |a: usize, b: usize| self.toks[a].2 == self.toks[b].0;
         let is_letter = |k: usize| self.toks.get(k).is_some_and(|t| t.1.is_letter());
-        let is_word = |k: usize| matches!(self.toks.get(k), Some((_, Tok::Word(_), _)));
+        let is_word = |k: usize| matches!(self.toks.get(k), Some((_, Tok::Word(_) | Tok::Seq(_), _)));
         let mut start = i;
         while start > 0 && is_letter(start - 1) && adjacent(start - 1, start) {
             start -= 1;
@@ -180,20 +190,46 @@ impl<'a> Fault<'a> {
     /// The letters of a run (of a word token, only its letter).
     fn run_span(&self, start: usize, end: usize) -> Span {
         let last = match self.toks[end - 1] {
-            (l, Tok::Word(_), _) => Span::new(l, l + 1),
+            (l, Tok::Word(_) | Tok::Seq(_), _) => Span::new(l, l + 1),
             _ => self.span(end - 1),
         };
         self.span(start).to(last)
     }
 
     fn expected_note(&self) -> Option<String> {
-        let human: Vec<String> = self.expected.iter().map(|e| human_name(e)).collect();
+        // ("run" is the batch parser's grouping of words: "a word" says it.)
+        let mut human: Vec<String> = self
+            .expected
+            .iter()
+            .filter(|e| **e != "run")
+            .map(|e| human_name(e))
+            .collect();
+        // After a bare address (`X`, `X-`) a number is welcome too: the
+        // lexer would have made `X10` one word token, so the parser never
+        // lists it.
+        let bare_address = match self.at.checked_sub(1).and_then(|i| self.tok(i)) {
+            Some(t) if t.is_letter() => true,
+            Some(Tok::Plus | Tok::Minus) => {
+                self.at >= 2 && self.tok(self.at - 2).is_some_and(|t| t.is_letter())
+            }
+            _ => false,
+        };
+        if bare_address && !self.expects("number") {
+            human.push("a number".into());
+        }
         (!human.is_empty()).then(|| format!("expected one of: {}", human.join(", ")))
     }
 
     fn diagnose(&self) -> Diagnostic {
         let d = self.classify();
-        match self.expected_note() {
+        // A bare `N` fails as a token of its own: what was missing is its
+        // digits, not any of the tokens that could start a block.
+        let note = if self.tok(self.at) == Some(Tok::N) && self.may_start_seq(self.at) {
+            Some("expected one of: digits after `N`".to_string())
+        } else {
+            self.expected_note()
+        };
+        match note {
             Some(note) => d.with_note(note),
             None => d,
         }
@@ -211,26 +247,8 @@ impl<'a> Fault<'a> {
             return self.program_fault();
         }
 
-        // A number right after a number can only be one malformed number:
-        // `X1.2.3`.
-        if let (Some(p), Some(Tok::Num(_))) = (prev, tok) {
-            if p.has_number() {
-                let start = match p {
-                    Tok::Word(w) => w.value_start as usize,
-                    _ => self.toks[at - 1].0,
-                };
-                let span = Span::new(start, here.end as usize);
-            return Diagnostic::error(
-                "E1007",
-                span,
-                format!("malformed number `{}`", self.text(span)),
-            )
-            .with_label("a number has at most one decimal point");
-            }
-        }
-
         if let Some(t) = tok {
-            if t.is_letter() || matches!(t, Tok::Word(_)) {
+            if t.is_letter() || matches!(t, Tok::Word(_) | Tok::Seq(_)) {
                 if let Some(d) = self.letter_fault(at) {
                     return d;
                 }
@@ -246,13 +264,40 @@ impl<'a> Fault<'a> {
             .with_label("a comma word is `,A`, `,C` or `,R` and a number");
         }
 
+        if prev == Some(Tok::Slash) && self.expected == ["["] {
+            return Diagnostic::error("E1014", here, "`ATAN[a]/` must be followed by `[b]`")
+                .with_label("not in brackets")
+                .with_help("write `ATAN[a]/[b]`, or `[ATAN[a]]/b` to divide");
+        }
+
         match tok {
-            Some(Tok::Slash) if self.depth(at) == 0 => {
+            Some(Tok::Slash) if kind == Kind::Words && self.depth(at) == 0 => {
                 return Diagnostic::error("E1015", here, "`/` not at the start of the block")
                     .with_label("block delete must come first")
                     .with_help("move `/` to the start of the block");
             }
-            Some(Tok::N) => {
+            // `N` without digits: a sequence number is `N` and digits, one
+            // token, so the parser fails at the `N` itself.
+            Some(Tok::N) if self.may_start_seq(at) => {
+                let next = self.toks.get(at + 1);
+                return match next {
+                    None => Diagnostic::error("E1007", here, "`N` has no value")
+                        .with_label("a sequence number needs digits"),
+                    Some(&(l, t, _)) if l == self.toks[at].2 && (t.is_letter() || matches!(t, Tok::Word(_) | Tok::Seq(_))) => {
+                        match self.letter_fault(at + 1) {
+                            Some(d) => d,
+                            None => Diagnostic::error("E1007", here, "`N` has no value"),
+                        }
+                    }
+                    Some(_) => Diagnostic::error(
+                        "E1006",
+                        self.span(at + 1),
+                        "a sequence number must be a literal integer",
+                    )
+                    .with_label("N cannot take a variable or an expression"),
+                };
+            }
+            Some(Tok::N | Tok::Seq(_)) => {
                 return Diagnostic::error("E1006", here, "`N` must be the first word of the block")
                     .with_label("sequence number after other words")
                     .with_help("move the sequence number to the start of the block");
@@ -267,19 +312,6 @@ impl<'a> Fault<'a> {
             }
             Some(Tok::Rel(_)) => return self.relop_fault(at),
             _ => {}
-        }
-
-        if prev == Some(Tok::N) {
-            return match tok {
-                None => Diagnostic::error("E1007", self.span(at - 1), "`N` has no value")
-                    .with_label("a sequence number needs digits"),
-                Some(_) => Diagnostic::error(
-                    "E1006",
-                    here,
-                    "a sequence number must be a literal integer",
-                )
-                .with_label("N cannot take a variable or an expression"),
-            };
         }
 
         match prev {
@@ -307,13 +339,9 @@ impl<'a> Fault<'a> {
         }
 
         if prev == Some(Tok::Then) {
-            return Diagnostic::error(
-                "E1013",
-                here,
-                "only an assignment may follow THEN",
-            )
-            .with_label(format!("{described} after THEN"))
-            .with_help("write `IF[…]THEN#i=…`, or `IF[…]GOTOn` to jump");
+            return Diagnostic::error("E1013", here, "only an assignment may follow THEN")
+                .with_label(format!("{described} after THEN"))
+                .with_help("write `IF[…]THEN#i=…`, or `IF[…]GOTOn` to jump");
         }
 
         let body = self.tok(self.body_start());
@@ -340,23 +368,20 @@ impl<'a> Fault<'a> {
         let mixed = match (kind, tok) {
             (Kind::Words, Some(t)) => t.starts_statement() && self.depth(at) == 0,
             (Kind::Stmt, Some(t)) => {
-                (t.is_letter() || matches!(t, Tok::Word(_) | Tok::Comma)) && self.prefix_parses()
+                (t.is_letter() || matches!(t, Tok::Word(_) | Tok::Seq(_) | Tok::Comma))
+                    && self.prefix_parses()
             }
             _ => false,
         };
         if mixed {
             let span = here.to(self.span(self.toks.len() - 1));
-            return Diagnostic::error(
-                "E1013",
-                span,
-                "NC words and a macro statement in one block",
-            )
-            .with_label(if kind == Kind::Words {
-                "a macro statement after NC words"
-            } else {
-                "NC words after a macro statement"
-            })
-            .with_help("put the macro statement in a block of its own");
+            return Diagnostic::error("E1013", span, "NC words and a macro statement in one block")
+                .with_label(if kind == Kind::Words {
+                    "a macro statement after NC words"
+                } else {
+                    "NC words after a macro statement"
+                })
+                .with_help("put the macro statement in a block of its own");
         }
 
         if tok == Some(Tok::RBrack) {
@@ -429,7 +454,10 @@ impl<'a> Fault<'a> {
             return Some(
                 Diagnostic::error("E1014", run, format!("unknown function `{name}`"))
                     .with_label("not a function of this dialect")
-                    .with_note(format!("the functions are {} and ATAN[a]/[b]", known.join(" "))),
+                    .with_note(format!(
+                        "the functions are {} and ATAN[a]/[b]",
+                        known.join(" ")
+                    )),
             );
         }
         if start == at {
@@ -460,7 +488,9 @@ impl<'a> Fault<'a> {
                 _ => String::new(),
             };
             let letter = self.text(self.span(prev));
-            d = d.with_help(format!("did you mean `{letter}0{digits}`? (the letter O is not the digit 0)"));
+            d = d.with_help(format!(
+                "did you mean `{letter}0{digits}`? (the letter O is not the digit 0)"
+            ));
         }
         Some(d)
     }
@@ -472,9 +502,13 @@ impl<'a> Fault<'a> {
             && self.depth(at) > 0;
         let name = self.text(self.span(at));
         if in_condition {
-            Diagnostic::error("E1014", self.span(at), "one relational operator per condition")
-                .with_label(format!("a second `{name}`"))
-                .with_help("combine conditions: `[[a EQ b] AND [c EQ d]]`")
+            Diagnostic::error(
+                "E1014",
+                self.span(at),
+                "one relational operator per condition",
+            )
+            .with_label(format!("a second `{name}`"))
+            .with_help("combine conditions: `[[a EQ b] AND [c EQ d]]`")
         } else {
             Diagnostic::error(
                 "E1014",
@@ -512,15 +546,52 @@ impl<'a> Fault<'a> {
                     "malformed number: more than one sign",
                 )
                 .with_label("one sign at most"),
-                _ if comma => Diagnostic::error(
-                    "E1007",
-                    span,
-                    format!("`{name}` needs a literal number"),
-                )
-                .with_label("a comma word takes a number"),
+                _ if comma => {
+                    Diagnostic::error("E1007", span, format!("`{name}` needs a literal number"))
+                        .with_label("a comma word takes a number")
+                }
                 _ => Diagnostic::error("E1007", span, format!("`{name}` has no value"))
                     .with_label("a word needs a number, `#n` or `[expr]`"),
             });
+        }
+        // `X#814+.1`: an expression as a word value needs brackets.
+        if let Some(
+            t @ (Tok::Plus
+            | Tok::Minus
+            | Tok::Star
+            | Tok::Slash
+            | Tok::And
+            | Tok::Or
+            | Tok::Xor
+            | Tok::Mod),
+        ) = tok
+        {
+            let mut k = at;
+            while k > 0 && matches!(self.tok(k - 1), Some(Tok::Num(_) | Tok::Hash)) {
+                k -= 1;
+            }
+            let signed = k > 0 && matches!(self.tok(k - 1), Some(Tok::Plus | Tok::Minus));
+            let letter = if signed {
+                k.checked_sub(2)
+            } else {
+                k.checked_sub(1)
+            };
+            if let Some(l) =
+                letter.filter(|&l| k < at && self.tok(l).is_some_and(|t| t.is_letter()))
+            {
+                let end = self.unbracketed_end(at);
+                let value = self.text(self.span(l + 1).to(self.span(end)));
+                let name = self.text(self.span(l));
+                return Some(
+                    Diagnostic::error(
+                        "E1014",
+                        here,
+                        format!("{} in a word value without brackets", t.describe()),
+                    )
+                    .with_label("a word takes `#n` or `[expr]`")
+                    .with_help(format!("write `{name}[{value}]`")),
+                );
+            }
         }
         match tok {
             Some(Tok::Num(_)) => Some(
@@ -546,6 +617,21 @@ impl<'a> Fault<'a> {
             ),
             _ => None,
         }
+    }
+
+    /// The last token of an expression written without brackets from
+    /// token `at` on: up to the next address letter or the end.
+    fn unbracketed_end(&self, at: usize) -> usize {
+        let mut end = at;
+        while end + 1 < self.toks.len()
+            && !matches!(
+                self.toks[end + 1].1,
+                Tok::Letter(_) | Tok::N | Tok::O | Tok::Word(_) | Tok::Seq(_) | Tok::Comma
+            )
+        {
+            end += 1;
+        }
+        end
     }
 
     /// The innermost `[` still open at the end of the block.
@@ -578,6 +664,9 @@ fn human_name(terminal: &str) -> String {
         "number" => "a number".into(),
         "relop" => "a relational operator".into(),
         "func" => "a function".into(),
+        "eob" => "end of block".into(),
+        "word" => "a word (`X10`)".into(),
+        "seq" => "a sequence number (`N10`)".into(),
         other => format!("`{other}`"),
     }
 }

@@ -39,23 +39,48 @@ pub struct WordLit {
     pub decimals: u8,
 }
 
+/// Where the words of a [`Tok::Run`] are: `words[start..start + len]` of
+/// the batch being parsed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunRef {
+    pub start: u32,
+    pub len: u32,
+}
+
 /// A token. `N` and `O` are tokens of their own because the grammar treats
 /// them apart from the other address letters (sequence and program numbers).
+/// Why logos could not make a token.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum LexError {
+    /// A character that starts no token.
+    #[default]
+    Char,
+    /// Digits and points that are not a number (`1.2.3`, `.`).
+    Number,
+}
+
 #[derive(Logos, Debug, Clone, Copy, PartialEq)]
-#[logos(utf8 = false)]
+#[logos(utf8 = false, error = LexError)]
+// Blanks reach the lexer only where they separate tokens (compact.rs).
+#[logos(skip r"[ \t]+")]
 pub enum Tok {
     #[regex("[A-MP-Za-mp-z]", |lex| lex.slice()[0].to_ascii_uppercase())]
     Letter(u8),
-    #[regex(r"[A-MP-Za-mp-z][+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)", |lex| word(lex.slice()))]
+    // Digits and points are taken in one simple run and checked by the
+    // callback: a cheaper automaton, and `X1.2.3` is one malformed number.
+    #[regex(r"[A-MP-Za-mp-z][+-]?[0-9.]+", |lex| word(lex.slice()))]
     Word(WordLit),
     #[token("N", ignore(case))]
     N,
+    /// `N` and its digits in one token, as for words (a sequence number is
+    /// in most blocks).
+    #[regex(r"[Nn][0-9.]+", |lex| word(lex.slice()))]
+    Seq(WordLit),
     #[token("O", ignore(case))]
     O,
     #[token(":")]
     Colon,
-    #[regex(r"[0-9]+(\.[0-9]*)?", |lex| number(lex.slice()))]
-    #[regex(r"\.[0-9]+", |lex| number(lex.slice()))]
+    #[regex(r"[0-9.]+", |lex| number(lex.slice()))]
     Num(NumLit),
     #[token(",")]
     Comma,
@@ -123,6 +148,9 @@ pub enum Tok {
     /// The end of a block in a batch of blocks parsed together (never
     /// produced by logos: the driver puts it between blocks).
     Eob,
+    /// A run of literal words (`X10 Z-5 ,C1`), already built (never produced
+    /// by logos: the driver groups word tokens for batch parsing).
+    Run(RunRef),
 }
 
 impl Tok {
@@ -133,8 +161,9 @@ impl Tok {
             Tok::N => "`N`".into(),
             Tok::O => "`O`".into(),
             Tok::Colon => "`:`".into(),
-            Tok::Num(_) => "a number".into(),
+            Tok::Num(_) => "number".into(),
             Tok::Word(w) => format!("word `{}…`", w.letter as char),
+            Tok::Seq(_) => "sequence number".into(),
             Tok::Comma => "`,`".into(),
             Tok::Plus => "`+`".into(),
             Tok::Minus => "`-`".into(),
@@ -158,6 +187,7 @@ impl Tok {
             Tok::Atan => "`ATAN`".into(),
             Tok::Func(f) => format!("`{}`", func_name(*f)),
             Tok::Eob => "end of block".into(),
+            Tok::Run(_) => "words".into(),
         }
     }
 
@@ -217,25 +247,30 @@ const POW10: [f64; 23] = [
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
-/// Reads `digits[.digits]` or `.digits` (the regex guarantees the shape).
+/// Reads `digits[.digits]` or `.digits` from a run of digits and points.
 ///
 /// Short literals, nearly all of them, take the exact fast path: an integer
 /// mantissa below 2^53 divided by an exact power of ten is correctly
 /// rounded, so it equals what the standard parser returns; longer ones go
 /// through the standard parser.
-pub fn number(s: &[u8]) -> NumLit {
+pub fn number(s: &[u8]) -> Result<NumLit, LexError> {
     let mut mantissa: u64 = 0;
-    let mut digits = 0usize;
     let mut point = None;
     for (i, &b) in s.iter().enumerate() {
         if b == b'.' {
+            if point.is_some() {
+                return Err(LexError::Number);
+            }
             point = Some(i);
         } else {
             mantissa = mantissa
                 .wrapping_mul(10)
                 .wrapping_add(u64::from(b.wrapping_sub(b'0')));
-            digits += 1;
         }
+    }
+    let digits = s.len() - usize::from(point.is_some());
+    if digits == 0 {
+        return Err(LexError::Number);
     }
     let decimals = point.map_or(0, |p| s.len() - p - 1);
     let value = if digits <= 15 {
@@ -246,29 +281,29 @@ pub fn number(s: &[u8]) -> NumLit {
             .and_then(|t| t.parse::<f64>().ok())
             .unwrap_or(f64::INFINITY)
     };
-    NumLit {
+    Ok(NumLit {
         value,
         has_point: point.is_some(),
         decimals: decimals.min(u8::MAX as usize) as u8,
-    }
+    })
 }
 
 /// Reads a word token: letter, optional sign, number.
-fn word(s: &[u8]) -> WordLit {
+fn word(s: &[u8]) -> Result<WordLit, LexError> {
     let letter = s[0].to_ascii_uppercase();
-    let (negative, digits) = match s[1] {
-        b'-' => (true, &s[2..]),
-        b'+' => (false, &s[2..]),
+    let (negative, digits) = match s.get(1) {
+        Some(b'-') => (true, &s[2..]),
+        Some(b'+') => (false, &s[2..]),
         _ => (false, &s[1..]),
     };
-    let n = number(digits);
-    WordLit {
+    let n = number(digits)?;
+    Ok(WordLit {
         value: if negative { -n.value } else { n.value },
         value_start: 1,
         letter,
         has_point: n.has_point,
         decimals: n.decimals,
-    }
+    })
 }
 
 /// A lexed token with its source span.
@@ -317,26 +352,41 @@ fn lex_into(
         let tok = match next {
             Ok(Tok::Word(mut w)) => {
                 w.value_start = map.start(range.start + 1) as u32;
+                let after_comma = matches!(out.last(), Some((_, Tok::Comma, _)));
+                check_word(w, after_comma, start, end)?;
                 Tok::Word(w)
             }
-            Ok(tok) => tok,
-            Err(()) => {
-                // `X-12.8.`: a second point right after a number.
-                let after_number = match out.last() {
-                    Some(&(l, Tok::Num(_), r)) if r == start => Some(l),
-                    Some(&(_, Tok::Word(w), r)) if r == start => Some(w.value_start as usize),
-                    _ => None,
-                };
-                return Err(Box::new(match (text[range.start], after_number) {
-                    (b'.', Some(l)) => Diagnostic::error(
-                        "E1007",
-                        Span::new(l, end),
-                        "malformed number: a second decimal point",
-                    )
-                    .with_label("a number has at most one `.`"),
-                    (byte, _) => bad_char(byte, start, end),
-                }));
+            Ok(Tok::Seq(mut w)) => {
+                w.value_start = map.start(range.start + 1) as u32;
+                Tok::Seq(w)
             }
+            Ok(tok) => tok,
+            Err(LexError::Number) => {
+                let slice = &text[range.clone()];
+                let (value, from) = match slice.first() {
+                    Some(c) if c.is_ascii_alphabetic() => (&slice[1..], map.start(range.start + 1)),
+                    _ => (slice, start),
+                };
+                let spelled: String = value.iter().map(|&b| b as char).collect();
+                let d = if value.iter().any(u8::is_ascii_digit) {
+                    Diagnostic::error(
+                        "E1007",
+                        Span::new(from, end),
+                        format!("malformed number `{spelled}`"),
+                    )
+                    .with_label("a number has at most one decimal point")
+                } else {
+                    Diagnostic::error(
+                        "E1007",
+                        Span::new(from, end),
+                        "malformed number: `.` without digits",
+                    )
+                    .with_label("a point needs a digit before or after it")
+                    .with_help("write `0.` or `.0`")
+                };
+                return Err(Box::new(d));
+            }
+            Err(LexError::Char) => return Err(Box::new(bad_char(text[range.start], start, end))),
         };
         match tok {
             Tok::LBrack => {
@@ -353,12 +403,11 @@ fn lex_into(
                 }
             }
             Tok::RBrack => depth = depth.saturating_sub(1),
-            Tok::Plus | Tok::Minus | Tok::Hash => {
-                // A sign or `#` right after an address is part of a word value
-                // and cannot nest.
-                if !matches!(out.last(), Some((_, t, _)) if t.is_letter() || *t == Tok::Comma) {
-                    operators += 1;
-                }
+            // A sign or `#` right after an address is part of a word value
+            // and cannot nest.
+            Tok::Plus | Tok::Minus | Tok::Hash if !matches!(out.last(), Some((_, t, _)) if t.is_letter() || *t == Tok::Comma) =>
+            {
+                operators += 1;
             }
             Tok::Star
             | Tok::Slash
@@ -375,7 +424,9 @@ fn lex_into(
                 Diagnostic::error(
                     "E1014",
                     Span::new(start, end),
-                    format!("expression too long: more than {MAX_OPERATORS} operators in one block"),
+                    format!(
+                        "expression too long: more than {MAX_OPERATORS} operators in one block"
+                    ),
                 )
                 .with_help("split the computation over several assignments"),
             ));
@@ -388,18 +439,42 @@ fn lex_into(
     Ok(())
 }
 
+/// What a word token alone shows: a G value with more than one decimal
+/// (`G1.25`, E1010) and a comma word other than `,A` `,C` `,R` (E1008).
+fn check_word(
+    w: WordLit,
+    after_comma: bool,
+    start: usize,
+    end: usize,
+) -> Result<(), Box<Diagnostic>> {
+    if after_comma && !matches!(w.letter, b'A' | b'C' | b'R') {
+        return Err(Box::new(
+            Diagnostic::error(
+                "E1008",
+                Span::new(start, start + 1),
+                format!("unknown comma word `,{}`", w.letter as char),
+            )
+            .with_label("only `,A`, `,C` and `,R` exist"),
+        ));
+    }
+    if w.letter == b'G' && !after_comma && w.decimals > 1 {
+        return Err(Box::new(
+            Diagnostic::error(
+                "E1010",
+                Span::new(start, end),
+                format!("G value with {} decimals", w.decimals),
+            )
+            .with_label("G codes have at most one decimal (`G6.2`)"),
+        ));
+    }
+    Ok(())
+}
+
 fn bad_char(byte: u8, start: usize, end: usize) -> Diagnostic {
     let span = Span::new(start, end);
     match byte {
-        b'.' => Diagnostic::error("E1007", span, "malformed number: `.` without digits")
-            .with_label("a point needs a digit before or after it")
-            .with_help("write `0.` or `.0`"),
-        b'%' => Diagnostic::error(
-            "E1001",
-            span,
-            "`%` is only allowed alone on its own line",
-        )
-        .with_label("not allowed here"),
+        b'%' => Diagnostic::error("E1001", span, "`%` is only allowed alone on its own line")
+            .with_label("not allowed here"),
         b')' => Diagnostic::error("E1002", span, "`)` without `(`").with_label("no comment open"),
         _ => Diagnostic::error(
             "E1001",
@@ -448,6 +523,14 @@ mod tests {
         Tok::lexer(s.as_bytes()).map(|t| t.unwrap()).collect()
     }
 
+    fn word(s: &[u8]) -> WordLit {
+        super::word(s).unwrap()
+    }
+
+    fn number(s: &[u8]) -> NumLit {
+        super::number(s).unwrap()
+    }
+
     fn num(s: &str) -> NumLit {
         match toks(s).as_slice() {
             [Tok::Num(n)] => *n,
@@ -457,10 +540,38 @@ mod tests {
 
     #[test]
     fn number_forms() {
-        assert_eq!(num("30"), NumLit { value: 30.0, has_point: false, decimals: 0 });
-        assert_eq!(num("30."), NumLit { value: 30.0, has_point: true, decimals: 0 });
-        assert_eq!(num("30.0"), NumLit { value: 30.0, has_point: true, decimals: 1 });
-        assert_eq!(num(".05"), NumLit { value: 0.05, has_point: true, decimals: 2 });
+        assert_eq!(
+            num("30"),
+            NumLit {
+                value: 30.0,
+                has_point: false,
+                decimals: 0
+            }
+        );
+        assert_eq!(
+            num("30."),
+            NumLit {
+                value: 30.0,
+                has_point: true,
+                decimals: 0
+            }
+        );
+        assert_eq!(
+            num("30.0"),
+            NumLit {
+                value: 30.0,
+                has_point: true,
+                decimals: 1
+            }
+        );
+        assert_eq!(
+            num(".05"),
+            NumLit {
+                value: 0.05,
+                has_point: true,
+                decimals: 2
+            }
+        );
         assert_eq!(num("0030").value, 30.0);
         assert_eq!(num("6.2").decimals, 1);
         assert_eq!(num("13.64").value, 13.64);
@@ -469,7 +580,14 @@ mod tests {
 
     #[test]
     fn fast_path_matches_std() {
-        for s in ["0.1", "123.456", "99999.999", "1.7976931348", "0.000000000000001", "3.14159265358979"] {
+        for s in [
+            "0.1",
+            "123.456",
+            "99999.999",
+            "1.7976931348",
+            "0.000000000000001",
+            "3.14159265358979",
+        ] {
             assert_eq!(number(s.as_bytes()).value, s.parse::<f64>().unwrap(), "{s}");
         }
         let long = "12345678901234567890.123456789";
@@ -478,24 +596,39 @@ mod tests {
 
     #[test]
     fn no_exponent() {
-        assert_eq!(toks("X1E5"), vec![Tok::Word(word(b"X1")), Tok::Word(word(b"E5"))]);
+        assert_eq!(
+            toks("X1E5"),
+            vec![Tok::Word(word(b"X1")), Tok::Word(word(b"E5"))]
+        );
     }
 
     #[test]
     fn keywords_versus_words() {
         assert_eq!(toks("DO1")[0], Tok::Do);
         assert_eq!(toks("D01")[0], Tok::Word(word(b"D01")));
-        assert_eq!(toks("x-.5")[0], Tok::Word(WordLit { value: -0.5, value_start: 1, letter: b'X', has_point: true, decimals: 1 }));
+        assert_eq!(
+            toks("x-.5")[0],
+            Tok::Word(WordLit {
+                value: -0.5,
+                value_start: 1,
+                letter: b'X',
+                has_point: true,
+                decimals: 1
+            })
+        );
         assert_eq!(toks("X#1")[0], Tok::Letter(b'X'));
         assert_eq!(toks("X-#1")[..2], [Tok::Letter(b'X'), Tok::Minus]);
         assert_eq!(toks("GOTO10")[0], Tok::Goto);
         assert_eq!(toks("goto10")[0], Tok::Goto);
         assert_eq!(toks("END1")[0], Tok::End);
-        assert_eq!(toks("E1")[0], Tok::Letter(b'E'));
+        assert_eq!(toks("E1")[0], Tok::Word(word(b"E1")));
+        assert_eq!(toks("EQ1")[0], Tok::Rel(RelOp::Eq));
         assert_eq!(toks("ANDSIN"), vec![Tok::And, Tok::Func(Func::Sin)]);
         assert_eq!(toks("ATAN"), vec![Tok::Atan]);
         assert_eq!(toks("ASIN"), vec![Tok::Func(Func::Asin)]);
-        assert_eq!(toks("n10"), vec![Tok::N, Tok::Num(number(b"10"))]);
+        assert_eq!(toks("n10"), vec![Tok::Seq(word(b"N10"))]);
+        assert_eq!(toks("N#1")[0], Tok::N);
+        assert_eq!(toks("NE1")[0], Tok::Rel(RelOp::Ne));
         assert_eq!(toks("O1")[0], Tok::O);
         assert_eq!(
             toks("N10IF[#859LT300]THEN#1100=1")
@@ -507,10 +640,23 @@ mod tests {
     }
 
     #[test]
-    fn malformed_numbers_split() {
-        // `1.2.3` lexes as two numbers; the parser reports the pair.
-        assert_eq!(toks("1.2.3"), vec![Tok::Num(number(b"1.2")), Tok::Num(number(b".3"))]);
-        assert_eq!(toks("X1.2.3"), vec![Tok::Word(word(b"X1.2")), Tok::Num(number(b".3"))]);
+    fn malformed_numbers() {
+        assert_eq!(super::number(b"1.2.3"), Err(LexError::Number));
+        assert_eq!(super::number(b"."), Err(LexError::Number));
+        assert_eq!(super::word(b"X1.2.3"), Err(LexError::Number));
+        assert_eq!(super::word(b"X."), Err(LexError::Number));
         assert!(Tok::lexer(b"X.".as_slice()).any(|t| t.is_err()));
+    }
+
+    #[test]
+    fn blanks_are_skipped() {
+        assert_eq!(
+            toks("G01 X10\tZ-5"),
+            vec![
+                Tok::Word(word(b"G01")),
+                Tok::Word(word(b"X10")),
+                Tok::Word(word(b"Z-5"))
+            ]
+        );
     }
 }

@@ -8,6 +8,7 @@ pub mod diag;
 pub mod span;
 
 mod compact;
+mod driver;
 mod errors;
 mod lexer;
 mod parser;
@@ -15,8 +16,6 @@ mod parser;
 pub use ast::Ast;
 pub use diag::{Diagnostic, Severity, SourceFile};
 pub use span::Span;
-#[doc(hidden)]
-pub use parser::lex_only;
 
 /// Parses a whole program file.
 ///
@@ -26,5 +25,5 @@ pub use parser::lex_only;
 /// are still parsed, so one run reports every syntax error of the file.
 /// Never panics.
 pub fn parse(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
-    parser::parse(src)
+    driver::parse(src)
 }

@@ -2,7 +2,7 @@
 
 use crate::ast::{BlockDelete, Seq, Stmt, Word};
 use crate::diag::Diagnostic;
-use crate::lexer::Tok;
+use crate::lexer::{Spanned, Tok};
 use lalrpop_util::ParseError;
 
 lalrpop_util::lalrpop_mod!(
@@ -11,7 +11,8 @@ lalrpop_util::lalrpop_mod!(
 );
 
 /// What the generated parser returns for one block; the driver adds the
-/// comments and the block span and builds the AST's [`Line`].
+/// comments and the block span and builds the AST's
+/// [`Line`](crate::ast::Line).
 pub enum Parsed {
     Program {
         number: u32,
@@ -31,11 +32,32 @@ pub enum Parsed {
 /// What the generated parser returns on failure.
 pub type PError = ParseError<usize, Tok, Box<Diagnostic>>;
 
-/// The parser of one block (the generated tables are static: this is free).
-pub type BlockParser = grammar::LineParser;
-
-/// The parser of a batch of blocks separated by [`Tok::Eob`].
+/// The parser of blocks, each followed by [`Tok::Eob`] (the generated
+/// tables are static: making one is free).
 pub type BatchParser = grammar::BatchParser;
+
+/// Parses one block (its tokens without the final `Eob`).
+pub fn parse_block(parser: &BatchParser, toks: &[Spanned]) -> Result<Parsed, PError> {
+    let end = toks.last().map_or(0, |t| t.2);
+    let tokens = toks
+        .iter()
+        .copied()
+        .chain(std::iter::once((end, Tok::Eob, end)))
+        .map(Ok);
+    let mut parsed = parser.parse(&[], tokens)?;
+    match (parsed.pop(), parsed.is_empty()) {
+        (Some(p), true) => Ok(p),
+        // One block in, one result out: anything else is a bug of ours,
+        // reported rather than panicking.
+        _ => Err(ParseError::User {
+            error: Box::new(Diagnostic::error(
+                "E1014",
+                crate::span::Span::new(toks.first().map_or(0, |t| t.0), end),
+                "internal error: block parsed into other than one result",
+            )),
+        }),
+    }
+}
 
 /// The semantic actions that can fail, and the small builders the grammar
 /// uses; each failure names its own code.
@@ -43,7 +65,7 @@ pub(crate) mod actions {
     use super::{PError, Parsed};
     use crate::ast::*;
     use crate::diag::Diagnostic;
-    use crate::lexer::WordLit;
+    use crate::lexer::{RunRef, WordLit};
     use crate::span::Span;
     use lalrpop_util::ParseError;
 
@@ -89,78 +111,46 @@ pub(crate) mod actions {
         })
     }
 
-    pub fn seq(n: Number, span: Span) -> R<Seq> {
-        if n.has_point {
+    pub fn seq(w: WordLit, span: Span) -> R<Seq> {
+        let digits = Span::new(w.value_start as usize, span.end as usize);
+        if w.has_point {
             return fail(
-                Diagnostic::error("E1006", n.span, "sequence number with a decimal point")
+                Diagnostic::error("E1006", digits, "sequence number with a decimal point")
                     .with_label("N takes an integer"),
             );
         }
-        if n.value > MAX_SEQ {
+        if w.value > MAX_SEQ {
             return fail(
-                Diagnostic::error("E1006", n.span, "sequence number above 99999")
+                Diagnostic::error("E1006", digits, "sequence number above 99999")
                     .with_label("N takes 0 to 99999"),
             );
         }
         Ok(Seq {
-            number: n.value as u32,
+            number: w.value as u32,
             span,
         })
     }
 
-    /// The number of a word token.
-    fn literal(w: WordLit, end: usize) -> Number {
-        Number {
-            value: w.value,
-            has_point: w.has_point,
-            decimals: w.decimals,
-            span: Span::new(w.value_start as usize, end),
+    /// The words of a run token (none for a bad reference, which the
+    /// driver never makes).
+    pub fn run(runs: &[Word], r: RunRef) -> &[Word] {
+        let start = r.start as usize;
+        runs.get(start..start + r.len as usize).unwrap_or_default()
+    }
+
+    /// A word with a literal value (the value's span starts after the
+    /// letter, at its sign or first digit).
+    pub fn word(addr: Addr, w: WordLit, span: Span) -> Word {
+        Word {
+            addr,
+            value: Value::Number(Number {
+                value: w.value,
+                has_point: w.has_point,
+                decimals: w.decimals,
+                span: Span::new(w.value_start as usize, span.end as usize),
+            }),
+            span,
         }
-    }
-
-    pub fn word(w: WordLit, span: Span) -> R<Word> {
-        let n = literal(w, span.end as usize);
-        if w.letter == b'G' && n.decimals > 1 {
-            return fail(
-                Diagnostic::error(
-                    "E1010",
-                    span,
-                    format!("G value with {} decimals", n.decimals),
-                )
-                .with_label("G codes have at most one decimal (`G6.2`)"),
-            );
-        }
-        Ok(Word {
-            addr: Addr::Letter(w.letter as char),
-            value: Value::Number(n),
-            span,
-        })
-    }
-
-    pub fn computed_word(letter: u8, value: Value, span: Span) -> R<Word> {
-        Ok(Word {
-            addr: Addr::Letter(letter as char),
-            value,
-            span,
-        })
-    }
-
-    pub fn comma_word(w: WordLit, letter: usize, span: Span) -> R<Word> {
-        if !matches!(w.letter, b'A' | b'C' | b'R') {
-            return fail(
-                Diagnostic::error(
-                    "E1008",
-                    Span::new(letter, letter + 1),
-                    format!("unknown comma word `,{}`", w.letter as char),
-                )
-                .with_label("only `,A`, `,C` and `,R` exist"),
-            );
-        }
-        Ok(Word {
-            addr: Addr::Comma(w.letter as char),
-            value: Value::Number(literal(w, span.end as usize)),
-            span,
-        })
     }
 
     pub fn label(n: Number) -> R<Label> {
@@ -202,17 +192,198 @@ pub(crate) mod actions {
     }
 }
 
-#[doc(hidden)]
-pub fn lex_only(src: &[u8]) -> usize {
-    let mut c = Compactor::default();
-    let mut toks = Vec::new();
-    let mut n = 0;
-    let mut pos = 0;
-    while pos < src.len() {
-        let s = c.scan(src, pos, src.len());
-        let _ = lexer::lex_block(s.text, s.map, &s.comments, &mut toks);
-        n += toks.len();
-        pos = s.end + 1;
+#[cfg(test)]
+mod tests {
+    use crate::ast::*;
+
+    /// The one statement of a one-block program.
+    fn stmt(src: &str) -> Stmt {
+        let (ast, diags) = crate::parse(src.as_bytes());
+        assert!(diags.is_empty(), "{src}: {diags:?}");
+        match ast.lines.as_slice() {
+            [Line::Block(Block {
+                body: Body::Stmt(s),
+                ..
+            })] => s.clone(),
+            other => panic!("{src}: {other:?}"),
+        }
     }
-    n
+
+    fn words(src: &str) -> Vec<Word> {
+        let (ast, diags) = crate::parse(src.as_bytes());
+        assert!(diags.is_empty(), "{src}: {diags:?}");
+        match ast.lines.as_slice() {
+            [Line::Block(Block {
+                body: Body::Words(w),
+                ..
+            })] => w.clone(),
+            other => panic!("{src}: {other:?}"),
+        }
+    }
+
+    /// An expression as an S-expression, to state its shape compactly.
+    fn sexp(e: &Expr) -> String {
+        match e {
+            Expr::Num(n) => format!("{}", n.value),
+            Expr::Var(v) => format!("#{}", sexp(&v.index)),
+            Expr::Paren { inner, .. } => format!("[{}]", sexp(inner)),
+            Expr::Unary { op, operand, .. } => format!("({op:?} {})", sexp(operand)),
+            Expr::Binary { op, lhs, rhs, .. } => format!("({op:?} {} {})", sexp(lhs), sexp(rhs)),
+            Expr::Call { func, arg, .. } => format!("({func:?} {})", sexp(arg)),
+            Expr::Atan2 { y, x, .. } => format!("(Atan2 {} {})", sexp(y), sexp(x)),
+        }
+    }
+
+    fn value(src: &str) -> String {
+        match stmt(&format!("#1={src}")) {
+            Stmt::Assign { value, .. } => sexp(&value),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    fn cond(c: &Cond) -> String {
+        match c {
+            Cond::Rel { op, lhs, rhs, .. } => format!("({op:?} {} {})", sexp(lhs), sexp(rhs)),
+            Cond::Logic { op, lhs, rhs, .. } => format!("({op:?} {} {})", cond(lhs), cond(rhs)),
+        }
+    }
+
+    #[test]
+    fn left_associative() {
+        assert_eq!(value("20/4/5"), "(Div (Div 20 4) 5)");
+        assert_eq!(value("10-4-3"), "(Sub (Sub 10 4) 3)");
+        assert_eq!(value("2*3MOD4AND5"), "(And (Mod (Mul 2 3) 4) 5)");
+        assert_eq!(value("1OR2XOR3+4"), "(Add (Xor (Or 1 2) 3) 4)");
+    }
+
+    #[test]
+    fn precedence() {
+        assert_eq!(value("1+2*3"), "(Add 1 (Mul 2 3))");
+        assert_eq!(value("1-2/3"), "(Sub 1 (Div 2 3))");
+        assert_eq!(value("1OR2AND3"), "(Or 1 (And 2 3))");
+        assert_eq!(value("[1+2]*3"), "(Mul [(Add 1 2)] 3)");
+        assert_eq!(value("SIN[30]+1"), "(Add (Sin 30) 1)");
+    }
+
+    #[test]
+    fn unary_binds_tightest_and_nests_right() {
+        assert_eq!(value("2*-3"), "(Mul 2 (Neg 3))");
+        assert_eq!(value("-2*3"), "(Mul (Neg 2) 3)");
+        assert_eq!(value("--1"), "(Neg (Neg 1))");
+        assert_eq!(value("-+#2"), "(Neg (Plus #2))");
+        assert_eq!(value("1--1"), "(Sub 1 (Neg 1))");
+    }
+
+    #[test]
+    fn atan_forms() {
+        assert_eq!(value("ATAN[1]/[2]"), "(Atan2 1 2)");
+        assert_eq!(value("ATAN[1]/[2]/[3]"), "(Div (Atan2 1 2) [3])");
+        assert_eq!(value("2*ATAN[1]/[2]"), "(Mul 2 (Atan2 1 2))");
+        assert_eq!(value("-ATAN[1]/[-1]"), "(Neg (Atan2 1 (Neg 1)))");
+        assert_eq!(value("ATAN[1]*2"), "(Mul (Atan 1) 2)");
+        assert_eq!(value("ATAN[1]"), "(Atan 1)");
+        assert_eq!(value("[ATAN[1]]/2"), "(Div [(Atan 1)] 2)");
+    }
+
+    #[test]
+    fn variables() {
+        assert_eq!(value("#2"), "#2");
+        assert_eq!(value("##2"), "##2");
+        assert_eq!(value("#[#2+1]"), "#[(Add #2 1)]");
+        match stmt("#[#1]=5") {
+            Stmt::Assign { target, .. } => assert_eq!(sexp(&target.index), "[#1]"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn conditions() {
+        match stmt("IF[[#1EQ0]AND[#2GT1]OR[#3LT2]]GOTO5") {
+            Stmt::IfGoto {
+                cond: c, target, ..
+            } => {
+                assert_eq!(cond(&c), "(Or (And (Eq #1 0) (Gt #2 1)) (Lt #3 2))");
+                assert_eq!(sexp(&target), "5");
+            }
+            other => panic!("{other:?}"),
+        }
+        match stmt("WHILE[#1LE[#2+1]]DO2") {
+            Stmt::While { cond: c, label, .. } => {
+                assert_eq!(cond(&c), "(Le #1 [(Add #2 1)])");
+                assert_eq!(label.value, 2);
+            }
+            other => panic!("{other:?}"),
+        }
+        match stmt("N10IF[#859LT300]THEN#1100=1") {
+            Stmt::IfThen { cond: c, then, .. } => {
+                assert_eq!(cond(&c), "(Lt #859 300)");
+                assert!(matches!(*then, Stmt::Assign { .. }));
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn keywords_versus_words() {
+        assert!(matches!(
+            stmt("DO1"),
+            Stmt::Do {
+                label: Label { value: 1, .. },
+                ..
+            }
+        ));
+        assert!(matches!(
+            stmt("END3"),
+            Stmt::End {
+                label: Label { value: 3, .. },
+                ..
+            }
+        ));
+        assert!(matches!(stmt("GOTO10"), Stmt::Goto { .. }));
+        let w = words("D01 E5 G1X1E5");
+        let addrs: Vec<String> = w.iter().map(|w| w.addr.to_string()).collect();
+        assert_eq!(addrs, ["D", "E", "G", "X", "E"]);
+    }
+
+    #[test]
+    fn number_forms() {
+        let w = words("X30 X30. X30.0 X-30. Z.05 Z-.05 X+13.64 X0030 G6.2 ,A-30.5");
+        let n: Vec<(f64, bool, u8)> = w
+            .iter()
+            .map(|w| match &w.value {
+                Value::Number(n) => (n.value, n.has_point, n.decimals),
+                other => panic!("{other:?}"),
+            })
+            .collect();
+        assert_eq!(
+            n,
+            [
+                (30.0, false, 0),
+                (30.0, true, 0),
+                (30.0, true, 1),
+                (-30.0, true, 0),
+                (0.05, true, 2),
+                (-0.05, true, 2),
+                (13.64, true, 2),
+                (30.0, false, 0),
+                (6.2, true, 1),
+                (-30.5, true, 1),
+            ]
+        );
+        assert_eq!(w[9].addr, Addr::Comma('A'));
+    }
+
+    #[test]
+    fn blanks_inside_words_and_spans() {
+        let w = words("X 3 0 . 5 F 0.25");
+        match &w[0].value {
+            Value::Number(n) => {
+                assert_eq!(n.value, 30.5);
+                assert_eq!(n.span, crate::Span::new(2, 9), "the span covers `3 0 . 5`");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(w[0].span, crate::Span::new(0, 9));
+        assert_eq!(w[1].span, crate::Span::new(10, 16));
+    }
 }

@@ -82,6 +82,7 @@ impl Nc {
     /// Executes one block of NC words.
     pub fn exec(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
         let p = block::parse(words, &self.machine)?;
+        crate::comp::before_block(self, &p, sink)?;
         let mut out = Outcome::default();
         // While an element waits for its corner (contour module), the
         // block's events are held behind it so the canon keeps block order.
@@ -104,6 +105,7 @@ impl Nc {
             Ok(())
         })?;
         contour::end_of_block(self)?;
+        crate::comp::end_of_block(self, &p, out.moved)?;
         self.profile.clear();
         Ok(out)
     }

@@ -4,6 +4,7 @@
 //! block through it, so both share one implementation.
 
 pub mod block;
+pub mod comp;
 pub mod compound;
 pub mod contour;
 pub mod cycles;

@@ -97,6 +97,8 @@ pub struct State {
     pub compound: crate::compound::CompoundState,
     /// Pending corners (contour module).
     pub contour: crate::contour::ContourState,
+    /// Nose-radius compensation (comp module).
+    pub comp: crate::comp::CompState,
 }
 
 impl State {
@@ -144,6 +146,7 @@ impl State {
             cycles: Default::default(),
             compound: Default::default(),
             contour: Default::default(),
+            comp: Default::default(),
         }
     }
 

@@ -147,6 +147,8 @@ impl Nc {
         // change with the zero.
         let after = self.st.origin();
         if after != before {
+            // A running compensation is suspended first (comp.md §8).
+            crate::comp::suspend(self, sink)?;
             let machine = self.st.pos.add(before);
             self.st.pos = machine.sub(after);
             if (after.r - before.r).abs() * 2.0 > 1e-6 || (after.z - before.z).abs() > 1e-6 {

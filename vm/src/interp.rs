@@ -384,10 +384,12 @@ impl Vm {
             }
             Instr::Exec { .. } => return self.exec_block(sink),
             Instr::CallSub { prog, count } => {
+                self.nc.check_call()?;
                 let n = count_of(self.reg(count))?;
                 self.call(prog, n, false, false, Vec::new())?;
             }
             Instr::CallSubDyn { num, count } => {
+                self.nc.check_call()?;
                 let prog = self.program_by_number(self.reg(num))?;
                 let n = count_of(self.reg(count))?;
                 self.call(prog, n, false, false, Vec::new())?;

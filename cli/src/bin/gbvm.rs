@@ -14,10 +14,16 @@ struct Args {
     command: Command,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Emit {
     Canon,
     Trace,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Format {
+    Csv,
+    Json,
 }
 
 #[derive(Subcommand)]
@@ -25,9 +31,21 @@ enum Command {
     /// Run a module and print what the machine is told to do.
     Run {
         file: PathBuf,
-        /// canon: the motion listing of canon.md.
+        /// canon: the motion listing of canon.md; trace: one line per
+        /// interpolation period (time_s,x,z,spindle_rpm,feed,line).
         #[arg(long, value_enum, default_value = "canon")]
         emit: Emit,
+        /// Format of the trace: CSV with a header, or JSON lines.
+        #[arg(long, value_enum, default_value = "csv")]
+        format: Format,
+        /// Draw the XZ toolpath into an SVG file (rapids dashed, feeds
+        /// solid, threads in their own colour).
+        #[arg(long, value_name = "FILE.svg")]
+        plot: Option<PathBuf>,
+        /// Print cycle time per tool and in total, distance cut and at
+        /// rapid, and blocks executed (on stderr).
+        #[arg(long)]
+        stats: bool,
         #[arg(long, value_name = "FILE")]
         machine: Option<PathBuf>,
         /// Block budget (E6005 past it); default run.max_blocks.
@@ -92,20 +110,38 @@ fn main() -> ExitCode {
         Command::Run {
             file,
             emit,
+            format,
+            plot,
+            stats,
             machine,
             max_blocks,
             repeat,
             vars,
         } => {
-            if let Emit::Trace = emit {
-                return fail("--emit trace needs the interpolation runtime, which this build does not have yet");
+            if emit == Emit::Canon && format == Format::Json {
+                return fail("--format json applies to --emit trace");
             }
-            run(
+            if emit == Emit::Canon && plot.is_none() && !stats {
+                return run(
+                    &file,
+                    machine.as_deref(),
+                    max_blocks,
+                    repeat,
+                    vars.as_deref(),
+                );
+            }
+            let out = Outputs {
+                trace: (emit == Emit::Trace).then_some(format),
+                plot,
+                stats,
+            };
+            run_timed(
                 &file,
                 machine.as_deref(),
                 max_blocks,
                 repeat,
                 vars.as_deref(),
+                &out,
             )
         }
     }
@@ -161,5 +197,144 @@ fn run(
             ExitCode::from(2)
         }
         _ => ExitCode::SUCCESS,
+    }
+}
+
+/// What a run through the interpolation runtime writes.
+struct Outputs {
+    /// The per-period trace on stdout (else the canon is printed there).
+    trace: Option<Format>,
+    plot: Option<PathBuf>,
+    stats: bool,
+}
+
+/// Runs the module through the interpolation runtime, period by period,
+/// as the reference host: every PLC function completes at once and cycle
+/// start is pressed at every stop.
+fn run_timed(
+    file: &Path,
+    machine: Option<&Path>,
+    max_blocks: Option<u64>,
+    repeat: u32,
+    vars: Option<&Path>,
+    out: &Outputs,
+) -> ExitCode {
+    let module = match load(file) {
+        Ok(m) => m,
+        Err(e) => return fail(&e),
+    };
+    let machine = match cli::load_machine(machine) {
+        Ok(m) => m,
+        Err(e) => return fail(&e),
+    };
+    let mut ctl = match runtime::Controller::new(module, machine, runtime::AutoAck) {
+        Ok(c) => c,
+        Err(runtime::LoadError::Machine) => {
+            return fail(&format!(
+                "{} was compiled for another machine configuration (its compile-time keys differ); compile it again with this --machine",
+                file.display()
+            ))
+        }
+        Err(e) => return fail(&format!("{}: {e}", file.display())),
+    };
+    if let Some(n) = max_blocks {
+        ctl.set_max_blocks(n);
+    }
+    ctl.set_repeat(repeat);
+    let store = vars.map(Path::to_path_buf).or_else(|| {
+        let f = &ctl.machine().r#macro.persistent_file;
+        (!f.is_empty()).then(|| PathBuf::from(f))
+    });
+    if let Some(path) = store {
+        match cli::vars::load(&path) {
+            Ok(values) => *ctl.vm_mut().persistent_mut() = values,
+            Err(e) => return fail(&e),
+        }
+        ctl.vm_mut()
+            .set_storage(Box::new(cli::vars::FileStorage(path)));
+    }
+    let stdout = std::io::stdout();
+    let mut w = BufWriter::new(stdout.lock());
+    let mut broken = false;
+    if out.trace == Some(Format::Csv) {
+        broken |= writeln!(w, "{}", runtime::trace::CSV_HEADER).is_err();
+    }
+    let period = ctl.engine().config().period_s;
+    let mut stats = runtime::stats::Stats::new(period);
+    let mut plot = out.plot.as_ref().map(|_| runtime::plot::Plot::new());
+    let mut line = String::new();
+    {
+        // The canon goes to stdout when no trace does.
+        let mut canon = Canon {
+            out: &mut w,
+            broken: false,
+        };
+        struct Quiet;
+        impl Sink for Quiet {
+            fn emit(&mut self, _: Event) {}
+        }
+        let mut quiet = Quiet;
+        ctl.cycle_start();
+        loop {
+            if out.trace.is_none() {
+                ctl.run_ahead_tap(&mut canon);
+            } else {
+                ctl.run_ahead_tap(&mut quiet);
+            }
+            let sp = ctl.tick();
+            if let Some(f) = out.trace {
+                line.clear();
+                let _ = match f {
+                    Format::Csv => runtime::trace::write_csv(&mut line, &sp),
+                    Format::Json => runtime::trace::write_json(&mut line, &sp),
+                };
+                if !broken && canon.out.write_all(line.as_bytes()).is_err() {
+                    broken = true;
+                }
+            }
+            stats.add(&sp);
+            if let Some(p) = plot.as_mut() {
+                p.add(&sp);
+            }
+            match ctl.state() {
+                runtime::RunState::Stopped(_) | runtime::RunState::Idle => ctl.cycle_start(),
+                runtime::RunState::Ended | runtime::RunState::Alarm(_) => break,
+                _ => {}
+            }
+        }
+        broken |= canon.broken;
+    }
+    stats.blocks = ctl.blocks();
+    let alarm = ctl.alarm();
+    // A VM alarm printed its ALARM line with the canon; the runtime's own
+    // (E7001, E7002, E7003, E4010) end the canon here.
+    if let (Some(a), None) = (&alarm, out.trace) {
+        if matches!(a.code, 7001 | 7002 | 7003 | 4010) {
+            let e = Event::Alarm {
+                code: a.code,
+                msg: a.message.clone(),
+            };
+            broken |= writeln!(w, "{e}").is_err();
+        }
+    }
+    // A closed stdout (`| head`) ends the output, not the run.
+    let _ = broken;
+    let _ = w.flush();
+    drop(w);
+    if let (Some(path), Some(p)) = (&out.plot, plot.as_mut()) {
+        let title = file.display().to_string();
+        if let Err(e) = std::fs::write(path, p.svg(&title)) {
+            return fail(&format!("{}: {e}", path.display()));
+        }
+    }
+    if out.stats {
+        eprint!("{stats}");
+    }
+    match alarm {
+        Some(a) => {
+            eprintln!("{}", a.header());
+            ExitCode::from(2)
+        }
+        None => ExitCode::SUCCESS,
     }
 }

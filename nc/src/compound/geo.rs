@@ -11,6 +11,12 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 /// Points and levels closer than this (mm) are the same (cycles.md §0).
 pub const EPS: f64 = 1e-6;
 
+/// How far an arc may turn back past an extreme point and still count as
+/// monotonic (mm). Programs give their points to 0.001 mm, so the arc
+/// through a rounded tangent point can dip a few µm past the tangent: that
+/// is rounding, not a profile turning back.
+pub const SLACK: f64 = 1e-3;
+
 /// `sign(v)` of cycles.md §0: 0 when |v| ≤ 1e-6.
 pub fn sign(v: f64) -> f64 {
     if v > EPS {
@@ -283,15 +289,20 @@ impl Curve {
             })
     }
 
-    /// Whether `axis` never moves against `dir` (by more than 1e-6) over
-    /// [s0, s1].
+    /// Whether `axis` never moves against `dir` over [s0, s1]: from end to
+    /// end by no more than 1e-6 (cycles.md §15.1), and an arc not past an
+    /// extreme by more than `SLACK`.
     pub fn monotone(&self, axis: Axis, dir: f64, s0: f64, s1: f64) -> bool {
         let values: Vec<f64> = self
             .samples(axis, s0, s1)
             .into_iter()
             .map(|s| coord(self.at(s), axis))
             .collect();
-        values.windows(2).all(|w| dir * (w[1] - w[0]) >= -EPS)
+        let whole = match (values.first(), values.last()) {
+            (Some(a), Some(b)) => dir * (b - a) >= -EPS,
+            _ => true,
+        };
+        whole && values.windows(2).all(|w| dir * (w[1] - w[0]) >= -SLACK)
     }
 
     /// The length of the part [s0, s1].
@@ -371,5 +382,29 @@ mod tests {
         for s in [0.0, 0.25, 0.5, 0.9, 1.0] {
             assert!(m.at(s).dist(swap(c.at(s))) < 1e-9);
         }
+    }
+
+    #[test]
+    fn a_rounded_tangent_point_is_not_a_turn() {
+        // A CW arc of R3 about r12.1 z-17.6334 starting at r9.1 z-17.63,
+        // 0.0034 mm right of the bottom: it dips 1.9 µm below r9.1 first.
+        let c = arc(
+            Pt::new(9.1, -17.63),
+            Pt::new(10.765, -20.32),
+            Pt::new(12.1, -17.6334),
+            true,
+        );
+        assert_eq!(c.extremes(Axis::R).len(), 1);
+        assert!(c.monotone(Axis::R, 1.0, 0.0, 1.0));
+        // The bottom R2 arc of a bore (r7 → r5 about r6 z-28.268) bulges
+        // 0.268 mm past z-30 and comes back: a real turn.
+        let c = arc(
+            Pt::new(7.0, -30.0),
+            Pt::new(5.0, -30.0),
+            Pt::new(6.0, -30.0 + 3f64.sqrt()),
+            false,
+        );
+        assert!(!c.monotone(Axis::Z, -1.0, 0.0, 1.0));
+        assert!((c.range(Axis::Z, 0.0, 1.0).0 - (-30.0 + 3f64.sqrt() - 2.0)).abs() < 1e-9);
     }
 }

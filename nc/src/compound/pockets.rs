@@ -2,7 +2,7 @@
 //! frame: depth along r (infeed), position along z (cut). G72 arrives
 //! mirrored (§15.7).
 
-use super::geo::{sign, Axis, EPS};
+use super::geo::{sign, Axis, EPS, SLACK};
 use super::out::Out;
 use super::profile::{tail_start, Seg};
 use super::{too_many, Job};
@@ -181,9 +181,10 @@ fn check(k: &Contour) -> Result<f64, NcError> {
         for w in stops.windows(2) {
             let (d0, d1) = (k.depth(c.at(w[0])), k.depth(c.at(w[1])));
             deepest = deepest.max(d0).max(d1);
-            if d1 - d0 < -EPS {
+            // Only turns beyond the rounding of a tangent point count.
+            if d1 - d0 < -SLACK {
                 falling = true;
-            } else if d1 - d0 > EPS && falling {
+            } else if d1 - d0 > SLACK && falling {
                 falling = false;
                 pockets += 1;
             }

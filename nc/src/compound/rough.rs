@@ -90,7 +90,6 @@ fn level_end(rest: &[Seg], level: f64, sx: f64, sz: f64) -> Result<Option<f64>, 
         let upto = hit.unwrap_or(1.0);
         let c = &s.curve;
         if !c.monotone(Axis::Z, sz, 0.0, upto) || !c.monotone(Axis::R, -sx, 0.0, upto) {
-            eprintln!("DEBUG level {level} upto {upto} curve {c:?} z {} r {}", c.monotone(Axis::Z, sz, 0.0, upto), c.monotone(Axis::R, -sx, 0.0, upto));
             return fail(
                 4009,
                 "the profile is not monotonic: it turns back before the level pass reaches it",

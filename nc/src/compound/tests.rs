@@ -454,3 +454,75 @@ fn a_chamfer_in_a_profile_is_cut_by_the_cycle() {
     ];
     assert_eq!(got, want);
 }
+
+#[test]
+fn random_profiles_never_panic() {
+    // A small LCG: the same cases on every run.
+    let mut seed: u64 = 0x5eed;
+    let mut next = move |n: u64| {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 33) % n
+    };
+    let codes = ["G00", "G01", "G02", "G03"];
+    let mut ran = 0;
+    for _ in 0..400 {
+        let first = [
+            "G71 U1.5 R0.5",
+            "G72 W1.5 R0.5",
+            "G73 U2 W1 R3",
+            "G71 U0.1 R0",
+        ][next(4) as usize];
+        let cyc = ["G71", "G72", "G73", "G70"][next(4) as usize];
+        let mut profile = Vec::new();
+        for i in 0..1 + next(8) {
+            let code = codes[next(4) as usize];
+            let x = format!("X{}", next(80) as i64 - 10);
+            let z = format!("Z{}", 5 - next(40) as i64);
+            let mut b = match (i, next(3)) {
+                (_, 0) => format!("{code} {x}"),
+                (_, 1) => format!("{code} {z}"),
+                _ => format!("{code} {x} {z}"),
+            };
+            if code == "G02" || code == "G03" {
+                b.push_str(&format!(" R{}", next(30) as i64 - 5));
+            }
+            profile.push(b);
+        }
+        let refs: Vec<&str> = profile.iter().map(String::as_str).collect();
+        let setup = ["G98 G00 X50 Z3", first];
+        let text = format!(
+            "{cyc} P1 Q2 U{} W{} F0.2 K{} J{}",
+            next(3),
+            next(2),
+            next(2),
+            next(2)
+        );
+        ran += usize::from(run(&setup, &text, &refs).is_ok());
+    }
+    // Most random shapes are rejected, but enough run to cover the paths.
+    assert!(ran > 40, "only {ran} of 400 ran");
+}
+
+#[test]
+fn g70_applies_corners_and_ignores_one_on_the_nf_block() {
+    // As the G73 case: T1 = X20 Z-8, T2 = X24 Z-10. The L1 of the nf block
+    // has no next move: the last line is printed whole before the return.
+    let setup = ["G98 G00 X40 Z3 F0.2"];
+    let got = run(
+        &setup,
+        "G70 P1 Q2",
+        &["G00 X20 Z2", "G01 Z-10 L2", "X40 L1"],
+    )
+    .unwrap();
+    let want = [
+        rapid(20.0, 2.0),
+        "FEED F=0.2 MODE=MIN".into(),
+        line(20.0, -8.0),
+        line(24.0, -10.0),
+        line(40.0, -10.0),
+        rapid(40.0, 3.0),
+    ];
+    assert_eq!(got, want);
+}

@@ -13,7 +13,7 @@
 mod angle;
 mod conic;
 mod corner;
-mod elem;
+pub(crate) mod elem;
 mod queue;
 #[cfg(test)]
 mod tests;
@@ -202,6 +202,12 @@ pub(crate) fn before_one_shot(nc: &mut Nc, code: Code, sink: &mut dyn Sink) -> R
         90 => Ok(()),
         40 if nc.st.contour.angle_waiting() => {
             nc.st.contour.drop_angle_corner();
+            Ok(())
+        }
+        // Under compensation G04 is a block without a move (comp.md §7):
+        // the element keeps waiting; its corner word is ignored (W112).
+        40 if crate::comp::running(nc) => {
+            nc.st.contour.drop_corners();
             Ok(())
         }
         _ => flush(nc, sink),

@@ -3,6 +3,7 @@
 use super::angle;
 use super::corner::{corner, Corner};
 use super::elem::{self, EPS_LEN};
+use crate::comp::{Leg, Step};
 use crate::error::{fail, NcError};
 use crate::event::{Dir, Event};
 use crate::exec::{Nc, Sink};
@@ -21,6 +22,8 @@ pub(crate) struct Move {
     pub corner: Option<Corner>,
     /// Shortened by a corner: when nothing is left it is not printed.
     pub trimmed: bool,
+    /// Its nose-radius compensation (comp module); `None`: uncompensated.
+    pub comp: Option<Leg>,
 }
 
 impl Move {
@@ -32,12 +35,21 @@ impl Move {
             feed: feed_now(nc),
             corner,
             trimmed: false,
+            comp: None,
         }
     }
 
-    /// Whether the move must wait for the next one before it is printed.
+    /// Whether the move must wait for the next one before it is printed:
+    /// for its corner word, or for the element its compensated end
+    /// depends on.
     fn waits(&self) -> bool {
-        self.corner.is_some() && elem::length(&self.elem) >= EPS_LEN
+        (self.corner.is_some() || self.comp.as_ref().is_some_and(Leg::waits))
+            && elem::length(&self.elem) >= EPS_LEN
+    }
+
+    /// A compensated element whose end is still open.
+    fn comp_open(&self) -> bool {
+        self.comp.as_ref().is_some_and(Leg::waits) && elem::length(&self.elem) >= EPS_LEN
     }
 }
 
@@ -117,6 +129,16 @@ impl ContourState {
         }
     }
 
+    /// A G04 under compensation: the corner words of waiting elements are
+    /// ignored, as a flush would ignore them (W112).
+    pub(crate) fn drop_corners(&mut self) {
+        for item in &mut self.items {
+            if let Item::Move(m) = item {
+                m.corner = None;
+            }
+        }
+    }
+
     /// Counts a finished block against a waiting angle pair: how many
     /// blocks now stand between its two blocks (0 when none waits).
     pub(crate) fn count_block_between(&mut self) -> u32 {
@@ -185,6 +207,7 @@ fn join(prev: &mut Move, next: &mut Move) -> Result<Option<Move>, NcError> {
         feed: prev.feed,
         corner: None,
         trimmed: false,
+        comp: prev.comp.as_ref().map(Leg::inserted),
     }))
 }
 
@@ -212,9 +235,17 @@ fn join_at(items: &mut Vec<Item>, i: usize, next: &mut Move) -> Result<bool, NcE
 /// waiting before it, everything before it is printed, and it is printed
 /// too unless its own corner word makes it wait.
 pub(crate) fn advance(nc: &mut Nc, mut next: Move, sink: &mut dyn Sink) -> Result<(), NcError> {
+    let step = compensate(nc, &mut next)?;
     if let Some(i) = last_waiting(&nc.st.contour.items) {
         join_at(&mut nc.st.contour.items, i, &mut next)?;
     }
+    if step == Step::Behind {
+        // Printed where the compensated tool will stand: behind the
+        // element that still waits (comp.md §7).
+        nc.st.contour.items.push(Item::Move(next));
+        return Ok(());
+    }
+    resolve(&mut nc.st.contour.items, &mut next, step)?;
     drain(nc, sink);
     if next.waits() {
         nc.st.contour.items.push(Item::Move(next));
@@ -251,12 +282,18 @@ pub(crate) fn finish_angle(
         feed: a.feed,
         corner: if a.rapid { None } else { a.corner },
         trimmed: false,
+        comp: None,
     };
+    let step = compensate(nc, &mut first)?;
+    let items = &mut nc.st.contour.items;
     let mut at = i;
     if let Some(j) = last_waiting(&items[..i]) {
         if join_at(items, j, &mut first)? {
             at += 1;
         }
+    }
+    if let Some(before) = items.get_mut(..at) {
+        resolve(before, &mut first, step)?;
     }
     items.insert(at, Item::Move(first));
     let second = Move {
@@ -274,7 +311,12 @@ pub(crate) fn finish_angle(
 /// block.
 pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
     let incomplete = nc.st.contour.angle_waiting();
+    // Compensation is suspended: the waiting element ends on its own
+    // normal (comp.md §6, §8); printed even when that fails.
+    let closed = chain(&mut nc.st.contour.items, None);
+    nc.st.comp.stop();
     drain(nc, sink);
+    closed?;
     if incomplete {
         return fail(
             4008,
@@ -295,22 +337,34 @@ fn drain(nc: &mut Nc, sink: &mut dyn Sink) {
     }
 }
 
-/// Prints one move, with `FEED` first when its feed differs from the last
-/// one printed.
+/// Prints one move: compensated, as its leg says (comp module).
 fn emit_move(nc: &mut Nc, m: &Move, sink: &mut dyn Sink) {
     if m.trimmed && elem::length(&m.elem) < EPS_LEN {
         return;
     }
-    if !m.rapid && nc.st.feed_printed != Some(m.feed) {
-        nc.st.feed_printed = Some(m.feed);
+    match &m.comp {
+        Some(leg) => {
+            for (e, rapid) in crate::comp::printed(&mut nc.st.comp, &m.elem, leg, m.rapid) {
+                emit_element(nc, &e, rapid, m.feed, sink);
+            }
+        }
+        None => emit_element(nc, &m.elem, m.rapid, m.feed, sink),
+    }
+}
+
+/// Prints one element, with `FEED` first when its feed differs from the
+/// last one printed.
+fn emit_element(nc: &mut Nc, e: &Element, rapid: bool, feed: (f64, bool), sink: &mut dyn Sink) {
+    if !rapid && nc.st.feed_printed != Some(feed) {
+        nc.st.feed_printed = Some(feed);
         sink.emit(Event::Feed {
-            f: m.feed.0,
-            per_rev: m.feed.1,
+            f: feed.0,
+            per_rev: feed.1,
         });
     }
-    let to = m.elem.end();
-    sink.emit(match m.elem {
-        Element::Line { .. } if m.rapid => Event::Rapid { x: to.x(), z: to.z },
+    let to = e.end();
+    sink.emit(match *e {
+        Element::Line { .. } if rapid => Event::Rapid { x: to.x(), z: to.z },
         Element::Line { .. } => Event::Line { x: to.x(), z: to.z },
         Element::Arc { centre, cw, .. } => Event::Arc {
             dir: if cw { Dir::Cw } else { Dir::Ccw },
@@ -320,4 +374,55 @@ fn emit_move(nc: &mut Nc, m: &Move, sink: &mut dyn Sink) {
             cz: centre.z,
         },
     });
+}
+
+/// Asks the comp module what `m` is (start-up, element, cancel ...) and
+/// gives it its leg. A zero-length move takes no corner word.
+fn compensate(nc: &mut Nc, m: &mut Move) -> Result<Step, NcError> {
+    let (step, leg) = crate::comp::classify(nc, &m.elem)?;
+    m.comp = leg;
+    if step == Step::Behind {
+        m.corner = None;
+    }
+    Ok(step)
+}
+
+/// Joins the waiting compensated elements in `items` with the new move
+/// `next` as `step` says.
+fn resolve(items: &mut [Item], next: &mut Move, step: Step) -> Result<(), NcError> {
+    match step {
+        Step::Join => chain(items, Some(next)),
+        Step::Close => chain(items, None),
+        Step::Plain | Step::Start | Step::Behind => Ok(()),
+    }
+}
+
+/// The compensated elements whose end is open (the waiting one and those
+/// an L/D corner inserted after it), then `next`, joined pairwise in
+/// order; without `next` the last one ends on its own normal.
+fn chain(items: &mut [Item], next: Option<&mut Move>) -> Result<(), NcError> {
+    let mut open: Vec<&mut Move> = items
+        .iter_mut()
+        .filter_map(|i| match i {
+            Item::Move(m) if m.comp_open() => Some(m),
+            _ => None,
+        })
+        .collect();
+    let close = next.is_none();
+    open.extend(next);
+    for k in 1..open.len() {
+        let (done, rest) = open.split_at_mut(k);
+        if let (Some(a), Some(b)) = (done.last_mut(), rest.first_mut()) {
+            if let (Some(la), Some(lb)) = (a.comp.as_mut(), b.comp.as_mut()) {
+                crate::comp::join(&a.elem, la, &b.elem, lb)?;
+            }
+        }
+    }
+    match open.last_mut() {
+        Some(last) if close => match last.comp.as_mut() {
+            Some(leg) => crate::comp::close(&last.elem, leg),
+            None => Ok(()),
+        },
+        _ => Ok(()),
+    }
 }

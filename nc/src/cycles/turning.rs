@@ -125,11 +125,15 @@ pub(crate) fn run(
         return Ok(());
     }
     let c = next_cycle(nc, code, p)?;
-    let path = if code == 900 {
+    let mut path = if code == 900 {
         g90_legs(&c)
     } else {
         g94_legs(&c)
     };
+    if let [Leg::Rapid(s), Leg::Line(e), Leg::Line(f), _] = &mut path {
+        // Under G41/G42 the cut and the retract are moved (comp.md §9).
+        crate::comp::turning_cycle(nc, code == 940, c.a, [s, e, f])?;
+    }
     legs::emit(nc, &path, true, sink);
     out.moved = true;
     Ok(())

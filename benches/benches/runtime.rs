@@ -1,0 +1,264 @@
+//! The interpolation runtime (`runtime` crate): planning throughput
+//! alone, parse + VM + plan end to end, and the cost of one interpolation
+//! period, on generated short-segment and arc-heavy programs.
+//!
+//! Targets: plan ≥ 5 M blocks/s, end to end ≥ 1 M blocks/s, one period
+//! ≤ 100 ns mean. The worst single period seen is printed on stderr.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput};
+use runtime::command::{Command, Move, MoveKind, Path, Tag};
+use runtime::math::V2;
+use runtime::planner::Planner;
+use runtime::translate::Translator;
+use runtime::{AutoAck, Config, Engine, RunState};
+use std::fmt::Write;
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+const BLOCKS: usize = 200_000;
+
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 >> 33
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() % 1_000_000) as f64 / 1_000_000.0
+    }
+}
+
+/// A CAM-style contour: 0.05–0.25 mm segments turning a few degrees at
+/// a time, at F2000 mm/min (G98).
+fn short_segments(n: usize) -> String {
+    let mut g = Lcg(7);
+    let mut s = String::with_capacity(n * 24);
+    s.push_str("O0001\nG98 G01 F2000\n");
+    let (mut r, mut z, mut a) = (20.0f64, 0.0f64, -1.6f64);
+    for _ in 0..n {
+        a += (g.unit() - 0.5) * 0.2;
+        a = a.clamp(-2.8, -0.3);
+        let l = 0.05 + 0.2 * g.unit();
+        r = (r + l * a.sin()).clamp(1.0, 60.0);
+        z += l * a.cos() - 0.01;
+        let _ = writeln!(s, "X{:.3} Z{:.3}", 2.0 * r, z);
+    }
+    s.push_str("M30\n");
+    s
+}
+
+/// Quarter arcs of 1–6 mm radius, alternating G02/G03, at F1500.
+fn arcs(n: usize) -> String {
+    let mut g = Lcg(11);
+    let mut s = String::with_capacity(n * 28);
+    s.push_str("O0002\nG98 G01 X40 Z0 F1500\n");
+    let (r, mut z) = (20.0f64, 0.0f64);
+    let mut up = true;
+    let mut rad = 1.0;
+    for _ in 0..n {
+        // Out by the radius in X and back, Z down by it each time: a
+        // pair of tangent quarter arcs.
+        if up {
+            rad = 1.0 + 5.0 * g.unit();
+        }
+        let nr = if up { r + rad } else { r };
+        z -= rad;
+        let code = if up { "G02" } else { "G03" };
+        let _ = writeln!(s, "{code} X{:.3} Z{:.3} R{rad:.3}", 2.0 * nr, z);
+        up = !up;
+    }
+    s.push_str("M30\n");
+    s
+}
+
+fn module(src: &str) -> isa::Module {
+    let out = compiler::compile("bench.nc", src.as_bytes(), &compiler::Options::default());
+    match out.module {
+        Some(m) => m,
+        None => panic!("{}", out.render()),
+    }
+}
+
+/// The commands a program turns into (VM and translation done once).
+fn commands(src: &str) -> Vec<Command> {
+    let machine = nc::Machine::reference();
+    let mut vm = vm::Vm::new(module(src), machine.clone());
+    let mut events: Vec<nc::Event> = Vec::new();
+    let _ = vm.run(&mut events);
+    let mut t = Translator::new(V2::ZERO);
+    let mut out = Vec::new();
+    for e in &events {
+        t.event(e, &vm.nc.st, &machine, &mut out);
+    }
+    out.retain(|c| matches!(c, Command::Move(_)));
+    out
+}
+
+/// Pushes every command, retiring from the head when the queue is full.
+fn plan_all(p: &mut Planner, cmds: &[Command]) -> usize {
+    p.clear();
+    p.set_tail(V2::ZERO);
+    let tag = Tag::default();
+    for &c in cmds {
+        if p.push(c, tag).is_err() {
+            for _ in 0..256 {
+                p.pop();
+            }
+            let _ = p.push(c, tag);
+        }
+    }
+    p.len()
+}
+
+/// Parse + compile + VM + translation + planning of a whole program.
+fn end_to_end(src: &str, p: &mut Planner) -> usize {
+    struct Plan<'a> {
+        t: Translator,
+        p: &'a mut Planner,
+        st: nc::state::State,
+        m: nc::Machine,
+        buf: Vec<Command>,
+    }
+    impl nc::Sink for Plan<'_> {
+        fn emit(&mut self, e: nc::Event) {
+            self.buf.clear();
+            self.t.event(&e, &self.st, &self.m, &mut self.buf);
+            for &c in &self.buf {
+                if self.p.push(c, Tag::default()).is_err() {
+                    for _ in 0..256 {
+                        self.p.pop();
+                    }
+                    let _ = self.p.push(c, Tag::default());
+                }
+            }
+        }
+    }
+    let machine = nc::Machine::reference();
+    let mut vm = vm::Vm::new(module(src), machine.clone());
+    p.clear();
+    p.set_tail(V2::ZERO);
+    let st = vm.nc.st.clone();
+    let mut sink = Plan { t: Translator::new(V2::ZERO), p, st, m: machine, buf: Vec::new() };
+    let _ = vm.run(&mut sink);
+    sink.p.len()
+}
+
+/// An engine running `cmds` over and over; `tick` it.
+struct Ticker {
+    e: Engine<AutoAck>,
+    cmds: Vec<Command>,
+    next: usize,
+}
+
+impl Ticker {
+    fn new(cmds: Vec<Command>) -> Ticker {
+        let mut e = Engine::new(Config::default(), AutoAck);
+        e.cycle_start();
+        let mut t = Ticker { e, cmds, next: 0 };
+        t.refill();
+        t
+    }
+
+    /// Keeps the queue fed (the non-real-time side), restarting the
+    /// program when it has been used up.
+    fn refill(&mut self) {
+        while self.e.planner().len() + 1 < self.e.planner().capacity() {
+            if self.next == self.cmds.len() {
+                self.next = 0;
+                // Back to the program start at rapid, from wherever it is.
+                let to = match self.cmds[0] {
+                    Command::Move(m) => m.path.to(),
+                    _ => V2::ZERO,
+                };
+                let _ = self.e.push(Command::Move(Move { kind: MoveKind::Rapid, path: Path::Line { to }, shift: V2::ZERO }), Tag::default());
+                continue;
+            }
+            let c = self.cmds[self.next];
+            self.next += 1;
+            let _ = self.e.push(c, Tag::default());
+        }
+    }
+
+    fn low(&self) -> bool {
+        self.e.planner().len() < 1100
+    }
+}
+
+fn runtime_benches(c: &mut Criterion) {
+    let short = short_segments(BLOCKS);
+    let arc = arcs(BLOCKS);
+    let short_cmds = commands(&short);
+    let arc_cmds = commands(&arc);
+    eprintln!("runtime inputs: short segments {} moves, arcs {} moves", short_cmds.len(), arc_cmds.len());
+
+    let mut group = c.benchmark_group("runtime");
+    group
+        .sample_size(10)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2));
+
+    let mut planner = Planner::new(&Config::default());
+    for (name, cmds) in [("short_segments", &short_cmds), ("arcs", &arc_cmds)] {
+        group.throughput(Throughput::Elements(cmds.len() as u64));
+        group.bench_with_input(BenchmarkId::new("plan", name), cmds, |b, cmds| {
+            b.iter(|| plan_all(&mut planner, black_box(cmds)))
+        });
+    }
+    for (name, src, n) in [("short_segments", &short, short_cmds.len()), ("arcs", &arc, arc_cmds.len())] {
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::new("parse_vm_plan", name), src, |b, src| {
+            b.iter(|| end_to_end(black_box(src), &mut planner))
+        });
+    }
+
+    group.throughput(Throughput::Elements(1));
+    for (name, cmds) in [("short_segments", &short_cmds), ("arcs", &arc_cmds)] {
+        let mut t = Ticker::new(cmds.clone());
+        let mut worst = Duration::ZERO;
+        // The worst single period, timed one by one (timer overhead
+        // included) over a second of machine time.
+        for _ in 0..3 {
+            for _ in 0..1000 {
+                let t0 = Instant::now();
+                black_box(t.e.tick());
+                worst = worst.max(t0.elapsed());
+            }
+            t.refill();
+        }
+        group.bench_function(BenchmarkId::new("period", name), |b| {
+            b.iter_custom(|iters| {
+                let mut spent = Duration::ZERO;
+                let mut left = iters;
+                while left > 0 {
+                    let n = left.min(500);
+                    let t0 = Instant::now();
+                    for _ in 0..n {
+                        black_box(t.e.tick());
+                    }
+                    spent += t0.elapsed();
+                    left -= n;
+                    if t.low() {
+                        t.refill();
+                    }
+                }
+                spent
+            })
+        });
+        for _ in 0..20 {
+            for _ in 0..500 {
+                let t0 = Instant::now();
+                black_box(t.e.tick());
+                worst = worst.max(t0.elapsed());
+            }
+            t.refill();
+        }
+        assert_ne!(t.e.state(), RunState::Alarm(0));
+        eprintln!("runtime/period/{name}: worst single period seen {:?} (state {:?})", worst, t.e.state());
+    }
+    group.finish();
+}
+
+criterion_group!(benches, runtime_benches);
+criterion_main!(benches);

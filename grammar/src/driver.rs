@@ -1,0 +1,516 @@
+//! The driver: cuts the source into lines and blocks, lexes each block, has
+//! the blocks parsed, and applies the rules that span a whole line (`%`
+//! lines, simulator directives, the O line).
+//!
+//! Blocks are parsed in batches (one LALRPOP parse for up to [`BATCH`]
+//! blocks): a parse sets up and grows its stacks anew, which cost more than
+//! the parsing itself for short blocks. When a batch fails, its blocks are
+//! parsed again one by one, so a syntax error still costs only its own block
+//! and is reported exactly as a single-block parse sees it.
+
+use crate::ast::{Addr, Ast, Block, Body, Comment, Line, ProgramStart, Word};
+use crate::compact::{Compactor, Terminator};
+use crate::diag::Diagnostic;
+use crate::errors;
+use crate::lexer::{self, RunRef, Spanned, Tok};
+use crate::parser::{self, actions, BatchParser, Parsed};
+use crate::span::Span;
+use std::ops::Range;
+
+/// Blocks per batch: enough to spread the parse set-up, few enough that a
+/// failed batch (parsed again block by block) costs little.
+const BATCH: usize = 64;
+
+/// Parses a whole file. See [`crate::parse`].
+pub fn parse(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
+    run(src, true)
+}
+
+/// Parses every block alone, without batches or word runs: the plain path
+/// that the batched one must equal (tests compare them).
+#[cfg(test)]
+pub fn parse_unbatched(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
+    run(src, false)
+}
+
+fn run(src: &[u8], batched: bool) -> (Ast, Vec<Diagnostic>) {
+    // About one syntax-tree line per LF: counting is cheap and saves growing
+    // (copying) a large vector again and again.
+    let newlines = src.iter().filter(|&&b| b == b'\n').count();
+    let mut driver = Driver {
+        src,
+        compactor: Compactor::default(),
+        ast: Ast {
+            lines: Vec::with_capacity(newlines + 1),
+        },
+        diags: Vec::new(),
+        tokens: Vec::new(),
+        batch: Vec::new(),
+        runs: Vec::new(),
+        entries: Vec::new(),
+        blocks: 0,
+        line_no: 0,
+        line: LineState::default(),
+        parser: BatchParser::new(),
+        batched,
+    };
+    // A Ctrl-Z as the very last byte is the DOS end-of-file mark.
+    let limit = match src.last() {
+        Some(0x1A) => src.len() - 1,
+        _ => src.len(),
+    };
+    let mut pos = 0;
+    while pos < limit {
+        pos = driver.line(pos, limit);
+        driver.line_no += 1;
+        if driver.blocks >= BATCH {
+            driver.flush();
+        }
+    }
+    driver.flush();
+    (driver.ast, driver.diags)
+}
+
+/// Something found in the file, kept in order until its batch is parsed.
+enum Entry {
+    /// A line of the tree that needs no parsing (`%`, only comments).
+    Ready(Line),
+    /// A warning or an error found before parsing (`%` text, directive).
+    Note(Diagnostic),
+    /// A block whose characters or tokens are faulty.
+    Faulty {
+        line: usize,
+        after_semicolon: bool,
+        diag: Diagnostic,
+    },
+    /// A block to parse: its tokens are `tokens[range]`.
+    Block {
+        line: usize,
+        after_semicolon: bool,
+        range: Range<usize>,
+        comments: Vec<Comment>,
+        span: Span,
+    },
+}
+
+struct Driver<'src> {
+    src: &'src [u8],
+    compactor: Compactor,
+    ast: Ast,
+    diags: Vec<Diagnostic>,
+    /// The tokens of the pending blocks, as lexed (a block that fails in
+    /// its batch is parsed again from these).
+    tokens: Vec<Spanned>,
+    /// The same blocks for the batch parse: each followed by `Eob`, runs of
+    /// literal words as one `Run` token...
+    batch: Vec<Spanned>,
+    /// ... whose words are these.
+    runs: Vec<Word>,
+    entries: Vec<Entry>,
+    /// The number of `Entry::Block`s pending.
+    blocks: usize,
+    /// The physical line being scanned.
+    line_no: usize,
+    /// The line rules' state for the line of the last entry handed out.
+    line: LineState,
+    parser: BatchParser,
+    /// Parse in batches (always, but in the tests that check batching).
+    batched: bool,
+}
+
+/// What the blocks of one physical line have shown so far.
+#[derive(Default)]
+struct LineState {
+    line_no: usize,
+    /// A program start stood on this line.
+    program: bool,
+    /// A block with words or a statement (or a faulty one) stood on it.
+    other: bool,
+}
+
+fn is_blank(b: u8) -> bool {
+    b == b' ' || b == b'\t'
+}
+
+/// `[` followed (after blanks) by a letter: `[BILLET X55 Z128`.
+fn is_directive(rest: &[u8]) -> bool {
+    rest.iter()
+        .find(|&&b| !is_blank(b))
+        .is_some_and(|b| b.is_ascii_alphabetic())
+}
+
+/// The offset of the end of the line that contains `from`.
+fn line_end(src: &[u8], from: usize, limit: usize) -> usize {
+    src[from..limit]
+        .iter()
+        .position(|&b| b == b'\n' || b == b'\r')
+        .map_or(limit, |i| from + i)
+}
+
+/// The start of the line after the terminator at `end` (CR LF counts once).
+fn next_line(src: &[u8], end: usize, limit: usize) -> usize {
+    if end >= limit {
+        limit
+    } else if src[end] == b'\r' && end + 1 < limit && src[end + 1] == b'\n' {
+        end + 2
+    } else {
+        end + 1
+    }
+}
+
+/// `range` without the blanks at either end.
+fn trim(src: &[u8], mut range: Range<usize>) -> Range<usize> {
+    while range.start < range.end && is_blank(src[range.start]) {
+        range.start += 1;
+    }
+    while range.end > range.start && is_blank(src[range.end - 1]) {
+        range.end -= 1;
+    }
+    range
+}
+
+/// Copies a block's tokens to `batch`, each run of literal words (`X10`,
+/// `,C1`) replaced by one `Run` token whose words go to `runs`, built as
+/// the grammar builds them.
+fn group_words(toks: &[Spanned], batch: &mut Vec<Spanned>, runs: &mut Vec<Word>) {
+    let mut run: Option<(usize, usize)> = None; // (source start, first word)
+    let mut i = 0;
+    while i < toks.len() {
+        let word = match (toks[i], toks.get(i + 1)) {
+            ((l, Tok::Word(w), r), _) => Some((
+                actions::word(Addr::Letter(w.letter as char), w, Span::new(l, r)),
+                1,
+            )),
+            ((l, Tok::Comma, _), Some(&(_, Tok::Word(w), r))) => Some((
+                actions::word(Addr::Comma(w.letter as char), w, Span::new(l, r)),
+                2,
+            )),
+            _ => None,
+        };
+        match word {
+            Some((w, used)) => {
+                run.get_or_insert((toks[i].0, runs.len()));
+                runs.push(w);
+                i += used;
+            }
+            None => {
+                end_run(&mut run, batch, runs);
+                batch.push(toks[i]);
+                i += 1;
+            }
+        }
+    }
+    end_run(&mut run, batch, runs);
+}
+
+fn end_run(run: &mut Option<(usize, usize)>, batch: &mut Vec<Spanned>, runs: &[Word]) {
+    if let Some((start, first)) = run.take() {
+        let end = runs.last().map_or(start, |w| w.span.end as usize);
+        let r = RunRef {
+            start: first as u32,
+            len: (runs.len() - first) as u32,
+        };
+        batch.push((start, Tok::Run(r), end));
+    }
+}
+
+impl Driver<'_> {
+    /// Scans the line starting at `pos`; returns where the next one starts.
+    fn line(&mut self, pos: usize, limit: usize) -> usize {
+        let src = self.src;
+        let first = trim(src, pos..limit).start;
+        if first < limit && src[first] == b'%' {
+            let end = line_end(src, first, limit);
+            self.percent_line(first, end);
+            return next_line(src, end, limit);
+        }
+        if first < limit && src[first] == b'[' && is_directive(&src[first + 1..limit]) {
+            let end = line_end(src, first, limit);
+            let text = trim(src, first..end);
+            self.entries.push(Entry::Note(
+                Diagnostic::warning("W102", Span::new(text.start, text.end), "simulator directive ignored")
+                    .with_label("this line is skipped")
+                    .with_note(
+                        "a line starting with `[` and a letter is a simulator setting, not part of the program",
+                    ),
+            ));
+            return next_line(src, end, limit);
+        }
+        let mut start = pos;
+        let mut after_semicolon = false;
+        loop {
+            let (end, terminator) = self.block(start, limit, after_semicolon);
+            match terminator {
+                Terminator::Semicolon => {
+                    start = end + 1;
+                    after_semicolon = true;
+                }
+                Terminator::LineEnd => return next_line(src, end, limit),
+                Terminator::Eof => return limit,
+            }
+        }
+    }
+
+    fn percent_line(&mut self, at: usize, end: usize) {
+        self.entries
+            .push(Entry::Ready(Line::Percent(Span::new(at, at + 1))));
+        let rest = trim(self.src, at + 1..end);
+        if !rest.is_empty() {
+            self.entries.push(Entry::Note(
+                Diagnostic::error(
+                    "E1003",
+                    Span::new(rest.start, rest.end),
+                    "text after `%` on a `%` line",
+                )
+                .with_label("a `%` line holds nothing else")
+                .with_help("put the text on a line of its own"),
+            ));
+        }
+    }
+
+    /// Scans and lexes the block at `start`; returns where it ends.
+    fn block(&mut self, start: usize, limit: usize, after_semicolon: bool) -> (usize, Terminator) {
+        let scanned = self.compactor.scan(self.src, start, limit);
+        let end = (scanned.end, scanned.terminator);
+        let line = self.line_no;
+        if let Some(diag) = scanned.error {
+            self.entries.push(Entry::Faulty {
+                line,
+                after_semicolon,
+                diag,
+            });
+            return end;
+        }
+        let Some(span) = scanned.span else {
+            return end; // an empty block
+        };
+        if scanned.text.is_empty() {
+            // Only comments: nothing to parse.
+            self.entries.push(Entry::Ready(Line::Block(Block {
+                delete: None,
+                seq: None,
+                body: Body::Words(Vec::new()),
+                comments: scanned.comments,
+                span,
+            })));
+            return end;
+        }
+        let first = self.tokens.len();
+        match lexer::lex_block(
+            scanned.text,
+            scanned.map,
+            &scanned.comments,
+            &mut self.tokens,
+        ) {
+            Ok(()) => {
+                let range = first..self.tokens.len();
+                group_words(&self.tokens[range.clone()], &mut self.batch, &mut self.runs);
+                self.batch
+                    .push((span.end as usize, Tok::Eob, span.end as usize));
+                self.blocks += 1;
+                self.entries.push(Entry::Block {
+                    line,
+                    after_semicolon,
+                    range,
+                    comments: scanned.comments,
+                    span,
+                });
+            }
+            Err(diag) => self.entries.push(Entry::Faulty {
+                line,
+                after_semicolon,
+                diag: *diag,
+            }),
+        }
+        end
+    }
+
+    /// Parses the pending blocks and hands every pending entry out in order.
+    fn flush(&mut self) {
+        let mut batch = None;
+        if self.blocks > 0 && self.batched {
+            let tokens = self.batch.iter().map(|&t| Ok::<_, Box<Diagnostic>>(t));
+            if let Ok(parsed) = self.parser.parse(&self.runs, tokens) {
+                if parsed.len() == self.blocks {
+                    batch = Some(parsed.into_iter());
+                }
+            }
+        }
+        let mut entries = std::mem::take(&mut self.entries);
+        for entry in entries.drain(..) {
+            match entry {
+                Entry::Ready(line) => self.ast.lines.push(line),
+                Entry::Note(d) => self.diags.push(d),
+                Entry::Faulty {
+                    line,
+                    after_semicolon,
+                    diag,
+                } => {
+                    self.line_state(line).other = true;
+                    self.report(diag, after_semicolon);
+                }
+                Entry::Block {
+                    line,
+                    after_semicolon,
+                    range,
+                    comments,
+                    span,
+                } => {
+                    let parsed = match batch.as_mut().and_then(|b| b.next()) {
+                        Some(p) => Ok(p),
+                        None => self.parse_one(&range),
+                    };
+                    match parsed {
+                        Ok(p) => self.finish(p, line, comments, span),
+                        Err(d) => {
+                            self.line_state(line).other = true;
+                            self.report(*d, after_semicolon);
+                        }
+                    }
+                }
+            }
+        }
+        // Keep the buffers' capacity for the next batch.
+        self.entries = entries;
+        self.tokens.clear();
+        self.batch.clear();
+        self.runs.clear();
+        self.blocks = 0;
+    }
+
+    /// Parses one block alone (a failed batch), converting its fault.
+    fn parse_one(&self, range: &Range<usize>) -> Result<Parsed, Box<Diagnostic>> {
+        let toks = &self.tokens[range.clone()];
+        parser::parse_block(&self.parser, toks)
+            .map_err(|e| Box::new(errors::convert(e, toks, self.src, &self.parser)))
+    }
+
+    fn line_state(&mut self, line: usize) -> &mut LineState {
+        if self.line.line_no != line {
+            self.line = LineState {
+                line_no: line,
+                ..LineState::default()
+            };
+        }
+        &mut self.line
+    }
+
+    /// Adds a parsed block to the tree, after the O-line rules: a program
+    /// number stands on its own line, with only comments beside it.
+    fn finish(&mut self, parsed: Parsed, line: usize, comments: Vec<Comment>, span: Span) {
+        let state = self.line_state(line);
+        let (delete, seq, body) = match parsed {
+            Parsed::Program { number } => {
+                if state.other {
+                    self.diags.push(
+                        Diagnostic::error(
+                            "E1004",
+                            span,
+                            "a program number must start its own line",
+                        )
+                        .with_label("other blocks stand before it on this line")
+                        .with_help("put the O line on a line of its own"),
+                    );
+                    return;
+                }
+                state.program = true;
+                self.ast.lines.push(Line::ProgramStart(ProgramStart {
+                    number,
+                    comments,
+                    span,
+                }));
+                return;
+            }
+            Parsed::Words { delete, seq, words } => (delete, seq, Body::Words(words)),
+            Parsed::Stmt { delete, seq, stmt } => (delete, seq, Body::Stmt(*stmt)),
+        };
+        state.other = true;
+        if state.program {
+            self.diags.push(
+                Diagnostic::error(
+                    "E1004",
+                    span,
+                    "the O line holds only the program number and comments",
+                )
+                .with_label("a block after the program number")
+                .with_help("start a new line for this block"),
+            );
+            return;
+        }
+        self.ast.lines.push(Line::Block(Block {
+            delete,
+            seq,
+            body,
+            comments,
+            span,
+        }));
+    }
+
+    fn report(&mut self, mut d: Diagnostic, after_semicolon: bool) {
+        // `T0505 ;bedame de 3mm`: `;` ends a block, it does not start a comment.
+        if after_semicolon && d.code == "E1008" && d.help.is_none() {
+            d.help = Some(
+                "`;` ends a block, so this text is a block of its own: put comments in ( )".into(),
+            );
+        }
+        // `G00 3.7347` is `G003.7347`: say so when blanks made the number.
+        let spelled = self.src.get(d.span.range()).unwrap_or_default();
+        if d.code == "E1010" && d.help.is_none() && spelled.iter().any(|&b| is_blank(b)) {
+            let joined: String = spelled
+                .iter()
+                .filter(|&&b| !is_blank(b))
+                .map(|&b| (b as char).to_ascii_uppercase())
+                .collect();
+            d.help = Some(format!(
+                "blanks are ignored, even inside numbers: this reads `{joined}`; is an address letter missing?"
+            ));
+        }
+        self.diags.push(d);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    /// Every fixture, corpus and conformance file parses the same in
+    /// batches (with word runs) as block by block.
+    #[test]
+    fn batches_equal_single_blocks() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let dirs = [
+            root.join("tests/data/ok"),
+            root.join("tests/data/err"),
+            root.join("../../shared/corpus/public"),
+            root.join("../../shared/conformance"),
+        ];
+        let mut files = 0;
+        for dir in dirs {
+            let Ok(entries) = std::fs::read_dir(&dir) else {
+                continue;
+            };
+            for entry in entries.flatten() {
+                let bytes = std::fs::read(entry.path()).unwrap();
+                let batched = super::parse(&bytes);
+                let single = super::parse_unbatched(&bytes);
+                assert!(batched == single, "{}", entry.path().display());
+                files += 1;
+            }
+        }
+        assert!(files > 40, "only {files} files");
+    }
+
+    const ALPHABET: &[u8] = b"GXZNOF#[]=+-*/.,;()% \n0123456789EQIFTHENGOTODOWHILESIN";
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+
+        /// Random G-code-like text, faults included, parses the same both ways.
+        #[test]
+        fn batches_equal_single_blocks_on_random_text(
+            src in proptest::collection::vec(proptest::sample::select(ALPHABET), 0..300)
+        ) {
+            proptest::prop_assert!(super::parse(&src) == super::parse_unbatched(&src));
+        }
+    }
+}

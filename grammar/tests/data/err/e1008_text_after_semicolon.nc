@@ -1,0 +1,2 @@
+T0505 ;bedame de 3mm
+G00 X1

@@ -1,0 +1,7 @@
+#1=SIN[30]+COS[60]+TAN[45]
+#2=ASIN[1]+ACOS[0]+ATAN[1]
+#3=ATAN[1]/[-1]
+#4=SQRT[2]*ABS[-3]
+#5=ROUND[2.5]+FIX[-2.7]+FUP[2.2]
+#6=LN[2]+EXP[1]
+#7=BIN[#1]+BCD[#2]

@@ -1,0 +1,5 @@
+DO1
+D01
+END1
+E1
+GOTO10

@@ -1,0 +1,171 @@
+//! Offset geometry (comp.md §2, §5): normals, offset curves and where two
+//! of them meet. Points double as vectors, `z` horizontal and `r` up, as in
+//! `contour::elem`.
+
+use super::Tool;
+use crate::contour::elem::{cross, dot, left, scale, tangent_at, travel, unit, EPS_LEN};
+use crate::error::{fail, NcError};
+use crate::geom::Element;
+use crate::state::Pt;
+use std::f64::consts::{PI, TAU};
+
+/// The normal R·n of a direction `t`: left(t) for G41 (side +1),
+/// right(t) for G42; zero for no direction.
+pub fn normal(t: Option<Pt>, tool: &Tool) -> Pt {
+    t.map_or(Pt::default(), |t| scale(left(t), tool.side * tool.radius))
+}
+
+/// The nose centre over point `p` of `e`, on the normal there.
+pub fn over(e: &Element, p: Pt, tool: &Tool) -> Pt {
+    p.add(normal(tangent_at(e, p), tool))
+}
+
+/// Whether the tool runs on the centre's side of an arc: G42 on G02, G41
+/// on G03 (the centre lies right of a clockwise travel).
+fn centre_side(cw: bool, tool: &Tool) -> bool {
+    (tool.side < 0.0) == cw
+}
+
+/// The radius of an arc's offset circle; E4036 when the tool on the
+/// centre's side does not fit (ρ − R ≤ 0).
+fn offset_radius(from: Pt, centre: Pt, cw: bool, tool: &Tool) -> Result<f64, NcError> {
+    let rho = from.dist(centre);
+    if !centre_side(cw, tool) {
+        return Ok(rho + tool.radius);
+    }
+    let rad = rho - tool.radius;
+    if rad <= EPS_LEN {
+        return fail(
+            4036,
+            format!(
+                "compensation interference: the arc of radius {rho:.4} is not larger than the nose radius {:.4}",
+                tool.radius
+            ),
+        );
+    }
+    Ok(rad)
+}
+
+/// E4036 for an arc too small for the tool on its centre side.
+pub fn check_arc(e: &Element, tool: &Tool) -> Result<(), NcError> {
+    if let Element::Arc {
+        from, centre, cw, ..
+    } = *e
+    {
+        offset_radius(from, centre, cw, tool)?;
+    }
+    Ok(())
+}
+
+/// An element's offset curve: a line (a point on it and its direction) or
+/// a circle.
+#[derive(Debug, Clone, Copy)]
+pub enum Curve {
+    Line { p: Pt, t: Pt },
+    Circle { c: Pt, rad: f64 },
+}
+
+pub fn curve(e: &Element, tool: &Tool) -> Result<Curve, NcError> {
+    match *e {
+        Element::Line { from, to } => {
+            let t = unit(to.sub(from)).unwrap_or(Pt::new(0.0, 1.0));
+            Ok(Curve::Line {
+                p: from.add(normal(Some(t), tool)),
+                t,
+            })
+        }
+        Element::Arc {
+            from, centre, cw, ..
+        } => Ok(Curve::Circle {
+            c: centre,
+            rad: offset_radius(from, centre, cw, tool)?,
+        }),
+    }
+}
+
+/// The points where two offset curves meet (none, one or two).
+pub fn meet(a: &Curve, b: &Curve) -> Vec<Pt> {
+    match (*a, *b) {
+        (Curve::Line { p: p1, t: t1 }, Curve::Line { p: p2, t: t2 }) => {
+            let det = cross(t1, t2);
+            if det.abs() < 1e-12 {
+                return Vec::new();
+            }
+            // p1 + λ·t1 lies on the second line: (p1 + λ·t1 − p2) × t2 = 0.
+            let lambda = cross(p2.sub(p1), t2) / det;
+            vec![p1.add(scale(t1, lambda))]
+        }
+        (Curve::Line { p, t }, Curve::Circle { c, rad })
+        | (Curve::Circle { c, rad }, Curve::Line { p, t }) => line_circle(p, t, c, rad),
+        (Curve::Circle { c: c1, rad: r1 }, Curve::Circle { c: c2, rad: r2 }) => {
+            circle_circle(c1, r1, c2, r2)
+        }
+    }
+}
+
+/// |p + λt − c| = rad, solved for λ (t a unit vector).
+fn line_circle(p: Pt, t: Pt, c: Pt, rad: f64) -> Vec<Pt> {
+    let w = p.sub(c);
+    let half_b = dot(w, t);
+    let disc = half_b * half_b - (dot(w, w) - rad * rad);
+    if disc < -1e-9 {
+        return Vec::new();
+    }
+    let s = disc.max(0.0).sqrt();
+    vec![p.add(scale(t, -half_b - s)), p.add(scale(t, -half_b + s))]
+}
+
+/// The radical-line construction: the foot at distance a from c1 along
+/// the centre line, then ± h across it.
+fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64) -> Vec<Pt> {
+    let d = c1.dist(c2);
+    if d < 1e-12 {
+        return Vec::new();
+    }
+    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
+    let h2 = r1 * r1 - a * a;
+    if h2 < -1e-9 {
+        return Vec::new();
+    }
+    let h = h2.max(0.0).sqrt();
+    let u = scale(c2.sub(c1), 1.0 / d);
+    let foot = c1.add(scale(u, a));
+    vec![foot.add(scale(left(u), h)), foot.add(scale(left(u), -h))]
+}
+
+/// E4036 when the compensated part of `e` from centre point `s` to `f`
+/// would run backwards: against the line's direction, or round the arc
+/// by a negative angle.
+pub fn check_forward(e: &Element, s: Pt, f: Pt) -> Result<(), NcError> {
+    let backwards = match *e {
+        Element::Line { from, to } => {
+            unit(to.sub(from)).is_some_and(|t| dot(f.sub(s), t) < -EPS_LEN)
+        }
+        Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        } => {
+            let sweep = crate::contour::elem::sweep(from, to, centre, cw);
+            // How far each end moved along the travel, in (−π, π].
+            let shift = |a: Pt, b: Pt| {
+                let d = travel(centre, a, b, cw);
+                if d > PI {
+                    d - TAU
+                } else {
+                    d
+                }
+            };
+            let rad = s.dist(centre).max(EPS_LEN);
+            sweep + shift(to, f) - shift(from, s) < -EPS_LEN / rad
+        }
+    };
+    if backwards {
+        return fail(
+            4036,
+            "compensation interference: the compensated path of this element would run backwards",
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,232 @@
+//! The numbers the runtime plans with, in its own units (mm, s, mm/s,
+//! rev/min), taken from a machine file (machine.md §3–§4) plus a few
+//! runtime choices that have no key there.
+
+/// One linear axis, in slide units: X values are radial (machine.md §1:
+/// "an X rate is the radial speed"), so a diameter travel is halved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Axis {
+    /// Rapid rate, mm/s.
+    pub rapid: f64,
+    /// Maximum cutting feed of the axis, mm/s.
+    pub max_feed: f64,
+    /// Acceleration, mm/s².
+    pub accel: f64,
+    /// Jerk, mm/s³ (used only when [`Config::jerk_limited`] is on).
+    pub jerk: f64,
+    /// Travel check (E7002) on machine positions, slide units.
+    pub soft_limits: bool,
+    pub min: f64,
+    pub max: f64,
+}
+
+/// The simulated spindle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpindleConfig {
+    pub min_rpm: f64,
+    pub max_rpm: f64,
+    /// rev/min per second.
+    pub accel_rpm_s: f64,
+    pub encoder_ppr: u32,
+    /// A feed-per-revolution move that waits this long for a stopped
+    /// spindle raises E7003.
+    pub stall_timeout_s: f64,
+}
+
+/// The rapid override positions of the operator panel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RapidOverride {
+    /// F0: a fixed creep rate, [`Config::rapid_f0`] of each axis's rapid.
+    F0,
+    P25,
+    P50,
+    P100,
+}
+
+impl RapidOverride {
+    /// The nearest switch position for a percentage (machine files give
+    /// `operator.rapid_override_pct` as a number).
+    pub fn from_pct(p: f64) -> RapidOverride {
+        if p >= 75.0 {
+            RapidOverride::P100
+        } else if p >= 37.5 {
+            RapidOverride::P50
+        } else if p >= 12.5 {
+            RapidOverride::P25
+        } else {
+            RapidOverride::F0
+        }
+    }
+
+    pub fn factor(self, f0: f64) -> f64 {
+        match self {
+            RapidOverride::F0 => f0,
+            RapidOverride::P25 => 0.25,
+            RapidOverride::P50 => 0.5,
+            RapidOverride::P100 => 1.0,
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Config {
+    /// Interpolation period, s (machine.interpolation_period_ms).
+    pub period_s: f64,
+    pub x: Axis,
+    pub z: Axis,
+    /// Path limit of cutting feeds (№027), mm/s.
+    pub path_max_feed: f64,
+    pub spindle: SpindleConfig,
+    /// Look-ahead: at least this many blocks and this much motion are kept
+    /// planned when the program allows (machine.md §3).
+    pub lookahead_blocks: usize,
+    pub lookahead_s: f64,
+    /// Items the queue holds at most (allocated once).
+    pub queue_capacity: usize,
+    /// №007.5: every block ends in an exact stop.
+    pub always_exact_stop: bool,
+    /// S-curve (jerk-limited) speed changes instead of linear
+    /// acceleration. Off on the reference machine; never for threads.
+    pub jerk_limited: bool,
+    /// The share of an axis's acceleration that a G64 corner may use as a
+    /// one-period velocity step; the segments next to the corner keep the
+    /// rest for their own speed changes, so the sum never exceeds the
+    /// limit. *Choice*: 0.25.
+    pub corner_budget: f64,
+    /// Rapid rate at the F0 override position, as a share of each axis's
+    /// rapid. *Choice*: 5 %.
+    pub rapid_f0: f64,
+    /// Power-on positions of the operator panel.
+    pub feed_override_pct: f64,
+    pub rapid_override: RapidOverride,
+    pub spindle_override_pct: f64,
+    pub single_block: bool,
+    /// The skip signal is active at 0 (№185.7).
+    pub skip_active_low: bool,
+    /// Positions are commanded in these steps (machine.resolution_mm);
+    /// reported for hosts that quantize, the runtime itself does not.
+    pub resolution_mm: f64,
+}
+
+impl Default for Config {
+    /// The reference machine of machine.md.
+    fn default() -> Config {
+        let min = |v: f64| v / 60.0;
+        Config {
+            period_s: 0.001,
+            x: Axis {
+                rapid: min(6000.0),
+                max_feed: min(4000.0),
+                accel: 1500.0,
+                jerk: 20000.0,
+                soft_limits: false,
+                min: -130.0,
+                max: 1.0,
+            },
+            z: Axis {
+                rapid: min(10000.0),
+                max_feed: min(5000.0),
+                accel: 2000.0,
+                jerk: 25000.0,
+                soft_limits: false,
+                min: -510.0,
+                max: 2.0,
+            },
+            path_max_feed: min(5000.0),
+            spindle: SpindleConfig {
+                min_rpm: 30.0,
+                max_rpm: 3000.0,
+                accel_rpm_s: 1000.0,
+                encoder_ppr: 1024,
+                stall_timeout_s: 5.0,
+            },
+            lookahead_blocks: 1024,
+            lookahead_s: 0.2,
+            queue_capacity: 4096,
+            always_exact_stop: false,
+            jerk_limited: false,
+            corner_budget: 0.25,
+            rapid_f0: 0.05,
+            feed_override_pct: 100.0,
+            rapid_override: RapidOverride::P100,
+            spindle_override_pct: 100.0,
+            single_block: false,
+            skip_active_low: false,
+            resolution_mm: 0.001,
+        }
+    }
+}
+
+impl Config {
+    /// The axes as an array, X first.
+    pub fn axes(&self) -> [&Axis; 2] {
+        [&self.x, &self.z]
+    }
+
+    /// The smaller of the two axis accelerations: what a curve, whose
+    /// direction sweeps over both axes, may use.
+    pub fn min_accel(&self) -> f64 {
+        self.x.accel.min(self.z.accel)
+    }
+
+    /// Periods of the moving-average filter that turns linear
+    /// acceleration into an S-curve with jerk within every axis's limit
+    /// (a box filter of width T bounds the jerk by 2·a/T).
+    pub fn jerk_taps(&self) -> usize {
+        if !self.jerk_limited {
+            return 1;
+        }
+        let t = (2.0 * self.x.accel / self.x.jerk).max(2.0 * self.z.accel / self.z.jerk);
+        let n = libm::ceil(t / self.period_s);
+        if n.is_finite() && n >= 1.0 {
+            (n as usize).min(1 << 16)
+        } else {
+            1
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl Config {
+    /// The runtime's view of a machine file.
+    pub fn from_machine(m: &nc::Machine) -> Config {
+        let per_s = |v: f64| v / 60.0;
+        let axis = |a: &nc::machine::LinearAxis, radial: bool| {
+            let k = if radial { 0.5 } else { 1.0 };
+            Axis {
+                rapid: per_s(a.rapid_mm_min),
+                max_feed: per_s(a.max_feed_mm_min),
+                accel: a.accel_mm_s2,
+                jerk: a.jerk_mm_s3,
+                soft_limits: a.soft_limits,
+                min: a.min_mm * k,
+                max: a.max_mm * k,
+            }
+        };
+        let radial = m.axes.x.diameter;
+        let d = Config::default();
+        Config {
+            period_s: m.machine.interpolation_period_ms / 1000.0,
+            x: axis(&m.axes.x, radial),
+            z: axis(&m.axes.z, false),
+            path_max_feed: per_s(m.feed.max_mm_min),
+            spindle: SpindleConfig {
+                min_rpm: m.spindle.min_rpm.max(0.0),
+                max_rpm: m.spindle.max_rpm,
+                accel_rpm_s: m.spindle.accel_rpm_s,
+                encoder_ppr: m.spindle.encoder_ppr,
+                stall_timeout_s: m.spindle.stall_timeout_s.max(0.0),
+            },
+            lookahead_blocks: (m.machine.lookahead_blocks as usize).max(1024),
+            queue_capacity: ((m.machine.lookahead_blocks as usize).max(1024) * 4).min(1 << 20),
+            always_exact_stop: m.motion.always_exact_stop,
+            feed_override_pct: m.operator.feed_override_pct.clamp(0.0, 150.0),
+            rapid_override: RapidOverride::from_pct(m.operator.rapid_override_pct),
+            spindle_override_pct: m.operator.spindle_override_pct.clamp(0.0, 200.0),
+            single_block: m.operator.single_block,
+            skip_active_low: m.measure.signal_active_low,
+            resolution_mm: m.machine.resolution_mm,
+            ..d
+        }
+    }
+}

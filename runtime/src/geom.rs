@@ -1,0 +1,294 @@
+//! The exact curves the interpolator follows, in slide coordinates.
+//!
+//! Every curve is parametrised by λ ∈ [0, 1]. Lines and arcs are evaluated
+//! in closed form at λ = s / length, so the interpolated point is on the
+//! curve to rounding; ellipses and parabolas have no closed-form arc
+//! length, so the interpolator advances λ by a midpoint step of the arc
+//! length (error O(ds³) per period) and lands on λ = 1 at the end.
+
+use crate::math::{rem_euclid, sqrt, wrap_pi, V2, TAU};
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Curve {
+    /// From `p0` by `d`.
+    Line { p0: V2, d: V2 },
+    /// Centre `c`; radius `r0 + dr·λ` (an end point off the circle by up
+    /// to the arc tolerance makes a slight spiral, so both ends are
+    /// exact); angle `th0 + dth·λ` (dth > 0: CCW).
+    Arc { c: V2, r0: f64, dr: f64, th0: f64, dth: f64 },
+    /// `c + u·a·cos t + w·b·sin t`, `t = t0 + dt·λ`, `w` = `u` turned +90°.
+    Ellipse { c: V2, u: V2, a: f64, b: f64, t0: f64, dt: f64 },
+    /// Axis `u`, vertex at local (x0, y0) from `o`: local y = `yend·λ`,
+    /// x = x0 + (y − y0)² / 2p.
+    Parabola { o: V2, u: V2, p: f64, x0: f64, y0: f64, yend: f64 },
+}
+
+/// Panels of the Simpson rule for the length of a conic.
+const SIMPSON: usize = 64;
+
+impl Curve {
+    pub fn line(from: V2, to: V2) -> Curve {
+        Curve::Line { p0: from, d: to - from }
+    }
+
+    /// An arc from `from` to `to` around `c`; `ccw` for G03. Equal end
+    /// points make a full circle. A radius too small to define a direction
+    /// degrades to a line, which still ends exactly on `to`.
+    pub fn arc(from: V2, to: V2, c: V2, ccw: bool) -> Curve {
+        let (a, b) = (from - c, to - c);
+        let (r0, r1) = (a.norm(), b.norm());
+        if !(r0 > 1e-9 && r1 > 1e-9) || !c.is_finite() {
+            return Curve::line(from, to);
+        }
+        let (th0, th1) = (a.angle(), b.angle());
+        let full = (to - from).norm() < 1e-9;
+        let mut d = if ccw { th1 - th0 } else { th0 - th1 };
+        d = rem_euclid(d, TAU);
+        if full || d == 0.0 {
+            d = if full { TAU } else { d };
+        }
+        Curve::Arc { c, r0, dr: r1 - r0, th0, dth: if ccw { d } else { -d } }
+    }
+
+    /// G6.2/G6.3: of the two ellipses with semi-axes `a` (along the angle
+    /// `q` from +Z) and `b` through both points, the one whose arc in the
+    /// programmed direction is at most 180° (dialect.md §4.1). `None` when
+    /// no ellipse fits.
+    pub fn ellipse(from: V2, to: V2, a: f64, b: f64, q_rad: f64, ccw: bool) -> Option<Curve> {
+        if !(a > 0.0 && b > 0.0) {
+            return None;
+        }
+        let u = V2::polar(q_rad);
+        let w = u.perp();
+        // In a frame stretched along w by a/b the ellipse is a circle of
+        // radius a; a positive stretch keeps the turning sense.
+        let k = a / b;
+        let e = to - from;
+        let ep = V2::new(e.dot(w) * k, e.dot(u)); // (local y, local x)
+        let chord = ep.norm();
+        if !(chord > 1e-9) || chord > 2.0 * a * (1.0 + 1e-9) {
+            return None;
+        }
+        let mid = ep * 0.5;
+        let h = sqrt((a * a - chord * chord * 0.25).max(0.0));
+        // The centre lies left of the chord for a CCW arc of ≤ 180°.
+        let left = ep.perp() * (1.0 / chord);
+        let cp = if ccw { mid + left * h } else { mid - left * h };
+        let ang = |p: V2| libm::atan2(p.r, p.z);
+        let t0 = ang(V2::ZERO - cp);
+        let t1 = ang(ep - cp);
+        let mut dt = wrap_pi(t1 - t0);
+        if ccw && dt < 0.0 {
+            dt += TAU;
+        } else if !ccw && dt > 0.0 {
+            dt -= TAU;
+        }
+        let c = from + u * cp.z + w * (cp.r / k);
+        Some(Curve::Ellipse { c, u, a, b, t0, dt })
+    }
+
+    /// G7.2/G7.3: the parabola y² = 2px with its axis at angle `q` from
+    /// +Z through both points, opening to the side that makes the arc
+    /// turn in the programmed direction. `None` when the chord is parallel
+    /// to the axis or `p` is 0.
+    pub fn parabola(from: V2, to: V2, p: f64, q_rad: f64, ccw: bool) -> Option<Curve> {
+        let p = p.abs();
+        if !(p > 0.0) {
+            return None;
+        }
+        let u = V2::polar(q_rad);
+        let w = u.perp();
+        let e = to - from;
+        let (xe, ye) = (e.dot(u), e.dot(w));
+        if !(ye.abs() > 1e-9) {
+            return None;
+        }
+        // Traversed towards +y the parabola opening to +x turns clockwise.
+        let p = if ccw == (ye > 0.0) { -p } else { p };
+        let y0 = (ye * ye - 2.0 * p * xe) / (2.0 * ye);
+        let x0 = -y0 * y0 / (2.0 * p);
+        Some(Curve::Parabola { o: from, u, p, x0, y0, yend: ye })
+    }
+
+    pub fn point(&self, lam: f64) -> V2 {
+        match *self {
+            Curve::Line { p0, d } => p0 + d * lam,
+            Curve::Arc { c, r0, dr, th0, dth } => c + V2::polar(th0 + dth * lam) * (r0 + dr * lam),
+            Curve::Ellipse { c, u, a, b, t0, dt } => {
+                let t = t0 + dt * lam;
+                c + u * (a * libm::cos(t)) + u.perp() * (b * libm::sin(t))
+            }
+            Curve::Parabola { o, u, p, x0, y0, yend } => {
+                let y = yend * lam;
+                let x = x0 + (y - y0) * (y - y0) / (2.0 * p);
+                o + u * x + u.perp() * y
+            }
+        }
+    }
+
+    /// dP/dλ.
+    pub fn deriv(&self, lam: f64) -> V2 {
+        match *self {
+            Curve::Line { d, .. } => d,
+            Curve::Arc { r0, dr, th0, dth, .. } => {
+                let th = th0 + dth * lam;
+                V2::polar(th) * dr + V2::polar(th).perp() * ((r0 + dr * lam) * dth)
+            }
+            Curve::Ellipse { u, a, b, t0, dt, .. } => {
+                let t = t0 + dt * lam;
+                (u * (-a * libm::sin(t)) + u.perp() * (b * libm::cos(t))) * dt
+            }
+            Curve::Parabola { u, p, y0, yend, .. } => {
+                let y = yend * lam;
+                (u * ((y - y0) / p) + u.perp()) * yend
+            }
+        }
+    }
+
+    /// The length, mm.
+    pub fn length(&self) -> f64 {
+        match *self {
+            Curve::Line { d, .. } => d.norm(),
+            Curve::Arc { r0, dr, dth, .. } => libm::hypot(dr, (r0 + 0.5 * dr) * dth),
+            _ => {
+                let h = 1.0 / SIMPSON as f64;
+                let mut sum = self.deriv(0.0).norm() + self.deriv(1.0).norm();
+                for i in 1..SIMPSON {
+                    let w = if i % 2 == 1 { 4.0 } else { 2.0 };
+                    sum += w * self.deriv(i as f64 * h).norm();
+                }
+                sum * h / 3.0
+            }
+        }
+    }
+
+    /// Whether λ = s / length exactly (lines, arcs).
+    pub fn is_linear_in_length(&self) -> bool {
+        matches!(self, Curve::Line { .. } | Curve::Arc { .. })
+    }
+
+    /// λ after moving `ds` further from `lam` (conics: a midpoint step).
+    pub fn advance(&self, lam: f64, s_after: f64, ds: f64, len: f64) -> f64 {
+        if self.is_linear_in_length() || len <= 0.0 {
+            return if len > 0.0 { (s_after / len).min(1.0) } else { 1.0 };
+        }
+        let speed = |l: f64| self.deriv(l.clamp(0.0, 1.0)).norm().max(1e-12);
+        let half = lam + 0.5 * ds / speed(lam);
+        (lam + ds / speed(half)).clamp(0.0, 1.0)
+    }
+
+    /// The unit tangent at λ.
+    pub fn tangent(&self, lam: f64) -> V2 {
+        self.deriv(lam).unit()
+    }
+
+    /// A lower bound of the radius of curvature (∞ for a line).
+    pub fn min_radius(&self) -> f64 {
+        match *self {
+            Curve::Line { .. } => f64::INFINITY,
+            Curve::Arc { r0, dr, .. } => r0.min(r0 + dr),
+            Curve::Ellipse { a, b, .. } => b * b / a,
+            Curve::Parabola { p, .. } => p.abs(),
+        }
+    }
+
+    /// The end point (exact for every kind).
+    pub fn end(&self) -> V2 {
+        self.point(1.0)
+    }
+
+    /// λ at which the long-axis coordinate has moved `q` from the start
+    /// (threads: lines exactly, arcs by Newton from `guess`).
+    pub fn lam_at_long(&self, long_z: bool, q: f64, total: f64, guess: f64) -> f64 {
+        if total <= 0.0 {
+            return 1.0;
+        }
+        if let Curve::Line { .. } = self {
+            return (q / total).clamp(0.0, 1.0);
+        }
+        let p0 = self.point(0.0);
+        let comp = |v: V2| if long_z { v.z } else { v.r };
+        let mut lam = guess.clamp(0.0, 1.0);
+        for _ in 0..8 {
+            let f = (comp(self.point(lam) - p0)).abs() - q;
+            let df = comp(self.deriv(lam)).abs().max(1e-9);
+            let next = (lam - f / df).clamp(0.0, 1.0);
+            if (next - lam).abs() < 1e-13 {
+                return next;
+            }
+            lam = next;
+        }
+        lam
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn near(a: V2, b: V2) -> bool {
+        (a - b).norm() < 1e-9
+    }
+
+    #[test]
+    fn arcs_end_exactly_and_turn_the_right_way() {
+        // Quarter circle CCW from (r 10, z 0) about (r 0, z 0) to (r 0, z 10)?
+        // Angles run from +Z towards +X: (r 10, z 0) is at 90°.
+        let from = V2::new(10.0, 0.0);
+        let to = V2::new(0.0, 10.0);
+        let a = Curve::arc(from, to, V2::ZERO, false);
+        assert!(near(a.point(0.0), from) && near(a.point(1.0), to));
+        assert!((a.length() - 10.0 * core::f64::consts::FRAC_PI_2).abs() < 1e-9);
+        let b = Curve::arc(from, to, V2::ZERO, true);
+        assert!((b.length() - 30.0 * core::f64::consts::FRAC_PI_2).abs() < 1e-9);
+        let full = Curve::arc(from, from, V2::ZERO, true);
+        assert!((full.length() - 20.0 * core::f64::consts::PI).abs() < 1e-9);
+    }
+
+    #[test]
+    fn ellipse_passes_through_both_points() {
+        let from = V2::new(5.0, 0.0);
+        let to = V2::new(10.0, -12.0);
+        for &ccw in &[false, true] {
+            let e = Curve::ellipse(from, to, 10.0, 6.0, 0.3, ccw).unwrap();
+            assert!(near(e.point(0.0), from), "{e:?}");
+            assert!(near(e.point(1.0), to), "{e:?}");
+            if let Curve::Ellipse { dt, .. } = e {
+                assert!(dt.abs() <= core::f64::consts::PI + 1e-12);
+                assert_eq!(dt > 0.0, ccw);
+            }
+        }
+        assert!(Curve::ellipse(from, to, 1.0, 0.5, 0.0, true).is_none());
+    }
+
+    #[test]
+    fn parabola_passes_through_both_points_and_turns() {
+        let from = V2::new(2.0, 0.0);
+        let to = V2::new(8.0, -9.0);
+        for &ccw in &[false, true] {
+            let p = Curve::parabola(from, to, 3.0, 0.0, ccw).unwrap();
+            assert!(near(p.point(0.0), from));
+            assert!(near(p.point(1.0), to));
+            // Turning sense: cross product of successive tangents.
+            let t0 = p.tangent(0.2);
+            let t1 = p.tangent(0.8);
+            let cross = t0.z * t1.r - t0.r * t1.z;
+            assert_eq!(cross > 0.0, ccw, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn conic_advance_follows_arc_length() {
+        let e = Curve::ellipse(V2::new(5.0, 0.0), V2::new(10.0, -12.0), 10.0, 6.0, 0.3, false).unwrap();
+        let len = e.length();
+        let (mut s, mut lam) = (0.0, 0.0);
+        let ds = 0.01;
+        while s + ds < len {
+            s += ds;
+            lam = e.advance(lam, s, ds, len);
+        }
+        // The drift over the whole curve stays far below the resolution.
+        let rest = (e.point(1.0) - e.point(lam)).norm();
+        assert!((rest - (len - s)).abs() < 1e-6, "rest {rest} vs {}", len - s);
+    }
+}

@@ -1,0 +1,995 @@
+//! The interpolator: the per-period part of the runtime. [`Engine::tick`]
+//! advances the machine by one interpolation period — the spindle, then
+//! the item at the head of the planner queue — and returns the axis set
+//! points. It allocates nothing, takes no lock and makes no system call:
+//! everything it touches was allocated when the engine was built.
+//!
+//! Speeds follow the planner's envelope with the discrete braking limit of
+//! [`crate::profile`]: a feed runs towards F × override (× the actual rpm
+//! in G99) with the move's acceleration, never faster than what still lets
+//! it meet the corner speed ahead or stop on the last planned point. A
+//! stop lands exactly on the end point; the next move starts one period
+//! later, so the velocity passes through zero and no axis sees more than
+//! its acceleration.
+
+use crate::command::{MoveKind, PauseKind, Tag};
+use crate::config::{Config, RapidOverride};
+use crate::math::V2;
+use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
+use crate::plc::{Plc, PlcFunction};
+use crate::profile::{approach, brake_limit};
+use crate::spindle::Spindle;
+
+/// What the machine is doing, as a controller's status line shows it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunState {
+    /// Waiting for the first cycle start.
+    Idle,
+    Running,
+    /// Feed hold: stopped on the path, cycle start resumes.
+    Held,
+    /// M00, M01, a message or single block: cycle start goes on.
+    Stopped(PauseKind),
+    /// The queue ran empty before the program ended (the host did not run
+    /// the program ahead); the axes stand.
+    Starved,
+    Ended,
+    /// A run-time alarm (the code of canon.md, e.g. 7003); reset clears it.
+    Alarm(u32),
+}
+
+/// The kind of motion of a period, for plots and statistics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Motion {
+    #[default]
+    None,
+    Rapid,
+    Feed,
+    Thread,
+}
+
+/// One period's output.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SetPoint {
+    /// Time at the end of the period, s.
+    pub time_s: f64,
+    /// The programmed point in work coordinates, X as a diameter (as the
+    /// canon prints positions).
+    pub x: f64,
+    pub z: f64,
+    /// The axis set points in machine coordinates (X as a diameter), tool
+    /// length offset included: what the drives get.
+    pub axis_x: f64,
+    pub axis_z: f64,
+    /// Signed actual spindle speed (+ for M03), rev/min.
+    pub spindle_rpm: f64,
+    /// Spindle turns since power-on.
+    pub spindle_turns: f64,
+    /// Path speed over the period, mm/min.
+    pub feed: f64,
+    /// Source line of the block being executed.
+    pub line: u32,
+    pub motion: Motion,
+    /// The active tool number.
+    pub tool: u32,
+}
+
+/// How a G31 move ended (axis positions, slide units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SkipReport {
+    /// Where the signal came, if it came.
+    pub hit: Option<V2>,
+    /// Where the axes stopped.
+    pub stop: V2,
+    /// Machine axes minus the programmed point during the move.
+    pub shift: V2,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Phase {
+    /// Not in a thread.
+    Off,
+    /// Waiting for the spindle to reach its speed.
+    WaitSpeed,
+    /// Waiting for the index pulse + Q (`k`: the last whole count seen).
+    WaitIndex { k: f64 },
+    /// Accelerating from rest as a function of the spindle angle.
+    Ramp,
+    /// Position = lead × turns (minus a fixed lag).
+    Locked,
+    /// Braking to the end of the chain (the thread's run-out).
+    Brake,
+}
+
+/// A thread chain in progress. Positions are functions of the spindle
+/// angle θ (turns since the start pulse), so every pass of a multi-pass
+/// thread follows the same helix whatever the period phase of its start:
+/// a ramp at constant acceleration `alpha·θ²/2` (long-axis mm), then the
+/// locked helix `S(θ − lag)`, tangent to the ramp where they meet.
+#[derive(Debug, Clone, Copy)]
+struct ThreadRun {
+    phase: Phase,
+    theta0: f64,
+    alpha: f64,
+    theta_l: f64,
+    theta_lag: f64,
+    /// Long-axis travel of the chain segments already left (ramp).
+    g_base: f64,
+    /// Lead revolutions at which the current segment starts (locked).
+    phi_base: f64,
+    /// Long-axis progress in the current segment.
+    q: f64,
+    /// Last synchronised path speed (the braking starts from it).
+    v_sync: f64,
+}
+
+impl ThreadRun {
+    const OFF: ThreadRun = ThreadRun {
+        phase: Phase::Off,
+        theta0: 0.0,
+        alpha: 0.0,
+        theta_l: 0.0,
+        theta_lag: 0.0,
+        g_base: 0.0,
+        phi_base: 0.0,
+        q: 0.0,
+        v_sync: 0.0,
+    };
+}
+
+/// Revolutions to cover `q` along the long axis at lead `l` + `dl` per rev.
+fn revs_for(q: f64, l: f64, dl: f64) -> f64 {
+    if dl.abs() < 1e-15 {
+        return q / l;
+    }
+    let disc = l * l + 2.0 * dl * q;
+    if disc <= 0.0 {
+        return f64::INFINITY;
+    }
+    (libm::sqrt(disc) - l) / dl
+}
+
+/// The runtime core: planner queue, interpolator, spindle and the
+/// operator's signals, for one machine.
+pub struct Engine<P: Plc> {
+    cfg: Config,
+    dt: f64,
+    plc: P,
+    q: Planner,
+    spindle: Spindle,
+    ticks: u64,
+    pos: V2,
+    last_step: V2,
+    shift: V2,
+    fixed_work: Option<V2>,
+    tag: Tag,
+    tool: u32,
+    state: RunState,
+    /// The head item has begun.
+    started: bool,
+    s: f64,
+    lam: f64,
+    v: f64,
+    rapid_v: [f64; 2],
+    thread: ThreadRun,
+    dwell_left: u64,
+    stall_s: f64,
+    motion: Motion,
+    feed_ovr: f64,
+    rapid_ovr: RapidOverride,
+    hold: bool,
+    single_block: bool,
+    cycle_start: bool,
+    reset_req: bool,
+    reset_done: bool,
+    skip_active: bool,
+    skip_hit: Option<V2>,
+    skip_report: Option<SkipReport>,
+    sb_block: Option<u32>,
+    /// A period that ended on a corner (or crossed it by a rounding
+    /// residue) faster than the corner speed: the next one must not
+    /// exceed the corner speed, since the direction change falls between
+    /// the two.
+    cap_next: f64,
+    /// ... and that period's speed change is charged to the move before
+    /// the corner (its acceleration keeps the corner's share back).
+    cap_accel: f64,
+    alarm: Option<(u32, Tag)>,
+}
+
+impl<P: Plc> Engine<P> {
+    /// An engine at machine zero, spindle stopped, waiting for cycle
+    /// start. This is the only allocation (the queue).
+    pub fn new(cfg: Config, plc: P) -> Engine<P> {
+        let q = Planner::new(&cfg);
+        let spindle = Spindle::new(cfg.spindle, cfg.spindle_override_pct);
+        Engine {
+            dt: cfg.period_s,
+            plc,
+            q,
+            spindle,
+            ticks: 0,
+            pos: V2::ZERO,
+            last_step: V2::ZERO,
+            shift: V2::ZERO,
+            fixed_work: None,
+            tag: Tag::default(),
+            tool: 1,
+            state: RunState::Idle,
+            started: false,
+            s: 0.0,
+            lam: 0.0,
+            v: 0.0,
+            rapid_v: [0.0; 2],
+            thread: ThreadRun::OFF,
+            dwell_left: 0,
+            stall_s: 0.0,
+            motion: Motion::None,
+            feed_ovr: cfg.feed_override_pct / 100.0,
+            rapid_ovr: cfg.rapid_override,
+            hold: false,
+            single_block: cfg.single_block,
+            cycle_start: false,
+            reset_req: false,
+            reset_done: false,
+            skip_active: false,
+            skip_hit: None,
+            skip_report: None,
+            sb_block: None,
+            cap_next: f64::INFINITY,
+            cap_accel: 0.0,
+            alarm: None,
+            cfg,
+        }
+    }
+
+    pub fn config(&self) -> &Config {
+        &self.cfg
+    }
+
+    pub fn planner(&self) -> &Planner {
+        &self.q
+    }
+
+    /// Queues a command (the non-real-time side; allocates nothing).
+    pub fn push(&mut self, cmd: crate::command::Command, tag: Tag) -> Result<Pushed, Full> {
+        self.q.push(cmd, tag)
+    }
+
+    pub fn mark_block_end(&mut self, block: u32) {
+        self.q.mark_block_end(block);
+    }
+
+    pub fn plc(&self) -> &P {
+        &self.plc
+    }
+
+    pub fn plc_mut(&mut self) -> &mut P {
+        &mut self.plc
+    }
+
+    pub fn spindle(&self) -> &Spindle {
+        &self.spindle
+    }
+
+    pub fn state(&self) -> RunState {
+        self.state
+    }
+
+    /// The code and place of the alarm that stopped the run.
+    pub fn alarm(&self) -> Option<(u32, Tag)> {
+        self.alarm
+    }
+
+    /// Axis position, slide units.
+    pub fn position(&self) -> V2 {
+        self.pos
+    }
+
+    pub fn time_s(&self) -> f64 {
+        self.ticks as f64 * self.dt
+    }
+
+    /// Feed override, 0–150 %.
+    pub fn set_feed_override(&mut self, pct: f64) {
+        self.feed_ovr = pct.clamp(0.0, 150.0) / 100.0;
+    }
+
+    pub fn set_rapid_override(&mut self, r: RapidOverride) {
+        self.rapid_ovr = r;
+    }
+
+    pub fn set_spindle_override(&mut self, pct: f64) {
+        self.spindle.override_factor = pct.clamp(0.0, 200.0) / 100.0;
+    }
+
+    /// Feed hold: the motion decelerates on its path and stands; cycle
+    /// start resumes. Threads finish their chain first (dialect.md §4.3).
+    pub fn feed_hold(&mut self) {
+        self.hold = true;
+    }
+
+    pub fn cycle_start(&mut self) {
+        self.cycle_start = true;
+    }
+
+    pub fn set_single_block(&mut self, on: bool) {
+        self.single_block = on;
+    }
+
+    /// Reset: the motion decelerates to a stop, the queue is dropped, the
+    /// spindle stops, an alarm is cleared; the engine waits for cycle start.
+    pub fn reset(&mut self) {
+        self.reset_req = true;
+    }
+
+    /// The level of the host input wired to the skip signal (№148).
+    pub fn set_skip_input(&mut self, level: bool) {
+        self.skip_active = level != self.cfg.skip_active_low;
+    }
+
+    /// How the last G31 move ended, once.
+    pub fn take_skip_report(&mut self) -> Option<SkipReport> {
+        self.skip_report.take()
+    }
+
+    /// Whether a reset finished since the last call.
+    pub fn take_reset_done(&mut self) -> bool {
+        core::mem::take(&mut self.reset_done)
+    }
+
+    /// Display shift and tail after a reset (the host re-seeds them).
+    pub fn reseed(&mut self, shift: V2) {
+        self.shift = shift;
+        self.q.set_tail(self.pos);
+    }
+
+    /// One interpolation period.
+    pub fn tick(&mut self) -> SetPoint {
+        self.ticks += 1;
+        let before = self.pos;
+        let x = self.css_diameter();
+        self.spindle.update(self.dt, x);
+        self.motion = Motion::None;
+        if self.reset_req {
+            self.reset_step();
+        } else {
+            match self.state {
+                RunState::Ended | RunState::Alarm(_) => self.cycle_start = false,
+                RunState::Idle => {
+                    if core::mem::take(&mut self.cycle_start) {
+                        self.state = RunState::Running;
+                        self.run();
+                    }
+                }
+                RunState::Stopped(kind) => {
+                    if core::mem::take(&mut self.cycle_start) {
+                        if !matches!(kind, PauseKind::SingleBlock) {
+                            if let Some(Item { kind: ItemKind::Pause(_), .. }) = self.q.get(0) {
+                                self.q.pop();
+                                self.started = false;
+                            }
+                        }
+                        self.state = RunState::Running;
+                        self.run();
+                    }
+                }
+                RunState::Held | RunState::Running | RunState::Starved => {
+                    if core::mem::take(&mut self.cycle_start) {
+                        self.hold = false;
+                    }
+                    if self.state == RunState::Held && !self.hold {
+                        self.state = RunState::Running;
+                    }
+                    self.run();
+                }
+            }
+        }
+        self.last_step = self.pos - before;
+        self.setpoint()
+    }
+
+    fn setpoint(&self) -> SetPoint {
+        let work = self.fixed_work.unwrap_or(self.pos - self.shift);
+        SetPoint {
+            time_s: self.ticks as f64 * self.dt,
+            x: work.x(),
+            z: work.z,
+            axis_x: self.pos.x(),
+            axis_z: self.pos.z,
+            spindle_rpm: self.spindle.rpm(),
+            spindle_turns: self.spindle.turns(),
+            feed: self.last_step.norm() / self.dt * 60.0,
+            line: self.tag.line,
+            motion: self.motion,
+            tool: self.tool,
+        }
+    }
+
+    /// The diameter G96 computes the rpm from: the programmed point, or a
+    /// rapid's end point (dialect.md §4.10).
+    fn css_diameter(&self) -> f64 {
+        if self.started {
+            if let Some(s) = self.q.seg(0) {
+                if matches!(s.kind, MoveKind::Rapid) {
+                    return (s.to - s.shift).x();
+                }
+            }
+        }
+        self.fixed_work.unwrap_or(self.pos - self.shift).x()
+    }
+
+    fn raise(&mut self, code: u32, tag: Tag) {
+        self.state = RunState::Alarm(code);
+        self.alarm = Some((code, tag));
+        self.v = 0.0;
+        self.rapid_v = [0.0; 2];
+    }
+
+    /// Done with the head item; `landed`: the motion stands at its end.
+    fn finish_item(&mut self) {
+        let block_end = self.q.get(0).is_some_and(|i| i.tag.block_end);
+        if let Some(Segment { kind: MoveKind::Offset, shift, .. }) = self.q.seg(0) {
+            self.shift = *shift;
+            self.fixed_work = None;
+        }
+        self.q.pop();
+        self.started = false;
+        self.thread.phase = Phase::Off;
+        if block_end && self.single_block && self.state == RunState::Running {
+            self.state = RunState::Stopped(PauseKind::SingleBlock);
+        }
+    }
+
+    /// Executes head items until one takes the rest of the period.
+    fn run(&mut self) {
+        for _ in 0..64 {
+            if self.state != RunState::Running && self.state != RunState::Starved && self.state != RunState::Held {
+                return;
+            }
+            let Some(item) = self.q.get(0).copied() else {
+                if self.state == RunState::Running {
+                    self.state = RunState::Starved;
+                }
+                return;
+            };
+            if self.state == RunState::Starved {
+                self.state = RunState::Running;
+            }
+            if !self.started && !matches!(item.kind, ItemKind::Move(_)) {
+                self.shift = item.shift;
+                self.tag = item.tag;
+                self.fixed_work = None;
+            }
+            match item.kind {
+                ItemKind::Move(seg) => {
+                    self.step_move(&item, &seg);
+                    return;
+                }
+                ItemKind::Dwell(secs) => {
+                    if !self.started {
+                        self.started = true;
+                        let n = libm::round(secs.max(0.0) / self.dt);
+                        self.dwell_left = if n.is_finite() { n as u64 } else { u64::MAX };
+                    }
+                    if self.dwell_left == 0 {
+                        self.finish_item();
+                        continue;
+                    }
+                    if self.hold {
+                        self.state = RunState::Held;
+                    } else {
+                        self.dwell_left -= 1;
+                        if self.dwell_left == 0 {
+                            self.finish_item();
+                        }
+                    }
+                    return;
+                }
+                ItemKind::Plc(f) => {
+                    if !self.started {
+                        self.started = true;
+                        self.apply_plc(f);
+                        self.plc.request(f);
+                    }
+                    if !self.plc.done(f) {
+                        return;
+                    }
+                    self.finish_item();
+                }
+                ItemKind::Pause(k) => {
+                    self.state = RunState::Stopped(k);
+                    return;
+                }
+                ItemKind::End => {
+                    self.state = RunState::Ended;
+                    return;
+                }
+                ItemKind::Alarm(c) => {
+                    self.raise(c, item.tag);
+                    return;
+                }
+            }
+        }
+    }
+
+    /// What the simulation itself does for a PLC function.
+    fn apply_plc(&mut self, f: PlcFunction) {
+        match f {
+            PlcFunction::Spindle(d) => self.spindle.set_dir(d),
+            PlcFunction::Speed { s, css, max } => self.spindle.set_speed(s, css, max),
+            PlcFunction::Tool { t, .. } => self.tool = t,
+            PlcFunction::M(_) | PlcFunction::Gear(_) => {}
+        }
+    }
+
+    /// Checks made when a move starts: F = 0 (E7001), travel (E7002).
+    fn check_move(&self, seg: &Segment) -> Option<u32> {
+        if let MoveKind::Feed(f) | MoveKind::Skip(f) = seg.kind {
+            if !(f.f > 0.0) {
+                return Some(7001);
+            }
+        }
+        let (x, z) = (&self.cfg.x, &self.cfg.z);
+        if x.soft_limits || z.soft_limits {
+            let n = if matches!(seg.kind, MoveKind::Rapid | MoveKind::Offset) { 1 } else { 16 };
+            for i in 0..=n {
+                let p = seg.curve.point(i as f64 / n as f64);
+                let bad_x = x.soft_limits && (p.r < x.min - 1e-9 || p.r > x.max + 1e-9);
+                let bad_z = z.soft_limits && (p.z < z.min - 1e-9 || p.z > z.max + 1e-9);
+                if bad_x || bad_z {
+                    return Some(7002);
+                }
+            }
+        }
+        None
+    }
+
+    fn step_move(&mut self, item: &Item, seg: &Segment) {
+        if !self.started {
+            // Start from rest only: a landing period is followed by one
+            // standing period, so the velocity passes through zero.
+            if self.last_step != V2::ZERO {
+                return;
+            }
+            if self.hold && !matches!(seg.kind, MoveKind::Thread(_)) {
+                self.state = RunState::Held;
+                return;
+            }
+            if let Some(code) = self.check_move(seg) {
+                self.raise(code, item.tag);
+                return;
+            }
+            self.started = true;
+            self.cap_next = f64::INFINITY;
+            self.s = 0.0;
+            self.lam = 0.0;
+            self.v = 0.0;
+            self.rapid_v = [0.0; 2];
+            self.stall_s = 0.0;
+            self.skip_hit = None;
+            self.tag = item.tag;
+            if let MoveKind::Offset = seg.kind {
+                self.fixed_work = Some(self.pos - self.shift);
+            } else {
+                self.shift = seg.shift;
+                self.fixed_work = None;
+            }
+            if let MoveKind::Thread(_) = seg.kind {
+                self.thread = ThreadRun { phase: Phase::WaitSpeed, ..ThreadRun::OFF };
+            }
+        }
+        match seg.kind {
+            MoveKind::Rapid | MoveKind::Offset => self.step_rapid(seg),
+            MoveKind::Feed(_) | MoveKind::Skip(_) => self.step_path(),
+            MoveKind::Thread(_) => self.step_thread(),
+        }
+    }
+
+    /// G00: each axis on its own, at its rapid rate and acceleration.
+    fn step_rapid(&mut self, seg: &Segment) {
+        self.motion = Motion::Rapid;
+        let f = if self.hold || self.reset_req { 0.0 } else { self.rapid_ovr.factor(self.cfg.rapid_f0) };
+        let axes = [self.cfg.x, self.cfg.z];
+        let mut arrived = true;
+        for (k, ax) in axes.iter().enumerate() {
+            let (p, t) = if k == 0 { (self.pos.r, seg.to.r) } else { (self.pos.z, seg.to.z) };
+            let dist = (t - p).abs();
+            let lim = brake_limit(dist, 0.0, ax.accel, self.dt);
+            let v = approach(self.rapid_v[k], (ax.rapid * f).min(lim), ax.accel, self.dt);
+            let step = v * self.dt;
+            let np = if step >= dist - 1e-12 { t } else { p + step.copysign(t - p) };
+            self.rapid_v[k] = v;
+            if np != t {
+                arrived = false;
+            }
+            if k == 0 {
+                self.pos.r = np;
+            } else {
+                self.pos.z = np;
+            }
+        }
+        if arrived {
+            self.finish_item();
+        } else if self.hold && self.rapid_v == [0.0; 2] {
+            self.state = RunState::Held;
+        }
+    }
+
+    /// The commanded path speed of a feed, mm/s; 0 while held, after a
+    /// skip signal or during a reset. Counts the stall of G99 moves.
+    fn v_cmd(&mut self, seg: &Segment) -> f64 {
+        let f = match seg.kind {
+            MoveKind::Feed(f) | MoveKind::Skip(f) => f,
+            MoveKind::Thread(_) => return if self.reset_req { 0.0 } else { self.thread.v_sync },
+            _ => return 0.0,
+        };
+        let skip = matches!(seg.kind, MoveKind::Skip(_));
+        let mut v = f.f;
+        if f.per_rev {
+            if self.spindle.stopped() {
+                self.stall_s += self.dt;
+                if self.stall_s >= self.cfg.spindle.stall_timeout_s && self.v == 0.0 {
+                    let tag = self.tag;
+                    self.raise(7003, tag);
+                    return 0.0;
+                }
+            } else {
+                self.stall_s = 0.0;
+            }
+            v *= self.spindle.rpm().abs() / 60.0;
+        }
+        if self.hold || self.reset_req || self.skip_hit.is_some() {
+            return 0.0;
+        }
+        let ovr = if skip { 1.0 } else { self.feed_ovr };
+        (v * ovr).min(seg.v_max)
+    }
+
+    /// The speed the head move may reach over the next junctions; 0 when
+    /// the queue ends.
+    fn next_feed(&mut self, k: usize) -> Option<f64> {
+        let n = *self.q.seg(k)?;
+        match n.kind {
+            MoveKind::Feed(f) if !f.per_rev => Some((f.f * self.feed_ovr).min(n.v_max)),
+            MoveKind::Feed(f) => Some((f.f * self.spindle.rpm().abs() / 60.0 * self.feed_ovr).min(n.v_max)),
+            _ => None,
+        }
+    }
+
+    /// This period's path speed at acceleration `a`.
+    fn path_speed(&mut self, seg: &Segment, vc: f64, a: f64) -> f64 {
+        let dt = self.dt;
+        let d = seg.len - self.s;
+        let mut u = seg.v_exit;
+        if u > 0.0 && matches!(seg.kind, MoveKind::Feed(_)) {
+            // A lower feed ahead is met at the corner, not after it.
+            if let Some(f) = self.next_feed(1) {
+                u = u.min(f.max(0.0));
+            }
+        }
+        let mut lim = brake_limit(d, u, a, dt);
+        // Junctions this period could reach beyond the first.
+        let reach = (self.v + a * dt) * dt;
+        let mut dist = d;
+        let mut k = 0;
+        while dist < reach && k < 8 {
+            let Some(sk) = self.q.seg(k) else { break };
+            if sk.v_exit <= 0.0 {
+                break;
+            }
+            let Some(n) = self.q.seg(k + 1) else { break };
+            dist += n.len;
+            lim = lim.min(brake_limit(dist, n.v_exit, a.min(n.a), dt));
+            k += 1;
+        }
+        if self.single_block && !matches!(seg.kind, MoveKind::Thread(_)) {
+            lim = lim.min(self.single_block_limit(a));
+        }
+        let cap = core::mem::replace(&mut self.cap_next, f64::INFINITY);
+        let a_step = if cap.is_finite() { self.cap_accel } else { a };
+        approach(self.v, vc.min(lim).min(seg.v_max).min(cap), a_step, dt)
+    }
+
+    /// Single block: the first end of a block the motion can still stop on.
+    fn single_block_limit(&mut self, a: f64) -> f64 {
+        self.sb_block = None;
+        let mut dist = 0.0;
+        for k in 0..32 {
+            let Some(it) = self.q.get(k) else { break };
+            let Some(sk) = it.segment() else { break };
+            dist += if k == 0 { sk.len - self.s } else { sk.len };
+            if it.tag.block_end {
+                let lim = brake_limit(dist, 0.0, a, self.dt);
+                if lim >= self.v - a * self.dt - 1e-9 {
+                    self.sb_block = Some(it.tag.block);
+                    return lim;
+                }
+            }
+            if sk.v_exit <= 0.0 {
+                break;
+            }
+        }
+        f64::INFINITY
+    }
+
+    /// Whether the motion may run from the head move into the next.
+    fn may_cross(&self, seg: &Segment, tag: &Tag) -> bool {
+        if seg.v_exit <= 0.0 || matches!(seg.kind, MoveKind::Skip(_)) {
+            return false;
+        }
+        if self.single_block && tag.block_end && self.sb_block == Some(tag.block) && !matches!(seg.kind, MoveKind::Thread(_)) {
+            return false;
+        }
+        self.q.seg(1).is_some()
+    }
+
+    /// A feed (or a braking thread) along the exact path.
+    fn step_path(&mut self) {
+        let Some(item) = self.q.get(0).copied() else { return };
+        let ItemKind::Move(seg) = item.kind else { return };
+        self.motion = if matches!(seg.kind, MoveKind::Thread(_)) { Motion::Thread } else { Motion::Feed };
+        if let MoveKind::Skip(_) = seg.kind {
+            if self.skip_hit.is_none() && self.skip_active {
+                self.skip_hit = Some(self.pos);
+            }
+        }
+        let vc = self.v_cmd(&seg);
+        if let RunState::Alarm(_) = self.state {
+            return;
+        }
+        // The period's speed change is charged to the move it starts on:
+        // that move keeps back the share its end corner needs, so the
+        // period that runs through the corner stays within the axes'
+        // acceleration (and the next period belongs to the next move).
+        let a = seg.a;
+        let v = self.path_speed(&seg, vc, a);
+        // Advance along the queue.
+        let mut ds = v * self.dt;
+        loop {
+            let Some(it) = self.q.get(0).copied() else { break };
+            let ItemKind::Move(cur) = it.kind else { break };
+            let rem = cur.len - self.s;
+            if ds < rem {
+                self.s += ds;
+                self.lam = cur.curve.advance(self.lam, self.s, ds, cur.len);
+                self.pos = cur.curve.point(self.lam);
+                break;
+            }
+            if v > 0.0 && self.may_cross(&cur, &it.tag) {
+                if v > cur.v_exit && !matches!(cur.kind, MoveKind::Thread(_)) {
+                    self.cap_next = self.cap_next.min(cur.v_exit);
+                    self.cap_accel = cur.a;
+                }
+                ds -= rem;
+                self.pos = cur.to;
+                self.q.pop();
+                let Some(next) = self.q.get(0).copied() else { break };
+                let ItemKind::Move(n) = next.kind else { break };
+                self.s = 0.0;
+                self.lam = 0.0;
+                self.tag = next.tag;
+                self.shift = n.shift;
+                continue;
+            }
+            // Lands on the end point.
+            self.pos = cur.to;
+            self.v = v;
+            if let MoveKind::Skip(_) = cur.kind {
+                self.skip_report = Some(SkipReport { hit: self.skip_hit, stop: self.pos, shift: cur.shift });
+            }
+            self.finish_item();
+            return;
+        }
+        self.v = v;
+        if v == 0.0 {
+            if self.skip_hit.is_some() {
+                // The skip signal ended the move: the next block starts here.
+                self.skip_report = Some(SkipReport { hit: self.skip_hit, stop: self.pos, shift: seg.shift });
+                self.q.set_tail(self.pos);
+                self.finish_item();
+            } else if self.hold {
+                self.state = RunState::Held;
+            }
+        }
+    }
+
+    /// A spindle-synchronised chain.
+    fn step_thread(&mut self) {
+        let Some(seg) = self.q.seg(0).copied() else { return };
+        let MoveKind::Thread(t) = seg.kind else { return };
+        self.motion = Motion::Thread;
+        let work_x = (self.pos - self.shift).x();
+        if self.thread.phase == Phase::WaitSpeed {
+            if self.spindle.commanded(work_x) <= 0.0 || self.spindle.stopped() {
+                self.stall_s += self.dt;
+                if self.stall_s >= self.cfg.spindle.stall_timeout_s {
+                    let tag = self.tag;
+                    self.raise(7003, tag);
+                }
+                return;
+            }
+            if !self.spindle.at_speed(work_x) {
+                return;
+            }
+            let rps = self.spindle.rpm().abs() / 60.0;
+            let d = seg.to - seg.from;
+            let (dl, dsh) = if seg.long_z { (d.z.abs(), d.r.abs()) } else { (d.r.abs(), d.z.abs()) };
+            let (lax, sax) = if seg.long_z { (&self.cfg.z, &self.cfg.x) } else { (&self.cfg.x, &self.cfg.z) };
+            let vlong = t.lead * rps;
+            let vshort = if dl > 0.0 { vlong * dsh / dl } else { 0.0 };
+            if vlong > lax.max_feed * (1.0 + 1e-9) || vshort > sax.max_feed * (1.0 + 1e-9) || !(t.lead > 0.0) {
+                let tag = self.tag;
+                self.raise(4010, tag);
+                return;
+            }
+            // The long axis's share of the path acceleration.
+            let u_long = if seg.len > 0.0 { dl / seg.len } else { 1.0 };
+            let a_long = if matches!(seg.curve, crate::geom::Curve::Line { .. }) { seg.a * u_long } else { 0.5 * seg.a };
+            let alpha = a_long / (rps * rps);
+            let (l, dlead) = (t.lead, t.dlead);
+            let (theta_l, theta_lag) = if dlead.abs() > 1e-15 && alpha > dlead {
+                let phi = l * (-1.0 + libm::sqrt(alpha / (alpha - dlead))) / dlead;
+                let th = (l + dlead * phi) / alpha;
+                (th, th - phi)
+            } else {
+                (l / alpha, l / (2.0 * alpha))
+            };
+            let qf = crate::math::rem_euclid(t.q_deg, 360.0) / 360.0;
+            self.thread = ThreadRun {
+                phase: Phase::WaitIndex { k: libm::floor(self.spindle.turns() - qf) },
+                alpha,
+                theta_l,
+                theta_lag,
+                ..ThreadRun::OFF
+            };
+            return;
+        }
+        if let Phase::WaitIndex { k } = self.thread.phase {
+            let qf = crate::math::rem_euclid(t.q_deg, 360.0) / 360.0;
+            let now = libm::floor(self.spindle.turns() - qf);
+            if now <= k {
+                return;
+            }
+            self.thread.theta0 = now + qf;
+            self.thread.phase = Phase::Ramp;
+        }
+        if self.thread.phase == Phase::Brake || self.reset_req {
+            if self.thread.phase != Phase::Brake {
+                self.thread.phase = Phase::Brake;
+                self.thread.v_sync = 0.0;
+            }
+            self.step_path();
+            return;
+        }
+        // Ramp or locked: the chain point at this spindle angle.
+        let theta = self.spindle.turns() - self.thread.theta0;
+        let th = &mut self.thread;
+        if th.phase == Phase::Ramp && theta >= th.theta_l {
+            // Lock: continue the helix from the current point.
+            let phi = theta - th.theta_lag;
+            th.phi_base = phi - revs_for(th.q, t.lead, t.dlead);
+            th.phase = Phase::Locked;
+        }
+        let (mut k, mut q) = (0usize, 0.0);
+        let mut base;
+        let ramp = self.thread.phase == Phase::Ramp;
+        if ramp {
+            let g = 0.5 * self.thread.alpha * theta * theta;
+            base = self.thread.g_base;
+            loop {
+                let Some(sk) = self.q.seg(k).copied() else { break };
+                q = g - base;
+                if q <= sk.long_len || sk.v_exit <= 0.0 || !self.thread_next(k) {
+                    q = q.min(sk.long_len);
+                    break;
+                }
+                base += sk.long_len;
+                k += 1;
+            }
+        } else {
+            let phi = theta - self.thread.theta_lag;
+            base = self.thread.phi_base;
+            loop {
+                let Some(sk) = self.q.seg(k).copied() else { break };
+                let MoveKind::Thread(tk) = sk.kind else { break };
+                let r = revs_for(sk.long_len, tk.lead, tk.dlead);
+                let local = phi - base;
+                if local <= r || sk.v_exit <= 0.0 || !self.thread_next(k) {
+                    q = (tk.lead * local + 0.5 * tk.dlead * local * local).min(sk.long_len).max(0.0);
+                    break;
+                }
+                base += r;
+                k += 1;
+            }
+        }
+        // The path distance of this period, to check it against the envelope.
+        let Some(target) = self.q.seg(k).copied() else { return };
+        let guess = if k == 0 { self.lam } else { 0.0 };
+        let lam = target.curve.lam_at_long(target.long_z, q, target.long_len, guess);
+        let mut dist = if k == 0 { (lam - self.lam) * seg.len } else { (1.0 - self.lam) * seg.len };
+        for j in 1..=k {
+            if let Some(sj) = self.q.seg(j) {
+                dist += if j == k { lam * sj.len } else { sj.len };
+            }
+        }
+        let v = dist.max(0.0) / self.dt;
+        let a = seg.a;
+        let d = seg.len - self.s;
+        let mut lim = brake_limit(d, seg.v_exit, a, self.dt);
+        let mut acc = d;
+        for j in 0..k.max(1) {
+            let (Some(sj), Some(n)) = (self.q.seg(j), self.q.seg(j + 1)) else { break };
+            if sj.v_exit <= 0.0 {
+                break;
+            }
+            acc += n.len;
+            lim = lim.min(brake_limit(acc, n.v_exit, a.min(n.a), self.dt));
+        }
+        let at_end = self.q.seg(k).is_some_and(|s| q >= s.long_len && s.v_exit <= 0.0);
+        if v > lim || at_end {
+            self.thread.phase = Phase::Brake;
+            self.thread.v_sync = self.v;
+            self.step_path();
+            return;
+        }
+        // Commit.
+        for _ in 0..k {
+            self.q.pop();
+        }
+        if k > 0 {
+            if let Some(it) = self.q.get(0).copied() {
+                self.tag = it.tag;
+                self.shift = it.shift;
+            }
+            if ramp {
+                self.thread.g_base = base;
+            } else {
+                self.thread.phi_base = base;
+            }
+        }
+        self.thread.q = q;
+        self.lam = lam;
+        self.s = lam * target.len;
+        self.pos = target.curve.point(lam);
+        self.v = v;
+        self.thread.v_sync = v;
+    }
+
+    /// Whether the chain goes on after the k-th queued move.
+    fn thread_next(&self, k: usize) -> bool {
+        matches!(self.q.seg(k + 1).map(|s| s.kind), Some(MoveKind::Thread(_)))
+    }
+
+    /// A reset in progress: brake, then drop everything.
+    fn reset_step(&mut self) {
+        let moving = self.v > 0.0 || self.rapid_v != [0.0; 2] || matches!(self.thread.phase, Phase::Ramp | Phase::Locked);
+        if moving && self.started {
+            if let Some(seg) = self.q.seg(0).copied() {
+                match seg.kind {
+                    MoveKind::Rapid | MoveKind::Offset => self.step_rapid(&seg),
+                    MoveKind::Thread(_) => self.step_thread(),
+                    _ => self.step_path(),
+                }
+            }
+            let still = self.v > 0.0 || self.rapid_v != [0.0; 2];
+            if still && self.started {
+                return;
+            }
+        }
+        self.q.clear();
+        self.q.set_tail(self.pos);
+        self.started = false;
+        self.thread = ThreadRun::OFF;
+        self.hold = false;
+        self.v = 0.0;
+        self.rapid_v = [0.0; 2];
+        self.skip_hit = None;
+        self.fixed_work = None;
+        self.spindle.reset();
+        self.alarm = None;
+        self.state = RunState::Idle;
+        self.reset_req = false;
+        self.reset_done = true;
+    }
+}

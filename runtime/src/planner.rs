@@ -1,0 +1,596 @@
+//! The look-ahead planner: a bounded queue of what the program asked for,
+//! and for every move the speed envelope the interpolator must stay under.
+//!
+//! The planner computes, per move, a hard speed cap (axis and path feed
+//! limits, curvature, F at the highest override), the speed at which the
+//! move may run into the next one (the corner speed: 0 for an exact stop)
+//! and, by a backward pass, the highest speed at its end from which every
+//! later point the queue knows can still be met — the last move in the
+//! queue always ends in a stop. Acceleration *forwards* is not planned:
+//! the interpolator accelerates in real time at the move's acceleration
+//! towards the commanded feed (overrides and the spindle speed change it
+//! at any moment) and only has to stay under the envelope, which does not
+//! depend on either.
+//!
+//! Adding a move raises the exit speeds of the moves before it; the pass
+//! stops at the first move whose exit does not change, and a move's exit
+//! can only rise while it is within braking distance of the end of the
+//! queue, so a push costs O(1) amortised (O(braking distance / segment
+//! length) at worst, independent of the queue length).
+
+use crate::command::{Command, Feed, Move, MoveKind, PauseKind, Tag};
+use crate::config::Config;
+use crate::geom::Curve;
+use crate::math::{sqrt, V2, PI};
+use crate::plc::PlcFunction;
+use crate::profile::brake_limit;
+use alloc::vec::Vec;
+
+/// A move ready for interpolation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    pub kind: MoveKind,
+    pub curve: Curve,
+    pub from: V2,
+    pub to: V2,
+    pub len: f64,
+    /// Machine axes minus the programmed point.
+    pub shift: V2,
+    /// Hard path speed cap, mm/s.
+    pub v_max: f64,
+    /// Path acceleration for speed changes, mm/s².
+    pub a: f64,
+    /// `a` is `a_scale · (1 − f_n − max(c_in, c_out))`: the share of the
+    /// centripetal acceleration at `v_max` (curves) and of the corner
+    /// velocity steps at both ends are kept back.
+    a_scale: f64,
+    f_n: f64,
+    c_in: f64,
+    c_out: f64,
+    /// The speed at which the move may run into the next one; 0 = stop.
+    pub v_junction: f64,
+    /// Planned limit at the end of the move (≤ `v_junction`).
+    pub v_exit: f64,
+    /// Unit tangents at both ends.
+    pub t0: V2,
+    pub t1: V2,
+    /// Threads: Z is the long axis, and the long axis's travel.
+    pub long_z: bool,
+    pub long_len: f64,
+    /// Estimated duration at 100 % (for the look-ahead horizon).
+    pub est_s: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ItemKind {
+    Move(Segment),
+    Dwell(f64),
+    Plc(PlcFunction),
+    Pause(PauseKind),
+    End,
+    Alarm(u32),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Item {
+    pub kind: ItemKind,
+    pub tag: Tag,
+    /// Machine axes minus the programmed point while this item runs.
+    pub shift: V2,
+}
+
+impl Item {
+    pub fn segment(&self) -> Option<&Segment> {
+        match &self.kind {
+            ItemKind::Move(s) => Some(s),
+            _ => None,
+        }
+    }
+}
+
+/// The queue is full: push again after the interpolator has consumed some.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Full;
+
+/// What a push did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pushed {
+    Queued,
+    /// A move of zero length: nothing to do.
+    Empty,
+}
+
+pub struct Planner {
+    items: Vec<Item>,
+    head: usize,
+    len: usize,
+    dt: f64,
+    ax: [f64; 2],
+    vfeed: [f64; 2],
+    vrapid: [f64; 2],
+    path_max: f64,
+    budget: f64,
+    /// G64 blends within this (machine.resolution_mm).
+    tolerance: f64,
+    exact_stop: bool,
+    /// End of the last queued move (machine axes, slide units).
+    tail: V2,
+    shift: V2,
+    /// rpm used to estimate feed-per-revolution durations.
+    rpm_hint: f64,
+    css_hint: Option<f64>,
+    queued_s: f64,
+    queued_moves: usize,
+}
+
+const PLACEHOLDER: Item = Item { kind: ItemKind::End, tag: Tag { file: 0, line: 0, col: 0, block: 0, block_end: false }, shift: V2::ZERO };
+
+/// Highest feed override: the envelope must allow it.
+const MAX_OVERRIDE: f64 = 1.5;
+
+impl Planner {
+    pub fn new(cfg: &Config) -> Planner {
+        let cap = cfg.queue_capacity.max(cfg.lookahead_blocks).max(2);
+        let mut items = Vec::with_capacity(cap);
+        items.resize(cap, PLACEHOLDER);
+        Planner {
+            items,
+            head: 0,
+            len: 0,
+            dt: cfg.period_s,
+            ax: [cfg.x.accel, cfg.z.accel],
+            vfeed: [cfg.x.max_feed, cfg.z.max_feed],
+            vrapid: [cfg.x.rapid, cfg.z.rapid],
+            path_max: cfg.path_max_feed,
+            budget: cfg.corner_budget.clamp(0.0, 0.5),
+            tolerance: cfg.resolution_mm.max(1e-6),
+            exact_stop: cfg.always_exact_stop,
+            tail: V2::ZERO,
+            shift: V2::ZERO,
+            rpm_hint: 0.0,
+            css_hint: None,
+            queued_s: 0.0,
+            queued_moves: 0,
+        }
+    }
+
+    pub fn capacity(&self) -> usize {
+        self.items.len()
+    }
+
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    pub fn is_full(&self) -> bool {
+        self.len == self.items.len()
+    }
+
+    /// Moves queued and their estimated duration at 100 %.
+    pub fn horizon(&self) -> (usize, f64) {
+        (self.queued_moves, self.queued_s)
+    }
+
+    fn slot(&self, k: usize) -> usize {
+        let i = self.head + k;
+        if i >= self.items.len() {
+            i - self.items.len()
+        } else {
+            i
+        }
+    }
+
+    /// The k-th item from the head.
+    pub fn get(&self, k: usize) -> Option<&Item> {
+        (k < self.len).then(|| &self.items[self.slot(k)])
+    }
+
+    pub fn get_mut(&mut self, k: usize) -> Option<&mut Item> {
+        if k < self.len {
+            let i = self.slot(k);
+            Some(&mut self.items[i])
+        } else {
+            None
+        }
+    }
+
+    /// The k-th item's move, if it is one.
+    pub fn seg(&self, k: usize) -> Option<&Segment> {
+        self.get(k).and_then(Item::segment)
+    }
+
+    /// Drops the head (the interpolator is done with it).
+    pub fn pop(&mut self) {
+        if self.len == 0 {
+            return;
+        }
+        if let ItemKind::Move(s) = &self.items[self.head].kind {
+            self.queued_s = (self.queued_s - s.est_s).max(0.0);
+            self.queued_moves -= 1;
+        }
+        self.head = self.slot(1);
+        self.len -= 1;
+        if self.len == 0 {
+            self.queued_s = 0.0;
+        }
+    }
+
+    pub fn clear(&mut self) {
+        self.head = 0;
+        self.len = 0;
+        self.queued_s = 0.0;
+        self.queued_moves = 0;
+    }
+
+    /// Where the next move starts.
+    pub fn tail(&self) -> V2 {
+        self.tail
+    }
+
+    /// After a skip or a reset the axes stand somewhere else than planned.
+    pub fn set_tail(&mut self, p: V2) {
+        self.tail = p;
+    }
+
+    pub fn shift(&self) -> V2 {
+        self.shift
+    }
+
+    /// Marks the last queued item as the end of an NC block.
+    pub fn mark_block_end(&mut self, block: u32) {
+        if let Some(k) = self.len.checked_sub(1) {
+            if let Some(it) = self.get_mut(k) {
+                if it.tag.block == block {
+                    it.tag.block_end = true;
+                }
+            }
+        }
+    }
+
+    /// Queues one command. Allocates nothing.
+    pub fn push(&mut self, cmd: Command, tag: Tag) -> Result<Pushed, Full> {
+        let kind = match cmd {
+            Command::Shift(s) => {
+                self.shift = s;
+                return Ok(Pushed::Empty);
+            }
+            Command::Move(m) => match self.segment(&m) {
+                Some(seg) => ItemKind::Move(seg),
+                None => {
+                    self.tail = m.path.to();
+                    return Ok(Pushed::Empty);
+                }
+            },
+            Command::Dwell(s) => ItemKind::Dwell(s),
+            Command::Plc(f) => {
+                if let PlcFunction::Speed { s, css, .. } = f {
+                    if css {
+                        self.css_hint = Some(s);
+                    } else {
+                        self.css_hint = None;
+                        self.rpm_hint = s;
+                    }
+                }
+                ItemKind::Plc(f)
+            }
+            Command::Pause(p) => ItemKind::Pause(p),
+            Command::End => ItemKind::End,
+            Command::Alarm(c) => ItemKind::Alarm(c),
+        };
+        if self.is_full() {
+            return Err(Full);
+        }
+        let shift = match &kind {
+            ItemKind::Move(s) => s.shift,
+            _ => self.shift,
+        };
+        let i = self.slot(self.len);
+        self.items[i] = Item { kind, tag, shift };
+        self.len += 1;
+        if let ItemKind::Move(s) = &self.items[i].kind {
+            self.queued_s += s.est_s;
+            self.queued_moves += 1;
+            self.tail = s.to;
+            self.shift = s.shift;
+            self.join_and_replan();
+        } else {
+            self.release_corner(self.len - 1);
+        }
+        Ok(Pushed::Queued)
+    }
+
+    /// Builds the segment of a move from the current tail.
+    fn segment(&self, m: &Move) -> Option<Segment> {
+        let from = self.tail;
+        let to = m.path.to();
+        if !to.is_finite() {
+            return None;
+        }
+        let curve = match (m.kind, m.path) {
+            (MoveKind::Rapid | MoveKind::Offset, _) => Curve::line(from, to),
+            (_, crate::command::Path::Line { to }) => Curve::line(from, to),
+            (_, crate::command::Path::Arc { to, centre, ccw }) => Curve::arc(from, to, centre, ccw),
+            (_, crate::command::Path::Ellipse { to, a, b, q, ccw }) => {
+                Curve::ellipse(from, to, a, b, q, ccw).unwrap_or(Curve::line(from, to))
+            }
+            (_, crate::command::Path::Parabola { to, p, q, ccw }) => {
+                Curve::parabola(from, to, p, q, ccw).unwrap_or(Curve::line(from, to))
+            }
+        };
+        let len = curve.length();
+        if !(len > 1e-9) {
+            return None;
+        }
+        let (t0, t1) = (curve.tangent(0.0), curve.tangent(1.0));
+        let amin = self.ax[0].min(self.ax[1]);
+        let mut seg = Segment {
+            kind: m.kind,
+            curve,
+            from,
+            to,
+            len,
+            shift: m.shift,
+            v_max: 0.0,
+            a: 0.0,
+            a_scale: 0.0,
+            f_n: 0.0,
+            c_in: 0.0,
+            c_out: 0.0,
+            v_junction: 0.0,
+            v_exit: 0.0,
+            t0,
+            t1,
+            long_z: true,
+            long_len: 0.0,
+            est_s: 0.0,
+        };
+        // Hard caps of the path: per-axis feed limits (a curve sweeps its
+        // direction, so both count fully), the path limit, curvature.
+        let dir = (to - from).unit();
+        let is_line = matches!(curve, Curve::Line { .. });
+        let axis_cap = |u: V2| {
+            let mut v = f64::INFINITY;
+            for (k, c) in [u.r.abs(), u.z.abs()].into_iter().enumerate() {
+                if c > 1e-12 {
+                    v = v.min(self.vfeed[k] / c);
+                }
+            }
+            v
+        };
+        let mut cap = if is_line { axis_cap(dir) } else { self.vfeed[0].min(self.vfeed[1]) };
+        cap = cap.min(self.path_max);
+        let rmin = curve.min_radius();
+        if rmin.is_finite() {
+            // Half of the smaller acceleration for the centripetal part,
+            // and chords between set points within the tolerance of the
+            // curve (sagitta ℓ²/8R).
+            cap = cap.min(sqrt(0.5 * amin * rmin));
+            cap = cap.min(sqrt(8.0 * rmin * self.tolerance) / self.dt);
+        }
+        // Line acceleration: the moving axes' limits along the direction.
+        let a_line = {
+            let mut a = f64::INFINITY;
+            for (k, c) in [dir.r.abs(), dir.z.abs()].into_iter().enumerate() {
+                if c > 1e-12 {
+                    a = a.min(self.ax[k] / c);
+                }
+            }
+            a
+        };
+        match m.kind {
+            MoveKind::Rapid | MoveKind::Offset => {
+                let d = to - from;
+                seg.v_max = f64::INFINITY;
+                seg.a = amin;
+                seg.a_scale = amin;
+                seg.est_s = (d.r.abs() / self.vrapid[0]).max(d.z.abs() / self.vrapid[1]);
+            }
+            MoveKind::Feed(f) | MoveKind::Skip(f) => {
+                let top = if f.per_rev {
+                    cap
+                } else {
+                    let over = if let MoveKind::Skip(_) = m.kind { 1.0 } else { MAX_OVERRIDE };
+                    cap.min(f.f * over)
+                };
+                seg.v_max = top.max(0.0);
+                if is_line {
+                    seg.a_scale = a_line;
+                } else {
+                    seg.a_scale = amin;
+                    seg.f_n = (seg.v_max * seg.v_max / (rmin * amin)).min(0.5);
+                }
+                // Keep the corner share at the end until the next move is
+                // known; the real corner can only need less.
+                seg.c_out = if matches!(m.kind, MoveKind::Feed(_)) && !self.exact_stop { self.budget } else { 0.0 };
+                seg.est_s = len / self.nominal(f, to).min(seg.v_max).max(1e-3);
+            }
+            MoveKind::Thread(t) => {
+                let d = to - from;
+                seg.long_z = d.z.abs() >= d.r.abs();
+                seg.long_len = match curve {
+                    Curve::Arc { .. } => {
+                        let p = curve.point(1.0) - curve.point(0.0);
+                        if seg.long_z { p.z.abs() } else { p.r.abs() }
+                    }
+                    _ => {
+                        if seg.long_z {
+                            d.z.abs()
+                        } else {
+                            d.r.abs()
+                        }
+                    }
+                };
+                seg.v_max = cap;
+                seg.a_scale = if is_line { a_line } else { amin };
+                seg.f_n = if is_line { 0.0 } else { 0.5 };
+                let rps = self.rpm_hint.max(1.0) / 60.0;
+                seg.est_s = seg.long_len / (t.lead.max(1e-6) * rps);
+            }
+        }
+        seg.a = seg.a_scale * (1.0 - seg.f_n - seg.c_in.max(seg.c_out));
+        if !(seg.a > 0.0) {
+            seg.a = seg.a_scale * 0.25;
+        }
+        Some(seg)
+    }
+
+    /// The feed at 100 %, mm/s, for the horizon estimate.
+    fn nominal(&self, f: Feed, at: V2) -> f64 {
+        if !f.per_rev {
+            return f.f;
+        }
+        let rpm = match self.css_hint {
+            Some(v) => {
+                let x = (at - self.shift).x().abs().max(1.0);
+                1000.0 * v / (PI * x)
+            }
+            None => self.rpm_hint,
+        };
+        f.f * rpm.min(3000.0) / 60.0
+    }
+
+    /// The item after move `k - 1` is not a move: that move ends in a stop
+    /// and needs no corner share at its end.
+    fn release_corner(&mut self, k: usize) {
+        let Some(k) = k.checked_sub(1) else { return };
+        let i = self.slot(k);
+        if let ItemKind::Move(s) = &mut self.items[i].kind {
+            if matches!(s.kind, MoveKind::Feed(_)) && s.c_out > 0.0 {
+                s.c_out = 0.0;
+                s.v_junction = 0.0;
+                s.a = s.a.max(s.a_scale * (1.0 - s.f_n - s.c_in));
+            }
+        }
+    }
+
+    /// Whether two moves may blend (G64) at their junction.
+    fn joinable(&self, a: &Segment, b: &Segment) -> bool {
+        match (a.kind, b.kind) {
+            // Consecutive thread blocks run on without a stop (§4.3).
+            (MoveKind::Thread(_), MoveKind::Thread(_)) => true,
+            (MoveKind::Feed(_), MoveKind::Feed(_)) => !self.exact_stop,
+            _ => false,
+        }
+    }
+
+    /// The new tail move was just queued: set the corner with the move
+    /// before it, then raise the exit speeds backwards as far as they rise.
+    fn join_and_replan(&mut self) {
+        let n = self.len - 1;
+        if n == 0 {
+            return;
+        }
+        let (ip, it) = (self.slot(n - 1), self.slot(n));
+        let (ItemKind::Move(prev), ItemKind::Move(cur)) = (self.items[ip].kind, self.items[it].kind) else {
+            // A non-move before: its own move (if any) ends in a stop.
+            return;
+        };
+        let (mut prev, mut cur) = (prev, cur);
+        if self.joinable(&prev, &cur) {
+            let du = cur.t0 - prev.t1;
+            let threads = matches!(cur.kind, MoveKind::Thread(_));
+            let mut vj = prev.v_max.min(cur.v_max);
+            if !threads {
+                // The velocity step of the corner within its share of
+                // each axis's acceleration ...
+                for (k, c) in [du.r.abs(), du.z.abs()].into_iter().enumerate() {
+                    if c > 1e-15 {
+                        vj = vj.min(self.budget * self.ax[k] * self.dt / c);
+                    }
+                }
+                // ... and the chord of the period that runs through the
+                // corner within the tolerance of it: (v·dt/2)·sin(θ/2),
+                // |Δu| = 2·sin(θ/2).
+                let n = du.norm();
+                if n > 1e-15 {
+                    vj = vj.min(4.0 * self.tolerance / (self.dt * n));
+                }
+            }
+            let used = if threads {
+                0.0
+            } else {
+                (vj * du.r.abs() / (self.ax[0] * self.dt)).max(vj * du.z.abs() / (self.ax[1] * self.dt))
+            };
+            prev.v_junction = vj.max(0.0);
+            prev.c_out = used;
+            cur.c_in = used;
+        } else {
+            prev.v_junction = 0.0;
+            prev.c_out = 0.0;
+        }
+        for s in [&mut prev, &mut cur] {
+            if !matches!(s.kind, MoveKind::Rapid | MoveKind::Offset) {
+                let a = s.a_scale * (1.0 - s.f_n - s.c_in.max(s.c_out));
+                // Only ever raised: the interpolator may already run on it.
+                s.a = s.a.max(a);
+            }
+        }
+        self.items[ip].kind = ItemKind::Move(prev);
+        self.items[it].kind = ItemKind::Move(cur);
+        // Backward pass.
+        let mut k = n;
+        while k > 0 {
+            let (ip, ik) = (self.slot(k - 1), self.slot(k));
+            let (ItemKind::Move(p), ItemKind::Move(c)) = (&self.items[ip].kind, &self.items[ik].kind) else {
+                break;
+            };
+            if p.v_junction <= 0.0 {
+                break;
+            }
+            let entry = brake_limit(c.len, c.v_exit, c.a, self.dt);
+            let exit = p.v_junction.min(entry);
+            if exit <= p.v_exit {
+                break;
+            }
+            if let ItemKind::Move(p) = &mut self.items[ip].kind {
+                p.v_exit = exit;
+            }
+            k -= 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::command::Path;
+
+    fn feed(to: V2, f: f64) -> Command {
+        Command::Move(Move { kind: MoveKind::Feed(Feed { f, per_rev: false }), path: Path::Line { to }, shift: V2::ZERO })
+    }
+
+    #[test]
+    fn collinear_moves_blend_and_the_last_stops() {
+        let mut p = Planner::new(&Config::default());
+        for i in 1..=10 {
+            p.push(feed(V2::new(0.0, -(i as f64)), 10.0), Tag::default()).unwrap();
+        }
+        for k in 0..9 {
+            let s = p.seg(k).unwrap();
+            assert!(s.v_exit > 9.9, "{k}: {}", s.v_exit);
+        }
+        assert_eq!(p.seg(9).unwrap().v_exit, 0.0);
+    }
+
+    #[test]
+    fn a_right_angle_slows_to_the_corner_speed() {
+        let mut p = Planner::new(&Config::default());
+        p.push(feed(V2::new(0.0, -10.0), 50.0), Tag::default()).unwrap();
+        p.push(feed(V2::new(5.0, -10.0), 50.0), Tag::default()).unwrap();
+        let s = p.seg(0).unwrap();
+        // Z loses its whole speed in one period, so 0.25·2000·0.001 mm/s at most.
+        assert!(s.v_exit <= 0.5 + 1e-12 && s.v_exit > 0.0, "{}", s.v_exit);
+    }
+
+    #[test]
+    fn rapids_and_feeds_stop_between() {
+        let mut p = Planner::new(&Config::default());
+        p.push(Command::Move(Move { kind: MoveKind::Rapid, path: Path::Line { to: V2::new(5.0, 5.0) }, shift: V2::ZERO }), Tag::default()).unwrap();
+        p.push(feed(V2::new(5.0, -10.0), 10.0), Tag::default()).unwrap();
+        assert_eq!(p.seg(0).unwrap().v_exit, 0.0);
+    }
+}

@@ -1,0 +1,175 @@
+//! The simulated spindle: it follows M03/M04/M05 and S with the machine's
+//! acceleration, computes the rpm of constant surface speed from the
+//! current diameter every period, and keeps the angle that threads
+//! synchronise to (the index pulse is at whole turns).
+
+use crate::config::SpindleConfig;
+use crate::math::PI;
+use crate::plc::SpindleDir;
+
+#[derive(Debug, Clone)]
+pub struct Spindle {
+    cfg: SpindleConfig,
+    dir: SpindleDir,
+    css: bool,
+    /// G97 rpm and G96 surface speed (m/min) as programmed.
+    s_rpm: f64,
+    v_css: f64,
+    /// `G50 S` limit (∞ before any).
+    limit: f64,
+    /// Signed actual rpm (+ for M03).
+    rpm: f64,
+    /// Turns made in the running direction, from power-on (monotone).
+    turns: f64,
+    /// Spindle override, 1.0 = 100 %.
+    pub override_factor: f64,
+}
+
+impl Spindle {
+    pub fn new(cfg: SpindleConfig, override_pct: f64) -> Spindle {
+        Spindle {
+            cfg,
+            dir: SpindleDir::Stop,
+            css: false,
+            s_rpm: 0.0,
+            v_css: 0.0,
+            limit: f64::INFINITY,
+            rpm: 0.0,
+            turns: 0.0,
+            override_factor: override_pct / 100.0,
+        }
+    }
+
+    pub fn set_dir(&mut self, d: SpindleDir) {
+        self.dir = d;
+    }
+
+    /// A SPEED event: S in G97 (rpm) or G96 (m/min), and a `G50 S` limit.
+    pub fn set_speed(&mut self, s: f64, css: bool, max: Option<f64>) {
+        if let Some(m) = max {
+            self.limit = if m > 0.0 { m } else { f64::INFINITY };
+        }
+        self.css = css;
+        if css {
+            self.v_css = s.max(0.0);
+        } else {
+            self.s_rpm = s.max(0.0);
+        }
+    }
+
+    pub fn css(&self) -> bool {
+        self.css
+    }
+
+    pub fn surface_speed(&self) -> f64 {
+        self.v_css
+    }
+
+    /// The commanded rpm (unsigned) at diameter `x`: G96 from the
+    /// diameter, limited by `G50 S` and the machine; G97 by the machine;
+    /// never below the analog spindle's minimum while it turns.
+    pub fn commanded(&self, x: f64) -> f64 {
+        if self.dir == SpindleDir::Stop {
+            return 0.0;
+        }
+        let top = self.cfg.max_rpm;
+        let n = if self.css {
+            let lim = self.limit.min(top);
+            let x = x.abs();
+            if x < 1e-9 {
+                lim
+            } else {
+                (1000.0 * self.v_css / (PI * x) * self.override_factor).min(lim)
+            }
+        } else {
+            (self.s_rpm * self.override_factor).min(top)
+        };
+        if n > 0.0 {
+            n.max(self.cfg.min_rpm)
+        } else {
+            0.0
+        }
+    }
+
+    fn sign(&self) -> f64 {
+        match self.dir {
+            SpindleDir::Ccw => -1.0,
+            _ => 1.0,
+        }
+    }
+
+    /// One period at diameter `x`.
+    pub fn update(&mut self, dt: f64, x: f64) {
+        let target = self.commanded(x) * self.sign();
+        let step = self.cfg.accel_rpm_s * dt;
+        self.rpm = target.clamp(self.rpm - step, self.rpm + step);
+        self.turns += self.rpm.abs() / 60.0 * dt;
+    }
+
+    /// Signed actual rpm.
+    pub fn rpm(&self) -> f64 {
+        self.rpm
+    }
+
+    /// Turns made so far (continuous; the index pulse at whole turns of
+    /// the physical angle, which this follows in the running direction).
+    pub fn turns(&self) -> f64 {
+        self.turns
+    }
+
+    /// Encoder count of the current angle.
+    pub fn encoder(&self) -> u64 {
+        (self.turns * self.cfg.encoder_ppr as f64) as u64
+    }
+
+    /// The spindle runs at its commanded speed (within 0.5 % or 1 rpm).
+    pub fn at_speed(&self, x: f64) -> bool {
+        let target = self.commanded(x);
+        target > 0.0
+            && (self.rpm * self.sign() - target).abs() <= (0.005 * target).max(1.0)
+            && self.rpm * self.sign() > 0.0
+    }
+
+    /// The spindle is, for practical purposes, standing.
+    pub fn stopped(&self) -> bool {
+        self.rpm.abs() < 0.5
+    }
+
+    /// Back to stopped with no speed programmed (reset).
+    pub fn reset(&mut self) {
+        self.dir = SpindleDir::Stop;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+
+    #[test]
+    fn spins_up_with_the_machine_acceleration() {
+        let mut s = Spindle::new(Config::default().spindle, 100.0);
+        s.set_speed(800.0, false, None);
+        s.set_dir(SpindleDir::Cw);
+        for _ in 0..400 {
+            s.update(0.001, 50.0);
+        }
+        assert!((s.rpm() - 400.0).abs() < 1e-6);
+        for _ in 0..1000 {
+            s.update(0.001, 50.0);
+        }
+        assert!((s.rpm() - 800.0).abs() < 1e-9);
+        assert!(s.at_speed(50.0));
+    }
+
+    #[test]
+    fn constant_surface_speed_is_clamped() {
+        let mut s = Spindle::new(Config::default().spindle, 100.0);
+        s.set_dir(SpindleDir::Cw);
+        s.set_speed(200.0, true, None);
+        assert!((s.commanded(100.0) - 1000.0 * 200.0 / (PI * 100.0)).abs() < 1e-9);
+        assert_eq!(s.commanded(0.0), 3000.0);
+        s.set_speed(200.0, true, Some(1500.0));
+        assert_eq!(s.commanded(10.0), 1500.0);
+    }
+}

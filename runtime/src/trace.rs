@@ -1,0 +1,68 @@
+//! The per-period trace: one line per interpolation period, as CSV under
+//! [`CSV_HEADER`] or as JSON lines with the same fields. X is a diameter
+//! in work coordinates, as in the canon; `feed` is the actual path speed
+//! in mm/min; `line` the source line of the block being executed.
+//! Positions carry 6 decimals (finer than the 0.001 mm resolution) so a
+//! reader can differentiate them.
+
+use crate::interpolate::SetPoint;
+use core::fmt::{self, Write};
+
+pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line";
+
+/// A number with `d` decimals and no `-0`.
+struct Fixed(f64, usize);
+
+impl fmt::Display for Fixed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Fixed(v, d) = *self;
+        let half = 0.5 * libm::pow(10.0, -(d as f64));
+        let v = if v.abs() < half || !v.is_finite() { 0.0 } else { v };
+        write!(f, "{v:.d$}")
+    }
+}
+
+/// One CSV line (with its `\n`).
+pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
+    writeln!(
+        w,
+        "{},{},{},{},{},{}",
+        Fixed(p.time_s, 6),
+        Fixed(p.x, 6),
+        Fixed(p.z, 6),
+        Fixed(p.spindle_rpm, 3),
+        Fixed(p.feed, 3),
+        p.line
+    )
+}
+
+/// One JSON line (with its `\n`).
+pub fn write_json<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
+    writeln!(
+        w,
+        "{{\"time_s\":{},\"x\":{},\"z\":{},\"spindle_rpm\":{},\"feed\":{},\"line\":{}}}",
+        Fixed(p.time_s, 6),
+        Fixed(p.x, 6),
+        Fixed(p.z, 6),
+        Fixed(p.spindle_rpm, 3),
+        Fixed(p.feed, 3),
+        p.line
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::string::String;
+
+    #[test]
+    fn lines_have_the_header_fields() {
+        let p = SetPoint { time_s: 0.001, x: 40.0, z: -0.0000001, spindle_rpm: 800.0, feed: 1200.0, line: 7, ..Default::default() };
+        let mut s = String::new();
+        write_csv(&mut s, &p).unwrap();
+        assert_eq!(s, "0.001000,40.000000,0.000000,800.000,1200.000,7\n");
+        s.clear();
+        write_json(&mut s, &p).unwrap();
+        assert_eq!(s, "{\"time_s\":0.001000,\"x\":40.000000,\"z\":0.000000,\"spindle_rpm\":800.000,\"feed\":1200.000,\"line\":7}\n");
+    }
+}

@@ -1,0 +1,223 @@
+//! From canon events (work coordinates, X as a diameter) to runtime
+//! commands (machine axes, slide units): the work zero of `ORIGIN`, the
+//! tool length offsets of `TOOL` (which the canon never shows), the modal
+//! feed of `FEED`.
+//!
+//! Events this build does not know (variants added to `nc::Event` later)
+//! are read back from their canon text, whose format canon.md fixes:
+//! `ELLIPSE`, `PARABOLA` and `ARCTHREAD` become exact curves; anything
+//! else that moves is caught after the block by comparing the kernel's
+//! programmed point with the one followed here, and reached by a line.
+
+use crate::command::{Command, Feed, Move, MoveKind, Path, PauseKind, Thread};
+use crate::math::V2;
+use crate::plc::{PlcFunction, SpindleDir};
+use nc::event::{Dir, SpindleDir as NcDir, StopKind};
+use nc::{Event, Machine};
+use std::string::{String, ToString};
+use std::vec::Vec;
+
+#[derive(Debug, Clone)]
+pub struct Translator {
+    /// Work zero in machine coordinates.
+    pub origin: V2,
+    /// Active tool length offset (geometry + wear).
+    pub tool_off: V2,
+    pub feed: Feed,
+    /// The programmed point, work coordinates (the canon's last point).
+    pub work: V2,
+    /// Texts of `MESSAGE` stops, by index.
+    pub messages: Vec<String>,
+    /// A G31 move was queued in the current block.
+    pub skip_queued: bool,
+}
+
+impl Translator {
+    pub fn new(origin: V2) -> Translator {
+        Translator {
+            origin,
+            tool_off: V2::ZERO,
+            feed: Feed { f: 0.0, per_rev: false },
+            work: V2::ZERO,
+            messages: Vec::new(),
+            skip_queued: false,
+        }
+    }
+
+    fn shift(&self) -> V2 {
+        self.origin + self.tool_off
+    }
+
+    fn axis(&self, work: V2) -> V2 {
+        work + self.shift()
+    }
+
+    fn mv(&mut self, kind: MoveKind, to_work: V2, path: impl FnOnce(V2, V2) -> Path) -> Command {
+        self.work = to_work;
+        let shift = self.shift();
+        Command::Move(Move { kind, path: path(self.axis(to_work), shift), shift })
+    }
+
+    /// The commands of one event; `st` is the kernel state after the block
+    /// (for tool offset tables), `m` the machine (reference points).
+    pub fn event(&mut self, e: &Event, st: &nc::state::State, m: &Machine, out: &mut Vec<Command>) {
+        let line = |to: V2, _| Path::Line { to };
+        match e {
+            Event::Rapid { x, z } => out.push(self.mv(MoveKind::Rapid, V2::from_xz(*x, *z), line)),
+            Event::Line { x, z } => {
+                let k = MoveKind::Feed(self.feed);
+                out.push(self.mv(k, V2::from_xz(*x, *z), line));
+            }
+            Event::Arc { dir, x, z, cx, cz } => {
+                let k = MoveKind::Feed(self.feed);
+                let c = V2::from_xz(*cx, *cz);
+                let ccw = *dir == Dir::Ccw;
+                out.push(self.mv(k, V2::from_xz(*x, *z), |to, sh| Path::Arc { to, centre: c + sh, ccw }));
+            }
+            Event::Thread { x, z, lead, dlead, q } => {
+                let k = MoveKind::Thread(Thread { lead: *lead, dlead: dlead.unwrap_or(0.0), q_deg: q.unwrap_or(0.0) });
+                out.push(self.mv(k, V2::from_xz(*x, *z), line));
+            }
+            Event::Skip { x, z } => {
+                let k = MoveKind::Skip(self.feed);
+                out.push(self.mv(k, V2::from_xz(*x, *z), line));
+                self.skip_queued = true;
+            }
+            Event::Dwell { s } => out.push(Command::Dwell(*s)),
+            Event::Feed { f, per_rev } => {
+                self.feed = Feed { f: if *per_rev { *f } else { *f / 60.0 }, per_rev: *per_rev };
+            }
+            Event::Speed { s, css, max } => out.push(Command::Plc(PlcFunction::Speed { s: *s, css: *css, max: *max })),
+            Event::Spindle(d) => {
+                let d = match d {
+                    NcDir::Cw => SpindleDir::Cw,
+                    NcDir::Ccw => SpindleDir::Ccw,
+                    NcDir::Stop => SpindleDir::Stop,
+                };
+                out.push(Command::Plc(PlcFunction::Spindle(d)));
+            }
+            Event::Tool { t, d } => {
+                out.push(Command::Plc(PlcFunction::Tool { t: *t, d: *d }));
+                let off = tool_offset(st, *d);
+                if off != self.tool_off {
+                    // The offset takes effect at once: the axes move, the
+                    // programmed point stays.
+                    self.tool_off = off;
+                    let shift = self.shift();
+                    out.push(Command::Move(Move { kind: MoveKind::Offset, path: Path::Line { to: self.axis(self.work) }, shift }));
+                }
+            }
+            Event::M(code) => out.push(Command::Plc(PlcFunction::M(*code))),
+            Event::Gear { n } => out.push(Command::Plc(PlcFunction::Gear(*n))),
+            Event::Origin { x, z } => {
+                let machine = self.work + self.origin;
+                self.origin = V2::from_xz(*x, *z);
+                self.work = machine - self.origin;
+                out.push(Command::Shift(self.shift()));
+            }
+            Event::Home { n, x, z } => {
+                let rp = reference_point(m, *n);
+                // G28/G30 cancel the tool length offset (dialect.md §4.4):
+                // the axes themselves go to the reference point.
+                let mut to = self.axis(self.work);
+                if *x {
+                    to.r = rp.r;
+                }
+                if *z {
+                    to.z = rp.z;
+                }
+                self.tool_off = V2::ZERO;
+                self.work = to - self.origin;
+                let shift = self.shift();
+                out.push(Command::Move(Move { kind: MoveKind::Rapid, path: Path::Line { to }, shift }));
+                out.push(Command::Shift(shift));
+            }
+            Event::Stop(k) => out.push(match k {
+                StopKind::M00 => Command::Pause(PauseKind::M00),
+                StopKind::M01 => Command::Pause(PauseKind::M01),
+                StopKind::M02 | StopKind::M30 | StopKind::M99 => Command::End,
+            }),
+            Event::Message(text) => {
+                self.messages.push(text.clone());
+                out.push(Command::Pause(PauseKind::Message(self.messages.len() as u32 - 1)));
+            }
+            Event::Alarm { code, .. } => out.push(Command::Alarm(*code)),
+            #[allow(unreachable_patterns)]
+            other => {
+                if let Some(c) = self.from_canon_text(&other.to_string()) {
+                    out.push(c);
+                }
+            }
+        }
+    }
+
+    /// A move whose event this build does not know, from its canon line.
+    pub fn from_canon_text(&mut self, line: &str) -> Option<Command> {
+        let mut words = line.split(' ');
+        let key = words.next()?;
+        let f = |name: &str| -> Option<f64> {
+            line.split(' ').find_map(|w| w.strip_prefix(name).and_then(|v| v.strip_prefix('='))).and_then(|v| v.parse().ok())
+        };
+        let ccw = line.split(' ').any(|w| w == "DIR=CCW");
+        let to = V2::from_xz(f("X")?, f("Z")?);
+        let q = f("Q").unwrap_or(0.0);
+        match key {
+            "ELLIPSE" => {
+                let (a, b) = (f("A")?, f("B")?);
+                let k = MoveKind::Feed(self.feed);
+                Some(self.mv(k, to, |to, _| Path::Ellipse { to, a, b, q: q.to_radians(), ccw }))
+            }
+            "PARABOLA" => {
+                let p = f("P")?;
+                let k = MoveKind::Feed(self.feed);
+                Some(self.mv(k, to, |to, _| Path::Parabola { to, p, q: q.to_radians(), ccw }))
+            }
+            "ARCTHREAD" => {
+                let c = V2::from_xz(f("CX")?, f("CZ")?);
+                let k = MoveKind::Thread(Thread { lead: f("LEAD")?, dlead: 0.0, q_deg: q });
+                Some(self.mv(k, to, |to, sh| Path::Arc { to, centre: c + sh, ccw }))
+            }
+            _ => None,
+        }
+    }
+}
+
+/// Geometry + wear of offset `d` (X as a diameter in the tables).
+pub fn tool_offset(st: &nc::state::State, d: u32) -> V2 {
+    let Some(i) = (d as usize).checked_sub(1).filter(|&i| i < st.geom.len()) else {
+        return V2::ZERO;
+    };
+    let g = st.geom[i];
+    let w = st.wear[i];
+    V2::new((g[0] + w[0]) * 0.5, g[1] + w[1])
+}
+
+/// Reference point n in machine coordinates (1 = machine zero).
+pub fn reference_point(m: &Machine, n: u32) -> V2 {
+    let r = &m.reference_points;
+    match n {
+        2 => V2::from_xz(r.second.x, r.second.z),
+        3 => V2::from_xz(r.third.x, r.third.z),
+        4 => V2::from_xz(r.fourth.x, r.fourth.z),
+        _ => V2::ZERO,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unknown_moves_are_read_from_their_canon_text() {
+        let mut t = Translator::new(V2::ZERO);
+        t.feed = Feed { f: 2.0, per_rev: false };
+        let c = t.from_canon_text("ELLIPSE DIR=CW X=40 Z=-10 A=12 B=5 Q=30").unwrap();
+        let Command::Move(m) = c else { panic!() };
+        assert_eq!(m.path, Path::Ellipse { to: V2::new(20.0, -10.0), a: 12.0, b: 5.0, q: 30f64.to_radians(), ccw: false });
+        let c = t.from_canon_text("ARCTHREAD DIR=CCW X=30 Z=-5 CX=20 CZ=-5 LEAD=2 Q=90").unwrap();
+        let Command::Move(m) = c else { panic!() };
+        assert_eq!(m.kind, MoveKind::Thread(Thread { lead: 2.0, dlead: 0.0, q_deg: 90.0 }));
+        assert!(t.from_canon_text("NOSUCH X=1 Z=2").is_none());
+        assert_eq!(t.work, V2::new(15.0, -5.0));
+    }
+}

@@ -1,0 +1,163 @@
+//! Shared pieces of the runtime tests: compile a G-code string, run it
+//! period by period with a scripted host, and check the trace.
+#![allow(dead_code)]
+
+use nc::{Event, Machine};
+use runtime::{AlarmInfo, Config, Controller, Motion, Plc, RunState, SetPoint};
+
+pub fn module(src: &str, machine: &Machine) -> isa::Module {
+    let opts = compiler::Options { machine: machine.clone(), ..compiler::Options::default() };
+    let out = compiler::compile("test.nc", src.as_bytes(), &opts);
+    match out.module {
+        Some(m) => m,
+        None => panic!("compile error:\n{}", out.render()),
+    }
+}
+
+pub struct Run {
+    pub pts: Vec<SetPoint>,
+    pub canon: Vec<Event>,
+    pub state: RunState,
+    pub alarm: Option<AlarmInfo>,
+    pub cfg: Config,
+}
+
+/// Runs `src` to its end (at most `max_s` simulated seconds); `host` is
+/// called after every period and may press buttons.
+pub fn run_with<P: Plc>(
+    src: &str,
+    machine: Machine,
+    plc: P,
+    tweak: impl FnOnce(&mut Config),
+    mut host: impl FnMut(&mut Controller<P>, &SetPoint),
+    max_s: f64,
+) -> Run {
+    let m = module(src, &machine);
+    let mut cfg = Config::from_machine(&machine);
+    tweak(&mut cfg);
+    let mut ctl = Controller::with_config(m, machine, cfg.clone(), plc).expect("loads");
+    ctl.cycle_start();
+    let mut canon = Vec::new();
+    let mut pts = Vec::new();
+    loop {
+        ctl.run_ahead_tap(&mut canon);
+        let sp = ctl.tick();
+        pts.push(sp);
+        host(&mut ctl, &sp);
+        match ctl.state() {
+            RunState::Stopped(_) => ctl.cycle_start(),
+            RunState::Ended | RunState::Alarm(_) => break,
+            _ => {}
+        }
+        if sp.time_s > max_s {
+            panic!("the run did not end within {max_s} s (state {:?})", ctl.state());
+        }
+    }
+    Run { pts, canon, state: ctl.state(), alarm: ctl.alarm(), cfg }
+}
+
+pub fn run(src: &str) -> Run {
+    run_with(src, Machine::reference(), runtime::AutoAck, |_| {}, |_, _| {}, 600.0)
+}
+
+/// Distance from p to the segment a–b.
+fn seg_dist(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dz) = (b.0 - a.0, b.1 - a.1);
+    let l2 = dx * dx + dz * dz;
+    let t = if l2 > 0.0 { (((p.0 - a.0) * dx + (p.1 - a.1) * dz) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    let q = (a.0 + t * dx, a.1 + t * dz);
+    ((p.0 - q.0).powi(2) + (p.1 - q.1).powi(2)).sqrt()
+}
+
+/// The end points of the canon's moves, in order (radius, Z).
+pub fn end_points(canon: &[Event]) -> Vec<(f64, f64)> {
+    canon
+        .iter()
+        .filter_map(|e| match e {
+            Event::Rapid { x, z } | Event::Line { x, z } | Event::Skip { x, z } => Some((x / 2.0, *z)),
+            Event::Arc { x, z, .. } | Event::Thread { x, z, .. } => Some((x / 2.0, *z)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Every canon end point is on the interpolated path, in order, within
+/// 0.001 mm (a stop lands on it; a blended corner is passed through
+/// between two periods).
+pub fn check_end_points(r: &Run) {
+    // The reference start: the tool at machine zero, work zero there too.
+    let pts: Vec<(f64, f64)> = std::iter::once((0.0, 0.0)).chain(r.pts.iter().map(|p| (p.x / 2.0, p.z))).collect();
+    let mut k = 0;
+    'next: for (i, e) in end_points(&r.canon).into_iter().enumerate() {
+        let start = k;
+        while k + 1 < pts.len() {
+            if seg_dist(e, pts[k], pts[k + 1]) <= 0.001 {
+                continue 'next;
+            }
+            k += 1;
+        }
+        panic!("end point {i} {e:?} not reached after period {start}");
+    }
+    let last = pts.last().copied().unwrap_or_default();
+    if let Some(e) = end_points(&r.canon).last() {
+        assert!(((last.0 - e.0).powi(2) + (last.1 - e.1).powi(2)).sqrt() <= 0.001, "ends at {last:?}, not {e:?}");
+    }
+}
+
+/// The worst ratio of |axis velocity| to its limit and of |axis
+/// acceleration| to its limit over the whole run (slide units, finite
+/// differences of the axis set points). Thread periods are measured
+/// against the cutting feed limit; `skip_threads` leaves out the
+/// accelerations of thread periods (the helix follows the spindle).
+pub fn worst_ratios(r: &Run, skip_threads: bool) -> (f64, f64) {
+    let dt = r.cfg.period_s;
+    let ax = [r.cfg.x, r.cfg.z];
+    let pos: Vec<[f64; 2]> = std::iter::once([0.0, 0.0]).chain(r.pts.iter().map(|p| [p.axis_x / 2.0, p.axis_z])).collect();
+    let (mut wv, mut wa) = (0.0f64, 0.0f64);
+    for k in 1..pos.len() {
+        let m = r.pts[k - 1].motion;
+        for a in 0..2 {
+            let v = (pos[k][a] - pos[k - 1][a]) / dt;
+            let lim = if m == Motion::Rapid { ax[a].rapid } else { ax[a].max_feed };
+            wv = wv.max(v.abs() / lim);
+            if k + 1 < pos.len() {
+                let acc = (pos[k + 1][a] - 2.0 * pos[k][a] + pos[k - 1][a]) / (dt * dt);
+                let thread = r.pts[k - 1].motion == Motion::Thread || r.pts[k].motion == Motion::Thread;
+                if !(skip_threads && thread) {
+                    if std::env::var("TRACE_WORST").is_ok() && acc.abs() / ax[a].accel > 1.0 + 1e-6 {
+                        eprintln!("period {k} axis {a} ratio {:.4} motion {:?} line {} p={:?}", acc.abs() / ax[a].accel, m, r.pts[k - 1].line, &r.pts[k.saturating_sub(3)..(k + 2).min(r.pts.len())].iter().map(|p| (p.axis_x / 2.0, p.axis_z, p.feed)).collect::<Vec<_>>());
+                    }
+                    wa = wa.max(acc.abs() / ax[a].accel);
+                }
+            }
+        }
+    }
+    (wv, wa)
+}
+
+/// Velocity and acceleration limits hold in every period (tolerance: 1e-6
+/// of the limit, rounding).
+pub fn check_limits(r: &Run, skip_threads: bool) {
+    let (v, a) = worst_ratios(r, skip_threads);
+    assert!(v <= 1.0 + 1e-6, "an axis exceeds its velocity limit: {v:.6} of it");
+    assert!(a <= 1.0 + 1e-6, "an axis exceeds its acceleration limit: {a:.6} of it");
+}
+
+/// FNV-1a over every field of every set point.
+pub fn hash(r: &Run) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |v: u64| {
+        for b in v.to_le_bytes() {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    for p in &r.pts {
+        for f in [p.time_s, p.x, p.z, p.axis_x, p.axis_z, p.spindle_rpm, p.spindle_turns, p.feed] {
+            eat(f.to_bits());
+        }
+        eat(p.line as u64);
+        eat(p.tool as u64);
+    }
+    h
+}

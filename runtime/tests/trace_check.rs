@@ -1,0 +1,292 @@
+//! The trace checker: end points, axis limits, threads, constant surface
+//! speed, feed hold, determinism, the PLC handshake, skip and alarms.
+
+mod common;
+
+use common::*;
+use nc::Machine;
+use runtime::{Motion, RunState};
+
+const SHAFT: &str = "O0001
+G50 X100 Z50
+T0101 M03 S800
+G00 X40 Z2 M08
+G99 G01 Z-20 F0.2
+X50 Z-30
+G02 X60 Z-35 R5
+G01 Z-50
+G03 X70 Z-55 K-5
+G01 X80
+G00 X100 Z50 M09
+M30
+";
+
+#[test]
+fn a_turned_shaft_reaches_every_end_point_within_limits() {
+    let r = run(SHAFT);
+    assert_eq!(r.state, RunState::Ended);
+    check_end_points(&r);
+    check_limits(&r, false);
+}
+
+/// Short segments approximating a curve blend at speed (G64) and still
+/// keep every axis within its acceleration.
+#[test]
+fn short_segments_blend_within_the_limits() {
+    let mut src = String::from("O0002\nG00 X0 Z0\nG98 G01 F3000\n");
+    for i in 1..=400 {
+        let t = i as f64 * 0.01;
+        src.push_str(&format!("X{:.3} Z{:.3}\n", 40.0 * (t * 2.0).sin().abs(), -10.0 * t));
+    }
+    src.push_str("M30\n");
+    let r = run(&src);
+    check_end_points(&r);
+    check_limits(&r, false);
+    // Blending: the run is far shorter than stopping at each of 400 points.
+    let stops = r.pts.windows(2).filter(|w| w[0].feed > 0.0 && w[1].feed == 0.0).count();
+    assert!(stops < 20, "{stops} stops");
+}
+
+#[test]
+fn arcs_stay_on_their_circle() {
+    let r = run("O0003\nG00 X20 Z0\nG98 G01 F2000\nG03 X20 Z-20 R10\nG02 X20 Z-40 R10\nG01 X40\nM30\n");
+    check_end_points(&r);
+    check_limits(&r, false);
+    let mut on_arc = 0;
+    for p in &r.pts {
+        let (rr, z) = (p.x / 2.0, p.z);
+        let d1 = ((rr - 10.0).powi(2) + (z + 10.0).powi(2)).sqrt();
+        let d2 = ((rr - 10.0).powi(2) + (z + 30.0).powi(2)).sqrt();
+        if p.line >= 4 && p.line <= 5 && p.motion == Motion::Feed {
+            on_arc += 1;
+            let d = if p.line == 4 { d1 } else { d2 };
+            assert!((d - 10.0).abs() < 1e-6, "off the circle by {}", d - 10.0);
+        }
+    }
+    assert!(on_arc > 100);
+}
+
+#[test]
+fn rapids_move_each_axis_at_its_own_rate() {
+    let r = run("O0004\nG00 X-200 Z-400\nM30\n");
+    check_end_points(&r);
+    check_limits(&r, false);
+    let dt = r.cfg.period_s;
+    let vmax = |axis: usize| {
+        r.pts
+            .windows(2)
+            .map(|w| if axis == 0 { (w[1].axis_x - w[0].axis_x).abs() / 2.0 } else { (w[1].axis_z - w[0].axis_z).abs() } / dt)
+            .fold(0.0, f64::max)
+    };
+    assert!((vmax(0) - 100.0).abs() < 1e-6, "X at {}", vmax(0));
+    assert!((vmax(1) - 10000.0 / 60.0).abs() < 1e-6, "Z at {}", vmax(1));
+}
+
+/// G32 twice over the same helix: after the ramp, Z = lead × turns, and
+/// both passes sit on the same helix.
+#[test]
+fn threads_keep_lead_times_revolutions() {
+    let src = "O0005\nG97 S600 M03\nG00 X30 Z5\nG32 Z-30 F1.5\nG00 X40\nZ5\nX29.5\nG32 Z-30 F1.5\nG00 X40\nM30\n";
+    let r = run(src);
+    check_end_points(&r);
+    check_limits(&r, true);
+    let lead = 1.5;
+    let mut phases = Vec::new();
+    let mut locked = 0;
+    for w in r.pts.windows(2) {
+        if w[0].motion == Motion::Thread && w[1].motion == Motion::Thread {
+            let dz = w[1].z - w[0].z;
+            let dturns = w[1].spindle_turns - w[0].spindle_turns;
+            if (dz.abs() - lead * dturns).abs() < 1e-9 {
+                locked += 1;
+                // Where this pass's helix crosses Z = 0, in turns mod 1.
+                let phase = (w[1].spindle_turns + w[1].z / lead).rem_euclid(1.0);
+                phases.push(phase);
+            }
+        }
+    }
+    // 35 mm at 1.5 mm × 10 rev/s = 2.33 s per pass, nearly all locked.
+    assert!(locked > 4000, "{locked} locked periods");
+    let (lo, hi) = phases.iter().fold((f64::MAX, f64::MIN), |(a, b), &p| (a.min(p), b.max(p)));
+    assert!((hi - lo) * lead < 0.001, "the passes differ by {} mm", (hi - lo) * lead);
+}
+
+#[test]
+fn a_thread_too_fast_for_the_axis_is_e4010() {
+    let r = run("O0006\nG97 S1000 M03\nG00 X30 Z5\nG32 Z-30 F6\nM30\n");
+    assert_eq!(r.state, RunState::Alarm(4010));
+    assert_eq!(r.alarm.unwrap().line, 4);
+}
+
+/// A slow G96 face cut: rpm × π × X stays at the surface speed while the
+/// rpm is below the limits.
+#[test]
+fn constant_surface_speed_holds() {
+    let src = "O0007\nG50 S2500\nG96 S150 M03\nG00 X80 Z0\nG04 X3\nG98 G01 X20 F30\nM30\n";
+    let r = run(src);
+    check_end_points(&r);
+    let mut checked = 0;
+    for p in r.pts.iter().filter(|p| p.motion == Motion::Feed && p.x > 20.5) {
+        let v = p.spindle_rpm * std::f64::consts::PI * p.x / 1000.0;
+        assert!((v - 150.0).abs() < 0.05, "surface speed {v} at X{}", p.x);
+        checked += 1;
+    }
+    assert!(checked > 10_000);
+}
+
+#[test]
+fn feed_hold_stops_within_the_deceleration_distance_and_resumes_on_the_path() {
+    let src = "O0008\nG98 G01 X40 Z-60 F3000\nM30\n";
+    let mut held_at = None;
+    let mut stopped_at = None;
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |ctl, sp| {
+            if held_at.is_none() && sp.time_s >= 0.5 {
+                held_at = Some(*sp);
+                ctl.feed_hold();
+            }
+            if ctl.state() == RunState::Held && stopped_at.is_none() {
+                stopped_at = Some(*sp);
+            }
+            if let Some(s) = stopped_at {
+                if sp.time_s >= s.time_s + 0.3 {
+                    ctl.cycle_start();
+                }
+            }
+        },
+        60.0,
+    );
+    check_end_points(&r);
+    check_limits(&r, false);
+    let (h, s) = (held_at.unwrap(), stopped_at.unwrap());
+    let v = h.feed / 60.0;
+    let (dir_r, dir_z) = (20.0 / (20f64.hypot(60.0)), -60.0 / (20f64.hypot(60.0)));
+    // A path speed of v at acceleration a (the line's: Z limits it).
+    let a = (r.cfg.x.accel / dir_r.abs()).min(r.cfg.z.accel / dir_z.abs()) * (1.0 - r.cfg.corner_budget);
+    let dist = ((s.x - h.x) / 2.0).hypot(s.z - h.z);
+    let limit = v * v / (2.0 * a) + v * r.cfg.period_s;
+    assert!(dist <= limit + 1e-9, "stopped after {dist} mm, more than {limit}");
+    assert!(dist > 0.5 * v * v / (2.0 * a), "stopped too early ({dist} mm)");
+    for p in &r.pts {
+        let off = (p.x / 2.0) * dir_z - p.z * dir_r;
+        assert!(off.abs() < 1e-9, "left the path by {off}");
+    }
+    assert_eq!(r.state, RunState::Ended);
+}
+
+#[test]
+fn feed_override_scales_the_feed() {
+    let src = "O0009\nG98 G01 Z-100 F1200\nM30\n";
+    let r = run_with(src, Machine::reference(), runtime::AutoAck, |c| c.feed_override_pct = 50.0, |_, _| {}, 60.0);
+    let top = r.pts.iter().map(|p| p.feed).fold(0.0, f64::max);
+    assert!((top - 600.0).abs() < 1e-6, "{top}");
+}
+
+#[test]
+fn identical_runs_are_bit_identical() {
+    let a = run(SHAFT);
+    let b = run(SHAFT);
+    assert_eq!(a.pts.len(), b.pts.len());
+    assert_eq!(hash(&a), hash(&b));
+}
+
+/// The PLC acknowledges M08 only after 100 periods: the next cut waits.
+#[test]
+fn the_next_block_waits_for_the_plc() {
+    #[derive(Default)]
+    struct Slow {
+        left: u32,
+        acked_at: Option<u64>,
+        n: u64,
+    }
+    impl runtime::Plc for Slow {
+        fn request(&mut self, f: runtime::PlcFunction) {
+            if f == runtime::PlcFunction::M(8) {
+                self.left = 100;
+            }
+        }
+        fn done(&mut self, f: runtime::PlcFunction) -> bool {
+            self.n += 1;
+            if self.left > 0 {
+                self.left -= 1;
+                if self.left == 0 && f == runtime::PlcFunction::M(8) {
+                    self.acked_at = Some(self.n);
+                }
+            }
+            self.left == 0
+        }
+    }
+    let src = "O0010\nG98 G01 Z-1 F600\nM08\nG01 Z-2\nM30\n";
+    let r = run_with(src, Machine::reference(), Slow::default(), |_| {}, |_, _| {}, 60.0);
+    check_end_points(&r);
+    // Z stands at -1 for the 100 periods of the handshake.
+    let standing = r.pts.iter().filter(|p| (p.z + 1.0).abs() < 1e-12).count();
+    assert!(standing >= 100, "{standing}");
+}
+
+#[test]
+fn a_feed_per_revolution_with_the_spindle_stopped_is_e7003() {
+    let m = Machine::from_toml("[spindle]\nstall_timeout_s = 0.5\n").unwrap();
+    let r = run_with("O0011\nG99 G01 Z-10 F0.1\nM30\n", m, runtime::AutoAck, |_| {}, |_, _| {}, 60.0);
+    assert_eq!(r.state, RunState::Alarm(7003));
+    let t = r.pts.last().unwrap().time_s;
+    assert!((0.5..0.51).contains(&t), "after {t} s");
+}
+
+/// G31 with the skip signal: the move stops, #5062 holds the skip point,
+/// the next block starts from where the axes stopped.
+#[test]
+fn the_skip_signal_ends_a_g31_move() {
+    let src = "O0012\nG98 G31 Z-50 F600\n#100 = #5062\nG01 Z[#100 + 2]\nM30\n";
+    let mut hit_z = None;
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |ctl, sp| {
+            if sp.z <= -20.0 && hit_z.is_none() {
+                hit_z = Some(sp.z);
+                ctl.set_skip_input(true);
+            }
+        },
+        60.0,
+    );
+    assert_eq!(r.state, RunState::Ended);
+    let hit = hit_z.unwrap();
+    let last = r.pts.last().unwrap();
+    assert!((last.z - (hit + 2.0)).abs() < 1e-9, "ended at {} (skip at {hit})", last.z);
+    check_limits(&r, false);
+}
+
+#[test]
+fn single_block_stops_at_every_block() {
+    let src = "O0013\nG98 G01 Z-1 F600\nZ-2\nZ-3\nM30\n";
+    let mut stops = 0;
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |c| c.single_block = true,
+        |ctl, _| {
+            if let RunState::Stopped(runtime::command::PauseKind::SingleBlock) = ctl.state() {
+                stops += 1;
+            }
+        },
+        60.0,
+    );
+    check_end_points(&r);
+    assert_eq!(stops, 3);
+}
+
+#[test]
+fn a_program_alarm_ends_the_motion_where_it_stands() {
+    let r = run("O0014\nG98 G01 Z-5 F600\n#3000 = 12 (STOP HERE)\nG01 Z-10\nM30\n");
+    assert_eq!(r.state, RunState::Alarm(3012));
+    assert!((r.pts.last().unwrap().z + 5.0).abs() < 1e-9);
+    assert_eq!(r.alarm.unwrap().message, "STOP HERE");
+}
