@@ -1,7 +1,7 @@
 //! Joining two compensated elements at their common point Q (comp.md §4,
 //! §5): tangent, inside and outside corners.
 
-use super::offset::{check_forward, curve, meet, normal, over};
+use super::offset::{check_arc, check_forward, curve, meet, normal, over};
 use super::{startup, Leg, Role, Tool};
 use crate::contour::elem::{cross, dot, tangent_at};
 use crate::error::{fail, NcError};
@@ -44,41 +44,43 @@ pub fn kind(t1: Pt, t2: Pt, side: f64) -> Kind {
 /// the arc round an outside corner. E4036 when the offset curves of an
 /// inside corner do not meet, or `e1`'s compensated part runs backwards.
 pub fn join(e1: &Element, l1: &mut Leg, e2: &Element, l2: &mut Leg) -> Result<(), NcError> {
-    let q = e1.end();
     let tool = l1.tool;
-    let t2 = tangent_at(e2, e2.start());
+    // Also a rounding that an L/D word inserted must fit the tool.
+    check_arc(e2, &tool)?;
     if l1.role != Role::Body {
-        let c = startup::end(e1, t2, &tool);
+        let c = startup::end(e1, tangent_at(e2, e2.start()), &tool);
         (l1.end, l2.start) = (Some(c), Some(c));
         return Ok(());
     }
-    let (Some(t1), Some(t2)) = (tangent_at(e1, q), t2) else {
+    let (a, b, arc) = corner_points(e1, e2, &tool)?;
+    (l1.end, l2.start, l2.corner) = (Some(a), Some(b), arc);
+    let start = l1.start.unwrap_or_else(|| over(e1, e1.start(), &tool));
+    check_forward(e1, start, a)
+}
+
+/// Where element 1 ends and element 2 starts at their common point Q, and
+/// the arc between them at an outside corner (comp.md §5 table).
+fn corner_points(
+    e1: &Element,
+    e2: &Element,
+    tool: &Tool,
+) -> Result<(Pt, Pt, Option<Element>), NcError> {
+    let q = e1.end();
+    let (Some(t1), Some(t2)) = (tangent_at(e1, q), tangent_at(e2, e2.start())) else {
         // No direction at Q (an element used up by a corner word): the
         // element ends on its own normal and the next starts there.
-        let a = over(e1, q, &tool);
-        (l1.end, l2.start) = (Some(a), Some(a));
-        return Ok(());
+        let a = over(e1, q, tool);
+        return Ok((a, a, None));
     };
-    match kind(t1, t2, tool.side) {
-        Kind::Tangent => {
-            let a = q.add(normal(Some(t1), &tool));
-            (l1.end, l2.start) = (Some(a), Some(a));
-        }
+    let (a, b) = (q.add(normal(Some(t1), tool)), q.add(normal(Some(t2), tool)));
+    Ok(match kind(t1, t2, tool.side) {
+        Kind::Tangent => (a, a, None),
         Kind::Inside => {
-            let p = inside_point(e1, e2, q, &tool)?;
-            (l1.end, l2.start) = (Some(p), Some(p));
+            let p = inside_point(e1, e2, q, tool)?;
+            (p, p, None)
         }
-        Kind::Outside => {
-            let (a, b) = (
-                q.add(normal(Some(t1), &tool)),
-                q.add(normal(Some(t2), &tool)),
-            );
-            (l1.end, l2.start) = (Some(a), Some(b));
-            l2.corner = outside_arc(q, a, b, &tool);
-        }
-    }
-    let start = l1.start.unwrap_or_else(|| over(e1, e1.start(), &tool));
-    check_forward(e1, start, l1.end.unwrap_or(q))
+        Kind::Outside => (a, b, outside_arc(q, a, b, tool)),
+    })
 }
 
 /// The intersection of the two offset curves nearest to Q.

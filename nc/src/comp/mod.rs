@@ -83,9 +83,16 @@ impl Leg {
         }
     }
 
-    /// Whether the move must wait for the next element before it prints.
-    pub(crate) fn waits(&self) -> bool {
-        self.role != Role::Zero && self.end.is_none()
+    /// Whether move `e` must wait for the next element before it prints:
+    /// a start-up always (its end needs the next direction), an element
+    /// unless a corner word used it up (it then has no direction).
+    pub(crate) fn open(&self, e: &Element) -> bool {
+        self.end.is_none()
+            && match self.role {
+                Role::Start => true,
+                Role::Body => length(e) >= EPS_LEN,
+                Role::Zero => false,
+            }
     }
 
     /// The leg of an element that an L/D corner inserts after this one's:
@@ -208,38 +215,39 @@ pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), 
     }
 }
 
-/// The checks and suspensions a block needs before its first event:
-/// G31/G53 (E4031) and G36/G37 (E4032) need compensation off; a G54–G59
-/// that moves the zero suspends it (comp.md §8).
-pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
-    let after = p
-        .gs()
+/// The last code of modal group `g` the block writes.
+fn last_code(p: &Parsed, g: u8) -> Option<Code> {
+    p.gs()
         .iter()
         .rev()
         .map(|&(c, _)| c)
-        .find(|&c| gcode::group(c) == Some(gcode::COMP));
-    let on = running(nc) || side_of(after.unwrap_or(nc.st.group(gcode::COMP))).is_some();
-    if on {
-        match p.one_shot() {
-            Some(code @ (310 | 530)) => {
-                return fail(
-                    4031,
-                    format!(
-                        "{} needs nose-radius compensation off (G40 and a cancel move first)",
-                        gcode::name(code)
-                    ),
-                )
-            }
-            Some(code @ (360 | 370)) => {
-                return fail(
-                    4032,
-                    format!(
-                        "{} needs nose-radius compensation off (G40 and a cancel move first)",
-                        gcode::name(code)
-                    ),
-                )
-            }
-            _ => {}
+        .find(|&c| gcode::group(c) == Some(g))
+}
+
+/// The error of a function that needs compensation off: G31/G53 E4031,
+/// G36/G37 E4032 (dialect.md §4.7).
+fn needs_off(p: &Parsed) -> Option<u16> {
+    match p.one_shot() {
+        Some(310 | 530) => Some(4031),
+        Some(360 | 370) => Some(4032),
+        _ => None,
+    }
+}
+
+/// The checks and suspensions a block needs before its first event: the
+/// functions that need compensation off (also when this block writes
+/// G41/G42), and a G54–G59 that moves the zero suspends it (comp.md §8).
+pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    let mode = last_code(p, gcode::COMP).unwrap_or(nc.st.group(gcode::COMP));
+    if running(nc) || side_of(mode).is_some() {
+        if let (Some(code), Some(g)) = (needs_off(p), p.one_shot()) {
+            return fail(
+                code,
+                format!(
+                    "{} needs nose-radius compensation off (G40 and a cancel move first)",
+                    gcode::name(g)
+                ),
+            );
         }
     }
     if running(nc) && moves_origin(nc, p) {
@@ -250,13 +258,7 @@ pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Resu
 
 /// Whether the block's G54–G59 selects a system with another zero.
 fn moves_origin(nc: &Nc, p: &Parsed) -> bool {
-    let Some(code) = p
-        .gs()
-        .iter()
-        .rev()
-        .map(|&(c, _)| c)
-        .find(|&c| gcode::group(c) == Some(gcode::WORK))
-    else {
+    let Some(code) = last_code(p, gcode::WORK) else {
         return false;
     };
     let index = (code.saturating_sub(540) / 10).min(5) as usize;
@@ -283,7 +285,7 @@ pub(crate) fn end_of_block(nc: &mut Nc, p: &Parsed, moved: bool) -> Result<(), N
         nc.st.comp.idle = 0;
         return Ok(());
     }
-    nc.st.comp.idle += 1;
+    nc.st.comp.idle = nc.st.comp.idle.saturating_add(1);
     if nc.st.comp.idle >= 7 {
         return fail(
             4034,

@@ -389,3 +389,50 @@ fn a_zero_radius_changes_nothing() {
     ]);
     assert_canon(&got, &want);
 }
+
+#[test]
+fn a_zero_length_start_up_still_goes_to_the_first_normal() {
+    // Already at Q (2, 10): the start-up still moves the centre to
+    // Q + 0.8·right(−Z) = (2, 10.8), printed (1.2, 10).
+    let got = run(&[
+        "T0101",
+        "G00 X20 Z2",
+        "G42 G00 X20 Z2",
+        "G01 Z-10 F0.1",
+        "G40 G00 X30 Z20",
+    ]);
+    let want = lines(&[
+        "TOOL T=1 D=1",
+        "RAPID X=20 Z=2",
+        "RAPID X=20 Z=1.2",
+        FEED,
+        "LINE X=20 Z=-10.8",
+        "RAPID X=30 Z=20",
+    ]);
+    assert_canon(&got, &want);
+}
+
+#[test]
+fn a_change_of_side_cancels_and_starts_again() {
+    // G42 Z-10 ends on its own normal (−10, 10.8) → printed (−10.8, 10).
+    // The G41 move starts up to Q (−10, 5) + 0.8·left(−Z) = (−10, 4.2) →
+    // printed (−10.8, 3.4); Z-20 ends on its normal (−20, 4.2) → (−20.8,
+    // 3.4) before the cancel.
+    let got = run(&program(&[
+        "G01 Z-10 F0.1",
+        "G41 X10",
+        "Z-20",
+        "G40 G00 X30 Z20",
+    ]));
+    let want = lines(&[
+        "TOOL T=1 D=1",
+        "RAPID X=60 Z=5",
+        "RAPID X=20 Z=1.2",
+        FEED,
+        "LINE X=20 Z=-10.8",
+        "LINE X=6.8 Z=-10.8",
+        "LINE X=6.8 Z=-20.8",
+        "RAPID X=30 Z=20",
+    ]);
+    assert_canon(&got, &want);
+}

@@ -12,7 +12,7 @@ use crate::gcode::{self, Code};
 use crate::geom::{self, Element};
 use crate::machine::ArcWithoutCenter;
 use crate::state::Pt;
-use crate::words::{Word, COMMA_A};
+use crate::words::Word;
 
 /// One element of a profile.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -190,10 +190,26 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
     let to = target(nc, p, from);
     match code {
         0 | 10 => {
-            if p.has(b'Q') || p.val[COMMA_A as usize].is_some() {
-                return fail(2099, "angle programming (Q, ,A) in a G71–G73 profile is not supported yet");
-            }
-            Ok(p.has_axis().then_some(Element::Line { from, to }))
+            let Some(deg) = contour::angle_of(p) else {
+                return Ok(p.has_axis().then_some(Element::Line { from, to }));
+            };
+            // The one-block angle forms (dialect.md §5.2), the same
+            // geometry as outside a profile.
+            let x = p.has(b'X') || p.has(b'U');
+            let z = p.has(b'Z') || p.has(b'W');
+            let end = match (x, z) {
+                (true, false) => contour::end_at_r(from, deg, to.r)?,
+                (false, true) => contour::end_at_z(from, deg, to.z)?,
+                // X, Z and Q: an ordinary line, Q ignored (W104).
+                (true, true) => to,
+                (false, false) => {
+                    return fail(
+                        2099,
+                        "the two-block angle form in a G71–G73 profile is not supported yet",
+                    )
+                }
+            };
+            Ok(Some(Element::Line { from, to: end }))
         }
         20 | 30 => arc(nc, code == 20, p, from, to),
         50 | 51 => three_point(nc, code == 51, p, from, to).map(Some),

@@ -18,6 +18,7 @@ mod queue;
 #[cfg(test)]
 mod tests;
 
+pub use angle::{angle_of, end_at_r, end_at_z};
 pub use conic::{ellipse_centre, parabola_vertex};
 pub use corner::{corner, Corner};
 pub use queue::ContourState;

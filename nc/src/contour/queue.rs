@@ -43,13 +43,12 @@ impl Move {
     /// for its corner word, or for the element its compensated end
     /// depends on.
     fn waits(&self) -> bool {
-        (self.corner.is_some() || self.comp.as_ref().is_some_and(Leg::waits))
-            && elem::length(&self.elem) >= EPS_LEN
+        (self.corner.is_some() && elem::length(&self.elem) >= EPS_LEN) || self.comp_open()
     }
 
-    /// A compensated element whose end is still open.
+    /// A compensated move whose end is still open.
     fn comp_open(&self) -> bool {
-        self.comp.as_ref().is_some_and(Leg::waits) && elem::length(&self.elem) >= EPS_LEN
+        self.comp.as_ref().is_some_and(|l| l.open(&self.elem))
     }
 }
 
