@@ -2,6 +2,10 @@
 //! (from the file or from library folders), checks it and lowers it to a
 //! verified `.gbc` module.
 
+// Errors here are diagnostics, built once per faulty block on the cold
+// path: their size does not matter, boxing them would only add noise.
+#![allow(clippy::result_large_err)]
+
 pub mod calls;
 pub mod check;
 pub mod codes;

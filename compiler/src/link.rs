@@ -92,7 +92,7 @@ fn has_words(unit: &Unit, lines: &[usize]) -> bool {
 }
 
 /// The block of a program's i-th entry.
-pub fn block<'a>(unit: &'a Unit, line: usize) -> Option<&'a Block> {
+pub fn block(unit: &Unit, line: usize) -> Option<&Block> {
     match unit.ast.lines.get(line) {
         Some(Line::Block(b)) => Some(b),
         _ => None,

@@ -142,7 +142,7 @@ fn arg_var_i(letter: char) -> Option<u8> {
 /// Splits a block's words.
 pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
     let first_g = words.iter().find(|w| is(w, 'G'));
-    let g65_like = first_g.and_then(|w| literal_code(w)).map(round_g);
+    let g65_like = first_g.and_then(literal_code).map(round_g);
     if let Some(g) = g65_like.filter(|g| *g == 650 || *g == 660) {
         return macro_call(words, g == 660);
     }
