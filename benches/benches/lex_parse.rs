@@ -117,12 +117,21 @@ fn lex_parse(c: &mut Criterion) {
         corpus.split(|&b| b == b'\n').count(),
     );
 
+    // Both parsers must accept the generated text, or the race means nothing.
+    for (name, src) in [("moves", &plain), ("macros", &mixed)] {
+        let (ast, diags) = grammar::parse(src.as_bytes());
+        assert!(diags.is_empty(), "{name}: {:?}", diags.first());
+        assert_eq!(ast.lines.len(), BLOCKS + 4, "{name}");
+    }
+    let program = gcode::parse(&plain).expect("gcode accepts the generated moves");
+    assert!(program.blocks.len() >= BLOCKS);
+
     let mut group = c.benchmark_group("lex_parse");
     group
         .sample_size(10)
         .sampling_mode(SamplingMode::Flat)
-        .warm_up_time(Duration::from_millis(500))
-        .measurement_time(Duration::from_secs(4));
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2));
 
     group.throughput(Throughput::Bytes(plain.len() as u64));
     group.bench_with_input(BenchmarkId::new("grammar", "moves_1M"), &plain, |b, src| {
