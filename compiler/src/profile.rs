@@ -148,6 +148,9 @@ pub fn block_start(gen: &mut Gen<'_>, line: usize) {
     let pc = gen.pc();
     gen.profiles.current = Some(key);
     gen.profiles.starts.insert(key, pc);
+    if gen.profiles.pending.is_empty() {
+        return;
+    }
     let pending = std::mem::take(&mut gen.profiles.pending);
     let (due, wait): (Vec<_>, Vec<_>) = pending.into_iter().partition(|&(_, t)| t == Some(line));
     gen.profiles.pending = wait;

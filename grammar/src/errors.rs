@@ -170,7 +170,8 @@ impl<'a> Fault<'a> {
     fn letter_run(&self, i: usize) -> (usize, usize) {
         let adjacent = |a: usize, b: usize| self.toks[a].2 == self.toks[b].0;
         let is_letter = |k: usize| self.toks.get(k).is_some_and(|t| t.1.is_letter());
-        let is_word = |k: usize| matches!(self.toks.get(k), Some((_, Tok::Word(_) | Tok::Seq(_), _)));
+        let is_word =
+            |k: usize| matches!(self.toks.get(k), Some((_, Tok::Word(_) | Tok::Seq(_), _)));
         let mut start = i;
         while start > 0 && is_letter(start - 1) && adjacent(start - 1, start) {
             start -= 1;
@@ -283,7 +284,10 @@ impl<'a> Fault<'a> {
                 return match next {
                     None => Diagnostic::error("E1007", here, "`N` has no value")
                         .with_label("a sequence number needs digits"),
-                    Some(&(l, t, _)) if l == self.toks[at].2 && (t.is_letter() || matches!(t, Tok::Word(_) | Tok::Seq(_))) => {
+                    Some(&(l, t, _))
+                        if l == self.toks[at].2
+                            && (t.is_letter() || matches!(t, Tok::Word(_) | Tok::Seq(_))) =>
+                    {
                         match self.letter_fault(at + 1) {
                             Some(d) => d,
                             None => Diagnostic::error("E1007", here, "`N` has no value"),
@@ -401,14 +405,10 @@ impl<'a> Fault<'a> {
         }
 
         if kind == Kind::Words && self.depth(at) == 0 {
-            if let Some(d) = self.word_fault(at) {
-                return d;
-            }
-        }
-
-        if kind == Kind::Words && self.depth(at) == 0 {
-            return Diagnostic::error("E1008", here, format!("unexpected {described}"))
-                .with_label("not a word");
+            return self.word_fault(at).unwrap_or_else(|| {
+                Diagnostic::error("E1008", here, format!("unexpected {described}"))
+                    .with_label("not a word")
+            });
         }
         Diagnostic::error(
             "E1014",

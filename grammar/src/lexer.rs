@@ -1,6 +1,7 @@
-//! Tokens of one block, lexed with logos from the block's compacted text
-//! (blanks and comments already taken out by [`crate::compact`]), with
-//! their spans mapped back to offsets in the original source.
+//! Tokens of one block, lexed with logos from the text [`crate::compact`]
+//! hands over (comments taken out, blanks removed wherever they stood
+//! inside a token; the others are skipped here), with their spans mapped
+//! back to offsets in the original source.
 //!
 //! Keywords win by longest match, so `DO1` is a loop and `D01` a word,
 //! `GOTO` is not `G` + `OTO`, and `ANDSIN` is `AND` `SIN`. A letter followed
@@ -47,8 +48,6 @@ pub struct RunRef {
     pub len: u32,
 }
 
-/// A token. `N` and `O` are tokens of their own because the grammar treats
-/// them apart from the other address letters (sequence and program numbers).
 /// Why logos could not make a token.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum LexError {
@@ -59,6 +58,8 @@ pub enum LexError {
     Number,
 }
 
+/// A token. `N` and `O` are tokens of their own because the grammar treats
+/// them apart from the other address letters (sequence and program numbers).
 #[derive(Logos, Debug, Clone, Copy, PartialEq)]
 #[logos(utf8 = false, error = LexError)]
 // Blanks reach the lexer only where they separate tokens (compact.rs).
@@ -352,7 +353,7 @@ fn lex_into(
         let tok = match next {
             Ok(Tok::Word(mut w)) => {
                 w.value_start = map.start(range.start + 1) as u32;
-                let after_comma = matches!(out.last(), Some((_, Tok::Comma, _)));
+                let after_comma = matches!(out[first..].last(), Some((_, Tok::Comma, _)));
                 check_word(w, after_comma, start, end)?;
                 Tok::Word(w)
             }
@@ -405,7 +406,7 @@ fn lex_into(
             Tok::RBrack => depth = depth.saturating_sub(1),
             // A sign or `#` right after an address is part of a word value
             // and cannot nest.
-            Tok::Plus | Tok::Minus | Tok::Hash if !matches!(out.last(), Some((_, t, _)) if t.is_letter() || *t == Tok::Comma) =>
+            Tok::Plus | Tok::Minus | Tok::Hash if !matches!(out[first..].last(), Some((_, t, _)) if t.is_letter() || *t == Tok::Comma) =>
             {
                 operators += 1;
             }
@@ -475,7 +476,6 @@ fn bad_char(byte: u8, start: usize, end: usize) -> Diagnostic {
     match byte {
         b'%' => Diagnostic::error("E1001", span, "`%` is only allowed alone on its own line")
             .with_label("not allowed here"),
-        b')' => Diagnostic::error("E1002", span, "`)` without `(`").with_label("no comment open"),
         _ => Diagnostic::error(
             "E1001",
             span,

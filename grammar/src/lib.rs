@@ -1,7 +1,10 @@
 //! The front end of gbc: bytes in, syntax tree and diagnostics out.
 //!
-//! [`parse`] is the only entry point; how it works (blank removal, a logos
-//! lexer, one LALRPOP parse per block) can change behind it.
+//! [`parse`] is the only entry point; how it works can change behind it.
+//! Today: `compact` cuts lines into blocks and removes blanks and comments,
+//! `lexer` (logos) makes tokens with source spans, `grammar.lalrpop` (with
+//! `parser`) parses blocks in batches, `errors` turns a parse failure into
+//! a diagnostic, and `driver` ties them together and applies the line rules.
 
 pub mod ast;
 pub mod diag;

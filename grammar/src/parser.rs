@@ -166,6 +166,17 @@ pub(crate) mod actions {
         })
     }
 
+    /// The literal number of a variable: digits only (`#1.5` is no variable).
+    pub fn index(n: Number) -> R<Expr> {
+        if n.has_point {
+            return fail(
+                Diagnostic::error("E1014", n.span, "variable number with a decimal point")
+                    .with_label("`#` takes digits, `#n`, or `[expr]`"),
+            );
+        }
+        Ok(Expr::Num(n))
+    }
+
     pub fn unary(op: UnOp, operand: Expr, span: Span) -> Expr {
         Expr::Unary {
             op,

@@ -51,11 +51,25 @@ const TABLE: &[(u8, &[Code])] = &[
 
 /// The modal group of a code of the dialect, `None` for an unknown one.
 pub fn group(code: Code) -> Option<u8> {
-    TABLE
-        .iter()
-        .find(|(_, codes)| codes.contains(&code))
-        .map(|(g, _)| *g)
+    // A direct table by code: this runs for every G word of every block.
+    GROUP_OF.get(code as usize).copied().flatten()
 }
+
+/// Codes go up to G99.9 (999); the table is built once at compile time.
+const GROUP_OF: [Option<u8>; 1000] = {
+    let mut t = [None; 1000];
+    let mut i = 0;
+    while i < TABLE.len() {
+        let (g, codes) = TABLE[i];
+        let mut j = 0;
+        while j < codes.len() {
+            t[codes[j] as usize] = Some(g);
+            j += 1;
+        }
+        i += 1;
+    }
+    t
+};
 
 /// The power-on code of each group (machine.md §1), `None` for one-shot.
 pub fn power_on(group: u8) -> Option<Code> {
