@@ -10,7 +10,11 @@ use std::time::Duration;
 
 fn words(list: &[(u8, f64)]) -> Vec<Word> {
     list.iter()
-        .map(|&(l, v)| Word { addr: addr(l), value: v, flags: LITERAL | if v.fract() == 0.0 { NO_POINT } else { 0 } })
+        .map(|&(l, v)| Word {
+            addr: addr(l),
+            value: v,
+            flags: LITERAL | if v.fract() == 0.0 { NO_POINT } else { 0 },
+        })
         .collect()
 }
 
@@ -44,7 +48,14 @@ fn run_g71(profile: &[Vec<Word>]) -> u64 {
     for (i, b) in profile.iter().enumerate() {
         nc.push_profile(b, i as u32);
     }
-    let cycle = words(&[(b'G', 71.0), (b'P', 10.0), (b'Q', 20.0), (b'U', 0.4), (b'W', 0.1), (b'F', 0.25)]);
+    let cycle = words(&[
+        (b'G', 71.0),
+        (b'P', 10.0),
+        (b'Q', 20.0),
+        (b'U', 0.4),
+        (b'W', 0.1),
+        (b'F', 0.25),
+    ]);
     nc.exec(&cycle, &mut sink).expect("G71 runs");
     sink.0
 }
@@ -58,7 +69,14 @@ fn run_g76() -> u64 {
         // m = 2 finishing passes, 45° angle at 0 pull-out … Δdmin 20 µm.
         words(&[(b'G', 76.0), (b'P', 20060.0), (b'Q', 20.0), (b'R', 0.02)]),
         // k = 2.45 mm, Δd = 0.35 mm: (2.45 − 0.02)/0.35 squared ≈ 48 rough passes.
-        words(&[(b'G', 76.0), (b'X', 25.1), (b'Z', -40.0), (b'P', 2450.0), (b'Q', 350.0), (b'F', 4.0)]),
+        words(&[
+            (b'G', 76.0),
+            (b'X', 25.1),
+            (b'Z', -40.0),
+            (b'P', 2450.0),
+            (b'Q', 350.0),
+            (b'F', 4.0),
+        ]),
     ];
     for b in &blocks {
         nc.exec(b, &mut sink).expect("G76 runs");
@@ -71,9 +89,13 @@ fn cycles(c: &mut Criterion) {
     let legs = run_g71(&profile);
     let threads = run_g76();
     let mut g = c.benchmark_group("cycles");
-    g.sample_size(20).measurement_time(Duration::from_secs(5)).warm_up_time(Duration::from_secs(1));
+    g.sample_size(20)
+        .measurement_time(Duration::from_secs(5))
+        .warm_up_time(Duration::from_secs(1));
     g.throughput(Throughput::Elements(legs));
-    g.bench_function("g71_100_block_profile_legs", |b| b.iter(|| run_g71(&profile)));
+    g.bench_function("g71_100_block_profile_legs", |b| {
+        b.iter(|| run_g71(&profile))
+    });
     g.throughput(Throughput::Elements(threads));
     g.bench_function("g76_about_50_passes_events", |b| b.iter(run_g76));
     g.finish();

@@ -2,8 +2,8 @@
 //! cycles are resolved — what the machine is really told to do, block by
 //! block, with absolute coordinates and the source block as a comment.
 
-use nc::event::{Dir, SpindleDir, StopKind};
 use nc::event::Num;
+use nc::event::{Dir, SpindleDir, StopKind};
 use nc::Event;
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -23,7 +23,14 @@ pub struct Expand {
 
 impl Expand {
     pub fn new(seqs: HashMap<u32, u32>) -> Expand {
-        Expand { out: String::new(), seqs, line: 0, last_line: 0, at: (0.0, 0.0), feed: None }
+        Expand {
+            out: String::new(),
+            seqs,
+            line: 0,
+            last_line: 0,
+            at: (0.0, 0.0),
+            feed: None,
+        }
     }
 
     fn origin_comment(&mut self) -> String {
@@ -77,7 +84,13 @@ impl Expand {
                 let (i, k) = ((cx - self.at.0) / 2.0, cz - self.at.1);
                 format!("{g} X{} Z{} I{} K{}", n(*x), n(*z), n(i), n(k))
             }
-            Event::Thread { x, z, lead, dlead, q } => {
+            Event::Thread {
+                x,
+                z,
+                lead,
+                dlead,
+                q,
+            } => {
                 let mut s = match dlead {
                     Some(d) => format!("G34 X{} Z{} F{} R{}", n(*x), n(*z), n(*lead), n(*d)),
                     None => format!("G32 X{} Z{} F{}", n(*x), n(*z), n(*lead)),
@@ -92,8 +105,19 @@ impl Expand {
                 let m = self.mode(*f, *per_rev);
                 format!("{m}F{}", n(*f))
             }
-            Event::Speed { s, css, max: Some(m) } => format!("G50 S{} ({} S{})", n(*m), if *css { "G96" } else { "G97" }, n(*s)),
-            Event::Speed { s, css, max: None } => format!("{} S{}", if *css { "G96" } else { "G97" }, n(*s)),
+            Event::Speed {
+                s,
+                css,
+                max: Some(m),
+            } => format!(
+                "G50 S{} ({} S{})",
+                n(*m),
+                if *css { "G96" } else { "G97" },
+                n(*s)
+            ),
+            Event::Speed { s, css, max: None } => {
+                format!("{} S{}", if *css { "G96" } else { "G97" }, n(*s))
+            }
             Event::Spindle(d) => match d {
                 SpindleDir::Cw => "M03".into(),
                 SpindleDir::Ccw => "M04".into(),

@@ -11,11 +11,19 @@ fn dir(tag: &str) -> PathBuf {
 }
 
 fn gbcc(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gbcc")).args(args).current_dir(cwd).output().unwrap()
+    Command::new(env!("CARGO_BIN_EXE_gbcc"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
 }
 
 fn gbvm(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gbvm")).args(args).current_dir(cwd).output().unwrap()
+    Command::new(env!("CARGO_BIN_EXE_gbvm"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
 }
 
 fn text(b: &[u8]) -> String {
@@ -31,7 +39,10 @@ fn compile_and_run_with_the_default_output_name() {
     assert!(d.join("part.gbc").exists());
     let run = gbvm(&["run", "part.gbc", "--emit", "canon"], &d);
     assert_eq!(run.status.code(), Some(0));
-    assert_eq!(text(&run.stdout), "RAPID X=10 Z=2\nFEED F=100 MODE=MIN\nLINE X=10 Z=-5\nSTOP KIND=M30\n");
+    assert_eq!(
+        text(&run.stdout),
+        "RAPID X=10 Z=2\nFEED F=100 MODE=MIN\nLINE X=10 Z=-5\nSTOP KIND=M30\n"
+    );
     assert_eq!(gbvm(&["verify", "part.gbc"], &d).status.code(), Some(0));
     assert!(text(&gbvm(&["disasm", "part.gbc"], &d).stdout).contains("exec"));
 }
@@ -46,7 +57,12 @@ fn errors_exit_1_with_gcc_style_headers_and_json_on_request() {
     assert!(err.starts_with("bad.nc:2:1: error[E2012]: "), "{err}");
     let json = gbcc(&["bad.nc", "-fdiagnostics-format=json"], &d);
     let line = text(&json.stderr);
-    assert!(line.contains("\"line\":2") && line.contains("\"code\":\"E2012\"") && line.contains("\"file\":\"bad.nc\""), "{line}");
+    assert!(
+        line.contains("\"line\":2")
+            && line.contains("\"code\":\"E2012\"")
+            && line.contains("\"file\":\"bad.nc\""),
+        "{line}"
+    );
     std::fs::write(d.join("syntax.nc"), "G00 X1.2.3\n").unwrap();
     let s = gbcc(&["syntax.nc", "-fsyntax-only"], &d);
     assert_eq!(s.status.code(), Some(1));
@@ -57,7 +73,10 @@ fn errors_exit_1_with_gcc_style_headers_and_json_on_request() {
 fn usage_errors_exit_2() {
     let d = dir("usage");
     assert_eq!(gbcc(&[], &d).status.code(), Some(2));
-    assert_eq!(gbcc(&["x.nc", "-fno-such-thing"], &d).status.code(), Some(2));
+    assert_eq!(
+        gbcc(&["x.nc", "-fno-such-thing"], &d).status.code(),
+        Some(2)
+    );
     assert_eq!(gbvm(&["run"], &d).status.code(), Some(2));
 }
 
@@ -68,8 +87,16 @@ fn run_time_alarms_exit_2_and_name_the_block() {
     assert_eq!(gbcc(&["a.nc"], &d).status.code(), Some(0));
     let run = gbvm(&["run", "a.gbc"], &d);
     assert_eq!(run.status.code(), Some(2));
-    assert!(text(&run.stdout).lines().last().unwrap_or("").starts_with("ALARM CODE=5002 MSG="));
-    assert!(text(&run.stderr).starts_with("a.nc:2:1: alarm[E5002]: "), "{}", text(&run.stderr));
+    assert!(text(&run.stdout)
+        .lines()
+        .last()
+        .unwrap_or("")
+        .starts_with("ALARM CODE=5002 MSG="));
+    assert!(
+        text(&run.stderr).starts_with("a.nc:2:1: alarm[E5002]: "),
+        "{}",
+        text(&run.stderr)
+    );
 }
 
 #[test]
@@ -89,8 +116,17 @@ fn damaged_and_mismatched_modules_are_refused_with_exit_1() {
     }
     // Compiled for the reference machine, run on one with another decimal
     // point mode: the meaning would change, so it is refused.
-    std::fs::write(d.join("inc.toml"), "[machine]\ndecimal_point = \"increment\"\n").unwrap();
-    assert_eq!(gbvm(&["run", "p.gbc", "--machine", "inc.toml"], &d).status.code(), Some(1));
+    std::fs::write(
+        d.join("inc.toml"),
+        "[machine]\ndecimal_point = \"increment\"\n",
+    )
+    .unwrap();
+    assert_eq!(
+        gbvm(&["run", "p.gbc", "--machine", "inc.toml"], &d)
+            .status
+            .code(),
+        Some(1)
+    );
 }
 
 #[test]
@@ -100,11 +136,18 @@ fn max_blocks_and_repeat() {
     assert_eq!(gbcc(&["loop.nc"], &d).status.code(), Some(0));
     let run = gbvm(&["run", "loop.gbc", "--max-blocks", "10"], &d);
     assert_eq!(run.status.code(), Some(2));
-    assert!(text(&run.stdout).lines().last().unwrap_or("").starts_with("ALARM CODE=6005"));
+    assert!(text(&run.stdout)
+        .lines()
+        .last()
+        .unwrap_or("")
+        .starts_with("ALARM CODE=6005"));
     std::fs::write(d.join("m99.nc"), "G00 U2\nM99\n").unwrap();
     assert_eq!(gbcc(&["m99.nc"], &d).status.code(), Some(0));
     let run = gbvm(&["run", "m99.gbc", "--repeat", "3"], &d);
-    assert_eq!(text(&run.stdout), "RAPID X=2 Z=0\nRAPID X=4 Z=0\nRAPID X=6 Z=0\nSTOP KIND=M99\n");
+    assert_eq!(
+        text(&run.stdout),
+        "RAPID X=2 Z=0\nRAPID X=4 Z=0\nRAPID X=6 Z=0\nSTOP KIND=M99\n"
+    );
 }
 
 #[test]
@@ -112,8 +155,15 @@ fn defines_and_expansion() {
     let d = dir("define");
     std::fs::write(d.join("d.nc"), "G00 X#100 Z[#100/2]\nM30\n").unwrap();
     assert_eq!(gbcc(&["d.nc", "-D", "#100=8"], &d).status.code(), Some(0));
-    assert_eq!(text(&gbvm(&["run", "d.gbc"], &d).stdout), "RAPID X=8 Z=4\nSTOP KIND=M30\n");
+    assert_eq!(
+        text(&gbvm(&["run", "d.gbc"], &d).stdout),
+        "RAPID X=8 Z=4\nSTOP KIND=M30\n"
+    );
     let e = gbcc(&["d.nc", "-E", "-D", "#100=8"], &d);
     assert_eq!(e.status.code(), Some(0));
-    assert!(text(&e.stdout).starts_with("G00 X8 Z4 (LINE 1)\n"), "{}", text(&e.stdout));
+    assert!(
+        text(&e.stdout).starts_with("G00 X8 Z4 (LINE 1)\n"),
+        "{}",
+        text(&e.stdout)
+    );
 }

@@ -161,7 +161,9 @@ fn macro_call(
     for a in args {
         let value = match a.value {
             // In increment mode a length without a point is in 0.001 mm.
-            WordValue::Literal(v, flags) if increment && a.length && flags & nc::words::NO_POINT != 0 => {
+            WordValue::Literal(v, flags)
+                if increment && a.length && flags & nc::words::NO_POINT != 0 =>
+            {
                 WordValue::Literal(v * 0.001, flags)
             }
             v => v,

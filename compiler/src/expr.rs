@@ -201,7 +201,11 @@ impl ExprGen {
 
     fn node(&mut self, g: &mut Gen<'_>, e: &Expr) -> u8 {
         if g.optimize || matches!(e, Expr::Num(_)) {
-            let folded = if g.optimize { fold_with(e, &self.known) } else { fold(e) };
+            let folded = if g.optimize {
+                fold_with(e, &self.known)
+            } else {
+                fold(e)
+            };
             if let Some(Ok(v)) = folded {
                 return self.load_const(g, v);
             }

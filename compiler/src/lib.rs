@@ -200,7 +200,11 @@ fn link_libraries(
     dirs.extend(opts.machine.r#macro.library_dirs.iter().map(PathBuf::from));
     let mut i = 0;
     while i < programs.len() {
-        let wanted = targets(&units[programs[i].unit], &programs[i], &opts.machine.r#macro.g_code_macros);
+        let wanted = targets(
+            &units[programs[i].unit],
+            &programs[i],
+            &opts.machine.r#macro.g_code_macros,
+        );
         for number in wanted {
             if programs.iter().any(|p| p.number == number) {
                 continue;

@@ -54,7 +54,12 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
                 // into the first program.
                 let leading = std::mem::take(&mut before_first_o);
                 let blocks = if programs.is_empty() && has_words(unit, &leading) {
-                    programs.push(Program { number: 0, unit: unit_index, blocks: leading, span: Span::default() });
+                    programs.push(Program {
+                        number: 0,
+                        unit: unit_index,
+                        blocks: leading,
+                        span: Span::default(),
+                    });
                     Vec::new()
                 } else {
                     leading
@@ -85,10 +90,13 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
 }
 
 fn has_words(unit: &Unit, lines: &[usize]) -> bool {
-    lines.iter().filter_map(|&l| block(unit, l)).any(|b| match &b.body {
-        Body::Words(ws) => !ws.is_empty(),
-        Body::Stmt(_) => true,
-    })
+    lines
+        .iter()
+        .filter_map(|&l| block(unit, l))
+        .any(|b| match &b.body {
+            Body::Words(ws) => !ws.is_empty(),
+            Body::Stmt(_) => true,
+        })
 }
 
 /// The block of a program's i-th entry.

@@ -215,8 +215,19 @@ impl<'a> Gen<'a> {
             .map_or(prog.span, |b| b.span);
         self.set_loc(end_span);
         if !ends_explicitly(unit, prog) {
-            let what = if main { "the main program ends" } else { "the subprogram returns as if M99" };
-            self.warn("W101", end_span, format!("O{:04} runs off its last block without M02, M30 or M99: {what}", prog.number));
+            let what = if main {
+                "the main program ends"
+            } else {
+                "the subprogram returns as if M99"
+            };
+            self.warn(
+                "W101",
+                end_span,
+                format!(
+                    "O{:04} runs off its last block without M02, M30 or M99: {what}",
+                    prog.number
+                ),
+            );
         }
         crate::profile::program_end(self, prog);
         let ends = matches!(self.module.code.last(), Some(Instr::Ret | Instr::Halt))
@@ -509,7 +520,11 @@ impl<'a> Gen<'a> {
                     Some(v) if v.is_nan() => {}
                     Some(v) => {
                         let k = self.konst(v);
-                        self.emit(Instr::WordK { addr: w.addr, k, flags: 0 });
+                        self.emit(Instr::WordK {
+                            addr: w.addr,
+                            k,
+                            flags: 0,
+                        });
                     }
                     None => {
                         if let Some(src) = self.expr_reg(e) {
@@ -543,14 +558,22 @@ impl<'a> Gen<'a> {
     /// W113: an M code that the reference PLC table does not list.
     fn warn_unlisted_m(&mut self, split: &words::Split<'_>) {
         const LISTED: &[u32] = &[
-            0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13, 14, 15, 20, 21, 24, 25, 29, 30, 32, 33, 41, 42, 43, 44, 50, 51,
-            52, 53, 54, 55, 56, 57, 58, 63, 64, 65,
+            0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13, 14, 15, 20, 21, 24, 25, 29, 30, 32, 33, 41, 42,
+            43, 44, 50, 51, 52, 53, 54, 55, 56, 57, 58, 63, 64, 65,
         ];
         for w in &split.nc {
-            let (true, WordValue::Literal(v, _)) = (w.addr == b'M' - b'A', w.value) else { continue };
+            let (true, WordValue::Literal(v, _)) = (w.addr == b'M' - b'A', w.value) else {
+                continue;
+            };
             let m = nc::block::round_half_away(v);
             if (0.0..9000.0).contains(&m) && !LISTED.contains(&(m as u32)) {
-                self.warn("W113", w.span, format!("M{m} is not in the reference PLC table; it is handed to the PLC as it is"));
+                self.warn(
+                    "W113",
+                    w.span,
+                    format!(
+                        "M{m} is not in the reference PLC table; it is handed to the PLC as it is"
+                    ),
+                );
             }
         }
     }
@@ -574,10 +597,16 @@ impl<'a> Gen<'a> {
 
 /// Does the program's last block end it (M02, M30, M99 or a GOTO)?
 fn ends_explicitly(unit: &Unit, prog: &Program) -> bool {
-    let Some(last) = prog.blocks.iter().rev().filter_map(|&l| link::block(unit, l)).find(|b| match &b.body {
-        Body::Words(ws) => !ws.is_empty(),
-        Body::Stmt(_) => true,
-    }) else {
+    let Some(last) = prog
+        .blocks
+        .iter()
+        .rev()
+        .filter_map(|&l| link::block(unit, l))
+        .find(|b| match &b.body {
+            Body::Words(ws) => !ws.is_empty(),
+            Body::Stmt(_) => true,
+        })
+    else {
         return false;
     };
     match &last.body {

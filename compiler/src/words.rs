@@ -214,7 +214,11 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
 /// (O9010–O9019, dialect.md §7.10): the call, like G65 with P = the
 /// program. Not inside O9010–O9019 themselves (no recursion), and never for
 /// a standard G code.
-pub fn g_code_macro<'a>(words: &'a [Word], table: &[u32; 10], program: u32) -> Option<Result<Split<'a>, Diagnostic>> {
+pub fn g_code_macro<'a>(
+    words: &'a [Word],
+    table: &[u32; 10],
+    program: u32,
+) -> Option<Result<Split<'a>, Diagnostic>> {
     if (9010..=9019).contains(&program) {
         return None;
     }
@@ -320,7 +324,11 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
                     ));
                 }
                 let var = 4 + 3 * (ijk[k] - 1) + k as u8;
-                args.push(Arg { var, value: value_of(w), length: true });
+                args.push(Arg {
+                    var,
+                    value: value_of(w),
+                    length: true,
+                });
             }
             c => {
                 let i = (c as u8 - b'A') as usize;
@@ -333,8 +341,15 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
                 }
                 seen[i] = true;
                 if let Some(var) = arg_var_i(c) {
-                    let length = matches!(c, 'A' | 'B' | 'C' | 'E' | 'R' | 'U' | 'V' | 'W' | 'X' | 'Y' | 'Z');
-                    args.push(Arg { var, value: value_of(w), length });
+                    let length = matches!(
+                        c,
+                        'A' | 'B' | 'C' | 'E' | 'R' | 'U' | 'V' | 'W' | 'X' | 'Y' | 'Z'
+                    );
+                    args.push(Arg {
+                        var,
+                        value: value_of(w),
+                        length,
+                    });
                 }
             }
         }

@@ -122,7 +122,10 @@ fn machine_for(file: &str, features: &str) -> Machine {
 fn outcome(path: &Path, machine: &Machine) -> Expect {
     let bytes = std::fs::read(path).expect("readable");
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
-    let opts = Options { machine: machine.clone(), ..Options::default() };
+    let opts = Options {
+        machine: machine.clone(),
+        ..Options::default()
+    };
     let c = compile(name, &bytes, &opts);
     if let Some((f, d)) = c.diags.iter().find(|(_, d)| d.is_error()) {
         return Rejected(d.code, c.files[*f].line_col(d.span.start).0);
@@ -157,6 +160,16 @@ fn every_corpus_program_runs_or_is_rejected_for_its_real_problem() {
             wrong.push(format!("{file}: expected {want:?} ({why}), got {got:?}"));
         }
     }
-    assert_eq!(seen, TABLE.len(), "the table names files the manifest does not");
-    assert!(wrong.is_empty(), "{} of {} differ:\n{}", wrong.len(), seen, wrong.join("\n"));
+    assert_eq!(
+        seen,
+        TABLE.len(),
+        "the table names files the manifest does not"
+    );
+    assert!(
+        wrong.is_empty(),
+        "{} of {} differ:\n{}",
+        wrong.len(),
+        seen,
+        wrong.join("\n")
+    );
 }

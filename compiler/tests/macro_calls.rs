@@ -5,7 +5,10 @@ use nc::{Event, Machine};
 use vm::{Status, Vm};
 
 fn run_with(src: &str, machine: Machine) -> (Vec<String>, Status) {
-    let opts = Options { machine: machine.clone(), ..Options::default() };
+    let opts = Options {
+        machine: machine.clone(),
+        ..Options::default()
+    };
     let c = compile("m.nc", src.as_bytes(), &opts);
     assert!(!c.has_errors(), "{}", c.render());
     let mut vm = Vm::new(c.module.expect("module"), machine);
@@ -35,14 +38,23 @@ fn g65_gives_a_fresh_local_level_and_m98_shares_it() {
     let src = "#1=7\nG65 P0001 A1\nG00 X#1\nM98 P0002\nG00 X#1\nM30\nO0001\nG00 X[#1*10] Z#2\nM99\nO0002\n#1=9\nM99\n";
     let (canon, _) = run(src);
     // Z#2 is vacant in the macro, so the word is left out (Z stays 0).
-    assert_eq!(canon, ["RAPID X=10 Z=0", "RAPID X=7 Z=0", "RAPID X=9 Z=0", "STOP KIND=M30"]);
+    assert_eq!(
+        canon,
+        [
+            "RAPID X=10 Z=0",
+            "RAPID X=7 Z=0",
+            "RAPID X=9 Z=0",
+            "STOP KIND=M30"
+        ]
+    );
 }
 
 #[test]
 fn g66_calls_after_every_move_until_g67() {
     // Each move is followed by the macro, which dwells #17 ms: the argument
     // Q lands in #17 (P names the program). M08 alone does not move.
-    let src = "G66 P9002 Q250\nG00 X10\nG01 Z-5 F100\nM08\nG67\nG00 X20\nM30\nO9002\nG04 P#17\nM99\n";
+    let src =
+        "G66 P9002 Q250\nG00 X10\nG01 Z-5 F100\nM08\nG67\nG00 X20\nM30\nO9002\nG04 P#17\nM99\n";
     let (canon, _) = run(src);
     assert_eq!(
         canon,
@@ -68,7 +80,8 @@ fn m9000_codes_call_o9000_programs() {
 
 #[test]
 fn g_code_macros_call_o9010_onwards() {
-    let m = Machine::from_toml("[macro]\ng_code_macros = [0, 150, 0, 0, 0, 0, 0, 0, 0, 0]\n").expect("machine");
+    let m = Machine::from_toml("[macro]\ng_code_macros = [0, 150, 0, 0, 0, 0, 0, 0, 0, 0]\n")
+        .expect("machine");
     // №087 = 150 → G150 calls O9011 with A → #1.
     let src = "G150 A12\nM30\nO9011\nG00 X#1\nM99\n";
     let (canon, _) = run_with(src, m);
@@ -80,7 +93,9 @@ fn the_fifth_macro_level_is_e6004() {
     // Each level calls the next: levels 1–4 print, the fifth call alarms.
     let src = "G65 P1\nM30\nO1\nG00 W-1\nG65 P2\nM99\nO2\nG00 W-1\nG65 P3\nM99\nO3\nG00 W-1\nG65 P4\nM99\nO4\nG00 W-1\nG65 P5\nM99\nO5\nG00 W-1\nM99\n";
     let (canon, status) = run(src);
-    let Status::Alarm(a) = status else { panic!("{status:?}") };
+    let Status::Alarm(a) = status else {
+        panic!("{status:?}")
+    };
     assert_eq!(a.code, 6004);
     assert_eq!(canon.iter().filter(|l| l.starts_with("RAPID")).count(), 4);
 }
