@@ -371,7 +371,13 @@ impl Nc {
     /// The end point of a move: X/Z absolute, U/W incremental, axes left
     /// out keep their coordinate.
     pub(crate) fn target(&self, p: &Parsed) -> Pt {
-        let mut t = self.st.pos;
+        self.target_from(p, self.st.pos)
+    }
+
+    /// The end point of a move that starts at `from` (a profile block's U/W
+    /// are relative to the previous profile point, not to the tool).
+    pub(crate) fn target_from(&self, p: &Parsed, from: Pt) -> Pt {
+        let mut t = from;
         if let Some(x) = self.len_of(p, b'X') {
             t.r = x / 2.0;
         } else if let Some(u) = self.len_of(p, b'U') {

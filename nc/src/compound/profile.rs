@@ -168,26 +168,10 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
     Ok(())
 }
 
-/// The end point of a profile block: U/W are relative to the previous
-/// profile point.
-fn target(nc: &Nc, p: &Parsed, from: Pt) -> Pt {
-    let mut t = from;
-    if let Some(x) = nc.len_of(p, b'X') {
-        t.r = x / 2.0;
-    } else if let Some(u) = nc.len_of(p, b'U') {
-        t.r += u / 2.0;
-    }
-    if let Some(z) = nc.len_of(p, b'Z') {
-        t.z = z;
-    } else if let Some(w) = nc.len_of(p, b'W') {
-        t.z += w;
-    }
-    t
-}
 
 /// The element one profile block describes, `None` when it does not move.
 fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>, NcError> {
-    let to = target(nc, p, from);
+    let to = nc.target_from(p, from);
     match code {
         0 | 10 => {
             let Some(deg) = contour::angle_of(p) else {
