@@ -1,16 +1,21 @@
 //! The interpolation runtime (`runtime` crate): planning throughput
-//! alone, parse + VM + plan end to end, and the cost of one interpolation
-//! period, on generated short-segment and arc-heavy programs.
+//! alone (`plan`), parse + VM + plan end to end (`parse_vm_plan`), the
+//! same from a compiled module (`vm_plan`), and the cost of one
+//! interpolation period (`period`), on generated short-segment and
+//! arc-heavy programs.
 //!
 //! Targets: plan ≥ 5 M blocks/s, end to end ≥ 1 M blocks/s, one period
-//! ≤ 100 ns mean. The worst single period seen is printed on stderr.
+//! ≤ 100 ns mean. The distribution of single periods (worst included)
+//! is printed on stderr.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput};
+use criterion::{
+    criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput,
+};
 use runtime::command::{Command, Move, MoveKind, Path, Tag};
 use runtime::math::V2;
 use runtime::planner::Planner;
 use runtime::translate::Translator;
-use runtime::{AutoAck, Config, Engine, RunState};
+use runtime::{AutoAck, Config, Engine};
 use std::fmt::Write;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -21,7 +26,10 @@ struct Lcg(u64);
 
 impl Lcg {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         self.0 >> 33
     }
     fn unit(&mut self) -> f64 {
@@ -108,11 +116,12 @@ fn plan_all(p: &mut Planner, cmds: &[Command]) -> usize {
             let _ = p.push(c, tag);
         }
     }
+    p.replan();
     p.len()
 }
 
-/// Parse + compile + VM + translation + planning of a whole program.
-fn end_to_end(src: &str, p: &mut Planner) -> usize {
+/// VM + translation + planning of a compiled program.
+fn vm_plan(module: isa::Module, p: &mut Planner) -> usize {
     struct Plan<'a> {
         t: Translator,
         p: &'a mut Planner,
@@ -135,13 +144,25 @@ fn end_to_end(src: &str, p: &mut Planner) -> usize {
         }
     }
     let machine = nc::Machine::reference();
-    let mut vm = vm::Vm::new(module(src), machine.clone());
+    let mut vm = vm::Vm::new(module, machine.clone());
     p.clear();
     p.set_tail(V2::ZERO);
     let st = vm.nc.st.clone();
-    let mut sink = Plan { t: Translator::new(V2::ZERO), p, st, m: machine, buf: Vec::new() };
+    let mut sink = Plan {
+        t: Translator::new(V2::ZERO),
+        p,
+        st,
+        m: machine,
+        buf: Vec::new(),
+    };
     let _ = vm.run(&mut sink);
+    sink.p.replan();
     sink.p.len()
+}
+
+/// Parse + compile + VM + translation + planning of a whole program.
+fn end_to_end(src: &str, p: &mut Planner) -> usize {
+    vm_plan(module(src), p)
 }
 
 /// An engine running `cmds` over and over; `tick` it.
@@ -171,13 +192,21 @@ impl Ticker {
                     Command::Move(m) => m.path.to(),
                     _ => V2::ZERO,
                 };
-                let _ = self.e.push(Command::Move(Move { kind: MoveKind::Rapid, path: Path::Line { to }, shift: V2::ZERO }), Tag::default());
+                let _ = self.e.push(
+                    Command::Move(Move {
+                        kind: MoveKind::Rapid,
+                        path: Path::Line { to },
+                        shift: V2::ZERO,
+                    }),
+                    Tag::default(),
+                );
                 continue;
             }
             let c = self.cmds[self.next];
             self.next += 1;
             let _ = self.e.push(c, Tag::default());
         }
+        self.e.replan();
     }
 
     fn low(&self) -> bool {
@@ -190,7 +219,11 @@ fn runtime_benches(c: &mut Criterion) {
     let arc = arcs(BLOCKS);
     let short_cmds = commands(&short);
     let arc_cmds = commands(&arc);
-    eprintln!("runtime inputs: short segments {} moves, arcs {} moves", short_cmds.len(), arc_cmds.len());
+    eprintln!(
+        "runtime inputs: short segments {} moves, arcs {} moves",
+        short_cmds.len(),
+        arc_cmds.len()
+    );
 
     let mut group = c.benchmark_group("runtime");
     group
@@ -206,27 +239,34 @@ fn runtime_benches(c: &mut Criterion) {
             b.iter(|| plan_all(&mut planner, black_box(cmds)))
         });
     }
-    for (name, src, n) in [("short_segments", &short, short_cmds.len()), ("arcs", &arc, arc_cmds.len())] {
+    for (name, src, n) in [
+        ("short_segments", &short, short_cmds.len()),
+        ("arcs", &arc, arc_cmds.len()),
+    ] {
         group.throughput(Throughput::Elements(n as u64));
         group.bench_with_input(BenchmarkId::new("parse_vm_plan", name), src, |b, src| {
             b.iter(|| end_to_end(black_box(src), &mut planner))
         });
     }
 
+    for (name, src, n) in [
+        ("short_segments", &short, short_cmds.len()),
+        ("arcs", &arc, arc_cmds.len()),
+    ] {
+        let m = module(src);
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::new("vm_plan", name), &m, |b, m| {
+            b.iter_batched(
+                || m.clone(),
+                |m| vm_plan(m, &mut planner),
+                BatchSize::LargeInput,
+            )
+        });
+    }
+
     group.throughput(Throughput::Elements(1));
     for (name, cmds) in [("short_segments", &short_cmds), ("arcs", &arc_cmds)] {
         let mut t = Ticker::new(cmds.clone());
-        let mut worst = Duration::ZERO;
-        // The worst single period, timed one by one (timer overhead
-        // included) over a second of machine time.
-        for _ in 0..3 {
-            for _ in 0..1000 {
-                let t0 = Instant::now();
-                black_box(t.e.tick());
-                worst = worst.max(t0.elapsed());
-            }
-            t.refill();
-        }
         group.bench_function(BenchmarkId::new("period", name), |b| {
             b.iter_custom(|iters| {
                 let mut spent = Duration::ZERO;
@@ -246,16 +286,28 @@ fn runtime_benches(c: &mut Criterion) {
                 spent
             })
         });
-        for _ in 0..20 {
+        // Single periods, timed one by one (timer overhead included), over
+        // 100 s of machine time: the distribution and the worst one.
+        let mut each = Vec::with_capacity(100_000);
+        for _ in 0..200 {
             for _ in 0..500 {
                 let t0 = Instant::now();
                 black_box(t.e.tick());
-                worst = worst.max(t0.elapsed());
+                each.push(t0.elapsed());
             }
             t.refill();
         }
-        assert_ne!(t.e.state(), RunState::Alarm(0));
-        eprintln!("runtime/period/{name}: worst single period seen {:?} (state {:?})", worst, t.e.state());
+        each.sort();
+        let at = |q: f64| each[((each.len() - 1) as f64 * q) as usize];
+        eprintln!(
+            "runtime/period/{name}: single periods p50 {:?}, p99 {:?}, p99.9 {:?}, p99.99 {:?}, worst {:?} (state {:?})",
+            at(0.5),
+            at(0.99),
+            at(0.999),
+            at(0.9999),
+            each[each.len() - 1],
+            t.e.state()
+        );
     }
     group.finish();
 }

@@ -44,7 +44,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let bytes = match std::env::args().nth(1) {
         Some(path) => std::fs::read(path)?,
         None => {
-            let out = compiler::compile("built-in.nc", PROGRAM.as_bytes(), &compiler::Options::default());
+            let out = compiler::compile(
+                "built-in.nc",
+                PROGRAM.as_bytes(),
+                &compiler::Options::default(),
+            );
             let rendered = out.render();
             let module = out.module.ok_or(rendered)?;
             module.to_bytes()
@@ -81,7 +85,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
             _ => {}
         }
-        if (t * 1000.0).round() as u64 % 100 == 0 {
+        if ((t * 1000.0).round() as u64).is_multiple_of(100) {
             println!(
                 "t={t:7.3}s  X={:9.4} Z={:9.4}  S={:7.1} rpm  F={:8.1} mm/min  line {:3}  {:?}",
                 sp.x,
@@ -93,6 +97,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
-    println!("ended at t={:.3}s after {} blocks", ctl.engine().time_s(), ctl.blocks());
+    println!(
+        "ended at t={:.3}s after {} blocks",
+        ctl.engine().time_s(),
+        ctl.blocks()
+    );
     Ok(())
 }

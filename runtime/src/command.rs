@@ -20,18 +20,38 @@ pub struct Tag {
 /// The shape of a move; its start is where the previous move ended.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Path {
-    Line { to: V2 },
-    Arc { to: V2, centre: V2, ccw: bool },
+    Line {
+        to: V2,
+    },
+    Arc {
+        to: V2,
+        centre: V2,
+        ccw: bool,
+    },
     /// G6.2/G6.3 (semi-axes in mm, axis angle in radians from +Z).
-    Ellipse { to: V2, a: f64, b: f64, q: f64, ccw: bool },
+    Ellipse {
+        to: V2,
+        a: f64,
+        b: f64,
+        q: f64,
+        ccw: bool,
+    },
     /// G7.2/G7.3 (p in mm, axis angle in radians from +Z).
-    Parabola { to: V2, p: f64, q: f64, ccw: bool },
+    Parabola {
+        to: V2,
+        p: f64,
+        q: f64,
+        ccw: bool,
+    },
 }
 
 impl Path {
     pub fn to(&self) -> V2 {
         match *self {
-            Path::Line { to } | Path::Arc { to, .. } | Path::Ellipse { to, .. } | Path::Parabola { to, .. } => to,
+            Path::Line { to }
+            | Path::Arc { to, .. }
+            | Path::Ellipse { to, .. }
+            | Path::Parabola { to, .. } => to,
         }
     }
 }

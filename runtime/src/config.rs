@@ -86,7 +86,9 @@ pub struct Config {
     /// №007.5: every block ends in an exact stop.
     pub always_exact_stop: bool,
     /// S-curve (jerk-limited) speed changes instead of linear
-    /// acceleration. Off on the reference machine; never for threads.
+    /// acceleration: a moving average of 2·a/j over the profile (see
+    /// `smooth`). Off on the reference machine; never for threads. In this
+    /// mode feeds stop exactly between blocks (no G64 blending yet).
     pub jerk_limited: bool,
     /// The share of an axis's acceleration that a G64 corner may use as a
     /// one-period velocity step; the segments next to the corner keep the

@@ -47,7 +47,9 @@ impl core::fmt::Display for LoadError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             LoadError::Invalid(m) => write!(f, "not a valid .gbc module: {m}"),
-            LoadError::Machine => f.write_str("compiled for another machine configuration (its compile-time keys differ)"),
+            LoadError::Machine => f.write_str(
+                "compiled for another machine configuration (its compile-time keys differ)",
+            ),
         }
     }
 }
@@ -72,7 +74,10 @@ impl AlarmInfo {
         } else {
             format!("E{:04}", self.code)
         };
-        format!("{}:{}:{}: alarm[{}]: {}", self.file, self.line, self.col, code, self.message)
+        format!(
+            "{}:{}:{}: alarm[{}]: {}",
+            self.file, self.line, self.col, code, self.message
+        )
     }
 }
 
@@ -82,7 +87,9 @@ pub fn runtime_alarm_message(code: u32) -> &'static str {
         7001 => "a feed move with F = 0 cannot run",
         7002 => "the move leaves the axis travel (soft limit)",
         7003 => "a feed-per-revolution move waited too long for the stopped spindle",
-        4010 => "the thread needs a feed above the axis's maximum cutting feed at this spindle speed",
+        4010 => {
+            "the thread needs a feed above the axis's maximum cutting feed at this spindle speed"
+        }
         _ => "run-time alarm",
     }
 }
@@ -117,7 +124,8 @@ impl Controller<AutoAck> {
     /// Loads and verifies a `.gbc` for the reference host (every PLC
     /// function completes at once).
     pub fn load(bytes: &[u8], machine: Machine) -> Result<Controller<AutoAck>, LoadError> {
-        let module = isa::Module::from_bytes(bytes).map_err(|e| LoadError::Invalid(format!("{e}")))?;
+        let module =
+            isa::Module::from_bytes(bytes).map_err(|e| LoadError::Invalid(format!("{e}")))?;
         Controller::new(module, machine, AutoAck)
     }
 }
@@ -132,7 +140,12 @@ impl<P: Plc> Controller<P> {
 
     /// As [`Controller::new`] with runtime settings of the host's choosing
     /// (jerk limiting, queue size, corner budget …).
-    pub fn with_config(module: isa::Module, machine: Machine, cfg: Config, plc: P) -> Result<Controller<P>, LoadError> {
+    pub fn with_config(
+        module: isa::Module,
+        machine: Machine,
+        cfg: Config,
+        plc: P,
+    ) -> Result<Controller<P>, LoadError> {
         if module.machine != machine.compile_keys() {
             return Err(LoadError::Machine);
         }
@@ -240,15 +253,34 @@ impl<P: Plc> Controller<P> {
 
     /// The alarm that stopped the run, with its place.
     pub fn alarm(&self) -> Option<AlarmInfo> {
-        let RunState::Alarm(code) = self.engine.state() else { return None };
+        let RunState::Alarm(code) = self.engine.state() else {
+            return None;
+        };
         if let Some(a) = &self.vm_alarm {
             if a.code == code {
-                return Some(AlarmInfo { code, message: a.message.clone(), file: a.file.clone(), line: a.line, col: a.col });
+                return Some(AlarmInfo {
+                    code,
+                    message: a.message.clone(),
+                    file: a.file.clone(),
+                    line: a.line,
+                    col: a.col,
+                });
             }
         }
         let tag = self.engine.alarm().map(|(_, t)| t).unwrap_or_default();
-        let file = self.vm.module().files.get(tag.file as usize).map_or_else(String::new, |f| f.name.clone());
-        Some(AlarmInfo { code, message: runtime_alarm_message(code).into(), file, line: tag.line, col: tag.col })
+        let file = self
+            .vm
+            .module()
+            .files
+            .get(tag.file as usize)
+            .map_or_else(String::new, |f| f.name.clone());
+        Some(AlarmInfo {
+            code,
+            message: runtime_alarm_message(code).into(),
+            file,
+            line: tag.line,
+            col: tag.col,
+        })
     }
 
     /// Runs the VM ahead of the motion (not real-time: it allocates).
@@ -263,6 +295,11 @@ impl<P: Plc> Controller<P> {
     /// As [`Controller::run_ahead`], handing every canon event the VM
     /// produces to `tap` too (in program order, ahead of the motion).
     pub fn run_ahead_tap(&mut self, tap: &mut dyn Sink) {
+        self.fill(tap);
+        self.engine.replan();
+    }
+
+    fn fill(&mut self, tap: &mut dyn Sink) {
         if self.engine.take_reset_done() {
             self.restart();
         }
@@ -296,11 +333,18 @@ impl<P: Plc> Controller<P> {
         self.events.clear();
         let status = self.vm.step(1 << 16, &mut self.events);
         let loc = self.vm.last_loc();
-        let tag = Tag { file: loc.file, line: loc.line, col: loc.col, block: self.block, block_end: false };
+        let tag = Tag {
+            file: loc.file,
+            line: loc.line,
+            col: loc.col,
+            block: self.block,
+            block_end: false,
+        };
         self.tr.skip_queued = false;
         for e in self.events.drain(..) {
             self.scratch.clear();
-            self.tr.event(&e, &self.vm.nc.st, &self.machine, &mut self.scratch);
+            self.tr
+                .event(&e, &self.vm.nc.st, &self.machine, &mut self.scratch);
             for c in self.scratch.drain(..) {
                 self.staged.push_back((c, tag));
             }
@@ -343,10 +387,18 @@ impl<P: Plc> Controller<P> {
         let p = self.vm.nc.st.pos;
         let kernel = V2::new(p.r, p.z);
         if (kernel - self.tr.work).max_abs() > 1e-6 {
-            let kind = if self.tr.feed.f > 0.0 { MoveKind::Feed(self.tr.feed) } else { MoveKind::Rapid };
+            let kind = if self.tr.feed.f > 0.0 {
+                MoveKind::Feed(self.tr.feed)
+            } else {
+                MoveKind::Rapid
+            };
             self.tr.work = kernel;
             let shift = self.tr.origin + self.tr.tool_off;
-            let m = Move { kind, path: Path::Line { to: kernel + shift }, shift };
+            let m = Move {
+                kind,
+                path: Path::Line { to: kernel + shift },
+                shift,
+            };
             self.staged.push_back((Command::Move(m), tag));
         }
     }
@@ -384,7 +436,10 @@ impl<P: Plc> Controller<P> {
         self.tr = Translator::new(origin);
         self.tr.messages = messages;
         self.tr.work = work;
-        self.tr.feed = Feed { f: 0.0, per_rev: false };
+        self.tr.feed = Feed {
+            f: 0.0,
+            per_rev: false,
+        };
         self.engine.reseed(origin);
         self.staged.clear();
         self.vm_state = VmState::Running;

@@ -6,7 +6,7 @@
 //! length, so the interpolator advances λ by a midpoint step of the arc
 //! length (error O(ds³) per period) and lands on λ = 1 at the end.
 
-use crate::math::{rem_euclid, sqrt, wrap_pi, V2, TAU};
+use crate::math::{is_pos, rem_euclid, sqrt, wrap_pi, TAU, V2};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Curve {
@@ -14,21 +14,54 @@ pub enum Curve {
     Line { p0: V2, d: V2 },
     /// Centre `c`; radius `r0 + dr·λ` (an end point off the circle by up
     /// to the arc tolerance makes a slight spiral, so both ends are
-    /// exact); angle `th0 + dth·λ` (dth > 0: CCW).
-    Arc { c: V2, r0: f64, dr: f64, th0: f64, dth: f64 },
+    /// exact); direction from the centre `u0` turned by `dth·λ` (dth > 0:
+    /// CCW), `u1` at the end. Kept as vectors, not angles: a move needs
+    /// one `atan2` to set up and one `sin`/`cos` pair per period.
+    Arc {
+        c: V2,
+        u0: V2,
+        u1: V2,
+        r0: f64,
+        dr: f64,
+        dth: f64,
+    },
     /// `c + u·a·cos t + w·b·sin t`, `t = t0 + dt·λ`, `w` = `u` turned +90°.
-    Ellipse { c: V2, u: V2, a: f64, b: f64, t0: f64, dt: f64 },
+    Ellipse {
+        c: V2,
+        u: V2,
+        a: f64,
+        b: f64,
+        t0: f64,
+        dt: f64,
+    },
     /// Axis `u`, vertex at local (x0, y0) from `o`: local y = `yend·λ`,
     /// x = x0 + (y − y0)² / 2p.
-    Parabola { o: V2, u: V2, p: f64, x0: f64, y0: f64, yend: f64 },
+    Parabola {
+        o: V2,
+        u: V2,
+        p: f64,
+        x0: f64,
+        y0: f64,
+        yend: f64,
+    },
 }
 
 /// Panels of the Simpson rule for the length of a conic.
 const SIMPSON: usize = 64;
 
+/// `u` turned by `a` (from +Z towards +X).
+#[inline]
+fn turn(u: V2, a: f64) -> V2 {
+    let (s, c) = (libm::sin(a), libm::cos(a));
+    u * c + u.perp() * s
+}
+
 impl Curve {
     pub fn line(from: V2, to: V2) -> Curve {
-        Curve::Line { p0: from, d: to - from }
+        Curve::Line {
+            p0: from,
+            d: to - from,
+        }
     }
 
     /// An arc from `from` to `to` around `c`; `ccw` for G03. Equal end
@@ -37,17 +70,25 @@ impl Curve {
     pub fn arc(from: V2, to: V2, c: V2, ccw: bool) -> Curve {
         let (a, b) = (from - c, to - c);
         let (r0, r1) = (a.norm(), b.norm());
-        if !(r0 > 1e-9 && r1 > 1e-9) || !c.is_finite() {
+        if !(r0 > 1e-9 && r1 > 1e-9 && c.is_finite()) {
             return Curve::line(from, to);
         }
-        let (th0, th1) = (a.angle(), b.angle());
+        let (u0, u1) = (a * (1.0 / r0), b * (1.0 / r1));
         let full = (to - from).norm() < 1e-9;
-        let mut d = if ccw { th1 - th0 } else { th0 - th1 };
-        d = rem_euclid(d, TAU);
-        if full || d == 0.0 {
-            d = if full { TAU } else { d };
+        // The angle from u0 to u1 counter-clockwise, then into [0, 2π).
+        let ang = libm::atan2(u0.z * u1.r - u0.r * u1.z, u0.dot(u1));
+        let mut d = rem_euclid(if ccw { ang } else { -ang }, TAU);
+        if full {
+            d = TAU;
         }
-        Curve::Arc { c, r0, dr: r1 - r0, th0, dth: if ccw { d } else { -d } }
+        Curve::Arc {
+            c,
+            u0,
+            u1,
+            r0,
+            dr: r1 - r0,
+            dth: if ccw { d } else { -d },
+        }
     }
 
     /// G6.2/G6.3: of the two ellipses with semi-axes `a` (along the angle
@@ -55,7 +96,7 @@ impl Curve {
     /// programmed direction is at most 180° (dialect.md §4.1). `None` when
     /// no ellipse fits.
     pub fn ellipse(from: V2, to: V2, a: f64, b: f64, q_rad: f64, ccw: bool) -> Option<Curve> {
-        if !(a > 0.0 && b > 0.0) {
+        if !(is_pos(a) && is_pos(b)) {
             return None;
         }
         let u = V2::polar(q_rad);
@@ -66,7 +107,7 @@ impl Curve {
         let e = to - from;
         let ep = V2::new(e.dot(w) * k, e.dot(u)); // (local y, local x)
         let chord = ep.norm();
-        if !(chord > 1e-9) || chord > 2.0 * a * (1.0 + 1e-9) {
+        if !is_pos(chord - 1e-9) || chord > 2.0 * a * (1.0 + 1e-9) {
             return None;
         }
         let mid = ep * 0.5;
@@ -93,32 +134,48 @@ impl Curve {
     /// to the axis or `p` is 0.
     pub fn parabola(from: V2, to: V2, p: f64, q_rad: f64, ccw: bool) -> Option<Curve> {
         let p = p.abs();
-        if !(p > 0.0) {
+        if !is_pos(p) {
             return None;
         }
         let u = V2::polar(q_rad);
         let w = u.perp();
         let e = to - from;
         let (xe, ye) = (e.dot(u), e.dot(w));
-        if !(ye.abs() > 1e-9) {
+        if !is_pos(ye.abs() - 1e-9) {
             return None;
         }
         // Traversed towards +y the parabola opening to +x turns clockwise.
         let p = if ccw == (ye > 0.0) { -p } else { p };
         let y0 = (ye * ye - 2.0 * p * xe) / (2.0 * ye);
         let x0 = -y0 * y0 / (2.0 * p);
-        Some(Curve::Parabola { o: from, u, p, x0, y0, yend: ye })
+        Some(Curve::Parabola {
+            o: from,
+            u,
+            p,
+            x0,
+            y0,
+            yend: ye,
+        })
     }
 
     pub fn point(&self, lam: f64) -> V2 {
         match *self {
             Curve::Line { p0, d } => p0 + d * lam,
-            Curve::Arc { c, r0, dr, th0, dth } => c + V2::polar(th0 + dth * lam) * (r0 + dr * lam),
+            Curve::Arc {
+                c, u0, r0, dr, dth, ..
+            } => c + turn(u0, dth * lam) * (r0 + dr * lam),
             Curve::Ellipse { c, u, a, b, t0, dt } => {
                 let t = t0 + dt * lam;
                 c + u * (a * libm::cos(t)) + u.perp() * (b * libm::sin(t))
             }
-            Curve::Parabola { o, u, p, x0, y0, yend } => {
+            Curve::Parabola {
+                o,
+                u,
+                p,
+                x0,
+                y0,
+                yend,
+            } => {
                 let y = yend * lam;
                 let x = x0 + (y - y0) * (y - y0) / (2.0 * p);
                 o + u * x + u.perp() * y
@@ -130,11 +187,15 @@ impl Curve {
     pub fn deriv(&self, lam: f64) -> V2 {
         match *self {
             Curve::Line { d, .. } => d,
-            Curve::Arc { r0, dr, th0, dth, .. } => {
-                let th = th0 + dth * lam;
-                V2::polar(th) * dr + V2::polar(th).perp() * ((r0 + dr * lam) * dth)
+            Curve::Arc {
+                u0, r0, dr, dth, ..
+            } => {
+                let u = turn(u0, dth * lam);
+                u * dr + u.perp() * ((r0 + dr * lam) * dth)
             }
-            Curve::Ellipse { u, a, b, t0, dt, .. } => {
+            Curve::Ellipse {
+                u, a, b, t0, dt, ..
+            } => {
                 let t = t0 + dt * lam;
                 (u * (-a * libm::sin(t)) + u.perp() * (b * libm::cos(t))) * dt
             }
@@ -170,7 +231,11 @@ impl Curve {
     /// λ after moving `ds` further from `lam` (conics: a midpoint step).
     pub fn advance(&self, lam: f64, s_after: f64, ds: f64, len: f64) -> f64 {
         if self.is_linear_in_length() || len <= 0.0 {
-            return if len > 0.0 { (s_after / len).min(1.0) } else { 1.0 };
+            return if len > 0.0 {
+                (s_after / len).min(1.0)
+            } else {
+                1.0
+            };
         }
         let speed = |l: f64| self.deriv(l.clamp(0.0, 1.0)).norm().max(1e-12);
         let half = lam + 0.5 * ds / speed(lam);
@@ -180,6 +245,28 @@ impl Curve {
     /// The unit tangent at λ.
     pub fn tangent(&self, lam: f64) -> V2 {
         self.deriv(lam).unit()
+    }
+
+    /// The unit tangents at both ends (without trigonometry for arcs).
+    pub fn end_tangents(&self) -> (V2, V2) {
+        match *self {
+            Curve::Line { d, .. } => {
+                let u = d.unit();
+                (u, u)
+            }
+            Curve::Arc {
+                u0,
+                u1,
+                r0,
+                dr,
+                dth,
+                ..
+            } => (
+                (u0 * dr + u0.perp() * (r0 * dth)).unit(),
+                (u1 * dr + u1.perp() * ((r0 + dr) * dth)).unit(),
+            ),
+            _ => (self.tangent(0.0), self.tangent(1.0)),
+        }
     }
 
     /// A lower bound of the radius of curvature (∞ for a line).
@@ -279,7 +366,15 @@ mod tests {
 
     #[test]
     fn conic_advance_follows_arc_length() {
-        let e = Curve::ellipse(V2::new(5.0, 0.0), V2::new(10.0, -12.0), 10.0, 6.0, 0.3, false).unwrap();
+        let e = Curve::ellipse(
+            V2::new(5.0, 0.0),
+            V2::new(10.0, -12.0),
+            10.0,
+            6.0,
+            0.3,
+            false,
+        )
+        .unwrap();
         let len = e.length();
         let (mut s, mut lam) = (0.0, 0.0);
         let ds = 0.01;
@@ -289,6 +384,10 @@ mod tests {
         }
         // The drift over the whole curve stays far below the resolution.
         let rest = (e.point(1.0) - e.point(lam)).norm();
-        assert!((rest - (len - s)).abs() < 1e-6, "rest {rest} vs {}", len - s);
+        assert!(
+            (rest - (len - s)).abs() < 1e-6,
+            "rest {rest} vs {}",
+            len - s
+        );
     }
 }

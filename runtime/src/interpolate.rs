@@ -17,7 +17,8 @@ use crate::config::{Config, RapidOverride};
 use crate::math::V2;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
 use crate::plc::{Plc, PlcFunction};
-use crate::profile::{approach, brake_limit};
+use crate::profile::{approach, brake_limit, brake_limit_above};
+use crate::smooth::Smoother;
 use crate::spindle::Spindle;
 
 /// What the machine is doing, as a controller's status line shows it.
@@ -167,7 +168,18 @@ pub struct Engine<P: Plc> {
     state: RunState,
     /// The head item has begun.
     started: bool,
+    /// A copy of the head move, made when it begins (the queue is not
+    /// copied every period); its exit speed and acceleration are
+    /// refreshed each period, since the planner may raise them.
+    cur: Segment,
+    /// Path parameter: `s` of the acceleration-limited profile, `s_out` of
+    /// the set points (the same unless jerk limiting smooths it).
     s: f64,
+    s_out: f64,
+    /// Jerk limiting: the moving average, and the unfiltered rapid point.
+    smooth: Smoother,
+    jerk: bool,
+    rapid_raw: V2,
     lam: f64,
     v: f64,
     rapid_v: [f64; 2],
@@ -217,7 +229,12 @@ impl<P: Plc> Engine<P> {
             tool: 1,
             state: RunState::Idle,
             started: false,
+            cur: Segment::IDLE,
             s: 0.0,
+            s_out: 0.0,
+            smooth: Smoother::new(cfg.jerk_taps()),
+            jerk: cfg.jerk_taps() > 1,
+            rapid_raw: V2::ZERO,
             lam: 0.0,
             v: 0.0,
             rapid_v: [0.0; 2],
@@ -254,6 +271,12 @@ impl<P: Plc> Engine<P> {
     /// Queues a command (the non-real-time side; allocates nothing).
     pub fn push(&mut self, cmd: crate::command::Command, tag: Tag) -> Result<Pushed, Full> {
         self.q.push(cmd, tag)
+    }
+
+    /// Completes the planning of what was pushed (the backward pass);
+    /// call it after a batch of pushes, before the next tick.
+    pub fn replan(&mut self) {
+        self.q.replan();
     }
 
     pub fn mark_block_end(&mut self, block: u32) {
@@ -348,7 +371,12 @@ impl<P: Plc> Engine<P> {
     pub fn tick(&mut self) -> SetPoint {
         self.ticks += 1;
         let before = self.pos;
-        let x = self.css_diameter();
+        // Only constant surface speed needs the diameter.
+        let x = if self.spindle.css() {
+            self.css_diameter()
+        } else {
+            0.0
+        };
         self.spindle.update(self.dt, x);
         self.motion = Motion::None;
         if self.reset_req {
@@ -365,7 +393,11 @@ impl<P: Plc> Engine<P> {
                 RunState::Stopped(kind) => {
                     if core::mem::take(&mut self.cycle_start) {
                         if !matches!(kind, PauseKind::SingleBlock) {
-                            if let Some(Item { kind: ItemKind::Pause(_), .. }) = self.q.get(0) {
+                            if let Some(Item {
+                                kind: ItemKind::Pause(_),
+                                ..
+                            }) = self.q.get(0)
+                            {
                                 self.q.pop();
                                 self.started = false;
                             }
@@ -429,7 +461,12 @@ impl<P: Plc> Engine<P> {
     /// Done with the head item; `landed`: the motion stands at its end.
     fn finish_item(&mut self) {
         let block_end = self.q.get(0).is_some_and(|i| i.tag.block_end);
-        if let Some(Segment { kind: MoveKind::Offset, shift, .. }) = self.q.seg(0) {
+        if let Some(Segment {
+            kind: MoveKind::Offset,
+            shift,
+            ..
+        }) = self.q.seg(0)
+        {
             self.shift = *shift;
             self.fixed_work = None;
         }
@@ -443,30 +480,50 @@ impl<P: Plc> Engine<P> {
 
     /// Executes head items until one takes the rest of the period.
     fn run(&mut self) {
+        enum Head {
+            Move,
+            Dwell(f64),
+            Plc(PlcFunction),
+            Pause(PauseKind),
+            End,
+            Alarm(u32),
+        }
         for _ in 0..64 {
-            if self.state != RunState::Running && self.state != RunState::Starved && self.state != RunState::Held {
+            if self.state != RunState::Running
+                && self.state != RunState::Starved
+                && self.state != RunState::Held
+            {
                 return;
             }
-            let Some(item) = self.q.get(0).copied() else {
+            let Some(item) = self.q.get(0) else {
                 if self.state == RunState::Running {
                     self.state = RunState::Starved;
                 }
                 return;
             };
+            let head = match &item.kind {
+                ItemKind::Move(_) => Head::Move,
+                ItemKind::Dwell(s) => Head::Dwell(*s),
+                ItemKind::Plc(f) => Head::Plc(*f),
+                ItemKind::Pause(k) => Head::Pause(*k),
+                ItemKind::End => Head::End,
+                ItemKind::Alarm(c) => Head::Alarm(*c),
+            };
+            let (tag, shift) = (item.tag, item.shift);
             if self.state == RunState::Starved {
                 self.state = RunState::Running;
             }
-            if !self.started && !matches!(item.kind, ItemKind::Move(_)) {
-                self.shift = item.shift;
-                self.tag = item.tag;
+            if !self.started && !matches!(head, Head::Move) {
+                self.shift = shift;
+                self.tag = tag;
                 self.fixed_work = None;
             }
-            match item.kind {
-                ItemKind::Move(seg) => {
-                    self.step_move(&item, &seg);
+            match head {
+                Head::Move => {
+                    self.step_move();
                     return;
                 }
-                ItemKind::Dwell(secs) => {
+                Head::Dwell(secs) => {
                     if !self.started {
                         self.started = true;
                         let n = libm::round(secs.max(0.0) / self.dt);
@@ -486,7 +543,7 @@ impl<P: Plc> Engine<P> {
                     }
                     return;
                 }
-                ItemKind::Plc(f) => {
+                Head::Plc(f) => {
                     if !self.started {
                         self.started = true;
                         self.apply_plc(f);
@@ -497,16 +554,16 @@ impl<P: Plc> Engine<P> {
                     }
                     self.finish_item();
                 }
-                ItemKind::Pause(k) => {
+                Head::Pause(k) => {
                     self.state = RunState::Stopped(k);
                     return;
                 }
-                ItemKind::End => {
+                Head::End => {
                     self.state = RunState::Ended;
                     return;
                 }
-                ItemKind::Alarm(c) => {
-                    self.raise(c, item.tag);
+                Head::Alarm(c) => {
+                    self.raise(c, tag);
                     return;
                 }
             }
@@ -526,13 +583,17 @@ impl<P: Plc> Engine<P> {
     /// Checks made when a move starts: F = 0 (E7001), travel (E7002).
     fn check_move(&self, seg: &Segment) -> Option<u32> {
         if let MoveKind::Feed(f) | MoveKind::Skip(f) = seg.kind {
-            if !(f.f > 0.0) {
+            if !crate::math::is_pos(f.f) {
                 return Some(7001);
             }
         }
         let (x, z) = (&self.cfg.x, &self.cfg.z);
         if x.soft_limits || z.soft_limits {
-            let n = if matches!(seg.kind, MoveKind::Rapid | MoveKind::Offset) { 1 } else { 16 };
+            let n = if matches!(seg.kind, MoveKind::Rapid | MoveKind::Offset) {
+                1
+            } else {
+                16
+            };
             for i in 0..=n {
                 let p = seg.curve.point(i as f64 / n as f64);
                 let bad_x = x.soft_limits && (p.r < x.min - 1e-9 || p.r > x.max + 1e-9);
@@ -545,8 +606,12 @@ impl<P: Plc> Engine<P> {
         None
     }
 
-    fn step_move(&mut self, item: &Item, seg: &Segment) {
+    fn step_move(&mut self) {
         if !self.started {
+            let Some(item) = self.q.get(0) else { return };
+            let ItemKind::Move(seg) = &item.kind else {
+                return;
+            };
             // Start from rest only: a landing period is followed by one
             // standing period, so the velocity passes through zero.
             if self.last_step != V2::ZERO {
@@ -556,10 +621,12 @@ impl<P: Plc> Engine<P> {
                 self.state = RunState::Held;
                 return;
             }
+            let tag = item.tag;
             if let Some(code) = self.check_move(seg) {
-                self.raise(code, item.tag);
+                self.raise(code, tag);
                 return;
             }
+            self.cur = *seg;
             self.started = true;
             self.cap_next = f64::INFINITY;
             self.s = 0.0;
@@ -568,63 +635,111 @@ impl<P: Plc> Engine<P> {
             self.rapid_v = [0.0; 2];
             self.stall_s = 0.0;
             self.skip_hit = None;
-            self.tag = item.tag;
-            if let MoveKind::Offset = seg.kind {
+            self.tag = tag;
+            if let MoveKind::Offset = self.cur.kind {
                 self.fixed_work = Some(self.pos - self.shift);
             } else {
-                self.shift = seg.shift;
+                self.shift = self.cur.shift;
                 self.fixed_work = None;
             }
-            if let MoveKind::Thread(_) = seg.kind {
-                self.thread = ThreadRun { phase: Phase::WaitSpeed, ..ThreadRun::OFF };
+            if let MoveKind::Thread(_) = self.cur.kind {
+                self.thread = ThreadRun {
+                    phase: Phase::WaitSpeed,
+                    ..ThreadRun::OFF
+                };
             }
+            self.s_out = 0.0;
+            self.rapid_raw = self.pos;
+            if self.jerk {
+                let at = if matches!(self.cur.kind, MoveKind::Rapid | MoveKind::Offset) {
+                    self.pos
+                } else {
+                    V2::ZERO
+                };
+                self.smooth.reset(at);
+            }
+        } else if let Some(s) = self.q.seg(0) {
+            self.cur.v_exit = s.v_exit;
+            self.cur.a = s.a;
         }
-        match seg.kind {
-            MoveKind::Rapid | MoveKind::Offset => self.step_rapid(seg),
+        match self.cur.kind {
+            MoveKind::Rapid | MoveKind::Offset => self.step_rapid(),
             MoveKind::Feed(_) | MoveKind::Skip(_) => self.step_path(),
             MoveKind::Thread(_) => self.step_thread(),
         }
     }
 
     /// G00: each axis on its own, at its rapid rate and acceleration.
-    fn step_rapid(&mut self, seg: &Segment) {
+    fn step_rapid(&mut self) {
         self.motion = Motion::Rapid;
-        let f = if self.hold || self.reset_req { 0.0 } else { self.rapid_ovr.factor(self.cfg.rapid_f0) };
-        let axes = [self.cfg.x, self.cfg.z];
+        let f = if self.hold || self.reset_req {
+            0.0
+        } else {
+            self.rapid_ovr.factor(self.cfg.rapid_f0)
+        };
+        let to = self.cur.to;
+        let mut raw = if self.jerk { self.rapid_raw } else { self.pos };
         let mut arrived = true;
-        for (k, ax) in axes.iter().enumerate() {
-            let (p, t) = if k == 0 { (self.pos.r, seg.to.r) } else { (self.pos.z, seg.to.z) };
+        for k in 0..2 {
+            let ax = if k == 0 { &self.cfg.x } else { &self.cfg.z };
+            let (p, t) = if k == 0 { (raw.r, to.r) } else { (raw.z, to.z) };
             let dist = (t - p).abs();
-            let lim = brake_limit(dist, 0.0, ax.accel, self.dt);
-            let v = approach(self.rapid_v[k], (ax.rapid * f).min(lim), ax.accel, self.dt);
+            let top = ax.rapid * f;
+            let lim = brake_limit_above(
+                dist,
+                0.0,
+                ax.accel,
+                self.dt,
+                (self.rapid_v[k] + ax.accel * self.dt).min(top),
+            );
+            let v = approach(self.rapid_v[k], top.min(lim), ax.accel, self.dt);
             let step = v * self.dt;
-            let np = if step >= dist - 1e-12 { t } else { p + step.copysign(t - p) };
+            let np = if step >= dist - 1e-12 {
+                t
+            } else {
+                p + step.copysign(t - p)
+            };
             self.rapid_v[k] = v;
             if np != t {
                 arrived = false;
             }
             if k == 0 {
-                self.pos.r = np;
+                raw.r = np;
             } else {
-                self.pos.z = np;
+                raw.z = np;
             }
         }
+        if self.jerk {
+            self.rapid_raw = raw;
+            self.pos = self.smooth.push(raw);
+            arrived &= self.smooth.settled();
+        } else {
+            self.pos = raw;
+        }
         if arrived {
+            self.pos = to;
             self.finish_item();
-        } else if self.hold && self.rapid_v == [0.0; 2] {
+        } else if self.hold && self.rapid_v == [0.0; 2] && (!self.jerk || self.smooth.settled()) {
             self.state = RunState::Held;
         }
     }
 
-    /// The commanded path speed of a feed, mm/s; 0 while held, after a
-    /// skip signal or during a reset. Counts the stall of G99 moves.
-    fn v_cmd(&mut self, seg: &Segment) -> f64 {
-        let f = match seg.kind {
+    /// The commanded path speed of the head feed, mm/s; 0 while held,
+    /// after a skip signal or during a reset. Counts the stall of G99
+    /// moves.
+    fn v_cmd(&mut self) -> f64 {
+        let f = match self.cur.kind {
             MoveKind::Feed(f) | MoveKind::Skip(f) => f,
-            MoveKind::Thread(_) => return if self.reset_req { 0.0 } else { self.thread.v_sync },
+            MoveKind::Thread(_) => {
+                return if self.reset_req {
+                    0.0
+                } else {
+                    self.thread.v_sync
+                }
+            }
             _ => return 0.0,
         };
-        let skip = matches!(seg.kind, MoveKind::Skip(_));
+        let skip = matches!(self.cur.kind, MoveKind::Skip(_));
         let mut v = f.f;
         if f.per_rev {
             if self.spindle.stopped() {
@@ -643,52 +758,59 @@ impl<P: Plc> Engine<P> {
             return 0.0;
         }
         let ovr = if skip { 1.0 } else { self.feed_ovr };
-        (v * ovr).min(seg.v_max)
+        (v * ovr).min(self.cur.v_max)
     }
 
-    /// The speed the head move may reach over the next junctions; 0 when
-    /// the queue ends.
-    fn next_feed(&mut self, k: usize) -> Option<f64> {
-        let n = *self.q.seg(k)?;
+    /// The commanded speed of the k-th queued move if it is a feed.
+    fn feed_of(&self, k: usize) -> Option<f64> {
+        let n = self.q.seg(k)?;
         match n.kind {
             MoveKind::Feed(f) if !f.per_rev => Some((f.f * self.feed_ovr).min(n.v_max)),
-            MoveKind::Feed(f) => Some((f.f * self.spindle.rpm().abs() / 60.0 * self.feed_ovr).min(n.v_max)),
+            MoveKind::Feed(f) => {
+                Some((f.f * self.spindle.rpm().abs() / 60.0 * self.feed_ovr).min(n.v_max))
+            }
             _ => None,
         }
     }
 
-    /// This period's path speed at acceleration `a`.
-    fn path_speed(&mut self, seg: &Segment, vc: f64, a: f64) -> f64 {
+    /// This period's path speed on the head move.
+    fn path_speed(&mut self, vc: f64) -> f64 {
         let dt = self.dt;
-        let d = seg.len - self.s;
-        let mut u = seg.v_exit;
-        if u > 0.0 && matches!(seg.kind, MoveKind::Feed(_)) {
+        let a = self.cur.a;
+        let d = self.cur.len - self.s;
+        let top = self.v + a * dt;
+        let mut u = self.cur.v_exit;
+        if u > 0.0 && matches!(self.cur.kind, MoveKind::Feed(_)) {
             // A lower feed ahead is met at the corner, not after it.
-            if let Some(f) = self.next_feed(1) {
+            if let Some(f) = self.feed_of(1) {
                 u = u.min(f.max(0.0));
             }
         }
-        let mut lim = brake_limit(d, u, a, dt);
+        // The highest speed this period can take: limits above it do not
+        // need computing.
+        let want = top.min(vc).min(self.cur.v_max);
+        let mut lim = brake_limit_above(d, u, a, dt, want);
         // Junctions this period could reach beyond the first.
-        let reach = (self.v + a * dt) * dt;
+        let reach = top * dt;
         let mut dist = d;
         let mut k = 0;
         while dist < reach && k < 8 {
-            let Some(sk) = self.q.seg(k) else { break };
+            let (Some(sk), Some(n)) = (self.q.seg(k), self.q.seg(k + 1)) else {
+                break;
+            };
             if sk.v_exit <= 0.0 {
                 break;
             }
-            let Some(n) = self.q.seg(k + 1) else { break };
             dist += n.len;
-            lim = lim.min(brake_limit(dist, n.v_exit, a.min(n.a), dt));
+            lim = lim.min(brake_limit_above(dist, n.v_exit, a.min(n.a), dt, want));
             k += 1;
         }
-        if self.single_block && !matches!(seg.kind, MoveKind::Thread(_)) {
+        if self.single_block && !matches!(self.cur.kind, MoveKind::Thread(_)) {
             lim = lim.min(self.single_block_limit(a));
         }
         let cap = core::mem::replace(&mut self.cap_next, f64::INFINITY);
         let a_step = if cap.is_finite() { self.cap_accel } else { a };
-        approach(self.v, vc.min(lim).min(seg.v_max).min(cap), a_step, dt)
+        approach(self.v, vc.min(lim).min(self.cur.v_max).min(cap), a_step, dt)
     }
 
     /// Single block: the first end of a block the motion can still stop on.
@@ -714,11 +836,17 @@ impl<P: Plc> Engine<P> {
     }
 
     /// Whether the motion may run from the head move into the next.
-    fn may_cross(&self, seg: &Segment, tag: &Tag) -> bool {
-        if seg.v_exit <= 0.0 || matches!(seg.kind, MoveKind::Skip(_)) {
+    fn may_cross(&self) -> bool {
+        let c = &self.cur;
+        if c.v_exit <= 0.0 || matches!(c.kind, MoveKind::Skip(_)) {
             return false;
         }
-        if self.single_block && tag.block_end && self.sb_block == Some(tag.block) && !matches!(seg.kind, MoveKind::Thread(_)) {
+        let t = &self.tag;
+        if self.single_block
+            && t.block_end
+            && self.sb_block == Some(t.block)
+            && !matches!(c.kind, MoveKind::Thread(_))
+        {
             return false;
         }
         self.q.seg(1).is_some()
@@ -726,15 +854,17 @@ impl<P: Plc> Engine<P> {
 
     /// A feed (or a braking thread) along the exact path.
     fn step_path(&mut self) {
-        let Some(item) = self.q.get(0).copied() else { return };
-        let ItemKind::Move(seg) = item.kind else { return };
-        self.motion = if matches!(seg.kind, MoveKind::Thread(_)) { Motion::Thread } else { Motion::Feed };
-        if let MoveKind::Skip(_) = seg.kind {
+        self.motion = if matches!(self.cur.kind, MoveKind::Thread(_)) {
+            Motion::Thread
+        } else {
+            Motion::Feed
+        };
+        if let MoveKind::Skip(_) = self.cur.kind {
             if self.skip_hit.is_none() && self.skip_active {
                 self.skip_hit = Some(self.pos);
             }
         }
-        let vc = self.v_cmd(&seg);
+        let vc = self.v_cmd();
         if let RunState::Alarm(_) = self.state {
             return;
         }
@@ -742,41 +872,46 @@ impl<P: Plc> Engine<P> {
         // that move keeps back the share its end corner needs, so the
         // period that runs through the corner stays within the axes'
         // acceleration (and the next period belongs to the next move).
-        let a = seg.a;
-        let v = self.path_speed(&seg, vc, a);
-        // Advance along the queue.
+        let v = self.path_speed(vc);
+        if self.jerk && !matches!(self.cur.kind, MoveKind::Thread(_)) {
+            self.smoothed_path(v);
+            return;
+        }
         let mut ds = v * self.dt;
         loop {
-            let Some(it) = self.q.get(0).copied() else { break };
-            let ItemKind::Move(cur) = it.kind else { break };
-            let rem = cur.len - self.s;
+            let rem = self.cur.len - self.s;
             if ds < rem {
                 self.s += ds;
-                self.lam = cur.curve.advance(self.lam, self.s, ds, cur.len);
-                self.pos = cur.curve.point(self.lam);
+                self.lam = self.cur.curve.advance(self.lam, self.s, ds, self.cur.len);
+                self.pos = self.cur.curve.point(self.lam);
                 break;
             }
-            if v > 0.0 && self.may_cross(&cur, &it.tag) {
-                if v > cur.v_exit && !matches!(cur.kind, MoveKind::Thread(_)) {
-                    self.cap_next = self.cap_next.min(cur.v_exit);
-                    self.cap_accel = cur.a;
+            if v > 0.0 && self.may_cross() {
+                if v > self.cur.v_exit && !matches!(self.cur.kind, MoveKind::Thread(_)) {
+                    self.cap_next = self.cap_next.min(self.cur.v_exit);
+                    self.cap_accel = self.cur.a;
                 }
                 ds -= rem;
-                self.pos = cur.to;
+                self.pos = self.cur.to;
                 self.q.pop();
-                let Some(next) = self.q.get(0).copied() else { break };
-                let ItemKind::Move(n) = next.kind else { break };
-                self.s = 0.0;
-                self.lam = 0.0;
+                let Some(next) = self.q.get(0) else { break };
+                let ItemKind::Move(n) = &next.kind else { break };
+                self.cur = *n;
                 self.tag = next.tag;
                 self.shift = n.shift;
+                self.s = 0.0;
+                self.lam = 0.0;
                 continue;
             }
             // Lands on the end point.
-            self.pos = cur.to;
+            self.pos = self.cur.to;
             self.v = v;
-            if let MoveKind::Skip(_) = cur.kind {
-                self.skip_report = Some(SkipReport { hit: self.skip_hit, stop: self.pos, shift: cur.shift });
+            if let MoveKind::Skip(_) = self.cur.kind {
+                self.skip_report = Some(SkipReport {
+                    hit: self.skip_hit,
+                    stop: self.pos,
+                    shift: self.cur.shift,
+                });
             }
             self.finish_item();
             return;
@@ -785,7 +920,11 @@ impl<P: Plc> Engine<P> {
         if v == 0.0 {
             if self.skip_hit.is_some() {
                 // The skip signal ended the move: the next block starts here.
-                self.skip_report = Some(SkipReport { hit: self.skip_hit, stop: self.pos, shift: seg.shift });
+                self.skip_report = Some(SkipReport {
+                    hit: self.skip_hit,
+                    stop: self.pos,
+                    shift: self.cur.shift,
+                });
                 self.q.set_tail(self.pos);
                 self.finish_item();
             } else if self.hold {
@@ -794,10 +933,52 @@ impl<P: Plc> Engine<P> {
         }
     }
 
+    /// One period of a feed with jerk limiting: the profile runs to the end
+    /// point (each feed ends in a stop in this mode), the set point follows
+    /// its moving average along the path.
+    fn smoothed_path(&mut self, v: f64) {
+        let len = self.cur.len;
+        let mut s = self.s + v * self.dt;
+        if s >= len - 1e-12 {
+            s = len;
+        }
+        self.s = s;
+        self.v = v;
+        let sf = self.smooth.push(V2::new(s, 0.0)).r;
+        let ds = sf - self.s_out;
+        self.s_out = sf;
+        self.lam = self.cur.curve.advance(self.lam, sf, ds, len);
+        self.pos = self.cur.curve.point(self.lam);
+        let still = v == 0.0 && self.smooth.settled();
+        if s == len && still {
+            self.pos = self.cur.to;
+            if let MoveKind::Skip(_) = self.cur.kind {
+                self.skip_report = Some(SkipReport {
+                    hit: self.skip_hit,
+                    stop: self.pos,
+                    shift: self.cur.shift,
+                });
+            }
+            self.finish_item();
+        } else if still && self.skip_hit.is_some() {
+            self.skip_report = Some(SkipReport {
+                hit: self.skip_hit,
+                stop: self.pos,
+                shift: self.cur.shift,
+            });
+            self.q.set_tail(self.pos);
+            self.finish_item();
+        } else if still && self.hold {
+            self.state = RunState::Held;
+        }
+    }
+
     /// A spindle-synchronised chain.
     fn step_thread(&mut self) {
-        let Some(seg) = self.q.seg(0).copied() else { return };
-        let MoveKind::Thread(t) = seg.kind else { return };
+        let seg = self.cur;
+        let MoveKind::Thread(t) = seg.kind else {
+            return;
+        };
         self.motion = Motion::Thread;
         let work_x = (self.pos - self.shift).x();
         if self.thread.phase == Phase::WaitSpeed {
@@ -814,18 +995,33 @@ impl<P: Plc> Engine<P> {
             }
             let rps = self.spindle.rpm().abs() / 60.0;
             let d = seg.to - seg.from;
-            let (dl, dsh) = if seg.long_z { (d.z.abs(), d.r.abs()) } else { (d.r.abs(), d.z.abs()) };
-            let (lax, sax) = if seg.long_z { (&self.cfg.z, &self.cfg.x) } else { (&self.cfg.x, &self.cfg.z) };
+            let (dl, dsh) = if seg.long_z {
+                (d.z.abs(), d.r.abs())
+            } else {
+                (d.r.abs(), d.z.abs())
+            };
+            let (lax, sax) = if seg.long_z {
+                (&self.cfg.z, &self.cfg.x)
+            } else {
+                (&self.cfg.x, &self.cfg.z)
+            };
             let vlong = t.lead * rps;
             let vshort = if dl > 0.0 { vlong * dsh / dl } else { 0.0 };
-            if vlong > lax.max_feed * (1.0 + 1e-9) || vshort > sax.max_feed * (1.0 + 1e-9) || !(t.lead > 0.0) {
+            if vlong > lax.max_feed * (1.0 + 1e-9)
+                || vshort > sax.max_feed * (1.0 + 1e-9)
+                || !crate::math::is_pos(t.lead)
+            {
                 let tag = self.tag;
                 self.raise(4010, tag);
                 return;
             }
             // The long axis's share of the path acceleration.
             let u_long = if seg.len > 0.0 { dl / seg.len } else { 1.0 };
-            let a_long = if matches!(seg.curve, crate::geom::Curve::Line { .. }) { seg.a * u_long } else { 0.5 * seg.a };
+            let a_long = if matches!(seg.curve, crate::geom::Curve::Line { .. }) {
+                seg.a * u_long
+            } else {
+                0.5 * seg.a
+            };
             let alpha = a_long / (rps * rps);
             let (l, dlead) = (t.lead, t.dlead);
             let (theta_l, theta_lag) = if dlead.abs() > 1e-15 && alpha > dlead {
@@ -837,7 +1033,9 @@ impl<P: Plc> Engine<P> {
             };
             let qf = crate::math::rem_euclid(t.q_deg, 360.0) / 360.0;
             self.thread = ThreadRun {
-                phase: Phase::WaitIndex { k: libm::floor(self.spindle.turns() - qf) },
+                phase: Phase::WaitIndex {
+                    k: libm::floor(self.spindle.turns() - qf),
+                },
                 alpha,
                 theta_l,
                 theta_lag,
@@ -877,8 +1075,7 @@ impl<P: Plc> Engine<P> {
         if ramp {
             let g = 0.5 * self.thread.alpha * theta * theta;
             base = self.thread.g_base;
-            loop {
-                let Some(sk) = self.q.seg(k).copied() else { break };
+            while let Some(sk) = self.q.seg(k) {
                 q = g - base;
                 if q <= sk.long_len || sk.v_exit <= 0.0 || !self.thread_next(k) {
                     q = q.min(sk.long_len);
@@ -890,13 +1087,14 @@ impl<P: Plc> Engine<P> {
         } else {
             let phi = theta - self.thread.theta_lag;
             base = self.thread.phi_base;
-            loop {
-                let Some(sk) = self.q.seg(k).copied() else { break };
+            while let Some(sk) = self.q.seg(k) {
                 let MoveKind::Thread(tk) = sk.kind else { break };
                 let r = revs_for(sk.long_len, tk.lead, tk.dlead);
                 let local = phi - base;
                 if local <= r || sk.v_exit <= 0.0 || !self.thread_next(k) {
-                    q = (tk.lead * local + 0.5 * tk.dlead * local * local).min(sk.long_len).max(0.0);
+                    q = (tk.lead * local + 0.5 * tk.dlead * local * local)
+                        .min(sk.long_len)
+                        .max(0.0);
                     break;
                 }
                 base += r;
@@ -904,10 +1102,18 @@ impl<P: Plc> Engine<P> {
             }
         }
         // The path distance of this period, to check it against the envelope.
-        let Some(target) = self.q.seg(k).copied() else { return };
+        let Some(target) = self.q.seg(k).copied() else {
+            return;
+        };
         let guess = if k == 0 { self.lam } else { 0.0 };
-        let lam = target.curve.lam_at_long(target.long_z, q, target.long_len, guess);
-        let mut dist = if k == 0 { (lam - self.lam) * seg.len } else { (1.0 - self.lam) * seg.len };
+        let lam = target
+            .curve
+            .lam_at_long(target.long_z, q, target.long_len, guess);
+        let mut dist = if k == 0 {
+            (lam - self.lam) * seg.len
+        } else {
+            (1.0 - self.lam) * seg.len
+        };
         for j in 1..=k {
             if let Some(sj) = self.q.seg(j) {
                 dist += if j == k { lam * sj.len } else { sj.len };
@@ -919,14 +1125,19 @@ impl<P: Plc> Engine<P> {
         let mut lim = brake_limit(d, seg.v_exit, a, self.dt);
         let mut acc = d;
         for j in 0..k.max(1) {
-            let (Some(sj), Some(n)) = (self.q.seg(j), self.q.seg(j + 1)) else { break };
+            let (Some(sj), Some(n)) = (self.q.seg(j), self.q.seg(j + 1)) else {
+                break;
+            };
             if sj.v_exit <= 0.0 {
                 break;
             }
             acc += n.len;
             lim = lim.min(brake_limit(acc, n.v_exit, a.min(n.a), self.dt));
         }
-        let at_end = self.q.seg(k).is_some_and(|s| q >= s.long_len && s.v_exit <= 0.0);
+        let at_end = self
+            .q
+            .seg(k)
+            .is_some_and(|s| q >= s.long_len && s.v_exit <= 0.0);
         if v > lim || at_end {
             self.thread.phase = Phase::Brake;
             self.thread.v_sync = self.v;
@@ -938,9 +1149,12 @@ impl<P: Plc> Engine<P> {
             self.q.pop();
         }
         if k > 0 {
-            if let Some(it) = self.q.get(0).copied() {
+            if let Some(it) = self.q.get(0) {
                 self.tag = it.tag;
                 self.shift = it.shift;
+                if let ItemKind::Move(n) = &it.kind {
+                    self.cur = *n;
+                }
             }
             if ramp {
                 self.thread.g_base = base;
@@ -963,16 +1177,20 @@ impl<P: Plc> Engine<P> {
 
     /// A reset in progress: brake, then drop everything.
     fn reset_step(&mut self) {
-        let moving = self.v > 0.0 || self.rapid_v != [0.0; 2] || matches!(self.thread.phase, Phase::Ramp | Phase::Locked);
+        let moving = self.v > 0.0
+            || self.rapid_v != [0.0; 2]
+            || matches!(self.thread.phase, Phase::Ramp | Phase::Locked)
+            || (self.jerk && self.started && !self.smooth.settled());
         if moving && self.started {
-            if let Some(seg) = self.q.seg(0).copied() {
-                match seg.kind {
-                    MoveKind::Rapid | MoveKind::Offset => self.step_rapid(&seg),
+            if self.q.seg(0).is_some() {
+                match self.cur.kind {
+                    MoveKind::Rapid | MoveKind::Offset => self.step_rapid(),
                     MoveKind::Thread(_) => self.step_thread(),
                     _ => self.step_path(),
                 }
             }
-            let still = self.v > 0.0 || self.rapid_v != [0.0; 2];
+            let still =
+                self.v > 0.0 || self.rapid_v != [0.0; 2] || (self.jerk && !self.smooth.settled());
             if still && self.started {
                 return;
             }

@@ -23,6 +23,13 @@
 //! messages, `libm` for the kernel's float functions and a TOML-free
 //! `Machine` constructor (the TOML reader staying behind `std`).
 //!
+//! Modules: [`planner`] (queue, corner speeds, backward pass), [`profile`]
+//! (the discrete braking limit shared by planner and interpolator),
+//! [`geom`] (exact lines, arcs, ellipses, parabolas), [`interpolate`] (the
+//! period loop), [`spindle`], [`smooth`] (optional jerk limiting),
+//! [`plc`], [`command`], [`config`], and the outputs [`trace`], [`plot`],
+//! [`stats`].
+//!
 //! Determinism: all arithmetic is IEEE double in a fixed order and every
 //! transcendental function comes from `libm`, so identical input and
 //! configuration give bit-identical set points on every host.
@@ -42,6 +49,7 @@ pub mod planner;
 pub mod plc;
 pub mod plot;
 pub mod profile;
+pub mod smooth;
 pub mod spindle;
 pub mod stats;
 pub mod trace;

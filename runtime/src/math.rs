@@ -35,7 +35,8 @@ impl V2 {
     }
 
     pub fn norm(self) -> f64 {
-        libm::hypot(self.r, self.z)
+        // No overflow to fear at machine scales; sqrt is exact IEEE.
+        libm::sqrt(self.r * self.r + self.z * self.z)
     }
 
     /// The unit vector, or zero for a zero vector.
@@ -50,7 +51,10 @@ impl V2 {
 
     /// The vector at angle `a` from +Z.
     pub fn polar(a: f64) -> V2 {
-        V2 { r: libm::sin(a), z: libm::cos(a) }
+        V2 {
+            r: libm::sin(a),
+            z: libm::cos(a),
+        }
     }
 
     /// The angle of this vector from +Z.
@@ -60,7 +64,10 @@ impl V2 {
 
     /// Rotated by +90° (from +Z towards +X).
     pub fn perp(self) -> V2 {
-        V2 { r: self.z, z: -self.r }
+        V2 {
+            r: self.z,
+            z: -self.r,
+        }
     }
 
     /// The largest axis component, in absolute value.
@@ -76,29 +83,47 @@ impl V2 {
 impl Add for V2 {
     type Output = V2;
     fn add(self, o: V2) -> V2 {
-        V2 { r: self.r + o.r, z: self.z + o.z }
+        V2 {
+            r: self.r + o.r,
+            z: self.z + o.z,
+        }
     }
 }
 
 impl Sub for V2 {
     type Output = V2;
     fn sub(self, o: V2) -> V2 {
-        V2 { r: self.r - o.r, z: self.z - o.z }
+        V2 {
+            r: self.r - o.r,
+            z: self.z - o.z,
+        }
     }
 }
 
 impl Mul<f64> for V2 {
     type Output = V2;
     fn mul(self, k: f64) -> V2 {
-        V2 { r: self.r * k, z: self.z * k }
+        V2 {
+            r: self.r * k,
+            z: self.z * k,
+        }
     }
 }
 
 impl Neg for V2 {
     type Output = V2;
     fn neg(self) -> V2 {
-        V2 { r: -self.r, z: -self.z }
+        V2 {
+            r: -self.r,
+            z: -self.z,
+        }
     }
+}
+
+/// `v > 0`, false for NaN (guards against bad input read as "not positive").
+#[inline]
+pub fn is_pos(v: f64) -> bool {
+    v > 0.0
 }
 
 pub fn sqrt(v: f64) -> f64 {

@@ -21,7 +21,7 @@
 use crate::command::{Command, Feed, Move, MoveKind, PauseKind, Tag};
 use crate::config::Config;
 use crate::geom::Curve;
-use crate::math::{sqrt, V2, PI};
+use crate::math::{sqrt, PI, V2};
 use crate::plc::PlcFunction;
 use crate::profile::brake_limit;
 use alloc::vec::Vec;
@@ -61,6 +61,37 @@ pub struct Segment {
     pub est_s: f64,
 }
 
+impl Segment {
+    /// A placeholder (no move).
+    pub const IDLE: Segment = Segment {
+        kind: MoveKind::Rapid,
+        curve: Curve::Line {
+            p0: V2::ZERO,
+            d: V2::ZERO,
+        },
+        from: V2::ZERO,
+        to: V2::ZERO,
+        len: 0.0,
+        shift: V2::ZERO,
+        v_max: 0.0,
+        a: 0.0,
+        a_scale: 0.0,
+        f_n: 0.0,
+        c_in: 0.0,
+        c_out: 0.0,
+        v_junction: 0.0,
+        v_exit: 0.0,
+        t0: V2::ZERO,
+        t1: V2::ZERO,
+        long_z: true,
+        long_len: 0.0,
+        est_s: 0.0,
+    };
+}
+
+/// Items live by value in the preallocated ring (no box, no allocation
+/// per period), so the move variant's size is the price of the queue.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ItemKind {
     Move(Segment),
@@ -106,6 +137,10 @@ pub struct Planner {
     len: usize,
     dt: f64,
     ax: [f64; 2],
+    /// 1/acceleration and 1/max feed of each axis (divisions are the
+    /// slow part of a push).
+    iax: [f64; 2],
+    ivfeed: [f64; 2],
     vfeed: [f64; 2],
     vrapid: [f64; 2],
     path_max: f64,
@@ -113,6 +148,9 @@ pub struct Planner {
     /// G64 blends within this (machine.resolution_mm).
     tolerance: f64,
     exact_stop: bool,
+    /// Jerk limiting is on: feeds stop between blocks (the moving average
+    /// could otherwise run through a corner faster than its speed).
+    jerk: bool,
     /// End of the last queued move (machine axes, slide units).
     tail: V2,
     shift: V2,
@@ -121,9 +159,27 @@ pub struct Planner {
     css_hint: Option<f64>,
     queued_s: f64,
     queued_moves: usize,
+    /// Moves queued since the last backward pass.
+    pending: usize,
 }
 
-const PLACEHOLDER: Item = Item { kind: ItemKind::End, tag: Tag { file: 0, line: 0, col: 0, block: 0, block_end: false }, shift: V2::ZERO };
+const PLACEHOLDER: Item = Item {
+    kind: ItemKind::End,
+    tag: Tag {
+        file: 0,
+        line: 0,
+        col: 0,
+        block: 0,
+        block_end: false,
+    },
+    shift: V2::ZERO,
+};
+
+/// Moves queued between two backward passes at most. One pass per batch
+/// instead of one per move: a move that has not been through a pass yet
+/// ends in a stop, which is a valid (if slow) envelope, so the batch only
+/// delays speed that the interpolator would not reach before the pass.
+pub const REPLAN_BATCH: usize = 32;
 
 /// Highest feed override: the envelope must allow it.
 const MAX_OVERRIDE: f64 = 1.5;
@@ -139,18 +195,22 @@ impl Planner {
             len: 0,
             dt: cfg.period_s,
             ax: [cfg.x.accel, cfg.z.accel],
+            iax: [1.0 / cfg.x.accel, 1.0 / cfg.z.accel],
+            ivfeed: [1.0 / cfg.x.max_feed, 1.0 / cfg.z.max_feed],
             vfeed: [cfg.x.max_feed, cfg.z.max_feed],
             vrapid: [cfg.x.rapid, cfg.z.rapid],
             path_max: cfg.path_max_feed,
             budget: cfg.corner_budget.clamp(0.0, 0.5),
             tolerance: cfg.resolution_mm.max(1e-6),
             exact_stop: cfg.always_exact_stop,
+            jerk: cfg.jerk_taps() > 1,
             tail: V2::ZERO,
             shift: V2::ZERO,
             rpm_hint: 0.0,
             css_hint: None,
             queued_s: 0.0,
             queued_moves: 0,
+            pending: 0,
         }
     }
 
@@ -296,9 +356,13 @@ impl Planner {
             self.queued_moves += 1;
             self.tail = s.to;
             self.shift = s.shift;
-            self.join_and_replan();
+            self.join();
         } else {
             self.release_corner(self.len - 1);
+        }
+        self.pending += 1;
+        if self.pending >= REPLAN_BATCH {
+            self.replan();
         }
         Ok(Pushed::Queued)
     }
@@ -322,10 +386,16 @@ impl Planner {
             }
         };
         let len = curve.length();
-        if !(len > 1e-9) {
+        if !crate::math::is_pos(len - 1e-9) {
             return None;
         }
-        let (t0, t1) = (curve.tangent(0.0), curve.tangent(1.0));
+        let (t0, t1) = match curve {
+            Curve::Line { d, .. } => {
+                let u = d * (1.0 / len);
+                (u, u)
+            }
+            _ => curve.end_tangents(),
+        };
         let amin = self.ax[0].min(self.ax[1]);
         let mut seg = Segment {
             kind: m.kind,
@@ -350,18 +420,18 @@ impl Planner {
         };
         // Hard caps of the path: per-axis feed limits (a curve sweeps its
         // direction, so both count fully), the path limit, curvature.
-        let dir = (to - from).unit();
-        let is_line = matches!(curve, Curve::Line { .. });
-        let axis_cap = |u: V2| {
-            let mut v = f64::INFINITY;
-            for (k, c) in [u.r.abs(), u.z.abs()].into_iter().enumerate() {
-                if c > 1e-12 {
-                    v = v.min(self.vfeed[k] / c);
-                }
-            }
-            v
+        let dir = if matches!(curve, Curve::Line { .. }) {
+            t0
+        } else {
+            (to - from).unit()
         };
-        let mut cap = if is_line { axis_cap(dir) } else { self.vfeed[0].min(self.vfeed[1]) };
+        let is_line = matches!(curve, Curve::Line { .. });
+        let (ur, uz) = (dir.r.abs(), dir.z.abs());
+        let mut cap = if is_line {
+            1.0 / (ur * self.ivfeed[0]).max(uz * self.ivfeed[1])
+        } else {
+            self.vfeed[0].min(self.vfeed[1])
+        };
         cap = cap.min(self.path_max);
         let rmin = curve.min_radius();
         if rmin.is_finite() {
@@ -372,15 +442,7 @@ impl Planner {
             cap = cap.min(sqrt(8.0 * rmin * self.tolerance) / self.dt);
         }
         // Line acceleration: the moving axes' limits along the direction.
-        let a_line = {
-            let mut a = f64::INFINITY;
-            for (k, c) in [dir.r.abs(), dir.z.abs()].into_iter().enumerate() {
-                if c > 1e-12 {
-                    a = a.min(self.ax[k] / c);
-                }
-            }
-            a
-        };
+        let a_line = 1.0 / (ur * self.iax[0]).max(uz * self.iax[1]);
         match m.kind {
             MoveKind::Rapid | MoveKind::Offset => {
                 let d = to - from;
@@ -393,7 +455,11 @@ impl Planner {
                 let top = if f.per_rev {
                     cap
                 } else {
-                    let over = if let MoveKind::Skip(_) = m.kind { 1.0 } else { MAX_OVERRIDE };
+                    let over = if let MoveKind::Skip(_) = m.kind {
+                        1.0
+                    } else {
+                        MAX_OVERRIDE
+                    };
                     cap.min(f.f * over)
                 };
                 seg.v_max = top.max(0.0);
@@ -405,7 +471,12 @@ impl Planner {
                 }
                 // Keep the corner share at the end until the next move is
                 // known; the real corner can only need less.
-                seg.c_out = if matches!(m.kind, MoveKind::Feed(_)) && !self.exact_stop { self.budget } else { 0.0 };
+                seg.c_out = if matches!(m.kind, MoveKind::Feed(_)) && !self.exact_stop && !self.jerk
+                {
+                    self.budget
+                } else {
+                    0.0
+                };
                 seg.est_s = len / self.nominal(f, to).min(seg.v_max).max(1e-3);
             }
             MoveKind::Thread(t) => {
@@ -414,7 +485,11 @@ impl Planner {
                 seg.long_len = match curve {
                     Curve::Arc { .. } => {
                         let p = curve.point(1.0) - curve.point(0.0);
-                        if seg.long_z { p.z.abs() } else { p.r.abs() }
+                        if seg.long_z {
+                            p.z.abs()
+                        } else {
+                            p.r.abs()
+                        }
                     }
                     _ => {
                         if seg.long_z {
@@ -432,7 +507,7 @@ impl Planner {
             }
         }
         seg.a = seg.a_scale * (1.0 - seg.f_n - seg.c_in.max(seg.c_out));
-        if !(seg.a > 0.0) {
+        if !crate::math::is_pos(seg.a) {
             seg.a = seg.a_scale * 0.25;
         }
         Some(seg)
@@ -472,35 +547,35 @@ impl Planner {
         match (a.kind, b.kind) {
             // Consecutive thread blocks run on without a stop (§4.3).
             (MoveKind::Thread(_), MoveKind::Thread(_)) => true,
-            (MoveKind::Feed(_), MoveKind::Feed(_)) => !self.exact_stop,
+            (MoveKind::Feed(_), MoveKind::Feed(_)) => !self.exact_stop && !self.jerk,
             _ => false,
         }
     }
 
     /// The new tail move was just queued: set the corner with the move
-    /// before it, then raise the exit speeds backwards as far as they rise.
-    fn join_and_replan(&mut self) {
+    /// before it.
+    fn join(&mut self) {
         let n = self.len - 1;
         if n == 0 {
             return;
         }
         let (ip, it) = (self.slot(n - 1), self.slot(n));
-        let (ItemKind::Move(prev), ItemKind::Move(cur)) = (self.items[ip].kind, self.items[it].kind) else {
+        let (prev, cur) = match (&self.items[ip].kind, &self.items[it].kind) {
+            (ItemKind::Move(p), ItemKind::Move(c)) => (p, c),
             // A non-move before: its own move (if any) ends in a stop.
-            return;
+            _ => return,
         };
-        let (mut prev, mut cur) = (prev, cur);
-        if self.joinable(&prev, &cur) {
+        let (mut vj, mut used) = (0.0, 0.0);
+        if self.joinable(prev, cur) {
             let du = cur.t0 - prev.t1;
             let threads = matches!(cur.kind, MoveKind::Thread(_));
-            let mut vj = prev.v_max.min(cur.v_max);
+            vj = prev.v_max.min(cur.v_max);
             if !threads {
                 // The velocity step of the corner within its share of
                 // each axis's acceleration ...
-                for (k, c) in [du.r.abs(), du.z.abs()].into_iter().enumerate() {
-                    if c > 1e-15 {
-                        vj = vj.min(self.budget * self.ax[k] * self.dt / c);
-                    }
+                let share = (du.r.abs() * self.iax[0]).max(du.z.abs() * self.iax[1]);
+                if share > 1e-18 {
+                    vj = vj.min(self.budget * self.dt / share);
                 }
                 // ... and the chord of the period that runs through the
                 // corner within the tolerance of it: (v·dt/2)·sin(θ/2),
@@ -509,66 +584,143 @@ impl Planner {
                 if n > 1e-15 {
                     vj = vj.min(4.0 * self.tolerance / (self.dt * n));
                 }
+                vj = vj.max(0.0);
+                used = vj * share / self.dt;
             }
-            let used = if threads {
-                0.0
-            } else {
-                (vj * du.r.abs() / (self.ax[0] * self.dt)).max(vj * du.z.abs() / (self.ax[1] * self.dt))
-            };
-            prev.v_junction = vj.max(0.0);
-            prev.c_out = used;
-            cur.c_in = used;
-        } else {
-            prev.v_junction = 0.0;
-            prev.c_out = 0.0;
         }
-        for s in [&mut prev, &mut cur] {
+        // Only ever raised: the interpolator may already run on them.
+        let raise = |s: &mut Segment| {
             if !matches!(s.kind, MoveKind::Rapid | MoveKind::Offset) {
                 let a = s.a_scale * (1.0 - s.f_n - s.c_in.max(s.c_out));
-                // Only ever raised: the interpolator may already run on it.
                 s.a = s.a.max(a);
             }
+        };
+        if let ItemKind::Move(p) = &mut self.items[ip].kind {
+            p.v_junction = vj;
+            p.c_out = used;
+            raise(p);
         }
-        self.items[ip].kind = ItemKind::Move(prev);
-        self.items[it].kind = ItemKind::Move(cur);
-        // Backward pass.
-        let mut k = n;
-        while k > 0 {
-            let (ip, ik) = (self.slot(k - 1), self.slot(k));
-            let (ItemKind::Move(p), ItemKind::Move(c)) = (&self.items[ip].kind, &self.items[ik].kind) else {
-                break;
-            };
-            if p.v_junction <= 0.0 {
-                break;
+        if let ItemKind::Move(c) = &mut self.items[it].kind {
+            c.c_in = used;
+            raise(c);
+        }
+    }
+
+    /// The backward pass over what was queued since the last one: each
+    /// move's exit rises to what the move after it can still brake from;
+    /// before the new items, the pass ends at the first move whose exit
+    /// does not change. Callers that push one by one call it before the
+    /// next period (the controller does at the end of `run_ahead`);
+    /// `push` also runs it every [`REPLAN_BATCH`] items.
+    pub fn replan(&mut self) {
+        let dirty = core::mem::take(&mut self.pending);
+        if self.len == 0 || dirty == 0 {
+            return;
+        }
+        let first_dirty = self.len.saturating_sub(dirty);
+        let cap = self.items.len();
+        let dt = self.dt;
+        // (length, exit, acceleration) of the move after the current one.
+        let mut carry: Option<(f64, f64, f64)> = None;
+        let mut k = self.len - 1;
+        let mut i = self.slot(k);
+        loop {
+            let settled = k < first_dirty;
+            match &mut self.items[i].kind {
+                ItemKind::Move(p) => {
+                    let mut rose = false;
+                    if let Some((cl, ce, ca)) = carry {
+                        // At its corner speed already, nothing can rise.
+                        if p.v_junction > 0.0 && p.v_exit < p.v_junction {
+                            let exit = p.v_junction.min(brake_limit(cl, ce, ca, dt));
+                            if exit > p.v_exit {
+                                p.v_exit = exit;
+                                rose = true;
+                            }
+                        }
+                    }
+                    if settled && !rose {
+                        break;
+                    }
+                    carry = Some((p.len, p.v_exit, p.a));
+                }
+                _ => {
+                    if settled {
+                        break;
+                    }
+                    carry = None;
+                }
             }
-            let entry = brake_limit(c.len, c.v_exit, c.a, self.dt);
-            let exit = p.v_junction.min(entry);
-            if exit <= p.v_exit {
+            if k == 0 {
                 break;
-            }
-            if let ItemKind::Move(p) = &mut self.items[ip].kind {
-                p.v_exit = exit;
             }
             k -= 1;
+            i = if i == 0 { cap - 1 } else { i - 1 };
         }
     }
 }
 
 #[cfg(test)]
 mod tests {
+    /// A batch pass gives the same envelope as a pass after every push.
+    #[test]
+    fn batched_and_single_passes_agree() {
+        let cfg = Config::default();
+        let (mut a, mut b) = (Planner::new(&cfg), Planner::new(&cfg));
+        let mut r: f64 = 10.0;
+        for i in 0..300 {
+            r += if i % 7 == 0 { 0.3 } else { -0.02 };
+            let c = if i % 50 == 25 {
+                Command::Plc(PlcFunction::M(8))
+            } else {
+                feed(V2::new(r, -(i as f64) * 0.2), 30.0)
+            };
+            a.push(c, Tag::default()).unwrap();
+            a.replan();
+            b.push(c, Tag::default()).unwrap();
+        }
+        b.replan();
+        for k in 0..a.len() {
+            // The batch sees the final accelerations, so it may only be
+            // closer to the limit, never above it.
+            let (ea, eb) = (
+                a.seg(k).map_or(0.0, |s| s.v_exit),
+                b.seg(k).map_or(0.0, |s| s.v_exit),
+            );
+            assert!(eb >= ea - 1e-12, "item {k}: {eb} < {ea}");
+            for p in [&a, &b] {
+                if let (Some(s), Some(n)) = (p.seg(k), p.seg(k + 1)) {
+                    let room = s.v_junction.min(brake_limit(n.len, n.v_exit, n.a, p.dt));
+                    assert!(
+                        s.v_exit <= room + 1e-12,
+                        "item {k}: exit {} above {room}",
+                        s.v_exit
+                    );
+                }
+            }
+        }
+        assert_eq!(b.seg(b.len() - 1).unwrap().v_exit, 0.0);
+    }
+
     use super::*;
     use crate::command::Path;
 
     fn feed(to: V2, f: f64) -> Command {
-        Command::Move(Move { kind: MoveKind::Feed(Feed { f, per_rev: false }), path: Path::Line { to }, shift: V2::ZERO })
+        Command::Move(Move {
+            kind: MoveKind::Feed(Feed { f, per_rev: false }),
+            path: Path::Line { to },
+            shift: V2::ZERO,
+        })
     }
 
     #[test]
     fn collinear_moves_blend_and_the_last_stops() {
         let mut p = Planner::new(&Config::default());
         for i in 1..=10 {
-            p.push(feed(V2::new(0.0, -(i as f64)), 10.0), Tag::default()).unwrap();
+            p.push(feed(V2::new(0.0, -(i as f64)), 10.0), Tag::default())
+                .unwrap();
         }
+        p.replan();
         for k in 0..9 {
             let s = p.seg(k).unwrap();
             assert!(s.v_exit > 9.9, "{k}: {}", s.v_exit);
@@ -579,8 +731,11 @@ mod tests {
     #[test]
     fn a_right_angle_slows_to_the_corner_speed() {
         let mut p = Planner::new(&Config::default());
-        p.push(feed(V2::new(0.0, -10.0), 50.0), Tag::default()).unwrap();
-        p.push(feed(V2::new(5.0, -10.0), 50.0), Tag::default()).unwrap();
+        p.push(feed(V2::new(0.0, -10.0), 50.0), Tag::default())
+            .unwrap();
+        p.push(feed(V2::new(5.0, -10.0), 50.0), Tag::default())
+            .unwrap();
+        p.replan();
         let s = p.seg(0).unwrap();
         // Z loses its whole speed in one period, so 0.25·2000·0.001 mm/s at most.
         assert!(s.v_exit <= 0.5 + 1e-12 && s.v_exit > 0.0, "{}", s.v_exit);
@@ -589,8 +744,20 @@ mod tests {
     #[test]
     fn rapids_and_feeds_stop_between() {
         let mut p = Planner::new(&Config::default());
-        p.push(Command::Move(Move { kind: MoveKind::Rapid, path: Path::Line { to: V2::new(5.0, 5.0) }, shift: V2::ZERO }), Tag::default()).unwrap();
-        p.push(feed(V2::new(5.0, -10.0), 10.0), Tag::default()).unwrap();
+        p.push(
+            Command::Move(Move {
+                kind: MoveKind::Rapid,
+                path: Path::Line {
+                    to: V2::new(5.0, 5.0),
+                },
+                shift: V2::ZERO,
+            }),
+            Tag::default(),
+        )
+        .unwrap();
+        p.push(feed(V2::new(5.0, -10.0), 10.0), Tag::default())
+            .unwrap();
+        p.replan();
         assert_eq!(p.seg(0).unwrap().v_exit, 0.0);
     }
 }

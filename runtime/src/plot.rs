@@ -32,14 +32,17 @@ impl Plot {
             self.last = Some((kind, pt));
             return;
         }
-        let open = matches!(self.runs.last(), Some((k, _)) if *k == kind) && !matches!(self.last, Some((Motion::None, _)));
+        let open = matches!(self.runs.last(), Some((k, _)) if *k == kind)
+            && !matches!(self.last, Some((Motion::None, _)));
         if !open {
             self.close();
             let start = self.last.map_or(pt, |(_, q)| q);
             self.runs.push((kind, alloc::vec![start]));
         }
         if let Some((_, pts)) = self.runs.last_mut() {
-            let far = pts.last().is_none_or(|q| libm::hypot(q.0 - pt.0, q.1 - pt.1) >= KEEP_MM);
+            let far = pts
+                .last()
+                .is_none_or(|q| libm::hypot(q.0 - pt.0, q.1 - pt.1) >= KEEP_MM);
             if far {
                 pts.push(pt);
             }
@@ -95,22 +98,46 @@ impl Plot {
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {w:.1} {h:.1}\" font-family=\"sans-serif\" font-size=\"12\">"
         );
         let _ = writeln!(s, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>");
-        let _ = writeln!(s, "<text x=\"{ml}\" y=\"20\" font-size=\"14\">{}</text>", escape(title));
+        let _ = writeln!(
+            s,
+            "<text x=\"{ml}\" y=\"20\" font-size=\"14\">{}</text>",
+            escape(title)
+        );
         // Grid and tick labels.
         let step_z = nice_step((zmax - zmin) / 8.0);
         let step_r = nice_step((rmax - rmin) / 6.0);
         let mut z = libm::ceil(zmin / step_z) * step_z;
         while z <= zmax {
             let x = sx(z);
-            let _ = writeln!(s, "<line x1=\"{x:.2}\" y1=\"{:.2}\" x2=\"{x:.2}\" y2=\"{:.2}\" stroke=\"#e4e4e4\"/>", mt, h - mb);
-            let _ = writeln!(s, "<text x=\"{x:.2}\" y=\"{:.2}\" text-anchor=\"middle\">{}</text>", h - mb + 16.0, label(z));
+            let _ = writeln!(
+                s,
+                "<line x1=\"{x:.2}\" y1=\"{:.2}\" x2=\"{x:.2}\" y2=\"{:.2}\" stroke=\"#e4e4e4\"/>",
+                mt,
+                h - mb
+            );
+            let _ = writeln!(
+                s,
+                "<text x=\"{x:.2}\" y=\"{:.2}\" text-anchor=\"middle\">{}</text>",
+                h - mb + 16.0,
+                label(z)
+            );
             z += step_z;
         }
         let mut r = libm::ceil(rmin / step_r) * step_r;
         while r <= rmax {
             let y = sy(r);
-            let _ = writeln!(s, "<line x1=\"{ml}\" y1=\"{y:.2}\" x2=\"{:.2}\" y2=\"{y:.2}\" stroke=\"#e4e4e4\"/>", w - mr);
-            let _ = writeln!(s, "<text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"end\">{}</text>", ml - 6.0, y + 4.0, label(2.0 * r));
+            let _ = writeln!(
+                s,
+                "<line x1=\"{ml}\" y1=\"{y:.2}\" x2=\"{:.2}\" y2=\"{y:.2}\" stroke=\"#e4e4e4\"/>",
+                w - mr
+            );
+            let _ = writeln!(
+                s,
+                "<text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"end\">{}</text>",
+                ml - 6.0,
+                y + 4.0,
+                label(2.0 * r)
+            );
             r += step_r;
         }
         let _ = writeln!(
@@ -126,7 +153,12 @@ impl Plot {
             "<line x1=\"{ml}\" y1=\"{y0:.2}\" x2=\"{:.2}\" y2=\"{y0:.2}\" stroke=\"#999\" stroke-dasharray=\"12 3 2 3\"/>",
             w - mr
         );
-        let _ = writeln!(s, "<text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"middle\">Z (mm)</text>", ml + (w - ml - mr) / 2.0, h - 12.0);
+        let _ = writeln!(
+            s,
+            "<text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"middle\">Z (mm)</text>",
+            ml + (w - ml - mr) / 2.0,
+            h - 12.0
+        );
         let _ = writeln!(
             s,
             "<text x=\"16\" y=\"{:.2}\" transform=\"rotate(-90 16 {:.2})\" text-anchor=\"middle\">X (diameter, mm)</text>",
@@ -151,7 +183,11 @@ impl Plot {
             s.push_str("\"/>\n");
         }
         // Legend, in the top margin right of the title.
-        let items = [("rapid", "#d62728", "6 4"), ("feed", "#1f4e9c", ""), ("thread", "#2ca02c", "")];
+        let items = [
+            ("rapid", "#d62728", "6 4"),
+            ("feed", "#1f4e9c", ""),
+            ("thread", "#2ca02c", ""),
+        ];
         for (i, (name, colour, dash)) in items.iter().enumerate() {
             let lx = w - mr - 240.0 + 80.0 * i as f64;
             let y = 20.0;
@@ -171,7 +207,11 @@ impl Plot {
 
 /// 1, 2 or 5 × 10ⁿ at or above `raw`.
 fn nice_step(raw: f64) -> f64 {
-    let raw = if raw > 0.0 && raw.is_finite() { raw } else { 1.0 };
+    let raw = if raw > 0.0 && raw.is_finite() {
+        raw
+    } else {
+        1.0
+    };
     let p = libm::pow(10.0, libm::floor(libm::log10(raw)));
     for m in [1.0, 2.0, 5.0, 10.0] {
         if m * p >= raw {

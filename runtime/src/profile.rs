@@ -21,56 +21,99 @@
 /// `dt`.
 pub fn brake_limit(d: f64, u: f64, a: f64, dt: f64) -> f64 {
     let u = u.max(0.0);
-    if d <= 0.0 || !(a > 0.0) {
+    if d <= 0.0 || !crate::math::is_pos(a) {
         return u;
     }
-    landing(d, a, dt).max(crossing(d, u, a, dt))
+    let adt = a * dt;
+    let cross = crossing(d, u, adt, dt);
+    // The landing limit is below sqrt(2·a·d) + a·dt: skip it (a square
+    // root) when the crossing limit is above that already.
+    if cross > adt && (cross - adt) * (cross - adt) >= 2.0 * a * d {
+        return cross;
+    }
+    landing(d, adt, dt).max(cross)
+}
+
+/// `floor` of a non-negative number (truncation is exact there, and much
+/// cheaper than a software floor on baseline x86-64).
+#[inline]
+fn floor_pos(x: f64) -> f64 {
+    if x < 9.0e15 {
+        (x as i64) as f64
+    } else {
+        x
+    }
 }
 
 /// The fastest sequence that lands exactly on the point: m periods each
 /// `a·dt` slower than the one before, then a last one of `ε ∈ (0, a·dt]`;
 /// it covers `dt·((m+1)·ε + a·dt·m(m+1)/2)`.
-fn landing(d: f64, a: f64, dt: f64) -> f64 {
-    let k = a * dt * dt;
-    let x = d / k;
+fn landing(d: f64, adt: f64, dt: f64) -> f64 {
+    let d_dt = d / dt;
+    let x = d_dt / adt;
     // n = m + 1 periods: the smallest n with n(n+1)/2 ≥ x.
-    let mut n = libm::ceil((libm::sqrt(1.0 + 8.0 * x) - 1.0) * 0.5).max(1.0);
-    while n * (n + 1.0) * 0.5 < x {
+    let t = (libm::sqrt(1.0 + 8.0 * x) - 1.0) * 0.5;
+    let mut n = floor_pos(t);
+    if n < t {
         n += 1.0;
     }
-    while n > 1.0 && (n - 1.0) * n * 0.5 >= x {
+    n = n.max(1.0);
+    if n * (n + 1.0) * 0.5 < x {
+        n += 1.0;
+    }
+    if n > 1.0 && (n - 1.0) * n * 0.5 >= x {
         n -= 1.0;
     }
     let m = n - 1.0;
-    let eps = ((d / dt - a * dt * m * (m + 1.0) * 0.5) / n).clamp(0.0, a * dt);
-    eps + m * a * dt
+    let eps = ((d_dt - adt * m * (m + 1.0) * 0.5) / n).clamp(0.0, adt);
+    eps + m * adt
 }
 
 /// The fastest sequence that crosses the point at `w ≤ u` after m slower
 /// and slower periods: `w + m·a·dt`, the m periods before the crossing
 /// covering at most `d`.
-fn crossing(d: f64, u: f64, a: f64, dt: f64) -> f64 {
+fn crossing(d: f64, u: f64, adt: f64, dt: f64) -> f64 {
     if u <= 0.0 {
         return 0.0;
     }
-    let h = 0.5 * a * dt;
+    let h = 0.5 * adt;
     // The real m at which w = u exactly (the closed form of the sum).
-    let v = libm::sqrt((u + h) * (u + h) + 2.0 * a * d) - h;
-    let m_star = ((v - u) / (a * dt)).max(0.0);
-    let m1 = libm::floor(m_star);
-    let mut best = u + m1 * a * dt;
+    let v = libm::sqrt((u + h) * (u + h) + 2.0 * (adt / dt) * d) - h;
+    let m1 = floor_pos(((v - u) / adt).max(0.0));
+    let mut best = u + m1 * adt;
     let m2 = m1 + 1.0;
-    let w = (d / dt - a * dt * m2 * (m2 + 1.0) * 0.5) / m2;
+    let w = (d / dt - adt * m2 * (m2 + 1.0) * 0.5) / m2;
     if w >= 0.0 {
-        best = best.max(w.min(u) + m2 * a * dt);
+        best = best.max(w.min(u) + m2 * adt);
     }
     best
+}
+
+/// As [`brake_limit`] when it can matter, else ∞: when `u ≥ top`, or the
+/// point is
+/// farther than the distance needed to come down from `top + a·dt` to
+/// `u` (periods `a·dt` apart: `(v² − u² + a·dt·(v − u)) / 2a`), the limit
+/// is at least `top`, the most the speed can reach this period, and
+/// nothing needs computing.
+#[inline]
+pub fn brake_limit_above(d: f64, u: f64, a: f64, dt: f64, top: f64) -> f64 {
+    let u = u.max(0.0);
+    // The limit is never below u.
+    if u >= top {
+        return f64::INFINITY;
+    }
+    let adt = a * dt;
+    let v = top.max(u) + adt;
+    if a > 0.0 && 2.0 * a * d >= v * v - u * u + adt * (v - u) {
+        return f64::INFINITY;
+    }
+    brake_limit(d, u, a, dt)
 }
 
 /// The distance a stop from speed `v` takes when every period is `a·dt`
 /// slower than the one before (the inverse of the landing limit).
 pub fn stopping_distance(v: f64, a: f64, dt: f64) -> f64 {
-    if !(a > 0.0) || v <= 0.0 {
+    if !crate::math::is_pos(a) || v <= 0.0 {
         return 0.0;
     }
     let n = libm::ceil(v / (a * dt));

@@ -25,7 +25,10 @@ pub struct Stats {
 
 impl Stats {
     pub fn new(period_s: f64) -> Stats {
-        Stats { dt: period_s, ..Stats::default() }
+        Stats {
+            dt: period_s,
+            ..Stats::default()
+        }
     }
 
     /// Accounts one period.
@@ -59,7 +62,11 @@ impl fmt::Display for Stats {
         for (t, s) in &self.per_tool {
             writeln!(f, "  T{t:02}: {s:.3} s")?;
         }
-        writeln!(f, "distance cut: {:.3} mm (threads {:.3} mm)", self.cut_mm, self.thread_mm)?;
+        writeln!(
+            f,
+            "distance cut: {:.3} mm (threads {:.3} mm)",
+            self.cut_mm, self.thread_mm
+        )?;
         writeln!(f, "distance rapid: {:.3} mm", self.rapid_mm)?;
         writeln!(f, "blocks: {}", self.blocks)
     }

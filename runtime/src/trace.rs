@@ -17,7 +17,11 @@ impl fmt::Display for Fixed {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let Fixed(v, d) = *self;
         let half = 0.5 * libm::pow(10.0, -(d as f64));
-        let v = if v.abs() < half || !v.is_finite() { 0.0 } else { v };
+        let v = if v.abs() < half || !v.is_finite() {
+            0.0
+        } else {
+            v
+        };
         write!(f, "{v:.d$}")
     }
 }
@@ -57,7 +61,15 @@ mod tests {
 
     #[test]
     fn lines_have_the_header_fields() {
-        let p = SetPoint { time_s: 0.001, x: 40.0, z: -0.0000001, spindle_rpm: 800.0, feed: 1200.0, line: 7, ..Default::default() };
+        let p = SetPoint {
+            time_s: 0.001,
+            x: 40.0,
+            z: -0.0000001,
+            spindle_rpm: 800.0,
+            feed: 1200.0,
+            line: 7,
+            ..Default::default()
+        };
         let mut s = String::new();
         write_csv(&mut s, &p).unwrap();
         assert_eq!(s, "0.001000,40.000000,0.000000,800.000,1200.000,7\n");

@@ -37,7 +37,10 @@ impl Translator {
         Translator {
             origin,
             tool_off: V2::ZERO,
-            feed: Feed { f: 0.0, per_rev: false },
+            feed: Feed {
+                f: 0.0,
+                per_rev: false,
+            },
             work: V2::ZERO,
             messages: Vec::new(),
             skip_queued: false,
@@ -55,7 +58,11 @@ impl Translator {
     fn mv(&mut self, kind: MoveKind, to_work: V2, path: impl FnOnce(V2, V2) -> Path) -> Command {
         self.work = to_work;
         let shift = self.shift();
-        Command::Move(Move { kind, path: path(self.axis(to_work), shift), shift })
+        Command::Move(Move {
+            kind,
+            path: path(self.axis(to_work), shift),
+            shift,
+        })
     }
 
     /// The commands of one event; `st` is the kernel state after the block
@@ -72,10 +79,24 @@ impl Translator {
                 let k = MoveKind::Feed(self.feed);
                 let c = V2::from_xz(*cx, *cz);
                 let ccw = *dir == Dir::Ccw;
-                out.push(self.mv(k, V2::from_xz(*x, *z), |to, sh| Path::Arc { to, centre: c + sh, ccw }));
+                out.push(self.mv(k, V2::from_xz(*x, *z), |to, sh| Path::Arc {
+                    to,
+                    centre: c + sh,
+                    ccw,
+                }));
             }
-            Event::Thread { x, z, lead, dlead, q } => {
-                let k = MoveKind::Thread(Thread { lead: *lead, dlead: dlead.unwrap_or(0.0), q_deg: q.unwrap_or(0.0) });
+            Event::Thread {
+                x,
+                z,
+                lead,
+                dlead,
+                q,
+            } => {
+                let k = MoveKind::Thread(Thread {
+                    lead: *lead,
+                    dlead: dlead.unwrap_or(0.0),
+                    q_deg: q.unwrap_or(0.0),
+                });
                 out.push(self.mv(k, V2::from_xz(*x, *z), line));
             }
             Event::Skip { x, z } => {
@@ -85,9 +106,16 @@ impl Translator {
             }
             Event::Dwell { s } => out.push(Command::Dwell(*s)),
             Event::Feed { f, per_rev } => {
-                self.feed = Feed { f: if *per_rev { *f } else { *f / 60.0 }, per_rev: *per_rev };
+                self.feed = Feed {
+                    f: if *per_rev { *f } else { *f / 60.0 },
+                    per_rev: *per_rev,
+                };
             }
-            Event::Speed { s, css, max } => out.push(Command::Plc(PlcFunction::Speed { s: *s, css: *css, max: *max })),
+            Event::Speed { s, css, max } => out.push(Command::Plc(PlcFunction::Speed {
+                s: *s,
+                css: *css,
+                max: *max,
+            })),
             Event::Spindle(d) => {
                 let d = match d {
                     NcDir::Cw => SpindleDir::Cw,
@@ -104,7 +132,13 @@ impl Translator {
                     // programmed point stays.
                     self.tool_off = off;
                     let shift = self.shift();
-                    out.push(Command::Move(Move { kind: MoveKind::Offset, path: Path::Line { to: self.axis(self.work) }, shift }));
+                    out.push(Command::Move(Move {
+                        kind: MoveKind::Offset,
+                        path: Path::Line {
+                            to: self.axis(self.work),
+                        },
+                        shift,
+                    }));
                 }
             }
             Event::M(code) => out.push(Command::Plc(PlcFunction::M(*code))),
@@ -129,7 +163,11 @@ impl Translator {
                 self.tool_off = V2::ZERO;
                 self.work = to - self.origin;
                 let shift = self.shift();
-                out.push(Command::Move(Move { kind: MoveKind::Rapid, path: Path::Line { to }, shift }));
+                out.push(Command::Move(Move {
+                    kind: MoveKind::Rapid,
+                    path: Path::Line { to },
+                    shift,
+                }));
                 out.push(Command::Shift(shift));
             }
             Event::Stop(k) => out.push(match k {
@@ -139,7 +177,9 @@ impl Translator {
             }),
             Event::Message(text) => {
                 self.messages.push(text.clone());
-                out.push(Command::Pause(PauseKind::Message(self.messages.len() as u32 - 1)));
+                out.push(Command::Pause(PauseKind::Message(
+                    self.messages.len() as u32 - 1,
+                )));
             }
             Event::Alarm { code, .. } => out.push(Command::Alarm(*code)),
             #[allow(unreachable_patterns)]
@@ -156,7 +196,9 @@ impl Translator {
         let mut words = line.split(' ');
         let key = words.next()?;
         let f = |name: &str| -> Option<f64> {
-            line.split(' ').find_map(|w| w.strip_prefix(name).and_then(|v| v.strip_prefix('='))).and_then(|v| v.parse().ok())
+            line.split(' ')
+                .find_map(|w| w.strip_prefix(name).and_then(|v| v.strip_prefix('=')))
+                .and_then(|v| v.parse().ok())
         };
         let ccw = line.split(' ').any(|w| w == "DIR=CCW");
         let to = V2::from_xz(f("X")?, f("Z")?);
@@ -165,17 +207,36 @@ impl Translator {
             "ELLIPSE" => {
                 let (a, b) = (f("A")?, f("B")?);
                 let k = MoveKind::Feed(self.feed);
-                Some(self.mv(k, to, |to, _| Path::Ellipse { to, a, b, q: q.to_radians(), ccw }))
+                Some(self.mv(k, to, |to, _| Path::Ellipse {
+                    to,
+                    a,
+                    b,
+                    q: q.to_radians(),
+                    ccw,
+                }))
             }
             "PARABOLA" => {
                 let p = f("P")?;
                 let k = MoveKind::Feed(self.feed);
-                Some(self.mv(k, to, |to, _| Path::Parabola { to, p, q: q.to_radians(), ccw }))
+                Some(self.mv(k, to, |to, _| Path::Parabola {
+                    to,
+                    p,
+                    q: q.to_radians(),
+                    ccw,
+                }))
             }
             "ARCTHREAD" => {
                 let c = V2::from_xz(f("CX")?, f("CZ")?);
-                let k = MoveKind::Thread(Thread { lead: f("LEAD")?, dlead: 0.0, q_deg: q });
-                Some(self.mv(k, to, |to, sh| Path::Arc { to, centre: c + sh, ccw }))
+                let k = MoveKind::Thread(Thread {
+                    lead: f("LEAD")?,
+                    dlead: 0.0,
+                    q_deg: q,
+                });
+                Some(self.mv(k, to, |to, sh| Path::Arc {
+                    to,
+                    centre: c + sh,
+                    ccw,
+                }))
             }
             _ => None,
         }
@@ -210,13 +271,36 @@ mod tests {
     #[test]
     fn unknown_moves_are_read_from_their_canon_text() {
         let mut t = Translator::new(V2::ZERO);
-        t.feed = Feed { f: 2.0, per_rev: false };
-        let c = t.from_canon_text("ELLIPSE DIR=CW X=40 Z=-10 A=12 B=5 Q=30").unwrap();
+        t.feed = Feed {
+            f: 2.0,
+            per_rev: false,
+        };
+        let c = t
+            .from_canon_text("ELLIPSE DIR=CW X=40 Z=-10 A=12 B=5 Q=30")
+            .unwrap();
         let Command::Move(m) = c else { panic!() };
-        assert_eq!(m.path, Path::Ellipse { to: V2::new(20.0, -10.0), a: 12.0, b: 5.0, q: 30f64.to_radians(), ccw: false });
-        let c = t.from_canon_text("ARCTHREAD DIR=CCW X=30 Z=-5 CX=20 CZ=-5 LEAD=2 Q=90").unwrap();
+        assert_eq!(
+            m.path,
+            Path::Ellipse {
+                to: V2::new(20.0, -10.0),
+                a: 12.0,
+                b: 5.0,
+                q: 30f64.to_radians(),
+                ccw: false
+            }
+        );
+        let c = t
+            .from_canon_text("ARCTHREAD DIR=CCW X=30 Z=-5 CX=20 CZ=-5 LEAD=2 Q=90")
+            .unwrap();
         let Command::Move(m) = c else { panic!() };
-        assert_eq!(m.kind, MoveKind::Thread(Thread { lead: 2.0, dlead: 0.0, q_deg: 90.0 }));
+        assert_eq!(
+            m.kind,
+            MoveKind::Thread(Thread {
+                lead: 2.0,
+                dlead: 0.0,
+                q_deg: 90.0
+            })
+        );
         assert!(t.from_canon_text("NOSUCH X=1 Z=2").is_none());
         assert_eq!(t.work, V2::new(15.0, -5.0));
     }

@@ -73,5 +73,9 @@ fn ticks_allocate_nothing() {
     }
     assert_eq!(ctl.state(), RunState::Ended);
     assert!(ticks > 10_000);
-    assert_eq!(ALLOCS.load(Ordering::Relaxed), 0, "allocations inside tick()");
+    assert_eq!(
+        ALLOCS.load(Ordering::Relaxed),
+        0,
+        "allocations inside tick()"
+    );
 }

@@ -12,7 +12,10 @@ struct Lcg(u64);
 
 impl Lcg {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         self.0 >> 33
     }
     fn unit(&mut self) -> f64 {
@@ -32,11 +35,24 @@ pub fn program(seed: u64, blocks: usize) -> String {
             1 | 2 => {
                 let chord = ((nx - x) / 2.0).hypot(nz - z);
                 let r = chord / 2.0 + g.unit() * 5.0 + 0.01;
-                let code = if g.next() % 2 == 0 { "G02" } else { "G03" };
-                s.push_str(&format!("G98 {code} X{nx:.3} Z{nz:.3} R{r:.3} F{}\n", 200 + g.next() % 2000));
+                let code = if g.next().is_multiple_of(2) {
+                    "G02"
+                } else {
+                    "G03"
+                };
+                s.push_str(&format!(
+                    "G98 {code} X{nx:.3} Z{nz:.3} R{r:.3} F{}\n",
+                    200 + g.next() % 2000
+                ));
             }
-            3 => s.push_str(&format!("G99 G01 X{nx:.3} Z{nz:.3} F0.{}\n", 1 + g.next() % 3)),
-            4 => s.push_str(&format!("G98 G01 X{nx:.3} Z{nz:.3} F{}\n", 100 + g.next() % 4000)),
+            3 => s.push_str(&format!(
+                "G99 G01 X{nx:.3} Z{nz:.3} F0.{}\n",
+                1 + g.next() % 3
+            )),
+            4 => s.push_str(&format!(
+                "G98 G01 X{nx:.3} Z{nz:.3} F{}\n",
+                100 + g.next() % 4000
+            )),
             // G98 after G99 keeps the number of F: give it again.
             _ => s.push_str(&format!("G98 G01 X{nx:.3} Z{nz:.3} F800\n")),
         }
@@ -75,7 +91,12 @@ pub fn run_seed(seed: u64, log: &mut dyn FnMut(f64, &str)) -> Run {
                         log(sp.time_s, &format!("feed override {o}"));
                     }
                     1 => {
-                        let r = [runtime::RapidOverride::F0, runtime::RapidOverride::P25, runtime::RapidOverride::P50, runtime::RapidOverride::P100][(g.next() % 4) as usize];
+                        let r = [
+                            runtime::RapidOverride::F0,
+                            runtime::RapidOverride::P25,
+                            runtime::RapidOverride::P50,
+                            runtime::RapidOverride::P100,
+                        ][(g.next() % 4) as usize];
                         ctl.set_rapid_override(r);
                         log(sp.time_s, &format!("rapid override {r:?}"));
                     }
@@ -111,13 +132,17 @@ fn generated_programs_stay_within_the_limits() {
 #[test]
 fn other_periods_stay_within_the_limits() {
     for (period, seed) in [(0.125, 7u64), (2.0, 8), (8.0, 9)] {
-        let m = Machine::from_toml(&format!("[machine]\ninterpolation_period_ms = {period}\n")).unwrap();
+        let m = Machine::from_toml(&format!("[machine]\ninterpolation_period_ms = {period}\n"))
+            .unwrap();
         let src = program(seed, 60);
         let r = run_with(&src, m, runtime::AutoAck, |_| {}, |_, _| {}, 3600.0);
         assert_eq!(r.state, RunState::Ended, "period {period}");
         check_end_points(&r);
         let (v, a) = worst_ratios(&r, false);
-        eprintln!("period {period} ms: {} periods, worst velocity {v:.6}, worst acceleration {a:.6}", r.pts.len());
+        eprintln!(
+            "period {period} ms: {} periods, worst velocity {v:.6}, worst acceleration {a:.6}",
+            r.pts.len()
+        );
         check_limits(&r, false);
     }
 }

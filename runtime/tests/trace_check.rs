@@ -36,20 +36,29 @@ fn short_segments_blend_within_the_limits() {
     let mut src = String::from("O0002\nG00 X0 Z0\nG98 G01 F3000\n");
     for i in 1..=400 {
         let t = i as f64 * 0.01;
-        src.push_str(&format!("X{:.3} Z{:.3}\n", 40.0 * (t * 2.0).sin().abs(), -10.0 * t));
+        src.push_str(&format!(
+            "X{:.3} Z{:.3}\n",
+            40.0 * (t * 2.0).sin().abs(),
+            -10.0 * t
+        ));
     }
     src.push_str("M30\n");
     let r = run(&src);
     check_end_points(&r);
     check_limits(&r, false);
     // Blending: the run is far shorter than stopping at each of 400 points.
-    let stops = r.pts.windows(2).filter(|w| w[0].feed > 0.0 && w[1].feed == 0.0).count();
+    let stops = r
+        .pts
+        .windows(2)
+        .filter(|w| w[0].feed > 0.0 && w[1].feed == 0.0)
+        .count();
     assert!(stops < 20, "{stops} stops");
 }
 
 #[test]
 fn arcs_stay_on_their_circle() {
-    let r = run("O0003\nG00 X20 Z0\nG98 G01 F2000\nG03 X20 Z-20 R10\nG02 X20 Z-40 R10\nG01 X40\nM30\n");
+    let r =
+        run("O0003\nG00 X20 Z0\nG98 G01 F2000\nG03 X20 Z-20 R10\nG02 X20 Z-40 R10\nG01 X40\nM30\n");
     check_end_points(&r);
     check_limits(&r, false);
     let mut on_arc = 0;
@@ -107,8 +116,14 @@ fn threads_keep_lead_times_revolutions() {
     }
     // 35 mm at 1.5 mm × 10 rev/s = 2.33 s per pass, nearly all locked.
     assert!(locked > 4000, "{locked} locked periods");
-    let (lo, hi) = phases.iter().fold((f64::MAX, f64::MIN), |(a, b), &p| (a.min(p), b.max(p)));
-    assert!((hi - lo) * lead < 0.001, "the passes differ by {} mm", (hi - lo) * lead);
+    let (lo, hi) = phases
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &p| (a.min(p), b.max(p)));
+    assert!(
+        (hi - lo) * lead < 0.001,
+        "the passes differ by {} mm",
+        (hi - lo) * lead
+    );
 }
 
 #[test]
@@ -126,7 +141,11 @@ fn constant_surface_speed_holds() {
     let r = run(src);
     check_end_points(&r);
     let mut checked = 0;
-    for p in r.pts.iter().filter(|p| p.motion == Motion::Feed && p.x > 20.5) {
+    for p in r
+        .pts
+        .iter()
+        .filter(|p| p.motion == Motion::Feed && p.x > 20.5)
+    {
         let v = p.spindle_rpm * std::f64::consts::PI * p.x / 1000.0;
         assert!((v - 150.0).abs() < 0.05, "surface speed {v} at X{}", p.x);
         checked += 1;
@@ -166,11 +185,18 @@ fn feed_hold_stops_within_the_deceleration_distance_and_resumes_on_the_path() {
     let v = h.feed / 60.0;
     let (dir_r, dir_z) = (20.0 / (20f64.hypot(60.0)), -60.0 / (20f64.hypot(60.0)));
     // A path speed of v at acceleration a (the line's: Z limits it).
-    let a = (r.cfg.x.accel / dir_r.abs()).min(r.cfg.z.accel / dir_z.abs()) * (1.0 - r.cfg.corner_budget);
+    let a = (r.cfg.x.accel / dir_r.abs()).min(r.cfg.z.accel / dir_z.abs())
+        * (1.0 - r.cfg.corner_budget);
     let dist = ((s.x - h.x) / 2.0).hypot(s.z - h.z);
     let limit = v * v / (2.0 * a) + v * r.cfg.period_s;
-    assert!(dist <= limit + 1e-9, "stopped after {dist} mm, more than {limit}");
-    assert!(dist > 0.5 * v * v / (2.0 * a), "stopped too early ({dist} mm)");
+    assert!(
+        dist <= limit + 1e-9,
+        "stopped after {dist} mm, more than {limit}"
+    );
+    assert!(
+        dist > 0.5 * v * v / (2.0 * a),
+        "stopped too early ({dist} mm)"
+    );
     for p in &r.pts {
         let off = (p.x / 2.0) * dir_z - p.z * dir_r;
         assert!(off.abs() < 1e-9, "left the path by {off}");
@@ -181,7 +207,14 @@ fn feed_hold_stops_within_the_deceleration_distance_and_resumes_on_the_path() {
 #[test]
 fn feed_override_scales_the_feed() {
     let src = "O0009\nG98 G01 Z-100 F1200\nM30\n";
-    let r = run_with(src, Machine::reference(), runtime::AutoAck, |c| c.feed_override_pct = 50.0, |_, _| {}, 60.0);
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |c| c.feed_override_pct = 50.0,
+        |_, _| {},
+        60.0,
+    );
     let top = r.pts.iter().map(|p| p.feed).fold(0.0, f64::max);
     assert!((top - 600.0).abs() < 1e-6, "{top}");
 }
@@ -221,7 +254,14 @@ fn the_next_block_waits_for_the_plc() {
         }
     }
     let src = "O0010\nG98 G01 Z-1 F600\nM08\nG01 Z-2\nM30\n";
-    let r = run_with(src, Machine::reference(), Slow::default(), |_| {}, |_, _| {}, 60.0);
+    let r = run_with(
+        src,
+        Machine::reference(),
+        Slow::default(),
+        |_| {},
+        |_, _| {},
+        60.0,
+    );
     check_end_points(&r);
     // Z stands at -1 for the 100 periods of the handshake.
     let standing = r.pts.iter().filter(|p| (p.z + 1.0).abs() < 1e-12).count();
@@ -231,7 +271,14 @@ fn the_next_block_waits_for_the_plc() {
 #[test]
 fn a_feed_per_revolution_with_the_spindle_stopped_is_e7003() {
     let m = Machine::from_toml("[spindle]\nstall_timeout_s = 0.5\n").unwrap();
-    let r = run_with("O0011\nG99 G01 Z-10 F0.1\nM30\n", m, runtime::AutoAck, |_| {}, |_, _| {}, 60.0);
+    let r = run_with(
+        "O0011\nG99 G01 Z-10 F0.1\nM30\n",
+        m,
+        runtime::AutoAck,
+        |_| {},
+        |_, _| {},
+        60.0,
+    );
     assert_eq!(r.state, RunState::Alarm(7003));
     let t = r.pts.last().unwrap().time_s;
     assert!((0.5..0.51).contains(&t), "after {t} s");
@@ -259,7 +306,11 @@ fn the_skip_signal_ends_a_g31_move() {
     assert_eq!(r.state, RunState::Ended);
     let hit = hit_z.unwrap();
     let last = r.pts.last().unwrap();
-    assert!((last.z - (hit + 2.0)).abs() < 1e-9, "ended at {} (skip at {hit})", last.z);
+    assert!(
+        (last.z - (hit + 2.0)).abs() < 1e-9,
+        "ended at {} (skip at {hit})",
+        last.z
+    );
     check_limits(&r, false);
 }
 
@@ -289,4 +340,182 @@ fn a_program_alarm_ends_the_motion_where_it_stands() {
     assert_eq!(r.state, RunState::Alarm(3012));
     assert!((r.pts.last().unwrap().z + 5.0).abs() < 1e-9);
     assert_eq!(r.alarm.unwrap().message, "STOP HERE");
+}
+
+/// Jerk limiting (an option): every axis also keeps its jerk, every end
+/// point is still reached exactly.
+#[test]
+fn jerk_limiting_bounds_the_jerk() {
+    let src = "O0015\nG00 X40 Z2\nG98 G01 Z-20 F1500\nX50 Z-30\nG02 X60 Z-35 R5\nG01 Z-50\nG00 X100 Z50\nM30\n";
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |c| c.jerk_limited = true,
+        |_, _| {},
+        120.0,
+    );
+    assert_eq!(r.state, RunState::Ended);
+    check_end_points(&r);
+    check_limits(&r, false);
+    let dt = r.cfg.period_s;
+    let pos: Vec<[f64; 2]> = std::iter::once([0.0, 0.0])
+        .chain(r.pts.iter().map(|p| [p.axis_x / 2.0, p.axis_z]))
+        .collect();
+    let mut worst = 0.0f64;
+    for k in 1..pos.len().saturating_sub(2) {
+        for (a, ax) in [r.cfg.x, r.cfg.z].iter().enumerate() {
+            let j = (pos[k + 2][a] - 3.0 * pos[k + 1][a] + 3.0 * pos[k][a] - pos[k - 1][a])
+                / (dt * dt * dt);
+            worst = worst.max(j.abs() / ax.jerk);
+        }
+    }
+    eprintln!("jerk: worst {worst:.4} of the limit");
+    assert!(worst <= 1.0 + 1e-6, "jerk at {worst:.4} of the limit");
+    // The S-curve costs time against linear acceleration, but not much.
+    let plain = run(src);
+    assert!(r.pts.len() > plain.pts.len());
+}
+
+#[test]
+fn reset_stops_on_the_path_and_cycle_start_runs_the_program_again() {
+    let mut resets = 0;
+    let mut idle_seen = false;
+    let r = run_with(
+        SHAFT,
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |ctl, sp| {
+            if resets == 0 && sp.time_s >= 3.0 {
+                ctl.reset();
+                resets += 1;
+            }
+            if ctl.state() == RunState::Idle && !idle_seen {
+                idle_seen = true;
+                assert!(sp.feed == 0.0, "reset left the axes moving");
+                ctl.cycle_start();
+            }
+        },
+        120.0,
+    );
+    assert!(idle_seen);
+    assert_eq!(r.state, RunState::Ended);
+    check_limits(&r, false);
+}
+
+#[test]
+fn a_move_beyond_the_travel_is_e7002() {
+    let m = Machine::from_toml("[axes.z]\nsoft_limits = true\n").unwrap();
+    let r = run_with(
+        "O0016\nG00 Z-100\nG00 Z-600\nM30\n",
+        m,
+        runtime::AutoAck,
+        |_| {},
+        |_, _| {},
+        60.0,
+    );
+    assert_eq!(r.state, RunState::Alarm(7002));
+    assert!((r.pts.last().unwrap().z + 100.0).abs() < 1e-9);
+    assert_eq!(r.alarm.unwrap().line, 3);
+}
+
+/// Ellipses and parabolas (pushed as commands: the kernel prints them only
+/// in newer builds) follow their exact curve within the resolution.
+#[test]
+fn ellipse_and_parabola_follow_the_exact_curve() {
+    use runtime::command::{Command, Feed, Move, MoveKind, Path, Tag};
+    use runtime::math::V2;
+    let mut e = runtime::Engine::new(runtime::Config::default(), runtime::AutoAck);
+    let feed = MoveKind::Feed(Feed {
+        f: 20.0,
+        per_rev: false,
+    });
+    let mv = |path| {
+        Command::Move(Move {
+            kind: feed,
+            path,
+            shift: V2::ZERO,
+        })
+    };
+    e.push(
+        mv(Path::Line {
+            to: V2::new(5.0, 0.0),
+        }),
+        Tag::default(),
+    )
+    .unwrap();
+    let (a, b, q) = (10.0, 6.0, 0.3f64);
+    e.push(
+        mv(Path::Ellipse {
+            to: V2::new(10.0, -12.0),
+            a,
+            b,
+            q,
+            ccw: false,
+        }),
+        Tag {
+            line: 2,
+            ..Tag::default()
+        },
+    )
+    .unwrap();
+    e.push(
+        mv(Path::Parabola {
+            to: V2::new(16.0, -20.0),
+            p: 3.0,
+            q: 0.0,
+            ccw: true,
+        }),
+        Tag {
+            line: 3,
+            ..Tag::default()
+        },
+    )
+    .unwrap();
+    e.push(Command::End, Tag::default()).unwrap();
+    e.replan();
+    let ellipse = *e.planner().seg(1).unwrap();
+    let parabola = e.planner().seg(2).unwrap().curve;
+    e.cycle_start();
+    let mut on_e = 0;
+    let mut on_p = 0;
+    let mut last = V2::ZERO;
+    for _ in 0..200_000 {
+        let sp = e.tick();
+        let p = V2::from_xz(sp.axis_x, sp.axis_z);
+        last = p;
+        if let runtime::geom::Curve::Ellipse { c, u, a, b, .. } = ellipse.curve {
+            if sp.line == 2 && sp.motion == runtime::Motion::Feed {
+                let d = p - c;
+                let (x, y) = (d.dot(u), d.dot(u.perp()));
+                let f = (x / a).powi(2) + (y / b).powi(2);
+                assert!((f - 1.0).abs() < 1e-6, "off the ellipse: {f}");
+                on_e += 1;
+            }
+        }
+        if let runtime::geom::Curve::Parabola {
+            o,
+            u,
+            p: pp,
+            x0,
+            y0,
+            ..
+        } = parabola
+        {
+            if sp.line == 3 && sp.motion == runtime::Motion::Feed {
+                let d = p - o;
+                let (x, y) = (d.dot(u), d.dot(u.perp()));
+                let err = x - (x0 + (y - y0).powi(2) / (2.0 * pp));
+                assert!(err.abs() < 1e-6, "off the parabola by {err}");
+                on_p += 1;
+            }
+        }
+        if e.state() == RunState::Ended {
+            break;
+        }
+    }
+    assert_eq!(e.state(), RunState::Ended);
+    assert!(on_e > 100 && on_p > 100, "{on_e} {on_p}");
+    assert!((last - V2::new(16.0, -20.0)).norm() < 1e-9);
 }

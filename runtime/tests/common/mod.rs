@@ -6,7 +6,10 @@ use nc::{Event, Machine};
 use runtime::{AlarmInfo, Config, Controller, Motion, Plc, RunState, SetPoint};
 
 pub fn module(src: &str, machine: &Machine) -> isa::Module {
-    let opts = compiler::Options { machine: machine.clone(), ..compiler::Options::default() };
+    let opts = compiler::Options {
+        machine: machine.clone(),
+        ..compiler::Options::default()
+    };
     let out = compiler::compile("test.nc", src.as_bytes(), &opts);
     match out.module {
         Some(m) => m,
@@ -50,21 +53,41 @@ pub fn run_with<P: Plc>(
             _ => {}
         }
         if sp.time_s > max_s {
-            panic!("the run did not end within {max_s} s (state {:?})", ctl.state());
+            panic!(
+                "the run did not end within {max_s} s (state {:?})",
+                ctl.state()
+            );
         }
     }
-    Run { pts, canon, state: ctl.state(), alarm: ctl.alarm(), cfg }
+    Run {
+        pts,
+        canon,
+        state: ctl.state(),
+        alarm: ctl.alarm(),
+        cfg,
+    }
 }
 
 pub fn run(src: &str) -> Run {
-    run_with(src, Machine::reference(), runtime::AutoAck, |_| {}, |_, _| {}, 600.0)
+    run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |_, _| {},
+        600.0,
+    )
 }
 
 /// Distance from p to the segment a–b.
 fn seg_dist(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
     let (dx, dz) = (b.0 - a.0, b.1 - a.1);
     let l2 = dx * dx + dz * dz;
-    let t = if l2 > 0.0 { (((p.0 - a.0) * dx + (p.1 - a.1) * dz) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if l2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dz) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let q = (a.0 + t * dx, a.1 + t * dz);
     ((p.0 - q.0).powi(2) + (p.1 - q.1).powi(2)).sqrt()
 }
@@ -74,7 +97,9 @@ pub fn end_points(canon: &[Event]) -> Vec<(f64, f64)> {
     canon
         .iter()
         .filter_map(|e| match e {
-            Event::Rapid { x, z } | Event::Line { x, z } | Event::Skip { x, z } => Some((x / 2.0, *z)),
+            Event::Rapid { x, z } | Event::Line { x, z } | Event::Skip { x, z } => {
+                Some((x / 2.0, *z))
+            }
             Event::Arc { x, z, .. } | Event::Thread { x, z, .. } => Some((x / 2.0, *z)),
             _ => None,
         })
@@ -86,7 +111,9 @@ pub fn end_points(canon: &[Event]) -> Vec<(f64, f64)> {
 /// between two periods).
 pub fn check_end_points(r: &Run) {
     // The reference start: the tool at machine zero, work zero there too.
-    let pts: Vec<(f64, f64)> = std::iter::once((0.0, 0.0)).chain(r.pts.iter().map(|p| (p.x / 2.0, p.z))).collect();
+    let pts: Vec<(f64, f64)> = std::iter::once((0.0, 0.0))
+        .chain(r.pts.iter().map(|p| (p.x / 2.0, p.z)))
+        .collect();
     let mut k = 0;
     'next: for (i, e) in end_points(&r.canon).into_iter().enumerate() {
         let start = k;
@@ -100,7 +127,10 @@ pub fn check_end_points(r: &Run) {
     }
     let last = pts.last().copied().unwrap_or_default();
     if let Some(e) = end_points(&r.canon).last() {
-        assert!(((last.0 - e.0).powi(2) + (last.1 - e.1).powi(2)).sqrt() <= 0.001, "ends at {last:?}, not {e:?}");
+        assert!(
+            ((last.0 - e.0).powi(2) + (last.1 - e.1).powi(2)).sqrt() <= 0.001,
+            "ends at {last:?}, not {e:?}"
+        );
     }
 }
 
@@ -112,20 +142,37 @@ pub fn check_end_points(r: &Run) {
 pub fn worst_ratios(r: &Run, skip_threads: bool) -> (f64, f64) {
     let dt = r.cfg.period_s;
     let ax = [r.cfg.x, r.cfg.z];
-    let pos: Vec<[f64; 2]> = std::iter::once([0.0, 0.0]).chain(r.pts.iter().map(|p| [p.axis_x / 2.0, p.axis_z])).collect();
+    let pos: Vec<[f64; 2]> = std::iter::once([0.0, 0.0])
+        .chain(r.pts.iter().map(|p| [p.axis_x / 2.0, p.axis_z]))
+        .collect();
     let (mut wv, mut wa) = (0.0f64, 0.0f64);
     for k in 1..pos.len() {
         let m = r.pts[k - 1].motion;
         for a in 0..2 {
             let v = (pos[k][a] - pos[k - 1][a]) / dt;
-            let lim = if m == Motion::Rapid { ax[a].rapid } else { ax[a].max_feed };
+            let lim = if m == Motion::Rapid {
+                ax[a].rapid
+            } else {
+                ax[a].max_feed
+            };
             wv = wv.max(v.abs() / lim);
             if k + 1 < pos.len() {
                 let acc = (pos[k + 1][a] - 2.0 * pos[k][a] + pos[k - 1][a]) / (dt * dt);
-                let thread = r.pts[k - 1].motion == Motion::Thread || r.pts[k].motion == Motion::Thread;
+                let thread =
+                    r.pts[k - 1].motion == Motion::Thread || r.pts[k].motion == Motion::Thread;
                 if !(skip_threads && thread) {
-                    if std::env::var("TRACE_WORST").is_ok() && acc.abs() / ax[a].accel > 1.0 + 1e-6 {
-                        eprintln!("period {k} axis {a} ratio {:.4} motion {:?} line {} p={:?}", acc.abs() / ax[a].accel, m, r.pts[k - 1].line, &r.pts[k.saturating_sub(3)..(k + 2).min(r.pts.len())].iter().map(|p| (p.axis_x / 2.0, p.axis_z, p.feed)).collect::<Vec<_>>());
+                    if std::env::var("TRACE_WORST").is_ok() && acc.abs() / ax[a].accel > 1.0 + 1e-6
+                    {
+                        eprintln!(
+                            "period {k} axis {a} ratio {:.4} motion {:?} line {} p={:?}",
+                            acc.abs() / ax[a].accel,
+                            m,
+                            r.pts[k - 1].line,
+                            &r.pts[k.saturating_sub(3)..(k + 2).min(r.pts.len())]
+                                .iter()
+                                .map(|p| (p.axis_x / 2.0, p.axis_z, p.feed))
+                                .collect::<Vec<_>>()
+                        );
                     }
                     wa = wa.max(acc.abs() / ax[a].accel);
                 }
@@ -139,8 +186,14 @@ pub fn worst_ratios(r: &Run, skip_threads: bool) -> (f64, f64) {
 /// of the limit, rounding).
 pub fn check_limits(r: &Run, skip_threads: bool) {
     let (v, a) = worst_ratios(r, skip_threads);
-    assert!(v <= 1.0 + 1e-6, "an axis exceeds its velocity limit: {v:.6} of it");
-    assert!(a <= 1.0 + 1e-6, "an axis exceeds its acceleration limit: {a:.6} of it");
+    assert!(
+        v <= 1.0 + 1e-6,
+        "an axis exceeds its velocity limit: {v:.6} of it"
+    );
+    assert!(
+        a <= 1.0 + 1e-6,
+        "an axis exceeds its acceleration limit: {a:.6} of it"
+    );
 }
 
 /// FNV-1a over every field of every set point.
@@ -153,7 +206,16 @@ pub fn hash(r: &Run) -> u64 {
         }
     };
     for p in &r.pts {
-        for f in [p.time_s, p.x, p.z, p.axis_x, p.axis_z, p.spindle_rpm, p.spindle_turns, p.feed] {
+        for f in [
+            p.time_s,
+            p.x,
+            p.z,
+            p.axis_x,
+            p.axis_z,
+            p.spindle_rpm,
+            p.spindle_turns,
+            p.feed,
+        ] {
             eat(f.to_bits());
         }
         eat(p.line as u64);
