@@ -3,18 +3,17 @@
 //! tool length offsets of `TOOL` (which the canon never shows), the modal
 //! feed of `FEED`.
 //!
-//! Events this build does not know (variants added to `nc::Event` later)
-//! are read back from their canon text, whose format canon.md fixes:
-//! `ELLIPSE`, `PARABOLA` and `ARCTHREAD` become exact curves; anything
-//! else that moves is caught after the block by comparing the kernel's
-//! programmed point with the one followed here, and reached by a line.
+//! `ELLIPSE`, `PARABOLA` and `ARCTHREAD` become exact curves; should a
+//! move ever end elsewhere than followed here, it is caught after the block
+//! by comparing the kernel's programmed point with this one, and reached
+//! by a line.
 
 use crate::command::{Command, Feed, Move, MoveKind, Path, PauseKind, Thread};
 use crate::math::V2;
 use crate::plc::{PlcFunction, SpindleDir};
 use nc::event::{Dir, SpindleDir as NcDir, StopKind};
 use nc::{Event, Machine};
-use std::string::{String, ToString};
+use std::string::String;
 use std::vec::Vec;
 
 #[derive(Debug, Clone)]
@@ -182,63 +181,49 @@ impl Translator {
                 )));
             }
             Event::Alarm { code, .. } => out.push(Command::Alarm(*code)),
-            #[allow(unreachable_patterns)]
-            other => {
-                if let Some(c) = self.from_canon_text(&other.to_string()) {
-                    out.push(c);
-                }
-            }
-        }
-    }
-
-    /// A move whose event this build does not know, from its canon line.
-    pub fn from_canon_text(&mut self, line: &str) -> Option<Command> {
-        let mut words = line.split(' ');
-        let key = words.next()?;
-        let f = |name: &str| -> Option<f64> {
-            line.split(' ')
-                .find_map(|w| w.strip_prefix(name).and_then(|v| v.strip_prefix('=')))
-                .and_then(|v| v.parse().ok())
-        };
-        let ccw = line.split(' ').any(|w| w == "DIR=CCW");
-        let to = V2::from_xz(f("X")?, f("Z")?);
-        let q = f("Q").unwrap_or(0.0);
-        match key {
-            "ELLIPSE" => {
-                let (a, b) = (f("A")?, f("B")?);
+            Event::Ellipse { dir, x, z, a, b, q } => {
+                let (a, b, q, ccw) = (*a, *b, q.to_radians(), *dir == Dir::Ccw);
                 let k = MoveKind::Feed(self.feed);
-                Some(self.mv(k, to, |to, _| Path::Ellipse {
+                out.push(self.mv(k, V2::from_xz(*x, *z), |to, _| Path::Ellipse {
                     to,
                     a,
                     b,
-                    q: q.to_radians(),
+                    q,
                     ccw,
-                }))
+                }));
             }
-            "PARABOLA" => {
-                let p = f("P")?;
+            Event::Parabola { dir, x, z, p, q } => {
+                let (p, q, ccw) = (*p, q.to_radians(), *dir == Dir::Ccw);
                 let k = MoveKind::Feed(self.feed);
-                Some(self.mv(k, to, |to, _| Path::Parabola {
+                out.push(self.mv(k, V2::from_xz(*x, *z), |to, _| Path::Parabola {
                     to,
                     p,
-                    q: q.to_radians(),
+                    q,
                     ccw,
-                }))
+                }));
             }
-            "ARCTHREAD" => {
-                let c = V2::from_xz(f("CX")?, f("CZ")?);
+            Event::ArcThread {
+                dir,
+                x,
+                z,
+                cx,
+                cz,
+                lead,
+                q,
+            } => {
+                let c = V2::from_xz(*cx, *cz);
+                let ccw = *dir == Dir::Ccw;
                 let k = MoveKind::Thread(Thread {
-                    lead: f("LEAD")?,
+                    lead: *lead,
                     dlead: 0.0,
-                    q_deg: q,
+                    q_deg: q.unwrap_or(0.0),
                 });
-                Some(self.mv(k, to, |to, sh| Path::Arc {
+                out.push(self.mv(k, V2::from_xz(*x, *z), |to, sh| Path::Arc {
                     to,
                     centre: c + sh,
                     ccw,
-                }))
+                }));
             }
-            _ => None,
         }
     }
 }
@@ -267,41 +252,4 @@ pub fn reference_point(m: &Machine, n: u32) -> V2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn unknown_moves_are_read_from_their_canon_text() {
-        let mut t = Translator::new(V2::ZERO);
-        t.feed = Feed {
-            f: 2.0,
-            per_rev: false,
-        };
-        let c = t
-            .from_canon_text("ELLIPSE DIR=CW X=40 Z=-10 A=12 B=5 Q=30")
-            .unwrap();
-        let Command::Move(m) = c else { panic!() };
-        assert_eq!(
-            m.path,
-            Path::Ellipse {
-                to: V2::new(20.0, -10.0),
-                a: 12.0,
-                b: 5.0,
-                q: 30f64.to_radians(),
-                ccw: false
-            }
-        );
-        let c = t
-            .from_canon_text("ARCTHREAD DIR=CCW X=30 Z=-5 CX=20 CZ=-5 LEAD=2 Q=90")
-            .unwrap();
-        let Command::Move(m) = c else { panic!() };
-        assert_eq!(
-            m.kind,
-            MoveKind::Thread(Thread {
-                lead: 2.0,
-                dlead: 0.0,
-                q_deg: 90.0
-            })
-        );
-        assert!(t.from_canon_text("NOSUCH X=1 Z=2").is_none());
-        assert_eq!(t.work, V2::new(15.0, -5.0));
-    }
 }
