@@ -29,7 +29,11 @@ impl Lcg {
     /// A coordinate with three decimals, as a CAM system writes it.
     fn coord(&mut self, max: u64) -> String {
         let v = self.next() % (max * 1000);
-        let sign = if self.next() % 4 == 0 { "-" } else { "" };
+        let sign = if self.next().is_multiple_of(4) {
+            "-"
+        } else {
+            ""
+        };
         format!("{sign}{}.{:03}", v / 1000, v % 1000)
     }
 }

@@ -248,8 +248,3 @@ pub fn reference_point(m: &Machine, n: u32) -> V2 {
         _ => V2::ZERO,
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-}

@@ -168,7 +168,6 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
     Ok(())
 }
 
-
 /// The element one profile block describes, `None` when it does not move.
 fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>, NcError> {
     let to = nc.target_from(p, from);
