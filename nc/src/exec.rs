@@ -125,7 +125,6 @@ impl Nc {
                     self.print_origin_if_moved(before, sink);
                 }
                 gcode::MOTION => {
-                    self.unsupported_motion(code)?;
                     self.st.modal[group as usize] = code;
                     // Any group-01 code cancels the drilling cycles.
                     self.st.modal[gcode::DRILL as usize] = 800;
@@ -139,11 +138,6 @@ impl Nc {
         if let Some(code) = p.one_shot() {
             self.unsupported_one_shot(code)?;
         }
-        Ok(())
-    }
-
-    fn unsupported_motion(&self, code: Code) -> Result<(), NcError> {
-        let _ = code;
         Ok(())
     }
 
