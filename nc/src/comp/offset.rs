@@ -3,7 +3,9 @@
 //! `contour::elem`.
 
 use super::Tool;
-use crate::contour::elem::{cross, dot, left, scale, tangent_at, travel, unit, EPS_LEN};
+use crate::contour::elem::{
+    circle_circle, cross, dot, left, line_circle, scale, tangent_at, travel, unit, EPS_LEN,
+};
 use crate::error::{fail, NcError};
 use crate::geom::Element;
 use crate::state::Pt;
@@ -101,36 +103,6 @@ pub fn meet(a: &Curve, b: &Curve) -> Vec<Pt> {
             circle_circle(c1, r1, c2, r2)
         }
     }
-}
-
-/// |p + λt − c| = rad, solved for λ (t a unit vector).
-fn line_circle(p: Pt, t: Pt, c: Pt, rad: f64) -> Vec<Pt> {
-    let w = p.sub(c);
-    let half_b = dot(w, t);
-    let disc = half_b * half_b - (dot(w, w) - rad * rad);
-    if disc < -1e-9 {
-        return Vec::new();
-    }
-    let s = disc.max(0.0).sqrt();
-    vec![p.add(scale(t, -half_b - s)), p.add(scale(t, -half_b + s))]
-}
-
-/// The radical-line construction: the foot at distance a from c1 along
-/// the centre line, then ± h across it.
-fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64) -> Vec<Pt> {
-    let d = c1.dist(c2);
-    if d < 1e-12 {
-        return Vec::new();
-    }
-    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
-    let h2 = r1 * r1 - a * a;
-    if h2 < -1e-9 {
-        return Vec::new();
-    }
-    let h = h2.max(0.0).sqrt();
-    let u = scale(c2.sub(c1), 1.0 / d);
-    let foot = c1.add(scale(u, a));
-    vec![foot.add(scale(left(u), h)), foot.add(scale(left(u), -h))]
 }
 
 /// E4036 when the compensated part of `e` from centre point `s` to `f`

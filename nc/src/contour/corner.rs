@@ -1,7 +1,7 @@
 //! The geometry of chamfer L / rounding D corners between two contour
 //! elements (cycles.md §13), as a pure function of the elements.
 
-use super::elem::{self, cross, dot, left, scale, unit, EPS_LEN};
+use super::elem::{self, circle_circle, cross, dot, left, line_circle, scale, unit, EPS_LEN};
 use crate::error::{fail, NcError};
 use crate::geom::Element;
 use crate::machine::ChamferType;
@@ -234,34 +234,6 @@ fn meet(a: &Offset, b: &Offset) -> Vec<Pt> {
             circle_circle(*c1, *r1, *c2, *r2)
         }
     }
-}
-
-fn line_circle(p: Pt, t: Pt, c: Pt, rad: f64) -> Vec<Pt> {
-    // |p + λt − c|² = rad²  →  λ² + 2λ(w·t) + |w|² − rad² = 0.
-    let w = p.sub(c);
-    let half_b = dot(w, t);
-    let disc = half_b * half_b - (dot(w, w) - rad * rad);
-    if disc < -1e-9 {
-        return Vec::new();
-    }
-    let s = disc.max(0.0).sqrt();
-    vec![p.add(scale(t, -half_b - s)), p.add(scale(t, -half_b + s))]
-}
-
-fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64) -> Vec<Pt> {
-    let d = c1.dist(c2);
-    if d < 1e-12 {
-        return Vec::new();
-    }
-    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
-    let h2 = r1 * r1 - a * a;
-    if h2 < -1e-9 {
-        return Vec::new();
-    }
-    let h = h2.max(0.0).sqrt();
-    let u = scale(c2.sub(c1), 1.0 / d);
-    let base = c1.add(scale(u, a));
-    vec![base.add(scale(left(u), h)), base.add(scale(left(u), -h))]
 }
 
 /// The foot of `m` on the line or circle of `e`.

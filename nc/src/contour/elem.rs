@@ -154,3 +154,34 @@ pub fn contains(e: &Element, p: Pt) -> bool {
         }
     }
 }
+
+/// Where the line p + λt (t a unit vector) meets the circle about c:
+/// |p + λt − c|² = rad² → λ² + 2λ(w·t) + |w|² − rad² = 0.
+pub fn line_circle(p: Pt, t: Pt, c: Pt, rad: f64) -> Vec<Pt> {
+    let w = p.sub(c);
+    let half_b = dot(w, t);
+    let disc = half_b * half_b - (dot(w, w) - rad * rad);
+    if disc < -1e-9 {
+        return Vec::new();
+    }
+    let s = disc.max(0.0).sqrt();
+    vec![p.add(scale(t, -half_b - s)), p.add(scale(t, -half_b + s))]
+}
+
+/// Where two circles meet: the foot at distance a from c1 along the centre
+/// line (the radical line), then ± h across it.
+pub fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64) -> Vec<Pt> {
+    let d = c1.dist(c2);
+    if d < 1e-12 {
+        return Vec::new();
+    }
+    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
+    let h2 = r1 * r1 - a * a;
+    if h2 < -1e-9 {
+        return Vec::new();
+    }
+    let h = h2.max(0.0).sqrt();
+    let u = scale(c2.sub(c1), 1.0 / d);
+    let foot = c1.add(scale(u, a));
+    vec![foot.add(scale(left(u), h)), foot.add(scale(left(u), -h))]
+}
