@@ -158,4 +158,25 @@ impl Element {
             Element::Line { to, .. } | Element::Arc { to, .. } => to,
         }
     }
+
+    /// The same element moved by `d`, end points and centre alike.
+    pub fn shifted(&self, d: Pt) -> Element {
+        match *self {
+            Element::Line { from, to } => Element::Line {
+                from: from.add(d),
+                to: to.add(d),
+            },
+            Element::Arc {
+                from,
+                to,
+                centre,
+                cw,
+            } => Element::Arc {
+                from: from.add(d),
+                to: to.add(d),
+                centre: centre.add(d),
+                cw,
+            },
+        }
+    }
 }

@@ -4,28 +4,6 @@
 use super::offset::over;
 use super::{CompState, Leg, Role};
 use crate::geom::Element;
-use crate::state::Pt;
-
-/// `e` moved by `d`, end points and centre alike.
-fn shifted(e: &Element, d: Pt) -> Element {
-    match *e {
-        Element::Line { from, to } => Element::Line {
-            from: from.add(d),
-            to: to.add(d),
-        },
-        Element::Arc {
-            from,
-            to,
-            centre,
-            cw,
-        } => Element::Arc {
-            from: from.add(d),
-            to: to.add(d),
-            centre: centre.add(d),
-            cw,
-        },
-    }
-}
 
 /// The printed elements of move `e` with leg `l`, in order, each with
 /// whether it is a rapid: an outside corner's arc first (a feed move even
@@ -47,7 +25,7 @@ pub fn printed(st: &mut CompState, e: &Element, l: &Leg, rapid: bool) -> Vec<(El
                 from: e.start(),
                 to: end,
             };
-            vec![(shifted(&line, tip), rapid)]
+            vec![(line.shifted(tip), rapid)]
         }
         Role::Body => {
             let start = l.start.unwrap_or_else(|| over(e, e.start(), &l.tool));
@@ -67,9 +45,9 @@ pub fn printed(st: &mut CompState, e: &Element, l: &Leg, rapid: bool) -> Vec<(El
             };
             let mut out = Vec::with_capacity(2);
             if let Some(arc) = l.corner {
-                out.push((shifted(&arc, tip), false));
+                out.push((arc.shifted(tip), false));
             }
-            out.push((shifted(&body, tip), rapid));
+            out.push((body.shifted(tip), rapid));
             out
         }
     }

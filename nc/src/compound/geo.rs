@@ -125,23 +125,7 @@ impl Curve {
 
     /// The same curve moved by `d` (arc centres too).
     pub fn shifted(&self, d: Pt) -> Curve {
-        Curve::new(match self.element() {
-            Element::Line { from, to } => Element::Line {
-                from: from.add(d),
-                to: to.add(d),
-            },
-            Element::Arc {
-                from,
-                to,
-                centre,
-                cw,
-            } => Element::Arc {
-                from: from.add(d),
-                to: to.add(d),
-                centre: centre.add(d),
-                cw,
-            },
-        })
+        Curve::new(self.element().shifted(d))
     }
 
     /// The curve mirrored at r = z (the two axes exchanged): G72 runs the
