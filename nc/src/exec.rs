@@ -91,6 +91,7 @@ impl Nc {
             nc.before_motion(&p, words, s)
         })?;
         self.remember(&p);
+        self.st.exact_stop = p.has_g(90) || self.st.group(gcode::EXACT) == 610;
         self.motion(&p, sink, &mut out)?;
         contour::in_order(self, sink, |nc, s| {
             nc.after_motion(&p, s);

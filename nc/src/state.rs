@@ -90,6 +90,9 @@ pub struct State {
     pub parts: f64,
     /// Output signals UO0–UO15 (#1100…).
     pub outputs: u32,
+    /// The last block ends in an exact stop (G09 in it, or G61 in force):
+    /// the runtime must not blend it into the next one.
+    pub exact_stop: bool,
     pub parts_required: f64,
     /// State of the single cycles and threads (cycles module).
     pub cycles: crate::cycles::CycleState,
@@ -142,6 +145,7 @@ impl State {
             last: [f64::NAN; 26],
             parts: 0.0,
             outputs: 0,
+            exact_stop: false,
             parts_required: 0.0,
             cycles: Default::default(),
             compound: Default::default(),

@@ -121,6 +121,9 @@ pub enum Command {
     Shift(V2),
     /// Stops until cycle start.
     Pause(PauseKind),
+    /// The block before ends in an exact stop (G09, G61): no blending
+    /// into what follows.
+    ExactStop,
     /// The program ends (M02, M30, last M99, past the last block).
     End,
     /// The program raised an alarm; motion stops here.

@@ -354,6 +354,9 @@ impl<P: Plc> Controller<P> {
             Status::Event => {
                 self.blocks += 1;
                 self.resync(tag);
+                if self.vm.nc.st.exact_stop {
+                    self.staged.push_back((Command::ExactStop, tag));
+                }
                 if let Some((_, t)) = self.staged.back_mut() {
                     if t.block == self.block {
                         t.block_end = true;

@@ -326,6 +326,9 @@ impl Planner {
                 }
             },
             Command::Dwell(s) => ItemKind::Dwell(s),
+            // A zero dwell: the moves on both sides cannot join, so the
+            // one before ends at rest.
+            Command::ExactStop => ItemKind::Dwell(0.0),
             Command::Plc(f) => {
                 if let PlcFunction::Speed { s, css, .. } = f {
                     if css {

@@ -519,3 +519,38 @@ fn ellipse_and_parabola_follow_the_exact_curve() {
     assert!(on_e > 100 && on_p > 100, "{on_e} {on_p}");
     assert!((last - V2::new(16.0, -20.0)).norm() < 1e-9);
 }
+
+/// G61 ends every block at rest, G09 only its own block; G64 blends.
+#[test]
+fn g61_and_g09_stop_exactly_where_g64_blends() {
+    let program = |mode: &str, g09_at: Option<usize>| {
+        let mut src = format!("O0003\nG00 X0 Z0\nG98 {mode} G01 F2000\n");
+        for i in 1..=20 {
+            let g09 = if g09_at == Some(i) { "G09 " } else { "" };
+            src.push_str(&format!(
+                "{g09}X{} Z{}\n",
+                if i % 2 == 0 { 0 } else { 4 },
+                -2 * i as i64
+            ));
+        }
+        src.push_str("M30\n");
+        src
+    };
+    let stops = |r: &Run| {
+        r.pts
+            .windows(2)
+            .filter(|w| w[0].feed > 0.0 && w[1].feed == 0.0)
+            .count()
+    };
+    let blended = run(&program("G64", None));
+    let exact = run(&program("G61", None));
+    let one = run(&program("G64", Some(10)));
+    for r in [&blended, &exact, &one] {
+        check_end_points(r);
+        check_limits(r, false);
+    }
+    // 20 blocks, each ending at rest under G61; only the last under G64.
+    assert_eq!(stops(&exact), 20, "G61");
+    assert_eq!(stops(&blended), 1, "G64");
+    assert_eq!(stops(&one), 2, "G09 on one block");
+}
