@@ -327,7 +327,7 @@ impl Nc {
         match code {
             0 | 10 => contour::straight(self, code == 0, p, corner, sink)?,
             20 | 30 => {
-                if let Some(e) = self.arc_element(code == 20, target, p)? {
+                if let Some(e) = self.arc_element(self.st.pos, code == 20, target, p)? {
                     contour::feed_element(self, e, corner, sink)?;
                 }
             }
@@ -402,45 +402,18 @@ impl Nc {
         }
     }
 
-    /// A straight feed leg without corners: cycle legs and profiles call
-    /// this (the corner-aware path of G01 blocks is `contour::straight`).
-    #[allow(dead_code)]
-    pub(crate) fn line(&mut self, to: Pt, sink: &mut dyn Sink) -> Result<(), NcError> {
-        self.feed_due(sink);
-        self.st.pos = to;
-        sink.emit(Event::Line { x: to.x(), z: to.z });
-        Ok(())
-    }
-
-    /// A G02/G03 move without corners (cycle legs, profiles).
-    #[allow(dead_code)]
-    pub(crate) fn arc(
-        &mut self,
-        cw: bool,
-        to: Pt,
-        p: &Parsed,
-        sink: &mut dyn Sink,
-    ) -> Result<(), NcError> {
-        match self.arc_element(cw, to, p)? {
-            None => Ok(()),
-            Some(Element::Line { to, .. }) => self.line(to, sink),
-            Some(Element::Arc { to, centre, .. }) => {
-                self.emit_arc(cw, to, centre, sink);
-                Ok(())
-            }
-        }
-    }
-
-    /// The element of a G02/G03 block from the current point: its arc
-    /// from R or I/K, or a line where `arc_without_center = "line"`.
-    /// `None` for a 0° arc with R (end = start), which is no move (W108).
+    /// The element of a G02/G03 block from `from` (the current point, or
+    /// the previous point of a profile): its arc from R or I/K, or a line
+    /// where `arc_without_center = "line"`. `None` for a 0° arc with R
+    /// (end = start), which is no move (W108), and for a block that names
+    /// neither a centre nor an axis.
     pub(crate) fn arc_element(
         &self,
+        from: Pt,
         cw: bool,
         to: Pt,
         p: &Parsed,
     ) -> Result<Option<Element>, NcError> {
-        let from = self.st.pos;
         let centre = if let Some(r) = self.len_of(p, b'R') {
             match geom::centre_from_radius(from, to, r, cw)? {
                 Some(c) => c,
@@ -452,6 +425,8 @@ impl Nc {
             let c = Pt::new(from.r + i, from.z + k);
             geom::check_on_circle(from, to, c, self.machine.machine.arc_tolerance_mm)?;
             c
+        } else if !p.has_axis() {
+            return Ok(None);
         } else {
             return match self.machine.machine.arc_without_center {
                 ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),

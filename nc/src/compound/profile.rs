@@ -10,7 +10,6 @@ use crate::error::{fail, NcError};
 use crate::exec::Nc;
 use crate::gcode::{self, Code};
 use crate::geom::{self, Element};
-use crate::machine::ArcWithoutCenter;
 use crate::state::Pt;
 use crate::words::Word;
 
@@ -194,7 +193,7 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
             };
             Ok(Some(Element::Line { from, to: end }))
         }
-        20 | 30 => arc(nc, code == 20, p, from, to),
+        20 | 30 => nc.arc_element(from, code == 20, to, p),
         50 | 51 => three_point(nc, code == 51, p, from, to).map(Some),
         62 | 63 | 72 | 73 => fail(
             2099,
@@ -205,44 +204,6 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
             format!(
                 "{} may not stand in a G71–G73 profile: only G00, G01, G02, G03 (and G05) describe it",
                 gcode::name(code)
-            ),
-        ),
-    }
-}
-
-/// G02/G03 as `Nc::arc` reads them (dialect.md §4.1 rules 2–5).
-fn arc(nc: &Nc, cw: bool, p: &Parsed, from: Pt, to: Pt) -> Result<Option<Element>, NcError> {
-    if let Some(r) = nc.len_of(p, b'R') {
-        let centre = geom::centre_from_radius(from, to, r, cw)?;
-        return Ok(centre.map(|centre| Element::Arc {
-            from,
-            to,
-            centre,
-            cw,
-        }));
-    }
-    if p.has(b'I') || p.has(b'K') {
-        let i = nc.len_of(p, b'I').unwrap_or(0.0);
-        let k = nc.len_of(p, b'K').unwrap_or(0.0);
-        let centre = Pt::new(from.r + i, from.z + k);
-        geom::check_on_circle(from, to, centre, nc.machine.machine.arc_tolerance_mm)?;
-        return Ok(Some(Element::Arc {
-            from,
-            to,
-            centre,
-            cw,
-        }));
-    }
-    if !p.has_axis() {
-        return Ok(None);
-    }
-    match nc.machine.machine.arc_without_center {
-        ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
-        ArcWithoutCenter::Alarm => fail(
-            2006,
-            format!(
-                "{} needs R or I/K to define its centre",
-                if cw { "G02" } else { "G03" }
             ),
         ),
     }
