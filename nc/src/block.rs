@@ -3,6 +3,8 @@
 //! §1.9, §3, §4.13, §6). The compiler runs these checks on literal blocks,
 //! the kernel on every block it executes.
 
+use alloc::format;
+
 use crate::error::{fail, NcError};
 use crate::gcode::{self, Code};
 use crate::machine::Machine;
@@ -81,9 +83,9 @@ impl Parsed {
 /// Rounds half away from zero, as every integer address does (§7.6).
 pub fn round_half_away(v: f64) -> f64 {
     if v < 0.0 {
-        -((-v) + 0.5).floor()
+        -libm::floor((-v) + 0.5)
     } else {
-        (v + 0.5).floor()
+        libm::floor(v + 0.5)
     }
 }
 

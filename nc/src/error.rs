@@ -1,6 +1,9 @@
 //! The alarm the kernel raises: a dialect error code and a message.
 
-use std::fmt;
+use alloc::format;
+use alloc::string::String;
+
+use core::fmt;
 
 /// An error of dialect.md §8 found while checking or executing a block.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -41,7 +44,7 @@ impl fmt::Display for NcError {
     }
 }
 
-impl std::error::Error for NcError {}
+impl core::error::Error for NcError {}
 
 /// Shorthand for `Err(NcError::new(..))`.
 pub fn fail<T>(code: u16, message: impl Into<String>) -> Result<T, NcError> {

@@ -1,6 +1,9 @@
 //! The events a run produces, and their canon text (canon.md).
 
-use std::fmt::{self, Display, Write};
+use alloc::format;
+use alloc::string::String;
+
+use core::fmt::{self, Display, Write};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dir {
@@ -331,6 +334,7 @@ impl Display for Event {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use alloc::string::ToString;
 
     #[test]
     fn numbers_print_as_the_canon_wants() {

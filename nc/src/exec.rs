@@ -1,6 +1,9 @@
 //! Executing one block: its events in the order of canon.md, and the state
 //! it leaves behind.
 
+use alloc::format;
+use alloc::vec::Vec;
+
 use crate::block::{self, round_half_away, Parsed};
 use crate::contour;
 use crate::error::{fail, NcError};
@@ -185,7 +188,7 @@ impl Nc {
         if x.abs() < 1e-9 {
             return limit;
         }
-        (1000.0 * self.st.css / (std::f64::consts::PI * x.abs())).min(limit)
+        (1000.0 * self.st.css / (core::f64::consts::PI * x.abs())).min(limit)
     }
 
     fn print_origin_if_moved(&self, before: Pt, sink: &mut dyn Sink) {

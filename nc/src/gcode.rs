@@ -1,6 +1,9 @@
 //! The G-code table: every code of the dialect with its modal group
 //! (dialect.md §3), and the codes of other dialects that get a hint (§4.13).
 
+use alloc::format;
+use alloc::string::String;
+
 /// A G code times ten (`G6.2` → 62, `G01` → 10), so it fits an integer.
 pub type Code = u16;
 

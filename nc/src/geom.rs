@@ -1,8 +1,20 @@
 //! Plane geometry of arcs in the ZX plane (z horizontal, r up; G02 is
 //! clockwise in this view, dialect.md §2.4).
 
+use alloc::format;
+
 use crate::error::{fail, NcError};
 use crate::state::Pt;
+
+/// `a` modulo `m` in `[0, |m|)`, as `f64::rem_euclid` (which `core` lacks).
+pub fn rem_euclid(a: f64, m: f64) -> f64 {
+    let r = a % m;
+    if r < 0.0 {
+        r + m.abs()
+    } else {
+        r
+    }
+}
 
 /// Half a chord may exceed |R| by this much and still be a half circle.
 const RADIUS_SLACK_MM: f64 = 0.001;
@@ -12,7 +24,7 @@ const RADIUS_SLACK_MM: f64 = 0.001;
 /// 0° arc (end = start), which is no move.
 pub fn centre_from_radius(from: Pt, to: Pt, r: f64, cw: bool) -> Result<Option<Pt>, NcError> {
     let (dz, dr) = (to.z - from.z, to.r - from.r);
-    let chord = dz.hypot(dr);
+    let chord = libm::hypot(dz, dr);
     if chord < 1e-9 {
         return Ok(None);
     }
@@ -27,7 +39,7 @@ pub fn centre_from_radius(from: Pt, to: Pt, r: f64, cw: bool) -> Result<Option<P
             ),
         );
     }
-    let h = (r * r - half * half).max(0.0).sqrt();
+    let h = libm::sqrt((r * r - half * half).max(0.0));
     // Unit chord direction (z, r) and its right-hand normal (r, -z): a
     // clockwise minor arc has its centre on the right of the chord.
     let (uz, ur) = (dz / chord, dr / chord);

@@ -2,6 +2,17 @@
 //! the meaning of one block (dialect.md §2–§6, canon.md). The compiler
 //! uses it to check and pre-run static programs; the VM executes every
 //! block through it, so both share one implementation.
+//!
+//! The crate is `no_std` + `alloc`, so the kernel runs on an embedded
+//! controller; every float function comes from `libm`, so a host build and
+//! an embedded build compute the same bits. The `std` feature (on by
+//! default) adds [`Machine::from_toml`].
+
+#![no_std]
+
+extern crate alloc;
+#[cfg(feature = "std")]
+extern crate std;
 
 pub mod block;
 pub mod comp;

@@ -1,11 +1,17 @@
 //! The machine configuration (machine.md §4): the reference lathe by
 //! default, overridden by a TOML file whose unknown keys are errors.
 
+use alloc::format;
+use alloc::string::String;
+use alloc::string::ToString;
+use alloc::vec::Vec;
+
 use serde::Deserialize;
 
 /// A machine file could not be read or holds a bad value.
 #[derive(Debug, thiserror::Error)]
 pub enum MachineError {
+    #[cfg(feature = "std")]
     #[error("machine file: {0}")]
     Toml(#[from] toml::de::Error),
     #[error("machine file: {0}")]
@@ -283,13 +289,17 @@ impl Machine {
     }
 
     /// Reads a machine file: what it leaves out keeps the reference value.
+    /// Without `std`, a host builds the `Machine` itself (or deserializes
+    /// it with any serde format) and calls [`Machine::validate`].
+    #[cfg(feature = "std")]
     pub fn from_toml(text: &str) -> Result<Machine, MachineError> {
         let m: Machine = toml::from_str(text)?;
         m.validate()?;
         Ok(m)
     }
 
-    fn validate(&self) -> Result<(), MachineError> {
+    /// Checks the values a file could get wrong (rates, limits, tables).
+    pub fn validate(&self) -> Result<(), MachineError> {
         let bad = |what: &str| Err(MachineError::Invalid(what.to_string()));
         let positive = [
             (

@@ -26,7 +26,7 @@ impl Pt {
     }
 
     pub fn dist(self, o: Pt) -> f64 {
-        (self.r - o.r).hypot(self.z - o.z)
+        libm::hypot(self.r - o.r, self.z - o.z)
     }
 
     #[allow(clippy::should_implement_trait)] // also `+` below; the method reads well in chains
@@ -40,14 +40,14 @@ impl Pt {
     }
 }
 
-impl std::ops::Add for Pt {
+impl core::ops::Add for Pt {
     type Output = Pt;
     fn add(self, o: Pt) -> Pt {
         Pt::new(self.r + o.r, self.z + o.z)
     }
 }
 
-impl std::ops::Sub for Pt {
+impl core::ops::Sub for Pt {
     type Output = Pt;
     fn sub(self, o: Pt) -> Pt {
         Pt::new(self.r - o.r, self.z - o.z)

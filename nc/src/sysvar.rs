@@ -1,6 +1,8 @@
 //! System variables (dialect.md §7.2) that live in the kernel's state:
 //! offsets, clocks, modal information, positions, work offsets.
 
+use alloc::format;
+
 use crate::error::{fail, NcError};
 use crate::event::Event;
 use crate::exec::{Nc, Sink};

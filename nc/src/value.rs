@@ -5,6 +5,8 @@
 //! A value is an `f64`; the vacant value is [`VACANT`], a NaN. Results that
 //! are not finite are alarms (E5006), so a NaN never means anything else.
 
+use alloc::format;
+
 use crate::block::round_half_away;
 use crate::error::{fail, NcError};
 
@@ -144,7 +146,7 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
         Func::Tan => {
             // 90° + k·180° has no tangent.
             let k = (x - 90.0) / 180.0;
-            if (k - k.round()).abs() < 1e-12 {
+            if (k - libm::round(k)).abs() < 1e-12 {
                 return fail(5005, format!("TAN of {x}°"));
             }
             libm::tan(deg(x))
@@ -169,12 +171,12 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
         }
         Func::Abs => x.abs(),
         Func::Round => round_half_away(x),
-        Func::Fix => x.trunc(),
+        Func::Fix => libm::trunc(x),
         Func::Fup => {
             if x < 0.0 {
-                -(-x).ceil()
+                -libm::ceil(-x)
             } else {
-                x.ceil()
+                libm::ceil(x)
             }
         }
         Func::Ln => {

@@ -1,6 +1,10 @@
 //! The words of one block as the kernel receives them: every value already
 //! computed (a vacant one left out), in the order they were written.
 
+use alloc::string::String;
+use alloc::string::ToString;
+use alloc::vec::Vec;
+
 /// Word addresses: `A`..`Z` are 0..=25, the Fanuc comma words follow.
 pub const COMMA_A: u8 = 26;
 pub const COMMA_C: u8 = 27;

@@ -188,7 +188,6 @@ impl Config {
     }
 }
 
-#[cfg(feature = "std")]
 impl Config {
     /// The runtime's view of a machine file.
     pub fn from_machine(m: &nc::Machine) -> Config {

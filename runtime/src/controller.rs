@@ -27,11 +27,11 @@ use crate::math::V2;
 use crate::planner::Full;
 use crate::plc::{AutoAck, Plc};
 use crate::translate::Translator;
+use alloc::collections::VecDeque;
+use alloc::format;
+use alloc::string::String;
+use alloc::vec::Vec;
 use nc::{Event, Machine, Sink};
-use std::collections::VecDeque;
-use std::format;
-use std::string::String;
-use std::vec::Vec;
 use vm::{Status, Vm};
 
 /// Why a module cannot be run.
@@ -54,7 +54,7 @@ impl core::fmt::Display for LoadError {
     }
 }
 
-impl std::error::Error for LoadError {}
+impl core::error::Error for LoadError {}
 
 /// An alarm with its place, as `gbvm` reports it.
 #[derive(Debug, Clone, PartialEq)]

@@ -9,19 +9,16 @@
 //! before interpolation, exact curves, G00 dog-legs, spindle-synchronised
 //! threads, a simulated spindle — and returns the axis set points.
 //!
-//! The embedding API for controllers is [`controller::Controller`] (the
-//! `std` feature, on by default): load a verified `.gbc`, tick it once per
-//! period, feed it overrides and signals, answer its PLC functions through
-//! [`plc::Plc`]. `runtime/examples/controller.rs` runs a program tick by
-//! tick.
+//! The embedding API for controllers is [`controller::Controller`]: load a
+//! verified `.gbc`, tick it once per period, feed it overrides and
+//! signals, answer its PLC functions through [`plc::Plc`].
+//! `runtime/examples/controller.rs` runs a program tick by tick.
 //!
-//! Without `std`, the crate is `no_std` + `alloc`: planner, interpolator,
-//! spindle, trace, plot and statistics work on [`command::Command`]s that
-//! the host builds itself. The controller needs `nc` (the canon events and
-//! the kernel) and `vm`, which use `std` today; making them `no_std` would
-//! take `alloc` collections in place of `std`'s, `core::fmt` for the
-//! messages, `libm` for the kernel's float functions and a TOML-free
-//! `Machine` constructor (the TOML reader staying behind `std`).
+//! The crate is `no_std` + `alloc`, the controller included, and so are
+//! the kernel (`nc`), the VM and the module format (`isa`) under it; CI
+//! builds them for a bare-metal target (`thumbv7em-none-eabihf`). The
+//! `std` feature (on by default) only forwards to those crates, where it
+//! adds the TOML reader of the machine file.
 //!
 //! Modules: [`planner`] (queue, corner speeds, backward pass), [`profile`]
 //! (the discrete braking limit shared by planner and interpolator),
@@ -54,9 +51,7 @@ pub mod spindle;
 pub mod stats;
 pub mod trace;
 
-#[cfg(feature = "std")]
 pub mod controller;
-#[cfg(feature = "std")]
 pub mod translate;
 
 pub use command::{Command, Tag};
@@ -64,5 +59,4 @@ pub use config::{Config, RapidOverride};
 pub use interpolate::{Engine, Motion, RunState, SetPoint};
 pub use plc::{AutoAck, Plc, PlcFunction};
 
-#[cfg(feature = "std")]
 pub use controller::{AlarmInfo, Controller, LoadError};

@@ -11,10 +11,10 @@
 use crate::command::{Command, Feed, Move, MoveKind, Path, PauseKind, Thread};
 use crate::math::V2;
 use crate::plc::{PlcFunction, SpindleDir};
+use alloc::string::String;
+use alloc::vec::Vec;
 use nc::event::{Dir, SpindleDir as NcDir, StopKind};
 use nc::{Event, Machine};
-use std::string::String;
-use std::vec::Vec;
 
 #[derive(Debug, Clone)]
 pub struct Translator {

@@ -1,5 +1,12 @@
 //! The interpreter loop.
 
+use alloc::boxed::Box;
+use alloc::format;
+use alloc::string::String;
+use alloc::string::ToString;
+use alloc::vec;
+use alloc::vec::Vec;
+
 use crate::vars::{slot, Vars};
 use isa::{Instr, Module};
 use nc::block::round_half_away;
@@ -396,14 +403,14 @@ impl Vm {
             }
             Instr::CallMacro { prog, count } => {
                 let n = count_of(self.reg(count))?;
-                let args = std::mem::take(&mut self.args);
+                let args = core::mem::take(&mut self.args);
                 self.modal = None;
                 self.call(prog, n, true, false, args)?;
             }
             Instr::CallMacroDyn { num, count } => {
                 let prog = self.program_by_number(self.reg(num))?;
                 let n = count_of(self.reg(count))?;
-                let args = std::mem::take(&mut self.args);
+                let args = core::mem::take(&mut self.args);
                 self.modal = None;
                 self.call(prog, n, true, false, args)?;
             }
@@ -416,13 +423,13 @@ impl Vm {
             }
             Instr::ModalCall { prog, count } => {
                 let count = count_of(self.reg(count))?;
-                let args = std::mem::take(&mut self.args);
+                let args = core::mem::take(&mut self.args);
                 self.modal = Some(ModalCall { prog, count, args });
             }
             Instr::ModalCallDyn { num, count } => {
                 let prog = self.program_by_number(self.reg(num))?;
                 let count = count_of(self.reg(count))?;
-                let args = std::mem::take(&mut self.args);
+                let args = core::mem::take(&mut self.args);
                 self.modal = Some(ModalCall { prog, count, args });
             }
             Instr::ModalCancel => self.modal = None,

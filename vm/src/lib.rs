@@ -3,6 +3,13 @@
 //! block through the kernel ([`nc::Nc`]), whose events go to a sink the VM
 //! does not know. Execution is resumable and budgeted ([`Vm::step`]) so a
 //! controller's loop can drive it without blocking.
+//!
+//! The crate is `no_std` + `alloc`; the `std` feature (on by default)
+//! only forwards to `nc` and `isa`.
+
+#![no_std]
+
+extern crate alloc;
 
 mod interp;
 mod vars;

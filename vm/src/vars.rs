@@ -1,6 +1,8 @@
 //! The variables the VM keeps itself: locals per call level and the
 //! commons (dialect.md §7.1). System variables belong to the NC kernel.
 
+use alloc::vec::Vec;
+
 use nc::value::VACANT;
 
 /// Local call levels 0…4 (main program + four macro levels).

@@ -11,6 +11,8 @@
 //! of blocks without a move) happens around each block, in
 //! [`before_block`] and [`end_of_block`].
 
+use alloc::format;
+
 mod cancel;
 mod corner;
 mod cycle;
@@ -280,7 +282,7 @@ pub(crate) fn end_of_block(nc: &mut Nc, p: &Parsed, moved: bool) -> Result<(), N
         nc.st.modal[gcode::COMP as usize] = 400;
         nc.st.comp.stop();
     }
-    let zero = std::mem::take(&mut nc.st.comp.zero_move);
+    let zero = core::mem::take(&mut nc.st.comp.zero_move);
     if !compensating(nc) || (moved && !zero) {
         nc.st.comp.idle = 0;
         return Ok(());

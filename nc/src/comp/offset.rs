@@ -2,6 +2,10 @@
 //! of them meet. Points double as vectors, `z` horizontal and `r` up, as in
 //! `contour::elem`.
 
+use alloc::format;
+use alloc::vec;
+use alloc::vec::Vec;
+
 use super::Tool;
 use crate::contour::elem::{
     circle_circle, cross, dot, left, line_circle, scale, tangent_at, travel, unit, EPS_LEN,
@@ -9,7 +13,7 @@ use crate::contour::elem::{
 use crate::error::{fail, NcError};
 use crate::geom::Element;
 use crate::state::Pt;
-use std::f64::consts::{PI, TAU};
+use core::f64::consts::{PI, TAU};
 
 /// The normal R·n of a direction `t`: left(t) for G41 (side +1),
 /// right(t) for G42; zero for no direction.

@@ -1,6 +1,9 @@
 //! What a compensated move prints (comp.md §3): every point is a nose
 //! centre point plus v(T)·R, an arc's centre included.
 
+use alloc::vec;
+use alloc::vec::Vec;
+
 use super::offset::over;
 use super::{CompState, Leg, Role};
 use crate::geom::Element;

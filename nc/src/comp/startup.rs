@@ -1,6 +1,8 @@
 //! The tool data a start-up reads (comp.md §1, §3) and the end of the
 //! start-up move (§4).
 
+use alloc::format;
+
 use super::offset::normal;
 use super::Tool;
 use crate::contour::elem::{scale, tangent_at};

@@ -5,6 +5,12 @@
 //! Points in the comments are (z, r), r = X/2; with R0.8 and tip 3 the
 //! printed point is the nose centre + (−0.8, −0.8).
 
+use alloc::format;
+use alloc::string::String;
+use alloc::string::ToString;
+use alloc::vec;
+use alloc::vec::Vec;
+
 use crate::error::NcError;
 use crate::event::Event;
 use crate::machine::Machine;

@@ -2,6 +2,8 @@
 //! blocks, so G00 stays rapid and their F, S and T act where they would in
 //! any block; only their M codes are dropped.
 
+use alloc::vec::Vec;
+
 use super::out::Out;
 use super::profile::check_codes;
 use crate::block;

@@ -4,9 +4,12 @@
 //! they work on parameter ranges of whole elements rather than building
 //! new, possibly degenerate, arcs.
 
+use alloc::vec;
+use alloc::vec::Vec;
+
 use crate::geom::Element;
 use crate::state::Pt;
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use core::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Points and levels closer than this (mm) are the same (cycles.md §0).
 pub const EPS: f64 = 1e-6;
@@ -63,7 +66,7 @@ pub enum Curve {
 }
 
 fn angle(centre: Pt, p: Pt) -> f64 {
-    (p.r - centre.r).atan2(p.z - centre.z)
+    libm::atan2(p.r - centre.r, p.z - centre.z)
 }
 
 impl Curve {
@@ -80,7 +83,7 @@ impl Curve {
             } => {
                 let a0 = angle(centre, from);
                 let a1 = angle(centre, to);
-                let mut turn = if cw { a0 - a1 } else { a1 - a0 }.rem_euclid(TAU);
+                let mut turn = crate::geom::rem_euclid(if cw { a0 - a1 } else { a1 - a0 }, TAU);
                 if turn < 1e-12 || from.dist(to) < 1e-9 {
                     turn = TAU;
                 }
@@ -172,14 +175,17 @@ impl Curve {
                 ..
             } => {
                 let a = a0 + sweep * s;
-                Pt::new(centre.r + radius * a.sin(), centre.z + radius * a.cos())
+                Pt::new(
+                    centre.r + radius * libm::sin(a),
+                    centre.z + radius * libm::cos(a),
+                )
             }
         }
     }
 
     /// The parameter of angle `a` on an arc, if it lies inside (0, 1).
     fn param_of_angle(a0: f64, sweep: f64, a: f64) -> Option<f64> {
-        let turn = if sweep < 0.0 { a0 - a } else { a - a0 }.rem_euclid(TAU);
+        let turn = crate::geom::rem_euclid(if sweep < 0.0 { a0 - a } else { a - a0 }, TAU);
         let s = turn / sweep.abs();
         (s > 1e-12 && s < 1.0 - 1e-12).then_some(s)
     }
@@ -226,9 +232,9 @@ impl Curve {
                 let v = v.clamp(-1.0, 1.0);
                 let angles = match axis {
                     // r = cr + ρ·sin a
-                    Axis::R => [v.asin(), PI - v.asin()],
+                    Axis::R => [libm::asin(v), PI - libm::asin(v)],
                     // z = cz + ρ·cos a
-                    Axis::Z => [v.acos(), -v.acos()],
+                    Axis::Z => [libm::acos(v), -libm::acos(v)],
                 };
                 Curve::arc_params(a0, sweep, &angles)
             }
@@ -326,7 +332,7 @@ mod tests {
             true,
         );
         let m = c.at(0.5);
-        let h = 5.0 * std::f64::consts::FRAC_1_SQRT_2;
+        let h = 5.0 * core::f64::consts::FRAC_1_SQRT_2;
         assert!((m.r - (22.0 - h)).abs() < 1e-9 && (m.z - (-38.0 - h)).abs() < 1e-9);
         // Level r = 21.5, 0.5 below the centre: z = -38 - sqrt(25 - 0.25).
         let s = c.roots(Axis::R, 21.5);

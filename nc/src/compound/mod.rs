@@ -6,6 +6,9 @@
 //! carry its tag. G71/G72 compute in a frame where the infeed runs along r
 //! and the cut along z: G72 is G71 on the profile mirrored at r = z.
 
+use alloc::format;
+use alloc::vec::Vec;
+
 mod finish;
 mod geo;
 mod out;
@@ -102,7 +105,7 @@ pub fn run(
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let blocks = std::mem::take(&mut nc.profile);
+    let blocks = core::mem::take(&mut nc.profile);
     let (has_p, has_q) = (p.has(b'P'), p.has(b'Q'));
     if has_p != has_q {
         return fail(2020, "the cycle needs both P (ns) and Q (nf)");

@@ -2,6 +2,10 @@
 //! frame: depth along r (infeed), position along z (cut). G72 arrives
 //! mirrored (§15.7).
 
+use alloc::format;
+use alloc::vec;
+use alloc::vec::Vec;
+
 use super::geo::{sign, Axis, EPS, SLACK};
 use super::out::Out;
 use super::profile::{tail_start, Seg};

@@ -3,6 +3,9 @@
 //! their geometry and their G00/G01 mode count; F, S, T and M words are
 //! ignored (cycles.md §5 "Decision (errors)").
 
+use alloc::format;
+use alloc::vec::Vec;
+
 use super::geo::{Axis, Curve, EPS};
 use crate::block::{self, Parsed};
 use crate::contour::{self, Corner};

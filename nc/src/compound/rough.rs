@@ -1,6 +1,8 @@
 //! G71/G72 type I (cycles.md §5, §6), computed in the G71 frame: the
 //! infeed runs along r, the cut along z. G72 arrives mirrored.
 
+use alloc::vec::Vec;
+
 use super::geo::{sign, Axis, Curve, EPS};
 use super::out::Out;
 use super::profile::{tail_start, Seg};

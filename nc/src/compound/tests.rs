@@ -2,6 +2,12 @@
 //! is worked out in the comment above it (or by the formula in the test)
 //! from cycles.md, not taken from a run.
 
+use alloc::format;
+use alloc::string::String;
+use alloc::string::ToString;
+use alloc::vec;
+use alloc::vec::Vec;
+
 use crate::event::Event;
 use crate::exec::Nc;
 use crate::gcode;

@@ -2,6 +2,8 @@
 //! (dialect.md §5.2, §5.3): the line's angle counter-clockwise from +Z in
 //! the ZX view, slope Δr/ΔZ = tan Q.
 
+use alloc::format;
+
 use super::elem::{cross, heading};
 use crate::block::Parsed;
 use crate::error::{fail, NcError};
@@ -18,13 +20,13 @@ pub fn angle_of(p: &Parsed) -> Option<f64> {
         .get(b'Q')
         .map(|q| q * 0.001)
         .or_else(|| p.val[COMMA_A as usize].map(|w| w.value))?;
-    Some(deg.rem_euclid(360.0))
+    Some(crate::geom::rem_euclid(deg, 360.0))
 }
 
 /// How far `deg` is from the nearest multiple of 180° (a line's angle
 /// and its reverse are the same line).
 fn off_axis(deg: f64) -> f64 {
-    let m = deg.rem_euclid(180.0);
+    let m = crate::geom::rem_euclid(deg, 180.0);
     m.min(180.0 - m)
 }
 
@@ -56,7 +58,7 @@ pub fn end_at_z(from: Pt, deg: f64, z: f64) -> Result<Pt, NcError> {
 /// The two-block form: where the line through `from` at `q1` meets the
 /// line through `to` at `q2`. Lines within 1° of each other: E4008.
 pub fn intersection(from: Pt, q1: f64, to: Pt, q2: f64) -> Result<Pt, NcError> {
-    let diff = (q1 - q2).rem_euclid(180.0);
+    let diff = crate::geom::rem_euclid(q1 - q2, 180.0);
     if diff.min(180.0 - diff) < LIMIT_DEG {
         return fail(
             4008,

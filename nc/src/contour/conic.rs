@@ -1,6 +1,8 @@
 //! Ellipses G6.2/G6.3 and parabolas G7.2/G7.3 (dialect.md §4.1): the
 //! curve through the start and end points and its canon event.
 
+use alloc::format;
+
 use super::elem::{dot, left, scale};
 use crate::block::Parsed;
 use crate::error::{fail, NcError};
@@ -17,7 +19,7 @@ const SLACK_MM: f64 = 0.001;
 /// the G02 sense (towards −X in the ZX view, dialect.md §2.4).
 fn axis(deg: f64) -> Pt {
     let a = deg.to_radians();
-    Pt::new(-a.sin(), a.cos())
+    Pt::new(-libm::sin(a), libm::cos(a))
 }
 
 /// The centre of the ellipse with semi-axis `a` along the axis at `q_deg`

@@ -1,6 +1,10 @@
 //! The geometry of chamfer L / rounding D corners between two contour
 //! elements (cycles.md §13), as a pure function of the elements.
 
+use alloc::format;
+use alloc::vec;
+use alloc::vec::Vec;
+
 use super::elem::{self, circle_circle, cross, dot, left, line_circle, scale, unit, EPS_LEN};
 use crate::error::{fail, NcError};
 use crate::geom::Element;
@@ -108,7 +112,7 @@ fn reach(e: &Element, d: f64, from_end: bool) -> Option<Pt> {
                 return None;
             }
             // A chord of length d subtends 2·asin(d / 2ρ).
-            let phi = 2.0 * (d / (2.0 * rho)).min(1.0).asin();
+            let phi = 2.0 * libm::asin((d / (2.0 * rho)).min(1.0));
             if phi > elem::sweep(from, to, centre, cw) + EPS_LEN / rho {
                 return None;
             }
@@ -131,10 +135,10 @@ fn reach_limit(e: &Element) -> f64 {
         } => {
             let rho = from.dist(centre);
             let s = elem::sweep(from, to, centre, cw);
-            if s >= std::f64::consts::PI {
+            if s >= core::f64::consts::PI {
                 2.0 * rho
             } else {
-                2.0 * rho * (s / 2.0).sin()
+                2.0 * rho * libm::sin(s / 2.0)
             }
         }
     }

@@ -3,9 +3,12 @@
 //! and "counter-clockwise" mean what they mean in the ZX view (dialect.md
 //! §2.4: G02 is clockwise in this view).
 
+use alloc::vec;
+use alloc::vec::Vec;
+
 use crate::geom::Element;
 use crate::state::Pt;
-use std::f64::consts::TAU;
+use core::f64::consts::TAU;
 
 /// Lengths below this are treated as zero (mm).
 pub const EPS_LEN: f64 = 1e-6;
@@ -24,7 +27,7 @@ pub fn scale(v: Pt, k: f64) -> Pt {
 }
 
 pub fn norm(v: Pt) -> f64 {
-    v.r.hypot(v.z)
+    libm::hypot(v.r, v.z)
 }
 
 /// The unit vector of `v`, `None` for a (near) zero vector.
@@ -41,18 +44,18 @@ pub fn left(v: Pt) -> Pt {
 /// The unit vector at `deg` degrees counter-clockwise from +Z.
 pub fn heading(deg: f64) -> Pt {
     let a = deg.to_radians();
-    Pt::new(a.sin(), a.cos())
+    Pt::new(libm::sin(a), libm::cos(a))
 }
 
 /// The polar angle of `p` about `c`, counter-clockwise from +Z.
 fn polar(c: Pt, p: Pt) -> f64 {
-    (p.r - c.r).atan2(p.z - c.z)
+    libm::atan2(p.r - c.r, p.z - c.z)
 }
 
 /// `p` turned by `phi` radians about `c`, counter-clockwise when `ccw`.
 pub fn rotate(p: Pt, c: Pt, phi: f64, ccw: bool) -> Pt {
     let a = if ccw { phi } else { -phi };
-    let (s, k) = a.sin_cos();
+    let (s, k) = (libm::sin(a), libm::cos(a));
     let (dz, dr) = (p.z - c.z, p.r - c.r);
     Pt::new(c.r + dz * s + dr * k, c.z + dz * k - dr * s)
 }
@@ -65,7 +68,7 @@ pub fn travel(c: Pt, a: Pt, b: Pt, cw: bool) -> f64 {
     } else {
         polar(c, b) - polar(c, a)
     };
-    d.rem_euclid(TAU)
+    crate::geom::rem_euclid(d, TAU)
 }
 
 /// The swept angle of an arc; start = end is a full circle (I/K form).
@@ -164,7 +167,7 @@ pub fn line_circle(p: Pt, t: Pt, c: Pt, rad: f64) -> Vec<Pt> {
     if disc < -1e-9 {
         return Vec::new();
     }
-    let s = disc.max(0.0).sqrt();
+    let s = libm::sqrt(disc.max(0.0));
     vec![p.add(scale(t, -half_b - s)), p.add(scale(t, -half_b + s))]
 }
 
@@ -180,7 +183,7 @@ pub fn circle_circle(c1: Pt, r1: f64, c2: Pt, r2: f64) -> Vec<Pt> {
     if h2 < -1e-9 {
         return Vec::new();
     }
-    let h = h2.max(0.0).sqrt();
+    let h = libm::sqrt(h2.max(0.0));
     let u = scale(c2.sub(c1), 1.0 / d);
     let foot = c1.add(scale(u, a));
     vec![foot.add(scale(left(u), h)), foot.add(scale(left(u), -h))]

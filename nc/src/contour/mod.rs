@@ -10,6 +10,8 @@
 //! order: E1 (shortened), the inserted element, the events of the blocks
 //! in between and of the next block's groups 0–1, then E2 (cycles.md §13).
 
+use alloc::vec;
+
 mod angle;
 mod conic;
 mod corner;
@@ -76,7 +78,7 @@ pub(crate) fn corner_word(nc: &Nc, code: Code, p: &Parsed) -> Result<Option<Corn
     }
     let size = nc.length(word);
     // Written so that a NaN fails too.
-    if size.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+    if size.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
         return fail(2040, "a chamfer or corner radius must be greater than 0");
     }
     Ok(Some(match chamfer {

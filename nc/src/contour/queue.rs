@@ -1,5 +1,7 @@
 //! Elements that wait for the next move, and the events held behind them.
 
+use alloc::vec::Vec;
+
 use super::angle;
 use super::corner::{corner, Corner};
 use super::elem::{self, EPS_LEN};
@@ -327,7 +329,7 @@ pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
 
 /// Prints and forgets every item, in order.
 fn drain(nc: &mut Nc, sink: &mut dyn Sink) {
-    for item in std::mem::take(&mut nc.st.contour.items) {
+    for item in core::mem::take(&mut nc.st.contour.items) {
         match item {
             Item::Event(e) => sink.emit(e),
             Item::Move(m) => emit_move(nc, &m, sink),

@@ -2,6 +2,12 @@
 //! Every expected coordinate is worked out in the comment above it (or by
 //! a formula written out in the test), not taken from the implementation.
 
+use alloc::format;
+use alloc::string::String;
+use alloc::string::ToString;
+use alloc::vec;
+use alloc::vec::Vec;
+
 use crate::error::NcError;
 use crate::event::Event;
 use crate::machine::{ChamferType, Machine};

@@ -9,7 +9,7 @@ use crate::exec::{Nc, Outcome, Sink};
 use crate::gcode::Code;
 use crate::geom;
 use crate::state::Pt;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
 /// Angles closer than this (radians) are the same.
 const ANGLE_EPS: f64 = 1e-9;
@@ -76,10 +76,10 @@ fn centre(nc: &Nc, p: &Parsed, cw: bool, from: Pt, to: Pt) -> Result<Option<Pt>,
 /// tangent's |dZ| : |dr| is |sin θ| : |cos θ|, so the classes change only
 /// at θ = 45° + n·90°: the arc must not pass one strictly inside.
 fn check_long_axis(from: Pt, to: Pt, c: Pt, cw: bool) -> Result<(), NcError> {
-    let a0 = (from.r - c.r).atan2(from.z - c.z);
-    let a1 = (to.r - c.r).atan2(to.z - c.z);
+    let a0 = libm::atan2(from.r - c.r, from.z - c.z);
+    let a1 = libm::atan2(to.r - c.r, to.z - c.z);
     // The sweep in the arc's direction; end = start is a full circle.
-    let mut sweep = if cw { a0 - a1 } else { a1 - a0 }.rem_euclid(TAU);
+    let mut sweep = crate::geom::rem_euclid(if cw { a0 - a1 } else { a1 - a0 }, TAU);
     if sweep < ANGLE_EPS {
         sweep = TAU;
     }
@@ -87,7 +87,7 @@ fn check_long_axis(from: Pt, to: Pt, c: Pt, cw: bool) -> Result<(), NcError> {
     for n in 0..4 {
         let boundary = FRAC_PI_4 + f64::from(n) * FRAC_PI_2;
         // How far along the arc the boundary lies.
-        let at = (dir * (boundary - a0)).rem_euclid(TAU);
+        let at = crate::geom::rem_euclid(dir * (boundary - a0), TAU);
         if at > ANGLE_EPS && at < sweep - ANGLE_EPS {
             return fail(
                 4010,
@@ -104,6 +104,7 @@ mod tests {
     use crate::cycles::testing::{assert_line, run_err, Lathe};
     use crate::event::{Dir, Event};
     use crate::state::Pt;
+    use alloc::string::ToString;
 
     #[test]
     fn arcthread_prints_its_fields_in_order() {

@@ -2,6 +2,10 @@
 //! drilling, G84/G88 rigid tapping with the M29 rules, G80 (cycles.md §21,
 //! §22).
 
+use alloc::format;
+use alloc::vec;
+use alloc::vec::Vec;
+
 use super::legs::{self, Leg};
 use super::tapping::{self, Hole};
 use super::words::{self, before, sign};
@@ -328,6 +332,10 @@ fn tap_path(nc: &mut Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
 #[cfg(test)]
 mod tests {
     use crate::cycles::testing::{run, run_err, Lathe};
+    use alloc::format;
+    use alloc::string::ToString;
+    use alloc::vec;
+    use alloc::vec::Vec;
 
     #[test]
     fn g83_last_partial_peck_and_repeats_with_u() {

@@ -1,6 +1,9 @@
 //! G74 face grooving / peck drilling along Z and G75 grooving along X
 //! (cycles.md §9, §10): pecks along one axis, steps along the other.
 
+use alloc::vec;
+use alloc::vec::Vec;
+
 use super::legs::{self, Leg};
 use super::words::{self, sign};
 use crate::block::Parsed;
@@ -152,6 +155,9 @@ fn path(g: &Groove, ax: Axes, zero_step: &str) -> Result<Vec<Leg>, NcError> {
 #[cfg(test)]
 mod tests {
     use crate::cycles::testing::{run, run_err, Lathe};
+    use alloc::format;
+    use alloc::string::ToString;
+    use alloc::vec;
 
     #[test]
     fn g74_last_column_is_partial_and_the_relief_goes_back() {

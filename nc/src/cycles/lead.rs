@@ -1,6 +1,8 @@
 //! The thread lead: the F or I a block writes, the one modal lead, and its
 //! range (cycles.md §0, dialect.md §4.3).
 
+use alloc::format;
+
 use crate::block::Parsed;
 use crate::error::{fail, NcError};
 use crate::exec::Nc;

@@ -1,6 +1,9 @@
 //! The legs a cycle is made of, the pull-out at a thread's end, and
 //! printing a path.
 
+use alloc::format;
+use alloc::vec::Vec;
+
 use super::words::{sign, EPS};
 use crate::error::{fail, NcError};
 use crate::event::{Event, SpindleDir};

@@ -7,6 +7,8 @@
 //! cycle block comes before any of its legs, at compile time (the dry run)
 //! and at run time alike.
 
+use alloc::format;
+
 mod arc_thread;
 mod drill;
 mod groove;
@@ -204,6 +206,9 @@ pub fn drill(
 #[cfg(test)]
 mod tests {
     use super::testing::{run, run_err, Lathe};
+    use alloc::string::String;
+    use alloc::string::ToString;
+    use alloc::vec::Vec;
 
     #[test]
     fn a_thread_lead_is_not_the_modal_feed() {

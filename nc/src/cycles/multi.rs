@@ -1,6 +1,9 @@
 //! The multiple threading cycles G76 (cycles.md §11, §12) and G78 (§19):
 //! depths, flank or alternating infeed, run-in, pull-out and starts.
 
+use alloc::format;
+use alloc::vec::Vec;
+
 use super::lead;
 use super::legs::{self, jk_pair, thread, Leg, PullOut};
 use super::words::{self, sign, EPS};
@@ -145,7 +148,7 @@ fn rough_depths(
             );
         }
         let mut depth = if decreasing {
-            t.first * f64::from(n).sqrt()
+            t.first * libm::sqrt(f64::from(n))
         } else {
             previous + t.first
         };
@@ -169,7 +172,7 @@ fn finish(depths: &mut Vec<f64>, height: f64, passes: i64) -> Result<(), NcError
     if n > MAX_PASSES {
         return fail(4010, format!("{passes} finishing passes are too many"));
     }
-    depths.extend(std::iter::repeat_n(height, n));
+    depths.extend(core::iter::repeat_n(height, n));
     Ok(())
 }
 
@@ -232,7 +235,7 @@ pub(crate) fn g76(
     };
     let mut depths = rough_depths(&t, first.dmin, first.allowance, true)?;
     finish(&mut depths, t.height, first.finishing)?;
-    let tan = (angle / 2.0).to_radians().tan();
+    let tan = libm::tan((angle / 2.0).to_radians());
     let mut path = Vec::new();
     for depth in depths {
         let z = t.a.z + t.sz() * depth * tan;
@@ -304,7 +307,7 @@ pub(crate) fn g78(
     let pull = f.pull.and_then(PullOut::from_pair);
     let mut depths = rough_depths(&t, f.dmin, f.allowance, f.decreasing)?;
     finish(&mut depths, t.height, f.finishing)?;
-    let tan = (f.angle / 2.0).to_radians().tan();
+    let tan = libm::tan((f.angle / 2.0).to_radians());
     let mut path = Vec::new();
     for (i, &depth) in depths.iter().enumerate() {
         let z = t.a.z + cut_in_shift(f.cut_in, i + 1, depth * tan);
@@ -418,6 +421,8 @@ fn g78_pass(
 #[cfg(test)]
 mod tests {
     use crate::cycles::testing::{assert_line, nums, run_err, Lathe};
+    use alloc::string::String;
+    use alloc::vec::Vec;
 
     fn lathe(at: &str) -> Lathe {
         let mut m = Lathe::new();

@@ -1,6 +1,9 @@
 //! Tapping: G33 with a floating holder (cycles.md §20) and the rigid
 //! tapping hole of G84/G88 (§22).
 
+use alloc::format;
+use alloc::vec::Vec;
+
 use super::legs::{self, thread, Leg};
 use super::{lead, words};
 use crate::block::Parsed;
@@ -122,6 +125,10 @@ pub(crate) fn tap_hole(h: &Hole, dir: SpindleDir, spindle: &mut SpindleDir, out:
 #[cfg(test)]
 mod tests {
     use crate::cycles::testing::{run, run_err, Lathe};
+    use alloc::format;
+    use alloc::string::String;
+    use alloc::vec;
+    use alloc::vec::Vec;
 
     #[test]
     fn g33_three_starts_from_a_ccw_spindle() {

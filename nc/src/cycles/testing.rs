@@ -1,6 +1,10 @@
 //! Test helpers: blocks written as text, run through the kernel on the
 //! reference machine, their events as canon lines.
 
+use alloc::string::String;
+use alloc::string::ToString;
+use alloc::vec::Vec;
+
 use crate::event::Event;
 use crate::exec::Nc;
 use crate::machine::Machine;

@@ -7,6 +7,8 @@
 //! the tool's point already moved) and is printed by `next_block`, at the
 //! start of the next block's group 1, with or without its run-out.
 
+use alloc::format;
+
 use super::legs::Leg;
 use super::words::{sign, EPS};
 use super::{lead, Func};
@@ -63,7 +65,7 @@ impl Move {
     /// The lead after `s` mm along the long axis (§17: ℓ = √(F² + 2Rs)).
     fn lead_at(&self, s: f64) -> f64 {
         let r = self.dlead.unwrap_or(0.0);
-        (self.lead * self.lead + 2.0 * r * s).max(0.0).sqrt()
+        libm::sqrt((self.lead * self.lead + 2.0 * r * s).max(0.0))
     }
 
     /// The move as one leg.
@@ -241,7 +243,7 @@ fn check_variable_lead(nc: &Nc, mv: &Move) -> Result<(), NcError> {
     if end <= 0.0 {
         return fail(4010, "G34: the lead falls to zero or below during the move");
     }
-    lead::check(nc, end.sqrt())
+    lead::check(nc, libm::sqrt(end))
 }
 
 #[cfg(test)]

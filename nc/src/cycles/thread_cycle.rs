@@ -1,6 +1,9 @@
 //! G92 threading cycle and G92.1 rigid threading cycle (cycles.md §3, §4,
 //! §12, §18).
 
+use alloc::format;
+use alloc::vec::Vec;
+
 use super::legs::{self, jk_pair, Leg, PullOut};
 use super::turning::{self, Cycle};
 use super::words::sign;

@@ -1,6 +1,8 @@
 //! G90 turning and G94 facing (cycles.md §1, §2), and the run values that
 //! G90, G92 and G94 keep from one modal repetition to the next (§4).
 
+use alloc::format;
+
 use super::legs::{self, Leg};
 use super::words;
 use crate::block::Parsed;

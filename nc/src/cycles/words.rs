@@ -1,5 +1,8 @@
 //! Reading cycle words and the small numeric rules of cycles.md §0.
 
+use alloc::format;
+use alloc::vec::Vec;
+
 use crate::block::{round_half_away, Parsed};
 use crate::error::{fail, NcError};
 use crate::exec::Nc;
@@ -97,6 +100,7 @@ pub(crate) fn length_or(nc: &Nc, p: &Parsed, letter: u8, default: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use alloc::vec;
 
     #[test]
     fn signs_have_a_dead_band() {
