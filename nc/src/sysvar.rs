@@ -14,6 +14,13 @@ pub fn is_system(n: u32) -> bool {
     n >= 1000
 }
 
+/// Is `n` a current position (#5021–#5023 machine, #5041–#5043 local)?
+/// A real control reads these only when the motion before them has ended
+/// (the block-end positions #5001… are known ahead and need no wait).
+pub fn is_current_position(n: u32) -> bool {
+    matches!(n, 5021..=5023 | 5041..=5043)
+}
+
 fn not_readable(n: u32) -> NcError {
     NcError::new(5007, format!("#{n} is not a readable variable"))
 }

@@ -15,10 +15,14 @@
 //! go through the methods of [`Controller`]; M, S and T functions through
 //! the host's [`Plc`].
 //!
-//! The VM may run ahead because position variables (#5001…, #5021…) read
-//! the *programmed* state of the kernel, which is known when the block is
-//! executed; only G31 needs the real position (#5061, #995), so the VM
-//! waits after a G31 block until the move has ended.
+//! The VM runs ahead of the motion: the block-end positions (#5001…) are
+//! the kernel's programmed state, known when a block executes. It waits,
+//! as a real control does, where a value depends on the motion: after a
+//! G31 block until the move has ended (the skip position, #5061, #995),
+//! and before a read of the current position (#5021…, #5041…) until all
+//! motion queued before it has ended ([`vm::Status::Sync`]). The planner
+//! always plans its last queued move to a stop, so the wait cannot
+//! deadlock.
 
 use crate::command::{Command, Feed, Move, MoveKind, Path, Tag};
 use crate::config::{Config, RapidOverride};
@@ -99,6 +103,8 @@ enum VmState {
     Running,
     /// Waiting for a G31 move to end.
     Skip,
+    /// Waiting for all motion to end before a current-position read.
+    Sync,
     Done,
     Alarm,
 }
@@ -149,7 +155,8 @@ impl<P: Plc> Controller<P> {
         if module.machine != machine.compile_keys() {
             return Err(LoadError::Machine);
         }
-        let vm = Vm::new(module, machine.clone());
+        let mut vm = Vm::new(module, machine.clone());
+        vm.sync_positions = true;
         let origin = origin_of(&vm);
         let mut engine = Engine::new(cfg, plc);
         engine.reseed(origin);
@@ -306,6 +313,12 @@ impl<P: Plc> Controller<P> {
         if let Some(r) = self.engine.take_skip_report() {
             self.after_skip(r);
         }
+        if self.vm_state == VmState::Sync
+            && self.staged.is_empty()
+            && self.engine.planner().is_empty()
+        {
+            self.vm_state = VmState::Running;
+        }
         let cfg_blocks = self.engine.config().lookahead_blocks;
         let cfg_secs = self.engine.config().lookahead_s;
         loop {
@@ -368,6 +381,7 @@ impl<P: Plc> Controller<P> {
                 }
             }
             Status::OutOfBudget => {}
+            Status::Sync => self.vm_state = VmState::Sync,
             Status::Done => {
                 if !matches!(self.staged.back(), Some((Command::End, _))) {
                     self.staged.push_back((Command::End, tag));
@@ -430,6 +444,7 @@ impl<P: Plc> Controller<P> {
     fn restart(&mut self) {
         let module = self.vm.module().clone();
         self.vm = Vm::new(module, self.machine.clone());
+        self.vm.sync_positions = true;
         self.vm.max_blocks = self.max_blocks;
         self.vm.repeat = self.repeat;
         let origin = origin_of(&self.vm);

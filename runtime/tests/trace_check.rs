@@ -4,8 +4,8 @@
 mod common;
 
 use common::*;
-use nc::Machine;
-use runtime::{Motion, RunState};
+use nc::{Event, Machine};
+use runtime::{Controller, Motion, RunState};
 
 const SHAFT: &str = "O0001
 G50 X100 Z50
@@ -553,4 +553,50 @@ fn g61_and_g09_stop_exactly_where_g64_blends() {
     assert_eq!(stops(&exact), 20, "G61");
     assert_eq!(stops(&blended), 1, "G64");
     assert_eq!(stops(&one), 2, "G09 on one block");
+}
+
+/// The tick at which the VM has produced `n` LINE events, with the Z the
+/// axes stood at in the period before.
+fn tick_of_line(src: &str, n: usize) -> (u64, f64) {
+    let machine = Machine::reference();
+    let m = module(src, &machine);
+    let mut ctl = Controller::new(m, machine, runtime::AutoAck).expect("loads");
+    ctl.cycle_start();
+    let mut canon: Vec<Event> = Vec::new();
+    let mut z = 0.0;
+    for tick in 0..20_000u64 {
+        ctl.run_ahead_tap(&mut canon);
+        let lines = canon
+            .iter()
+            .filter(|e| matches!(e, Event::Line { .. }))
+            .count();
+        if lines >= n {
+            return (tick, z);
+        }
+        z = ctl.tick().z;
+    }
+    panic!("the VM never produced {n} LINE events");
+}
+
+/// #5042 (current Z) waits for the motion before it, as on a real control;
+/// #5002 (block-end Z) is known ahead and lets the VM run on at once.
+#[test]
+fn a_current_position_read_waits_for_the_motion() {
+    // Z-30 at 600 mm/min: 3 s of motion before the read.
+    let waits = "O0015\nG98 G01 Z-30 F600\n#100 = #5042\nG01 Z[#100 - 5]\nM30\n";
+    let (tick, z) = tick_of_line(waits, 2);
+    assert!(
+        tick >= 3000,
+        "the second block ran at tick {tick}, before the move ended"
+    );
+    assert!(
+        (z + 30.0).abs() < 1e-9,
+        "the axes stood at Z{z} when #5042 was read"
+    );
+    let ahead = "O0016\nG98 G01 Z-30 F600\n#100 = #5002\nG01 Z[#100 - 5]\nM30\n";
+    assert_eq!(tick_of_line(ahead, 2).0, 0, "#5002 needs no wait");
+    // And the run ends where the program says, without deadlock.
+    let r = run(waits);
+    assert_eq!(r.state, RunState::Ended);
+    assert!((r.pts.last().unwrap().z + 35.0).abs() < 1e-9);
 }

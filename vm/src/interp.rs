@@ -54,6 +54,11 @@ pub enum Status {
     OutOfBudget,
     /// A run-time alarm; the `ALARM` event is in the sink.
     Alarm(Alarm),
+    /// The next instruction reads the current position (#5021–#5023,
+    /// #5041–#5043), which on a real control waits for the motion before
+    /// it: let that motion finish, then call again (the read then runs).
+    /// Only returned when [`Vm::sync_positions`] is set.
+    Sync,
 }
 
 /// Where #500–#999 persist: the VM hands the whole set over whenever a
@@ -110,6 +115,11 @@ pub struct Vm {
     done: bool,
     /// The pc of the last `Exec` that ran.
     last_exec: u32,
+    /// Return [`Status::Sync`] before reading a current position; a
+    /// controller whose motion lags the VM sets it.
+    pub sync_positions: bool,
+    /// The motion was synchronised since the last NC block.
+    synced: bool,
     storage: Option<Box<dyn Storage>>,
 }
 
@@ -123,6 +133,8 @@ enum Next {
     Go,
     Event,
     Done,
+    /// The instruction at `pc` waits for the motion (not executed yet).
+    Sync,
 }
 
 impl Vm {
@@ -149,6 +161,8 @@ impl Vm {
             repeat: 1,
             done: false,
             last_exec: 0,
+            sync_positions: false,
+            synced: false,
             storage: None,
         }
     }
@@ -184,6 +198,7 @@ impl Vm {
             match result {
                 Ok(Next::Go) => {}
                 Ok(Next::Event) => return Status::Event,
+                Ok(Next::Sync) => return Status::Sync,
                 Ok(Next::Done) => {
                     self.done = true;
                     return Status::Done;
@@ -216,7 +231,7 @@ impl Vm {
     pub fn run(&mut self, sink: &mut dyn Sink) -> Status {
         loop {
             match self.step(1 << 16, sink) {
-                Status::Event | Status::OutOfBudget => continue,
+                Status::Event | Status::OutOfBudget | Status::Sync => continue,
                 other => return other,
             }
         }
@@ -304,11 +319,17 @@ impl Vm {
             Instr::LoadNull { dst } => self.set(dst, VACANT),
             Instr::Mov { dst, src } => self.set(dst, self.reg(src)),
             Instr::LoadVar { dst, var } => {
+                if self.must_sync(var) {
+                    return Ok(self.wait_for_motion());
+                }
                 let v = self.read_var(var)?;
                 self.set(dst, v);
             }
             Instr::LoadVarInd { dst, idx } => {
                 let n = var_number(self.reg(idx))?;
+                if self.must_sync(n) {
+                    return Ok(self.wait_for_motion());
+                }
                 let v = self.read_var(n)?;
                 self.set(dst, v);
             }
@@ -389,7 +410,10 @@ impl Vm {
                 self.words.clear();
                 self.msg = None;
             }
-            Instr::Exec { .. } => return self.exec_block(sink),
+            Instr::Exec { .. } => {
+                self.synced = false;
+                return self.exec_block(sink);
+            }
             Instr::CallSub { prog, count } => {
                 self.nc.check_call()?;
                 let n = count_of(self.reg(count))?;
@@ -596,6 +620,19 @@ impl Vm {
             }
         }
         Ok(Next::Go)
+    }
+
+    /// Whether reading #`n` must first wait for the motion before it.
+    fn must_sync(&self, n: u32) -> bool {
+        self.sync_positions && !self.synced && nc::sysvar::is_current_position(n)
+    }
+
+    /// Stops before the current instruction until the caller has let the
+    /// motion finish; reads after it, up to the next NC block, need no wait.
+    fn wait_for_motion(&mut self) -> Next {
+        self.pc -= 1;
+        self.synced = true;
+        Next::Sync
     }
 
     fn read_var(&self, n: u32) -> Result<f64, Fault> {

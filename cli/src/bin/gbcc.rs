@@ -164,7 +164,7 @@ fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> Result<(), String>
         out.block_events(&events, vm.last_loc().line, start);
         events.clear();
         match status {
-            vm::Status::Event | vm::Status::OutOfBudget => continue,
+            vm::Status::Event | vm::Status::OutOfBudget | vm::Status::Sync => continue,
             vm::Status::Done => break,
             vm::Status::Alarm(a) => {
                 print!("{}", out.out);
