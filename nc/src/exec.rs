@@ -84,6 +84,19 @@ impl Nc {
 
     /// Executes one block of NC words.
     pub fn exec(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        let Some(area) = self.st.stroke2 else {
+            return self.exec_block(words, sink);
+        };
+        // G22 in force: every end point passes the stroke check.
+        let mut guard = crate::stroke::Guard::new(sink, area, self.st.origin());
+        let result = self.exec_block(words, &mut guard);
+        match guard.finish() {
+            Some(e) => Err(e),
+            None => result,
+        }
+    }
+
+    fn exec_block(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
         let p = block::parse(words, &self.machine)?;
         crate::comp::before_block(self, &p, sink)?;
         let mut out = Outcome::default();
@@ -123,6 +136,10 @@ impl Nc {
             match group {
                 gcode::ONE_SHOT => {}
                 gcode::SPEED_MODE => self.speed_mode(code, p, sink),
+                gcode::STROKE => {
+                    self.st.modal[group as usize] = code;
+                    crate::stroke::select(self, code, p);
+                }
                 gcode::WORK => {
                     let before = self.st.origin();
                     self.st.modal[group as usize] = code;
@@ -305,6 +322,10 @@ impl Nc {
             }
             contour::before_one_shot(self, code, sink)?;
             return contour::in_order(self, sink, |nc, s| nc.one_shot(code, p, s, out));
+        }
+        if p.has_g(220) {
+            // G22 owns the block's X Z I K: they are its limits.
+            return Ok(());
         }
         let drill = self.st.group(gcode::DRILL);
         if drill != 800 {

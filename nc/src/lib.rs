@@ -26,6 +26,7 @@ pub mod gcode;
 pub mod geom;
 pub mod machine;
 pub mod state;
+pub mod stroke;
 pub mod sysvar;
 pub mod value;
 pub mod words;

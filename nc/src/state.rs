@@ -93,6 +93,8 @@ pub struct State {
     /// The last block ends in an exact stop (G09 in it, or G61 in force):
     /// the runtime must not blend it into the next one.
     pub exact_stop: bool,
+    /// The area stored stroke check 2 forbids while G22 is in force.
+    pub stroke2: Option<crate::stroke::Area>,
     pub parts_required: f64,
     /// State of the single cycles and threads (cycles module).
     pub cycles: crate::cycles::CycleState,
@@ -146,6 +148,7 @@ impl State {
             parts: 0.0,
             outputs: 0,
             exact_stop: false,
+            stroke2: None,
             parts_required: 0.0,
             cycles: Default::default(),
             compound: Default::default(),

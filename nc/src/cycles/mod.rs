@@ -23,7 +23,7 @@ pub(crate) mod turning;
 mod words;
 
 #[cfg(test)]
-mod testing;
+pub(crate) mod testing;
 
 use crate::block::Parsed;
 use crate::error::{fail, NcError};
