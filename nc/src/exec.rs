@@ -539,6 +539,7 @@ impl Nc {
                 out.skip = Some(to);
                 sink.emit(Event::Skip { x: to.x(), z: to.z });
             }
+            360 | 370 => crate::measure::run(self, code == 360, p, sink)?,
             500 => self.set_coordinates(p, sink),
             520 => self.set_local(p, sink),
             530 => {
@@ -564,7 +565,7 @@ impl Nc {
                 )
             }
         }
-        out.moved = matches!(code, 280 | 300 | 310 | 530);
+        out.moved = matches!(code, 280 | 300 | 310 | 360 | 370 | 530);
         Ok(())
     }
 

@@ -25,6 +25,7 @@ pub mod exec;
 pub mod gcode;
 pub mod geom;
 pub mod machine;
+pub mod measure;
 pub mod state;
 pub mod stroke;
 pub mod sysvar;
