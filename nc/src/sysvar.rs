@@ -76,6 +76,7 @@ impl Nc {
                 let v = st.last[(letter - b'A') as usize];
                 (!v.is_nan()).then_some(v)
             }
+            // Last N and O: the VM answers them from its module.
             4114 | 4115 => None,
             5001 => Some(st.pos.x()),
             5002 => Some(st.pos.z),

@@ -642,10 +642,47 @@ impl Vm {
         if let Some(s) = slot(n) {
             return Ok(self.vars.get(&s));
         }
+        match n {
+            4114 => return Ok(self.last_sequence().map_or(VACANT, f64::from)),
+            4115 => return Ok(self.program_number().map_or(VACANT, f64::from)),
+            _ => {}
+        }
         if nc::sysvar::is_system(n) {
             return Ok(self.nc.read_var(n)?.unwrap_or(VACANT));
         }
         fault(5008, format!("#{n} names no variable"))
+    }
+
+    /// #4115: the number of the running program.
+    fn program_number(&self) -> Option<u32> {
+        self.module
+            .programs
+            .get(self.prog as usize)
+            .map(|p| p.number)
+    }
+
+    /// #4114, the last N passed: the nearest N block at or before the
+    /// running instruction in the running program, else at or before the
+    /// call in each caller (a subprogram without N keeps its caller's).
+    fn last_sequence(&self) -> Option<u32> {
+        let here = (self.prog, self.pc.saturating_sub(1));
+        let callers = self
+            .frames
+            .iter()
+            .rev()
+            .map(|f| (f.caller, f.return_pc.saturating_sub(1)));
+        core::iter::once(here)
+            .chain(callers)
+            .find_map(|(prog, pc)| self.sequence_before(prog, pc))
+    }
+
+    fn sequence_before(&self, prog: u32, pc: u32) -> Option<u32> {
+        let p = self.module.programs.get(prog as usize)?;
+        p.seqs
+            .iter()
+            .filter(|&&(_, at)| at <= pc)
+            .max_by_key(|&&(_, at)| at)
+            .map(|&(n, _)| n)
     }
 
     fn write_var(&mut self, n: u32, v: f64, sink: &mut dyn Sink) -> Result<(), Fault> {
