@@ -197,6 +197,7 @@ impl Ticker {
                         kind: MoveKind::Rapid,
                         path: Path::Line { to },
                         shift: V2::ZERO,
+                        c: None,
                     }),
                     Tag::default(),
                 );

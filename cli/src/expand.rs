@@ -76,20 +76,22 @@ impl Expand {
 
     fn event(&mut self, e: &Event) {
         let text = match e {
-            Event::Rapid { x, z } => format!("G00 X{} Z{}", n(*x), n(*z)),
-            Event::Line { x, z } => format!("G01 X{} Z{}", n(*x), n(*z)),
+            Event::Rapid { x, z, c } => format!("G00 X{} Z{}{}", n(*x), n(*z), c_word(*c)),
+            Event::Line { x, z, c } => format!("G01 X{} Z{}{}", n(*x), n(*z), c_word(*c)),
             Event::Arc { dir, x, z, cx, cz } => {
                 let g = if *dir == Dir::Cw { "G02" } else { "G03" };
                 // I is a radius value relative to the start, K relative too.
                 let (i, k) = ((cx - self.at.0) / 2.0, cz - self.at.1);
                 format!("{g} X{} Z{} I{} K{}", n(*x), n(*z), n(i), n(k))
             }
+            // A thread's C= is the angle C holds (a G32 cannot turn C).
             Event::Thread {
                 x,
                 z,
                 lead,
                 dlead,
                 q,
+                ..
             } => {
                 let mut s = match dlead {
                     Some(d) => format!("G34 X{} Z{} F{} R{}", n(*x), n(*z), n(*lead), n(*d)),
@@ -126,10 +128,11 @@ impl Expand {
             Event::Tool { t, d } => format!("T{t:02}{d:02}"),
             Event::M(code) => format!("M{code:02}"),
             Event::Origin { x, z } => format!("(WORK ZERO AT MACHINE X{} Z{})", n(*x), n(*z)),
-            Event::Home { n: p, x, z } => format!(
-                "(AT REFERENCE POINT {p}:{}{})",
+            Event::Home { n: p, x, z, c } => format!(
+                "(AT REFERENCE POINT {p}:{}{}{})",
                 if *x { " X" } else { "" },
-                if *z { " Z" } else { "" }
+                if *z { " Z" } else { "" },
+                if *c { " C" } else { "" }
             ),
             Event::Stop(k) => match k {
                 StopKind::M00 => "M00".into(),
@@ -150,10 +153,15 @@ impl Expand {
     }
 }
 
+/// The C word of a move on a machine with a C axis.
+fn c_word(c: Option<f64>) -> String {
+    c.map_or(String::new(), |c| format!(" C{}", n(c)))
+}
+
 /// Where an event leaves the tool.
 fn end_point(e: &Event) -> Option<(f64, f64)> {
     match *e {
-        Event::Rapid { x, z } | Event::Line { x, z } | Event::Skip { x, z } => Some((x, z)),
+        Event::Rapid { x, z, .. } | Event::Line { x, z, .. } | Event::Skip { x, z } => Some((x, z)),
         Event::Arc { x, z, .. } | Event::Thread { x, z, .. } => Some((x, z)),
         _ => None,
     }

@@ -167,3 +167,55 @@ fn defines_and_expansion() {
         text(&e.stdout)
     );
 }
+
+#[test]
+fn a_machine_with_a_c_axis() {
+    let d = dir("caxis");
+    std::fs::write(d.join("c.toml"), "[axes.c]\nenabled = true\n").unwrap();
+    // Two holes 90° apart from C0 (H is applied per repeat), then a C-only
+    // feed by H-22.5: 180 − 22.5 = 157.5.
+    let src = "G00 X20 Z3 C0\nG83 X20 Z-5 H90 K2 F50\nG80\nG01 H-22.5 F200\nM30\n";
+    std::fs::write(d.join("holes.nc"), src).unwrap();
+    let out = gbcc(&["holes.nc", "--machine", "c.toml"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let run = gbvm(&["run", "holes.gbc", "--machine", "c.toml"], &d);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    let hole =
+        |c: &str| format!("RAPID X=20 Z=3 C={c}\nLINE X=20 Z=-5 C={c}\nRAPID X=20 Z=3 C={c}\n");
+    let want = format!(
+        "RAPID X=20 Z=3 C=0\n{}{}FEED F=200 MODE=MIN\nLINE X=20 Z=3 C=157.5\nSTOP KIND=M30\n",
+        hole("90").replacen('\n', "\nFEED F=50 MODE=MIN\n", 1),
+        hole("180")
+    );
+    assert_eq!(text(&run.stdout), want);
+    // The trace has its c column; the last period stands at C157.5.
+    let trace = gbvm(
+        &["run", "holes.gbc", "--machine", "c.toml", "--emit", "trace"],
+        &d,
+    );
+    let t = text(&trace.stdout);
+    assert!(
+        t.starts_with("time_s,x,z,c,spindle_rpm,feed,line\n"),
+        "{t:.80}"
+    );
+    let last = t.lines().last().unwrap_or_default();
+    assert_eq!(last.split(',').nth(3), Some("157.500000"), "{last}");
+    let json = gbvm(
+        &[
+            "run",
+            "holes.gbc",
+            "--machine",
+            "c.toml",
+            "--emit",
+            "trace",
+            "--format",
+            "json",
+        ],
+        &d,
+    );
+    assert!(text(&json.stdout).contains(",\"c\":157.500000,"));
+    // The reference machine has no C axis: E2005 at compile time.
+    let out = gbcc(&["holes.nc", "-o", "ref.gbc"], &d);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("E2005"), "{}", text(&out.stderr));
+}

@@ -206,6 +206,10 @@ fn negative_f_allowed(p: &Parsed) -> bool {
 
 fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     for letter in [b'T', b'P', b'L', b'Q', b'H', b'D', b'K'] {
+        // With a C axis, H is the incremental C angle (decimals allowed).
+        if letter == b'H' && m.axes.c.enabled {
+            continue;
+        }
         if let Some(w) = p.word(letter) {
             if w.literal_with_point() && integer_only(p, letter) {
                 return fail(

@@ -31,13 +31,17 @@ pub enum StopKind {
 /// diameter, exactly as printed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Event {
+    /// `c`: the C axis position (degrees), printed only on a machine with
+    /// a C axis, when the block programs C/H or the move turns C.
     Rapid {
         x: f64,
         z: f64,
+        c: Option<f64>,
     },
     Line {
         x: f64,
         z: f64,
+        c: Option<f64>,
     },
     Arc {
         dir: Dir,
@@ -68,6 +72,7 @@ pub enum Event {
     Thread {
         x: f64,
         z: f64,
+        c: Option<f64>,
         lead: f64,
         dlead: Option<f64>,
         q: Option<f64>,
@@ -105,10 +110,12 @@ pub enum Event {
         x: f64,
         z: f64,
     },
+    /// The axes that went home; `c` only on a machine with a C axis.
     Home {
         n: u32,
         x: bool,
         z: bool,
+        c: bool,
     },
     Stop(StopKind),
     Skip {
@@ -176,6 +183,18 @@ impl Display for Num {
     }
 }
 
+/// The optional ` C=` field of `RAPID`, `LINE` and `THREAD` (canon.md).
+struct CField(Option<f64>);
+
+impl Display for CField {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            Some(c) => write!(f, " C={}", Num(c)),
+            None => Ok(()),
+        }
+    }
+}
+
 fn dir(d: Dir) -> &'static str {
     match d {
         Dir::Cw => "CW",
@@ -201,8 +220,10 @@ fn quoted(s: &str) -> String {
 impl Display for Event {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Event::Rapid { x, z } => write!(f, "RAPID X={} Z={}", Num(*x), Num(*z)),
-            Event::Line { x, z } => write!(f, "LINE X={} Z={}", Num(*x), Num(*z)),
+            Event::Rapid { x, z, c } => {
+                write!(f, "RAPID X={} Z={}{}", Num(*x), Num(*z), CField(*c))
+            }
+            Event::Line { x, z, c } => write!(f, "LINE X={} Z={}{}", Num(*x), Num(*z), CField(*c)),
             Event::Arc {
                 dir: d,
                 x,
@@ -247,11 +268,19 @@ impl Display for Event {
             Event::Thread {
                 x,
                 z,
+                c,
                 lead,
                 dlead,
                 q,
             } => {
-                write!(f, "THREAD X={} Z={} LEAD={}", Num(*x), Num(*z), Num(*lead))?;
+                write!(
+                    f,
+                    "THREAD X={} Z={}{} LEAD={}",
+                    Num(*x),
+                    Num(*z),
+                    CField(*c),
+                    Num(*lead)
+                )?;
                 if let Some(d) = dlead {
                     write!(f, " DLEAD={}", Num(*d))?;
                 }
@@ -311,7 +340,7 @@ impl Display for Event {
             Event::Tool { t, d } => write!(f, "TOOL T={t} D={d}"),
             Event::M(code) => write!(f, "M CODE={code}"),
             Event::Origin { x, z } => write!(f, "ORIGIN X={} Z={}", Num(*x), Num(*z)),
-            Event::Home { n, x, z } => {
+            Event::Home { n, x, z, c } => {
                 f.write_str("HOME N=")?;
                 write!(f, "{n} AXES=")?;
                 if *x {
@@ -319,6 +348,9 @@ impl Display for Event {
                 }
                 if *z {
                     f.write_char('Z')?;
+                }
+                if *c {
+                    f.write_char('C')?;
                 }
                 Ok(())
             }
@@ -386,8 +418,31 @@ mod tests {
             n: 1,
             x: true,
             z: false,
+            c: false,
         };
         assert_eq!(e.to_string(), "HOME N=1 AXES=X");
+        let e = Event::Home {
+            n: 1,
+            x: false,
+            z: true,
+            c: true,
+        };
+        assert_eq!(e.to_string(), "HOME N=1 AXES=ZC");
+        let e = Event::Line {
+            x: 20.0,
+            z: -5.0,
+            c: Some(-45.5),
+        };
+        assert_eq!(e.to_string(), "LINE X=20 Z=-5 C=-45.5");
+        let e = Event::Thread {
+            x: 0.0,
+            z: -10.0,
+            c: Some(90.0),
+            lead: 1.5,
+            dlead: None,
+            q: None,
+        };
+        assert_eq!(e.to_string(), "THREAD X=0 Z=-10 C=90 LEAD=1.5");
         let e = Event::Speed {
             s: 600.0,
             css: false,

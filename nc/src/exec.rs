@@ -98,12 +98,15 @@ impl Nc {
 
     fn exec_block(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
         let p = block::parse(words, &self.machine)?;
+        self.st.c_block = false;
         crate::comp::before_block(self, &p, sink)?;
         let mut out = Outcome::default();
         // While an element waits for its corner (contour module), the
         // block's events are held behind it so the canon keeps block order.
         contour::in_order(self, sink, |nc, s| {
             nc.modal_settings(&p, s)?;
+            crate::caxis::check(nc, &p)?;
+            nc.st.c_block = crate::caxis::programs_c(nc, &p);
             nc.before_motion(&p, words, s)
         })?;
         self.remember(&p);
@@ -124,6 +127,7 @@ impl Nc {
         contour::end_of_block(self)?;
         crate::comp::end_of_block(self, &p, out.moved)?;
         self.profile.clear();
+        self.st.c_block = false;
         Ok(out)
     }
 
@@ -150,9 +154,7 @@ impl Nc {
                     // Any group-01 code cancels the drilling cycles.
                     self.st.modal[gcode::DRILL as usize] = 800;
                 }
-                gcode::POLAR if code == 121 => {
-                    return fail(2003, "G12.1 polar interpolation needs a C axis")
-                }
+                gcode::POLAR if code == 121 => return self.polar_or_cylinder(code),
                 _ => self.st.modal[group as usize] = code,
             }
         }
@@ -162,9 +164,24 @@ impl Nc {
         Ok(())
     }
 
+    /// G12.1 and G7.1 need the C axis (E2003); where it exists their canon
+    /// is not specified yet (E2099, dialect.md §4.6).
+    fn polar_or_cylinder(&self, code: Code) -> Result<(), NcError> {
+        let what = if code == 121 {
+            "G12.1 polar interpolation"
+        } else {
+            "G7.1 cylindrical interpolation"
+        };
+        if self.machine.axes.c.enabled {
+            fail(2099, format!("{what} is not supported yet"))
+        } else {
+            fail(2003, format!("{what} needs a C axis"))
+        }
+    }
+
     fn unsupported_one_shot(&self, code: Code) -> Result<(), NcError> {
         match code {
-            71 => fail(2003, "G7.1 cylindrical interpolation needs a C axis"),
+            71 => self.polar_or_cylinder(code),
             100 | 110 => fail(
                 2099,
                 format!("{} is not implemented yet", gcode::name(code)),
@@ -344,7 +361,7 @@ impl Nc {
         let corner = contour::corner_word(self, code, p)?;
         let arc_words = matches!(code, 20 | 30) && (p.has(b'I') || p.has(b'K') || p.has(b'R'));
         let angle_words = matches!(code, 0 | 10) && contour::has_angle(p);
-        if !p.has_axis() && !arc_words && !angle_words {
+        if !p.has_axis() && !arc_words && !angle_words && !self.st.c_block {
             return Ok(());
         }
         let target = self.target(p);
@@ -410,9 +427,25 @@ impl Nc {
         t
     }
 
-    pub(crate) fn rapid(&mut self, to: Pt, sink: &mut dyn Sink) {
+    /// A rapid to `to`, C already at its end angle (it started at `c_from`).
+    pub(crate) fn rapid_c(&mut self, to: Pt, c_from: f64, sink: &mut dyn Sink) {
         self.st.pos = to;
-        sink.emit(Event::Rapid { x: to.x(), z: to.z });
+        sink.emit(Event::Rapid {
+            x: to.x(),
+            z: to.z,
+            c: self.c_field(c_from),
+        });
+    }
+
+    /// A rapid that leaves C where it is.
+    pub(crate) fn rapid(&mut self, to: Pt, sink: &mut dyn Sink) {
+        self.rapid_c(to, self.st.c, sink);
+    }
+
+    /// Whether the block names an axis: X, Z, U, W, or C/H on a machine
+    /// with a C axis.
+    pub(crate) fn axis_words(&self, p: &Parsed) -> bool {
+        p.has_axis() || self.st.c_block
     }
 
     /// Prints `FEED` when the feed of the next feed event differs from the
@@ -594,14 +627,22 @@ impl Nc {
     fn home(&mut self, p: &Parsed, n: u32, sink: &mut dyn Sink) {
         let named_x = p.has(b'X') || p.has(b'U');
         let named_z = p.has(b'Z') || p.has(b'W');
-        if !named_x && !named_z {
+        let named_c = self.st.c_block;
+        if !named_x && !named_z && !named_c {
             return;
         }
         let mid = self.target(p);
-        if mid.dist(self.st.pos) > 1e-9 {
-            self.rapid(mid, sink);
+        let c_from = self.st.c;
+        let c_mid = crate::caxis::target_from(self, p, c_from);
+        if mid.dist(self.st.pos) > 1e-9 || (c_mid - c_from).abs() > 1e-9 {
+            self.st.c = c_mid;
+            self.rapid_c(mid, c_from, sink);
         }
         self.st.pos = mid;
+        if named_c {
+            // The C reference point is 0° (machine.md has no C angles).
+            self.st.c = 0.0;
+        }
         let rp = self.reference_point(n);
         let origin = self.st.origin();
         if named_x {
@@ -614,6 +655,7 @@ impl Nc {
             n,
             x: named_x,
             z: named_z,
+            c: named_c,
         });
     }
 

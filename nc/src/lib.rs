@@ -15,6 +15,7 @@ extern crate alloc;
 extern crate std;
 
 pub mod block;
+mod caxis;
 pub mod comp;
 pub mod compound;
 pub mod contour;

@@ -59,6 +59,10 @@ impl core::ops::Sub for Pt {
 pub struct State {
     /// The programmed point, local coordinates (mm).
     pub pos: Pt,
+    /// The C angle in degrees (machine = work: the C axis has no offsets).
+    pub c: f64,
+    /// The block being executed programs C/H: its moves print `C=`.
+    pub c_block: bool,
     /// The code in force in each modal group.
     pub modal: [Code; GROUPS],
     /// EXOFS, the six work offsets, the G50 shift, the G52 origin (all in
@@ -127,6 +131,8 @@ impl State {
         }
         State {
             pos: Pt::default(),
+            c: 0.0,
+            c_block: false,
             modal,
             exofs: p(c.exofs),
             work: [p(c.g54), p(c.g55), p(c.g56), p(c.g57), p(c.g58), p(c.g59)],

@@ -78,6 +78,9 @@ impl Nc {
             }
             // Last N and O: the VM answers them from its module.
             4114 | 4115 => None,
+            // C: block end and current angle alike (the C axis has no
+            // offsets, so machine and local C are the same).
+            5003 | 5023 | 5043 if self.machine.axes.c.enabled => Some(st.c),
             5001 => Some(st.pos.x()),
             5002 => Some(st.pos.z),
             5021 => Some(st.machine_pos().x()),

@@ -97,6 +97,9 @@ pub struct Move {
     /// Machine axes minus the programmed point (work zero + tool offset),
     /// to print work coordinates.
     pub shift: V2,
+    /// The C axis angle at the end, degrees (`None`: C stays). Only lines
+    /// and rapids turn C; the kernel never asks it of a curve or thread.
+    pub c: Option<f64>,
 }
 
 /// Why the program waits for cycle start.

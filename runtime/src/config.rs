@@ -74,6 +74,9 @@ pub struct Config {
     pub period_s: f64,
     pub x: Axis,
     pub z: Axis,
+    /// The optional C axis in degrees (deg/s, deg/s², deg/s³); `None`
+    /// on a machine without one.
+    pub c: Option<Axis>,
     /// Path limit of cutting feeds (№027), mm/s.
     pub path_max_feed: f64,
     pub spindle: SpindleConfig,
@@ -134,6 +137,7 @@ impl Default for Config {
                 min: -510.0,
                 max: 2.0,
             },
+            c: None,
             path_max_feed: min(5000.0),
             spindle: SpindleConfig {
                 min_rpm: 30.0,
@@ -178,13 +182,29 @@ impl Config {
         if !self.jerk_limited {
             return 1;
         }
-        let t = (2.0 * self.x.accel / self.x.jerk).max(2.0 * self.z.accel / self.z.jerk);
+        let mut t = (2.0 * self.x.accel / self.x.jerk).max(2.0 * self.z.accel / self.z.jerk);
+        if let Some(c) = &self.c {
+            t = t.max(2.0 * c.accel / c.jerk);
+        }
         let n = libm::ceil(t / self.period_s);
         if n.is_finite() && n >= 1.0 {
             (n as usize).min(1 << 16)
         } else {
             1
         }
+    }
+}
+
+/// The C axis of a machine file, per second; it turns without limits.
+fn rotary(c: &nc::machine::RotaryAxis) -> Axis {
+    Axis {
+        rapid: c.rapid_deg_min / 60.0,
+        max_feed: c.max_feed_deg_min / 60.0,
+        accel: c.accel_deg_s2,
+        jerk: c.jerk_deg_s3,
+        soft_limits: false,
+        min: f64::NEG_INFINITY,
+        max: f64::INFINITY,
     }
 }
 
@@ -210,6 +230,7 @@ impl Config {
             period_s: m.machine.interpolation_period_ms / 1000.0,
             x: axis(&m.axes.x, radial),
             z: axis(&m.axes.z, false),
+            c: m.axes.c.enabled.then(|| rotary(&m.axes.c)),
             path_max_feed: per_s(m.feed.max_mm_min),
             spindle: SpindleConfig {
                 min_rpm: m.spindle.min_rpm.max(0.0),

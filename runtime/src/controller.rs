@@ -415,6 +415,7 @@ impl<P: Plc> Controller<P> {
                 kind,
                 path: Path::Line { to: kernel + shift },
                 shift,
+                c: None,
             };
             self.staged.push_back((Command::Move(m), tag));
         }

@@ -66,7 +66,10 @@ pub struct SetPoint {
     pub spindle_rpm: f64,
     /// Spindle turns since power-on.
     pub spindle_turns: f64,
-    /// Path speed over the period, mm/min.
+    /// The C axis angle, degrees; `None` on a machine without one.
+    pub c: Option<f64>,
+    /// Path speed over the period, mm/min (with C counted as mm, the
+    /// combined speed of planner.rs, while C turns).
     pub feed: f64,
     /// Source line of the block being executed.
     pub line: u32,
@@ -150,6 +153,23 @@ fn revs_for(q: f64, l: f64, dl: f64) -> f64 {
     (libm::sqrt(disc) - l) / dl
 }
 
+/// One period of one axis in a rapid: from `p` at speed `v0` towards `t`
+/// at the axis's rapid rate × `f` and acceleration, landing exactly on
+/// `t`. Returns the new speed and position.
+fn rapid_axis(v0: f64, p: f64, t: f64, ax: &crate::config::Axis, f: f64, dt: f64) -> (f64, f64) {
+    let dist = (t - p).abs();
+    let top = ax.rapid * f;
+    let lim = brake_limit_above(dist, 0.0, ax.accel, dt, (v0 + ax.accel * dt).min(top));
+    let v = approach(v0, top.min(lim), ax.accel, dt);
+    let step = v * dt;
+    let np = if step >= dist - 1e-12 {
+        t
+    } else {
+        p + step.copysign(t - p)
+    };
+    (v, np)
+}
+
 /// The runtime core: planner queue, interpolator, spindle and the
 /// operator's signals, for one machine.
 pub struct Engine<P: Plc> {
@@ -161,6 +181,9 @@ pub struct Engine<P: Plc> {
     ticks: u64,
     pos: V2,
     last_step: V2,
+    /// The C angle (degrees) and its change over the last period.
+    c: f64,
+    last_step_c: f64,
     shift: V2,
     fixed_work: Option<V2>,
     tag: Tag,
@@ -180,9 +203,13 @@ pub struct Engine<P: Plc> {
     smooth: Smoother,
     jerk: bool,
     rapid_raw: V2,
+    /// The unfiltered rapid C angle and C's own moving average (jerk).
+    rapid_raw_c: f64,
+    smooth_c: Smoother,
     lam: f64,
     v: f64,
-    rapid_v: [f64; 2],
+    /// Rapid speeds of X, Z and C.
+    rapid_v: [f64; 3],
     thread: ThreadRun,
     dwell_left: u64,
     stall_s: f64,
@@ -223,6 +250,8 @@ impl<P: Plc> Engine<P> {
             ticks: 0,
             pos: V2::ZERO,
             last_step: V2::ZERO,
+            c: 0.0,
+            last_step_c: 0.0,
             shift: V2::ZERO,
             fixed_work: None,
             tag: Tag::default(),
@@ -235,9 +264,11 @@ impl<P: Plc> Engine<P> {
             smooth: Smoother::new(cfg.jerk_taps()),
             jerk: cfg.jerk_taps() > 1,
             rapid_raw: V2::ZERO,
+            rapid_raw_c: 0.0,
+            smooth_c: Smoother::new(if cfg.c.is_some() { cfg.jerk_taps() } else { 1 }),
             lam: 0.0,
             v: 0.0,
-            rapid_v: [0.0; 2],
+            rapid_v: [0.0; 3],
             thread: ThreadRun::OFF,
             dwell_left: 0,
             stall_s: 0.0,
@@ -371,6 +402,7 @@ impl<P: Plc> Engine<P> {
     pub fn tick(&mut self) -> SetPoint {
         self.ticks += 1;
         let before = self.pos;
+        let before_c = self.c;
         // Only constant surface speed needs the diameter.
         let x = if self.spindle.css() {
             self.css_diameter()
@@ -418,6 +450,7 @@ impl<P: Plc> Engine<P> {
             }
         }
         self.last_step = self.pos - before;
+        self.last_step_c = self.c - before_c;
         self.setpoint()
     }
 
@@ -431,11 +464,31 @@ impl<P: Plc> Engine<P> {
             axis_z: self.pos.z,
             spindle_rpm: self.spindle.rpm(),
             spindle_turns: self.spindle.turns(),
-            feed: self.last_step.norm() / self.dt * 60.0,
+            c: self.cfg.c.map(|_| self.c),
+            feed: self.path_step() / self.dt * 60.0,
             line: self.tag.line,
             motion: self.motion,
             tool: self.tool,
         }
+    }
+
+    /// The distance the last period moved along the path: XZ, combined
+    /// with C (degrees as mm) while C turns.
+    fn path_step(&self) -> f64 {
+        if self.last_step_c == 0.0 {
+            self.last_step.norm()
+        } else {
+            crate::math::sqrt(
+                self.last_step.r * self.last_step.r
+                    + self.last_step.z * self.last_step.z
+                    + self.last_step_c * self.last_step_c,
+            )
+        }
+    }
+
+    /// The current C angle, degrees (0 without a C axis).
+    pub fn c(&self) -> f64 {
+        self.c
     }
 
     /// The diameter G96 computes the rpm from: the programmed point, or a
@@ -455,7 +508,7 @@ impl<P: Plc> Engine<P> {
         self.state = RunState::Alarm(code);
         self.alarm = Some((code, tag));
         self.v = 0.0;
-        self.rapid_v = [0.0; 2];
+        self.rapid_v = [0.0; 3];
     }
 
     /// Done with the head item; `landed`: the motion stands at its end.
@@ -614,7 +667,7 @@ impl<P: Plc> Engine<P> {
             };
             // Start from rest only: a landing period is followed by one
             // standing period, so the velocity passes through zero.
-            if self.last_step != V2::ZERO {
+            if self.last_step != V2::ZERO || self.last_step_c != 0.0 {
                 return;
             }
             if self.hold && !matches!(seg.kind, MoveKind::Thread(_)) {
@@ -632,7 +685,7 @@ impl<P: Plc> Engine<P> {
             self.s = 0.0;
             self.lam = 0.0;
             self.v = 0.0;
-            self.rapid_v = [0.0; 2];
+            self.rapid_v = [0.0; 3];
             self.stall_s = 0.0;
             self.skip_hit = None;
             self.tag = tag;
@@ -650,6 +703,7 @@ impl<P: Plc> Engine<P> {
             }
             self.s_out = 0.0;
             self.rapid_raw = self.pos;
+            self.rapid_raw_c = self.c;
             if self.jerk {
                 let at = if matches!(self.cur.kind, MoveKind::Rapid | MoveKind::Offset) {
                     self.pos
@@ -657,6 +711,7 @@ impl<P: Plc> Engine<P> {
                     V2::ZERO
                 };
                 self.smooth.reset(at);
+                self.smooth_c.reset(V2::new(self.c, 0.0));
             }
         } else if let Some(s) = self.q.seg(0) {
             self.cur.v_exit = s.v_exit;
@@ -679,36 +734,12 @@ impl<P: Plc> Engine<P> {
         };
         let to = self.cur.to;
         let mut raw = if self.jerk { self.rapid_raw } else { self.pos };
-        let mut arrived = true;
-        for k in 0..2 {
-            let ax = if k == 0 { &self.cfg.x } else { &self.cfg.z };
-            let (p, t) = if k == 0 { (raw.r, to.r) } else { (raw.z, to.z) };
-            let dist = (t - p).abs();
-            let top = ax.rapid * f;
-            let lim = brake_limit_above(
-                dist,
-                0.0,
-                ax.accel,
-                self.dt,
-                (self.rapid_v[k] + ax.accel * self.dt).min(top),
-            );
-            let v = approach(self.rapid_v[k], top.min(lim), ax.accel, self.dt);
-            let step = v * self.dt;
-            let np = if step >= dist - 1e-12 {
-                t
-            } else {
-                p + step.copysign(t - p)
-            };
-            self.rapid_v[k] = v;
-            if np != t {
-                arrived = false;
-            }
-            if k == 0 {
-                raw.r = np;
-            } else {
-                raw.z = np;
-            }
-        }
+        let (vx, rx) = rapid_axis(self.rapid_v[0], raw.r, to.r, &self.cfg.x, f, self.dt);
+        let (vz, rz) = rapid_axis(self.rapid_v[1], raw.z, to.z, &self.cfg.z, f, self.dt);
+        self.rapid_v[0] = vx;
+        self.rapid_v[1] = vz;
+        let mut arrived = rx == to.r && rz == to.z;
+        raw = V2::new(rx, rz);
         if self.jerk {
             self.rapid_raw = raw;
             self.pos = self.smooth.push(raw);
@@ -716,12 +747,34 @@ impl<P: Plc> Engine<P> {
         } else {
             self.pos = raw;
         }
+        arrived &= self.rapid_c(f);
         if arrived {
             self.pos = to;
+            self.c = self.cur.c1;
             self.finish_item();
-        } else if self.hold && self.rapid_v == [0.0; 2] && (!self.jerk || self.smooth.settled()) {
+        } else if self.hold && self.rapid_v == [0.0; 3] && (!self.jerk || self.smooth.settled()) {
             self.state = RunState::Held;
         }
+    }
+
+    /// One period of C in a rapid, on its own like X and Z (a dog-leg);
+    /// whether C has arrived (settled, with jerk limiting).
+    fn rapid_c(&mut self, f: f64) -> bool {
+        let Some(ax) = self.cfg.c.filter(|_| self.cur.turns_c()) else {
+            return true;
+        };
+        let raw = if self.jerk { self.rapid_raw_c } else { self.c };
+        let (v, c) = rapid_axis(self.rapid_v[2], raw, self.cur.c1, &ax, f, self.dt);
+        self.rapid_v[2] = v;
+        let mut arrived = c == self.cur.c1;
+        if self.jerk {
+            self.rapid_raw_c = c;
+            self.c = self.smooth_c.push(V2::new(c, 0.0)).r;
+            arrived &= self.smooth_c.settled();
+        } else {
+            self.c = c;
+        }
+        arrived
     }
 
     /// The commanded path speed of the head feed, mm/s; 0 while held,
@@ -884,6 +937,7 @@ impl<P: Plc> Engine<P> {
                 self.s += ds;
                 self.lam = self.cur.curve.advance(self.lam, self.s, ds, self.cur.len);
                 self.pos = self.cur.curve.point(self.lam);
+                self.c = self.cur.c_at(self.lam);
                 break;
             }
             if v > 0.0 && self.may_cross() {
@@ -893,6 +947,7 @@ impl<P: Plc> Engine<P> {
                 }
                 ds -= rem;
                 self.pos = self.cur.to;
+                self.c = self.cur.c1;
                 self.q.pop();
                 let Some(next) = self.q.get(0) else { break };
                 let ItemKind::Move(n) = &next.kind else { break };
@@ -905,6 +960,7 @@ impl<P: Plc> Engine<P> {
             }
             // Lands on the end point.
             self.pos = self.cur.to;
+            self.c = self.cur.c1;
             self.v = v;
             if let MoveKind::Skip(_) = self.cur.kind {
                 self.skip_report = Some(SkipReport {
@@ -949,9 +1005,11 @@ impl<P: Plc> Engine<P> {
         self.s_out = sf;
         self.lam = self.cur.curve.advance(self.lam, sf, ds, len);
         self.pos = self.cur.curve.point(self.lam);
+        self.c = self.cur.c_at(self.lam);
         let still = v == 0.0 && self.smooth.settled();
         if s == len && still {
             self.pos = self.cur.to;
+            self.c = self.cur.c1;
             if let MoveKind::Skip(_) = self.cur.kind {
                 self.skip_report = Some(SkipReport {
                     hit: self.skip_hit,
@@ -1178,7 +1236,7 @@ impl<P: Plc> Engine<P> {
     /// A reset in progress: brake, then drop everything.
     fn reset_step(&mut self) {
         let moving = self.v > 0.0
-            || self.rapid_v != [0.0; 2]
+            || self.rapid_v != [0.0; 3]
             || matches!(self.thread.phase, Phase::Ramp | Phase::Locked)
             || (self.jerk && self.started && !self.smooth.settled());
         if moving && self.started {
@@ -1190,18 +1248,19 @@ impl<P: Plc> Engine<P> {
                 }
             }
             let still =
-                self.v > 0.0 || self.rapid_v != [0.0; 2] || (self.jerk && !self.smooth.settled());
+                self.v > 0.0 || self.rapid_v != [0.0; 3] || (self.jerk && !self.smooth.settled());
             if still && self.started {
                 return;
             }
         }
         self.q.clear();
         self.q.set_tail(self.pos);
+        self.q.set_tail_c(self.c);
         self.started = false;
         self.thread = ThreadRun::OFF;
         self.hold = false;
         self.v = 0.0;
-        self.rapid_v = [0.0; 2];
+        self.rapid_v = [0.0; 3];
         self.skip_hit = None;
         self.fixed_work = None;
         self.spindle.reset();

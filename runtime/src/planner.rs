@@ -17,6 +17,17 @@
 //! can only rise while it is within braking distance of the end of the
 //! queue, so a push costs O(1) amortised (O(braking distance / segment
 //! length) at worst, independent of the queue length).
+//!
+//! The C axis (a machine with `[axes.c]`): a line or rapid may turn C
+//! from `c0` to `c1` degrees. A feed that turns C runs along the combined
+//! vector with the degrees counted as mm, as Fanuc feeds a linear + rotary
+//! G01: its path length is √(ΔXZ² + ΔC²) and F is the speed along it, so
+//! a C-only G01 turns at F deg/min. C follows the path parameter in
+//! proportion and arrives with X/Z; the caps and the acceleration of the
+//! move take C's max feed and acceleration along that vector as they do
+//! the linear axes'. A move that turns C ends in a stop (no G64 blending:
+//! the corner rule knows only the XZ plane). A rapid turns C at its own
+//! rapid rate, like every axis of a G00.
 
 use crate::command::{Command, Feed, Move, MoveKind, PauseKind, Tag};
 use crate::config::Config;
@@ -33,6 +44,10 @@ pub struct Segment {
     pub curve: Curve,
     pub from: V2,
     pub to: V2,
+    /// C angle at both ends, degrees (equal when C does not turn).
+    pub c0: f64,
+    pub c1: f64,
+    /// Path length: XZ, or the combined XZ + C vector when C turns.
     pub len: f64,
     /// Machine axes minus the programmed point.
     pub shift: V2,
@@ -62,6 +77,21 @@ pub struct Segment {
 }
 
 impl Segment {
+    /// Whether the move turns the C axis.
+    pub fn turns_c(&self) -> bool {
+        self.c1 != self.c0
+    }
+
+    /// The C angle at path parameter λ (0…1): in proportion, exactly
+    /// `c1` at the end.
+    pub fn c_at(&self, lam: f64) -> f64 {
+        if lam >= 1.0 {
+            self.c1
+        } else {
+            self.c0 + (self.c1 - self.c0) * lam
+        }
+    }
+
     /// A placeholder (no move).
     pub const IDLE: Segment = Segment {
         kind: MoveKind::Rapid,
@@ -71,6 +101,8 @@ impl Segment {
         },
         from: V2::ZERO,
         to: V2::ZERO,
+        c0: 0.0,
+        c1: 0.0,
         len: 0.0,
         shift: V2::ZERO,
         v_max: 0.0,
@@ -143,6 +175,8 @@ pub struct Planner {
     ivfeed: [f64; 2],
     vfeed: [f64; 2],
     vrapid: [f64; 2],
+    /// The C axis, if the machine has one (deg/s, deg/s²).
+    c_axis: Option<crate::config::Axis>,
     path_max: f64,
     budget: f64,
     /// G64 blends within this (machine.resolution_mm).
@@ -151,8 +185,10 @@ pub struct Planner {
     /// Jerk limiting is on: feeds stop between blocks (the moving average
     /// could otherwise run through a corner faster than its speed).
     jerk: bool,
-    /// End of the last queued move (machine axes, slide units).
+    /// End of the last queued move (machine axes, slide units), and its
+    /// C angle.
     tail: V2,
+    tail_c: f64,
     shift: V2,
     /// rpm used to estimate feed-per-revolution durations.
     rpm_hint: f64,
@@ -199,12 +235,14 @@ impl Planner {
             ivfeed: [1.0 / cfg.x.max_feed, 1.0 / cfg.z.max_feed],
             vfeed: [cfg.x.max_feed, cfg.z.max_feed],
             vrapid: [cfg.x.rapid, cfg.z.rapid],
+            c_axis: cfg.c,
             path_max: cfg.path_max_feed,
             budget: cfg.corner_budget.clamp(0.0, 0.5),
             tolerance: cfg.resolution_mm.max(1e-6),
             exact_stop: cfg.always_exact_stop,
             jerk: cfg.jerk_taps() > 1,
             tail: V2::ZERO,
+            tail_c: 0.0,
             shift: V2::ZERO,
             rpm_hint: 0.0,
             css_hint: None,
@@ -296,6 +334,11 @@ impl Planner {
         self.tail = p;
     }
 
+    /// After a reset C stands somewhere else than planned.
+    pub fn set_tail_c(&mut self, c: f64) {
+        self.tail_c = c;
+    }
+
     pub fn shift(&self) -> V2 {
         self.shift
     }
@@ -358,6 +401,7 @@ impl Planner {
             self.queued_s += s.est_s;
             self.queued_moves += 1;
             self.tail = s.to;
+            self.tail_c = s.c1;
             self.shift = s.shift;
             self.join();
         } else {
@@ -388,7 +432,16 @@ impl Planner {
                 Curve::parabola(from, to, p, q, ccw).unwrap_or(Curve::line(from, to))
             }
         };
-        let len = curve.length();
+        let (c0, c1) = (self.tail_c, self.c_target(m));
+        if !c1.is_finite() {
+            return None;
+        }
+        let dc = c1 - c0;
+        let len = if dc != 0.0 {
+            sqrt(curve.length() * curve.length() + dc * dc)
+        } else {
+            curve.length()
+        };
         if !crate::math::is_pos(len - 1e-9) {
             return None;
         }
@@ -405,6 +458,8 @@ impl Planner {
             curve,
             from,
             to,
+            c0,
+            c1,
             len,
             shift: m.shift,
             v_max: 0.0,
@@ -430,11 +485,17 @@ impl Planner {
         };
         let is_line = matches!(curve, Curve::Line { .. });
         let (ur, uz) = (dir.r.abs(), dir.z.abs());
+        // C's share of the direction (only lines turn C).
+        let c = self.c_axis.filter(|_| dc != 0.0);
+        let uc = dc.abs() / len;
         let mut cap = if is_line {
             1.0 / (ur * self.ivfeed[0]).max(uz * self.ivfeed[1])
         } else {
             self.vfeed[0].min(self.vfeed[1])
         };
+        if let Some(c) = &c {
+            cap = cap.min(c.max_feed / uc);
+        }
         cap = cap.min(self.path_max);
         let rmin = curve.min_radius();
         if rmin.is_finite() {
@@ -445,7 +506,10 @@ impl Planner {
             cap = cap.min(sqrt(8.0 * rmin * self.tolerance) / self.dt);
         }
         // Line acceleration: the moving axes' limits along the direction.
-        let a_line = 1.0 / (ur * self.iax[0]).max(uz * self.iax[1]);
+        let mut a_line = 1.0 / (ur * self.iax[0]).max(uz * self.iax[1]);
+        if let Some(c) = &c {
+            a_line = a_line.min(c.accel / uc);
+        }
         match m.kind {
             MoveKind::Rapid | MoveKind::Offset => {
                 let d = to - from;
@@ -453,6 +517,9 @@ impl Planner {
                 seg.a = amin;
                 seg.a_scale = amin;
                 seg.est_s = (d.r.abs() / self.vrapid[0]).max(d.z.abs() / self.vrapid[1]);
+                if let Some(c) = &c {
+                    seg.est_s = seg.est_s.max(dc.abs() / c.rapid);
+                }
             }
             MoveKind::Feed(f) | MoveKind::Skip(f) => {
                 let top = if f.per_rev {
@@ -474,8 +541,8 @@ impl Planner {
                 }
                 // Keep the corner share at the end until the next move is
                 // known; the real corner can only need less.
-                seg.c_out = if matches!(m.kind, MoveKind::Feed(_)) && !self.exact_stop && !self.jerk
-                {
+                let blends = c.is_none() && !self.exact_stop && !self.jerk;
+                seg.c_out = if matches!(m.kind, MoveKind::Feed(_)) && blends {
                     self.budget
                 } else {
                     0.0
@@ -516,6 +583,16 @@ impl Planner {
         Some(seg)
     }
 
+    /// The C angle a move ends at: lines and rapids may turn C, nothing
+    /// else does; without a C axis C stays at 0.
+    fn c_target(&self, m: &Move) -> f64 {
+        let line = matches!(m.path, crate::command::Path::Line { .. });
+        match m.c {
+            Some(c) if self.c_axis.is_some() && line && !matches!(m.kind, MoveKind::Thread(_)) => c,
+            _ => self.tail_c,
+        }
+    }
+
     /// The feed at 100 %, mm/s, for the horizon estimate.
     fn nominal(&self, f: Feed, at: V2) -> f64 {
         if !f.per_rev {
@@ -547,6 +624,9 @@ impl Planner {
 
     /// Whether two moves may blend (G64) at their junction.
     fn joinable(&self, a: &Segment, b: &Segment) -> bool {
+        if a.turns_c() || b.turns_c() {
+            return false;
+        }
         match (a.kind, b.kind) {
             // Consecutive thread blocks run on without a stop (§4.3).
             (MoveKind::Thread(_), MoveKind::Thread(_)) => true,
@@ -713,6 +793,7 @@ mod tests {
             kind: MoveKind::Feed(Feed { f, per_rev: false }),
             path: Path::Line { to },
             shift: V2::ZERO,
+            c: None,
         })
     }
 
@@ -754,6 +835,7 @@ mod tests {
                     to: V2::new(5.0, 5.0),
                 },
                 shift: V2::ZERO,
+                c: None,
             }),
             Tag::default(),
         )

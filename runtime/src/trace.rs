@@ -3,12 +3,24 @@
 //! in work coordinates, as in the canon; `feed` is the actual path speed
 //! in mm/min; `line` the source line of the block being executed.
 //! Positions carry 6 decimals (finer than the 0.001 mm resolution) so a
-//! reader can differentiate them.
+//! reader can differentiate them. On a machine with a C axis a `c`
+//! column (degrees) follows `z` ([`CSV_HEADER_C`]); without one the
+//! trace is as before.
 
 use crate::interpolate::SetPoint;
 use core::fmt::{self, Write};
 
 pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line";
+pub const CSV_HEADER_C: &str = "time_s,x,z,c,spindle_rpm,feed,line";
+
+/// The CSV header of a machine with (`true`) or without a C axis.
+pub fn csv_header(c_axis: bool) -> &'static str {
+    if c_axis {
+        CSV_HEADER_C
+    } else {
+        CSV_HEADER
+    }
+}
 
 /// A number with `d` decimals and no `-0`.
 struct Fixed(f64, usize);
@@ -28,12 +40,19 @@ impl fmt::Display for Fixed {
 
 /// One CSV line (with its `\n`).
 pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
-    writeln!(
+    write!(
         w,
-        "{},{},{},{},{},{}",
+        "{},{},{},",
         Fixed(p.time_s, 6),
         Fixed(p.x, 6),
-        Fixed(p.z, 6),
+        Fixed(p.z, 6)
+    )?;
+    if let Some(c) = p.c {
+        write!(w, "{},", Fixed(c, 6))?;
+    }
+    writeln!(
+        w,
+        "{},{},{}",
         Fixed(p.spindle_rpm, 3),
         Fixed(p.feed, 3),
         p.line
@@ -42,12 +61,19 @@ pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
 
 /// One JSON line (with its `\n`).
 pub fn write_json<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
-    writeln!(
+    write!(
         w,
-        "{{\"time_s\":{},\"x\":{},\"z\":{},\"spindle_rpm\":{},\"feed\":{},\"line\":{}}}",
+        "{{\"time_s\":{},\"x\":{},\"z\":{},",
         Fixed(p.time_s, 6),
         Fixed(p.x, 6),
-        Fixed(p.z, 6),
+        Fixed(p.z, 6)
+    )?;
+    if let Some(c) = p.c {
+        write!(w, "\"c\":{},", Fixed(c, 6))?;
+    }
+    writeln!(
+        w,
+        "\"spindle_rpm\":{},\"feed\":{},\"line\":{}}}",
         Fixed(p.spindle_rpm, 3),
         Fixed(p.feed, 3),
         p.line
@@ -76,5 +102,22 @@ mod tests {
         s.clear();
         write_json(&mut s, &p).unwrap();
         assert_eq!(s, "{\"time_s\":0.001000,\"x\":40.000000,\"z\":0.000000,\"spindle_rpm\":800.000,\"feed\":1200.000,\"line\":7}\n");
+        // With a C axis the angle follows z.
+        let p = SetPoint {
+            c: Some(-90.5),
+            ..p
+        };
+        s.clear();
+        write_csv(&mut s, &p).unwrap();
+        assert_eq!(
+            s,
+            "0.001000,40.000000,0.000000,-90.500000,800.000,1200.000,7\n"
+        );
+        s.clear();
+        write_json(&mut s, &p).unwrap();
+        assert!(
+            s.contains("\"z\":0.000000,\"c\":-90.500000,\"spindle_rpm\""),
+            "{s}"
+        );
     }
 }

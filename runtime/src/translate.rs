@@ -29,6 +29,9 @@ pub struct Translator {
     pub messages: Vec<String>,
     /// A G31 move was queued in the current block.
     pub skip_queued: bool,
+    /// The C angle the next move turns C to (`None`: it stays); set by the
+    /// `C=` field of the event being translated.
+    c: Option<f64>,
 }
 
 impl Translator {
@@ -43,6 +46,7 @@ impl Translator {
             work: V2::ZERO,
             messages: Vec::new(),
             skip_queued: false,
+            c: None,
         }
     }
 
@@ -61,6 +65,7 @@ impl Translator {
             kind,
             path: path(self.axis(to_work), shift),
             shift,
+            c: self.c.take(),
         })
     }
 
@@ -69,8 +74,12 @@ impl Translator {
     pub fn event(&mut self, e: &Event, st: &nc::state::State, m: &Machine, out: &mut Vec<Command>) {
         let line = |to: V2, _| Path::Line { to };
         match e {
-            Event::Rapid { x, z } => out.push(self.mv(MoveKind::Rapid, V2::from_xz(*x, *z), line)),
-            Event::Line { x, z } => {
+            Event::Rapid { x, z, c } => {
+                self.c = *c;
+                out.push(self.mv(MoveKind::Rapid, V2::from_xz(*x, *z), line))
+            }
+            Event::Line { x, z, c } => {
+                self.c = *c;
                 let k = MoveKind::Feed(self.feed);
                 out.push(self.mv(k, V2::from_xz(*x, *z), line));
             }
@@ -84,12 +93,14 @@ impl Translator {
                     ccw,
                 }));
             }
+            // A thread's C= is the angle C holds (caxis.rs): nothing turns.
             Event::Thread {
                 x,
                 z,
                 lead,
                 dlead,
                 q,
+                ..
             } => {
                 let k = MoveKind::Thread(Thread {
                     lead: *lead,
@@ -137,6 +148,7 @@ impl Translator {
                             to: self.axis(self.work),
                         },
                         shift,
+                        c: None,
                     }));
                 }
             }
@@ -148,7 +160,7 @@ impl Translator {
                 self.work = machine - self.origin;
                 out.push(Command::Shift(self.shift()));
             }
-            Event::Home { n, x, z } => {
+            Event::Home { n, x, z, c } => {
                 let rp = reference_point(m, *n);
                 // G28/G30 cancel the tool length offset (dialect.md §4.4):
                 // the axes themselves go to the reference point.
@@ -166,6 +178,8 @@ impl Translator {
                     kind: MoveKind::Rapid,
                     path: Path::Line { to },
                     shift,
+                    // The C reference point is 0° (nc caxis.rs).
+                    c: c.then_some(0.0),
                 }));
                 out.push(Command::Shift(shift));
             }

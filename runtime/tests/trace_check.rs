@@ -436,6 +436,7 @@ fn ellipse_and_parabola_follow_the_exact_curve() {
             kind: feed,
             path,
             shift: V2::ZERO,
+            c: None,
         })
     };
     e.push(

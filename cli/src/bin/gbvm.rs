@@ -32,7 +32,8 @@ enum Command {
     Run {
         file: PathBuf,
         /// canon: the motion listing of canon.md; trace: one line per
-        /// interpolation period (time_s,x,z,spindle_rpm,feed,line).
+        /// interpolation period (time_s,x,z,spindle_rpm,feed,line; a c
+        /// column after z on a machine with a C axis).
         #[arg(long, value_enum, default_value = "canon")]
         emit: Emit,
         /// Format of the trace: CSV with a header, or JSON lines.
@@ -257,7 +258,8 @@ fn run_timed(
     let mut w = BufWriter::new(stdout.lock());
     let mut broken = false;
     if out.trace == Some(Format::Csv) {
-        broken |= writeln!(w, "{}", runtime::trace::CSV_HEADER).is_err();
+        let c_axis = ctl.engine().config().c.is_some();
+        broken |= writeln!(w, "{}", runtime::trace::csv_header(c_axis)).is_err();
     }
     let period = ctl.engine().config().period_s;
     let mut stats = runtime::stats::Stats::new(period);

@@ -48,7 +48,11 @@ impl Out<'_> {
         }
         let to = self.real(to);
         self.nc.st.pos = to;
-        self.sink.emit(Event::Rapid { x: to.x(), z: to.z });
+        self.sink.emit(Event::Rapid {
+            x: to.x(),
+            z: to.z,
+            c: None,
+        });
     }
 
     pub fn line(&mut self, to: Pt) {
@@ -58,7 +62,11 @@ impl Out<'_> {
         let to = self.real(to);
         self.nc.feed_due(self.sink);
         self.nc.st.pos = to;
-        self.sink.emit(Event::Line { x: to.x(), z: to.z });
+        self.sink.emit(Event::Line {
+            x: to.x(),
+            z: to.z,
+            c: None,
+        });
     }
 
     /// `RAPID` or `LINE` as the ns block's mode says.

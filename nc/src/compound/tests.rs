@@ -376,7 +376,14 @@ fn a_pocket_in_type_i_stops_the_roughing() {
         .exec(&block("G71 P1 Q2 U0 F0.2"), &mut events)
         .unwrap_err();
     assert_eq!((e.code, e.at), (4009, None));
-    assert_eq!(events, vec![Event::Rapid { x: 34.0, z: 2.0 }]);
+    assert_eq!(
+        events,
+        vec![Event::Rapid {
+            x: 34.0,
+            z: 2.0,
+            c: None
+        }]
+    );
     let e = run(START, "G71 P1 Q2 K1 F0.2", &profile).unwrap_err();
     assert_eq!(e.code, 4009);
 }

@@ -109,6 +109,9 @@ pub(crate) fn straight(
     corner: Option<Corner>,
     sink: &mut dyn Sink,
 ) -> Result<(), NcError> {
+    if nc.st.c_block {
+        return turn_c(nc, rapid, p, sink);
+    }
     let from = nc.st.pos;
     let q = angle::angle_of(p);
     let x = p.has(b'X') || p.has(b'U');
@@ -126,6 +129,20 @@ pub(crate) fn straight(
     };
     nc.st.pos = to;
     let m = Move::new(nc, Element::Line { from, to }, rapid, corner);
+    queue::advance(nc, m, sink)
+}
+
+/// A G00/G01 that turns C (caxis.rs: no corner, angle or compensation
+/// here): what waits is printed first, as before a G00, and the line
+/// carries C to its end.
+fn turn_c(nc: &mut Nc, rapid: bool, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    flush(nc, sink)?;
+    let from = nc.st.pos;
+    let to = nc.target(p);
+    nc.st.pos = to;
+    nc.st.c = crate::caxis::target_from(nc, p, nc.st.c);
+    let mut m = Move::new(nc, Element::Line { from, to }, rapid, None);
+    m.c = Some(nc.st.c);
     queue::advance(nc, m, sink)
 }
 

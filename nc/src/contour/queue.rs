@@ -26,6 +26,8 @@ pub(crate) struct Move {
     pub trimmed: bool,
     /// Its nose-radius compensation (comp module); `None`: uncompensated.
     pub comp: Option<Leg>,
+    /// The C angle its line prints (`C=`), when its block programs C/H.
+    pub c: Option<f64>,
 }
 
 impl Move {
@@ -38,6 +40,7 @@ impl Move {
             corner,
             trimmed: false,
             comp: None,
+            c: None,
         }
     }
 
@@ -209,6 +212,7 @@ fn join(prev: &mut Move, next: &mut Move) -> Result<Option<Move>, NcError> {
         corner: None,
         trimmed: false,
         comp: prev.comp.as_ref().map(Leg::inserted),
+        c: None,
     }))
 }
 
@@ -284,6 +288,7 @@ pub(crate) fn finish_angle(
         corner: if a.rapid { None } else { a.corner },
         trimmed: false,
         comp: None,
+        c: None,
     };
     let step = compensate(nc, &mut first)?;
     let items = &mut nc.st.contour.items;
@@ -346,16 +351,23 @@ fn emit_move(nc: &mut Nc, m: &Move, sink: &mut dyn Sink) {
     match &m.comp {
         Some(leg) => {
             for (e, rapid) in crate::comp::printed(&mut nc.st.comp, &m.elem, leg, m.rapid) {
-                emit_element(nc, &e, rapid, m.feed, sink);
+                emit_element(nc, &e, rapid, m.feed, None, sink);
             }
         }
-        None => emit_element(nc, &m.elem, m.rapid, m.feed, sink),
+        None => emit_element(nc, &m.elem, m.rapid, m.feed, m.c, sink),
     }
 }
 
 /// Prints one element, with `FEED` first when its feed differs from the
 /// last one printed.
-fn emit_element(nc: &mut Nc, e: &Element, rapid: bool, feed: (f64, bool), sink: &mut dyn Sink) {
+fn emit_element(
+    nc: &mut Nc,
+    e: &Element,
+    rapid: bool,
+    feed: (f64, bool),
+    c: Option<f64>,
+    sink: &mut dyn Sink,
+) {
     if !rapid && nc.st.feed_printed != Some(feed) {
         nc.st.feed_printed = Some(feed);
         sink.emit(Event::Feed {
@@ -365,8 +377,16 @@ fn emit_element(nc: &mut Nc, e: &Element, rapid: bool, feed: (f64, bool), sink: 
     }
     let to = e.end();
     sink.emit(match *e {
-        Element::Line { .. } if rapid => Event::Rapid { x: to.x(), z: to.z },
-        Element::Line { .. } => Event::Line { x: to.x(), z: to.z },
+        Element::Line { .. } if rapid => Event::Rapid {
+            x: to.x(),
+            z: to.z,
+            c,
+        },
+        Element::Line { .. } => Event::Line {
+            x: to.x(),
+            z: to.z,
+            c,
+        },
         Element::Arc { centre, cw, .. } => Event::Arc {
             dir: if cw { Dir::Cw } else { Dir::Ccw },
             x: to.x(),

@@ -56,6 +56,8 @@ fn is_clamp_code(m: u32) -> bool {
 /// Before the block's group 1: the M29 rules (§22) and the clamp code of a
 /// drilling block, which `before_motion` must not print as a PLC M code.
 pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u32>, NcError> {
+    // C/H count as axis words on a machine with a C axis.
+    let moves = nc.axis_words(p);
     let st = &mut nc.st.cycles.drill;
     if p.has_g(800) || p.has_m(2) || p.has_m(30) {
         st.m29 = false;
@@ -64,7 +66,7 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
     if p.has_g(830) || p.has_g(870) || p.motion().is_some() {
         st.rigid = false;
     }
-    let drills = matches!(f, Func::Drill(_)) && p.has_axis();
+    let drills = matches!(f, Func::Drill(_)) && moves;
     let taps = drills && matches!(f, Func::Drill(840 | 880));
     if p.has_m(29) {
         if st.m29 {
@@ -72,7 +74,7 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
         }
         st.m29 = true;
     }
-    if st.m29 && p.has_axis() && !taps {
+    if st.m29 && moves && !taps {
         return fail(
             2007,
             "no move may come between M29 and its G84/G88 tapping block",
@@ -108,7 +110,8 @@ pub(crate) fn run(
         );
     }
     take_data(nc, code, p)?;
-    if !p.has_axis() {
+    // A block with only C/H drills the same hole at another angle.
+    if !nc.axis_words(p) {
         return Ok(());
     }
     let repeats = words::count(p, b'K')?.unwrap_or(1);
@@ -164,6 +167,9 @@ struct Holes {
     step: f64,
     s0: f64,
     s1: f64,
+    /// The C angle of the first hole and the turn per repeat (H).
+    c: f64,
+    c_step: f64,
     dwell_s: f64,
     clamp: Option<u32>,
 }
@@ -213,9 +219,16 @@ impl Holes {
             step,
             s0: at_s,
             s1,
+            c: crate::caxis::target_from(nc, p, nc.st.c),
+            c_step: crate::caxis::step(nc, p),
             dwell_s: nc.st.cycles.drill.data.dwell_ms / 1000.0,
             clamp: nc.st.cycles.drill.clamp,
         })
+    }
+
+    /// The C angle of hole `n` (0 first).
+    fn c_at(&self, n: i64) -> f64 {
+        self.c + n as f64 * self.c_step
     }
 
     /// The point of hole `n` (0 first) at `s` along the drilling axis.
@@ -238,7 +251,7 @@ fn drill_path(nc: &Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
         if out.len() > words::MAX_LEGS {
             return fail(4011, format!("K{repeats}: too many holes"));
         }
-        out.push(Leg::Rapid(h.at(n, h.s0)));
+        out.push(Leg::RapidC(h.at(n, h.s0), h.c_at(n)));
         if let Some(m) = h.clamp {
             out.push(Leg::M(m));
         }
@@ -317,6 +330,7 @@ fn tap_path(nc: &mut Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
         let hole = Hole {
             top: h.at(n, h.s0),
             bottom: h.at(n, h.s1),
+            c: h.c_at(n),
             lead: lead.abs(),
             dwell_s: h.dwell_s,
             clamp: h.clamp,

@@ -15,6 +15,9 @@ use crate::state::Pt;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Leg {
     Rapid(Pt),
+    /// A rapid that also turns C to its angle (a drilling hole's
+    /// positioning, caxis.rs).
+    RapidC(Pt, f64),
     Line(Pt),
     Thread {
         to: Pt,
@@ -49,6 +52,7 @@ pub(crate) fn emit(nc: &mut Nc, legs: &[Leg], skip_zero: bool, sink: &mut dyn Si
     for &leg in legs {
         let to = match leg {
             Leg::Rapid(to) | Leg::Line(to) | Leg::Thread { to, .. } => Some(to),
+            Leg::RapidC(to, c) if (c - nc.st.c).abs() <= EPS => Some(to),
             _ => None,
         };
         if skip_zero && to.is_some_and(|to| same(to, nc.st.pos)) {
@@ -61,16 +65,25 @@ pub(crate) fn emit(nc: &mut Nc, legs: &[Leg], skip_zero: bool, sink: &mut dyn Si
 fn emit_one(nc: &mut Nc, leg: Leg, sink: &mut dyn Sink) {
     match leg {
         Leg::Rapid(to) => nc.rapid(to, sink),
+        Leg::RapidC(to, c) => {
+            let from = core::mem::replace(&mut nc.st.c, c);
+            nc.rapid_c(to, from, sink);
+        }
         Leg::Line(to) => {
             nc.feed_due(sink);
             nc.st.pos = to;
-            sink.emit(Event::Line { x: to.x(), z: to.z });
+            sink.emit(Event::Line {
+                x: to.x(),
+                z: to.z,
+                c: nc.c_field(nc.st.c),
+            });
         }
         Leg::Thread { to, lead, dlead, q } => {
             nc.st.pos = to;
             sink.emit(Event::Thread {
                 x: to.x(),
                 z: to.z,
+                c: nc.c_field(nc.st.c),
                 lead,
                 dlead,
                 q,

@@ -55,7 +55,7 @@ pub struct CycleState {
 /// thread run and clears its J/K words (dialect.md §4.3).
 const THREAD_CODES: [Code; 8] = [320, 321, 322, 323, 330, 340, 920, 921];
 
-fn is_thread_code(code: Code) -> bool {
+pub(crate) fn is_thread_code(code: Code) -> bool {
     THREAD_CODES.contains(&code)
 }
 

@@ -92,6 +92,8 @@ fn g33_path(
 pub(crate) struct Hole {
     pub top: Pt,
     pub bottom: Pt,
+    /// The hole's C angle (degrees).
+    pub c: f64,
     pub lead: f64,
     pub dwell_s: f64,
     pub clamp: Option<u32>,
@@ -101,7 +103,7 @@ pub(crate) struct Hole {
 /// right-hand lead); `spindle`, the spindle's direction before the hole,
 /// is `dir` after it.
 pub(crate) fn tap_hole(h: &Hole, dir: SpindleDir, spindle: &mut SpindleDir, out: &mut Vec<Leg>) {
-    out.push(Leg::Rapid(h.top));
+    out.push(Leg::RapidC(h.top, h.c));
     if let Some(m) = h.clamp {
         out.push(Leg::M(m));
     }

@@ -44,6 +44,13 @@ impl Lathe {
         }
     }
 
+    /// The reference machine with its C axis enabled.
+    pub fn with_c() -> Lathe {
+        let mut m = Machine::reference();
+        m.axes.c.enabled = true;
+        Lathe { nc: Nc::new(m) }
+    }
+
     /// The canon lines of one block; panics on an alarm.
     pub fn run(&mut self, block: &str) -> Vec<String> {
         match self.try_run(block) {

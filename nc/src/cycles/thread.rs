@@ -140,9 +140,11 @@ pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) {
 fn print(legs: &[Leg], sink: &mut dyn Sink) {
     for leg in legs {
         if let Leg::Thread { to, lead, dlead, q } = *leg {
+            // C never moves in a G32/G34 thread (caxis.rs).
             sink.emit(crate::event::Event::Thread {
                 x: to.x(),
                 z: to.z,
+                c: None,
                 lead,
                 dlead,
                 q,

@@ -97,7 +97,7 @@ pub fn end_points(canon: &[Event]) -> Vec<(f64, f64)> {
     canon
         .iter()
         .filter_map(|e| match e {
-            Event::Rapid { x, z } | Event::Line { x, z } | Event::Skip { x, z } => {
+            Event::Rapid { x, z, .. } | Event::Line { x, z, .. } | Event::Skip { x, z } => {
                 Some((x / 2.0, *z))
             }
             Event::Arc { x, z, .. } | Event::Thread { x, z, .. } => Some((x / 2.0, *z)),
@@ -217,6 +217,9 @@ pub fn hash(r: &Run) -> u64 {
             p.feed,
         ] {
             eat(f.to_bits());
+        }
+        if let Some(c) = p.c {
+            eat(c.to_bits());
         }
         eat(p.line as u64);
         eat(p.tool as u64);
