@@ -70,7 +70,11 @@ pub fn run(nc: &mut Nc, x_axis: bool, p: &Parsed, sink: &mut dyn Sink) -> Result
     feed_at(nc, feed, sink);
     let to = with_axis(nc.st.pos, x_axis, end);
     nc.st.pos = to;
-    sink.emit(Event::Line { x: to.x(), z: to.z });
+    sink.emit(Event::Line {
+        x: to.x(),
+        z: to.z,
+        c: None,
+    });
     if !signal {
         return fail(
             7006,
