@@ -127,6 +127,8 @@ pub enum Command {
     /// The block before ends in an exact stop (G09, G61): no blending
     /// into what follows.
     ExactStop,
+    /// Stored stroke check 2 from here on (G22 with its area, G23 `None`).
+    Stroke(Option<nc::stroke::Area>),
     /// The program ends (M02, M30, last M99, past the last block).
     End,
     /// The program raised an alarm; motion stops here.

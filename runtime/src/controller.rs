@@ -89,7 +89,7 @@ impl AlarmInfo {
 pub fn runtime_alarm_message(code: u32) -> &'static str {
     match code {
         7001 => "a feed move with F = 0 cannot run",
-        7002 => "the move leaves the axis travel (soft limit)",
+        7002 => "the axes leave their travel (soft limit) or enter the area G22 forbids",
         7003 => "a feed-per-revolution move waited too long for the stopped spindle",
         4010 => {
             "the thread needs a feed above the axis's maximum cutting feed at this spindle speed"
@@ -124,6 +124,8 @@ pub struct Controller<P: Plc = AutoAck> {
     block: u32,
     max_blocks: u64,
     repeat: u32,
+    /// The G22 area last handed to the engine.
+    stroke: Option<nc::stroke::Area>,
 }
 
 impl Controller<AutoAck> {
@@ -175,6 +177,7 @@ impl<P: Plc> Controller<P> {
             block: 0,
             max_blocks,
             repeat: 1,
+            stroke: None,
         })
     }
 
@@ -370,6 +373,10 @@ impl<P: Plc> Controller<P> {
                 if self.vm.nc.st.exact_stop {
                     self.staged.push_back((Command::ExactStop, tag));
                 }
+                if self.vm.nc.st.stroke2 != self.stroke {
+                    self.stroke = self.vm.nc.st.stroke2;
+                    self.staged.push_back((Command::Stroke(self.stroke), tag));
+                }
                 if let Some((_, t)) = self.staged.back_mut() {
                     if t.block == self.block {
                         t.block_end = true;
@@ -463,6 +470,7 @@ impl<P: Plc> Controller<P> {
         self.staged.clear();
         self.vm_state = VmState::Running;
         self.vm_alarm = None;
+        self.stroke = None;
         self.block = 0;
     }
 }

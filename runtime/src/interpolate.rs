@@ -234,6 +234,8 @@ pub struct Engine<P: Plc> {
     /// the corner (its acceleration keeps the corner's share back).
     cap_accel: f64,
     alarm: Option<(u32, Tag)>,
+    /// Stored stroke check 2 (G22): the area the axes may not enter.
+    stroke: Option<nc::stroke::Area>,
 }
 
 impl<P: Plc> Engine<P> {
@@ -287,6 +289,7 @@ impl<P: Plc> Engine<P> {
             cap_next: f64::INFINITY,
             cap_accel: 0.0,
             alarm: None,
+            stroke: None,
             cfg,
         }
     }
@@ -451,6 +454,7 @@ impl<P: Plc> Engine<P> {
         }
         self.last_step = self.pos - before;
         self.last_step_c = self.c - before_c;
+        self.check_stroke();
         self.setpoint()
     }
 
@@ -504,6 +508,22 @@ impl<P: Plc> Engine<P> {
         self.fixed_work.unwrap_or(self.pos - self.shift).x()
     }
 
+    /// G22 on the path: the first period whose set point (the machine
+    /// axes, X as a diameter) lies in the forbidden area stops the motion
+    /// with E7002, as a real control stops on entering it. The kernel has
+    /// already refused every programmed end point there; this catches what
+    /// runs between them (dog-leg rapids, arcs, cycle legs) and what tool
+    /// offsets move.
+    fn check_stroke(&mut self) {
+        let Some(area) = self.stroke else { return };
+        if matches!(self.state, RunState::Alarm(_)) {
+            return;
+        }
+        if area.forbids(self.pos.x(), self.pos.z) {
+            self.raise(7002, self.tag);
+        }
+    }
+
     fn raise(&mut self, code: u32, tag: Tag) {
         self.state = RunState::Alarm(code);
         self.alarm = Some((code, tag));
@@ -538,6 +558,7 @@ impl<P: Plc> Engine<P> {
             Dwell(f64),
             Plc(PlcFunction),
             Pause(PauseKind),
+            Stroke(Option<nc::stroke::Area>),
             End,
             Alarm(u32),
         }
@@ -559,6 +580,7 @@ impl<P: Plc> Engine<P> {
                 ItemKind::Dwell(s) => Head::Dwell(*s),
                 ItemKind::Plc(f) => Head::Plc(*f),
                 ItemKind::Pause(k) => Head::Pause(*k),
+                ItemKind::Stroke(a) => Head::Stroke(*a),
                 ItemKind::End => Head::End,
                 ItemKind::Alarm(c) => Head::Alarm(*c),
             };
@@ -610,6 +632,10 @@ impl<P: Plc> Engine<P> {
                 Head::Pause(k) => {
                     self.state = RunState::Stopped(k);
                     return;
+                }
+                Head::Stroke(a) => {
+                    self.stroke = a;
+                    self.finish_item();
                 }
                 Head::End => {
                     self.state = RunState::Ended;
@@ -1265,6 +1291,8 @@ impl<P: Plc> Engine<P> {
         self.fixed_work = None;
         self.spindle.reset();
         self.alarm = None;
+        // Reset is power-on for group 09: G23.
+        self.stroke = None;
         self.state = RunState::Idle;
         self.reset_req = false;
         self.reset_done = true;

@@ -130,6 +130,8 @@ pub enum ItemKind {
     Dwell(f64),
     Plc(PlcFunction),
     Pause(PauseKind),
+    /// G22/G23: the area the axes may not enter from here on.
+    Stroke(Option<nc::stroke::Area>),
     End,
     Alarm(u32),
 }
@@ -384,6 +386,7 @@ impl Planner {
                 ItemKind::Plc(f)
             }
             Command::Pause(p) => ItemKind::Pause(p),
+            Command::Stroke(a) => ItemKind::Stroke(a),
             Command::End => ItemKind::End,
             Command::Alarm(c) => ItemKind::Alarm(c),
         };
