@@ -128,7 +128,7 @@ fn group_words(group: f64, p: &Parsed) -> Result<(u32, f64, LifeUnit), NcError> 
             format!("the tool-life group P{number} needs its life L"),
         );
     };
-    if !(life > 0.0) {
+    if life <= 0.0 || !life.is_finite() {
         return fail(5010, format!("L{life}: a tool life must be above 0"));
     }
     let unit = match p.get(b'Q').map(round_half_away) {
