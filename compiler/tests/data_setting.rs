@@ -48,6 +48,10 @@ fn an_unknown_literal_parameter_is_e2050_at_its_line() {
 #[test]
 fn plc_parameters_are_e2099() {
     assert_eq!(diags("G10 L52\nK5 R#100\nG11\nM30\n"), [("E2099", 2)]);
+    assert_eq!(diags("G10 L52\nD5 W1\nG11\nM30\n"), [("E2099", 2)]);
+    // DT and DC are no addresses of the grammar; they get E2099 too.
+    assert_eq!(diags("G10 L52\nDT5 R#100\nG11\nM30\n"), [("E2099", 2)]);
+    assert_eq!(diags("G10 L52\nDC5 W1\nG11\nM30\n"), [("E2099", 2)]);
 }
 
 #[test]
