@@ -150,6 +150,8 @@ fn parameter_word(number: u32, span: Span) -> Word {
 #[derive(Debug, Default)]
 pub struct Checker {
     mode: Mode,
+    /// Inside G10 L3: a `P` group block has come (tools have a group).
+    group_open: bool,
 }
 
 impl Checker {
@@ -183,24 +185,57 @@ impl Checker {
                 }
                 ignored(gen, ws, &[], "a G11 block");
             }
-            Role::Inside(Mode::ToolLife) => {
-                ignored(gen, ws, &['P', 'L', 'Q', 'T'], "G10 L3 (tool-life data)")
-            }
+            Role::Inside(Mode::ToolLife) => self.tool_life_block(gen, ws),
             Role::Inside(_) => parameter_block(gen, ws),
             Role::OpenComputed | Role::Outside => {}
         }
+        if matches!(r, Role::Open(_)) {
+            self.group_open = false;
+        }
         self.mode = r.mode_after(self.mode);
+    }
+
+    fn tool_life_block(&mut self, gen: &mut Gen<'_>, ws: &[Word]) {
+        self.group_open |= find(ws, 'P').is_some();
+        match find(ws, 'T') {
+            Some(t) if !self.group_open => gen.warn(
+                "W104",
+                t.span,
+                "T is ignored in G10 L3 before the first group (P… L…): it has no group",
+            ),
+            _ => {}
+        }
+        ignored(gen, ws, &['P', 'L', 'Q', 'T'], "G10 L3 (tool-life data)");
     }
 }
 
 /// W104 for every word of the block but G10/G11 and the letters `used`.
+/// Calls and returns (M98, M99, M9xxx, G65–G67 blocks) still happen inside
+/// the modes: they are program flow, which the kernel never sees.
 fn ignored(gen: &mut Gen<'_>, ws: &[Word], used: &[char], what: &str) {
+    if ws
+        .iter()
+        .any(|w| matches!(literal_g(w), Some(650 | 660 | 670)))
+    {
+        return;
+    }
     for w in ws {
-        let kept =
-            letter(w).is_some_and(|c| used.contains(&c)) || matches!(literal_g(w), Some(100 | 110));
+        let kept = letter(w).is_some_and(|c| used.contains(&c))
+            || matches!(literal_g(w), Some(100 | 110))
+            || is_call(w);
         if !kept {
             gen.warn("W104", w.span, format!("{} is ignored in {what}", w.addr));
         }
+    }
+}
+
+/// M98, M99, M9000–M9999.
+fn is_call(w: &Word) -> bool {
+    match (&w.addr, &w.value) {
+        (Addr::Letter('M'), Value::Number(n)) => {
+            n.value == 98.0 || n.value == 99.0 || (9000.0..=9999.0).contains(&n.value)
+        }
+        _ => false,
     }
 }
 

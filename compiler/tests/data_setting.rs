@@ -74,6 +74,17 @@ fn g11_without_g10_and_ignored_words_are_w104() {
         diags("G10 L3\nP1 L10 X5\nT0101\nS300\nG11\nM30\n"),
         [("W104", 2), ("W104", 4)]
     );
+    // A tool before any group has nowhere to go.
+    assert_eq!(
+        diags("G10 L3\nT0101\nP1 L5\nT0202\nG11\nM30\n"),
+        [("W104", 2)]
+    );
+    // A call inside the mode is program flow, not an ignored word; M30 is
+    // ignored like any other word (the kernel does not end the run there).
+    assert_eq!(
+        diags("G10 L3\nM98 P1000\nM30\nG11\nM30\nO1000\nM99\n"),
+        [("W104", 3)]
+    );
     // F in a parameter block.
     assert_eq!(diags("G10 L52\nN172 R#1 F5\nG11\nM30\n"), [("W104", 2)]);
 }
@@ -176,4 +187,17 @@ fn a_static_tool_life_program_dry_runs_without_error() {
     // run-time alarm.
     let c = compiled("T0199\nM30\n");
     assert!(!c.has_errors(), "{}", c.render());
+}
+
+#[test]
+fn a_read_overrides_what_constant_folding_knew() {
+    // #100 = 5 is known to the folder; the G10 L52 read makes it №172
+    // (10000), so X[#100/1000] is X10, not X0.005. W takes a computed
+    // value: #1 = 10100 sets bits 4 and 2 of №172, read back into #2.
+    let src =
+        "#100=5\n#1=10100\nG10 L52\nN172 R#100\nN172 W#1\nN172 R#2\nG11\nG00 X[#100/1000]\nM30\n";
+    let (canon, status, vm) = run(src);
+    assert_eq!(status, Status::Done);
+    assert_eq!(canon, ["RAPID X=10 Z=0", "STOP KIND=M30"]);
+    assert_eq!(vm.variable(2), Ok(10100.0));
 }
