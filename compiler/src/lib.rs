@@ -9,6 +9,7 @@
 pub mod calls;
 pub mod check;
 pub mod codes;
+pub mod data_setting;
 pub mod expr;
 pub mod link;
 pub mod lower;
@@ -132,7 +133,9 @@ fn parse_unit(
     index: usize,
     diags: &mut Vec<(usize, Diagnostic)>,
 ) -> Unit {
-    let (ast, ds) = grammar::parse(&bytes);
+    let (mut ast, ds) = grammar::parse(&bytes);
+    // N inside G10 L52 is a parameter number (data_setting module).
+    data_setting::prepare(&mut ast);
     diags.extend(ds.into_iter().map(|d| (index, d)));
     Unit {
         name: name.to_string(),

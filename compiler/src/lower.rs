@@ -176,12 +176,14 @@ impl<'a> Gen<'a> {
         self.expr.forget_all();
         let entry_pc = self.pc();
         let unit = &self.units[prog.unit];
+        let mut data_setting = crate::data_setting::Checker::default();
         for &line in &prog.blocks {
             crate::profile::block_start(self, line);
             let Some(block) = link::block(unit, line) else {
                 continue;
             };
             self.set_loc(block.span);
+            data_setting.block(self, block);
             if let Some(seq) = block.seq {
                 // A block with a number may be a jump target.
                 self.expr.forget_all();
@@ -546,6 +548,8 @@ impl<'a> Gen<'a> {
             for var in 995..=999 {
                 self.expr.forget(var);
             }
+            // A G10 L52 read writes its variable.
+            crate::data_setting::forget_read(&mut self.expr, &split);
         }
         crate::profile::after_exec(self, after);
         if let Some(call) = split.call {

@@ -475,6 +475,15 @@ impl<'a> Fault<'a> {
                     .with_label("a word needs a number, `#n` or `[expr]`"),
             );
         }
+        // DT and DC exist only as PLC parameter addresses of G10 L52
+        // (seed 000): valid codes that are not supported yet (dialect.md §8.2).
+        if name.eq_ignore_ascii_case("DT") || name.eq_ignore_ascii_case("DC") {
+            return Some(Diagnostic::error(
+                "E2099",
+                run,
+                format!("PLC parameters ({name}) in G10 L52 are not implemented yet"),
+            ));
+        }
         let mut d = Diagnostic::error(
             "E1008",
             run,

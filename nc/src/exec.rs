@@ -34,6 +34,9 @@ pub struct Outcome {
     pub end: Option<StopKind>,
     /// A G31 skip position to store in #995/#996.
     pub skip: Option<Pt>,
+    /// A `G10 L52` read: the variable to set and the parameter's value
+    /// (variables #1–#999 live in the VM, not in the kernel).
+    pub store: Option<(u32, f64)>,
 }
 
 /// The NC kernel: a machine and its state.
@@ -84,6 +87,16 @@ impl Nc {
 
     /// Executes one block of NC words.
     pub fn exec(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        // G10/G11 blocks and the blocks of their modes (data_setting).
+        if let Some(out) = crate::data_setting::intercept(self, words)? {
+            return Ok(out);
+        }
+        // Minutes tool-life groups time the feed moves (tool_life).
+        crate::tool_life::timed(self, words, sink, Nc::exec_guarded)
+    }
+
+    /// A block with the G22 stroke check, when it is in force.
+    fn exec_guarded(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
         let Some(area) = self.st.stroke2 else {
             return self.exec_block(words, sink);
         };
@@ -319,6 +332,10 @@ impl Nc {
         }
         let (tool, offset) = (t as u32 / 100, t as u32 % 100);
         check_tool(&self.machine, tool, offset)?;
+        // Txx99 / Txx88 are tool-life words (tool_life module).
+        if let Some(done) = crate::tool_life::t_word(self, tool, offset, sink) {
+            return done;
+        }
         self.st.tool = tool;
         self.st.offset = offset;
         sink.emit(Event::Tool { t: tool, d: offset });

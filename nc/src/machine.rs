@@ -350,6 +350,38 @@ impl Machine {
         if self.r#macro.g_code_macros.iter().any(|&g| g > 999) {
             return bad("macro.g_code_macros entries must be 0…999");
         }
+        self.validate_tool_life()
+    }
+
+    /// `[[tool_life.group]]`: numbers 1…32 once each, a positive life,
+    /// a known unit and T values of real tools and offsets.
+    fn validate_tool_life(&self) -> Result<(), MachineError> {
+        let bad = |what: String| Err(MachineError::Invalid(what));
+        let groups = &self.tool_life.group;
+        for (i, g) in groups.iter().enumerate() {
+            let n = g.number;
+            if !(1..=32).contains(&n) || groups[..i].iter().any(|o| o.number == n) {
+                return bad(format!(
+                    "tool_life.group number {n}: groups are 1…32, each once"
+                ));
+            }
+            if !(g.life > 0.0 && g.life.is_finite()) {
+                return bad(format!("tool_life.group {n}: life must be above 0"));
+            }
+            if g.unit != "count" && g.unit != "minutes" {
+                return bad(format!(
+                    "tool_life.group {n}: unit must be \"count\" or \"minutes\""
+                ));
+            }
+            for &t in &g.tools {
+                let (tool, offset) = (t / 100, t % 100);
+                if t > 9999 || tool > self.tools.count || offset > self.tools.offsets {
+                    return bad(format!(
+                        "tool_life.group {n}: T{t:04} is outside the tool or offset table"
+                    ));
+                }
+            }
+        }
         Ok(())
     }
 
@@ -425,6 +457,12 @@ mod tests {
         assert!(Machine::from_toml("[axes.x]\nrapid_mm_min = 0\n").is_err());
         assert!(Machine::from_toml("[[tools.offset]]\nnumber = 40\n").is_err());
         assert!(Machine::from_toml("[[tools.offset]]\nnumber = 1\ntip = 12\n").is_err());
+        let group = |body: &str| Machine::from_toml(&format!("[[tool_life.group]]\n{body}"));
+        assert!(group("number = 1\nlife = 5\ntools = [101]\n").is_ok());
+        assert!(group("number = 0\nlife = 5\n").is_err());
+        assert!(group("number = 1\nlife = 0\n").is_err());
+        assert!(group("number = 1\nlife = 5\nunit = \"hours\"\n").is_err());
+        assert!(group("number = 1\nlife = 5\ntools = [3301]\n").is_err());
     }
 
     #[test]

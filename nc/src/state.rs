@@ -108,6 +108,8 @@ pub struct State {
     pub contour: crate::contour::ContourState,
     /// Nose-radius compensation (comp module).
     pub comp: crate::comp::CompState,
+    /// G10/G11 modes and the tool-life table (data_setting module).
+    pub data: crate::data_setting::DataState,
 }
 
 impl State {
@@ -160,6 +162,7 @@ impl State {
             compound: Default::default(),
             contour: Default::default(),
             comp: Default::default(),
+            data: crate::data_setting::DataState::power_on(m),
         }
     }
 

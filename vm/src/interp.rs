@@ -496,6 +496,11 @@ impl Vm {
             self.vars.persistent[498] = VACANT;
             self.vars.persistent[499] = VACANT;
         }
+        // G10 L52 `N… R#var`: the kernel read the parameter, the variable
+        // is ours to write.
+        if let Some((var, value)) = out.store {
+            self.write_var(var, value, sink)?;
+        }
         if out.end.is_some() {
             return Ok(Next::Done);
         }

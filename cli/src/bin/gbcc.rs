@@ -145,7 +145,9 @@ fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> Result<(), String>
     let Some(module) = c.module.clone() else {
         return Err("no module was produced".into());
     };
-    let (ast, _) = grammar::parse(src);
+    let (mut ast, _) = grammar::parse(src);
+    // The N of a G10 L52 block is a parameter number, not a label.
+    compiler::data_setting::prepare(&mut ast);
     let file = &c.files[0];
     let mut seqs = std::collections::HashMap::new();
     for line in &ast.lines {
