@@ -195,10 +195,6 @@ impl Nc {
     fn unsupported_one_shot(&self, code: Code) -> Result<(), NcError> {
         match code {
             71 => self.polar_or_cylinder(code),
-            100 | 110 => fail(
-                2099,
-                format!("{} is not implemented yet", gcode::name(code)),
-            ),
             _ => Ok(()),
         }
     }

@@ -369,7 +369,7 @@ impl Timer<'_> {
                 // The tool stays put; its work coordinates change.
                 self.clock.origin = Pt::xz(x, z);
             }
-            Event::Home { n, x, z } => {
+            Event::Home { n, x, z, .. } => {
                 let rp = self.reference[(n.clamp(1, 4) - 1) as usize];
                 if x {
                     self.clock.at.r = rp.r;
@@ -378,8 +378,8 @@ impl Timer<'_> {
                     self.clock.at.z = rp.z;
                 }
             }
-            Event::Rapid { x, z } => self.cut(Pt::xz(x, z), 0.0, 0.0),
-            Event::Line { x, z }
+            Event::Rapid { x, z, .. } => self.cut(Pt::xz(x, z), 0.0, 0.0),
+            Event::Line { x, z, .. }
             | Event::Skip { x, z }
             | Event::Ellipse { x, z, .. }
             | Event::Parabola { x, z, .. } => {
