@@ -79,28 +79,24 @@ pub struct SourceFile {
 
 impl SourceFile {
     pub fn new(name: impl Into<String>, bytes: &[u8]) -> SourceFile {
-        let text: String = bytes
+        // Byte for byte (a loop the compiler vectorizes); every byte is
+        // ASCII afterwards, so the text is valid UTF-8.
+        let printable: Vec<u8> = bytes
             .iter()
             .map(|&b| {
                 if b.is_ascii() && (b >= b' ' || b == b'\n' || b == b'\r' || b == b'\t') {
-                    b as char
+                    b
                 } else {
-                    '?'
+                    b'?'
                 }
             })
             .collect();
-        let mut line_starts = vec![0];
-        for (i, b) in bytes.iter().enumerate() {
-            // A lone CR ends a line too (dialect.md §1.3).
-            let ends = *b == b'\n' || (*b == b'\r' && bytes.get(i + 1) != Some(&b'\n'));
-            if ends {
-                line_starts.push(i + 1);
-            }
-        }
+        let text = String::from_utf8(printable)
+            .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned());
         SourceFile {
             name: name.into(),
             text,
-            line_starts,
+            line_starts: line_starts(bytes),
         }
     }
 
@@ -112,6 +108,29 @@ impl SourceFile {
             Err(i) => i - 1,
         };
         (line + 1, offset - self.line_starts[line] + 1)
+    }
+
+    /// [`SourceFile::line_col`] for offsets asked for in source order:
+    /// `hint` is the line index of the previous answer (0 at first), and
+    /// the offset is nearly always on that line or the next, which needs
+    /// no search.
+    pub fn line_col_near(&self, offset: u32, hint: &mut usize) -> (usize, usize) {
+        let at = offset as usize;
+        let line = [*hint, *hint + 1]
+            .into_iter()
+            .find(|&i| self.on_line(at, i))
+            .unwrap_or_else(|| match self.line_starts.binary_search(&at) {
+                Ok(i) => i,
+                Err(i) => i - 1,
+            });
+        *hint = line;
+        (line + 1, at - self.line_starts[line] + 1)
+    }
+
+    /// Whether byte `at` lies on line index `i` (the last line runs on).
+    fn on_line(&self, at: usize, i: usize) -> bool {
+        let starts = &self.line_starts;
+        starts.get(i).is_some_and(|&s| s <= at) && starts.get(i + 1).is_none_or(|&e| at < e)
     }
 
     pub fn text(&self) -> &str {
@@ -194,6 +213,23 @@ impl SourceFile {
     }
 }
 
+/// The offset of every line start: 0, and after each LF, CR LF or lone CR
+/// (a lone CR ends a line too, dialect.md §1.3).
+fn line_starts(bytes: &[u8]) -> Vec<usize> {
+    let mut starts = vec![0];
+    let mut i = 0;
+    while let Some(k) = bytes[i..].iter().position(|&b| b == b'\n' || b == b'\r') {
+        let end = i + k;
+        i = if bytes[end] == b'\r' && bytes.get(end + 1) == Some(&b'\n') {
+            end + 2
+        } else {
+            end + 1
+        };
+        starts.push(i);
+    }
+    starts
+}
+
 fn json_string(s: &str) -> String {
     let mut out = String::from("\"");
     for c in s.chars() {
@@ -206,4 +242,25 @@ fn json_string(s: &str) -> String {
     }
     out.push('"');
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SourceFile;
+
+    /// The hinted lookup gives what the search gives, in order, backwards
+    /// and jumping about, over every kind of line end.
+    #[test]
+    fn line_col_near_equals_line_col() {
+        let src = b"G01 X1\r\nX2\rX3\n\nX4 (a)\r\r\nX5";
+        let f = SourceFile::new("t.nc", src);
+        let offsets: Vec<u32> = (0..=src.len() as u32 + 2)
+            .chain((0..=src.len() as u32).rev())
+            .chain([3, 20, 1, 27, 9, 0])
+            .collect();
+        let mut hint = 0;
+        for at in offsets {
+            assert_eq!(f.line_col_near(at, &mut hint), f.line_col(at), "at {at}");
+        }
+    }
 }
