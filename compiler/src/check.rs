@@ -8,11 +8,12 @@ use grammar::ast::{Body, Value};
 use grammar::{Diagnostic, Span};
 use nc::words::Word;
 use nc::{Event, Machine, Nc, NcError, Sink};
+use smallvec::SmallVec;
 
 /// Checks the literal words of a block (a computed word is checked when
 /// it runs).
 pub fn literal_block(m: &Machine, ws: &[NcWord<'_>]) -> Result<(), NcError> {
-    let lits: Vec<Word> = literal_words(ws);
+    let lits = literal_words(ws);
     let p = nc::block::parse(&lits, m)?;
     if let Some(t) = p.get(b'T') {
         let t = nc::block::round_half_away(t).max(0.0) as u32;
@@ -21,7 +22,9 @@ pub fn literal_block(m: &Machine, ws: &[NcWord<'_>]) -> Result<(), NcError> {
     Ok(())
 }
 
-fn literal_words(ws: &[NcWord<'_>]) -> Vec<Word> {
+/// The literal words of a block, as the kernel takes them (inline: one
+/// block's worth, built for every block).
+pub(crate) fn literal_words(ws: &[NcWord<'_>]) -> SmallVec<[Word; 8]> {
     ws.iter()
         .filter_map(|w| match w.value {
             WordValue::Literal(v, flags) => Some(Word {

@@ -5,6 +5,7 @@ use grammar::ast::{Addr, Expr, Value, Word};
 use grammar::{Diagnostic, Span};
 use nc::block::round_half_away;
 use nc::words::{COMMA_A, COMMA_C, COMMA_R, LITERAL, NO_POINT};
+use smallvec::SmallVec;
 
 /// A word value: a literal (with its flags) or an expression.
 #[derive(Debug, Clone, Copy)]
@@ -82,8 +83,12 @@ pub struct Arg<'a> {
     pub length: bool,
 }
 
+/// The NC words of a block: most blocks have a few, kept inline so that
+/// sorting a block's words (done by several passes) allocates nothing.
+pub type NcWords<'a> = SmallVec<[NcWord<'a>; 8]>;
+
 pub struct Split<'a> {
-    pub nc: Vec<NcWord<'a>>,
+    pub nc: NcWords<'a>,
     pub call: Option<Call<'a>>,
 }
 
@@ -152,7 +157,7 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
         && words.len() == 1
     {
         return Ok(Split {
-            nc: Vec::new(),
+            nc: NcWords::new(),
             call: Some(Call::ModalCancel),
         });
     }
@@ -237,7 +242,8 @@ pub fn g_code_macro<'a>(
     }))
 }
 
-fn round_g(v: f64) -> u16 {
+/// A G value as the kernel codes it: tenths (`G6.2` → 62).
+pub(crate) fn round_g(v: f64) -> u16 {
     round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16
 }
 
@@ -280,7 +286,7 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
             ));
         }
         return Ok(Split {
-            nc: Vec::new(),
+            nc: NcWords::new(),
             call: Some(Call::MacroA {
                 h: value_of(h),
                 p: find('P'),
@@ -355,7 +361,7 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
         }
     }
     Ok(Split {
-        nc: Vec::new(),
+        nc: NcWords::new(),
         call: Some(Call::Macro {
             modal,
             p,
