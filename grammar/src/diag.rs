@@ -217,15 +217,11 @@ impl SourceFile {
 /// (a lone CR ends a line too, dialect.md §1.3).
 fn line_starts(bytes: &[u8]) -> Vec<usize> {
     let mut starts = vec![0];
-    let mut i = 0;
-    while let Some(k) = bytes[i..].iter().position(|&b| b == b'\n' || b == b'\r') {
-        let end = i + k;
-        i = if bytes[end] == b'\r' && bytes.get(end + 1) == Some(&b'\n') {
-            end + 2
-        } else {
-            end + 1
-        };
-        starts.push(i);
+    for end in memchr::memchr2_iter(b'\n', b'\r', bytes) {
+        // The CR of a CR LF is no line end of its own: its LF is.
+        if bytes[end] == b'\n' || bytes.get(end + 1) != Some(&b'\n') {
+            starts.push(end + 1);
+        }
     }
     starts
 }
