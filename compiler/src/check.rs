@@ -37,6 +37,21 @@ pub(crate) fn literal_words(ws: &[NcWord<'_>]) -> SmallVec<[Word; 8]> {
         .collect()
 }
 
+/// The literal words of a block that calls nothing: what
+/// `literal_words(&classify(ws).nc)` gives then, without sorting first.
+fn plain_literals(ws: &[grammar::ast::Word]) -> SmallVec<[Word; 8]> {
+    ws.iter()
+        .filter_map(|w| match words::value_of(w) {
+            WordValue::Literal(value, flags) => Some(Word {
+                addr: words::addr_code(w.addr),
+                value,
+                flags,
+            }),
+            WordValue::Expr(_) => None,
+        })
+        .collect()
+}
+
 /// A static program: no macro statement and no computed word (§0).
 pub fn is_static(units: &[Unit], programs: &[Program]) -> bool {
     programs.iter().all(|p| {
@@ -117,12 +132,18 @@ impl DryRun<'_> {
             if self.steps > STEP_LIMIT {
                 return Ok(Flow::End);
             }
-            let Ok(split) = words::classify(ws) else {
-                return Ok(Flow::End);
+            let (lits, call, resume) = if words::may_call(ws) || crate::profile::names_cycle(ws) {
+                let Ok(split) = words::classify(ws) else {
+                    return Ok(Flow::End);
+                };
+                // A G70–G73 cycle gets its profile; G71–G73 go on after nf.
+                let resume =
+                    crate::profile::hand_over(&mut self.nc, unit, prog, &split.nc, &self.skip);
+                (literal_words(&split.nc), split.call, resume)
+            } else {
+                // Most blocks: no call, no cycle, every word an NC word.
+                (plain_literals(ws), None, None)
             };
-            let lits = literal_words(&split.nc);
-            // A G70–G73 cycle gets its profile; G71–G73 go on after nf.
-            let resume = crate::profile::hand_over(&mut self.nc, unit, prog, &split.nc, &self.skip);
             if !lits.is_empty() {
                 match self.nc.exec(&lits, &mut Discard) {
                     Ok(out) if out.end.is_some() => return Ok(Flow::End),
@@ -135,7 +156,7 @@ impl DryRun<'_> {
                 }
             }
             next = resume.unwrap_or(next);
-            match split.call {
+            match call {
                 None => {}
                 Some(Call::Sub { p: Some(p), l, .. }) => {
                     // E4035: M98 while nose-radius compensation is on.

@@ -155,14 +155,6 @@ fn uses_g_code_macros(units: &[Unit], programs: &[Program], table: &[u32; 10]) -
     })
 }
 
-/// Whether a block may call: every call (M98, M9000–M9999, G65, G66, a
-/// G-code macro) needs a G or M word, and most blocks have neither.
-fn may_call(ws: &[grammar::ast::Word]) -> bool {
-    use grammar::ast::Addr;
-    ws.iter()
-        .any(|w| matches!(w.addr, Addr::Letter('G') | Addr::Letter('M')))
-}
-
 /// Literal call targets of a program.
 fn targets(unit: &Unit, prog: &Program, table: &[u32; 10]) -> Vec<u32> {
     let mut out = Vec::new();
@@ -173,11 +165,10 @@ fn targets(unit: &Unit, prog: &Program, table: &[u32; 10]) -> Vec<u32> {
         let grammar::ast::Body::Words(ws) = &block.body else {
             continue;
         };
-        if !may_call(ws) {
-            continue;
-        }
         let split = match words::g_code_macro(ws, table, prog.number) {
             Some(call) => call,
+            // Most blocks call nothing: no need to sort their words.
+            None if !words::may_call(ws) => continue,
             None => words::classify(ws),
         };
         let Ok(split) = split else {

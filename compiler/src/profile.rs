@@ -70,7 +70,7 @@ fn literal_g(w: &NcWord<'_>) -> Option<u16> {
 /// Whether any word of a block is a literal G70–G73. Without one, the
 /// block's NC words hold none either (they are a subset), so most blocks
 /// need not be sorted to tell that they are no cycle block.
-fn names_cycle(ws: &[grammar::ast::Word]) -> bool {
+pub(crate) fn names_cycle(ws: &[grammar::ast::Word]) -> bool {
     ws.iter().any(|w| {
         let g = w.addr == grammar::ast::Addr::Letter('G');
         let code = words::value_of(w).literal();
