@@ -105,7 +105,13 @@ fn lower_and_check(
         && check::is_static(units, programs);
     let parallel = dry && block_count(programs) >= PARALLEL_BLOCKS;
     std::thread::scope(|s| {
-        let early = parallel.then(|| s.spawn(|| check::dry_run(units, programs, &opts.machine)));
+        // (Without a second thread, the dry run comes after the lowering.)
+        let early = match parallel {
+            true => std::thread::Builder::new()
+                .spawn_scoped(s, || check::dry_run(units, programs, &opts.machine))
+                .ok(),
+            false => None,
+        };
         let files = source_files(units);
         let module = lower(units, &files, programs, opts, diags);
         let failed = has_errors(diags);

@@ -77,19 +77,21 @@ fn split_point(src: &[u8], limit: usize) -> Option<usize> {
 
 /// Parses `..mid` here and `mid..limit` on a second thread, and joins the
 /// two in order.
+/// (Without a second thread, the second half is parsed after the first.)
 fn run_halves(src: &[u8], mid: usize, limit: usize) -> (Ast, Vec<Diagnostic>) {
-    let (first, second) = std::thread::scope(|s| {
-        let second = s.spawn(|| run(src, mid, limit, true));
-        (run(src, 0, mid, true), second.join())
+    let ((mut ast, mut diags), (rest, more)) = std::thread::scope(|s| {
+        let second = std::thread::Builder::new().spawn_scoped(s, || run(src, mid, limit, true));
+        let first = run(src, 0, mid, true);
+        let second = match second {
+            Ok(thread) => thread
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+            Err(_) => run(src, mid, limit, true),
+        };
+        (first, second)
     });
-    let (mut ast, mut diags) = first;
-    match second {
-        Ok((rest, more)) => {
-            ast.lines.extend(rest.lines);
-            diags.extend(more);
-        }
-        Err(panic) => std::panic::resume_unwind(panic),
-    }
+    ast.lines.extend(rest.lines);
+    diags.extend(more);
     (ast, diags)
 }
 
