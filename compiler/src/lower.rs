@@ -614,8 +614,7 @@ fn ends_explicitly(unit: &Unit, prog: &Program) -> bool {
         return false;
     };
     match &last.body {
-        Body::Stmt(Stmt::Goto { .. }) => true,
-        Body::Stmt(_) => false,
+        Body::Stmt(s) => matches!(**s, Stmt::Goto { .. }),
         Body::Words(ws) => ws.iter().any(|w| {
             w.addr == grammar::ast::Addr::Letter('M')
                 && matches!(words::value_of(w).literal(), Some(m) if [2.0, 30.0, 99.0].contains(&m))

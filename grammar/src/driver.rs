@@ -480,7 +480,7 @@ impl Driver<'_> {
                 return;
             }
             Parsed::Words { delete, seq, words } => (delete, seq, Body::Words(words)),
-            Parsed::Stmt { delete, seq, stmt } => (delete, seq, Body::Stmt(*stmt)),
+            Parsed::Stmt { delete, seq, stmt } => (delete, seq, Body::Stmt(stmt)),
         };
         state.other = true;
         if state.program {
