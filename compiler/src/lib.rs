@@ -101,15 +101,20 @@ fn lower_and_check(
     opts: &Options,
     diags: &mut Vec<(usize, Diagnostic)>,
 ) -> (Vec<SourceFile>, isa::Module) {
-    let dry = !uses_g_code_macros(units, programs, &opts.machine.r#macro.g_code_macros)
-        && check::is_static(units, programs);
-    let parallel = dry && block_count(programs) >= PARALLEL_BLOCKS;
+    // A static program without G-code macros is dry-run.
+    let dry_run = || {
+        let table = &opts.machine.r#macro.g_code_macros;
+        let wanted =
+            !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
+        wanted
+            .then(|| check::dry_run(units, programs, &opts.machine))
+            .flatten()
+    };
+    let parallel = block_count(programs) >= PARALLEL_BLOCKS;
     std::thread::scope(|s| {
         // (Without a second thread, the dry run comes after the lowering.)
         let early = match parallel {
-            true => std::thread::Builder::new()
-                .spawn_scoped(s, || check::dry_run(units, programs, &opts.machine))
-                .ok(),
+            true => std::thread::Builder::new().spawn_scoped(s, dry_run).ok(),
             false => None,
         };
         let files = source_files(units);
@@ -123,7 +128,7 @@ fn lower_and_check(
                 Err(_) if failed => None,
                 Err(panic) => std::panic::resume_unwind(panic),
             },
-            None if dry && !failed => check::dry_run(units, programs, &opts.machine),
+            None if !failed => dry_run(),
             None => None,
         };
         diags.extend(found.filter(|_| !failed));
@@ -148,7 +153,7 @@ fn source_files(units: &[Unit]) -> Vec<SourceFile> {
         .collect()
 }
 
-/// Blocks from which a static program is dry-run on a thread of its own,
+/// Blocks from which a program is dry-run on a thread of its own,
 /// beside the lowering (below, a thread costs more than it saves).
 const PARALLEL_BLOCKS: usize = 10_000;
 
