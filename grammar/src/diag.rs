@@ -113,7 +113,8 @@ impl SourceFile {
     /// [`SourceFile::line_col`] for offsets asked for in source order:
     /// `hint` is the line index of the previous answer (0 at first), and
     /// the offset is nearly always on that line or the next, which needs
-    /// no search.
+    /// no search. (Inline: the compiler asks for every word.)
+    #[inline]
     pub fn line_col_near(&self, offset: u32, hint: &mut usize) -> (usize, usize) {
         let at = offset as usize;
         let line = [*hint, *hint + 1]
@@ -128,6 +129,7 @@ impl SourceFile {
     }
 
     /// Whether byte `at` lies on line index `i` (the last line runs on).
+    #[inline]
     fn on_line(&self, at: usize, i: usize) -> bool {
         let starts = &self.line_starts;
         starts.get(i).is_some_and(|&s| s <= at) && starts.get(i + 1).is_none_or(|&e| at < e)
