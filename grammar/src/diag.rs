@@ -5,6 +5,7 @@ use crate::span::Span;
 use codespan_reporting::diagnostic as cs;
 use codespan_reporting::files::SimpleFile;
 use codespan_reporting::term;
+use std::sync::OnceLock;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
@@ -73,29 +74,19 @@ impl Diagnostic {
 /// printable one byte for one character, so byte offsets stay valid.
 pub struct SourceFile {
     pub name: String,
-    text: String,
+    bytes: Vec<u8>,
+    /// The printable text, made when first rendered: most compilations
+    /// render nothing, and only need line numbers.
+    text: OnceLock<String>,
     line_starts: Vec<usize>,
 }
 
 impl SourceFile {
     pub fn new(name: impl Into<String>, bytes: &[u8]) -> SourceFile {
-        // Byte for byte (a loop the compiler vectorizes); every byte is
-        // ASCII afterwards, so the text is valid UTF-8.
-        let printable: Vec<u8> = bytes
-            .iter()
-            .map(|&b| {
-                if b.is_ascii() && (b >= b' ' || b == b'\n' || b == b'\r' || b == b'\t') {
-                    b
-                } else {
-                    b'?'
-                }
-            })
-            .collect();
-        let text = String::from_utf8(printable)
-            .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned());
         SourceFile {
             name: name.into(),
-            text,
+            bytes: bytes.to_vec(),
+            text: OnceLock::new(),
             line_starts: line_starts(bytes),
         }
     }
@@ -136,7 +127,7 @@ impl SourceFile {
     }
 
     pub fn text(&self) -> &str {
-        &self.text
+        self.text.get_or_init(|| printable(&self.bytes))
     }
 
     /// The one-line gcc-style header of a diagnostic.
@@ -161,8 +152,8 @@ impl SourceFile {
     }
 
     fn snippet(&self, d: &Diagnostic) -> String {
-        let file = SimpleFile::new(self.name.as_str(), self.text.as_str());
-        let len = self.text.len();
+        let file = SimpleFile::new(self.name.as_str(), self.text());
+        let len = self.text().len();
         let start = (d.span.start as usize).min(len);
         let end = (d.span.end as usize).clamp(start, len);
         let mut notes = d.notes.clone();
@@ -213,6 +204,22 @@ impl SourceFile {
             d.span.end
         )
     }
+}
+
+/// The bytes made printable one for one: every byte is ASCII afterwards,
+/// so the text is valid UTF-8.
+fn printable(bytes: &[u8]) -> String {
+    let ascii: Vec<u8> = bytes
+        .iter()
+        .map(|&b| {
+            if b.is_ascii() && (b >= b' ' || b == b'\n' || b == b'\r' || b == b'\t') {
+                b
+            } else {
+                b'?'
+            }
+        })
+        .collect();
+    String::from_utf8(ascii).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
 }
 
 /// The offset of every line start: 0, and after each LF, CR LF or lone CR
