@@ -1,6 +1,6 @@
 //! Parses or compiles one generated program, for profiling the compiler
 //! under callgrind or perf, and prints the fastest of `runs` timings:
-//! `compile [short|arcs|moves] [blocks] [parse|compile] [runs]`.
+//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile] [runs]`.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -14,6 +14,9 @@ fn main() {
     let src = match kind {
         "arcs" => benches::arcs(blocks),
         "moves" => benches::moves(blocks),
+        path if path.starts_with("file:") => {
+            std::fs::read_to_string(&path[5..]).unwrap_or_default()
+        }
         _ => benches::short_segments(blocks),
     };
     let mut best = Duration::MAX;
