@@ -1,7 +1,8 @@
-//! Shared helpers of the criterion benches: generated programs and a sink
-//! that only counts.
+//! Shared helpers of the criterion benches (and of the profiling example):
+//! generated programs and a sink that only counts.
 
 use nc::{Event, Sink};
+use std::fmt::Write;
 
 /// A generated program of `n` G01 blocks zig-zagging over a shaft.
 pub fn moves(n: usize) -> String {
@@ -31,4 +32,63 @@ pub fn build(src: &str) -> isa::Module {
     let c = compiler::compile("bench.nc", src.as_bytes(), &compiler::Options::default());
     assert!(!c.has_errors(), "{}", c.render());
     c.module.expect("a module")
+}
+
+/// A small deterministic generator, so every run makes the same program.
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        self.0 >> 33
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() % 1_000_000) as f64 / 1_000_000.0
+    }
+}
+
+/// A CAM-style contour: 0.05–0.25 mm segments turning a few degrees at
+/// a time, at F2000 mm/min (G98).
+pub fn short_segments(n: usize) -> String {
+    let mut g = Lcg(7);
+    let mut s = String::with_capacity(n * 24);
+    s.push_str("O0001\nG98 G01 F2000\n");
+    let (mut r, mut z, mut a) = (20.0f64, 0.0f64, -1.6f64);
+    for _ in 0..n {
+        a += (g.unit() - 0.5) * 0.2;
+        a = a.clamp(-2.8, -0.3);
+        let l = 0.05 + 0.2 * g.unit();
+        r = (r + l * a.sin()).clamp(1.0, 60.0);
+        z += l * a.cos() - 0.01;
+        let _ = writeln!(s, "X{:.3} Z{:.3}", 2.0 * r, z);
+    }
+    s.push_str("M30\n");
+    s
+}
+
+/// Quarter arcs of 1–6 mm radius, alternating G02/G03, at F1500.
+pub fn arcs(n: usize) -> String {
+    let mut g = Lcg(11);
+    let mut s = String::with_capacity(n * 28);
+    s.push_str("O0002\nG98 G01 X40 Z0 F1500\n");
+    let (r, mut z) = (20.0f64, 0.0f64);
+    let mut up = true;
+    let mut rad = 1.0;
+    for _ in 0..n {
+        // Out by the radius in X and back, Z down by it each time: a
+        // pair of tangent quarter arcs.
+        if up {
+            rad = 1.0 + 5.0 * g.unit();
+        }
+        let nr = if up { r + rad } else { r };
+        z -= rad;
+        let code = if up { "G02" } else { "G03" };
+        let _ = writeln!(s, "{code} X{:.3} Z{:.3} R{rad:.3}", 2.0 * nr, z);
+        up = !up;
+    }
+    s.push_str("M30\n");
+    s
 }

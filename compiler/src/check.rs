@@ -8,11 +8,12 @@ use grammar::ast::{Body, Value};
 use grammar::{Diagnostic, Span};
 use nc::words::Word;
 use nc::{Event, Machine, Nc, NcError, Sink};
+use smallvec::SmallVec;
 
 /// Checks the literal words of a block (a computed word is checked when
 /// it runs).
 pub fn literal_block(m: &Machine, ws: &[NcWord<'_>]) -> Result<(), NcError> {
-    let lits: Vec<Word> = literal_words(ws);
+    let lits = literal_words(ws);
     let p = nc::block::parse(&lits, m)?;
     if let Some(t) = p.get(b'T') {
         let t = nc::block::round_half_away(t).max(0.0) as u32;
@@ -21,12 +22,29 @@ pub fn literal_block(m: &Machine, ws: &[NcWord<'_>]) -> Result<(), NcError> {
     Ok(())
 }
 
-fn literal_words(ws: &[NcWord<'_>]) -> Vec<Word> {
+/// The literal words of a block, as the kernel takes them (inline: one
+/// block's worth, built for every block).
+pub(crate) fn literal_words(ws: &[NcWord<'_>]) -> SmallVec<[Word; 8]> {
     ws.iter()
         .filter_map(|w| match w.value {
             WordValue::Literal(v, flags) => Some(Word {
                 addr: w.addr,
                 value: v,
+                flags,
+            }),
+            WordValue::Expr(_) => None,
+        })
+        .collect()
+}
+
+/// The literal words of a block that calls nothing: what
+/// `literal_words(&classify(ws).nc)` gives then, without sorting first.
+fn plain_literals(ws: &[grammar::ast::Word]) -> SmallVec<[Word; 8]> {
+    ws.iter()
+        .filter_map(|w| match words::value_of(w) {
+            WordValue::Literal(value, flags) => Some(Word {
+                addr: words::addr_code(w.addr),
+                value,
                 flags,
             }),
             WordValue::Expr(_) => None,
@@ -114,12 +132,18 @@ impl DryRun<'_> {
             if self.steps > STEP_LIMIT {
                 return Ok(Flow::End);
             }
-            let Ok(split) = words::classify(ws) else {
-                return Ok(Flow::End);
+            let (lits, call, resume) = if words::may_call(ws) || crate::profile::names_cycle(ws) {
+                let Ok(split) = words::classify(ws) else {
+                    return Ok(Flow::End);
+                };
+                // A G70–G73 cycle gets its profile; G71–G73 go on after nf.
+                let resume =
+                    crate::profile::hand_over(&mut self.nc, unit, prog, &split.nc, &self.skip);
+                (literal_words(&split.nc), split.call, resume)
+            } else {
+                // Most blocks: no call, no cycle, every word an NC word.
+                (plain_literals(ws), None, None)
             };
-            let lits = literal_words(&split.nc);
-            // A G70–G73 cycle gets its profile; G71–G73 go on after nf.
-            let resume = crate::profile::hand_over(&mut self.nc, unit, prog, &split.nc, &self.skip);
             if !lits.is_empty() {
                 match self.nc.exec(&lits, &mut Discard) {
                     Ok(out) if out.end.is_some() => return Ok(Flow::End),
@@ -132,7 +156,7 @@ impl DryRun<'_> {
                 }
             }
             next = resume.unwrap_or(next);
-            match split.call {
+            match call {
                 None => {}
                 Some(Call::Sub { p: Some(p), l, .. }) => {
                     // E4035: M98 while nose-radius compensation is on.

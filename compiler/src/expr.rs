@@ -2,12 +2,12 @@
 //! Folding uses the very functions the VM evaluates with (`nc::value`), so
 //! a folded program computes exactly what the unfolded one would.
 
+use crate::hash::IntMap;
 use crate::lower::Gen;
 use grammar::ast::{BinOp, Cond, Expr, Func, LogicOp, RelOp, UnOp};
 use isa::Instr;
 use nc::value::{self, Bin, Rel};
 use nc::NcError;
-use std::collections::HashMap;
 
 /// Register allocation for the statement being compiled: a stack, reset at
 /// every block (no value lives across blocks in a register).
@@ -18,7 +18,7 @@ pub struct ExprGen {
     overflow: bool,
     /// Variables whose value is known at this point of straight-line code
     /// (constant propagation, -O1); NaN is a known vacant value.
-    known: HashMap<u32, f64>,
+    known: IntMap<u32, f64>,
 }
 
 pub fn bin_of(op: BinOp) -> Bin {
@@ -68,11 +68,11 @@ pub fn rel_of(op: RelOp) -> Rel {
 
 /// The value of an expression that reads no variable; `None` when it does.
 pub fn fold(e: &Expr) -> Option<Result<f64, NcError>> {
-    fold_with(e, &HashMap::new())
+    fold_with(e, &IntMap::default())
 }
 
 /// The value of an expression whose variables are all in `known`.
-pub fn fold_with(e: &Expr, known: &HashMap<u32, f64>) -> Option<Result<f64, NcError>> {
+pub fn fold_with(e: &Expr, known: &IntMap<u32, f64>) -> Option<Result<f64, NcError>> {
     let f = |e: &Expr| fold_with(e, known);
     Some(match e {
         Expr::Num(n) => Ok(n.value),
@@ -114,15 +114,18 @@ impl ExprGen {
     }
 
     pub fn forget(&mut self, var: u32) {
-        self.known.remove(&var);
+        // Mostly nothing is known: spare the hashing then.
+        if !self.known.is_empty() {
+            self.known.remove(&var);
+        }
     }
 
-    pub fn snapshot(&self) -> HashMap<u32, f64> {
+    pub fn snapshot(&self) -> IntMap<u32, f64> {
         self.known.clone()
     }
 
     /// After a conditional statement: keep only what it left unchanged.
-    pub fn restore_minus_changes(&mut self, before: HashMap<u32, f64>) {
+    pub fn restore_minus_changes(&mut self, before: IntMap<u32, f64>) {
         let now = std::mem::take(&mut self.known);
         self.known = before
             .into_iter()

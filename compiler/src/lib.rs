@@ -11,6 +11,7 @@ pub mod check;
 pub mod codes;
 pub mod data_setting;
 pub mod expr;
+pub mod hash;
 pub mod link;
 pub mod lower;
 pub mod profile;
@@ -73,21 +74,107 @@ pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
     let mut units = vec![parse_unit(name, bytes.to_vec(), 0, &mut diags)];
     let mut programs = link::split(0, &units[0], &mut diags);
     link_libraries(&mut units, &mut programs, opts, &mut diags);
-    let files: Vec<SourceFile> = units
-        .iter()
-        .map(|u| SourceFile::new(u.name.clone(), &u.bytes))
-        .collect();
-    if diags
-        .iter()
-        .any(|(_, d): &(usize, Diagnostic)| d.is_error())
-    {
+    if has_errors(&diags) {
         return Compiled {
             module: None,
-            files,
+            files: source_files(&units),
             diags,
         };
     }
-    let mut gen = lower::Gen::new(&units, &files, &programs, &opts.machine, opts.optimize);
+    let (files, module) = lower_and_check(&units, &programs, opts, &mut diags);
+    let failed = has_errors(&diags);
+    Compiled {
+        module: (!failed).then_some(module),
+        files,
+        diags,
+    }
+}
+
+/// Lowers the programs, dry-runs a static one and verifies the module;
+/// the source files made on the way.
+///
+/// The dry run needs only the trees: on a large program it runs on a
+/// second thread beside the lowering. Its finding counts only if the
+/// lowering found no error, as when it runs after it.
+fn lower_and_check(
+    units: &[Unit],
+    programs: &[Program],
+    opts: &Options,
+    diags: &mut Vec<(usize, Diagnostic)>,
+) -> (Vec<SourceFile>, isa::Module) {
+    // A static program without G-code macros is dry-run.
+    let dry_run = || {
+        let table = &opts.machine.r#macro.g_code_macros;
+        let wanted =
+            !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
+        wanted
+            .then(|| check::dry_run(units, programs, &opts.machine))
+            .flatten()
+    };
+    let parallel = block_count(programs) >= PARALLEL_BLOCKS;
+    std::thread::scope(|s| {
+        // (Without a second thread, the dry run comes after the lowering.)
+        let early = match parallel {
+            true => std::thread::Builder::new().spawn_scoped(s, dry_run).ok(),
+            false => None,
+        };
+        let files = source_files(units);
+        let module = lower(units, &files, programs, opts, diags);
+        let failed = has_errors(diags);
+        let verified = (!failed).then(|| module.verify());
+        let found = match early {
+            Some(run) => match run.join() {
+                Ok(found) => found,
+                // (A run the sequential order would not have made.)
+                Err(_) if failed => None,
+                Err(panic) => std::panic::resume_unwind(panic),
+            },
+            None if !failed => dry_run(),
+            None => None,
+        };
+        diags.extend(found.filter(|_| !failed));
+        if let (Some(Err(e)), false) = (verified, has_errors(diags)) {
+            diags.push((
+                0,
+                Diagnostic::error(
+                    "E0000",
+                    grammar::Span::default(),
+                    format!("internal error: the generated module does not verify: {e}"),
+                ),
+            ));
+        }
+        (files, module)
+    })
+}
+
+fn source_files(units: &[Unit]) -> Vec<SourceFile> {
+    units
+        .iter()
+        .map(|u| SourceFile::new(u.name.clone(), &u.bytes))
+        .collect()
+}
+
+/// Blocks from which a program is dry-run on a thread of its own,
+/// beside the lowering (below, a thread costs more than it saves).
+const PARALLEL_BLOCKS: usize = 10_000;
+
+fn has_errors(diags: &[(usize, Diagnostic)]) -> bool {
+    diags.iter().any(|(_, d)| d.is_error())
+}
+
+fn block_count(programs: &[Program]) -> usize {
+    programs.iter().map(|p| p.blocks.len()).sum()
+}
+
+/// Lowers every program into a module that names its source files.
+fn lower(
+    units: &[Unit],
+    files: &[SourceFile],
+    programs: &[Program],
+    opts: &Options,
+    diags: &mut Vec<(usize, Diagnostic)>,
+) -> isa::Module {
+    let mut gen = lower::Gen::new(units, files, programs, &opts.machine, opts.optimize);
     gen.lower_all(&opts.defines);
     diags.append(&mut gen.diags);
     let mut module = gen.module;
@@ -98,33 +185,7 @@ pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
             hash: crc32fast::hash(&u.bytes),
         })
         .collect();
-    let failed = diags.iter().any(|(_, d)| d.is_error());
-    let g_macros = uses_g_code_macros(&units, &programs, &opts.machine.r#macro.g_code_macros);
-    if !failed && !g_macros && check::is_static(&units, &programs) {
-        if let Some(d) = check::dry_run(&units, &programs, &opts.machine) {
-            diags.push(d);
-        }
-    }
-    let failed = diags.iter().any(|(_, d)| d.is_error());
-    if !failed {
-        if let Err(e) = module.verify() {
-            let span = grammar::Span::default();
-            diags.push((
-                0,
-                Diagnostic::error(
-                    "E0000",
-                    span,
-                    format!("internal error: the generated module does not verify: {e}"),
-                ),
-            ));
-        }
-    }
-    let failed = diags.iter().any(|(_, d)| d.is_error());
-    Compiled {
-        module: (!failed).then_some(module),
-        files,
-        diags,
-    }
+    module
 }
 
 fn parse_unit(
@@ -169,6 +230,8 @@ fn targets(unit: &Unit, prog: &Program, table: &[u32; 10]) -> Vec<u32> {
         };
         let split = match words::g_code_macro(ws, table, prog.number) {
             Some(call) => call,
+            // Most blocks call nothing: no need to sort their words.
+            None if !words::may_call(ws) => continue,
             None => words::classify(ws),
         };
         let Ok(split) = split else {
@@ -226,5 +289,37 @@ fn link_libraries(
             programs.extend(found);
         }
         i += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{compile, Options, PARALLEL_BLOCKS};
+
+    /// A static program of more than `PARALLEL_BLOCKS` blocks, `first`
+    /// after the set-up block, an arc of too small a radius at the end.
+    fn large(first: &str) -> String {
+        let mut src = format!("G98 G00 X40 Z2\n{first}\n");
+        for _ in 0..PARALLEL_BLOCKS {
+            src.push_str("G01 X40 Z1\n");
+        }
+        src.push_str("G02 X30 Z-20 R1\nM30\n");
+        src
+    }
+
+    fn codes(src: &str) -> Vec<(&'static str, usize)> {
+        let c = compile("t.nc", src.as_bytes(), &Options::default());
+        c.diags
+            .iter()
+            .map(|(f, d)| (d.code, c.files[*f].line_col(d.span.start).0))
+            .collect()
+    }
+
+    #[test]
+    fn the_dry_run_beside_the_lowering_reports_as_after_it() {
+        let end = PARALLEL_BLOCKS + 3;
+        assert_eq!(codes(&large("G01 X40 Z1")), [("E4001", end)]);
+        // A lowering error: the dry run's finding does not count.
+        assert_eq!(codes(&large("G01 X40 X41")), [("E1011", 2)]);
     }
 }

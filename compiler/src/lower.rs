@@ -5,13 +5,13 @@
 //! arithmetic and jumps; M98/M99/G65/G66 become calls and returns.
 
 use crate::expr::ExprGen;
+use crate::hash::IntMap;
 use crate::link::{self, Program, Unit};
 use crate::words::{self, Call, WordValue};
 use grammar::ast::{Block, Body, Cond, Expr, Stmt};
 use grammar::{Diagnostic, SourceFile, Span};
 use isa::{Instr, Module, SourceLoc};
 use nc::Machine;
-use std::collections::HashMap;
 
 /// A diagnostic with the index of its unit (source file).
 pub type FileDiag = (usize, Diagnostic);
@@ -23,10 +23,13 @@ pub struct Gen<'a> {
     pub machine: &'a Machine,
     pub optimize: bool,
     pub module: Module,
-    consts: HashMap<u64, u32>,
+    consts: IntMap<u64, u32>,
     pub diags: Vec<FileDiag>,
     pub unit: usize,
     loc: SourceLoc,
+    /// The line index of the last location, where the next one is looked
+    /// for first (see `SourceFile::line_col_near`).
+    line_hint: usize,
     pub expr: ExprGen,
     /// The number of the program being lowered.
     program_number: u32,
@@ -80,10 +83,11 @@ impl<'a> Gen<'a> {
             machine,
             optimize,
             module,
-            consts: HashMap::new(),
+            consts: IntMap::default(),
             diags: Vec::new(),
             unit: 0,
             loc: SourceLoc::default(),
+            line_hint: 0,
             expr: ExprGen::default(),
             program_number: 0,
             profiles: Default::default(),
@@ -128,7 +132,7 @@ impl<'a> Gen<'a> {
     }
 
     pub(crate) fn set_loc(&mut self, span: Span) {
-        let (line, col) = self.files[self.unit].line_col(span.start);
+        let (line, col) = self.files[self.unit].line_col_near(span.start, &mut self.line_hint);
         self.loc = SourceLoc {
             file: self.unit as u16,
             line: line as u32,
@@ -614,8 +618,7 @@ fn ends_explicitly(unit: &Unit, prog: &Program) -> bool {
         return false;
     };
     match &last.body {
-        Body::Stmt(Stmt::Goto { .. }) => true,
-        Body::Stmt(_) => false,
+        Body::Stmt(s) => matches!(**s, Stmt::Goto { .. }),
         Body::Words(ws) => ws.iter().any(|w| {
             w.addr == grammar::ast::Addr::Letter('M')
                 && matches!(words::value_of(w).literal(), Some(m) if [2.0, 30.0, 99.0].contains(&m))

@@ -18,9 +18,9 @@ use grammar::Span;
 use isa::Instr;
 use nc::block::round_half_away;
 use nc::gcode;
-use nc::words::{addr, Word, COMMA_A, LITERAL, NO_POINT};
+use nc::words::{addr, COMMA_A, LITERAL, NO_POINT};
 use nc::Nc;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 
 /// `Exec` flag of a profile block (the VM's `vm::PROFILE`).
 pub const PROFILE: u8 = 1;
@@ -33,8 +33,10 @@ const MAX_BLOCKS: usize = 100;
 pub struct Profiles {
     /// The block being lowered: (unit, line).
     current: Option<(usize, usize)>,
-    /// The pc at which each block's code starts, by (unit, line).
-    starts: HashMap<(usize, usize), u32>,
+    /// The pc at which each block of the program being lowered starts, as
+    /// (line, pc) in line order: a cycle's jump past nf stays in its own
+    /// program, and a vector is filled far faster than a map.
+    starts: Vec<(usize, u32)>,
     /// Jumps after a cycle block, with the line of the block after nf
     /// (`None`: nf is the program's last block).
     pending: Vec<(usize, Option<usize>)>,
@@ -60,11 +62,20 @@ fn letter(w: &NcWord<'_>, l: u8) -> bool {
 
 fn literal_g(w: &NcWord<'_>) -> Option<u16> {
     match w.value {
-        WordValue::Literal(v, _) if letter(w, b'G') => {
-            Some(round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16)
-        }
+        WordValue::Literal(v, _) if letter(w, b'G') => Some(words::round_g(v)),
         _ => None,
     }
+}
+
+/// Whether any word of a block is a literal G70–G73. Without one, the
+/// block's NC words hold none either (they are a subset), so most blocks
+/// need not be sorted to tell that they are no cycle block.
+pub(crate) fn names_cycle(ws: &[grammar::ast::Word]) -> bool {
+    ws.iter().any(|w| {
+        let g = w.addr == grammar::ast::Addr::Letter('G');
+        let code = words::value_of(w).literal();
+        g && code.is_some_and(|v| matches!(words::round_g(v), 700 | 710 | 720 | 730))
+    })
 }
 
 fn cycle_words(ws: &[NcWord<'_>]) -> Option<CycleWords> {
@@ -147,7 +158,7 @@ pub fn block_start(gen: &mut Gen<'_>, line: usize) {
     let key = (gen.unit, line);
     let pc = gen.pc();
     gen.profiles.current = Some(key);
-    gen.profiles.starts.insert(key, pc);
+    gen.profiles.starts.push((line, pc));
     if gen.profiles.pending.is_empty() {
         return;
     }
@@ -172,6 +183,7 @@ pub fn program_end(gen: &mut Gen<'_>, prog: &Program) {
     for (at, _) in std::mem::take(&mut gen.profiles.pending) {
         patch(gen, at, pc);
     }
+    gen.profiles.starts.clear();
     shared_numbers(gen, prog);
 }
 
@@ -243,13 +255,18 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
 pub fn after_exec(gen: &mut Gen<'_>, after: Option<After>) {
     let Some(after) = after else { return };
     let at = gen.emit(Instr::Jump { target: 0 });
-    match after
-        .resume
-        .and_then(|l| gen.profiles.starts.get(&(gen.unit, l)).copied())
-    {
+    match after.resume.and_then(|l| block_pc(&gen.profiles, l)) {
         Some(pc) => patch(gen, at, pc),
         None => gen.profiles.pending.push((at, after.resume)),
     }
+}
+
+/// The pc where the code of `line`, a block of this program lowered
+/// already, starts.
+fn block_pc(profiles: &Profiles, line: usize) -> Option<u32> {
+    let starts = &profiles.starts;
+    let i = starts.binary_search_by_key(&line, |&(l, _)| l).ok()?;
+    Some(starts[i].1)
 }
 
 /// The profile blocks as `Word`/`WordK` + `Exec { flags: PROFILE }`.
@@ -470,6 +487,9 @@ fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(u16, (usize, usize))> {
             continue;
         };
         let Body::Words(ws) = &b.body else { continue };
+        if !names_cycle(ws) {
+            continue;
+        }
         let Ok(split) = words::classify(ws) else {
             continue;
         };
@@ -507,18 +527,7 @@ pub fn hand_over(
         let Ok(split) = words::classify(bw) else {
             continue;
         };
-        let lits: Vec<Word> = split
-            .nc
-            .iter()
-            .filter_map(|w| match w.value {
-                WordValue::Literal(value, flags) => Some(Word {
-                    addr: w.addr,
-                    value,
-                    flags,
-                }),
-                WordValue::Expr(_) => None,
-            })
-            .collect();
+        let lits = crate::check::literal_words(&split.nc);
         if !lits.is_empty() {
             nc.push_profile(&lits, l as u32);
         }

@@ -5,6 +5,7 @@ use grammar::ast::{Addr, Expr, Value, Word};
 use grammar::{Diagnostic, Span};
 use nc::block::round_half_away;
 use nc::words::{COMMA_A, COMMA_C, COMMA_R, LITERAL, NO_POINT};
+use smallvec::SmallVec;
 
 /// A word value: a literal (with its flags) or an expression.
 #[derive(Debug, Clone, Copy)]
@@ -82,8 +83,12 @@ pub struct Arg<'a> {
     pub length: bool,
 }
 
+/// The NC words of a block: most blocks have a few, kept inline so that
+/// sorting a block's words (done by several passes) allocates nothing.
+pub type NcWords<'a> = SmallVec<[NcWord<'a>; 8]>;
+
 pub struct Split<'a> {
-    pub nc: Vec<NcWord<'a>>,
+    pub nc: NcWords<'a>,
     pub call: Option<Call<'a>>,
 }
 
@@ -139,8 +144,41 @@ fn arg_var_i(letter: char) -> Option<u8> {
     })
 }
 
+fn nc_word(w: &Word) -> NcWord<'_> {
+    NcWord {
+        addr: addr_code(w.addr),
+        value: value_of(w),
+        span: w.span,
+    }
+}
+
+/// M98, M99 and M9000–M9999: the M codes that call or return.
+fn calls_m(m: f64) -> bool {
+    let m = round_half_away(m);
+    m == 98.0 || m == 99.0 || (9000.0..=9999.0).contains(&m)
+}
+
+/// Whether [`classify`] may find a call or return in a block: only with a
+/// literal G65, G66, G67 or a calling M code. For every other block it
+/// finds none, and the NC words are all the block's words. (G-code macros
+/// are [`g_code_macro`]'s.)
+pub fn may_call(words: &[Word]) -> bool {
+    words.iter().any(|w| match (w.addr, literal_code(w)) {
+        (Addr::Letter('G'), Some(g)) => matches!(round_g(g), 650 | 660 | 670),
+        (Addr::Letter('M'), Some(m)) => calls_m(m),
+        _ => false,
+    })
+}
+
 /// Splits a block's words.
 pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
+    if !may_call(words) {
+        // Most blocks: one scan tells there is no call.
+        return Ok(Split {
+            nc: words.iter().map(nc_word).collect(),
+            call: None,
+        });
+    }
     let first_g = words.iter().find(|w| is(w, 'G'));
     let g65_like = first_g.and_then(literal_code).map(round_g);
     if let Some(g) = g65_like.filter(|g| *g == 650 || *g == 660) {
@@ -152,26 +190,15 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
         && words.len() == 1
     {
         return Ok(Split {
-            nc: Vec::new(),
+            nc: NcWords::new(),
             call: Some(Call::ModalCancel),
         });
     }
-    let m_call = words.iter().find(|w| {
-        is(w, 'M')
-            && literal_code(w).is_some_and(|m| {
-                let m = round_half_away(m);
-                m == 98.0 || m == 99.0 || (9000.0..=9999.0).contains(&m)
-            })
-    });
+    let m_call = words
+        .iter()
+        .find(|w| is(w, 'M') && literal_code(w).is_some_and(calls_m));
     let Some(mw) = m_call else {
-        let nc = words
-            .iter()
-            .map(|w| NcWord {
-                addr: addr_code(w.addr),
-                value: value_of(w),
-                span: w.span,
-            })
-            .collect();
+        let nc = words.iter().map(nc_word).collect();
         return Ok(Split { nc, call: None });
     };
     let m = literal_code(mw).map(round_half_away).unwrap_or(0.0) as u32;
@@ -198,11 +225,7 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
         .iter()
         .filter(|w| !std::ptr::eq(*w, mw))
         .filter(|w| !consumed.iter().any(|&c| is(w, c)))
-        .map(|w| NcWord {
-            addr: addr_code(w.addr),
-            value: value_of(w),
-            span: w.span,
-        })
+        .map(nc_word)
         .collect();
     Ok(Split {
         nc,
@@ -237,7 +260,8 @@ pub fn g_code_macro<'a>(
     }))
 }
 
-fn round_g(v: f64) -> u16 {
+/// A G value as the kernel codes it: tenths (`G6.2` → 62).
+pub(crate) fn round_g(v: f64) -> u16 {
     round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16
 }
 
@@ -280,7 +304,7 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
             ));
         }
         return Ok(Split {
-            nc: Vec::new(),
+            nc: NcWords::new(),
             call: Some(Call::MacroA {
                 h: value_of(h),
                 p: find('P'),
@@ -355,7 +379,7 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
         }
     }
     Ok(Split {
-        nc: Vec::new(),
+        nc: NcWords::new(),
         call: Some(Call::Macro {
             modal,
             p,

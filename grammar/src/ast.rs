@@ -71,7 +71,9 @@ pub enum Body {
     /// NC words (possibly none: a block of only a sequence number or only
     /// comments).
     Words(Vec<Word>),
-    Stmt(Stmt),
+    /// Boxed: statements are rare and large, and every line of the tree
+    /// is as large as its largest kind.
+    Stmt(Box<Stmt>),
 }
 
 /// An address letter (or a Fanuc comma word) and its value.

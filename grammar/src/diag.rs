@@ -5,6 +5,7 @@ use crate::span::Span;
 use codespan_reporting::diagnostic as cs;
 use codespan_reporting::files::SimpleFile;
 use codespan_reporting::term;
+use std::sync::OnceLock;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
@@ -73,34 +74,20 @@ impl Diagnostic {
 /// printable one byte for one character, so byte offsets stay valid.
 pub struct SourceFile {
     pub name: String,
-    text: String,
+    bytes: Vec<u8>,
+    /// The printable text, made when first rendered: most compilations
+    /// render nothing, and only need line numbers.
+    text: OnceLock<String>,
     line_starts: Vec<usize>,
 }
 
 impl SourceFile {
     pub fn new(name: impl Into<String>, bytes: &[u8]) -> SourceFile {
-        let text: String = bytes
-            .iter()
-            .map(|&b| {
-                if b.is_ascii() && (b >= b' ' || b == b'\n' || b == b'\r' || b == b'\t') {
-                    b as char
-                } else {
-                    '?'
-                }
-            })
-            .collect();
-        let mut line_starts = vec![0];
-        for (i, b) in bytes.iter().enumerate() {
-            // A lone CR ends a line too (dialect.md §1.3).
-            let ends = *b == b'\n' || (*b == b'\r' && bytes.get(i + 1) != Some(&b'\n'));
-            if ends {
-                line_starts.push(i + 1);
-            }
-        }
         SourceFile {
             name: name.into(),
-            text,
-            line_starts,
+            bytes: bytes.to_vec(),
+            text: OnceLock::new(),
+            line_starts: line_starts(bytes),
         }
     }
 
@@ -114,8 +101,33 @@ impl SourceFile {
         (line + 1, offset - self.line_starts[line] + 1)
     }
 
+    /// [`SourceFile::line_col`] for offsets asked for in source order:
+    /// `hint` is the line index of the previous answer (0 at first), and
+    /// the offset is nearly always on that line or the next, which needs
+    /// no search. (Inline: the compiler asks for every word.)
+    #[inline]
+    pub fn line_col_near(&self, offset: u32, hint: &mut usize) -> (usize, usize) {
+        let at = offset as usize;
+        let line = [*hint, *hint + 1]
+            .into_iter()
+            .find(|&i| self.on_line(at, i))
+            .unwrap_or_else(|| match self.line_starts.binary_search(&at) {
+                Ok(i) => i,
+                Err(i) => i - 1,
+            });
+        *hint = line;
+        (line + 1, at - self.line_starts[line] + 1)
+    }
+
+    /// Whether byte `at` lies on line index `i` (the last line runs on).
+    #[inline]
+    fn on_line(&self, at: usize, i: usize) -> bool {
+        let starts = &self.line_starts;
+        starts.get(i).is_some_and(|&s| s <= at) && starts.get(i + 1).is_none_or(|&e| at < e)
+    }
+
     pub fn text(&self) -> &str {
-        &self.text
+        self.text.get_or_init(|| printable(&self.bytes))
     }
 
     /// The one-line gcc-style header of a diagnostic.
@@ -140,8 +152,8 @@ impl SourceFile {
     }
 
     fn snippet(&self, d: &Diagnostic) -> String {
-        let file = SimpleFile::new(self.name.as_str(), self.text.as_str());
-        let len = self.text.len();
+        let file = SimpleFile::new(self.name.as_str(), self.text());
+        let len = self.text().len();
         let start = (d.span.start as usize).min(len);
         let end = (d.span.end as usize).clamp(start, len);
         let mut notes = d.notes.clone();
@@ -194,6 +206,35 @@ impl SourceFile {
     }
 }
 
+/// The bytes made printable one for one: every byte is ASCII afterwards,
+/// so the text is valid UTF-8.
+fn printable(bytes: &[u8]) -> String {
+    let ascii: Vec<u8> = bytes
+        .iter()
+        .map(|&b| {
+            if b.is_ascii() && (b >= b' ' || b == b'\n' || b == b'\r' || b == b'\t') {
+                b
+            } else {
+                b'?'
+            }
+        })
+        .collect();
+    String::from_utf8(ascii).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+}
+
+/// The offset of every line start: 0, and after each LF, CR LF or lone CR
+/// (a lone CR ends a line too, dialect.md §1.3).
+fn line_starts(bytes: &[u8]) -> Vec<usize> {
+    let mut starts = vec![0];
+    for end in memchr::memchr2_iter(b'\n', b'\r', bytes) {
+        // The CR of a CR LF is no line end of its own: its LF is.
+        if bytes[end] == b'\n' || bytes.get(end + 1) != Some(&b'\n') {
+            starts.push(end + 1);
+        }
+    }
+    starts
+}
+
 fn json_string(s: &str) -> String {
     let mut out = String::from("\"");
     for c in s.chars() {
@@ -206,4 +247,25 @@ fn json_string(s: &str) -> String {
     }
     out.push('"');
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SourceFile;
+
+    /// The hinted lookup gives what the search gives, in order, backwards
+    /// and jumping about, over every kind of line end.
+    #[test]
+    fn line_col_near_equals_line_col() {
+        let src = b"G01 X1\r\nX2\rX3\n\nX4 (a)\r\r\nX5";
+        let f = SourceFile::new("t.nc", src);
+        let offsets: Vec<u32> = (0..=src.len() as u32 + 2)
+            .chain((0..=src.len() as u32).rev())
+            .chain([3, 20, 1, 27, 9, 0])
+            .collect();
+        let mut hint = 0;
+        for at in offsets {
+            assert_eq!(f.line_col_near(at, &mut hint), f.line_col(at), "at {at}");
+        }
+    }
 }

@@ -25,22 +25,81 @@ use std::ops::Range;
 /// failed batch (parsed again block by block) costs little.
 const BATCH: usize = 64;
 
+/// Inputs from this size are parsed in two halves, one on a second
+/// thread: below it, a thread costs more than it saves.
+const SPLIT_BYTES: usize = 256 * 1024;
+
 /// Parses a whole file. See [`crate::parse`].
 pub fn parse(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
-    run(src, true)
+    let limit = end_of_input(src);
+    match split_point(src, limit).filter(|_| limit >= SPLIT_BYTES) {
+        Some(mid) => run_halves(src, mid, limit),
+        None => run(src, 0, limit, true),
+    }
 }
 
 /// Parses every block alone, without batches or word runs: the plain path
 /// that the batched one must equal (tests compare them).
 #[cfg(test)]
 pub fn parse_unbatched(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
-    run(src, false)
+    run(src, 0, end_of_input(src), false)
 }
 
-fn run(src: &[u8], batched: bool) -> (Ast, Vec<Diagnostic>) {
+/// Parses in two halves whatever the size (tests compare with `parse`).
+#[cfg(test)]
+pub fn parse_in_halves(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
+    let limit = end_of_input(src);
+    match split_point(src, limit) {
+        Some(mid) => run_halves(src, mid, limit),
+        None => run(src, 0, limit, true),
+    }
+}
+
+/// Where the input ends: a Ctrl-Z as the very last byte is the DOS
+/// end-of-file mark.
+fn end_of_input(src: &[u8]) -> usize {
+    match src.last() {
+        Some(0x1A) => src.len() - 1,
+        _ => src.len(),
+    }
+}
+
+/// The start of a line near the middle: just after the first LF from
+/// there. Every LF ends a line (comments and blocks stop at it), and
+/// nothing carries over from one line to the next but the line count,
+/// which only tells lines apart; so the two halves parse exactly as the
+/// whole does, one after the other.
+fn split_point(src: &[u8], limit: usize) -> Option<usize> {
+    let half = limit / 2;
+    let lf = memchr::memchr(b'\n', &src[half..limit])?;
+    Some(half + lf + 1).filter(|&mid| mid < limit)
+}
+
+/// Parses `..mid` here and `mid..limit` on a second thread, and joins the
+/// two in order.
+/// (Without a second thread, the second half is parsed after the first.)
+fn run_halves(src: &[u8], mid: usize, limit: usize) -> (Ast, Vec<Diagnostic>) {
+    let ((mut ast, mut diags), (rest, more)) = std::thread::scope(|s| {
+        let second = std::thread::Builder::new().spawn_scoped(s, || run(src, mid, limit, true));
+        let first = run(src, 0, mid, true);
+        let second = match second {
+            Ok(thread) => thread
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+            Err(_) => run(src, mid, limit, true),
+        };
+        (first, second)
+    });
+    ast.lines.extend(rest.lines);
+    diags.extend(more);
+    (ast, diags)
+}
+
+/// Parses the lines of `src[start..limit]` (`start` a line start).
+fn run(src: &[u8], start: usize, limit: usize, batched: bool) -> (Ast, Vec<Diagnostic>) {
     // About one syntax-tree line per LF: counting is cheap and saves growing
     // (copying) a large vector again and again.
-    let newlines = src.iter().filter(|&&b| b == b'\n').count();
+    let newlines = memchr::memchr_iter(b'\n', &src[start..limit]).count();
     let mut driver = Driver {
         src,
         compactor: Compactor::default(),
@@ -58,12 +117,7 @@ fn run(src: &[u8], batched: bool) -> (Ast, Vec<Diagnostic>) {
         parser: BatchParser::new(),
         batched,
     };
-    // A Ctrl-Z as the very last byte is the DOS end-of-file mark.
-    let limit = match src.last() {
-        Some(0x1A) => src.len() - 1,
-        _ => src.len(),
-    };
-    let mut pos = 0;
+    let mut pos = start;
     while pos < limit {
         pos = driver.line(pos, limit);
         driver.line_no += 1;
@@ -426,7 +480,7 @@ impl Driver<'_> {
                 return;
             }
             Parsed::Words { delete, seq, words } => (delete, seq, Body::Words(words)),
-            Parsed::Stmt { delete, seq, stmt } => (delete, seq, Body::Stmt(*stmt)),
+            Parsed::Stmt { delete, seq, stmt } => (delete, seq, Body::Stmt(stmt)),
         };
         state.other = true;
         if state.program {
@@ -498,13 +552,15 @@ mod tests {
                 let batched = super::parse(&bytes);
                 let single = super::parse_unbatched(&bytes);
                 assert!(batched == single, "{}", entry.path().display());
+                let halves = super::parse_in_halves(&bytes);
+                assert!(halves == single, "halves: {}", entry.path().display());
                 files += 1;
             }
         }
         assert!(files > 40, "only {files} files");
     }
 
-    const ALPHABET: &[u8] = b"GXZNOF#[]=+-*/.,;()% \n0123456789EQIFTHENGOTODOWHILESIN";
+    const ALPHABET: &[u8] = b"GXZNOF#[]=+-*/.,;()% \n\r0123456789EQIFTHENGOTODOWHILESIN\x1a";
 
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
@@ -514,7 +570,9 @@ mod tests {
         fn batches_equal_single_blocks_on_random_text(
             src in proptest::collection::vec(proptest::sample::select(ALPHABET), 0..300)
         ) {
-            proptest::prop_assert!(super::parse(&src) == super::parse_unbatched(&src));
+            let single = super::parse_unbatched(&src);
+            proptest::prop_assert!(super::parse(&src) == single);
+            proptest::prop_assert!(super::parse_in_halves(&src) == single);
         }
     }
 }

@@ -215,7 +215,7 @@ mod tests {
             [Line::Block(Block {
                 body: Body::Stmt(s),
                 ..
-            })] => s.clone(),
+            })] => (**s).clone(),
             other => panic!("{src}: {other:?}"),
         }
     }
