@@ -83,9 +83,20 @@ impl Parsed {
 /// Rounds half away from zero, as every integer address does (§7.6).
 pub fn round_half_away(v: f64) -> f64 {
     if v < 0.0 {
-        -libm::floor((-v) + 0.5)
+        -floor_non_negative((-v) + 0.5)
     } else {
-        libm::floor(v + 0.5)
+        floor_non_negative(v + 0.5)
+    }
+}
+
+/// `floor` of a value ≥ 0 (or NaN) by an integer cast: this runs for every
+/// G and M word, and `libm::floor` is a software routine. From 2^52 on
+/// every double is an integer already, and NaN stays NaN.
+fn floor_non_negative(y: f64) -> f64 {
+    if y < 4_503_599_627_370_496.0 {
+        (y as u64) as f64
+    } else {
+        y
     }
 }
 
@@ -311,4 +322,48 @@ fn check_foreign(p: &Parsed) -> Result<(), NcError> {
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::round_half_away;
+
+    /// The cast-based rounding agrees with `libm::floor` everywhere,
+    /// halves away from zero, large values and NaN included.
+    #[test]
+    fn round_half_away_matches_floor() {
+        let reference = |v: f64| {
+            if v < 0.0 {
+                -libm::floor(-v + 0.5)
+            } else {
+                libm::floor(v + 0.5)
+            }
+        };
+        let values = [
+            0.0,
+            0.5,
+            1.5,
+            2.5,
+            2.4999,
+            -0.5,
+            -1.5,
+            -2.4999,
+            7.0,
+            321.0,
+            3209.9999,
+            1e15,
+            4.5e15,
+            4_503_599_627_370_495.5,
+            4.6e15,
+            1e300,
+            -1e300,
+        ];
+        for v in values {
+            assert_eq!(round_half_away(v), reference(v), "{v}");
+        }
+        assert_eq!(round_half_away(2.5), 3.0);
+        assert_eq!(round_half_away(-2.5), -3.0);
+        assert!(round_half_away(f64::NAN).is_nan());
+        assert_eq!(round_half_away(f64::INFINITY), f64::INFINITY);
+    }
 }
