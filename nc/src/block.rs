@@ -260,11 +260,12 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     if !m.axes.c.enabled && p.has(b'C') && p.one_shot().is_none() && p.motion() != Some(321) {
         return fail(2005, "this machine has no C axis");
     }
-    let drilling = [830, 840, 870, 880].iter().any(|&c| p.has_g(c));
-    if !m.axes.c.enabled && p.has(b'H') && drilling {
+    // Outside G65 (which never reaches the kernel) H is the incremental C
+    // angle, in a move as in a drilling cycle.
+    if !m.axes.c.enabled && p.has(b'H') {
         return fail(
             2005,
-            "this machine has no C axis (H is the incremental hole angle)",
+            "this machine has no C axis (H is the incremental C angle)",
         );
     }
     if p.val[COMMA_A as usize].is_some() && p.has(b'Q') {

@@ -1,6 +1,6 @@
 //! The optional C axis (dialect.md §2.1, machine.md `[axes.c]`): C is the
 //! absolute angle, H the incremental one, in degrees. Without a C axis
-//! nothing here acts (block.rs gives E2005 for C/H as axis words).
+//! nothing here acts (block.rs gives E2005 for C and H as axis words).
 //!
 //! Where C may move — decided as a GSK/Fanuc lathe with a Cs/C axis does:
 //!
@@ -283,6 +283,9 @@ mod tests {
         assert_eq!(e(&["G7.1 C10"]), 2099);
         assert_eq!(crate::cycles::testing::run_err(&["G12.1"]), 2003);
         assert_eq!(crate::cycles::testing::run_err(&["G00 C10"]), 2005);
+        // H, the incremental C, is no more an axis word there than C is.
+        assert_eq!(crate::cycles::testing::run_err(&["G01 W-5 H10 F100"]), 2005);
+        assert_eq!(crate::cycles::testing::run_err(&["G00 X10", "H10"]), 2005);
     }
 
     #[test]
