@@ -429,25 +429,12 @@ impl Sink for Timer<'_> {
 /// The length of an arc in the ZX view (+Z right, +r up; G02 clockwise);
 /// end = start is a full circle.
 pub fn arc_length(from: Pt, to: Pt, centre: Pt, cw: bool) -> f64 {
-    let tau = 2.0 * core::f64::consts::PI;
-    let angle = |p: Pt| libm::atan2(p.r - centre.r, p.z - centre.z);
-    let (a, b) = (angle(from), angle(to));
-    let mut sweep = modulo(if cw { a - b } else { b - a }, tau);
-    if sweep < 1e-12 {
-        sweep = tau;
-    }
-    sweep * to.dist(centre)
-}
-
-/// `x` mod `m` in 0…m (`f64::rem_euclid` needs std; the kernel is
-/// `no_std`).
-fn modulo(x: f64, m: f64) -> f64 {
-    let r = libm::fmod(x, m);
-    if r < 0.0 {
-        r + m
-    } else {
-        r
-    }
+    crate::contour::elem::length(&crate::geom::Element::Arc {
+        from,
+        to,
+        centre,
+        cw,
+    })
 }
 
 #[cfg(test)]
