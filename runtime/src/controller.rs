@@ -28,7 +28,7 @@ use crate::command::{Command, Feed, Move, MoveKind, Path, Tag};
 use crate::config::{Config, RapidOverride};
 use crate::interpolate::{Engine, RunState, SetPoint};
 use crate::math::V2;
-use crate::planner::Full;
+use crate::planner::{Full, Pushed};
 use crate::plc::{AutoAck, Plc};
 use crate::translate::Translator;
 use alloc::collections::VecDeque;
@@ -327,8 +327,13 @@ impl<P: Plc> Controller<P> {
         loop {
             while let Some(&(c, t)) = self.staged.front() {
                 match self.engine.push(c, t) {
-                    Ok(_) => {
+                    Ok(pushed) => {
                         self.staged.pop_front();
+                        if pushed == Pushed::Empty && is_skip(&c) {
+                            // A G31 of zero length never runs, so no skip
+                            // report will come: it ended where it began.
+                            self.skip_done();
+                        }
                     }
                     Err(Full) => return,
                 }
@@ -431,9 +436,7 @@ impl<P: Plc> Controller<P> {
     /// A G31 move ended: the next block starts where the axes stopped, and
     /// the kernel learns the skip position (#5061/#5062, #995/#996).
     fn after_skip(&mut self, r: crate::interpolate::SkipReport) {
-        if self.vm_state == VmState::Skip {
-            self.vm_state = VmState::Running;
-        }
+        self.skip_done();
         let Some(hit) = r.hit else { return };
         let stop_work = r.stop - r.shift;
         let hit_work = hit - r.shift;
@@ -444,6 +447,13 @@ impl<P: Plc> Controller<P> {
         let vars = self.vm.persistent_mut();
         vars[495] = hit_work.x();
         vars[496] = hit_work.z;
+    }
+
+    /// The G31 move the VM waits for has ended.
+    fn skip_done(&mut self) {
+        if self.vm_state == VmState::Skip {
+            self.vm_state = VmState::Running;
+        }
     }
 
     /// After a reset: a fresh VM at the start of the program, its
@@ -473,6 +483,10 @@ impl<P: Plc> Controller<P> {
         self.stroke = None;
         self.block = 0;
     }
+}
+
+fn is_skip(c: &Command) -> bool {
+    matches!(c, Command::Move(m) if matches!(m.kind, MoveKind::Skip(_)))
 }
 
 /// The power-on work zero of a VM.

@@ -626,3 +626,13 @@ fn g22_stops_the_axes_where_the_path_enters_the_area() {
     let off = enters.replace("G22 X100. Z50. I-10. K-20.", "G23");
     assert_eq!(run(&off).state, RunState::Ended);
 }
+
+/// A G31 without axis words is a skip move of zero length: nothing runs,
+/// so no skip report comes, and the VM must not wait for one.
+#[test]
+fn a_zero_length_g31_does_not_hold_the_program() {
+    let r = run("O0018\nG98 G00 X10 Z5\nG31 F100\nG01 Z0\nM30\n");
+    assert_eq!(r.state, RunState::Ended);
+    let last = r.pts.last().unwrap();
+    assert!((last.z - 0.0).abs() < 1e-9 && (last.x - 10.0).abs() < 1e-9);
+}
