@@ -19,7 +19,7 @@ pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Res
     for (words, tag) in blocks {
         let tag = *tag;
         let p = block::parse(words, &nc.machine).map_err(|e| e.at(tag))?;
-        check_codes(&p, tag)?;
+        check_codes(nc, &p, tag)?;
         let kept: Vec<Word> = words
             .iter()
             .filter(|w| w.addr != addr(b'M'))

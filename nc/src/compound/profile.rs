@@ -89,8 +89,13 @@ pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kin
 }
 
 /// E2020 for the codes a profile may not hold: group 00 and the drilling
-/// cycles (dialect.md §4.8).
-pub fn check_codes(p: &Parsed, tag: u32) -> Result<(), NcError> {
+/// cycles (dialect.md §4.8); E2007 for C/H, since the cycles move X and Z
+/// only (without a C axis, block.rs has refused them already).
+pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
+    if nc.machine.axes.c.enabled && (p.has(b'C') || p.has(b'H')) {
+        let msg = "C/H may not stand in a G70–G73 profile: the cycles move X and Z only";
+        return Err(NcError::new(2007, msg).at(tag));
+    }
     if let Some(code) = p.one_shot() {
         let msg = format!(
             "{} (group 00) may not stand in a G70–G73 profile",
@@ -120,7 +125,7 @@ pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> 
     let mut waiting: Option<(usize, Corner)> = None;
     for (i, (words, tag)) in blocks.iter().enumerate() {
         let p = parse_at(nc, words, *tag)?;
-        check_codes(&p, *tag)?;
+        check_codes(nc, &p, *tag)?;
         if let Some(c) = p.motion() {
             code = c;
         }

@@ -539,3 +539,16 @@ fn g70_applies_corners_and_ignores_one_on_the_nf_block() {
     ];
     assert_eq!(got, want);
 }
+
+#[test]
+fn c_words_in_a_profile_are_refused_where_c_exists() {
+    // The cycles move X and Z only: C/H in a profile block is E2007 at that
+    // block (tag 2), for roughing and finishing alike.
+    let profile = ["G00 X20", "G01 Z-10 C90", "X40"];
+    let mut m = Machine::reference();
+    m.axes.c.enabled = true;
+    for cyc in ["G71 P1 Q3 U0.5 W0.1 F0.2", "G70 P1 Q3"] {
+        let e = cycle(&mut Nc::new(m.clone()), START, cyc, &profile).unwrap_err();
+        assert_eq!((e.code, e.at), (2007, Some(2)), "{cyc}");
+    }
+}
