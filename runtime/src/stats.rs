@@ -17,9 +17,12 @@ pub struct Stats {
     pub thread_mm: f64,
     /// Path length at rapid, mm.
     pub rapid_mm: f64,
+    /// How far the C axis turned, degrees; `None` without a C axis.
+    pub c_deg: Option<f64>,
     /// NC blocks executed.
     pub blocks: u64,
     last: Option<(f64, f64)>,
+    last_c: Option<f64>,
     dt: f64,
 }
 
@@ -53,6 +56,11 @@ impl Stats {
             }
         }
         self.last = Some(now);
+        if let Some(c) = p.c {
+            let turned = self.last_c.map_or(0.0, |l| (c - l).abs());
+            self.c_deg = Some(self.c_deg.unwrap_or(0.0) + turned);
+            self.last_c = Some(c);
+        }
     }
 }
 
@@ -68,6 +76,50 @@ impl fmt::Display for Stats {
             self.cut_mm, self.thread_mm
         )?;
         writeln!(f, "distance rapid: {:.3} mm", self.rapid_mm)?;
+        if let Some(c) = self.c_deg {
+            writeln!(f, "C axis turned: {c:.3} deg")?;
+        }
         writeln!(f, "blocks: {}", self.blocks)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::string::ToString;
+
+    fn point(t: f64, z: f64, c: Option<f64>, motion: Motion) -> SetPoint {
+        SetPoint {
+            time_s: t,
+            x: 20.0,
+            z,
+            axis_x: 20.0,
+            axis_z: z,
+            spindle_rpm: 0.0,
+            spindle_turns: 0.0,
+            c,
+            feed: 0.0,
+            line: 1,
+            motion,
+            tool: 1,
+        }
+    }
+
+    #[test]
+    fn distances_and_c_rotation() {
+        // Z 0 → −3 at feed, then back to −1 at rapid; C 0 → 90 → 45: it
+        // turned 135°.
+        let mut s = Stats::new(0.001);
+        s.add(&point(0.001, 0.0, Some(0.0), Motion::None));
+        s.add(&point(0.002, -3.0, Some(90.0), Motion::Feed));
+        s.add(&point(0.003, -1.0, Some(45.0), Motion::Rapid));
+        assert_eq!((s.cut_mm, s.rapid_mm), (3.0, 2.0));
+        assert_eq!(s.c_deg, Some(135.0));
+        assert!(s.to_string().contains("C axis turned: 135.000 deg"));
+        // Without a C axis there is no C line.
+        let mut s = Stats::new(0.001);
+        s.add(&point(0.001, 0.0, None, Motion::None));
+        assert_eq!(s.c_deg, None);
+        assert!(!s.to_string().contains("C axis"));
     }
 }
