@@ -1,7 +1,11 @@
-//! Parses or compiles one generated program, for profiling the compiler
-//! under callgrind or perf, and prints the fastest of `runs` timings:
-//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile] [runs]`.
+//! Parses, compiles or runs one generated program, for profiling under
+//! callgrind or perf, and prints the fastest of `runs` timings:
+//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile|plan|vm_plan|e2e] [runs]`
+//! (`plan`, `vm_plan` and `e2e` are the `runtime` bench's pipelines).
 
+use benches::pipeline;
+use runtime::planner::Planner;
+use runtime::Config;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -19,14 +23,36 @@ fn main() {
         }
         _ => benches::short_segments(blocks),
     };
+    let mut planner = Planner::new(&Config::default());
+    let cmds = match what {
+        "plan" => pipeline::commands(&src),
+        _ => Vec::new(),
+    };
+    let module = match what {
+        "vm_plan" => Some(benches::build(&src)),
+        _ => None,
+    };
     let mut best = Duration::MAX;
     for _ in 0..runs {
+        let m = module.clone();
         let t0 = Instant::now();
-        if what == "parse" {
-            let (ast, diags) = grammar::parse(black_box(src.as_bytes()));
-            black_box((ast.lines.len(), diags.len()));
-        } else {
-            black_box(benches::build(black_box(&src)).code.len());
+        match (what, m) {
+            ("parse", _) => {
+                let (ast, diags) = grammar::parse(black_box(src.as_bytes()));
+                black_box((ast.lines.len(), diags.len()));
+            }
+            ("plan", _) => {
+                black_box(pipeline::plan_all(&mut planner, black_box(&cmds)));
+            }
+            ("vm_plan", Some(m)) => {
+                black_box(pipeline::vm_plan(m, &mut planner));
+            }
+            ("e2e", _) => {
+                black_box(pipeline::end_to_end(black_box(&src), &mut planner));
+            }
+            _ => {
+                black_box(benches::build(black_box(&src)).code.len());
+            }
         }
         best = best.min(t0.elapsed());
     }

@@ -1,6 +1,8 @@
 //! Shared helpers of the criterion benches (and of the profiling example):
 //! generated programs and a sink that only counts.
 
+pub mod pipeline;
+
 use nc::{Event, Sink};
 use std::fmt::Write;
 

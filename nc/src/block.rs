@@ -83,20 +83,9 @@ impl Parsed {
 /// Rounds half away from zero, as every integer address does (§7.6).
 pub fn round_half_away(v: f64) -> f64 {
     if v < 0.0 {
-        -floor_non_negative((-v) + 0.5)
+        -crate::geom::floor_non_negative((-v) + 0.5)
     } else {
-        floor_non_negative(v + 0.5)
-    }
-}
-
-/// `floor` of a value ≥ 0 (or NaN) by an integer cast: this runs for every
-/// G and M word, and `libm::floor` is a software routine. From 2^52 on
-/// every double is an integer already, and NaN stays NaN.
-fn floor_non_negative(y: f64) -> f64 {
-    if y < 4_503_599_627_370_496.0 {
-        (y as u64) as f64
-    } else {
-        y
+        crate::geom::floor_non_negative(v + 0.5)
     }
 }
 

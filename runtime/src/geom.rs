@@ -210,7 +210,12 @@ impl Curve {
     pub fn length(&self) -> f64 {
         match *self {
             Curve::Line { d, .. } => d.norm(),
-            Curve::Arc { r0, dr, dth, .. } => libm::hypot(dr, (r0 + 0.5 * dr) * dth),
+            // (Lengths in mm: a plain square root cannot overflow, and
+            // `libm::hypot`'s scaling costs as much as the rest of a push.)
+            Curve::Arc { r0, dr, dth, .. } => {
+                let arc = (r0 + 0.5 * dr) * dth;
+                sqrt(dr * dr + arc * arc)
+            }
             _ => {
                 let h = 1.0 / SIMPSON as f64;
                 let mut sum = self.deriv(0.0).norm() + self.deriv(1.0).norm();

@@ -1118,7 +1118,7 @@ impl<P: Plc> Engine<P> {
             let qf = crate::math::rem_euclid(t.q_deg, 360.0) / 360.0;
             self.thread = ThreadRun {
                 phase: Phase::WaitIndex {
-                    k: libm::floor(self.spindle.turns() - qf),
+                    k: crate::math::floor(self.spindle.turns() - qf),
                 },
                 alpha,
                 theta_l,
@@ -1129,7 +1129,7 @@ impl<P: Plc> Engine<P> {
         }
         if let Phase::WaitIndex { k } = self.thread.phase {
             let qf = crate::math::rem_euclid(t.q_deg, 360.0) / 360.0;
-            let now = libm::floor(self.spindle.turns() - qf);
+            let now = crate::math::floor(self.spindle.turns() - qf);
             if now <= k {
                 return;
             }

@@ -133,9 +133,11 @@ pub fn sqrt(v: f64) -> f64 {
 pub const PI: f64 = core::f64::consts::PI;
 pub const TAU: f64 = core::f64::consts::TAU;
 
+pub use nc::geom::floor;
+
 /// `a` modulo `m` in [0, m) (`f64::rem_euclid` is not in `core`).
 pub fn rem_euclid(a: f64, m: f64) -> f64 {
-    let r = a - m * libm::floor(a / m);
+    let r = a - m * floor(a / m);
     if r >= m || r < 0.0 {
         0.0
     } else {

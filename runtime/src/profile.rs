@@ -16,6 +16,8 @@
 //! least `v − a·dt` (the rest of the same sequence), so following the limit
 //! never needs a harder deceleration than `a`.
 
+use nc::geom::floor_non_negative;
+
 /// The braking limit for distance `d` (mm) to a point that may be crossed
 /// at speed `u` (mm/s; 0: a stop exactly on it), acceleration `a`, period
 /// `dt`.
@@ -34,17 +36,6 @@ pub fn brake_limit(d: f64, u: f64, a: f64, dt: f64) -> f64 {
     landing(d, adt, dt).max(cross)
 }
 
-/// `floor` of a non-negative number (truncation is exact there, and much
-/// cheaper than a software floor on baseline x86-64).
-#[inline]
-fn floor_pos(x: f64) -> f64 {
-    if x < 9.0e15 {
-        (x as i64) as f64
-    } else {
-        x
-    }
-}
-
 /// The fastest sequence that lands exactly on the point: m periods each
 /// `a·dt` slower than the one before, then a last one of `ε ∈ (0, a·dt]`;
 /// it covers `dt·((m+1)·ε + a·dt·m(m+1)/2)`.
@@ -53,7 +44,7 @@ fn landing(d: f64, adt: f64, dt: f64) -> f64 {
     let x = d_dt / adt;
     // n = m + 1 periods: the smallest n with n(n+1)/2 ≥ x.
     let t = (libm::sqrt(1.0 + 8.0 * x) - 1.0) * 0.5;
-    let mut n = floor_pos(t);
+    let mut n = floor_non_negative(t);
     if n < t {
         n += 1.0;
     }
@@ -79,7 +70,7 @@ fn crossing(d: f64, u: f64, adt: f64, dt: f64) -> f64 {
     let h = 0.5 * adt;
     // The real m at which w = u exactly (the closed form of the sum).
     let v = libm::sqrt((u + h) * (u + h) + 2.0 * (adt / dt) * d) - h;
-    let m1 = floor_pos(((v - u) / adt).max(0.0));
+    let m1 = floor_non_negative(((v - u) / adt).max(0.0));
     let mut best = u + m1 * adt;
     let m2 = m1 + 1.0;
     let w = (d / dt - adt * m2 * (m2 + 1.0) * 0.5) / m2;

@@ -1,0 +1,84 @@
+//! The runtime benches' pipelines, shared with the profiling example:
+//! a program's move commands, planning them, and VM + planning.
+
+use runtime::command::{Command, Tag};
+use runtime::math::V2;
+use runtime::planner::Planner;
+use runtime::translate::Translator;
+
+/// The commands a program turns into (VM and translation done once).
+pub fn commands(src: &str) -> Vec<Command> {
+    let machine = nc::Machine::reference();
+    let mut vm = vm::Vm::new(crate::build(src), machine.clone());
+    let mut events: Vec<nc::Event> = Vec::new();
+    let _ = vm.run(&mut events);
+    let mut t = Translator::new(V2::ZERO);
+    let mut out = Vec::new();
+    for e in &events {
+        t.event(e, &vm.nc.st, &machine, &mut out);
+    }
+    out.retain(|c| matches!(c, Command::Move(_)));
+    out
+}
+
+/// Pushes every command, retiring from the head when the queue is full.
+pub fn plan_all(p: &mut Planner, cmds: &[Command]) -> usize {
+    p.clear();
+    p.set_tail(V2::ZERO);
+    let tag = Tag::default();
+    for &c in cmds {
+        if p.push(c, tag).is_err() {
+            for _ in 0..256 {
+                p.pop();
+            }
+            let _ = p.push(c, tag);
+        }
+    }
+    p.replan();
+    p.len()
+}
+
+/// VM + translation + planning of a compiled program.
+pub fn vm_plan(module: isa::Module, p: &mut Planner) -> usize {
+    struct Plan<'a> {
+        t: Translator,
+        p: &'a mut Planner,
+        st: nc::state::State,
+        m: nc::Machine,
+        buf: Vec<Command>,
+    }
+    impl nc::Sink for Plan<'_> {
+        fn emit(&mut self, e: nc::Event) {
+            self.buf.clear();
+            self.t.event(&e, &self.st, &self.m, &mut self.buf);
+            for &c in &self.buf {
+                if self.p.push(c, Tag::default()).is_err() {
+                    for _ in 0..256 {
+                        self.p.pop();
+                    }
+                    let _ = self.p.push(c, Tag::default());
+                }
+            }
+        }
+    }
+    let machine = nc::Machine::reference();
+    let mut vm = vm::Vm::new(module, machine.clone());
+    p.clear();
+    p.set_tail(V2::ZERO);
+    let st = vm.nc.st.clone();
+    let mut sink = Plan {
+        t: Translator::new(V2::ZERO),
+        p,
+        st,
+        m: machine,
+        buf: Vec::new(),
+    };
+    let _ = vm.run(&mut sink);
+    sink.p.replan();
+    sink.p.len()
+}
+
+/// Parse + compile + VM + translation + planning of a whole program.
+pub fn end_to_end(src: &str, p: &mut Planner) -> usize {
+    vm_plan(crate::build(src), p)
+}
