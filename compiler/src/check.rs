@@ -11,10 +11,14 @@ use nc::{Event, Machine, Nc, NcError, Sink};
 use smallvec::SmallVec;
 
 /// Checks the literal words of a block (a computed word is checked when
-/// it runs).
-pub fn literal_block(m: &Machine, ws: &[NcWord<'_>]) -> Result<(), NcError> {
+/// it runs), parsing them into the scratch `p`.
+pub fn literal_block(
+    m: &Machine,
+    ws: &[NcWord<'_>],
+    p: &mut nc::block::Parsed,
+) -> Result<(), NcError> {
     let lits = literal_words(ws);
-    let p = nc::block::parse(&lits, m)?;
+    nc::block::parse_into(&lits, m, p)?;
     if let Some(t) = p.get(b'T') {
         let t = nc::block::round_half_away(t).max(0.0) as u32;
         nc::exec::check_tool(m, t / 100, t % 100)?;

@@ -35,6 +35,8 @@ pub struct Gen<'a> {
     program_number: u32,
     /// G70–G73 profiles: block starts and jumps past nf.
     pub(crate) profiles: crate::profile::Profiles,
+    /// Scratch for the literal check of each block (filled in place).
+    parsed: nc::block::Parsed,
 }
 
 /// An open DO loop of the program being lowered.
@@ -72,8 +74,13 @@ impl<'a> Gen<'a> {
         machine: &'a Machine,
         optimize: bool,
     ) -> Gen<'a> {
+        // A block of words is a few instructions: room for four each
+        // spares the copies of a growing code and line table.
+        let blocks: usize = programs.iter().map(|p| p.blocks.len()).sum();
         let module = Module {
             machine: machine.compile_keys(),
+            code: Vec::with_capacity(4 * blocks),
+            lines: Vec::with_capacity(4 * blocks),
             ..Module::default()
         };
         Gen {
@@ -91,6 +98,7 @@ impl<'a> Gen<'a> {
             expr: ExprGen::default(),
             program_number: 0,
             profiles: Default::default(),
+            parsed: Default::default(),
         }
     }
 
@@ -504,7 +512,7 @@ impl<'a> Gen<'a> {
     }
 
     fn lower_split(&mut self, block: &Block, split: words::Split<'_>) {
-        if let Err(e) = crate::check::literal_block(self.machine, &split.nc) {
+        if let Err(e) = crate::check::literal_block(self.machine, &split.nc, &mut self.parsed) {
             self.error(code_name(e.code), block.span, e.message);
             return;
         }

@@ -13,8 +13,10 @@ use crate::words::{addr, addr_name, Word, ADDR_COUNT, COMMA_A, COMMA_C, COMMA_R}
 /// At most this many G words fit a block (one per modal group).
 const MAX_G: usize = 16;
 
-/// The words of a block sorted by kind, each remembering its position.
-#[derive(Debug, Clone)]
+/// The words of a block sorted by kind. The kernel parses every block it
+/// runs into one of these, so it is kept small and is filled in place
+/// ([`parse_into`]): only the presence mask says which values hold.
+#[derive(Debug, Clone, Default)]
 pub struct Parsed {
     /// G codes in written order with the word index.
     pub g: [(Code, u8); MAX_G],
@@ -22,10 +24,11 @@ pub struct Parsed {
     /// M codes in written order with the word index.
     pub m: [(u32, u8); 3],
     pub m_len: usize,
-    /// Every other address: its word (value in program units).
-    pub val: [Option<Word>; ADDR_COUNT],
-    /// Index of the word of each address in the block (for word order).
-    pub pos: [u8; ADDR_COUNT],
+    /// Bit `a`: address `a` (every one but G and M) is written.
+    present: u32,
+    /// The value (program units) and flags of each written address.
+    value: [f64; ADDR_COUNT],
+    flags: [u8; ADDR_COUNT],
 }
 
 impl Parsed {
@@ -47,15 +50,33 @@ impl Parsed {
 
     /// The value of a letter address.
     pub fn get(&self, letter: u8) -> Option<f64> {
-        self.val[addr(letter) as usize].map(|w| w.value)
+        self.has(letter).then(|| self.value[addr(letter) as usize])
     }
 
     pub fn word(&self, letter: u8) -> Option<Word> {
-        self.val[addr(letter) as usize]
+        self.word_at(addr(letter))
+    }
+
+    /// The word of address number `a` (letters and comma words).
+    pub fn word_at(&self, a: u8) -> Option<Word> {
+        self.has_at(a).then(|| Word {
+            addr: a,
+            value: self.value[a as usize],
+            flags: self.flags[a as usize],
+        })
     }
 
     pub fn has(&self, letter: u8) -> bool {
-        self.val[addr(letter) as usize].is_some()
+        self.has_at(addr(letter))
+    }
+
+    pub fn has_at(&self, a: u8) -> bool {
+        (a as usize) < ADDR_COUNT && self.present & (1 << a) != 0
+    }
+
+    /// Whether any of the addresses in the mask `bits` is written.
+    fn has_any(&self, bits: u32) -> bool {
+        self.present & bits != 0
     }
 
     /// The group-00 code of the block, if any.
@@ -76,7 +97,7 @@ impl Parsed {
     }
 
     pub fn has_axis(&self) -> bool {
-        [b'X', b'Z', b'U', b'W'].iter().any(|&l| self.has(l))
+        self.has_any(mask(b"XZUW"))
     }
 }
 
@@ -89,36 +110,49 @@ pub fn round_half_away(v: f64) -> f64 {
     }
 }
 
+/// The presence bits of some letters.
+const fn mask(letters: &[u8]) -> u32 {
+    let mut bits = 0;
+    let mut i = 0;
+    while i < letters.len() {
+        bits |= 1 << addr(letters[i]);
+        i += 1;
+    }
+    bits
+}
+
 /// Sorts the words of a block and checks what needs no state.
 pub fn parse(words: &[Word], m: &Machine) -> Result<Parsed, NcError> {
-    let mut p = Parsed {
-        g: [(0, 0); MAX_G],
-        g_len: 0,
-        m: [(0, 0); 3],
-        m_len: 0,
-        val: [None; ADDR_COUNT],
-        pos: [0; ADDR_COUNT],
-    };
+    let mut p = Parsed::default();
+    parse_into(words, m, &mut p)?;
+    Ok(p)
+}
+
+/// [`parse`] into `p`, whatever it held before.
+pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcError> {
+    p.g_len = 0;
+    p.m_len = 0;
+    p.present = 0;
     for (i, w) in words.iter().enumerate() {
         let idx = i.min(255) as u8;
         match w.addr {
-            a if a == addr(b'G') => add_g(&mut p, w, idx)?,
-            a if a == addr(b'M') => add_m(&mut p, w, idx)?,
+            a if a == addr(b'G') => add_g(p, w, idx)?,
+            a if a == addr(b'M') => add_m(p, w, idx)?,
             a if (a as usize) < ADDR_COUNT => {
-                if p.val[a as usize].is_some() {
+                if p.has_at(a) {
                     return fail(
                         1011,
                         format!("address {} written twice in the block", addr_name(a)),
                     );
                 }
-                p.val[a as usize] = Some(*w);
-                p.pos[a as usize] = idx;
+                p.present |= 1 << a;
+                p.value[a as usize] = w.value;
+                p.flags[a as usize] = w.flags;
             }
             a => return fail(1008, format!("unknown address number {a}")),
         }
     }
-    check_words(&p, m)?;
-    Ok(p)
+    check_words(p, m)
 }
 
 fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
@@ -205,6 +239,12 @@ fn negative_f_allowed(p: &Parsed) -> bool {
 }
 
 fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
+    // Most blocks are moves: no integer-only, sign-checked or exclusive
+    // address at all (the rules below would all pass).
+    const CHECKED: u32 = mask(b"TPLQHDKFSUWYVC") | 1 << COMMA_A | 1 << COMMA_C | 1 << COMMA_R;
+    if !p.has_any(CHECKED) {
+        return check_m_codes(p).and_then(|()| check_foreign(p));
+    }
     for letter in [b'T', b'P', b'L', b'Q', b'H', b'D', b'K'] {
         // With a C axis, H is the incremental C angle (decimals allowed).
         if letter == b'H' && m.axes.c.enabled {
@@ -257,13 +297,13 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
             "this machine has no C axis (H is the incremental C angle)",
         );
     }
-    if p.val[COMMA_A as usize].is_some() && p.has(b'Q') {
+    if p.has_at(COMMA_A) && p.has(b'Q') {
         return fail(2007, "Q and ,A both give the angle: write one of them");
     }
-    if p.val[COMMA_C as usize].is_some() && p.has(b'L') {
+    if p.has_at(COMMA_C) && p.has(b'L') {
         return fail(2007, "L and ,C both give the chamfer: write one of them");
     }
-    if p.val[COMMA_R as usize].is_some() && p.has(b'D') {
+    if p.has_at(COMMA_R) && p.has(b'D') {
         return fail(
             2007,
             "D and ,R both give the corner radius: write one of them",

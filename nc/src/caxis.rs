@@ -87,9 +87,7 @@ pub(crate) fn check(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
 
 fn check_line(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
     use crate::words::{COMMA_A, COMMA_C, COMMA_R};
-    let corner = [COMMA_A, COMMA_C, COMMA_R]
-        .iter()
-        .any(|&a| p.val[a as usize].is_some())
+    let corner = [COMMA_A, COMMA_C, COMMA_R].iter().any(|&a| p.has_at(a))
         || p.has(b'L')
         || p.has(b'D')
         || p.has(b'Q');

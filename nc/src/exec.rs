@@ -1,6 +1,7 @@
 //! Executing one block: its events in the order of canon.md, and the state
 //! it leaves behind.
 
+use alloc::boxed::Box;
 use alloc::format;
 use alloc::vec::Vec;
 
@@ -48,6 +49,9 @@ pub struct Nc {
     /// the tag its errors carry (the VM uses the pc, the compiler the block
     /// index).
     pub profile: Vec<(Vec<Word>, u32)>,
+    /// The parse of the running block, kept between blocks so that no
+    /// block builds or moves a fresh one (taken while a block runs).
+    parsed: Option<Box<Parsed>>,
 }
 
 /// M codes that act after the motion (canon group 3).
@@ -72,6 +76,7 @@ impl Nc {
             machine,
             st,
             profile: Vec::new(),
+            parsed: None,
         }
     }
 
@@ -110,23 +115,37 @@ impl Nc {
     }
 
     fn exec_block(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
-        let p = block::parse(words, &self.machine)?;
+        // (A block run from inside a block, as G70's profile, finds none
+        // and makes its own.)
+        let mut p = self.parsed.take().unwrap_or_default();
+        let result = block::parse_into(words, &self.machine, &mut p)
+            .and_then(|()| self.exec_parsed(&p, words, sink));
+        self.parsed = Some(p);
+        result
+    }
+
+    fn exec_parsed(
+        &mut self,
+        p: &Parsed,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<Outcome, NcError> {
         self.st.c_block = false;
-        crate::comp::before_block(self, &p, sink)?;
+        crate::comp::before_block(self, p, sink)?;
         let mut out = Outcome::default();
         // While an element waits for its corner (contour module), the
         // block's events are held behind it so the canon keeps block order.
         contour::in_order(self, sink, |nc, s| {
-            nc.modal_settings(&p, s)?;
-            crate::caxis::check(nc, &p)?;
-            nc.st.c_block = crate::caxis::programs_c(nc, &p);
-            nc.before_motion(&p, words, s)
+            nc.modal_settings(p, s)?;
+            crate::caxis::check(nc, p)?;
+            nc.st.c_block = crate::caxis::programs_c(nc, p);
+            nc.before_motion(p, words, s)
         })?;
-        self.remember(&p);
+        self.remember(p);
         self.st.exact_stop = p.has_g(90) || self.st.group(gcode::EXACT) == 610;
-        self.motion(&p, sink, &mut out)?;
+        self.motion(p, sink, &mut out)?;
         contour::in_order(self, sink, |nc, s| {
-            nc.after_motion(&p, s);
+            nc.after_motion(p, s);
             Ok(())
         })?;
         if p.has_m(2) || p.has_m(30) {
@@ -134,11 +153,11 @@ impl Nc {
             contour::flush(self, sink)?;
         }
         contour::in_order(self, sink, |nc, s| {
-            nc.stops(&p, s, &mut out);
+            nc.stops(p, s, &mut out);
             Ok(())
         })?;
         contour::end_of_block(self)?;
-        crate::comp::end_of_block(self, &p, out.moved)?;
+        crate::comp::end_of_block(self, p, out.moved)?;
         self.profile.clear();
         self.st.c_block = false;
         Ok(out)

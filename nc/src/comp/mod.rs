@@ -28,7 +28,7 @@ pub(crate) use cycle::turning_cycle;
 pub(crate) use print::printed;
 
 use crate::block::Parsed;
-use crate::contour::elem::{length, EPS_LEN};
+use crate::contour::elem::{shorter_than, EPS_LEN};
 use crate::error::{fail, NcError};
 use crate::exec::{Nc, Sink};
 use crate::gcode::{self, Code};
@@ -92,7 +92,7 @@ impl Leg {
         self.end.is_none()
             && match self.role {
                 Role::Start => true,
-                Role::Body => length(e) >= EPS_LEN,
+                Role::Body => !shorter_than(e, EPS_LEN),
                 Role::Zero => false,
             }
     }
@@ -175,7 +175,7 @@ fn on_arc(code: u16, what: &str) -> NcError {
 /// or an arc too small for the tool on its centre side.
 pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), NcError> {
     let mode = side_of(nc.st.group(gcode::COMP));
-    let zero = length(e) < EPS_LEN;
+    let zero = shorter_than(e, EPS_LEN);
     if zero {
         nc.st.comp.zero_move = true;
     }

@@ -19,7 +19,7 @@ pub fn angle_of(p: &Parsed) -> Option<f64> {
     let deg = p
         .get(b'Q')
         .map(|q| q * 0.001)
-        .or_else(|| p.val[COMMA_A as usize].map(|w| w.value))?;
+        .or_else(|| p.word_at(COMMA_A).map(|w| w.value))?;
     Some(crate::geom::rem_euclid(deg, 360.0))
 }
 

@@ -59,7 +59,7 @@ pub fn corner(
     c: Corner,
 ) -> Result<Option<(Element, Element, Element)>, NcError> {
     let p = e1.end();
-    if elem::length(e1) < EPS_LEN || elem::length(e2) < EPS_LEN {
+    if elem::shorter_than(e1, EPS_LEN) || elem::shorter_than(e2, EPS_LEN) {
         return Ok(None);
     }
     let (Some(t1), Some(t2)) = (elem::tangent_at(e1, p), elem::tangent_at(e2, p)) else {

@@ -79,6 +79,34 @@ pub fn sweep(from: Pt, to: Pt, centre: Pt, cw: bool) -> f64 {
     travel(centre, from, to, cw)
 }
 
+/// Whether `e` is shorter than `eps` (every element of every block asks).
+/// An arc's sweep is at least the chord between its unit radius vectors
+/// (2·sin(θ/2) ≤ θ, and the other way round is ≥ π), so r·|u0 − u1| ≥ eps
+/// answers no without the arc's trigonometry; the slack keeps rounding
+/// from deciding it.
+pub fn shorter_than(e: &Element, eps: f64) -> bool {
+    if let Element::Arc {
+        from, to, centre, ..
+    } = *e
+    {
+        let (a, b) = (from.sub(centre), to.sub(centre));
+        let (ra, rb) = (plain_norm(a), plain_norm(b));
+        if ra > 0.0 && rb > 0.0 {
+            let gap = plain_norm(scale(a, 1.0 / ra).sub(scale(b, 1.0 / rb)));
+            if ra * gap >= eps * (1.0 + 1e-6) {
+                return false;
+            }
+        }
+    }
+    length(e) < eps
+}
+
+/// A vector's length by a plain square root (for bounds, where the last
+/// bit does not matter).
+fn plain_norm(v: Pt) -> f64 {
+    libm::sqrt(v.r * v.r + v.z * v.z)
+}
+
 pub fn length(e: &Element) -> f64 {
     match *e {
         Element::Line { from, to } => from.dist(to),

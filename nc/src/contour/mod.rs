@@ -58,9 +58,9 @@ pub fn conic(
 pub(crate) fn corner_word(nc: &Nc, code: Code, p: &Parsed) -> Result<Option<Corner>, NcError> {
     // With M98 the L is the repeat count.
     let l = p.word(b'L').filter(|_| !p.has_m(98));
-    let comma_c = p.val[COMMA_C as usize];
+    let comma_c = p.word_at(COMMA_C);
     let chamfer = l.or(comma_c);
-    let round = p.word(b'D').or(p.val[COMMA_R as usize]);
+    let round = p.word(b'D').or(p.word_at(COMMA_R));
     let Some(word) = chamfer.or(round) else {
         return Ok(None);
     };

@@ -48,7 +48,7 @@ impl Move {
     /// for its corner word, or for the element its compensated end
     /// depends on.
     fn waits(&self) -> bool {
-        (self.corner.is_some() && elem::length(&self.elem) >= EPS_LEN) || self.comp_open()
+        (self.corner.is_some() && !elem::shorter_than(&self.elem, EPS_LEN)) || self.comp_open()
     }
 
     /// A compensated move whose end is still open.
@@ -345,7 +345,7 @@ fn drain(nc: &mut Nc, sink: &mut dyn Sink) {
 
 /// Prints one move: compensated, as its leg says (comp module).
 fn emit_move(nc: &mut Nc, m: &Move, sink: &mut dyn Sink) {
-    if m.trimmed && elem::length(&m.elem) < EPS_LEN {
+    if m.trimmed && elem::shorter_than(&m.elem, EPS_LEN) {
         return;
     }
     match &m.comp {

@@ -568,3 +568,62 @@ fn type_one_chamfer_onto_an_arc() {
     };
     assert_eq!(corner(&e1, &e2, c).unwrap_err().code, 4007);
 }
+
+/// `shorter_than` answers as `length(e) < eps` does: a quarter circle of
+/// radius 1 is π/2 ≈ 1.5708 long; a start = end arc is a full circle
+/// (2π·2 ≈ 12.566); an arc starting on its centre has no length; and a
+/// spread of generated arcs, away from the boundary, agrees with `length`.
+#[test]
+fn shorter_than_agrees_with_the_arc_length() {
+    use super::elem::{length, shorter_than};
+    use crate::geom::Element;
+    let arc = |from: Pt, to: Pt, centre: Pt, cw: bool| Element::Arc {
+        from,
+        to,
+        centre,
+        cw,
+    };
+    let quarter = arc(
+        Pt::new(1.0, 0.0),
+        Pt::new(0.0, 1.0),
+        Pt::new(0.0, 0.0),
+        true,
+    );
+    assert!(!shorter_than(&quarter, 1.57));
+    assert!(shorter_than(&quarter, 1.571));
+    let full = arc(
+        Pt::new(2.0, 0.0),
+        Pt::new(2.0, 0.0),
+        Pt::new(0.0, 0.0),
+        false,
+    );
+    assert!(!shorter_than(&full, 12.56));
+    assert!(shorter_than(&full, 12.57));
+    let on_centre = arc(
+        Pt::new(0.0, 0.0),
+        Pt::new(0.0, 1.0),
+        Pt::new(0.0, 0.0),
+        false,
+    );
+    assert!(shorter_than(&on_centre, 1e-6));
+    let mut x: u64 = 3;
+    let mut next = || {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (x >> 11) as f64 / (1u64 << 53) as f64 * 20.0 - 10.0
+    };
+    for _ in 0..5_000 {
+        let e = arc(
+            Pt::new(next(), next()),
+            Pt::new(next(), next()),
+            Pt::new(next(), next()),
+            next() > 0.0,
+        );
+        let eps = (next() + 10.0) * 2.0;
+        let len = length(&e);
+        if (len - eps).abs() > 1e-6 * eps {
+            assert_eq!(shorter_than(&e, eps), len < eps, "{e:?} {eps}");
+        }
+    }
+}
