@@ -74,15 +74,18 @@ impl<'a> Gen<'a> {
         machine: &'a Machine,
         optimize: bool,
     ) -> Gen<'a> {
-        // A block of words is a few instructions: room for four each
-        // spares the copies of a growing code and line table.
+        // A block of words is a few instructions and a few new constants:
+        // room for that spares the copies and rehashes of growing tables.
         let blocks: usize = programs.iter().map(|p| p.blocks.len()).sum();
         let module = Module {
             machine: machine.compile_keys(),
             code: Vec::with_capacity(4 * blocks),
             lines: Vec::with_capacity(4 * blocks),
+            consts: Vec::with_capacity(2 * blocks),
             ..Module::default()
         };
+        let mut consts = IntMap::default();
+        consts.reserve(2 * blocks);
         Gen {
             units,
             files,
@@ -90,7 +93,7 @@ impl<'a> Gen<'a> {
             machine,
             optimize,
             module,
-            consts: IntMap::default(),
+            consts,
             diags: Vec::new(),
             unit: 0,
             loc: SourceLoc::default(),

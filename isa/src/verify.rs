@@ -71,6 +71,7 @@ impl Module {
         Ok(())
     }
 
+    #[inline]
     fn check_operand(&self, pc: u32, op: Operand) -> Result<(), LoadError> {
         let below = |index: u32, len: usize| usize::try_from(index).is_ok_and(|i| i < len);
         let ok = match op {
@@ -88,34 +89,10 @@ impl Module {
             Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => true,
         };
         if ok {
-            return Ok(());
+            Ok(())
+        } else {
+            Err(operand_error(pc, op))
         }
-        Err(match op {
-            Operand::Reg(_) => LoadError::RegisterOutOfRange { pc },
-            Operand::Pc(_) => LoadError::JumpOutOfRange { pc },
-            Operand::Const(_) => LoadError::ConstOutOfRange { pc },
-            Operand::Str(_) => LoadError::StringOutOfRange { pc },
-            Operand::Prog(_) => LoadError::ProgramOutOfRange { pc },
-            Operand::FuncCode(_) => LoadError::BadOperand {
-                pc,
-                what: "math function",
-            },
-            Operand::CmpCode(_) => LoadError::BadOperand {
-                pc,
-                what: "comparison",
-            },
-            Operand::Addr(_) => LoadError::BadOperand {
-                pc,
-                what: "word address",
-            },
-            Operand::ArgVar(_) => LoadError::BadOperand {
-                pc,
-                what: "argument variable",
-            },
-            Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => {
-                LoadError::BadOperand { pc, what: "plain" }
-            }
-        })
     }
 
     fn verify_lines(&self) -> Result<(), LoadError> {
@@ -173,6 +150,38 @@ impl Module {
         match duplicate {
             Some(number) => Err(TableError::DuplicateProgram { number }.into()),
             None => Ok(()),
+        }
+    }
+}
+
+/// The error of an operand that failed its check (kept out of the checking
+/// loop, which runs for every operand of every instruction).
+#[cold]
+fn operand_error(pc: u32, op: Operand) -> LoadError {
+    match op {
+        Operand::Reg(_) => LoadError::RegisterOutOfRange { pc },
+        Operand::Pc(_) => LoadError::JumpOutOfRange { pc },
+        Operand::Const(_) => LoadError::ConstOutOfRange { pc },
+        Operand::Str(_) => LoadError::StringOutOfRange { pc },
+        Operand::Prog(_) => LoadError::ProgramOutOfRange { pc },
+        Operand::FuncCode(_) => LoadError::BadOperand {
+            pc,
+            what: "math function",
+        },
+        Operand::CmpCode(_) => LoadError::BadOperand {
+            pc,
+            what: "comparison",
+        },
+        Operand::Addr(_) => LoadError::BadOperand {
+            pc,
+            what: "word address",
+        },
+        Operand::ArgVar(_) => LoadError::BadOperand {
+            pc,
+            what: "argument variable",
+        },
+        Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => {
+            LoadError::BadOperand { pc, what: "plain" }
         }
     }
 }
