@@ -9,6 +9,7 @@
 pub mod calls;
 pub mod check;
 pub mod codes;
+pub mod consts;
 pub mod data_setting;
 pub mod expr;
 pub mod hash;

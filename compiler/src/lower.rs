@@ -5,7 +5,6 @@
 //! arithmetic and jumps; M98/M99/G65/G66 become calls and returns.
 
 use crate::expr::ExprGen;
-use crate::hash::IntMap;
 use crate::link::{self, Program, Unit};
 use crate::words::{self, Call, WordValue};
 use grammar::ast::{Block, Body, Cond, Expr, Stmt};
@@ -23,7 +22,7 @@ pub struct Gen<'a> {
     pub machine: &'a Machine,
     pub optimize: bool,
     pub module: Module,
-    consts: IntMap<u64, u32>,
+    consts: crate::consts::ConstIndex,
     pub diags: Vec<FileDiag>,
     pub unit: usize,
     loc: SourceLoc,
@@ -75,7 +74,7 @@ impl<'a> Gen<'a> {
         optimize: bool,
     ) -> Gen<'a> {
         // A block of words is a few instructions and a few new constants:
-        // room for that spares the copies and rehashes of growing tables.
+        // room for that spares the copies of growing tables.
         let blocks: usize = programs.iter().map(|p| p.blocks.len()).sum();
         let module = Module {
             machine: machine.compile_keys(),
@@ -84,8 +83,6 @@ impl<'a> Gen<'a> {
             consts: Vec::with_capacity(2 * blocks),
             ..Module::default()
         };
-        let mut consts = IntMap::default();
-        consts.reserve(2 * blocks);
         Gen {
             units,
             files,
@@ -93,7 +90,7 @@ impl<'a> Gen<'a> {
             machine,
             optimize,
             module,
-            consts,
+            consts: Default::default(),
             diags: Vec::new(),
             unit: 0,
             loc: SourceLoc::default(),
@@ -126,12 +123,7 @@ impl<'a> Gen<'a> {
     }
 
     pub fn konst(&mut self, v: f64) -> u32 {
-        let next = self.module.consts.len() as u32;
-        let k = *self.consts.entry(v.to_bits()).or_insert(next);
-        if k == next {
-            self.module.consts.push(v);
-        }
-        k
+        self.consts.index(&mut self.module.consts, v)
     }
 
     pub fn string(&mut self, s: &str) -> u32 {
