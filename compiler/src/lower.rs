@@ -190,6 +190,7 @@ impl<'a> Gen<'a> {
                 continue;
             };
             self.set_loc(block.span);
+            crate::profile::count_cycle(self, block);
             data_setting.block(self, block);
             if let Some(seq) = block.seq {
                 // A block with a number may be a jump target.
@@ -495,23 +496,23 @@ impl<'a> Gen<'a> {
         let table = self.machine.r#macro.g_code_macros;
         if let Some(call) = words::g_code_macro(ws, &table, self.program_number) {
             match call {
-                Ok(split) => self.lower_split(block, split),
+                Ok(split) => self.lower_split(block, &split),
                 Err(d) => self.diags.push((self.unit, d)),
             }
             return;
         }
         match words::classify(ws) {
-            Ok(split) => self.lower_split(block, split),
+            Ok(split) => self.lower_split(block, &split),
             Err(d) => self.diags.push((self.unit, d)),
         }
     }
 
-    fn lower_split(&mut self, block: &Block, split: words::Split<'_>) {
+    fn lower_split(&mut self, block: &Block, split: &words::Split<'_>) {
         if let Err(e) = crate::check::literal_block(self.machine, &split.nc, &mut self.parsed) {
             self.error(code_name(e.code), block.span, e.message);
             return;
         }
-        let after = crate::profile::before_exec(self, block, &split);
+        let after = crate::profile::before_exec(self, block, split);
         for w in &split.nc {
             self.set_loc(w.span);
             match w.value {
@@ -543,7 +544,7 @@ impl<'a> Gen<'a> {
                 },
             }
         }
-        self.warn_unlisted_m(&split);
+        self.warn_unlisted_m(split);
         self.set_loc(block.span);
         if !split.nc.is_empty() {
             if let Some(c) = block.comments.first() {
@@ -556,11 +557,11 @@ impl<'a> Gen<'a> {
                 self.expr.forget(var);
             }
             // A G10 L52 read writes its variable.
-            crate::data_setting::forget_read(&mut self.expr, &split);
+            crate::data_setting::forget_read(&mut self.expr, split);
         }
         crate::profile::after_exec(self, after);
-        if let Some(call) = split.call {
-            crate::calls::lower_call(self, call, block.span);
+        if let Some(call) = &split.call {
+            crate::calls::lower_call(self, call.clone(), block.span);
             // The called program may change any variable.
             self.expr.forget_all();
         }

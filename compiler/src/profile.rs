@@ -40,6 +40,9 @@ pub struct Profiles {
     /// Jumps after a cycle block, with the line of the block after nf
     /// (`None`: nf is the program's last block).
     pending: Vec<(usize, Option<usize>)>,
+    /// Blocks of the program being lowered that name G70–G73 (skipped
+    /// ones too): with fewer than two, no profile number can be shared.
+    cycle_blocks: usize,
 }
 
 /// What follows a cycle block's `Exec`.
@@ -184,7 +187,18 @@ pub fn program_end(gen: &mut Gen<'_>, prog: &Program) {
         patch(gen, at, pc);
     }
     gen.profiles.starts.clear();
-    shared_numbers(gen, prog);
+    // (The check reads the whole program again: only where it can find
+    // something.)
+    if std::mem::take(&mut gen.profiles.cycle_blocks) >= 2 {
+        shared_numbers(gen, prog);
+    }
+}
+
+/// Counts the blocks that name a compound cycle, for `program_end`.
+pub fn count_cycle(gen: &mut Gen<'_>, block: &Block) {
+    if let Body::Words(ws) = &block.body {
+        gen.profiles.cycle_blocks += usize::from(names_cycle(ws));
+    }
 }
 
 /// The program being lowered and its unit.
