@@ -54,7 +54,9 @@ const RADIUS_SLACK_MM: f64 = 0.001;
 /// 0° arc (end = start), which is no move.
 pub fn centre_from_radius(from: Pt, to: Pt, r: f64, cw: bool) -> Result<Option<Pt>, NcError> {
     let (dz, dr) = (to.z - from.z, to.r - from.r);
-    let chord = libm::hypot(dz, dr);
+    // (A plain square root: lengths in mm cannot overflow, and this runs
+    // for every R arc, where `libm::hypot`'s scaling costs most.)
+    let chord = libm::sqrt(dz * dz + dr * dr);
     if chord < 1e-9 {
         return Ok(None);
     }

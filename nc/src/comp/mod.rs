@@ -175,6 +175,11 @@ fn on_arc(code: u16, what: &str) -> NcError {
 /// or an arc too small for the tool on its centre side.
 pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), NcError> {
     let mode = side_of(nc.st.group(gcode::COMP));
+    if nc.st.comp.running.is_none() && mode.is_none() {
+        // Nothing compensates: no role needs the move's length (and the
+        // block cannot end compensating, so E4034 does not count it).
+        return Ok((Step::Plain, None));
+    }
     let zero = shorter_than(e, EPS_LEN);
     if zero {
         nc.st.comp.zero_move = true;
