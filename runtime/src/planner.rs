@@ -34,7 +34,7 @@ use crate::config::Config;
 use crate::geom::Curve;
 use crate::math::{sqrt, PI, V2};
 use crate::plc::PlcFunction;
-use crate::profile::brake_limit;
+use crate::profile::brake_limit_above;
 use alloc::vec::Vec;
 
 /// A move ready for interpolation.
@@ -718,7 +718,9 @@ impl Planner {
                     if let Some((cl, ce, ca)) = carry {
                         // At its corner speed already, nothing can rise.
                         if p.v_junction > 0.0 && p.v_exit < p.v_junction {
-                            let exit = p.v_junction.min(brake_limit(cl, ce, ca, dt));
+                            // (The exact limit only matters below it.)
+                            let lim = brake_limit_above(cl, ce, ca, dt, p.v_junction);
+                            let exit = p.v_junction.min(lim);
                             if exit > p.v_exit {
                                 p.v_exit = exit;
                                 rose = true;
@@ -776,7 +778,9 @@ mod tests {
             assert!(eb >= ea - 1e-12, "item {k}: {eb} < {ea}");
             for p in [&a, &b] {
                 if let (Some(s), Some(n)) = (p.seg(k), p.seg(k + 1)) {
-                    let room = s.v_junction.min(brake_limit(n.len, n.v_exit, n.a, p.dt));
+                    let room = s
+                        .v_junction
+                        .min(crate::profile::brake_limit(n.len, n.v_exit, n.a, p.dt));
                     assert!(
                         s.v_exit <= room + 1e-12,
                         "item {k}: exit {} above {room}",

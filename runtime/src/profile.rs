@@ -156,6 +156,32 @@ mod tests {
         }
     }
 
+    /// The shortcut answers ∞ only where the exact limit reaches `top`,
+    /// and the exact limit everywhere else: over a grid of distances,
+    /// crossing speeds, accelerations, periods and tops.
+    #[test]
+    fn limit_above_is_the_limit_or_a_proof_it_reaches_top() {
+        let mut shortcuts = 0;
+        for i in 0..400 {
+            let d = 1e-5 * 1.05f64.powi(i);
+            for &u in &[0.0, 0.2, 3.0, 25.0, 120.0] {
+                for &(a, dt) in &[(A, DT), (300.0, 0.000125), (5000.0, 0.008)] {
+                    for &top in &[0.5, 10.0, 33.3, 150.0, 1000.0] {
+                        let exact = brake_limit(d, u, a, dt);
+                        let above = brake_limit_above(d, u, a, dt, top);
+                        if above == f64::INFINITY {
+                            shortcuts += 1;
+                            assert!(exact >= top, "d={d} u={u} a={a} dt={dt} top={top}");
+                        } else {
+                            assert_eq!(above.to_bits(), exact.to_bits());
+                        }
+                    }
+                }
+            }
+        }
+        assert!(shortcuts > 1000, "{shortcuts}");
+    }
+
     #[test]
     fn limit_is_self_consistent() {
         for i in 1..2000 {
