@@ -158,30 +158,17 @@ impl Module {
 /// loop, which runs for every operand of every instruction).
 #[cold]
 fn operand_error(pc: u32, op: Operand) -> LoadError {
-    match op {
-        Operand::Reg(_) => LoadError::RegisterOutOfRange { pc },
-        Operand::Pc(_) => LoadError::JumpOutOfRange { pc },
-        Operand::Const(_) => LoadError::ConstOutOfRange { pc },
-        Operand::Str(_) => LoadError::StringOutOfRange { pc },
-        Operand::Prog(_) => LoadError::ProgramOutOfRange { pc },
-        Operand::FuncCode(_) => LoadError::BadOperand {
-            pc,
-            what: "math function",
-        },
-        Operand::CmpCode(_) => LoadError::BadOperand {
-            pc,
-            what: "comparison",
-        },
-        Operand::Addr(_) => LoadError::BadOperand {
-            pc,
-            what: "word address",
-        },
-        Operand::ArgVar(_) => LoadError::BadOperand {
-            pc,
-            what: "argument variable",
-        },
-        Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => {
-            LoadError::BadOperand { pc, what: "plain" }
-        }
-    }
+    let what = match op {
+        Operand::Reg(_) => return LoadError::RegisterOutOfRange { pc },
+        Operand::Pc(_) => return LoadError::JumpOutOfRange { pc },
+        Operand::Const(_) => return LoadError::ConstOutOfRange { pc },
+        Operand::Str(_) => return LoadError::StringOutOfRange { pc },
+        Operand::Prog(_) => return LoadError::ProgramOutOfRange { pc },
+        Operand::FuncCode(_) => "math function",
+        Operand::CmpCode(_) => "comparison",
+        Operand::Addr(_) => "word address",
+        Operand::ArgVar(_) => "argument variable",
+        Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => "plain",
+    };
+    LoadError::BadOperand { pc, what }
 }
