@@ -8,69 +8,17 @@
 //! ≤ 100 ns mean. The distribution of single periods (worst included)
 //! is printed on stderr.
 
-use benches::pipeline::{commands, end_to_end, plan_all, vm_plan};
+use benches::pipeline::{commands, end_to_end, plan_all, vm_plan, Ticker};
 use benches::{arcs, build as module, short_segments};
 use criterion::{
     criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput,
 };
-use runtime::command::{Command, Move, MoveKind, Path, Tag};
-use runtime::math::V2;
 use runtime::planner::Planner;
-use runtime::{AutoAck, Config, Engine};
+use runtime::Config;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 const BLOCKS: usize = 200_000;
-
-/// An engine running `cmds` over and over; `tick` it.
-struct Ticker {
-    e: Engine<AutoAck>,
-    cmds: Vec<Command>,
-    next: usize,
-}
-
-impl Ticker {
-    fn new(cmds: Vec<Command>) -> Ticker {
-        let mut e = Engine::new(Config::default(), AutoAck);
-        e.cycle_start();
-        let mut t = Ticker { e, cmds, next: 0 };
-        t.refill();
-        t
-    }
-
-    /// Keeps the queue fed (the non-real-time side), restarting the
-    /// program when it has been used up.
-    fn refill(&mut self) {
-        while self.e.planner().len() + 1 < self.e.planner().capacity() {
-            if self.next == self.cmds.len() {
-                self.next = 0;
-                // Back to the program start at rapid, from wherever it is.
-                let to = match self.cmds[0] {
-                    Command::Move(m) => m.path.to(),
-                    _ => V2::ZERO,
-                };
-                let _ = self.e.push(
-                    Command::Move(Move {
-                        kind: MoveKind::Rapid,
-                        path: Path::Line { to },
-                        shift: V2::ZERO,
-                        c: None,
-                    }),
-                    Tag::default(),
-                );
-                continue;
-            }
-            let c = self.cmds[self.next];
-            self.next += 1;
-            let _ = self.e.push(c, Tag::default());
-        }
-        self.e.replan();
-    }
-
-    fn low(&self) -> bool {
-        self.e.planner().len() < 1100
-    }
-}
 
 fn runtime_benches(c: &mut Criterion) {
     let short = short_segments(BLOCKS);

@@ -1,7 +1,8 @@
 //! Parses, compiles or runs one generated program, for profiling under
 //! callgrind or perf, and prints the fastest of `runs` timings:
-//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile|plan|vm_plan|e2e] [runs]`
-//! (`plan`, `vm_plan` and `e2e` are the `runtime` bench's pipelines).
+//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile|plan|vm_plan|e2e|ticks] [runs]`
+//! (`plan`, `vm_plan` and `e2e` are the `runtime` bench's pipelines;
+//! `ticks` runs 100 000 interpolation periods of the program's moves).
 
 use benches::pipeline;
 use runtime::planner::Planner;
@@ -25,9 +26,10 @@ fn main() {
     };
     let mut planner = Planner::new(&Config::default());
     let cmds = match what {
-        "plan" => pipeline::commands(&src),
+        "plan" | "ticks" => pipeline::commands(&src),
         _ => Vec::new(),
     };
+    let mut ticker = (what == "ticks").then(|| pipeline::Ticker::new(cmds.clone()));
     let module = match what {
         "vm_plan" => Some(benches::build(&src)),
         _ => None,
@@ -44,6 +46,11 @@ fn main() {
             ("plan", _) => {
                 black_box(pipeline::plan_all(&mut planner, black_box(&cmds)));
             }
+            ("ticks", _) => {
+                if let Some(t) = ticker.as_mut() {
+                    ticks(t);
+                }
+            }
             ("vm_plan", Some(m)) => {
                 black_box(pipeline::vm_plan(m, &mut planner));
             }
@@ -58,4 +65,16 @@ fn main() {
     }
     let per_block = best.as_secs_f64() * 1e9 / blocks as f64;
     println!("{kind} {what}: best of {runs} {best:?}, {per_block:.0} ns/block");
+}
+
+/// 100 000 periods, the queue refilled between batches as in the bench.
+fn ticks(t: &mut pipeline::Ticker) {
+    for _ in 0..200 {
+        for _ in 0..500 {
+            black_box(t.e.tick());
+        }
+        if t.low() {
+            t.refill();
+        }
+    }
 }

@@ -1,10 +1,12 @@
 //! The runtime benches' pipelines, shared with the profiling example:
-//! a program's move commands, planning them, and VM + planning.
+//! a program's move commands, planning them, VM + planning, and an engine
+//! ticked period by period.
 
-use runtime::command::{Command, Tag};
+use runtime::command::{Command, Move, MoveKind, Path, Tag};
 use runtime::math::V2;
 use runtime::planner::Planner;
 use runtime::translate::Translator;
+use runtime::{AutoAck, Config, Engine};
 
 /// The commands a program turns into (VM and translation done once).
 pub fn commands(src: &str) -> Vec<Command> {
@@ -81,4 +83,54 @@ pub fn vm_plan(module: isa::Module, p: &mut Planner) -> usize {
 /// Parse + compile + VM + translation + planning of a whole program.
 pub fn end_to_end(src: &str, p: &mut Planner) -> usize {
     vm_plan(crate::build(src), p)
+}
+
+/// An engine running `cmds` over and over; `tick` it.
+pub struct Ticker {
+    pub e: Engine<AutoAck>,
+    cmds: Vec<Command>,
+    next: usize,
+}
+
+impl Ticker {
+    pub fn new(cmds: Vec<Command>) -> Ticker {
+        let mut e = Engine::new(Config::default(), AutoAck);
+        e.cycle_start();
+        let mut t = Ticker { e, cmds, next: 0 };
+        t.refill();
+        t
+    }
+
+    /// Keeps the queue fed (the non-real-time side), restarting the
+    /// program when it has been used up.
+    pub fn refill(&mut self) {
+        while self.e.planner().len() + 1 < self.e.planner().capacity() {
+            if self.next == self.cmds.len() {
+                self.next = 0;
+                // Back to the program start at rapid, from wherever it is.
+                let to = match self.cmds[0] {
+                    Command::Move(m) => m.path.to(),
+                    _ => V2::ZERO,
+                };
+                let _ = self.e.push(
+                    Command::Move(Move {
+                        kind: MoveKind::Rapid,
+                        path: Path::Line { to },
+                        shift: V2::ZERO,
+                        c: None,
+                    }),
+                    Tag::default(),
+                );
+                continue;
+            }
+            let c = self.cmds[self.next];
+            self.next += 1;
+            let _ = self.e.push(c, Tag::default());
+        }
+        self.e.replan();
+    }
+
+    pub fn low(&self) -> bool {
+        self.e.planner().len() < 1100
+    }
 }
