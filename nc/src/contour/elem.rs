@@ -79,9 +79,10 @@ pub fn sweep(from: Pt, to: Pt, centre: Pt, cw: bool) -> f64 {
     travel(centre, from, to, cw)
 }
 
-/// Whether `e` is shorter than `eps` (every element of every block asks).
-/// An arc's sweep is at least the chord between its unit radius vectors
-/// (2·sin(θ/2) ≤ θ, and the other way round is ≥ π), so r·|u0 − u1| ≥ eps
+/// Whether `e` is shorter than `eps` (the contour and compensation rules
+/// ask for most elements). An arc's sweep is at least the distance between
+/// its unit radius vectors: that chord is 2·sin(θ/2) ≤ θ the short way
+/// round, and the long way round is at least π > 2. So r·|u0 − u1| ≥ eps
 /// answers no without the arc's trigonometry; the slack keeps rounding
 /// from deciding it.
 pub fn shorter_than(e: &Element, eps: f64) -> bool {
