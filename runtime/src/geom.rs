@@ -52,7 +52,7 @@ const SIMPSON: usize = 64;
 /// `u` turned by `a` (from +Z towards +X).
 #[inline]
 fn turn(u: V2, a: f64) -> V2 {
-    let (s, c) = (libm::sin(a), libm::cos(a));
+    let (s, c) = crate::math::sin_cos(a);
     u * c + u.perp() * s
 }
 
@@ -165,8 +165,8 @@ impl Curve {
                 c, u0, r0, dr, dth, ..
             } => c + turn(u0, dth * lam) * (r0 + dr * lam),
             Curve::Ellipse { c, u, a, b, t0, dt } => {
-                let t = t0 + dt * lam;
-                c + u * (a * libm::cos(t)) + u.perp() * (b * libm::sin(t))
+                let (s, k) = crate::math::sin_cos(t0 + dt * lam);
+                c + u * (a * k) + u.perp() * (b * s)
             }
             Curve::Parabola {
                 o,
@@ -196,8 +196,8 @@ impl Curve {
             Curve::Ellipse {
                 u, a, b, t0, dt, ..
             } => {
-                let t = t0 + dt * lam;
-                (u * (-a * libm::sin(t)) + u.perp() * (b * libm::cos(t))) * dt
+                let (s, k) = crate::math::sin_cos(t0 + dt * lam);
+                (u * (-a * s) + u.perp() * (b * k)) * dt
             }
             Curve::Parabola { u, p, y0, yend, .. } => {
                 let y = yend * lam;
