@@ -174,7 +174,7 @@ mod tests {
             values.push(k as f64 * PI / 4.0);
         }
         for e in -60..12 {
-            for m in [1.0, 1.1, 1.4142, 1.5, 1.9999] {
+            for m in [1.0, 1.1, 1.3, 1.45, 1.5, 1.9999] {
                 values.push(m * libm::pow(2.0, e as f64));
                 values.push(-m * libm::pow(2.0, e as f64));
             }
