@@ -1,8 +1,9 @@
 //! Parses, compiles or runs one generated program, for profiling under
 //! callgrind or perf, and prints the fastest of `runs` timings:
-//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile|plan|vm_plan|e2e|ticks] [runs]`
-//! (`plan`, `vm_plan` and `e2e` are the `runtime` bench's pipelines;
-//! `ticks` runs 100 000 interpolation periods of the program's moves).
+//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile|vm|plan|vm_plan|e2e|ticks] [runs]`
+//! (`vm` compiles, then runs the VM to a sink that counts; `plan`,
+//! `vm_plan` and `e2e` are the `runtime` bench's pipelines; `ticks` runs
+//! 100 000 interpolation periods of the program's moves).
 
 use benches::pipeline;
 use runtime::planner::Planner;
@@ -39,6 +40,13 @@ fn main() {
         let m = module.clone();
         let t0 = Instant::now();
         match (what, m) {
+            ("vm", _) => {
+                let m = benches::build(&src);
+                let mut vm = vm::Vm::new(m, nc::Machine::reference());
+                let mut c = benches::Count::default();
+                black_box(vm.run(&mut c));
+                black_box(c.0);
+            }
             ("parse", _) => {
                 let (ast, diags) = grammar::parse(black_box(src.as_bytes()));
                 black_box((ast.lines.len(), diags.len()));
