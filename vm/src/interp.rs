@@ -401,8 +401,16 @@ impl Vm {
                 }
             }
             Instr::WordK { addr, k, flags } => {
-                let v = self.konst(k);
-                self.words.push(addr, v, flags);
+                self.words.push(addr, self.konst(k), flags);
+                // A block's literal words come in a run: take the rest of
+                // it here rather than one dispatch each (they cannot fail,
+                // wait or write a variable).
+                while let Some(&Instr::WordK { addr, k, flags }) =
+                    self.module.code.get(self.pc as usize)
+                {
+                    self.pc += 1;
+                    self.words.push(addr, self.konst(k), flags);
+                }
             }
             Instr::SetMsg { s } => self.msg = Some(s),
             Instr::Exec { flags } if flags & PROFILE != 0 => {
