@@ -5,6 +5,7 @@
 //! moves with a few rapids and M/S/T words), the same program with a macro
 //! statement every few blocks, and the concatenated public corpus.
 
+use benches::Lcg;
 use criterion::{
     criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
 };
@@ -14,28 +15,15 @@ use std::time::Duration;
 
 const BLOCKS: usize = 1_000_000;
 
-/// A small deterministic generator, so every run parses the same text.
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        self.0 >> 33
-    }
-
-    /// A coordinate with three decimals, as a CAM system writes it.
-    fn coord(&mut self, max: u64) -> String {
-        let v = self.next() % (max * 1000);
-        let sign = if self.next().is_multiple_of(4) {
-            "-"
-        } else {
-            ""
-        };
-        format!("{sign}{}.{:03}", v / 1000, v % 1000)
-    }
+/// A coordinate with three decimals, as a CAM system writes it.
+fn coord(rng: &mut Lcg, max: u64) -> String {
+    let v = rng.next_u64() % (max * 1000);
+    let sign = if rng.next_u64().is_multiple_of(4) {
+        "-"
+    } else {
+        ""
+    };
+    format!("{sign}{}.{:03}", v / 1000, v % 1000)
 }
 
 /// Mostly feed moves; with `macros`, every fifth block is a macro statement.
@@ -52,33 +40,37 @@ fn generate(macros: bool) -> String {
                     "N{n} #{} = #{} + {} * 2",
                     100 + i % 50,
                     101 + i % 40,
-                    rng.coord(10)
+                    coord(&mut rng, 10)
                 ),
                 1 => writeln!(
                     out,
                     "N{n} IF [#{} GT {}] GOTO {}",
                     100 + i % 50,
-                    rng.coord(100),
+                    coord(&mut rng, 100),
                     n + 1
                 ),
                 2 => writeln!(out, "N{n} #1 = SIN[#2 * 3.] + [#3 - #4] / 2"),
-                _ => writeln!(out, "N{n} G01 X[#100 + {}] Z-#101 F0.2", rng.coord(50)),
+                _ => writeln!(
+                    out,
+                    "N{n} G01 X[#100 + {}] Z-#101 F0.2",
+                    coord(&mut rng, 50)
+                ),
             }
         } else {
             match i % 50 {
                 0 => writeln!(
                     out,
                     "N{n} G00 X{} Z{} T0101 M08",
-                    rng.coord(100),
-                    rng.coord(5)
+                    coord(&mut rng, 100),
+                    coord(&mut rng, 5)
                 ),
                 25 => writeln!(out, "N{n} G97 S1200 M03"),
                 _ => writeln!(
                     out,
                     "N{n} G01 X{} Z{} F0.{}",
-                    rng.coord(100),
-                    rng.coord(200),
-                    1 + rng.next() % 3
+                    coord(&mut rng, 100),
+                    coord(&mut rng, 200),
+                    1 + rng.next_u64() % 3
                 ),
             }
         }
