@@ -1,6 +1,8 @@
 //! The interpolation runtime (`runtime` crate): planning throughput
 //! alone (`plan`), parse + VM + plan end to end (`parse_vm_plan`), the
-//! same from a compiled module (`vm_plan`), and the cost of one
+//! same from a compiled module (`vm_plan`), both again with the controller
+//! split in two threads (`…_split`: the interpreter on one, the planning
+//! on the other), and the cost of one
 //! interpolation period (`period`), on generated short-segment and
 //! arc-heavy programs.
 //!
@@ -8,7 +10,9 @@
 //! ≤ 100 ns mean. The distribution of single periods (worst included)
 //! is printed on stderr.
 
-use benches::pipeline::{commands, end_to_end, plan_all, vm_plan, Ticker};
+use benches::pipeline::{
+    commands, end_to_end, end_to_end_split, plan_all, vm_plan, vm_plan_split, Ticker,
+};
 use benches::{arcs, build as module, short_segments};
 use criterion::{
     criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput,
@@ -53,6 +57,11 @@ fn runtime_benches(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::new("parse_vm_plan", name), src, |b, src| {
             b.iter(|| end_to_end(black_box(src), &mut planner))
         });
+        group.bench_with_input(
+            BenchmarkId::new("parse_vm_plan_split", name),
+            src,
+            |b, src| b.iter(|| end_to_end_split(black_box(src))),
+        );
     }
 
     for (name, src, n) in [
@@ -67,6 +76,9 @@ fn runtime_benches(c: &mut Criterion) {
                 |m| vm_plan(m, &mut planner),
                 BatchSize::LargeInput,
             )
+        });
+        group.bench_with_input(BenchmarkId::new("vm_plan_split", name), &m, |b, m| {
+            b.iter_batched(|| m.clone(), vm_plan_split, BatchSize::LargeInput)
         });
     }
 

@@ -1,8 +1,9 @@
 //! Parses, compiles or runs one generated program, for profiling under
 //! callgrind or perf, and prints the fastest of `runs` timings:
-//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile|vm|plan|vm_plan|e2e|ticks] [runs]`
+//! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile|vm|plan|vm_plan[_split]|e2e[_split]|ticks] [runs]`
 //! (`vm` compiles, then runs the VM to a sink that counts; `plan`,
-//! `vm_plan` and `e2e` are the `runtime` bench's pipelines; `ticks` runs
+//! `vm_plan` and `e2e` are the `runtime` bench's pipelines, `_split` with
+//! the interpreter and the planning on two threads; `ticks` runs
 //! 100 000 interpolation periods of the program's moves).
 
 use benches::pipeline;
@@ -32,7 +33,7 @@ fn main() {
     };
     let mut ticker = (what == "ticks").then(|| pipeline::Ticker::new(cmds.clone()));
     let module = match what {
-        "vm_plan" => Some(benches::build(&src)),
+        "vm_plan" | "vm_plan_split" => Some(benches::build(&src)),
         _ => None,
     };
     let mut best = Duration::MAX;
@@ -61,6 +62,12 @@ fn main() {
             }
             ("vm_plan", Some(m)) => {
                 black_box(pipeline::vm_plan(m, &mut planner));
+            }
+            ("vm_plan_split", Some(m)) => {
+                black_box(pipeline::vm_plan_split(m));
+            }
+            ("e2e_split", _) => {
+                black_box(pipeline::end_to_end_split(black_box(&src)));
             }
             ("e2e", _) => {
                 black_box(pipeline::end_to_end(black_box(&src), &mut planner));

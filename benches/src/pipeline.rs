@@ -7,6 +7,7 @@ use runtime::math::V2;
 use runtime::planner::Planner;
 use runtime::translate::Translator;
 use runtime::{AutoAck, Config, Engine};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The commands a program turns into (VM and translation done once).
 pub fn commands(src: &str) -> Vec<Command> {
@@ -85,6 +86,51 @@ pub fn end_to_end(src: &str, p: &mut Planner) -> usize {
     vm_plan(crate::build(src), p)
 }
 
+/// As [`vm_plan`] through a split controller: the interpreter on a
+/// thread of its own, the real-time half planning on this one (retiring
+/// planned moves, as the interpolator would, whenever the look-ahead is
+/// queued: the interpreter waits for that).
+/// Returns the moves planned.
+pub fn vm_plan_split(module: isa::Module) -> usize {
+    let machine = nc::Machine::reference();
+    let ctl = runtime::Controller::with_config(module, machine, Config::default(), AutoAck);
+    let Ok(ctl) = ctl else { return 0 };
+    let (mut interp, mut rt) = ctl.split();
+    let ahead = rt.engine().config().lookahead_blocks;
+    let done = AtomicBool::new(false);
+    let mut planned = 0;
+    std::thread::scope(|s| {
+        s.spawn(|| {
+            while !interp.finished() {
+                interp.run_ahead();
+            }
+            done.store(true, Ordering::Release);
+        });
+        loop {
+            let finished = done.load(Ordering::Acquire);
+            if rt.plan_pending() == 0 {
+                if finished && rt.pending() == 0 {
+                    break;
+                }
+                std::hint::spin_loop();
+            }
+            let q = rt.engine_mut().planner_mut();
+            if q.len() >= ahead {
+                for _ in 0..256 {
+                    q.pop();
+                }
+                planned += 256;
+            }
+        }
+    });
+    planned + rt.engine().planner().len()
+}
+
+/// Parse + compile + split VM ‖ planning of a whole program.
+pub fn end_to_end_split(src: &str) -> usize {
+    vm_plan_split(crate::build(src))
+}
+
 /// An engine running `cmds` over and over; `tick` it.
 pub struct Ticker {
     pub e: Engine<AutoAck>,
@@ -132,5 +178,32 @@ impl Ticker {
 
     pub fn low(&self) -> bool {
         self.e.planner().len() < 1100
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_split_pipeline_plans_what_the_one_thread_pipeline_plans() {
+        for src in [crate::arcs(5000), crate::short_segments(5000)] {
+            // What one planner, never full, queues of the program's moves
+            // (not those of zero length) ...
+            let cfg = Config {
+                queue_capacity: 8192,
+                ..Config::default()
+            };
+            let mut p = Planner::new(&cfg);
+            let tag = Tag::default();
+            let cmds = commands(&src);
+            let queued = cmds
+                .iter()
+                .filter(|&&c| p.push(c, tag) == Ok(runtime::planner::Pushed::Queued))
+                .count();
+            assert!(queued > 4900);
+            // ... and the program's end after them.
+            assert_eq!(vm_plan_split(crate::build(&src)), queued + 1);
+        }
     }
 }

@@ -302,6 +302,13 @@ impl<P: Plc> Engine<P> {
         &self.q
     }
 
+    /// The queue itself, for a host that plans without interpolating (a
+    /// bench of the planning, an estimate): it may pop planned moves, but
+    /// not while the interpolator is on one.
+    pub fn planner_mut(&mut self) -> &mut Planner {
+        &mut self.q
+    }
+
     /// Queues a command (the non-real-time side; allocates nothing).
     pub fn push(&mut self, cmd: crate::command::Command, tag: Tag) -> Result<Pushed, Full> {
         self.q.push(cmd, tag)

@@ -11,7 +11,8 @@
 //!
 //! The embedding API for controllers is [`controller::Controller`]: load a
 //! verified `.gbc`, tick it once per period, feed it overrides and
-//! signals, answer its PLC functions through [`plc::Plc`].
+//! signals, answer its PLC functions through [`plc::Plc`]. [`split`]
+//! divides it into an interpreter thread and a lock-free real-time half.
 //! `runtime/examples/controller.rs` runs a program tick by tick.
 //!
 //! The crate is `no_std` + `alloc`, the controller included, and so are
@@ -52,6 +53,8 @@ pub mod stats;
 pub mod trace;
 
 pub mod controller;
+mod runahead;
+pub mod split;
 pub mod translate;
 
 pub use command::{Command, Tag};
@@ -60,3 +63,4 @@ pub use interpolate::{Engine, Motion, RunState, SetPoint};
 pub use plc::{AutoAck, Plc, PlcFunction};
 
 pub use controller::{AlarmInfo, Controller, LoadError};
+pub use split::{Interpreter, Realtime};

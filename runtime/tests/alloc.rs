@@ -1,7 +1,9 @@
 //! The per-period path allocates nothing: a counting global allocator
 //! sees no allocation inside `tick()` over whole runs (lines, arcs, a
 //! thread, G96, feed hold, dwell, PLC functions), while `run_ahead` — the
-//! VM side — may allocate as it likes between the ticks.
+//! VM side — may allocate as it likes between the ticks. The same holds
+//! for the real-time half of a split controller, ticked while its
+//! interpreter allocates on a thread of its own (the count is per thread).
 
 mod common;
 
@@ -44,11 +46,12 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
+const PROGRAM: &str = "O0001\nG50 X100 Z50\nT0101 M03 S800\nG00 X40 Z2 M08\nG99 G01 Z-20 F0.2\nX50 Z-30\nG02 X60 Z-35 R5\n\
+               G98 G01 Z-40 F300\nG04 X0.2\nG96 S120\nG01 X20 F200\nG97 S600\nG00 X30 Z5\nG32 Z-20 F1.5\nG00 X100 Z50 M09\nM30\n";
+
 #[test]
 fn ticks_allocate_nothing() {
-    let src = "O0001\nG50 X100 Z50\nT0101 M03 S800\nG00 X40 Z2 M08\nG99 G01 Z-20 F0.2\nX50 Z-30\nG02 X60 Z-35 R5\n\
-               G98 G01 Z-40 F300\nG04 X0.2\nG96 S120\nG01 X20 F200\nG97 S600\nG00 X30 Z5\nG32 Z-20 F1.5\nG00 X100 Z50 M09\nM30\n";
-    let m = module(src, &Machine::reference());
+    let m = module(PROGRAM, &Machine::reference());
     let mut ctl = Controller::new(m, Machine::reference(), runtime::AutoAck).unwrap();
     ctl.cycle_start();
     let mut ticks = 0u64;
@@ -78,4 +81,42 @@ fn ticks_allocate_nothing() {
         0,
         "allocations inside tick()"
     );
+}
+
+#[test]
+fn split_ticks_allocate_nothing() {
+    let m = module(PROGRAM, &Machine::reference());
+    let ctl = Controller::new(m, Machine::reference(), runtime::AutoAck).unwrap();
+    let (mut interp, mut rt) = ctl.split();
+    rt.cycle_start();
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let mut ticks = 0u64;
+    let mut allocs = 0;
+    std::thread::scope(|s| {
+        s.spawn(|| {
+            while !stop.load(Ordering::Acquire) {
+                interp.run_ahead();
+                std::thread::yield_now();
+            }
+        });
+        let before = ALLOCS.load(Ordering::Relaxed);
+        loop {
+            COUNTING.with(|c| c.set(true));
+            let sp = rt.tick();
+            COUNTING.with(|c| c.set(false));
+            ticks += 1;
+            match rt.state() {
+                RunState::Ended | RunState::Alarm(_) => break,
+                RunState::Stopped(_) => rt.cycle_start(),
+                RunState::Starved => std::thread::yield_now(),
+                _ => {}
+            }
+            assert!(sp.time_s < 600.0);
+        }
+        allocs = ALLOCS.load(Ordering::Relaxed) - before;
+        stop.store(true, Ordering::Release);
+    });
+    assert_eq!(rt.state(), RunState::Ended);
+    assert!(ticks > 10_000);
+    assert_eq!(allocs, 0, "allocations inside the split tick()");
 }

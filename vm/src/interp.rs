@@ -62,8 +62,9 @@ pub enum Status {
 }
 
 /// Where #500–#999 persist: the VM hands the whole set over whenever a
-/// block changed one of them (vacant values are NaN).
-pub trait Storage {
+/// block changed one of them (vacant values are NaN). `Send`, so that a
+/// VM can move to an interpreter thread of its own.
+pub trait Storage: Send {
     fn store(&mut self, persistent: &[f64; 500]) -> Result<(), String>;
 }
 

@@ -3,7 +3,9 @@
 #![allow(dead_code)]
 
 use nc::{Event, Machine};
-use runtime::{AlarmInfo, Config, Controller, Motion, Plc, RunState, SetPoint};
+use runtime::{AlarmInfo, Config, Controller, Motion, Plc, Realtime, RunState, SetPoint};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 pub fn module(src: &str, machine: &Machine) -> isa::Module {
     let opts = compiler::Options {
@@ -66,6 +68,74 @@ pub fn run_with<P: Plc>(
         alarm: ctl.alarm(),
         cfg,
     }
+}
+
+/// As [`run_with`] with the controller split: the interpreter runs on a
+/// thread of its own, as fast as it likes, while this one ticks the
+/// real-time half without waiting for it. Periods pass while the queue
+/// is starved, as on a machine; only, the loop gives the interpreter's
+/// thread the core then (the ticks run far faster than real time), and
+/// the run must end within a minute of wall time. The alarm is the VM's
+/// when the VM raised it, else the engine's.
+pub fn run_split_with<P: Plc>(
+    src: &str,
+    machine: Machine,
+    plc: P,
+    mut host: impl FnMut(&mut Realtime<P>, &SetPoint),
+) -> Run {
+    let m = module(src, &machine);
+    let cfg = Config::from_machine(&machine);
+    let ctl = Controller::with_config(m, machine, cfg.clone(), plc).expect("loads");
+    let (mut interp, mut rt) = ctl.split();
+    rt.cycle_start();
+    let stop = AtomicBool::new(false);
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let mut pts = Vec::new();
+    let (canon, interp) = std::thread::scope(|s| {
+        let vm_side = s.spawn(|| {
+            let mut canon: Vec<Event> = Vec::new();
+            while !stop.load(Ordering::Acquire) {
+                interp.run_ahead_tap(&mut canon);
+                std::thread::yield_now();
+            }
+            (canon, interp)
+        });
+        loop {
+            let sp = rt.tick();
+            pts.push(sp);
+            host(&mut rt, &sp);
+            match rt.state() {
+                RunState::Stopped(_) => rt.cycle_start(),
+                RunState::Ended | RunState::Alarm(_) => break,
+                RunState::Starved => std::thread::yield_now(),
+                _ => {}
+            }
+            if Instant::now() > deadline {
+                stop.store(true, Ordering::Release);
+                panic!(
+                    "the split run did not end within a minute ({:?})",
+                    rt.state()
+                );
+            }
+        }
+        stop.store(true, Ordering::Release);
+        vm_side.join().expect("the interpreter thread")
+    });
+    let alarm = match rt.state() {
+        RunState::Alarm(code) => interp.alarm(code).or_else(|| rt.alarm()),
+        _ => None,
+    };
+    Run {
+        pts,
+        canon,
+        state: rt.state(),
+        alarm,
+        cfg,
+    }
+}
+
+pub fn run_split(src: &str) -> Run {
+    run_split_with(src, Machine::reference(), runtime::AutoAck, |_, _| {})
 }
 
 pub fn run(src: &str) -> Run {

@@ -1,0 +1,348 @@
+//! The program side of a controller: the VM run ahead of the motion, its
+//! canon events translated into commands and handed to the motion through
+//! a [`Link`].
+//!
+//! [`crate::Controller`] links it straight to its engine (one context
+//! calls both sides); [`crate::split`] links it to an engine on another
+//! thread through lock-free queues.
+
+use crate::command::{Command, Feed, Move, MoveKind, Path, Tag};
+use crate::controller::AlarmInfo;
+use crate::interpolate::{Engine, SkipReport};
+use crate::math::V2;
+use crate::planner::{Full, Pushed};
+use crate::plc::Plc;
+use crate::translate::Translator;
+use alloc::collections::VecDeque;
+use alloc::string::String;
+use alloc::vec::Vec;
+use nc::{Event, Machine, Sink};
+use vm::{Status, Vm};
+
+/// What the program side needs of the motion side.
+pub(crate) trait Link {
+    /// Queues a command for the motion; `Err(Full)` to try again later.
+    fn push(&mut self, c: Command, t: Tag) -> Result<Pushed, Full>;
+    /// Moves and seconds of motion queued ahead of the axes.
+    fn horizon(&mut self) -> (usize, f64);
+    /// The look-ahead to keep queued: (moves, seconds).
+    fn lookahead(&self) -> (usize, f64);
+    /// Every command pushed so far has been executed.
+    fn idle(&self) -> bool;
+    /// Once, after a reset has finished: where the axes stand.
+    fn take_reset(&mut self) -> Option<V2>;
+    /// Once, after a G31 move has ended: how it ended.
+    fn take_skip(&mut self) -> Option<SkipReport>;
+    /// Sets the display shift and the queue's tail for a restarted run.
+    fn reseed(&mut self, origin: V2);
+    /// Hands over what `push` may have kept back (the program side is
+    /// about to return).
+    fn flush(&mut self) {}
+}
+
+/// The engine itself, as a controller in one context drives it.
+impl<P: Plc> Link for Engine<P> {
+    fn push(&mut self, c: Command, t: Tag) -> Result<Pushed, Full> {
+        Engine::push(self, c, t)
+    }
+
+    fn horizon(&mut self) -> (usize, f64) {
+        self.planner().horizon()
+    }
+
+    fn lookahead(&self) -> (usize, f64) {
+        (self.config().lookahead_blocks, self.config().lookahead_s)
+    }
+
+    fn idle(&self) -> bool {
+        self.planner().is_empty()
+    }
+
+    fn take_reset(&mut self) -> Option<V2> {
+        self.take_reset_done().then(|| self.position())
+    }
+
+    fn take_skip(&mut self) -> Option<SkipReport> {
+        self.take_skip_report()
+    }
+
+    fn reseed(&mut self, origin: V2) {
+        Engine::reseed(self, origin);
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum VmState {
+    Running,
+    /// Waiting for a G31 move to end.
+    Skip,
+    /// Waiting for all motion to end before a current-position read.
+    Sync,
+    Done,
+    Alarm,
+}
+
+/// The VM and what turns its events into queued commands.
+pub(crate) struct RunAhead {
+    pub(crate) vm: Vm,
+    pub(crate) machine: Machine,
+    pub(crate) tr: Translator,
+    staged: VecDeque<(Command, Tag)>,
+    events: Vec<Event>,
+    scratch: Vec<Command>,
+    vm_state: VmState,
+    vm_alarm: Option<vm::Alarm>,
+    pub(crate) blocks: u64,
+    block: u32,
+    max_blocks: u64,
+    repeat: u32,
+    /// The G22 area last handed to the motion.
+    stroke: Option<nc::stroke::Area>,
+}
+
+impl RunAhead {
+    pub(crate) fn new(module: isa::Module, machine: Machine) -> RunAhead {
+        let mut vm = Vm::new(module, machine.clone());
+        vm.sync_positions = true;
+        let max_blocks = vm.max_blocks;
+        RunAhead {
+            tr: Translator::new(origin_of(&vm)),
+            vm,
+            machine,
+            staged: VecDeque::new(),
+            events: Vec::new(),
+            scratch: Vec::new(),
+            vm_state: VmState::Running,
+            vm_alarm: None,
+            blocks: 0,
+            block: 0,
+            max_blocks,
+            repeat: 1,
+            stroke: None,
+        }
+    }
+
+    /// The power-on work zero in machine coordinates.
+    pub(crate) fn origin(&self) -> V2 {
+        origin_of(&self.vm)
+    }
+
+    pub(crate) fn set_max_blocks(&mut self, n: u64) {
+        self.max_blocks = n;
+        self.vm.max_blocks = n;
+    }
+
+    pub(crate) fn set_repeat(&mut self, n: u32) {
+        self.repeat = n.max(1);
+        self.vm.repeat = self.repeat;
+    }
+
+    /// The text of a `MESSAGE` stop.
+    pub(crate) fn message(&self, n: u32) -> Option<&str> {
+        self.tr.messages.get(n as usize).map(String::as_str)
+    }
+
+    /// The VM has ended or stopped on an alarm, and all it made is queued.
+    pub(crate) fn finished(&self) -> bool {
+        matches!(self.vm_state, VmState::Done | VmState::Alarm) && self.staged.is_empty()
+    }
+
+    /// The VM's alarm, if `code` is the one it raised.
+    pub(crate) fn vm_alarm(&self, code: u32) -> Option<AlarmInfo> {
+        let a = self.vm_alarm.as_ref().filter(|a| a.code == code)?;
+        Some(AlarmInfo {
+            code,
+            message: a.message.clone(),
+            file: a.file.clone(),
+            line: a.line,
+            col: a.col,
+        })
+    }
+
+    /// Runs the VM until the look-ahead is queued or it must wait.
+    pub(crate) fn fill<L: Link>(&mut self, link: &mut L, tap: &mut dyn Sink) {
+        self.queue(link, tap);
+        link.flush();
+    }
+
+    fn queue<L: Link>(&mut self, link: &mut L, tap: &mut dyn Sink) {
+        if let Some(at) = link.take_reset() {
+            self.restart(at, link);
+        }
+        if let Some(r) = link.take_skip() {
+            self.after_skip(r);
+        }
+        if self.vm_state == VmState::Sync && self.staged.is_empty() && link.idle() {
+            self.vm_state = VmState::Running;
+        }
+        let (cfg_blocks, cfg_secs) = link.lookahead();
+        loop {
+            while let Some(&(c, t)) = self.staged.front() {
+                match link.push(c, t) {
+                    Ok(pushed) => {
+                        self.staged.pop_front();
+                        if pushed == Pushed::Empty && is_skip(&c) {
+                            // A G31 of zero length never runs, so no skip
+                            // report will come: it ended where it began.
+                            self.skip_done();
+                        }
+                    }
+                    Err(Full) => return,
+                }
+            }
+            if self.vm_state != VmState::Running {
+                return;
+            }
+            let (moves, secs) = link.horizon();
+            if moves >= cfg_blocks && secs >= cfg_secs {
+                return;
+            }
+            self.step_vm(tap);
+        }
+    }
+
+    /// Executes one block of the VM and stages its commands.
+    fn step_vm(&mut self, tap: &mut dyn Sink) {
+        self.events.clear();
+        let status = self.vm.step(1 << 16, &mut self.events);
+        let loc = self.vm.last_loc();
+        let tag = Tag {
+            file: loc.file,
+            line: loc.line,
+            col: loc.col,
+            block: self.block,
+            block_end: false,
+        };
+        self.tr.skip_queued = false;
+        for e in self.events.drain(..) {
+            self.scratch.clear();
+            self.tr
+                .event(&e, &self.vm.nc.st, &self.machine, &mut self.scratch);
+            for c in self.scratch.drain(..) {
+                self.staged.push_back((c, tag));
+            }
+            tap.emit(e);
+        }
+        match status {
+            Status::Event => {
+                self.blocks += 1;
+                self.resync(tag);
+                if self.vm.nc.st.exact_stop {
+                    self.staged.push_back((Command::ExactStop, tag));
+                }
+                if self.vm.nc.st.stroke2 != self.stroke {
+                    self.stroke = self.vm.nc.st.stroke2;
+                    self.staged.push_back((Command::Stroke(self.stroke), tag));
+                }
+                if let Some((_, t)) = self.staged.back_mut() {
+                    if t.block == self.block {
+                        t.block_end = true;
+                    }
+                }
+                self.block = self.block.wrapping_add(1);
+                if self.tr.skip_queued {
+                    self.vm_state = VmState::Skip;
+                }
+            }
+            Status::OutOfBudget => {}
+            Status::Sync => self.vm_state = VmState::Sync,
+            Status::Done => {
+                if !matches!(self.staged.back(), Some((Command::End, _))) {
+                    self.staged.push_back((Command::End, tag));
+                }
+                self.vm_state = VmState::Done;
+            }
+            Status::Alarm(a) => {
+                if !matches!(self.staged.back(), Some((Command::Alarm(_), _))) {
+                    self.staged.push_back((Command::Alarm(a.code), tag));
+                }
+                self.vm_alarm = Some(a);
+                self.vm_state = VmState::Alarm;
+            }
+        }
+    }
+
+    /// A block moved the programmed point by an event this build does not
+    /// know: reach the kernel's point by a line at the modal feed.
+    fn resync(&mut self, tag: Tag) {
+        let p = self.vm.nc.st.pos;
+        let kernel = V2::new(p.r, p.z);
+        if (kernel - self.tr.work).max_abs() > 1e-6 {
+            let kind = if self.tr.feed.f > 0.0 {
+                MoveKind::Feed(self.tr.feed)
+            } else {
+                MoveKind::Rapid
+            };
+            self.tr.work = kernel;
+            let shift = self.tr.origin + self.tr.tool_off;
+            let m = Move {
+                kind,
+                path: Path::Line { to: kernel + shift },
+                shift,
+                c: None,
+            };
+            self.staged.push_back((Command::Move(m), tag));
+        }
+    }
+
+    /// A G31 move ended: the next block starts where the axes stopped, and
+    /// the kernel learns the skip position (#5061/#5062, #995/#996).
+    fn after_skip(&mut self, r: SkipReport) {
+        self.skip_done();
+        let Some(hit) = r.hit else { return };
+        let stop_work = r.stop - r.shift;
+        let hit_work = hit - r.shift;
+        self.tr.work = stop_work;
+        let st = &mut self.vm.nc.st;
+        st.pos = nc::state::Pt::new(stop_work.r, stop_work.z);
+        st.skip = Some(nc::state::Pt::new(hit_work.r, hit_work.z));
+        let vars = self.vm.persistent_mut();
+        vars[495] = hit_work.x();
+        vars[496] = hit_work.z;
+    }
+
+    /// The G31 move the VM waits for has ended.
+    fn skip_done(&mut self) {
+        if self.vm_state == VmState::Skip {
+            self.vm_state = VmState::Running;
+        }
+    }
+
+    /// After a reset: a fresh VM at the start of the program, its
+    /// programmed point where the axes now stand (`at`, in machine
+    /// coordinates: power-on work system, no tool offset).
+    fn restart<L: Link>(&mut self, at: V2, link: &mut L) {
+        let module = self.vm.module().clone();
+        self.vm = Vm::new(module, self.machine.clone());
+        self.vm.sync_positions = true;
+        self.vm.max_blocks = self.max_blocks;
+        self.vm.repeat = self.repeat;
+        let origin = origin_of(&self.vm);
+        let work = at - origin;
+        self.vm.nc.st.pos = nc::state::Pt::new(work.r, work.z);
+        let messages = core::mem::take(&mut self.tr.messages);
+        self.tr = Translator::new(origin);
+        self.tr.messages = messages;
+        self.tr.work = work;
+        self.tr.feed = Feed {
+            f: 0.0,
+            per_rev: false,
+        };
+        link.reseed(origin);
+        self.staged.clear();
+        self.vm_state = VmState::Running;
+        self.vm_alarm = None;
+        self.stroke = None;
+        self.block = 0;
+    }
+}
+
+pub(crate) fn is_skip(c: &Command) -> bool {
+    matches!(c, Command::Move(m) if matches!(m.kind, MoveKind::Skip(_)))
+}
+
+/// The power-on work zero of a VM.
+fn origin_of(vm: &Vm) -> V2 {
+    let o = vm.nc.st.origin();
+    V2::new(o.r, o.z)
+}

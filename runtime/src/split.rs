@@ -1,0 +1,453 @@
+//! A controller in two halves, for a host with two contexts: the
+//! [`Interpreter`] runs the VM on an ordinary thread, the [`Realtime`]
+//! half plans and interpolates in the period loop. This is how a real
+//! control divides its work (the interpreter runs ahead, motion runs on
+//! time), and it lets the two run at once on two cores.
+//!
+//! `Controller::split` makes the pair. They share no lock: commands go
+//! to the real-time half through a wait-free ring (`rtrb`), reports
+//! (a reset finished, a G31 move ended) come back through another, and
+//! the queue's horizon and idleness are published in atomics. Neither
+//! half ever waits for the other: the interpreter returns when the ring
+//! is full or the look-ahead is queued, the real-time half takes what
+//! the ring holds (at most [`DRAIN`] commands a period) and ticks.
+//!
+//! What the VM waits for, it waits for here too: after a G31 block for the
+//! skip report, before a current-position read until every command it
+//! has sent has run. A reset on the real-time half drops the commands
+//! still in flight (each carries the epoch it was sent in) and restarts
+//! the interpreter's program where the axes stopped.
+//!
+//! The set points of a split run follow the same rules as a
+//! [`crate::Controller`]'s, but not always the same bits: how much
+//! look-ahead is queued at a given period depends on the two threads'
+//! timing. For bit-identical output, use the one-context controller.
+
+use crate::command::{Command, Tag};
+use crate::config::RapidOverride;
+use crate::controller::{engine_alarm, AlarmInfo, Nothing};
+use crate::interpolate::{Engine, RunState, SetPoint, SkipReport};
+use crate::math::V2;
+use crate::planner::{Full, Pushed};
+use crate::plc::Plc;
+use crate::runahead::{is_skip, Link, RunAhead};
+use alloc::sync::Arc;
+use alloc::vec::Vec;
+use core::sync::atomic::{AtomicU32, Ordering};
+use nc::{Machine, Sink};
+use rtrb::{Consumer, Producer, RingBuffer};
+use vm::Vm;
+
+/// Commands the real-time half takes from the ring in one period: bounds
+/// the planning a period can do.
+pub const DRAIN: usize = 256;
+
+/// Commands in flight between the halves.
+const RING: usize = 1024;
+
+/// A command on its way to the motion, with the epoch it was sent in.
+#[derive(Clone, Copy)]
+struct Msg {
+    cmd: Command,
+    tag: Tag,
+    epoch: u8,
+}
+
+/// What the real-time half tells the interpreter.
+#[derive(Clone, Copy)]
+enum Report {
+    /// A reset finished with the axes at `at`; commands from now on carry
+    /// `epoch`.
+    Reset { epoch: u8, at: V2 },
+    /// A G31 move sent in `epoch` ended.
+    Skip { epoch: u8, report: SkipReport },
+}
+
+/// Published by the real-time half, read by the interpreter.
+struct Shared {
+    /// Moves in the planner's queue.
+    moves: AtomicU32,
+    /// Seconds of motion in the queue, as `f32` bits.
+    secs: AtomicU32,
+    /// [`mark`] of the epoch and the commands taken from the ring when the
+    /// queue was last seen empty.
+    idle: AtomicU32,
+}
+
+/// The epoch in the high byte, a count of commands (mod 2^24) below: the
+/// count only has to tell "all sent" from "fewer", and the ring holds far
+/// fewer than 2^24.
+fn mark(epoch: u8, count: u32) -> u32 {
+    (u32::from(epoch) << 24) | (count & 0x00FF_FFFF)
+}
+
+pub(crate) fn split<P: Plc>(ra: RunAhead, engine: Engine<P>) -> (Interpreter, Realtime<P>) {
+    let (cmd_tx, cmd_rx) = RingBuffer::new(RING);
+    let (rep_tx, rep_rx) = RingBuffer::new(16);
+    let (moves, secs) = engine.planner().horizon();
+    let idle = if engine.planner().is_empty() {
+        mark(0, 0)
+    } else {
+        u32::MAX
+    };
+    let shared = Arc::new(Shared {
+        moves: AtomicU32::new(moves as u32),
+        secs: AtomicU32::new((secs as f32).to_bits()),
+        idle: AtomicU32::new(idle),
+    });
+    let files = ra.vm.module().files.clone();
+    let origin = ra.origin();
+    let cfg = engine.config();
+    let link = RingLink {
+        tx: cmd_tx,
+        rx: rep_rx,
+        shared: shared.clone(),
+        epoch: 0,
+        sent: 0,
+        batch: Vec::with_capacity(BATCH),
+        seen: (0, 0.0),
+        since: 0,
+        lookahead: (cfg.lookahead_blocks, cfg.lookahead_s),
+        reset: None,
+        skip: None,
+    };
+    let rt = Realtime {
+        engine,
+        rx: cmd_rx,
+        tx: rep_tx,
+        shared,
+        epoch: 0,
+        taken: 0,
+        origin,
+        reset: None,
+        skip: None,
+        files,
+        published: (moves as u32, (secs as f32).to_bits()),
+        idle,
+    };
+    (Interpreter { ra, link }, rt)
+}
+
+/// Commands the interpreter collects before it writes them to the ring:
+/// each write is seen by the other core, so it writes in batches.
+const BATCH: usize = 32;
+
+/// The interpreter's end of the rings.
+struct RingLink {
+    tx: Producer<Msg>,
+    rx: Consumer<Report>,
+    shared: Arc<Shared>,
+    epoch: u8,
+    /// Commands sent in this epoch (the batch included).
+    sent: u32,
+    /// Commands not yet written to the ring.
+    batch: Vec<Msg>,
+    /// The horizon last read from `shared`, and the pushes since: the
+    /// interpreter asks at every block, reading the other core's values
+    /// only every [`BATCH`] pushes.
+    seen: (usize, f64),
+    since: usize,
+    lookahead: (usize, f64),
+    reset: Option<V2>,
+    skip: Option<SkipReport>,
+}
+
+impl RingLink {
+    /// Writes what the ring has room for of the batch.
+    fn write(&mut self) {
+        let n = self.batch.len().min(self.tx.slots());
+        if n == 0 {
+            return;
+        }
+        if let Ok(chunk) = self.tx.write_chunk_uninit(n) {
+            chunk.fill_from_iter(self.batch.drain(..n));
+        }
+    }
+
+    fn poll(&mut self) {
+        while let Ok(r) = self.rx.pop() {
+            match r {
+                Report::Reset { epoch, at } => {
+                    self.epoch = epoch;
+                    self.sent = 0;
+                    self.batch.clear();
+                    self.reset = Some(at);
+                    self.skip = None;
+                }
+                Report::Skip { epoch, report } if epoch == self.epoch => self.skip = Some(report),
+                Report::Skip { .. } => {}
+            }
+        }
+    }
+}
+
+impl Link for RingLink {
+    fn push(&mut self, cmd: Command, tag: Tag) -> Result<Pushed, Full> {
+        if self.batch.len() == BATCH {
+            self.write();
+            if self.batch.len() == BATCH {
+                return Err(Full);
+            }
+        }
+        let epoch = self.epoch;
+        self.batch.push(Msg { cmd, tag, epoch });
+        self.sent = self.sent.wrapping_add(1);
+        self.since += 1;
+        Ok(Pushed::Queued)
+    }
+
+    fn horizon(&mut self) -> (usize, f64) {
+        if self.since >= BATCH || self.seen == (0, 0.0) {
+            let in_ring = RING - self.tx.slots() + self.batch.len();
+            let moves = self.shared.moves.load(Ordering::Acquire) as usize;
+            let secs = f32::from_bits(self.shared.secs.load(Ordering::Acquire));
+            self.seen = (moves + in_ring, f64::from(secs));
+            self.since = 0;
+        }
+        (self.seen.0 + self.since, self.seen.1)
+    }
+
+    fn flush(&mut self) {
+        self.write();
+        self.since = BATCH;
+    }
+
+    fn lookahead(&self) -> (usize, f64) {
+        self.lookahead
+    }
+
+    fn idle(&self) -> bool {
+        self.shared.idle.load(Ordering::Acquire) == mark(self.epoch, self.sent)
+    }
+
+    fn take_reset(&mut self) -> Option<V2> {
+        self.poll();
+        self.reset.take()
+    }
+
+    fn take_skip(&mut self) -> Option<SkipReport> {
+        self.poll();
+        self.skip.take()
+    }
+
+    /// The real-time half re-seeded its engine when the reset finished.
+    fn reseed(&mut self, _: V2) {}
+}
+
+/// The half of a split controller that runs the VM: call
+/// [`Interpreter::run_ahead`] from an ordinary thread, as often as it
+/// likes. It allocates (the VM does) and never blocks.
+pub struct Interpreter {
+    ra: RunAhead,
+    link: RingLink,
+}
+
+impl Interpreter {
+    /// Runs the VM until the look-ahead is queued, the ring is full, or
+    /// the program must wait for the motion.
+    pub fn run_ahead(&mut self) {
+        self.run_ahead_tap(&mut Nothing);
+    }
+
+    /// As [`Interpreter::run_ahead`], handing every canon event to `tap`.
+    pub fn run_ahead_tap(&mut self, tap: &mut dyn Sink) {
+        self.ra.fill(&mut self.link, tap);
+    }
+
+    /// The program has ended (or stopped on an alarm) and everything it
+    /// made is on its way to the motion. A reset starts it again.
+    pub fn finished(&self) -> bool {
+        self.ra.finished()
+    }
+
+    /// The VM's alarm, if `code` (from [`Realtime::state`]) is the VM's.
+    pub fn alarm(&self, code: u32) -> Option<AlarmInfo> {
+        self.ra.vm_alarm(code)
+    }
+
+    /// The text of a `MESSAGE` stop ([`RunState::Stopped`]).
+    pub fn message(&self, n: u32) -> Option<&str> {
+        self.ra.message(n)
+    }
+
+    /// NC blocks the VM has executed.
+    pub fn blocks(&self) -> u64 {
+        self.ra.blocks
+    }
+
+    pub fn vm(&self) -> &Vm {
+        &self.ra.vm
+    }
+
+    pub fn machine(&self) -> &Machine {
+        &self.ra.machine
+    }
+}
+
+/// The half of a split controller that moves the axes: call
+/// [`Realtime::tick`] once per period from the real-time context. It
+/// allocates, locks and calls the system for nothing.
+pub struct Realtime<P: Plc> {
+    engine: Engine<P>,
+    rx: Consumer<Msg>,
+    tx: Producer<Report>,
+    shared: Arc<Shared>,
+    epoch: u8,
+    /// Commands taken from the ring in this epoch.
+    taken: u32,
+    /// The program's power-on work zero (for the engine after a reset).
+    origin: V2,
+    /// Reports the ring had no room for yet.
+    reset: Option<V2>,
+    skip: Option<SkipReport>,
+    files: Vec<isa::SourceFileInfo>,
+    /// What `shared` holds: (moves, seconds' bits) and the idle mark.
+    published: (u32, u32),
+    idle: u32,
+}
+
+impl<P: Plc> Realtime<P> {
+    /// One interpolation period: takes new commands into the plan, moves.
+    pub fn tick(&mut self) -> SetPoint {
+        self.plan_pending();
+        let sp = self.engine.tick();
+        self.after_tick();
+        sp
+    }
+
+    /// Plans up to [`DRAIN`] commands from the ring; returns how many it
+    /// took. `tick` calls it; a host that plans without moving (a cycle
+    /// time estimate, a bench) may call it alone.
+    pub fn plan_pending(&mut self) -> usize {
+        let mut took = 0;
+        while took < DRAIN {
+            let Ok(&m) = self.rx.peek() else { break };
+            if m.epoch == self.epoch {
+                match self.engine.push(m.cmd, m.tag) {
+                    Ok(pushed) => {
+                        if pushed == Pushed::Empty && is_skip(&m.cmd) {
+                            // It never runs, so the engine will not report it.
+                            self.skip = Some(SkipReport {
+                                hit: None,
+                                stop: self.engine.position(),
+                                shift: V2::ZERO,
+                            });
+                        }
+                        self.taken = self.taken.wrapping_add(1);
+                    }
+                    Err(Full) => break,
+                }
+            }
+            // A command from before a reset is dropped.
+            let _ = self.rx.pop();
+            took += 1;
+        }
+        if took > 0 {
+            self.engine.replan();
+        }
+        self.publish();
+        took
+    }
+
+    fn after_tick(&mut self) {
+        if let Some(r) = self.engine.take_skip_report() {
+            self.skip = Some(r);
+        }
+        if self.engine.take_reset_done() {
+            self.epoch = self.epoch.wrapping_add(1);
+            self.taken = 0;
+            self.engine.reseed(self.origin);
+            self.reset = Some(self.engine.position());
+            self.skip = None;
+        }
+        self.publish();
+        self.send_reports();
+    }
+
+    /// Publishes the horizon and idleness, writing only what changed: the
+    /// interpreter's core sees every write.
+    fn publish(&mut self) {
+        let (moves, secs) = self.engine.planner().horizon();
+        let now = (moves as u32, (secs as f32).to_bits());
+        if now != self.published {
+            self.published = now;
+            self.shared.moves.store(now.0, Ordering::Release);
+            self.shared.secs.store(now.1, Ordering::Release);
+        }
+        let idle = mark(self.epoch, self.taken);
+        if self.engine.planner().is_empty() && idle != self.idle {
+            self.idle = idle;
+            self.shared.idle.store(idle, Ordering::Release);
+        }
+    }
+
+    /// Sends what is pending, the reset first: it makes older reports moot.
+    fn send_reports(&mut self) {
+        let epoch = self.epoch;
+        if let Some(at) = self.reset {
+            if self.tx.push(Report::Reset { epoch, at }).is_err() {
+                return;
+            }
+            self.reset = None;
+        }
+        if let Some(report) = self.skip {
+            if self.tx.push(Report::Skip { epoch, report }).is_ok() {
+                self.skip = None;
+            }
+        }
+    }
+
+    pub fn state(&self) -> RunState {
+        self.engine.state()
+    }
+
+    /// The engine's alarm with its place; for the VM's own alarms ask
+    /// [`Interpreter::alarm`].
+    pub fn alarm(&self) -> Option<AlarmInfo> {
+        let RunState::Alarm(code) = self.engine.state() else {
+            return None;
+        };
+        Some(engine_alarm(&self.engine, code, &self.files))
+    }
+
+    /// Commands waiting in the ring.
+    pub fn pending(&self) -> usize {
+        self.rx.slots()
+    }
+
+    pub fn engine(&self) -> &Engine<P> {
+        &self.engine
+    }
+
+    pub fn engine_mut(&mut self) -> &mut Engine<P> {
+        &mut self.engine
+    }
+
+    pub fn set_feed_override(&mut self, pct: f64) {
+        self.engine.set_feed_override(pct);
+    }
+
+    pub fn set_rapid_override(&mut self, r: RapidOverride) {
+        self.engine.set_rapid_override(r);
+    }
+
+    pub fn feed_hold(&mut self) {
+        self.engine.feed_hold();
+    }
+
+    pub fn cycle_start(&mut self) {
+        self.engine.cycle_start();
+    }
+
+    pub fn reset(&mut self) {
+        self.engine.reset();
+    }
+
+    pub fn set_single_block(&mut self, on: bool) {
+        self.engine.set_single_block(on);
+    }
+
+    pub fn set_skip_input(&mut self, level: bool) {
+        self.engine.set_skip_input(level);
+    }
+}

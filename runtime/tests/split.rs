@@ -1,0 +1,133 @@
+//! The split controller: the interpreter on a thread of its own, the
+//! real-time half ticked on this one without ever waiting for it — the
+//! same program, the same canon, the same rules in every period.
+
+mod common;
+
+use common::{check_end_points, check_limits, run, run_split, run_split_with};
+use nc::Machine;
+use runtime::RunState;
+use std::fmt::Write;
+
+const SHAFT: &str = "O0001
+G50 X100 Z50
+T0101 M03 S800
+G00 X40 Z2 M08
+G99 G01 Z-20 F0.2
+X50 Z-30
+G02 X60 Z-35 R5
+G01 Z-50
+G03 X70 Z-55 K-5
+G01 X80
+G00 X100 Z50 M09
+M30
+";
+
+/// 3 000 short segments: more than the ring and the planner hold, so
+/// the interpreter keeps meeting a full queue and the real-time half
+/// keeps taking its bounded share per period.
+fn contour() -> String {
+    let mut s = String::from("O0002\nG98 G00 X40 Z2\nG01 F3000\n");
+    for i in 0..3000 {
+        let z = -0.05 * f64::from(i);
+        let x = 40.0 + 4.0 * (f64::from(i) * 0.02).sin();
+        let _ = writeln!(s, "X{x:.3} Z{z:.3}");
+    }
+    s.push_str("G00 X100 Z50\nM30\n");
+    s
+}
+
+#[test]
+fn a_split_run_makes_the_same_canon_and_keeps_every_rule() {
+    for src in [SHAFT.to_string(), contour()] {
+        let one = run(&src);
+        let two = run_split(&src);
+        assert_eq!(two.state, RunState::Ended);
+        assert_eq!(two.canon, one.canon);
+        check_end_points(&two);
+        check_limits(&two, false);
+        let (a, b) = (one.pts.last().unwrap(), two.pts.last().unwrap());
+        assert_eq!((a.x, a.z), (b.x, b.z));
+    }
+}
+
+/// #5042 waits for all motion sent before it to have run, across the
+/// threads as in one context.
+#[test]
+fn a_current_position_read_waits_for_the_motion_across_threads() {
+    let src = "O0015\nG98 G01 Z-30 F600\n#100 = #5042\nG01 Z[#100 - 5]\nM30\n";
+    let r = run_split(src);
+    assert_eq!(r.state, RunState::Ended);
+    assert!((r.pts.last().unwrap().z + 35.0).abs() < 1e-9);
+    assert_eq!(r.canon, run(src).canon);
+}
+
+/// The skip report crosses back: the block after G31 starts where the
+/// axes stopped, #5062 holds the skip point.
+#[test]
+fn the_skip_signal_ends_a_g31_move_across_threads() {
+    let src = "O0012\nG98 G31 Z-50 F600\n#100 = #5062\nG01 Z[#100 + 2]\nM30\n";
+    let mut hit_z = None;
+    let r = run_split_with(src, Machine::reference(), runtime::AutoAck, |rt, sp| {
+        if sp.z <= -20.0 && hit_z.is_none() {
+            hit_z = Some(sp.z);
+            rt.set_skip_input(true);
+        }
+    });
+    assert_eq!(r.state, RunState::Ended);
+    let hit = hit_z.unwrap();
+    assert!((r.pts.last().unwrap().z - (hit + 2.0)).abs() < 1e-9);
+    check_limits(&r, false);
+    // A G31 of zero length runs nothing and must not hold the program.
+    let r = run_split("O0018\nG98 G00 X10 Z5\nG31 F100\nG01 Z0\nM30\n");
+    assert_eq!(r.state, RunState::Ended);
+}
+
+/// Reset drops what is in flight and restarts the program where the axes
+/// stopped; cycle start runs it to its end.
+#[test]
+fn reset_restarts_the_interpreter_where_the_axes_stopped() {
+    let mut reset = false;
+    let mut restarted = false;
+    let r = run_split_with(SHAFT, Machine::reference(), runtime::AutoAck, |rt, sp| {
+        // In the Z-20 cut, well under way.
+        if !reset && sp.line == 5 && sp.feed > 0.0 {
+            rt.reset();
+            reset = true;
+        }
+        if reset && !restarted && rt.state() == RunState::Idle {
+            assert_eq!(sp.feed, 0.0, "reset left the axes moving");
+            restarted = true;
+            rt.cycle_start();
+        }
+    });
+    assert!(restarted);
+    assert_eq!(r.state, RunState::Ended);
+    check_limits(&r, false);
+    let last = r.pts.last().unwrap();
+    assert_eq!((last.x, last.z), (100.0, 50.0));
+    // The program ran once up to the reset, then whole: its first rapid
+    // (X40 Z2) is in the canon twice.
+    let firsts = r
+        .canon
+        .iter()
+        .filter(|e| matches!(e, nc::Event::Rapid { x, z, .. } if *x == 40.0 && *z == 2.0))
+        .count();
+    assert_eq!(firsts, 2);
+}
+
+#[test]
+fn a_program_alarm_names_its_place_across_threads() {
+    let r = run_split("O0014\nG98 G01 Z-5 F600\n#3000 = 12 (STOP HERE)\nG01 Z-10\nM30\n");
+    assert_eq!(r.state, RunState::Alarm(3012));
+    assert!((r.pts.last().unwrap().z + 5.0).abs() < 1e-9);
+    let alarm = r.alarm.unwrap();
+    assert_eq!((alarm.message.as_str(), alarm.line), ("STOP HERE", 3));
+}
+
+#[test]
+fn the_halves_can_move_to_their_threads() {
+    fn send<T: Send>() {}
+    send::<runtime::Interpreter>();
+    send::<runtime::Realtime<runtime::AutoAck>>();
+}
