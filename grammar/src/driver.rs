@@ -7,12 +7,15 @@
 //! than the parsing itself for short blocks. In a batch each run of literal
 //! words (`X10 Z-5 F.2`, most of any program) is handed over as one token
 //! whose words the driver has built, so the parser shifts and reduces once
-//! per run instead of once per word. When a batch fails, its blocks are
-//! parsed again one by one from their plain tokens, so a syntax error still
-//! costs only its own block and is reported exactly as a single-block parse
-//! sees it (a test checks that both ways give the same result).
+//! per run instead of once per word; a block that is nothing but one run
+//! (after a sequence number or not) skips the parser altogether, since the
+//! grammar can only make it a block of those words. When a batch fails,
+//! its blocks are parsed again one by one from their plain tokens, so a
+//! syntax error still costs only its own block and is reported exactly as
+//! a single-block parse sees it (tests check that both ways give the same
+//! result, on every fixture and on random text).
 
-use crate::ast::{Addr, Ast, Block, Body, Comment, Line, ProgramStart, Word};
+use crate::ast::{Addr, Ast, Block, Body, Comment, Line, ProgramStart, Seq, Word};
 use crate::compact::{Compactor, Terminator};
 use crate::diag::Diagnostic;
 use crate::errors;
@@ -112,6 +115,7 @@ fn run(src: &[u8], start: usize, limit: usize, batched: bool) -> (Ast, Vec<Diagn
         runs: Vec::new(),
         entries: Vec::new(),
         blocks: 0,
+        word_blocks: 0,
         line_no: 0,
         line: LineState::default(),
         parser: BatchParser::new(),
@@ -121,7 +125,7 @@ fn run(src: &[u8], start: usize, limit: usize, batched: bool) -> (Ast, Vec<Diagn
     while pos < limit {
         pos = driver.line(pos, limit);
         driver.line_no += 1;
-        if driver.blocks >= BATCH {
+        if driver.blocks + driver.word_blocks >= BATCH {
             driver.flush();
         }
     }
@@ -140,6 +144,15 @@ enum Entry {
         line: usize,
         after_semicolon: bool,
         diag: Diagnostic,
+    },
+    /// A block of literal words only (`runs[words]`), perhaps numbered:
+    /// no parse needed.
+    Words {
+        line: usize,
+        seq: Option<Seq>,
+        words: Range<usize>,
+        comments: Vec<Comment>,
+        span: Span,
     },
     /// A block to parse: its tokens are `tokens[range]`.
     Block {
@@ -167,6 +180,8 @@ struct Driver<'src> {
     entries: Vec<Entry>,
     /// The number of `Entry::Block`s pending.
     blocks: usize,
+    /// ... and of `Entry::Words`.
+    word_blocks: usize,
     /// The physical line being scanned.
     line_no: usize,
     /// The line rules' state for the line of the last entry handed out.
@@ -272,6 +287,26 @@ fn end_run(run: &mut Option<(usize, usize)>, batch: &mut Vec<Spanned>, runs: &[W
     }
 }
 
+/// A block whose tokens (from `batch[first..]`) are one run of literal
+/// words, after a sequence number or not: the grammar makes it a block of
+/// those words and nothing else (`Block: Head Words`, the head empty or
+/// `Seq`, `Words: "run"`), so the driver takes the run's words itself and
+/// spares the parser the block; its tokens leave the batch. Returns the
+/// sequence number and where the words are in the runs.
+fn only_words(batch: &mut Vec<Spanned>, first: usize) -> Option<(Option<Seq>, Range<usize>)> {
+    let (seq, r) = match batch[first..] {
+        [(_, Tok::Run(r), _)] => (None, r),
+        // A faulty number is left to the parser, which reports it.
+        [(l, Tok::Seq(w), r), (_, Tok::Run(run), _)] => {
+            (Some(actions::seq(w, Span::new(l, r)).ok()?), run)
+        }
+        _ => return None,
+    };
+    batch.truncate(first);
+    let start = r.start as usize;
+    Some((seq, start..start + r.len as usize))
+}
+
 impl Driver<'_> {
     /// Scans the line starting at `pos`; returns where the next one starts.
     fn line(&mut self, pos: usize, limit: usize) -> usize {
@@ -362,7 +397,24 @@ impl Driver<'_> {
         ) {
             Ok(()) => {
                 let range = first..self.tokens.len();
+                let batched = self.batch.len();
                 group_words(&self.tokens[range.clone()], &mut self.batch, &mut self.runs);
+                // (Not in the tests' plain mode: the reference to equal.)
+                let words = match self.batched {
+                    true => only_words(&mut self.batch, batched),
+                    false => None,
+                };
+                if let Some((seq, words)) = words {
+                    self.word_blocks += 1;
+                    self.entries.push(Entry::Words {
+                        line,
+                        seq,
+                        words,
+                        comments: scanned.comments,
+                        span,
+                    });
+                    return end;
+                }
                 self.batch
                     .push((span.end as usize, Tok::Eob, span.end as usize));
                 self.blocks += 1;
@@ -407,6 +459,21 @@ impl Driver<'_> {
                     self.line_state(line).other = true;
                     self.report(diag, after_semicolon);
                 }
+                Entry::Words {
+                    line,
+                    seq,
+                    words,
+                    comments,
+                    span,
+                } => {
+                    let words = self.runs.get(words).unwrap_or_default().to_vec();
+                    let parsed = Parsed::Words {
+                        delete: None,
+                        seq,
+                        words,
+                    };
+                    self.finish(parsed, line, comments, span);
+                }
                 Entry::Block {
                     line,
                     after_semicolon,
@@ -434,6 +501,7 @@ impl Driver<'_> {
         self.batch.clear();
         self.runs.clear();
         self.blocks = 0;
+        self.word_blocks = 0;
     }
 
     /// Parses one block alone (a failed batch), converting its fault.
