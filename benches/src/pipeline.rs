@@ -103,6 +103,9 @@ pub fn vm_plan_split(module: isa::Module) -> usize {
         s.spawn(|| {
             while !interp.finished() {
                 interp.run_ahead();
+                // (The look-ahead is queued: let a third thread, such as
+                // the compiler's freeing of the trees, have the core.)
+                std::thread::yield_now();
             }
             done.store(true, Ordering::Release);
         });
@@ -112,7 +115,7 @@ pub fn vm_plan_split(module: isa::Module) -> usize {
                 if finished && rt.pending() == 0 {
                     break;
                 }
-                std::hint::spin_loop();
+                std::thread::yield_now();
             }
             let q = rt.engine_mut().planner_mut();
             if q.len() >= ahead {

@@ -163,9 +163,10 @@ fn calls_m(m: f64) -> bool {
 /// finds none, and the NC words are all the block's words. (G-code macros
 /// are [`g_code_macro`]'s.)
 pub fn may_call(words: &[Word]) -> bool {
-    words.iter().any(|w| match (w.addr, literal_code(w)) {
-        (Addr::Letter('G'), Some(g)) => matches!(round_g(g), 650 | 660 | 670),
-        (Addr::Letter('M'), Some(m)) => calls_m(m),
+    // (The letter first: most words are neither G nor M.)
+    words.iter().any(|w| match w.addr {
+        Addr::Letter('G') => literal_code(w).is_some_and(|g| matches!(round_g(g), 650 | 660 | 670)),
+        Addr::Letter('M') => literal_code(w).is_some_and(calls_m),
         _ => false,
     })
 }
@@ -242,7 +243,9 @@ pub fn g_code_macro<'a>(
     table: &[u32; 10],
     program: u32,
 ) -> Option<Result<Split<'a>, Diagnostic>> {
-    if (9010..=9019).contains(&program) {
+    // (0 assigns no code: a machine without G-code macros, the usual
+    // case, is told at once.)
+    if (9010..=9019).contains(&program) || table.iter().all(|&n| n == 0) {
         return None;
     }
     let first = words.iter().find(|w| is(w, 'G'))?;
