@@ -131,3 +131,69 @@ fn the_halves_can_move_to_their_threads() {
     send::<runtime::Interpreter>();
     send::<runtime::Realtime<runtime::AutoAck>>();
 }
+
+/// The PLC is the real-time half's: M08 acknowledged only after 100
+/// periods holds the next cut there, as in one context.
+#[test]
+fn the_next_block_waits_for_the_plc_across_threads() {
+    struct Slow(u32);
+    impl runtime::Plc for Slow {
+        fn request(&mut self, f: runtime::PlcFunction) {
+            if f == runtime::PlcFunction::M(8) {
+                self.0 = 100;
+            }
+        }
+        fn done(&mut self, _: runtime::PlcFunction) -> bool {
+            self.0 = self.0.saturating_sub(1);
+            self.0 == 0
+        }
+    }
+    let src = "O0010\nG98 G01 Z-1 F600\nM08\nG01 Z-2\nM30\n";
+    let r = run_split_with(src, Machine::reference(), Slow(0), |_, _| {});
+    assert_eq!(r.state, RunState::Ended);
+    check_end_points(&r);
+    // Z stands at -1 for the 100 periods of the handshake (and for any
+    // periods the queue waited for the interpreter).
+    let standing = r.pts.iter().filter(|p| (p.z + 1.0).abs() < 1e-12).count();
+    assert!(standing >= 100, "{standing}");
+}
+
+/// Feed hold on the real-time half decelerates on the path; cycle start
+/// resumes, and the run ends where the program does.
+#[test]
+fn feed_hold_and_single_block_work_across_threads() {
+    let (mut held, mut resumed) = (false, false);
+    let r = run_split_with(SHAFT, Machine::reference(), runtime::AutoAck, |rt, sp| {
+        if !held && sp.line == 6 && sp.feed > 0.0 {
+            rt.feed_hold();
+            held = true;
+        }
+        if held && !resumed && rt.state() == RunState::Held {
+            assert_eq!(sp.feed, 0.0, "held while moving");
+            resumed = true;
+            rt.cycle_start();
+        }
+    });
+    assert!(resumed);
+    assert_eq!(r.state, RunState::Ended);
+    check_end_points(&r);
+    check_limits(&r, false);
+    // Single block: the helper presses cycle start at every stop.
+    let stops = std::cell::Cell::new(0);
+    let r = run_split_with(
+        "O0013\nG98 G01 Z-1 F600\nZ-2\nZ-3\nM30\n",
+        Machine::reference(),
+        runtime::AutoAck,
+        |rt, sp| {
+            if sp.time_s < 0.002 {
+                rt.set_single_block(true);
+            }
+            if let RunState::Stopped(runtime::command::PauseKind::SingleBlock) = rt.state() {
+                stops.set(stops.get() + 1);
+            }
+        },
+    );
+    assert_eq!(r.state, RunState::Ended);
+    check_end_points(&r);
+    assert_eq!(stops.get(), 3);
+}
