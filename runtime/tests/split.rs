@@ -4,24 +4,10 @@
 
 mod common;
 
-use common::{check_end_points, check_limits, run, run_split, run_split_with};
+use common::{check_end_points, check_limits, run, run_split, run_split_with, SHAFT};
 use nc::Machine;
 use runtime::RunState;
 use std::fmt::Write;
-
-const SHAFT: &str = "O0001
-G50 X100 Z50
-T0101 M03 S800
-G00 X40 Z2 M08
-G99 G01 Z-20 F0.2
-X50 Z-30
-G02 X60 Z-35 R5
-G01 Z-50
-G03 X70 Z-55 K-5
-G01 X80
-G00 X100 Z50 M09
-M30
-";
 
 /// 3 000 short segments: more than the ring and the planner hold, so
 /// the interpreter keeps meeting a full queue and the real-time half

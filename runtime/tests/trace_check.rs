@@ -7,20 +7,6 @@ use common::*;
 use nc::{Event, Machine};
 use runtime::{Controller, Motion, RunState};
 
-const SHAFT: &str = "O0001
-G50 X100 Z50
-T0101 M03 S800
-G00 X40 Z2 M08
-G99 G01 Z-20 F0.2
-X50 Z-30
-G02 X60 Z-35 R5
-G01 Z-50
-G03 X70 Z-55 K-5
-G01 X80
-G00 X100 Z50 M09
-M30
-";
-
 #[test]
 fn a_turned_shaft_reaches_every_end_point_within_limits() {
     let r = run(SHAFT);
