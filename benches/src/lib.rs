@@ -3,6 +3,10 @@
 
 pub mod pipeline;
 
+/// The benches measure with the allocator `gbcc` and `gbvm` use.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use nc::{Event, Sink};
 use std::fmt::Write;
 
