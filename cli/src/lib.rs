@@ -4,9 +4,9 @@ pub mod expand;
 pub mod vars;
 
 /// The tools' allocator. A large program's compile makes and frees one
-/// small allocation per block (its words) and the system allocator's
-/// frees were a fifth of its time; the libraries leave the choice to
-/// whoever links them.
+/// small allocation per block (its words), which mimalloc does faster than
+/// the system allocator (about 5 % of a compile and run of 200 000 arc
+/// blocks); the libraries leave the choice to whoever links them.
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
