@@ -106,7 +106,8 @@ pub(crate) fn split<P: Plc>(ra: RunAhead, engine: Engine<P>) -> (Interpreter, Re
         sent: 0,
         batch: Vec::with_capacity(BATCH),
         seen: (0, 0.0),
-        since: 0,
+        // (Read them at the first call.)
+        since: BATCH,
         lookahead: (cfg.lookahead_blocks, cfg.lookahead_s),
         reset: None,
         skip: None,
@@ -197,7 +198,7 @@ impl Link for RingLink {
     }
 
     fn horizon(&mut self) -> (usize, f64) {
-        if self.since >= BATCH || self.seen == (0, 0.0) {
+        if self.since >= BATCH {
             let in_ring = RING - self.tx.slots() + self.batch.len();
             let moves = self.shared.moves.load(Ordering::Acquire) as usize;
             let secs = f32::from_bits(self.shared.secs.load(Ordering::Acquire));
@@ -209,6 +210,7 @@ impl Link for RingLink {
 
     fn flush(&mut self) {
         self.write();
+        // The next call reads the other core's values afresh.
         self.since = BATCH;
     }
 
