@@ -19,11 +19,16 @@ const MAX_G: usize = 16;
 #[derive(Debug, Clone, Default)]
 pub struct Parsed {
     /// G codes in written order with the word index.
-    pub g: [(Code, u8); MAX_G],
-    pub g_len: usize,
+    g: [(Code, u8); MAX_G],
+    g_len: usize,
+    /// The block's one-shot (group 00) code and its last group-01 code,
+    /// noted as the G codes are added: the kernel asks for them many
+    /// times per block.
+    one_shot: Option<Code>,
+    motion: Option<Code>,
     /// M codes in written order with the word index.
-    pub m: [(u32, u8); 3],
-    pub m_len: usize,
+    m: [(u32, u8); 3],
+    m_len: usize,
     /// Bit `a`: address `a` (every one but G and M) is written.
     present: u32,
     /// The value (program units) and flags of each written address.
@@ -81,19 +86,19 @@ impl Parsed {
 
     /// The group-00 code of the block, if any.
     pub fn one_shot(&self) -> Option<Code> {
-        self.gs()
-            .iter()
-            .map(|&(c, _)| c)
-            .find(|&c| gcode::group(c) == Some(gcode::ONE_SHOT))
+        self.one_shot
     }
 
     /// The last group-01 code written in the block.
     pub fn motion(&self) -> Option<Code> {
-        self.gs()
-            .iter()
-            .rev()
-            .map(|&(c, _)| c)
-            .find(|&c| gcode::group(c) == Some(gcode::MOTION))
+        self.motion
+    }
+
+    /// Takes the block's G codes out (its other words stay).
+    pub fn clear_gs(&mut self) {
+        self.g_len = 0;
+        self.one_shot = None;
+        self.motion = None;
     }
 
     pub fn has_axis(&self) -> bool {
@@ -130,7 +135,7 @@ pub fn parse(words: &[Word], m: &Machine) -> Result<Parsed, NcError> {
 
 /// [`parse`] into `p`, whatever it held before.
 pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcError> {
-    p.g_len = 0;
+    p.clear_gs();
     p.m_len = 0;
     p.present = 0;
     for (i, w) in words.iter().enumerate() {
@@ -189,6 +194,11 @@ fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
     }
     p.g[p.g_len] = (code, idx);
     p.g_len += 1;
+    match group {
+        gcode::ONE_SHOT => p.one_shot = Some(code),
+        gcode::MOTION => p.motion = Some(code),
+        _ => {}
+    }
     Ok(())
 }
 
@@ -339,13 +349,23 @@ fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
 }
 
 fn check_foreign(p: &Parsed) -> Result<(), NcError> {
-    if p.has_g(920) && p.has(b'S') && !p.has_axis() {
+    // One pass over the G codes; the rules then apply in their order.
+    let (mut g92, mut peck, mut plane) = (false, false, false);
+    for &(c, _) in p.gs() {
+        match c {
+            920 => g92 = true,
+            740 | 750 => peck = true,
+            170 | 190 => plane = true,
+            _ => {}
+        }
+    }
+    if g92 && p.has(b'S') && !p.has_axis() {
         return fail(2004, "G92 S is the speed clamp of systems B/C: use G50 S");
     }
-    if (p.has_g(740) || p.has_g(750)) && (p.has(b'I') || p.has(b'K')) {
+    if peck && (p.has(b'I') || p.has(b'K')) {
         return fail(2004, "GSK pecks are P/Q in 0.001 mm, not Haas I/K words");
     }
-    if p.has_g(170) || p.has_g(190) {
+    if plane {
         return fail(
             2003,
             "G17/G19 need a Y axis; this lathe works in the ZX plane (G18)",
@@ -356,7 +376,66 @@ fn check_foreign(p: &Parsed) -> Result<(), NcError> {
 
 #[cfg(test)]
 mod tests {
-    use super::round_half_away;
+    use super::{parse, round_half_away};
+    use crate::gcode::{self, Code};
+    use crate::machine::Machine;
+    use crate::words::{addr, Word, LITERAL};
+
+    /// The one-shot and motion codes noted while parsing are what a scan
+    /// of the block's G codes finds (the first group-00 code, the last
+    /// group-01 code), on every block of three G words from a mixed set;
+    /// `clear_gs` forgets them.
+    #[test]
+    fn noted_codes_equal_a_scan_of_the_g_codes() {
+        let codes = [
+            0.0, 1.0, 2.0, 3.0, 4.0, 9.0, 21.0, 28.0, 32.0, 40.0, 41.0, 50.0, 70.0, 71.0, 90.0,
+            92.0, 96.0, 97.0, 98.0, 99.0,
+        ];
+        let word = |letter: u8, value: f64| Word {
+            addr: addr(letter),
+            value,
+            flags: LITERAL,
+        };
+        let scan = |p: &super::Parsed, group: u8, last: bool| -> Option<Code> {
+            let mut found = p
+                .gs()
+                .iter()
+                .map(|&(c, _)| c)
+                .filter(|&c| gcode::group(c) == Some(group));
+            if last {
+                found.next_back()
+            } else {
+                found.next()
+            }
+        };
+        let m = Machine::reference();
+        let mut parsed = 0;
+        for a in codes {
+            for b in codes {
+                for c in codes {
+                    let words = [
+                        word(b'G', a),
+                        word(b'G', b),
+                        word(b'G', c),
+                        word(b'X', 10.0),
+                    ];
+                    let Ok(mut p) = parse(&words, &m) else {
+                        continue;
+                    };
+                    parsed += 1;
+                    assert_eq!(
+                        p.one_shot(),
+                        scan(&p, gcode::ONE_SHOT, false),
+                        "G{a} G{b} G{c}"
+                    );
+                    assert_eq!(p.motion(), scan(&p, gcode::MOTION, true), "G{a} G{b} G{c}");
+                    p.clear_gs();
+                    assert!(p.gs().is_empty() && p.one_shot().is_none() && p.motion().is_none());
+                }
+            }
+        }
+        assert!(parsed > 1000, "only {parsed} blocks parsed");
+    }
 
     /// The cast-based rounding agrees with `libm::floor` everywhere,
     /// halves away from zero, large values and NaN included.

@@ -45,7 +45,11 @@ impl DataState {
 
 /// Is this word `G10` or `G11`?
 fn is_g10_or_g11(w: &Word) -> bool {
-    w.addr == addr(b'G') && matches!(round_half_away(w.value * 10.0) as i64, 100 | 110)
+    // (Only values in [9.95, 11.05) round to G10 or G11: most G words are
+    // turned away without rounding.)
+    w.addr == addr(b'G')
+        && (9.9..11.1).contains(&w.value)
+        && matches!(round_half_away(w.value * 10.0) as i64, 100 | 110)
 }
 
 /// Executes the block when it belongs to data setting (a G10 or G11

@@ -585,7 +585,7 @@ impl Nc {
             90 => {
                 // G09: exact stop is the runtime's; the motion runs as usual.
                 let mut q = p.clone();
-                q.g_len = 0;
+                q.clear_gs();
                 return self.motion(&q, sink, out);
             }
             280 => self.home(p, 1, sink),

@@ -59,12 +59,15 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
     // C/H count as axis words on a machine with a C axis.
     let moves = nc.axis_words(p);
     let st = &mut nc.st.cycles.drill;
-    if p.has_g(800) || p.has_m(2) || p.has_m(30) {
-        st.m29 = false;
-        st.rigid = false;
-    }
-    if p.has_g(830) || p.has_g(870) || p.motion().is_some() {
-        st.rigid = false;
+    // (Only M29 or a rigid cycle leaves something to clear.)
+    if st.m29 || st.rigid {
+        if p.has_g(800) || p.has_m(2) || p.has_m(30) {
+            st.m29 = false;
+            st.rigid = false;
+        }
+        if p.has_g(830) || p.has_g(870) || p.motion().is_some() {
+            st.rigid = false;
+        }
     }
     let drills = matches!(f, Func::Drill(_)) && moves;
     let taps = drills && matches!(f, Func::Drill(840 | 880));
