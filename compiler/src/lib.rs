@@ -22,6 +22,7 @@ use grammar::{Diagnostic, SourceFile};
 use link::{Program, Unit};
 use nc::Machine;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// What the driver passes in.
 #[derive(Debug, Clone)]
@@ -72,7 +73,7 @@ impl Compiled {
 /// Compiles the program file `name` with contents `bytes`.
 pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
     let mut diags = Vec::new();
-    let mut units = vec![parse_unit(name, bytes.to_vec(), 0, &mut diags)];
+    let mut units = vec![parse_unit(name, bytes.into(), 0, &mut diags)];
     let mut programs = link::split(0, &units[0], &mut diags);
     link_libraries(&mut units, &mut programs, opts, &mut diags);
     if has_errors(&diags) {
@@ -165,7 +166,7 @@ fn free_in_background(units: Vec<Unit>, programs: Vec<Program>) {
 fn source_files(units: &[Unit]) -> Vec<SourceFile> {
     units
         .iter()
-        .map(|u| SourceFile::new(u.name.clone(), &u.bytes))
+        .map(|u| SourceFile::new(u.name.clone(), u.bytes.clone()))
         .collect()
 }
 
@@ -205,7 +206,7 @@ fn lower(
 
 fn parse_unit(
     name: &str,
-    bytes: Vec<u8>,
+    bytes: Arc<[u8]>,
     index: usize,
     diags: &mut Vec<(usize, Diagnostic)>,
 ) -> Unit {
@@ -222,15 +223,19 @@ fn parse_unit(
 
 /// Does any block call a G-code macro (those programs are never static)?
 fn uses_g_code_macros(units: &[Unit], programs: &[Program], table: &[u32; 10]) -> bool {
-    programs.iter().any(|p| {
-        p.blocks
-            .iter()
-            .filter_map(|&l| link::block(&units[p.unit], l))
-            .any(|b| match &b.body {
-                grammar::ast::Body::Words(ws) => words::g_code_macro(ws, table, p.number).is_some(),
-                grammar::ast::Body::Stmt(_) => false,
-            })
-    })
+    // (No G code calls a macro unless the table names one.)
+    table.iter().any(|&n| n != 0)
+        && programs.iter().any(|p| {
+            p.blocks
+                .iter()
+                .filter_map(|&l| link::block(&units[p.unit], l))
+                .any(|b| match &b.body {
+                    grammar::ast::Body::Words(ws) => {
+                        words::g_code_macro(ws, table, p.number).is_some()
+                    }
+                    grammar::ast::Body::Stmt(_) => false,
+                })
+        })
 }
 
 /// Literal call targets of a program.
@@ -279,6 +284,10 @@ fn link_libraries(
 ) {
     let mut dirs = opts.include.clone();
     dirs.extend(opts.machine.r#macro.library_dirs.iter().map(PathBuf::from));
+    if dirs.is_empty() {
+        // No folder to find a program in: the calls need not be looked at.
+        return;
+    }
     let mut i = 0;
     while i < programs.len() {
         let wanted = targets(
@@ -297,7 +306,7 @@ fn link_libraries(
                 continue;
             };
             let index = units.len();
-            let unit = parse_unit(&path.display().to_string(), bytes, index, diags);
+            let unit = parse_unit(&path.display().to_string(), bytes.into(), index, diags);
             let mut found = link::split(index, &unit, diags);
             units.push(unit);
             found.retain(|p| !programs.iter().any(|q| q.number == p.number));

@@ -4,11 +4,13 @@
 use grammar::ast::{Ast, Block, Body, Line};
 use grammar::{Diagnostic, Span};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// One source file with its tree.
 pub struct Unit {
     pub name: String,
-    pub bytes: Vec<u8>,
+    /// Shared with the unit's `SourceFile`.
+    pub bytes: Arc<[u8]>,
     pub ast: Ast,
 }
 

@@ -8,6 +8,7 @@ use crate::expr::ExprGen;
 use crate::link::{self, Program, Unit};
 use crate::words::{self, Call, WordValue};
 use grammar::ast::{Block, Body, Cond, Expr, Stmt};
+use grammar::diag::LineHint;
 use grammar::{Diagnostic, SourceFile, Span};
 use isa::{Instr, Module, SourceLoc};
 use nc::Machine;
@@ -26,9 +27,9 @@ pub struct Gen<'a> {
     pub diags: Vec<FileDiag>,
     pub unit: usize,
     loc: SourceLoc,
-    /// The line index of the last location, where the next one is looked
-    /// for first (see `SourceFile::line_col_near`).
-    line_hint: usize,
+    /// The line of the last location, where the next one is looked for
+    /// first (see `SourceFile::line_col_near`), and the unit it is in.
+    line_hint: (usize, LineHint),
     pub expr: ExprGen,
     /// The number of the program being lowered.
     program_number: u32,
@@ -73,13 +74,14 @@ impl<'a> Gen<'a> {
         machine: &'a Machine,
         optimize: bool,
     ) -> Gen<'a> {
-        // A block of words is a few instructions and a few new constants:
-        // room for that spares the copies of growing tables.
-        let blocks: usize = programs.iter().map(|p| p.blocks.len()).sum();
+        // A block of words is an instruction per word and one to run it,
+        // and a few new constants: room for that spares the copies of
+        // growing tables (and a count of the words costs little beside).
+        let (blocks, instrs) = sizes(units, programs);
         let module = Module {
             machine: machine.compile_keys(),
-            code: Vec::with_capacity(4 * blocks),
-            lines: Vec::with_capacity(4 * blocks),
+            code: Vec::with_capacity(instrs),
+            lines: Vec::with_capacity(instrs),
             consts: Vec::with_capacity(2 * blocks),
             ..Module::default()
         };
@@ -94,7 +96,7 @@ impl<'a> Gen<'a> {
             diags: Vec::new(),
             unit: 0,
             loc: SourceLoc::default(),
-            line_hint: 0,
+            line_hint: (0, LineHint::default()),
             expr: ExprGen::default(),
             program_number: 0,
             profiles: Default::default(),
@@ -135,7 +137,10 @@ impl<'a> Gen<'a> {
     }
 
     pub(crate) fn set_loc(&mut self, span: Span) {
-        let (line, col) = self.files[self.unit].line_col_near(span.start, &mut self.line_hint);
+        if self.line_hint.0 != self.unit {
+            self.line_hint = (self.unit, LineHint::default());
+        }
+        let (line, col) = self.files[self.unit].line_col_near(span.start, &mut self.line_hint.1);
         self.loc = SourceLoc {
             file: self.unit as u16,
             line: line as u32,
@@ -605,6 +610,27 @@ impl<'a> Gen<'a> {
     pub fn call_kind(&self, c: &Call<'_>) -> &'static str {
         c.kind_name()
     }
+}
+
+/// The programs' blocks, and about the instructions they lower to: one
+/// per word and one to run the block (statements take a few more, and
+/// are rare).
+fn sizes(units: &[Unit], programs: &[Program]) -> (usize, usize) {
+    let mut instrs = 0;
+    let mut blocks = 0;
+    for prog in programs {
+        blocks += prog.blocks.len();
+        let Some(unit) = units.get(prog.unit) else {
+            continue;
+        };
+        for b in prog.blocks.iter().filter_map(|&l| link::block(unit, l)) {
+            instrs += match &b.body {
+                Body::Words(ws) => ws.len() + 1,
+                Body::Stmt(_) => 4,
+            };
+        }
+    }
+    (blocks, instrs + 2 * programs.len())
 }
 
 /// Does the program's last block end it (M02, M30, M99 or a GOTO)?

@@ -31,7 +31,7 @@ fn main() {
         if show_ast {
             println!("{ast:#?}");
         }
-        let file = grammar::SourceFile::new(name, &bytes);
+        let file = grammar::SourceFile::new(name, bytes.as_slice());
         for d in &diags {
             failed |= d.is_error();
             println!("{}", file.render(d));

@@ -5,7 +5,7 @@ use crate::span::Span;
 use codespan_reporting::diagnostic as cs;
 use codespan_reporting::files::SimpleFile;
 use codespan_reporting::term;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
@@ -70,11 +70,22 @@ impl Diagnostic {
     }
 }
 
+/// The line of the last [`SourceFile::line_col_near`] answer: its index and
+/// its byte range (the last line runs on). The default matches no offset.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LineHint {
+    line: usize,
+    start: usize,
+    end: usize,
+}
+
 /// A source file as the renderer needs it: its name, and its bytes made
 /// printable one byte for one character, so byte offsets stay valid.
 pub struct SourceFile {
     pub name: String,
-    bytes: Vec<u8>,
+    /// Shared with whoever else holds the source (the compiler's unit):
+    /// a large program is not copied again.
+    bytes: Arc<[u8]>,
     /// The printable text, made when first rendered: most compilations
     /// render nothing, and only need line numbers.
     text: OnceLock<String>,
@@ -82,12 +93,13 @@ pub struct SourceFile {
 }
 
 impl SourceFile {
-    pub fn new(name: impl Into<String>, bytes: &[u8]) -> SourceFile {
+    pub fn new(name: impl Into<String>, bytes: impl Into<Arc<[u8]>>) -> SourceFile {
+        let bytes = bytes.into();
         SourceFile {
             name: name.into(),
-            bytes: bytes.to_vec(),
+            line_starts: line_starts(&bytes),
+            bytes,
             text: OnceLock::new(),
-            line_starts: line_starts(bytes),
         }
     }
 
@@ -102,21 +114,34 @@ impl SourceFile {
     }
 
     /// [`SourceFile::line_col`] for offsets asked for in source order:
-    /// `hint` is the line index of the previous answer (0 at first), and
-    /// the offset is nearly always on that line or the next, which needs
-    /// no search. (Inline: the compiler asks for every word.)
+    /// `hint` holds the line of the previous answer, and the offset is
+    /// nearly always on that line (one comparison) or the next, which needs
+    /// no search. (Inline: the compiler asks for every word.) A hint
+    /// belongs to one file.
     #[inline]
-    pub fn line_col_near(&self, offset: u32, hint: &mut usize) -> (usize, usize) {
+    pub fn line_col_near(&self, offset: u32, hint: &mut LineHint) -> (usize, usize) {
         let at = offset as usize;
-        let line = [*hint, *hint + 1]
+        if hint.start <= at && at < hint.end {
+            return (hint.line + 1, at - hint.start + 1);
+        }
+        let line = [hint.line, hint.line + 1]
             .into_iter()
             .find(|&i| self.on_line(at, i))
             .unwrap_or_else(|| match self.line_starts.binary_search(&at) {
                 Ok(i) => i,
                 Err(i) => i - 1,
             });
-        *hint = line;
-        (line + 1, at - self.line_starts[line] + 1)
+        let start = self.line_starts[line];
+        *hint = LineHint {
+            line,
+            start,
+            end: self
+                .line_starts
+                .get(line + 1)
+                .copied()
+                .unwrap_or(usize::MAX),
+        };
+        (line + 1, at - start + 1)
     }
 
     /// Whether byte `at` lies on line index `i` (the last line runs on).
@@ -258,12 +283,12 @@ mod tests {
     #[test]
     fn line_col_near_equals_line_col() {
         let src = b"G01 X1\r\nX2\rX3\n\nX4 (a)\r\r\nX5";
-        let f = SourceFile::new("t.nc", src);
+        let f = SourceFile::new("t.nc", &src[..]);
         let offsets: Vec<u32> = (0..=src.len() as u32 + 2)
             .chain((0..=src.len() as u32).rev())
             .chain([3, 20, 1, 27, 9, 0])
             .collect();
-        let mut hint = 0;
+        let mut hint = super::LineHint::default();
         for at in offsets {
             assert_eq!(f.line_col_near(at, &mut hint), f.line_col(at), "at {at}");
         }

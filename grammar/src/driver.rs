@@ -84,7 +84,8 @@ fn split_point(src: &[u8], limit: usize) -> Option<usize> {
 fn run_halves(src: &[u8], mid: usize, limit: usize) -> (Ast, Vec<Diagnostic>) {
     let ((mut ast, mut diags), (rest, more)) = std::thread::scope(|s| {
         let second = std::thread::Builder::new().spawn_scoped(s, || run(src, mid, limit, true));
-        let first = run(src, 0, mid, true);
+        // (Room for the whole tree: the second half is appended to it.)
+        let first = run_sized(src, 0, mid, lines_in(&src[..limit]), true);
         let second = match second {
             Ok(thread) => thread
                 .join()
@@ -100,14 +101,28 @@ fn run_halves(src: &[u8], mid: usize, limit: usize) -> (Ast, Vec<Diagnostic>) {
 
 /// Parses the lines of `src[start..limit]` (`start` a line start).
 fn run(src: &[u8], start: usize, limit: usize, batched: bool) -> (Ast, Vec<Diagnostic>) {
-    // About one syntax-tree line per LF: counting is cheap and saves growing
-    // (copying) a large vector again and again.
-    let newlines = memchr::memchr_iter(b'\n', &src[start..limit]).count();
+    run_sized(src, start, limit, lines_in(&src[start..limit]), batched)
+}
+
+/// About one syntax-tree line per LF: counting is cheap and saves growing
+/// (copying) a large vector again and again.
+fn lines_in(text: &[u8]) -> usize {
+    memchr::memchr_iter(b'\n', text).count() + 1
+}
+
+/// [`run`] with room for `lines` lines of the tree.
+fn run_sized(
+    src: &[u8],
+    start: usize,
+    limit: usize,
+    lines: usize,
+    batched: bool,
+) -> (Ast, Vec<Diagnostic>) {
     let mut driver = Driver {
         src,
         compactor: Compactor::default(),
         ast: Ast {
-            lines: Vec::with_capacity(newlines + 1),
+            lines: Vec::with_capacity(lines),
         },
         diags: Vec::new(),
         tokens: Vec::new(),
@@ -249,18 +264,7 @@ fn group_words(toks: &[Spanned], batch: &mut Vec<Spanned>, runs: &mut Vec<Word>)
     let mut run: Option<(usize, usize)> = None; // (source start, first word)
     let mut i = 0;
     while i < toks.len() {
-        let word = match (toks[i], toks.get(i + 1)) {
-            ((l, Tok::Word(w), r), _) => Some((
-                actions::word(Addr::Letter(w.letter as char), w, Span::new(l, r)),
-                1,
-            )),
-            ((l, Tok::Comma, _), Some(&(_, Tok::Word(w), r))) => Some((
-                actions::word(Addr::Comma(w.letter as char), w, Span::new(l, r)),
-                2,
-            )),
-            _ => None,
-        };
-        match word {
+        match literal_word(toks, i) {
             Some((w, used)) => {
                 run.get_or_insert((toks[i].0, runs.len()));
                 runs.push(w);
@@ -274,6 +278,44 @@ fn group_words(toks: &[Spanned], batch: &mut Vec<Spanned>, runs: &mut Vec<Word>)
         }
     }
     end_run(&mut run, batch, runs);
+}
+
+/// The literal word whose tokens start at `toks[i]` (`X10`, or `,` and
+/// `C1`), built as the grammar builds it, and how many tokens it took.
+fn literal_word(toks: &[Spanned], i: usize) -> Option<(Word, usize)> {
+    match (toks.get(i)?, toks.get(i + 1)) {
+        (&(l, Tok::Word(w), r), _) => Some((
+            actions::word(Addr::Letter(w.letter as char), w, Span::new(l, r)),
+            1,
+        )),
+        (&(l, Tok::Comma, _), Some(&(_, Tok::Word(w), r))) => Some((
+            actions::word(Addr::Comma(w.letter as char), w, Span::new(l, r)),
+            2,
+        )),
+        _ => None,
+    }
+}
+
+/// A block whose tokens are literal words only, after a sequence number
+/// or not: what the grammar makes of it (`Block: Head Words`, the head
+/// empty or `Seq`), its sequence number and words. `None` for any other
+/// block, and for a faulty sequence number, which the parser reports.
+fn plain_block(toks: &[Spanned]) -> Option<(Option<Seq>, Vec<Word>)> {
+    let (seq, first) = match toks.first() {
+        Some(&(l, Tok::Seq(w), r)) => (Some(actions::seq(w, Span::new(l, r)).ok()?), 1),
+        _ => (None, 0),
+    };
+    if first == toks.len() {
+        return None;
+    }
+    let mut words = Vec::with_capacity(toks.len() - first);
+    let mut i = first;
+    while i < toks.len() {
+        let (w, used) = literal_word(toks, i)?;
+        words.push(w);
+        i += used;
+    }
+    Some((seq, words))
 }
 
 fn end_run(run: &mut Option<(usize, usize)>, batch: &mut Vec<Spanned>, runs: &[Word]) {
@@ -345,8 +387,7 @@ impl Driver<'_> {
     }
 
     fn percent_line(&mut self, at: usize, end: usize) {
-        self.entries
-            .push(Entry::Ready(Line::Percent(Span::new(at, at + 1))));
+        self.ready(Line::Percent(Span::new(at, at + 1)));
         let rest = trim(self.src, at + 1..end);
         if !rest.is_empty() {
             self.entries.push(Entry::Note(
@@ -379,13 +420,14 @@ impl Driver<'_> {
         };
         if scanned.text.is_empty() {
             // Only comments: nothing to parse.
-            self.entries.push(Entry::Ready(Line::Block(Block {
+            let line = Line::Block(Block {
                 delete: None,
                 seq: None,
                 body: Body::Words(Vec::new()),
                 comments: scanned.comments,
                 span,
-            })));
+            });
+            self.ready(line);
             return end;
         }
         let first = self.tokens.len();
@@ -397,6 +439,22 @@ impl Driver<'_> {
         ) {
             Ok(()) => {
                 let range = first..self.tokens.len();
+                // Nothing waits to be parsed before it (entries keep file
+                // order): a block of literal words goes straight into the
+                // tree. (Not in the tests' plain mode: the reference.)
+                if self.batched && self.entries.is_empty() {
+                    if let Some((seq, words)) = plain_block(&self.tokens[range.clone()]) {
+                        self.tokens.truncate(first);
+                        let parsed = Parsed::Words {
+                            delete: None,
+                            seq,
+                            words,
+                        };
+                        let comments = scanned.comments;
+                        self.finish(parsed, line, comments, span);
+                        return end;
+                    }
+                }
                 let batched = self.batch.len();
                 group_words(&self.tokens[range.clone()], &mut self.batch, &mut self.runs);
                 // (Not in the tests' plain mode: the reference to equal.)
@@ -433,6 +491,16 @@ impl Driver<'_> {
             }),
         }
         end
+    }
+
+    /// A line of the tree that needs no parsing: straight in when nothing
+    /// waits before it.
+    fn ready(&mut self, line: Line) {
+        if self.entries.is_empty() {
+            self.ast.lines.push(line);
+        } else {
+            self.entries.push(Entry::Ready(line));
+        }
     }
 
     /// Parses the pending blocks and hands every pending entry out in order.
