@@ -1,5 +1,6 @@
 //! Parses, compiles or runs one generated program, for profiling under
-//! callgrind or perf, and prints the fastest of `runs` timings:
+//! callgrind or perf, and prints the fastest, the median and the slowest
+//! of `runs` timings:
 //! `compile [short|arcs|moves|file:PATH] [blocks] [parse|compile|vm|plan|vm_plan[_split]|e2e[_split]|ticks] [runs]`
 //! (`vm` compiles, then runs the VM to a sink that counts; `plan`,
 //! `vm_plan` and `e2e` are the `runtime` bench's pipelines, `_split` with
@@ -36,7 +37,7 @@ fn main() {
         "vm_plan" | "vm_plan_split" => Some(benches::build(&src)),
         _ => None,
     };
-    let mut best = Duration::MAX;
+    let mut times: Vec<Duration> = Vec::new();
     for _ in 0..runs {
         let m = module.clone();
         let t0 = Instant::now();
@@ -76,10 +77,17 @@ fn main() {
                 black_box(benches::build(black_box(&src)).code.len());
             }
         }
-        best = best.min(t0.elapsed());
+        times.push(t0.elapsed());
     }
-    let per_block = best.as_secs_f64() * 1e9 / blocks as f64;
-    println!("{kind} {what}: best of {runs} {best:?}, {per_block:.0} ns/block");
+    times.sort();
+    let per_block = |t: Option<&Duration>| t.map_or(0.0, |t| t.as_secs_f64() * 1e9 / blocks as f64);
+    let best = times.first().copied().unwrap_or_default();
+    println!(
+        "{kind} {what}: best of {runs} {best:?}, {:.0} ns/block (median {:.0}, slowest {:.0})",
+        per_block(times.first()),
+        per_block(times.get(times.len() / 2)),
+        per_block(times.last()),
+    );
 }
 
 /// 100 000 periods, the queue refilled between batches as in the bench.

@@ -5,7 +5,7 @@ pub mod pipeline;
 
 /// The benches measure with the allocator `gbcc` and `gbvm` use.
 #[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+static ALLOCATOR: cli::allocator::Mimalloc = cli::allocator::Mimalloc;
 
 use nc::{Event, Sink};
 use std::fmt::Write;

@@ -6,6 +6,10 @@ use grammar::Severity;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+/// mimalloc (cli::allocator says why).
+#[global_allocator]
+static ALLOCATOR: cli::allocator::Mimalloc = cli::allocator::Mimalloc;
+
 #[derive(Parser)]
 #[command(
     name = "gbcc",

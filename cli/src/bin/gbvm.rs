@@ -7,6 +7,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use vm::{Status, Vm};
 
+/// mimalloc (cli::allocator says why).
+#[global_allocator]
+static ALLOCATOR: cli::allocator::Mimalloc = cli::allocator::Mimalloc;
+
 #[derive(Parser)]
 #[command(name = "gbvm", version, about = "Run gbc bytecode")]
 struct Args {
