@@ -198,7 +198,10 @@ fn macro_call(
 /// The destination `#i` of a G65 H block.
 fn destination(g: &mut Gen<'_>, p: Option<&Word>, span: Span) -> Option<u32> {
     let var = p.and_then(|w| match &w.value {
-        Value::Expr(Expr::Var(v)) => crate::expr::fold(&v.index).and_then(|r| r.ok()),
+        Value::Expr(e) => match &**e {
+            Expr::Var(v) => crate::expr::fold(&v.index).and_then(|r| r.ok()),
+            _ => None,
+        },
         _ => None,
     });
     match var {

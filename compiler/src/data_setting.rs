@@ -283,12 +283,15 @@ fn parameter_block(gen: &mut Gen<'_>, ws: &[Word]) {
 /// variable to fill, not its value. A literal (`R100`) already is one
 /// (seed: R is "the read address, only a macro variable number").
 fn to_variable_number(r: &mut Word) {
-    let Value::Expr(Expr::Var(v)) = &r.value else {
+    let Value::Expr(e) = &r.value else {
+        return;
+    };
+    let Expr::Var(v) = &**e else {
         return;
     };
     r.value = match v.index.as_ref() {
         Expr::Num(n) => Value::Number(*n),
-        e => Value::Expr(e.clone()),
+        e => Value::Expr(Box::new(e.clone())),
     };
 }
 

@@ -107,8 +107,9 @@ pub enum Value {
     /// A literal as written.
     Number(Number),
     /// `#n`, `#[e]` or `[e]` (optionally signed): computed at run time or
-    /// folded by the compiler.
-    Expr(Expr),
+    /// folded by the compiler. Boxed: computed words are few, and every
+    /// word of the tree is as large as its largest kind.
+    Expr(Box<Expr>),
 }
 
 /// A numeric literal, kept with the facts the decimal-point rule needs.
