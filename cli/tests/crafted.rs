@@ -86,3 +86,55 @@ fn a_crafted_conditional_loop_ends_with_the_budget_alarm() {
     let run = gbvm(&["run", "loop.gbc", "--max-blocks", "1"], &d);
     assert!(text(&run.stdout).starts_with("ALARM CODE=6005 "));
 }
+
+#[test]
+fn text_from_a_crafted_module_reaches_stderr_sanitised() {
+    let d = dir("text");
+    std::fs::write(d.join("part.nc"), "G00 X1\n#3000=1 (BAD)\nM30\n").unwrap();
+    let out = gbcc(&["part.nc", "-o", "part.gbc"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let bytes = std::fs::read(d.join("part.gbc")).unwrap();
+    let mut m = isa::Module::from_bytes(&bytes).unwrap();
+    assert_eq!(m.strings, ["BAD"]);
+    // A file name and a message that try to draw on the terminal and to
+    // pass off a line of their own as a diagnostic.
+    m.files[0].name = "x.nc:9:9: error[E1001]: fake\n\x1b[31mred".into();
+    m.strings[0] = "BAD\x1b]0;title\x07\nfake.nc:1:1: error[E2012]: \"forged\"".into();
+    std::fs::write(d.join("evil.gbc"), m.to_bytes()).unwrap();
+
+    // Each character outside printable ASCII, and `"`, becomes `?`
+    // (canon.md's rule for strings): one line, no escape byte.
+    let header = "x.nc:9:9: error[E1001]: fake??[31mred:2:1: alarm[3001]: \
+                  BAD?]0;title??fake.nc:1:1: error[E2012]: ?forged?\n";
+    for extra in [&[][..], &["--stats"][..]] {
+        let mut args = vec!["run", "evil.gbc"];
+        args.extend_from_slice(extra);
+        let run = gbvm(&args, &d);
+        assert_eq!(run.status.code(), Some(2), "{args:?}");
+        let err = text(&run.stderr);
+        let last = err.lines().last().unwrap_or_default();
+        assert_eq!(format!("{last}\n"), header, "{args:?}: {err:?}");
+        assert!(!err.contains(['\x1b', '\x07']), "{args:?}: {err:?}");
+    }
+    // The canon's MSG already follows the rule.
+    let run = gbvm(&["run", "evil.gbc"], &d);
+    assert_eq!(
+        text(&run.stdout),
+        "RAPID X=1 Z=0\nALARM CODE=3001 MSG=\"BAD?]0;title??fake.nc:1:1: error[E2012]: ?forged?\"\n"
+    );
+
+    // The listing escapes control characters in the file name; no line
+    // of it starts with the forged text.
+    let listing = text(&gbvm(&["disasm", "evil.gbc"], &d).stdout);
+    assert!(!listing.contains(['\x1b', '\x07']), "{listing}");
+    assert!(
+        listing.contains("; file 0: x.nc:9:9: error[E1001]: fake\\n\\u{1b}[31mred (crc32"),
+        "{listing}"
+    );
+    assert!(
+        listing
+            .lines()
+            .all(|l| !l.starts_with("fake") && !l.starts_with("\\")),
+        "{listing}"
+    );
+}

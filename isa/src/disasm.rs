@@ -45,7 +45,12 @@ impl Module {
         )?;
         writeln!(out, "; machine: {:?}", self.machine)?;
         for (i, file) in self.files.iter().enumerate() {
-            writeln!(out, "; file {i}: {} (crc32 {:08x})", file.name, file.hash)?;
+            writeln!(
+                out,
+                "; file {i}: {} (crc32 {:08x})",
+                Name(&file.name),
+                file.hash
+            )?;
         }
 
         let len = self.code.len();
@@ -93,10 +98,11 @@ impl Module {
         write!(out, "  {pc:04}  ")?;
         match self.lines.get(pc) {
             Some(loc) => {
-                let file = self
-                    .files
-                    .get(usize::from(loc.file))
-                    .map_or("?", |f| f.name.as_str());
+                let file = Name(
+                    self.files
+                        .get(usize::from(loc.file))
+                        .map_or("?", |f| f.name.as_str()),
+                );
                 writeln!(out, "{text:<TEXT_WIDTH$} ; {file}:{}:{}", loc.line, loc.col)
             }
             None => writeln!(out, "{text}"),
@@ -123,5 +129,23 @@ impl Module {
             },
             _ => Ok(()),
         }
+    }
+}
+
+/// A file name as listed: control characters escaped as Rust does
+/// (`\n`, `\u{1b}`), so a crafted name cannot break the listing into
+/// fake lines or send escape sequences to a terminal; other text as is.
+struct Name<'a>(&'a str);
+
+impl fmt::Display for Name<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for c in self.0.chars() {
+            if c.is_control() {
+                write!(f, "{}", c.escape_debug())?;
+            } else {
+                f.write_char(c)?;
+            }
+        }
+        Ok(())
     }
 }

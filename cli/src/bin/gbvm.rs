@@ -76,6 +76,20 @@ fn load(path: &Path) -> Result<isa::Module, String> {
         .map_err(|e| format!("{}: not a valid .gbc module: {e}", path.display()))
 }
 
+/// Text that comes from a module's tables (file names, messages), as the
+/// canon prints strings (canon.md): `"` and every character outside
+/// printable ASCII become `?`. A crafted module then cannot put escape
+/// sequences or extra, fake diagnostic lines on the terminal, and an
+/// alarm's message reads as in the canon's `MSG`.
+fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| match c {
+            ' '..='~' if c != '"' => c,
+            _ => '?',
+        })
+        .collect()
+}
+
 fn fail(msg: &str) -> ExitCode {
     eprintln!("gbvm: error: {msg}");
     ExitCode::from(1)
@@ -198,7 +212,7 @@ fn run(
     let _ = sink.out.flush();
     match status {
         Status::Alarm(a) => {
-            eprintln!("{}", a.header());
+            eprintln!("{}", printable(&a.header()));
             ExitCode::from(2)
         }
         _ => ExitCode::SUCCESS,
@@ -338,7 +352,7 @@ fn run_timed(
     }
     match alarm {
         Some(a) => {
-            eprintln!("{}", a.header());
+            eprintln!("{}", printable(&a.header()));
             ExitCode::from(2)
         }
         None => ExitCode::SUCCESS,
