@@ -52,6 +52,9 @@ fn eval(body: impl FnOnce(&mut Asm) -> u8) -> Result<f64, u32> {
 /// Makes an instruction `dst = a <op> b` from `(dst, a, b)`.
 type BinOp = fn(u8, u8, u8) -> Instr;
 
+/// An operation, its operands, the expected result and what it shows.
+type BinCase = (BinOp, Option<f64>, Option<f64>, f64, &'static str);
+
 /// `op(r0, r1)` with the operands loaded first; the operation on [`LINE`].
 fn binary(op: BinOp, x: Option<f64>, y: Option<f64>) -> Result<f64, u32> {
     eval(|a| {
@@ -108,7 +111,7 @@ fn arithmetic_follows_section_7_4_and_vacant_counts_as_zero() {
     let or = |d, a, b| Instr::BitOr { dst: d, a, b };
     let xor = |d, a, b| Instr::BitXor { dst: d, a, b };
     #[rustfmt::skip]
-    let cases: [(BinOp, Option<f64>, Option<f64>, f64, &str); 16] = [
+    let cases: [BinCase; 16] = [
         (add, v(7.0), v(5.0), 12.0, "7+5"),
         (sub, v(7.0), v(5.0), 2.0, "7-5"),
         (mul, v(7.0), v(5.0), 35.0, "7*5"),
