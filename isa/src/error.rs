@@ -129,6 +129,19 @@ pub enum TableError {
         /// `code.len()`.
         code: usize,
     },
+    /// The code section's length cannot hold one instruction per entry
+    /// of the line table (an instruction takes 1 to 7 bytes, the longest
+    /// encoding in the opcode table); found from
+    /// the declared sizes, before the code is decoded.
+    #[error(
+        "a code section of {bytes} bytes cannot hold the {lines} instructions its line table lists"
+    )]
+    CodeSize {
+        /// Length of the code section.
+        bytes: usize,
+        /// Entries of the line table.
+        lines: usize,
+    },
     /// A source location names a file past the file table.
     #[error("source location of pc {pc} names a missing file")]
     FileOutOfRange {

@@ -30,7 +30,8 @@ use alloc::string::String;
 use alloc::vec::Vec;
 
 use crate::encoding::{len_to_u32, Le, Reader};
-use crate::{Instr, LoadError, Module, Program, SourceFileInfo, SourceLoc};
+use crate::instr::MAX_ENCODED_LEN;
+use crate::{Instr, LoadError, Module, Program, SourceFileInfo, SourceLoc, TableError};
 
 /// The first four bytes of every `.gbc` file.
 pub const MAGIC: [u8; 4] = *b"GBC\0";
@@ -117,17 +118,18 @@ pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
     }
 
     let mut r = Reader::new(body, HEADER_LEN);
-    let code = section(&mut r, Section::Code, read_code)?;
-    let consts = section(&mut r, Section::Consts, |s| {
+    let sections = layout(&mut r)?;
+    if !r.is_empty() {
+        return Err(LoadError::TrailingBytes { at: r.pos() });
+    }
+    let code_len = declared_code(&sections)?;
+    let code = payload(sections.code, |s| read_code(s, code_len))?;
+    let consts = payload(sections.consts, |s| {
         table(s, CONST_LEN, |s| s.u64().map(f64::from_bits))
     })?;
-    let strings = section(&mut r, Section::Strings, |s| {
-        table(s, STRING_MIN, read_string)
-    })?;
-    let programs = section(&mut r, Section::Programs, |s| {
-        table(s, PROGRAM_MIN, read_program)
-    })?;
-    let lines = section(&mut r, Section::Lines, |s| {
+    let strings = payload(sections.strings, |s| table(s, STRING_MIN, read_string))?;
+    let programs = payload(sections.programs, |s| table(s, PROGRAM_MIN, read_program))?;
+    let lines = payload(sections.lines, |s| {
         table(s, LINE_LEN, |s| {
             Ok(SourceLoc {
                 file: s.u16()?,
@@ -136,7 +138,7 @@ pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
             })
         })
     })?;
-    let files = section(&mut r, Section::Files, |s| {
+    let files = payload(sections.files, |s| {
         table(s, FILE_MIN, |s| {
             Ok(SourceFileInfo {
                 name: read_string(s)?,
@@ -144,14 +146,11 @@ pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
             })
         })
     })?;
-    let machine = section(&mut r, Section::Machine, |s| {
+    let machine = payload(sections.machine, |s| {
         let at = s.pos();
         utf8(s.rest(), at)
     })?;
-    let num_regs = section(&mut r, Section::Regs, Reader::u16)?;
-    if !r.is_empty() {
-        return Err(LoadError::TrailingBytes { at: r.pos() });
-    }
+    let num_regs = payload(sections.regs, Reader::u16)?;
     Ok(Module {
         code,
         consts,
@@ -164,24 +163,71 @@ pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
     })
 }
 
-/// Reads one section header of the expected kind and its payload with
-/// `payload`, which must consume it exactly.
-fn section<'a, T>(
-    r: &mut Reader<'a>,
-    want: Section,
-    payload: impl FnOnce(&mut Reader<'a>) -> Result<T, LoadError>,
-) -> Result<T, LoadError> {
-    let at = r.pos();
-    let tag = r.u8()?;
-    if tag != want as u8 {
-        return Err(LoadError::UnexpectedSection {
-            at,
-            found: tag,
-            expected: want as u8,
-        });
+/// Each section's payload, found from the section headers alone.
+struct Sections<'a> {
+    code: Reader<'a>,
+    consts: Reader<'a>,
+    strings: Reader<'a>,
+    programs: Reader<'a>,
+    lines: Reader<'a>,
+    files: Reader<'a>,
+    machine: Reader<'a>,
+    regs: Reader<'a>,
+}
+
+/// Walks the eight section headers: each tag where the format puts it,
+/// each declared length within the bytes present. Nothing is decoded or
+/// allocated before every declared size is known to fit the file.
+fn layout<'a>(r: &mut Reader<'a>) -> Result<Sections<'a>, LoadError> {
+    let mut next = |want: Section| {
+        let at = r.pos();
+        let tag = r.u8()?;
+        if tag != want as u8 {
+            return Err(LoadError::UnexpectedSection {
+                at,
+                found: tag,
+                expected: want as u8,
+            });
+        }
+        r.split_sized()
+    };
+    // Struct expression fields are evaluated in the order written, which
+    // is the file order.
+    Ok(Sections {
+        code: next(Section::Code)?,
+        consts: next(Section::Consts)?,
+        strings: next(Section::Strings)?,
+        programs: next(Section::Programs)?,
+        lines: next(Section::Lines)?,
+        files: next(Section::Files)?,
+        machine: next(Section::Machine)?,
+        regs: next(Section::Regs)?,
+    })
+}
+
+/// The number of instructions the line table declares (one location per
+/// instruction), checked against the code section's length before the
+/// code is decoded: every instruction takes 1 to `MAX_ENCODED_LEN` bytes,
+/// so a code section out of proportion to its line table is refused
+/// before it costs memory (8 bytes per instruction decoded).
+fn declared_code(sections: &Sections<'_>) -> Result<usize, LoadError> {
+    let lines = sections.lines.clone().count(LINE_LEN)?;
+    let bytes = sections.code.remaining();
+    let fits = lines <= bytes && bytes <= lines.saturating_mul(MAX_ENCODED_LEN);
+    if fits {
+        Ok(lines)
+    } else {
+        Err(TableError::CodeSize { bytes, lines }.into())
     }
-    let mut s = r.split_sized()?;
-    let value = payload(&mut s)?;
+}
+
+/// Decodes a section's payload with `decode`, which must consume it
+/// exactly.
+fn payload<'a, T>(
+    mut s: Reader<'a>,
+    decode: impl FnOnce(&mut Reader<'a>) -> Result<T, LoadError>,
+) -> Result<T, LoadError> {
+    let value = decode(&mut s)?;
     if !s.is_empty() {
         return Err(LoadError::TrailingBytes { at: s.pos() });
     }
@@ -203,10 +249,13 @@ fn table<'a, T>(
     Ok(items)
 }
 
-fn read_code(s: &mut Reader<'_>) -> Result<Vec<Instr>, LoadError> {
-    // Every instruction takes at least one byte, so this grows to at most
-    // `size_of::<Instr>()` times the section length.
-    let mut code = Vec::new();
+/// The instructions; `expected` (checked against the section's length)
+/// sizes the vector, so a well-formed file decodes without regrowing.
+fn read_code(s: &mut Reader<'_>, expected: usize) -> Result<Vec<Instr>, LoadError> {
+    // Every instruction takes at least one byte, so should the count be
+    // off this still grows to at most `size_of::<Instr>()` times the
+    // section length.
+    let mut code = Vec::with_capacity(expected);
     while !s.is_empty() {
         let pc = len_to_u32(code.len());
         code.push(Instr::read(s, pc)?);

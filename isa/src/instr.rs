@@ -135,6 +135,27 @@ for_each_instr!(define_instr);
 // them two words at most.
 const _: () = assert!(core::mem::size_of::<Instr>() <= 8);
 
+/// The longest encoding of any instruction, in bytes (the loader bounds
+/// a code section's instruction count with it).
+pub(crate) const MAX_ENCODED_LEN: usize = {
+    let mut max = 0;
+    let mut i = 0;
+    while i < Opcode::ALL.len() {
+        let kinds = Opcode::ALL[i].operand_kinds();
+        let mut len = 1;
+        let mut j = 0;
+        while j < kinds.len() {
+            len += kinds[j].width();
+            j += 1;
+        }
+        if len > max {
+            max = len;
+        }
+        i += 1;
+    }
+    max
+};
+
 impl Opcode {
     /// Encoded size of an instruction with this opcode, in bytes.
     pub fn encoded_len(self) -> usize {

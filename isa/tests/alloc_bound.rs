@@ -114,3 +114,48 @@ fn allocation_is_bounded_by_input_size() {
     );
     eprintln!("file of {} bytes: {used} bytes allocated", big.len());
 }
+
+/// The sample module with its code section replaced by `len` bytes of
+/// one-byte `ret` instructions, the other sections as they were.
+fn with_code_section(len: usize) -> Vec<u8> {
+    let bytes = sample_module().to_bytes();
+    let code = section(&bytes, Section::Code);
+    let mut forged = bytes[..code.payload].to_vec();
+    put_u32(&mut forged, code.len_field, len as u32);
+    forged.resize(code.payload + len, isa::Opcode::Ret as u8);
+    forged.extend_from_slice(&bytes[code.payload + code.len..]);
+    reseal(forged)
+}
+
+#[test]
+fn a_forged_100_mb_code_section_is_refused_before_allocating() {
+    const HUNDRED_MB: usize = 100_000_000;
+    // Refused from the declared sizes alone: 41 source locations (the
+    // sample's 41 instructions) cannot describe 100 000 000 one-byte
+    // instructions. Decoding them first would take 800 MB.
+    let forged = with_code_section(HUNDRED_MB);
+    assert_eq!(
+        Module::from_bytes(&forged),
+        Err(isa::TableError::CodeSize {
+            bytes: HUNDRED_MB,
+            lines: 41
+        }
+        .into())
+    );
+    let used = allocated_by_load(&forged);
+    assert!(used <= 4096, "{used} bytes allocated");
+    eprintln!("100 MB code section: {used} bytes allocated before refusal");
+
+    // The same declaration in a file that does not hold it: refused at
+    // the length field.
+    let bytes = sample_module().to_bytes();
+    let code = section(&bytes, Section::Code);
+    let mut short = bytes.clone();
+    put_u32(&mut short, code.len_field, HUNDRED_MB as u32);
+    let short = reseal(short);
+    assert_eq!(
+        Module::from_bytes(&short),
+        Err(isa::LoadError::Truncated { at: code.len_field })
+    );
+    assert!(allocated_by_load(&short) <= 4096);
+}
