@@ -317,3 +317,41 @@ fn a_zero_budget_does_nothing_and_a_block_returns_an_event() {
     assert_eq!(machine.step(100, &mut canon), Status::Done);
     assert_eq!(canon.0.len(), 4);
 }
+
+#[test]
+fn a_current_position_read_waits_for_the_motion_then_resumes() {
+    // `G00 X5 Z-2` then `#100 = #5021`: with `sync_positions` set, the
+    // read first returns Sync (the host lets the move finish), and the
+    // next call runs it. The value is the programmed end point (§7.2:
+    // current equals the end point of the last executed move), X in
+    // diameter as written.
+    let build = || {
+        let mut a = Asm::new();
+        a.word('G', 0.0);
+        a.word('X', 5.0);
+        a.word('Z', -2.0);
+        a.exec();
+        a.op(Instr::LoadVar { dst: 0, var: 5021 });
+        a.op(Instr::StoreVar { var: 100, src: 0 });
+        a.op(Instr::LoadVar { dst: 0, var: 5022 });
+        a.op(Instr::StoreVar { var: 101, src: 0 });
+        a.op(Instr::Halt);
+        a.build()
+    };
+    let mut machine = vm(build());
+    machine.sync_positions = true;
+    let mut canon = Canon::default();
+    assert_eq!(machine.step(100, &mut canon), Status::Event);
+    assert_eq!(machine.step(100, &mut canon), Status::Sync);
+    assert!(machine.variable(100).unwrap().is_nan(), "not read yet");
+    // One wait covers every read up to the next block.
+    assert_eq!(machine.step(100, &mut canon), Status::Done);
+    assert_eq!(machine.variable(100).unwrap(), 5.0);
+    assert_eq!(machine.variable(101).unwrap(), -2.0);
+    assert_eq!(canon.0, ["RAPID X=5 Z=-2"]);
+
+    // Without it, the same run never stops to wait.
+    let (status, _, done) = run(build());
+    assert_eq!(status, Status::Done);
+    assert_eq!(done.variable(100).unwrap(), 5.0);
+}

@@ -339,3 +339,22 @@ fn a_modal_call_follows_each_move_until_g67() {
     a.op(Instr::Ret);
     assert_eq!(var(&done(a), 100), 2.0);
 }
+
+#[test]
+fn a_computed_modal_call() {
+    // G66 P#1 with #1 = 2, then two moves: O0002 runs after each (§7.9).
+    let mut a = Asm::new();
+    a.load(0, 2.0);
+    a.op(Instr::LoadNull { dst: 1 });
+    a.op(Instr::ModalCallDyn { num: 0, count: 1 });
+    for x in [1.0, 2.0] {
+        a.word('G', 0.0);
+        a.word('X', x);
+        a.exec();
+    }
+    a.op(Instr::Halt);
+    a.program(2);
+    bump(&mut a, 100);
+    a.op(Instr::Ret);
+    assert_eq!(var(&done(a), 100), 2.0);
+}
