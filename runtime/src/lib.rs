@@ -47,6 +47,7 @@ pub mod planner;
 pub mod plc;
 pub mod plot;
 pub mod profile;
+pub mod simplify;
 pub mod smooth;
 pub mod spindle;
 pub mod stats;
