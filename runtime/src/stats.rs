@@ -12,7 +12,8 @@ use core::fmt;
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Operation {
     pub tool: u32,
-    /// The source place of its first period (the T block that began it).
+    /// The source place of its first period: the T block, or the first
+    /// move after it when the change took no period (at the start).
     pub file: u16,
     pub line: u32,
     /// Seconds it lasted.
