@@ -110,9 +110,7 @@ fn uncommented(line: &str) -> String {
 
 /// `O1234 (NAME)` or `:1234`: the number and the comment.
 fn o_line(line: &str) -> Option<(u32, Option<String>)> {
-    let rest = line
-        .strip_prefix(['O', 'o', ':'])?
-        .trim_start_matches(|c: char| c == ' ');
+    let rest = line.strip_prefix(['O', 'o', ':'])?.trim_start_matches(' ');
     let end = rest
         .find(|c: char| !c.is_ascii_digit())
         .unwrap_or(rest.len());

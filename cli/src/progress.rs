@@ -56,7 +56,7 @@ impl Progress {
             return;
         }
         self.calls = self.calls.wrapping_add(1);
-        if self.calls % CLOCK_EVERY != 0 {
+        if !self.calls.is_multiple_of(CLOCK_EVERY) {
             return;
         }
         if self.bar.is_hidden() {

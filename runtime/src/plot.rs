@@ -675,8 +675,8 @@ mod tests {
         let title_y = svg.find("font-weight=\"bold\"").map(|_| 22.0);
         assert_eq!(title_y, Some(22.0));
         // Legend text baselines are at y=44, 22 px under the title's, and
-        // the drawing starts below at MT.
+        // the drawing (its clip rectangle) starts 20 px below that.
         assert!(svg.contains("y=\"44.0\">rapid</text>"));
-        assert!(MT > 44.0 + 12.0);
+        assert!(svg.contains("<clipPath id=\"frame\"><rect x=\"70.0\" y=\"64.0\""));
     }
 }
