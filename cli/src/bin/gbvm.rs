@@ -169,6 +169,7 @@ fn main() -> ExitCode {
                     max_blocks,
                     repeat,
                     vars.as_deref(),
+                    quiet,
                 );
             }
             let out = Outputs {
@@ -197,11 +198,13 @@ fn run(
     max_blocks: Option<u64>,
     repeat: u32,
     vars: Option<&Path>,
+    quiet: bool,
 ) -> ExitCode {
     let module = match load(file) {
         Ok(m) => m,
         Err(e) => return fail(&e),
     };
+    let main_lines = main_lines(&module);
     let machine = match cli::load_machine(machine) {
         Ok(m) => m,
         Err(e) => return fail(&e),
@@ -233,7 +236,18 @@ fn run(
         out: BufWriter::new(stdout.lock()),
         broken: false,
     };
-    let status = vm.run(&mut sink);
+    // Block by block (as `Vm::run`), to move the progress bar.
+    let mut progress = cli::progress::Progress::bar(main_lines, "run", quiet);
+    let status = loop {
+        match vm.step(1 << 16, &mut sink) {
+            Status::Event | Status::OutOfBudget | Status::Sync => {
+                let line = vm.last_loc().line;
+                progress.set(line.into(), || format!("line {line}"));
+            }
+            other => break other,
+        }
+    };
+    progress.finish();
     let _ = sink.out.flush();
     match status {
         Status::Alarm(a) => {
@@ -248,6 +262,17 @@ fn run(
 enum StatsTo {
     Stdout,
     Stderr,
+}
+
+/// The main file's last line: the length of the progress bar.
+fn main_lines(module: &isa::Module) -> u64 {
+    module
+        .lines
+        .iter()
+        .filter(|l| l.file == 0)
+        .map(|l| u64::from(l.line))
+        .max()
+        .unwrap_or(1)
 }
 
 /// What a run through the interpolation runtime writes.
@@ -302,14 +327,7 @@ fn run_timed(
         .first()
         .map(|p| p.number)
         .filter(|&n| n != 0);
-    // The main file's last line: the length of the progress bar.
-    let main_lines = module
-        .lines
-        .iter()
-        .filter(|l| l.file == 0)
-        .map(|l| l.line)
-        .max()
-        .unwrap_or(1);
+    let main_lines = main_lines(&module);
     let machine = match cli::load_machine(machine) {
         Ok(m) => m,
         Err(e) => return fail(&e),
@@ -357,7 +375,7 @@ fn run_timed(
     let period = ctl.engine().config().period_s;
     let mut stats = runtime::stats::Stats::new(period);
     let mut plot = out.plot.as_ref().map(|_| runtime::plot::Plot::new());
-    let mut progress = cli::progress::Progress::bar(main_lines.into(), "run", out.quiet);
+    let mut progress = cli::progress::Progress::bar(main_lines, "run", out.quiet);
     // Where the first roughing cycle began: the stock's corner.
     let mut cycle_start: Option<(f64, f64)> = None;
     let mut last = runtime::SetPoint::default();
