@@ -270,7 +270,9 @@ impl Plot {
         let mut placed: Vec<(f64, f64)> = Vec::new();
         for &(mark, p) in &self.marks {
             let (x, y) = v.pin(v.px(p));
-            let mut ly = y - 6.0;
+            // Above the mark, or below it on the frame's top edge, where
+            // the label would reach into the legend.
+            let mut ly = if y <= v.y0 { y + 14.0 } else { y - 6.0 };
             while placed
                 .iter()
                 .any(|&(px, py)| (px - x).abs() < 40.0 && (py - ly).abs() < 12.0)
