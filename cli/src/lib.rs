@@ -2,6 +2,9 @@
 
 pub mod allocator;
 pub mod expand;
+pub mod program_info;
+pub mod progress;
+pub mod stats_json;
 pub mod vars;
 
 use nc::Machine;

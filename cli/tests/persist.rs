@@ -28,7 +28,9 @@ fn check(text: &str) -> f64 {
             other => panic!("unexpected variable #{other}"),
         }
     }
-    let c = counter.expect("#500 present");
+    // A run killed between its first two stores leaves #501 alone (the
+    // program writes it before #500): a whole state, counted as 0.
+    let c = counter.unwrap_or(0.0);
     assert_eq!(
         marker,
         Some(12345.678),

@@ -73,6 +73,9 @@ pub struct SetPoint {
     pub feed: f64,
     /// Source line of the block being executed.
     pub line: u32,
+    /// Its source file: an index into the module's file table
+    /// (`isa::Module::files`; 0 is the main program's file).
+    pub file: u16,
     pub motion: Motion,
     /// The active tool number.
     pub tool: u32,
@@ -478,6 +481,7 @@ impl<P: Plc> Engine<P> {
             c: self.cfg.c.map(|_| self.c),
             feed: self.path_step() / self.dt * 60.0,
             line: self.tag.line,
+            file: self.tag.file,
             motion: self.motion,
             tool: self.tool,
         }

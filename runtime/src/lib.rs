@@ -25,8 +25,8 @@
 //! (the discrete braking limit shared by planner and interpolator),
 //! [`geom`] (exact lines, arcs, ellipses, parabolas), [`interpolate`] (the
 //! period loop), [`spindle`], [`smooth`] (optional jerk limiting),
-//! [`plc`], [`command`], [`config`], and the outputs [`trace`], [`plot`],
-//! [`stats`].
+//! [`plc`], [`command`], [`config`], and the outputs [`trace`], [`plot`]
+//! (with [`simplify`]), [`stats`].
 //!
 //! Determinism: all arithmetic is IEEE double in a fixed order and every
 //! transcendental function comes from `libm`, so identical input and
@@ -47,6 +47,7 @@ pub mod planner;
 pub mod plc;
 pub mod plot;
 pub mod profile;
+pub mod simplify;
 pub mod smooth;
 pub mod spindle;
 pub mod stats;

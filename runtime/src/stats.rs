@@ -1,9 +1,27 @@
-//! Cycle statistics from the set points: time per tool and in total,
-//! distance cut (feeds and threads) and at rapid, blocks executed.
+//! Cycle statistics from the set points: time in total, per tool and per
+//! operation, distance cut (feeds and threads) and at rapid, blocks
+//! executed. An operation is a stretch of the run with one active tool:
+//! it begins at the period the tool becomes active (the T block) and ends
+//! when another tool does, so a tool used twice has two operations.
 
 use crate::interpolate::{Motion, SetPoint};
 use alloc::vec::Vec;
 use core::fmt;
+
+/// One operation: a stretch of the run with one active tool.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Operation {
+    pub tool: u32,
+    /// The source place of its first period: the T block, or the first
+    /// move after it when the change took no period (at the start).
+    pub file: u16,
+    pub line: u32,
+    /// Seconds it lasted.
+    pub time_s: f64,
+    /// Path length at feed (threads included) and at rapid, mm.
+    pub cut_mm: f64,
+    pub rapid_mm: f64,
+}
 
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Stats {
@@ -11,6 +29,8 @@ pub struct Stats {
     pub total_s: f64,
     /// (tool number, seconds while it was the active tool), by first use.
     pub per_tool: Vec<(u32, f64)>,
+    /// The operations in run order.
+    pub operations: Vec<Operation>,
     /// Path length at feed (threads included), mm.
     pub cut_mm: f64,
     /// Of which threads, mm.
@@ -41,21 +61,37 @@ impl Stats {
             Some((_, s)) => *s += self.dt,
             None => self.per_tool.push((p.tool, self.dt)),
         }
+        if self.operations.last().is_none_or(|o| o.tool != p.tool) {
+            self.operations.push(Operation {
+                tool: p.tool,
+                file: p.file,
+                line: p.line,
+                ..Operation::default()
+            });
+        }
         // Axis positions: the tool's real travel, X back to a radius.
         let now = (p.axis_x * 0.5, p.axis_z);
-        if let Some((r, z)) = self.last {
-            let d = libm::hypot(now.0 - r, now.1 - z);
+        let d = self
+            .last
+            .map_or(0.0, |(r, z)| libm::hypot(now.0 - r, now.1 - z));
+        self.last = Some(now);
+        if let Some(op) = self.operations.last_mut() {
+            op.time_s += self.dt;
             match p.motion {
-                Motion::Feed => self.cut_mm += d,
-                Motion::Thread => {
-                    self.cut_mm += d;
-                    self.thread_mm += d;
-                }
-                Motion::Rapid => self.rapid_mm += d,
+                Motion::Feed | Motion::Thread => op.cut_mm += d,
+                Motion::Rapid => op.rapid_mm += d,
                 Motion::None => {}
             }
         }
-        self.last = Some(now);
+        match p.motion {
+            Motion::Feed => self.cut_mm += d,
+            Motion::Thread => {
+                self.cut_mm += d;
+                self.thread_mm += d;
+            }
+            Motion::Rapid => self.rapid_mm += d,
+            Motion::None => {}
+        }
         if let Some(c) = p.c {
             let turned = self.last_c.map_or(0.0, |l| (c - l).abs());
             self.c_deg = Some(self.c_deg.unwrap_or(0.0) + turned);
@@ -64,11 +100,47 @@ impl Stats {
     }
 }
 
+/// A duration as `h:mm:ss`, rounded to the second (as a machine's cycle
+/// time display shows it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hms(pub f64);
+
+impl fmt::Display for Hms {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = if self.0.is_finite() && self.0 > 0.0 {
+            libm::round(self.0) as u64
+        } else {
+            0
+        };
+        write!(f, "{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+    }
+}
+
 impl fmt::Display for Stats {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "cycle time: {:.3} s", self.total_s)?;
+        writeln!(
+            f,
+            "cycle time: {} ({:.3} s)",
+            Hms(self.total_s),
+            self.total_s
+        )?;
+        writeln!(f, "per tool:")?;
         for (t, s) in &self.per_tool {
-            writeln!(f, "  T{t:02}: {s:.3} s")?;
+            writeln!(f, "  T{t:02}: {} ({s:.3} s)", Hms(*s))?;
+        }
+        writeln!(f, "per operation:")?;
+        for (i, o) in self.operations.iter().enumerate() {
+            writeln!(
+                f,
+                "  {:>3}. T{:02} from line {}: {} ({:.3} s), cut {:.3} mm, rapid {:.3} mm",
+                i + 1,
+                o.tool,
+                o.line,
+                Hms(o.time_s),
+                o.time_s,
+                o.cut_mm,
+                o.rapid_mm
+            )?;
         }
         writeln!(
             f,
@@ -100,6 +172,7 @@ mod tests {
             c,
             feed: 0.0,
             line: 1,
+            file: 0,
             motion,
             tool: 1,
         }
@@ -121,5 +194,51 @@ mod tests {
         s.add(&point(0.001, 0.0, None, Motion::None));
         assert_eq!(s.c_deg, None);
         assert!(!s.to_string().contains("C axis"));
+    }
+
+    #[test]
+    fn a_tool_used_twice_makes_two_operations() {
+        // Periods of 0.5 s: T1 for two, T2 for one (a 4 mm feed), T1 for
+        // one more (a 5 mm rapid from Z−4 to Z+1).
+        let mut s = Stats::new(0.5);
+        let at = |t, z, tool, line, motion| SetPoint {
+            tool,
+            line,
+            ..point(t, z, None, motion)
+        };
+        s.add(&at(0.5, 0.0, 1, 3, Motion::None));
+        s.add(&at(1.0, 0.0, 1, 4, Motion::None));
+        s.add(&at(1.5, -4.0, 2, 7, Motion::Feed));
+        s.add(&at(2.0, 1.0, 1, 9, Motion::Rapid));
+        assert_eq!(s.per_tool, [(1, 1.5), (2, 0.5)]);
+        let ops: Vec<_> = s
+            .operations
+            .iter()
+            .map(|o| (o.tool, o.line, o.time_s, o.cut_mm, o.rapid_mm))
+            .collect();
+        assert_eq!(
+            ops,
+            [
+                (1, 3, 1.0, 0.0, 0.0),
+                (2, 7, 0.5, 4.0, 0.0),
+                (1, 9, 0.5, 0.0, 5.0)
+            ]
+        );
+        let text = s.to_string();
+        assert!(text.contains("cycle time: 0:00:02 (2.000 s)"), "{text}");
+        assert!(
+            text.contains("    2. T02 from line 7: 0:00:01 (0.500 s), cut 4.000 mm"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn hms_rounds_to_the_second() {
+        // 3725.4 s = 1 h + 2 min + 5.4 s; 59.5 s rounds up to a minute.
+        assert_eq!(Hms(3725.4).to_string(), "1:02:05");
+        assert_eq!(Hms(59.5).to_string(), "0:01:00");
+        assert_eq!(Hms(0.2).to_string(), "0:00:00");
+        assert_eq!(Hms(36_000.0).to_string(), "10:00:00");
+        assert_eq!(Hms(f64::NAN).to_string(), "0:00:00");
     }
 }

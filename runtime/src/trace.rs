@@ -1,17 +1,20 @@
 //! The per-period trace: one line per interpolation period, as CSV under
 //! [`CSV_HEADER`] or as JSON lines with the same fields. X is a diameter
 //! in work coordinates, as in the canon; `feed` is the actual path speed
-//! in mm/min; `line` the source line of the block being executed.
-//! Positions carry 6 decimals (finer than the 0.001 mm resolution) so a
-//! reader can differentiate them. On a machine with a C axis a `c`
-//! column (degrees) follows `z` ([`CSV_HEADER_C`]); without one the
-//! trace is as before.
+//! in mm/min; `line` the source line of the block being executed and
+//! `file` the source file it is in (the name given to the compiler: a
+//! library program found with `-I` names its own file). Positions carry 6
+//! decimals (finer than the 0.001 mm resolution) so a reader can
+//! differentiate them. On a machine with a C axis a `c` column (degrees)
+//! follows `z` ([`CSV_HEADER_C`]); without one the trace is as before.
+//! `file` is the last column, so the columns before it keep their places.
+//! The format is documented in `docs/formats.md`.
 
 use crate::interpolate::SetPoint;
 use core::fmt::{self, Write};
 
-pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line";
-pub const CSV_HEADER_C: &str = "time_s,x,z,c,spindle_rpm,feed,line";
+pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line,file";
+pub const CSV_HEADER_C: &str = "time_s,x,z,c,spindle_rpm,feed,line,file";
 
 /// The CSV header of a machine with (`true`) or without a C axis.
 pub fn csv_header(c_axis: bool) -> &'static str {
@@ -38,8 +41,49 @@ impl fmt::Display for Fixed {
     }
 }
 
-/// One CSV line (with its `\n`).
-pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
+/// A CSV field (RFC 4180): quoted, with `"` doubled, only when it holds a
+/// comma, a quote or a line end.
+struct CsvField<'a>(&'a str);
+
+impl fmt::Display for CsvField<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if !self.0.contains([',', '"', '\n', '\r']) {
+            return f.write_str(self.0);
+        }
+        f.write_char('"')?;
+        for c in self.0.chars() {
+            if c == '"' {
+                f.write_char('"')?;
+            }
+            f.write_char(c)?;
+        }
+        f.write_char('"')
+    }
+}
+
+/// A JSON string literal.
+struct JsonStr<'a>(&'a str);
+
+impl fmt::Display for JsonStr<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_char('"')?;
+        for c in self.0.chars() {
+            match c {
+                '"' => f.write_str("\\\"")?,
+                '\\' => f.write_str("\\\\")?,
+                '\n' => f.write_str("\\n")?,
+                '\r' => f.write_str("\\r")?,
+                '\t' => f.write_str("\\t")?,
+                c if (c as u32) < 0x20 => write!(f, "\\u{:04x}", c as u32)?,
+                c => f.write_char(c)?,
+            }
+        }
+        f.write_char('"')
+    }
+}
+
+/// One CSV line (with its `\n`); `file` is the name of `p.file`.
+pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint, file: &str) -> fmt::Result {
     write!(
         w,
         "{},{},{},",
@@ -52,15 +96,16 @@ pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
     }
     writeln!(
         w,
-        "{},{},{}",
+        "{},{},{},{}",
         Fixed(p.spindle_rpm, 3),
         Fixed(p.feed, 3),
-        p.line
+        p.line,
+        CsvField(file)
     )
 }
 
-/// One JSON line (with its `\n`).
-pub fn write_json<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
+/// One JSON line (with its `\n`); `file` is the name of `p.file`.
+pub fn write_json<W: Write>(w: &mut W, p: &SetPoint, file: &str) -> fmt::Result {
     write!(
         w,
         "{{\"time_s\":{},\"x\":{},\"z\":{},",
@@ -73,10 +118,11 @@ pub fn write_json<W: Write>(w: &mut W, p: &SetPoint) -> fmt::Result {
     }
     writeln!(
         w,
-        "\"spindle_rpm\":{},\"feed\":{},\"line\":{}}}",
+        "\"spindle_rpm\":{},\"feed\":{},\"line\":{},\"file\":{}}}",
         Fixed(p.spindle_rpm, 3),
         Fixed(p.feed, 3),
-        p.line
+        p.line,
+        JsonStr(file)
     )
 }
 
@@ -97,26 +143,48 @@ mod tests {
             ..Default::default()
         };
         let mut s = String::new();
-        write_csv(&mut s, &p).unwrap();
-        assert_eq!(s, "0.001000,40.000000,0.000000,800.000,1200.000,7\n");
+        write_csv(&mut s, &p, "part.nc").unwrap();
+        assert_eq!(
+            s,
+            "0.001000,40.000000,0.000000,800.000,1200.000,7,part.nc\n"
+        );
         s.clear();
-        write_json(&mut s, &p).unwrap();
-        assert_eq!(s, "{\"time_s\":0.001000,\"x\":40.000000,\"z\":0.000000,\"spindle_rpm\":800.000,\"feed\":1200.000,\"line\":7}\n");
+        write_json(&mut s, &p, "part.nc").unwrap();
+        assert_eq!(s, "{\"time_s\":0.001000,\"x\":40.000000,\"z\":0.000000,\"spindle_rpm\":800.000,\"feed\":1200.000,\"line\":7,\"file\":\"part.nc\"}\n");
         // With a C axis the angle follows z.
         let p = SetPoint {
             c: Some(-90.5),
             ..p
         };
         s.clear();
-        write_csv(&mut s, &p).unwrap();
+        write_csv(&mut s, &p, "part.nc").unwrap();
         assert_eq!(
             s,
-            "0.001000,40.000000,0.000000,-90.500000,800.000,1200.000,7\n"
+            "0.001000,40.000000,0.000000,-90.500000,800.000,1200.000,7,part.nc\n"
         );
         s.clear();
-        write_json(&mut s, &p).unwrap();
+        write_json(&mut s, &p, "part.nc").unwrap();
         assert!(
             s.contains("\"z\":0.000000,\"c\":-90.500000,\"spindle_rpm\""),
+            "{s}"
+        );
+    }
+
+    #[test]
+    fn file_names_are_quoted_where_the_format_needs_it() {
+        let p = SetPoint::default();
+        let mut s = String::new();
+        // CSV: a comma or a quote makes a quoted field, quotes doubled.
+        write_csv(&mut s, &p, "a,b \"c\".nc").unwrap();
+        assert!(s.ends_with(",0,\"a,b \"\"c\"\".nc\"\n"), "{s}");
+        s.clear();
+        write_csv(&mut s, &p, "lib/O9001.nc").unwrap();
+        assert!(s.ends_with(",0,lib/O9001.nc\n"), "{s}");
+        // JSON: backslash and quote escaped.
+        s.clear();
+        write_json(&mut s, &p, "C:\\nc\\\"x\".nc").unwrap();
+        assert!(
+            s.ends_with("\"file\":\"C:\\\\nc\\\\\\\"x\\\".nc\"}\n"),
             "{s}"
         );
     }

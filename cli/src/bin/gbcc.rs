@@ -51,6 +51,9 @@ struct Args {
     /// Machine file (TOML, machine.md §4); the reference machine by default.
     #[arg(long = "machine", value_name = "FILE")]
     machine: Option<PathBuf>,
+    /// No progress spinner (it shows on a terminal after a second).
+    #[arg(long, short = 'q')]
+    quiet: bool,
 }
 
 fn usage(msg: &str) -> ExitCode {
@@ -118,6 +121,7 @@ fn main() -> ExitCode {
         let compiled = if syntax_only {
             syntax(&name, &bytes)
         } else {
+            let _spinner = cli::progress::Spinner::start(format!("compiling {name}"), args.quiet);
             compiler::compile(&name, &bytes, &opts)
         };
         let errors = report(&compiled, json, werror, args.no_warnings);

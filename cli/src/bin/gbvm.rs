@@ -5,6 +5,7 @@ use nc::{Event, Sink};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 use vm::{Status, Vm};
 
 /// mimalloc (cli::allocator says why).
@@ -25,6 +26,12 @@ enum Emit {
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum StatsFormat {
+    Text,
+    Json,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Format {
     Csv,
     Json,
@@ -35,22 +42,33 @@ enum Command {
     /// Run a module and print what the machine is told to do.
     Run {
         file: PathBuf,
-        /// canon: the motion listing of canon.md; trace: one line per
-        /// interpolation period (time_s,x,z,spindle_rpm,feed,line; a c
-        /// column after z on a machine with a C axis).
-        #[arg(long, value_enum, default_value = "canon")]
-        emit: Emit,
+        /// canon: the motion listing (docs/formats.md); trace: one line
+        /// per interpolation period (time_s,x,z,spindle_rpm,feed,line,file;
+        /// a c column after z on a machine with a C axis). Default: canon,
+        /// or nothing when --stats takes standard output.
+        #[arg(long, value_enum)]
+        emit: Option<Emit>,
         /// Format of the trace: CSV with a header, or JSON lines.
         #[arg(long, value_enum, default_value = "csv")]
         format: Format,
-        /// Draw the XZ toolpath into an SVG file (rapids dashed, feeds
-        /// solid, threads in their own colour).
+        /// Draw the XZ toolpath into an SVG file, framed on the cutting
+        /// moves (rapids dashed, feeds solid, threads in their own colour;
+        /// start point, tool changes and stock marked).
         #[arg(long, value_name = "FILE.svg")]
         plot: Option<PathBuf>,
-        /// Print cycle time per tool and in total, distance cut and at
-        /// rapid, and blocks executed (on stderr).
-        #[arg(long)]
-        stats: bool,
+        /// The stock the plot draws: X<diameter> Z<length>, face at Z0
+        /// (default: the program's [BILLET line, else the corner of its
+        /// first roughing cycle).
+        #[arg(long, value_name = "X… Z…")]
+        stock: Option<String>,
+        /// Print cycle time in total, per tool and per operation (h:mm:ss
+        /// and seconds), distances and blocks: on stdout without --emit,
+        /// else on stderr. --stats=json for one JSON object.
+        #[arg(long, value_enum, num_args = 0..=1, require_equals = true, default_missing_value = "text", value_name = "FORMAT")]
+        stats: Option<StatsFormat>,
+        /// No progress bar.
+        #[arg(long, short = 'q')]
+        quiet: bool,
         #[arg(long, value_name = "FILE")]
         machine: Option<PathBuf>,
         /// Block budget (E6005 past it); default run.max_blocks.
@@ -131,28 +149,50 @@ fn main() -> ExitCode {
             emit,
             format,
             plot,
+            stock,
             stats,
+            quiet,
             machine,
             max_blocks,
             repeat,
             vars,
         } => {
-            if emit == Emit::Canon && format == Format::Json {
+            // --stats alone takes stdout; an explicit --emit keeps it.
+            let stats_out = match (stats, emit) {
+                (None, _) => None,
+                (Some(f), None) => Some((f, StatsTo::Stdout)),
+                (Some(f), Some(_)) => Some((f, StatsTo::Stderr)),
+            };
+            let emit = match (emit, stats) {
+                (Some(e), _) => Some(e),
+                (None, Some(_)) => None,
+                (None, None) => Some(Emit::Canon),
+            };
+            if emit != Some(Emit::Trace) && format == Format::Json {
                 return fail("--format json applies to --emit trace");
             }
-            if emit == Emit::Canon && plot.is_none() && !stats {
+            let stock = match stock.as_deref().map(cli::program_info::parse_stock) {
+                None => None,
+                Some(Ok(s)) => Some(s),
+                Some(Err(e)) => return fail(&e),
+            };
+            if emit == Some(Emit::Canon) && plot.is_none() && stats.is_none() {
                 return run(
                     &file,
                     machine.as_deref(),
                     max_blocks,
                     repeat,
                     vars.as_deref(),
+                    quiet,
                 );
             }
             let out = Outputs {
-                trace: (emit == Emit::Trace).then_some(format),
+                canon: emit == Some(Emit::Canon),
+                trace: (emit == Some(Emit::Trace)).then_some(format),
                 plot,
-                stats,
+                stock,
+                stats: stats_out,
+                quiet,
             };
             run_timed(
                 &file,
@@ -172,11 +212,13 @@ fn run(
     max_blocks: Option<u64>,
     repeat: u32,
     vars: Option<&Path>,
+    quiet: bool,
 ) -> ExitCode {
     let module = match load(file) {
         Ok(m) => m,
         Err(e) => return fail(&e),
     };
+    let main_lines = main_lines(&module);
     let machine = match cli::load_machine(machine) {
         Ok(m) => m,
         Err(e) => return fail(&e),
@@ -208,7 +250,18 @@ fn run(
         out: BufWriter::new(stdout.lock()),
         broken: false,
     };
-    let status = vm.run(&mut sink);
+    // Block by block (as `Vm::run`), to move the progress bar.
+    let mut progress = cli::progress::Progress::bar(main_lines, "run", quiet);
+    let status = loop {
+        match vm.step(1 << 16, &mut sink) {
+            Status::Event | Status::OutOfBudget | Status::Sync => {
+                let line = vm.last_loc().line;
+                progress.set(line.into(), || format!("line {line}"));
+            }
+            other => break other,
+        }
+    };
+    progress.finish();
     let _ = sink.out.flush();
     match status {
         Status::Alarm(a) => {
@@ -219,12 +272,51 @@ fn run(
     }
 }
 
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum StatsTo {
+    Stdout,
+    Stderr,
+}
+
+/// The main file's last line: the length of the progress bar.
+fn main_lines(module: &isa::Module) -> u64 {
+    module
+        .lines
+        .iter()
+        .filter(|l| l.file == 0)
+        .map(|l| u64::from(l.line))
+        .max()
+        .unwrap_or(1)
+}
+
 /// What a run through the interpolation runtime writes.
 struct Outputs {
-    /// The per-period trace on stdout (else the canon is printed there).
+    /// The canon on stdout.
+    canon: bool,
+    /// The per-period trace on stdout.
     trace: Option<Format>,
     plot: Option<PathBuf>,
-    stats: bool,
+    stock: Option<runtime::plot::Stock>,
+    stats: Option<(StatsFormat, StatsTo)>,
+    quiet: bool,
+}
+
+/// Exit code of a run interrupted by Ctrl-C (128 + SIGINT, as a shell
+/// reports it).
+const INTERRUPTED: u8 = 130;
+
+/// Set by Ctrl-C; the run loop looks at it every period and stops.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// Ctrl-C stops the run at the next period, so that the plot and the
+/// statistics of the run so far are still written; a second Ctrl-C ends
+/// the process at once.
+fn catch_interrupt() {
+    let _ = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::Relaxed) {
+            std::process::exit(INTERRUPTED.into());
+        }
+    });
 }
 
 /// Runs the module through the interpolation runtime, period by period,
@@ -238,10 +330,18 @@ fn run_timed(
     vars: Option<&Path>,
     out: &Outputs,
 ) -> ExitCode {
+    catch_interrupt();
     let module = match load(file) {
         Ok(m) => m,
         Err(e) => return fail(&e),
     };
+    let files: Vec<String> = module.files.iter().map(|f| f.name.clone()).collect();
+    let number = module
+        .programs
+        .first()
+        .map(|p| p.number)
+        .filter(|&n| n != 0);
+    let main_lines = main_lines(&module);
     let machine = match cli::load_machine(machine) {
         Ok(m) => m,
         Err(e) => return fail(&e),
@@ -272,6 +372,13 @@ fn run_timed(
         ctl.vm_mut()
             .set_storage(Box::new(cli::vars::FileStorage(path)));
     }
+    // The source, if it can still be read, for the plot's title and stock.
+    let info = match (&out.plot, files.first()) {
+        (Some(_), Some(name)) => std::fs::read(name)
+            .map(|b| cli::program_info::ProgramInfo::read(&String::from_utf8_lossy(&b)))
+            .unwrap_or_default(),
+        _ => Default::default(),
+    };
     let stdout = std::io::stdout();
     let mut w = BufWriter::new(stdout.lock());
     let mut broken = false;
@@ -282,9 +389,13 @@ fn run_timed(
     let period = ctl.engine().config().period_s;
     let mut stats = runtime::stats::Stats::new(period);
     let mut plot = out.plot.as_ref().map(|_| runtime::plot::Plot::new());
+    let mut progress = cli::progress::Progress::bar(main_lines, "run", out.quiet);
+    // Where the first roughing cycle began: the stock's corner.
+    let mut cycle_start: Option<(f64, f64)> = None;
+    let mut last = runtime::SetPoint::default();
     let mut line = String::new();
+    let mut interrupted = false;
     {
-        // The canon goes to stdout when no trace does.
         let mut canon = Canon {
             out: &mut w,
             broken: false,
@@ -294,9 +405,10 @@ fn run_timed(
             fn emit(&mut self, _: Event) {}
         }
         let mut quiet = Quiet;
+        let name = |i: u16| files.get(usize::from(i)).map_or("", String::as_str);
         ctl.cycle_start();
         loop {
-            if out.trace.is_none() {
+            if out.canon {
                 ctl.run_ahead_tap(&mut canon);
             } else {
                 ctl.run_ahead_tap(&mut quiet);
@@ -305,8 +417,8 @@ fn run_timed(
             if let Some(f) = out.trace {
                 line.clear();
                 let _ = match f {
-                    Format::Csv => runtime::trace::write_csv(&mut line, &sp),
-                    Format::Json => runtime::trace::write_json(&mut line, &sp),
+                    Format::Csv => runtime::trace::write_csv(&mut line, &sp, name(sp.file)),
+                    Format::Json => runtime::trace::write_json(&mut line, &sp, name(sp.file)),
                 };
                 if !broken && canon.out.write_all(line.as_bytes()).is_err() {
                     broken = true;
@@ -315,6 +427,17 @@ fn run_timed(
             stats.add(&sp);
             if let Some(p) = plot.as_mut() {
                 p.add(&sp);
+                if cycle_start.is_none() && sp.file == 0 && info.roughing.contains(&sp.line) {
+                    cycle_start = Some((last.x, last.z));
+                }
+            }
+            progress.set(sp.line.into(), || {
+                format!("line {} · {:.1} s of cycle time", sp.line, sp.time_s)
+            });
+            last = sp;
+            if STOP.load(Ordering::Relaxed) {
+                interrupted = true;
+                break;
             }
             match ctl.state() {
                 runtime::RunState::Stopped(_) | runtime::RunState::Idle => ctl.cycle_start(),
@@ -324,11 +447,12 @@ fn run_timed(
         }
         broken |= canon.broken;
     }
+    progress.finish();
     stats.blocks = ctl.blocks();
     let alarm = ctl.alarm();
     // A VM alarm printed its ALARM line with the canon; the runtime's own
     // (E7001, E7002, E7003, E4010) end the canon here.
-    if let (Some(a), None) = (&alarm, out.trace) {
+    if let (Some(a), true) = (&alarm, out.canon) {
         if matches!(a.code, 7001 | 7002 | 7003 | 4010) {
             let e = Event::Alarm {
                 code: a.code,
@@ -337,18 +461,55 @@ fn run_timed(
             broken |= writeln!(w, "{e}").is_err();
         }
     }
+    let stopped_at = interrupted.then(|| cli::stats_json::Stopped {
+        file: files
+            .get(usize::from(last.file))
+            .cloned()
+            .unwrap_or_default(),
+        line: last.line,
+    });
+    if let Some((format, StatsTo::Stdout)) = out.stats {
+        broken |= write!(w, "{}", stats_text(&stats, format, &files, &stopped_at)).is_err();
+    }
     // A closed stdout (`| head`) ends the output, not the run.
     let _ = broken;
     let _ = w.flush();
     drop(w);
     if let (Some(path), Some(p)) = (&out.plot, plot.as_mut()) {
-        let title = file.display().to_string();
+        let stock = out.stock.or(info.billet).or_else(|| {
+            let (d, z) = cycle_start?;
+            Some(runtime::plot::Stock {
+                diameter: d.abs(),
+                right: z,
+                left: p.cut_zmin().filter(|&l| l < z)?,
+            })
+        });
+        if let Some(s) = stock {
+            p.set_stock(s);
+        }
+        let title = info.title(&file.display().to_string(), number);
         if let Err(e) = std::fs::write(path, p.svg(&title)) {
             return fail(&format!("{}: {e}", path.display()));
         }
     }
-    if out.stats {
-        eprint!("{stats}");
+    if let Some((format, StatsTo::Stderr)) = out.stats {
+        eprint!("{}", stats_text(&stats, format, &files, &stopped_at));
+    }
+    if let Some(at) = &stopped_at {
+        let wrote = match (&out.plot, out.stats.is_some()) {
+            (Some(p), true) => format!(
+                "; the plot ({}) and the statistics hold the run so far",
+                p.display()
+            ),
+            (Some(p), false) => format!("; the plot ({}) holds the run so far", p.display()),
+            (None, true) => "; the statistics hold the run so far".to_string(),
+            (None, false) => String::new(),
+        };
+        eprintln!(
+            "gbvm: interrupted at {}:{} after {:.3} s of cycle time{wrote}",
+            at.file, at.line, last.time_s
+        );
+        return ExitCode::from(INTERRUPTED);
     }
     match alarm {
         Some(a) => {
@@ -356,5 +517,32 @@ fn run_timed(
             ExitCode::from(2)
         }
         None => ExitCode::SUCCESS,
+    }
+}
+
+/// The statistics as text or JSON.
+fn stats_text(
+    stats: &runtime::stats::Stats,
+    format: StatsFormat,
+    files: &[String],
+    stopped_at: &Option<cli::stats_json::Stopped>,
+) -> String {
+    match format {
+        StatsFormat::Text => {
+            let mut t = stats.to_string();
+            if let Some(at) = stopped_at {
+                t.push_str(&format!("interrupted at: {}:{}\n", at.file, at.line));
+            }
+            t
+        }
+        StatsFormat::Json => {
+            let stopped = stopped_at.as_ref().map(|a| cli::stats_json::Stopped {
+                file: a.file.clone(),
+                line: a.line,
+            });
+            let mut j = cli::stats_json::Report::new(stats, files, stopped).to_json();
+            j.push('\n');
+            j
+        }
     }
 }
