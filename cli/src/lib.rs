@@ -1,8 +1,14 @@
 //! Shared pieces of the gbc command-line tools.
 
 pub mod allocator;
+pub mod depfile;
+pub mod exit;
 pub mod expand;
+pub mod explain;
+pub mod io;
+pub mod report;
 pub mod vars;
+pub mod warnings;
 
 use nc::Machine;
 use std::path::Path;

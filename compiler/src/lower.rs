@@ -572,7 +572,8 @@ impl<'a> Gen<'a> {
         }
     }
 
-    /// W113: an M code that the reference PLC table does not list.
+    /// W113: an M code that neither the reference PLC table nor the
+    /// machine file's `[plc] m_codes` lists.
     fn warn_unlisted_m(&mut self, split: &words::Split<'_>) {
         const LISTED: &[u32] = &[
             0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13, 14, 15, 20, 21, 24, 25, 29, 30, 32, 33, 41, 42,
@@ -583,7 +584,8 @@ impl<'a> Gen<'a> {
                 continue;
             };
             let m = nc::block::round_half_away(v);
-            if (0.0..9000.0).contains(&m) && !LISTED.contains(&(m as u32)) {
+            let listed = LISTED.contains(&(m as u32)) || self.machine.plc.lists_m(m as u32);
+            if (0.0..9000.0).contains(&m) && !listed {
                 self.warn(
                     "W113",
                     w.span,
