@@ -85,7 +85,7 @@ fn dash_is_standard_input_and_output() {
         b"G00 X1.2.3\n",
     );
     assert!(
-        text(&bad.stderr).starts_with("<stdin>:1:5: error[E1007]"),
+        text(&bad.stderr).starts_with("<stdin>:1:6: error[E1007]"),
         "{}",
         text(&bad.stderr)
     );
@@ -247,7 +247,7 @@ fn colour_on_request_only() {
     );
     assert!(esc(c.env("NO_COLOR", "1").output().unwrap()));
     let plain = text(&gbcc(&["c.nc"], &d).stderr);
-    assert!(plain.starts_with("c.nc:1:5: error[E1007]: "), "{plain}");
+    assert!(plain.starts_with("c.nc:1:6: error[E1007]: "), "{plain}");
 }
 
 #[test]

@@ -141,7 +141,11 @@ fn main() -> ExitCode {
             vars,
         } => {
             if emit == Emit::Canon && format == Format::Json {
-                return fail("--format json applies to --emit trace");
+                let _ = writeln!(
+                    std::io::stderr(),
+                    "gbvm: error: --format json applies to --emit trace"
+                );
+                return cli::exit::Exit::Usage.into();
             }
             if emit == Emit::Canon && plot.is_none() && !stats {
                 return run(
