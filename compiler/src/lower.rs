@@ -264,9 +264,19 @@ impl<'a> Gen<'a> {
     }
 
     fn resolve_gotos(&mut self, st: &mut ProgState) {
+        // Each N's first block and whether another follows, found once:
+        // a search per GOTO made a long GOTO chain quadratic.
+        let mut first: std::collections::HashMap<u32, (usize, bool)> =
+            std::collections::HashMap::with_capacity(st.seqs.len());
+        for (i, (n, ..)) in st.seqs.iter().enumerate() {
+            first
+                .entry(*n)
+                .and_modify(|(_, twice)| *twice = true)
+                .or_insert((i, false));
+        }
         for g in std::mem::take(&mut st.gotos) {
-            let mut found = st.seqs.iter().filter(|(n, ..)| *n == g.seq);
-            let Some((_, pc, loops, _)) = found.next() else {
+            let found = first.get(&g.seq).map(|&(i, twice)| (&st.seqs[i], twice));
+            let Some(((_, pc, loops, _), twice)) = found else {
                 self.error(
                     "E2010",
                     g.span,
@@ -277,7 +287,7 @@ impl<'a> Gen<'a> {
                 );
                 continue;
             };
-            if found.next().is_some() {
+            if twice {
                 self.warn(
                     "W103",
                     g.span,
