@@ -306,9 +306,9 @@ fn outputs_that_cannot_be_written() {
             .code(),
         Some(3)
     );
-    // gbvm's listings too.
+    // gbvm's listings and its canon too.
     assert_eq!(gbcc(&["part.nc"], &d).status.code(), Some(0));
-    for sub in ["disasm", "verify"] {
+    for sub in ["disasm", "verify", "run"] {
         let out = cmd(env!("CARGO_BIN_EXE_gbvm"), &[sub, "part.gbc"], &d)
             .stdout(std::fs::OpenOptions::new().write(true).open(full).unwrap())
             .output()

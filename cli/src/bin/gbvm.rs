@@ -216,12 +216,20 @@ fn run(
         broken: false,
     };
     let status = vm.run(&mut sink);
-    let _ = sink.out.flush();
+    let lost = sink.out.flush().is_err() || sink.broken;
+    if let Status::Alarm(a) = &status {
+        let _ = writeln!(std::io::stderr(), "{}", a.header());
+    }
+    // The canon is the run's result: losing it is a failure of its own.
+    if lost {
+        let _ = writeln!(
+            std::io::stderr(),
+            "gbvm: error: cannot write the canon to standard output"
+        );
+        return cli::exit::Exit::Write.into();
+    }
     match status {
-        Status::Alarm(a) => {
-            eprintln!("{}", a.header());
-            ExitCode::from(2)
-        }
+        Status::Alarm(_) => cli::exit::Exit::Alarm.into(),
         _ => ExitCode::SUCCESS,
     }
 }
