@@ -316,3 +316,17 @@ fn outputs_that_cannot_be_written() {
         assert_eq!(out.status.code(), Some(3), "{sub}");
     }
 }
+
+/// Lone-CR line ends: the header and the snippet name the same line.
+#[test]
+fn lone_cr_files_agree_in_header_and_snippet() {
+    let d = dir("cr");
+    std::fs::write(d.join("cr.nc"), "G00 X1\rG01 X1.2.3\rM30\r").unwrap();
+    let err = text(&gbcc(&["cr.nc"], &d).stderr);
+    // "G01 X1.2.3" is line 2; its number starts at column 6.
+    assert!(err.starts_with("cr.nc:2:6: error[E1007]"), "{err}");
+    assert!(
+        err.contains("┌─ cr.nc:2:6") && err.contains("2 │ G01 X1.2.3\n"),
+        "{err}"
+    );
+}
