@@ -222,6 +222,11 @@ fn wrong_kinds_of_file_are_refused() {
     assert_eq!(out.status.code(), Some(64));
     assert!(text(&out.stderr).contains("refusing to overwrite the source"));
     assert_eq!(std::fs::read_to_string(d.join("part.nc")).unwrap(), PART);
+    // Nor may the default output name: a source called `prog.gbc`.
+    std::fs::write(d.join("prog.gbc"), PART).unwrap();
+    let out = gbcc(&["prog.gbc"], &d);
+    assert_eq!(out.status.code(), Some(64), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read_to_string(d.join("prog.gbc")).unwrap(), PART);
 }
 
 #[test]

@@ -266,10 +266,12 @@ fn run() -> Result<Exit, Exit> {
     let (job, mut reporter) = setup()?;
     let mut failed = false;
     let mut write_failed = false;
+    let mut usage_failed = false;
     for file in &job.args.files {
         match compile_one(&job, file, &mut reporter) {
             Ok(()) => {}
             Err(Exit::Write) => write_failed = true,
+            Err(Exit::Usage) => usage_failed = true,
             Err(_) => failed = true,
         }
     }
@@ -278,6 +280,8 @@ fn run() -> Result<Exit, Exit> {
     }
     Ok(if write_failed {
         Exit::Write
+    } else if usage_failed {
+        Exit::Usage
     } else if failed {
         Exit::Input
     } else {
@@ -331,6 +335,17 @@ fn compile_one<W: std::io::Write>(
         return Ok(());
     }
     let dest = output_name(file, args.output.as_deref(), args.listing);
+    // `-o` was checked up front; a default name can meet the source too
+    // (a source named `part.gbc`).
+    if let Dest::File(out) = &dest {
+        if cli::io::same_file(file, out) {
+            reporter.driver_error(&format!(
+                "the output {} is the input: refusing to overwrite the source",
+                out.display()
+            ));
+            return Err(Exit::Usage);
+        }
+    }
     let Some(module) = &compiled.module else {
         reporter.driver_error("no module was produced");
         return Err(Exit::Input);
