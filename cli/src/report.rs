@@ -43,7 +43,7 @@ impl Reported<'_> {
 
     /// The diagnostic as the text form prints it.
     pub fn rendered(&self, color: bool) -> String {
-        if self.promoted || self.severity != self.diag.severity {
+        if self.promoted {
             let d = Diagnostic {
                 severity: self.severity,
                 message: self.message(),
