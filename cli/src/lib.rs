@@ -1,11 +1,17 @@
 //! Shared pieces of the gbc command-line tools.
 
 pub mod allocator;
+pub mod depfile;
+pub mod exit;
 pub mod expand;
+pub mod explain;
+pub mod io;
 pub mod program_info;
 pub mod progress;
+pub mod report;
 pub mod stats_json;
 pub mod vars;
+pub mod warnings;
 
 use nc::Machine;
 use std::path::Path;

@@ -58,9 +58,9 @@ fn errors_exit_1_with_gcc_style_headers_and_json_on_request() {
     let json = gbcc(&["bad.nc", "-fdiagnostics-format=json"], &d);
     let line = text(&json.stderr);
     assert!(
-        line.contains("\"line\":2")
+        line.contains("\"line_start\":2")
             && line.contains("\"code\":\"E2012\"")
-            && line.contains("\"file\":\"bad.nc\""),
+            && line.contains("\"file_name\":\"bad.nc\""),
         "{line}"
     );
     std::fs::write(d.join("syntax.nc"), "G00 X1.2.3\n").unwrap();
@@ -69,15 +69,16 @@ fn errors_exit_1_with_gcc_style_headers_and_json_on_request() {
     assert!(text(&s.stderr).contains("error[E1007]"));
 }
 
+/// 64 (sysexits' EX_USAGE) for both tools: not gbvm's alarm code 2.
 #[test]
-fn usage_errors_exit_2() {
+fn usage_errors_exit_64() {
     let d = dir("usage");
-    assert_eq!(gbcc(&[], &d).status.code(), Some(2));
+    assert_eq!(gbcc(&[], &d).status.code(), Some(64));
     assert_eq!(
         gbcc(&["x.nc", "-fno-such-thing"], &d).status.code(),
-        Some(2)
+        Some(64)
     );
-    assert_eq!(gbvm(&["run"], &d).status.code(), Some(2));
+    assert_eq!(gbvm(&["run"], &d).status.code(), Some(64));
 }
 
 #[test]

@@ -27,6 +27,9 @@ pub struct Program {
 /// the main (first) program.
 pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)>) -> Vec<Program> {
     let mut programs: Vec<Program> = Vec::new();
+    // The numbers in `programs`: a search of the list per O line made a
+    // file of many programs quadratic.
+    let mut numbers = std::collections::HashSet::new();
     let mut before_first_o = Vec::new();
     for (i, line) in unit.ast.lines.iter().enumerate() {
         match line {
@@ -41,7 +44,7 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
                         ),
                     ));
                 }
-                if programs.iter().any(|q| q.number == p.number) {
+                if numbers.contains(&p.number) {
                     diags.push((
                         unit_index,
                         Diagnostic::error(
@@ -66,6 +69,7 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
                 } else {
                     leading
                 };
+                numbers.insert(p.number);
                 programs.push(Program {
                     number: p.number,
                     unit: unit_index,

@@ -264,9 +264,19 @@ impl<'a> Gen<'a> {
     }
 
     fn resolve_gotos(&mut self, st: &mut ProgState) {
+        // Each N's first block and whether another follows, found once:
+        // a search per GOTO made a long GOTO chain quadratic.
+        let mut first: std::collections::HashMap<u32, (usize, bool)> =
+            std::collections::HashMap::with_capacity(st.seqs.len());
+        for (i, (n, ..)) in st.seqs.iter().enumerate() {
+            first
+                .entry(*n)
+                .and_modify(|(_, twice)| *twice = true)
+                .or_insert((i, false));
+        }
         for g in std::mem::take(&mut st.gotos) {
-            let mut found = st.seqs.iter().filter(|(n, ..)| *n == g.seq);
-            let Some((_, pc, loops, _)) = found.next() else {
+            let found = first.get(&g.seq).map(|&(i, twice)| (&st.seqs[i], twice));
+            let Some(((_, pc, loops, _), twice)) = found else {
                 self.error(
                     "E2010",
                     g.span,
@@ -277,7 +287,7 @@ impl<'a> Gen<'a> {
                 );
                 continue;
             };
-            if found.next().is_some() {
+            if twice {
                 self.warn(
                     "W103",
                     g.span,
@@ -572,7 +582,8 @@ impl<'a> Gen<'a> {
         }
     }
 
-    /// W113: an M code that the reference PLC table does not list.
+    /// W113: an M code that neither the reference PLC table nor the
+    /// machine file's `[plc] m_codes` lists.
     fn warn_unlisted_m(&mut self, split: &words::Split<'_>) {
         const LISTED: &[u32] = &[
             0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13, 14, 15, 20, 21, 24, 25, 29, 30, 32, 33, 41, 42,
@@ -583,7 +594,8 @@ impl<'a> Gen<'a> {
                 continue;
             };
             let m = nc::block::round_half_away(v);
-            if (0.0..9000.0).contains(&m) && !LISTED.contains(&(m as u32)) {
+            let listed = LISTED.contains(&(m as u32)) || self.machine.plc.lists_m(m as u32);
+            if (0.0..9000.0).contains(&m) && !listed {
                 self.warn(
                     "W113",
                     w.span,

@@ -3,8 +3,9 @@
 
 use crate::span::Span;
 use codespan_reporting::diagnostic as cs;
-use codespan_reporting::files::SimpleFile;
+use codespan_reporting::files::{self, Files};
 use codespan_reporting::term;
+use std::ops::Range;
 use std::sync::{Arc, OnceLock};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -170,14 +171,36 @@ impl SourceFile {
 
     /// Header, then the snippet with the label, notes and help; no colour.
     pub fn render(&self, d: &Diagnostic) -> String {
-        let mut out = self.header(d);
+        self.render_styled(d, false)
+    }
+
+    /// [`SourceFile::render`], with ANSI colours when `color` is set (the
+    /// header as gcc colours it, the snippet as codespan does).
+    pub fn render_styled(&self, d: &Diagnostic, color: bool) -> String {
+        let mut out = if color {
+            self.header_colored(d)
+        } else {
+            self.header(d)
+        };
         out.push('\n');
-        out.push_str(&self.snippet(d));
+        out.push_str(&self.snippet(d, color));
         out
     }
 
-    fn snippet(&self, d: &Diagnostic) -> String {
-        let file = SimpleFile::new(self.name.as_str(), self.text());
+    fn header_colored(&self, d: &Diagnostic) -> String {
+        let (line, col) = self.line_col(d.span.start);
+        // Bold place, red error / magenta warning as gcc, bold message.
+        let (kind, colour) = match d.severity {
+            Severity::Error => ("error", "31"),
+            Severity::Warning => ("warning", "35"),
+        };
+        format!(
+            "\x1b[1m{}:{}:{}: \x1b[1;{colour}m{kind}[{}]:\x1b[0m \x1b[1m{}\x1b[0m",
+            self.name, line, col, d.code, d.message
+        )
+    }
+
+    fn snippet(&self, d: &Diagnostic, color: bool) -> String {
         let len = self.text().len();
         let start = (d.span.start as usize).min(len);
         let end = (d.span.end as usize).clamp(start, len);
@@ -199,10 +222,20 @@ impl SourceFile {
             display_style: term::DisplayStyle::Rich,
             ..term::Config::default()
         };
-        let mut buffer = String::new();
-        // Rendering into a String cannot fail for in-range spans; report the
-        // header alone if it ever does.
-        let _ = term::emit_to_string(&mut buffer, &config, &file, &diag);
+        // Rendering into memory cannot fail for in-range spans; report the
+        // header alone if it ever does. The file itself is the codespan
+        // file database: its line starts are made once, not per message
+        // (a `SimpleFile` per message made rendering quadratic), and they
+        // are the ones the header counts with (lone CR included).
+        let buffer = if color {
+            let mut ansi = term::termcolor::Ansi::new(Vec::new());
+            let _ = term::emit_to_write_style(&mut ansi, &config, self, &diag);
+            String::from_utf8_lossy(&ansi.into_inner()).into_owned()
+        } else {
+            let mut s = String::new();
+            let _ = term::emit_to_string(&mut s, &config, self, &diag);
+            s
+        };
         // Drop codespan's own first line: our header replaces it.
         match buffer.split_once('\n') {
             Some((_, rest)) => rest.to_string(),
@@ -210,38 +243,66 @@ impl SourceFile {
         }
     }
 
-    /// One JSON object for editors.
-    pub fn json(&self, d: &Diagnostic) -> String {
-        let (line, col) = self.line_col(d.span.start);
-        let severity = match d.severity {
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-        };
-        format!(
-            "{{\"file\":{},\"line\":{},\"column\":{},\"severity\":\"{}\",\"code\":\"{}\",\"message\":{},\"span\":{{\"start\":{},\"end\":{}}}}}",
-            json_string(&self.name),
-            line,
-            col,
-            severity,
-            d.code,
-            json_string(&d.message),
-            d.span.start,
-            d.span.end
-        )
+    /// The byte range of line index `i`, its line end included.
+    pub fn line_range(&self, i: usize) -> Option<Range<usize>> {
+        let start = *self.line_starts.get(i)?;
+        let end = self
+            .line_starts
+            .get(i + 1)
+            .copied()
+            .unwrap_or(self.bytes.len());
+        Some(start..end)
+    }
+
+    /// The source's bytes as read.
+    pub fn bytes(&self) -> &[u8] {
+        &self.bytes
+    }
+}
+
+/// The file is its own codespan database of one file.
+impl<'a> Files<'a> for SourceFile {
+    type FileId = ();
+    type Name = &'a str;
+    type Source = &'a str;
+
+    fn name(&'a self, (): ()) -> Result<&'a str, files::Error> {
+        Ok(&self.name)
+    }
+
+    fn source(&'a self, (): ()) -> Result<&'a str, files::Error> {
+        Ok(self.text())
+    }
+
+    fn line_index(&'a self, (): (), byte_index: usize) -> Result<usize, files::Error> {
+        Ok(self.line_col(byte_index as u32).0 - 1)
+    }
+
+    fn line_range(&'a self, (): (), line_index: usize) -> Result<Range<usize>, files::Error> {
+        let max = self.line_starts.len() - 1;
+        match SourceFile::line_range(self, line_index) {
+            Some(r) => Ok(r),
+            // codespan asks for the line after the last one.
+            None if line_index == max + 1 => Ok(self.bytes.len()..self.bytes.len()),
+            None => Err(files::Error::LineTooLarge {
+                given: line_index,
+                max,
+            }),
+        }
     }
 }
 
 /// The bytes made printable one for one: every byte is ASCII afterwards,
-/// so the text is valid UTF-8.
+/// so the text is valid UTF-8. A lone CR becomes LF, so the snippet breaks
+/// its lines where the header counts them.
 fn printable(bytes: &[u8]) -> String {
     let ascii: Vec<u8> = bytes
         .iter()
-        .map(|&b| {
-            if b.is_ascii() && (b >= b' ' || b == b'\n' || b == b'\r' || b == b'\t') {
-                b
-            } else {
-                b'?'
-            }
+        .enumerate()
+        .map(|(i, &b)| match b {
+            b'\r' if bytes.get(i + 1) != Some(&b'\n') => b'\n',
+            b'\n' | b'\r' | b'\t' | b' '..=b'~' => b,
+            _ => b'?',
         })
         .collect();
     String::from_utf8(ascii).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
@@ -258,20 +319,6 @@ fn line_starts(bytes: &[u8]) -> Vec<usize> {
         }
     }
     starts
-}
-
-fn json_string(s: &str) -> String {
-    let mut out = String::from("\"");
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
 }
 
 #[cfg(test)]
@@ -292,5 +339,24 @@ mod tests {
         for at in offsets {
             assert_eq!(f.line_col_near(at, &mut hint), f.line_col(at), "at {at}");
         }
+    }
+
+    /// A file with lone-CR line ends: the snippet shows the line the
+    /// header names (codespan alone counts LF only and showed line 1).
+    #[test]
+    fn lone_cr_lines_agree_in_header_and_snippet() {
+        let src = b"G00 X1\rG01 X1.2.3\rM30\r";
+        let f = SourceFile::new("cr.nc", &src[..]);
+        // "G01 X1.2.3" starts at byte 7; "1.2.3" at 12, column 6.
+        let d = super::Diagnostic::error("E1007", crate::Span::new(12, 17), "malformed number");
+        let text = f.render(&d);
+        let mut lines = text.lines();
+        assert_eq!(
+            lines.next(),
+            Some("cr.nc:2:6: error[E1007]: malformed number")
+        );
+        assert!(text.contains("┌─ cr.nc:2:6"), "{text}");
+        assert!(text.contains("2 │ G01 X1.2.3\n"), "{text}");
+        assert!(!text.contains('\r'), "{text:?}");
     }
 }

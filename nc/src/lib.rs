@@ -29,6 +29,7 @@ pub mod geom;
 pub mod machine;
 pub mod measure;
 pub mod params;
+pub mod plc;
 pub mod state;
 pub mod stroke;
 pub mod sysvar;

@@ -279,6 +279,7 @@ section!(
         operator: Operator = Operator::default(),
         host: Host = Host::default(),
         run: Run = Run::default(),
+        plc: crate::plc::Plc = crate::plc::Plc::default(),
     }
 );
 

@@ -1,8 +1,12 @@
 //! `gbcc`: the gbc compiler driver, with gcc's conventions.
 
 use clap::Parser;
+use cli::exit::Exit;
+use cli::io::{Dest, STDIN_NAME};
+use cli::report::{Format, Reporter};
 use compiler::{Compiled, Options};
-use grammar::Severity;
+use std::ffi::OsString;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -14,20 +18,23 @@ static ALLOCATOR: cli::allocator::Mimalloc = cli::allocator::Mimalloc;
 #[command(
     name = "gbcc",
     version,
-    about = "Compile GSK980TDi lathe G-code into .gbc bytecode"
+    about = "Compile GSK980TDi lathe G-code into .gbc bytecode",
+    after_help = "Also: -MD (write a make dependency file), -MF FILE (its name). \
+                  Exit codes: 0 ok, 1 errors, 3 an output could not be written, 64 usage."
 )]
 struct Args {
-    /// Program files (.nc).
-    #[arg(required = true)]
+    /// Program files (.nc); - reads standard input.
+    #[arg(required_unless_present = "explain")]
     files: Vec<PathBuf>,
-    /// Output file (default: the input's name with .gbc, or .s with -S).
+    /// Output file (default: the input's name with .gbc, or .s with -S;
+    /// standard output with -E); - is standard output.
     #[arg(short = 'o')]
     output: Option<PathBuf>,
     /// Write the annotated bytecode listing instead of a .gbc.
     #[arg(short = 'S')]
     listing: bool,
     /// Print the program as plain G-code after macros, subprograms and
-    /// cycles are resolved (a run on the reference host), on stdout.
+    /// cycles are resolved (a run on the reference host).
     #[arg(short = 'E')]
     expand: bool,
     /// Library folder searched for called programs (repeatable).
@@ -39,26 +46,132 @@ struct Args {
     /// Optimisation level: -O0 (no folding), -O1 (constant folding, default).
     #[arg(short = 'O', value_name = "LEVEL", default_value = "1")]
     opt: String,
-    /// Warning options: -Werror, -Wall, -w.
+    /// Warnings: -Wall, -Wextra, -Werror, -Werror=W101, -Wno-error=W101,
+    /// -WW113, -Wno-W113 (docs/diagnostics.md).
     #[arg(short = 'W', value_name = "WARN")]
     warn: Vec<String>,
     /// Suppress every warning.
     #[arg(short = 'w')]
     no_warnings: bool,
-    /// -fsyntax-only, -fdiagnostics-format=text|json.
+    /// -fsyntax-only, -fdiagnostics-format=text|json|sarif,
+    /// -fdiagnostics-color=auto|always|never, -fmax-errors=N (default 20,
+    /// 0: no limit).
     #[arg(short = 'f', value_name = "FLAG")]
     flags: Vec<String>,
-    /// Machine file (TOML, machine.md §4); the reference machine by default.
+    /// Machine file (TOML, docs/machine.md); the reference machine by default.
     #[arg(long = "machine", value_name = "FILE")]
     machine: Option<PathBuf>,
+    /// Print the long explanation of a diagnostic code (E4009, W113).
+    #[arg(long = "explain", value_name = "CODE")]
+    explain: Option<String>,
     /// No progress spinner (it shows on a terminal after a second).
     #[arg(long, short = 'q')]
     quiet: bool,
 }
 
-fn usage(msg: &str) -> ExitCode {
-    eprintln!("gbcc: error: {msg}");
-    ExitCode::from(2)
+/// `-MD` and `-MF FILE`, taken off the command line before clap sees it
+/// (clap has no two-letter short options).
+#[derive(Default)]
+struct DepOptions {
+    md: bool,
+    mf: Option<PathBuf>,
+}
+
+fn take_dep_options(args: Vec<OsString>) -> Result<(Vec<OsString>, DepOptions), String> {
+    let mut rest = Vec::new();
+    let mut deps = DepOptions::default();
+    let mut it = args.into_iter();
+    while let Some(a) = it.next() {
+        if a == "--" {
+            rest.push(a);
+            rest.extend(it.by_ref());
+            break;
+        }
+        if a == "-MD" {
+            deps.md = true;
+        } else if a == "-MF" {
+            let file = it.next().ok_or("-MF needs a file name")?;
+            deps.mf = Some(file.into());
+        } else if let Some(file) = a.to_str().and_then(|s| s.strip_prefix("-MF")) {
+            deps.mf = Some(file.into());
+        } else {
+            rest.push(a);
+        }
+    }
+    Ok((rest, deps))
+}
+
+/// The `-f` switches.
+struct Flags {
+    syntax_only: bool,
+    format: Format,
+    color: bool,
+    max_errors: usize,
+}
+
+fn parse_flags(flags: &[String]) -> Result<Flags, String> {
+    let mut f = Flags {
+        syntax_only: false,
+        format: Format::Text,
+        color: false,
+        max_errors: cli::report::DEFAULT_MAX_ERRORS,
+    };
+    let mut color = ColorChoice::Auto;
+    for flag in flags {
+        match flag.as_str() {
+            "syntax-only" => f.syntax_only = true,
+            "diagnostics-format=text" => f.format = Format::Text,
+            "diagnostics-format=json" => f.format = Format::Json,
+            "diagnostics-format=sarif" | "diagnostics-format=sarif-stderr" => {
+                f.format = Format::Sarif
+            }
+            "diagnostics-color" | "diagnostics-color=always" => color = ColorChoice::Always,
+            "no-diagnostics-color" | "diagnostics-color=never" => color = ColorChoice::Never,
+            "diagnostics-color=auto" => color = ColorChoice::Auto,
+            other => {
+                let n = other
+                    .strip_prefix("max-errors=")
+                    .ok_or_else(|| format!("unknown option -f{other}"))?;
+                f.max_errors = n
+                    .parse()
+                    .map_err(|_| format!("-fmax-errors expects a count, got '{n}'"))?;
+            }
+        }
+    }
+    f.color = color.resolve();
+    Ok(f)
+}
+
+#[derive(Clone, Copy)]
+enum ColorChoice {
+    Auto,
+    Always,
+    Never,
+}
+
+impl ColorChoice {
+    /// auto: colour on a terminal, unless NO_COLOR is set (no-color.org).
+    fn resolve(self) -> bool {
+        match self {
+            ColorChoice::Always => true,
+            ColorChoice::Never => false,
+            ColorChoice::Auto => {
+                std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+                    && std::io::stderr().is_terminal()
+            }
+        }
+    }
+}
+
+fn usage(msg: &str) -> Exit {
+    // The terminal may be gone; the exit code still says it.
+    let _ = writeln_stderr(&format!("gbcc: error: {msg}"));
+    Exit::Usage
+}
+
+fn writeln_stderr(text: &str) -> std::io::Result<()> {
+    use std::io::Write;
+    writeln!(std::io::stderr().lock(), "{text}")
 }
 
 fn parse_define(d: &str) -> Option<(u32, f64)> {
@@ -67,91 +180,252 @@ fn parse_define(d: &str) -> Option<(u32, f64)> {
 }
 
 fn main() -> ExitCode {
-    let args = Args::parse();
-    let mut syntax_only = false;
-    let mut json = false;
-    for f in &args.flags {
-        match f.as_str() {
-            "syntax-only" => syntax_only = true,
-            "diagnostics-format=json" => json = true,
-            "diagnostics-format=text" => json = false,
-            other => return usage(&format!("unknown option -f{other}")),
-        }
+    match run() {
+        Ok(e) | Err(e) => e.into(),
     }
-    let werror = args.warn.iter().any(|w| w == "error");
+}
+
+/// The driver's settings, checked.
+struct Job {
+    args: Args,
+    deps: DepOptions,
+    flags: Flags,
+    opts: Options,
+}
+
+fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit> {
+    let (argv, deps) = take_dep_options(std::env::args_os().collect()).map_err(|e| usage(&e))?;
+    let args: Args = cli::exit::parse_args(argv)?;
+    if let Some(code) = &args.explain {
+        return Err(explain(code));
+    }
+    let flags = parse_flags(&args.flags).map_err(|e| usage(&e))?;
+    let mut policy = cli::warnings::Policy::default();
+    for w in &args.warn {
+        policy.apply(w).map_err(|e| usage(&e))?;
+    }
+    if args.no_warnings {
+        policy.silence();
+    }
     let optimize = match args.opt.as_str() {
         "0" => false,
         "1" | "2" | "s" => true,
-        other => return usage(&format!("unknown optimisation level -O{other}")),
-    };
-    let machine = match cli::load_machine(args.machine.as_deref()) {
-        Ok(m) => m,
-        Err(e) => {
-            eprintln!("gbcc: error: {e}");
-            return ExitCode::from(1);
-        }
+        other => return Err(usage(&format!("unknown optimisation level -O{other}"))),
     };
     let mut defines = Vec::new();
     for d in &args.define {
-        match parse_define(d) {
-            Some(def) => defines.push(def),
-            None => return usage(&format!("-D expects #N=VALUE, got '{d}'")),
+        let def =
+            parse_define(d).ok_or_else(|| usage(&format!("-D expects #N=VALUE, got '{d}'")))?;
+        defines.push(def);
+    }
+    let several = args.files.len() > 1;
+    if several && !flags.syntax_only && (args.output.is_some() || deps.mf.is_some()) {
+        return Err(usage("-o or -MF with several input files"));
+    }
+    if args.files.iter().filter(|f| f.as_os_str() == "-").count() > 1 {
+        return Err(usage("standard input (-) given twice"));
+    }
+    if let Some(out) = &args.output {
+        if let Some(src) = args.files.iter().find(|f| cli::io::same_file(f, out)) {
+            return Err(usage(&format!(
+                "the output {} is the input {}: refusing to overwrite the source",
+                out.display(),
+                src.display()
+            )));
         }
     }
-    if args.output.is_some() && args.files.len() > 1 && !syntax_only {
-        return usage("-o with several input files");
-    }
+    let machine = match cli::load_machine(args.machine.as_deref()) {
+        Ok(m) => m,
+        Err(e) => {
+            let _ = writeln_stderr(&format!("gbcc: error: {e}"));
+            return Err(Exit::Input);
+        }
+    };
+    let mut reporter = Reporter::new(
+        std::io::BufWriter::new(std::io::stderr()),
+        flags.format,
+        flags.color,
+        policy,
+    );
+    reporter.max_errors = flags.max_errors;
     let opts = Options {
         machine,
         include: args.include.clone(),
         optimize,
         defines,
     };
-    let mut failed = false;
-    for file in &args.files {
-        let bytes = match std::fs::read(file) {
-            Ok(b) => b,
-            Err(e) => {
-                eprintln!("gbcc: error: {}: {e}", file.display());
-                failed = true;
-                continue;
-            }
-        };
-        let name = file.display().to_string();
-        let compiled = if syntax_only {
-            syntax(&name, &bytes)
-        } else {
-            let _spinner = cli::progress::Spinner::start(format!("compiling {name}"), args.quiet);
-            compiler::compile(&name, &bytes, &opts)
-        };
-        let errors = report(&compiled, json, werror, args.no_warnings);
-        if errors {
-            failed = true;
-            continue;
-        }
-        if syntax_only {
-            continue;
-        }
-        if args.expand {
-            if let Err(e) = expand(&compiled, &bytes, &opts.machine) {
-                eprintln!("{e}");
-                failed = true;
-            }
-            continue;
-        }
-        if let Err(e) = write_output(&compiled, file, args.output.as_deref(), args.listing) {
-            eprintln!("gbcc: error: {e}");
-            failed = true;
-        }
-    }
-    ExitCode::from(if failed { 1 } else { 0 })
+    Ok((
+        Job {
+            args,
+            deps,
+            flags,
+            opts,
+        },
+        reporter,
+    ))
 }
 
-/// -E: runs the module on the reference host and prints what it did as
-/// G-code; a run-time alarm ends the listing with the alarm.
-fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> Result<(), String> {
+fn run() -> Result<Exit, Exit> {
+    let (job, mut reporter) = setup()?;
+    let mut failed = false;
+    let mut write_failed = false;
+    let mut usage_failed = false;
+    for file in &job.args.files {
+        match compile_one(&job, file, &mut reporter) {
+            Ok(()) => {}
+            Err(Exit::Write) => write_failed = true,
+            Err(Exit::Usage) => usage_failed = true,
+            Err(_) => failed = true,
+        }
+    }
+    if !reporter.finish() {
+        write_failed = true;
+    }
+    Ok(if write_failed {
+        Exit::Write
+    } else if usage_failed {
+        Exit::Usage
+    } else if failed {
+        Exit::Input
+    } else {
+        Exit::Ok
+    })
+}
+
+/// Compiles one input and writes what was asked for.
+fn compile_one<W: std::io::Write>(
+    job: &Job,
+    file: &Path,
+    reporter: &mut Reporter<W>,
+) -> Result<(), Exit> {
+    let (name, bytes) = cli::io::read_input(file).map_err(|e| {
+        reporter.driver_error(&e);
+        Exit::Input
+    })?;
+    if cli::io::is_module(&bytes) {
+        reporter.driver_error(&format!(
+            "{name} is a compiled .gbc module, not a program: run it with `gbvm run {name}`"
+        ));
+        return Err(Exit::Input);
+    }
+    let compiled = if job.flags.syntax_only {
+        syntax(&name, &bytes)
+    } else {
+        let _spinner = cli::progress::Spinner::start(format!("compiling {name}"), job.args.quiet);
+        compiler::compile(&name, &bytes, &job.opts)
+    };
+    let mut errors = false;
+    for (f, d) in &compiled.diags {
+        errors |= reporter.report(&compiled.files[*f], d);
+    }
+    if errors || compiled.has_errors() {
+        return Err(Exit::Input);
+    }
+    if job.flags.syntax_only {
+        return Ok(());
+    }
+    let args = &job.args;
+    if args.expand {
+        let dest = Dest::new(args.output.as_deref().unwrap_or(Path::new("-")));
+        let (text, alarm) = expand(&compiled, &bytes, &job.opts.machine);
+        dest.write(text.as_bytes()).map_err(|e| {
+            reporter.driver_error(&e);
+            Exit::Write
+        })?;
+        if let Some(a) = alarm {
+            reporter.alarm(&a);
+            return Err(Exit::Input);
+        }
+        return Ok(());
+    }
+    let dest = output_name(file, args.output.as_deref(), args.listing);
+    // `-o` was checked up front; a default name can meet the source too
+    // (a source named `part.gbc`).
+    if let Dest::File(out) = &dest {
+        if cli::io::same_file(file, out) {
+            reporter.driver_error(&format!(
+                "the output {} is the input: refusing to overwrite the source",
+                out.display()
+            ));
+            return Err(Exit::Usage);
+        }
+    }
+    let Some(module) = &compiled.module else {
+        reporter.driver_error("no module was produced");
+        return Err(Exit::Input);
+    };
+    let out = if args.listing {
+        module.disassemble().into_bytes()
+    } else {
+        module.to_bytes()
+    };
+    let written = dest
+        .write(&out)
+        .and_then(|()| write_deps(job, file, &dest, &compiled));
+    written.map_err(|e| {
+        reporter.driver_error(&e);
+        Exit::Write
+    })
+}
+
+/// The output of `input`: `-o`, else its name with `.gbc` (`.s` with -S)
+/// in the current folder (`a.gbc` for standard input, as gcc's `a.out`).
+fn output_name(input: &Path, output: Option<&Path>, listing: bool) -> Dest {
+    if let Some(o) = output {
+        return Dest::new(o);
+    }
+    let name = match input.file_name() {
+        Some(n) if input.as_os_str() != "-" => PathBuf::from(n),
+        _ => PathBuf::from("a"),
+    };
+    Dest::File(name.with_extension(if listing { "s" } else { "gbc" }))
+}
+
+/// `-MD`: the rule naming the source, the library programs and the
+/// machine file, in `-MF FILE` or beside the output as `NAME.d`.
+fn write_deps(job: &Job, input: &Path, dest: &Dest, c: &Compiled) -> Result<(), String> {
+    if !job.deps.md && job.deps.mf.is_none() {
+        return Ok(());
+    }
+    let target = match dest {
+        Dest::File(p) => p.clone(),
+        Dest::Stdout => match output_name(input, None, job.args.listing) {
+            Dest::File(p) => p,
+            Dest::Stdout => PathBuf::from("a.gbc"),
+        },
+    };
+    let mut deps: Vec<String> = c.files.iter().map(|f| f.name.clone()).collect();
+    deps.retain(|d| d != STDIN_NAME);
+    if let Some(m) = &job.args.machine {
+        deps.push(m.display().to_string());
+    }
+    let path = job
+        .deps
+        .mf
+        .clone()
+        .unwrap_or_else(|| target.with_extension("d"));
+    let rule = cli::depfile::rule(&target.display().to_string(), &deps);
+    Dest::new(&path).write(rule.as_bytes())
+}
+
+/// `--explain CODE`.
+fn explain(code: &str) -> Exit {
+    match cli::explain::find(code) {
+        Some(e) => match Dest::Stdout.write(cli::explain::render(&e).as_bytes()) {
+            Ok(()) => Exit::Ok,
+            Err(_) => Exit::Write,
+        },
+        None => usage(&format!(
+            "no diagnostic code '{code}' (codes are listed in docs/diagnostics.md)"
+        )),
+    }
+}
+
+/// -E: runs the module on the reference host and returns what it did as
+/// G-code, and the alarm that ended it early.
+fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> (String, Option<String>) {
     let Some(module) = c.module.clone() else {
-        return Err("no module was produced".into());
+        return (String::new(), Some("no module was produced".into()));
     };
     let (mut ast, _) = grammar::parse(src);
     // The N of a G10 L52 block is a parameter number, not a label.
@@ -175,15 +449,10 @@ fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> Result<(), String>
         events.clear();
         match status {
             vm::Status::Event | vm::Status::OutOfBudget | vm::Status::Sync => continue,
-            vm::Status::Done => break,
-            vm::Status::Alarm(a) => {
-                print!("{}", out.out);
-                return Err(a.header());
-            }
+            vm::Status::Done => return (out.out, None),
+            vm::Status::Alarm(a) => return (out.out, Some(a.header())),
         }
     }
-    print!("{}", out.out);
-    Ok(())
 }
 
 /// -fsyntax-only: the parser's findings alone.
@@ -194,51 +463,4 @@ fn syntax(name: &str, bytes: &[u8]) -> Compiled {
         files: vec![grammar::SourceFile::new(name, bytes)],
         diags: diags.into_iter().map(|d| (0, d)).collect(),
     }
-}
-
-/// Prints the diagnostics; true when the compilation failed.
-fn report(c: &Compiled, json: bool, werror: bool, quiet: bool) -> bool {
-    let mut failed = false;
-    for (file, d) in &c.diags {
-        let is_error = d.severity == Severity::Error || werror;
-        if !is_error && quiet {
-            continue;
-        }
-        failed |= is_error;
-        let f = &c.files[*file];
-        if json {
-            eprintln!("{}", f.json(d));
-        } else {
-            eprintln!("{}", f.render(d));
-        }
-    }
-    failed || c.has_errors()
-}
-
-fn write_output(
-    c: &Compiled,
-    input: &Path,
-    output: Option<&Path>,
-    listing: bool,
-) -> Result<(), String> {
-    let Some(module) = &c.module else {
-        return Err("no module was produced".into());
-    };
-    let out = output.map(Path::to_path_buf).unwrap_or_else(|| {
-        let name = input
-            .file_name()
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from("a"));
-        name.with_extension(if listing { "s" } else { "gbc" })
-    });
-    let bytes = if listing {
-        module.disassemble().into_bytes()
-    } else {
-        module.to_bytes()
-    };
-    if listing && out.as_os_str() == "-" {
-        print!("{}", module.disassemble());
-        return Ok(());
-    }
-    std::fs::write(&out, bytes).map_err(|e| format!("{}: {e}", out.display()))
 }

@@ -1,6 +1,7 @@
 //! `gbvm`: runs, disassembles and verifies `.gbc` modules.
 
 use clap::{Parser, Subcommand, ValueEnum};
+
 use nc::{Event, Sink};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -88,10 +89,17 @@ enum Command {
     Verify { file: PathBuf },
 }
 
+/// Reads and verifies a module; `-` is standard input. A source program
+/// given by mistake is told to be compiled first.
 fn load(path: &Path) -> Result<isa::Module, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    isa::Module::from_bytes(&bytes)
-        .map_err(|e| format!("{}: not a valid .gbc module: {e}", path.display()))
+    let (name, bytes) = cli::io::read_input(path)?;
+    if !cli::io::is_module(&bytes) && !bytes.is_empty() && bytes.is_ascii() {
+        return Err(format!(
+            "{name} is G-code source, not a .gbc module: compile it first \
+             (gbcc {name} -o x.gbc && gbvm run x.gbc)"
+        ));
+    }
+    isa::Module::from_bytes(&bytes).map_err(|e| format!("{name}: not a valid .gbc module: {e}"))
 }
 
 /// Text that comes from a module's tables (file names, messages), as the
@@ -109,8 +117,8 @@ fn printable(text: &str) -> String {
 }
 
 fn fail(msg: &str) -> ExitCode {
-    eprintln!("gbvm: error: {msg}");
-    ExitCode::from(1)
+    let _ = writeln!(std::io::stderr(), "gbvm: error: {msg}");
+    cli::exit::Exit::Input.into()
 }
 
 /// Prints each event as one canon line.
@@ -127,21 +135,30 @@ impl<W: Write> Sink for Canon<W> {
     }
 }
 
+/// Writes a listing to standard output; a full disk or a closed pipe is
+/// exit code 3 (cli::exit), not a panic.
+fn print_out(text: &str) -> ExitCode {
+    match cli::io::Dest::Stdout.write(text.as_bytes()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let _ = writeln!(std::io::stderr(), "gbvm: error: {e}");
+            cli::exit::Exit::Write.into()
+        }
+    }
+}
+
 fn main() -> ExitCode {
-    let args = Args::parse();
+    let args: Args = match cli::exit::parse_args(std::env::args_os().collect()) {
+        Ok(a) => a,
+        Err(e) => return e.into(),
+    };
     match args.command {
         Command::Disasm { file } => match load(&file) {
-            Ok(m) => {
-                print!("{}", m.disassemble());
-                ExitCode::SUCCESS
-            }
+            Ok(m) => print_out(&m.disassemble()),
             Err(e) => fail(&e),
         },
         Command::Verify { file } => match load(&file) {
-            Ok(_) => {
-                println!("{}: ok", file.display());
-                ExitCode::SUCCESS
-            }
+            Ok(_) => print_out(&format!("{}: ok\n", file.display())),
             Err(e) => fail(&e),
         },
         Command::Run {
@@ -169,7 +186,11 @@ fn main() -> ExitCode {
                 (None, None) => Some(Emit::Canon),
             };
             if emit != Some(Emit::Trace) && format == Format::Json {
-                return fail("--format json applies to --emit trace");
+                let _ = writeln!(
+                    std::io::stderr(),
+                    "gbvm: error: --format json applies to --emit trace"
+                );
+                return cli::exit::Exit::Usage.into();
             }
             let stock = match stock.as_deref().map(cli::program_info::parse_stock) {
                 None => None,
@@ -262,12 +283,20 @@ fn run(
         }
     };
     progress.finish();
-    let _ = sink.out.flush();
+    let lost = sink.out.flush().is_err() || sink.broken;
+    if let Status::Alarm(a) = &status {
+        let _ = writeln!(std::io::stderr(), "{}", printable(&a.header()));
+    }
+    // The canon is the run's result: losing it is a failure of its own.
+    if lost {
+        let _ = writeln!(
+            std::io::stderr(),
+            "gbvm: error: cannot write the canon to standard output"
+        );
+        return cli::exit::Exit::Write.into();
+    }
     match status {
-        Status::Alarm(a) => {
-            eprintln!("{}", printable(&a.header()));
-            ExitCode::from(2)
-        }
+        Status::Alarm(_) => cli::exit::Exit::Alarm.into(),
         _ => ExitCode::SUCCESS,
     }
 }
