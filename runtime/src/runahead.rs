@@ -294,8 +294,8 @@ impl RunAhead {
         let hit_work = hit - r.shift;
         self.tr.work = stop_work;
         let st = &mut self.vm.nc.st;
-        st.pos = nc::state::Pt::new(stop_work.r, stop_work.z);
-        st.skip = Some(nc::state::Pt::new(hit_work.r, hit_work.z));
+        st.pos = nc::point::Pt::new(stop_work.r, stop_work.z);
+        st.skip = Some(nc::point::Pt::new(hit_work.r, hit_work.z));
         let vars = self.vm.persistent_mut();
         vars[495] = hit_work.x();
         vars[496] = hit_work.z;
@@ -319,7 +319,7 @@ impl RunAhead {
         self.vm.repeat = self.repeat;
         let origin = origin_of(&self.vm);
         let work = at - origin;
-        self.vm.nc.st.pos = nc::state::Pt::new(work.r, work.z);
+        self.vm.nc.st.pos = nc::point::Pt::new(work.r, work.z);
         let messages = core::mem::take(&mut self.tr.messages);
         self.tr = Translator::new(origin);
         self.tr.messages = messages;
