@@ -5,6 +5,8 @@ use alloc::string::String;
 
 use core::fmt;
 
+pub use crate::base::alarm::Alarm;
+
 /// An error of dialect.md §8 found while checking or executing a block.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct NcError {
@@ -17,13 +19,26 @@ pub struct NcError {
 }
 
 impl NcError {
+    /// An alarm of dialect.md §8; `message` says what the block did.
     #[cold]
-    pub fn new(code: u16, message: impl Into<String>) -> NcError {
+    pub fn new(alarm: Alarm, message: impl Into<String>) -> NcError {
+        NcError::numbered(alarm.code(), message)
+    }
+
+    /// An alarm the program raises itself: `#3000 = n` (3000 + n) and
+    /// `G65 H99` (500 + Q), dialect.md §8.4.
+    #[cold]
+    pub fn numbered(code: u16, message: impl Into<String>) -> NcError {
         NcError {
             code,
             message: message.into(),
             at: None,
         }
+    }
+
+    /// The alarm of §8, `None` for one the program raised itself.
+    pub fn alarm(&self) -> Option<Alarm> {
+        Alarm::from_code(self.code)
     }
 
     /// The same error, about profile block `tag`.
@@ -47,6 +62,6 @@ impl fmt::Display for NcError {
 impl core::error::Error for NcError {}
 
 /// Shorthand for `Err(NcError::new(..))`.
-pub fn fail<T>(code: u16, message: impl Into<String>) -> Result<T, NcError> {
-    Err(NcError::new(code, message))
+pub fn fail<T>(alarm: Alarm, message: impl Into<String>) -> Result<T, NcError> {
+    Err(NcError::new(alarm, message))
 }

@@ -4,6 +4,8 @@
 use alloc::format;
 use alloc::string::String;
 
+use crate::base::alarm::Alarm;
+
 /// A G code times ten (`G6.2` → 62, `G01` → 10), so it fits an integer.
 pub type Code = u16;
 
@@ -105,14 +107,14 @@ pub fn name(code: Code) -> String {
 
 /// Codes of other systems that would silently change meaning: the error
 /// code and the hint of dialect.md §4.13, `None` for an ordinary unknown.
-pub fn foreign(code: Code) -> Option<(u16, &'static str)> {
+pub fn foreign(code: Code) -> Option<(Alarm, &'static str)> {
     match code {
         910 => Some((
-            2004,
+            Alarm::ForeignDialect,
             "lathe \"A\" system: use U/W for incremental moves (G91 is the incremental mode of systems B/C and mills)",
         )),
         430 | 490 | 680 | 690 | 810 | 820 | 850 | 860 | 890 | 1130 | 1880 | 6000 => Some((
-            2001,
+            Alarm::UnknownGCode,
             "not a GSK980TDi/Fanuc-lathe-A code (a mill or another control's code)",
         )),
         _ => None,

@@ -3,7 +3,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
 
 /// `a` modulo `m` in `[0, |m|)`, as `f64::rem_euclid` (which `core` lacks).
@@ -63,7 +63,7 @@ pub fn centre_from_radius(from: Pt, to: Pt, r: f64, cw: bool) -> Result<Option<P
     let half = chord / 2.0;
     if half > r.abs() + RADIUS_SLACK_MM {
         return fail(
-            4001,
+            Alarm::ArcRadiusTooSmall,
             format!(
                 "arc radius {:.4} is too small: the end point is {:.4} mm away (half the chord exceeds |R|)",
                 r.abs(),
@@ -87,7 +87,7 @@ pub fn check_on_circle(from: Pt, to: Pt, centre: Pt, tolerance: f64) -> Result<(
     let (r0, r1) = (from.dist(centre), to.dist(centre));
     if (r0 - r1).abs() > tolerance {
         return fail(
-            4002,
+            Alarm::ArcEndOffCircle,
             format!(
                 "the end point is off the arc: its distance from the centre is {r1:.4}, the start's {r0:.4}"
             ),
@@ -100,12 +100,18 @@ pub fn check_on_circle(from: Pt, to: Pt, centre: Pt, tolerance: f64) -> Result<(
 /// clockwise (G05).
 pub fn circle_through(a: Pt, b: Pt, c: Pt) -> Result<(Pt, bool), NcError> {
     if a.dist(c) < 1e-9 {
-        return fail(4004, "G05: the end point equals the start point");
+        return fail(
+            Alarm::ThreePointArc,
+            "G05: the end point equals the start point",
+        );
     }
     // Cross product of (b - a) × (c - a) in (z, r): negative is clockwise.
     let cross = (b.z - a.z) * (c.r - a.r) - (b.r - a.r) * (c.z - a.z);
     if cross.abs() < 1e-9 {
-        return fail(4004, "G05: the three points lie on one line");
+        return fail(
+            Alarm::ThreePointArc,
+            "G05: the three points lie on one line",
+        );
     }
     let d = 2.0 * cross;
     let (sa, sb, sc) = (

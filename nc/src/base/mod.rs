@@ -2,6 +2,7 @@
 //! the machine configuration, events, the geometry element and the typed
 //! errors. Nothing here refers to the state of a running kernel.
 
+pub mod alarm;
 pub mod error;
 pub mod event;
 pub mod gcode;

@@ -7,7 +7,7 @@ pub mod value;
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{self, Code};
 use crate::base::machine::Machine;
 use crate::base::words::{addr, addr_name, Word, ADDR_COUNT, COMMA_A, COMMA_C, COMMA_R};
@@ -148,7 +148,7 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
             a if (a as usize) < ADDR_COUNT => {
                 if p.has_at(a) {
                     return fail(
-                        1011,
+                        Alarm::AddressRepeated,
                         format!("address {} written twice in the block", addr_name(a)),
                     );
                 }
@@ -156,7 +156,7 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
                 p.value[a as usize] = w.value;
                 p.flags[a as usize] = w.flags;
             }
-            a => return fail(1008, format!("unknown address number {a}")),
+            a => return fail(Alarm::UnknownAddress, format!("unknown address number {a}")),
         }
     }
     check_words(p, m)
@@ -165,7 +165,7 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
 fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
     if w.value < 0.0 || w.value > 9999.0 {
         return fail(
-            2001,
+            Alarm::UnknownGCode,
             format!("G{} is not a G code", crate::base::event::Num(w.value)),
         );
     }
@@ -177,12 +177,15 @@ fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
         );
     }
     let Some(group) = gcode::group(code) else {
-        return fail(2001, format!("unknown G code {}", gcode::name(code)));
+        return fail(
+            Alarm::UnknownGCode,
+            format!("unknown G code {}", gcode::name(code)),
+        );
     };
     if group == gcode::ONE_SHOT {
         if let Some(other) = p.one_shot() {
             return fail(
-                2002,
+                Alarm::OneShotConflict,
                 format!(
                     "{} and {} are both one-shot (group 00) codes: write them in separate blocks",
                     gcode::name(other),
@@ -192,7 +195,7 @@ fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
         }
     }
     if p.g_len == MAX_G {
-        return fail(1011, "too many G codes in one block");
+        return fail(Alarm::AddressRepeated, "too many G codes in one block");
     }
     p.g[p.g_len] = (code, idx);
     p.g_len += 1;
@@ -208,7 +211,7 @@ fn add_m(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
     let code = round_half_away(w.value);
     if !(0.0..=9999.0).contains(&code) {
         return fail(
-            1010,
+            Alarm::LiteralOutOfRange,
             format!(
                 "M{} is out of range (M0…M9999)",
                 crate::base::event::Num(w.value)
@@ -216,7 +219,7 @@ fn add_m(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
         );
     }
     if p.m_len == 3 {
-        return fail(1012, "more than three M codes in one block");
+        return fail(Alarm::TooManyMCodes, "more than three M codes in one block");
     }
     p.m[p.m_len] = (code as u32, idx);
     p.m_len += 1;
@@ -268,7 +271,7 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
         if let Some(w) = p.word(letter) {
             if w.literal_with_point() && integer_only(p, letter) {
                 return fail(
-                    1009,
+                    Alarm::DecimalPointNotAllowed,
                     format!(
                         "{} takes an integer here; a decimal point is not allowed (write {}{})",
                         letter as char,
@@ -282,45 +285,54 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     for letter in [b'F', b'S'] {
         if let Some(v) = p.get(letter) {
             if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) {
-                return fail(1010, format!("{} must not be negative", letter as char));
+                return fail(
+                    Alarm::LiteralOutOfRange,
+                    format!("{} must not be negative", letter as char),
+                );
             }
         }
     }
     if p.has(b'X') && p.has(b'U') {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             "X and U in one block: write the X end point either absolute or incremental",
         );
     }
     if p.has(b'Z') && p.has(b'W') {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             "Z and W in one block: write the Z end point either absolute or incremental",
         );
     }
     if p.has(b'Y') || p.has(b'V') {
-        return fail(2005, "this machine has no Y axis");
+        return fail(Alarm::AxisNotConfigured, "this machine has no Y axis");
     }
     if !m.axes.c.enabled && p.has(b'C') && p.one_shot().is_none() && p.motion() != Some(321) {
-        return fail(2005, "this machine has no C axis");
+        return fail(Alarm::AxisNotConfigured, "this machine has no C axis");
     }
     // Outside G65 (which never reaches the kernel) H is the incremental C
     // angle, in a move as in a drilling cycle.
     if !m.axes.c.enabled && p.has(b'H') {
         return fail(
-            2005,
+            Alarm::AxisNotConfigured,
             "this machine has no C axis (H is the incremental C angle)",
         );
     }
     if p.has_at(COMMA_A) && p.has(b'Q') {
-        return fail(2007, "Q and ,A both give the angle: write one of them");
+        return fail(
+            Alarm::IncompatibleWords,
+            "Q and ,A both give the angle: write one of them",
+        );
     }
     if p.has_at(COMMA_C) && p.has(b'L') {
-        return fail(2007, "L and ,C both give the chamfer: write one of them");
+        return fail(
+            Alarm::IncompatibleWords,
+            "L and ,C both give the chamfer: write one of them",
+        );
     }
     if p.has_at(COMMA_R) && p.has(b'D') {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             "D and ,R both give the corner radius: write one of them",
         );
     }
@@ -336,17 +348,20 @@ fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
         .count();
     let ends = p.ms().iter().any(|&(c, _)| matches!(c, 0 | 1 | 2 | 30));
     if calls > 1 {
-        return fail(1012, "at most one of M98, M99 and M9000…M9999 in a block");
+        return fail(
+            Alarm::TooManyMCodes,
+            "at most one of M98, M99 and M9000…M9999 in a block",
+        );
     }
     if calls == 1 && ends {
         return fail(
-            1012,
+            Alarm::TooManyMCodes,
             "M98/M99 cannot share a block with M00, M01, M02 or M30",
         );
     }
     if p.has_m(97) {
         return fail(
-            2004,
+            Alarm::ForeignDialect,
             "M97 is a Haas/Citizen local subprogram call: put the block in an O program and call it with M98",
         );
     }
@@ -365,14 +380,20 @@ fn check_foreign(p: &Parsed) -> Result<(), NcError> {
         }
     }
     if g92 && p.has(b'S') && !p.has_axis() {
-        return fail(2004, "G92 S is the speed clamp of systems B/C: use G50 S");
+        return fail(
+            Alarm::ForeignDialect,
+            "G92 S is the speed clamp of systems B/C: use G50 S",
+        );
     }
     if peck && (p.has(b'I') || p.has(b'K')) {
-        return fail(2004, "GSK pecks are P/Q in 0.001 mm, not Haas I/K words");
+        return fail(
+            Alarm::ForeignDialect,
+            "GSK pecks are P/Q in 0.001 mm, not Haas I/K words",
+        );
     }
     if plane {
         return fail(
-            2003,
+            Alarm::MissingEquipment,
             "G17/G19 need a Y axis; this lathe works in the ZX plane (G18)",
         );
     }

@@ -7,7 +7,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::block::round_half_away;
 
 /// The vacant ("null") value.
@@ -31,7 +31,7 @@ fn finite(v: f64) -> Result<f64, NcError> {
         // -0 is 0 (§7.6).
         Ok(if v == 0.0 { 0.0 } else { v })
     } else {
-        fail(5006, "the result is not a finite number")
+        fail(Alarm::NotFinite, "the result is not a finite number")
     }
 }
 
@@ -50,7 +50,10 @@ pub enum Bin {
 fn int(v: f64) -> Result<i64, NcError> {
     let r = round_half_away(num(v));
     if r.abs() > 9.0e18 {
-        return fail(5006, "the operand is too large for a bitwise operation");
+        return fail(
+            Alarm::NotFinite,
+            "the operand is too large for a bitwise operation",
+        );
     }
     Ok(r as i64)
 }
@@ -63,14 +66,14 @@ pub fn binary(op: Bin, a: f64, b: f64) -> Result<f64, NcError> {
         Bin::Mul => x * y,
         Bin::Div => {
             if y == 0.0 {
-                return fail(5001, "division by zero");
+                return fail(Alarm::DivisionByZero, "division by zero");
             }
             x / y
         }
         Bin::Mod => {
             let (i, j) = (int(a)?, int(b)?);
             if j == 0 {
-                return fail(5001, "MOD by zero");
+                return fail(Alarm::DivisionByZero, "MOD by zero");
             }
             // The remainder takes the sign of the dividend (−7 MOD 3 = −1).
             (i % j) as f64
@@ -147,13 +150,16 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
             // 90° + k·180° has no tangent.
             let k = (x - 90.0) / 180.0;
             if (k - libm::round(k)).abs() < 1e-12 {
-                return fail(5005, format!("TAN of {x}°"));
+                return fail(Alarm::UndefinedFunction, format!("TAN of {x}°"));
             }
             libm::tan(deg(x))
         }
         Func::Asin | Func::Acos => {
             if !(-1.0..=1.0).contains(&x) {
-                return fail(5003, format!("{f:?} of {x}: the argument must lie in −1…1"));
+                return fail(
+                    Alarm::ArcFunctionRange,
+                    format!("{f:?} of {x}: the argument must lie in −1…1"),
+                );
             }
             let r = if f == Func::Asin {
                 libm::asin(x)
@@ -165,7 +171,10 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
         Func::Atan => libm::atan(x).to_degrees(),
         Func::Sqrt => {
             if x < 0.0 {
-                return fail(5002, format!("square root of the negative value {x}"));
+                return fail(
+                    Alarm::NegativeRoot,
+                    format!("square root of the negative value {x}"),
+                );
             }
             libm::sqrt(x)
         }
@@ -181,7 +190,10 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
         }
         Func::Ln => {
             if x <= 0.0 {
-                return fail(5004, format!("LN of {x}: the argument must be positive"));
+                return fail(
+                    Alarm::LogOfNonPositive,
+                    format!("LN of {x}: the argument must be positive"),
+                );
             }
             libm::log(x)
         }
@@ -194,7 +206,7 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
 fn bcd_to_bin(x: f64) -> Result<f64, NcError> {
     let mut v = int(x)?;
     if v < 0 {
-        return fail(5011, "BIN of a negative value");
+        return fail(Alarm::NegativeBcd, "BIN of a negative value");
     }
     let (mut out, mut scale) = (0i64, 1i64);
     while v > 0 {
@@ -208,7 +220,7 @@ fn bcd_to_bin(x: f64) -> Result<f64, NcError> {
 fn bin_to_bcd(x: f64) -> Result<f64, NcError> {
     let mut v = int(x)?;
     if v < 0 {
-        return fail(5011, "BCD of a negative value");
+        return fail(Alarm::NegativeBcd, "BCD of a negative value");
     }
     let (mut out, mut shift) = (0i64, 0u32);
     while v > 0 && shift < 60 {
@@ -223,7 +235,7 @@ fn bin_to_bcd(x: f64) -> Result<f64, NcError> {
 pub fn atan2(y: f64, x: f64) -> Result<f64, NcError> {
     let (y, x) = (num(y), num(x));
     if y == 0.0 && x == 0.0 {
-        return fail(5005, "ATAN[0]/[0] has no direction");
+        return fail(Alarm::UndefinedFunction, "ATAN[0]/[0] has no direction");
     }
     let mut d = libm::atan2(y, x).to_degrees();
     if d < 0.0 {

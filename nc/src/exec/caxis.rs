@@ -32,7 +32,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode;
 use crate::base::machine::DecimalPoint;
 use crate::base::words::{Word, NO_POINT};
@@ -60,7 +60,7 @@ pub(crate) fn check(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
     }
     if p.has(b'C') && p.has(b'H') {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             "C and H in one block: write the C angle either absolute or incremental",
         );
     }
@@ -68,18 +68,18 @@ pub(crate) fn check(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
         Func::OneShot(280 | 300) | Func::Drill(_) => Ok(()),
         Func::Motion(0 | 10) => check_line(nc, p),
         Func::Motion(20 | 30 | 50 | 51) => fail(
-            2007,
+            Alarm::IncompatibleWords,
             "C/H cannot stand in a circular move: helical interpolation with C is not supported",
         ),
         Func::Motion(code) if crate::exec::cycles::is_thread_code(code) => fail(
-            2007,
+            Alarm::IncompatibleWords,
             format!(
                 "C/H cannot stand in a {} thread block: the spindle cannot turn as C while it cuts",
                 gcode::name(code)
             ),
         ),
         Func::Motion(code) | Func::OneShot(code) => fail(
-            2007,
+            Alarm::IncompatibleWords,
             format!("C/H cannot stand in a {} block", gcode::name(code)),
         ),
     }
@@ -93,13 +93,13 @@ fn check_line(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
         || p.has(b'Q');
     if corner {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             "a block that turns C takes no chamfer, corner rounding or angle (L, D, Q, ,C, ,R, ,A)",
         );
     }
     if nc.st.group(gcode::COMP) != 400 || crate::exec::comp::running(nc) {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             "C cannot move under nose-radius compensation: cancel it with G40 first",
         );
     }

@@ -8,7 +8,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::machine::Machine;
 use crate::base::words::{addr, Word};
 use crate::block::{self, round_half_away, Parsed};
@@ -87,7 +87,7 @@ fn open(nc: &mut Nc, p: &Parsed) -> Result<Mode, NcError> {
         }
         Some(52.0) => Ok(Mode::Parameters),
         _ => fail(
-            2004,
+            Alarm::ForeignDialect,
             "only G10 L3 (tool life) and G10 L52 (parameters) are GSK980TDi data setting; \
              Fanuc G10 offset and work-offset input (G10 P… X… Z…, G10 L2) is not in this dialect",
         ),
@@ -103,13 +103,13 @@ fn tool_life_block(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
     if let Some(t) = p.get(b'T') {
         let t = round_half_away(t);
         if !(0.0..=9999.0).contains(&t) {
-            return fail(5010, format!("T{t} is out of range"));
+            return fail(Alarm::ValueOutOfRange, format!("T{t} is out of range"));
         }
         let t = t as u32;
         let (tool, offset) = (t / 100, t % 100);
         if matches!(offset, 88 | 99) {
             return fail(
-                7004,
+                Alarm::ToolNumber,
                 format!("T{t:04}: a tool-life tool needs a real offset number, not {offset}"),
             );
         }
@@ -124,23 +124,29 @@ fn tool_life_block(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
 fn group_words(group: f64, p: &Parsed) -> Result<(u32, f64, LifeUnit), NcError> {
     let number = round_half_away(group);
     if !(1.0..=32.0).contains(&number) {
-        return fail(5010, format!("P{number}: tool-life groups are 1…32"));
+        return fail(
+            Alarm::ValueOutOfRange,
+            format!("P{number}: tool-life groups are 1…32"),
+        );
     }
     let Some(life) = p.get(b'L') else {
         return fail(
-            2006,
+            Alarm::MissingWord,
             format!("the tool-life group P{number} needs its life L"),
         );
     };
     if life <= 0.0 || !life.is_finite() {
-        return fail(5010, format!("L{life}: a tool life must be above 0"));
+        return fail(
+            Alarm::ValueOutOfRange,
+            format!("L{life}: a tool life must be above 0"),
+        );
     }
     let unit = match p.get(b'Q').map(round_half_away) {
         None | Some(1.0) => LifeUnit::Count,
         Some(2.0) => LifeUnit::Minutes,
         Some(q) => {
             return fail(
-                5010,
+                Alarm::ValueOutOfRange,
                 format!("Q{q}: a tool life counts uses (Q1) or minutes (Q2)"),
             )
         }
@@ -152,7 +158,7 @@ fn group_words(group: f64, p: &Parsed) -> Result<(u32, f64, LifeUnit), NcError> 
 fn parameter_block(nc: &mut Nc, p: &Parsed) -> Result<Outcome, NcError> {
     if p.has(b'K') || p.has(b'D') {
         return fail(
-            2099,
+            Alarm::NotSupportedYet,
             "PLC parameters (K, D, DT, DC) in G10 L52 are not implemented yet",
         );
     }
@@ -166,7 +172,7 @@ fn parameter_block(nc: &mut Nc, p: &Parsed) -> Result<Outcome, NcError> {
     match (p.get(b'R'), p.get(b'W')) {
         (Some(_), Some(_)) => {
             return fail(
-                2007,
+                Alarm::IncompatibleWords,
                 format!("N{n}: R reads and W writes; write one of them"),
             )
         }
@@ -177,7 +183,7 @@ fn parameter_block(nc: &mut Nc, p: &Parsed) -> Result<Outcome, NcError> {
         (None, Some(value)) => params::write(nc, n, axis, value)?,
         (None, None) => {
             return fail(
-                2006,
+                Alarm::MissingWord,
                 format!("N{n} needs R<#variable> to read the parameter or W<value> to write it (a vacant value leaves its word out)"),
             )
         }
@@ -193,7 +199,7 @@ fn parameter_number(v: f64) -> Result<u32, NcError> {
         return Ok(n as u32);
     }
     fail(
-        7008,
+        Alarm::UnknownParameterAtRun,
         format!("there is no parameter №{n} on this machine (machine.md §2)"),
     )
 }
@@ -203,7 +209,7 @@ fn parameter_number(v: f64) -> Result<u32, NcError> {
 fn variable_number(v: f64) -> Result<u32, NcError> {
     let n = round_half_away(v);
     if !(0.0..=u32::MAX as f64).contains(&n) {
-        return fail(5008, format!("#{n} names no variable"));
+        return fail(Alarm::NoSuchVariable, format!("#{n} names no variable"));
     }
     Ok(n as u32)
 }

@@ -14,7 +14,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::Event;
 use crate::base::point::Pt;
 use crate::block::Parsed;
@@ -29,7 +29,7 @@ pub fn run(nc: &mut Nc, x_axis: bool, p: &Parsed, sink: &mut dyn Sink) -> Result
     };
     if p.has(inc) {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             format!(
                 "{name} takes the absolute measuring position {}, not {}",
                 word as char, inc as char
@@ -38,13 +38,13 @@ pub fn run(nc: &mut Nc, x_axis: bool, p: &Parsed, sink: &mut dyn Sink) -> Result
     }
     let Some(at) = nc.len_of(p, word) else {
         return fail(
-            2006,
+            Alarm::MissingWord,
             format!("{name} needs the measuring position {}", word as char),
         );
     };
     if nc.st.tool == 0 || nc.st.offset == 0 {
         return fail(
-            4032,
+            Alarm::MeasureInComp,
             format!("{name} needs an active tool and a non-zero offset number (T word)"),
         );
     }
@@ -77,7 +77,7 @@ pub fn run(nc: &mut Nc, x_axis: bool, p: &Parsed, sink: &mut dyn Sink) -> Result
     });
     if !signal {
         return fail(
-            7006,
+            Alarm::NoMeasuringSignal,
             format!("{name}: no measuring signal within ε past the position"),
         );
     }

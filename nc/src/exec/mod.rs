@@ -18,7 +18,7 @@ use alloc::boxed::Box;
 use alloc::format;
 use alloc::vec::Vec;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, SpindleDir, StopKind};
 use crate::base::gcode::{self, Code};
 use crate::base::geom::{self, Element};
@@ -218,9 +218,12 @@ impl Nc {
             "G7.1 cylindrical interpolation"
         };
         if self.machine.axes.c.enabled {
-            fail(2099, format!("{what} is not supported yet"))
+            fail(
+                Alarm::NotSupportedYet,
+                format!("{what} is not supported yet"),
+            )
         } else {
-            fail(2003, format!("{what} needs a C axis"))
+            fail(Alarm::MissingEquipment, format!("{what} needs a C axis"))
         }
     }
 
@@ -313,7 +316,7 @@ impl Nc {
 
     fn s_word(&mut self, s: f64, g50: bool, sink: &mut dyn Sink) -> Result<(), NcError> {
         if s < 0.0 {
-            return fail(5010, "S must not be negative");
+            return fail(Alarm::ValueOutOfRange, "S must not be negative");
         }
         let css = self.st.css_mode();
         if g50 {
@@ -329,7 +332,10 @@ impl Nc {
         if self.machine.spindle.r#type == SpindleType::Gear {
             let n = round_half_away(s);
             if !(0.0..=4.0).contains(&n) {
-                return fail(5010, format!("gear code S{n} outside S00…S04"));
+                return fail(
+                    Alarm::ValueOutOfRange,
+                    format!("gear code S{n} outside S00…S04"),
+                );
             }
             sink.emit(Event::Gear { n: n as u32 });
             return Ok(());
@@ -356,7 +362,7 @@ impl Nc {
     fn t_word(&mut self, t: f64, sink: &mut dyn Sink) -> Result<(), NcError> {
         let t = round_half_away(t);
         if !(0.0..=9999.0).contains(&t) {
-            return fail(5010, format!("T{t} is out of range"));
+            return fail(Alarm::ValueOutOfRange, format!("T{t} is out of range"));
         }
         let (tool, offset) = (t as u32 / 100, t as u32 % 100);
         check_tool(&self.machine, tool, offset)?;
@@ -533,7 +539,7 @@ impl Nc {
             return match self.machine.machine.arc_without_center {
                 ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
                 ArcWithoutCenter::Alarm => fail(
-                    2006,
+                    Alarm::MissingWord,
                     format!(
                         "{} needs R or I/K to define its centre",
                         if cw { "G02" } else { "G03" }
@@ -571,7 +577,7 @@ impl Nc {
         sink: &mut dyn Sink,
     ) -> Result<(), NcError> {
         if !p.has(b'I') && !p.has(b'K') {
-            return fail(2006, "G05 needs the mid point I/K");
+            return fail(Alarm::MissingWord, "G05 needs the mid point I/K");
         }
         let from = self.st.pos;
         let i = self.len_of(p, b'I');
@@ -605,7 +611,10 @@ impl Nc {
             300 => {
                 let n = p.get(b'P').map_or(2.0, round_half_away);
                 if !(2.0..=4.0).contains(&n) {
-                    return fail(5010, format!("G30 P{n}: reference points are 2…4"));
+                    return fail(
+                        Alarm::ValueOutOfRange,
+                        format!("G30 P{n}: reference points are 2…4"),
+                    );
                 }
                 self.home(p, n as u32, sink)
             }
@@ -622,7 +631,10 @@ impl Nc {
             520 => self.set_local(p, sink),
             530 => {
                 if p.has(b'U') || p.has(b'W') {
-                    return fail(2007, "G53 takes machine coordinates X/Z only, not U/W");
+                    return fail(
+                        Alarm::IncompatibleWords,
+                        "G53 takes machine coordinates X/Z only, not U/W",
+                    );
                 }
                 let origin = self.st.origin();
                 let mut m = self.st.machine_pos();
@@ -640,7 +652,7 @@ impl Nc {
             }
             _ => {
                 return fail(
-                    2099,
+                    Alarm::NotSupportedYet,
                     format!("{} is not implemented yet", gcode::name(code)),
                 )
             }
@@ -805,7 +817,7 @@ impl Nc {
 pub fn check_tool(m: &Machine, tool: u32, offset: u32) -> Result<(), NcError> {
     if tool > m.tools.count {
         return fail(
-            7004,
+            Alarm::ToolNumber,
             format!(
                 "tool {tool} is outside the tool table (1…{})",
                 m.tools.count
@@ -814,7 +826,7 @@ pub fn check_tool(m: &Machine, tool: u32, offset: u32) -> Result<(), NcError> {
     }
     if offset > m.tools.offsets && offset != 88 && offset != 99 {
         return fail(
-            7004,
+            Alarm::ToolNumber,
             format!(
                 "offset {offset} is outside the offset table (1…{})",
                 m.tools.offsets

@@ -10,7 +10,7 @@
 use alloc::format;
 use alloc::string::ToString;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode;
 use crate::base::machine::{ChamferType, Machine, Units, Xz};
 use crate::block::round_half_away;
@@ -98,7 +98,10 @@ pub fn read(nc: &Nc, n: u32, axis: Option<f64>) -> Result<f64, NcError> {
 /// (a rate of 0, say) is refused here too (E5010) and nothing changes.
 pub fn write(nc: &mut Nc, n: u32, axis: Option<f64>, v: f64) -> Result<(), NcError> {
     if !v.is_finite() {
-        return fail(5010, format!("№{n:03} cannot be set to {v}"));
+        return fail(
+            Alarm::ValueOutOfRange,
+            format!("№{n:03} cannot be set to {v}"),
+        );
     }
     if is_bits(n) {
         let byte = number_to_bits(n, v)?;
@@ -109,7 +112,7 @@ pub fn write(nc: &mut Nc, n: u32, axis: Option<f64>, v: f64) -> Result<(), NcErr
     write_value(nc, n, axis, v)?;
     if let Err(e) = nc.machine.validate() {
         nc.machine = before;
-        return fail(5010, format!("№{n:03} = {v}: {e}"));
+        return fail(Alarm::ValueOutOfRange, format!("№{n:03} = {v}: {e}"));
     }
     Ok(())
 }
@@ -133,7 +136,7 @@ fn write_value(nc: &mut Nc, n: u32, axis: Option<f64>, v: f64) -> Result<(), NcE
         // program; a run-time change could not reach those calls.
         86..=95 => {
             return fail(
-                2099,
+                Alarm::NotSupportedYet,
                 format!(
                     "writing №{n:03}: the G-code macro table is fixed when the program is compiled"
                 ),
@@ -161,7 +164,7 @@ fn write_value(nc: &mut Nc, n: u32, axis: Option<f64>, v: f64) -> Result<(), NcE
             let code = round_half_away(v);
             if !(65.0..=90.0).contains(&code) {
                 return fail(
-                    5010,
+                    Alarm::ValueOutOfRange,
                     format!("№225 = {code}: an axis name is a letter A…Z (65…90)"),
                 );
             }
@@ -180,7 +183,7 @@ fn write_value(nc: &mut Nc, n: u32, axis: Option<f64>, v: f64) -> Result<(), NcE
 
 fn unknown<T>(n: u32) -> Result<T, NcError> {
     fail(
-        7008,
+        Alarm::UnknownParameterAtRun,
         format!("there is no parameter №{n:03} on this machine (machine.md §2)"),
     )
 }
@@ -211,17 +214,23 @@ fn xz_of_mut(m: &mut Machine, n: u32) -> &mut Xz {
 fn axis_of(n: u32, p: Option<f64>, allowed: &[u32]) -> Result<u32, NcError> {
     let Some(p) = p else {
         return fail(
-            2006,
+            Alarm::MissingWord,
             format!("№{n:03} is an axis parameter: P1 (X), P2 (Z) or P3 (C) names the axis"),
         );
     };
     let a = round_half_away(p);
     if !(1.0..=3.0).contains(&a) {
-        return fail(5010, format!("P{a}: the axes are P1 (X), P2 (Z), P3 (C)"));
+        return fail(
+            Alarm::ValueOutOfRange,
+            format!("P{a}: the axes are P1 (X), P2 (Z), P3 (C)"),
+        );
     }
     let a = a as u32;
     if !allowed.contains(&a) {
-        return fail(5010, format!("№{n:03} has no value for axis P{a}"));
+        return fail(
+            Alarm::ValueOutOfRange,
+            format!("№{n:03} has no value for axis P{a}"),
+        );
     }
     Ok(a)
 }
@@ -238,7 +247,10 @@ fn c_axis_only(n: u32, p: Option<f64>) -> Result<(), NcError> {
 fn count(n: u32, v: f64) -> Result<u32, NcError> {
     let r = round_half_away(v);
     if !(0.0..=u32::MAX as f64).contains(&r) {
-        return fail(5010, format!("№{n:03} takes a whole number ≥ 0, not {v}"));
+        return fail(
+            Alarm::ValueOutOfRange,
+            format!("№{n:03} takes a whole number ≥ 0, not {v}"),
+        );
     }
     Ok(r as u32)
 }
@@ -311,7 +323,7 @@ pub fn bits_to_number(byte: u8) -> f64 {
 pub fn number_to_bits(n: u32, v: f64) -> Result<u8, NcError> {
     let bad = || {
         fail(
-            5010,
+            Alarm::ValueOutOfRange,
             format!(
                 "№{n:03} is a bit parameter: write eight digits 0 or 1, bit 7 first (not {})",
                 crate::base::event::Num(v)

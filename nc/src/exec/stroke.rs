@@ -12,7 +12,7 @@
 
 use alloc::format;
 
-use crate::base::error::NcError;
+use crate::base::error::{Alarm, NcError};
 use crate::base::event::Event;
 use crate::base::point::Pt;
 use crate::block::Parsed;
@@ -134,7 +134,7 @@ impl Sink for Guard<'_> {
             let (mx, mz) = (x + self.origin.x(), z + self.origin.z);
             if self.area.forbids(mx, mz) {
                 self.fault = Some(NcError::new(
-                    7002,
+                    Alarm::StrokeLimit,
                     format!(
                         "the move ends at machine X{} Z{}, in the area G22 forbids",
                         crate::base::event::Num(mx),

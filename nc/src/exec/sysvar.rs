@@ -3,7 +3,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::Event;
 use crate::base::gcode;
 use crate::base::point::Pt;
@@ -22,11 +22,14 @@ pub fn is_current_position(n: u32) -> bool {
 }
 
 fn not_readable(n: u32) -> NcError {
-    NcError::new(5007, format!("#{n} is not a readable variable"))
+    NcError::new(
+        Alarm::VariableAccess,
+        format!("#{n} is not a readable variable"),
+    )
 }
 
 fn read_only(n: u32) -> NcError {
-    NcError::new(5007, format!("#{n} is read-only"))
+    NcError::new(Alarm::VariableAccess, format!("#{n} is read-only"))
 }
 
 /// `None` is the vacant value.
@@ -154,7 +157,12 @@ impl Nc {
             1000..=1015 | 1032 | 3011 | 3012 | 4001..=4120 | 5001..=5082 => {
                 return Err(read_only(n))
             }
-            _ => return fail(5007, format!("#{n} is not a writable variable")),
+            _ => {
+                return fail(
+                    Alarm::VariableAccess,
+                    format!("#{n} is not a writable variable"),
+                )
+            }
         }
         // The tool stays where it is on the machine; its work coordinates
         // change with the zero.

@@ -17,7 +17,7 @@
 use alloc::format;
 use alloc::vec::Vec;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, SpindleDir};
 use crate::base::machine::Machine;
 use crate::base::point::Pt;
@@ -128,7 +128,7 @@ impl ToolLife {
         match self.groups.iter().position(|g| g.number == number) {
             Some(i) if !self.groups[i].tools.is_empty() => Ok(i),
             _ => fail(
-                7005,
+                Alarm::ToolLifeOut,
                 format!("tool-life group {number} has no tool (G10 L3 or [[tool_life.group]])"),
             ),
         }
@@ -137,7 +137,7 @@ impl ToolLife {
 
 fn worn_out(number: u32) -> NcError {
     NcError::new(
-        7005,
+        Alarm::ToolLifeOut,
         format!("every tool of tool-life group {number} is worn out"),
     )
 }

@@ -5,7 +5,7 @@
 use alloc::format;
 
 use super::elem::{cross, heading};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
 use crate::base::words::COMMA_A;
 use crate::block::Parsed;
@@ -35,7 +35,7 @@ fn off_axis(deg: f64) -> f64 {
 pub fn end_at_r(from: Pt, deg: f64, r: f64) -> Result<Pt, NcError> {
     if off_axis(deg) <= LIMIT_DEG {
         return fail(
-            4008,
+            Alarm::BadAngle,
             format!("angle {deg:.3}° is within 1° of the Z axis: it cannot end at a given X"),
         );
     }
@@ -47,7 +47,7 @@ pub fn end_at_r(from: Pt, deg: f64, r: f64) -> Result<Pt, NcError> {
 pub fn end_at_z(from: Pt, deg: f64, z: f64) -> Result<Pt, NcError> {
     if (off_axis(deg) - 90.0).abs() <= LIMIT_DEG {
         return fail(
-            4008,
+            Alarm::BadAngle,
             format!("angle {deg:.3}° is within 1° of the X axis: it cannot end at a given Z"),
         );
     }
@@ -61,7 +61,7 @@ pub fn intersection(from: Pt, q1: f64, to: Pt, q2: f64) -> Result<Pt, NcError> {
     let diff = crate::base::geom::rem_euclid(q1 - q2, 180.0);
     if diff.min(180.0 - diff) < LIMIT_DEG {
         return fail(
-            4008,
+            Alarm::BadAngle,
             format!(
                 "the two lines of angle programming ({q1:.3}° and {q2:.3}°) differ by less than 1°"
             ),

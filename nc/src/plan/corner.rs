@@ -6,7 +6,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::elem::{self, circle_circle, cross, dot, left, line_circle, scale, unit, EPS_LEN};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::geom::Element;
 use crate::base::machine::ChamferType;
 use crate::base::point::Pt;
@@ -70,7 +70,7 @@ pub fn corner(
             return Ok(None);
         }
         return fail(
-            4007,
+            Alarm::CornerTooLarge,
             "the path reverses at the corner: there is no corner to chamfer or round",
         );
     }
@@ -84,7 +84,7 @@ type Joined = (Element, Element, Element);
 
 fn too_large(what: &str, size: f64) -> NcError {
     NcError::new(
-        4007,
+        Alarm::CornerTooLarge,
         format!("{what} {size:.4} is too large: the corner point would fall outside an element"),
     )
 }

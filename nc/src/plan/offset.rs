@@ -6,7 +6,7 @@ use alloc::format;
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::plan::elem::{
@@ -53,7 +53,7 @@ fn offset_radius(from: Pt, centre: Pt, cw: bool, tool: &Tool) -> Result<f64, NcE
     let rad = rho - tool.radius;
     if rad <= EPS_LEN {
         return fail(
-            4036,
+            Alarm::CompInterference,
             format!(
                 "compensation interference: the arc of radius {rho:.4} is not larger than the nose radius {:.4}",
                 tool.radius
@@ -150,7 +150,7 @@ pub fn check_forward(e: &Element, s: Pt, f: Pt) -> Result<(), NcError> {
     };
     if backwards {
         return fail(
-            4036,
+            Alarm::CompInterference,
             "compensation interference: the compensated path of this element would run backwards",
         );
     }

@@ -2,7 +2,7 @@
 //! §5): tangent, inside and outside corners.
 
 use super::{startup, Leg, Role, Tool};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::plan::elem::{cross, dot, tangent_at};
@@ -92,7 +92,7 @@ fn inside_point(e1: &Element, e2: &Element, q: Pt, tool: &Tool) -> Result<Pt, Nc
     match nearest {
         Some(p) => Ok(p),
         None => fail(
-            4036,
+            Alarm::CompInterference,
             "compensation interference: the offset paths of an inside corner do not meet",
         ),
     }

@@ -29,7 +29,7 @@ pub(crate) use corner::join;
 pub(crate) use cycle::turning_cycle;
 pub(crate) use print::printed;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{self, Code};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
@@ -152,7 +152,7 @@ fn compensating(nc: &Nc) -> bool {
     running(nc) || side_of(nc.st.group(gcode::COMP)).is_some()
 }
 
-fn on_arc(code: u16, what: &str) -> NcError {
+fn on_arc(code: Alarm, what: &str) -> NcError {
     NcError::new(
         code,
         format!("nose-radius compensation cannot {what} on a G02/G03 arc: use a G00 or G01 move"),
@@ -179,7 +179,7 @@ pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), 
         (None, None) => Ok((Step::Plain, None)),
         (None, Some(side)) => {
             if arc {
-                return Err(on_arc(4031, "start"));
+                return Err(on_arc(Alarm::CompOnArc, "start"));
             }
             let tool = startup::read_tool(nc, side)?;
             nc.st.comp.running = Some(tool);
@@ -196,7 +196,7 @@ pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), 
             // G41 ↔ G42: a cancel of the old side and a start-up on the
             // new one in the same move (§6).
             if arc {
-                return Err(on_arc(4031, "change sides"));
+                return Err(on_arc(Alarm::CompOnArc, "change sides"));
             }
             let tool = startup::read_tool(nc, side)?;
             nc.st.comp.running = Some(tool);
@@ -204,7 +204,7 @@ pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), 
         }
         (Some(_), None) => {
             if arc {
-                return Err(on_arc(4031, "be cancelled"));
+                return Err(on_arc(Alarm::CompOnArc, "be cancelled"));
             }
             nc.st.comp.stop();
             Ok((Step::Close, None))
@@ -223,10 +223,10 @@ fn last_code(p: &Parsed, g: u8) -> Option<Code> {
 
 /// The error of a function that needs compensation off: G31/G53 E4031,
 /// G36/G37 E4032 (dialect.md §4.7).
-fn needs_off(p: &Parsed) -> Option<u16> {
+fn needs_off(p: &Parsed) -> Option<Alarm> {
     match p.one_shot() {
-        Some(310 | 530) => Some(4031),
-        Some(360 | 370) => Some(4032),
+        Some(310 | 530) => Some(Alarm::CompOnArc),
+        Some(360 | 370) => Some(Alarm::MeasureInComp),
         _ => None,
     }
 }
@@ -285,7 +285,7 @@ pub(crate) fn end_of_block(nc: &mut Nc, p: &Parsed, moved: bool) -> Result<(), N
     nc.st.comp.idle = nc.st.comp.idle.saturating_add(1);
     if nc.st.comp.idle >= 7 {
         return fail(
-            4034,
+            Alarm::CompWithoutMoves,
             "seven consecutive blocks without a move while nose-radius compensation is on",
         );
     }
@@ -308,7 +308,7 @@ impl Nc {
     pub fn check_call(&self) -> Result<(), NcError> {
         if compensating(self) {
             return fail(
-                4035,
+                Alarm::CallInComp,
                 "M98 while nose-radius compensation is on: cancel it (G40 and a move) before the call",
             );
         }

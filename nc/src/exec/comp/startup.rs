@@ -4,7 +4,7 @@
 use alloc::format;
 
 use super::Tool;
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::exec::Nc;
@@ -41,7 +41,7 @@ pub fn read_tool(nc: &Nc, side: f64) -> Result<Tool, NcError> {
     let tip = wear.map_or(0.0, |w| w[3]);
     if radius.is_nan() || radius < 0.0 {
         return fail(
-            4036,
+            Alarm::CompInterference,
             format!(
                 "the nose radius of offset {} is negative ({radius:.4}): the wear is larger than the geometry",
                 nc.st.offset

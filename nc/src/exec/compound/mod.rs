@@ -18,7 +18,7 @@ mod rough;
 #[cfg(test)]
 mod tests;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Code;
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
@@ -90,7 +90,7 @@ fn too_many(passes: f64) -> Result<(), NcError> {
         Ok(())
     } else {
         fail(
-            4009,
+            Alarm::BadRoughing,
             format!("the cycle would make more than {MAX_PASSES} passes"),
         )
     }
@@ -107,11 +107,11 @@ pub fn run(
     let blocks = core::mem::take(&mut nc.profile);
     let (has_p, has_q) = (p.has(b'P'), p.has(b'Q'));
     if has_p != has_q {
-        return fail(2020, "the cycle needs both P (ns) and Q (nf)");
+        return fail(Alarm::BadProfile, "the cycle needs both P (ns) and Q (nf)");
     }
     if !has_p {
         return if code == 700 {
-            fail(2006, "G70 needs P (ns) and Q (nf)")
+            fail(Alarm::MissingWord, "G70 needs P (ns) and Q (nf)")
         } else {
             first_block(nc, code, p)
         };
@@ -158,7 +158,7 @@ fn count(p: &Parsed, letter: u8) -> Result<Option<f64>, NcError> {
     };
     if w.literal_with_point() {
         return fail(
-            1009,
+            Alarm::DecimalPointNotAllowed,
             format!(
                 "{} takes an integer here; a decimal point is not allowed",
                 letter as char
@@ -198,7 +198,7 @@ fn stock_removal(
     };
     if dd <= 0.0 || dd.is_nan() {
         return fail(
-            4009,
+            Alarm::BadRoughing,
             "the depth of cut Δd is 0: give it in the first block (G71 U… R… / G72 W… R…)",
         );
     }
@@ -251,7 +251,7 @@ fn pattern_repeat(
     let relief = nc.st.compound.g73;
     if relief.passes < 1.0 || relief.passes.is_nan() {
         return fail(
-            4009,
+            Alarm::BadRoughing,
             format!("G73 needs at least one pass (R{})", relief.passes),
         );
     }

@@ -9,7 +9,7 @@ use alloc::vec::Vec;
 use super::out::Out;
 use super::profile::{tail_start, Seg};
 use super::{too_many, Job};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
 use crate::plan::curve::{sign, Axis, EPS, SLACK};
 
@@ -131,19 +131,22 @@ impl Contour<'_> {
 /// Runs the cycle from A to its return to A.
 pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
     let Some(ns) = job.segs.first().filter(|s| s.ns) else {
-        return fail(4009, "the ns block makes no infeed move");
+        return fail(Alarm::BadRoughing, "the ns block makes no infeed move");
     };
     let a1 = job.a1;
     let sx = sign(ns.curve.end().r - a1.r);
     if sx == 0.0 {
-        return fail(4009, "the ns block makes no infeed move");
+        return fail(Alarm::BadRoughing, "the ns block makes no infeed move");
     }
     let keep = 1 + tail_start(&job.segs[1..], a1.r, sx);
     let trimmed = &job.segs[..keep];
     let cr = trimmed[keep - 1].curve.end();
     let sz = sign(cr.z - a1.z);
     if sz == 0.0 {
-        return fail(4009, "the profile makes no move along the cut");
+        return fail(
+            Alarm::BadRoughing,
+            "the profile makes no move along the cut",
+        );
     }
     let k = Contour {
         segs: trimmed,
@@ -177,7 +180,10 @@ fn check(k: &Contour) -> Result<f64, NcError> {
     for seg in k.segs {
         let c = &seg.curve;
         if !c.monotone(Axis::Z, k.sz, 0.0, 1.0) {
-            return fail(4009, "the profile is not monotonic along the cut (type II)");
+            return fail(
+                Alarm::BadRoughing,
+                "the profile is not monotonic along the cut (type II)",
+            );
         }
         let mut stops = vec![0.0];
         stops.extend(c.extremes(Axis::R));
@@ -196,7 +202,7 @@ fn check(k: &Contour) -> Result<f64, NcError> {
     }
     if pockets > MAX_POCKETS {
         return fail(
-            4009,
+            Alarm::BadRoughing,
             format!("the profile has {pockets} pockets; type II allows {MAX_POCKETS}"),
         );
     }

@@ -6,7 +6,7 @@
 use alloc::format;
 use alloc::vec::Vec;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{self, Code};
 use crate::base::geom::{self, Element};
 use crate::base::point::Pt;
@@ -49,7 +49,7 @@ pub enum Kind {
 fn first(blocks: &[(Vec<Word>, u32)]) -> Result<&(Vec<Word>, u32), NcError> {
     blocks.first().ok_or_else(|| {
         NcError::new(
-            2020,
+            Alarm::BadProfile,
             "the cycle has no profile: P(ns) and Q(nf) name no blocks",
         )
     })
@@ -72,7 +72,7 @@ pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kin
             "the first profile block (ns) of {name} must move with G00 or G01, not {}",
             gcode::name(code)
         );
-        return Err(NcError::new(2021, msg).at(*tag));
+        return Err(NcError::new(Alarm::BadProfileStart, msg).at(*tag));
     }
     let has_x = p.has(b'X') || p.has(b'U');
     let has_z = p.has(b'Z') || p.has(b'W');
@@ -83,7 +83,7 @@ pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kin
     };
     if !infeed {
         let msg = format!("the first profile block (ns) of {name} must name {axis}");
-        return Err(NcError::new(2021, msg).at(*tag));
+        return Err(NcError::new(Alarm::BadProfileStart, msg).at(*tag));
     }
     Ok(if other { Kind::Pockets } else { Kind::Plain })
 }
@@ -94,19 +94,19 @@ pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kin
 pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
     if nc.machine.axes.c.enabled && (p.has(b'C') || p.has(b'H')) {
         let msg = "C/H may not stand in a G70–G73 profile: the cycles move X and Z only";
-        return Err(NcError::new(2007, msg).at(tag));
+        return Err(NcError::new(Alarm::IncompatibleWords, msg).at(tag));
     }
     if let Some(code) = p.one_shot() {
         let msg = format!(
             "{} (group 00) may not stand in a G70–G73 profile",
             gcode::name(code)
         );
-        return Err(NcError::new(2020, msg).at(tag));
+        return Err(NcError::new(Alarm::BadProfile, msg).at(tag));
     }
     for &(code, _) in p.gs() {
         if gcode::group(code) == Some(gcode::DRILL) && code != 800 {
             let msg = format!("{} may not stand in a G70–G73 profile", gcode::name(code));
-            return Err(NcError::new(2020, msg).at(tag));
+            return Err(NcError::new(Alarm::BadProfile, msg).at(tag));
         }
     }
     Ok(())
@@ -194,7 +194,7 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
                 (true, true) => to,
                 (false, false) => {
                     return fail(
-                        2099,
+                        Alarm::NotSupportedYet,
                         "the two-block angle form in a G71–G73 profile is not supported yet",
                     )
                 }
@@ -204,11 +204,11 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
         20 | 30 => nc.arc_element(from, code == 20, to, p),
         50 | 51 => three_point(nc, code == 51, p, from, to).map(Some),
         62 | 63 | 72 | 73 => fail(
-            2099,
+            Alarm::NotSupportedYet,
             format!("{} in a G71–G73 profile is not supported yet", gcode::name(code)),
         ),
         _ => fail(
-            2020,
+            Alarm::BadProfile,
             format!(
                 "{} may not stand in a G71–G73 profile: only G00, G01, G02, G03 (and G05) describe it",
                 gcode::name(code)
@@ -220,7 +220,7 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
 /// G05 (mid point relative to the start) and G05.1 (absolute mid point).
 fn three_point(nc: &Nc, absolute: bool, p: &Parsed, from: Pt, to: Pt) -> Result<Element, NcError> {
     if !p.has(b'I') && !p.has(b'K') {
-        return fail(2006, "G05 needs the mid point I/K");
+        return fail(Alarm::MissingWord, "G05 needs the mid point I/K");
     }
     let i = nc.len_of(p, b'I');
     let k = nc.len_of(p, b'K');

@@ -6,27 +6,27 @@ use alloc::vec::Vec;
 use super::out::Out;
 use super::profile::{tail_start, Seg};
 use super::{too_many, Job};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
 use crate::plan::curve::{sign, Axis, Curve, EPS};
 
 /// Runs the cycle from A (the tool position) to its return to A.
 pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
     let Some((ns, rest)) = job.segs.split_first().filter(|(s, _)| s.ns) else {
-        return fail(4009, "the ns block makes no infeed move");
+        return fail(Alarm::BadRoughing, "the ns block makes no infeed move");
     };
     let a1 = job.a1;
     let b1 = ns.curve.end();
     let sx = sign(b1.r - a1.r);
     if sx == 0.0 {
-        return fail(4009, "the ns block makes no infeed move");
+        return fail(Alarm::BadRoughing, "the ns block makes no infeed move");
     }
     let body = &rest[..tail_start(rest, a1.r, sx)];
     let cr = body.last().map_or(b1, |s| s.curve.end());
     let sz = sign(cr.z - b1.z);
     if sz == 0.0 {
         return fail(
-            4009,
+            Alarm::BadRoughing,
             "the profile makes no move along Z (G71) / X (G72) to cut",
         );
     }
@@ -64,7 +64,7 @@ pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
 fn check_monotone(body: &[Seg], sx: f64, sz: f64) -> Result<(), NcError> {
     for s in body {
         if !s.curve.monotone(Axis::R, -sx, 0.0, 1.0) || !s.curve.monotone(Axis::Z, sz, 0.0, 1.0) {
-            return fail(4009, "the profile is not monotonic (K1)");
+            return fail(Alarm::BadRoughing, "the profile is not monotonic (K1)");
         }
     }
     Ok(())
@@ -93,7 +93,7 @@ fn level_end(rest: &[Seg], level: f64, sx: f64, sz: f64) -> Result<Option<f64>, 
         let c = &s.curve;
         if !c.monotone(Axis::Z, sz, 0.0, upto) || !c.monotone(Axis::R, -sx, 0.0, upto) {
             return fail(
-                4009,
+                Alarm::BadRoughing,
                 "the profile is not monotonic: it turns back before the level pass reaches it",
             );
         }

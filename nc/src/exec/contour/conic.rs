@@ -3,7 +3,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event};
 use crate::base::geom;
 use crate::base::point::Pt;
@@ -38,7 +38,10 @@ pub fn ellipse_centre(
     cw: bool,
 ) -> Result<Option<Pt>, NcError> {
     if a <= 0.0 || b <= 0.0 {
-        return fail(4005, "G6.2/G6.3 need semi-axes A and B greater than 0");
+        return fail(
+            Alarm::BadEllipse,
+            "G6.2/G6.3 need semi-axes A and B greater than 0",
+        );
     }
     let chord = from.dist(to);
     if chord < 1e-9 {
@@ -46,7 +49,7 @@ pub fn ellipse_centre(
     }
     if chord / 2.0 > a + SLACK_MM {
         return fail(
-            4005,
+            Alarm::BadEllipse,
             format!(
                 "the end point is {chord:.4} mm away, more than 2A = {:.4}",
                 2.0 * a
@@ -60,7 +63,7 @@ pub fn ellipse_centre(
         Ok(c) => c,
         Err(_) => {
             return fail(
-                4005,
+                Alarm::BadEllipse,
                 "no ellipse with these semi-axes and axis angle joins the two points",
             )
         }
@@ -75,13 +78,16 @@ pub fn ellipse_centre(
 /// otherwise. E4006 when the chord is parallel to the symmetry axis.
 pub fn parabola_vertex(from: Pt, to: Pt, p: f64, q_deg: f64, cw: bool) -> Result<Pt, NcError> {
     if p <= 0.0 {
-        return fail(4006, "G7.2/G7.3 need a parameter P greater than 0");
+        return fail(
+            Alarm::BadParabola,
+            "G7.2/G7.3 need a parameter P greater than 0",
+        );
     }
     let (u, v) = (axis(q_deg), left(axis(q_deg)));
     let (us, vs, ue, ve) = (dot(from, u), dot(from, v), dot(to, u), dot(to, v));
     if (ve - vs).abs() < 1e-9 {
         return fail(
-            4006,
+            Alarm::BadParabola,
             "the chord of the parabola is parallel to its symmetry axis",
         );
     }
@@ -139,7 +145,10 @@ pub fn run(
         let inc = if nc.st.inch() { 0.0001 * 25.4 } else { 0.001 };
         let pp = p.get(b'P').unwrap_or(0.0).abs() * inc;
         if pp <= 0.0 {
-            return fail(4006, "G7.2/G7.3 need a parameter P greater than 0");
+            return fail(
+                Alarm::BadParabola,
+                "G7.2/G7.3 need a parameter P greater than 0",
+            );
         }
         if from.dist(to) < 1e-9 {
             return Ok(false);

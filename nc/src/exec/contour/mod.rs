@@ -22,7 +22,7 @@ pub use crate::plan::corner::{corner, Corner};
 pub use conic::{ellipse_centre, parabola_vertex};
 pub use queue::ContourState;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Code;
 use crate::base::geom::Element;
 use crate::base::machine::ChamferType;
@@ -66,18 +66,24 @@ pub(crate) fn corner_word(nc: &Nc, code: Code, p: &Parsed) -> Result<Option<Corn
         return Ok(None);
     }
     if code == 0 {
-        return fail(2040, "a chamfer or corner rounding cannot be given on G00");
+        return fail(
+            Alarm::BadCornerLength,
+            "a chamfer or corner rounding cannot be given on G00",
+        );
     }
     if chamfer.is_some() && round.is_some() {
         return fail(
-            2040,
+            Alarm::BadCornerLength,
             "a block takes either a chamfer or a corner rounding, not both",
         );
     }
     let size = nc.length(word);
     // Written so that a NaN fails too.
     if size.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
-        return fail(2040, "a chamfer or corner radius must be greater than 0");
+        return fail(
+            Alarm::BadCornerLength,
+            "a chamfer or corner radius must be greater than 0",
+        );
     }
     Ok(Some(match chamfer {
         // ,C is always Fanuc's type II; L follows №181.0.
@@ -174,7 +180,7 @@ fn second_block(
 ) -> Result<(), NcError> {
     let (Some(q2), Some(x), Some(z)) = (q, nc.len_of(p, b'X'), nc.len_of(p, b'Z')) else {
         return fail(
-            4008,
+            Alarm::BadAngle,
             "the second block of angle programming needs absolute X, Z and an angle Q (or ,A)",
         );
     };
@@ -194,7 +200,7 @@ pub(crate) fn feed_element(
 ) -> Result<(), NcError> {
     if nc.st.contour.angle_waiting() {
         return fail(
-            4008,
+            Alarm::BadAngle,
             "the second block of angle programming must be a G01 (or G00) X_ Z_ Q_ block",
         );
     }
@@ -237,7 +243,7 @@ pub(crate) fn before_one_shot(nc: &mut Nc, code: Code, sink: &mut dyn Sink) -> R
 pub(crate) fn end_of_block(nc: &mut Nc) -> Result<(), NcError> {
     if nc.st.contour.count_block_between() > 1 {
         return fail(
-            4008,
+            Alarm::BadAngle,
             "angle programming: at most one block may stand between its two blocks",
         );
     }

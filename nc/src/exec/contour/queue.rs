@@ -2,7 +2,7 @@
 
 use alloc::vec::Vec;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
@@ -272,10 +272,16 @@ pub(crate) fn finish_angle(
 ) -> Result<(), NcError> {
     let items = &mut nc.st.contour.items;
     let Some(i) = items.iter().position(|it| matches!(it, Item::Angle(_))) else {
-        return fail(4008, "angle programming: no first block waits for this one");
+        return fail(
+            Alarm::BadAngle,
+            "angle programming: no first block waits for this one",
+        );
     };
     let Item::Angle(a) = items.remove(i) else {
-        return fail(4008, "angle programming: no first block waits for this one");
+        return fail(
+            Alarm::BadAngle,
+            "angle programming: no first block waits for this one",
+        );
     };
     let meet = angle::intersection(a.from, a.angle, end, q2)?;
     let mut first = Move {
@@ -325,7 +331,7 @@ pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
     closed?;
     if incomplete {
         return fail(
-            4008,
+            Alarm::BadAngle,
             "angle programming: the block after a Q_ block must be X_ Z_ Q_",
         );
     }

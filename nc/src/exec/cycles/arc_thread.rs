@@ -2,7 +2,7 @@
 //! §4.3): one `ARCTHREAD` event per block.
 
 use super::lead;
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event};
 use crate::base::gcode::Code;
 use crate::base::geom;
@@ -65,7 +65,10 @@ fn centre(nc: &Nc, p: &Parsed, cw: bool, from: Pt, to: Pt) -> Result<Option<Pt>,
         geom::check_on_circle(from, to, c, nc.machine.machine.arc_tolerance_mm)?;
         return Ok(Some(c));
     }
-    fail(2006, "G32.2/G32.3 need R or I/K to define the arc's centre")
+    fail(
+        Alarm::MissingWord,
+        "G32.2/G32.3 need R or I/K to define the arc's centre",
+    )
 }
 
 /// The lead is measured along one axis for the whole arc: Z if its
@@ -90,7 +93,7 @@ fn check_long_axis(from: Pt, to: Pt, c: Pt, cw: bool) -> Result<(), NcError> {
         let at = crate::base::geom::rem_euclid(dir * (boundary - a0), TAU);
         if at > ANGLE_EPS && at < sweep - ANGLE_EPS {
             return fail(
-                4010,
+                Alarm::BadThread,
                 "G32.2/G32.3: the arc has no single long axis (its tangent crosses 45°)",
             );
         }

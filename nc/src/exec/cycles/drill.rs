@@ -10,7 +10,7 @@ use super::legs::{self, Leg};
 use super::tapping::{self, Hole};
 use super::words::{self, before, sign};
 use super::{lead, Func};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::SpindleDir;
 use crate::base::gcode::Code;
 use crate::base::point::Pt;
@@ -73,20 +73,26 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
     let taps = drills && matches!(f, Func::Drill(840 | 880));
     if p.has_m(29) {
         if st.m29 {
-            return fail(2007, "a second M29 before the G84/G88 block");
+            return fail(
+                Alarm::IncompatibleWords,
+                "a second M29 before the G84/G88 block",
+            );
         }
         st.m29 = true;
     }
     if st.m29 && moves && !taps {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             "no move may come between M29 and its G84/G88 tapping block",
         );
     }
     st.clamp = None;
     if drills {
         if p.ms().len() > 1 {
-            return fail(2007, "a drilling block takes one M word (the clamp code)");
+            return fail(
+                Alarm::IncompatibleWords,
+                "a drilling block takes one M word (the clamp code)",
+            );
         }
         st.clamp = p
             .ms()
@@ -108,7 +114,7 @@ pub(crate) fn run(
     // block.rs sees H only in a block that names the cycle.
     if !nc.machine.axes.c.enabled && p.has(b'H') {
         return fail(
-            2005,
+            Alarm::AxisNotConfigured,
             "this machine has no C axis (H is the incremental hole angle)",
         );
     }
@@ -212,7 +218,12 @@ impl Holes {
         } else {
             match nc.st.cycles.drill.data.bottom {
                 Some(b) => b,
-                None => return fail(2006, "the first drilling block needs the hole's bottom"),
+                None => {
+                    return fail(
+                        Alarm::MissingWord,
+                        "the first drilling block needs the hole's bottom",
+                    )
+                }
             }
         };
         nc.st.cycles.drill.data.bottom = Some(s1);
@@ -252,7 +263,7 @@ fn drill_path(nc: &Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
     let mut out = Vec::new();
     for n in 0..repeats {
         if out.len() > words::MAX_LEGS {
-            return fail(4011, format!("K{repeats}: too many holes"));
+            return fail(Alarm::ZeroStep, format!("K{repeats}: too many holes"));
         }
         out.push(Leg::RapidC(h.at(n, h.s0), h.c_at(n)));
         if let Some(m) = h.clamp {
@@ -292,7 +303,7 @@ fn feed_to_bottom(s0: f64, s1: f64, d: &Data) -> Result<Vec<(bool, f64)>, NcErro
         }
     };
     let mut out = Vec::new();
-    for t in words::stops(s0, s1, d.peck, 4011)? {
+    for t in words::stops(s0, s1, d.peck, Alarm::ZeroStep)? {
         out.push((false, t));
         if !before(s0, s1, t) {
             break;
@@ -312,7 +323,10 @@ fn tap_path(nc: &mut Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
     }
     let st = &nc.st.cycles.drill;
     if !st.m29 && !st.rigid {
-        return fail(2007, "rigid tapping G84/G88 needs M29 S… before it");
+        return fail(
+            Alarm::IncompatibleWords,
+            "rigid tapping G84/G88 needs M29 S… before it",
+        );
     }
     let lead = match st.data.lead {
         Some(l) => l,
@@ -328,7 +342,7 @@ fn tap_path(nc: &mut Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
     let mut out = Vec::new();
     for n in 0..repeats {
         if out.len() > words::MAX_LEGS {
-            return fail(4011, format!("K{repeats}: too many holes"));
+            return fail(Alarm::ZeroStep, format!("K{repeats}: too many holes"));
         }
         let hole = Hole {
             top: h.at(n, h.s0),

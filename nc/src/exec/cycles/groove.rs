@@ -6,7 +6,7 @@ use alloc::vec::Vec;
 
 use super::legs::{self, Leg};
 use super::words::{self, sign};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Code;
 use crate::base::point::Pt;
 use crate::block::Parsed;
@@ -116,11 +116,11 @@ fn path(g: &Groove, ax: Axes, zero_step: &str) -> Result<Vec<Leg>, NcError> {
     let (e_peck, e_step) = ax.split(g.end);
     let ss = sign(e_step - a_step);
     if ss != 0.0 && g.step <= 0.0 {
-        return fail(4011, zero_step);
+        return fail(Alarm::ZeroStep, zero_step);
     }
     let mut lines = vec![a_step];
     if ss != 0.0 {
-        lines.extend(words::stops(a_step, e_step, g.step, 4011)?);
+        lines.extend(words::stops(a_step, e_step, g.step, Alarm::ZeroStep)?);
     }
     // The relief moves against the step direction; with a single column
     // (row) Δd keeps its own sign.
@@ -130,11 +130,11 @@ fn path(g: &Groove, ax: Axes, zero_step: &str) -> Result<Vec<Leg>, NcError> {
         -ss * g.relief.abs()
     };
     let sp = sign(e_peck - a_peck);
-    let pecks = words::stops(a_peck, e_peck, g.peck, 4011)?;
+    let pecks = words::stops(a_peck, e_peck, g.peck, Alarm::ZeroStep)?;
     let mut out = Vec::new();
     for (n, &line) in lines.iter().enumerate() {
         if out.len() > words::MAX_LEGS {
-            return fail(4011, "the steps are too small for this cycle");
+            return fail(Alarm::ZeroStep, "the steps are too small for this cycle");
         }
         for (j, &t) in pecks.iter().enumerate() {
             out.push(Leg::Line(ax.pt(t, line)));

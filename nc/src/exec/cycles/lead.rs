@@ -3,7 +3,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::block::Parsed;
 use crate::exec::Nc;
 
@@ -34,7 +34,7 @@ pub(crate) fn remember(nc: &mut Nc, written: Option<f64>) {
 pub(crate) fn resolve(nc: &Nc, written: Option<f64>) -> Result<f64, NcError> {
     let Some(lead) = written.or(nc.st.cycles.lead) else {
         return fail(
-            2006,
+            Alarm::MissingWord,
             "thread without a lead: give F (or I) in this or an earlier thread block",
         );
     };
@@ -48,7 +48,7 @@ pub(crate) fn check(nc: &Nc, lead: f64) -> Result<(), NcError> {
         Ok(())
     } else {
         fail(
-            4010,
+            Alarm::BadThread,
             format!("thread lead {lead:.4} mm is outside 0 < lead ≤ {max} mm"),
         )
     }

@@ -5,7 +5,7 @@ use alloc::format;
 use alloc::vec::Vec;
 
 use super::words::{sign, EPS};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Event, SpindleDir};
 use crate::base::point::Pt;
 use crate::exec::{Nc, Sink};
@@ -160,7 +160,7 @@ pub(crate) fn pass(
     let length = (to.z - from.z).abs();
     if pull.z >= length - EPS {
         return fail(
-            4010,
+            Alarm::BadThread,
             format!(
                 "the pull-out ({:.4} mm along Z) is not shorter than the thread pass ({length:.4} mm)",
                 pull.z

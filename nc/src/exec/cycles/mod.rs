@@ -25,7 +25,7 @@ mod words;
 #[cfg(test)]
 pub(crate) mod testing;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{self, Code};
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
@@ -116,7 +116,7 @@ fn check_negative_f(p: &Parsed, f: Func) -> Result<(), NcError> {
     let left_hand = matches!(f, Func::Motion(321 | 921) | Func::Drill(840 | 880));
     match p.get(b'F') {
         Some(v) if v < 0.0 && !left_hand => fail(
-            1010,
+            Alarm::LiteralOutOfRange,
             "F must not be negative (only G32.1, G92.1, G84 and G88 take a left-hand lead F < 0)",
         ),
         _ => Ok(()),
@@ -166,7 +166,7 @@ pub fn motion(
         322 | 323 => arc_thread::run(nc, code, p, sink, out),
         330 => tapping::g33(nc, p, sink, out),
         _ => fail(
-            2099,
+            Alarm::NotSupportedYet,
             format!("{} is not implemented yet", gcode::name(code)),
         ),
     }
@@ -185,7 +185,7 @@ pub fn one_shot(
         760 => multi::g76(nc, p, sink, out),
         780 => multi::g78(nc, p, sink, out),
         _ => fail(
-            2099,
+            Alarm::NotSupportedYet,
             format!("{} is not implemented yet", gcode::name(code)),
         ),
     }

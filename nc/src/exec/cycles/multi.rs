@@ -7,7 +7,7 @@ use alloc::vec::Vec;
 use super::lead;
 use super::legs::{self, jk_pair, thread, Leg, PullOut};
 use super::words::{self, sign, EPS};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
@@ -79,7 +79,10 @@ fn digits(p: &Parsed) -> Result<Option<(i64, i64, f64)>, NcError> {
         return Ok(None);
     };
     if v < 0.0 {
-        return fail(4010, format!("P{v}: the mmrraa digits cannot be negative"));
+        return fail(
+            Alarm::BadThread,
+            format!("P{v}: the mmrraa digits cannot be negative"),
+        );
     }
     let v = v as i64;
     Ok(Some((v / 10000, (v / 100) % 100, (v % 100) as f64)))
@@ -143,7 +146,7 @@ fn rough_depths(
     for n in 1u32.. {
         if n as usize > MAX_PASSES {
             return fail(
-                4010,
+                Alarm::BadThread,
                 "the first depth Δd is too small: the thread would take too many passes",
             );
         }
@@ -170,7 +173,10 @@ fn rough_depths(
 fn finish(depths: &mut Vec<f64>, height: f64, passes: i64) -> Result<(), NcError> {
     let n = usize::try_from(passes).unwrap_or(0);
     if n > MAX_PASSES {
-        return fail(4010, format!("{passes} finishing passes are too many"));
+        return fail(
+            Alarm::BadThread,
+            format!("{passes} finishing passes are too many"),
+        );
     }
     depths.extend(core::iter::repeat_n(height, n));
     Ok(())
@@ -180,7 +186,7 @@ fn finish(depths: &mut Vec<f64>, height: f64, passes: i64) -> Result<(), NcError
 fn check_depths(k: f64, dd: f64) -> Result<(), NcError> {
     if k <= 0.0 || dd <= 0.0 {
         return fail(
-            4010,
+            Alarm::BadThread,
             format!("thread height k ({k:.4}) and first depth Δd ({dd:.4}) must be positive"),
         );
     }
@@ -313,7 +319,10 @@ pub(crate) fn g78(
         let z = t.a.z + cut_in_shift(f.cut_in, i + 1, depth * tan);
         for j in 0..f.starts {
             if path.len() > words::MAX_LEGS {
-                return fail(4010, format!("G78 L{}: too many starts", f.starts));
+                return fail(
+                    Alarm::BadThread,
+                    format!("G78 L{}: too many starts", f.starts),
+                );
             }
             let q = j as f64 * 360.0 / f.starts as f64;
             g78_pass(&t, depth, z, q, f.run_in, pull, &mut path)?;
@@ -344,7 +353,7 @@ fn g78_first(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
     if let Some((m, r, a)) = digits(p)? {
         if !(0..=1).contains(&m) || !(0..=3).contains(&r) {
             return fail(
-                4010,
+                Alarm::BadThread,
                 format!("G78 P: infeed mode {m} (0/1) or cut-in mode {r} (0–3) out of range"),
             );
         }
@@ -361,7 +370,7 @@ fn g78_first(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
     if let Some(d) = words::count(p, b'D')? {
         if d < 0 {
             return fail(
-                4010,
+                Alarm::BadThread,
                 format!("G78 D{d}: finishing passes cannot be negative"),
             );
         }
@@ -369,7 +378,10 @@ fn g78_first(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
     }
     if let Some(l) = words::count(p, b'L')? {
         if l < 1 {
-            return fail(4010, format!("G78 L{l}: a thread has at least one start"));
+            return fail(
+                Alarm::BadThread,
+                format!("G78 L{l}: a thread has at least one start"),
+            );
         }
         f.starts = l;
     }
@@ -397,7 +409,7 @@ fn g78_pass(
     let entry = run_in.max(0.0) + pull.map_or(0.0, |p| p.z);
     if run_in > 0.0 && entry >= length - EPS {
         return fail(
-            4010,
+            Alarm::BadThread,
             format!("G78: the run-in and the pull-out ({entry:.4} mm) are not shorter than the pass ({length:.4} mm)"),
         );
     }

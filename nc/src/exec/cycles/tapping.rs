@@ -6,7 +6,7 @@ use alloc::vec::Vec;
 
 use super::legs::{self, thread, Leg};
 use super::{lead, words};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::SpindleDir;
 use crate::base::point::Pt;
 use crate::block::Parsed;
@@ -29,7 +29,7 @@ pub(crate) fn g33(
 ) -> Result<(), NcError> {
     if p.has(b'X') || p.has(b'U') {
         return fail(
-            2007,
+            Alarm::IncompatibleWords,
             "G33 taps along Z at the current X: X/U cannot stand in a G33 block",
         );
     }
@@ -42,14 +42,14 @@ pub(crate) fn g33(
     let lead = lead::resolve(nc, written)?;
     if starts < 1 {
         return fail(
-            4010,
+            Alarm::BadThread,
             format!("G33 L{starts}: a thread has at least one start"),
         );
     }
     let dir = nc.st.spindle;
     if dir == SpindleDir::Stop {
         return fail(
-            7003,
+            Alarm::SpindleStopped,
             "G33 needs the spindle turning (M03 or M04): its reverse is undefined",
         );
     }
@@ -74,7 +74,7 @@ fn g33_path(
     let mut out = Vec::new();
     for j in 0..starts {
         if out.len() > words::MAX_LEGS {
-            return fail(4010, format!("G33 L{starts}: too many starts"));
+            return fail(Alarm::BadThread, format!("G33 L{starts}: too many starts"));
         }
         if j > 0 {
             out.push(Leg::Spindle(dir));

@@ -12,7 +12,7 @@ use alloc::format;
 use super::legs::Leg;
 use super::words::{sign, EPS};
 use super::{lead, Func};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Code;
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
@@ -196,7 +196,7 @@ pub(crate) fn run(
 fn remember_runout(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
     let (j, k) = (nc.len_of(p, b'J'), nc.len_of(p, b'K'));
     if k.is_some_and(|k| k < 0.0) {
-        return fail(4010, "the run-out length K must be positive");
+        return fail(Alarm::BadThread, "the run-out length K must be positive");
     }
     let pair = match (j, k) {
         (None, None) => return Ok(()),
@@ -229,7 +229,7 @@ fn runout(nc: &Nc, mv: &Move) -> Result<Option<Runout>, NcError> {
     let length = mv.long_length();
     if k >= length - EPS {
         return fail(
-            4010,
+            Alarm::BadThread,
             format!("the run-out K{k:.4} is not shorter than the thread move ({length:.4} mm)"),
         );
     }
@@ -243,7 +243,10 @@ fn check_variable_lead(nc: &Nc, mv: &Move) -> Result<(), NcError> {
     let r = mv.dlead.unwrap_or(0.0);
     let end = mv.lead * mv.lead + 2.0 * r * mv.long_length();
     if end <= 0.0 {
-        return fail(4010, "G34: the lead falls to zero or below during the move");
+        return fail(
+            Alarm::BadThread,
+            "G34: the lead falls to zero or below during the move",
+        );
     }
     lead::check(nc, libm::sqrt(end))
 }

@@ -8,7 +8,7 @@ use super::legs::{self, jk_pair, Leg, PullOut};
 use super::turning::{self, Cycle};
 use super::words::sign;
 use super::{lead, words};
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Code;
 use crate::base::point::Pt;
 use crate::block::Parsed;
@@ -66,7 +66,10 @@ fn pull_out(nc: &Nc, lead: f64) -> Option<PullOut> {
 fn check_repair(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
     let repair = words::count(p, b'P')? == Some(1);
     if repair && nc.machine.threads.repair_enabled {
-        return fail(7007, "thread repair: no repair position has been recorded");
+        return fail(
+            Alarm::NoRepairPosition,
+            "thread repair: no repair position has been recorded",
+        );
     }
     Ok(())
 }
@@ -80,7 +83,7 @@ pub(crate) fn path(c: &Cycle, lead: f64, pull: Option<PullOut>) -> Result<Vec<Le
     let mut out = Vec::new();
     for j in 0..c.starts {
         if out.len() > words::MAX_LEGS {
-            return fail(4010, format!("L{}: too many starts", c.starts));
+            return fail(Alarm::BadThread, format!("L{}: too many starts", c.starts));
         }
         let q = j as f64 * 360.0 / c.starts as f64;
         out.push(Leg::Rapid(start));

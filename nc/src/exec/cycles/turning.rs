@@ -5,7 +5,7 @@ use alloc::format;
 
 use super::legs::{self, Leg};
 use super::words;
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Code;
 use crate::base::point::Pt;
 use crate::block::Parsed;
@@ -74,7 +74,10 @@ pub(crate) fn next_cycle(nc: &mut Nc, code: Code, p: &Parsed) -> Result<Cycle, N
     if matches!(code, 920 | 921) {
         starts = words::count(p, b'L')?.unwrap_or(starts);
         if starts < 1 {
-            return fail(4010, format!("L{starts}: a thread has at least one start"));
+            return fail(
+                Alarm::BadThread,
+                format!("L{starts}: a thread has at least one start"),
+            );
         }
     }
     run = Run {

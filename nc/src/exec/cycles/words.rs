@@ -3,7 +3,7 @@
 use alloc::format;
 use alloc::vec::Vec;
 
-use crate::base::error::{fail, NcError};
+use crate::base::error::{fail, Alarm, NcError};
 use crate::block::{round_half_away, Parsed};
 use crate::exec::Nc;
 
@@ -34,7 +34,7 @@ pub(crate) fn before(a: f64, b: f64, p: f64) -> bool {
 /// j = 1, 2, … while strictly before `to`, then `to` itself (the step that
 /// would reach or pass `to` goes to `to`). A zero step goes straight to
 /// `to`. More than `MAX_LEGS` stops: alarm `code`.
-pub(crate) fn stops(from: f64, to: f64, step: f64, code: u16) -> Result<Vec<f64>, NcError> {
+pub(crate) fn stops(from: f64, to: f64, step: f64, code: Alarm) -> Result<Vec<f64>, NcError> {
     let sd = sign(to - from);
     let step = step.abs();
     let mut out = Vec::new();
@@ -81,7 +81,7 @@ pub(crate) fn count(p: &Parsed, letter: u8) -> Result<Option<i64>, NcError> {
     };
     if w.literal_with_point() {
         return fail(
-            1009,
+            Alarm::DecimalPointNotAllowed,
             format!(
                 "{} is a count here; a decimal point is not allowed",
                 letter as char
@@ -113,19 +113,22 @@ mod tests {
     fn stops_end_exactly_at_the_target() {
         // 3 → -25 by 5: -2 -7 -12 -17 -22, then -25.
         assert_eq!(
-            stops(3.0, -25.0, 5.0, 0).unwrap(),
+            stops(3.0, -25.0, 5.0, Alarm::ZeroStep).unwrap(),
             vec![-2.0, -7.0, -12.0, -17.0, -22.0, -25.0]
         );
         // An exact multiple is not a separate stop: 0 → 10 by 2.5.
-        assert_eq!(stops(0.0, 10.0, 2.5, 0).unwrap(), vec![2.5, 5.0, 7.5, 10.0]);
+        assert_eq!(
+            stops(0.0, 10.0, 2.5, Alarm::ZeroStep).unwrap(),
+            vec![2.5, 5.0, 7.5, 10.0]
+        );
         // No step, or no way to go: straight to the target.
-        assert_eq!(stops(0.0, 10.0, 0.0, 0).unwrap(), vec![10.0]);
-        assert_eq!(stops(4.0, 4.0, 1.0, 0).unwrap(), vec![4.0]);
+        assert_eq!(stops(0.0, 10.0, 0.0, Alarm::ZeroStep).unwrap(), vec![10.0]);
+        assert_eq!(stops(4.0, 4.0, 1.0, Alarm::ZeroStep).unwrap(), vec![4.0]);
     }
 
     #[test]
     fn a_step_lost_in_rounding_is_an_alarm_not_a_hang() {
-        let e = stops(1e20, 0.0, 1e-3, 4011).unwrap_err();
+        let e = stops(1e20, 0.0, 1e-3, Alarm::ZeroStep).unwrap_err();
         assert_eq!(e.code, 4011);
     }
 }
