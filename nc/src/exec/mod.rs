@@ -8,6 +8,7 @@ pub mod contour;
 pub mod cycles;
 pub mod data_setting;
 pub mod measure;
+mod motion_api;
 pub mod params;
 pub mod state;
 pub mod stroke;
