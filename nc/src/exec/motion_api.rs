@@ -60,8 +60,9 @@ impl Nc {
 
 #[cfg(test)]
 mod tests {
+    use crate::base::machine::Machine;
     use crate::base::point::Pt;
-    use crate::{Machine, Nc};
+    use crate::exec::Nc;
 
     #[test]
     fn a_skip_moves_the_programmed_point_and_stores_the_hit() {
