@@ -39,6 +39,7 @@ use crate::base::words::{Word, NO_POINT};
 use crate::block::Parsed;
 use crate::exec::cycles::{func, Func};
 use crate::exec::Nc;
+use crate::modal::Comp;
 
 /// Whether the block programs the C axis (C or H as axis words).
 pub(crate) fn programs_c(nc: &Nc, p: &Parsed) -> bool {
@@ -97,7 +98,7 @@ fn check_line(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
             "a block that turns C takes no chamfer, corner rounding or angle (L, D, Q, ,C, ,R, ,A)",
         );
     }
-    if nc.st.group(gcode::COMP) != 400 || crate::exec::comp::running(nc) {
+    if nc.st.modal.comp() != Comp::Off || crate::exec::comp::running(nc) {
         return fail(
             Alarm::IncompatibleWords,
             "C cannot move under nose-radius compensation: cancel it with G40 first",

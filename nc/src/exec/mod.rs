@@ -28,6 +28,7 @@ use crate::base::point::Pt;
 use crate::base::words::{Word, NO_POINT};
 use crate::block::{self, round_half_away, Parsed};
 use crate::exec::state::State;
+use crate::modal::PathMode;
 
 /// Where the events of a run go; the kernel does not know who listens.
 pub trait Sink {
@@ -156,7 +157,7 @@ impl Nc {
             nc.before_motion(p, words, s)
         })?;
         self.remember(p);
-        self.st.exact_stop = p.has_g(90) || self.st.group(gcode::EXACT) == 610;
+        self.st.exact_stop = p.has_g(90) || self.st.modal.path_mode() == PathMode::ExactStop;
         self.motion(p, sink, &mut out)?;
         contour::in_order(self, sink, |nc, s| {
             nc.after_motion(p, s);
@@ -396,8 +397,7 @@ impl Nc {
             // G22 owns the block's X Z I K: they are its limits.
             return Ok(());
         }
-        let drill = self.st.group(gcode::DRILL);
-        if drill != 800 {
+        if let Some(drill) = self.st.modal.drill() {
             self.flush_if_moving(p, sink)?;
             return crate::exec::cycles::drill(self, drill, p, sink, out);
         }

@@ -1,9 +1,8 @@
 //! G90 and G94 under G41/G42 (comp.md §9): the cut and the feed retract
 //! are moved towards the start point A, the four legs kept.
 
-use super::{side_of, startup, Tool};
+use super::{startup, Tool};
 use crate::base::error::NcError;
-use crate::base::gcode;
 use crate::base::point::Pt;
 use crate::exec::Nc;
 use crate::plan::elem::{dot, left, scale, unit};
@@ -37,7 +36,7 @@ fn cross_point(a: &Curve, b: &Curve) -> Option<Pt> {
 /// Leg 4 returns to A uncompensated. R and T are read now (§1). A cut or
 /// retract of zero length has no side: the cycle then runs as programmed.
 pub fn turning_cycle(nc: &Nc, facing: bool, a: Pt, legs: [&mut Pt; 3]) -> Result<(), NcError> {
-    let Some(side) = side_of(nc.st.group(gcode::COMP)) else {
+    let Some(side) = nc.st.modal.comp().side() else {
         return Ok(());
     };
     let tool = startup::read_tool(nc, side)?;

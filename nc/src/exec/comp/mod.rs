@@ -149,7 +149,7 @@ pub(crate) fn running(nc: &Nc) -> bool {
 /// "While compensating" (comp.md §7, §10): G41/G42 in force, or a cancel
 /// still to come.
 fn compensating(nc: &Nc) -> bool {
-    running(nc) || side_of(nc.st.group(gcode::COMP)).is_some()
+    running(nc) || nc.st.modal.comp().side().is_some()
 }
 
 fn on_arc(code: Alarm, what: &str) -> NcError {
@@ -164,7 +164,7 @@ fn on_arc(code: Alarm, what: &str) -> NcError {
 /// E4031 for a start-up or cancel on an arc, E4036 for a negative radius
 /// or an arc too small for the tool on its centre side.
 pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), NcError> {
-    let mode = side_of(nc.st.group(gcode::COMP));
+    let mode = nc.st.modal.comp().side();
     if nc.st.comp.running.is_none() && mode.is_none() {
         // Nothing compensates: no role needs the move's length (and the
         // block cannot end compensating, so E4034 does not count it).

@@ -75,14 +75,10 @@ pub(crate) fn func(nc: &Nc, p: &Parsed) -> Func {
     // G09 only adds an exact stop: the block's motion runs as usual.
     match p.one_shot() {
         Some(code) if code != 90 => Func::OneShot(code),
-        _ => {
-            let drill = nc.st.group(gcode::DRILL);
-            if drill != 800 {
-                Func::Drill(drill)
-            } else {
-                Func::Motion(nc.st.group(gcode::MOTION))
-            }
-        }
+        _ => match nc.st.modal.drill() {
+            Some(drill) => Func::Drill(drill),
+            None => Func::Motion(nc.st.group(gcode::MOTION)),
+        },
     }
 }
 
