@@ -4,6 +4,7 @@
 //! calls them.
 
 pub mod angle;
+pub mod conic;
 pub mod corner;
 pub mod curve;
 pub mod elem;

@@ -1,6 +1,6 @@
 //! Offset geometry (comp.md §2, §5): normals, offset curves and where two
 //! of them meet. Points double as vectors, `z` horizontal and `r` up, as in
-//! `contour::elem`.
+//! `plan::elem`.
 
 use alloc::format;
 use alloc::vec;

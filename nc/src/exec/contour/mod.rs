@@ -18,8 +18,8 @@ mod queue;
 mod tests;
 
 pub use crate::plan::angle::{angle_of, end_at_r, end_at_z};
+pub use crate::plan::conic::{ellipse_centre, parabola_vertex};
 pub use crate::plan::corner::{corner, Corner};
-pub use conic::{ellipse_centre, parabola_vertex};
 pub use queue::ContourState;
 
 use crate::base::error::{fail, Alarm, NcError};
