@@ -18,7 +18,7 @@ pub fn commands(src: &str) -> Vec<Command> {
     let mut t = Translator::new(V2::ZERO);
     let mut out = Vec::new();
     for e in &events {
-        t.event(e, &vm.nc.st, &machine, &mut out);
+        t.event(e, &vm.nc, &machine, &mut out);
     }
     out.retain(|c| matches!(c, Command::Move(_)));
     out
@@ -46,14 +46,14 @@ pub fn vm_plan(module: isa::Module, p: &mut Planner) -> usize {
     struct Plan<'a> {
         t: Translator,
         p: &'a mut Planner,
-        st: nc::state::State,
+        nc: nc::Nc,
         m: nc::Machine,
         buf: Vec<Command>,
     }
     impl nc::Sink for Plan<'_> {
         fn emit(&mut self, e: nc::Event) {
             self.buf.clear();
-            self.t.event(&e, &self.st, &self.m, &mut self.buf);
+            self.t.event(&e, &self.nc, &self.m, &mut self.buf);
             for &c in &self.buf {
                 if self.p.push(c, Tag::default()).is_err() {
                     for _ in 0..256 {
@@ -68,11 +68,11 @@ pub fn vm_plan(module: isa::Module, p: &mut Planner) -> usize {
     let mut vm = vm::Vm::new(module, machine.clone());
     p.clear();
     p.set_tail(V2::ZERO);
-    let st = vm.nc.st.clone();
+    let nc = vm.nc.clone();
     let mut sink = Plan {
         t: Translator::new(V2::ZERO),
         p,
-        st,
+        nc,
         m: machine,
         buf: Vec::new(),
     };

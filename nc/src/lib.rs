@@ -7,6 +7,27 @@
 //! controller; every float function comes from `libm`, so a host build and
 //! an embedded build compute the same bits. The `std` feature (on by
 //! default) adds [`Machine::from_toml`].
+//!
+//! # Layers
+//!
+//! The kernel is five layers; each module imports only from its own layer
+//! and the layers below it (the test `nc/tests/layers.rs` reads the sources
+//! and fails on an import that points up or a circle across layers):
+//!
+//! 1. [`base`] — points and units, the G-code table, words, the machine
+//!    configuration, events, the geometry element, errors. (Rust's own
+//!    crate is called `core`, hence the name.)
+//! 2. [`block`] — parsing and checking one block's words into a
+//!    [`block::Parsed`] block; macro arithmetic on word values.
+//! 3. [`modal`] — the modal state and how a block changes it.
+//! 4. [`plan`] — pure geometry: corners, angle programming, compound
+//!    profiles, nose-radius offsets. Arguments in, path elements out.
+//! 5. [`exec`] — the stateful executor [`Nc`]: position, variables, tool
+//!    life, data setting, stroke check, the contour and compensation queue,
+//!    the cycles, and the order of events.
+//!
+//! The other crates use the paths re-exported below (`nc::machine`,
+//! `nc::state`, …), so they do not depend on where a module sits.
 
 #![no_std]
 
@@ -14,28 +35,18 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod base;
 pub mod block;
-mod caxis;
-pub mod comp;
-pub mod compound;
-pub mod contour;
-pub mod cycles;
-pub mod data_setting;
-pub mod error;
-pub mod event;
 pub mod exec;
-pub mod gcode;
-pub mod geom;
-pub mod machine;
-pub mod measure;
-pub mod params;
-pub mod plc;
-pub mod state;
-pub mod stroke;
-pub mod sysvar;
-pub mod tool_life;
-pub mod value;
-pub mod words;
+pub mod modal;
+pub mod plan;
+
+pub use base::{error, event, gcode, geom, machine, plc, point, words};
+pub use block::value;
+pub use exec::{
+    comp, compound, contour, cycles, data_setting, measure, params, state, stroke, sysvar,
+    tool_life,
+};
 
 pub use error::NcError;
 pub use event::Event;

@@ -217,7 +217,7 @@ impl RunAhead {
         for e in self.events.drain(..) {
             self.scratch.clear();
             self.tr
-                .event(&e, &self.vm.nc.st, &self.machine, &mut self.scratch);
+                .event(&e, &self.vm.nc, &self.machine, &mut self.scratch);
             for c in self.scratch.drain(..) {
                 self.staged.push_back((c, tag));
             }
@@ -227,11 +227,11 @@ impl RunAhead {
             Status::Event => {
                 self.blocks += 1;
                 self.resync(tag);
-                if self.vm.nc.st.exact_stop {
+                if self.vm.nc.exact_stop() {
                     self.staged.push_back((Command::ExactStop, tag));
                 }
-                if self.vm.nc.st.stroke2 != self.stroke {
-                    self.stroke = self.vm.nc.st.stroke2;
+                if self.vm.nc.stroke_area() != self.stroke {
+                    self.stroke = self.vm.nc.stroke_area();
                     self.staged.push_back((Command::Stroke(self.stroke), tag));
                 }
                 if let Some((_, t)) = self.staged.back_mut() {
@@ -265,7 +265,7 @@ impl RunAhead {
     /// A block moved the programmed point by an event this build does not
     /// know: reach the kernel's point by a line at the modal feed.
     fn resync(&mut self, tag: Tag) {
-        let p = self.vm.nc.st.pos;
+        let p = self.vm.nc.position();
         let kernel = V2::new(p.r, p.z);
         if (kernel - self.tr.work).max_abs() > 1e-6 {
             let kind = if self.tr.feed.f > 0.0 {
@@ -293,9 +293,10 @@ impl RunAhead {
         let stop_work = r.stop - r.shift;
         let hit_work = hit - r.shift;
         self.tr.work = stop_work;
-        let st = &mut self.vm.nc.st;
-        st.pos = nc::state::Pt::new(stop_work.r, stop_work.z);
-        st.skip = Some(nc::state::Pt::new(hit_work.r, hit_work.z));
+        self.vm.nc.skip_ended(
+            nc::point::Pt::new(stop_work.r, stop_work.z),
+            nc::point::Pt::new(hit_work.r, hit_work.z),
+        );
         let vars = self.vm.persistent_mut();
         vars[495] = hit_work.x();
         vars[496] = hit_work.z;
@@ -319,7 +320,7 @@ impl RunAhead {
         self.vm.repeat = self.repeat;
         let origin = origin_of(&self.vm);
         let work = at - origin;
-        self.vm.nc.st.pos = nc::state::Pt::new(work.r, work.z);
+        self.vm.nc.set_position(nc::point::Pt::new(work.r, work.z));
         let messages = core::mem::take(&mut self.tr.messages);
         self.tr = Translator::new(origin);
         self.tr.messages = messages;
@@ -343,6 +344,6 @@ pub(crate) fn is_skip(c: &Command) -> bool {
 
 /// The power-on work zero of a VM.
 fn origin_of(vm: &Vm) -> V2 {
-    let o = vm.nc.st.origin();
+    let o = vm.nc.origin();
     V2::new(o.r, o.z)
 }

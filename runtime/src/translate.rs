@@ -69,9 +69,9 @@ impl Translator {
         })
     }
 
-    /// The commands of one event; `st` is the kernel state after the block
+    /// The commands of one event; `nc` is the kernel after the block
     /// (for tool offset tables), `m` the machine (reference points).
-    pub fn event(&mut self, e: &Event, st: &nc::state::State, m: &Machine, out: &mut Vec<Command>) {
+    pub fn event(&mut self, e: &Event, nc: &nc::Nc, m: &Machine, out: &mut Vec<Command>) {
         let line = |to: V2, _| Path::Line { to };
         match e {
             Event::Rapid { x, z, c } => {
@@ -136,7 +136,7 @@ impl Translator {
             }
             Event::Tool { t, d } => {
                 out.push(Command::Plc(PlcFunction::Tool { t: *t, d: *d }));
-                let off = tool_offset(st, *d);
+                let off = tool_offset(nc, *d);
                 if off != self.tool_off {
                     // The offset takes effect at once: the axes move, the
                     // programmed point stays.
@@ -243,13 +243,9 @@ impl Translator {
 }
 
 /// Geometry + wear of offset `d` (X as a diameter in the tables).
-pub fn tool_offset(st: &nc::state::State, d: u32) -> V2 {
-    let Some(i) = (d as usize).checked_sub(1).filter(|&i| i < st.geom.len()) else {
-        return V2::ZERO;
-    };
-    let g = st.geom[i];
-    let w = st.wear[i];
-    V2::new((g[0] + w[0]) * 0.5, g[1] + w[1])
+pub fn tool_offset(nc: &nc::Nc, d: u32) -> V2 {
+    let (x, z) = nc.tool_offset(d);
+    V2::new(x * 0.5, z)
 }
 
 /// Reference point n in machine coordinates (1 = machine zero).

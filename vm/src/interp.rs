@@ -127,7 +127,7 @@ pub struct Vm {
 type Fault = NcError;
 
 fn fault<T>(code: u16, msg: impl Into<String>) -> Result<T, Fault> {
-    Err(NcError::new(code, msg))
+    Err(NcError::numbered(code, msg))
 }
 
 enum Next {
@@ -223,9 +223,12 @@ impl Vm {
             return Ok(());
         };
         self.vars.persistent_dirty = false;
-        storage
-            .store(&self.vars.persistent)
-            .map_err(|e| NcError::new(5007, format!("cannot store #500–#999: {e}")))
+        storage.store(&self.vars.persistent).map_err(|e| {
+            NcError::new(
+                nc::error::Alarm::VariableAccess,
+                format!("cannot store #500–#999: {e}"),
+            )
+        })
     }
 
     /// Runs to the end; the final status (never `Event`/`OutOfBudget`).
@@ -537,7 +540,12 @@ impl Vm {
             .iter()
             .position(|p| p.number == n)
             .map(|i| i as u32)
-            .ok_or_else(|| NcError::new(6003, format!("the called program O{n:04} does not exist")))
+            .ok_or_else(|| {
+                NcError::new(
+                    nc::error::Alarm::CalledProgramMissing,
+                    format!("the called program O{n:04} does not exist"),
+                )
+            })
     }
 
     fn call(

@@ -443,7 +443,7 @@ fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> (String, Option<St
     let mut vm = vm::Vm::new(module, machine.clone());
     let mut events: Vec<nc::Event> = Vec::new();
     loop {
-        let start = (vm.nc.st.pos.x(), vm.nc.st.pos.z);
+        let start = (vm.nc.position().x(), vm.nc.position().z);
         let status = vm.step(1 << 16, &mut events);
         out.block_events(&events, vm.last_loc().line, start);
         events.clear();

@@ -1,0 +1,67 @@
+//! The alarm the kernel raises: a dialect error code and a message.
+
+use alloc::format;
+use alloc::string::String;
+
+use core::fmt;
+
+pub use crate::base::alarm::Alarm;
+
+/// An error of dialect.md §8 found while checking or executing a block.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct NcError {
+    /// The number of the code: E4001 → 4001.
+    pub code: u16,
+    pub message: String,
+    /// The tag of the profile block (`Nc::push_profile`) that the error is
+    /// about, when it is about one rather than the block executing.
+    pub at: Option<u32>,
+}
+
+impl NcError {
+    /// An alarm of dialect.md §8; `message` says what the block did.
+    #[cold]
+    pub fn new(alarm: Alarm, message: impl Into<String>) -> NcError {
+        NcError::numbered(alarm.code(), message)
+    }
+
+    /// An alarm the program raises itself: `#3000 = n` (3000 + n) and
+    /// `G65 H99` (500 + Q), dialect.md §8.4.
+    #[cold]
+    pub fn numbered(code: u16, message: impl Into<String>) -> NcError {
+        NcError {
+            code,
+            message: message.into(),
+            at: None,
+        }
+    }
+
+    /// The alarm of §8, `None` for one the program raised itself.
+    pub fn alarm(&self) -> Option<Alarm> {
+        Alarm::from_code(self.code)
+    }
+
+    /// The same error, about profile block `tag`.
+    pub fn at(mut self, tag: u32) -> NcError {
+        self.at = Some(tag);
+        self
+    }
+
+    /// `E4001` as diagnostics print it.
+    pub fn code_name(&self) -> String {
+        format!("E{:04}", self.code)
+    }
+}
+
+impl fmt::Display for NcError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "E{:04}: {}", self.code, self.message)
+    }
+}
+
+impl core::error::Error for NcError {}
+
+/// Shorthand for `Err(NcError::new(..))`.
+pub fn fail<T>(alarm: Alarm, message: impl Into<String>) -> Result<T, NcError> {
+    Err(NcError::new(alarm, message))
+}

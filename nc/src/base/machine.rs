@@ -1,0 +1,476 @@
+//! The machine configuration (machine.md §4): the reference lathe by
+//! default, overridden by a TOML file whose unknown keys are errors.
+
+use alloc::format;
+use alloc::string::String;
+use alloc::string::ToString;
+use alloc::vec::Vec;
+
+use serde::Deserialize;
+
+/// A machine file could not be read or holds a bad value.
+#[derive(Debug, thiserror::Error)]
+pub enum MachineError {
+    #[cfg(feature = "std")]
+    #[error("machine file: {0}")]
+    Toml(#[from] toml::de::Error),
+    #[error("machine file: {0}")]
+    Invalid(String),
+}
+
+macro_rules! section {
+    ($(#[$m:meta])* $name:ident { $($field:ident : $ty:ty = $default:expr),* $(,)? }) => {
+        $(#[$m])*
+        #[derive(Debug, Clone, PartialEq, Deserialize)]
+        #[serde(deny_unknown_fields, default)]
+        pub struct $name { $(pub $field: $ty),* }
+        impl Default for $name {
+            fn default() -> Self { $name { $($field: $default),* } }
+        }
+    };
+}
+
+/// An X/Z pair of a table such as `g54 = { x = 0.0, z = 0.0 }`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct Xz {
+    pub x: f64,
+    pub z: f64,
+}
+
+const fn xz(x: f64, z: f64) -> Xz {
+    Xz { x, z }
+}
+
+section!(MachineSection {
+    name: String = "gbc-reference-lathe".into(),
+    decimal_point: DecimalPoint = DecimalPoint::Calculator,
+    power_on_units: Units = Units::Mm,
+    interpolation_period_ms: f64 = 1.0,
+    resolution_mm: f64 = 0.001,
+    arc_tolerance_mm: f64 = 0.02,
+    arc_without_center: ArcWithoutCenter = ArcWithoutCenter::Alarm,
+    lookahead_blocks: u32 = 1024,
+});
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DecimalPoint {
+    Calculator,
+    Increment,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Units {
+    Mm,
+    Inch,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ArcWithoutCenter {
+    Alarm,
+    Line,
+}
+
+section!(LinearAxis {
+    diameter: bool = true,
+    rapid_mm_min: f64 = 6000.0,
+    max_feed_mm_min: f64 = 4000.0,
+    accel_mm_s2: f64 = 1500.0,
+    jerk_mm_s3: f64 = 20000.0,
+    soft_limits: bool = false,
+    min_mm: f64 = -260.0,
+    max_mm: f64 = 2.0,
+});
+
+fn z_axis() -> LinearAxis {
+    LinearAxis {
+        diameter: false,
+        rapid_mm_min: 10000.0,
+        max_feed_mm_min: 5000.0,
+        accel_mm_s2: 2000.0,
+        jerk_mm_s3: 25000.0,
+        soft_limits: false,
+        min_mm: -510.0,
+        max_mm: 2.0,
+    }
+}
+
+section!(RotaryAxis {
+    enabled: bool = false,
+    name: String = "C".into(),
+    attribute: u32 = 0,
+    rapid_deg_min: f64 = 3600.0,
+    max_feed_deg_min: f64 = 1800.0,
+    accel_deg_s2: f64 = 3600.0,
+    jerk_deg_s3: f64 = 36000.0,
+});
+
+section!(Axes {
+    x: LinearAxis = LinearAxis::default(),
+    z: LinearAxis = z_axis(),
+    c: RotaryAxis = RotaryAxis::default(),
+});
+
+section!(Feed {
+    max_mm_min: f64 = 5000.0
+});
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SpindleType {
+    Analog,
+    Gear,
+}
+
+section!(Spindle {
+    r#type: SpindleType = SpindleType::Analog,
+    min_rpm: f64 = 30.0,
+    max_rpm: f64 = 3000.0,
+    accel_rpm_s: f64 = 1000.0,
+    encoder_ppr: u32 = 1024,
+    stall_timeout_s: f64 = 5.0,
+});
+
+section!(Threads {
+    pullout_tenths: u32 = 0,
+    max_lead_mm: f64 = 500.0,
+    arc_thread_rigid: bool = false,
+    repair_enabled: bool = false,
+    repair_interpolating: bool = false,
+    repair_deviation_inc: u32 = 0,
+});
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+pub enum ChamferType {
+    I,
+    II,
+}
+
+section!(Cycles {
+    chamfer_type: ChamferType = ChamferType::II,
+    g71_retract_mm: f64 = 0.5,
+});
+
+section!(Motion {
+    always_exact_stop: bool = false
+});
+
+section!(Coords {
+    aprs: bool = false,
+    ppd: bool = false,
+    exofs: Xz = Xz::default(),
+    g54: Xz = Xz::default(),
+    g55: Xz = Xz::default(),
+    g56: Xz = Xz::default(),
+    g57: Xz = Xz::default(),
+    g58: Xz = Xz::default(),
+    g59: Xz = Xz::default(),
+});
+
+section!(ReferencePoints {
+    return_feed_mm_min: f64 = 4000.0,
+    second: Xz = xz(-50.0, -20.0),
+    third: Xz = xz(-150.0, -100.0),
+    fourth: Xz = xz(0.0, -300.0),
+});
+
+section!(Measure {
+    feed_mm_min: f64 = 50.0,
+    gamma_x_mm: f64 = 2.0,
+    gamma_z_mm: f64 = 2.0,
+    epsilon_x_mm: f64 = 0.5,
+    epsilon_z_mm: f64 = 0.5,
+    overrides_apply: bool = false,
+    signal_active_low: bool = false,
+});
+
+section!(Skip {
+    inputs: [u32; 4] = [0, 1, 2, 3]
+});
+
+section!(StrokeCheck2 {
+    enabled: bool = true,
+    forbid_outside: bool = false,
+    plus: Xz = Xz::default(),
+    minus: Xz = Xz::default(),
+});
+
+section!(Polar {
+    linear_axis: u32 = 1,
+    rotary_axis: u32 = 3,
+});
+
+section!(ToolOffset {
+    number: u32 = 0,
+    x: f64 = 0.0,
+    z: f64 = 0.0,
+    radius: f64 = 0.0,
+    tip: u32 = 0,
+    wear_x: f64 = 0.0,
+    wear_z: f64 = 0.0,
+    wear_radius: f64 = 0.0,
+});
+
+section!(Tools {
+    count: u32 = 32,
+    offsets: u32 = 32,
+    offset: Vec<ToolOffset> = Vec::new(),
+});
+
+section!(ToolLifeGroup {
+    number: u32 = 0,
+    life: f64 = 0.0,
+    unit: String = "count".into(),
+    tools: Vec<u32> = Vec::new(),
+});
+
+section!(ToolLife { group: Vec<ToolLifeGroup> = Vec::new() });
+
+section!(Macro {
+    g_code_macros: [u32; 10] = [0; 10],
+    persistent_file: String = String::new(),
+    library_dirs: Vec<String> = Vec::new(),
+});
+
+section!(Operator {
+    block_skip: [bool; 9] = [true; 9],
+    optional_stop: bool = true,
+    single_block: bool = false,
+    dry_run: bool = false,
+    feed_override_pct: f64 = 100.0,
+    rapid_override_pct: f64 = 100.0,
+    spindle_override_pct: f64 = 100.0,
+});
+
+section!(Host {
+    inputs: u32 = 0,
+    skip_signal: bool = false,
+    measure_at_target: bool = true,
+    date: u32 = 20000101,
+    time: u32 = 0,
+});
+
+section!(Run {
+    max_blocks: u64 = 2_000_000
+});
+
+section!(
+    /// The whole machine file.
+    Machine {
+        machine: MachineSection = MachineSection::default(),
+        axes: Axes = Axes::default(),
+        feed: Feed = Feed::default(),
+        spindle: Spindle = Spindle::default(),
+        threads: Threads = Threads::default(),
+        cycles: Cycles = Cycles::default(),
+        motion: Motion = Motion::default(),
+        coords: Coords = Coords::default(),
+        reference_points: ReferencePoints = ReferencePoints::default(),
+        measure: Measure = Measure::default(),
+        skip: Skip = Skip::default(),
+        stroke_check_2: StrokeCheck2 = StrokeCheck2::default(),
+        polar: Polar = Polar::default(),
+        tools: Tools = Tools::default(),
+        tool_life: ToolLife = ToolLife::default(),
+        r#macro: Macro = Macro::default(),
+        operator: Operator = Operator::default(),
+        host: Host = Host::default(),
+        run: Run = Run::default(),
+        plc: crate::base::plc::Plc = crate::base::plc::Plc::default(),
+    }
+);
+
+impl Machine {
+    /// The reference machine of machine.md.
+    pub fn reference() -> Machine {
+        Machine::default()
+    }
+
+    /// Reads a machine file: what it leaves out keeps the reference value.
+    /// Without `std`, a host builds the `Machine` itself (or deserializes
+    /// it with any serde format) and calls [`Machine::validate`].
+    #[cfg(feature = "std")]
+    pub fn from_toml(text: &str) -> Result<Machine, MachineError> {
+        let m: Machine = toml::from_str(text)?;
+        m.validate()?;
+        Ok(m)
+    }
+
+    /// Checks the values a file could get wrong (rates, limits, tables).
+    pub fn validate(&self) -> Result<(), MachineError> {
+        let bad = |what: &str| Err(MachineError::Invalid(what.to_string()));
+        let positive = [
+            (
+                "machine.interpolation_period_ms",
+                self.machine.interpolation_period_ms,
+            ),
+            ("machine.resolution_mm", self.machine.resolution_mm),
+            ("machine.arc_tolerance_mm", self.machine.arc_tolerance_mm),
+            ("axes.x.rapid_mm_min", self.axes.x.rapid_mm_min),
+            ("axes.x.max_feed_mm_min", self.axes.x.max_feed_mm_min),
+            ("axes.x.accel_mm_s2", self.axes.x.accel_mm_s2),
+            ("axes.x.jerk_mm_s3", self.axes.x.jerk_mm_s3),
+            ("axes.z.rapid_mm_min", self.axes.z.rapid_mm_min),
+            ("axes.z.max_feed_mm_min", self.axes.z.max_feed_mm_min),
+            ("axes.z.accel_mm_s2", self.axes.z.accel_mm_s2),
+            ("axes.z.jerk_mm_s3", self.axes.z.jerk_mm_s3),
+            ("axes.c.rapid_deg_min", self.axes.c.rapid_deg_min),
+            ("axes.c.max_feed_deg_min", self.axes.c.max_feed_deg_min),
+            ("axes.c.accel_deg_s2", self.axes.c.accel_deg_s2),
+            ("axes.c.jerk_deg_s3", self.axes.c.jerk_deg_s3),
+            ("feed.max_mm_min", self.feed.max_mm_min),
+            ("spindle.max_rpm", self.spindle.max_rpm),
+            ("spindle.accel_rpm_s", self.spindle.accel_rpm_s),
+            ("threads.max_lead_mm", self.threads.max_lead_mm),
+        ];
+        for (key, v) in positive {
+            if !(v > 0.0 && v.is_finite()) {
+                return bad(&format!("{key} must be a positive number"));
+            }
+        }
+        if !(0.125..=8.0).contains(&self.machine.interpolation_period_ms) {
+            return bad("machine.interpolation_period_ms must lie in 0.125 … 8");
+        }
+        if self.axes.x.min_mm >= self.axes.x.max_mm || self.axes.z.min_mm >= self.axes.z.max_mm {
+            return bad("axes: min_mm must be below max_mm");
+        }
+        for off in &self.tools.offset {
+            if off.number == 0 || off.number > self.tools.offsets {
+                return bad(&format!(
+                    "tools.offset number {} outside 1…{}",
+                    off.number, self.tools.offsets
+                ));
+            }
+            if off.tip > 9 {
+                return bad(&format!("tools.offset {}: tip must be 0…9", off.number));
+            }
+        }
+        if self.r#macro.g_code_macros.iter().any(|&g| g > 999) {
+            return bad("macro.g_code_macros entries must be 0…999");
+        }
+        self.validate_tool_life()
+    }
+
+    /// `[[tool_life.group]]`: numbers 1…32 once each, a positive life,
+    /// a known unit and T values of real tools and offsets.
+    fn validate_tool_life(&self) -> Result<(), MachineError> {
+        let bad = |what: String| Err(MachineError::Invalid(what));
+        let groups = &self.tool_life.group;
+        for (i, g) in groups.iter().enumerate() {
+            let n = g.number;
+            if !(1..=32).contains(&n) || groups[..i].iter().any(|o| o.number == n) {
+                return bad(format!(
+                    "tool_life.group number {n}: groups are 1…32, each once"
+                ));
+            }
+            if !(g.life > 0.0 && g.life.is_finite()) {
+                return bad(format!("tool_life.group {n}: life must be above 0"));
+            }
+            if g.unit != "count" && g.unit != "minutes" {
+                return bad(format!(
+                    "tool_life.group {n}: unit must be \"count\" or \"minutes\""
+                ));
+            }
+            for &t in &g.tools {
+                let (tool, offset) = (t / 100, t % 100);
+                if t > 9999 || tool > self.tools.count || offset > self.tools.offsets {
+                    return bad(format!(
+                        "tool_life.group {n}: T{t:04} is outside the tool or offset table"
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The keys marked C in machine.md, in one canonical line: recorded in a
+    /// `.gbc` so a VM refuses to run it on a machine that would change its
+    /// meaning.
+    pub fn compile_keys(&self) -> String {
+        let offsets: Vec<String> = self
+            .tools
+            .offset
+            .iter()
+            .map(|o| format!("{}:{}:{}:{}", o.number, o.radius, o.wear_radius, o.tip))
+            .collect();
+        format!(
+            "decimal_point={:?};power_on_units={:?};arc_tolerance_mm={};arc_without_center={:?};\
+             x_diameter={};c_enabled={};spindle={:?};max_lead_mm={};chamfer={:?};g71_retract_mm={};\
+             tools={}/{};offsets=[{}];g_code_macros={:?}",
+            self.machine.decimal_point,
+            self.machine.power_on_units,
+            self.machine.arc_tolerance_mm,
+            self.machine.arc_without_center,
+            self.axes.x.diameter,
+            self.axes.c.enabled,
+            self.spindle.r#type,
+            self.threads.max_lead_mm,
+            self.cycles.chamfer_type,
+            self.cycles.g71_retract_mm,
+            self.tools.count,
+            self.tools.offsets,
+            offsets.join(","),
+            self.r#macro.g_code_macros,
+        )
+    }
+
+    /// Work offset n (1 = G54 … 6 = G59) as configured.
+    pub fn work_offset(&self, n: usize) -> Xz {
+        let c = &self.coords;
+        [c.g54, c.g55, c.g56, c.g57, c.g58, c.g59]
+            .get(n.wrapping_sub(1))
+            .copied()
+            .unwrap_or_default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_file_is_the_reference() {
+        assert_eq!(Machine::from_toml("").unwrap(), Machine::reference());
+    }
+
+    #[test]
+    fn unknown_key_is_an_error() {
+        assert!(Machine::from_toml("[machine]\ndecimal_pont = \"increment\"").is_err());
+        assert!(Machine::from_toml("[nosuch]\n").is_err());
+    }
+
+    #[test]
+    fn partial_tables_keep_the_rest() {
+        let m = Machine::from_toml("[machine]\narc_without_center = \"line\"\n").unwrap();
+        assert_eq!(m.machine.arc_without_center, ArcWithoutCenter::Line);
+        assert_eq!(m.machine.arc_tolerance_mm, 0.02);
+        let m =
+            Machine::from_toml("[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n").unwrap();
+        assert_eq!(m.tools.offset[0].radius, 0.8);
+        assert_eq!(m.tools.count, 32);
+    }
+
+    #[test]
+    fn bad_values_are_rejected() {
+        assert!(Machine::from_toml("[axes.x]\nrapid_mm_min = 0\n").is_err());
+        assert!(Machine::from_toml("[[tools.offset]]\nnumber = 40\n").is_err());
+        assert!(Machine::from_toml("[[tools.offset]]\nnumber = 1\ntip = 12\n").is_err());
+        let group = |body: &str| Machine::from_toml(&format!("[[tool_life.group]]\n{body}"));
+        assert!(group("number = 1\nlife = 5\ntools = [101]\n").is_ok());
+        assert!(group("number = 0\nlife = 5\n").is_err());
+        assert!(group("number = 1\nlife = 0\n").is_err());
+        assert!(group("number = 1\nlife = 5\nunit = \"hours\"\n").is_err());
+        assert!(group("number = 1\nlife = 5\ntools = [3301]\n").is_err());
+    }
+
+    #[test]
+    fn the_reference_file_of_the_spec_loads() {
+        let text = "[machine]\nname = \"gbc-reference-lathe\"\ndecimal_point = \"calculator\"\n\
+                    [coords]\nexofs = { x = 0.0, z = 0.0 }\n[reference_points]\nsecond = { x = -50.0, z = -20.0 }\n\
+                    [operator]\nblock_skip = [true, true, true, true, true, true, true, true, true]\n";
+        assert_eq!(Machine::from_toml(text).unwrap(), Machine::reference());
+    }
+}

@@ -1,0 +1,13 @@
+//! Layer 1, the basic types: points and units, the G-code table, words,
+//! the machine configuration, events, the geometry element and the typed
+//! errors. Nothing here refers to the state of a running kernel.
+
+pub mod alarm;
+pub mod error;
+pub mod event;
+pub mod gcode;
+pub mod geom;
+pub mod machine;
+pub mod plc;
+pub mod point;
+pub mod words;

@@ -1,0 +1,504 @@
+//! Checking one block's words: which G and M codes it holds, which other
+//! addresses, and the rules that need no machine state (dialect.md §1.7,
+//! §1.9, §3, §4.13, §6). The compiler runs these checks on literal blocks,
+//! the kernel on every block it executes.
+
+pub mod value;
+
+use alloc::format;
+
+use crate::base::error::{fail, Alarm, NcError};
+use crate::base::gcode::{self, Code};
+use crate::base::machine::Machine;
+use crate::base::words::{addr, addr_name, Word, ADDR_COUNT, COMMA_A, COMMA_C, COMMA_R};
+
+/// At most this many G words fit a block (one per modal group).
+const MAX_G: usize = 16;
+
+/// The words of a block sorted by kind. The kernel parses every block it
+/// runs into one of these, so it is kept small and is filled in place
+/// ([`parse_into`]): only the presence mask says which values hold.
+#[derive(Debug, Clone, Default)]
+pub struct Parsed {
+    /// G codes in written order with the word index.
+    g: [(Code, u8); MAX_G],
+    g_len: usize,
+    /// The block's one-shot (group 00) code and its last group-01 code,
+    /// noted as the G codes are added: the kernel asks for them many
+    /// times per block.
+    one_shot: Option<Code>,
+    motion: Option<Code>,
+    /// M codes in written order with the word index.
+    m: [(u32, u8); 3],
+    m_len: usize,
+    /// Bit `a`: address `a` (every one but G and M) is written.
+    present: u32,
+    /// The value (program units) and flags of each written address.
+    value: [f64; ADDR_COUNT],
+    flags: [u8; ADDR_COUNT],
+}
+
+impl Parsed {
+    pub fn gs(&self) -> &[(Code, u8)] {
+        &self.g[..self.g_len]
+    }
+
+    pub fn ms(&self) -> &[(u32, u8)] {
+        &self.m[..self.m_len]
+    }
+
+    pub fn has_g(&self, code: Code) -> bool {
+        self.gs().iter().any(|&(c, _)| c == code)
+    }
+
+    pub fn has_m(&self, code: u32) -> bool {
+        self.ms().iter().any(|&(c, _)| c == code)
+    }
+
+    /// The value of a letter address.
+    pub fn get(&self, letter: u8) -> Option<f64> {
+        self.has(letter).then(|| self.value[addr(letter) as usize])
+    }
+
+    pub fn word(&self, letter: u8) -> Option<Word> {
+        self.word_at(addr(letter))
+    }
+
+    /// The word of address number `a` (letters and comma words).
+    pub fn word_at(&self, a: u8) -> Option<Word> {
+        self.has_at(a).then(|| Word {
+            addr: a,
+            value: self.value[a as usize],
+            flags: self.flags[a as usize],
+        })
+    }
+
+    pub fn has(&self, letter: u8) -> bool {
+        self.has_at(addr(letter))
+    }
+
+    pub fn has_at(&self, a: u8) -> bool {
+        (a as usize) < ADDR_COUNT && self.present & (1 << a) != 0
+    }
+
+    /// Whether any of the addresses in the mask `bits` is written.
+    fn has_any(&self, bits: u32) -> bool {
+        self.present & bits != 0
+    }
+
+    /// The group-00 code of the block, if any.
+    pub fn one_shot(&self) -> Option<Code> {
+        self.one_shot
+    }
+
+    /// The last group-01 code written in the block.
+    pub fn motion(&self) -> Option<Code> {
+        self.motion
+    }
+
+    /// Takes the block's G codes out (its other words stay).
+    pub fn clear_gs(&mut self) {
+        self.g_len = 0;
+        self.one_shot = None;
+        self.motion = None;
+    }
+
+    pub fn has_axis(&self) -> bool {
+        self.has_any(mask(b"XZUW"))
+    }
+}
+
+/// Rounds half away from zero, as every integer address does (§7.6).
+pub fn round_half_away(v: f64) -> f64 {
+    if v < 0.0 {
+        -crate::base::geom::floor_non_negative((-v) + 0.5)
+    } else {
+        crate::base::geom::floor_non_negative(v + 0.5)
+    }
+}
+
+/// The presence bits of some letters.
+const fn mask(letters: &[u8]) -> u32 {
+    let mut bits = 0;
+    let mut i = 0;
+    while i < letters.len() {
+        bits |= 1 << addr(letters[i]);
+        i += 1;
+    }
+    bits
+}
+
+/// Sorts the words of a block and checks what needs no state.
+pub fn parse(words: &[Word], m: &Machine) -> Result<Parsed, NcError> {
+    let mut p = Parsed::default();
+    parse_into(words, m, &mut p)?;
+    Ok(p)
+}
+
+/// [`parse`] into `p`, whatever it held before.
+pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcError> {
+    p.clear_gs();
+    p.m_len = 0;
+    p.present = 0;
+    for (i, w) in words.iter().enumerate() {
+        let idx = i.min(255) as u8;
+        match w.addr {
+            a if a == addr(b'G') => add_g(p, w, idx)?,
+            a if a == addr(b'M') => add_m(p, w, idx)?,
+            a if (a as usize) < ADDR_COUNT => {
+                if p.has_at(a) {
+                    return fail(
+                        Alarm::AddressRepeated,
+                        format!("address {} written twice in the block", addr_name(a)),
+                    );
+                }
+                p.present |= 1 << a;
+                p.value[a as usize] = w.value;
+                p.flags[a as usize] = w.flags;
+            }
+            a => return fail(Alarm::UnknownAddress, format!("unknown address number {a}")),
+        }
+    }
+    check_words(p, m)
+}
+
+fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
+    if w.value < 0.0 || w.value > 9999.0 {
+        return fail(
+            Alarm::UnknownGCode,
+            format!("G{} is not a G code", crate::base::event::Num(w.value)),
+        );
+    }
+    let code = round_half_away(w.value * 10.0) as Code;
+    if let Some((err, hint)) = gcode::foreign(code) {
+        return fail(
+            err,
+            format!("{} is not in this dialect: {hint}", gcode::name(code)),
+        );
+    }
+    let Some(group) = gcode::group(code) else {
+        return fail(
+            Alarm::UnknownGCode,
+            format!("unknown G code {}", gcode::name(code)),
+        );
+    };
+    if group == gcode::ONE_SHOT {
+        if let Some(other) = p.one_shot() {
+            return fail(
+                Alarm::OneShotConflict,
+                format!(
+                    "{} and {} are both one-shot (group 00) codes: write them in separate blocks",
+                    gcode::name(other),
+                    gcode::name(code)
+                ),
+            );
+        }
+    }
+    if p.g_len == MAX_G {
+        return fail(Alarm::AddressRepeated, "too many G codes in one block");
+    }
+    p.g[p.g_len] = (code, idx);
+    p.g_len += 1;
+    match group {
+        gcode::ONE_SHOT => p.one_shot = Some(code),
+        gcode::MOTION => p.motion = Some(code),
+        _ => {}
+    }
+    Ok(())
+}
+
+fn add_m(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
+    let code = round_half_away(w.value);
+    if !(0.0..=9999.0).contains(&code) {
+        return fail(
+            Alarm::LiteralOutOfRange,
+            format!(
+                "M{} is out of range (M0…M9999)",
+                crate::base::event::Num(w.value)
+            ),
+        );
+    }
+    if p.m_len == 3 {
+        return fail(Alarm::TooManyMCodes, "more than three M codes in one block");
+    }
+    p.m[p.m_len] = (code as u32, idx);
+    p.m_len += 1;
+    Ok(())
+}
+
+/// Addresses that only take integers (§1.9), by the block's function.
+fn integer_only(p: &Parsed, letter: u8) -> bool {
+    match letter {
+        // Every use of P and Q is a count, a number or 0.001 units (§1.9).
+        b'T' | b'H' | b'O' | b'N' | b'P' | b'Q' => true,
+        // L is a count except as the chamfer of G01–G03.
+        b'L' => p.has_m(98) || [330, 780, 920, 921].iter().any(|&c| p.has_g(c)),
+        // G78 D (finishing passes) and the drilling repeats K are counts.
+        b'D' => p.has_g(780),
+        b'K' => [830, 840, 870, 880].iter().any(|&c| p.has_g(c)),
+        _ => false,
+    }
+}
+
+/// F < 0 is the left-hand lead of G32.1, G92.1, G84 and G88. A block that
+/// names another function (group 00, 01 or 10) cannot use it; a block that
+/// names none runs the modal function, which the kernel checks
+/// (`cycles::before_block`).
+fn negative_f_allowed(p: &Parsed) -> bool {
+    if [321, 921, 840, 880].iter().any(|&c| p.has_g(c)) {
+        return true;
+    }
+    !p.gs().iter().any(|&(c, _)| {
+        matches!(
+            gcode::group(c),
+            Some(gcode::ONE_SHOT | gcode::MOTION | gcode::DRILL)
+        )
+    })
+}
+
+fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
+    // Most blocks are moves: no integer-only, sign-checked or exclusive
+    // address at all (the rules below would all pass).
+    const CHECKED: u32 = mask(b"TPLQHDKFSUWYVC") | 1 << COMMA_A | 1 << COMMA_C | 1 << COMMA_R;
+    if !p.has_any(CHECKED) {
+        return check_m_codes(p).and_then(|()| check_foreign(p));
+    }
+    for letter in [b'T', b'P', b'L', b'Q', b'H', b'D', b'K'] {
+        // With a C axis, H is the incremental C angle (decimals allowed).
+        if letter == b'H' && m.axes.c.enabled {
+            continue;
+        }
+        if let Some(w) = p.word(letter) {
+            if w.literal_with_point() && integer_only(p, letter) {
+                return fail(
+                    Alarm::DecimalPointNotAllowed,
+                    format!(
+                        "{} takes an integer here; a decimal point is not allowed (write {}{})",
+                        letter as char,
+                        letter as char,
+                        crate::base::event::Num(w.value)
+                    ),
+                );
+            }
+        }
+    }
+    for letter in [b'F', b'S'] {
+        if let Some(v) = p.get(letter) {
+            if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) {
+                return fail(
+                    Alarm::LiteralOutOfRange,
+                    format!("{} must not be negative", letter as char),
+                );
+            }
+        }
+    }
+    if p.has(b'X') && p.has(b'U') {
+        return fail(
+            Alarm::IncompatibleWords,
+            "X and U in one block: write the X end point either absolute or incremental",
+        );
+    }
+    if p.has(b'Z') && p.has(b'W') {
+        return fail(
+            Alarm::IncompatibleWords,
+            "Z and W in one block: write the Z end point either absolute or incremental",
+        );
+    }
+    if p.has(b'Y') || p.has(b'V') {
+        return fail(Alarm::AxisNotConfigured, "this machine has no Y axis");
+    }
+    if !m.axes.c.enabled && p.has(b'C') && p.one_shot().is_none() && p.motion() != Some(321) {
+        return fail(Alarm::AxisNotConfigured, "this machine has no C axis");
+    }
+    // Outside G65 (which never reaches the kernel) H is the incremental C
+    // angle, in a move as in a drilling cycle.
+    if !m.axes.c.enabled && p.has(b'H') {
+        return fail(
+            Alarm::AxisNotConfigured,
+            "this machine has no C axis (H is the incremental C angle)",
+        );
+    }
+    if p.has_at(COMMA_A) && p.has(b'Q') {
+        return fail(
+            Alarm::IncompatibleWords,
+            "Q and ,A both give the angle: write one of them",
+        );
+    }
+    if p.has_at(COMMA_C) && p.has(b'L') {
+        return fail(
+            Alarm::IncompatibleWords,
+            "L and ,C both give the chamfer: write one of them",
+        );
+    }
+    if p.has_at(COMMA_R) && p.has(b'D') {
+        return fail(
+            Alarm::IncompatibleWords,
+            "D and ,R both give the corner radius: write one of them",
+        );
+    }
+    check_m_codes(p)?;
+    check_foreign(p)
+}
+
+fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
+    let calls = p
+        .ms()
+        .iter()
+        .filter(|&&(c, _)| c == 98 || c == 99 || (9000..=9999).contains(&c))
+        .count();
+    let ends = p.ms().iter().any(|&(c, _)| matches!(c, 0 | 1 | 2 | 30));
+    if calls > 1 {
+        return fail(
+            Alarm::TooManyMCodes,
+            "at most one of M98, M99 and M9000…M9999 in a block",
+        );
+    }
+    if calls == 1 && ends {
+        return fail(
+            Alarm::TooManyMCodes,
+            "M98/M99 cannot share a block with M00, M01, M02 or M30",
+        );
+    }
+    if p.has_m(97) {
+        return fail(
+            Alarm::ForeignDialect,
+            "M97 is a Haas/Citizen local subprogram call: put the block in an O program and call it with M98",
+        );
+    }
+    Ok(())
+}
+
+fn check_foreign(p: &Parsed) -> Result<(), NcError> {
+    // One pass over the G codes; the rules then apply in their order.
+    let (mut g92, mut peck, mut plane) = (false, false, false);
+    for &(c, _) in p.gs() {
+        match c {
+            920 => g92 = true,
+            740 | 750 => peck = true,
+            170 | 190 => plane = true,
+            _ => {}
+        }
+    }
+    if g92 && p.has(b'S') && !p.has_axis() {
+        return fail(
+            Alarm::ForeignDialect,
+            "G92 S is the speed clamp of systems B/C: use G50 S",
+        );
+    }
+    if peck && (p.has(b'I') || p.has(b'K')) {
+        return fail(
+            Alarm::ForeignDialect,
+            "GSK pecks are P/Q in 0.001 mm, not Haas I/K words",
+        );
+    }
+    if plane {
+        return fail(
+            Alarm::MissingEquipment,
+            "G17/G19 need a Y axis; this lathe works in the ZX plane (G18)",
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{parse, round_half_away};
+    use crate::base::gcode::{self, Code};
+    use crate::base::machine::Machine;
+    use crate::base::words::{addr, Word, LITERAL};
+
+    /// The one-shot and motion codes noted while parsing are what a scan
+    /// of the block's G codes finds (the first group-00 code, the last
+    /// group-01 code), on every block of three G words from a mixed set;
+    /// `clear_gs` forgets them.
+    #[test]
+    fn noted_codes_equal_a_scan_of_the_g_codes() {
+        let codes = [
+            0.0, 1.0, 2.0, 3.0, 4.0, 9.0, 21.0, 28.0, 32.0, 40.0, 41.0, 50.0, 70.0, 71.0, 90.0,
+            92.0, 96.0, 97.0, 98.0, 99.0,
+        ];
+        let word = |letter: u8, value: f64| Word {
+            addr: addr(letter),
+            value,
+            flags: LITERAL,
+        };
+        let scan = |p: &super::Parsed, group: u8, last: bool| -> Option<Code> {
+            let mut found = p
+                .gs()
+                .iter()
+                .map(|&(c, _)| c)
+                .filter(|&c| gcode::group(c) == Some(group));
+            if last {
+                found.next_back()
+            } else {
+                found.next()
+            }
+        };
+        let m = Machine::reference();
+        let mut parsed = 0;
+        for a in codes {
+            for b in codes {
+                for c in codes {
+                    let words = [
+                        word(b'G', a),
+                        word(b'G', b),
+                        word(b'G', c),
+                        word(b'X', 10.0),
+                    ];
+                    let Ok(mut p) = parse(&words, &m) else {
+                        continue;
+                    };
+                    parsed += 1;
+                    assert_eq!(
+                        p.one_shot(),
+                        scan(&p, gcode::ONE_SHOT, false),
+                        "G{a} G{b} G{c}"
+                    );
+                    assert_eq!(p.motion(), scan(&p, gcode::MOTION, true), "G{a} G{b} G{c}");
+                    p.clear_gs();
+                    assert!(p.gs().is_empty() && p.one_shot().is_none() && p.motion().is_none());
+                }
+            }
+        }
+        assert!(parsed > 1000, "only {parsed} blocks parsed");
+    }
+
+    /// The cast-based rounding agrees with `libm::floor` everywhere,
+    /// halves away from zero, large values and NaN included.
+    #[test]
+    fn round_half_away_matches_floor() {
+        let reference = |v: f64| {
+            if v < 0.0 {
+                -libm::floor(-v + 0.5)
+            } else {
+                libm::floor(v + 0.5)
+            }
+        };
+        let values = [
+            0.0,
+            0.5,
+            1.5,
+            2.5,
+            2.4999,
+            -0.5,
+            -1.5,
+            -2.4999,
+            7.0,
+            321.0,
+            3209.9999,
+            1e15,
+            4.5e15,
+            4_503_599_627_370_495.5,
+            4.6e15,
+            1e300,
+            -1e300,
+        ];
+        for v in values {
+            assert_eq!(round_half_away(v), reference(v), "{v}");
+        }
+        assert_eq!(round_half_away(2.5), 3.0);
+        assert_eq!(round_half_away(-2.5), -3.0);
+        assert!(round_half_away(f64::NAN).is_nan());
+        assert_eq!(round_half_away(f64::INFINITY), f64::INFINITY);
+    }
+}

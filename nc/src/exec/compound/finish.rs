@@ -1,0 +1,44 @@
+//! G70 finishing (cycles.md §8): the profile blocks run as ordinary
+//! blocks, so G00 stays rapid and their F, S and T act where they would in
+//! any block; only their M codes are dropped.
+
+use alloc::vec::Vec;
+
+use super::out::Out;
+use super::profile::check_codes;
+use crate::base::error::NcError;
+use crate::base::gcode;
+use crate::base::words::{addr, Word};
+use crate::block;
+use crate::exec::{Nc, Sink};
+
+pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Result<(), NcError> {
+    let a = nc.st.pos;
+    let motion = nc.st.group(gcode::MOTION);
+    let comp = nc.st.group(gcode::COMP);
+    for (words, tag) in blocks {
+        let tag = *tag;
+        let p = block::parse(words, &nc.machine).map_err(|e| e.at(tag))?;
+        check_codes(nc, &p, tag)?;
+        let kept: Vec<Word> = words
+            .iter()
+            .filter(|w| w.addr != addr(b'M'))
+            .copied()
+            .collect();
+        nc.exec(&kept, sink)
+            .map_err(|e| if e.at.is_some() { e } else { e.at(tag) })?;
+    }
+    // An element still waiting for a corner word of the nf block is
+    // printed whole before the return (W112).
+    crate::exec::contour::flush(nc, sink)?;
+    Out {
+        nc: &mut *nc,
+        sink: &mut *sink,
+        mirrored: false,
+    }
+    .rapid(a);
+    // The modes in force before G70 are back (cycles.md §8, comp.md §8).
+    nc.st.modal.set(gcode::MOTION, motion);
+    nc.st.modal.set(gcode::COMP, comp);
+    Ok(())
+}

@@ -1,0 +1,257 @@
+//! The ns…nf blocks handed over for a roughing cycle, read as contour
+//! elements (cycles.md §5, §7, §15). The blocks are not executed: only
+//! their geometry and their G00/G01 mode count; F, S, T and M words are
+//! ignored (cycles.md §5 "Decision (errors)").
+
+use alloc::format;
+use alloc::vec::Vec;
+
+use crate::base::error::{fail, Alarm, NcError};
+use crate::base::gcode::{self, Code};
+use crate::base::geom::{self, Element};
+use crate::base::point::Pt;
+use crate::base::words::Word;
+use crate::block::{self, Parsed};
+use crate::exec::contour::{self, Corner};
+use crate::exec::Nc;
+use crate::plan::curve::{Axis, Curve, EPS};
+
+/// One element of a profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Seg {
+    pub curve: Curve,
+    /// Written as G00: the ns infeed of the cycles is then a rapid.
+    pub rapid: bool,
+    /// The element of the first (ns) block.
+    pub ns: bool,
+}
+
+impl Seg {
+    /// The same element with its curve changed (moved, mirrored).
+    pub fn map(self, f: impl Fn(&Curve) -> Curve) -> Seg {
+        Seg {
+            curve: f(&self.curve),
+            ..self
+        }
+    }
+}
+
+/// The two types of G71/G72 (cycles.md §15): read from the ns block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// The ns block names only the infeed axis.
+    Plain,
+    /// The ns block names both axes: profiles with pockets.
+    Pockets,
+}
+
+/// A handed-over block, or E2020 when the compiler handed none.
+fn first(blocks: &[(Vec<Word>, u32)]) -> Result<&(Vec<Word>, u32), NcError> {
+    blocks.first().ok_or_else(|| {
+        NcError::new(
+            Alarm::BadProfile,
+            "the cycle has no profile: P(ns) and Q(nf) name no blocks",
+        )
+    })
+}
+
+fn parse_at(nc: &Nc, words: &[Word], tag: u32) -> Result<Parsed, NcError> {
+    block::parse(words, &nc.machine).map_err(|e| e.at(tag))
+}
+
+/// E2021, checked before anything else about the ns block of G71/G72
+/// (dialect.md §4.8): its motion code, its own or the one in force, must be
+/// G00/G01, and it must name the infeed axis. Returns the cycle type.
+pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kind, NcError> {
+    let (words, tag) = first(blocks)?;
+    let p = parse_at(nc, words, *tag)?;
+    let code = p.motion().unwrap_or(nc.st.group(gcode::MOTION));
+    let name = if facing { "G72" } else { "G71" };
+    if !matches!(code, 0 | 10) {
+        let msg = format!(
+            "the first profile block (ns) of {name} must move with G00 or G01, not {}",
+            gcode::name(code)
+        );
+        return Err(NcError::new(Alarm::BadProfileStart, msg).at(*tag));
+    }
+    let has_x = p.has(b'X') || p.has(b'U');
+    let has_z = p.has(b'Z') || p.has(b'W');
+    let (infeed, other, axis) = if facing {
+        (has_z, has_x, "Z(W)")
+    } else {
+        (has_x, has_z, "X(U)")
+    };
+    if !infeed {
+        let msg = format!("the first profile block (ns) of {name} must name {axis}");
+        return Err(NcError::new(Alarm::BadProfileStart, msg).at(*tag));
+    }
+    Ok(if other { Kind::Pockets } else { Kind::Plain })
+}
+
+/// E2020 for the codes a profile may not hold: group 00 and the drilling
+/// cycles (dialect.md §4.8); E2007 for C/H, since the cycles move X and Z
+/// only (without a C axis, block.rs has refused them already).
+pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
+    if nc.machine.axes.c.enabled && (p.has(b'C') || p.has(b'H')) {
+        let msg = "C/H may not stand in a G70–G73 profile: the cycles move X and Z only";
+        return Err(NcError::new(Alarm::IncompatibleWords, msg).at(tag));
+    }
+    if let Some(code) = p.one_shot() {
+        let msg = format!(
+            "{} (group 00) may not stand in a G70–G73 profile",
+            gcode::name(code)
+        );
+        return Err(NcError::new(Alarm::BadProfile, msg).at(tag));
+    }
+    for &(code, _) in p.gs() {
+        if gcode::group(code) == Some(gcode::DRILL) && code != 800 {
+            let msg = format!("{} may not stand in a G70–G73 profile", gcode::name(code));
+            return Err(NcError::new(Alarm::BadProfile, msg).at(tag));
+        }
+    }
+    Ok(())
+}
+
+/// The profile of a roughing cycle (G71, G72, G73) from the tool position.
+/// Chamfers and roundings (L, D, ,C, ,R) join an element and the next
+/// moving block's one with the contour module's corner geometry, as in
+/// ordinary blocks (cycles.md §13 "the same rules apply inside profiles").
+pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
+    first(blocks)?;
+    let mut pos = nc.st.pos;
+    let mut code = nc.st.group(gcode::MOTION);
+    let mut segs: Vec<Seg> = Vec::with_capacity(blocks.len());
+    // The element waiting for its corner: its index and the corner.
+    let mut waiting: Option<(usize, Corner)> = None;
+    for (i, (words, tag)) in blocks.iter().enumerate() {
+        let p = parse_at(nc, words, *tag)?;
+        check_codes(nc, &p, *tag)?;
+        if let Some(c) = p.motion() {
+            code = c;
+        }
+        let corner = contour::corner_word(nc, code, &p).map_err(|e| e.at(*tag))?;
+        let Some(el) = element(nc, code, &p, pos).map_err(|e| e.at(*tag))? else {
+            continue;
+        };
+        pos = el.end();
+        let seg = Seg {
+            curve: Curve::new(el),
+            rapid: code == 0,
+            ns: i == 0,
+        };
+        match waiting.take() {
+            // A G00 takes no corner (W112): the waiting one is dropped.
+            Some((at, c)) if code != 0 => join(&mut segs, at, seg, c).map_err(|e| e.at(*tag))?,
+            _ => segs.push(seg),
+        }
+        waiting = corner.map(|c| (segs.len() - 1, c));
+    }
+    // A corner word on the nf block is ignored (W112).
+    Ok(segs)
+}
+
+/// Puts `next` after the element at `at`, joined by corner `c`.
+fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcError> {
+    let Some(prev) = segs.get_mut(at) else {
+        segs.push(next);
+        return Ok(());
+    };
+    match contour::corner(&prev.curve.element(), &next.curve.element(), c)? {
+        Some((e1, inserted, e2)) => {
+            prev.curve = Curve::new(e1);
+            segs.push(Seg {
+                curve: Curve::new(inserted),
+                rapid: false,
+                ns: false,
+            });
+            segs.push(Seg {
+                curve: Curve::new(e2),
+                ..next
+            });
+        }
+        // Same direction, or a zero-length element: no corner (W112).
+        None => segs.push(next),
+    }
+    Ok(())
+}
+
+/// The element one profile block describes, `None` when it does not move.
+fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>, NcError> {
+    let to = nc.target_from(p, from);
+    match code {
+        0 | 10 => {
+            let Some(deg) = contour::angle_of(p) else {
+                return Ok(p.has_axis().then_some(Element::Line { from, to }));
+            };
+            // The one-block angle forms (dialect.md §5.2), the same
+            // geometry as outside a profile.
+            let x = p.has(b'X') || p.has(b'U');
+            let z = p.has(b'Z') || p.has(b'W');
+            let end = match (x, z) {
+                (true, false) => contour::end_at_r(from, deg, to.r)?,
+                (false, true) => contour::end_at_z(from, deg, to.z)?,
+                // X, Z and Q: an ordinary line, Q ignored (W104).
+                (true, true) => to,
+                (false, false) => {
+                    return fail(
+                        Alarm::NotSupportedYet,
+                        "the two-block angle form in a G71–G73 profile is not supported yet",
+                    )
+                }
+            };
+            Ok(Some(Element::Line { from, to: end }))
+        }
+        20 | 30 => nc.arc_element(from, code == 20, to, p),
+        50 | 51 => three_point(nc, code == 51, p, from, to).map(Some),
+        62 | 63 | 72 | 73 => fail(
+            Alarm::NotSupportedYet,
+            format!("{} in a G71–G73 profile is not supported yet", gcode::name(code)),
+        ),
+        _ => fail(
+            Alarm::BadProfile,
+            format!(
+                "{} may not stand in a G71–G73 profile: only G00, G01, G02, G03 (and G05) describe it",
+                gcode::name(code)
+            ),
+        ),
+    }
+}
+
+/// G05 (mid point relative to the start) and G05.1 (absolute mid point).
+fn three_point(nc: &Nc, absolute: bool, p: &Parsed, from: Pt, to: Pt) -> Result<Element, NcError> {
+    if !p.has(b'I') && !p.has(b'K') {
+        return fail(Alarm::MissingWord, "G05 needs the mid point I/K");
+    }
+    let i = nc.len_of(p, b'I');
+    let k = nc.len_of(p, b'K');
+    let mid = if absolute {
+        Pt::new(i.map_or(from.r, |x| x / 2.0), k.unwrap_or(from.z))
+    } else {
+        Pt::new(from.r + i.unwrap_or(0.0), from.z + k.unwrap_or(0.0))
+    };
+    let (centre, cw) = geom::circle_through(from, mid, to)?;
+    Ok(Element::Arc {
+        from,
+        to,
+        centre,
+        cw,
+    })
+}
+
+/// The deepest point of a curve below the level `base` (r), infeed
+/// direction `sx`: sx·(r − base) at its largest.
+pub fn max_depth(c: &Curve, base: f64, sx: f64) -> f64 {
+    let (lo, hi) = c.range(Axis::R, 0.0, 1.0);
+    (sx * (lo - base)).max(sx * (hi - base))
+}
+
+/// Where the tail of a profile starts (cycles.md §5): the final elements
+/// that lie on or outside the start level `base` at every point. The ns
+/// element is never part of it, so `segs` holds the elements after it.
+pub fn tail_start(segs: &[Seg], base: f64, sx: f64) -> usize {
+    let mut t = segs.len();
+    while t > 0 && max_depth(&segs[t - 1].curve, base, sx) <= EPS {
+        t -= 1;
+    }
+    t
+}

@@ -1,0 +1,838 @@
+//! Executing one block: its events in the order of canon.md, and the state
+//! it leaves behind.
+
+pub mod caxis;
+pub mod comp;
+pub mod compound;
+pub mod contour;
+pub mod cycles;
+pub mod data_setting;
+pub mod measure;
+mod motion_api;
+pub mod params;
+pub mod state;
+pub mod stroke;
+pub mod sysvar;
+pub mod tool_life;
+
+use alloc::boxed::Box;
+use alloc::format;
+use alloc::vec::Vec;
+
+use crate::base::error::{fail, Alarm, NcError};
+use crate::base::event::{Dir, Event, SpindleDir, StopKind};
+use crate::base::gcode::{self, Code};
+use crate::base::geom::{self, Element};
+use crate::base::machine::{ArcWithoutCenter, DecimalPoint, Machine, SpindleType};
+use crate::base::point::Pt;
+use crate::base::words::{Word, NO_POINT};
+use crate::block::{self, round_half_away, Parsed};
+use crate::exec::state::State;
+use crate::modal::PathMode;
+
+/// Where the events of a run go; the kernel does not know who listens.
+pub trait Sink {
+    fn emit(&mut self, event: Event);
+}
+
+impl Sink for Vec<Event> {
+    fn emit(&mut self, event: Event) {
+        self.push(event);
+    }
+}
+
+/// What a block did, for the caller's control flow.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Outcome {
+    /// The block moved the tool (G66 calls follow such blocks).
+    pub moved: bool,
+    /// M02/M30 ended the program.
+    pub end: Option<StopKind>,
+    /// A G31 skip position to store in #995/#996.
+    pub skip: Option<Pt>,
+    /// A `G10 L52` read: the variable to set and the parameter's value
+    /// (variables #1–#999 live in the VM, not in the kernel).
+    pub store: Option<(u32, f64)>,
+}
+
+/// The NC kernel: a machine and its state.
+#[derive(Debug, Clone)]
+pub struct Nc {
+    pub machine: Machine,
+    pub st: State,
+    /// The ns…nf blocks handed over for the next G70–G73 block, each with
+    /// the tag its errors carry (the VM uses the pc, the compiler the block
+    /// index).
+    pub profile: Vec<(Vec<Word>, u32)>,
+    /// The parse of the running block, kept between blocks so that no
+    /// block builds or moves a fresh one (taken while a block runs).
+    parsed: Option<Box<Parsed>>,
+}
+
+/// M codes that act after the motion (canon group 3).
+fn after_motion(m: u32) -> bool {
+    matches!(m, 5 | 9 | 11 | 13 | 33)
+}
+
+/// M codes that end or stop the program (canon group 4).
+fn is_stop(m: u32) -> bool {
+    matches!(m, 0 | 1 | 2 | 30)
+}
+
+/// M codes that the compiler and VM handle (calls and returns).
+fn is_call(m: u32) -> bool {
+    m == 98 || m == 99 || (9000..=9999).contains(&m)
+}
+
+impl Nc {
+    pub fn new(machine: Machine) -> Nc {
+        let st = State::power_on(&machine);
+        Nc {
+            machine,
+            st,
+            profile: Vec::new(),
+            parsed: None,
+        }
+    }
+
+    /// Back to the power-on state (a new run).
+    pub fn reset(&mut self) {
+        self.st = State::power_on(&self.machine);
+    }
+
+    /// Hands over one ns…nf block for the next G70–G73 block.
+    pub fn push_profile(&mut self, words: &[Word], tag: u32) {
+        self.profile.push((words.to_vec(), tag));
+    }
+
+    /// Executes one block of NC words.
+    pub fn exec(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        // G10/G11 blocks and the blocks of their modes (data_setting).
+        if let Some(out) = crate::exec::data_setting::intercept(self, words)? {
+            return Ok(out);
+        }
+        // Minutes tool-life groups time the feed moves (tool_life).
+        crate::exec::tool_life::timed(self, words, sink, Nc::exec_guarded)
+    }
+
+    /// A block with the G22 stroke check, when it is in force.
+    fn exec_guarded(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        let Some(area) = self.st.stroke2 else {
+            return self.exec_block(words, sink);
+        };
+        // G22 in force: every end point passes the stroke check.
+        let mut guard = crate::exec::stroke::Guard::new(sink, area, self.st.origin());
+        let result = self.exec_block(words, &mut guard);
+        match guard.finish() {
+            Some(e) => Err(e),
+            None => result,
+        }
+    }
+
+    fn exec_block(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        // (A block run from inside a block, as G70's profile, finds none
+        // and makes its own.)
+        let mut p = self.parsed.take().unwrap_or_default();
+        let result = block::parse_into(words, &self.machine, &mut p)
+            .and_then(|()| self.exec_parsed(&p, words, sink));
+        self.parsed = Some(p);
+        result
+    }
+
+    fn exec_parsed(
+        &mut self,
+        p: &Parsed,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<Outcome, NcError> {
+        self.st.c_block = false;
+        crate::exec::comp::before_block(self, p, sink)?;
+        let mut out = Outcome::default();
+        // While an element waits for its corner (contour module), the
+        // block's events are held behind it so the canon keeps block order.
+        contour::in_order(self, sink, |nc, s| {
+            nc.modal_settings(p, s)?;
+            crate::exec::caxis::check(nc, p)?;
+            nc.st.c_block = crate::exec::caxis::programs_c(nc, p);
+            nc.before_motion(p, words, s)
+        })?;
+        self.remember(p);
+        self.st.exact_stop = p.has_g(90) || self.st.modal.path_mode() == PathMode::ExactStop;
+        self.motion(p, sink, &mut out)?;
+        contour::in_order(self, sink, |nc, s| {
+            nc.after_motion(p, s);
+            Ok(())
+        })?;
+        if p.has_m(2) || p.has_m(30) {
+            // The program ends: a waiting element is printed whole.
+            contour::flush(self, sink)?;
+        }
+        contour::in_order(self, sink, |nc, s| {
+            nc.stops(p, s, &mut out);
+            Ok(())
+        })?;
+        contour::end_of_block(self)?;
+        crate::exec::comp::end_of_block(self, p, out.moved)?;
+        self.profile.clear();
+        self.st.c_block = false;
+        Ok(out)
+    }
+
+    /// Group 0: the block's modal codes, in written order.
+    fn modal_settings(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+        for &(code, _) in p.gs() {
+            let Some(group) = gcode::group(code) else {
+                continue;
+            };
+            match group {
+                gcode::ONE_SHOT => {}
+                gcode::SPEED_MODE => self.speed_mode(code, p, sink),
+                gcode::STROKE => {
+                    self.st.modal.set(group, code);
+                    crate::exec::stroke::select(self, code, p);
+                }
+                gcode::WORK => {
+                    let before = self.st.origin();
+                    self.st.modal.set(group, code);
+                    self.print_origin_if_moved(before, sink);
+                }
+                gcode::MOTION => {
+                    self.st.modal.set(group, code);
+                    // Any group-01 code cancels the drilling cycles.
+                    self.st.modal.set(gcode::DRILL, 800);
+                }
+                gcode::POLAR if code == 121 => return self.polar_or_cylinder(code),
+                _ => self.st.modal.set(group, code),
+            }
+        }
+        if let Some(code) = p.one_shot() {
+            self.unsupported_one_shot(code)?;
+        }
+        Ok(())
+    }
+
+    /// G12.1 and G7.1 need the C axis (E2003); where it exists their canon
+    /// is not specified yet (E2099, dialect.md §4.6).
+    fn polar_or_cylinder(&self, code: Code) -> Result<(), NcError> {
+        let what = if code == 121 {
+            "G12.1 polar interpolation"
+        } else {
+            "G7.1 cylindrical interpolation"
+        };
+        if self.machine.axes.c.enabled {
+            fail(
+                Alarm::NotSupportedYet,
+                format!("{what} is not supported yet"),
+            )
+        } else {
+            fail(Alarm::MissingEquipment, format!("{what} needs a C axis"))
+        }
+    }
+
+    fn unsupported_one_shot(&self, code: Code) -> Result<(), NcError> {
+        match code {
+            71 => self.polar_or_cylinder(code),
+            _ => Ok(()),
+        }
+    }
+
+    /// G96/G97 without S that changes the mode prints the new speed.
+    fn speed_mode(&mut self, code: Code, p: &Parsed, sink: &mut dyn Sink) {
+        let was_css = self.st.css_mode();
+        self.st.modal.set(gcode::SPEED_MODE, code);
+        let now_css = code == 960;
+        if was_css == now_css || p.has(b'S') {
+            return;
+        }
+        if now_css {
+            sink.emit(Event::Speed {
+                s: self.st.css,
+                css: true,
+                max: None,
+            });
+        } else {
+            self.st.rpm = self.css_rpm(self.st.pos.x());
+            sink.emit(Event::Speed {
+                s: self.st.rpm,
+                css: false,
+                max: None,
+            });
+        }
+    }
+
+    /// The rpm of constant surface speed at diameter x, clamped.
+    pub(crate) fn css_rpm(&self, x: f64) -> f64 {
+        let limit = self.st.rpm_limit.map_or(self.machine.spindle.max_rpm, |l| {
+            l.min(self.machine.spindle.max_rpm)
+        });
+        if x.abs() < 1e-9 {
+            return limit;
+        }
+        (1000.0 * self.st.css / (core::f64::consts::PI * x.abs())).min(limit)
+    }
+
+    fn print_origin_if_moved(&self, before: Pt, sink: &mut dyn Sink) {
+        let now = self.st.origin();
+        if (now.r - before.r).abs() * 2.0 > 1e-6 || (now.z - before.z).abs() > 1e-6 {
+            sink.emit(Event::Origin {
+                x: now.x(),
+                z: now.z,
+            });
+        }
+    }
+
+    /// Group 1: spindle start, PLC M codes, S and T, in written order.
+    fn before_motion(
+        &mut self,
+        p: &Parsed,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<(), NcError> {
+        // Thread chains, M29 rules; a drilling block's M is its clamp code.
+        let clamp = crate::exec::cycles::before_block(self, p, sink)?;
+        let g50 = p.one_shot() == Some(500);
+        for w in words {
+            match w.addr {
+                a if a == b'M' - b'A' => {
+                    let m = round_half_away(w.value) as u32;
+                    match m {
+                        3 => self.spindle(SpindleDir::Cw, sink),
+                        4 => self.spindle(SpindleDir::Ccw, sink),
+                        m if after_motion(m) || is_stop(m) || is_call(m) => {}
+                        m if clamp == Some(m) => {}
+                        m => sink.emit(Event::M(m)),
+                    }
+                }
+                a if a == b'S' - b'A' => self.s_word(w.value, g50, sink)?,
+                a if a == b'T' - b'A' => self.t_word(w.value, sink)?,
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    fn spindle(&mut self, dir: SpindleDir, sink: &mut dyn Sink) {
+        self.st.spindle = dir;
+        sink.emit(Event::Spindle(dir));
+    }
+
+    fn s_word(&mut self, s: f64, g50: bool, sink: &mut dyn Sink) -> Result<(), NcError> {
+        if s < 0.0 {
+            return fail(Alarm::ValueOutOfRange, "S must not be negative");
+        }
+        let css = self.st.css_mode();
+        if g50 {
+            self.st.rpm_limit = Some(s);
+            let current = if css { self.st.css } else { self.st.rpm };
+            sink.emit(Event::Speed {
+                s: current,
+                css,
+                max: Some(s),
+            });
+            return Ok(());
+        }
+        if self.machine.spindle.r#type == SpindleType::Gear {
+            let n = round_half_away(s);
+            if !(0.0..=4.0).contains(&n) {
+                return fail(
+                    Alarm::ValueOutOfRange,
+                    format!("gear code S{n} outside S00…S04"),
+                );
+            }
+            sink.emit(Event::Gear { n: n as u32 });
+            return Ok(());
+        }
+        if css {
+            // G20 surface speeds are ft/min.
+            self.st.css = if self.st.inch() { s * 0.3048 } else { s };
+            sink.emit(Event::Speed {
+                s: self.st.css,
+                css: true,
+                max: None,
+            });
+        } else {
+            self.st.rpm = s;
+            sink.emit(Event::Speed {
+                s,
+                css: false,
+                max: None,
+            });
+        }
+        Ok(())
+    }
+
+    fn t_word(&mut self, t: f64, sink: &mut dyn Sink) -> Result<(), NcError> {
+        let t = round_half_away(t);
+        if !(0.0..=9999.0).contains(&t) {
+            return fail(Alarm::ValueOutOfRange, format!("T{t} is out of range"));
+        }
+        let (tool, offset) = (t as u32 / 100, t as u32 % 100);
+        check_tool(&self.machine, tool, offset)?;
+        // Txx99 / Txx88 are tool-life words (tool_life module).
+        if let Some(done) = crate::exec::tool_life::t_word(self, tool, offset, sink) {
+            return done;
+        }
+        self.st.tool = tool;
+        self.st.offset = offset;
+        sink.emit(Event::Tool { t: tool, d: offset });
+        Ok(())
+    }
+
+    /// Group 2: the motion or the one-shot function.
+    fn motion(
+        &mut self,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+        out: &mut Outcome,
+    ) -> Result<(), NcError> {
+        if let Some(code) = p.one_shot() {
+            if code == 90 {
+                // G09: its move decides about waiting corners.
+                return self.one_shot(code, p, sink, out);
+            }
+            contour::before_one_shot(self, code, sink)?;
+            return contour::in_order(self, sink, |nc, s| nc.one_shot(code, p, s, out));
+        }
+        if p.has_g(220) {
+            // G22 owns the block's X Z I K: they are its limits.
+            return Ok(());
+        }
+        if let Some(drill) = self.st.modal.drill() {
+            self.flush_if_moving(p, sink)?;
+            return crate::exec::cycles::drill(self, drill, p, sink, out);
+        }
+        let code = self.st.group(gcode::MOTION);
+        if !matches!(code, 0 | 10 | 20 | 30 | 50 | 51) {
+            return if matches!(code, 62 | 63 | 72 | 73) {
+                contour::conic(self, code, p, sink, out)
+            } else {
+                self.flush_if_moving(p, sink)?;
+                crate::exec::cycles::motion(self, code, p, sink, out)
+            };
+        }
+        let corner = contour::corner_word(self, code, p)?;
+        let arc_words = matches!(code, 20 | 30) && (p.has(b'I') || p.has(b'K') || p.has(b'R'));
+        let angle_words = matches!(code, 0 | 10) && contour::has_angle(p);
+        if !p.has_axis() && !arc_words && !angle_words && !self.st.c_block {
+            return Ok(());
+        }
+        let target = self.target(p);
+        match code {
+            0 | 10 => contour::straight(self, code == 0, p, corner, sink)?,
+            20 | 30 => {
+                if let Some(e) = self.arc_element(self.st.pos, code == 20, target, p)? {
+                    contour::feed_element(self, e, corner, sink)?;
+                }
+            }
+            _ => {
+                contour::flush(self, sink)?;
+                self.three_point_arc(code == 51, target, p, sink)?
+            }
+        }
+        out.moved = true;
+        Ok(())
+    }
+
+    /// A move that cannot take a corner prints what waits first.
+    fn flush_if_moving(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+        if p.has_axis() {
+            contour::flush(self, sink)?;
+        }
+        Ok(())
+    }
+
+    /// A length word in mm: the unit, and the decimal-point rule for
+    /// literals written without a point in increment mode.
+    pub(crate) fn length(&self, w: Word) -> f64 {
+        let mut v = w.value;
+        if w.flags & NO_POINT != 0 && self.machine.machine.decimal_point == DecimalPoint::Increment
+        {
+            v *= if self.st.inch() { 0.0001 } else { 0.001 };
+        }
+        v * self.st.unit()
+    }
+
+    pub(crate) fn len_of(&self, p: &Parsed, letter: u8) -> Option<f64> {
+        p.word(letter).map(|w| self.length(w))
+    }
+
+    /// The end point of a move: X/Z absolute, U/W incremental, axes left
+    /// out keep their coordinate.
+    pub(crate) fn target(&self, p: &Parsed) -> Pt {
+        self.target_from(p, self.st.pos)
+    }
+
+    /// The end point of a move that starts at `from` (a profile block's U/W
+    /// are relative to the previous profile point, not to the tool).
+    pub(crate) fn target_from(&self, p: &Parsed, from: Pt) -> Pt {
+        let mut t = from;
+        if let Some(x) = self.len_of(p, b'X') {
+            t.r = x / 2.0;
+        } else if let Some(u) = self.len_of(p, b'U') {
+            t.r += u / 2.0;
+        }
+        if let Some(z) = self.len_of(p, b'Z') {
+            t.z = z;
+        } else if let Some(w) = self.len_of(p, b'W') {
+            t.z += w;
+        }
+        t
+    }
+
+    /// A rapid to `to`, C already at its end angle (it started at `c_from`).
+    pub(crate) fn rapid_c(&mut self, to: Pt, c_from: f64, sink: &mut dyn Sink) {
+        self.st.pos = to;
+        sink.emit(Event::Rapid {
+            x: to.x(),
+            z: to.z,
+            c: self.c_field(c_from),
+        });
+    }
+
+    /// A rapid that leaves C where it is.
+    pub(crate) fn rapid(&mut self, to: Pt, sink: &mut dyn Sink) {
+        self.rapid_c(to, self.st.c, sink);
+    }
+
+    /// Whether the block names an axis: X, Z, U, W, or C/H on a machine
+    /// with a C axis.
+    pub(crate) fn axis_words(&self, p: &Parsed) -> bool {
+        p.has_axis() || self.st.c_block
+    }
+
+    /// Prints `FEED` when the feed of the next feed event differs from the
+    /// last one printed.
+    pub(crate) fn feed_due(&mut self, sink: &mut dyn Sink) {
+        let f = self.st.feed * self.st.unit();
+        let now = (f, self.st.per_rev());
+        if self.st.feed_printed != Some(now) {
+            self.st.feed_printed = Some(now);
+            sink.emit(Event::Feed { f, per_rev: now.1 });
+        }
+    }
+
+    /// The element of a G02/G03 block from `from` (the current point, or
+    /// the previous point of a profile): its arc from R or I/K, or a line
+    /// where `arc_without_center = "line"`. `None` for a 0° arc with R
+    /// (end = start), which is no move (W108), and for a block that names
+    /// neither a centre nor an axis.
+    pub(crate) fn arc_element(
+        &self,
+        from: Pt,
+        cw: bool,
+        to: Pt,
+        p: &Parsed,
+    ) -> Result<Option<Element>, NcError> {
+        let centre = if let Some(r) = self.len_of(p, b'R') {
+            match geom::centre_from_radius(from, to, r, cw)? {
+                Some(c) => c,
+                None => return Ok(None),
+            }
+        } else if p.has(b'I') || p.has(b'K') {
+            let i = self.len_of(p, b'I').unwrap_or(0.0);
+            let k = self.len_of(p, b'K').unwrap_or(0.0);
+            let c = Pt::new(from.r + i, from.z + k);
+            geom::check_on_circle(from, to, c, self.machine.machine.arc_tolerance_mm)?;
+            c
+        } else if !p.has_axis() {
+            return Ok(None);
+        } else {
+            return match self.machine.machine.arc_without_center {
+                ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
+                ArcWithoutCenter::Alarm => fail(
+                    Alarm::MissingWord,
+                    format!(
+                        "{} needs R or I/K to define its centre",
+                        if cw { "G02" } else { "G03" }
+                    ),
+                ),
+            };
+        };
+        Ok(Some(Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        }))
+    }
+
+    pub(crate) fn emit_arc(&mut self, cw: bool, to: Pt, c: Pt, sink: &mut dyn Sink) {
+        self.feed_due(sink);
+        self.st.pos = to;
+        let dir = if cw { Dir::Cw } else { Dir::Ccw };
+        sink.emit(Event::Arc {
+            dir,
+            x: to.x(),
+            z: to.z,
+            cx: c.x(),
+            cz: c.z,
+        });
+    }
+
+    /// G05 (I/K relative to the start) and G05.1 (absolute mid point).
+    fn three_point_arc(
+        &mut self,
+        absolute: bool,
+        to: Pt,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+    ) -> Result<(), NcError> {
+        if !p.has(b'I') && !p.has(b'K') {
+            return fail(Alarm::MissingWord, "G05 needs the mid point I/K");
+        }
+        let from = self.st.pos;
+        let i = self.len_of(p, b'I');
+        let k = self.len_of(p, b'K');
+        let mid = if absolute {
+            Pt::new(i.map_or(from.r, |x| x / 2.0), k.unwrap_or(from.z))
+        } else {
+            Pt::new(from.r + i.unwrap_or(0.0), from.z + k.unwrap_or(0.0))
+        };
+        let (c, cw) = geom::circle_through(from, mid, to)?;
+        self.emit_arc(cw, to, c, sink);
+        Ok(())
+    }
+
+    fn one_shot(
+        &mut self,
+        code: Code,
+        p: &Parsed,
+        sink: &mut dyn Sink,
+        out: &mut Outcome,
+    ) -> Result<(), NcError> {
+        match code {
+            40 => self.dwell(p, sink),
+            90 => {
+                // G09: exact stop is the runtime's; the motion runs as usual.
+                let mut q = p.clone();
+                q.clear_gs();
+                return self.motion(&q, sink, out);
+            }
+            280 => self.home(p, 1, sink),
+            300 => {
+                let n = p.get(b'P').map_or(2.0, round_half_away);
+                if !(2.0..=4.0).contains(&n) {
+                    return fail(
+                        Alarm::ValueOutOfRange,
+                        format!("G30 P{n}: reference points are 2…4"),
+                    );
+                }
+                self.home(p, n as u32, sink)
+            }
+            310 => {
+                let to = self.target(p);
+                self.feed_due(sink);
+                self.st.pos = to;
+                self.st.skip = Some(to);
+                out.skip = Some(to);
+                sink.emit(Event::Skip { x: to.x(), z: to.z });
+            }
+            360 | 370 => crate::exec::measure::run(self, code == 360, p, sink)?,
+            500 => self.set_coordinates(p, sink),
+            520 => self.set_local(p, sink),
+            530 => {
+                if p.has(b'U') || p.has(b'W') {
+                    return fail(
+                        Alarm::IncompatibleWords,
+                        "G53 takes machine coordinates X/Z only, not U/W",
+                    );
+                }
+                let origin = self.st.origin();
+                let mut m = self.st.machine_pos();
+                if let Some(x) = self.len_of(p, b'X') {
+                    m.r = x / 2.0;
+                }
+                if let Some(z) = self.len_of(p, b'Z') {
+                    m.z = z;
+                }
+                self.rapid(m.sub(origin), sink);
+            }
+            700..=730 => return crate::exec::compound::run(self, code, p, sink, out),
+            740 | 750 | 760 | 780 => {
+                return crate::exec::cycles::one_shot(self, code, p, sink, out)
+            }
+            _ => {
+                return fail(
+                    Alarm::NotSupportedYet,
+                    format!("{} is not implemented yet", gcode::name(code)),
+                )
+            }
+        }
+        out.moved = matches!(code, 280 | 300 | 310 | 360 | 370 | 530);
+        Ok(())
+    }
+
+    fn dwell(&mut self, p: &Parsed, sink: &mut dyn Sink) {
+        let secs = if let Some(ms) = p.get(b'P') {
+            ms / 1000.0
+        } else if let Some(w) = p.word(b'X').or(p.word(b'U')) {
+            let mut s = w.value;
+            if w.flags & NO_POINT != 0
+                && self.machine.machine.decimal_point == DecimalPoint::Increment
+            {
+                s *= 0.001;
+            }
+            s
+        } else {
+            // G04 alone: an exact stop, nothing printed.
+            return;
+        };
+        let s = secs.max(0.0);
+        self.st.clock_ms += s * 1000.0;
+        sink.emit(Event::Dwell { s });
+    }
+
+    /// G28/G30: rapid to the intermediate point, then the named axes go to
+    /// reference point n.
+    fn home(&mut self, p: &Parsed, n: u32, sink: &mut dyn Sink) {
+        let named_x = p.has(b'X') || p.has(b'U');
+        let named_z = p.has(b'Z') || p.has(b'W');
+        let named_c = self.st.c_block;
+        if !named_x && !named_z && !named_c {
+            return;
+        }
+        let mid = self.target(p);
+        let c_from = self.st.c;
+        let c_mid = crate::exec::caxis::target_from(self, p, c_from);
+        if mid.dist(self.st.pos) > 1e-9 || (c_mid - c_from).abs() > 1e-9 {
+            self.st.c = c_mid;
+            self.rapid_c(mid, c_from, sink);
+        }
+        self.st.pos = mid;
+        if named_c {
+            // The C reference point is 0° (machine.md has no C angles).
+            self.st.c = 0.0;
+        }
+        let rp = self.reference_point(n);
+        let origin = self.st.origin();
+        if named_x {
+            self.st.pos.r = rp.r - origin.r;
+        }
+        if named_z {
+            self.st.pos.z = rp.z - origin.z;
+        }
+        sink.emit(Event::Home {
+            n,
+            x: named_x,
+            z: named_z,
+            c: named_c,
+        });
+    }
+
+    fn reference_point(&self, n: u32) -> Pt {
+        let r = &self.machine.reference_points;
+        match n {
+            2 => Pt::xz(r.second.x, r.second.z),
+            3 => Pt::xz(r.third.x, r.third.z),
+            4 => Pt::xz(r.fourth.x, r.fourth.z),
+            _ => Pt::default(),
+        }
+    }
+
+    /// G50 X Z: the current point gets these coordinates (U W: changes).
+    fn set_coordinates(&mut self, p: &Parsed, sink: &mut dyn Sink) {
+        let before = self.st.origin();
+        let now = self.target(p);
+        let machine = self.st.machine_pos();
+        if p.has(b'X') || p.has(b'U') {
+            self.st.local.r = 0.0;
+            let base = self.st.exofs.r + self.st.work[self.st.work_index()].r;
+            self.st.shift.r = machine.r - now.r - base;
+            self.st.pos.r = now.r;
+        }
+        if p.has(b'Z') || p.has(b'W') {
+            self.st.local.z = 0.0;
+            let base = self.st.exofs.z + self.st.work[self.st.work_index()].z;
+            self.st.shift.z = machine.z - now.z - base;
+            self.st.pos.z = now.z;
+        }
+        self.print_origin_if_moved(before, sink);
+    }
+
+    /// G52: the local origin in workpiece coordinates (U = X, W = Z).
+    fn set_local(&mut self, p: &Parsed, sink: &mut dyn Sink) {
+        let before = self.st.origin();
+        let machine = self.st.machine_pos();
+        if let Some(x) = self.len_of(p, b'X').or(self.len_of(p, b'U')) {
+            self.st.local.r = x / 2.0;
+        }
+        if let Some(z) = self.len_of(p, b'Z').or(self.len_of(p, b'W')) {
+            self.st.local.z = z;
+        }
+        self.st.pos = machine.sub(self.st.origin());
+        self.print_origin_if_moved(before, sink);
+    }
+
+    /// Group 3: spindle stop and the "off" PLC codes.
+    fn after_motion(&mut self, p: &Parsed, sink: &mut dyn Sink) {
+        for &(m, _) in p.ms() {
+            if m == 5 {
+                self.spindle(SpindleDir::Stop, sink);
+            } else if after_motion(m) {
+                sink.emit(Event::M(m));
+            }
+        }
+    }
+
+    /// Group 4: program stops and ends.
+    fn stops(&mut self, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) {
+        for &(m, _) in p.ms() {
+            let kind = match m {
+                0 => StopKind::M00,
+                1 if self.machine.operator.optional_stop => StopKind::M01,
+                2 => StopKind::M02,
+                30 => StopKind::M30,
+                _ => continue,
+            };
+            sink.emit(Event::Stop(kind));
+            if matches!(kind, StopKind::M02 | StopKind::M30) {
+                if kind == StopKind::M30 {
+                    self.st.parts += 1.0;
+                }
+                out.end = Some(kind);
+            }
+        }
+    }
+
+    /// Before the motion: F is modal (the block's own move uses it); the last B D E F H M N O S T are kept for #4102….
+    fn remember(&mut self, p: &Parsed) {
+        // The F of a thread block is its lead, not a feed (cycles.md §0).
+        if let Some(f) = p
+            .get(b'F')
+            .filter(|_| !crate::exec::cycles::f_is_lead(self, p))
+        {
+            self.st.feed = f;
+        }
+        for letter in [b'B', b'D', b'E', b'F', b'H', b'S', b'T'] {
+            if let Some(v) = p.get(letter) {
+                self.st.last[(letter - b'A') as usize] = v;
+            }
+        }
+        if let Some(&(m, _)) = p.ms().last() {
+            self.st.last[(b'M' - b'A') as usize] = m as f64;
+        }
+    }
+}
+
+/// E7004: a tool or offset number outside the machine's table.
+pub fn check_tool(m: &Machine, tool: u32, offset: u32) -> Result<(), NcError> {
+    if tool > m.tools.count {
+        return fail(
+            Alarm::ToolNumber,
+            format!(
+                "tool {tool} is outside the tool table (1…{})",
+                m.tools.count
+            ),
+        );
+    }
+    if offset > m.tools.offsets && offset != 88 && offset != 99 {
+        return fail(
+            Alarm::ToolNumber,
+            format!(
+                "offset {offset} is outside the offset table (1…{})",
+                m.tools.offsets
+            ),
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,87 @@
+//! What a motion controller (the runtime) may read from the kernel and
+//! tell it, so that it never reaches into [`State`](super::state::State):
+//! where the programmed point is, whether the last block ends in an exact
+//! stop, the G22 area in force, the tool offset tables, and where the axes
+//! really stopped after a skip or a reset.
+
+use crate::base::point::Pt;
+use crate::exec::stroke::Area;
+use crate::exec::Nc;
+
+impl Nc {
+    /// The programmed point after the last block, work coordinates.
+    pub fn position(&self) -> Pt {
+        self.st.pos
+    }
+
+    /// The work zero in machine coordinates (EXOFS + G5x + G50 + G52).
+    pub fn origin(&self) -> Pt {
+        self.st.origin()
+    }
+
+    /// The last block ends in an exact stop (G09 in it, or G61 in force):
+    /// the motion must not blend it into the next one.
+    pub fn exact_stop(&self) -> bool {
+        self.st.exact_stop
+    }
+
+    /// The area stored stroke check 2 forbids while G22 is in force.
+    pub fn stroke_area(&self) -> Option<Area> {
+        self.st.stroke2
+    }
+
+    /// Geometry + wear of tool offset `d` as (X diameter, Z) sums; zero
+    /// for a number outside the tables.
+    pub fn tool_offset(&self, d: u32) -> (f64, f64) {
+        let Some(i) = (d as usize)
+            .checked_sub(1)
+            .filter(|&i| i < self.st.geom.len())
+        else {
+            return (0.0, 0.0);
+        };
+        let (g, w) = (self.st.geom[i], self.st.wear[i]);
+        (g[0] + w[0], g[1] + w[1])
+    }
+
+    /// The axes stand at `work` (work coordinates), as after a reset: the
+    /// next block starts there.
+    pub fn set_position(&mut self, work: Pt) {
+        self.st.pos = work;
+    }
+
+    /// A G31 move ended: the axes stopped at `stop` and the signal came at
+    /// `hit` (both work coordinates). The next block starts at `stop`;
+    /// #5061/#5062 read `hit`.
+    pub fn skip_ended(&mut self, stop: Pt, hit: Pt) {
+        self.st.pos = stop;
+        self.st.skip = Some(hit);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::base::machine::Machine;
+    use crate::base::point::Pt;
+    use crate::exec::Nc;
+
+    #[test]
+    fn a_skip_moves_the_programmed_point_and_stores_the_hit() {
+        let mut nc = Nc::new(Machine::reference());
+        nc.skip_ended(Pt::new(10.0, -5.0), Pt::new(10.0, -4.5));
+        assert_eq!(nc.position(), Pt::new(10.0, -5.0));
+        assert_eq!(nc.st.skip, Some(Pt::new(10.0, -4.5)));
+        nc.set_position(Pt::new(1.0, 2.0));
+        assert_eq!(nc.position(), Pt::new(1.0, 2.0));
+    }
+
+    #[test]
+    fn offsets_outside_the_tables_are_zero() {
+        let mut nc = Nc::new(Machine::reference());
+        nc.st.geom[2] = [4.0, -1.0, 0.4];
+        nc.st.wear[2] = [0.5, 0.25, 0.0, 0.0];
+        // Offset 3 is index 2: 4 + 0.5 and -1 + 0.25.
+        assert_eq!(nc.tool_offset(3), (4.5, -0.75));
+        assert_eq!(nc.tool_offset(0), (0.0, 0.0));
+        assert_eq!(nc.tool_offset(10_000), (0.0, 0.0));
+    }
+}

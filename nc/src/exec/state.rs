@@ -1,0 +1,158 @@
+//! The state of the control between blocks: the position, offsets and
+//! spindle, the modal codes and the state of each feature.
+
+use crate::base::event::SpindleDir;
+use crate::base::gcode::Code;
+use crate::base::machine::Machine;
+use crate::base::point::Pt;
+use crate::modal::Modal;
+
+/// Everything a block can change and a later block can see.
+#[derive(Debug, Clone)]
+pub struct State {
+    /// The programmed point, local coordinates (mm).
+    pub pos: Pt,
+    /// The C angle in degrees (machine = work: the C axis has no offsets).
+    pub c: f64,
+    /// The block being executed programs C/H: its moves print `C=`.
+    pub c_block: bool,
+    /// The code in force in each modal group.
+    pub modal: Modal,
+    /// EXOFS, the six work offsets, the G50 shift, the G52 origin (all in
+    /// machine coordinates, r/z).
+    pub exofs: Pt,
+    pub work: [Pt; 6],
+    pub shift: Pt,
+    pub local: Pt,
+    /// Modal F as written (program units).
+    pub feed: f64,
+    /// The (F in mm, per-rev) last printed by `FEED`.
+    pub feed_printed: Option<(f64, bool)>,
+    /// Spindle: rpm (G97), surface speed m/min (G96), `G50 S` limit.
+    pub rpm: f64,
+    pub css: f64,
+    pub rpm_limit: Option<f64>,
+    pub spindle: SpindleDir,
+    pub tool: u32,
+    pub offset: u32,
+    /// Tool offset tables #2001… (wear X, Z, R, tip) and #2701… (geometry).
+    pub wear: [[f64; 4]; 32],
+    pub geom: [[f64; 3]; 32],
+    /// The last G31 skip position.
+    pub skip: Option<Pt>,
+    /// Virtual clock (#3001, ms): the sum of dwells.
+    pub clock_ms: f64,
+    /// Last value of B D E F H M N O S T (#4102 …), NaN when never set.
+    pub last: [f64; 26],
+    pub parts: f64,
+    /// Output signals UO0–UO15 (#1100…).
+    pub outputs: u32,
+    /// The last block ends in an exact stop (G09 in it, or G61 in force):
+    /// the runtime must not blend it into the next one.
+    pub exact_stop: bool,
+    /// The area stored stroke check 2 forbids while G22 is in force.
+    pub stroke2: Option<crate::exec::stroke::Area>,
+    pub parts_required: f64,
+    /// State of the single cycles and threads (cycles module).
+    pub cycles: crate::exec::cycles::CycleState,
+    /// State of G70–G73 (compound module).
+    pub compound: crate::exec::compound::CompoundState,
+    /// Pending corners (contour module).
+    pub contour: crate::exec::contour::ContourState,
+    /// Nose-radius compensation (comp module).
+    pub comp: crate::exec::comp::CompState,
+    /// G10/G11 modes and the tool-life table (data_setting module).
+    pub data: crate::exec::data_setting::DataState,
+}
+
+impl State {
+    pub fn power_on(m: &Machine) -> State {
+        let modal = Modal::power_on(m);
+        let c = &m.coords;
+        let p = |v: crate::base::machine::Xz| Pt::xz(v.x, v.z);
+        let mut wear = [[0.0; 4]; 32];
+        let mut geom = [[0.0; 3]; 32];
+        for o in &m.tools.offset {
+            if let Some(i) = (o.number as usize).checked_sub(1).filter(|&i| i < 32) {
+                wear[i] = [o.wear_x, o.wear_z, o.wear_radius, o.tip as f64];
+                geom[i] = [o.x, o.z, o.radius];
+            }
+        }
+        State {
+            pos: Pt::default(),
+            c: 0.0,
+            c_block: false,
+            modal,
+            exofs: p(c.exofs),
+            work: [p(c.g54), p(c.g55), p(c.g56), p(c.g57), p(c.g58), p(c.g59)],
+            shift: Pt::default(),
+            local: Pt::default(),
+            feed: 0.0,
+            feed_printed: None,
+            rpm: 0.0,
+            css: 0.0,
+            rpm_limit: None,
+            spindle: SpindleDir::Stop,
+            tool: 1,
+            offset: 0,
+            wear,
+            geom,
+            skip: None,
+            clock_ms: 0.0,
+            last: [f64::NAN; 26],
+            parts: 0.0,
+            outputs: 0,
+            exact_stop: false,
+            stroke2: None,
+            parts_required: 0.0,
+            cycles: Default::default(),
+            compound: Default::default(),
+            contour: Default::default(),
+            comp: Default::default(),
+            data: crate::exec::data_setting::DataState::power_on(m),
+        }
+    }
+
+    pub fn group(&self, g: u8) -> Code {
+        self.modal.group(g)
+    }
+
+    pub fn inch(&self) -> bool {
+        self.modal.inch()
+    }
+
+    pub fn per_rev(&self) -> bool {
+        self.modal.per_rev()
+    }
+
+    pub fn css_mode(&self) -> bool {
+        self.modal.css_mode()
+    }
+
+    /// Index 0..6 of the active work system (G54 = 0).
+    pub fn work_index(&self) -> usize {
+        self.modal.work_index()
+    }
+
+    /// The local zero in machine coordinates: EXOFS + G5x + G50 + G52.
+    pub fn origin(&self) -> Pt {
+        self.exofs
+            .add(self.work[self.work_index()])
+            .add(self.shift)
+            .add(self.local)
+    }
+
+    /// The tool point in machine coordinates.
+    pub fn machine_pos(&self) -> Pt {
+        self.pos.add(self.origin())
+    }
+
+    /// Length unit factor of the words (mm per program unit).
+    pub fn unit(&self) -> f64 {
+        if self.inch() {
+            25.4
+        } else {
+            1.0
+        }
+    }
+}

@@ -1,0 +1,11 @@
+//! Layer 4, the planners: geometry as pure functions of typed arguments
+//! (elements, points, the machine's settings) that return typed path
+//! elements and never touch the executing kernel. The executor (layer 5)
+//! calls them.
+
+pub mod angle;
+pub mod conic;
+pub mod corner;
+pub mod curve;
+pub mod elem;
+pub mod offset;
