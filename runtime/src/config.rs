@@ -106,6 +106,17 @@ pub struct Config {
     pub rapid_override: RapidOverride,
     pub spindle_override_pct: f64,
     pub single_block: bool,
+    /// M01 stops (the optional stop switch; the host may turn it at any
+    /// time, [`crate::Engine::set_optional_stop`]).
+    pub optional_stop: bool,
+    /// Dry run: cutting feeds run at [`Config::dry_run_feed`] × the feed
+    /// override instead of F (a live switch,
+    /// [`crate::Engine::set_dry_run`]).
+    pub dry_run: bool,
+    /// The dry-run rate, mm/s. The machine file has no key for it; it is
+    /// the path limit of cutting feeds (№027), so that the override knob
+    /// sets the speed of an air cut as the GSK's manual rate does.
+    pub dry_run_feed: f64,
     /// The skip signal is active at 0 (№185.7).
     pub skip_active_low: bool,
     /// Positions are commanded in these steps (machine.resolution_mm);
@@ -157,6 +168,9 @@ impl Default for Config {
             rapid_override: RapidOverride::P100,
             spindle_override_pct: 100.0,
             single_block: false,
+            optional_stop: true,
+            dry_run: false,
+            dry_run_feed: min(5000.0),
             skip_active_low: false,
             resolution_mm: 0.001,
         }
@@ -246,6 +260,9 @@ impl Config {
             rapid_override: RapidOverride::from_pct(m.operator.rapid_override_pct),
             spindle_override_pct: m.operator.spindle_override_pct.clamp(0.0, 200.0),
             single_block: m.operator.single_block,
+            optional_stop: m.operator.optional_stop,
+            dry_run: m.operator.dry_run,
+            dry_run_feed: per_s(m.feed.max_mm_min),
             skip_active_low: m.measure.signal_active_low,
             resolution_mm: m.machine.resolution_mm,
             ..d

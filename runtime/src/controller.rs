@@ -217,6 +217,39 @@ impl<P: Plc> Controller<P> {
         self.engine.set_single_block(on);
     }
 
+    /// Spindle override, percent (0–200).
+    pub fn set_spindle_override(&mut self, pct: f64) {
+        self.engine.set_spindle_override(pct);
+    }
+
+    /// The optional stop switch, live: M01 stops when the motion reaches
+    /// it with the switch on. From the first call on the VM hands every
+    /// M01 to the motion (a machine file with `optional_stop = false`
+    /// makes the VM drop them otherwise), so a host that wants the switch
+    /// live from the start calls this before the first
+    /// [`Controller::run_ahead`].
+    pub fn set_optional_stop(&mut self, on: bool) {
+        self.ra.machine.operator.optional_stop = true;
+        self.ra.vm.nc.machine.operator.optional_stop = true;
+        self.engine.set_optional_stop(on);
+    }
+
+    /// Dry run, live ([`Engine::set_dry_run`]).
+    pub fn set_dry_run(&mut self, on: bool) {
+        self.engine.set_dry_run(on);
+    }
+
+    /// The measured spindle for the coming period, from the host's
+    /// encoder ([`Engine::set_spindle_feedback`]).
+    pub fn set_spindle_feedback(&mut self, position_turns: f64, rpm: f64) {
+        self.engine.set_spindle_feedback(position_turns, rpm);
+    }
+
+    /// Back to the simulated spindle.
+    pub fn set_spindle_simulated(&mut self) {
+        self.engine.set_spindle_simulated();
+    }
+
     pub fn set_skip_input(&mut self, level: bool) {
         self.engine.set_skip_input(level);
     }

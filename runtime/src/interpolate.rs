@@ -218,6 +218,8 @@ pub struct Engine<P: Plc> {
     rapid_ovr: RapidOverride,
     hold: bool,
     single_block: bool,
+    optional_stop: bool,
+    dry_run: bool,
     cycle_start: bool,
     reset_req: bool,
     reset_done: bool,
@@ -279,6 +281,8 @@ impl<P: Plc> Engine<P> {
             rapid_ovr: cfg.rapid_override,
             hold: false,
             single_block: cfg.single_block,
+            optional_stop: cfg.optional_stop,
+            dry_run: cfg.dry_run,
             cycle_start: false,
             reset_req: false,
             reset_done: false,
@@ -367,6 +371,19 @@ impl<P: Plc> Engine<P> {
         self.spindle.override_factor = pct.clamp(0.0, 200.0) / 100.0;
     }
 
+    /// The host's measured spindle for the coming period (encoder
+    /// position in turns, signed; speed in rev/min, signed): from the
+    /// first call on, threads and feed per revolution follow it instead
+    /// of the simulated spindle ([`Spindle::set_measured`]).
+    pub fn set_spindle_feedback(&mut self, position_turns: f64, rpm: f64) {
+        self.spindle.set_measured(position_turns, rpm);
+    }
+
+    /// Back to the simulated spindle.
+    pub fn set_spindle_simulated(&mut self) {
+        self.spindle.set_simulated();
+    }
+
     /// Feed hold: the motion decelerates on its path and stands; cycle
     /// start resumes. Threads finish their chain first (dialect.md §4.3).
     pub fn feed_hold(&mut self) {
@@ -379,6 +396,25 @@ impl<P: Plc> Engine<P> {
 
     pub fn set_single_block(&mut self, on: bool) {
         self.single_block = on;
+    }
+
+    /// The optional stop switch, read when the motion reaches an M01:
+    /// off, the M01 passes without a stop. (The VM must hand every M01
+    /// over for this to work both ways: see
+    /// [`crate::Controller::set_optional_stop`].)
+    pub fn set_optional_stop(&mut self, on: bool) {
+        self.optional_stop = on;
+    }
+
+    /// Dry run: cutting feeds (not G31 skips, not threads, which stay on
+    /// the spindle) run at [`Config::dry_run_feed`] × the feed override,
+    /// feed per revolution included, so the spindle need not turn. The
+    /// rate applies at once, up to the speed each queued move was planned
+    /// for: moves queued after the switch are planned for the path limit
+    /// ([`Planner::set_dry_run`]), those queued before for their F.
+    pub fn set_dry_run(&mut self, on: bool) {
+        self.dry_run = on;
+        self.q.set_dry_run(on);
     }
 
     /// Reset: the motion decelerates to a stop, the queue is dropped, the
@@ -636,6 +672,9 @@ impl<P: Plc> Engine<P> {
                     }
                     self.finish_item();
                 }
+                Head::Pause(PauseKind::M01) if !self.optional_stop => {
+                    self.finish_item();
+                }
                 Head::Pause(k) => {
                     self.state = RunState::Stopped(k);
                     return;
@@ -827,7 +866,10 @@ impl<P: Plc> Engine<P> {
         };
         let skip = matches!(self.cur.kind, MoveKind::Skip(_));
         let mut v = f.f;
-        if f.per_rev {
+        if self.dry_run && !skip {
+            v = self.cfg.dry_run_feed;
+            self.stall_s = 0.0;
+        } else if f.per_rev {
             if self.spindle.stopped() {
                 self.stall_s += self.dt;
                 if self.stall_s >= self.cfg.spindle.stall_timeout_s && self.v == 0.0 {
@@ -851,6 +893,9 @@ impl<P: Plc> Engine<P> {
     fn feed_of(&self, k: usize) -> Option<f64> {
         let n = self.q.seg(k)?;
         match n.kind {
+            MoveKind::Feed(_) if self.dry_run => {
+                Some((self.cfg.dry_run_feed * self.feed_ovr).min(n.v_max))
+            }
             MoveKind::Feed(f) if !f.per_rev => Some((f.f * self.feed_ovr).min(n.v_max)),
             MoveKind::Feed(f) => {
                 Some((f.f * self.spindle.rpm().abs() / 60.0 * self.feed_ovr).min(n.v_max))

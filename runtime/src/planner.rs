@@ -199,6 +199,9 @@ pub struct Planner {
     queued_moves: usize,
     /// Moves queued since the last backward pass.
     pending: usize,
+    /// Dry run: feeds queued now may run up to the path limit, whatever
+    /// their F (the interpolator sets their speed).
+    dry_run: bool,
 }
 
 const PLACEHOLDER: Item = Item {
@@ -251,7 +254,16 @@ impl Planner {
             queued_s: 0.0,
             queued_moves: 0,
             pending: 0,
+            dry_run: cfg.dry_run,
         }
+    }
+
+    /// Dry run on or off for the feeds queued from now on: on, a feed is
+    /// planned for the path limit instead of its F, so the interpolator
+    /// may run it at the dry-run rate; moves queued before keep the
+    /// envelope of their F.
+    pub fn set_dry_run(&mut self, on: bool) {
+        self.dry_run = on;
     }
 
     pub fn capacity(&self) -> usize {
@@ -525,7 +537,8 @@ impl Planner {
                 }
             }
             MoveKind::Feed(f) | MoveKind::Skip(f) => {
-                let top = if f.per_rev {
+                let dry = self.dry_run && matches!(m.kind, MoveKind::Feed(_));
+                let top = if f.per_rev || dry {
                     cap
                 } else {
                     let over = if let MoveKind::Skip(_) = m.kind {

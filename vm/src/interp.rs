@@ -186,6 +186,12 @@ impl Vm {
         self.storage = Some(storage);
     }
 
+    /// The storage of #500–#999, taken out (a host that replaces the VM
+    /// after a reset hands it to the new one).
+    pub fn take_storage(&mut self) -> Option<Box<dyn Storage>> {
+        self.storage.take()
+    }
+
     /// Runs at most `budget` instructions.
     pub fn step(&mut self, budget: u64, sink: &mut dyn Sink) -> Status {
         if self.done {
