@@ -36,15 +36,13 @@ struct Slot {
     ptr: AtomicPtr<()>,
 }
 
-impl Slot {
-    const EMPTY: Slot = Slot {
+static TABLE: [Slot; CAPACITY] = [const {
+    Slot {
         generation: AtomicU32::new(0),
         kind: AtomicU8::new(0),
         ptr: AtomicPtr::new(core::ptr::null_mut()),
-    };
-}
-
-static TABLE: [Slot; CAPACITY] = [const { Slot::EMPTY }; CAPACITY];
+    }
+}; CAPACITY];
 
 fn encode(generation: u32, kind: Kind, slot: usize) -> u64 {
     (u64::from(generation) << 32) | ((kind as u64) << 16) | (slot as u64 + 1)

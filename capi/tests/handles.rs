@@ -64,8 +64,11 @@ fn set_point() -> GbcSetPoint {
     }
 }
 
+/// An entry point called on a controller handle.
+type Call = Box<dyn Fn(GbcController) -> GbcStatus>;
+
 /// Every entry point that takes a controller, with valid other arguments.
-fn controller_calls() -> Vec<(&'static str, Box<dyn Fn(GbcController) -> GbcStatus>)> {
+fn controller_calls() -> Vec<(&'static str, Call)> {
     let prog = module("O1\nM30\n");
     vec![
         (
