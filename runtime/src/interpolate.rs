@@ -26,6 +26,7 @@ use crate::spindle::Spindle;
 pub enum RunState {
     /// Waiting for the first cycle start.
     Idle,
+    /// Moving or executing.
     Running,
     /// Feed hold: stopped on the path, cycle start resumes.
     Held,
@@ -34,6 +35,7 @@ pub enum RunState {
     /// The queue ran empty before the program ended (the host did not run
     /// the program ahead); the axes stand.
     Starved,
+    /// The program ended.
     Ended,
     /// A run-time alarm (the code of canon.md, e.g. 7003); reset clears it.
     Alarm(u32),
@@ -43,9 +45,13 @@ pub enum RunState {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Motion {
     #[default]
+    /// Standing.
     None,
+    /// G00.
     Rapid,
+    /// A cutting feed.
     Feed,
+    /// A spindle-synchronised thread.
     Thread,
 }
 
@@ -57,10 +63,12 @@ pub struct SetPoint {
     /// The programmed point in work coordinates, X as a diameter (as the
     /// canon prints positions).
     pub x: f64,
+    /// Programmed Z in work coordinates.
     pub z: f64,
     /// The axis set points in machine coordinates (X as a diameter), tool
     /// length offset included: what the drives get.
     pub axis_x: f64,
+    /// The Z axis set point in machine coordinates.
     pub axis_z: f64,
     /// Signed actual spindle speed (+ for M03), rev/min.
     pub spindle_rpm: f64,
@@ -73,6 +81,7 @@ pub struct SetPoint {
     pub feed: f64,
     /// Source line of the block being executed.
     pub line: u32,
+    /// The kind of motion of the period.
     pub motion: Motion,
     /// The active tool number.
     pub tool: u32,
@@ -298,10 +307,12 @@ impl<P: Plc> Engine<P> {
         }
     }
 
+    /// The settings the engine runs with.
     pub fn config(&self) -> &Config {
         &self.cfg
     }
 
+    /// The planner queue.
     pub fn planner(&self) -> &Planner {
         &self.q
     }
@@ -324,22 +335,27 @@ impl<P: Plc> Engine<P> {
         self.q.replan();
     }
 
+    /// Marks the end of NC block `block` in the queue (single block stops there).
     pub fn mark_block_end(&mut self, block: u32) {
         self.q.mark_block_end(block);
     }
 
+    /// The host's PLC.
     pub fn plc(&self) -> &P {
         &self.plc
     }
 
+    /// The host's PLC, mutable.
     pub fn plc_mut(&mut self) -> &mut P {
         &mut self.plc
     }
 
+    /// The spindle (simulated or measured).
     pub fn spindle(&self) -> &Spindle {
         &self.spindle
     }
 
+    /// What the machine is doing.
     pub fn state(&self) -> RunState {
         self.state
     }
@@ -354,6 +370,7 @@ impl<P: Plc> Engine<P> {
         self.pos
     }
 
+    /// Time since power-on: periods × the period, s.
     pub fn time_s(&self) -> f64 {
         self.ticks as f64 * self.dt
     }
@@ -363,10 +380,12 @@ impl<P: Plc> Engine<P> {
         self.feed_ovr = pct.clamp(0.0, 150.0) / 100.0;
     }
 
+    /// Rapid override position.
     pub fn set_rapid_override(&mut self, r: RapidOverride) {
         self.rapid_ovr = r;
     }
 
+    /// Spindle override, percent (0–200).
     pub fn set_spindle_override(&mut self, pct: f64) {
         self.spindle.override_factor = pct.clamp(0.0, 200.0) / 100.0;
     }
@@ -390,10 +409,12 @@ impl<P: Plc> Engine<P> {
         self.hold = true;
     }
 
+    /// Cycle start: starts the program, resumes after feed hold or a stop.
     pub fn cycle_start(&mut self) {
         self.cycle_start = true;
     }
 
+    /// Single block: stop at the end of every block.
     pub fn set_single_block(&mut self, on: bool) {
         self.single_block = on;
     }

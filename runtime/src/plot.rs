@@ -12,6 +12,7 @@ use core::fmt::Write;
 const KEEP_MM: f64 = 0.02;
 
 #[derive(Debug, Clone, Default)]
+/// The XZ toolpath, collected period by period and drawn as SVG.
 pub struct Plot {
     runs: Vec<(Motion, Vec<(f64, f64)>)>,
     /// The last set point, kept even when dropped, to end each run on it.
@@ -19,6 +20,7 @@ pub struct Plot {
 }
 
 impl Plot {
+    /// An empty plot.
     pub fn new() -> Plot {
         Plot::default()
     }

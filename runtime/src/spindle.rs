@@ -13,6 +13,7 @@ use crate::math::PI;
 use crate::plc::SpindleDir;
 
 #[derive(Debug, Clone)]
+/// The spindle's state: direction, programmed speed, actual speed and angle.
 pub struct Spindle {
     cfg: SpindleConfig,
     dir: SpindleDir,
@@ -44,6 +45,7 @@ struct Measured {
 }
 
 impl Spindle {
+    /// A stopped spindle with this override (percent).
     pub fn new(cfg: SpindleConfig, override_pct: f64) -> Spindle {
         Spindle {
             cfg,
@@ -90,6 +92,7 @@ impl Spindle {
         self.measured.is_some()
     }
 
+    /// M03, M04 or M05.
     pub fn set_dir(&mut self, d: SpindleDir) {
         self.dir = d;
     }
@@ -107,10 +110,12 @@ impl Spindle {
         }
     }
 
+    /// Constant surface speed (G96) is on.
     pub fn css(&self) -> bool {
         self.css
     }
 
+    /// The G96 surface speed, m/min.
     pub fn surface_speed(&self) -> f64 {
         self.v_css
     }

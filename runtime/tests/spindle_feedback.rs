@@ -20,11 +20,14 @@ fn rpm_at(t: f64) -> f64 {
     }
 }
 
+/// The encoder positions a host fed, one per period.
+type Fed = std::rc::Rc<std::cell::RefCell<Vec<f64>>>;
+
 /// A host that integrates `rpm_at` itself and feeds position and speed
 /// before every period; returns the positions it fed, one per period.
 fn encoder_host() -> (
     impl FnMut(&mut Controller<runtime::AutoAck>, &SetPoint),
-    std::rc::Rc<std::cell::RefCell<Vec<f64>>>,
+    Fed,
 ) {
     let fed = std::rc::Rc::new(std::cell::RefCell::new(vec![0.0]));
     let log = fed.clone();
