@@ -106,13 +106,16 @@ struct ModalCall {
 /// and the NC kernel that gives its blocks their meaning.
 ///
 /// ```
-/// let src = "O0001\nG00 X10 Z5\nM30\n";
-/// let out = compiler::compile("t.nc", src.as_bytes(), &compiler::Options::default());
-/// let module = out.module.expect("compiles");
-/// let mut vm = vm::Vm::new(module, nc::Machine::reference());
-/// let mut events: Vec<nc::Event> = Vec::new();
-/// assert_eq!(vm.run(&mut events), vm::Status::Done);
-/// assert!(events.iter().any(|e| matches!(e, nc::Event::Rapid { .. })));
+/// /// Runs a verified module (`gbcc`'s output, read with
+/// /// `isa::Module::from_bytes`) to its end and returns its canon.
+/// fn canon(module: isa::Module) -> Result<Vec<nc::Event>, String> {
+///     let mut vm = vm::Vm::new(module, nc::Machine::reference());
+///     let mut events: Vec<nc::Event> = Vec::new();
+///     match vm.run(&mut events) {
+///         vm::Status::Alarm(a) => Err(a.header()),
+///         _ => Ok(events),
+///     }
+/// }
 /// ```
 pub struct Vm {
     module: Module,
