@@ -38,7 +38,7 @@
 //! ```
 
 #![no_std]
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 
 extern crate alloc;
 

@@ -9,43 +9,63 @@ use crate::plc::PlcFunction;
 /// last command of its NC block (single block stops there).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Tag {
+    /// Index of the source file in the module's file table.
     pub file: u16,
+    /// Source line (1-based).
     pub line: u32,
+    /// Source column (1-based).
     pub col: u32,
     /// Running number of the NC block.
     pub block: u32,
+    /// The last command of its NC block (single block stops after it).
     pub block_end: bool,
 }
 
 /// The shape of a move; its start is where the previous move ended.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Path {
+    /// A straight line.
     Line {
+        /// End point (machine axes, slide units).
         to: V2,
     },
+    /// A circular arc (G02/G03).
     Arc {
+        /// End point.
         to: V2,
+        /// Centre point.
         centre: V2,
+        /// Counter-clockwise (G03).
         ccw: bool,
     },
     /// G6.2/G6.3 (semi-axes in mm, axis angle in radians from +Z).
     Ellipse {
+        /// End point.
         to: V2,
+        /// Semi-axis along the ellipse's axis, mm.
         a: f64,
+        /// The other semi-axis, mm.
         b: f64,
+        /// Axis angle, radians from +Z.
         q: f64,
+        /// Counter-clockwise (G6.3).
         ccw: bool,
     },
     /// G7.2/G7.3 (p in mm, axis angle in radians from +Z).
     Parabola {
+        /// End point.
         to: V2,
+        /// Parameter p (focal distance × 2), mm.
         p: f64,
+        /// Axis angle, radians from +Z.
         q: f64,
+        /// Counter-clockwise (G7.3).
         ccw: bool,
     },
 }
 
 impl Path {
+    /// The end point of the path.
     pub fn to(&self) -> V2 {
         match *self {
             Path::Line { to }
@@ -61,6 +81,7 @@ impl Path {
 pub struct Feed {
     /// mm/s, or mm/rev with `per_rev`.
     pub f: f64,
+    /// F is per spindle revolution (G99), else per minute (G98).
     pub per_rev: bool,
 }
 
@@ -76,6 +97,7 @@ pub struct Thread {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
+/// How a move runs.
 pub enum MoveKind {
     /// G00: each axis at its own rapid rate (a dog-leg).
     Rapid,
@@ -91,8 +113,11 @@ pub enum MoveKind {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
+/// A move: how it runs and its shape.
 pub struct Move {
+    /// Rapid, feed, skip, thread …
     pub kind: MoveKind,
+    /// The shape and end point.
     pub path: Path,
     /// Machine axes minus the programmed point (work zero + tool offset),
     /// to print work coordinates.
@@ -105,7 +130,9 @@ pub struct Move {
 /// Why the program waits for cycle start.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PauseKind {
+    /// M00: program stop.
     M00,
+    /// M01: optional stop (stops only with the switch on).
     M01,
     /// `#3006` message (the host shows the text).
     Message(u32),
@@ -114,7 +141,9 @@ pub enum PauseKind {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
+/// What the program side hands to the motion, in program order.
 pub enum Command {
+    /// A move.
     Move(Move),
     /// G04, seconds.
     Dwell(f64),

@@ -16,17 +16,22 @@ pub struct Axis {
     pub jerk: f64,
     /// Travel check (E7002) on machine positions, slide units.
     pub soft_limits: bool,
+    /// Lower travel limit, slide units.
     pub min: f64,
+    /// Upper travel limit, slide units.
     pub max: f64,
 }
 
 /// The simulated spindle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpindleConfig {
+    /// Lowest speed of a turning analog spindle, rev/min.
     pub min_rpm: f64,
+    /// Highest speed, rev/min.
     pub max_rpm: f64,
     /// rev/min per second.
     pub accel_rpm_s: f64,
+    /// Encoder pulses per turn.
     pub encoder_ppr: u32,
     /// A feed-per-revolution move that waits this long for a stopped
     /// spindle raises E7003.
@@ -38,8 +43,11 @@ pub struct SpindleConfig {
 pub enum RapidOverride {
     /// F0: a fixed creep rate, [`Config::rapid_f0`] of each axis's rapid.
     F0,
+    /// 25 %.
     P25,
+    /// 50 %.
     P50,
+    /// 100 %.
     P100,
 }
 
@@ -58,6 +66,7 @@ impl RapidOverride {
         }
     }
 
+    /// The factor on the rapid rate (`f0`: the F0 share, [`Config::rapid_f0`]).
     pub fn factor(self, f0: f64) -> f64 {
         match self {
             RapidOverride::F0 => f0,
@@ -69,20 +78,25 @@ impl RapidOverride {
 }
 
 #[derive(Debug, Clone, PartialEq)]
+/// The runtime's settings: axes, spindle, look-ahead and the operator panel's power-on positions.
 pub struct Config {
     /// Interpolation period, s (machine.interpolation_period_ms).
     pub period_s: f64,
+    /// The X slide (radial units).
     pub x: Axis,
+    /// The Z slide.
     pub z: Axis,
     /// The optional C axis in degrees (deg/s, deg/s², deg/s³); `None`
     /// on a machine without one.
     pub c: Option<Axis>,
     /// Path limit of cutting feeds (№027), mm/s.
     pub path_max_feed: f64,
+    /// The spindle.
     pub spindle: SpindleConfig,
     /// Look-ahead: at least this many blocks and this much motion are kept
     /// planned when the program allows (machine.md §3).
     pub lookahead_blocks: usize,
+    /// ... and this many seconds of motion.
     pub lookahead_s: f64,
     /// Items the queue holds at most (allocated once).
     pub queue_capacity: usize,
@@ -103,9 +117,23 @@ pub struct Config {
     pub rapid_f0: f64,
     /// Power-on positions of the operator panel.
     pub feed_override_pct: f64,
+    /// Rapid override at power-on.
     pub rapid_override: RapidOverride,
+    /// Spindle override at power-on, percent.
     pub spindle_override_pct: f64,
+    /// Single block at power-on.
     pub single_block: bool,
+    /// M01 stops (the optional stop switch; the host may turn it at any
+    /// time, [`crate::Engine::set_optional_stop`]).
+    pub optional_stop: bool,
+    /// Dry run: cutting feeds run at [`Config::dry_run_feed`] × the feed
+    /// override instead of F (a live switch,
+    /// [`crate::Engine::set_dry_run`]).
+    pub dry_run: bool,
+    /// The dry-run rate, mm/s. The machine file has no key for it; it is
+    /// the path limit of cutting feeds (№027), so that the override knob
+    /// sets the speed of an air cut as the GSK's manual rate does.
+    pub dry_run_feed: f64,
     /// The skip signal is active at 0 (№185.7).
     pub skip_active_low: bool,
     /// Positions are commanded in these steps (machine.resolution_mm);
@@ -157,6 +185,9 @@ impl Default for Config {
             rapid_override: RapidOverride::P100,
             spindle_override_pct: 100.0,
             single_block: false,
+            optional_stop: true,
+            dry_run: false,
+            dry_run_feed: min(5000.0),
             skip_active_low: false,
             resolution_mm: 0.001,
         }
@@ -246,6 +277,9 @@ impl Config {
             rapid_override: RapidOverride::from_pct(m.operator.rapid_override_pct),
             spindle_override_pct: m.operator.spindle_override_pct.clamp(0.0, 200.0),
             single_block: m.operator.single_block,
+            optional_stop: m.operator.optional_stop,
+            dry_run: m.operator.dry_run,
+            dry_run_feed: per_s(m.feed.max_mm_min),
             skip_active_low: m.measure.signal_active_low,
             resolution_mm: m.machine.resolution_mm,
             ..d

@@ -65,10 +65,15 @@ impl core::error::Error for LoadError {}
 /// An alarm with its place, as `gbvm` reports it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AlarmInfo {
+    /// The canon's alarm code (7003 for E7003, 3005 for `#3000 = 5`).
     pub code: u32,
+    /// The alarm text.
     pub message: String,
+    /// The source file of the block that raised it.
     pub file: String,
+    /// Its line (1-based).
     pub line: u32,
+    /// Its column (1-based).
     pub col: u32,
 }
 
@@ -101,6 +106,23 @@ pub fn runtime_alarm_message(code: u32) -> &'static str {
 }
 
 /// A program running on a machine.
+///
+/// ```
+/// use runtime::{Controller, RunState};
+///
+/// let src = "O0001\nG00 X10 Z-5\nM30\n";
+/// let out = compiler::compile("t.nc", src.as_bytes(), &compiler::Options::default());
+/// let bytes = out.module.expect("compiles").to_bytes();
+/// let mut ctl = Controller::load(&bytes, nc::Machine::reference()).expect("verifies");
+/// ctl.cycle_start();
+/// let mut last = None;
+/// while !matches!(ctl.state(), RunState::Ended | RunState::Alarm(_)) {
+///     ctl.run_ahead(); // ordinary context: the VM, ahead of the motion
+///     last = Some(ctl.tick()); // real-time context: one period
+/// }
+/// let sp = last.expect("ticked");
+/// assert_eq!((sp.x, sp.z), (10.0, -5.0)); // a stop lands on its end point
+/// ```
 pub struct Controller<P: Plc = AutoAck> {
     engine: Engine<P>,
     ra: RunAhead,
@@ -158,6 +180,7 @@ impl<P: Plc> Controller<P> {
         self.ra.set_repeat(n);
     }
 
+    /// The engine (planner, interpolator, spindle).
     pub fn engine(&self) -> &Engine<P> {
         &self.engine
     }
@@ -167,14 +190,17 @@ impl<P: Plc> Controller<P> {
         &mut self.engine
     }
 
+    /// The VM running the program.
     pub fn vm(&self) -> &Vm {
         &self.ra.vm
     }
 
+    /// The VM, for its variables and settings (e.g. loading #500–#999).
     pub fn vm_mut(&mut self) -> &mut Vm {
         &mut self.ra.vm
     }
 
+    /// The machine the program runs on.
     pub fn machine(&self) -> &Machine {
         &self.ra.machine
     }
@@ -184,6 +210,7 @@ impl<P: Plc> Controller<P> {
         self.ra.blocks
     }
 
+    /// What the machine is doing.
     pub fn state(&self) -> RunState {
         self.engine.state()
     }
@@ -193,30 +220,70 @@ impl<P: Plc> Controller<P> {
         self.ra.message(n)
     }
 
+    /// Feed override, percent (0–150).
     pub fn set_feed_override(&mut self, pct: f64) {
         self.engine.set_feed_override(pct);
     }
 
+    /// Rapid override position.
     pub fn set_rapid_override(&mut self, r: RapidOverride) {
         self.engine.set_rapid_override(r);
     }
 
+    /// Feed hold: the motion decelerates on its path and stands.
     pub fn feed_hold(&mut self) {
         self.engine.feed_hold();
     }
 
+    /// Cycle start: starts the program, resumes after feed hold or a stop.
     pub fn cycle_start(&mut self) {
         self.engine.cycle_start();
     }
 
+    /// Reset: the motion stops, the spindle stops, an alarm clears and the program goes back to its start.
     pub fn reset(&mut self) {
         self.engine.reset();
     }
 
+    /// Single block: stop at the end of every block.
     pub fn set_single_block(&mut self, on: bool) {
         self.engine.set_single_block(on);
     }
 
+    /// Spindle override, percent (0–200).
+    pub fn set_spindle_override(&mut self, pct: f64) {
+        self.engine.set_spindle_override(pct);
+    }
+
+    /// The optional stop switch, live: M01 stops when the motion reaches
+    /// it with the switch on. From the first call on the VM hands every
+    /// M01 to the motion (a machine file with `optional_stop = false`
+    /// makes the VM drop them otherwise), so a host that wants the switch
+    /// live from the start calls this before the first
+    /// [`Controller::run_ahead`].
+    pub fn set_optional_stop(&mut self, on: bool) {
+        self.ra.machine.operator.optional_stop = true;
+        self.ra.vm.nc.machine.operator.optional_stop = true;
+        self.engine.set_optional_stop(on);
+    }
+
+    /// Dry run, live ([`Engine::set_dry_run`]).
+    pub fn set_dry_run(&mut self, on: bool) {
+        self.engine.set_dry_run(on);
+    }
+
+    /// The measured spindle for the coming period, from the host's
+    /// encoder ([`Engine::set_spindle_feedback`]).
+    pub fn set_spindle_feedback(&mut self, position_turns: f64, rpm: f64) {
+        self.engine.set_spindle_feedback(position_turns, rpm);
+    }
+
+    /// Back to the simulated spindle.
+    pub fn set_spindle_simulated(&mut self) {
+        self.engine.set_spindle_simulated();
+    }
+
+    /// The level of the host input wired to the skip signal (G31).
     pub fn set_skip_input(&mut self, level: bool) {
         self.engine.set_skip_input(level);
     }

@@ -9,39 +9,63 @@
 use crate::math::{is_pos, rem_euclid, sqrt, wrap_pi, TAU, V2};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
+/// An exact curve, parametrised by λ ∈ [0, 1] over its length.
 pub enum Curve {
     /// From `p0` by `d`.
-    Line { p0: V2, d: V2 },
+    Line {
+        /// Start.
+        p0: V2,
+        /// Start to end.
+        d: V2,
+    },
     /// Centre `c`; radius `r0 + dr·λ` (an end point off the circle by up
     /// to the arc tolerance makes a slight spiral, so both ends are
     /// exact); direction from the centre `u0` turned by `dth·λ` (dth > 0:
     /// CCW), `u1` at the end. Kept as vectors, not angles: a move needs
     /// one `atan2` to set up and one `sin`/`cos` pair per period.
     Arc {
+        /// Centre.
         c: V2,
+        /// Unit direction from the centre at the start.
         u0: V2,
+        /// ... at the end.
         u1: V2,
+        /// Radius at the start.
         r0: f64,
+        /// Radius change over the arc.
         dr: f64,
+        /// Swept angle, radians (> 0: CCW).
         dth: f64,
     },
     /// `c + u·a·cos t + w·b·sin t`, `t = t0 + dt·λ`, `w` = `u` turned +90°.
     Ellipse {
+        /// Centre.
         c: V2,
+        /// Unit direction of the `a` axis.
         u: V2,
+        /// Semi-axis along `u`.
         a: f64,
+        /// Semi-axis across `u`.
         b: f64,
+        /// Parameter at the start.
         t0: f64,
+        /// Parameter change over the curve.
         dt: f64,
     },
     /// Axis `u`, vertex at local (x0, y0) from `o`: local y = `yend·λ`,
     /// x = x0 + (y − y0)² / 2p.
     Parabola {
+        /// Origin of the local frame.
         o: V2,
+        /// Unit direction of the axis.
         u: V2,
+        /// Parameter p.
         p: f64,
+        /// Local x of the vertex.
         x0: f64,
+        /// Local y of the vertex.
         y0: f64,
+        /// Local y at the end.
         yend: f64,
     },
 }
@@ -57,6 +81,7 @@ fn turn(u: V2, a: f64) -> V2 {
 }
 
 impl Curve {
+    /// The straight line from `from` to `to`.
     pub fn line(from: V2, to: V2) -> Curve {
         Curve::Line {
             p0: from,
@@ -158,6 +183,7 @@ impl Curve {
         })
     }
 
+    /// The point at parameter `lam` (0: start, 1: end).
     pub fn point(&self, lam: f64) -> V2 {
         match *self {
             Curve::Line { p0, d } => p0 + d * lam,

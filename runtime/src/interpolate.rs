@@ -26,6 +26,7 @@ use crate::spindle::Spindle;
 pub enum RunState {
     /// Waiting for the first cycle start.
     Idle,
+    /// Moving or executing.
     Running,
     /// Feed hold: stopped on the path, cycle start resumes.
     Held,
@@ -34,6 +35,7 @@ pub enum RunState {
     /// The queue ran empty before the program ended (the host did not run
     /// the program ahead); the axes stand.
     Starved,
+    /// The program ended.
     Ended,
     /// A run-time alarm (the code of canon.md, e.g. 7003); reset clears it.
     Alarm(u32),
@@ -43,9 +45,13 @@ pub enum RunState {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Motion {
     #[default]
+    /// Standing.
     None,
+    /// G00.
     Rapid,
+    /// A cutting feed.
     Feed,
+    /// A spindle-synchronised thread.
     Thread,
 }
 
@@ -57,10 +63,12 @@ pub struct SetPoint {
     /// The programmed point in work coordinates, X as a diameter (as the
     /// canon prints positions).
     pub x: f64,
+    /// Programmed Z in work coordinates.
     pub z: f64,
     /// The axis set points in machine coordinates (X as a diameter), tool
     /// length offset included: what the drives get.
     pub axis_x: f64,
+    /// The Z axis set point in machine coordinates.
     pub axis_z: f64,
     /// Signed actual spindle speed (+ for M03), rev/min.
     pub spindle_rpm: f64,
@@ -76,6 +84,7 @@ pub struct SetPoint {
     /// Its source file: an index into the module's file table
     /// (`isa::Module::files`; 0 is the main program's file).
     pub file: u16,
+    /// The kind of motion of the period.
     pub motion: Motion,
     /// The active tool number.
     pub tool: u32,
@@ -221,6 +230,8 @@ pub struct Engine<P: Plc> {
     rapid_ovr: RapidOverride,
     hold: bool,
     single_block: bool,
+    optional_stop: bool,
+    dry_run: bool,
     cycle_start: bool,
     reset_req: bool,
     reset_done: bool,
@@ -282,6 +293,8 @@ impl<P: Plc> Engine<P> {
             rapid_ovr: cfg.rapid_override,
             hold: false,
             single_block: cfg.single_block,
+            optional_stop: cfg.optional_stop,
+            dry_run: cfg.dry_run,
             cycle_start: false,
             reset_req: false,
             reset_done: false,
@@ -297,10 +310,12 @@ impl<P: Plc> Engine<P> {
         }
     }
 
+    /// The settings the engine runs with.
     pub fn config(&self) -> &Config {
         &self.cfg
     }
 
+    /// The planner queue.
     pub fn planner(&self) -> &Planner {
         &self.q
     }
@@ -323,22 +338,27 @@ impl<P: Plc> Engine<P> {
         self.q.replan();
     }
 
+    /// Marks the end of NC block `block` in the queue (single block stops there).
     pub fn mark_block_end(&mut self, block: u32) {
         self.q.mark_block_end(block);
     }
 
+    /// The host's PLC.
     pub fn plc(&self) -> &P {
         &self.plc
     }
 
+    /// The host's PLC, mutable.
     pub fn plc_mut(&mut self) -> &mut P {
         &mut self.plc
     }
 
+    /// The spindle (simulated or measured).
     pub fn spindle(&self) -> &Spindle {
         &self.spindle
     }
 
+    /// What the machine is doing.
     pub fn state(&self) -> RunState {
         self.state
     }
@@ -353,6 +373,7 @@ impl<P: Plc> Engine<P> {
         self.pos
     }
 
+    /// Time since power-on: periods × the period, s.
     pub fn time_s(&self) -> f64 {
         self.ticks as f64 * self.dt
     }
@@ -362,12 +383,27 @@ impl<P: Plc> Engine<P> {
         self.feed_ovr = pct.clamp(0.0, 150.0) / 100.0;
     }
 
+    /// Rapid override position.
     pub fn set_rapid_override(&mut self, r: RapidOverride) {
         self.rapid_ovr = r;
     }
 
+    /// Spindle override, percent (0–200).
     pub fn set_spindle_override(&mut self, pct: f64) {
         self.spindle.override_factor = pct.clamp(0.0, 200.0) / 100.0;
+    }
+
+    /// The host's measured spindle for the coming period (encoder
+    /// position in turns, signed; speed in rev/min, signed): from the
+    /// first call on, threads and feed per revolution follow it instead
+    /// of the simulated spindle ([`Spindle::set_measured`]).
+    pub fn set_spindle_feedback(&mut self, position_turns: f64, rpm: f64) {
+        self.spindle.set_measured(position_turns, rpm);
+    }
+
+    /// Back to the simulated spindle.
+    pub fn set_spindle_simulated(&mut self) {
+        self.spindle.set_simulated();
     }
 
     /// Feed hold: the motion decelerates on its path and stands; cycle
@@ -376,12 +412,33 @@ impl<P: Plc> Engine<P> {
         self.hold = true;
     }
 
+    /// Cycle start: starts the program, resumes after feed hold or a stop.
     pub fn cycle_start(&mut self) {
         self.cycle_start = true;
     }
 
+    /// Single block: stop at the end of every block.
     pub fn set_single_block(&mut self, on: bool) {
         self.single_block = on;
+    }
+
+    /// The optional stop switch, read when the motion reaches an M01:
+    /// off, the M01 passes without a stop. (The VM must hand every M01
+    /// over for this to work both ways: see
+    /// [`crate::Controller::set_optional_stop`].)
+    pub fn set_optional_stop(&mut self, on: bool) {
+        self.optional_stop = on;
+    }
+
+    /// Dry run: cutting feeds (not G31 skips, not threads, which stay on
+    /// the spindle) run at [`Config::dry_run_feed`] × the feed override,
+    /// feed per revolution included, so the spindle need not turn. The
+    /// rate applies at once, up to the speed each queued move was planned
+    /// for: moves queued after the switch are planned for the path limit
+    /// ([`Planner::set_dry_run`]), those queued before for their F.
+    pub fn set_dry_run(&mut self, on: bool) {
+        self.dry_run = on;
+        self.q.set_dry_run(on);
     }
 
     /// Reset: the motion decelerates to a stop, the queue is dropped, the
@@ -640,6 +697,9 @@ impl<P: Plc> Engine<P> {
                     }
                     self.finish_item();
                 }
+                Head::Pause(PauseKind::M01) if !self.optional_stop => {
+                    self.finish_item();
+                }
                 Head::Pause(k) => {
                     self.state = RunState::Stopped(k);
                     return;
@@ -831,7 +891,10 @@ impl<P: Plc> Engine<P> {
         };
         let skip = matches!(self.cur.kind, MoveKind::Skip(_));
         let mut v = f.f;
-        if f.per_rev {
+        if self.dry_run && !skip {
+            v = self.cfg.dry_run_feed;
+            self.stall_s = 0.0;
+        } else if f.per_rev {
             if self.spindle.stopped() {
                 self.stall_s += self.dt;
                 if self.stall_s >= self.cfg.spindle.stall_timeout_s && self.v == 0.0 {
@@ -855,6 +918,9 @@ impl<P: Plc> Engine<P> {
     fn feed_of(&self, k: usize) -> Option<f64> {
         let n = self.q.seg(k)?;
         match n.kind {
+            MoveKind::Feed(_) if self.dry_run => {
+                Some((self.cfg.dry_run_feed * self.feed_ovr).min(n.v_max))
+            }
             MoveKind::Feed(f) if !f.per_rev => Some((f.f * self.feed_ovr).min(n.v_max)),
             MoveKind::Feed(f) => {
                 Some((f.f * self.spindle.rpm().abs() / 60.0 * self.feed_ovr).min(n.v_max))

@@ -33,6 +33,7 @@
 //! configuration give bit-identical set points on every host.
 
 #![no_std]
+#![deny(missing_docs)]
 
 extern crate alloc;
 #[cfg(feature = "std")]

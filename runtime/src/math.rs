@@ -9,13 +9,17 @@ use core::ops::{Add, Mul, Neg, Sub};
 /// G03 (CCW) turns the angle up.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct V2 {
+    /// Radial coordinate (X as a radius).
     pub r: f64,
+    /// Z.
     pub z: f64,
 }
 
 impl V2 {
+    /// The origin.
     pub const ZERO: V2 = V2 { r: 0.0, z: 0.0 };
 
+    /// A vector from radius and Z.
     pub const fn new(r: f64, z: f64) -> V2 {
         V2 { r, z }
     }
@@ -30,10 +34,12 @@ impl V2 {
         self.r * 2.0
     }
 
+    /// Dot product.
     pub fn dot(self, o: V2) -> f64 {
         self.r * o.r + self.z * o.z
     }
 
+    /// Euclidean length.
     pub fn norm(self) -> f64 {
         // No overflow to fear at machine scales; sqrt is exact IEEE.
         libm::sqrt(self.r * self.r + self.z * self.z)
@@ -73,6 +79,7 @@ impl V2 {
         self.r.abs().max(self.z.abs())
     }
 
+    /// Both coordinates are finite.
     pub fn is_finite(self) -> bool {
         self.r.is_finite() && self.z.is_finite()
     }
@@ -124,11 +131,14 @@ pub fn is_pos(v: f64) -> bool {
     v > 0.0
 }
 
+/// Square root (`libm`, the same on every host).
 pub fn sqrt(v: f64) -> f64 {
     libm::sqrt(v)
 }
 
+/// π.
 pub const PI: f64 = core::f64::consts::PI;
+/// 2π.
 pub const TAU: f64 = core::f64::consts::TAU;
 
 pub use nc::geom::floor;

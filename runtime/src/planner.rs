@@ -40,12 +40,17 @@ use alloc::vec::Vec;
 /// A move ready for interpolation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Segment {
+    /// Rapid, feed, skip, thread …
     pub kind: MoveKind,
+    /// The exact curve.
     pub curve: Curve,
+    /// Start (machine axes, slide units).
     pub from: V2,
+    /// End.
     pub to: V2,
     /// C angle at both ends, degrees (equal when C does not turn).
     pub c0: f64,
+    /// ... and at the end.
     pub c1: f64,
     /// Path length: XZ, or the combined XZ + C vector when C turns.
     pub len: f64,
@@ -68,9 +73,11 @@ pub struct Segment {
     pub v_exit: f64,
     /// Unit tangents at both ends.
     pub t0: V2,
+    /// ... at the end.
     pub t1: V2,
     /// Threads: Z is the long axis, and the long axis's travel.
     pub long_z: bool,
+    /// ... and the long axis's travel.
     pub long_len: f64,
     /// Estimated duration at 100 % (for the look-ahead horizon).
     pub est_s: f64,
@@ -126,25 +133,35 @@ impl Segment {
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ItemKind {
+    /// A move.
     Move(Segment),
+    /// G04: seconds.
     Dwell(f64),
+    /// An M, S or T function for the PLC.
     Plc(PlcFunction),
+    /// A stop: M00, M01, a message, single block.
     Pause(PauseKind),
     /// G22/G23: the area the axes may not enter from here on.
     Stroke(Option<nc::stroke::Area>),
+    /// The program ends.
     End,
+    /// The program raised an alarm (its code).
     Alarm(u32),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
+/// One queue entry with its source place.
 pub struct Item {
+    /// What it is.
     pub kind: ItemKind,
+    /// Where it comes from.
     pub tag: Tag,
     /// Machine axes minus the programmed point while this item runs.
     pub shift: V2,
 }
 
 impl Item {
+    /// The move, if the item is one.
     pub fn segment(&self) -> Option<&Segment> {
         match &self.kind {
             ItemKind::Move(s) => Some(s),
@@ -160,11 +177,13 @@ pub struct Full;
 /// What a push did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Pushed {
+    /// Queued.
     Queued,
     /// A move of zero length: nothing to do.
     Empty,
 }
 
+/// The look-ahead queue: commands in, planned speed envelopes out; allocated once.
 pub struct Planner {
     items: Vec<Item>,
     head: usize,
@@ -199,6 +218,9 @@ pub struct Planner {
     queued_moves: usize,
     /// Moves queued since the last backward pass.
     pending: usize,
+    /// Dry run: feeds queued now may run up to the path limit, whatever
+    /// their F (the interpolator sets their speed).
+    dry_run: bool,
 }
 
 const PLACEHOLDER: Item = Item {
@@ -223,6 +245,7 @@ pub const REPLAN_BATCH: usize = 32;
 const MAX_OVERRIDE: f64 = 1.5;
 
 impl Planner {
+    /// A queue for these settings (its only allocation).
     pub fn new(cfg: &Config) -> Planner {
         let cap = cfg.queue_capacity.max(cfg.lookahead_blocks).max(2);
         let mut items = Vec::with_capacity(cap);
@@ -251,21 +274,34 @@ impl Planner {
             queued_s: 0.0,
             queued_moves: 0,
             pending: 0,
+            dry_run: cfg.dry_run,
         }
     }
 
+    /// Dry run on or off for the feeds queued from now on: on, a feed is
+    /// planned for the path limit instead of its F, so the interpolator
+    /// may run it at the dry-run rate; moves queued before keep the
+    /// envelope of their F.
+    pub fn set_dry_run(&mut self, on: bool) {
+        self.dry_run = on;
+    }
+
+    /// Items the queue can hold.
     pub fn capacity(&self) -> usize {
         self.items.len()
     }
 
+    /// Items queued.
     pub fn len(&self) -> usize {
         self.len
     }
 
+    /// Nothing is queued.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
 
+    /// No room for another item.
     pub fn is_full(&self) -> bool {
         self.len == self.items.len()
     }
@@ -289,6 +325,7 @@ impl Planner {
         (k < self.len).then(|| &self.items[self.slot(k)])
     }
 
+    /// The k-th queued item, mutable.
     pub fn get_mut(&mut self, k: usize) -> Option<&mut Item> {
         if k < self.len {
             let i = self.slot(k);
@@ -319,6 +356,7 @@ impl Planner {
         }
     }
 
+    /// Drops everything queued (reset).
     pub fn clear(&mut self) {
         self.head = 0;
         self.len = 0;
@@ -341,6 +379,7 @@ impl Planner {
         self.tail_c = c;
     }
 
+    /// The shift (machine axes minus programmed point) that items queued now get.
     pub fn shift(&self) -> V2 {
         self.shift
     }
@@ -525,7 +564,8 @@ impl Planner {
                 }
             }
             MoveKind::Feed(f) | MoveKind::Skip(f) => {
-                let top = if f.per_rev {
+                let dry = self.dry_run && matches!(m.kind, MoveKind::Feed(_));
+                let top = if f.per_rev || dry {
                     cap
                 } else {
                     let over = if let MoveKind::Skip(_) = m.kind {

@@ -6,8 +6,11 @@
 /// Spindle directions as the runtime sees them (independent of `nc`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SpindleDir {
+    /// M03.
     Cw,
+    /// M04.
     Ccw,
+    /// M05.
     Stop,
 }
 
@@ -20,11 +23,23 @@ pub enum PlcFunction {
     Spindle(SpindleDir),
     /// S: rpm (G97) or surface speed m/min (G96); `max`: the `G50 S`
     /// limit when this is a G50 block.
-    Speed { s: f64, css: bool, max: Option<f64> },
+    Speed {
+        /// rev/min (G97) or m/min (G96).
+        s: f64,
+        /// Constant surface speed (G96).
+        css: bool,
+        /// The `G50 S` limit of a G50 block.
+        max: Option<f64>,
+    },
     /// S00…S04 of a gear spindle.
     Gear(u32),
     /// T: tool and offset number.
-    Tool { t: u32, d: u32 },
+    Tool {
+        /// Tool number.
+        t: u32,
+        /// Offset number.
+        d: u32,
+    },
 }
 
 /// What a host implements to run the machine's auxiliary functions.

@@ -95,6 +95,7 @@ impl Frame {
 }
 
 #[derive(Debug, Clone, Default)]
+/// The XZ toolpath, collected period by period and drawn as SVG.
 pub struct Plot {
     runs: Vec<(Motion, Vec<(f64, f64)>)>,
     /// The last set point, kept even when dropped, to end each run on it.
@@ -105,6 +106,7 @@ pub struct Plot {
 }
 
 impl Plot {
+    /// An empty plot.
     pub fn new() -> Plot {
         Plot::default()
     }

@@ -314,7 +314,13 @@ impl RunAhead {
     /// coordinates: power-on work system, no tool offset).
     fn restart<L: Link>(&mut self, at: V2, link: &mut L) {
         let module = self.vm.module().clone();
-        self.vm = Vm::new(module, self.machine.clone());
+        let mut vm = Vm::new(module, self.machine.clone());
+        // #500–#999 and where they are kept survive the reset.
+        *vm.persistent_mut() = *self.vm.persistent();
+        if let Some(storage) = self.vm.take_storage() {
+            vm.set_storage(storage);
+        }
+        self.vm = vm;
         self.vm.sync_positions = true;
         self.vm.max_blocks = self.max_blocks;
         self.vm.repeat = self.repeat;

@@ -11,6 +11,7 @@ use crate::math::V2;
 use alloc::vec::Vec;
 
 #[derive(Debug, Clone)]
+/// The moving average of the last N values of a profile (jerk limiting).
 pub struct Smoother {
     buf: Vec<V2>,
     sum: V2,
@@ -35,6 +36,7 @@ impl Smoother {
         }
     }
 
+    /// Periods averaged.
     pub fn taps(&self) -> usize {
         self.buf.len()
     }

@@ -1,13 +1,19 @@
-//! The simulated spindle: it follows M03/M04/M05 and S with the machine's
+//! The spindle: it follows M03/M04/M05 and S with the machine's
 //! acceleration, computes the rpm of constant surface speed from the
 //! current diameter every period, and keeps the angle that threads
 //! synchronise to (the index pulse is at whole turns).
+//!
+//! The speed and angle are simulated until the host feeds the measured
+//! ones ([`Spindle::set_measured`], from its encoder): from then on each
+//! period takes them as they come, so threads and feed per revolution
+//! follow the real spindle, whatever its drive does.
 
 use crate::config::SpindleConfig;
 use crate::math::PI;
 use crate::plc::SpindleDir;
 
 #[derive(Debug, Clone)]
+/// The spindle's state: direction, programmed speed, actual speed and angle.
 pub struct Spindle {
     cfg: SpindleConfig,
     dir: SpindleDir,
@@ -23,9 +29,23 @@ pub struct Spindle {
     turns: f64,
     /// Spindle override, 1.0 = 100 %.
     pub override_factor: f64,
+    /// The host's encoder, once it feeds one.
+    measured: Option<Measured>,
+}
+
+/// The measured spindle of the coming period.
+#[derive(Debug, Clone, Copy)]
+struct Measured {
+    /// Encoder position (turns, signed as it counts) at the last period.
+    last: f64,
+    /// ... and now.
+    now: f64,
+    /// Signed measured speed, rev/min.
+    rpm: f64,
 }
 
 impl Spindle {
+    /// A stopped spindle with this override (percent).
     pub fn new(cfg: SpindleConfig, override_pct: f64) -> Spindle {
         Spindle {
             cfg,
@@ -37,9 +57,42 @@ impl Spindle {
             rpm: 0.0,
             turns: 0.0,
             override_factor: override_pct / 100.0,
+            measured: None,
         }
     }
 
+    /// The measured position (encoder turns, signed) and speed (rev/min,
+    /// signed) for the coming period. The first call only takes the
+    /// position as its reference; from then on the angle advances by what
+    /// the encoder turned, in either direction (the angle counts turns in
+    /// the running direction).
+    pub fn set_measured(&mut self, position: f64, rpm: f64) {
+        match &mut self.measured {
+            Some(m) => {
+                m.now = position;
+                m.rpm = rpm;
+            }
+            None => {
+                self.measured = Some(Measured {
+                    last: position,
+                    now: position,
+                    rpm,
+                })
+            }
+        }
+    }
+
+    /// Back to the simulated spindle, from the last measured state.
+    pub fn set_simulated(&mut self) {
+        self.measured = None;
+    }
+
+    /// Whether the speed and angle are the host's measured ones.
+    pub fn is_measured(&self) -> bool {
+        self.measured.is_some()
+    }
+
+    /// M03, M04 or M05.
     pub fn set_dir(&mut self, d: SpindleDir) {
         self.dir = d;
     }
@@ -57,10 +110,12 @@ impl Spindle {
         }
     }
 
+    /// Constant surface speed (G96) is on.
     pub fn css(&self) -> bool {
         self.css
     }
 
+    /// The G96 surface speed, m/min.
     pub fn surface_speed(&self) -> f64 {
         self.v_css
     }
@@ -100,6 +155,12 @@ impl Spindle {
 
     /// One period at diameter `x`.
     pub fn update(&mut self, dt: f64, x: f64) {
+        if let Some(m) = &mut self.measured {
+            self.turns += (m.now - m.last).abs();
+            m.last = m.now;
+            self.rpm = m.rpm;
+            return;
+        }
         let target = self.commanded(x) * self.sign();
         let step = self.cfg.accel_rpm_s * dt;
         self.rpm = target.clamp(self.rpm - step, self.rpm + step);
@@ -160,6 +221,29 @@ mod tests {
         }
         assert!((s.rpm() - 800.0).abs() < 1e-9);
         assert!(s.at_speed(50.0));
+    }
+
+    #[test]
+    fn a_measured_spindle_replaces_the_simulation() {
+        let mut s = Spindle::new(Config::default().spindle, 100.0);
+        s.set_speed(800.0, false, None);
+        s.set_dir(SpindleDir::Ccw);
+        // The first reading is the reference: no turn is counted.
+        s.set_measured(10.0, -600.0);
+        s.update(0.001, 50.0);
+        assert_eq!((s.turns(), s.rpm()), (0.0, -600.0));
+        // M04 counts down: 0.25 turn backwards is 0.25 turn run.
+        s.set_measured(9.75, -590.0);
+        s.update(0.001, 50.0);
+        assert_eq!((s.turns(), s.rpm()), (0.25, -590.0));
+        // A period without a reading: the angle stands.
+        s.update(0.001, 50.0);
+        assert_eq!(s.turns(), 0.25);
+        // Simulated again: it accelerates from the measured speed towards
+        // -800 at 1000 rpm/s, i.e. 1 rpm per period.
+        s.set_simulated();
+        s.update(0.001, 50.0);
+        assert!((s.rpm() + 591.0).abs() < 1e-9);
     }
 
     #[test]

@@ -277,10 +277,12 @@ impl Interpreter {
         self.ra.blocks
     }
 
+    /// The VM running the program.
     pub fn vm(&self) -> &Vm {
         &self.ra.vm
     }
 
+    /// The machine the program runs on.
     pub fn machine(&self) -> &Machine {
         &self.ra.machine
     }
@@ -399,6 +401,7 @@ impl<P: Plc> Realtime<P> {
         }
     }
 
+    /// What the machine is doing.
     pub fn state(&self) -> RunState {
         self.engine.state()
     }
@@ -417,38 +420,47 @@ impl<P: Plc> Realtime<P> {
         self.rx.slots()
     }
 
+    /// The engine.
     pub fn engine(&self) -> &Engine<P> {
         &self.engine
     }
 
+    /// The engine, for its signals and settings.
     pub fn engine_mut(&mut self) -> &mut Engine<P> {
         &mut self.engine
     }
 
+    /// Feed override, percent (0–150).
     pub fn set_feed_override(&mut self, pct: f64) {
         self.engine.set_feed_override(pct);
     }
 
+    /// Rapid override position.
     pub fn set_rapid_override(&mut self, r: RapidOverride) {
         self.engine.set_rapid_override(r);
     }
 
+    /// Feed hold.
     pub fn feed_hold(&mut self) {
         self.engine.feed_hold();
     }
 
+    /// Cycle start.
     pub fn cycle_start(&mut self) {
         self.engine.cycle_start();
     }
 
+    /// Reset.
     pub fn reset(&mut self) {
         self.engine.reset();
     }
 
+    /// Single block.
     pub fn set_single_block(&mut self, on: bool) {
         self.engine.set_single_block(on);
     }
 
+    /// The level of the skip input (G31).
     pub fn set_skip_input(&mut self, level: bool) {
         self.engine.set_skip_input(level);
     }

@@ -24,6 +24,7 @@ pub struct Operation {
 }
 
 #[derive(Debug, Clone, Default, PartialEq)]
+/// Cycle time per tool, distances and blocks, summed over the periods of a run.
 pub struct Stats {
     /// Seconds, from the first period to the last.
     pub total_s: f64,
@@ -47,6 +48,7 @@ pub struct Stats {
 }
 
 impl Stats {
+    /// Empty statistics for this interpolation period (s).
     pub fn new(period_s: f64) -> Stats {
         Stats {
             dt: period_s,

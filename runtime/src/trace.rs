@@ -13,7 +13,9 @@
 use crate::interpolate::SetPoint;
 use core::fmt::{self, Write};
 
+/// The CSV header of a machine without a C axis.
 pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line,file";
+/// The CSV header of a machine with a C axis.
 pub const CSV_HEADER_C: &str = "time_s,x,z,c,spindle_rpm,feed,line,file";
 
 /// The CSV header of a machine with (`true`) or without a C axis.

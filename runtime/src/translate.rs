@@ -17,11 +17,13 @@ use nc::event::{Dir, SpindleDir as NcDir, StopKind};
 use nc::{Event, Machine};
 
 #[derive(Debug, Clone)]
+/// Turns canon events into commands in machine coordinates.
 pub struct Translator {
     /// Work zero in machine coordinates.
     pub origin: V2,
     /// Active tool length offset (geometry + wear).
     pub tool_off: V2,
+    /// The modal feed (F and G98/G99).
     pub feed: Feed,
     /// The programmed point, work coordinates (the canon's last point).
     pub work: V2,
@@ -35,6 +37,7 @@ pub struct Translator {
 }
 
 impl Translator {
+    /// A translator whose work zero is `origin` (machine coordinates).
     pub fn new(origin: V2) -> Translator {
         Translator {
             origin,

@@ -20,9 +20,13 @@ use nc::{Event, Machine, Nc, NcError, Sink};
 pub struct Alarm {
     /// The canon's `CODE=`: 5001 for E5001, 3000 + n for `#3000 = n`.
     pub code: u32,
+    /// The alarm text (the kernel's wording, or the `#3000` comment).
     pub message: String,
+    /// The source file of the block, as compiled.
     pub file: String,
+    /// Its line (1-based).
     pub line: u32,
+    /// Its column (1-based).
     pub col: u32,
 }
 
@@ -65,6 +69,7 @@ pub enum Status {
 /// block changed one of them (vacant values are NaN). `Send`, so that a
 /// VM can move to an interpreter thread of its own.
 pub trait Storage: Send {
+    /// Keeps all of #500–#999; an `Err` stops the run with E5007.
     fn store(&mut self, persistent: &[f64; 500]) -> Result<(), String>;
 }
 
@@ -97,8 +102,25 @@ struct ModalCall {
     args: Vec<(u8, f64)>,
 }
 
+/// The interpreter: one verified module, its registers and variables,
+/// and the NC kernel that gives its blocks their meaning.
+///
+/// ```
+/// /// Runs a verified module (`gbcc`'s output, read with
+/// /// `isa::Module::from_bytes`) to its end and returns its canon.
+/// fn canon(module: isa::Module) -> Result<Vec<nc::Event>, String> {
+///     let mut vm = vm::Vm::new(module, nc::Machine::reference());
+///     let mut events: Vec<nc::Event> = Vec::new();
+///     match vm.run(&mut events) {
+///         vm::Status::Alarm(a) => Err(a.header()),
+///         _ => Ok(events),
+///     }
+/// }
+/// ```
 pub struct Vm {
     module: Module,
+    /// The NC kernel: modal state, machine configuration, the meaning of
+    /// a block (public so that a host can seed positions and settings).
     pub nc: Nc,
     regs: Vec<f64>,
     vars: Vars,
@@ -110,8 +132,11 @@ pub struct Vm {
     msg: Option<u32>,
     modal: Option<ModalCall>,
     blocks: u64,
+    /// Block budget: past this many executed blocks the run stops with
+    /// E6005 (`gbvm run --max-blocks`).
     pub max_blocks: u64,
     pass: u32,
+    /// Passes that a main program's M99 makes (`gbvm run --repeat`).
     pub repeat: u32,
     done: bool,
     /// The pc of the last `Exec` that ran.
@@ -168,6 +193,7 @@ impl Vm {
         }
     }
 
+    /// The module being run.
     pub fn module(&self) -> &Module {
         &self.module
     }
@@ -184,6 +210,12 @@ impl Vm {
     /// Persists #500–#999 through `storage` from now on.
     pub fn set_storage(&mut self, storage: Box<dyn Storage>) {
         self.storage = Some(storage);
+    }
+
+    /// The storage of #500–#999, taken out (a host that replaces the VM
+    /// after a reset hands it to the new one).
+    pub fn take_storage(&mut self) -> Option<Box<dyn Storage>> {
+        self.storage.take()
     }
 
     /// Runs at most `budget` instructions.
@@ -760,6 +792,8 @@ impl Vm {
         &self.vars.persistent
     }
 
+    /// The persistent variables, for a host that loads them at the start
+    /// (changes made here are not handed to the storage).
     pub fn persistent_mut(&mut self) -> &mut [f64; 500] {
         &mut self.vars.persistent
     }

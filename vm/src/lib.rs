@@ -16,6 +16,7 @@
 //! only forwards to `nc` and `isa`.
 
 #![no_std]
+#![deny(missing_docs)]
 
 extern crate alloc;
 

@@ -8,10 +8,13 @@ use nc::value::VACANT;
 /// Local call levels 0…4 (main program + four macro levels).
 pub const LOCAL_LEVELS: usize = 5;
 
+/// Locals per call level, commons and persistent variables.
 #[derive(Debug, Clone)]
 pub struct Vars {
     locals: Vec<[f64; 33]>,
+    /// #100–#199 (vacant as NaN).
     pub common: [f64; 100],
+    /// #500–#999 (vacant as NaN).
     pub persistent: [f64; 500],
     /// Set when #500–#999 changed since the last save.
     pub persistent_dirty: bool,
@@ -19,11 +22,15 @@ pub struct Vars {
 
 /// Where a plain variable number lives.
 pub enum Slot {
+    /// #1–#33 of the current call level (index 0–32).
     Local(usize),
+    /// #100–#199 (index 0–99).
     Common(usize),
+    /// #500–#999 (index 0–499).
     Persistent(usize),
 }
 
+/// The slot of variable `n`, or `None` for a system or unknown number.
 pub fn slot(n: u32) -> Option<Slot> {
     match n {
         1..=33 => Some(Slot::Local(n as usize - 1)),
@@ -47,6 +54,7 @@ impl Default for Vars {
 }
 
 impl Vars {
+    /// The value in a slot (vacant as NaN).
     pub fn get(&self, s: &Slot) -> f64 {
         match *s {
             Slot::Local(i) => self.locals.last().map_or(VACANT, |l| l[i]),
@@ -55,6 +63,7 @@ impl Vars {
         }
     }
 
+    /// Sets a slot; a changed persistent value marks them dirty.
     pub fn set(&mut self, s: &Slot, v: f64) {
         match *s {
             Slot::Local(i) => {
@@ -83,6 +92,7 @@ impl Vars {
         self.locals.push(l);
     }
 
+    /// Back to the caller's local level (the main level stays).
     pub fn pop_level(&mut self) {
         if self.locals.len() > 1 {
             self.locals.pop();

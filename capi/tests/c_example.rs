@@ -1,0 +1,113 @@
+//! `examples/c/controller.c`, built by the system C compiler against the
+//! checked-in header and the static library cargo just built, runs a
+//! compiled program to its end; its set points (printed in the trace
+//! format) are the same, line for line, as `gbvm run --emit trace`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// `target/<profile>`: the test binary is `target/<profile>/deps/<name>`.
+fn profile_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("the test's path");
+    exe.parent()
+        .and_then(Path::parent)
+        .expect("target/<profile>/deps/<test>")
+        .to_path_buf()
+}
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("the workspace")
+        .to_path_buf()
+}
+
+/// `gbvm` of the same profile, built now if need be (a no-op when the
+/// workspace's tests already built it).
+fn gbvm(profile: &Path) -> PathBuf {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let mut cmd = Command::new(cargo);
+    cmd.current_dir(repo())
+        .args(["build", "--quiet", "-p", "cli", "--bin", "gbvm"]);
+    let name = profile.file_name().and_then(|n| n.to_str()).unwrap_or("");
+    if name != "debug" {
+        cmd.args(["--profile", name]);
+    }
+    // The target directory this test runs in, wherever it is.
+    if let Some(target) = profile.parent() {
+        cmd.arg("--target-dir").arg(target);
+    }
+    let st = cmd.status().expect("cargo runs");
+    assert!(st.success(), "building gbvm failed");
+    profile.join("gbvm")
+}
+
+/// Compiles the C example against `libgbc.a`; returns the executable.
+fn build_example(profile: &Path, out: &Path) -> PathBuf {
+    let lib = profile.join("libgbc.a");
+    assert!(lib.exists(), "{} is missing", lib.display());
+    let exe = out.join("controller");
+    let cc = std::env::var_os("CC").unwrap_or_else(|| "cc".into());
+    let st = Command::new(cc)
+        .args(["-std=c11", "-Wall", "-Wextra", "-Werror", "-g"])
+        .arg("-I")
+        .arg(repo().join("capi/include"))
+        .arg(repo().join("examples/c/controller.c"))
+        .arg(&lib)
+        // What a Rust static library needs of the system on Linux.
+        .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lgcc_s", "-lc"])
+        .arg("-o")
+        .arg(&exe)
+        .status()
+        .expect("the system C compiler (cc) runs");
+    assert!(st.success(), "cc failed on examples/c/controller.c");
+    exe
+}
+
+fn compile(src: &Path, out: &Path) -> PathBuf {
+    let text = std::fs::read(src).expect("the example program");
+    let c = compiler::compile("part.nc", &text, &compiler::Options::default());
+    let rendered = c.render();
+    let module = c.module.unwrap_or_else(|| panic!("{rendered}"));
+    let path = out.join("part.gbc");
+    std::fs::write(&path, module.to_bytes()).expect("write part.gbc");
+    path
+}
+
+#[test]
+fn the_c_controller_loop_gives_gbvms_trace() {
+    let profile = profile_dir();
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_example");
+    std::fs::create_dir_all(&out).expect("a scratch directory");
+    let exe = build_example(&profile, &out);
+    let gbc = compile(&repo().join("examples/c/part.nc"), &out);
+
+    let c = Command::new(&exe)
+        .arg(&gbc)
+        .output()
+        .expect("the example runs");
+    let stderr = String::from_utf8_lossy(&c.stderr);
+    assert!(c.status.success(), "the C controller failed: {stderr}");
+    // The host saw the PLC functions (T, M03, S, M08, M09, M05 of M30 …)
+    // and the store of #500 (one block changes it).
+    assert!(stderr.contains(" 1 stores of #500-#999"), "{stderr}");
+
+    let g = Command::new(gbvm(&profile))
+        .args(["run", "--emit", "trace"])
+        .arg(&gbc)
+        .output()
+        .expect("gbvm runs");
+    assert!(g.status.success(), "{}", String::from_utf8_lossy(&g.stderr));
+
+    let (c_out, g_out) = (
+        String::from_utf8(c.stdout).expect("UTF-8"),
+        String::from_utf8(g.stdout).expect("UTF-8"),
+    );
+    let (cl, gl): (Vec<&str>, Vec<&str>) = (c_out.lines().collect(), g_out.lines().collect());
+    // Several seconds of motion: the rapids, the cut, the dwell, the thread.
+    assert!(gl.len() > 2000, "gbvm's trace has {} lines", gl.len());
+    assert_eq!(cl.len(), gl.len(), "trace lengths differ");
+    for (i, (a, b)) in cl.iter().zip(&gl).enumerate() {
+        assert_eq!(a, b, "line {} differs (C, gbvm)", i + 1);
+    }
+}

@@ -1,0 +1,202 @@
+//! The host's side through the C interface: PLC functions with a slow
+//! FIN, #500–#999 loaded and stored through callbacks (and kept over a
+//! reset), the skip signal of G31.
+
+use core::ffi::c_void;
+use gbc::*;
+
+#[derive(Default)]
+struct Host {
+    requests: Vec<GbcPlcFunction>,
+    /// Periods left until the coolant valve reports on.
+    coolant_busy: u32,
+    stores: Vec<[f64; GBC_PERSISTENT_COUNT]>,
+    start: Vec<(usize, f64)>,
+}
+
+unsafe extern "C" fn request(user: *mut c_void, f: *const GbcPlcFunction) {
+    let h = unsafe { &mut *user.cast::<Host>() };
+    let f = unsafe { *f };
+    if f.kind == GbcPlcKind::M && f.code == 8 {
+        h.coolant_busy = 30;
+    }
+    h.requests.push(f);
+}
+
+unsafe extern "C" fn done(user: *mut c_void, _: *const GbcPlcFunction) -> bool {
+    let h = unsafe { &mut *user.cast::<Host>() };
+    h.coolant_busy = h.coolant_busy.saturating_sub(1);
+    h.coolant_busy == 0
+}
+
+unsafe extern "C" fn load(user: *mut c_void, vars: *mut f64) -> i32 {
+    let h = unsafe { &mut *user.cast::<Host>() };
+    let vars = unsafe { std::slice::from_raw_parts_mut(vars, GBC_PERSISTENT_COUNT) };
+    assert!(vars.iter().all(|v| v.is_nan()), "handed over vacant");
+    for &(i, v) in &h.start {
+        vars[i] = v;
+    }
+    0
+}
+
+unsafe extern "C" fn store(user: *mut c_void, vars: *const f64) -> i32 {
+    let h = unsafe { &mut *user.cast::<Host>() };
+    let vars = unsafe { std::slice::from_raw_parts(vars, GBC_PERSISTENT_COUNT) };
+    h.stores.push(vars.try_into().unwrap());
+    0
+}
+
+fn module(src: &str) -> Vec<u8> {
+    let out = compiler::compile("t.nc", src.as_bytes(), &compiler::Options::default());
+    out.module.expect("compiles").to_bytes()
+}
+
+/// The host lives on the heap and is reached through its raw pointer
+/// only, as the library reaches it.
+fn new_host(h: Host) -> *mut Host {
+    Box::into_raw(Box::new(h))
+}
+
+fn new_controller(host: *mut Host, prog: &[u8]) -> (GbcMachine, GbcController) {
+    let cb = GbcHost {
+        user: host.cast(),
+        plc_request: Some(request),
+        plc_done: Some(done),
+        vars_load: Some(load),
+        vars_store: Some(store),
+    };
+    let (mut m, mut c) = (0, 0);
+    unsafe {
+        assert_eq!(gbc_machine_reference(&mut m), GbcStatus::Ok);
+        assert_eq!(gbc_controller_new(m, &cb, &mut c), GbcStatus::Ok);
+        assert_eq!(
+            gbc_controller_load(c, prog.as_ptr(), prog.len()),
+            GbcStatus::Ok
+        );
+    }
+    (m, c)
+}
+
+fn blank() -> GbcSetPoint {
+    GbcSetPoint {
+        time_s: 0.0,
+        x: 0.0,
+        z: 0.0,
+        axis_x: 0.0,
+        axis_z: 0.0,
+        c: 0.0,
+        has_c: false,
+        spindle_rpm: 0.0,
+        spindle_turns: 0.0,
+        feed: 0.0,
+        line: 0,
+        tool: 0,
+        motion: GbcMotion::None,
+    }
+}
+
+/// Ticks to the end (pressing cycle start at stops); calls `each` after
+/// every period.
+fn run(c: GbcController, mut each: impl FnMut(&GbcSetPoint)) -> Vec<GbcSetPoint> {
+    let mut pts = Vec::new();
+    let mut st = GbcStateInfo {
+        state: GbcRunState::Idle,
+        stop: GbcStopKind::None,
+        message: 0,
+        alarm_code: 0,
+        blocks: 0,
+    };
+    assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
+    for _ in 0..200_000 {
+        let mut sp = blank();
+        assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
+        assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
+        each(&sp);
+        pts.push(sp);
+        assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
+        match st.state {
+            GbcRunState::Ended => return pts,
+            GbcRunState::Stopped => assert_eq!(gbc_cycle_start(c), GbcStatus::Ok),
+            GbcRunState::Alarm => panic!("alarm {}", st.alarm_code),
+            _ => {}
+        }
+    }
+    panic!("did not end");
+}
+
+#[test]
+fn plc_functions_wait_for_their_fin() {
+    let prog = module("O1\nT0202\nM03 S500\nM08\nG98 G01 W-1 F600\nM30\n");
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    let pts = run(c, |_| {});
+    let kinds: Vec<(GbcPlcKind, u32)> = unsafe { &(*host).requests }
+        .iter()
+        .map(|f| (f.kind, f.code))
+        .collect();
+    assert!(kinds.contains(&(GbcPlcKind::Tool, 2)), "{kinds:?}");
+    assert!(kinds.contains(&(GbcPlcKind::SpindleCw, 0)), "{kinds:?}");
+    assert!(kinds.contains(&(GbcPlcKind::M, 8)), "{kinds:?}");
+    let s = unsafe { &(*host).requests }
+        .iter()
+        .find(|f| f.kind == GbcPlcKind::Speed)
+        .unwrap();
+    assert_eq!((s.s, s.css), (500.0, false));
+    assert!(s.max_rpm.is_nan());
+    // The feed after M08 starts only with its FIN: T, M03, S and M08 are
+    // all handed over in period 0, whose poll is M08's first; the 30th
+    // poll, in period 29, reports FIN and the feed starts in that period.
+    let first_move = pts.iter().position(|p| p.z != 0.0).unwrap();
+    assert_eq!(first_move, 29);
+    assert_eq!(pts.last().unwrap().tool, 2);
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}
+
+#[test]
+fn persistent_variables_go_through_the_host_and_outlive_a_reset() {
+    let prog = module("O1\n#500 = #500 + 1\nG00 W-1\nM30\n");
+    let host = new_host(Host {
+        start: vec![(0, 41.0)],
+        ..Host::default()
+    });
+    let (m, c) = new_controller(host, &prog);
+    run(c, |_| {});
+    assert_eq!(unsafe { &(*host).stores }.len(), 1);
+    assert_eq!(unsafe { &(*host).stores }[0][0], 42.0);
+    assert!(unsafe { &(*host).stores }[0][1].is_nan());
+    // Reset and run again: #500 counts on from 42 (non-volatile).
+    assert_eq!(gbc_reset(c), GbcStatus::Ok);
+    let mut sp = blank();
+    for _ in 0..10 {
+        assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
+    }
+    run(c, |_| {});
+    assert_eq!(unsafe { &(*host).stores }.last().unwrap()[0], 43.0);
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}
+
+#[test]
+fn the_skip_signal_ends_a_g31_move() {
+    // G31 along Z at F100 = 1.667 mm/s; the signal comes at 0.5 s, after
+    // about 0.83 mm. The program copies the skip position (#996, Z) to
+    // #510, which the host stores.
+    let prog = module("O1\nG98 G31 W-10 F100\n#510 = #996\nM30\n");
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    let pts = run(c, |sp| {
+        if sp.time_s >= 0.5 {
+            assert_eq!(gbc_set_skip_input(c, true), GbcStatus::Ok);
+        }
+    });
+    let end = pts.last().unwrap().z;
+    assert!((-0.9..-0.7).contains(&end), "stopped at {end}");
+    let hit = unsafe { &(*host).stores }.last().expect("#510 stored")[10];
+    assert!((hit - end).abs() < 0.01, "hit {hit}, stop {end}");
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

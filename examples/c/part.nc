@@ -1,0 +1,15 @@
+O0001 (the C controller example: turning, an arc, a thread, a counter)
+#500 = #500 + 1
+G50 X100 Z50
+T0101 M03 S800
+G00 X40 Z2 M08
+G99 G01 Z-20 F0.15
+X50 Z-30
+G02 X60 Z-35 R5
+G04 X0.1
+G00 X38 Z5
+G32 Z-15 F1.5
+G00 X100
+Z50 M09
+M01
+M30

@@ -1,0 +1,159 @@
+//! The operator's live switches through the embedding API: optional stop,
+//! dry run and the spindle override.
+
+mod common;
+
+use common::{module, run_with};
+use nc::Machine;
+use runtime::command::PauseKind;
+use runtime::{Config, Controller, RunState};
+
+const M01: &str = "O0001\nG00 W-1\nM01\nG00 W-1\nM30\n";
+
+/// Runs `src` pressing cycle start at every stop; returns the stops seen.
+fn stops(
+    machine: Machine,
+    setup: impl FnOnce(&mut Controller),
+    mid: Option<bool>,
+) -> Vec<PauseKind> {
+    let m = module(M01, &machine);
+    let mut ctl = Controller::new(m, machine, runtime::AutoAck).expect("loads");
+    setup(&mut ctl);
+    ctl.cycle_start();
+    let mut seen = Vec::new();
+    for i in 0..100_000 {
+        ctl.run_ahead();
+        ctl.tick();
+        if i == 2 {
+            // Flipped while the first move runs: the VM has long passed
+            // the M01, the motion has not.
+            if let Some(on) = mid {
+                ctl.set_optional_stop(on);
+            }
+        }
+        match ctl.state() {
+            RunState::Stopped(k) => {
+                seen.push(k);
+                ctl.cycle_start();
+            }
+            RunState::Ended => return seen,
+            s => assert!(!matches!(s, RunState::Alarm(_)), "{s:?}"),
+        }
+    }
+    panic!("did not end");
+}
+
+#[test]
+fn optional_stop_is_read_when_the_motion_reaches_the_m01() {
+    let r = Machine::reference;
+    // Machine file default (on), untouched: the M01 stops.
+    assert_eq!(stops(r(), |_| {}, None), vec![PauseKind::M01]);
+    // Turned off before the start, and off while the first move runs.
+    assert_eq!(stops(r(), |c| c.set_optional_stop(false), None), vec![]);
+    assert_eq!(
+        stops(r(), |c| c.set_optional_stop(true), Some(false)),
+        vec![]
+    );
+    // A machine file that has it off, switched on live: it stops.
+    let mut off = r();
+    off.operator.optional_stop = false;
+    assert_eq!(stops(off.clone(), |_| {}, None), vec![]);
+    assert_eq!(
+        stops(off, |c| c.set_optional_stop(false), Some(true)),
+        vec![PauseKind::M01]
+    );
+}
+
+/// The top path speed of a run (mm/min): `power_on` sets the panel
+/// before the run, `live` is called once, after the first period (the
+/// program has been run ahead and its moves planned by then).
+fn top_feed(
+    src: &str,
+    power_on: impl FnOnce(&mut Config),
+    live: impl Fn(&mut Controller) + Copy,
+) -> (f64, RunState) {
+    let mut first = true;
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        power_on,
+        |c, _| {
+            if first {
+                live(c);
+                first = false;
+            }
+        },
+        60.0,
+    );
+    (r.pts.iter().map(|p| p.feed).fold(0.0, f64::max), r.state)
+}
+
+#[test]
+fn dry_run_runs_feeds_at_the_dry_run_rate() {
+    // 50 mm at F100 mm/min; the dry-run rate of the reference machine is
+    // its path limit, feed.max_mm_min = 5000 mm/min (machine.md), which
+    // 50 mm reach: accelerating to 83.3 mm/s at 2000 mm/s² takes
+    // 83.3² / 4000 = 1.7 mm.
+    let src = "O0001\nG98 G01 W-50 F100\nM30\n";
+    let (plain, _) = top_feed(src, |_| {}, |_| {});
+    assert!((plain - 100.0).abs() < 1e-6, "{plain}");
+    let (dry, _) = top_feed(src, |c| c.dry_run = true, |_| {});
+    assert!((dry - 5000.0).abs() < 1e-6, "{dry}");
+    // The feed override scales the dry-run rate.
+    let (half, _) = top_feed(src, |c| c.dry_run = true, |c| c.set_feed_override(50.0));
+    assert!((half - 2500.0).abs() < 1e-6, "{half}");
+    // Switched on while the move is already planned for F100: it speeds
+    // up to what that plan allows, F × the top override 150 % = 150.
+    let (late, _) = top_feed(src, |_| {}, |c| c.set_dry_run(true));
+    assert!((late - 150.0).abs() < 1e-6, "{late}");
+    // ... and a move planned after the switch runs at the full rate (the
+    // read of the current position, #5042, holds the VM back until the
+    // first move has ended).
+    let two = "O0001\nG98 G01 W-1 F100\n#1 = #5042\nG01 W-50\nM30\n";
+    let mut first = true;
+    let r = run_with(
+        two,
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |c, _| {
+            if first {
+                c.set_dry_run(true);
+                first = false;
+            }
+        },
+        60.0,
+    );
+    let top = r.pts.iter().map(|p| p.feed).fold(0.0, f64::max);
+    assert!((top - 5000.0).abs() < 1e-6, "{top}");
+    // Feed per revolution with the spindle standing: in dry run it moves
+    // at the dry-run rate instead of waiting (and alarming, E7003).
+    let (g99, state) = top_feed(
+        "O0001\nG99 G01 W-50 F0.1\nM30\n",
+        |c| c.dry_run = true,
+        |_| {},
+    );
+    assert_eq!(state, RunState::Ended);
+    assert!((g99 - 5000.0).abs() < 1e-6, "{g99}");
+}
+
+#[test]
+fn the_spindle_override_goes_through_the_controller() {
+    // S1000 at 50 %: 500 rev/min once the spindle has run up.
+    let src = "O0001\nM03 S1000\nG04 X2\nM30\n";
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |c, _| c.set_spindle_override(50.0),
+        60.0,
+    );
+    let last = r.pts.last().unwrap();
+    assert!(
+        (last.spindle_rpm - 500.0).abs() < 1e-9,
+        "{}",
+        last.spindle_rpm
+    );
+}
