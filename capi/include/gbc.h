@@ -331,6 +331,10 @@ typedef struct GbcSetPoint {
    */
   uint32_t line;
   /**
+   * Its source file, an index for `gbc_file_name` (0: the main program).
+   */
+  uint16_t file;
+  /**
    * The active tool number.
    */
   uint32_t tool;
@@ -504,6 +508,16 @@ enum GbcStatus gbc_alarm(GbcController controller, struct GbcAlarm *out);
  * `buf` is null or writable for `cap` bytes.
  */
 enum GbcStatus gbc_message(GbcController controller, uint32_t n, char *buf, size_t cap);
+
+/**
+ * The name of source file `index` (a [`GbcSetPoint::file`]) into `buf`
+ * (`cap` bytes, NUL-terminated), as it was given to the compiler; an
+ * empty text when the module has no such file.
+ *
+ * # Safety
+ * `buf` is null or writable for `cap` bytes.
+ */
+enum GbcStatus gbc_file_name(GbcController controller, uint16_t index, char *buf, size_t cap);
 
 /**
  * Feed override, percent (0–150; outside: clamped; NaN refused).

@@ -488,6 +488,30 @@ pub unsafe extern "C" fn gbc_message(
     })
 }
 
+/// The name of source file `index` (a [`GbcSetPoint::file`]) into `buf`
+/// (`cap` bytes, NUL-terminated), as it was given to the compiler; an
+/// empty text when the module has no such file.
+///
+/// # Safety
+/// `buf` is null or writable for `cap` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn gbc_file_name(
+    controller: GbcController,
+    index: u16,
+    buf: *mut c_char,
+    cap: usize,
+) -> GbcStatus {
+    with_run(controller, |r| {
+        if buf.is_null() || cap == 0 {
+            return Err(GbcStatus::NullPointer);
+        }
+        // SAFETY: the caller's promise.
+        let out = unsafe { core::slice::from_raw_parts_mut(buf.cast::<u8>(), cap) };
+        copy_text(r.file_name(index).unwrap_or(""), out);
+        Ok(())
+    })
+}
+
 // ---------------------------------------------------------------------
 // The operator panel
 

@@ -136,6 +136,8 @@ pub struct GbcSetPoint {
     pub feed: f64,
     /// Source line of the block being executed.
     pub line: u32,
+    /// Its source file, an index for `gbc_file_name` (0: the main program).
+    pub file: u16,
     /// The active tool number.
     pub tool: u32,
     /// The kind of motion.
@@ -156,6 +158,7 @@ impl From<&SetPoint> for GbcSetPoint {
             spindle_turns: p.spindle_turns,
             feed: p.feed,
             line: p.line,
+            file: p.file,
             tool: p.tool,
             motion: match p.motion {
                 Motion::None => GbcMotion::None,

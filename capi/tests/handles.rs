@@ -99,6 +99,13 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             }),
         ),
         (
+            "gbc_file_name",
+            Box::new(|h| {
+                let mut buf = [0 as core::ffi::c_char; 64];
+                unsafe { gbc_file_name(h, 0, buf.as_mut_ptr(), buf.len()) }
+            }),
+        ),
+        (
             "gbc_set_feed_override",
             Box::new(|h| gbc_set_feed_override(h, 50.0)),
         ),
@@ -264,6 +271,7 @@ fn null_pointers_and_bad_arguments_are_refused() {
         assert_eq!(gbc_state(c, null_mut()), GbcStatus::NullPointer);
         assert_eq!(gbc_alarm(c, null_mut()), GbcStatus::NullPointer);
         assert_eq!(gbc_message(c, 1, null_mut(), 5), GbcStatus::NullPointer);
+        assert_eq!(gbc_file_name(c, 0, null_mut(), 5), GbcStatus::NullPointer);
     }
     assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);

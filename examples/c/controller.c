@@ -91,6 +91,22 @@ static void put_fixed(double v, int d) {
     printf("%.*f", d, v);
 }
 
+/* A CSV field as gbvm's trace prints it: quoted when it holds a comma,
+ * a quote or a line end, a quote doubled inside. */
+static void put_csv_field(const char *t) {
+    if (!strpbrk(t, ",\"\n\r")) {
+        fputs(t, stdout);
+        return;
+    }
+    putchar('"');
+    for (; *t; t++) {
+        if (*t == '"')
+            putchar('"');
+        putchar(*t);
+    }
+    putchar('"');
+}
+
 static int fail(const char *what, GbcStatus s) {
     char msg[512];
     if (gbc_last_error(msg, sizeof msg, NULL) != GBC_STATUS_OK)
@@ -171,8 +187,8 @@ int main(int argc, char **argv) {
         }
         if (!header) {
             header = 1;
-            printf(sp.has_c ? "time_s,x,z,c,spindle_rpm,feed,line\n"
-                            : "time_s,x,z,spindle_rpm,feed,line\n");
+            printf(sp.has_c ? "time_s,x,z,c,spindle_rpm,feed,line,file\n"
+                            : "time_s,x,z,spindle_rpm,feed,line,file\n");
         }
         put_fixed(sp.time_s, 6);
         putchar(',');
@@ -187,7 +203,14 @@ int main(int argc, char **argv) {
         put_fixed(sp.spindle_rpm, 3);
         putchar(',');
         put_fixed(sp.feed, 3);
-        printf(",%u\n", sp.line);
+        printf(",%u,", sp.line);
+        char file[256];
+        if ((s = gbc_file_name(ctl, sp.file, file, sizeof file)) != GBC_STATUS_OK) {
+            status = fail("file name", s);
+            break;
+        }
+        put_csv_field(file);
+        putchar('\n');
 
         GbcStateInfo st;
         if ((s = gbc_state(ctl, &st)) != GBC_STATUS_OK) {

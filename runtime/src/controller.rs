@@ -220,6 +220,13 @@ impl<P: Plc> Controller<P> {
         self.ra.message(n)
     }
 
+    /// The name of source file `index` of the loaded module (the index of
+    /// [`SetPoint::file`](crate::SetPoint::file)), as given to the compiler.
+    pub fn file_name(&self, index: u16) -> Option<&str> {
+        let files = &self.ra.vm.module().files;
+        files.get(usize::from(index)).map(|f| f.name.as_str())
+    }
+
     /// Feed override, percent (0–150).
     pub fn set_feed_override(&mut self, pct: f64) {
         self.engine.set_feed_override(pct);

@@ -39,8 +39,9 @@ const MIN_W: f64 = 560.0;
 pub struct Stock {
     /// Diameter, mm.
     pub diameter: f64,
-    /// Z of its right face and of its left end, mm (`right > left`).
+    /// Z of its right face, mm.
     pub right: f64,
+    /// Z of its left end, mm (`right > left`).
     pub left: f64,
 }
 
@@ -59,16 +60,22 @@ impl Stock {
 /// A point marked on the drawing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Mark {
+    /// Where the tool stands when the program starts.
     Start,
+    /// A tool change, with the new tool's number.
     Tool(u32),
 }
 
 /// The frame of the drawing in mm: Z and radius ranges.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame {
+    /// The smallest Z shown, mm.
     pub zmin: f64,
+    /// The largest Z shown, mm.
     pub zmax: f64,
+    /// The smallest radius shown, mm.
     pub rmin: f64,
+    /// The largest radius shown, mm.
     pub rmax: f64,
 }
 

@@ -11,15 +11,19 @@ use core::fmt;
 /// One operation: a stretch of the run with one active tool.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Operation {
+    /// The active tool's number.
     pub tool: u32,
-    /// The source place of its first period: the T block, or the first
-    /// move after it when the change took no period (at the start).
+    /// The source file of its first period (an index into the module's
+    /// file table): the T block, or the first move after it when the
+    /// change took no period (at the start).
     pub file: u16,
+    /// The source line of that period.
     pub line: u32,
     /// Seconds it lasted.
     pub time_s: f64,
-    /// Path length at feed (threads included) and at rapid, mm.
+    /// Path length at feed (threads included), mm.
     pub cut_mm: f64,
+    /// Path length at rapid, mm.
     pub rapid_mm: f64,
 }
 
