@@ -25,10 +25,23 @@ fn repo() -> PathBuf {
 /// `gbvm` of the same profile, built now if need be (a no-op when the
 /// workspace's tests already built it).
 fn gbvm(profile: &Path) -> PathBuf {
+    cargo_build(profile, &["-p", "cli", "--bin", "gbvm"]);
+    profile.join("gbvm")
+}
+
+/// `libgbc.a` of the same profile: `cargo test` builds the library only
+/// as the tests' rlib, so the static library is built here.
+fn static_lib(profile: &Path) -> PathBuf {
+    cargo_build(profile, &["-p", "capi", "--lib"]);
+    profile.join("libgbc.a")
+}
+
+/// `cargo build` of `what` in the profile and target directory this test
+/// runs in, wherever they are.
+fn cargo_build(profile: &Path, what: &[&str]) {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut cmd = Command::new(cargo);
-    cmd.current_dir(repo())
-        .args(["build", "--quiet", "-p", "cli", "--bin", "gbvm"]);
+    cmd.current_dir(repo()).args(["build", "--quiet"]).args(what);
     let name = profile.file_name().and_then(|n| n.to_str()).unwrap_or("");
     if name != "debug" {
         cmd.args(["--profile", name]);
@@ -38,13 +51,12 @@ fn gbvm(profile: &Path) -> PathBuf {
         cmd.arg("--target-dir").arg(target);
     }
     let st = cmd.status().expect("cargo runs");
-    assert!(st.success(), "building gbvm failed");
-    profile.join("gbvm")
+    assert!(st.success(), "cargo build {what:?} failed");
 }
 
 /// Compiles the C example against `libgbc.a`; returns the executable.
 fn build_example(profile: &Path, out: &Path) -> PathBuf {
-    let lib = profile.join("libgbc.a");
+    let lib = static_lib(profile);
     assert!(lib.exists(), "{} is missing", lib.display());
     let exe = out.join("controller");
     let cc = std::env::var_os("CC").unwrap_or_else(|| "cc".into());

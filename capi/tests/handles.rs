@@ -59,6 +59,7 @@ fn set_point() -> GbcSetPoint {
         spindle_turns: 0.0,
         feed: 0.0,
         line: 0,
+        file: 0,
         tool: 0,
         motion: GbcMotion::None,
     }

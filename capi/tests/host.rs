@@ -90,6 +90,7 @@ fn blank() -> GbcSetPoint {
         spindle_turns: 0.0,
         feed: 0.0,
         line: 0,
+        file: 0,
         tool: 0,
         motion: GbcMotion::None,
     }
