@@ -77,20 +77,50 @@ fn load(path: &Path) -> Result<isa::Module, String> {
 }
 
 fn fail(msg: &str) -> ExitCode {
-    eprintln!("gbvm: error: {msg}");
+    note(format_args!("gbvm: error: {msg}"));
     ExitCode::from(1)
 }
 
-/// Prints each event as one canon line.
+/// One line on stderr; a stderr that cannot be written to (`2>/dev/full`)
+/// has nobody left to tell, so its error is dropped rather than panicking.
+fn note(line: std::fmt::Arguments) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// Exit code of a run whose output could not be written (README).
+const EXIT_OUTPUT: u8 = 3;
+
+/// The end of a command whose standard output failed: a closed pipe
+/// (`| head`) is the reader's choice and goes unremarked; any other error
+/// (a full device) is reported. Either way the output is incomplete, so the
+/// command does not succeed.
+fn output_failed(e: &std::io::Error) -> ExitCode {
+    if e.kind() != std::io::ErrorKind::BrokenPipe {
+        note(format_args!("gbvm: error: standard output: {e}"));
+    }
+    ExitCode::from(EXIT_OUTPUT)
+}
+
+/// Writes `text` to stdout and flushes it.
+fn print_all(text: &str) -> std::io::Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()
+}
+
+/// Prints each event as one canon line. After the first write error it
+/// writes no more and keeps the error for the exit status.
 struct Canon<W: Write> {
     out: W,
-    broken: bool,
+    error: Option<std::io::Error>,
 }
 
 impl<W: Write> Sink for Canon<W> {
     fn emit(&mut self, e: Event) {
-        if !self.broken && writeln!(self.out, "{e}").is_err() {
-            self.broken = true;
+        if self.error.is_none() {
+            if let Err(err) = writeln!(self.out, "{e}") {
+                self.error = Some(err);
+            }
         }
     }
 }
@@ -99,17 +129,17 @@ fn main() -> ExitCode {
     let args = Args::parse();
     match args.command {
         Command::Disasm { file } => match load(&file) {
-            Ok(m) => {
-                print!("{}", m.disassemble());
-                ExitCode::SUCCESS
-            }
+            Ok(m) => match print_all(&m.disassemble()) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => output_failed(&e),
+            },
             Err(e) => fail(&e),
         },
         Command::Verify { file } => match load(&file) {
-            Ok(_) => {
-                println!("{}: ok", file.display());
-                ExitCode::SUCCESS
-            }
+            Ok(_) => match print_all(&format!("{}: ok\n", file.display())) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => output_failed(&e),
+            },
             Err(e) => fail(&e),
         },
         Command::Run {
@@ -182,26 +212,33 @@ fn run(
         let f = &vm.nc.machine.r#macro.persistent_file;
         (!f.is_empty()).then(|| PathBuf::from(f))
     });
-    if let Some(path) = store {
-        match cli::vars::load(&path) {
-            Ok(values) => *vm.persistent_mut() = values,
-            Err(e) => return fail(&e),
-        }
-        vm.set_storage(Box::new(cli::vars::FileStorage(path)));
-    }
+    let vars_file = match store.map(|p| cli::vars::VarsFile::open(&p)).transpose() {
+        Ok(v) => v.map(|(file, values)| {
+            *vm.persistent_mut() = values;
+            vm.set_storage(file.storage());
+            file
+        }),
+        Err(e) => return fail(&e),
+    };
     let stdout = std::io::stdout();
     let mut sink = Canon {
         out: BufWriter::new(stdout.lock()),
-        broken: false,
+        error: None,
     };
     let status = vm.run(&mut sink);
-    let _ = sink.out.flush();
-    match status {
-        Status::Alarm(a) => {
-            eprintln!("{}", a.header());
-            ExitCode::from(2)
-        }
-        _ => ExitCode::SUCCESS,
+    if let (None, Err(e)) = (&sink.error, sink.out.flush()) {
+        sink.error = Some(e);
+    }
+    if let Status::Alarm(a) = &status {
+        note(format_args!("{}", a.header()));
+    }
+    if let Some(Err(e)) = vars_file.map(cli::vars::VarsFile::finish) {
+        return fail(&e);
+    }
+    match (sink.error, status) {
+        (Some(e), _) => output_failed(&e),
+        (None, Status::Alarm(_)) => ExitCode::from(2),
+        (None, _) => ExitCode::SUCCESS,
     }
 }
 
@@ -250,65 +287,68 @@ fn run_timed(
         let f = &ctl.machine().r#macro.persistent_file;
         (!f.is_empty()).then(|| PathBuf::from(f))
     });
-    if let Some(path) = store {
-        match cli::vars::load(&path) {
-            Ok(values) => *ctl.vm_mut().persistent_mut() = values,
-            Err(e) => return fail(&e),
-        }
-        ctl.vm_mut()
-            .set_storage(Box::new(cli::vars::FileStorage(path)));
-    }
+    let vars_file = match store.map(|p| cli::vars::VarsFile::open(&p)).transpose() {
+        Ok(v) => v.map(|(file, values)| {
+            *ctl.vm_mut().persistent_mut() = values;
+            ctl.vm_mut().set_storage(file.storage());
+            file
+        }),
+        Err(e) => return fail(&e),
+    };
     let stdout = std::io::stdout();
-    let mut w = BufWriter::new(stdout.lock());
-    let mut broken = false;
+    // The canon goes to stdout when no trace does.
+    let mut canon = Canon {
+        out: BufWriter::new(stdout.lock()),
+        error: None,
+    };
     if out.trace == Some(Format::Csv) {
         let c_axis = ctl.engine().config().c.is_some();
-        broken |= writeln!(w, "{}", runtime::trace::csv_header(c_axis)).is_err();
+        if let Err(e) = writeln!(canon.out, "{}", runtime::trace::csv_header(c_axis)) {
+            canon.error = Some(e);
+        }
     }
     let period = ctl.engine().config().period_s;
     let mut stats = runtime::stats::Stats::new(period);
     let mut plot = out.plot.as_ref().map(|_| runtime::plot::Plot::new());
     let mut line = String::new();
-    {
-        // The canon goes to stdout when no trace does.
-        let mut canon = Canon {
-            out: &mut w,
-            broken: false,
-        };
-        struct Quiet;
-        impl Sink for Quiet {
-            fn emit(&mut self, _: Event) {}
+    struct Quiet;
+    impl Sink for Quiet {
+        fn emit(&mut self, _: Event) {}
+    }
+    let mut quiet = Quiet;
+    ctl.cycle_start();
+    loop {
+        if out.trace.is_none() {
+            ctl.run_ahead_tap(&mut canon);
+        } else {
+            ctl.run_ahead_tap(&mut quiet);
         }
-        let mut quiet = Quiet;
-        ctl.cycle_start();
-        loop {
-            if out.trace.is_none() {
-                ctl.run_ahead_tap(&mut canon);
-            } else {
-                ctl.run_ahead_tap(&mut quiet);
-            }
-            let sp = ctl.tick();
-            if let Some(f) = out.trace {
-                line.clear();
-                let _ = match f {
-                    Format::Csv => runtime::trace::write_csv(&mut line, &sp),
-                    Format::Json => runtime::trace::write_json(&mut line, &sp),
-                };
-                if !broken && canon.out.write_all(line.as_bytes()).is_err() {
-                    broken = true;
+        let sp = ctl.tick();
+        if let Some(f) = out.trace {
+            line.clear();
+            let _ = match f {
+                Format::Csv => runtime::trace::write_csv(&mut line, &sp),
+                Format::Json => runtime::trace::write_json(&mut line, &sp),
+            };
+            if canon.error.is_none() {
+                if let Err(e) = canon.out.write_all(line.as_bytes()) {
+                    canon.error = Some(e);
                 }
             }
-            stats.add(&sp);
-            if let Some(p) = plot.as_mut() {
-                p.add(&sp);
-            }
-            match ctl.state() {
-                runtime::RunState::Stopped(_) | runtime::RunState::Idle => ctl.cycle_start(),
-                runtime::RunState::Ended | runtime::RunState::Alarm(_) => break,
-                _ => {}
-            }
         }
-        broken |= canon.broken;
+        stats.add(&sp);
+        if let Some(p) = plot.as_mut() {
+            p.add(&sp);
+        }
+        match ctl.state() {
+            runtime::RunState::Stopped(_) | runtime::RunState::Idle => ctl.cycle_start(),
+            runtime::RunState::Ended | runtime::RunState::Alarm(_) => break,
+            _ => {}
+        }
+        // The output is what a timed run is for: once it fails, stop.
+        if canon.error.is_some() {
+            break;
+        }
     }
     stats.blocks = ctl.blocks();
     let alarm = ctl.alarm();
@@ -316,17 +356,20 @@ fn run_timed(
     // (E7001, E7002, E7003, E4010) end the canon here.
     if let (Some(a), None) = (&alarm, out.trace) {
         if matches!(a.code, 7001 | 7002 | 7003 | 4010) {
-            let e = Event::Alarm {
+            canon.emit(Event::Alarm {
                 code: a.code,
                 msg: a.message.clone(),
-            };
-            broken |= writeln!(w, "{e}").is_err();
+            });
         }
     }
-    // A closed stdout (`| head`) ends the output, not the run.
-    let _ = broken;
-    let _ = w.flush();
-    drop(w);
+    if let (None, Err(e)) = (&canon.error, canon.out.flush()) {
+        canon.error = Some(e);
+    }
+    let output_error = canon.error.take();
+    drop(canon);
+    if let Some(Err(e)) = vars_file.map(cli::vars::VarsFile::finish) {
+        return fail(&e);
+    }
     if let (Some(path), Some(p)) = (&out.plot, plot.as_mut()) {
         let title = file.display().to_string();
         if let Err(e) = std::fs::write(path, p.svg(&title)) {
@@ -334,13 +377,14 @@ fn run_timed(
         }
     }
     if out.stats {
-        eprint!("{stats}");
+        let _ = write!(std::io::stderr().lock(), "{stats}");
     }
-    match alarm {
-        Some(a) => {
-            eprintln!("{}", a.header());
-            ExitCode::from(2)
-        }
-        None => ExitCode::SUCCESS,
+    if let Some(a) = &alarm {
+        note(format_args!("{}", a.header()));
+    }
+    match (output_error, alarm) {
+        (Some(e), _) => output_failed(&e),
+        (None, Some(_)) => ExitCode::from(2),
+        (None, None) => ExitCode::SUCCESS,
     }
 }
