@@ -58,9 +58,26 @@ fn usage(msg: &str) -> ExitCode {
     ExitCode::from(2)
 }
 
-fn parse_define(d: &str) -> Option<(u32, f64)> {
-    let (var, value) = d.trim().trim_start_matches('#').split_once('=')?;
-    Some((var.trim().parse().ok()?, value.trim().parse().ok()?))
+/// `-D '#N=VALUE'`: N a variable a program may preset (locals #1–#33,
+/// common #100–#199 and #500–#999), VALUE a finite number.
+fn parse_define(d: &str) -> Result<(u32, f64), String> {
+    let malformed = || format!("-D expects #N=VALUE, got '{d}'");
+    let (var, value) = d
+        .trim()
+        .trim_start_matches('#')
+        .split_once('=')
+        .ok_or_else(malformed)?;
+    let var: u32 = var.trim().parse().map_err(|_| malformed())?;
+    let value: f64 = value.trim().parse().map_err(|_| malformed())?;
+    if !matches!(var, 1..=33 | 100..=199 | 500..=999) {
+        return Err(format!(
+            "-D '{d}': #{var} cannot be preset (only #1–#33, #100–#199, #500–#999)"
+        ));
+    }
+    if !value.is_finite() {
+        return Err(format!("-D '{d}': the value must be a finite number"));
+    }
+    Ok((var, value))
 }
 
 fn main() -> ExitCode {
@@ -91,8 +108,8 @@ fn main() -> ExitCode {
     let mut defines = Vec::new();
     for d in &args.define {
         match parse_define(d) {
-            Some(def) => defines.push(def),
-            None => return usage(&format!("-D expects #N=VALUE, got '{d}'")),
+            Ok(def) => defines.push(def),
+            Err(msg) => return usage(&msg),
         }
     }
     if args.output.is_some() && args.files.len() > 1 && !syntax_only {
