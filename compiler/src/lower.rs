@@ -264,9 +264,19 @@ impl<'a> Gen<'a> {
     }
 
     fn resolve_gotos(&mut self, st: &mut ProgState) {
+        // Each N number's first block and whether it recurs, found in one
+        // pass: a search of all blocks per GOTO was quadratic in a long
+        // chain of GOTOs.
+        let mut first: crate::hash::IntMap<u32, (usize, bool)> = Default::default();
+        for (i, (n, ..)) in st.seqs.iter().enumerate() {
+            first
+                .entry(*n)
+                .and_modify(|(_, again)| *again = true)
+                .or_insert((i, false));
+        }
         for g in std::mem::take(&mut st.gotos) {
-            let mut found = st.seqs.iter().filter(|(n, ..)| *n == g.seq);
-            let Some((_, pc, loops, _)) = found.next() else {
+            let found = first.get(&g.seq).map(|&(i, again)| (&st.seqs[i], again));
+            let Some(((_, pc, loops, _), again)) = found else {
                 self.error(
                     "E2010",
                     g.span,
@@ -277,7 +287,7 @@ impl<'a> Gen<'a> {
                 );
                 continue;
             };
-            if found.next().is_some() {
+            if again {
                 self.warn(
                     "W103",
                     g.span,
