@@ -225,3 +225,182 @@ fn a_vars_file_in_use_by_another_run_is_refused() {
     assert_eq!(std::fs::read_to_string(&v).unwrap(), "#500=50\n");
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn machine_values_out_of_range_are_refused_at_their_key() {
+    let d = dir("machine");
+    std::fs::write(d.join("a.nc"), "G00 X10 Z2\nM30\n").unwrap();
+    assert_eq!(gbcc(&["a.nc"], &d).status.code(), Some(0));
+    // (file text, where the bad key stands, the key named)
+    let cases = [
+        (
+            "[machine]\nlookahead_blocks = 4294967295\n",
+            "2:1",
+            "machine.lookahead_blocks",
+        ),
+        (
+            "[machine]\nlookahead_blocks = 0\n",
+            "2:1",
+            "machine.lookahead_blocks",
+        ),
+        ("\n[axes.z]\nmin_mm = nan\n", "3:1", "axes.z.min_mm"),
+        (
+            "[axes.x]\nmin_mm = 5.0\nmax_mm = 1.0\n",
+            "2:1",
+            "axes.x.min_mm",
+        ),
+        ("[spindle]\nmin_rpm = -1\n", "2:1", "spindle.min_rpm"),
+        ("[spindle]\nencoder_ppr = 0\n", "2:1", "spindle.encoder_ppr"),
+        (
+            "[spindle]\nstall_timeout_s = inf\n",
+            "2:1",
+            "spindle.stall_timeout_s",
+        ),
+        (
+            "[cycles]\ng71_retract_mm = -0.5\n",
+            "2:1",
+            "cycles.g71_retract_mm",
+        ),
+        // Columns counted by hand: the `z` of `second = { x = 1.0, z = nan }`
+        // is the 21st character, the `x` of `g54 = { x = inf }` the 9th.
+        (
+            "[reference_points]\nsecond = { x = 1.0, z = nan }\n",
+            "2:21",
+            "reference_points.second.z",
+        ),
+        ("[coords]\ng54 = { x = inf }\n", "2:9", "coords.g54.x"),
+        ("[measure]\ngamma_x_mm = -2\n", "2:1", "measure.gamma_x_mm"),
+        (
+            "[operator]\nfeed_override_pct = nan\n",
+            "2:1",
+            "operator.feed_override_pct",
+        ),
+        (
+            "[stroke_check_2]\nplus = { x = 0.0, z = -inf }\n",
+            "2:19",
+            "stroke_check_2.plus.z",
+        ),
+        ("[tools]\ncount = 4294967295\n", "2:1", "tools.count"),
+        ("[tools]\noffsets = 1000\n", "2:1", "tools.offsets"),
+        (
+            "[[tools.offset]]\nnumber = 1\n[[tools.offset]]\nnumber = 1\n",
+            "4:1",
+            "tools.offset[1].number",
+        ),
+        (
+            "[[tools.offset]]\nnumber = 2\nradius = inf\n",
+            "3:1",
+            "tools.offset[0].radius",
+        ),
+        ("[run]\nmax_time_s = 0\n", "2:1", "run.max_time_s"),
+        ("[host]\ndate = 20001301\n", "2:1", "host.date"),
+    ];
+    for (text, at, key) in cases {
+        std::fs::write(d.join("m.toml"), text).unwrap();
+        for out in [
+            gbvm(&["run", "a.gbc", "--machine", "m.toml"], &d),
+            gbcc(&["a.nc", "--machine", "m.toml"], &d),
+        ] {
+            assert_eq!(out.status.code(), Some(1), "{text}");
+            let err = stderr(&out);
+            assert!(
+                err.contains(&format!("m.toml:{at}: {key}: ")),
+                "{text}: {err}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn timed_runs_that_cannot_end_stop_with_e6006() {
+    let d = dir("time");
+    std::fs::write(d.join("dwell.nc"), "G00 X10 Z2\nG04 X99999999\nM30\n").unwrap();
+    std::fs::write(d.join("far.nc"), "G00 X99999999999999999999\nM30\n").unwrap();
+    std::fs::write(d.join("a.nc"), "G00 X10 Z2\nG01 Z-5 F100\nM30\n").unwrap();
+    std::fs::write(d.join("stuck.toml"), "[operator]\nfeed_override_pct = 0\n").unwrap();
+    std::fs::write(d.join("short.toml"), "[run]\nmax_time_s = 0.5\n").unwrap();
+    for f in ["dwell.nc", "far.nc", "a.nc"] {
+        assert_eq!(gbcc(&[f], &d).status.code(), Some(0), "{f}");
+    }
+    // (arguments, the line running when the time ran out, seconds allowed)
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &["run", "dwell.gbc", "--stats", "--max-time", "3"],
+            "dwell.nc:2:1",
+        ),
+        (
+            &["run", "far.gbc", "--emit", "trace", "--max-time", "2"],
+            "far.nc:1:1",
+        ),
+        (
+            &[
+                "run",
+                "a.gbc",
+                "--plot",
+                "p.svg",
+                "--machine",
+                "stuck.toml",
+                "--max-time",
+                "2",
+            ],
+            "a.nc:2:1",
+        ),
+        (
+            &[
+                "run",
+                "a.gbc",
+                "--stats",
+                "--machine",
+                "stuck.toml",
+                "--max-time",
+                "2",
+            ],
+            "a.nc:2:1",
+        ),
+        // The machine key bounds a run without the option.
+        (
+            &[
+                "run",
+                "dwell.gbc",
+                "--emit",
+                "trace",
+                "--machine",
+                "short.toml",
+            ],
+            "dwell.nc:2:1",
+        ),
+    ];
+    for (args, at) in cases {
+        let out = gbvm(args, &d);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = stderr(&out);
+        assert!(
+            err.contains(&format!("{at}: alarm[E6006]")),
+            "{args:?}: {err}"
+        );
+    }
+    // The trace stops at the bound: 2 s at 1 ms is 2000 lines and a header.
+    let out = gbvm(
+        &["run", "far.gbc", "--emit", "trace", "--max-time", "2"],
+        &d,
+    );
+    let trace = stdout(&out);
+    assert_eq!(trace.lines().count(), 2001);
+    assert!(
+        trace.lines().last().unwrap().starts_with("2.000000,"),
+        "{trace}"
+    );
+    // The canon of a timed run ends with the alarm.
+    let out = gbvm(&["run", "dwell.gbc", "--stats", "--max-time", "1"], &d);
+    assert!(stdout(&out).ends_with("ALARM CODE=6006 MSG=\"the run did not end within 1 s of simulated time (run.max_time_s, --max-time)\"\n"), "{}", stdout(&out));
+    // A run that ends in time is not touched by the bound.
+    let out = gbvm(&["run", "a.gbc", "--stats", "--max-time", "10"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    for bad in ["0", "-1", "nan", "inf"] {
+        let arg = format!("--max-time={bad}");
+        let out = gbvm(&["run", "a.gbc", "--stats", &arg], &d);
+        assert_eq!(out.status.code(), Some(1), "--max-time {bad}");
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -27,6 +27,7 @@ pub mod exec;
 pub mod gcode;
 pub mod geom;
 pub mod machine;
+pub mod machine_check;
 pub mod measure;
 pub mod params;
 pub mod state;

@@ -56,6 +56,10 @@ enum Command {
         /// Block budget (E6005 past it); default run.max_blocks.
         #[arg(long, value_name = "N")]
         max_blocks: Option<u64>,
+        /// Simulated seconds a timed run (--emit trace, --plot, --stats)
+        /// may last before it stops with E6006; default run.max_time_s.
+        #[arg(long, value_name = "S")]
+        max_time: Option<f64>,
         /// Passes a main-program M99 makes before the run ends.
         #[arg(long, value_name = "N", default_value_t = 1)]
         repeat: u32,
@@ -150,6 +154,7 @@ fn main() -> ExitCode {
             stats,
             machine,
             max_blocks,
+            max_time,
             repeat,
             vars,
         } => {
@@ -165,10 +170,16 @@ fn main() -> ExitCode {
                     vars.as_deref(),
                 );
             }
+            if let Some(t) = max_time.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 1.0e6)) {
+                return fail(&format!(
+                    "--max-time {t}: give seconds above 0, at most 1000000"
+                ));
+            }
             let out = Outputs {
                 trace: (emit == Emit::Trace).then_some(format),
                 plot,
                 stats,
+                max_time,
             };
             run_timed(
                 &file,
@@ -248,7 +259,14 @@ struct Outputs {
     trace: Option<Format>,
     plot: Option<PathBuf>,
     stats: bool,
+    /// `--max-time`, else the machine's run.max_time_s.
+    max_time: Option<f64>,
 }
+
+/// The alarm of a timed run that used up its simulated time (E6006,
+/// README): a run that cannot end (an endless dwell, a move of 10^20 mm,
+/// a feed override of 0) stops instead of writing without end.
+const E_TIME: u32 = 6006;
 
 /// Runs the module through the interpolation runtime, period by period,
 /// as the reference host: every PLC function completes at once and cycle
@@ -316,6 +334,12 @@ fn run_timed(
         fn emit(&mut self, _: Event) {}
     }
     let mut quiet = Quiet;
+    let max_time = out.max_time.unwrap_or(ctl.machine().run.max_time_s);
+    // Whole periods: the bound is exact in ticks, not subject to a sum of
+    // rounded times.
+    let max_ticks = (max_time / period).ceil() as u64;
+    let mut ticks = 0u64;
+    let mut timed_out = None;
     ctl.cycle_start();
     loop {
         if out.trace.is_none() {
@@ -324,6 +348,7 @@ fn run_timed(
             ctl.run_ahead_tap(&mut quiet);
         }
         let sp = ctl.tick();
+        ticks += 1;
         if let Some(f) = out.trace {
             line.clear();
             let _ = match f {
@@ -349,13 +374,20 @@ fn run_timed(
         if canon.error.is_some() {
             break;
         }
+        if ticks >= max_ticks {
+            timed_out = Some(sp.line);
+            break;
+        }
     }
     stats.blocks = ctl.blocks();
-    let alarm = ctl.alarm();
+    let alarm = match timed_out {
+        Some(line) => Some(time_alarm(&mut ctl, line, max_time)),
+        None => ctl.alarm(),
+    };
     // A VM alarm printed its ALARM line with the canon; the runtime's own
     // (E7001, E7002, E7003, E4010) end the canon here.
     if let (Some(a), None) = (&alarm, out.trace) {
-        if matches!(a.code, 7001 | 7002 | 7003 | 4010) {
+        if matches!(a.code, 7001 | 7002 | 7003 | 4010 | E_TIME) {
             canon.emit(Event::Alarm {
                 code: a.code,
                 msg: a.message.clone(),
@@ -386,5 +418,25 @@ fn run_timed(
         (Some(e), _) => output_failed(&e),
         (None, Some(_)) => ExitCode::from(2),
         (None, None) => ExitCode::SUCCESS,
+    }
+}
+
+/// E6006 at the block running when the time ran out (its line in the
+/// main file: the set point carries the line only).
+fn time_alarm(ctl: &mut runtime::Controller, line: u32, max_time: f64) -> runtime::AlarmInfo {
+    let file = ctl
+        .vm_mut()
+        .module()
+        .files
+        .first()
+        .map_or_else(String::new, |f| f.name.clone());
+    runtime::AlarmInfo {
+        code: E_TIME,
+        message: format!(
+            "the run did not end within {max_time} s of simulated time (run.max_time_s, --max-time)"
+        ),
+        file,
+        line,
+        col: 1,
     }
 }
