@@ -141,7 +141,7 @@ pub fn run(e: &E) -> Result<f64, u16> {
     let mut events: Vec<nc::Event> = Vec::new();
     match vm.run(&mut events) {
         vm::Status::Alarm(a) => Err(a.code as u16),
-        _ => vm.variable(100).map_err(|e| e.code as u16),
+        _ => vm.variable(100).map_err(|e| e.code),
     }
 }
 
