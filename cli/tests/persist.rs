@@ -77,6 +77,11 @@ fn killed_runs_never_leave_a_torn_file() {
         let Ok(text) = std::fs::read_to_string(&vars) else {
             continue; // killed before the first store
         };
+        if text.is_empty() {
+            // gbvm creates a missing FILE empty (all vacant) to lock it:
+            // killed before the first store, it still holds that state.
+            continue;
+        }
         let c = check(&text);
         // Each run starts its count again from 0: only a whole count is valid.
         assert!(c >= 0.0 && c.fract() == 0.0, "#500 = {c}");
