@@ -329,6 +329,29 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_reference_is_in_range_and_each_kind_of_bad_value_is_not() {
+        assert_eq!(check(&Machine::reference()), Ok(()));
+        let key_of = |edit: fn(&mut Machine)| {
+            let mut m = Machine::reference();
+            edit(&mut m);
+            check(&m).map_err(|b| b.key)
+        };
+        let nan = key_of(|m| m.axes.z.min_mm = f64::NAN);
+        assert_eq!(nan, Err("axes.z.min_mm".into()));
+        let inf = key_of(|m| m.reference_points.second.z = f64::INFINITY);
+        assert_eq!(inf, Err("reference_points.second.z".into()));
+        let zero = key_of(|m| m.spindle.encoder_ppr = 0);
+        assert_eq!(zero, Err("spindle.encoder_ppr".into()));
+        let huge = key_of(|m| m.machine.lookahead_blocks = u32::MAX);
+        assert_eq!(huge, Err("machine.lookahead_blocks".into()));
+        let negative = key_of(|m| m.spindle.stall_timeout_s = -1.0);
+        assert_eq!(negative, Err("spindle.stall_timeout_s".into()));
+        // The bounds themselves are in range.
+        assert_eq!(key_of(|m| m.machine.lookahead_blocks = 16384), Ok(()));
+        assert_eq!(key_of(|m| m.operator.feed_override_pct = 0.0), Ok(()));
+    }
+
+    #[test]
     fn keys_are_found_in_tables_arrays_and_inline_tables() {
         let text = "[machine]\nlookahead_blocks = 5\n\n[reference_points]\nsecond = { x = 1.0, z = nan }\n\
                     [[tools.offset]]\nnumber = 1\n[[tools.offset]]\n  number = 1\n";
