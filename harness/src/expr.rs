@@ -76,6 +76,18 @@ fn round(v: f64) -> f64 {
     }
 }
 
+/// The rounded operand of MOD and the bitwise operators. Beyond ±9·10¹⁸
+/// it no longer fits a 64-bit integer: E5006, as the kernel decides
+/// (nc/src/value.rs); the first fuzz run found the reference saturating
+/// there instead (`-12.98 MOD [#2 to the 32nd]`).
+fn int(v: f64) -> Result<i64, u16> {
+    let r = round(v);
+    if r.abs() > 9.0e18 {
+        return Err(5006);
+    }
+    Ok(r as i64)
+}
+
 /// The reference: `Ok(None)` is vacant, `Err(code)` an alarm.
 pub fn eval(e: &E) -> Result<Option<f64>, u16> {
     let z = |v: Option<f64>| v.unwrap_or(0.0);
@@ -94,15 +106,15 @@ pub fn eval(e: &E) -> Result<Option<f64>, u16> {
                 "/" if y == 0.0 => return Err(5001),
                 "/" => x / y,
                 "MOD" => {
-                    let (i, j) = (round(x) as i64, round(y) as i64);
+                    let (i, j) = (int(x)?, int(y)?);
                     if j == 0 {
                         return Err(5001);
                     }
                     (i % j) as f64
                 }
-                "AND" => (round(x) as i64 & round(y) as i64) as f64,
-                "OR" => (round(x) as i64 | round(y) as i64) as f64,
-                _ => (round(x) as i64 ^ round(y) as i64) as f64,
+                "AND" => (int(x)? & int(y)?) as f64,
+                "OR" => (int(x)? | int(y)?) as f64,
+                _ => (int(x)? ^ int(y)?) as f64,
             }
         }
         E::Fun(f, a) => {

@@ -159,3 +159,23 @@ fn the_decoder_reads_one_node_per_byte() {
     assert_eq!(decode(&[128, 2]).text(), "[-#3]");
     assert_eq!(decode(&[]).text(), "0");
 }
+
+/// The first finding of the `vm_expr` target: a MOD operand beyond the
+/// 64-bit integers (−4 to the 32nd ≈ 1.8·10¹⁹) is E5006 in the VM; the
+/// reference saturated it and expected −13.
+#[test]
+fn a_mod_operand_beyond_64_bits_is_e5006_in_both() {
+    use harness::expr::{eval, run, E};
+    let four = || Box::new(E::Var(2));
+    let mut big = E::Bin("*", four(), four());
+    for _ in 0..4 {
+        big = E::Bin("*", Box::new(big.clone()), Box::new(big));
+    }
+    let e = E::Neg(Box::new(E::Bin(
+        "MOD",
+        Box::new(E::Num(12.98)),
+        Box::new(big),
+    )));
+    assert_eq!(eval(&e), Err(5006), "{}", e.text());
+    assert_eq!(run(&e), Err(5006), "{}", e.text());
+}
