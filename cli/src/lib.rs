@@ -22,5 +22,12 @@ pub fn load_machine(path: Option<&Path>) -> Result<Machine, String> {
         return Ok(Machine::reference());
     };
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    Machine::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))
+    Machine::from_toml(&text).map_err(|e| match e {
+        // A value out of range: gcc-style, at the key.
+        nc::machine::MachineError::Range {
+            bad,
+            at: Some((line, col)),
+        } => format!("{}:{line}:{col}: {}: {}", path.display(), bad.key, bad.msg),
+        e => format!("{}: {e}", path.display()),
+    })
 }

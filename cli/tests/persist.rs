@@ -44,7 +44,8 @@ fn check(text: &str) -> f64 {
 fn killed_runs_never_leave_a_torn_file() {
     let dir = temp_dir("persist");
     let src = dir.join("count.nc");
-    // The VM stores after every block that changes #500–#999.
+    // The VM stores whenever a block changes #500–#999; the file is
+    // rewritten at most once per `cli::vars::SAVE_PERIOD` (100 ms).
     std::fs::write(
         &src,
         "#501=12345.678\n#500=0\nWHILE[#500LT1000000]DO1\n#500=#500+1\nEND1\nM30\n",
@@ -71,12 +72,17 @@ fn killed_runs_never_leave_a_torn_file() {
             .stderr(Stdio::null())
             .spawn()
             .unwrap();
-        std::thread::sleep(Duration::from_millis(20 + 13 * i));
+        std::thread::sleep(Duration::from_millis(20 + 40 * i));
         child.kill().unwrap();
         child.wait().unwrap();
         let Ok(text) = std::fs::read_to_string(&vars) else {
             continue; // killed before the first store
         };
+        if text.is_empty() {
+            // gbvm creates a missing FILE empty (all vacant) to lock it:
+            // killed before the first store, it still holds that state.
+            continue;
+        }
         let c = check(&text);
         // Each run starts its count again from 0: only a whole count is valid.
         assert!(c >= 0.0 && c.fract() == 0.0, "#500 = {c}");

@@ -217,6 +217,36 @@ fn destination(g: &mut Gen<'_>, p: Option<&Word>, span: Span) -> Option<u32> {
     }
 }
 
+/// `G65 H99 Q n`: alarm 500 + n, n = 0…99 (the 500–599 band of
+/// dialect.md §8). **Decision:** Q is a constant here, as the alarm
+/// numbers of a real program are; a variable Q is E2060 and a constant
+/// outside 0…99 is E1010, both at compile time.
+fn user_alarm(g: &mut Gen<'_>, q: Option<WordValue<'_>>, span: Span) {
+    let n = match q {
+        None => 0.0,
+        Some(q) => match q.literal() {
+            Some(v) => round_half_away(v),
+            None => {
+                g.error("E2060", span, "G65 H99: Q must be a constant 0…99");
+                return;
+            }
+        },
+    };
+    if !(0.0..=99.0).contains(&n) {
+        g.error(
+            "E1010",
+            span,
+            format!("G65 H99: Q{n} is outside 0…99 (alarms 500…599)"),
+        );
+        return;
+    }
+    let msg = g.string("G65 H99 user alarm");
+    g.emit(Instr::Alarm {
+        code: 500 + n as u16,
+        msg,
+    });
+}
+
 fn operand(g: &mut Gen<'_>, v: Option<WordValue<'_>>) -> Option<u8> {
     match v {
         Some(v) => g.value_reg(&v),
@@ -245,15 +275,7 @@ fn macro_a(
         return macro_a_jump(g, h, p, q, r, span);
     }
     if h == 99 {
-        let code = q
-            .and_then(|q| q.literal())
-            .map_or(500.0, |q| 500.0 + round_half_away(q));
-        let msg = g.string("G65 H99 user alarm");
-        g.emit(Instr::Alarm {
-            code: code.clamp(0.0, 65535.0) as u16,
-            msg,
-        });
-        return;
+        return user_alarm(g, q, span);
     }
     let Some(dst) = destination(g, p, span) else {
         return;

@@ -264,19 +264,19 @@ impl<'a> Gen<'a> {
     }
 
     fn resolve_gotos(&mut self, st: &mut ProgState) {
-        // Each N's first block and whether another follows, found once:
-        // a search per GOTO made a long GOTO chain quadratic.
-        let mut first: std::collections::HashMap<u32, (usize, bool)> =
-            std::collections::HashMap::with_capacity(st.seqs.len());
+        // Each N number's first block and whether it recurs, found in one
+        // pass: a search of all blocks per GOTO was quadratic in a long
+        // chain of GOTOs.
+        let mut first: crate::hash::IntMap<u32, (usize, bool)> = Default::default();
         for (i, (n, ..)) in st.seqs.iter().enumerate() {
             first
                 .entry(*n)
-                .and_modify(|(_, twice)| *twice = true)
+                .and_modify(|(_, again)| *again = true)
                 .or_insert((i, false));
         }
         for g in std::mem::take(&mut st.gotos) {
-            let found = first.get(&g.seq).map(|&(i, twice)| (&st.seqs[i], twice));
-            let Some(((_, pc, loops, _), twice)) = found else {
+            let found = first.get(&g.seq).map(|&(i, again)| (&st.seqs[i], again));
+            let Some(((_, pc, loops, _), again)) = found else {
                 self.error(
                     "E2010",
                     g.span,
@@ -287,7 +287,7 @@ impl<'a> Gen<'a> {
                 );
                 continue;
             };
-            if twice {
+            if again {
                 self.warn(
                     "W103",
                     g.span,

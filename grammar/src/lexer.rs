@@ -56,6 +56,9 @@ pub enum LexError {
     Char,
     /// Digits and points that are not a number (`1.2.3`, `.`).
     Number,
+    /// Digits beyond the largest double (more than 308 before the point):
+    /// they would read as infinity.
+    Range,
 }
 
 /// A token. `N` and `O` are tokens of their own because the grammar treats
@@ -282,6 +285,9 @@ pub fn number(s: &[u8]) -> Result<NumLit, LexError> {
             .and_then(|t| t.parse::<f64>().ok())
             .unwrap_or(f64::INFINITY)
     };
+    if !value.is_finite() {
+        return Err(LexError::Range);
+    }
     Ok(NumLit {
         value,
         has_point: point.is_some(),
@@ -386,6 +392,20 @@ fn lex_into(
                     .with_help("write `0.` or `.0`")
                 };
                 return Err(Box::new(d));
+            }
+            Err(LexError::Range) => {
+                let from = match text[range.clone()].first() {
+                    Some(c) if c.is_ascii_alphabetic() => map.start(range.start + 1),
+                    _ => start,
+                };
+                return Err(Box::new(
+                    Diagnostic::error(
+                        "E1010",
+                        Span::new(from, end),
+                        "number too large: it is not a finite value",
+                    )
+                    .with_label("more digits than a double can hold (about 1.8e308)"),
+                ));
             }
             Err(LexError::Char) => return Err(Box::new(bad_char(text[range.start], start, end))),
         };
@@ -646,6 +666,23 @@ mod tests {
         assert_eq!(super::word(b"X1.2.3"), Err(LexError::Number));
         assert_eq!(super::word(b"X."), Err(LexError::Number));
         assert!(Tok::lexer(b"X.".as_slice()).any(|t| t.is_err()));
+    }
+
+    #[test]
+    fn numbers_past_the_largest_double_are_out_of_range() {
+        // f64::MAX is about 1.797e308: 309 nines exceed it, 308 do not.
+        let nines = |n: usize| "9".repeat(n);
+        assert_eq!(super::number(nines(309).as_bytes()), Err(LexError::Range));
+        assert_eq!(
+            super::word(format!("X-{}", nines(400)).as_bytes()),
+            Err(LexError::Range)
+        );
+        assert!(super::number(nines(308).as_bytes()).is_ok());
+        // 20 digits is large but finite: it stays a number.
+        assert_eq!(
+            super::number(b"99999999999999999999").map(|n| n.value),
+            Ok(1e20)
+        );
     }
 
     #[test]

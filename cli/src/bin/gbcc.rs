@@ -174,9 +174,26 @@ fn writeln_stderr(text: &str) -> std::io::Result<()> {
     writeln!(std::io::stderr().lock(), "{text}")
 }
 
-fn parse_define(d: &str) -> Option<(u32, f64)> {
-    let (var, value) = d.trim().trim_start_matches('#').split_once('=')?;
-    Some((var.trim().parse().ok()?, value.trim().parse().ok()?))
+/// `-D '#N=VALUE'`: N a variable a program may preset (locals #1–#33,
+/// common #100–#199 and #500–#999), VALUE a finite number.
+fn parse_define(d: &str) -> Result<(u32, f64), String> {
+    let malformed = || format!("-D expects #N=VALUE, got '{d}'");
+    let (var, value) = d
+        .trim()
+        .trim_start_matches('#')
+        .split_once('=')
+        .ok_or_else(malformed)?;
+    let var: u32 = var.trim().parse().map_err(|_| malformed())?;
+    let value: f64 = value.trim().parse().map_err(|_| malformed())?;
+    if !matches!(var, 1..=33 | 100..=199 | 500..=999) {
+        return Err(format!(
+            "-D '{d}': #{var} cannot be preset (only #1–#33, #100–#199, #500–#999)"
+        ));
+    }
+    if !value.is_finite() {
+        return Err(format!("-D '{d}': the value must be a finite number"));
+    }
+    Ok((var, value))
 }
 
 fn main() -> ExitCode {
@@ -215,7 +232,7 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
     let mut defines = Vec::new();
     for d in &args.define {
         let def =
-            parse_define(d).ok_or_else(|| usage(&format!("-D expects #N=VALUE, got '{d}'")))?;
+            parse_define(d).map_err(|msg| usage(&msg))?;
         defines.push(def);
     }
     let several = args.files.len() > 1;

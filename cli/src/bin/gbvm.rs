@@ -75,6 +75,10 @@ enum Command {
         /// Block budget (E6005 past it); default run.max_blocks.
         #[arg(long, value_name = "N")]
         max_blocks: Option<u64>,
+        /// Simulated seconds a timed run (--emit trace, --plot, --stats)
+        /// may last before it stops with E6006; default run.max_time_s.
+        #[arg(long, value_name = "S")]
+        max_time: Option<f64>,
         /// Passes a main-program M99 makes before the run ends.
         #[arg(long, value_name = "N", default_value_t = 1)]
         repeat: u32,
@@ -117,32 +121,68 @@ fn printable(text: &str) -> String {
 }
 
 fn fail(msg: &str) -> ExitCode {
-    let _ = writeln!(std::io::stderr(), "gbvm: error: {msg}");
+    note(format_args!("gbvm: error: {msg}"));
     cli::exit::Exit::Input.into()
 }
 
-/// Prints each event as one canon line.
+/// One line on stderr; a stderr that cannot be written to (`2>/dev/full`)
+/// has nobody left to tell, so its error is dropped rather than panicking.
+fn note(line: std::fmt::Arguments) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// The end of a command whose standard output failed: a closed pipe
+/// (`| head`) is the reader's choice and goes unremarked; any other error
+/// (a full device) is reported. Either way the output is incomplete, so the
+/// command does not succeed (exit 3, cli::exit).
+fn output_failed(e: &std::io::Error) -> ExitCode {
+    if e.kind() != std::io::ErrorKind::BrokenPipe {
+        note(format_args!("gbvm: error: standard output: {e}"));
+    }
+    cli::exit::Exit::Write.into()
+}
+
+/// Writes a listing to standard output and flushes it.
+fn print_out(text: &str) -> ExitCode {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => output_failed(&e),
+    }
+}
+
+/// Prints each event as one canon line. After the first write error it
+/// writes no more and keeps the error for the exit status.
 struct Canon<W: Write> {
     out: W,
-    broken: bool,
+    error: Option<std::io::Error>,
+}
+
+impl<W: Write> Canon<W> {
+    /// Writes `text` unless an earlier write failed.
+    fn write(&mut self, text: &str) {
+        if self.error.is_none() {
+            if let Err(err) = self.out.write_all(text.as_bytes()) {
+                self.error = Some(err);
+            }
+        }
+    }
+
+    /// Flushes, and gives the first write error.
+    fn finish(mut self) -> Option<std::io::Error> {
+        if let (None, Err(e)) = (&self.error, self.out.flush()) {
+            self.error = Some(e);
+        }
+        self.error
+    }
 }
 
 impl<W: Write> Sink for Canon<W> {
     fn emit(&mut self, e: Event) {
-        if !self.broken && writeln!(self.out, "{e}").is_err() {
-            self.broken = true;
-        }
-    }
-}
-
-/// Writes a listing to standard output; a full disk or a closed pipe is
-/// exit code 3 (cli::exit), not a panic.
-fn print_out(text: &str) -> ExitCode {
-    match cli::io::Dest::Stdout.write(text.as_bytes()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            let _ = writeln!(std::io::stderr(), "gbvm: error: {e}");
-            cli::exit::Exit::Write.into()
+        if self.error.is_none() {
+            if let Err(err) = writeln!(self.out, "{e}") {
+                self.error = Some(err);
+            }
         }
     }
 }
@@ -171,6 +211,7 @@ fn main() -> ExitCode {
             quiet,
             machine,
             max_blocks,
+            max_time,
             repeat,
             vars,
         } => {
@@ -190,6 +231,12 @@ fn main() -> ExitCode {
                     std::io::stderr(),
                     "gbvm: error: --format json applies to --emit trace"
                 );
+                return cli::exit::Exit::Usage.into();
+            }
+            if let Some(t) = max_time.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 1.0e6)) {
+                note(format_args!(
+                    "gbvm: error: --max-time {t}: give seconds above 0, at most 1000000"
+                ));
                 return cli::exit::Exit::Usage.into();
             }
             let stock = match stock.as_deref().map(cli::program_info::parse_stock) {
@@ -214,6 +261,7 @@ fn main() -> ExitCode {
                 stock,
                 stats: stats_out,
                 quiet,
+                max_time,
             };
             run_timed(
                 &file,
@@ -259,17 +307,18 @@ fn run(
         let f = &vm.nc.machine.r#macro.persistent_file;
         (!f.is_empty()).then(|| PathBuf::from(f))
     });
-    if let Some(path) = store {
-        match cli::vars::load(&path) {
-            Ok(values) => *vm.persistent_mut() = values,
-            Err(e) => return fail(&e),
-        }
-        vm.set_storage(Box::new(cli::vars::FileStorage(path)));
-    }
+    let vars_file = match store.map(|p| cli::vars::VarsFile::open(&p)).transpose() {
+        Ok(v) => v.map(|(file, values)| {
+            *vm.persistent_mut() = values;
+            vm.set_storage(file.storage());
+            file
+        }),
+        Err(e) => return fail(&e),
+    };
     let stdout = std::io::stdout();
     let mut sink = Canon {
         out: BufWriter::new(stdout.lock()),
-        broken: false,
+        error: None,
     };
     // Block by block (as `Vm::run`), to move the progress bar.
     let mut progress = cli::progress::Progress::bar(main_lines, "run", quiet);
@@ -283,21 +332,18 @@ fn run(
         }
     };
     progress.finish();
-    let lost = sink.out.flush().is_err() || sink.broken;
+    let output_error = sink.finish();
     if let Status::Alarm(a) = &status {
-        let _ = writeln!(std::io::stderr(), "{}", printable(&a.header()));
+        note(format_args!("{}", printable(&a.header())));
+    }
+    if let Some(Err(e)) = vars_file.map(cli::vars::VarsFile::finish) {
+        return fail(&e);
     }
     // The canon is the run's result: losing it is a failure of its own.
-    if lost {
-        let _ = writeln!(
-            std::io::stderr(),
-            "gbvm: error: cannot write the canon to standard output"
-        );
-        return cli::exit::Exit::Write.into();
-    }
-    match status {
-        Status::Alarm(_) => cli::exit::Exit::Alarm.into(),
-        _ => ExitCode::SUCCESS,
+    match (output_error, status) {
+        (Some(e), _) => output_failed(&e),
+        (None, Status::Alarm(_)) => cli::exit::Exit::Alarm.into(),
+        (None, _) => ExitCode::SUCCESS,
     }
 }
 
@@ -328,7 +374,14 @@ struct Outputs {
     stock: Option<runtime::plot::Stock>,
     stats: Option<(StatsFormat, StatsTo)>,
     quiet: bool,
+    /// `--max-time`, else the machine's run.max_time_s.
+    max_time: Option<f64>,
 }
+
+/// The alarm of a timed run that used up its simulated time (E6006,
+/// docs/machine.md): a run that cannot end (an endless dwell, a move of
+/// 10^20 mm, a feed override of 0) stops instead of writing without end.
+const E_TIME: u32 = 6006;
 
 /// Exit code of a run interrupted by Ctrl-C (128 + SIGINT, as a shell
 /// reports it).
@@ -393,14 +446,14 @@ fn run_timed(
         let f = &ctl.machine().r#macro.persistent_file;
         (!f.is_empty()).then(|| PathBuf::from(f))
     });
-    if let Some(path) = store {
-        match cli::vars::load(&path) {
-            Ok(values) => *ctl.vm_mut().persistent_mut() = values,
-            Err(e) => return fail(&e),
-        }
-        ctl.vm_mut()
-            .set_storage(Box::new(cli::vars::FileStorage(path)));
-    }
+    let vars_file = match store.map(|p| cli::vars::VarsFile::open(&p)).transpose() {
+        Ok(v) => v.map(|(file, values)| {
+            *ctl.vm_mut().persistent_mut() = values;
+            ctl.vm_mut().set_storage(file.storage());
+            file
+        }),
+        Err(e) => return fail(&e),
+    };
     // The source, if it can still be read, for the plot's title and stock.
     let info = match (&out.plot, files.first()) {
         (Some(_), Some(name)) => std::fs::read(name)
@@ -409,11 +462,14 @@ fn run_timed(
         _ => Default::default(),
     };
     let stdout = std::io::stdout();
-    let mut w = BufWriter::new(stdout.lock());
-    let mut broken = false;
+    // The canon, the trace and the statistics share stdout.
+    let mut canon = Canon {
+        out: BufWriter::new(stdout.lock()),
+        error: None,
+    };
     if out.trace == Some(Format::Csv) {
         let c_axis = ctl.engine().config().c.is_some();
-        broken |= writeln!(w, "{}", runtime::trace::csv_header(c_axis)).is_err();
+        canon.write(&format!("{}\n", runtime::trace::csv_header(c_axis)));
     }
     let period = ctl.engine().config().period_s;
     let mut stats = runtime::stats::Stats::new(period);
@@ -424,11 +480,13 @@ fn run_timed(
     let mut last = runtime::SetPoint::default();
     let mut line = String::new();
     let mut interrupted = false;
+    let max_time = out.max_time.unwrap_or(ctl.machine().run.max_time_s);
+    // Whole periods: the bound is exact in ticks, not subject to a sum of
+    // rounded times.
+    let max_ticks = (max_time / period).ceil() as u64;
+    let mut ticks = 0u64;
+    let mut timed_out = None;
     {
-        let mut canon = Canon {
-            out: &mut w,
-            broken: false,
-        };
         struct Quiet;
         impl Sink for Quiet {
             fn emit(&mut self, _: Event) {}
@@ -443,15 +501,14 @@ fn run_timed(
                 ctl.run_ahead_tap(&mut quiet);
             }
             let sp = ctl.tick();
+            ticks += 1;
             if let Some(f) = out.trace {
                 line.clear();
                 let _ = match f {
                     Format::Csv => runtime::trace::write_csv(&mut line, &sp, name(sp.file)),
                     Format::Json => runtime::trace::write_json(&mut line, &sp, name(sp.file)),
                 };
-                if !broken && canon.out.write_all(line.as_bytes()).is_err() {
-                    broken = true;
-                }
+                canon.write(&line);
             }
             stats.add(&sp);
             if let Some(p) = plot.as_mut() {
@@ -473,21 +530,30 @@ fn run_timed(
                 runtime::RunState::Ended | runtime::RunState::Alarm(_) => break,
                 _ => {}
             }
+            // The output is what a timed run is for: once it fails, stop.
+            if canon.error.is_some() {
+                break;
+            }
+            if ticks >= max_ticks {
+                timed_out = Some(sp);
+                break;
+            }
         }
-        broken |= canon.broken;
     }
     progress.finish();
     stats.blocks = ctl.blocks();
-    let alarm = ctl.alarm();
+    let alarm = match timed_out {
+        Some(sp) => Some(time_alarm(&files, &sp, max_time)),
+        None => ctl.alarm(),
+    };
     // A VM alarm printed its ALARM line with the canon; the runtime's own
-    // (E7001, E7002, E7003, E4010) end the canon here.
+    // (E7001, E7002, E7003, E4010) and the time bound end the canon here.
     if let (Some(a), true) = (&alarm, out.canon) {
-        if matches!(a.code, 7001 | 7002 | 7003 | 4010) {
-            let e = Event::Alarm {
+        if matches!(a.code, 7001 | 7002 | 7003 | 4010 | E_TIME) {
+            canon.emit(Event::Alarm {
                 code: a.code,
                 msg: a.message.clone(),
-            };
-            broken |= writeln!(w, "{e}").is_err();
+            });
         }
     }
     let stopped_at = interrupted.then(|| cli::stats_json::Stopped {
@@ -498,12 +564,12 @@ fn run_timed(
         line: last.line,
     });
     if let Some((format, StatsTo::Stdout)) = out.stats {
-        broken |= write!(w, "{}", stats_text(&stats, format, &files, &stopped_at)).is_err();
+        canon.write(&stats_text(&stats, format, &files, &stopped_at));
     }
-    // A closed stdout (`| head`) ends the output, not the run.
-    let _ = broken;
-    let _ = w.flush();
-    drop(w);
+    let output_error = canon.finish();
+    if let Some(Err(e)) = vars_file.map(cli::vars::VarsFile::finish) {
+        return fail(&e);
+    }
     if let (Some(path), Some(p)) = (&out.plot, plot.as_mut()) {
         let stock = out.stock.or(info.billet).or_else(|| {
             let (d, z) = cycle_start?;
@@ -522,7 +588,11 @@ fn run_timed(
         }
     }
     if let Some((format, StatsTo::Stderr)) = out.stats {
-        eprint!("{}", stats_text(&stats, format, &files, &stopped_at));
+        let _ = write!(
+            std::io::stderr().lock(),
+            "{}",
+            stats_text(&stats, format, &files, &stopped_at)
+        );
     }
     if let Some(at) = &stopped_at {
         let wrote = match (&out.plot, out.stats.is_some()) {
@@ -534,18 +604,34 @@ fn run_timed(
             (None, true) => "; the statistics hold the run so far".to_string(),
             (None, false) => String::new(),
         };
-        eprintln!(
+        note(format_args!(
             "gbvm: interrupted at {}:{} after {:.3} s of cycle time{wrote}",
-            at.file, at.line, last.time_s
-        );
+            printable(&at.file),
+            at.line,
+            last.time_s
+        ));
         return ExitCode::from(INTERRUPTED);
     }
-    match alarm {
-        Some(a) => {
-            eprintln!("{}", printable(&a.header()));
-            ExitCode::from(2)
-        }
-        None => ExitCode::SUCCESS,
+    if let Some(a) = &alarm {
+        note(format_args!("{}", printable(&a.header())));
+    }
+    match (output_error, alarm) {
+        (Some(e), _) => output_failed(&e),
+        (None, Some(_)) => cli::exit::Exit::Alarm.into(),
+        (None, None) => ExitCode::SUCCESS,
+    }
+}
+
+/// E6006 at the block running when the time ran out.
+fn time_alarm(files: &[String], sp: &runtime::SetPoint, max_time: f64) -> runtime::AlarmInfo {
+    runtime::AlarmInfo {
+        code: E_TIME,
+        message: format!(
+            "the run did not end within {max_time} s of simulated time (run.max_time_s, --max-time)"
+        ),
+        file: files.get(usize::from(sp.file)).cloned().unwrap_or_default(),
+        line: sp.line,
+        col: 1,
     }
 }
 

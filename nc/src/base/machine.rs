@@ -3,7 +3,6 @@
 
 use alloc::format;
 use alloc::string::String;
-use alloc::string::ToString;
 use alloc::vec::Vec;
 
 use serde::Deserialize;
@@ -16,6 +15,13 @@ pub enum MachineError {
     Toml(#[from] toml::de::Error),
     #[error("machine file: {0}")]
     Invalid(String),
+    /// A key out of its range (machine_check.rs), at its line and column
+    /// when read from a file.
+    #[error("machine file: {}{}: {}", at.map_or(String::new(), |(l, c)| format!("line {l}, column {c}: ")), bad.key, bad.msg)]
+    Range {
+        bad: crate::machine_check::BadKey,
+        at: Option<(usize, usize)>,
+    },
 }
 
 macro_rules! section {
@@ -254,7 +260,9 @@ section!(Host {
 });
 
 section!(Run {
-    max_blocks: u64 = 2_000_000
+    max_blocks: u64 = 2_000_000,
+    // Simulated seconds a timed run (trace, plot, stats) may last: E6006.
+    max_time_s: f64 = 3600.0,
 });
 
 section!(
@@ -295,62 +303,18 @@ impl Machine {
     #[cfg(feature = "std")]
     pub fn from_toml(text: &str) -> Result<Machine, MachineError> {
         let m: Machine = toml::from_str(text)?;
-        m.validate()?;
-        Ok(m)
+        match m.validate() {
+            Err(MachineError::Range { bad, .. }) => {
+                let at = crate::machine_check::locate(text, &bad.key);
+                Err(MachineError::Range { bad, at })
+            }
+            other => other.map(|()| m),
+        }
     }
 
     /// Checks the values a file could get wrong (rates, limits, tables).
     pub fn validate(&self) -> Result<(), MachineError> {
-        let bad = |what: &str| Err(MachineError::Invalid(what.to_string()));
-        let positive = [
-            (
-                "machine.interpolation_period_ms",
-                self.machine.interpolation_period_ms,
-            ),
-            ("machine.resolution_mm", self.machine.resolution_mm),
-            ("machine.arc_tolerance_mm", self.machine.arc_tolerance_mm),
-            ("axes.x.rapid_mm_min", self.axes.x.rapid_mm_min),
-            ("axes.x.max_feed_mm_min", self.axes.x.max_feed_mm_min),
-            ("axes.x.accel_mm_s2", self.axes.x.accel_mm_s2),
-            ("axes.x.jerk_mm_s3", self.axes.x.jerk_mm_s3),
-            ("axes.z.rapid_mm_min", self.axes.z.rapid_mm_min),
-            ("axes.z.max_feed_mm_min", self.axes.z.max_feed_mm_min),
-            ("axes.z.accel_mm_s2", self.axes.z.accel_mm_s2),
-            ("axes.z.jerk_mm_s3", self.axes.z.jerk_mm_s3),
-            ("axes.c.rapid_deg_min", self.axes.c.rapid_deg_min),
-            ("axes.c.max_feed_deg_min", self.axes.c.max_feed_deg_min),
-            ("axes.c.accel_deg_s2", self.axes.c.accel_deg_s2),
-            ("axes.c.jerk_deg_s3", self.axes.c.jerk_deg_s3),
-            ("feed.max_mm_min", self.feed.max_mm_min),
-            ("spindle.max_rpm", self.spindle.max_rpm),
-            ("spindle.accel_rpm_s", self.spindle.accel_rpm_s),
-            ("threads.max_lead_mm", self.threads.max_lead_mm),
-        ];
-        for (key, v) in positive {
-            if !(v > 0.0 && v.is_finite()) {
-                return bad(&format!("{key} must be a positive number"));
-            }
-        }
-        if !(0.125..=8.0).contains(&self.machine.interpolation_period_ms) {
-            return bad("machine.interpolation_period_ms must lie in 0.125 … 8");
-        }
-        if self.axes.x.min_mm >= self.axes.x.max_mm || self.axes.z.min_mm >= self.axes.z.max_mm {
-            return bad("axes: min_mm must be below max_mm");
-        }
-        for off in &self.tools.offset {
-            if off.number == 0 || off.number > self.tools.offsets {
-                return bad(&format!(
-                    "tools.offset number {} outside 1…{}",
-                    off.number, self.tools.offsets
-                ));
-            }
-            if off.tip > 9 {
-                return bad(&format!("tools.offset {}: tip must be 0…9", off.number));
-            }
-        }
-        if self.r#macro.g_code_macros.iter().any(|&g| g > 999) {
-            return bad("macro.g_code_macros entries must be 0…999");
-        }
+        crate::machine_check::check(self).map_err(|bad| MachineError::Range { bad, at: None })?;
         self.validate_tool_life()
     }
 

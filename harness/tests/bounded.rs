@@ -1,0 +1,181 @@
+//! The fuzz targets on stable, bounded: each runs on its seeds (the
+//! conformance programs, their compiled modules, machine files) and on
+//! random mutations of them, a few seconds per target. `HARNESS_CASES`
+//! sets the number of mutations (default 64); `fuzz/` runs the same
+//! bodies without bound under libFuzzer.
+
+use proptest::prelude::*;
+use std::path::Path;
+use std::sync::OnceLock;
+
+fn cases() -> u32 {
+    std::env::var("HARNESS_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(64)
+}
+
+/// The conformance programs (when the shared folder is beside the
+/// repository) and a few written here, so the seeds are never empty.
+fn programs() -> &'static [Vec<u8>] {
+    static SEEDS: OnceLock<Vec<Vec<u8>>> = OnceLock::new();
+    SEEDS.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/conformance");
+        let mut out: Vec<Vec<u8>> = std::fs::read_dir(dir)
+            .map(|rd| {
+                rd.filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.extension().is_some_and(|x| x == "nc"))
+                    .filter_map(|p| std::fs::read(p).ok())
+                    .collect()
+            })
+            .unwrap_or_default();
+        out.sort();
+        out.extend([
+            b"G00 X10 Z2\nG01 Z-5 F100\nM30\n".to_vec(),
+            b"#1=0\nWHILE[#1LT3]DO1\n#1=#1+1\nEND1\nG65 H99 Q3\nM30\n".to_vec(),
+            b"O1\nG71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F0.2\nN10 G00 X20\nG01 Z-10\nN20 X30\nM30\n"
+                .to_vec(),
+            include_bytes!("../../examples/shaft.nc").to_vec(),
+        ]);
+        out
+    })
+}
+
+fn modules() -> &'static [Vec<u8>] {
+    static SEEDS: OnceLock<Vec<Vec<u8>>> = OnceLock::new();
+    SEEDS.get_or_init(|| {
+        programs()
+            .iter()
+            .filter_map(|p| {
+                compiler::compile("seed.nc", p, &compiler::Options::default())
+                    .module
+                    .map(|m| m.to_bytes())
+            })
+            .collect()
+    })
+}
+
+const MACHINES: [&str; 4] = [
+    "",
+    "[machine]\nlookahead_blocks = 2048\n[axes.c]\nenabled = true\n",
+    "[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n[reference_points]\nsecond = { x = 1.0, z = 2.0 }\n",
+    "[[tool_life.group]]\nnumber = 1\nlife = 5\ntools = [101]\n[operator]\nfeed_override_pct = 50\n",
+];
+
+/// A mutation: a few byte edits at positions taken modulo the length.
+#[derive(Debug, Clone)]
+enum Edit {
+    Insert(usize, u8),
+    Delete(usize),
+    Replace(usize, u8),
+    Truncate(usize),
+}
+
+fn edits() -> impl Strategy<Value = Vec<Edit>> {
+    prop::collection::vec(
+        prop_oneof![
+            (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Edit::Insert(i, b)),
+            any::<usize>().prop_map(Edit::Delete),
+            (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Edit::Replace(i, b)),
+            any::<usize>().prop_map(Edit::Truncate),
+        ],
+        1..8,
+    )
+}
+
+fn mutate(seed: &[u8], edits: &[Edit]) -> Vec<u8> {
+    let mut v = seed.to_vec();
+    for e in edits {
+        let n = v.len();
+        match *e {
+            Edit::Insert(i, b) => v.insert(i % (n + 1), b),
+            Edit::Delete(i) if n > 0 => {
+                v.remove(i % n);
+            }
+            Edit::Replace(i, b) if n > 0 => v[i % n] = b,
+            Edit::Truncate(i) if n > 0 => v.truncate(i % n),
+            _ => {}
+        }
+    }
+    v
+}
+
+#[test]
+fn seeds_pass_every_target() {
+    for p in programs() {
+        harness::front_end(p);
+        harness::compiler(p);
+    }
+    for m in modules() {
+        harness::module(m);
+    }
+    for m in MACHINES {
+        harness::machine(m.as_bytes());
+    }
+    assert!(!modules().is_empty(), "the seed programs compile");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(cases()))]
+
+    #[test]
+    fn front_end_on_mutants(i in any::<usize>(), e in edits()) {
+        let seeds = programs();
+        harness::front_end(&mutate(&seeds[i % seeds.len()], &e));
+    }
+
+    #[test]
+    fn compiler_on_mutants(i in any::<usize>(), e in edits()) {
+        let seeds = programs();
+        harness::compiler(&mutate(&seeds[i % seeds.len()], &e));
+    }
+
+    #[test]
+    fn module_on_mutants(i in any::<usize>(), e in edits()) {
+        let seeds = modules();
+        harness::module(&mutate(&seeds[i % seeds.len()], &e));
+    }
+
+    #[test]
+    fn machine_on_mutants(i in any::<usize>(), e in edits()) {
+        harness::machine(&mutate(MACHINES[i % MACHINES.len()].as_bytes(), &e));
+    }
+
+    #[test]
+    fn vm_against_reference_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..64)) {
+        harness::expr::vm_against_reference(&data);
+    }
+}
+
+#[test]
+fn the_decoder_reads_one_node_per_byte() {
+    use harness::expr::decode;
+    // Traced by hand: 130 ≥ 128 is an inner node, 130 % 4 = 2 a binary
+    // one, operator (130 / 4) % 8 = 0 → "+"; 129 % 4 = 1 a function,
+    // (129 / 4) % 7 = 4 → FUP (ABS, SQRT, ROUND, FIX, FUP); 0 is a leaf number, the next byte 5; 2 is
+    // a leaf variable #(1 + 2 % 3) = #3; 128 % 4 = 0 would be a negation
+    // but the tree is complete.
+    assert_eq!(decode(&[130, 129, 0, 5, 2, 128]).text(), "[FUP[5]+#3]");
+    assert_eq!(decode(&[128, 2]).text(), "[-#3]");
+    assert_eq!(decode(&[]).text(), "0");
+}
+
+/// The first finding of the `vm_expr` target: a MOD operand beyond the
+/// 64-bit integers (−4 to the 32nd ≈ 1.8·10¹⁹) is E5006 in the VM; the
+/// reference saturated it and expected −13.
+#[test]
+fn a_mod_operand_beyond_64_bits_is_e5006_in_both() {
+    use harness::expr::{eval, run, E};
+    let four = || Box::new(E::Var(2));
+    let mut big = E::Bin("*", four(), four());
+    for _ in 0..4 {
+        big = E::Bin("*", Box::new(big.clone()), Box::new(big));
+    }
+    let e = E::Neg(Box::new(E::Bin(
+        "MOD",
+        Box::new(E::Num(12.98)),
+        Box::new(big),
+    )));
+    assert_eq!(eval(&e), Err(5006), "{}", e.text());
+    assert_eq!(run(&e), Err(5006), "{}", e.text());
+}

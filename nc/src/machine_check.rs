@@ -1,0 +1,365 @@
+//! The range of every machine-file value (the table of `docs/machine.md`),
+//! and where a key stands in the file so that an out-of-range value is
+//! reported at its line and column.
+//!
+//! The bounds keep a value meaningful (a rate above 0, a count of tools
+//! that fits a two-digit T word) and keep what is sized or counted by it
+//! small (the look-ahead queue, the offset table); NaN and infinity are out
+//! of every range.
+
+use alloc::format;
+use alloc::string::String;
+use alloc::vec::Vec;
+
+use crate::machine::{LinearAxis, Machine, Xz};
+
+/// A key whose value is out of its range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BadKey {
+    /// The dotted key, `[[…]]` entries numbered from 0: `axes.z.min_mm`,
+    /// `tools.offset[1].radius`.
+    pub key: String,
+    pub msg: String,
+}
+
+type Check = Result<(), BadKey>;
+
+fn bad(key: &str, msg: String) -> Check {
+    Err(BadKey {
+        key: key.into(),
+        msg,
+    })
+}
+
+/// A finite value in `lo ..= hi`.
+fn within(key: &str, v: f64, lo: f64, hi: f64) -> Check {
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(())
+    } else {
+        bad(key, format!("{v} is outside {lo} … {hi}"))
+    }
+}
+
+/// A finite value above 0 and at most `hi` (a rate, a time, a size).
+fn positive(key: &str, v: f64, hi: f64) -> Check {
+    if v.is_finite() && v > 0.0 && v <= hi {
+        Ok(())
+    } else {
+        bad(key, format!("{v} must be above 0 and at most {hi}"))
+    }
+}
+
+/// A whole number in `lo ..= hi`.
+fn count(key: &str, v: u64, lo: u64, hi: u64) -> Check {
+    if (lo..=hi).contains(&v) {
+        Ok(())
+    } else {
+        bad(key, format!("{v} is outside {lo} … {hi}"))
+    }
+}
+
+/// Largest coordinate, offset or limit: a lathe of ±1 km would be odd.
+const MAX_MM: f64 = 1.0e6;
+/// Largest linear rate (mm/min) or acceleration (mm/s²).
+const MAX_RATE: f64 = 1.0e6;
+/// Largest jerk (mm/s³).
+const MAX_JERK: f64 = 1.0e9;
+/// Rotary rates are in degrees: 360 times the linear ones leave room.
+const MAX_DEG_RATE: f64 = 1.0e7;
+const MAX_DEG_JERK: f64 = 1.0e10;
+/// Each look-ahead slot costs about 336 bytes, and the queue holds four
+/// times the look-ahead: 16384 blocks is about 22 MB.
+pub const MAX_LOOKAHEAD: u64 = 16384;
+/// The offset table of the kernel (#2001…#2032, #2701…#2732).
+pub const MAX_OFFSETS: u64 = 32;
+/// A T word is tool × 100 + offset: two digits of tool.
+pub const MAX_TOOLS: u64 = 99;
+
+fn xz(key: &str, p: Xz) -> Check {
+    within(&format!("{key}.x"), p.x, -MAX_MM, MAX_MM)?;
+    within(&format!("{key}.z"), p.z, -MAX_MM, MAX_MM)
+}
+
+fn linear_axis(name: &str, a: &LinearAxis) -> Check {
+    let k = |f: &str| format!("axes.{name}.{f}");
+    positive(&k("rapid_mm_min"), a.rapid_mm_min, MAX_RATE)?;
+    positive(&k("max_feed_mm_min"), a.max_feed_mm_min, MAX_RATE)?;
+    positive(&k("accel_mm_s2"), a.accel_mm_s2, MAX_RATE)?;
+    positive(&k("jerk_mm_s3"), a.jerk_mm_s3, MAX_JERK)?;
+    within(&k("min_mm"), a.min_mm, -MAX_MM, MAX_MM)?;
+    within(&k("max_mm"), a.max_mm, -MAX_MM, MAX_MM)?;
+    if a.min_mm >= a.max_mm {
+        return bad(
+            &k("min_mm"),
+            format!("{} must be below max_mm ({})", a.min_mm, a.max_mm),
+        );
+    }
+    Ok(())
+}
+
+/// Every key's range; the first key out of range.
+pub fn check(m: &Machine) -> Check {
+    let s = &m.machine;
+    within(
+        "machine.interpolation_period_ms",
+        s.interpolation_period_ms,
+        0.125,
+        8.0,
+    )?;
+    positive("machine.resolution_mm", s.resolution_mm, 1.0)?;
+    positive("machine.arc_tolerance_mm", s.arc_tolerance_mm, 100.0)?;
+    count(
+        "machine.lookahead_blocks",
+        s.lookahead_blocks.into(),
+        1,
+        MAX_LOOKAHEAD,
+    )?;
+    linear_axis("x", &m.axes.x)?;
+    linear_axis("z", &m.axes.z)?;
+    let c = &m.axes.c;
+    count("axes.c.attribute", c.attribute.into(), 0, 255)?;
+    positive("axes.c.rapid_deg_min", c.rapid_deg_min, MAX_DEG_RATE)?;
+    positive("axes.c.max_feed_deg_min", c.max_feed_deg_min, MAX_DEG_RATE)?;
+    positive("axes.c.accel_deg_s2", c.accel_deg_s2, MAX_DEG_RATE)?;
+    positive("axes.c.jerk_deg_s3", c.jerk_deg_s3, MAX_DEG_JERK)?;
+    if !(c.name.len() == 1 && c.name.bytes().all(|b| b.is_ascii_uppercase())) {
+        return bad(
+            "axes.c.name",
+            format!("\"{}\" must be one letter A…Z", c.name),
+        );
+    }
+    positive("feed.max_mm_min", m.feed.max_mm_min, MAX_RATE)?;
+    spindle(m)?;
+    let t = &m.threads;
+    count("threads.pullout_tenths", t.pullout_tenths.into(), 0, 255)?;
+    positive("threads.max_lead_mm", t.max_lead_mm, 10_000.0)?;
+    count(
+        "threads.repair_deviation_inc",
+        t.repair_deviation_inc.into(),
+        0,
+        1_000_000,
+    )?;
+    within(
+        "cycles.g71_retract_mm",
+        m.cycles.g71_retract_mm,
+        0.0,
+        1000.0,
+    )?;
+    let co = &m.coords;
+    for (name, p) in [
+        ("exofs", co.exofs),
+        ("g54", co.g54),
+        ("g55", co.g55),
+        ("g56", co.g56),
+        ("g57", co.g57),
+        ("g58", co.g58),
+        ("g59", co.g59),
+    ] {
+        xz(&format!("coords.{name}"), p)?;
+    }
+    let r = &m.reference_points;
+    positive(
+        "reference_points.return_feed_mm_min",
+        r.return_feed_mm_min,
+        MAX_RATE,
+    )?;
+    xz("reference_points.second", r.second)?;
+    xz("reference_points.third", r.third)?;
+    xz("reference_points.fourth", r.fourth)?;
+    let me = &m.measure;
+    positive("measure.feed_mm_min", me.feed_mm_min, MAX_RATE)?;
+    within("measure.gamma_x_mm", me.gamma_x_mm, 0.0, 1000.0)?;
+    within("measure.gamma_z_mm", me.gamma_z_mm, 0.0, 1000.0)?;
+    within("measure.epsilon_x_mm", me.epsilon_x_mm, 0.0, 1000.0)?;
+    within("measure.epsilon_z_mm", me.epsilon_z_mm, 0.0, 1000.0)?;
+    for (i, &input) in m.skip.inputs.iter().enumerate() {
+        count(&format!("skip.inputs[{i}]"), input.into(), 0, 15)?;
+    }
+    xz("stroke_check_2.plus", m.stroke_check_2.plus)?;
+    xz("stroke_check_2.minus", m.stroke_check_2.minus)?;
+    count("polar.linear_axis", m.polar.linear_axis.into(), 1, 8)?;
+    count("polar.rotary_axis", m.polar.rotary_axis.into(), 1, 8)?;
+    tools(m)?;
+    for (i, &g) in m.r#macro.g_code_macros.iter().enumerate() {
+        count(&format!("macro.g_code_macros[{i}]"), g.into(), 0, 999)?;
+    }
+    let o = &m.operator;
+    within(
+        "operator.feed_override_pct",
+        o.feed_override_pct,
+        0.0,
+        150.0,
+    )?;
+    within(
+        "operator.rapid_override_pct",
+        o.rapid_override_pct,
+        0.0,
+        100.0,
+    )?;
+    within(
+        "operator.spindle_override_pct",
+        o.spindle_override_pct,
+        50.0,
+        120.0,
+    )?;
+    host(m)?;
+    count("run.max_blocks", m.run.max_blocks, 1, 1_000_000_000_000)?;
+    positive("run.max_time_s", m.run.max_time_s, 1.0e6)
+}
+
+fn spindle(m: &Machine) -> Check {
+    let s = &m.spindle;
+    positive("spindle.max_rpm", s.max_rpm, 1.0e6)?;
+    within("spindle.min_rpm", s.min_rpm, 0.0, s.max_rpm)?;
+    positive("spindle.accel_rpm_s", s.accel_rpm_s, 1.0e7)?;
+    count("spindle.encoder_ppr", s.encoder_ppr.into(), 1, 1_000_000)?;
+    positive("spindle.stall_timeout_s", s.stall_timeout_s, 3600.0)
+}
+
+fn tools(m: &Machine) -> Check {
+    let t = &m.tools;
+    count("tools.count", t.count.into(), 1, MAX_TOOLS)?;
+    count("tools.offsets", t.offsets.into(), 1, MAX_OFFSETS)?;
+    let mut seen: Vec<u32> = Vec::with_capacity(t.offset.len().min(MAX_OFFSETS as usize));
+    for (i, off) in t.offset.iter().enumerate() {
+        let k = |f: &str| format!("tools.offset[{i}].{f}");
+        count(&k("number"), off.number.into(), 1, t.offsets.into())?;
+        if seen.contains(&off.number) {
+            return bad(
+                &k("number"),
+                format!("offset {} is listed twice", off.number),
+            );
+        }
+        seen.push(off.number);
+        count(&k("tip"), off.tip.into(), 0, 9)?;
+        within(&k("x"), off.x, -MAX_MM, MAX_MM)?;
+        within(&k("z"), off.z, -MAX_MM, MAX_MM)?;
+        within(&k("radius"), off.radius, 0.0, 1000.0)?;
+        within(&k("wear_x"), off.wear_x, -MAX_MM, MAX_MM)?;
+        within(&k("wear_z"), off.wear_z, -MAX_MM, MAX_MM)?;
+        within(&k("wear_radius"), off.wear_radius, -1000.0, 1000.0)?;
+    }
+    Ok(())
+}
+
+fn host(m: &Machine) -> Check {
+    let h = &m.host;
+    count("host.inputs", h.inputs.into(), 0, 0xffff)?;
+    let (y, mo, d) = (h.date / 10000, h.date / 100 % 100, h.date % 100);
+    if !((1..=9999).contains(&y) && (1..=12).contains(&mo) && (1..=31).contains(&d)) {
+        return bad("host.date", format!("{} is not a date YYYYMMDD", h.date));
+    }
+    let (hh, mm, ss) = (h.time / 10000, h.time / 100 % 100, h.time % 100);
+    if !(hh <= 23 && mm <= 59 && ss <= 59) {
+        return bad("host.time", format!("{} is not a time HHMMSS", h.time));
+    }
+    Ok(())
+}
+
+/// Line and column (from 1) of `key` in a TOML `text`, found line by
+/// line: `[table]` and `[[array]]` headers, `key = value` lines and the
+/// keys of a one-line inline table (`second = { x = 1, z = nan }`).
+/// Files that spell a key otherwise (dotted keys, multi-line values) get
+/// no position; the message still names the key.
+pub fn locate(text: &str, key: &str) -> Option<(usize, usize)> {
+    let mut table = String::new();
+    let mut arrays: Vec<(String, usize)> = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let trimmed = line.trim_start();
+        let indent = line.len() - trimmed.len();
+        if let Some(h) = trimmed.strip_prefix("[[") {
+            let name = h.split("]]").next().unwrap_or("").trim();
+            let i = match arrays.iter_mut().find(|(a, _)| a == name) {
+                Some((_, i)) => {
+                    *i += 1;
+                    *i
+                }
+                None => {
+                    arrays.push((name.into(), 0));
+                    0
+                }
+            };
+            table = format!("{name}[{i}]");
+            continue;
+        }
+        if let Some(h) = trimmed.strip_prefix('[') {
+            table = h.split(']').next().unwrap_or("").trim().into();
+            continue;
+        }
+        let Some((k, rest)) = trimmed.split_once('=') else {
+            continue;
+        };
+        let k = k.trim().trim_matches('"');
+        let full = if table.is_empty() {
+            k.into()
+        } else {
+            format!("{table}.{k}")
+        };
+        let col = |byte: usize| line[..byte].chars().count() + 1;
+        if full == key || key.starts_with(&format!("{full}[")) {
+            return Some((n + 1, col(indent)));
+        }
+        if let Some(inner) = key.strip_prefix(&format!("{full}.")) {
+            // One field of an inline table.
+            let value_at = line.len() - rest.len();
+            let at = find_key(rest, inner).map_or(indent, |i| value_at + i);
+            return Some((n + 1, col(at)));
+        }
+    }
+    None
+}
+
+/// Byte offset of `name` as a key (followed by `=`) in an inline table.
+fn find_key(text: &str, name: &str) -> Option<usize> {
+    let mut from = 0;
+    while let Some(i) = text[from..].find(name) {
+        let at = from + i;
+        let before = text[..at].chars().next_back();
+        let after = text[at + name.len()..].trim_start();
+        if matches!(before, Some('{' | ',' | ' ' | '\t')) && after.starts_with('=') {
+            return Some(at);
+        }
+        from = at + name.len();
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_reference_is_in_range_and_each_kind_of_bad_value_is_not() {
+        assert_eq!(check(&Machine::reference()), Ok(()));
+        let key_of = |edit: fn(&mut Machine)| {
+            let mut m = Machine::reference();
+            edit(&mut m);
+            check(&m).map_err(|b| b.key)
+        };
+        let nan = key_of(|m| m.axes.z.min_mm = f64::NAN);
+        assert_eq!(nan, Err("axes.z.min_mm".into()));
+        let inf = key_of(|m| m.reference_points.second.z = f64::INFINITY);
+        assert_eq!(inf, Err("reference_points.second.z".into()));
+        let zero = key_of(|m| m.spindle.encoder_ppr = 0);
+        assert_eq!(zero, Err("spindle.encoder_ppr".into()));
+        let huge = key_of(|m| m.machine.lookahead_blocks = u32::MAX);
+        assert_eq!(huge, Err("machine.lookahead_blocks".into()));
+        let negative = key_of(|m| m.spindle.stall_timeout_s = -1.0);
+        assert_eq!(negative, Err("spindle.stall_timeout_s".into()));
+        // The bounds themselves are in range.
+        assert_eq!(key_of(|m| m.machine.lookahead_blocks = 16384), Ok(()));
+        assert_eq!(key_of(|m| m.operator.feed_override_pct = 0.0), Ok(()));
+    }
+
+    #[test]
+    fn keys_are_found_in_tables_arrays_and_inline_tables() {
+        let text = "[machine]\nlookahead_blocks = 5\n\n[reference_points]\nsecond = { x = 1.0, z = nan }\n\
+                    [[tools.offset]]\nnumber = 1\n[[tools.offset]]\n  number = 1\n";
+        assert_eq!(locate(text, "machine.lookahead_blocks"), Some((2, 1)));
+        // `z` of the inline table: column 21 of line 5 (counted by hand).
+        assert_eq!(locate(text, "reference_points.second.z"), Some((5, 21)));
+        assert_eq!(locate(text, "tools.offset[1].number"), Some((9, 3)));
+        assert_eq!(locate(text, "tools.offset[0].number"), Some((7, 1)));
+        assert_eq!(locate(text, "axes.x.min_mm"), None);
+    }
+}
