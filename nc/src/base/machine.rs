@@ -19,7 +19,7 @@ pub enum MachineError {
     /// when read from a file.
     #[error("machine file: {}{}: {}", at.map_or(String::new(), |(l, c)| format!("line {l}, column {c}: ")), bad.key, bad.msg)]
     Range {
-        bad: crate::machine_check::BadKey,
+        bad: crate::base::machine_check::BadKey,
         at: Option<(usize, usize)>,
     },
 }
@@ -305,7 +305,7 @@ impl Machine {
         let m: Machine = toml::from_str(text)?;
         match m.validate() {
             Err(MachineError::Range { bad, .. }) => {
-                let at = crate::machine_check::locate(text, &bad.key);
+                let at = crate::base::machine_check::locate(text, &bad.key);
                 Err(MachineError::Range { bad, at })
             }
             other => other.map(|()| m),
@@ -314,7 +314,7 @@ impl Machine {
 
     /// Checks the values a file could get wrong (rates, limits, tables).
     pub fn validate(&self) -> Result<(), MachineError> {
-        crate::machine_check::check(self).map_err(|bad| MachineError::Range { bad, at: None })?;
+        crate::base::machine_check::check(self).map_err(|bad| MachineError::Range { bad, at: None })?;
         self.validate_tool_life()
     }
 

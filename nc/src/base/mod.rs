@@ -8,6 +8,7 @@ pub mod event;
 pub mod gcode;
 pub mod geom;
 pub mod machine;
+pub mod machine_check;
 pub mod plc;
 pub mod point;
 pub mod words;

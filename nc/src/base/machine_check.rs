@@ -11,7 +11,7 @@ use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
 
-use crate::machine::{LinearAxis, Machine, Xz};
+use crate::base::machine::{LinearAxis, Machine, Xz};
 
 /// A key whose value is out of its range.
 #[derive(Debug, Clone, PartialEq)]
