@@ -41,7 +41,9 @@ fn static_lib(profile: &Path) -> PathBuf {
 fn cargo_build(profile: &Path, what: &[&str]) {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut cmd = Command::new(cargo);
-    cmd.current_dir(repo()).args(["build", "--quiet"]).args(what);
+    cmd.current_dir(repo())
+        .args(["build", "--quiet"])
+        .args(what);
     let name = profile.file_name().and_then(|n| n.to_str()).unwrap_or("");
     if name != "debug" {
         cmd.args(["--profile", name]);

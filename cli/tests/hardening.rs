@@ -73,7 +73,8 @@ fn defines_must_name_a_user_variable_and_a_finite_value() {
         "#100=1e999",
     ] {
         let out = gbcc(&["d.nc", "-D", bad], &d);
-        assert_eq!(out.status.code(), Some(2), "-D {bad}");
+        // A usage error (README, exit codes).
+        assert_eq!(out.status.code(), Some(64), "-D {bad}");
         assert!(stderr(&out).contains(bad), "-D {bad}: {}", stderr(&out));
     }
     for good in ["#1=1", "#33=1", "#100=5", "#199=-2.5", "#500=1", "#999=0"] {
@@ -392,7 +393,18 @@ fn timed_runs_that_cannot_end_stop_with_e6006() {
         "{trace}"
     );
     // The canon of a timed run ends with the alarm.
-    let out = gbvm(&["run", "dwell.gbc", "--stats", "--max-time", "1"], &d);
+    let out = gbvm(
+        &[
+            "run",
+            "dwell.gbc",
+            "--emit",
+            "canon",
+            "--stats",
+            "--max-time",
+            "1",
+        ],
+        &d,
+    );
     assert!(stdout(&out).ends_with("ALARM CODE=6006 MSG=\"the run did not end within 1 s of simulated time (run.max_time_s, --max-time)\"\n"), "{}", stdout(&out));
     // A run that ends in time is not touched by the bound.
     let out = gbvm(&["run", "a.gbc", "--stats", "--max-time", "10"], &d);
@@ -400,7 +412,8 @@ fn timed_runs_that_cannot_end_stop_with_e6006() {
     for bad in ["0", "-1", "nan", "inf"] {
         let arg = format!("--max-time={bad}");
         let out = gbvm(&["run", "a.gbc", "--stats", &arg], &d);
-        assert_eq!(out.status.code(), Some(1), "--max-time {bad}");
+        // A usage error (README, exit codes).
+        assert_eq!(out.status.code(), Some(64), "--max-time {bad}");
     }
     std::fs::remove_dir_all(&d).unwrap();
 }

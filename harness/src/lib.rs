@@ -16,13 +16,22 @@ const MAX_BLOCKS: u64 = 2_000;
 /// unless a loop escapes the block budget.
 const MAX_STEPS: u64 = 2_000_000;
 
-/// The front end: bytes → tree and diagnostics, each rendered.
+/// The front end: bytes → tree and diagnostics, each rendered as text,
+/// as rustc-shaped JSON and as SARIF (`gbcc`'s three forms).
 pub fn front_end(data: &[u8]) {
+    use cli::report::{Format, Reporter};
     let (_ast, diags) = grammar::parse(data);
     let file = grammar::SourceFile::new("fuzz.nc", data);
     for d in &diags {
         let _ = file.render(d);
-        let _ = file.json(d);
+    }
+    for format in [Format::Json, Format::Sarif] {
+        let mut r = Reporter::new(Vec::new(), format, false, Default::default());
+        r.max_errors = 0;
+        for d in &diags {
+            r.report(&file, d);
+        }
+        r.finish();
     }
 }
 

@@ -231,8 +231,7 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
     };
     let mut defines = Vec::new();
     for d in &args.define {
-        let def =
-            parse_define(d).map_err(|msg| usage(&msg))?;
+        let def = parse_define(d).map_err(|msg| usage(&msg))?;
         defines.push(def);
     }
     let several = args.files.len() > 1;

@@ -314,7 +314,8 @@ impl Machine {
 
     /// Checks the values a file could get wrong (rates, limits, tables).
     pub fn validate(&self) -> Result<(), MachineError> {
-        crate::base::machine_check::check(self).map_err(|bad| MachineError::Range { bad, at: None })?;
+        crate::base::machine_check::check(self)
+            .map_err(|bad| MachineError::Range { bad, at: None })?;
         self.validate_tool_life()
     }
 
