@@ -154,13 +154,15 @@ fn no_progress_bar_off_a_terminal() {
 #[test]
 fn ctrl_c_keeps_the_plot_and_the_statistics() {
     // 1000 mm at 1 mm/min: 60 000 s of cycle time, far longer than the
-    // test waits.
+    // test waits (a release build simulates the default bound of an hour,
+    // run.max_time_s, within the wait, so the bound is raised).
     let d = compiled(
         "sigint",
         "O0007\nG98 T0101\nG00 X40 Z2\nG01 Z-1000 F1\nM30\n",
     );
     let mut child = Command::new(env!("CARGO_BIN_EXE_gbvm"))
         .args(["run", "part.gbc", "--plot", "p.svg", "--stats"])
+        .args(["--max-time", "1000000"])
         .current_dir(&d)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
