@@ -1,7 +1,8 @@
 //! The VM against a reference evaluator: an expression decoded from
 //! bytes is printed as G-code, compiled without folding, run, and its
 //! value (or alarm) compared with what the rules of dialect.md §7.4–§7.6
-//! give. The reference follows the one of `compiler/tests/expr_property.rs`.
+//! give. `tests/expr_property.rs` runs the same reference on proptest's
+//! random expressions.
 
 use compiler::{compile, Options};
 use nc::Machine;
@@ -139,9 +140,15 @@ pub fn eval(e: &E) -> Result<Option<f64>, u16> {
 
 /// Runs `#100 = e` (without folding) and reads #100, or the alarm code.
 pub fn run(e: &E) -> Result<f64, u16> {
+    run_folded(e, false)
+}
+
+/// Runs `#100 = e`, with the compiler's constant folding when `optimize`,
+/// and reads #100, or the alarm code.
+pub fn run_folded(e: &E, optimize: bool) -> Result<f64, u16> {
     let src = format!("{SETUP}#100={}\nM30\n", e.text());
     let opts = Options {
-        optimize: false,
+        optimize,
         ..Options::default()
     };
     let c = compile("p.nc", src.as_bytes(), &opts);
@@ -157,7 +164,8 @@ pub fn run(e: &E) -> Result<f64, u16> {
     }
 }
 
-fn close(a: f64, b: f64) -> bool {
+/// Equal within 1e-9 relative (both NaN counts as equal).
+pub fn close(a: f64, b: f64) -> bool {
     (a.is_nan() && b.is_nan()) || (a - b).abs() <= 1e-9 * 1f64.max(a.abs()).max(b.abs())
 }
 
