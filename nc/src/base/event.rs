@@ -5,6 +5,8 @@ use alloc::string::String;
 
 use core::fmt::{self, Display, Write};
 
+use super::decimal;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dir {
     Cw,
@@ -167,20 +169,29 @@ pub struct Num(pub f64);
 
 impl Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let mut s = format!("{:.4}", self.0);
-        if s.contains('.') {
-            while s.ends_with('0') {
-                s.pop();
-            }
-            if s.ends_with('.') {
-                s.pop();
-            }
+        match decimal::ten_thousandths(self.0) {
+            Some(n) => decimal::write_ten_thousandths(f, n),
+            None => exact_formatter(f, self.0),
         }
-        if s == "-0" {
-            s = "0".into();
-        }
-        f.write_str(&s)
     }
+}
+
+/// Values past the integer fast path (not finite, or above about 9·10¹⁴),
+/// through the standard library's formatter.
+fn exact_formatter(f: &mut fmt::Formatter<'_>, v: f64) -> fmt::Result {
+    let mut s = format!("{v:.4}");
+    if s.contains('.') {
+        while s.ends_with('0') {
+            s.pop();
+        }
+        if s.ends_with('.') {
+            s.pop();
+        }
+    }
+    if s == "-0" {
+        s = "0".into();
+    }
+    f.write_str(&s)
 }
 
 /// The optional ` C=` field of `RAPID`, `LINE` and `THREAD` (canon.md).

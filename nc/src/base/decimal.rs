@@ -1,0 +1,149 @@
+//! Canon numbers without the float formatter.
+//!
+//! `format!("{:.4}", v)` rounds the exact binary value of `v` half to even,
+//! which is what the canon wants (canon.md), but the standard library gets
+//! there through its general exact algorithm, and printing the canon of a
+//! long program spent about half its time in it. A double is `m·2^e`
+//! exactly, so `v·10⁴` is the integer `m·10⁴` shifted by `e`: the rounding
+//! is done in integers, exactly as the formatter does it, and the digits
+//! are printed as integers.
+
+use core::fmt::{self, Write};
+
+/// `v·10⁴` rounded half to even on the exact value; `None` when `v` is not
+/// finite or the result does not fit an `i64` (|v| above about 9·10¹⁴).
+pub fn ten_thousandths(v: f64) -> Option<i64> {
+    if !v.is_finite() {
+        return None;
+    }
+    let bits = v.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    let fraction = bits & ((1 << 52) - 1);
+    // Subnormals have no implicit bit and the exponent of the smallest normal.
+    let (mantissa, exp) = if biased == 0 {
+        (fraction, -1074)
+    } else {
+        (fraction | 1 << 52, biased - 1075)
+    };
+    // Below 2^67: 53 bits of mantissa times 10⁴ (14 bits).
+    let scaled = u128::from(mantissa) * 10_000;
+    if exp >= 0 {
+        // v ≥ 2^52: v·10⁴ is past the i64 range.
+        return None;
+    }
+    let magnitude = i64::try_from(round_shift(scaled, exp.unsigned_abs())).ok()?;
+    Some(if bits >> 63 == 1 {
+        -magnitude
+    } else {
+        magnitude
+    })
+}
+
+/// `x / 2^shift`, rounded half to even.
+fn round_shift(x: u128, shift: u32) -> u128 {
+    if shift >= 128 {
+        // x < 2^67, so the quotient is below 2^-61: rounds to 0.
+        return 0;
+    }
+    let quotient = x >> shift;
+    let rest = x & ((1u128 << shift) - 1);
+    let half = 1u128 << (shift - 1);
+    if rest > half || (rest == half && quotient & 1 == 1) {
+        quotient + 1
+    } else {
+        quotient
+    }
+}
+
+/// Writes `n / 10⁴` with at most 4 decimals, no trailing zeros, no
+/// trailing point; 0 (also a negative value that rounds to 0) as `0`.
+pub fn write_ten_thousandths(f: &mut impl Write, n: i64) -> fmt::Result {
+    let abs = n.unsigned_abs();
+    let (whole, mut frac) = (abs / 10_000, abs % 10_000);
+    if n < 0 {
+        f.write_char('-')?;
+    }
+    write!(f, "{whole}")?;
+    if frac == 0 {
+        return Ok(());
+    }
+    let mut width = 4;
+    while frac % 10 == 0 {
+        frac /= 10;
+        width -= 1;
+    }
+    write!(f, ".{frac:0width$}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::format;
+    use alloc::string::String;
+
+    /// The reference: the standard library's exact formatter, trimmed as
+    /// the canon wants.
+    fn reference(v: f64) -> String {
+        let mut s = format!("{v:.4}");
+        if s.contains('.') {
+            s = String::from(s.trim_end_matches('0').trim_end_matches('.'));
+        }
+        if s == "-0" {
+            s = String::from("0");
+        }
+        s
+    }
+
+    fn fast(v: f64) -> Option<String> {
+        let n = ten_thousandths(v)?;
+        let mut s = String::new();
+        write_ten_thousandths(&mut s, n).ok()?;
+        Some(s)
+    }
+
+    fn check(v: f64) {
+        if let Some(s) = fast(v) {
+            assert_eq!(s, reference(v), "{v:e} ({:#x})", v.to_bits());
+        } else {
+            assert!(!v.is_finite() || v.abs() > 9.0e14, "{v:e} has no fast form");
+        }
+    }
+
+    #[test]
+    fn ties_round_half_to_even_on_the_exact_value() {
+        // k/32 are exact in binary and end in 5 at the fifth decimal.
+        for k in -4096..4096 {
+            check(f64::from(k) / 32.0);
+        }
+        // 0.00015 is not exact: its binary value is just below the tie.
+        for v in [0.00015, 0.00025, 1.00005, 2.5e-5, -2.5e-5, 1e-300, 5e-324] {
+            check(v);
+        }
+    }
+
+    #[test]
+    fn agrees_with_the_exact_formatter_across_magnitudes() {
+        // xorshift64: a fixed, reproducible spread of bit patterns and of
+        // decimal-looking values (the canon's usual inputs).
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for i in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let random_bits = f64::from_bits(x);
+            check(random_bits);
+            let decimal = (x % 2_000_000_001) as f64 / 10f64.powi((i % 9) as i32) - 1000.0;
+            check(decimal);
+            check(-decimal);
+        }
+    }
+
+    #[test]
+    fn large_and_special_values_have_no_fast_form() {
+        assert_eq!(ten_thousandths(f64::NAN), None);
+        assert_eq!(ten_thousandths(f64::INFINITY), None);
+        assert_eq!(ten_thousandths(1e15), None);
+        assert_eq!(ten_thousandths(f64::MAX), None);
+        assert_eq!(ten_thousandths(9.0e14), Some(9_000_000_000_000_000_000));
+    }
+}
