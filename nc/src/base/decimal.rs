@@ -132,7 +132,7 @@ mod tests {
             x ^= x << 17;
             let random_bits = f64::from_bits(x);
             check(random_bits);
-            let decimal = (x % 2_000_000_001) as f64 / 10f64.powi((i % 9) as i32) - 1000.0;
+            let decimal = (x % 2_000_000_001) as f64 / 10f64.powi(i % 9) - 1000.0;
             check(decimal);
             check(-decimal);
         }
