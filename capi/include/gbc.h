@@ -568,6 +568,17 @@ enum GbcStatus gbc_set_optional_stop(GbcController controller, bool on);
 enum GbcStatus gbc_set_dry_run(GbcController controller, bool on);
 
 /**
+ * Block-skip switch `switch_number` (1–9; `/` is 1, `/n` is n), the
+ * panel's block-delete key: a `/n` block is skipped when its switch is on
+ * as the program reads it. The program is read ahead of the motion (by
+ * `gbc_run_ahead`, up to the look-ahead), so a change decides for the
+ * blocks read after it; those already read keep their decision. The
+ * machine file's `operator.block_skip` is the state at start; a reset
+ * keeps the switches. Another number: [`GbcStatus::InvalidArgument`].
+ */
+enum GbcStatus gbc_set_block_skip(GbcController controller, uint8_t switch_number, bool on);
+
+/**
  * The level of the input wired to the skip signal (G31).
  */
 enum GbcStatus gbc_set_skip_input(GbcController controller, bool level);

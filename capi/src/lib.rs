@@ -57,6 +57,8 @@ struct Panel {
     optional_stop: bool,
     dry_run: bool,
     skip_level: bool,
+    /// Block-skip switches 1–9.
+    block_skip: [bool; 9],
 }
 
 impl Panel {
@@ -70,6 +72,7 @@ impl Panel {
             optional_stop: m.operator.optional_stop,
             dry_run: m.operator.dry_run,
             skip_level: cfg.skip_active_low,
+            block_skip: m.operator.block_skip,
         }
     }
 
@@ -81,6 +84,9 @@ impl Panel {
         c.set_optional_stop(self.optional_stop);
         c.set_dry_run(self.dry_run);
         c.set_skip_input(self.skip_level);
+        for (n, &on) in (1..).zip(&self.block_skip) {
+            c.set_block_skip(n, on);
+        }
     }
 }
 
@@ -631,6 +637,29 @@ pub extern "C" fn gbc_set_dry_run(controller: GbcController, on: bool) -> GbcSta
         controller,
         |p| p.dry_run = on,
         |p, r| r.set_dry_run(p.dry_run),
+    )
+}
+
+/// Block-skip switch `switch_number` (1–9; `/` is 1, `/n` is n), the
+/// panel's block-delete key: a `/n` block is skipped when its switch is on
+/// as the program reads it. The program is read ahead of the motion (by
+/// `gbc_run_ahead`, up to the look-ahead), so a change decides for the
+/// blocks read after it; those already read keep their decision. The
+/// machine file's `operator.block_skip` is the state at start; a reset
+/// keeps the switches. Another number: [`GbcStatus::InvalidArgument`].
+#[no_mangle]
+pub extern "C" fn gbc_set_block_skip(
+    controller: GbcController,
+    switch_number: u8,
+    on: bool,
+) -> GbcStatus {
+    let Some(index) = usize::from(switch_number).checked_sub(1).filter(|&i| i < 9) else {
+        return guard(|| handle_check(controller).and(Err(GbcStatus::InvalidArgument)));
+    };
+    panel(
+        controller,
+        |p| p.block_skip[index] = on,
+        |_, r| r.set_block_skip(switch_number, on),
     )
 }
 

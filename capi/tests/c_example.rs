@@ -58,15 +58,22 @@ fn cargo_build(profile: &Path, what: &[&str]) {
 
 /// Compiles the C example against `libgbc.a`; returns the executable.
 fn build_example(profile: &Path, out: &Path) -> PathBuf {
+    build_c(profile, &repo().join("examples/c/controller.c"), out)
+}
+
+/// Compiles a C host `src` against `libgbc.a` into `out`; returns the
+/// executable.
+fn build_c(profile: &Path, src: &Path, out: &Path) -> PathBuf {
     let lib = static_lib(profile);
     assert!(lib.exists(), "{} is missing", lib.display());
-    let exe = out.join("controller");
+    let name = src.file_stem().expect("a C file name");
+    let exe = out.join(name);
     let cc = std::env::var_os("CC").unwrap_or_else(|| "cc".into());
     let st = Command::new(cc)
         .args(["-std=c11", "-Wall", "-Wextra", "-Werror", "-g"])
         .arg("-I")
         .arg(repo().join("capi/include"))
-        .arg(repo().join("examples/c/controller.c"))
+        .arg(src)
         .arg(&lib)
         // What a Rust static library needs of the system on Linux.
         .args(["-lpthread", "-ldl", "-lm", "-lrt", "-lgcc_s", "-lc"])
@@ -74,7 +81,7 @@ fn build_example(profile: &Path, out: &Path) -> PathBuf {
         .arg(&exe)
         .status()
         .expect("the system C compiler (cc) runs");
-    assert!(st.success(), "cc failed on examples/c/controller.c");
+    assert!(st.success(), "cc failed on {}", src.display());
     exe
 }
 
@@ -124,4 +131,37 @@ fn the_c_controller_loop_gives_gbvms_trace() {
     for (i, (a, b)) in cl.iter().zip(&gl).enumerate() {
         assert_eq!(a, b, "line {} differs (C, gbvm)", i + 1);
     }
+}
+
+/// Line 3 is skipped while switch 1 is on; line 4 reads the current
+/// position, so the program is read no further until the motion before it
+/// has ended; line 5 is read after that.
+const SKIPS: &str = "O0001\nG00 X10 Z0\n/G00 X12\n#100=#5021\n/G00 X16\nG00 X18\nM30\n";
+
+#[test]
+fn block_skip_turned_off_from_c_decides_for_the_blocks_read_after_it() {
+    let profile = profile_dir();
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_block_skip");
+    std::fs::create_dir_all(&out).expect("a scratch directory");
+    let exe = build_c(&profile, &repo().join("capi/tests/c/block_skip.c"), &out);
+    let src = out.join("skips.nc");
+    std::fs::write(&src, SKIPS).expect("write skips.nc");
+    let gbc = compile(&src, &out);
+
+    // The host turns switch 1 off after the first run-ahead, which read
+    // lines 2 and 3 (switch on: skipped) and stopped at line 4.
+    let c = Command::new(&exe)
+        .arg(&gbc)
+        .output()
+        .expect("block_skip runs");
+    let stderr = String::from_utf8_lossy(&c.stderr);
+    assert!(c.status.success(), "the C host failed: {stderr}");
+    let text = String::from_utf8(c.stdout).expect("UTF-8");
+    let mut lines: Vec<u32> = text.lines().filter_map(|l| l.parse().ok()).collect();
+    lines.dedup();
+    // The axes ran line 2, then (the skipped line 3 never moves them, the
+    // read at line 4 moves nothing) line 5, read with the switch off, and
+    // line 6; M30 at line 7.
+    let moved: Vec<u32> = lines.into_iter().filter(|&l| l != 7).collect();
+    assert_eq!(moved, [2, 5, 6], "{text}");
 }

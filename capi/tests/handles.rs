@@ -131,6 +131,10 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
         ),
         ("gbc_set_dry_run", Box::new(|h| gbc_set_dry_run(h, true))),
         (
+            "gbc_set_block_skip",
+            Box::new(|h| gbc_set_block_skip(h, 1, false)),
+        ),
+        (
             "gbc_set_skip_input",
             Box::new(|h| gbc_set_skip_input(h, true)),
         ),
@@ -256,8 +260,14 @@ fn null_pointers_and_bad_arguments_are_refused() {
         st.blocks = 99;
         assert_eq!(gbc_state(c, &mut st), GbcStatus::Ok);
         assert_eq!((st.state, st.blocks), (GbcRunState::Idle, 0));
+        // Block skip: switches 1–9 only.
+        assert_eq!(gbc_set_block_skip(c, 9, false), GbcStatus::Ok);
+        for n in [0, 10, 255] {
+            assert_eq!(gbc_set_block_skip(c, n, true), GbcStatus::InvalidArgument);
+        }
         // A bad argument with a bad handle: the handle is reported.
         assert_eq!(gbc_set_feed_override(0, f64::NAN), GbcStatus::InvalidHandle);
+        assert_eq!(gbc_set_block_skip(0, 0, true), GbcStatus::InvalidHandle);
 
         let prog = module("O1\nG00 W-1\nM30\n");
         assert_eq!(

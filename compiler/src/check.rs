@@ -98,15 +98,59 @@ const STEP_LIMIT: u64 = 200_000;
 
 /// Runs a static program through the kernel; the first compile-time error
 /// with its unit.
+///
+/// Block skip is the operator's switch, read as each block is, so a
+/// program with `/n` blocks runs once per state that matters: as the
+/// machine file sets the switches (the state a run starts in), with every
+/// switch off (a diagnostic in a `/n` block is found) and with every
+/// switch on (the modal state without those blocks).
 pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Option<(usize, Diagnostic)> {
-    let mut run = DryRun {
-        units,
-        programs,
-        nc: Nc::new(m.clone()),
-        steps: 0,
-        skip: m.operator.block_skip,
-    };
-    run.program(0, 0).err()
+    let mut states = vec![m.operator.block_skip];
+    if has_deleted_blocks(units, programs) {
+        for state in [[false; 9], crate::profile::ALL_ON] {
+            if !states.contains(&state) {
+                states.push(state);
+            }
+        }
+    }
+    let first = states[0];
+    states.into_iter().find_map(|skip| {
+        let mut run = DryRun {
+            units,
+            programs,
+            nc: Nc::new(m.clone()),
+            steps: 0,
+            skip,
+        };
+        let (unit, d) = run.program(0, 0).err()?;
+        Some((
+            unit,
+            if skip == first {
+                d
+            } else {
+                d.with_note(state_note(&skip))
+            },
+        ))
+    })
+}
+
+/// Which switch state an error of a later dry run belongs to.
+fn state_note(skip: &[bool; 9]) -> &'static str {
+    if skip.contains(&true) {
+        "with the block-skip switches on (the `/` blocks skipped)"
+    } else {
+        "with the block-skip switches off (the `/` blocks run)"
+    }
+}
+
+/// Whether any block of the programs carries `/` or `/n`.
+fn has_deleted_blocks(units: &[Unit], programs: &[Program]) -> bool {
+    programs.iter().any(|p| {
+        p.blocks
+            .iter()
+            .filter_map(|&l| link::block(&units[p.unit], l))
+            .any(|b| b.delete.is_some())
+    })
 }
 
 impl DryRun<'_> {

@@ -64,6 +64,8 @@ struct ProgState {
     gotos: Vec<Pending>,
     /// (sequence number, pc, loop ids open at that block).
     seqs: Vec<(u32, u32, Vec<u32>, Span)>,
+    /// Where the last `/n` block's guard goes on.
+    join: Option<u32>,
 }
 
 impl<'a> Gen<'a> {
@@ -203,22 +205,21 @@ impl<'a> Gen<'a> {
                 let loops = st.loops.iter().map(|l| l.id).collect();
                 st.seqs.push((seq.number, self.pc(), loops, block.span));
             }
-            if let Some(d) = block.delete {
-                let on = self
-                    .machine
-                    .operator
-                    .block_skip
-                    .get(d.switch.saturating_sub(1) as usize)
-                    .copied()
-                    .unwrap_or(false);
-                if on {
-                    continue;
-                }
-            }
+            // A `/n` block is kept behind a guard: the switch is the
+            // operator's, read when the block is (docs/language.md).
+            let guard = block.delete.map(|d| {
+                self.emit(Instr::SkipBlock {
+                    switch: d.switch,
+                    target: 0,
+                })
+            });
             self.expr.reset();
             match &block.body {
                 Body::Words(_) => self.lower_words(block, &mut st),
                 Body::Stmt(s) => self.lower_stmt(s, block, &mut st),
+            }
+            if let Some(at) = guard {
+                st.join = Some(self.end_guard(at));
             }
         }
         // Running off the end: the main program halts, a subprogram
@@ -245,8 +246,11 @@ impl<'a> Gen<'a> {
             );
         }
         crate::profile::program_end(self, prog);
+        // (A skipped last block goes on past its code: something must be
+        // there.)
         let ends = matches!(self.module.code.last(), Some(Instr::Ret | Instr::Halt))
-            && self.pc() > entry_pc;
+            && self.pc() > entry_pc
+            && st.join != Some(self.pc());
         if !ends || !st.gotos.is_empty() || !st.seqs.is_empty() {
             self.emit(if main { Instr::Halt } else { Instr::Ret });
         }
@@ -308,6 +312,18 @@ impl<'a> Gen<'a> {
                 _ => {}
             }
         }
+    }
+
+    /// Points the block-skip guard at `at` past the block just lowered;
+    /// returns that pc. Both ways meet there, so nothing the block set is
+    /// known after it.
+    pub(crate) fn end_guard(&mut self, at: usize) -> u32 {
+        let pc = self.pc();
+        if let Some(Instr::SkipBlock { target, .. }) = self.module.code.get_mut(at) {
+            *target = pc;
+        }
+        self.expr.forget_all();
+        pc
     }
 
     fn lower_stmt(&mut self, s: &Stmt, block: &Block, st: &mut ProgState) {

@@ -94,6 +94,9 @@ fn cycle_words(ws: &[NcWord<'_>]) -> Option<CycleWords> {
     })
 }
 
+/// Every block-skip switch on: every `/n` block skipped.
+pub(crate) const ALL_ON: [bool; 9] = [true; 9];
+
 /// Whether the block-delete switch of a block is on (the block is skipped).
 fn skipped(skip: &[bool; 9], block: &Block) -> bool {
     block.delete.is_some_and(|d| {
@@ -248,14 +251,21 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
             );
         }
     }
+    // The profile as the switches leave it: every block (all off) and
+    // none of the `/n` ones (all on); both must be sound.
     let lines: Vec<usize> = prog.blocks[i..=j]
         .iter()
         .copied()
-        .filter(|&l| {
-            link::block(unit, l).is_some_and(|b| !skipped(&gen.machine.operator.block_skip, b))
-        })
+        .filter(|&l| link::block(unit, l).is_some())
         .collect();
-    if !check_blocks(gen, unit, cw.code, &lines, block.span) {
+    let kept: Vec<usize> = lines
+        .iter()
+        .copied()
+        .filter(|&l| link::block(unit, l).is_some_and(|b| !skipped(&ALL_ON, b)))
+        .collect();
+    if !check_blocks(gen, unit, cw.code, &lines, block.span)
+        || (kept != lines && !check_blocks(gen, unit, cw.code, &kept, block.span))
+    {
         return None;
     }
     emit_profile(gen, unit, &lines);
@@ -296,10 +306,22 @@ fn emit_profile(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
         if split.nc.is_empty() {
             continue;
         }
+        gen.set_loc(b.span);
+        // A `/n` profile block is left out of the profile when its switch
+        // is on as the cycle block is read.
+        let guard = b.delete.map(|d| {
+            gen.emit(Instr::SkipBlock {
+                switch: d.switch,
+                target: 0,
+            })
+        });
         gen.expr.reset();
         emit_words(gen, &split.nc);
         gen.set_loc(b.span);
         gen.emit(Instr::Exec { flags: PROFILE });
+        if let Some(at) = guard {
+            gen.end_guard(at);
+        }
     }
     gen.expr.reset();
 }

@@ -99,6 +99,12 @@ pub enum LoadError {
         /// Which kind of operand.
         what: &'static str,
     },
+    /// A block-skip guard (`skipblock`) whose target is not past it.
+    #[error("block-skip guard at pc {pc} does not jump forward")]
+    BackwardSkip {
+        /// Instruction index.
+        pc: u32,
+    },
     /// The tables around the code are inconsistent.
     #[error(transparent)]
     BadTable(#[from] TableError),

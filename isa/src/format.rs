@@ -37,7 +37,8 @@ use crate::{Instr, LoadError, Module, Program, SourceFileInfo, SourceLoc, TableE
 pub const MAGIC: [u8; 4] = *b"GBC\0";
 
 /// The format version this build reads and writes.
-pub const VERSION: u16 = 1;
+/// Version 2 added `skipblock` (block delete decided at run time).
+pub const VERSION: u16 = 2;
 
 /// Bytes before the first section: magic and version.
 pub const HEADER_LEN: usize = 6;

@@ -57,5 +57,5 @@ pub use instr::{Instr, Opcode};
 pub use module::{Module, Program, SourceFileInfo, SourceLoc};
 pub use operand::{
     addr, Addr, ArgVar, CmpCode, CmpOp, Const, FuncCode, MathFunc, Operand, OperandKind,
-    OperandMut, Pc, Prog, Reg, Str, Var, U16, U32, U8,
+    OperandMut, Pc, Prog, Reg, Str, Switch, Var, SWITCHES, U16, U32, U8,
 };

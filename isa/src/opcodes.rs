@@ -66,6 +66,12 @@ macro_rules! for_each_instr {
             /// `GOTO [seq]`: the sequence number is computed, so the VM looks
             /// it up in the current program's sequence table at run time.
             GotoSeq = 0x22, "gotoseq" { seq: Reg };
+            /// The guard of a `/n` block (block delete): continue at
+            /// `target`, the code after the block, when block-skip switch
+            /// `switch` is on as the block is read; else run the block.
+            /// The verifier holds `target` past the guard, so a skip never
+            /// closes a loop.
+            SkipBlock = 0x23, "skipblock" { switch: Switch, target: Pc };
 
             // --- building and executing blocks ---
             /// Add a word with a computed value to the block being built.

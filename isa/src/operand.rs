@@ -93,7 +93,12 @@ define_operands! {
     FuncCode: u8,
     /// A [`CmpOp`] code.
     CmpCode: u8,
+    /// A block-skip switch, `1..=9` (`/` is 1, `/n` is n; see [`SWITCHES`]).
+    Switch: u8,
 }
+
+/// The block-skip switches a [`Switch`] operand may name.
+pub const SWITCHES: core::ops::RangeInclusive<u8> = 1..=9;
 
 /// Prints an operand the way the disassembly shows it: registers `r3`,
 /// constants `k3`, strings `s3`, programs `p3`, jump targets `@0012`,
@@ -125,6 +130,7 @@ impl fmt::Display for Operand {
                 Some(op) => f.write_str(op.name()),
                 None => write!(f, "cmp?{c}"),
             },
+            Operand::Switch(n) => write!(f, "/{n}"),
         }
     }
 }

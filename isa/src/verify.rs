@@ -5,7 +5,7 @@
 use alloc::vec::Vec;
 
 use crate::encoding::len_to_u32;
-use crate::{addr, CmpOp, LoadError, MathFunc, Module, Operand, TableError};
+use crate::{addr, CmpOp, Instr, LoadError, MathFunc, Module, Operand, TableError, SWITCHES};
 
 /// Registers are addressed by a `u8`.
 const MAX_REGS: u16 = 256;
@@ -22,7 +22,8 @@ impl Module {
     /// every operand is in range for its kind; one source location per
     /// instruction, each naming a listed file; a non-empty program table with
     /// distinct numbers, code ranges inside the code and sorted sequence
-    /// tables pointing into their own program.
+    /// tables pointing into their own program; a block-skip guard jumps
+    /// forward.
     pub fn verify(&self) -> Result<(), LoadError> {
         self.verify_sizes()?;
         if self.num_regs > MAX_REGS {
@@ -38,6 +39,13 @@ impl Module {
         for (pc, instr) in self.code.iter().enumerate() {
             let pc = len_to_u32(pc);
             instr.try_visit_operands(|op| self.check_operand(pc, op))?;
+            if let Instr::SkipBlock { target, .. } = *instr {
+                // Forward only: between two charges of the block budget
+                // the pc must only move forward (the VM's bound).
+                if target <= pc {
+                    return Err(LoadError::BackwardSkip { pc });
+                }
+            }
         }
         Ok(())
     }
@@ -84,6 +92,7 @@ impl Module {
             Operand::CmpCode(c) => CmpOp::from_code(c).is_some(),
             Operand::Addr(a) => a <= addr::MAX,
             Operand::ArgVar(v) => ARG_VARS.contains(&v),
+            Operand::Switch(n) => SWITCHES.contains(&n),
             // Flags, alarm codes and variable numbers: any value; the VM
             // gives them meaning (an unknown #var is a run-time alarm).
             Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => true,
@@ -168,6 +177,7 @@ fn operand_error(pc: u32, op: Operand) -> LoadError {
         Operand::CmpCode(_) => "comparison",
         Operand::Addr(_) => "word address",
         Operand::ArgVar(_) => "argument variable",
+        Operand::Switch(_) => "block-skip switch",
         Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => "plain",
     };
     LoadError::BadOperand { pc, what }

@@ -444,11 +444,52 @@ fn bad_operands() {
         ),
         (27, Instr::Arg { var: 0, src: 0 }, "argument variable"),
         (28, Instr::Arg { var: 34, src: 2 }, "argument variable"),
+        // `/` is switch 1 and `/9` the last: 0 and 10 name no switch.
+        (
+            36,
+            Instr::SkipBlock {
+                switch: 0,
+                target: 37,
+            },
+            "block-skip switch",
+        ),
+        (
+            36,
+            Instr::SkipBlock {
+                switch: 10,
+                target: 37,
+            },
+            "block-skip switch",
+        ),
     ];
     for (pc, instr, what) in cases {
         rejects(
             with(|m| m.code[pc as usize] = instr),
             LoadError::BadOperand { pc, what },
+        );
+    }
+}
+
+#[test]
+fn malformed_block_skip_guards() {
+    // The sample's guard is at pc 36 and skips to the `halt` at 37.
+    let len = sample_module().code.len() as u32;
+    rejects(
+        with(|m| {
+            m.code[36] = Instr::SkipBlock {
+                switch: 1,
+                target: len,
+            }
+        }),
+        LoadError::JumpOutOfRange { pc: 36 },
+    );
+    // A guard may only skip forward: onto itself or back would let a loop
+    // run without charging the block budget (`rejects` also loads the
+    // file, so this is the loader's answer too).
+    for target in [36, 0] {
+        rejects(
+            with(|m| m.code[36] = Instr::SkipBlock { switch: 1, target }),
+            LoadError::BackwardSkip { pc: 36 },
         );
     }
 }

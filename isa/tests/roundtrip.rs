@@ -240,6 +240,7 @@ fn every_kind_has_its_width() {
         (Addr, 1),
         (FuncCode, 1),
         (CmpCode, 1),
+        (Switch, 1),
     ] {
         assert_eq!(kind.width(), width, "{kind:?}");
     }

@@ -17,8 +17,8 @@
 //! [`crate::split::Realtime`] half is ticked in the period loop, and they
 //! share no lock.
 //!
-//! Signals (overrides, feed hold, cycle start, reset, single block, skip)
-//! go through the methods of [`Controller`]; M, S and T functions through
+//! Signals (overrides, feed hold, cycle start, reset, single block, block
+//! skip, skip) go through the methods of [`Controller`]; M, S and T functions through
 //! the host's [`Plc`].
 //!
 //! The VM runs ahead of the motion: the block-end positions (#5001…) are
@@ -272,6 +272,22 @@ impl<P: Plc> Controller<P> {
         self.ra.machine.operator.optional_stop = true;
         self.ra.vm.nc.machine.operator.optional_stop = true;
         self.engine.set_optional_stop(on);
+    }
+
+    /// Block-skip switch `switch` (1–9; `/` is 1), live, as the panel's
+    /// key: a `/n` block is skipped when its switch is on as the VM reads
+    /// it. The VM reads ahead of the motion (the look-ahead), so a change
+    /// decides for the blocks not yet read; those already read keep their
+    /// decision, as on a real control that has them in its buffer. The
+    /// machine file's `operator.block_skip` is the state at load; a reset
+    /// keeps the switches; a number outside 1–9 changes nothing.
+    pub fn set_block_skip(&mut self, switch: u8, on: bool) {
+        self.ra.set_block_skip(switch, on);
+    }
+
+    /// Whether block-skip switch `switch` (1–9) is on.
+    pub fn block_skip(&self, switch: u8) -> bool {
+        self.ra.vm.block_skip(switch)
     }
 
     /// Dry run, live ([`Engine::set_dry_run`]).

@@ -137,6 +137,16 @@ impl RunAhead {
         self.vm.repeat = self.repeat;
     }
 
+    /// Block-skip switch `switch` (1–9), for the blocks the VM reads from
+    /// now on; kept for the VM a reset starts afresh.
+    pub(crate) fn set_block_skip(&mut self, switch: u8, on: bool) {
+        self.vm.set_block_skip(switch, on);
+        let index = usize::from(switch).wrapping_sub(1);
+        if let Some(s) = self.machine.operator.block_skip.get_mut(index) {
+            *s = on;
+        }
+    }
+
     /// The text of a `MESSAGE` stop.
     pub(crate) fn message(&self, n: u32) -> Option<&str> {
         self.tr.messages.get(n as usize).map(String::as_str)

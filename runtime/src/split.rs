@@ -286,6 +286,13 @@ impl Interpreter {
     pub fn machine(&self) -> &Machine {
         &self.ra.machine
     }
+
+    /// Block-skip switch `switch` (1–9), for the blocks this half reads
+    /// from now on ([`crate::Controller::set_block_skip`]): the switch
+    /// belongs to the interpreter, which reads the blocks.
+    pub fn set_block_skip(&mut self, switch: u8, on: bool) {
+        self.ra.set_block_skip(switch, on);
+    }
 }
 
 /// The half of a split controller that moves the axes: call

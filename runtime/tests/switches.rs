@@ -157,3 +157,94 @@ fn the_spindle_override_goes_through_the_controller() {
         last.spindle_rpm
     );
 }
+
+/// Every other block on the block-skip switch `/`.
+const SKIPS: &str = "O0001\nG00 X10 Z0\n/G00 X12\nG00 X14\n/G00 X16\nG00 X18\n/G00 X20\nM30\n";
+
+/// The canon lines of a tap.
+fn lines(events: &[nc::Event]) -> Vec<String> {
+    events.iter().map(|e| e.to_string()).collect()
+}
+
+#[test]
+fn block_skip_is_read_when_the_block_is_read() {
+    let machine = Machine::reference(); // every switch on
+    let mut cfg = Config::from_machine(&machine);
+    // A look-ahead of two moves: the first run-ahead reads up to the
+    // second move and stops.
+    cfg.lookahead_blocks = 2;
+    cfg.lookahead_s = 0.0;
+    let m = module(SKIPS, &machine);
+    let mut ctl = Controller::with_config(m, machine, cfg, runtime::AutoAck).expect("loads");
+    ctl.cycle_start();
+    let mut read: Vec<nc::Event> = Vec::new();
+    ctl.run_ahead_tap(&mut read);
+    // Read with the switch on: X12 skipped.
+    assert_eq!(lines(&read), ["RAPID X=10 Z=0", "RAPID X=14 Z=0"]);
+    // Off now, before the axes have moved: the blocks read from here on
+    // run, the X12 block read before stays skipped.
+    ctl.set_block_skip(1, false);
+    assert!(!ctl.block_skip(1) && ctl.block_skip(2));
+    let mut last = None;
+    for _ in 0..1_000_000 {
+        ctl.run_ahead_tap(&mut read);
+        last = Some(ctl.tick());
+        if matches!(ctl.state(), RunState::Ended | RunState::Alarm(_)) {
+            break;
+        }
+    }
+    assert_eq!(ctl.state(), RunState::Ended);
+    assert_eq!(
+        lines(&read),
+        [
+            "RAPID X=10 Z=0",
+            "RAPID X=14 Z=0",
+            "RAPID X=16 Z=0",
+            "RAPID X=18 Z=0",
+            "RAPID X=20 Z=0",
+            "STOP KIND=M30"
+        ]
+    );
+    // The motion ran what was read: it ends on X20 (a diameter).
+    assert_eq!(last.map(|sp| sp.x), Some(20.0));
+}
+
+#[test]
+fn the_machine_file_sets_block_skip_at_load_and_a_reset_keeps_it() {
+    let mut machine = Machine::reference();
+    machine.operator.block_skip = [false; 9];
+    let m = module(SKIPS, &machine);
+    let mut ctl = Controller::new(m, machine, runtime::AutoAck).expect("loads");
+    assert!(!ctl.block_skip(1));
+    // Turned on, the program runs; a reset brings it back to its start
+    // and the switch stays on for the second run.
+    ctl.set_block_skip(1, true);
+    let mut runs = Vec::new();
+    for _ in 0..2 {
+        ctl.cycle_start();
+        let mut read: Vec<nc::Event> = Vec::new();
+        for _ in 0..1_000_000 {
+            ctl.run_ahead_tap(&mut read);
+            ctl.tick();
+            if ctl.state() == RunState::Ended {
+                break;
+            }
+        }
+        runs.push(lines(&read));
+        ctl.reset();
+        for _ in 0..100_000 {
+            ctl.run_ahead();
+            ctl.tick();
+            if ctl.state() == RunState::Idle {
+                break;
+            }
+        }
+    }
+    let want = [
+        "RAPID X=10 Z=0",
+        "RAPID X=14 Z=0",
+        "RAPID X=18 Z=0",
+        "STOP KIND=M30",
+    ];
+    assert_eq!(runs, [want, want]);
+}

@@ -207,6 +207,26 @@ impl Vm {
             .unwrap_or_default()
     }
 
+    /// Whether block-skip switch `switch` (1–9; `/` is 1) is on: a `/n`
+    /// block read from now on is skipped. It starts as the machine file's
+    /// `operator.block_skip`; a number outside 1–9 names no switch (off).
+    pub fn block_skip(&self, switch: u8) -> bool {
+        let switches = &self.nc.machine.operator.block_skip;
+        let index = usize::from(switch).wrapping_sub(1);
+        switches.get(index).copied().unwrap_or(false)
+    }
+
+    /// Turns block-skip switch `switch` (1–9) on or off, as the operator's
+    /// key does: it decides for the blocks the VM reads from now on (the
+    /// ones it has read, ahead of the motion, keep their decision). A
+    /// number outside 1–9 changes nothing.
+    pub fn set_block_skip(&mut self, switch: u8, on: bool) {
+        let index = usize::from(switch).wrapping_sub(1);
+        if let Some(s) = self.nc.machine.operator.block_skip.get_mut(index) {
+            *s = on;
+        }
+    }
+
     /// Persists #500–#999 through `storage` from now on.
     pub fn set_storage(&mut self, storage: Box<dyn Storage>) {
         self.storage = Some(storage);
@@ -422,6 +442,14 @@ impl Vm {
                 if value::compare(Rel::Eq, self.reg(cond), 0.0) == 1.0 || is_vacant(self.reg(cond))
                 {
                     self.jump(target)?;
+                }
+            }
+            Instr::SkipBlock { switch, target } => {
+                // The switch as the block is read: the VM reads blocks
+                // ahead of the motion, so a change reaches the blocks not
+                // yet read (forward only: nothing to charge).
+                if self.block_skip(switch) {
+                    self.pc = target;
                 }
             }
             Instr::GotoSeq { seq } => {

@@ -2,7 +2,7 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 
-use nc::{Event, Sink};
+use nc::{Event, Machine, Sink};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -30,6 +30,13 @@ enum Emit {
 enum StatsFormat {
     Text,
     Json,
+}
+
+/// A panel switch given on the command line.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Switch {
+    On,
+    Off,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -72,6 +79,10 @@ enum Command {
         quiet: bool,
         #[arg(long, value_name = "FILE")]
         machine: Option<PathBuf>,
+        /// The block-skip switches /1–/9 at the start: on skips the `/`
+        /// blocks; default operator.block_skip of the machine file.
+        #[arg(long, value_enum, value_name = "on|off")]
+        block_skip: Option<Switch>,
         /// Block budget (E6005 past it); default run.max_blocks.
         #[arg(long, value_name = "N")]
         max_blocks: Option<u64>,
@@ -210,6 +221,7 @@ fn main() -> ExitCode {
             stats,
             quiet,
             machine,
+            block_skip,
             max_blocks,
             max_time,
             repeat,
@@ -247,7 +259,7 @@ fn main() -> ExitCode {
             if emit == Some(Emit::Canon) && plot.is_none() && stats.is_none() {
                 return run(
                     &file,
-                    machine.as_deref(),
+                    (machine.as_deref(), block_skip),
                     max_blocks,
                     repeat,
                     vars.as_deref(),
@@ -265,7 +277,7 @@ fn main() -> ExitCode {
             };
             run_timed(
                 &file,
-                machine.as_deref(),
+                (machine.as_deref(), block_skip),
                 max_blocks,
                 repeat,
                 vars.as_deref(),
@@ -275,9 +287,19 @@ fn main() -> ExitCode {
     }
 }
 
+/// The machine file (or the reference machine) with the panel's
+/// block-skip switches as the command line sets them.
+fn load_machine((path, block_skip): (Option<&Path>, Option<Switch>)) -> Result<Machine, String> {
+    let mut machine = cli::load_machine(path)?;
+    if let Some(s) = block_skip {
+        machine.operator.block_skip = [s == Switch::On; 9];
+    }
+    Ok(machine)
+}
+
 fn run(
     file: &Path,
-    machine: Option<&Path>,
+    machine: (Option<&Path>, Option<Switch>),
     max_blocks: Option<u64>,
     repeat: u32,
     vars: Option<&Path>,
@@ -288,7 +310,7 @@ fn run(
         Err(e) => return fail(&e),
     };
     let main_lines = main_lines(&module);
-    let machine = match cli::load_machine(machine) {
+    let machine = match load_machine(machine) {
         Ok(m) => m,
         Err(e) => return fail(&e),
     };
@@ -406,7 +428,7 @@ fn catch_interrupt() {
 /// start is pressed at every stop.
 fn run_timed(
     file: &Path,
-    machine: Option<&Path>,
+    machine: (Option<&Path>, Option<Switch>),
     max_blocks: Option<u64>,
     repeat: u32,
     vars: Option<&Path>,
@@ -424,7 +446,7 @@ fn run_timed(
         .map(|p| p.number)
         .filter(|&n| n != 0);
     let main_lines = main_lines(&module);
-    let machine = match cli::load_machine(machine) {
+    let machine = match load_machine(machine) {
         Ok(m) => m,
         Err(e) => return fail(&e),
     };

@@ -49,7 +49,7 @@ pub fn sample_module() -> Module {
         ModalCancel,                                    // 33
         Alarm { code: 5001, msg: 1 },                   // 34 the last string
         Jump { target: 37 },                            // 35
-        WordK { addr: addr::COMMA_C, k: 2, flags: 0 },  // 36
+        SkipBlock { switch: 9, target: 37 },            // 36 the last switch
         Halt,                                           // 37
     ];
     let sub = vec![
