@@ -485,7 +485,7 @@ pub fn swept(from: Pt, to: Pt, arc: Option<(Pt, bool)>) -> f64 {
     let (a0, a1) = (angle(c, from), angle(c, to));
     let tau = 2.0 * core::f64::consts::PI;
     let mut span = if cw { a0 - a1 } else { a1 - a0 };
-    span = span.rem_euclid(tau);
+    span -= tau * libm::floor(span / tau);
     if span < 1e-12 {
         // End = start with a centre: a full circle.
         span = tau;
