@@ -220,3 +220,29 @@ fn a_machine_with_a_c_axis() {
     assert_eq!(out.status.code(), Some(1));
     assert!(text(&out.stderr).contains("E2005"), "{}", text(&out.stderr));
 }
+
+#[test]
+fn polar_and_cylindrical_interpolation_expand_to_the_same_canon() {
+    let d = dir("polar");
+    std::fs::write(d.join("c.toml"), "[axes.c]\nenabled = true\n").unwrap();
+    // A polar contour with a G16 line and both arc forms, then a groove
+    // on a cylinder of radius 20 with an arc longer than a half circle
+    // (R-20, which the expansion must write negative again).
+    let src = "G98 G00 X40 Z-2 C0\nG12.1\nG01 X20 C10 F300\nG03 X-20 C10 R10\nG16\nG01 X10 C180\nG15\nG03 X20 C0 I10 J0\nG13.1\nG00 C0\nG7.1 C20.\nG01 Z-10 C90 F200\nG03 Z-20 C0 R-20\nG7.1 C0\nM30\n";
+    std::fs::write(d.join("p.nc"), src).unwrap();
+    let canon = |file: &str| {
+        let out = gbcc(&[file, "--machine", "c.toml", "-o", "p.gbc"], &d);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        let run = gbvm(&["run", "p.gbc", "--machine", "c.toml"], &d);
+        assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+        text(&run.stdout)
+    };
+    let first = canon("p.nc");
+    assert!(first.contains("POLAR MODE=OFF X=20 C=360\n"), "{first}");
+    let e = gbcc(&["p.nc", "--machine", "c.toml", "-E"], &d);
+    assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
+    let expanded = text(&e.stdout);
+    assert!(expanded.contains("G12.1"), "{expanded}");
+    std::fs::write(d.join("e.nc"), &expanded).unwrap();
+    assert_eq!(canon("e.nc"), first, "{expanded}");
+}
