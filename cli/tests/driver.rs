@@ -246,3 +246,27 @@ fn polar_and_cylindrical_interpolation_expand_to_the_same_canon() {
     std::fs::write(d.join("e.nc"), &expanded).unwrap();
     assert_eq!(canon("e.nc"), first, "{expanded}");
 }
+
+#[test]
+fn a_polar_alarm_at_run_time_names_its_line() {
+    let d = dir("polar_alarm");
+    std::fs::write(d.join("c.toml"), "[axes.c]\nenabled = true\n").unwrap();
+    // #500 is vacant: C#1 is known only when the program runs, so the
+    // check that G12.1 finds C at 0 is the VM's (E4033, dialect.md §4.6).
+    let src = "G00 X40 Z0\n#1 = #500 + 30\nG00 C#1\nG12.1\nM30\n";
+    std::fs::write(d.join("r.nc"), src).unwrap();
+    let out = gbcc(&["r.nc", "--machine", "c.toml"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let run = gbvm(&["run", "r.gbc", "--machine", "c.toml"], &d);
+    assert_eq!(run.status.code(), Some(2));
+    let canon = text(&run.stdout);
+    assert!(
+        canon.ends_with("RAPID X=40 Z=0 C=30\nALARM CODE=4033 MSG=\"G12.1 polar interpolation starts with C at 0 degrees, C is at 30.0000: turn it to 0 first (G00 C0)\"\n"),
+        "{canon}"
+    );
+    assert!(
+        text(&run.stderr).starts_with("r.nc:4:1: alarm[E4033]"),
+        "{}",
+        text(&run.stderr)
+    );
+}

@@ -186,7 +186,7 @@ pub(crate) fn polar_on(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(
         return fail(
             Alarm::PolarInComp,
             format!(
-                "{what} starts with C at 0°, C is at {:.4}°: turn it to 0 first (G00 C0)",
+                "{what} starts with C at 0 degrees, C is at {:.4}: turn it to 0 first (G00 C0)",
                 nc.st.c
             ),
         );
