@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{run_with, Run};
+use common::{run_split_with, run_with, Run};
 use nc::Machine;
 use std::f64::consts::PI;
 
@@ -239,4 +239,22 @@ fn the_run_agrees_with_the_canon() {
             "STOP KIND=M30",
         ]
     );
+}
+
+#[test]
+fn the_split_controller_follows_the_same_path() {
+    // The interpreter on a thread of its own: the queue may starve and
+    // the motion wait, so only the path is checked, not the speed.
+    let r = run_split_with(POLAR, c_machine(), runtime::AutoAck, |_, _| {});
+    assert!(r.alarm.is_none(), "{:?}", r.alarm);
+    let path = polar_path();
+    let mut on = 0;
+    for p in r.pts.iter().filter(|p| (4..=8).contains(&p.line)) {
+        let q = polar_plane(p);
+        assert!(distance(&path, q) <= 0.005, "t={}: {q:?}", p.time_s);
+        on += 1;
+    }
+    assert!(on > 1000, "{on}");
+    let last = r.pts.last().expect("periods");
+    assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6);
 }
