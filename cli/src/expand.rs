@@ -3,7 +3,7 @@
 //! block, with absolute coordinates and the source block as a comment.
 
 use nc::event::Num;
-use nc::event::{Dir, SpindleDir, StopKind};
+use nc::event::{Dir, Plane, PlaneMotion, SpindleDir, StopKind};
 use nc::Event;
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -19,6 +19,12 @@ pub struct Expand {
     /// (X, Z) of the last point, for arc centres relative to the start.
     at: (f64, f64),
     feed: Option<(f64, bool)>,
+    /// The C angle of the last `C=` (the start of a G7.1 plane).
+    c_now: f64,
+    /// In a polar or cylinder plane: the last plane point as printed
+    /// (polar X C, cylinder Z C), and the cylinder's radius.
+    plane_at: (f64, f64),
+    radius: f64,
 }
 
 impl Expand {
@@ -30,6 +36,9 @@ impl Expand {
             last_line: 0,
             at: (0.0, 0.0),
             feed: None,
+            c_now: 0.0,
+            plane_at: (0.0, 0.0),
+            radius: 0.0,
         }
     }
 
@@ -75,7 +84,30 @@ impl Expand {
     }
 
     fn event(&mut self, e: &Event) {
+        if let Event::Rapid { c: Some(c), .. } | Event::Line { c: Some(c), .. } = e {
+            self.c_now = *c;
+        }
         let text = match e {
+            Event::PolarOn => {
+                self.plane_at = (self.at.0, 0.0);
+                "G12.1".into()
+            }
+            Event::PolarOff { c, .. } => {
+                self.c_now = *c;
+                "G13.1".into()
+            }
+            Event::Cylinder(Some(r)) => {
+                self.radius = *r;
+                self.plane_at = (self.at.1, self.c_now);
+                format!("G7.1 C{}", n(*r))
+            }
+            Event::Cylinder(None) => "G7.1 C0".into(),
+            Event::PlaneMove {
+                plane,
+                motion,
+                a,
+                b,
+            } => self.plane_move(*plane, *motion, *a, *b),
             Event::Rapid { x, z, c } => format!("G00 X{} Z{}{}", n(*x), n(*z), c_word(*c)),
             Event::Line { x, z, c } => format!("G01 X{} Z{}{}", n(*x), n(*z), c_word(*c)),
             Event::Arc { dir, x, z, cx, cz } => {
@@ -150,6 +182,49 @@ impl Expand {
             self.at = (x, z);
         }
         self.block(text);
+    }
+}
+
+impl Expand {
+    /// A move of polar (`X C`) or cylindrical (`Z C`) interpolation; a
+    /// polar arc's centre as I/J from its start, a cylinder's as R
+    /// (negative beyond a half circle), the only form G7.1 takes.
+    fn plane_move(&mut self, plane: Plane, motion: PlaneMotion, a: f64, b: f64) -> String {
+        let first = if plane == Plane::Polar { 'X' } else { 'Z' };
+        let from = std::mem::replace(&mut self.plane_at, (a, b));
+        if plane == Plane::Cylinder {
+            self.c_now = b;
+        }
+        let (g, centre) = match motion {
+            PlaneMotion::Rapid => ("G00", None),
+            PlaneMotion::Line => ("G01", None),
+            PlaneMotion::Arc { dir, ca, cb } => (
+                if dir == Dir::Cw { "G02" } else { "G03" },
+                Some((dir, ca, cb)),
+            ),
+        };
+        let mut s = format!("{g} {first}{} C{}", n(a), n(b));
+        match (centre, plane) {
+            (None, _) => {}
+            (Some((_, ca, cb)), Plane::Polar) => {
+                let _ = write!(s, " I{} J{}", n((ca - from.0) / 2.0), n(cb - from.1));
+            }
+            (Some((dir, ca, cb)), Plane::Cylinder) => {
+                // The developed surface: s = r·C·π/180 across, Z up.
+                let k = self.radius.to_radians();
+                let u0 = ((from.1 - cb) * k, from.0 - ca);
+                let u1 = ((b - cb) * k, a - ca);
+                let cross = u0.0 * u1.1 - u0.1 * u1.0;
+                let long = if dir == Dir::Ccw {
+                    cross < 0.0
+                } else {
+                    cross > 0.0
+                };
+                let r = u1.0.hypot(u1.1);
+                let _ = write!(s, " R{}", n(if long { -r } else { r }));
+            }
+        }
+        s
     }
 }
 

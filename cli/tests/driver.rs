@@ -220,3 +220,53 @@ fn a_machine_with_a_c_axis() {
     assert_eq!(out.status.code(), Some(1));
     assert!(text(&out.stderr).contains("E2005"), "{}", text(&out.stderr));
 }
+
+#[test]
+fn polar_and_cylindrical_interpolation_expand_to_the_same_canon() {
+    let d = dir("polar");
+    std::fs::write(d.join("c.toml"), "[axes.c]\nenabled = true\n").unwrap();
+    // A polar contour with a G16 line and both arc forms, then a groove
+    // on a cylinder of radius 20 with an arc longer than a half circle
+    // (R-20, which the expansion must write negative again).
+    let src = "G98 G00 X40 Z-2 C0\nG12.1\nG01 X20 C10 F300\nG03 X-20 C10 R10\nG16\nG01 X10 C180\nG15\nG03 X20 C0 I10 J0\nG13.1\nG00 C0\nG7.1 C20.\nG01 Z-10 C90 F200\nG03 Z-20 C0 R-20\nG7.1 C0\nM30\n";
+    std::fs::write(d.join("p.nc"), src).unwrap();
+    let canon = |file: &str| {
+        let out = gbcc(&[file, "--machine", "c.toml", "-o", "p.gbc"], &d);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        let run = gbvm(&["run", "p.gbc", "--machine", "c.toml"], &d);
+        assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+        text(&run.stdout)
+    };
+    let first = canon("p.nc");
+    assert!(first.contains("POLAR MODE=OFF X=20 C=360\n"), "{first}");
+    let e = gbcc(&["p.nc", "--machine", "c.toml", "-E"], &d);
+    assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
+    let expanded = text(&e.stdout);
+    assert!(expanded.contains("G12.1"), "{expanded}");
+    std::fs::write(d.join("e.nc"), &expanded).unwrap();
+    assert_eq!(canon("e.nc"), first, "{expanded}");
+}
+
+#[test]
+fn a_polar_alarm_at_run_time_names_its_line() {
+    let d = dir("polar_alarm");
+    std::fs::write(d.join("c.toml"), "[axes.c]\nenabled = true\n").unwrap();
+    // #500 is vacant: C#1 is known only when the program runs, so the
+    // check that G12.1 finds C at 0 is the VM's (E4033, dialect.md §4.6).
+    let src = "G00 X40 Z0\n#1 = #500 + 30\nG00 C#1\nG12.1\nM30\n";
+    std::fs::write(d.join("r.nc"), src).unwrap();
+    let out = gbcc(&["r.nc", "--machine", "c.toml"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let run = gbvm(&["run", "r.gbc", "--machine", "c.toml"], &d);
+    assert_eq!(run.status.code(), Some(2));
+    let canon = text(&run.stdout);
+    assert!(
+        canon.ends_with("RAPID X=40 Z=0 C=30\nALARM CODE=4033 MSG=\"G12.1 polar interpolation starts with C at 0 degrees, C is at 30.0000: turn it to 0 first (G00 C0)\"\n"),
+        "{canon}"
+    );
+    assert!(
+        text(&run.stderr).starts_with("r.nc:4:1: alarm[E4033]"),
+        "{}",
+        text(&run.stderr)
+    );
+}

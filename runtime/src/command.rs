@@ -158,6 +158,8 @@ pub enum Command {
     ExactStop,
     /// Stored stroke check 2 from here on (G22 with its area, G23 `None`).
     Stroke(Option<nc::stroke::Area>),
+    /// Polar or cylindrical interpolation on or off (polar.rs).
+    Plane(crate::polar::PlaneSwitch),
     /// The program ends (M02, M30, last M99, past the last block).
     End,
     /// The program raised an alarm; motion stops here.

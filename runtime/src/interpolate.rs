@@ -250,6 +250,9 @@ pub struct Engine<P: Plc> {
     alarm: Option<(u32, Tag)>,
     /// Stored stroke check 2 (G22): the area the axes may not enter.
     stroke: Option<nc::stroke::Area>,
+    /// Polar or cylindrical interpolation: `pos` is a plane point and
+    /// these are the joints (polar.rs).
+    plane: Option<crate::polar::PlaneRun>,
 }
 
 impl<P: Plc> Engine<P> {
@@ -306,6 +309,7 @@ impl<P: Plc> Engine<P> {
             cap_accel: 0.0,
             alarm: None,
             stroke: None,
+            plane: None,
             cfg,
         }
     }
@@ -521,21 +525,33 @@ impl<P: Plc> Engine<P> {
         }
         self.last_step = self.pos - before;
         self.last_step_c = self.c - before_c;
+        if let Some(run) = &mut self.plane {
+            // The path speed is the plane's: the tangential feed.
+            run.follow(self.pos);
+            self.last_step_c = 0.0;
+        }
         self.check_stroke();
         self.setpoint()
     }
 
     fn setpoint(&self) -> SetPoint {
-        let work = self.fixed_work.unwrap_or(self.pos - self.shift);
+        let (work, axes, c) = match &self.plane {
+            Some(run) => (run.work(), run.axes(), run.c()),
+            None => (
+                self.fixed_work.unwrap_or(self.pos - self.shift),
+                self.pos,
+                self.c,
+            ),
+        };
         SetPoint {
             time_s: self.ticks as f64 * self.dt,
             x: work.x(),
             z: work.z,
-            axis_x: self.pos.x(),
-            axis_z: self.pos.z,
+            axis_x: axes.x(),
+            axis_z: axes.z,
             spindle_rpm: self.spindle.rpm(),
             spindle_turns: self.spindle.turns(),
-            c: self.cfg.c.map(|_| self.c),
+            c: self.cfg.c.map(|_| c),
             feed: self.path_step() / self.dt * 60.0,
             line: self.tag.line,
             file: self.tag.file,
@@ -560,7 +576,7 @@ impl<P: Plc> Engine<P> {
 
     /// The current C angle, degrees (0 without a C axis).
     pub fn c(&self) -> f64 {
-        self.c
+        self.plane.as_ref().map_or(self.c, |run| run.c())
     }
 
     /// The diameter G96 computes the rpm from: the programmed point, or a
@@ -584,6 +600,11 @@ impl<P: Plc> Engine<P> {
     /// offsets move.
     fn check_stroke(&mut self) {
         let Some(area) = self.stroke else { return };
+        // (In a plane the point is no axis position; the kernel checked
+        // the plane's end points.)
+        if self.plane.is_some() {
+            return;
+        }
         if matches!(self.state, RunState::Alarm(_)) {
             return;
         }
@@ -597,6 +618,18 @@ impl<P: Plc> Engine<P> {
         self.alarm = Some((code, tag));
         self.v = 0.0;
         self.rapid_v = [0.0; 3];
+    }
+
+    /// Polar or cylindrical interpolation on or off: the motion stands
+    /// (the move before ended at rest); the point changes coordinates.
+    fn switch_plane(&mut self, sw: &crate::polar::PlaneSwitch) {
+        self.plane = sw.map.map(|m| crate::polar::PlaneRun::start(m, sw));
+        self.pos = sw.at;
+        self.c = sw.c;
+        self.rapid_raw = sw.at;
+        self.rapid_raw_c = sw.c;
+        self.smooth.reset(sw.at);
+        self.smooth_c.reset(V2::new(sw.c, 0.0));
     }
 
     /// Done with the head item; `landed`: the motion stands at its end.
@@ -627,6 +660,7 @@ impl<P: Plc> Engine<P> {
             Plc(PlcFunction),
             Pause(PauseKind),
             Stroke(Option<nc::stroke::Area>),
+            Plane(crate::polar::PlaneSwitch),
             End,
             Alarm(u32),
         }
@@ -649,6 +683,7 @@ impl<P: Plc> Engine<P> {
                 ItemKind::Plc(f) => Head::Plc(*f),
                 ItemKind::Pause(k) => Head::Pause(*k),
                 ItemKind::Stroke(a) => Head::Stroke(*a),
+                ItemKind::Plane(sw) => Head::Plane(*sw),
                 ItemKind::End => Head::End,
                 ItemKind::Alarm(c) => Head::Alarm(*c),
             };
@@ -706,6 +741,10 @@ impl<P: Plc> Engine<P> {
                 }
                 Head::Stroke(a) => {
                     self.stroke = a;
+                    self.finish_item();
+                }
+                Head::Plane(sw) => {
+                    self.switch_plane(&sw);
                     self.finish_item();
                 }
                 Head::End => {
@@ -1357,6 +1396,14 @@ impl<P: Plc> Engine<P> {
             }
         }
         self.q.clear();
+        if let Some(run) = self.plane.take() {
+            // A reset ends polar and cylindrical interpolation: the point
+            // is the axes' again.
+            self.pos = run.axes();
+            self.c = run.c();
+            self.smooth.reset(self.pos);
+            self.smooth_c.reset(V2::new(self.c, 0.0));
+        }
         self.q.set_tail(self.pos);
         self.q.set_tail_c(self.c);
         self.started = false;

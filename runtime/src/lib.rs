@@ -47,6 +47,7 @@ pub mod math;
 pub mod planner;
 pub mod plc;
 pub mod plot;
+pub mod polar;
 pub mod profile;
 pub mod simplify;
 pub mod smooth;

@@ -143,6 +143,8 @@ pub enum ItemKind {
     Pause(PauseKind),
     /// G22/G23: the area the axes may not enter from here on.
     Stroke(Option<nc::stroke::Area>),
+    /// Polar or cylindrical interpolation on or off (polar.rs).
+    Plane(crate::polar::PlaneSwitch),
     /// The program ends.
     End,
     /// The program raised an alarm (its code).
@@ -426,6 +428,14 @@ impl Planner {
             }
             Command::Pause(p) => ItemKind::Pause(p),
             Command::Stroke(a) => ItemKind::Stroke(a),
+            Command::Plane(sw) => {
+                // Moves from here on start in the new coordinates
+                // (plane points have no shift: polar.rs).
+                self.tail = sw.at;
+                self.tail_c = sw.c;
+                self.shift = if sw.map.is_some() { V2::ZERO } else { sw.shift };
+                ItemKind::Plane(sw)
+            }
             Command::End => ItemKind::End,
             Command::Alarm(c) => ItemKind::Alarm(c),
         };

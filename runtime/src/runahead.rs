@@ -275,6 +275,10 @@ impl RunAhead {
     /// A block moved the programmed point by an event this build does not
     /// know: reach the kernel's point by a line at the modal feed.
     fn resync(&mut self, tag: Tag) {
+        if self.tr.in_plane() {
+            // The kernel's point is the joints', the plane's moves are not.
+            return;
+        }
         let p = self.vm.nc.position();
         let kernel = V2::new(p.r, p.z);
         if (kernel - self.tr.work).max_abs() > 1e-6 {

@@ -11,9 +11,10 @@
 use crate::command::{Command, Feed, Move, MoveKind, Path, PauseKind, Thread};
 use crate::math::V2;
 use crate::plc::{PlcFunction, SpindleDir};
+use crate::polar::{PlaneMap, PlaneSwitch};
 use alloc::string::String;
 use alloc::vec::Vec;
-use nc::event::{Dir, SpindleDir as NcDir, StopKind};
+use nc::event::{Dir, PlaneMotion, SpindleDir as NcDir, StopKind};
 use nc::{Event, Machine};
 
 #[derive(Debug, Clone)]
@@ -34,6 +35,11 @@ pub struct Translator {
     /// The C angle the next move turns C to (`None`: it stays); set by the
     /// `C=` field of the event being translated.
     c: Option<f64>,
+    /// The C angle the axes stand at (the last `C=`, polar or cylinder
+    /// end), degrees.
+    c_now: f64,
+    /// Polar or cylindrical interpolation while it is on (polar.rs).
+    plane: Option<crate::polar::PlaneMap>,
 }
 
 impl Translator {
@@ -50,7 +56,14 @@ impl Translator {
             messages: Vec::new(),
             skip_queued: false,
             c: None,
+            c_now: 0.0,
+            plane: None,
         }
+    }
+
+    /// Polar or cylindrical interpolation is on.
+    pub fn in_plane(&self) -> bool {
+        self.plane.is_some()
     }
 
     fn shift(&self) -> V2 {
@@ -76,6 +89,9 @@ impl Translator {
     /// (for tool offset tables), `m` the machine (reference points).
     pub fn event(&mut self, e: &Event, nc: &nc::Nc, m: &Machine, out: &mut Vec<Command>) {
         let line = |to: V2, _| Path::Line { to };
+        if let Event::Rapid { c: Some(c), .. } | Event::Line { c: Some(c), .. } = e {
+            self.c_now = *c;
+        }
         match e {
             Event::Rapid { x, z, c } => {
                 self.c = *c;
@@ -176,6 +192,9 @@ impl Translator {
                 }
                 self.tool_off = V2::ZERO;
                 self.work = to - self.origin;
+                if *c {
+                    self.c_now = 0.0;
+                }
                 let shift = self.shift();
                 out.push(Command::Move(Move {
                     kind: MoveKind::Rapid,
@@ -198,6 +217,28 @@ impl Translator {
                 )));
             }
             Event::Alarm { code, .. } => out.push(Command::Alarm(*code)),
+            Event::PolarOn => {
+                let map = PlaneMap::Polar { z: self.work.z };
+                self.plane_on(map, map.point(self.work.x(), 0.0), out);
+            }
+            Event::Cylinder(Some(radius)) => {
+                let map = PlaneMap::Cylinder {
+                    radius: *radius,
+                    r: self.work.r,
+                };
+                self.plane_on(map, map.point(self.work.z, self.c_now), out);
+            }
+            Event::PolarOff { x, c } => {
+                self.work.r = x * 0.5;
+                self.c_now = *c;
+                self.plane_off(out);
+            }
+            Event::Cylinder(None) => self.plane_off(out),
+            Event::PlaneMove { motion, a, b, .. } => {
+                if let Some(map) = self.plane {
+                    self.plane_move(map, *motion, *a, *b, out);
+                }
+            }
             Event::Ellipse { dir, x, z, a, b, q } => {
                 let (a, b, q, ccw) = (*a, *b, q.to_radians(), *dir == Dir::Ccw);
                 let k = MoveKind::Feed(self.feed);
@@ -242,6 +283,69 @@ impl Translator {
                 }));
             }
         }
+    }
+}
+
+impl Translator {
+    /// A plane starts at plane point `at`.
+    fn plane_on(&mut self, map: PlaneMap, at: V2, out: &mut Vec<Command>) {
+        self.plane = Some(map);
+        out.push(Command::Plane(PlaneSwitch {
+            map: Some(map),
+            at,
+            c: self.c_now,
+            shift: self.shift(),
+        }));
+    }
+
+    /// The plane ends where its last move left the joints.
+    fn plane_off(&mut self, out: &mut Vec<Command>) {
+        if self.plane.take().is_none() {
+            return;
+        }
+        out.push(Command::Plane(PlaneSwitch {
+            map: None,
+            at: self.axis(self.work),
+            c: self.c_now,
+            shift: self.shift(),
+        }));
+    }
+
+    /// A move in the plane: plane points, no shift (polar.rs); the joints
+    /// follow in `work` and `c_now` (the polar C only at the end, from
+    /// `POLAR MODE=OFF`).
+    fn plane_move(
+        &mut self,
+        map: PlaneMap,
+        motion: PlaneMotion,
+        a: f64,
+        b: f64,
+        out: &mut Vec<Command>,
+    ) {
+        let to = map.point(a, b);
+        let (kind, path) = match motion {
+            PlaneMotion::Rapid => (MoveKind::Rapid, Path::Line { to }),
+            PlaneMotion::Line => (MoveKind::Feed(self.feed), Path::Line { to }),
+            PlaneMotion::Arc { dir, ca, cb } => (
+                MoveKind::Feed(self.feed),
+                Path::Arc {
+                    to,
+                    centre: map.point(ca, cb),
+                    ccw: dir == Dir::Ccw,
+                },
+            ),
+        };
+        let (work, c) = map.joints(to);
+        self.work = work;
+        if let PlaneMap::Cylinder { .. } = map {
+            self.c_now = c;
+        }
+        out.push(Command::Move(Move {
+            kind,
+            path,
+            shift: V2::ZERO,
+            c: None,
+        }));
     }
 }
 

@@ -20,6 +20,29 @@ pub enum SpindleDir {
     Stop,
 }
 
+/// The plane of polar (G12.1) or cylindrical (G7.1) interpolation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plane {
+    /// G12.1: X (a diameter) and the hypothetical axis C (mm, a radius).
+    Polar,
+    /// G7.1: Z and C (degrees) on the cylinder of the mode's radius.
+    Cylinder,
+}
+
+/// How a move of the polar or cylinder plane runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PlaneMotion {
+    Rapid,
+    Line,
+    /// An arc about the centre (`ca`, `cb`), in the coordinates of the
+    /// end point.
+    Arc {
+        dir: Dir,
+        ca: f64,
+        cb: f64,
+    },
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StopKind {
     M00,
@@ -128,6 +151,26 @@ pub enum Event {
         n: u32,
     },
     Message(String),
+    /// `POLAR MODE=ON`: G12.1.
+    PolarOn,
+    /// `POLAR MODE=OFF X= C=`: G13.1, with the joint position polar
+    /// interpolation left X (a diameter) and C (degrees) at; Z is where it
+    /// was at G12.1.
+    PolarOff {
+        x: f64,
+        c: f64,
+    },
+    /// `CYLINDER MODE=ON R=` / `CYLINDER MODE=OFF`: G7.1 C<radius> / G7.1 C0.
+    Cylinder(Option<f64>),
+    /// A move in the plane of polar or cylindrical interpolation, printed
+    /// in its coordinates: polar `X=` (diameter) `C=` (mm), cylinder `Z=`
+    /// `C=` (degrees). The arc centre as `CX=`/`CZ=` and `CC=`.
+    PlaneMove {
+        plane: Plane,
+        motion: PlaneMotion,
+        a: f64,
+        b: f64,
+    },
     Alarm {
         code: u32,
         msg: String,
@@ -144,6 +187,10 @@ impl Event {
                 | Event::Ellipse { .. }
                 | Event::Parabola { .. }
                 | Event::Skip { .. }
+                | Event::PlaneMove {
+                    motion: PlaneMotion::Line | PlaneMotion::Arc { .. },
+                    ..
+                }
         )
     }
 
@@ -159,6 +206,7 @@ impl Event {
                 | Event::Thread { .. }
                 | Event::ArcThread { .. }
                 | Event::Skip { .. }
+                | Event::PlaneMove { .. }
         )
     }
 }
@@ -370,6 +418,31 @@ impl Display for Event {
             Event::Gear { n } => write!(f, "GEAR N={n}"),
             Event::Message(t) => write!(f, "MESSAGE TEXT={}", quoted(t)),
             Event::Alarm { code, msg } => write!(f, "ALARM CODE={code} MSG={}", quoted(msg)),
+            Event::PolarOn => f.write_str("POLAR MODE=ON"),
+            Event::PolarOff { x, c } => write!(f, "POLAR MODE=OFF X={} C={}", Num(*x), Num(*c)),
+            Event::Cylinder(Some(r)) => write!(f, "CYLINDER MODE=ON R={}", Num(*r)),
+            Event::Cylinder(None) => f.write_str("CYLINDER MODE=OFF"),
+            Event::PlaneMove {
+                plane,
+                motion,
+                a,
+                b,
+            } => {
+                let first = match plane {
+                    Plane::Polar => 'X',
+                    Plane::Cylinder => 'Z',
+                };
+                match motion {
+                    PlaneMotion::Rapid => f.write_str("RAPID ")?,
+                    PlaneMotion::Line => f.write_str("LINE ")?,
+                    PlaneMotion::Arc { dir: d, .. } => write!(f, "ARC DIR={} ", dir(*d))?,
+                }
+                write!(f, "{first}={} C={}", Num(*a), Num(*b))?;
+                if let PlaneMotion::Arc { ca, cb, .. } = motion {
+                    write!(f, " C{first}={} CC={}", Num(*ca), Num(*cb))?;
+                }
+                Ok(())
+            }
         }
     }
 }
@@ -460,5 +533,51 @@ mod tests {
             max: Some(2000.0),
         };
         assert_eq!(e.to_string(), "SPEED S=600 MODE=RPM MAX=2000");
+    }
+
+    #[test]
+    fn plane_events_print_the_planes_letters() {
+        let arc = |plane| Event::PlaneMove {
+            plane,
+            motion: PlaneMotion::Arc {
+                dir: Dir::Cw,
+                ca: 0.0,
+                cb: 2.5,
+            },
+            a: 10.0,
+            b: -5.0,
+        };
+        assert_eq!(
+            arc(Plane::Polar).to_string(),
+            "ARC DIR=CW X=10 C=-5 CX=0 CC=2.5"
+        );
+        assert_eq!(
+            arc(Plane::Cylinder).to_string(),
+            "ARC DIR=CW Z=10 C=-5 CZ=0 CC=2.5"
+        );
+        let line = Event::PlaneMove {
+            plane: Plane::Polar,
+            motion: PlaneMotion::Line,
+            a: 40.0,
+            b: 0.0,
+        };
+        assert_eq!(line.to_string(), "LINE X=40 C=0");
+        assert!(line.is_feed() && line.is_motion());
+        let rapid = Event::PlaneMove {
+            plane: Plane::Cylinder,
+            motion: PlaneMotion::Rapid,
+            a: -3.0,
+            b: 90.0,
+        };
+        assert_eq!(rapid.to_string(), "RAPID Z=-3 C=90");
+        assert!(!rapid.is_feed() && rapid.is_motion());
+        assert_eq!(Event::PolarOn.to_string(), "POLAR MODE=ON");
+        let off = Event::PolarOff { x: 20.0, c: -90.0 };
+        assert_eq!(off.to_string(), "POLAR MODE=OFF X=20 C=-90");
+        assert_eq!(
+            Event::Cylinder(Some(12.5)).to_string(),
+            "CYLINDER MODE=ON R=12.5"
+        );
+        assert_eq!(Event::Cylinder(None).to_string(), "CYLINDER MODE=OFF");
     }
 }

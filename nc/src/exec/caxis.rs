@@ -46,6 +46,10 @@ pub(crate) fn programs_c(nc: &Nc, p: &Parsed) -> bool {
     if !nc.machine.axes.c.enabled || !(p.has(b'C') || p.has(b'H')) {
         return false;
     }
+    // Inside G12.1 and G7.1 C/H are coordinates of the plane (plane.rs).
+    if nc.st.plane.is_some() {
+        return false;
+    }
     // G32.1's C is its start angle, G7.1's the cylinder radius, G65's
     // arguments are the macro's.
     !matches!(
@@ -109,7 +113,7 @@ fn check_line(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
 
 /// An angle word in degrees: no unit conversion (G20 changes lengths
 /// only), but the increment-mode rule for literals without a point.
-fn degrees(nc: &Nc, w: Word) -> f64 {
+pub(crate) fn degrees(nc: &Nc, w: Word) -> f64 {
     if w.flags & NO_POINT != 0 && nc.machine.machine.decimal_point == DecimalPoint::Increment {
         w.value * 0.001
     } else {
@@ -276,10 +280,8 @@ mod tests {
         assert_eq!(e(&["G04 P100 C10"]), 2007);
         // G32.1 keeps C as its start angle.
         assert_eq!(e(&["M03 S100", "G32.1 Z-10 C30 F1"]), 0);
-        // Polar and cylindrical interpolation: not supported yet where C
-        // exists, impossible where it does not.
-        assert_eq!(e(&["G12.1"]), 2099);
-        assert_eq!(e(&["G7.1 C10"]), 2099);
+        // Polar and cylindrical interpolation: impossible without C
+        // (plane.rs has the rest).
         assert_eq!(crate::exec::cycles::testing::run_err(&["G12.1"]), 2003);
         assert_eq!(crate::exec::cycles::testing::run_err(&["G00 C10"]), 2005);
         // H, the incremental C, is no more an axis word there than C is.

@@ -10,6 +10,7 @@ pub mod data_setting;
 pub mod measure;
 mod motion_api;
 pub mod params;
+pub mod plane;
 pub mod state;
 pub mod stroke;
 pub mod sysvar;
@@ -147,6 +148,7 @@ impl Nc {
     ) -> Result<Outcome, NcError> {
         self.st.c_block = false;
         crate::exec::comp::before_block(self, p, sink)?;
+        crate::exec::plane::before_block(self, p, sink)?;
         let mut out = Outcome::default();
         // While an element waits for its corner (contour module), the
         // block's events are held behind it so the canon keeps block order.
@@ -201,39 +203,17 @@ impl Nc {
                     // Any group-01 code cancels the drilling cycles.
                     self.st.modal.set(gcode::DRILL, 800);
                 }
-                gcode::POLAR if code == 121 => return self.polar_or_cylinder(code),
+                gcode::POLAR if code == 121 => plane::polar_on(self, p, sink)?,
+                gcode::POLAR => plane::polar_off(self, p, sink)?,
+                gcode::POLAR_CMD => plane::polar_command(self, code)?,
                 _ => self.st.modal.set(group, code),
             }
         }
-        if let Some(code) = p.one_shot() {
-            self.unsupported_one_shot(code)?;
+        if p.one_shot() == Some(71) {
+            // G7.1 switches a mode (plane.rs).
+            plane::cylinder(self, p, sink)?;
         }
         Ok(())
-    }
-
-    /// G12.1 and G7.1 need the C axis (E2003); where it exists their canon
-    /// is not specified yet (E2099, dialect.md §4.6).
-    fn polar_or_cylinder(&self, code: Code) -> Result<(), NcError> {
-        let what = if code == 121 {
-            "G12.1 polar interpolation"
-        } else {
-            "G7.1 cylindrical interpolation"
-        };
-        if self.machine.axes.c.enabled {
-            fail(
-                Alarm::NotSupportedYet,
-                format!("{what} is not supported yet"),
-            )
-        } else {
-            fail(Alarm::MissingEquipment, format!("{what} needs a C axis"))
-        }
-    }
-
-    fn unsupported_one_shot(&self, code: Code) -> Result<(), NcError> {
-        match code {
-            71 => self.polar_or_cylinder(code),
-            _ => Ok(()),
-        }
     }
 
     /// G96/G97 without S that changes the mode prints the new speed.
@@ -385,6 +365,9 @@ impl Nc {
         sink: &mut dyn Sink,
         out: &mut Outcome,
     ) -> Result<(), NcError> {
+        if let Some(st) = self.st.plane {
+            return plane::motion(self, st, p, sink, out);
+        }
         if let Some(code) = p.one_shot() {
             if code == 90 {
                 // G09: its move decides about waiting corners.
@@ -651,6 +634,8 @@ impl Nc {
             740 | 750 | 760 | 780 => {
                 return crate::exec::cycles::one_shot(self, code, p, sink, out)
             }
+            // G7.1 switched its mode in group 0 (plane.rs).
+            71 => {}
             _ => {
                 return fail(
                     Alarm::NotSupportedYet,

@@ -63,6 +63,8 @@ pub struct State {
     pub comp: crate::exec::comp::CompState,
     /// G10/G11 modes and the tool-life table (data_setting module).
     pub data: crate::exec::data_setting::DataState,
+    /// Polar or cylindrical interpolation while it is on (plane module).
+    pub plane: Option<crate::exec::plane::PlaneState>,
 }
 
 impl State {
@@ -110,6 +112,7 @@ impl State {
             contour: Default::default(),
             comp: Default::default(),
             data: crate::exec::data_setting::DataState::power_on(m),
+            plane: None,
         }
     }
 

@@ -1,0 +1,517 @@
+//! Polar interpolation (G12.1/G13.1 with G15/G16) and cylindrical
+//! interpolation (G7.1 type I) on a machine with a C axis (dialect.md
+//! §4.6, seed 000; decisions in docs/language.md "Polar and cylindrical
+//! interpolation").
+//!
+//! Between G12.1 and G13.1 the program writes a Cartesian plane: X (a
+//! diameter, as everywhere) and the hypothetical axis C (mm, a radius
+//! value) perpendicular to it, both measured from the spindle centre. G16
+//! reads X as the distance from the centre (mm) and C as the angle
+//! (degrees, counter-clockwise from +X). Between `G7.1 C<r>` and `G7.1 C0`
+//! it writes the surface of the cylinder of radius r developed flat: Z
+//! and C in degrees, which count as the arc length r·C·π/180 along the
+//! surface. The canon prints the moves in the plane (`RAPID`, `LINE`,
+//! `ARC` with the plane's letters, event.rs); the runtime turns them into
+//! joint motion of X, C (polar) or Z, C (cylinder) at the programmed
+//! tangential feed (runtime/src/polar.rs).
+//!
+//! The kernel keeps the joint position current after every move: `pos`
+//! (X and Z) and `c`, which follows the path continuously (a circle about
+//! the centre turns C by 360°), so #5041…, later C moves and G13.1 see
+//! where the axes are.
+//!
+//! Arc geometry works in `Pt` with the plane's first axis as `z` and its
+//! second as `r`, so that base/geom's "counter-clockwise from +Z" is
+//! counter-clockwise as seen with the first axis to the right and the
+//! second up: G17 (X, C) for polar, G19 (C, Z) for the cylinder, as Fanuc
+//! orients them.
+
+use alloc::format;
+
+use crate::base::error::{fail, Alarm, NcError};
+use crate::base::event::{Dir, Event, Plane, PlaneMotion};
+use crate::base::gcode;
+use crate::base::geom;
+use crate::base::point::Pt;
+use crate::block::Parsed;
+use crate::exec::{Nc, Outcome, Sink};
+use crate::modal::Comp;
+
+/// Which interpolation is on, and the plane's own data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Kind {
+    Polar,
+    /// The cylinder's radius, mm.
+    Cylinder(f64),
+}
+
+/// The state of polar or cylindrical interpolation while it is on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneState {
+    pub kind: Kind,
+    /// The programmed point in the plane (module comment): `z` the first
+    /// axis (polar X as a radius, cylinder developed C), `r` the second
+    /// (polar hypothetical C, cylinder Z).
+    pub pt: Pt,
+}
+
+impl PlaneState {
+    fn plane(&self) -> Plane {
+        match self.kind {
+            Kind::Polar => Plane::Polar,
+            Kind::Cylinder(_) => Plane::Cylinder,
+        }
+    }
+
+    fn what(&self) -> &'static str {
+        match self.kind {
+            Kind::Polar => "polar interpolation (G12.1)",
+            Kind::Cylinder(_) => "cylindrical interpolation (G7.1)",
+        }
+    }
+
+    /// The canon's two numbers of a plane point: polar X (diameter) and C
+    /// (mm), cylinder Z and C (degrees).
+    fn printed(&self, p: Pt) -> (f64, f64) {
+        match self.kind {
+            Kind::Polar => (2.0 * p.z, p.r),
+            Kind::Cylinder(radius) => (p.r, (p.z / radius).to_degrees()),
+        }
+    }
+}
+
+/// Whether the block starts polar or cylindrical interpolation.
+fn starts(nc: &Nc, p: &Parsed) -> bool {
+    p.has_g(121)
+        || (p.one_shot() == Some(71)
+            && nc.st.plane.is_none()
+            && p.get(b'C').is_some_and(|c| c != 0.0))
+}
+
+/// Before a block: what cannot happen inside either mode, and a corner
+/// still waiting is printed whole before a mode starts.
+pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    if starts(nc, p) {
+        crate::exec::contour::flush(nc, sink)?;
+    }
+    let Some(st) = nc.st.plane else {
+        return Ok(());
+    };
+    if p.has(b'T') {
+        return fail(
+            Alarm::PolarInComp,
+            format!(
+                "no tool or offset change during {}: change the tool before it starts",
+                st.what()
+            ),
+        );
+    }
+    if p.has_g(990) && st.kind == Kind::Polar {
+        return fail(
+            Alarm::PolarInComp,
+            "G99 during polar interpolation: its F is a tangential feed per minute",
+        );
+    }
+    if p.has_g(410) || p.has_g(420) {
+        return fail(
+            Alarm::NotSupportedYet,
+            format!(
+                "nose-radius compensation during {} is not supported yet",
+                st.what()
+            ),
+        );
+    }
+    let other_axis = match st.kind {
+        Kind::Polar => p.has(b'Z') || p.has(b'W'),
+        Kind::Cylinder(_) => p.has(b'X') || p.has(b'U'),
+    };
+    if other_axis && p.one_shot().is_none_or(|c| c != 40) {
+        let axis = if st.kind == Kind::Polar { 'Z' } else { 'X' };
+        return fail(
+            Alarm::NotSupportedYet,
+            format!(
+                "moving {axis}, the axis outside the plane, during {} is not supported yet: move it before or after",
+                st.what()
+            ),
+        );
+    }
+    Ok(())
+}
+
+/// The checks every start shares: compensation off, feed per minute, no
+/// other mode on, nothing else in the block.
+fn check_start(nc: &Nc, p: &Parsed, what: &str) -> Result<(), NcError> {
+    if nc.st.modal.comp() != Comp::Off || crate::exec::comp::running(nc) {
+        return fail(
+            Alarm::PolarInComp,
+            format!("{what} cannot start while nose-radius compensation is on: cancel it with G40 first"),
+        );
+    }
+    if nc.st.per_rev() {
+        return fail(
+            Alarm::PolarInComp,
+            format!("{what} cannot start in G99: its F is a tangential feed per minute (G98)"),
+        );
+    }
+    if let Some(other) = nc.st.plane {
+        return fail(
+            Alarm::IncompatibleWords,
+            format!("{what} cannot start during {}", other.what()),
+        );
+    }
+    if p.has_axis() {
+        return fail(
+            Alarm::IncompatibleWords,
+            format!("{what} stands alone in its block: move before it or after it"),
+        );
+    }
+    Ok(())
+}
+
+/// G12.1: polar interpolation on, from the current point with C at 0°.
+pub(crate) fn polar_on(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    let what = "G12.1 polar interpolation";
+    if !nc.machine.axes.c.enabled {
+        return fail(Alarm::MissingEquipment, format!("{what} needs a C axis"));
+    }
+    check_start(nc, p, what)?;
+    if p.has(b'C') || p.has(b'H') {
+        return fail(
+            Alarm::IncompatibleWords,
+            format!("{what} stands alone in its block: move before it or after it"),
+        );
+    }
+    let turns = nc.st.c / 360.0;
+    if (turns - libm::round(turns)).abs() * 360.0 > 1e-6 {
+        return fail(
+            Alarm::PolarInComp,
+            format!(
+                "{what} starts with C at 0 degrees, C is at {:.4}: turn it to 0 first (G00 C0)",
+                nc.st.c
+            ),
+        );
+    }
+    nc.st.modal.set(gcode::POLAR, 121);
+    nc.st.plane = Some(PlaneState {
+        kind: Kind::Polar,
+        pt: Pt::new(0.0, nc.st.pos.r),
+    });
+    sink.emit(Event::PolarOn);
+    Ok(())
+}
+
+/// G13.1: polar interpolation off (nothing when it is not on); G16 ends
+/// with it.
+pub(crate) fn polar_off(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    if p.has_axis() || p.has(b'C') || p.has(b'H') {
+        return fail(
+            Alarm::IncompatibleWords,
+            "G13.1 stands alone in its block: move before it or after it",
+        );
+    }
+    nc.st.modal.set(gcode::POLAR, 131);
+    nc.st.modal.set(gcode::POLAR_CMD, 150);
+    if matches!(
+        nc.st.plane,
+        Some(PlaneState {
+            kind: Kind::Polar,
+            ..
+        })
+    ) {
+        nc.st.plane = None;
+        sink.emit(Event::PolarOff {
+            x: nc.st.pos.x(),
+            c: nc.st.c,
+        });
+    }
+    Ok(())
+}
+
+/// G16 only inside G12.1 (E2007).
+pub(crate) fn polar_command(nc: &mut Nc, code: gcode::Code) -> Result<(), NcError> {
+    let polar = matches!(
+        nc.st.plane,
+        Some(PlaneState {
+            kind: Kind::Polar,
+            ..
+        })
+    );
+    if code == 160 && !polar {
+        return fail(
+            Alarm::IncompatibleWords,
+            "G16 (polar coordinates) works only during polar interpolation: write G12.1 before it",
+        );
+    }
+    nc.st.modal.set(gcode::POLAR_CMD, code);
+    Ok(())
+}
+
+/// G7.1: `C<radius>` starts cylindrical interpolation, `C0` ends it; the
+/// roughing form with J L R K is not supported yet (cycles.md §23).
+pub(crate) fn cylinder(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    let what = "G7.1 cylindrical interpolation";
+    if !nc.machine.axes.c.enabled {
+        return fail(Alarm::MissingEquipment, format!("{what} needs a C axis"));
+    }
+    if [b'J', b'L', b'R', b'K'].iter().any(|&l| p.has(l)) {
+        return fail(
+            Alarm::NotSupportedYet,
+            "G7.1 type II (the roughing cycle with J L R K) is not supported yet",
+        );
+    }
+    let Some(radius) = nc.len_of(p, b'C') else {
+        return fail(
+            Alarm::MissingWord,
+            "G7.1 needs C: the cylinder's radius to start, C0 to end",
+        );
+    };
+    if radius < 0.0 || !radius.is_finite() {
+        return fail(
+            Alarm::ValueOutOfRange,
+            format!("G7.1 C{radius}: the cylinder's radius cannot be negative"),
+        );
+    }
+    if radius == 0.0 {
+        if matches!(
+            nc.st.plane,
+            Some(PlaneState {
+                kind: Kind::Cylinder(_),
+                ..
+            })
+        ) {
+            nc.st.plane = None;
+            sink.emit(Event::Cylinder(None));
+        }
+        return Ok(());
+    }
+    check_start(nc, p, what)?;
+    nc.st.plane = Some(PlaneState {
+        kind: Kind::Cylinder(radius),
+        pt: Pt::new(nc.st.pos.z, radius * nc.st.c.to_radians()),
+    });
+    sink.emit(Event::Cylinder(Some(radius)));
+    Ok(())
+}
+
+/// The block's motion while a mode is on: G00, G01, G02, G03 in the
+/// plane, G04; nothing else.
+pub(crate) fn motion(
+    nc: &mut Nc,
+    st: PlaneState,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
+    if let Some(code) = p.one_shot() {
+        return match code {
+            40 => nc.one_shot(code, p, sink, out),
+            // G7.1 acted in group 0.
+            71 => Ok(()),
+            _ => fail(
+                Alarm::IncompatibleWords,
+                format!("{} cannot run during {}", gcode::name(code), st.what()),
+            ),
+        };
+    }
+    let code = nc.st.group(gcode::MOTION);
+    match code {
+        0 | 10 | 20 | 30 => {}
+        62 | 63 | 72 | 73 => {
+            return fail(
+                Alarm::NotSupportedYet,
+                format!(
+                    "{} during {} is not supported yet",
+                    gcode::name(code),
+                    st.what()
+                ),
+            )
+        }
+        _ => {
+            return fail(
+                Alarm::IncompatibleWords,
+                format!("{} cannot run during {}", gcode::name(code), st.what()),
+            )
+        }
+    }
+    let arc = matches!(code, 20 | 30);
+    let moves = p.has_axis() || p.has(b'C') || p.has(b'H');
+    if !moves && !(arc && (p.has(b'I') || p.has(b'J') || p.has(b'R'))) {
+        return Ok(());
+    }
+    let to = target(nc, &st, p);
+    let from = st.pt;
+    let motion = if arc {
+        let cw = code == 20;
+        match centre(nc, &st, from, to, cw, p)? {
+            Some(c) => {
+                let (ca, cb) = st.printed(c);
+                let dir = if cw { Dir::Cw } else { Dir::Ccw };
+                (PlaneMotion::Arc { dir, ca, cb }, Some((c, cw)))
+            }
+            None => return Ok(()),
+        }
+    } else if code == 0 {
+        (PlaneMotion::Rapid, None)
+    } else {
+        (PlaneMotion::Line, None)
+    };
+    if !matches!(motion.0, PlaneMotion::Rapid) {
+        nc.feed_due(sink);
+    }
+    follow(nc, st, to, motion.1);
+    let (a, b) = st.printed(to);
+    sink.emit(Event::PlaneMove {
+        plane: st.plane(),
+        motion: motion.0,
+        a,
+        b,
+    });
+    out.moved = true;
+    Ok(())
+}
+
+/// The end point of a plane move from its words (module comment).
+fn target(nc: &Nc, st: &PlaneState, p: &Parsed) -> Pt {
+    let mut t = st.pt;
+    let deg = |letter| p.word(letter).map(|w| crate::exec::caxis::degrees(nc, w));
+    match st.kind {
+        Kind::Polar if nc.st.group(gcode::POLAR_CMD) == 160 => {
+            let (mut rho, mut theta) = (libm::hypot(t.z, t.r), libm::atan2(t.r, t.z).to_degrees());
+            if let Some(x) = nc.len_of(p, b'X') {
+                rho = x;
+            } else if let Some(u) = nc.len_of(p, b'U') {
+                rho += u;
+            }
+            if let Some(c) = deg(b'C') {
+                theta = c;
+            } else if let Some(h) = deg(b'H') {
+                theta += h;
+            }
+            let th = theta.to_radians();
+            t = Pt::new(rho * libm::sin(th), rho * libm::cos(th));
+        }
+        Kind::Polar => {
+            if let Some(x) = nc.len_of(p, b'X') {
+                t.z = x / 2.0;
+            } else if let Some(u) = nc.len_of(p, b'U') {
+                t.z += u / 2.0;
+            }
+            if let Some(c) = nc.len_of(p, b'C') {
+                t.r = c;
+            } else if let Some(h) = nc.len_of(p, b'H') {
+                t.r += h;
+            }
+        }
+        Kind::Cylinder(radius) => {
+            if let Some(c) = deg(b'C') {
+                t.z = radius * c.to_radians();
+            } else if let Some(h) = deg(b'H') {
+                t.z += radius * h.to_radians();
+            }
+            if let Some(z) = nc.len_of(p, b'Z') {
+                t.r = z;
+            } else if let Some(w) = nc.len_of(p, b'W') {
+                t.r += w;
+            }
+        }
+    }
+    t
+}
+
+/// The centre of a plane arc: R, or (polar only) I along X and J along
+/// C, both radius values. `None`: an R arc whose end is its start.
+fn centre(
+    nc: &Nc,
+    st: &PlaneState,
+    from: Pt,
+    to: Pt,
+    cw: bool,
+    p: &Parsed,
+) -> Result<Option<Pt>, NcError> {
+    let g = if cw { "G02" } else { "G03" };
+    if p.has(b'K') || (st.kind != Kind::Polar && (p.has(b'I') || p.has(b'J'))) {
+        let words = if st.kind == Kind::Polar {
+            "R or I/J"
+        } else {
+            "R"
+        };
+        return fail(
+            Alarm::IncompatibleWords,
+            format!("a {g} of {} takes {words} for its centre", st.what()),
+        );
+    }
+    if let Some(r) = nc.len_of(p, b'R') {
+        return geom::centre_from_radius(from, to, r, cw);
+    }
+    if p.has(b'I') || p.has(b'J') {
+        let i = nc.len_of(p, b'I').unwrap_or(0.0);
+        let j = nc.len_of(p, b'J').unwrap_or(0.0);
+        let c = Pt::new(from.r + j, from.z + i);
+        geom::check_on_circle(from, to, c, nc.machine.machine.arc_tolerance_mm)?;
+        return Ok(Some(c));
+    }
+    fail(
+        Alarm::MissingWord,
+        format!("{g} during {} needs R or I/J for its centre", st.what()),
+    )
+}
+
+/// Moves the programmed point to `to` (along the arc about `centre`
+/// when given) and the joints with it.
+fn follow(nc: &mut Nc, mut st: PlaneState, to: Pt, arc: Option<(Pt, bool)>) {
+    match st.kind {
+        Kind::Polar => {
+            nc.st.c += swept(st.pt, to, arc).to_degrees();
+            nc.st.pos.r = libm::hypot(to.z, to.r);
+        }
+        Kind::Cylinder(radius) => {
+            nc.st.c = (to.z / radius).to_degrees();
+            nc.st.pos.z = to.r;
+        }
+    }
+    st.pt = to;
+    nc.st.plane = Some(st);
+}
+
+/// The angle (radians, counter-clockwise positive) a path from `from` to
+/// `to` turns about the plane's origin: a line's by its end points, an
+/// arc's summed over chords of at most 5° of the arc, so that it counts
+/// whole turns.
+pub fn swept(from: Pt, to: Pt, arc: Option<(Pt, bool)>) -> f64 {
+    let turn = |a: Pt, b: Pt| libm::atan2(a.z * b.r - a.r * b.z, a.z * b.z + a.r * b.r);
+    let Some((c, cw)) = arc else {
+        return turn(from, to);
+    };
+    let (a0, a1) = (angle(c, from), angle(c, to));
+    let tau = 2.0 * core::f64::consts::PI;
+    let mut span = if cw { a0 - a1 } else { a1 - a0 };
+    span -= tau * libm::floor(span / tau);
+    if span < 1e-12 {
+        // End = start with a centre: a full circle.
+        span = tau;
+    }
+    let span = if cw { -span } else { span };
+    let n = libm::ceil(span.abs() / 5f64.to_radians()).max(1.0) as u32;
+    let radius = from.dist(c);
+    let mut total = 0.0;
+    let mut prev = from;
+    for k in 1..=n {
+        let next = if k == n {
+            to
+        } else {
+            let a = a0 + span * f64::from(k) / f64::from(n);
+            Pt::new(c.r + radius * libm::sin(a), c.z + radius * libm::cos(a))
+        };
+        total += turn(prev, next);
+        prev = next;
+    }
+    total
+}
+
+/// The angle of `p` about `c`, counter-clockwise from the first axis.
+fn angle(c: Pt, p: Pt) -> f64 {
+    libm::atan2(p.r - c.r, p.z - c.z)
+}
+
+#[cfg(test)]
+mod tests;

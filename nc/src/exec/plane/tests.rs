@@ -1,0 +1,145 @@
+//! Polar and cylindrical interpolation in the kernel: the canon of the
+//! plane, the joint position it leaves, the alarms of dialect.md §4.6.
+//! Every expected figure is worked out by hand in the comments.
+
+use crate::exec::cycles::testing::Lathe;
+use alloc::vec::Vec;
+
+fn lines(m: &mut Lathe, blocks: &[&str]) -> Vec<alloc::string::String> {
+    blocks.iter().flat_map(|b| m.run(b)).collect()
+}
+
+fn var(m: &Lathe, n: u32) -> Option<f64> {
+    m.nc.read_var(n).ok().flatten()
+}
+
+#[test]
+fn polar_lines_arcs_and_polar_coordinates() {
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G00 X40 Z-2 C0",
+            // The plane starts at X40 (radius 20), C0.
+            "G98 G12.1",
+            // To (x 10, c 10): joint radius √200 = 14.1421, angle 45°.
+            "G01 X20 C10 F100",
+            // Chord from (10, 10) to (−10, 10) is 20 = 2R: centre (0, 10);
+            // counter-clockwise over the top (0, 20): C turns from 45° to
+            // 135° through 90°, +90°.
+            "G03 X-20 C10 R10",
+            // G16: radius 10 at 180° is (−10, 0); C turns from 135° to
+            // 180°, the joint radius is 10 (X20).
+            "G16",
+            "G01 X10 C180",
+            "G15",
+            "G13.1",
+            "G00 C0",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "RAPID X=40 Z=-2 C=0",
+            "POLAR MODE=ON",
+            "FEED F=100 MODE=MIN",
+            "LINE X=20 C=10",
+            "ARC DIR=CCW X=-20 C=10 CX=0 CC=10",
+            "LINE X=-20 C=0",
+            "POLAR MODE=OFF X=20 C=180",
+            "RAPID X=20 Z=-2 C=0",
+        ]
+    );
+    assert_eq!(var(&m, 5043), Some(0.0));
+}
+
+#[test]
+fn a_full_circle_about_the_centre_turns_c_a_whole_turn() {
+    let mut m = Lathe::with_c();
+    // From (10, 0) with I−10 the centre is the spindle's: the end is the
+    // start, a whole circle clockwise, so C turns −360°.
+    let l = lines(&mut m, &["G00 X20 Z0 C0", "G12.1", "G02 I-10 F50", "G13.1"]);
+    assert_eq!(
+        l,
+        [
+            "RAPID X=20 Z=0 C=0",
+            "POLAR MODE=ON",
+            "FEED F=50 MODE=MIN",
+            "ARC DIR=CW X=20 C=0 CX=0 CC=0",
+            "POLAR MODE=OFF X=20 C=-360",
+        ]
+    );
+    assert_eq!(var(&m, 5043), Some(-360.0));
+    // A whole turn leaves C at 0° modulo 360: polar interpolation may
+    // start again.
+    assert_eq!(m.run("G12.1"), ["POLAR MODE=ON"]);
+}
+
+#[test]
+fn cylinder_lines_and_arcs() {
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G00 X40 Z0 C0",
+            "G7.1 C20.",
+            // C90 on radius 20 is the arc length 20·π/2 = 31.4159 mm.
+            "G01 Z-10 C90 F200",
+            // From Z−10 to Z−30 at the same C: the chord 20 = 2R, centre
+            // at Z−20, C90.
+            "G02 Z-30 R10",
+            "G7.1 C0",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "RAPID X=40 Z=0 C=0",
+            "CYLINDER MODE=ON R=20",
+            "FEED F=200 MODE=MIN",
+            "LINE Z=-10 C=90",
+            "ARC DIR=CW Z=-30 C=90 CZ=-20 CC=90",
+            "CYLINDER MODE=OFF",
+        ]
+    );
+    assert_eq!(var(&m, 5043), Some(90.0));
+    assert_eq!(m.run("G00 X50"), ["RAPID X=50 Z=-30"]);
+}
+
+#[test]
+fn the_alarms_of_polar_and_cylindrical_interpolation() {
+    let e = |blocks: &[&str]| {
+        let mut m = Lathe::with_c();
+        blocks.iter().find_map(|b| m.try_run(b).err()).unwrap_or(0)
+    };
+    // E4033: compensation on, G99, C not at 0°, a tool change inside.
+    assert_eq!(e(&["G42 G01 X20 Z0 F1", "G12.1"]), 4033);
+    assert_eq!(e(&["G99", "G12.1"]), 4033);
+    assert_eq!(e(&["G99", "G7.1 C10"]), 4033);
+    assert_eq!(e(&["G00 C30", "G12.1"]), 4033);
+    assert_eq!(e(&["G12.1", "T0101"]), 4033);
+    assert_eq!(e(&["G7.1 C10", "T0202"]), 4033);
+    assert_eq!(e(&["G12.1", "G99 G01 X10 F1"]), 4033);
+    // E2007: G16 outside G12.1; words or modes that cannot stand there.
+    assert_eq!(e(&["G16"]), 2007);
+    assert_eq!(e(&["G12.1", "G13.1", "G16"]), 2007);
+    assert_eq!(e(&["G12.1 X10"]), 2007);
+    assert_eq!(e(&["G12.1", "G7.1 C10"]), 2007);
+    assert_eq!(e(&["G12.1", "G02 X10 C5 K5 F1"]), 2007);
+    assert_eq!(e(&["G7.1 C10", "G02 Z-5 C30 I5 F1"]), 2007);
+    assert_eq!(e(&["G12.1", "G71 U1 R1"]), 2007);
+    assert_eq!(e(&["G12.1", "G28 U0"]), 2007);
+    // E2099: what is not supported yet.
+    assert_eq!(e(&["G7.1 C10 J5 L2 R1 K0.2"]), 2099);
+    assert_eq!(e(&["G12.1", "G01 X10 Z-5 F1"]), 2099);
+    assert_eq!(e(&["G7.1 C10", "G01 X10 Z-5 F1"]), 2099);
+    assert_eq!(e(&["G12.1", "G42 G01 X10 F1"]), 2099);
+    assert_eq!(e(&["G12.1", "G6.2 X10 C5 A5 B3 F1"]), 2099);
+    // E2006: G7.1 without its radius; E2003 without a C axis.
+    assert_eq!(e(&["G7.1"]), 2006);
+    let bare = crate::exec::cycles::testing::run_err;
+    assert_eq!(bare(&["G12.1"]), 2003);
+    assert_eq!(bare(&["G7.1 C10"]), 2003);
+    // A dwell runs inside; G13.1 and G7.1 C0 outside their modes do nothing.
+    assert_eq!(e(&["G12.1", "G04 X1", "G13.1", "G13.1", "G7.1 C0"]), 0);
+}

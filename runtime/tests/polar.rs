@@ -1,0 +1,260 @@
+//! Polar (G12.1) and cylindrical (G7.1) interpolation through the whole
+//! runtime: the trace's joints (X, C or Z, C) turned back into the
+//! programmed plane lie on the programmed path, and the tangential speed
+//! is the programmed F away from the corners. The paths are written out
+//! here from the programs by hand (centres and radii in the comments),
+//! not taken from the kernel.
+
+mod common;
+
+use common::{run_split_with, run_with, Run};
+use nc::Machine;
+use std::f64::consts::PI;
+
+fn c_machine() -> Machine {
+    let mut m = Machine::reference();
+    m.axes.c.enabled = true;
+    m
+}
+
+fn run_c(src: &str, jerk: bool) -> Run {
+    let r = run_with(
+        src,
+        c_machine(),
+        runtime::AutoAck,
+        |cfg| cfg.jerk_limited = jerk,
+        |_, _| {},
+        120.0,
+    );
+    assert!(r.alarm.is_none(), "{:?}", r.alarm);
+    r
+}
+
+/// A piece of the programmed path in the plane (first axis, second axis).
+enum Piece {
+    Line((f64, f64), (f64, f64)),
+    /// Centre, radius, start angle and signed sweep (radians,
+    /// counter-clockwise from the first axis).
+    Arc((f64, f64), f64, f64, f64),
+}
+
+impl Piece {
+    fn ends(&self) -> [(f64, f64); 2] {
+        match *self {
+            Piece::Line(a, b) => [a, b],
+            Piece::Arc(c, r, a0, sweep) => [
+                (c.0 + r * a0.cos(), c.1 + r * a0.sin()),
+                (c.0 + r * (a0 + sweep).cos(), c.1 + r * (a0 + sweep).sin()),
+            ],
+        }
+    }
+
+    fn distance(&self, p: (f64, f64)) -> f64 {
+        let d = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
+        match *self {
+            Piece::Line(a, b) => {
+                let (vx, vy) = (b.0 - a.0, b.1 - a.1);
+                let t =
+                    (((p.0 - a.0) * vx + (p.1 - a.1) * vy) / (vx * vx + vy * vy)).clamp(0.0, 1.0);
+                d(p, (a.0 + t * vx, a.1 + t * vy))
+            }
+            Piece::Arc(c, r, a0, sweep) => {
+                let phi = (p.1 - c.1).atan2(p.0 - c.0);
+                // How far along the sweep's direction the point's angle is.
+                let t = (sweep.signum() * (phi - a0)).rem_euclid(2.0 * PI);
+                if t <= sweep.abs() {
+                    (d(p, c) - r).abs()
+                } else {
+                    let [e0, e1] = self.ends();
+                    d(p, e0).min(d(p, e1))
+                }
+            }
+        }
+    }
+}
+
+fn distance(path: &[Piece], p: (f64, f64)) -> f64 {
+    path.iter()
+        .map(|s| s.distance(p))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Every period of `lines` lies on `path` within 0.005 mm, and the speed
+/// between two periods at least 1 mm from every corner is F within 0.5 %
+/// (the trace's own feed column too).
+fn check(
+    r: &Run,
+    lines: std::ops::RangeInclusive<u32>,
+    plane: impl Fn(&runtime::SetPoint) -> (f64, f64),
+    path: &[Piece],
+    f: f64,
+) {
+    let dt = r.cfg.period_s;
+    let corners: Vec<(f64, f64)> = path.iter().flat_map(Piece::ends).collect();
+    let away = |p: (f64, f64)| corners.iter().all(|c| (p.0 - c.0).hypot(p.1 - c.1) > 1.0);
+    let (mut on, mut timed) = (0, 0);
+    for w in r.pts.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        if !lines.contains(&b.line) {
+            continue;
+        }
+        let q = plane(b);
+        let off = distance(path, q);
+        assert!(
+            off <= 0.005,
+            "t={} line {}: {q:?} is {off} mm off the path",
+            b.time_s,
+            b.line
+        );
+        on += 1;
+        let p = plane(a);
+        if lines.contains(&a.line) && away(p) && away(q) {
+            let v = (q.0 - p.0).hypot(q.1 - p.1) / dt * 60.0;
+            assert!(
+                (v - f).abs() <= 0.005 * f,
+                "t={}: tangential feed {v} mm/min, F{f}",
+                b.time_s
+            );
+            assert!(
+                (b.feed - f).abs() <= 0.005 * f,
+                "t={}: trace feed {}",
+                b.time_s,
+                b.feed
+            );
+            timed += 1;
+        }
+    }
+    // The path is long enough that most periods count.
+    assert!(
+        on > 1000 && timed > on / 2,
+        "{on} periods on the path, {timed} timed"
+    );
+}
+
+/// A closed contour about the spindle centre in the polar plane (X as a
+/// radius x, the hypothetical axis c), never nearer to it than 10 mm.
+const POLAR: &str = "G98
+G00 X40 Z-2 C0
+G12.1
+G01 X20 C10 F300
+G03 X-20 C10 R10
+G01 C-10
+G03 X20 C-10 R10
+G01 X40 C0
+G13.1
+M30
+";
+
+fn polar_path() -> Vec<Piece> {
+    vec![
+        // X40 C0 is (20, 0); X20 C10 is (10, 10).
+        Piece::Line((20.0, 0.0), (10.0, 10.0)),
+        // (10, 10) to (−10, 10) with R10: the chord is the diameter, the
+        // centre (0, 10); counter-clockwise from 0° over the top.
+        Piece::Arc((0.0, 10.0), 10.0, 0.0, PI),
+        Piece::Line((-10.0, 10.0), (-10.0, -10.0)),
+        // (−10, −10) to (10, −10): centre (0, −10), counter-clockwise
+        // from 180° through the bottom (0, −20).
+        Piece::Arc((0.0, -10.0), 10.0, PI, PI),
+        Piece::Line((10.0, -10.0), (20.0, 0.0)),
+    ]
+}
+
+/// The polar plane point of a period: x = X/2·cos C, c = X/2·sin C.
+fn polar_plane(p: &runtime::SetPoint) -> (f64, f64) {
+    let (r, c) = (p.x / 2.0, p.c.expect("a C column").to_radians());
+    (r * c.cos(), r * c.sin())
+}
+
+#[test]
+fn polar_interpolation_follows_the_cartesian_path_at_f() {
+    for jerk in [false, true] {
+        let r = run_c(POLAR, jerk);
+        check(&r, 4..=8, polar_plane, &polar_path(), 300.0);
+        // Z stays; the contour goes once round the centre: C ends at 360°.
+        assert!(r
+            .pts
+            .iter()
+            .filter(|p| (4..=8).contains(&p.line))
+            .all(|p| (p.z + 2.0).abs() < 1e-9));
+        let last = r.pts.last().expect("periods");
+        assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6 && (last.x - 40.0).abs() < 1e-6);
+    }
+}
+
+/// A groove on the cylinder of radius 20: C in degrees, developed as
+/// s = 20·C·π/180 mm.
+const CYLINDER: &str = "G98
+G00 X40 Z0 C0
+G7.1 C20.
+G01 Z-10 C90 F200
+G02 Z-30 R10
+G01 Z-40 C0
+G7.1 C0
+M30
+";
+
+#[test]
+fn cylindrical_interpolation_follows_the_developed_path_at_f() {
+    // C90 on radius 20 is s = 10π = 31.4159 mm.
+    let s90 = 10.0 * PI;
+    let path = [
+        Piece::Line((0.0, 0.0), (s90, -10.0)),
+        // From Z−10 to Z−30 at s90, R10, clockwise as seen with s to the
+        // right and Z up: centre (s90, −20), from 90° down through 0°.
+        Piece::Arc((s90, -20.0), 10.0, PI / 2.0, -PI),
+        Piece::Line((s90, -30.0), (0.0, -40.0)),
+    ];
+    // The plane point of a period: (20·C·π/180, Z).
+    let plane = |p: &runtime::SetPoint| (20.0 * p.c.expect("a C column").to_radians(), p.z);
+    for jerk in [false, true] {
+        let r = run_c(CYLINDER, jerk);
+        check(&r, 4..=6, plane, &path, 200.0);
+        // X stays at 40 all the while.
+        assert!(r
+            .pts
+            .iter()
+            .filter(|p| (4..=6).contains(&p.line))
+            .all(|p| (p.x - 40.0).abs() < 1e-9));
+    }
+}
+
+#[test]
+fn the_run_agrees_with_the_canon() {
+    let r = run_c(POLAR, false);
+    let canon: Vec<String> = r.canon.iter().map(|e| e.to_string()).collect();
+    assert_eq!(
+        canon,
+        [
+            "RAPID X=40 Z=-2 C=0",
+            "POLAR MODE=ON",
+            "FEED F=300 MODE=MIN",
+            "LINE X=20 C=10",
+            "ARC DIR=CCW X=-20 C=10 CX=0 CC=10",
+            "LINE X=-20 C=-10",
+            "ARC DIR=CCW X=20 C=-10 CX=0 CC=-10",
+            "LINE X=40 C=0",
+            // Once round the centre counter-clockwise: C = 360°.
+            "POLAR MODE=OFF X=40 C=360",
+            "STOP KIND=M30",
+        ]
+    );
+}
+
+#[test]
+fn the_split_controller_follows_the_same_path() {
+    // The interpreter on a thread of its own: the queue may starve and
+    // the motion wait, so only the path is checked, not the speed.
+    let r = run_split_with(POLAR, c_machine(), runtime::AutoAck, |_, _| {});
+    assert!(r.alarm.is_none(), "{:?}", r.alarm);
+    let path = polar_path();
+    let mut on = 0;
+    for p in r.pts.iter().filter(|p| (4..=8).contains(&p.line)) {
+        let q = polar_plane(p);
+        assert!(distance(&path, q) <= 0.005, "t={}: {q:?}", p.time_s);
+        on += 1;
+    }
+    assert!(on > 1000, "{on}");
+    let last = r.pts.last().expect("periods");
+    assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6);
+}
