@@ -1183,7 +1183,15 @@ impl<P: Plc> Engine<P> {
             } else {
                 0.5 * seg.a
             };
-            let alpha = a_long / (rps * rps);
+            // The ramp is a function of the spindle angle, so its axis
+            // acceleration is α·ω² + α·θ·ω̇: plan it for the speed the
+            // spindle is settling to (at_speed allows 0.5 % below it) and
+            // keep back lead × the spindle's own acceleration for ω̇
+            // (α·θ ≤ lead on the ramp).
+            let rps_ref = rps.max(self.spindle.commanded(work_x) / 60.0);
+            let spin_acc = t.lead * self.cfg.spindle.accel_rpm_s / 60.0;
+            let a_ramp = (a_long - spin_acc).max(0.5 * a_long);
+            let alpha = a_ramp / (rps_ref * rps_ref);
             let (l, dlead) = (t.lead, t.dlead);
             let (theta_l, theta_lag) = if dlead.abs() > 1e-15 && alpha > dlead {
                 let phi = l * (-1.0 + libm::sqrt(alpha / (alpha - dlead))) / dlead;
@@ -1225,9 +1233,12 @@ impl<P: Plc> Engine<P> {
         let theta = self.spindle.turns() - self.thread.theta0;
         let th = &mut self.thread;
         if th.phase == Phase::Ramp && theta >= th.theta_l {
-            // Lock: continue the helix from the current point.
-            let phi = theta - th.theta_lag;
-            th.phi_base = phi - revs_for(th.q, t.lead, t.dlead);
+            // Lock: the helix through the ramp's point at θ_l (where they
+            // are tangent), not through the last period's point: that one
+            // lies up to a period behind, which would stall the axis for a
+            // period and shift the helix by the period phase of the start.
+            let q_l = 0.5 * th.alpha * th.theta_l * th.theta_l - th.g_base;
+            th.phi_base = (th.theta_l - th.theta_lag) - revs_for(q_l, t.lead, t.dlead);
             th.phase = Phase::Locked;
         }
         let (mut k, mut q) = (0usize, 0.0);
