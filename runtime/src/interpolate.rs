@@ -14,6 +14,7 @@
 
 use crate::command::{MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
+use crate::follow::Follower;
 use crate::math::V2;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
 use crate::plc::{Plc, PlcFunction};
@@ -191,7 +192,12 @@ pub struct Engine<P: Plc> {
     q: Planner,
     spindle: Spindle,
     ticks: u64,
+    /// The programmed point (on the path).
     pos: V2,
+    /// The axis set point: `pos`, except where an axis follows a thread
+    /// chain's corner within its acceleration ([`Follower`]).
+    out: V2,
+    follow: Follower,
     last_step: V2,
     /// The C angle (degrees) and its change over the last period.
     c: f64,
@@ -265,6 +271,8 @@ impl<P: Plc> Engine<P> {
             spindle,
             ticks: 0,
             pos: V2::ZERO,
+            out: V2::ZERO,
+            follow: Follower::default(),
             last_step: V2::ZERO,
             c: 0.0,
             last_step_c: 0.0,
@@ -368,7 +376,9 @@ impl<P: Plc> Engine<P> {
         self.alarm
     }
 
-    /// Axis position, slide units.
+    /// The programmed point the axes are at, slide units. The set points
+    /// differ from it only while an axis still follows a thread chain's
+    /// corner ([`crate::follow`]); a new move waits until they meet.
     pub fn position(&self) -> V2 {
         self.pos
     }
@@ -471,7 +481,7 @@ impl<P: Plc> Engine<P> {
     /// One interpolation period.
     pub fn tick(&mut self) -> SetPoint {
         self.ticks += 1;
-        let before = self.pos;
+        let before = self.out;
         let before_c = self.c;
         // Only constant surface speed needs the diameter.
         let x = if self.spindle.css() {
@@ -519,20 +529,29 @@ impl<P: Plc> Engine<P> {
                 }
             }
         }
-        self.last_step = self.pos - before;
+        let thread = self.motion == Motion::Thread;
+        let acc = [self.cfg.x.accel, self.cfg.z.accel];
+        self.out = self.follow.step(self.pos, thread, acc, self.dt);
+        if !thread && self.follow.engaged() {
+            self.motion = Motion::Thread;
+        }
+        self.last_step = self.out - before;
         self.last_step_c = self.c - before_c;
         self.check_stroke();
         self.setpoint()
     }
 
     fn setpoint(&self) -> SetPoint {
-        let work = self.fixed_work.unwrap_or(self.pos - self.shift);
+        let work = match self.fixed_work {
+            Some(w) => w,
+            None => self.out - self.shift,
+        };
         SetPoint {
             time_s: self.ticks as f64 * self.dt,
             x: work.x(),
             z: work.z,
-            axis_x: self.pos.x(),
-            axis_z: self.pos.z,
+            axis_x: self.out.x(),
+            axis_z: self.out.z,
             spindle_rpm: self.spindle.rpm(),
             spindle_turns: self.spindle.turns(),
             c: self.cfg.c.map(|_| self.c),
@@ -587,7 +606,7 @@ impl<P: Plc> Engine<P> {
         if matches!(self.state, RunState::Alarm(_)) {
             return;
         }
-        if area.forbids(self.pos.x(), self.pos.z) {
+        if area.forbids(self.out.x(), self.out.z) {
             self.raise(7002, self.tag);
         }
     }
@@ -764,7 +783,7 @@ impl<P: Plc> Engine<P> {
             };
             // Start from rest only: a landing period is followed by one
             // standing period, so the velocity passes through zero.
-            if self.last_step != V2::ZERO || self.last_step_c != 0.0 {
+            if self.last_step != V2::ZERO || self.last_step_c != 0.0 || self.follow.engaged() {
                 return;
             }
             if self.hold && !matches!(seg.kind, MoveKind::Thread(_)) {
