@@ -1202,14 +1202,11 @@ impl<P: Plc> Engine<P> {
             } else {
                 0.5 * seg.a
             };
-            // The ramp is a function of the spindle angle, so its axis
-            // acceleration is α·ω² + α·θ·ω̇: plan it for the speed the
-            // spindle is settling to (at_speed allows 0.5 % below it) and
-            // keep back lead × the spindle's own acceleration for ω̇
-            // (α·θ ≤ lead on the ramp).
+            // The ramp is a function of the spindle angle: plan it for
+            // the speed the spindle is settling to (at_speed allows 0.5 %
+            // below it), with the share `ramp_accel` leaves for ω̇.
             let rps_ref = rps.max(self.spindle.commanded(work_x) / 60.0);
-            let spin_acc = t.lead * self.cfg.spindle.accel_rpm_s / 60.0;
-            let a_ramp = (a_long - spin_acc).max(0.5 * a_long);
+            let a_ramp = nc::thread_room::ramp_accel(a_long, t.lead, self.cfg.spindle.accel_rpm_s);
             let alpha = a_ramp / (rps_ref * rps_ref);
             let (l, dlead) = (t.lead, t.dlead);
             let (theta_l, theta_lag) = if dlead.abs() > 1e-15 && alpha > dlead {
