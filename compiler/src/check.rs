@@ -3,11 +3,12 @@
 //! errors are compile errors (dialect.md §0).
 
 use crate::link::{self, Program, Unit};
+use crate::thread_room::RoomCheck;
 use crate::words::{self, Call, NcWord, WordValue};
 use grammar::ast::{Body, Value};
 use grammar::{Diagnostic, Span};
 use nc::words::Word;
-use nc::{Event, Machine, Nc, NcError, Sink};
+use nc::{Machine, Nc, NcError};
 use smallvec::SmallVec;
 
 /// Checks the literal words of a block (a computed word is checked when
@@ -69,12 +70,6 @@ pub fn is_static(units: &[Unit], programs: &[Program]) -> bool {
     })
 }
 
-struct Discard;
-
-impl Sink for Discard {
-    fn emit(&mut self, _: Event) {}
-}
-
 /// Errors a dry run reports at compile time; the others (value and
 /// machine faults) stay run-time alarms.
 fn compile_time(code: u16) -> bool {
@@ -92,21 +87,28 @@ struct DryRun<'a> {
     nc: Nc,
     steps: u64,
     skip: [bool; 9],
+    /// W118 on the canon events.
+    room: RoomCheck,
 }
 
 const STEP_LIMIT: u64 = 200_000;
 
-/// Runs a static program through the kernel; the first compile-time error
-/// with its unit.
-pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Option<(usize, Diagnostic)> {
+/// Runs a static program through the kernel: the warnings it finds (W118)
+/// and the first compile-time error, with their units.
+pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize, Diagnostic)> {
     let mut run = DryRun {
         units,
         programs,
         nc: Nc::new(m.clone()),
         steps: 0,
         skip: m.operator.block_skip,
+        room: RoomCheck::new(m),
     };
-    run.program(0, 0).err()
+    let error = run.program(0, 0).err();
+    run.room.finish();
+    let mut found = run.room.warnings;
+    found.extend(error);
+    found
 }
 
 impl DryRun<'_> {
@@ -149,7 +151,9 @@ impl DryRun<'_> {
                 (plain_literals(ws), None, None)
             };
             if !lits.is_empty() {
-                match self.nc.exec(&lits, &mut Discard) {
+                self.room.unit = prog.unit;
+                self.room.span = block.span;
+                match self.nc.exec(&lits, &mut self.room) {
                     Ok(out) if out.end.is_some() => return Ok(Flow::End),
                     Ok(_) => {}
                     Err(e) if compile_time(e.code) => {
