@@ -91,6 +91,50 @@ pub struct SetPoint {
     pub tool: u32,
 }
 
+/// W118 at run time: a thread chain whose first move is shorter than the
+/// length its long axis needs to reach thread speed (`exit`: whose last
+/// move is shorter than the length it needs to stop), at the spindle speed
+/// the thread really starts with ([`nc::thread_room`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoomWarning {
+    /// The thread move (its block).
+    pub tag: Tag,
+    /// The stopping length at the end, not the entry length.
+    pub exit: bool,
+    /// The long-axis travel of the move, mm.
+    pub room_mm: f64,
+    /// The length needed, mm.
+    pub need_mm: f64,
+    /// The spindle speed, rev/min.
+    pub rpm: f64,
+    /// The long axis is Z (else X).
+    pub long_z: bool,
+}
+
+impl RoomWarning {
+    /// The warning's text, worded as gbcc's W118.
+    pub fn message(&self) -> alloc::string::String {
+        let axis = if self.long_z { "Z" } else { "X" };
+        let (what, after) = if self.exit {
+            (
+                "no room to stop at the thread's end",
+                "to stop from thread speed",
+            )
+        } else {
+            (
+                "thread too short to reach its lead",
+                "to reach thread speed",
+            )
+        };
+        alloc::format!(
+            "{what}: at {:.0} rpm {axis} needs {:.3} mm {after}, this block gives {:.3} mm",
+            self.rpm,
+            self.need_mm,
+            self.room_mm
+        )
+    }
+}
+
 /// How a G31 move ended (axis positions, slide units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SkipReport {
@@ -244,6 +288,8 @@ pub struct Engine<P: Plc> {
     skip_active: bool,
     skip_hit: Option<V2>,
     skip_report: Option<SkipReport>,
+    /// The latest W118 of a thread start, until the host takes it.
+    room_warning: [Option<RoomWarning>; 2],
     sb_block: Option<u32>,
     /// A period that ended on a corner (or crossed it by a rounding
     /// residue) faster than the corner speed: the next one must not
@@ -309,6 +355,7 @@ impl<P: Plc> Engine<P> {
             skip_active: false,
             skip_hit: None,
             skip_report: None,
+            room_warning: [None; 2],
             sb_block: None,
             cap_next: f64::INFINITY,
             cap_accel: 0.0,
@@ -465,6 +512,14 @@ impl<P: Plc> Engine<P> {
     /// How the last G31 move ended, once.
     pub fn take_skip_report(&mut self) -> Option<SkipReport> {
         self.skip_report.take()
+    }
+
+    /// The room checks of the last thread start (W118), entry first, each
+    /// once: a host polls them every period (a later start replaces those
+    /// not taken).
+    pub fn take_room_warning(&mut self) -> Option<RoomWarning> {
+        let [entry, exit] = &mut self.room_warning;
+        entry.take().or_else(|| exit.take())
     }
 
     /// Whether a reset finished since the last call.
@@ -1208,6 +1263,7 @@ impl<P: Plc> Engine<P> {
             let rps_ref = rps.max(self.spindle.commanded(work_x) / 60.0);
             let a_ramp = nc::thread_room::ramp_accel(a_long, t.lead, self.cfg.spindle.accel_rpm_s);
             let alpha = a_ramp / (rps_ref * rps_ref);
+            self.check_room(a_ramp, rps_ref);
             let (l, dlead) = (t.lead, t.dlead);
             let (theta_l, theta_lag) = if dlead.abs() > 1e-15 && alpha > dlead {
                 let phi = l * (-1.0 + libm::sqrt(alpha / (alpha - dlead))) / dlead;
@@ -1356,6 +1412,60 @@ impl<P: Plc> Engine<P> {
         self.pos = target.curve.point(lam);
         self.v = v;
         self.thread.v_sync = v;
+    }
+
+    /// W118 at a thread start: the chain's first move against the entry
+    /// length at `a_ramp`, and its last move, when it is queued already,
+    /// against the stopping length.
+    fn check_room(&mut self, a_ramp: f64, rps: f64) {
+        let Some(first) = self.q.seg(0).copied() else {
+            return;
+        };
+        let MoveKind::Thread(t) = first.kind else {
+            return;
+        };
+        let v = t.lead * rps;
+        let need = v * v / (2.0 * a_ramp);
+        let warn = |seg: &Segment, tag: Tag, exit: bool, need: f64| RoomWarning {
+            tag,
+            exit,
+            room_mm: seg.long_len,
+            need_mm: need,
+            rpm: rps * 60.0,
+            long_z: seg.long_z,
+        };
+        if first.long_len < need {
+            self.room_warning[0] = Some(warn(&first, self.tag, false, need));
+        }
+        // The last move of the chain, if the queue holds the chain's end.
+        let mut k = 0;
+        while self.thread_next(k) && self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) {
+            k += 1;
+        }
+        if self.q.get(k + 1).is_none() {
+            return;
+        }
+        let (Some(last), Some(tag)) = (self.q.seg(k).copied(), self.q.get(k).map(|i| i.tag)) else {
+            return;
+        };
+        let MoveKind::Thread(tl) = last.kind else {
+            return;
+        };
+        let u_long = if last.len > 0.0 {
+            last.long_len / last.len
+        } else {
+            1.0
+        };
+        let a_long = if matches!(last.curve, crate::geom::Curve::Line { .. }) {
+            last.a * u_long
+        } else {
+            0.5 * last.a
+        };
+        let v = tl.lead * rps;
+        let need = v * v / (2.0 * a_long);
+        if last.long_len < need {
+            self.room_warning[1] = Some(warn(&last, tag, true, need));
+        }
     }
 
     /// Whether the chain goes on after the k-th queued move.

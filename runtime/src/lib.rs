@@ -63,7 +63,7 @@ pub mod translate;
 
 pub use command::{Command, Tag};
 pub use config::{Config, RapidOverride};
-pub use interpolate::{Engine, Motion, RunState, SetPoint};
+pub use interpolate::{Engine, Motion, RoomWarning, RunState, SetPoint};
 pub use plc::{AutoAck, Plc, PlcFunction};
 
 pub use controller::{AlarmInfo, Controller, LoadError};

@@ -221,3 +221,56 @@ fn conformance_threads_and_taps_stay_within_the_acceleration() {
         assert!(checked.iter().any(|n| n == must), "{must} not checked");
     }
 }
+
+/// W118 at run time, where S comes from a variable: lead 3 at 1500 rpm is
+/// v = 75 mm/s; Z keeps back 3 × 1000/60 = 50 of its 2000 mm/s² for the
+/// spindle, so it needs 75² / 3900 = 1.442 mm to reach thread speed and
+/// 75² / 4000 = 1.406 mm to stop; the G32 from Z1 to Z0 gives 1 mm.
+#[test]
+fn a_thread_that_starts_too_close_is_warned_at_run_time() {
+    let src = "O0014\n#1=1500\nG97 S#1 M03\nG00 X30 Z1\nG32 Z0 F3\nG00 X40\nM30\n";
+    let mut got = Vec::new();
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |ctl, _| {
+            while let Some(w) = ctl.engine_mut().take_room_warning() {
+                got.push(w);
+            }
+        },
+        60.0,
+    );
+    check_limits(&r, false);
+    assert_eq!(got.len(), 2, "{got:?}");
+    let (entry, exit) = (got[0], got[1]);
+    assert!(!entry.exit && exit.exit);
+    assert_eq!((entry.tag.line, exit.tag.line), (5, 5));
+    assert!(
+        (entry.need_mm - 5625.0 / 3900.0).abs() < 1e-9,
+        "{}",
+        entry.need_mm
+    );
+    assert!(
+        (exit.need_mm - 5625.0 / 4000.0).abs() < 1e-9,
+        "{}",
+        exit.need_mm
+    );
+    assert_eq!((entry.room_mm, exit.room_mm), (1.0, 1.0));
+    assert_eq!(
+        entry.message(),
+        "thread too short to reach its lead: at 1500 rpm Z needs 1.442 mm to reach thread speed, this block gives 1.000 mm"
+    );
+    // From Z3 it fits: no warning.
+    let mut none = true;
+    run_with(
+        &src.replace("Z1\n", "Z3\n"),
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |ctl, _| none &= ctl.engine_mut().take_room_warning().is_none(),
+        60.0,
+    );
+    assert!(none);
+}
