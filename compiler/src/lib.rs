@@ -111,9 +111,11 @@ fn lower_and_check(
         let table = &opts.machine.r#macro.g_code_macros;
         let wanted =
             !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
-        wanted
-            .then(|| check::dry_run(units, programs, &opts.machine))
-            .unwrap_or_default()
+        if wanted {
+            check::dry_run(units, programs, &opts.machine)
+        } else {
+            Vec::new()
+        }
     };
     let parallel = block_count(programs) >= PARALLEL_BLOCKS;
     std::thread::scope(|s| {

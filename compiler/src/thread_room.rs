@@ -144,7 +144,7 @@ impl RoomCheck {
         let (Some(first), Some(last)) = (chain.first(), chain.last()) else {
             return;
         };
-        if unmeasured || !(self.rpm > 0.0) {
+        if unmeasured || !is_pos(self.rpm) {
             return;
         }
         let (ax, az) = (self.x_accel, self.z_accel);
@@ -193,6 +193,11 @@ impl RoomCheck {
         self.warnings
             .push((unit, Diagnostic::warning("W118", span, message)));
     }
+}
+
+/// A speed above zero (not NaN).
+fn is_pos(v: f64) -> bool {
+    v > 0.0
 }
 
 impl nc::Sink for RoomCheck {
