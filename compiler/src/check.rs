@@ -3,11 +3,12 @@
 //! errors are compile errors (dialect.md §0).
 
 use crate::link::{self, Program, Unit};
+use crate::thread_room::RoomCheck;
 use crate::words::{self, Call, NcWord, WordValue};
 use grammar::ast::{Body, Value};
 use grammar::{Diagnostic, Span};
 use nc::words::Word;
-use nc::{Event, Machine, Nc, NcError, Sink};
+use nc::{Machine, Nc, NcError};
 use smallvec::SmallVec;
 
 /// Checks the literal words of a block (a computed word is checked when
@@ -69,12 +70,6 @@ pub fn is_static(units: &[Unit], programs: &[Program]) -> bool {
     })
 }
 
-struct Discard;
-
-impl Sink for Discard {
-    fn emit(&mut self, _: Event) {}
-}
-
 /// Errors a dry run reports at compile time; the others (value and
 /// machine faults) stay run-time alarms.
 fn compile_time(code: u16) -> bool {
@@ -92,19 +87,22 @@ struct DryRun<'a> {
     nc: Nc,
     steps: u64,
     skip: [bool; 9],
+    /// W118 on the canon events.
+    room: RoomCheck,
 }
 
 const STEP_LIMIT: u64 = 200_000;
 
-/// Runs a static program through the kernel; the first compile-time error
-/// with its unit.
+/// Runs a static program through the kernel: the warnings it finds (W118)
+/// and the first compile-time error, with their units.
 ///
 /// Block skip is the operator's switch, read as each block is, so a
 /// program with `/n` blocks runs once per state that matters: as the
-/// machine file sets the switches (the state a run starts in), with every
-/// switch off (a diagnostic in a `/n` block is found) and with every
-/// switch on (the modal state without those blocks).
-pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Option<(usize, Diagnostic)> {
+/// machine file sets the switches (the state a run starts in; its warnings
+/// are the ones reported), with every switch off (a diagnostic in a `/n`
+/// block is found) and with every switch on (the modal state without those
+/// blocks).
+pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize, Diagnostic)> {
     let mut states = vec![m.operator.block_skip];
     if has_deleted_blocks(units, programs) {
         for state in [[false; 9], crate::profile::ALL_ON] {
@@ -114,24 +112,32 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Option<(usi
         }
     }
     let first = states[0];
-    states.into_iter().find_map(|skip| {
+    let mut found = Vec::new();
+    for skip in states {
         let mut run = DryRun {
             units,
             programs,
             nc: Nc::new(m.clone()),
             steps: 0,
             skip,
+            room: RoomCheck::new(m),
         };
-        let (unit, d) = run.program(0, 0).err()?;
-        Some((
-            unit,
-            if skip == first {
+        let error = run.program(0, 0).err();
+        if skip == first {
+            run.room.finish();
+            found.append(&mut run.room.warnings);
+        }
+        if let Some((unit, d)) = error {
+            let d = if skip == first {
                 d
             } else {
                 d.with_note(state_note(&skip))
-            },
-        ))
-    })
+            };
+            found.push((unit, d));
+            break;
+        }
+    }
+    found
 }
 
 /// Which switch state an error of a later dry run belongs to.
@@ -193,7 +199,9 @@ impl DryRun<'_> {
                 (plain_literals(ws), None, None)
             };
             if !lits.is_empty() {
-                match self.nc.exec(&lits, &mut Discard) {
+                self.room.unit = prog.unit;
+                self.room.span = block.span;
+                match self.nc.exec(&lits, &mut self.room) {
                     Ok(out) if out.end.is_some() => return Ok(Flow::End),
                     Ok(_) => {}
                     Err(e) if compile_time(e.code) => {

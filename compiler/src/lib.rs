@@ -16,6 +16,7 @@ pub mod hash;
 pub mod link;
 pub mod lower;
 pub mod profile;
+pub mod thread_room;
 pub mod words;
 
 use grammar::{Diagnostic, SourceFile};
@@ -110,9 +111,11 @@ fn lower_and_check(
         let table = &opts.machine.r#macro.g_code_macros;
         let wanted =
             !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
-        wanted
-            .then(|| check::dry_run(units, programs, &opts.machine))
-            .flatten()
+        if wanted {
+            check::dry_run(units, programs, &opts.machine)
+        } else {
+            Vec::new()
+        }
     };
     let parallel = block_count(programs) >= PARALLEL_BLOCKS;
     std::thread::scope(|s| {
@@ -129,13 +132,15 @@ fn lower_and_check(
             Some(run) => match run.join() {
                 Ok(found) => found,
                 // (A run the sequential order would not have made.)
-                Err(_) if failed => None,
+                Err(_) if failed => Vec::new(),
                 Err(panic) => std::panic::resume_unwind(panic),
             },
             None if !failed => dry_run(),
-            None => None,
+            None => Vec::new(),
         };
-        diags.extend(found.filter(|_| !failed));
+        if !failed {
+            diags.extend(found);
+        }
         if let (Some(Err(e)), false) = (verified, has_errors(diags)) {
             diags.push((
                 0,

@@ -14,6 +14,7 @@
 
 use crate::command::{MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
+use crate::follow::Follower;
 use crate::math::V2;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
 use crate::plc::{Plc, PlcFunction};
@@ -88,6 +89,50 @@ pub struct SetPoint {
     pub motion: Motion,
     /// The active tool number.
     pub tool: u32,
+}
+
+/// W118 at run time: a thread chain whose first move is shorter than the
+/// length its long axis needs to reach thread speed (`exit`: whose last
+/// move is shorter than the length it needs to stop), at the spindle speed
+/// the thread really starts with ([`nc::thread_room`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoomWarning {
+    /// The thread move (its block).
+    pub tag: Tag,
+    /// The stopping length at the end, not the entry length.
+    pub exit: bool,
+    /// The long-axis travel of the move, mm.
+    pub room_mm: f64,
+    /// The length needed, mm.
+    pub need_mm: f64,
+    /// The spindle speed, rev/min.
+    pub rpm: f64,
+    /// The long axis is Z (else X).
+    pub long_z: bool,
+}
+
+impl RoomWarning {
+    /// The warning's text, worded as gbcc's W118.
+    pub fn message(&self) -> alloc::string::String {
+        let axis = if self.long_z { "Z" } else { "X" };
+        let (what, after) = if self.exit {
+            (
+                "no room to stop at the thread's end",
+                "to stop from thread speed",
+            )
+        } else {
+            (
+                "thread too short to reach its lead",
+                "to reach thread speed",
+            )
+        };
+        alloc::format!(
+            "{what}: at {:.0} rpm {axis} needs {:.3} mm {after}, this block gives {:.3} mm",
+            self.rpm,
+            self.need_mm,
+            self.room_mm
+        )
+    }
 }
 
 /// How a G31 move ended (axis positions, slide units).
@@ -191,7 +236,12 @@ pub struct Engine<P: Plc> {
     q: Planner,
     spindle: Spindle,
     ticks: u64,
+    /// The programmed point (on the path).
     pos: V2,
+    /// The axis set point: `pos`, except where an axis follows a thread
+    /// chain's corner within its acceleration ([`Follower`]).
+    out: V2,
+    follow: Follower,
     last_step: V2,
     /// The C angle (degrees) and its change over the last period.
     c: f64,
@@ -238,6 +288,8 @@ pub struct Engine<P: Plc> {
     skip_active: bool,
     skip_hit: Option<V2>,
     skip_report: Option<SkipReport>,
+    /// The latest W118 of a thread start, until the host takes it.
+    room_warning: [Option<RoomWarning>; 2],
     sb_block: Option<u32>,
     /// A period that ended on a corner (or crossed it by a rounding
     /// residue) faster than the corner speed: the next one must not
@@ -268,6 +320,8 @@ impl<P: Plc> Engine<P> {
             spindle,
             ticks: 0,
             pos: V2::ZERO,
+            out: V2::ZERO,
+            follow: Follower::default(),
             last_step: V2::ZERO,
             c: 0.0,
             last_step_c: 0.0,
@@ -304,6 +358,7 @@ impl<P: Plc> Engine<P> {
             skip_active: false,
             skip_hit: None,
             skip_report: None,
+            room_warning: [None; 2],
             sb_block: None,
             cap_next: f64::INFINITY,
             cap_accel: 0.0,
@@ -372,7 +427,9 @@ impl<P: Plc> Engine<P> {
         self.alarm
     }
 
-    /// Axis position, slide units.
+    /// The programmed point the axes are at, slide units. The set points
+    /// differ from it only while an axis still follows a thread chain's
+    /// corner ([`crate::follow`]); a new move waits until they meet.
     pub fn position(&self) -> V2 {
         self.pos
     }
@@ -461,6 +518,14 @@ impl<P: Plc> Engine<P> {
         self.skip_report.take()
     }
 
+    /// The room checks of the last thread start (W118), entry first, each
+    /// once: a host polls them every period (a later start replaces those
+    /// not taken).
+    pub fn take_room_warning(&mut self) -> Option<RoomWarning> {
+        let [entry, exit] = &mut self.room_warning;
+        entry.take().or_else(|| exit.take())
+    }
+
     /// Whether a reset finished since the last call.
     pub fn take_reset_done(&mut self) -> bool {
         core::mem::take(&mut self.reset_done)
@@ -475,7 +540,7 @@ impl<P: Plc> Engine<P> {
     /// One interpolation period.
     pub fn tick(&mut self) -> SetPoint {
         self.ticks += 1;
-        let before = self.pos;
+        let before = self.out;
         let before_c = self.c;
         // Only constant surface speed needs the diameter.
         let x = if self.spindle.css() {
@@ -523,7 +588,13 @@ impl<P: Plc> Engine<P> {
                 }
             }
         }
-        self.last_step = self.pos - before;
+        let thread = self.motion == Motion::Thread;
+        let acc = [self.cfg.x.accel, self.cfg.z.accel];
+        self.out = self.follow.step(self.pos, thread, acc, self.dt);
+        if !thread && self.follow.engaged() {
+            self.motion = Motion::Thread;
+        }
+        self.last_step = self.out - before;
         self.last_step_c = self.c - before_c;
         if let Some(run) = &mut self.plane {
             // The path speed is the plane's: the tangential feed.
@@ -538,8 +609,8 @@ impl<P: Plc> Engine<P> {
         let (work, axes, c) = match &self.plane {
             Some(run) => (run.work(), run.axes(), run.c()),
             None => (
-                self.fixed_work.unwrap_or(self.pos - self.shift),
-                self.pos,
+                self.fixed_work.unwrap_or(self.out - self.shift),
+                self.out,
                 self.c,
             ),
         };
@@ -608,7 +679,7 @@ impl<P: Plc> Engine<P> {
         if matches!(self.state, RunState::Alarm(_)) {
             return;
         }
-        if area.forbids(self.pos.x(), self.pos.z) {
+        if area.forbids(self.out.x(), self.out.z) {
             self.raise(7002, self.tag);
         }
     }
@@ -803,7 +874,7 @@ impl<P: Plc> Engine<P> {
             };
             // Start from rest only: a landing period is followed by one
             // standing period, so the velocity passes through zero.
-            if self.last_step != V2::ZERO || self.last_step_c != 0.0 {
+            if self.last_step != V2::ZERO || self.last_step_c != 0.0 || self.follow.engaged() {
                 return;
             }
             if self.hold && !matches!(seg.kind, MoveKind::Thread(_)) {
@@ -1222,7 +1293,13 @@ impl<P: Plc> Engine<P> {
             } else {
                 0.5 * seg.a
             };
-            let alpha = a_long / (rps * rps);
+            // The ramp is a function of the spindle angle: plan it for
+            // the speed the spindle is settling to (at_speed allows 0.5 %
+            // below it), with the share `ramp_accel` leaves for ω̇.
+            let rps_ref = rps.max(self.spindle.commanded(work_x) / 60.0);
+            let a_ramp = nc::thread_room::ramp_accel(a_long, t.lead, self.cfg.spindle.accel_rpm_s);
+            let alpha = a_ramp / (rps_ref * rps_ref);
+            self.check_room(a_ramp, rps_ref);
             let (l, dlead) = (t.lead, t.dlead);
             let (theta_l, theta_lag) = if dlead.abs() > 1e-15 && alpha > dlead {
                 let phi = l * (-1.0 + libm::sqrt(alpha / (alpha - dlead))) / dlead;
@@ -1264,9 +1341,12 @@ impl<P: Plc> Engine<P> {
         let theta = self.spindle.turns() - self.thread.theta0;
         let th = &mut self.thread;
         if th.phase == Phase::Ramp && theta >= th.theta_l {
-            // Lock: continue the helix from the current point.
-            let phi = theta - th.theta_lag;
-            th.phi_base = phi - revs_for(th.q, t.lead, t.dlead);
+            // Lock: the helix through the ramp's point at θ_l (where they
+            // are tangent), not through the last period's point: that one
+            // lies up to a period behind, which would stall the axis for a
+            // period and shift the helix by the period phase of the start.
+            let q_l = 0.5 * th.alpha * th.theta_l * th.theta_l - th.g_base;
+            th.phi_base = (th.theta_l - th.theta_lag) - revs_for(q_l, t.lead, t.dlead);
             th.phase = Phase::Locked;
         }
         let (mut k, mut q) = (0usize, 0.0);
@@ -1368,6 +1448,60 @@ impl<P: Plc> Engine<P> {
         self.pos = target.curve.point(lam);
         self.v = v;
         self.thread.v_sync = v;
+    }
+
+    /// W118 at a thread start: the chain's first move against the entry
+    /// length at `a_ramp`, and its last move, when it is queued already,
+    /// against the stopping length.
+    fn check_room(&mut self, a_ramp: f64, rps: f64) {
+        let Some(first) = self.q.seg(0).copied() else {
+            return;
+        };
+        let MoveKind::Thread(t) = first.kind else {
+            return;
+        };
+        let v = t.lead * rps;
+        let need = v * v / (2.0 * a_ramp);
+        let warn = |seg: &Segment, tag: Tag, exit: bool, need: f64| RoomWarning {
+            tag,
+            exit,
+            room_mm: seg.long_len,
+            need_mm: need,
+            rpm: rps * 60.0,
+            long_z: seg.long_z,
+        };
+        if first.long_len < need {
+            self.room_warning[0] = Some(warn(&first, self.tag, false, need));
+        }
+        // The last move of the chain, if the queue holds the chain's end.
+        let mut k = 0;
+        while self.thread_next(k) && self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) {
+            k += 1;
+        }
+        if self.q.get(k + 1).is_none() {
+            return;
+        }
+        let (Some(last), Some(tag)) = (self.q.seg(k).copied(), self.q.get(k).map(|i| i.tag)) else {
+            return;
+        };
+        let MoveKind::Thread(tl) = last.kind else {
+            return;
+        };
+        let u_long = if last.len > 0.0 {
+            last.long_len / last.len
+        } else {
+            1.0
+        };
+        let a_long = if matches!(last.curve, crate::geom::Curve::Line { .. }) {
+            last.a * u_long
+        } else {
+            0.5 * last.a
+        };
+        let v = tl.lead * rps;
+        let need = v * v / (2.0 * a_long);
+        if last.long_len < need {
+            self.room_warning[1] = Some(warn(&last, tag, true, need));
+        }
     }
 
     /// Whether the chain goes on after the k-th queued move.

@@ -24,7 +24,8 @@
 //! Modules: [`planner`] (queue, corner speeds, backward pass), [`profile`]
 //! (the discrete braking limit shared by planner and interpolator),
 //! [`geom`] (exact lines, arcs, ellipses, parabolas), [`interpolate`] (the
-//! period loop), [`spindle`], [`smooth`] (optional jerk limiting),
+//! period loop), [`follow`] (axes following thread chains), [`spindle`],
+//! [`smooth`] (optional jerk limiting),
 //! [`plc`], [`command`], [`config`], and the outputs [`trace`], [`plot`]
 //! (with [`simplify`]), [`stats`].
 //!
@@ -41,6 +42,7 @@ extern crate std;
 
 pub mod command;
 pub mod config;
+pub mod follow;
 pub mod geom;
 pub mod interpolate;
 pub mod math;
@@ -62,7 +64,7 @@ pub mod translate;
 
 pub use command::{Command, Tag};
 pub use config::{Config, RapidOverride};
-pub use interpolate::{Engine, Motion, RunState, SetPoint};
+pub use interpolate::{Engine, Motion, RoomWarning, RunState, SetPoint};
 pub use plc::{AutoAck, Plc, PlcFunction};
 
 pub use controller::{AlarmInfo, Controller, LoadError};

@@ -84,7 +84,7 @@ fn threads_keep_lead_times_revolutions() {
     let src = "O0005\nG97 S600 M03\nG00 X30 Z5\nG32 Z-30 F1.5\nG00 X40\nZ5\nX29.5\nG32 Z-30 F1.5\nG00 X40\nM30\n";
     let r = run(src);
     check_end_points(&r);
-    check_limits(&r, true);
+    check_limits(&r, false);
     let lead = 1.5;
     let mut phases = Vec::new();
     let mut locked = 0;

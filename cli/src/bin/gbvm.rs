@@ -514,6 +514,7 @@ fn run_timed(
             fn emit(&mut self, _: Event) {}
         }
         let mut quiet = Quiet;
+        let mut warned = Vec::new();
         let name = |i: u16| files.get(usize::from(i)).map_or("", String::as_str);
         ctl.cycle_start();
         loop {
@@ -524,6 +525,9 @@ fn run_timed(
             }
             let sp = ctl.tick();
             ticks += 1;
+            while let Some(w) = ctl.engine_mut().take_room_warning() {
+                room_warning(&mut warned, &w, name(w.tag.file));
+            }
             if let Some(f) = out.trace {
                 line.clear();
                 let _ = match f {
@@ -642,6 +646,23 @@ fn run_timed(
         (None, Some(_)) => cli::exit::Exit::Alarm.into(),
         (None, None) => ExitCode::SUCCESS,
     }
+}
+
+/// W118 found at run time, once per block and kind (a cycle's passes
+/// repeat it), on stderr as gbcc prints warnings.
+fn room_warning(warned: &mut Vec<(u16, u32, bool)>, w: &runtime::RoomWarning, file: &str) {
+    let key = (w.tag.file, w.tag.line, w.exit);
+    if warned.contains(&key) {
+        return;
+    }
+    warned.push(key);
+    note(format_args!(
+        "{}:{}:{}: warning[W118]: {}",
+        printable(file),
+        w.tag.line,
+        w.tag.col,
+        w.message()
+    ));
 }
 
 /// E6006 at the block running when the time ran out.

@@ -12,4 +12,5 @@ pub mod machine;
 pub mod machine_check;
 pub mod plc;
 pub mod point;
+pub mod thread_room;
 pub mod words;

@@ -1,0 +1,276 @@
+//! Threads and taps as a servo can cut them: the long axis ramps up to
+//! thread speed after the index pulse and brakes at the end within its
+//! acceleration, pull-outs and run-outs turn the short axis within its
+//! acceleration, and every conformance program with a thread or tap keeps
+//! every axis within its limits in every period.
+
+mod common;
+
+use common::*;
+use nc::thread_room::{entry_length, exit_length};
+use nc::Machine;
+use runtime::{Motion, SetPoint};
+use std::path::{Path, PathBuf};
+
+/// Z of the thread periods (the set point moves and the motion is a
+/// thread), with the spindle turns at the end of the period.
+fn thread_periods(pts: &[SetPoint], line: u32) -> Vec<(usize, f64, f64)> {
+    pts.iter()
+        .enumerate()
+        .filter(|(_, p)| p.motion == Motion::Thread && p.line == line)
+        .map(|(k, p)| (k, p.z, p.spindle_turns))
+        .collect()
+}
+
+/// G32 Z5 → Z-30, lead 1.5 at 600 rpm on the reference machine. Hand
+/// figures: v = 1.5 mm × 600/60 rev/s = 15 mm/s. The ramp keeps back
+/// lead × spindle acceleration = 1.5 × 1000/60 = 25 mm/s² of Z's 2000, so
+/// it accelerates at 1975 mm/s² and reaches thread speed after
+/// 15² / (2 × 1975) = 0.056962 mm: the incomplete lead at entry. From
+/// there Z = start − lead × (turns since the index) + 0.056962, in every
+/// period. At the end Z brakes at 2000 mm/s² over 15² / 4000 = 0.05625 mm
+/// (the incomplete lead at exit), landing on Z-30 within a period's travel
+/// (0.015 mm) of that.
+#[test]
+fn thread_entry_and_exit_lengths_at_600_rpm() {
+    let src = "O0011\nG97 S600 M03\nG00 X30 Z5\nG32 Z-30 F1.5\nG00 X40\nM30\n";
+    let r = run(src);
+    check_end_points(&r);
+    check_limits(&r, false);
+    let entry = entry_length(1.5, 600.0, 2000.0, 1000.0);
+    assert!((entry - 0.056962).abs() < 1e-6, "{entry}");
+    let exit = exit_length(1.5, 600.0, 2000.0);
+    assert!((exit - 0.05625).abs() < 1e-12);
+
+    let th = thread_periods(&r.pts, 4);
+    // The index pulse (Q0: a whole turn) falls in the first period that
+    // moves Z (the thread waited for it standing).
+    let (k0, _, _) = *th.iter().find(|p| p.1 < 5.0).unwrap();
+    let theta0 = r.pts[k0].spindle_turns.floor();
+    assert!(
+        r.pts[k0 - 1].spindle_turns < theta0,
+        "no index pulse before the ramp"
+    );
+    let mut locked = 0;
+    let mut first_locked_z = None;
+    let mut last_locked_z = 0.0;
+    for w in th.windows(2) {
+        let ((_, z0, t0), (_, z1, t1)) = (w[0], w[1]);
+        if ((z0 - z1) - 1.5 * (t1 - t0)).abs() < 1e-9 {
+            locked += 1;
+            // On the helix shifted by the entry length.
+            let offset = z1 + 1.5 * (t1 - theta0) - 5.0;
+            assert!((offset - entry).abs() < 1e-6, "helix offset {offset}");
+            first_locked_z.get_or_insert(z0);
+            last_locked_z = z1;
+        }
+    }
+    // 35 mm at 15 mm/s is 2333 periods, nearly all locked.
+    assert!(locked > 2300, "{locked} locked periods");
+    let ran_in = 5.0 - first_locked_z.unwrap();
+    assert!(
+        ran_in >= entry - 1e-9 && ran_in <= entry + 0.015,
+        "locked after {ran_in} mm"
+    );
+    let ran_out = last_locked_z + 30.0;
+    assert!(
+        (ran_out - exit).abs() <= 0.015,
+        "braked over {ran_out} mm, not {exit}"
+    );
+}
+
+/// A 45° run-out at thread speed: G32 Z-20, then G32 to X33 Z-21.5
+/// (1.5 mm radial over 1.5 mm of Z). Z goes on at 15 mm/s; X, standing,
+/// must reach 15 mm/s: with 1500 mm/s² that takes 15 / 1.5 = 10 periods,
+/// its speed rising 1.5 mm/s per period. Until then it falls behind the
+/// programmed chamfer by 15·t − 750·t², 0.075 mm at t = 10 ms (v²/2a),
+/// then closes the gap; it ends exactly on X33 Z-21.5.
+#[test]
+fn a_pull_out_turns_x_within_its_acceleration() {
+    let src = "O0012\nG97 S600 M03\nG00 X30 Z5\nG32 Z-20 F1.5\nG32 X33 Z-21.5\nG00 X40\nM30\n";
+    let r = run(src);
+    check_end_points(&r);
+    check_limits(&r, false);
+    let dt = r.cfg.period_s;
+    let xr: Vec<f64> = r.pts.iter().map(|p| p.axis_x / 2.0).collect();
+    let start = r
+        .pts
+        .iter()
+        .position(|p| p.line == 5 && p.axis_x > 30.0)
+        .expect("X moves in the run-out");
+    // Periods from X's first move until it runs at 15 mm/s: 10, or 11
+    // when the corner falls inside a period (its first step is partial).
+    let periods = (start..xr.len())
+        .position(|k| (xr[k] - xr[k - 1]) / dt >= 15.0 - 1e-6)
+        .expect("X reaches thread speed")
+        + 1;
+    assert!(periods == 10 || periods == 11, "{periods} periods");
+    // The lag behind the chamfer (programmed radial X at the same Z).
+    let corner_z = -20.0;
+    let lag = r
+        .pts
+        .iter()
+        .filter(|p| p.z < corner_z && p.z > -21.5)
+        .map(|p| (15.0 + (corner_z - p.z)) - p.x / 2.0)
+        .fold(0.0, f64::max);
+    assert!(lag > 0.06 && lag < 0.08, "lag {lag}");
+    let last_thread = r.pts.iter().rev().find(|p| p.line == 5).unwrap();
+    assert_eq!((last_thread.x, last_thread.z), (33.0, -21.5));
+}
+
+/// Rigid tapping (M29, G84 Z-10 F1.5 at 300 rpm): at the bottom Z brakes
+/// from 1.5 × 5 = 7.5 mm/s within 2000 mm/s² (7.5² / 4000 = 0.0141 mm
+/// before the bottom), stands while the spindle reverses, and ramps up
+/// again after the index pulse of the reversed spindle; it never exceeds
+/// its acceleration and reaches the bottom exactly.
+#[test]
+fn a_tapping_reversal_stays_within_the_acceleration() {
+    let src =
+        "O0013\nG97 M03 S300\nG00 X0 Z5\nM29 S300\nG84 X0 Z-10 F1.5 P200\nG80\nG00 X50 Z50\nM30\n";
+    let r = run(src);
+    check_end_points(&r);
+    check_limits(&r, false);
+    let bottom = r.pts.iter().map(|p| p.z).fold(f64::MAX, f64::min);
+    assert_eq!(bottom, -10.0);
+    // The last locked period before the bottom is within a period's
+    // travel (0.0075 mm) of the braking distance.
+    let down = thread_periods(&r.pts, 5);
+    let mut last_locked = None;
+    for w in down.windows(2) {
+        let ((_, z0, t0), (_, z1, t1)) = (w[0], w[1]);
+        if z1 < z0 && ((z0 - z1) - 1.5 * (t1 - t0)).abs() < 1e-9 {
+            last_locked = Some(z1);
+        }
+    }
+    let braked = last_locked.unwrap() + 10.0;
+    let exit = exit_length(1.5, 300.0, 2000.0);
+    assert!((exit - 0.0140625).abs() < 1e-12);
+    assert!((braked - exit).abs() <= 0.0075, "braked over {braked}");
+    // The spindle turned the other way while Z stood at the bottom.
+    let at_bottom: Vec<&SetPoint> = r.pts.iter().filter(|p| p.z == -10.0).collect();
+    assert!(at_bottom.iter().any(|p| p.spindle_rpm < 0.0));
+    assert!(at_bottom.iter().any(|p| p.spindle_rpm > 0.0));
+}
+
+fn conformance() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/conformance");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        println!("skipping: {} not found", dir.display());
+        None
+    }
+}
+
+/// Every conformance program that threads or taps, run period by period
+/// on its machine (the reference one, X 1500 and Z 2000 mm/s² radial,
+/// unless the case brings a machine file): no axis set point changes its
+/// speed by more than its acceleration allows, to 1e-6 of the limit
+/// (rounding), in any period. Checked on the machine axes, so that a work
+/// origin change is no jump.
+#[test]
+fn conformance_threads_and_taps_stay_within_the_acceleration() {
+    let Some(dir) = conformance() else { return };
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "nc"))
+        .filter(|p| !p.with_extension("err").exists())
+        .collect();
+    names.sort();
+    let mut checked = Vec::new();
+    for path in names {
+        let src = std::fs::read_to_string(&path).unwrap();
+        let machine = match std::fs::read_to_string(path.with_extension("toml")) {
+            Ok(text) => Machine::from_toml(&text).unwrap(),
+            Err(_) => Machine::reference(),
+        };
+        let opts = compiler::Options {
+            machine: machine.clone(),
+            ..compiler::Options::default()
+        };
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        if compiler::compile(&name, src.as_bytes(), &opts)
+            .module
+            .is_none()
+        {
+            continue;
+        }
+        let r = run_with(&src, machine, runtime::AutoAck, |_| {}, |_, _| {}, 3600.0);
+        if !r.pts.iter().any(|p| p.motion == Motion::Thread) {
+            continue;
+        }
+        let (_, a) = worst_ratios(&r, false);
+        assert!(
+            a <= 1.0 + 1e-6,
+            "{name}: an axis reaches {a:.4} of its acceleration"
+        );
+        checked.push(name);
+    }
+    for must in [
+        "g92_thread_m24",
+        "g92_two_start",
+        "g76_internal",
+        "part_shaft_m30",
+        "g32_runout_chain",
+        "g76_m24x1_5",
+        "g78_cut_in_modes",
+        "g84_rigid_m29",
+        "g33_tapping",
+    ] {
+        assert!(checked.iter().any(|n| n == must), "{must} not checked");
+    }
+}
+
+/// W118 at run time, where S comes from a variable: lead 3 at 1500 rpm is
+/// v = 75 mm/s; Z keeps back 3 × 1000/60 = 50 of its 2000 mm/s² for the
+/// spindle, so it needs 75² / 3900 = 1.442 mm to reach thread speed and
+/// 75² / 4000 = 1.406 mm to stop; the G32 from Z1 to Z0 gives 1 mm.
+#[test]
+fn a_thread_that_starts_too_close_is_warned_at_run_time() {
+    let src = "O0014\n#1=1500\nG97 S#1 M03\nG00 X30 Z1\nG32 Z0 F3\nG00 X40\nM30\n";
+    let mut got = Vec::new();
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |ctl, _| {
+            while let Some(w) = ctl.engine_mut().take_room_warning() {
+                got.push(w);
+            }
+        },
+        60.0,
+    );
+    check_limits(&r, false);
+    assert_eq!(got.len(), 2, "{got:?}");
+    let (entry, exit) = (got[0], got[1]);
+    assert!(!entry.exit && exit.exit);
+    assert_eq!((entry.tag.line, exit.tag.line), (5, 5));
+    assert!(
+        (entry.need_mm - 5625.0 / 3900.0).abs() < 1e-9,
+        "{}",
+        entry.need_mm
+    );
+    assert!(
+        (exit.need_mm - 5625.0 / 4000.0).abs() < 1e-9,
+        "{}",
+        exit.need_mm
+    );
+    assert_eq!((entry.room_mm, exit.room_mm), (1.0, 1.0));
+    assert_eq!(
+        entry.message(),
+        "thread too short to reach its lead: at 1500 rpm Z needs 1.442 mm to reach thread speed, this block gives 1.000 mm"
+    );
+    // From Z3 it fits: no warning.
+    let mut none = true;
+    run_with(
+        &src.replace("Z1\n", "Z3\n"),
+        Machine::reference(),
+        runtime::AutoAck,
+        |_| {},
+        |ctl, _| none &= ctl.engine_mut().take_room_warning().is_none(),
+        60.0,
+    );
+    assert!(none);
+}
