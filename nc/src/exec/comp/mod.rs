@@ -258,6 +258,10 @@ fn moves_origin(nc: &Nc, p: &Parsed) -> bool {
     let Some(code) = last_code(p, gcode::WORK) else {
         return false;
     };
+    if p.one_shot() == Some(500) {
+        // G50 wins over G54–G59 in one block; the selection is ignored.
+        return false;
+    }
     let index = (code.saturating_sub(540) / 10).min(5) as usize;
     let now = nc.st.work.get(nc.st.work_index());
     nc.st.work.get(index) != now
