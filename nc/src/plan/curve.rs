@@ -509,6 +509,38 @@ impl Curve {
         whole && values.windows(2).all(|w| dir * (w[1] - w[0]) >= -SLACK)
     }
 
+    /// The unit direction of travel at parameter s (`None` where the
+    /// curve stands still).
+    pub fn direction(&self, s: f64) -> Option<Pt> {
+        let d = match *self {
+            Curve::Line { from, to } => to.sub(from),
+            Curve::Arc { sweep, .. } => {
+                // Perpendicular to the radius, the way the arc turns.
+                let p = self.at(s);
+                let Curve::Arc { centre, .. } = *self else {
+                    return None;
+                };
+                scale(left(p.sub(centre)), sweep.signum())
+            }
+            Curve::Conic {
+                e1,
+                e2,
+                t0,
+                t1,
+                kind,
+                ..
+            } => {
+                let t = t0 + (t1 - t0) * s.clamp(0.0, 1.0);
+                let (d1, d2) = match kind {
+                    ConicKind::Ellipse { .. } => (-libm::sin(t), libm::cos(t)),
+                    ConicKind::Parabola { .. } => (2.0 * t, 1.0),
+                };
+                scale(scale(e1, d1).add(scale(e2, d2)), (t1 - t0).signum())
+            }
+        };
+        crate::plan::elem::unit(d)
+    }
+
     /// The length of the part [s0, s1].
     pub fn length(&self, s0: f64, s1: f64) -> f64 {
         match *self {

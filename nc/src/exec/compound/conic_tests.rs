@@ -36,7 +36,7 @@ fn level_cuts(canon: &[String]) -> Vec<(f64, f64)> {
     moves
         .windows(2)
         .filter(|w| w[0].starts_with("RAPID") && w[1].starts_with("LINE"))
-        .map(|w| (nums(&w[0]), nums(&w[1])))
+        .map(|w| (nums(w[0]), nums(w[1])))
         .filter(|(a, b)| (a[0] - b[0]).abs() < 1e-9)
         .map(|(_, b)| (b[0], b[1]))
         .collect()
