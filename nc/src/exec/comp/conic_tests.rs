@@ -2,7 +2,9 @@
 //! note 9, G7.2 note 7). The expected distances come from the conics'
 //! equations, sampled densely here, not from the implementation: every
 //! nose-centre point printed along a compensated conic lies R from the
-//! programmed curve.
+//! programmed curve. The seed says only that conics may be compensated;
+//! how the offset is printed (compensated chords, not a conic) is our
+//! decision, written down in docs/language.md.
 
 use alloc::format;
 use alloc::string::{String, ToString};

@@ -2,7 +2,9 @@
 //! G7.2 note 7). The roughing treats a conic as a curve: a level pass ends
 //! where the level meets it, and the contour follows it with its own words.
 //! Every expected figure comes from the conic's equation in the comment
-//! above it, not from a run.
+//! above it, not from a run. The seed says only that conics may stand in
+//! G70–G73 profiles; that a pass ends on the curve itself and that pieces
+//! print with the block's own words is our decision (docs/language.md).
 
 use alloc::string::String;
 use alloc::string::ToString;
