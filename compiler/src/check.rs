@@ -206,7 +206,16 @@ impl DryRun<'_> {
                     Ok(_) => {}
                     Err(e) if compile_time(e.code) => {
                         let span = crate::profile::error_span(unit, e.at, block.span);
-                        return Err((prog.unit, error_at(&e, span)));
+                        let mut d = error_at(&e, span);
+                        if span != block.span {
+                            // The error is about a profile block: say which
+                            // cycle ran it.
+                            d = d.with_note(format!(
+                                "in the profile of the cycle at line {}",
+                                line_of(unit, block.span)
+                            ));
+                        }
+                        return Err((prog.unit, d));
                     }
                     Err(_) => return Ok(Flow::End),
                 }
@@ -244,5 +253,15 @@ impl DryRun<'_> {
 }
 
 pub fn error_at(e: &NcError, span: Span) -> Diagnostic {
-    Diagnostic::error(crate::codes::name(e.code), span, e.message.clone())
+    let d = Diagnostic::error(crate::codes::name(e.code), span, e.message.clone());
+    match &e.help {
+        Some(help) => d.with_help(help.clone()),
+        None => d,
+    }
+}
+
+/// The 1-based line of a span's start.
+fn line_of(unit: &Unit, span: Span) -> usize {
+    let end = (span.start as usize).min(unit.bytes.len());
+    1 + unit.bytes[..end].iter().filter(|&&b| b == b'\n').count()
 }

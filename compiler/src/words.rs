@@ -289,7 +289,12 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
             format!("no other G code may stand in a {name} block"),
         ));
     }
-    let h = words.iter().find(|w| is(w, 'H'));
+    // The H form starts with H: an H after P is the call's argument #11
+    // (seed 003: `G65 P9100 H5` passes H5).
+    let h = words
+        .iter()
+        .find(|w| is(w, 'H') || is(w, 'P'))
+        .filter(|w| is(w, 'H'));
     if let (Some(h), false) = (h, modal) {
         let find = |c: char| words.iter().find(|w| is(w, c));
         if let Some(extra) = words

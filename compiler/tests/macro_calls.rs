@@ -107,3 +107,15 @@ fn macro_a_h_codes_compute_and_jump() {
     let (canon, _) = run(src);
     assert_eq!(canon, ["RAPID X=7 Z=0", "STOP KIND=M30"]);
 }
+
+#[test]
+fn h_after_p_is_argument_11_not_the_h_form() {
+    // Seed 003, argument specification I: H → #11. The block is a macro
+    // call because P (the program) comes first; the H form starts with H.
+    // O9100 moves to X = #11 (5) and Z = #1 (vacant: the word is left
+    // out and Z stays 0; then 1).
+    let src = "G65 P9100 H5\nG65 P9100 A1 H5\nM30\nO9100\nG00 X#11 Z#1\nM99\n";
+    let (canon, status) = run(src);
+    assert_eq!(status, Status::Done);
+    assert_eq!(canon, ["RAPID X=5 Z=0", "RAPID X=5 Z=1", "STOP KIND=M30"]);
+}

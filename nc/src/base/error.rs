@@ -16,6 +16,9 @@ pub struct NcError {
     /// The tag of the profile block (`Nc::push_profile`) that the error is
     /// about, when it is about one rather than the block executing.
     pub at: Option<u32>,
+    /// The way out, when the alarm knows one (the compiler prints it as
+    /// the diagnostic's help).
+    pub help: Option<String>,
 }
 
 impl NcError {
@@ -33,6 +36,7 @@ impl NcError {
             code,
             message: message.into(),
             at: None,
+            help: None,
         }
     }
 
@@ -44,6 +48,12 @@ impl NcError {
     /// The same error, about profile block `tag`.
     pub fn at(mut self, tag: u32) -> NcError {
         self.at = Some(tag);
+        self
+    }
+
+    /// The same error with a fix to suggest.
+    pub fn with_help(mut self, help: impl Into<String>) -> NcError {
+        self.help = Some(help.into());
         self
     }
 

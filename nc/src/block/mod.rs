@@ -292,7 +292,9 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
             }
         }
     }
-    if p.has(b'X') && p.has(b'U') {
+    // In G04 X and U are both the dwell in seconds and X wins (seed G04
+    // note 3), so only moves forbid the pair.
+    if p.has(b'X') && p.has(b'U') && p.one_shot() != Some(40) {
         return fail(
             Alarm::IncompatibleWords,
             "X and U in one block: write the X end point either absolute or incremental",

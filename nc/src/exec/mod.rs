@@ -26,7 +26,7 @@ use crate::base::gcode::{self, Code};
 use crate::base::geom::{self, Element};
 use crate::base::machine::{ArcWithoutCenter, DecimalPoint, Machine, SpindleType};
 use crate::base::point::Pt;
-use crate::base::words::{Word, NO_POINT};
+use crate::base::words::{Word, LITERAL, NO_POINT};
 use crate::block::{self, round_half_away, Parsed};
 use crate::exec::state::State;
 use crate::modal::PathMode;
@@ -193,11 +193,7 @@ impl Nc {
                     self.st.modal.set(group, code);
                     crate::exec::stroke::select(self, code, p);
                 }
-                gcode::WORK => {
-                    let before = self.st.origin();
-                    self.st.modal.set(group, code);
-                    self.print_origin_if_moved(before, sink);
-                }
+                gcode::WORK => self.select_work(code, p, sink),
                 gcode::MOTION => {
                     self.st.modal.set(group, code);
                     // Any group-01 code cancels the drilling cycles.
@@ -251,6 +247,20 @@ impl Nc {
         (1000.0 * self.st.css / (core::f64::consts::PI * x.abs())).min(limit)
     }
 
+    /// G54–G59: the tool stays where it is on the machine and its
+    /// coordinates change to the new system's. With G50 in the block the
+    /// selection is ignored and G50 alone acts (seed 000, G54–G59 note 6).
+    fn select_work(&mut self, code: Code, p: &Parsed, sink: &mut dyn Sink) {
+        if p.one_shot() == Some(500) {
+            return;
+        }
+        let before = self.st.origin();
+        let machine = self.st.machine_pos();
+        self.st.modal.set(gcode::WORK, code);
+        self.st.pos = machine.sub(self.st.origin());
+        self.print_origin_if_moved(before, sink);
+    }
+
     fn print_origin_if_moved(&self, before: Pt, sink: &mut dyn Sink) {
         let now = self.st.origin();
         if (now.r - before.r).abs() * 2.0 > 1e-6 || (now.z - before.z).abs() > 1e-6 {
@@ -283,7 +293,7 @@ impl Nc {
                         m => sink.emit(Event::M(m)),
                     }
                 }
-                a if a == b'S' - b'A' => self.s_word(w.value, g50, sink)?,
+                a if a == b'S' - b'A' => self.s_word(w, g50, sink)?,
                 a if a == b'T' - b'A' => self.t_word(w.value, sink)?,
                 _ => {}
             }
@@ -296,7 +306,8 @@ impl Nc {
         sink.emit(Event::Spindle(dir));
     }
 
-    fn s_word(&mut self, s: f64, g50: bool, sink: &mut dyn Sink) -> Result<(), NcError> {
+    fn s_word(&mut self, w: &Word, g50: bool, sink: &mut dyn Sink) -> Result<(), NcError> {
+        let s = w.value;
         if s < 0.0 {
             return fail(Alarm::ValueOutOfRange, "S must not be negative");
         }
@@ -314,10 +325,14 @@ impl Nc {
         if self.machine.spindle.r#type == SpindleType::Gear {
             let n = round_half_away(s);
             if !(0.0..=4.0).contains(&n) {
-                return fail(
-                    Alarm::ValueOutOfRange,
-                    format!("gear code S{n} outside S00…S04"),
-                );
+                // A written S05 is the literal's fault (E1010, which the dry
+                // run reports at compile time); a computed one is E5010.
+                let alarm = if w.flags & LITERAL != 0 {
+                    Alarm::LiteralOutOfRange
+                } else {
+                    Alarm::ValueOutOfRange
+                };
+                return fail(alarm, format!("gear code S{n} outside S00…S04"));
             }
             sink.emit(Event::Gear { n: n as u32 });
             return Ok(());
@@ -394,7 +409,10 @@ impl Nc {
             };
         }
         let corner = contour::corner_word(self, code, p)?;
-        let arc_words = matches!(code, 20 | 30) && (p.has(b'I') || p.has(b'K') || p.has(b'R'));
+        // G05 with a mid point and no end point ends where it starts: a
+        // full circle, which it cannot make (E4004 below).
+        let arc_words = (matches!(code, 20 | 30) && (p.has(b'I') || p.has(b'K') || p.has(b'R')))
+            || (matches!(code, 50 | 51) && (p.has(b'I') || p.has(b'K')));
         let angle_words = matches!(code, 0 | 10) && contour::has_angle(p);
         if !p.has_axis() && !arc_words && !angle_words && !self.st.c_block {
             return Ok(());

@@ -14,7 +14,7 @@ const SLACK_MM: f64 = 0.001;
 
 /// The unit vector of a conic's axis at `deg` degrees from +Z, turning in
 /// the G02 sense (towards −X in the ZX view, dialect.md §2.4).
-fn axis(deg: f64) -> Pt {
+pub(crate) fn axis(deg: f64) -> Pt {
     let a = deg.to_radians();
     Pt::new(-libm::sin(a), libm::cos(a))
 }

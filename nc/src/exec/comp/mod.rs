@@ -17,6 +17,9 @@ use crate::plan::offset;
 pub(crate) use crate::plan::offset::Tool;
 
 mod cancel;
+pub(crate) mod conic;
+#[cfg(test)]
+mod conic_tests;
 mod corner;
 mod cycle;
 mod print;
@@ -212,6 +215,23 @@ pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), 
     }
 }
 
+/// Whether a conic block (G6.2/G6.3, G7.2/G7.3) runs compensated. Like an
+/// arc it cannot start, cancel or change the compensation (E4031).
+pub(crate) fn conic_compensated(nc: &Nc) -> Result<bool, NcError> {
+    let mode = nc.st.modal.comp().side();
+    let what = match (nc.st.comp.running, mode) {
+        (None, None) => return Ok(false),
+        (Some(tool), Some(side)) if tool.side == side => return Ok(true),
+        (None, Some(_)) => "start",
+        (Some(_), Some(_)) => "change sides",
+        (Some(_), None) => "be cancelled",
+    };
+    Err(NcError::new(
+        Alarm::CompOnArc,
+        format!("nose-radius compensation cannot {what} on an ellipse or parabola: use a G00 or G01 move"),
+    ))
+}
+
 /// The last code of modal group `g` the block writes.
 fn last_code(p: &Parsed, g: u8) -> Option<Code> {
     p.gs()
@@ -258,6 +278,10 @@ fn moves_origin(nc: &Nc, p: &Parsed) -> bool {
     let Some(code) = last_code(p, gcode::WORK) else {
         return false;
     };
+    if p.one_shot() == Some(500) {
+        // G50 wins over G54–G59 in one block; the selection is ignored.
+        return false;
+    }
     let index = (code.saturating_sub(540) / 10).min(5) as usize;
     let now = nc.st.work.get(nc.st.work_index());
     nc.st.work.get(index) != now

@@ -9,6 +9,8 @@
 use alloc::format;
 use alloc::vec::Vec;
 
+#[cfg(test)]
+mod conic_tests;
 mod finish;
 mod out;
 mod pattern;
@@ -17,6 +19,7 @@ mod profile;
 mod rough;
 #[cfg(test)]
 mod tests;
+mod turn;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Code;

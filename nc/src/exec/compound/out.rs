@@ -10,7 +10,7 @@
 use crate::base::event::{Dir, Event};
 use crate::base::point::Pt;
 use crate::exec::{Nc, Sink};
-use crate::plan::curve::{swap, Curve, EPS};
+use crate::plan::curve::{swap, ConicKind, Curve, EPS};
 
 pub struct Out<'a> {
     pub nc: &'a mut Nc,
@@ -102,6 +102,38 @@ impl Out<'_> {
                     z: to.z,
                     cx: centre.x(),
                     cz: centre.z,
+                });
+            }
+            Curve::Conic { kind, cw, .. } => {
+                if c.length(s0, s1) <= EPS {
+                    return;
+                }
+                // A piece of an ellipse (≤ 180°) or parabola is the same
+                // curve between its own ends: the block's words print it.
+                let to = self.real(c.at(s1));
+                let dir = if cw != self.mirrored {
+                    Dir::Cw
+                } else {
+                    Dir::Ccw
+                };
+                self.nc.feed_due(self.sink);
+                self.nc.st.pos = to;
+                self.sink.emit(match kind {
+                    ConicKind::Ellipse { a, b, q } => Event::Ellipse {
+                        dir,
+                        x: to.x(),
+                        z: to.z,
+                        a,
+                        b,
+                        q,
+                    },
+                    ConicKind::Parabola { p, q } => Event::Parabola {
+                        dir,
+                        x: to.x(),
+                        z: to.z,
+                        p,
+                        q,
+                    },
                 });
             }
         }

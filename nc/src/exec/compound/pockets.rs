@@ -8,6 +8,7 @@ use alloc::vec::Vec;
 
 use super::out::Out;
 use super::profile::{tail_start, Seg};
+use super::turn::{turns_back, Frame};
 use super::{too_many, Job};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
@@ -154,7 +155,7 @@ pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
         sx,
         sz,
     };
-    let deepest = check(&k)?;
+    let deepest = check(&k, &Frame::of(job, out.mirrored))?;
     too_many(deepest / job.dd)?;
     out.rapid(a1);
     let mut level = 1.0;
@@ -173,17 +174,14 @@ pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
 }
 
 /// §15.1 checks before anything moves; the largest depth D.
-fn check(k: &Contour) -> Result<f64, NcError> {
+fn check(k: &Contour, frame: &Frame) -> Result<f64, NcError> {
     let mut pockets = 0;
     let mut falling = false;
     let mut deepest: f64 = 0.0;
     for seg in k.segs {
         let c = &seg.curve;
         if !c.monotone(Axis::Z, k.sz, 0.0, 1.0) {
-            return fail(
-                Alarm::BadRoughing,
-                "the profile is not monotonic along the cut (type II)",
-            );
+            return Err(turns_back(frame, seg, Axis::Z, k.sz, 0.0, 1.0));
         }
         let mut stops = vec![0.0];
         stops.extend(c.extremes(Axis::R));

@@ -24,6 +24,9 @@ pub struct Seg {
     pub rapid: bool,
     /// The element of the first (ns) block.
     pub ns: bool,
+    /// The tag of the profile block it comes from (`Nc::push_profile`),
+    /// for errors about it.
+    pub tag: u32,
 }
 
 impl Seg {
@@ -130,14 +133,15 @@ pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> 
             code = c;
         }
         let corner = contour::corner_word(nc, code, &p).map_err(|e| e.at(*tag))?;
-        let Some(el) = element(nc, code, &p, pos).map_err(|e| e.at(*tag))? else {
+        let Some(curve) = element(nc, code, &p, pos).map_err(|e| e.at(*tag))? else {
             continue;
         };
-        pos = el.end();
+        pos = curve.end();
         let seg = Seg {
-            curve: Curve::new(el),
+            curve,
             rapid: code == 0,
             ns: i == 0,
+            tag: *tag,
         };
         match waiting.take() {
             // A G00 takes no corner (W112): the waiting one is dropped.
@@ -156,13 +160,22 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
         segs.push(next);
         return Ok(());
     };
-    match contour::corner(&prev.curve.element(), &next.curve.element(), c)? {
+    let (Some(e1), Some(e2)) = (prev.curve.element(), next.curve.element()) else {
+        return fail(
+            Alarm::NotSupportedYet,
+            "a chamfer or rounding next to an ellipse or parabola in a G71–G73 profile is not supported yet",
+        );
+    };
+    match contour::corner(&e1, &e2, c)? {
         Some((e1, inserted, e2)) => {
             prev.curve = Curve::new(e1);
+            // The corner word stands on the earlier block.
+            let tag = prev.tag;
             segs.push(Seg {
                 curve: Curve::new(inserted),
                 rapid: false,
                 ns: false,
+                tag,
             });
             segs.push(Seg {
                 curve: Curve::new(e2),
@@ -175,13 +188,14 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
     Ok(())
 }
 
-/// The element one profile block describes, `None` when it does not move.
-fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>, NcError> {
+/// The curve one profile block describes, `None` when it does not move.
+fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Curve>, NcError> {
     let to = nc.target_from(p, from);
     match code {
         0 | 10 => {
             let Some(deg) = contour::angle_of(p) else {
-                return Ok(p.has_axis().then_some(Element::Line { from, to }));
+                let line = Element::Line { from, to };
+                return Ok(p.has_axis().then_some(Curve::new(line)));
             };
             // The one-block angle forms (dialect.md §5.2), the same
             // geometry as outside a profile.
@@ -199,18 +213,20 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
                     )
                 }
             };
-            Ok(Some(Element::Line { from, to: end }))
+            Ok(Some(Curve::new(Element::Line { from, to: end })))
         }
-        20 | 30 => nc.arc_element(from, code == 20, to, p),
-        50 | 51 => three_point(nc, code == 51, p, from, to).map(Some),
-        62 | 63 | 72 | 73 => fail(
-            Alarm::NotSupportedYet,
-            format!("{} in a G71–G73 profile is not supported yet", gcode::name(code)),
-        ),
+        20 | 30 => Ok(nc.arc_element(from, code == 20, to, p)?.map(Curve::new)),
+        50 | 51 => three_point(nc, code == 51, p, from, to).map(|e| Some(Curve::new(e))),
+        // Seed 000, G6.2 note 8 and G7.2 note 7: conics may shape a profile.
+        62 | 63 | 72 | 73 if p.has_axis() => {
+            let (ellipse, cw) = (matches!(code, 62 | 63), matches!(code, 62 | 72));
+            contour::conic::profile_curve(nc, ellipse, cw, p, from, to)
+        }
+        62 | 63 | 72 | 73 => Ok(None),
         _ => fail(
             Alarm::BadProfile,
             format!(
-                "{} may not stand in a G71–G73 profile: only G00, G01, G02, G03 (and G05) describe it",
+                "{} may not stand in a G71–G73 profile: only G00, G01, G02, G03, G05, G6.2/G6.3 and G7.2/G7.3 describe it",
                 gcode::name(code)
             ),
         ),

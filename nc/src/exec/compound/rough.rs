@@ -5,6 +5,7 @@ use alloc::vec::Vec;
 
 use super::out::Out;
 use super::profile::{tail_start, Seg};
+use super::turn::{turns_back, Frame};
 use super::{too_many, Job};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
@@ -30,8 +31,9 @@ pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
             "the profile makes no move along Z (G71) / X (G72) to cut",
         );
     }
+    let frame = Frame::of(job, out.mirrored);
     if job.k1 {
-        check_monotone(body, sx, sz)?;
+        check_monotone(&frame, body, sx, sz)?;
     }
     too_many((b1.r - a1.r).abs() / job.dd)?;
     let c1 = rest.last().map_or(b1, |s| s.curve.end());
@@ -44,7 +46,7 @@ pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
             break;
         }
         out.infeed(ns.rapid, Pt::new(level, a1.z));
-        let zk = level_end(rest, level, sx, sz)?.unwrap_or(c1.z);
+        let zk = level_end(&frame, rest, level, sx, sz)?.unwrap_or(c1.z);
         let back = level - sx * job.e;
         out.line(Pt::new(level, zk));
         out.line(Pt::new(back, zk - sz * job.e));
@@ -61,10 +63,13 @@ pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
 
 /// K1: the profile without its tail never goes back into the material
 /// (deeper along r) nor back against the cut (along z).
-fn check_monotone(body: &[Seg], sx: f64, sz: f64) -> Result<(), NcError> {
+fn check_monotone(frame: &Frame, body: &[Seg], sx: f64, sz: f64) -> Result<(), NcError> {
     for s in body {
-        if !s.curve.monotone(Axis::R, -sx, 0.0, 1.0) || !s.curve.monotone(Axis::Z, sz, 0.0, 1.0) {
-            return fail(Alarm::BadRoughing, "the profile is not monotonic (K1)");
+        if !s.curve.monotone(Axis::Z, sz, 0.0, 1.0) {
+            return Err(turns_back(frame, s, Axis::Z, sz, 0.0, 1.0));
+        }
+        if !s.curve.monotone(Axis::R, -sx, 0.0, 1.0) {
+            return Err(turns_back(frame, s, Axis::R, -sx, 0.0, 1.0));
         }
     }
     Ok(())
@@ -86,16 +91,22 @@ fn first_hit(c: &Curve, level: f64, sx: f64) -> Option<f64> {
 /// Step 2.2: walking P′ from B′, the Z where the level cut ends, `None`
 /// when P′ never comes back to the level. The stretch walked before that
 /// point must run with the cut and never go deeper (E4009, dialect.md §4.8).
-fn level_end(rest: &[Seg], level: f64, sx: f64, sz: f64) -> Result<Option<f64>, NcError> {
+fn level_end(
+    frame: &Frame,
+    rest: &[Seg],
+    level: f64,
+    sx: f64,
+    sz: f64,
+) -> Result<Option<f64>, NcError> {
     for s in rest {
         let hit = first_hit(&s.curve, level, sx);
         let upto = hit.unwrap_or(1.0);
         let c = &s.curve;
-        if !c.monotone(Axis::Z, sz, 0.0, upto) || !c.monotone(Axis::R, -sx, 0.0, upto) {
-            return fail(
-                Alarm::BadRoughing,
-                "the profile is not monotonic: it turns back before the level pass reaches it",
-            );
+        if !c.monotone(Axis::Z, sz, 0.0, upto) {
+            return Err(turns_back(frame, s, Axis::Z, sz, 0.0, upto));
+        }
+        if !c.monotone(Axis::R, -sx, 0.0, upto) {
+            return Err(turns_back(frame, s, Axis::R, -sx, 0.0, upto));
         }
         if let Some(s) = hit {
             return Ok(Some(c.at(s).z));

@@ -375,7 +375,16 @@ fn a_pocket_in_type_i_stops_the_roughing() {
     let e = nc
         .exec(&block("G71 P1 Q2 U0 F0.2"), &mut events)
         .unwrap_err();
-    assert_eq!((e.code, e.at), (4009, None));
+    // The culprit is the X24 block (tag 4): it runs from X30 down to X24,
+    // and the way out is type II.
+    assert_eq!((e.code, e.at), (4009, Some(4)));
+    assert!(
+        e.message
+            .ends_with("this block runs back along X from X30 to X24"),
+        "{}",
+        e.message
+    );
+    assert!(e.help.as_deref().is_some_and(|h| h.contains("type II")));
     assert_eq!(
         events,
         vec![Event::Rapid {

@@ -12,7 +12,7 @@
 
 use alloc::vec;
 
-mod conic;
+pub(crate) mod conic;
 mod queue;
 #[cfg(test)]
 mod tests;

@@ -133,6 +133,17 @@ impl ContourState {
         }
     }
 
+    /// The last waiting compensated element (not a start-up) and its
+    /// tool: a compensated conic meets it (`comp::conic`).
+    pub(crate) fn last_compensated(&self) -> Option<(Element, crate::exec::comp::Tool)> {
+        let m = self.items.iter().rev().find_map(|i| match i {
+            Item::Move(m) => Some(m),
+            _ => None,
+        })?;
+        let leg = m.comp.as_ref()?;
+        (leg.role == crate::exec::comp::Role::Body).then_some((m.elem, leg.tool))
+    }
+
     /// A G04 under compensation: the corner words of waiting elements are
     /// ignored, as a flush would ignore them (W112).
     pub(crate) fn drop_corners(&mut self) {
