@@ -7,7 +7,7 @@ use crate::words::{self, Call, NcWord, WordValue};
 use grammar::ast::{Body, Value};
 use grammar::{Diagnostic, Span};
 use nc::words::Word;
-use nc::{Event, Machine, Nc, NcError, Sink};
+use nc::{Machine, Nc, NcError};
 use smallvec::SmallVec;
 
 /// Checks the literal words of a block (a computed word is checked when
@@ -69,12 +69,6 @@ pub fn is_static(units: &[Unit], programs: &[Program]) -> bool {
     })
 }
 
-struct Discard;
-
-impl Sink for Discard {
-    fn emit(&mut self, _: Event) {}
-}
-
 /// Errors a dry run reports at compile time; the others (value and
 /// machine faults) stay run-time alarms.
 fn compile_time(code: u16) -> bool {
@@ -92,21 +86,26 @@ struct DryRun<'a> {
     nc: Nc,
     steps: u64,
     skip: [bool; 9],
+    warner: crate::dry_warn::Warner,
 }
 
 const STEP_LIMIT: u64 = 200_000;
 
-/// Runs a static program through the kernel; the first compile-time error
-/// with its unit.
-pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Option<(usize, Diagnostic)> {
+/// Runs a static program through the kernel: the warnings it finds
+/// (dry_warn), then the first compile-time error, each with its unit.
+pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize, Diagnostic)> {
     let mut run = DryRun {
         units,
         programs,
         nc: Nc::new(m.clone()),
         steps: 0,
         skip: m.operator.block_skip,
+        warner: Default::default(),
     };
-    run.program(0, 0).err()
+    let error = run.program(0, 0).err();
+    let mut found = std::mem::take(&mut run.warner.diags);
+    found.extend(error);
+    found
 }
 
 impl DryRun<'_> {
@@ -149,9 +148,21 @@ impl DryRun<'_> {
                 (plain_literals(ws), None, None)
             };
             if !lits.is_empty() {
-                match self.nc.exec(&lits, &mut Discard) {
+                let before = self.warner.before(&self.nc);
+                let mut counts = crate::dry_warn::Counts::default();
+                let result = self.nc.exec(&lits, &mut counts);
+                if result.is_ok() {
+                    let block = (ws.as_slice(), block.span);
+                    (self.warner).after(prog.unit, &self.nc, block, &lits, &counts, before);
+                }
+                match result {
                     Ok(out) if out.end.is_some() => return Ok(Flow::End),
                     Ok(_) => {}
+                    // A feed move at F = 0 (E7001 when run): W107, and the
+                    // run goes on, the block done.
+                    Err(e) if e.code == nc::error::Alarm::ZeroFeed.code() => {
+                        self.warner.zero_feed(prog.unit, block.span);
+                    }
                     Err(e) if compile_time(e.code) => {
                         let span = crate::profile::error_span(unit, e.at, block.span);
                         return Err((prog.unit, error_at(&e, span)));

@@ -11,11 +11,14 @@ pub mod check;
 pub mod codes;
 pub mod consts;
 pub mod data_setting;
+pub mod dry_warn;
 pub mod expr;
 pub mod hash;
 pub mod link;
+pub mod lint;
 pub mod lower;
 pub mod profile;
+pub mod recursion;
 pub mod words;
 
 use grammar::{Diagnostic, SourceFile};
@@ -76,6 +79,7 @@ pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
     let mut units = vec![parse_unit(name, bytes.into(), 0, &mut diags)];
     let mut programs = link::split(0, &units[0], &mut diags);
     link_libraries(&mut units, &mut programs, opts, &mut diags);
+    diags.extend(recursion::check(&units, &programs));
     if has_errors(&diags) {
         return Compiled {
             module: None,
@@ -110,9 +114,10 @@ fn lower_and_check(
         let table = &opts.machine.r#macro.g_code_macros;
         let wanted =
             !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
-        wanted
-            .then(|| check::dry_run(units, programs, &opts.machine))
-            .flatten()
+        match wanted {
+            true => check::dry_run(units, programs, &opts.machine),
+            false => Vec::new(),
+        }
     };
     let parallel = block_count(programs) >= PARALLEL_BLOCKS;
     std::thread::scope(|s| {
@@ -129,13 +134,15 @@ fn lower_and_check(
             Some(run) => match run.join() {
                 Ok(found) => found,
                 // (A run the sequential order would not have made.)
-                Err(_) if failed => None,
+                Err(_) if failed => Vec::new(),
                 Err(panic) => std::panic::resume_unwind(panic),
             },
             None if !failed => dry_run(),
-            None => None,
+            None => Vec::new(),
         };
-        diags.extend(found.filter(|_| !failed));
+        if !failed {
+            diags.extend(found);
+        }
         if let (Some(Err(e)), false) = (verified, has_errors(diags)) {
             diags.push((
                 0,
@@ -323,7 +330,7 @@ mod tests {
     /// A static program of more than `PARALLEL_BLOCKS` blocks, `first`
     /// after the set-up block, an arc of too small a radius at the end.
     fn large(first: &str) -> String {
-        let mut src = format!("G98 G00 X40 Z2\n{first}\n");
+        let mut src = format!("G98 G00 X40 Z2 F100\n{first}\n");
         for _ in 0..PARALLEL_BLOCKS {
             src.push_str("G01 X40 Z1\n");
         }
