@@ -24,7 +24,6 @@ const UNCHECKED: &[(&str, &str)] = &[
         "E6006",
         "raised by a timed run of gbvm (cli/tests/hardening.rs), not the VM",
     ),
-    ("E7001", "raised by the interpolation runtime, not the VM"),
     ("E7002", "raised by the interpolation runtime, not the VM"),
     ("E7003", "raised by the interpolation runtime, not the VM"),
     ("E7005", "needs a machine with tool-life groups"),

@@ -352,6 +352,65 @@ mod tests {
     }
 
     #[test]
+    fn a_line_through_the_area_stops_before_it() {
+        // From X150 Z10 to X-20 Z10: both ends lie outside the box
+        // (X −10…100 is the inside; X −20 is beyond it), the line runs
+        // straight through it along Z10 (inside Z −20…50).
+        let (canon, code) = run(&[
+            "G00 X150 Z10",
+            "G22 X100. Z50. I-10. K-20.",
+            "G98 G01 X-20 F100",
+        ]);
+        assert_eq!(code, 7002);
+        assert_eq!(canon, ["RAPID X=150 Z=10"]);
+        // Along an edge (Z50, the boundary) the path stays allowed.
+        let (_, code) = run(&[
+            "G00 X150 Z50",
+            "G22 X100. Z50. I-10. K-20.",
+            "G98 G01 X-20 F100",
+        ]);
+        assert_eq!(code, 0);
+    }
+
+    #[test]
+    fn an_arc_bulging_into_the_area_stops_before_it() {
+        // Box X 0…40 (r 0…20), Z −20…−10. The G02 from X60 Z0 to X60 Z-30
+        // with R15 has its centre at r 30 − √(15² − 15²) = r 30, Z −15
+        // (a half circle): its lowest point is r 15 (X30) at Z −15, inside
+        // the box, although both ends (X60) lie outside it.
+        let (canon, code) = run(&[
+            "G00 X60 Z0",
+            "G22 X40. Z-10. I0. K-20.",
+            "G98 G02 X60 Z-30 R15 F100",
+        ]);
+        assert_eq!(code, 7002);
+        assert_eq!(canon, ["RAPID X=60 Z=0"]);
+        // The same arc the other way round (G03) bulges away from it.
+        let (_, code) = run(&[
+            "G00 X60 Z0",
+            "G22 X40. Z-10. I0. K-20.",
+            "G98 G03 X60 Z-30 R15 F100",
+        ]);
+        assert_eq!(code, 0);
+    }
+
+    #[test]
+    fn crossing_tests_by_hand() {
+        let a = area(false);
+        // Straight through the inside, both ends outside.
+        assert!(a.crossed_by((-20.0, 0.0), (120.0, 0.0)));
+        // Past a corner, outside: from X110 Z40 to X90 Z60 the line
+        // X + Z = 150 meets X = 100 at Z50, the corner itself, and stays
+        // outside elsewhere.
+        assert!(!a.crossed_by((110.0, 40.0), (90.0, 60.0)));
+        // Cutting the corner off: X + Z = 140 runs inside from X100 Z40
+        // to X90 Z50.
+        assert!(a.crossed_by((110.0, 30.0), (80.0, 60.0)));
+        // Forbidden outside: a line between two inside points stays in.
+        assert!(!area(true).crossed_by((0.0, 0.0), (90.0, 40.0)));
+    }
+
+    #[test]
     fn g23_switches_the_check_off() {
         let (canon, code) = run(&[
             "G00 X150 Z10",

@@ -76,3 +76,51 @@ impl Sink for Watch<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::base::event::Event;
+    use crate::exec::cycles::testing::{words, Lathe};
+    use alloc::string::{String, ToString};
+    use alloc::vec::Vec;
+
+    /// The canon of every block, the faulty one's events included (they
+    /// reach the sink before its alarm), and the alarm's code.
+    fn run(blocks: &[&str]) -> (Vec<String>, u16) {
+        let mut m = Lathe::new();
+        let mut events: Vec<Event> = Vec::new();
+        for b in blocks {
+            if let Err(e) = m.nc.exec(&words(b), &mut events) {
+                return (events.iter().map(|e| e.to_string()).collect(), e.code);
+            }
+        }
+        (events.iter().map(|e| e.to_string()).collect(), 0)
+    }
+
+    #[test]
+    fn a_feed_move_without_f_is_printed_then_stops() {
+        // No F since power-on: the move is printed as it is (FEED F=0),
+        // then E7001 (dialect.md §4.1, G01).
+        let (canon, code) = run(&["G98 G01 X10", "G00 X50"]);
+        assert_eq!(code, 7001);
+        assert_eq!(canon, ["FEED F=0 MODE=MIN", "LINE X=10 Z=0"]);
+    }
+
+    #[test]
+    fn rapids_and_a_move_that_goes_nowhere_run_at_f0() {
+        let (canon, code) = run(&["G00 X10 Z5", "G98 G01 X10 Z5", "G00 X20"]);
+        assert_eq!(code, 0, "{canon:?}");
+    }
+
+    #[test]
+    fn a_roughing_cycle_at_f0_stops_after_its_first_feed_move() {
+        // G90 X40 Z-10 from X50 Z2: a rapid to X40, then the first feed
+        // leg to Z-10, then E7001; the rest of the cycle is not printed.
+        let (canon, code) = run(&["G00 X50 Z2", "G98 G90 X40 Z-10"]);
+        assert_eq!(code, 7001);
+        assert_eq!(
+            canon,
+            ["RAPID X=50 Z=2", "RAPID X=40 Z=2", "FEED F=0 MODE=MIN", "LINE X=40 Z=-10"]
+        );
+    }
+}
