@@ -41,7 +41,11 @@ fn same_outcome(tag: &str, src: &str, code: i32, alarm: Option<&str>) {
     for args in runs {
         let out = tool(env!("CARGO_BIN_EXE_gbvm"), args, &d);
         let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
-        assert_eq!(out.status.code(), Some(code), "{args:?}\n{stdout}\n{stderr}");
+        assert_eq!(
+            out.status.code(),
+            Some(code),
+            "{args:?}\n{stdout}\n{stderr}"
+        );
         let Some(alarm) = alarm else { continue };
         let tag = format!("alarm[{alarm}]");
         assert_eq!(stderr.matches(&tag).count(), 1, "{args:?}: {stderr}");
@@ -49,7 +53,10 @@ fn same_outcome(tag: &str, src: &str, code: i32, alarm: Option<&str>) {
             .lines()
             .filter(|l| l.starts_with(char::is_alphabetic) && l.contains('='))
             .collect();
-        let alarms = canon_lines.iter().filter(|l| l.starts_with("ALARM")).count();
+        let alarms = canon_lines
+            .iter()
+            .filter(|l| l.starts_with("ALARM"))
+            .count();
         if canon_lines.is_empty() {
             continue; // trace and statistics only
         }

@@ -120,7 +120,12 @@ mod tests {
         assert_eq!(code, 7001);
         assert_eq!(
             canon,
-            ["RAPID X=50 Z=2", "RAPID X=40 Z=2", "FEED F=0 MODE=MIN", "LINE X=40 Z=-10"]
+            [
+                "RAPID X=50 Z=2",
+                "RAPID X=40 Z=2",
+                "FEED F=0 MODE=MIN",
+                "LINE X=40 Z=-10"
+            ]
         );
     }
 }
