@@ -89,12 +89,14 @@ struct DryRun<'a> {
     skip: [bool; 9],
     /// W118 on the canon events.
     room: RoomCheck,
+    /// W105–W112, W114 on what each block did.
+    warner: crate::dry_warn::Warner,
 }
 
 const STEP_LIMIT: u64 = 200_000;
 
-/// Runs a static program through the kernel: the warnings it finds (W118)
-/// and the first compile-time error, with their units.
+/// Runs a static program through the kernel: the warnings it finds
+/// (dry_warn, W118), then the first compile-time error, each with its unit.
 ///
 /// Block skip is the operator's switch, read as each block is, so a
 /// program with `/n` blocks runs once per state that matters: as the
@@ -121,10 +123,12 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
             steps: 0,
             skip,
             room: RoomCheck::new(m),
+            warner: Default::default(),
         };
         let error = run.program(0, 0).err();
         if skip == first {
             run.room.finish();
+            found.append(&mut run.warner.diags);
             found.append(&mut run.room.warnings);
         }
         if let Some((unit, d)) = error {
@@ -138,6 +142,20 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
         }
     }
     found
+}
+
+/// The dry run's sink: the warnings' counts and the thread-room check
+/// each see every event.
+struct Watchers<'a> {
+    counts: &'a mut crate::dry_warn::Counts,
+    room: &'a mut RoomCheck,
+}
+
+impl nc::Sink for Watchers<'_> {
+    fn emit(&mut self, e: nc::Event) {
+        self.room.event(&e);
+        self.counts.emit(e);
+    }
 }
 
 /// Which switch state an error of a later dry run belongs to.
@@ -201,9 +219,25 @@ impl DryRun<'_> {
             if !lits.is_empty() {
                 self.room.unit = prog.unit;
                 self.room.span = block.span;
-                match self.nc.exec(&lits, &mut self.room) {
+                let before = self.warner.before(&self.nc);
+                let mut counts = crate::dry_warn::Counts::default();
+                let mut sink = Watchers {
+                    counts: &mut counts,
+                    room: &mut self.room,
+                };
+                let result = self.nc.exec(&lits, &mut sink);
+                if result.is_ok() {
+                    let block = (ws.as_slice(), block.span);
+                    (self.warner).after(prog.unit, &self.nc, block, &lits, &counts, before);
+                }
+                match result {
                     Ok(out) if out.end.is_some() => return Ok(Flow::End),
                     Ok(_) => {}
+                    // A feed move at F = 0 (E7001 when run): W107, and the
+                    // run goes on, the block done.
+                    Err(e) if e.code == nc::error::Alarm::ZeroFeed.code() => {
+                        self.warner.zero_feed(prog.unit, block.span);
+                    }
                     Err(e) if compile_time(e.code) => {
                         let span = crate::profile::error_span(unit, e.at, block.span);
                         let mut d = error_at(&e, span);

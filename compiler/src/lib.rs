@@ -11,11 +11,14 @@ pub mod check;
 pub mod codes;
 pub mod consts;
 pub mod data_setting;
+pub mod dry_warn;
 pub mod expr;
 pub mod hash;
 pub mod link;
+pub mod lint;
 pub mod lower;
 pub mod profile;
+pub mod recursion;
 pub mod thread_room;
 pub mod words;
 
@@ -77,6 +80,7 @@ pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
     let mut units = vec![parse_unit(name, bytes.into(), 0, &mut diags)];
     let mut programs = link::split(0, &units[0], &mut diags);
     link_libraries(&mut units, &mut programs, opts, &mut diags);
+    diags.extend(recursion::check(&units, &programs));
     if has_errors(&diags) {
         return Compiled {
             module: None,
@@ -111,10 +115,9 @@ fn lower_and_check(
         let table = &opts.machine.r#macro.g_code_macros;
         let wanted =
             !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
-        if wanted {
-            check::dry_run(units, programs, &opts.machine)
-        } else {
-            Vec::new()
+        match wanted {
+            true => check::dry_run(units, programs, &opts.machine),
+            false => Vec::new(),
         }
     };
     let parallel = block_count(programs) >= PARALLEL_BLOCKS;
@@ -328,7 +331,7 @@ mod tests {
     /// A static program of more than `PARALLEL_BLOCKS` blocks, `first`
     /// after the set-up block, an arc of too small a radius at the end.
     fn large(first: &str) -> String {
-        let mut src = format!("G98 G00 X40 Z2\n{first}\n");
+        let mut src = format!("G98 G00 X40 Z2 F100\n{first}\n");
         for _ in 0..PARALLEL_BLOCKS {
             src.push_str("G01 X40 Z1\n");
         }

@@ -576,6 +576,7 @@ impl<'a> Gen<'a> {
             }
         }
         self.warn_unlisted_m(split);
+        crate::lint::block(self, split);
         self.set_loc(block.span);
         if !split.nc.is_empty() {
             if let Some(c) = block.comments.first() {

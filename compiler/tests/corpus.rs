@@ -87,7 +87,7 @@ const TABLE: &[(&str, Expect, &str)] = &[
     ("icnc__T2019-2-S43-Esther-e-Julio-FASE3.txt", Rejected("E4010", 38), "`G76 X… Z… P244 F2` without Q: the first depth Δd is 0"),
     ("icnc__T2019-2-S43-Gabriel-Delorensi-FASE2.txt", Rejected("E2005", 36), "`V0.2` (incremental Y) where W was meant"),
     ("icnc__T2019-2-S43-Henrique-TOR-HV.FNC", Runs, "simulator program, runs off its end"),
-    ("icnc__T2019-2-S43-Vitor-e-Pedro-TORFASE2.txt", Runs, "simulator program"),
+    ("icnc__T2019-2-S43-Vitor-e-Pedro-TORFASE2.txt", Alarm(7001), "`N25 G01 X00` feeds with no F in force (a simulator program; W107 at compile time)"),
     ("projetocnc1__programa-completo.gcode", Rejected("E1008", 38), "`;bedame de 3mm`: text after `;` (put comments in ( ))"),
     ("projetocnc3__usinagem-dois-lados.gcode", Rejected("E2004", 4), "`G92 S`: the speed clamp of systems B/C (§4.13)"),
     ("rcod2__SHABLON-O00999.nc", Rejected("E2001", 3), "G49 is a mill code"),

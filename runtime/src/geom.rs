@@ -73,6 +73,18 @@ pub enum Curve {
 /// Panels of the Simpson rule for the length of a conic.
 const SIMPSON: usize = 64;
 
+/// How much longer than 2a (mm) an ellipse's chord, stretched into a
+/// circle's, may be: the kernel lets half of it exceed the radius by
+/// 0.001 mm (dialect.md §4.1 rule 2), and the curve it accepted must be
+/// the curve drawn.
+const CHORD_SLACK: f64 = 0.002 + 1e-9;
+
+/// The unit vector of a conic's axis at `q` radians from +Z, turned in the
+/// G02 sense: towards −X (dialect.md §2.4; the kernel's `plan::conic`).
+fn conic_axis(q: f64) -> V2 {
+    V2::polar(-q)
+}
+
 /// `u` turned by `a` (from +Z towards +X).
 #[inline]
 fn turn(u: V2, a: f64) -> V2 {
@@ -117,14 +129,16 @@ impl Curve {
     }
 
     /// G6.2/G6.3: of the two ellipses with semi-axes `a` (along the angle
-    /// `q` from +Z) and `b` through both points, the one whose arc in the
-    /// programmed direction is at most 180° (dialect.md §4.1). `None` when
-    /// no ellipse fits.
+    /// `q` from +Z, turned in the G02 sense, towards −X: dialect.md §2.4)
+    /// and `b` through both points, the one whose arc in the programmed
+    /// direction is at most 180° (dialect.md §4.1). A chord up to
+    /// `CHORD_SLACK` longer than 2a is a half ellipse, as the kernel takes
+    /// it. `None` when no ellipse fits.
     pub fn ellipse(from: V2, to: V2, a: f64, b: f64, q_rad: f64, ccw: bool) -> Option<Curve> {
         if !(is_pos(a) && is_pos(b)) {
             return None;
         }
-        let u = V2::polar(q_rad);
+        let u = conic_axis(q_rad);
         let w = u.perp();
         // In a frame stretched along w by a/b the ellipse is a circle of
         // radius a; a positive stretch keeps the turning sense.
@@ -132,7 +146,7 @@ impl Curve {
         let e = to - from;
         let ep = V2::new(e.dot(w) * k, e.dot(u)); // (local y, local x)
         let chord = ep.norm();
-        if !is_pos(chord - 1e-9) || chord > 2.0 * a * (1.0 + 1e-9) {
+        if !is_pos(chord - 1e-9) || chord > 2.0 * a + CHORD_SLACK {
             return None;
         }
         let mid = ep * 0.5;
@@ -154,15 +168,15 @@ impl Curve {
     }
 
     /// G7.2/G7.3: the parabola y² = 2px with its axis at angle `q` from
-    /// +Z through both points, opening to the side that makes the arc
-    /// turn in the programmed direction. `None` when the chord is parallel
-    /// to the axis or `p` is 0.
+    /// +Z (in the G02 sense, as an ellipse's) through both points, opening
+    /// to the side that makes the arc turn in the programmed direction.
+    /// `None` when the chord is parallel to the axis or `p` is 0.
     pub fn parabola(from: V2, to: V2, p: f64, q_rad: f64, ccw: bool) -> Option<Curve> {
         let p = p.abs();
         if !is_pos(p) {
             return None;
         }
-        let u = V2::polar(q_rad);
+        let u = conic_axis(q_rad);
         let w = u.perp();
         let e = to - from;
         let (xe, ye) = (e.dot(u), e.dot(w));
@@ -377,6 +391,11 @@ mod tests {
             }
         }
         assert!(Curve::ellipse(from, to, 1.0, 0.5, 0.0, true).is_none());
+        // A half ellipse whose chord is 0.0015 mm longer than 2a, as the
+        // kernel accepts it (half the chord within 0.001 of a), is drawn.
+        let far = V2::new(5.0, -20.0015);
+        assert!(Curve::ellipse(from, far, 10.0, 6.0, 0.0, true).is_some());
+        assert!(Curve::ellipse(from, V2::new(5.0, -20.003), 10.0, 6.0, 0.0, true).is_none());
     }
 
     #[test]

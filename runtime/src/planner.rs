@@ -404,12 +404,17 @@ impl Planner {
                 self.shift = s;
                 return Ok(Pushed::Empty);
             }
-            Command::Move(m) => match self.segment(&m) {
-                Some(seg) => ItemKind::Move(seg),
-                None => {
-                    self.tail = m.path.to();
-                    return Ok(Pushed::Empty);
-                }
+            Command::Move(m) => match self.curve(&m) {
+                Ok(curve) => match self.segment(&m, curve) {
+                    Some(seg) => ItemKind::Move(seg),
+                    None => {
+                        self.tail = m.path.to();
+                        return Ok(Pushed::Empty);
+                    }
+                },
+                // A conic that cannot be drawn is an alarm at its line,
+                // never a chord in its place.
+                Err(code) => ItemKind::Alarm(code),
             },
             Command::Dwell(s) => ItemKind::Dwell(s),
             // A zero dwell: the moves on both sides cannot join, so the
@@ -466,24 +471,35 @@ impl Planner {
         Ok(Pushed::Queued)
     }
 
-    /// Builds the segment of a move from the current tail.
-    fn segment(&self, m: &Move) -> Option<Segment> {
+    /// The exact curve of a move from the current tail; the alarm code
+    /// (E4005, E4006) of an ellipse or parabola that does not join its
+    /// end points (the kernel has checked it, so only a crafted module
+    /// gets here).
+    fn curve(&self, m: &Move) -> Result<Curve, u32> {
         let from = self.tail;
-        let to = m.path.to();
-        if !to.is_finite() {
-            return None;
+        if !m.path.to().is_finite() {
+            // (`segment` drops the move.)
+            return Ok(Curve::line(from, m.path.to()));
         }
-        let curve = match (m.kind, m.path) {
-            (MoveKind::Rapid | MoveKind::Offset, _) => Curve::line(from, to),
+        Ok(match (m.kind, m.path) {
+            (MoveKind::Rapid | MoveKind::Offset, _) => Curve::line(from, m.path.to()),
             (_, crate::command::Path::Line { to }) => Curve::line(from, to),
             (_, crate::command::Path::Arc { to, centre, ccw }) => Curve::arc(from, to, centre, ccw),
             (_, crate::command::Path::Ellipse { to, a, b, q, ccw }) => {
-                Curve::ellipse(from, to, a, b, q, ccw).unwrap_or(Curve::line(from, to))
+                Curve::ellipse(from, to, a, b, q, ccw).ok_or(4005u32)?
             }
             (_, crate::command::Path::Parabola { to, p, q, ccw }) => {
-                Curve::parabola(from, to, p, q, ccw).unwrap_or(Curve::line(from, to))
+                Curve::parabola(from, to, p, q, ccw).ok_or(4006u32)?
             }
-        };
+        })
+    }
+
+    /// Builds the segment of a move along `curve` from the current tail.
+    fn segment(&self, m: &Move, curve: Curve) -> Option<Segment> {
+        let (from, to) = (self.tail, m.path.to());
+        if !to.is_finite() {
+            return None;
+        }
         let (c0, c1) = (self.tail_c, self.c_target(m));
         if !c1.is_finite() {
             return None;

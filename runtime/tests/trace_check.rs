@@ -589,11 +589,11 @@ fn a_current_position_read_waits_for_the_motion() {
 }
 
 /// G22 on the path: both end points of the diagonal lie outside the box
-/// X −10…100, Z −20…50 (the kernel lets it pass), but the line from X50
-/// Z-30 to X150 Z10 runs through it (at Z-18 it is at X80). The runtime
-/// stops in the first period inside, with E7002 naming the line.
+/// X −10…100, Z −20…50, but the line from X50 Z-30 to X150 Z10 runs
+/// through it (at Z-18 it is at X80). The kernel refuses the line (E7002
+/// naming it) before it is printed, so the axes never enter the area.
 #[test]
-fn g22_stops_the_axes_where_the_path_enters_the_area() {
+fn g22_refuses_a_line_whose_path_runs_through_the_area() {
     let enters = "O0017\nG98 G00 X150 Z10\nG22 X100. Z50. I-10. K-20.\nG00 Z-30\nX50\n\
                   G01 X150 Z10 F3000\nG23\nM30\n";
     let r = run(enters);
@@ -601,14 +601,36 @@ fn g22_stops_the_axes_where_the_path_enters_the_area() {
     let alarm = r.alarm.as_ref().expect("an alarm");
     assert_eq!(alarm.line, 6, "{alarm:?}");
     let inside = |p: &runtime::SetPoint| p.x > -10.0 && p.x < 100.0 && p.z > -20.0 && p.z < 50.0;
+    assert_eq!(r.pts.iter().filter(|p| p.line >= 4 && inside(p)).count(), 0);
+    let last = r.pts.last().unwrap();
+    assert!((last.x - 50.0).abs() < 1e-6 && (last.z + 30.0).abs() < 1e-6);
+    // The same program with G23 before the diagonal runs to its end.
+    let off = enters.replace("G22 X100. Z50. I-10. K-20.", "G23");
+    assert_eq!(run(&off).state, RunState::Ended);
+}
+
+/// G22 on a path only the runtime follows: the kernel checks an ellipse
+/// at its end point only. The half ellipse G6.2 from X120 Z40 to X120
+/// Z-10 (A25 along Z, B15 across) runs clockwise towards −Z, so it bulges
+/// towards −X to r 60 − 15 = 45 (X90) at Z15, inside the box X −10…100,
+/// Z −20…50, while both ends (X120) lie outside it. The runtime stops in
+/// the first period inside, with E7002 naming the line.
+#[test]
+fn g22_stops_the_axes_where_the_path_enters_the_area() {
+    let enters = "O0019\nG98 G00 X120 Z40\nG22 X100. Z50. I-10. K-20.\n\
+                  G6.2 X120 Z-10 A25 B15 F3000\nG23\nM30\n";
+    let r = run(enters);
+    assert_eq!(r.state, RunState::Alarm(7002));
+    let alarm = r.alarm.as_ref().expect("an alarm");
+    assert_eq!(alarm.line, 4, "{alarm:?}");
+    let inside = |p: &runtime::SetPoint| p.x > -10.0 && p.x < 100.0 && p.z > -20.0 && p.z < 50.0;
     let last = r.pts.last().unwrap();
     assert!(inside(last), "stopped at X{} Z{}", last.x, last.z);
     // Only the last period after the G22 is inside (the first rapid starts
     // from machine zero, inside the box, before G22): the axes stopped on
     // entering.
-    let after = r.pts.iter().filter(|p| p.line >= 4 && inside(p)).count();
+    let after = r.pts.iter().filter(|p| p.line >= 3 && inside(p)).count();
     assert_eq!(after, 1);
-    // The same program with G23 before the diagonal runs to its end.
     let off = enters.replace("G22 X100. Z50. I-10. K-20.", "G23");
     assert_eq!(run(&off).state, RunState::Ended);
 }

@@ -167,6 +167,8 @@ fn print_out(text: &str) -> ExitCode {
 struct Canon<W: Write> {
     out: W,
     error: Option<std::io::Error>,
+    /// An `ALARM` line has been printed: it is the last line of the run.
+    alarmed: bool,
 }
 
 impl<W: Write> Canon<W> {
@@ -190,6 +192,10 @@ impl<W: Write> Canon<W> {
 
 impl<W: Write> Sink for Canon<W> {
     fn emit(&mut self, e: Event) {
+        if self.alarmed {
+            return;
+        }
+        self.alarmed = matches!(e, Event::Alarm { .. });
         if self.error.is_none() {
             if let Err(err) = writeln!(self.out, "{e}") {
                 self.error = Some(err);
@@ -341,6 +347,7 @@ fn run(
     let mut sink = Canon {
         out: BufWriter::new(stdout.lock()),
         error: None,
+        alarmed: false,
     };
     // Block by block (as `Vm::run`), to move the progress bar.
     let mut progress = cli::progress::Progress::bar(main_lines, "run", quiet);
@@ -488,6 +495,7 @@ fn run_timed(
     let mut canon = Canon {
         out: BufWriter::new(stdout.lock()),
         error: None,
+        alarmed: false,
     };
     if out.trace == Some(Format::Csv) {
         let c_axis = ctl.engine().config().c.is_some();
@@ -572,8 +580,11 @@ fn run_timed(
         Some(sp) => Some(time_alarm(&files, &sp, max_time)),
         None => ctl.alarm(),
     };
-    // A VM alarm printed its ALARM line with the canon; the runtime's own
-    // (E7001, E7002, E7003, E4010) and the time bound end the canon here.
+    // A VM alarm printed its ALARM line with the canon (the kernel raises
+    // E7001 and E7002 too, at the same move as the runtime, so that a plain
+    // canon run ends the same way); the runtime's own (E7003, E4010, an
+    // E7001/E7002 the kernel cannot see) and the time bound end the canon
+    // here. The canon sink prints one ALARM line at most.
     if let (Some(a), true) = (&alarm, out.canon) {
         if matches!(a.code, 7001 | 7002 | 7003 | 4010 | E_TIME) {
             canon.emit(Event::Alarm {

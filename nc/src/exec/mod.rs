@@ -15,6 +15,7 @@ pub mod state;
 pub mod stroke;
 pub mod sysvar;
 pub mod tool_life;
+pub mod zero_feed;
 
 use alloc::boxed::Box;
 use alloc::format;
@@ -116,15 +117,22 @@ impl Nc {
         crate::exec::tool_life::timed(self, words, sink, Nc::exec_guarded)
     }
 
-    /// A block with the G22 stroke check, when it is in force.
+    /// A block with the G22 stroke check, when it is in force, and the
+    /// check for feed moves at F = 0 (zero_feed); of their alarms the one
+    /// of the earlier event (neither passes events on after its own).
     fn exec_guarded(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        let (printed, at) = (self.st.feed_printed, self.st.pos);
         let Some(area) = self.st.stroke2 else {
-            return self.exec_block(words, sink);
+            let mut watch = crate::exec::zero_feed::Watch::new(sink, printed, at);
+            let result = self.exec_block(words, &mut watch);
+            return watch.finish().map_or(result, Err);
         };
-        // G22 in force: every end point passes the stroke check.
-        let mut guard = crate::exec::stroke::Guard::new(sink, area, self.st.origin());
-        let result = self.exec_block(words, &mut guard);
-        match guard.finish() {
+        // G22 in force: every move passes the stroke check.
+        let mut guard = crate::exec::stroke::Guard::new(sink, area, self.st.origin(), at);
+        let mut watch = crate::exec::zero_feed::Watch::new(&mut guard, printed, at);
+        let result = self.exec_block(words, &mut watch);
+        let zero_feed = watch.finish();
+        match guard.finish().or(zero_feed) {
             Some(e) => Err(e),
             None => result,
         }

@@ -2,13 +2,18 @@
 //! coordinates whose inside (№172.2 = 0) or outside (№172.2 = 1) the tool
 //! may not enter.
 //!
-//! The kernel checks the end point of every motion event, cycle legs and
-//! corner elements included, before the event leaves the block: the event
-//! that would end in the forbidden area is not printed and the block stops
-//! with E7002, so the canon ends as canon.md's ALARM section says. The path
-//! between end points is the runtime's to check. Points are the programmed
-//! tool point in machine coordinates (work point + workpiece origin, X as a
-//! diameter), as #5021 reads them; tool offsets are the runtime's.
+//! The kernel checks every motion event, cycle legs and corner elements
+//! included, before the event leaves the block: the event that would end
+//! in the forbidden area, or whose path runs through it, is not printed
+//! and the block stops with E7002, so the canon ends as canon.md's ALARM
+//! section says, and a plain canon run ends as a run through the runtime
+//! does. Paths are the programmed ones: straight for lines, threads and
+//! rapids (as the runtime moves a rapid), circular for arcs (checked every
+//! degree); an ellipse or a parabola is checked at its end point only.
+//! Points are the programmed tool point in machine coordinates (the work
+//! point plus the workpiece origin, X as a diameter), as #5021 reads them;
+//! tool offsets are the runtime's, which checks the slide path every
+//! period.
 
 use alloc::format;
 
@@ -30,6 +35,38 @@ pub struct Area {
 }
 
 impl Area {
+    /// Whether the straight path between two machine points (X diameter,
+    /// Z) runs through the forbidden part. A box is convex, so a path
+    /// between two allowed points can only cross a forbidden inside: the
+    /// part of the segment within the open box (Liang–Barsky) is checked
+    /// for a length.
+    pub fn crossed_by(&self, a: (f64, f64), b: (f64, f64)) -> bool {
+        if self.forbids(a.0, a.1) || self.forbids(b.0, b.1) {
+            return true;
+        }
+        if self.forbid_outside {
+            return false;
+        }
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        let axes = [
+            (a.0, b.0 - a.0, ordered(self.minus.0, self.plus.0)),
+            (a.1, b.1 - a.1, ordered(self.minus.1, self.plus.1)),
+        ];
+        for (p, d, (lo, hi)) in axes {
+            if d.abs() < 1e-12 {
+                if p <= lo || p >= hi {
+                    return false;
+                }
+                continue;
+            }
+            let (ta, tb) = ((lo - p) / d, (hi - p) / d);
+            t0 = t0.max(ta.min(tb));
+            t1 = t1.min(ta.max(tb));
+        }
+        // (A path along an edge or through a corner stays allowed.)
+        t1 - t0 > 1e-9
+    }
+
     /// Whether the machine point (X diameter, Z) lies in the forbidden part.
     /// The boundary itself is allowed on both sides.
     pub fn forbids(&self, x: f64, z: f64) -> bool {
@@ -93,19 +130,74 @@ pub struct Guard<'a> {
     inner: &'a mut dyn Sink,
     area: Area,
     origin: Pt,
+    /// Where the tool stands (work coordinates): the start of the next
+    /// motion event.
+    at: Pt,
     feed: Option<Event>,
     fault: Option<NcError>,
 }
 
 impl<'a> Guard<'a> {
-    pub fn new(inner: &'a mut dyn Sink, area: Area, origin: Pt) -> Guard<'a> {
+    /// `at`: the tool's work position when the block begins.
+    pub fn new(inner: &'a mut dyn Sink, area: Area, origin: Pt, at: Pt) -> Guard<'a> {
         Guard {
             inner,
             area,
             origin,
+            at,
             feed: None,
             fault: None,
         }
+    }
+
+    /// Whether the path of motion event `e` from the current point runs
+    /// into the forbidden area (its end point included).
+    fn refuses(&self, e: &Event, to: Pt) -> bool {
+        let machine = |p: Pt| (p.x() + self.origin.x(), p.z + self.origin.z);
+        let arc = match *e {
+            Event::Arc { dir, cx, cz, .. } | Event::ArcThread { dir, cx, cz, .. } => {
+                Some((Pt::new(cx / 2.0, cz), dir))
+            }
+            Event::Ellipse { .. } | Event::Parabola { .. } => {
+                let (x, z) = machine(to);
+                return self.area.forbids(x, z);
+            }
+            _ => None,
+        };
+        let Some((c, dir)) = arc else {
+            return self.area.crossed_by(machine(self.at), machine(to));
+        };
+        // The arc every degree (or finer), as chords of the circle.
+        let (a0, a1) = (self.at.sub(c), to.sub(c));
+        let start = libm::atan2(a0.r, a0.z);
+        let mut sweep = libm::atan2(a1.r, a1.z) - start;
+        let tau = 2.0 * core::f64::consts::PI;
+        let ccw = matches!(dir, crate::base::event::Dir::Ccw);
+        // G03 turns from +Z towards +X (dialect.md §2.4).
+        if ccw && sweep <= 1e-12 {
+            sweep += tau;
+        } else if !ccw && sweep >= -1e-12 {
+            sweep -= tau;
+        }
+        let radius = |p: Pt| libm::sqrt(p.r * p.r + p.z * p.z);
+        let (r0, r1) = (radius(a0), radius(a1));
+        let n = (libm::ceil(sweep.abs().to_degrees()) as usize).clamp(1, 360);
+        let mut prev = self.at;
+        for i in 1..=n {
+            let t = i as f64 / n as f64;
+            let (s, k) = libm::sincos(start + sweep * t);
+            let r = r0 + (r1 - r0) * t;
+            let p = if i == n {
+                to
+            } else {
+                Pt::new(c.r + r * s, c.z + r * k)
+            };
+            if self.area.crossed_by(machine(prev), machine(p)) {
+                return true;
+            }
+            prev = p;
+        }
+        false
     }
 
     /// The end of the block: the alarm, or the events still held back.
@@ -132,6 +224,7 @@ impl Sink for Guard<'_> {
         }
         if let Some((x, z)) = end_of(&e) {
             let (mx, mz) = (x + self.origin.x(), z + self.origin.z);
+            let to = Pt::new(x / 2.0, z);
             if self.area.forbids(mx, mz) {
                 self.fault = Some(NcError::new(
                     Alarm::StrokeLimit,
@@ -143,6 +236,18 @@ impl Sink for Guard<'_> {
                 ));
                 return;
             }
+            if self.refuses(&e, to) {
+                self.fault = Some(NcError::new(
+                    Alarm::StrokeLimit,
+                    format!(
+                        "the move to machine X{} Z{} runs through the area G22 forbids",
+                        crate::base::event::Num(mx),
+                        crate::base::event::Num(mz)
+                    ),
+                ));
+                return;
+            }
+            self.at = to;
         }
         if let Some(f) = self.feed.take() {
             self.inner.emit(f);
@@ -244,6 +349,65 @@ mod tests {
         ]);
         assert_eq!(code, 7002);
         assert_eq!(canon, ["RAPID X=150 Z=10"]);
+    }
+
+    #[test]
+    fn a_line_through_the_area_stops_before_it() {
+        // From X150 Z10 to X-20 Z10: both ends lie outside the box
+        // (X −10…100 is the inside; X −20 is beyond it), the line runs
+        // straight through it along Z10 (inside Z −20…50).
+        let (canon, code) = run(&[
+            "G00 X150 Z10",
+            "G22 X100. Z50. I-10. K-20.",
+            "G98 G01 X-20 F100",
+        ]);
+        assert_eq!(code, 7002);
+        assert_eq!(canon, ["RAPID X=150 Z=10"]);
+        // Along an edge (Z50, the boundary) the path stays allowed.
+        let (_, code) = run(&[
+            "G00 X150 Z50",
+            "G22 X100. Z50. I-10. K-20.",
+            "G98 G01 X-20 F100",
+        ]);
+        assert_eq!(code, 0);
+    }
+
+    #[test]
+    fn an_arc_bulging_into_the_area_stops_before_it() {
+        // Box X 0…40 (r 0…20), Z −20…−10. The G02 from X60 Z0 to X60 Z-30
+        // with R15 has its centre at r 30 − √(15² − 15²) = r 30, Z −15
+        // (a half circle): its lowest point is r 15 (X30) at Z −15, inside
+        // the box, although both ends (X60) lie outside it.
+        let (canon, code) = run(&[
+            "G00 X60 Z0",
+            "G22 X40. Z-10. I0. K-20.",
+            "G98 G02 X60 Z-30 R15 F100",
+        ]);
+        assert_eq!(code, 7002);
+        assert_eq!(canon, ["RAPID X=60 Z=0"]);
+        // The same arc the other way round (G03) bulges away from it.
+        let (_, code) = run(&[
+            "G00 X60 Z0",
+            "G22 X40. Z-10. I0. K-20.",
+            "G98 G03 X60 Z-30 R15 F100",
+        ]);
+        assert_eq!(code, 0);
+    }
+
+    #[test]
+    fn crossing_tests_by_hand() {
+        let a = area(false);
+        // Straight through the inside, both ends outside.
+        assert!(a.crossed_by((-20.0, 0.0), (120.0, 0.0)));
+        // Past a corner, outside: from X110 Z40 to X90 Z60 the line
+        // X + Z = 150 meets X = 100 at Z50, the corner itself, and stays
+        // outside elsewhere.
+        assert!(!a.crossed_by((110.0, 40.0), (90.0, 60.0)));
+        // Cutting the corner off: X + Z = 140 runs inside from X100 Z40
+        // to X90 Z50.
+        assert!(a.crossed_by((110.0, 30.0), (80.0, 60.0)));
+        // Forbidden outside: a line between two inside points stays in.
+        assert!(!area(true).crossed_by((0.0, 0.0), (90.0, 40.0)));
     }
 
     #[test]

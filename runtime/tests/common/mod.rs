@@ -185,7 +185,10 @@ pub fn end_points(canon: &[Event]) -> Vec<(f64, f64)> {
             Event::Rapid { x, z, .. } | Event::Line { x, z, .. } | Event::Skip { x, z } => {
                 Some((x / 2.0, *z))
             }
-            Event::Arc { x, z, .. } | Event::Thread { x, z, .. } => Some((x / 2.0, *z)),
+            Event::Arc { x, z, .. }
+            | Event::Thread { x, z, .. }
+            | Event::Ellipse { x, z, .. }
+            | Event::Parabola { x, z, .. } => Some((x / 2.0, *z)),
             _ => None,
         })
         .collect()

@@ -103,6 +103,10 @@ enum Item {
 #[derive(Debug, Clone, Default)]
 pub struct ContourState {
     items: Vec<Item>,
+    /// Corner words applied so far (chamfers and roundings inserted): a
+    /// dry run compares it with the corner words it saw to warn about
+    /// the ignored ones (W112).
+    pub applied: u32,
 }
 
 impl ContourState {
@@ -253,7 +257,9 @@ fn join_at(items: &mut Vec<Item>, i: usize, next: &mut Move) -> Result<bool, NcE
 pub(crate) fn advance(nc: &mut Nc, mut next: Move, sink: &mut dyn Sink) -> Result<(), NcError> {
     let step = compensate(nc, &mut next)?;
     if let Some(i) = last_waiting(&nc.st.contour.items) {
-        join_at(&mut nc.st.contour.items, i, &mut next)?;
+        if join_at(&mut nc.st.contour.items, i, &mut next)? {
+            nc.st.contour.applied += 1;
+        }
     }
     if step == Step::Behind {
         // Printed where the compensated tool will stand: behind the
@@ -312,6 +318,7 @@ pub(crate) fn finish_angle(
     let mut at = i;
     if let Some(j) = last_waiting(&items[..i]) {
         if join_at(items, j, &mut first)? {
+            nc.st.contour.applied += 1;
             at += 1;
         }
     }

@@ -1,0 +1,321 @@
+//! The warnings of dialect.md §8 that depend on the modal state, found by
+//! the dry run of a static program (check.rs) block by block: W105 (inch
+//! length without a point), W107 (feed move at F = 0), W108 (arc or conic
+//! without motion), W110 (thread in G96), W111 (feed mode changed without
+//! a new F), W112 (corner word ignored), W114 (S above the spindle
+//! maximum). A program with macro statements or computed words is not
+//! dry-run, and so gets none of them.
+
+use grammar::ast::Addr;
+use grammar::{Diagnostic, Span};
+use nc::block::round_half_away;
+use nc::machine::{DecimalPoint, SpindleType};
+use nc::words::{Word, NO_POINT};
+use nc::{gcode, Event, Nc, Sink};
+
+use crate::words::{addr_code, value_of, WordValue};
+
+/// The sink of the dry run: what a block printed, for the warnings.
+#[derive(Default)]
+pub struct Counts {
+    /// Motion events of any kind.
+    pub motions: u32,
+    /// Feed moves (moves at the modal F).
+    pub feeds: u32,
+    /// Thread events.
+    pub threads: u32,
+    /// Any event at all.
+    pub events: u32,
+}
+
+impl Sink for Counts {
+    fn emit(&mut self, e: Event) {
+        self.events += 1;
+        self.motions += u32::from(e.is_motion());
+        self.feeds += u32::from(e.is_feed());
+        self.threads += u32::from(matches!(e, Event::Thread { .. } | Event::ArcThread { .. }));
+    }
+}
+
+/// The state a block starts from, taken before it runs.
+pub struct Before {
+    per_rev: bool,
+    pos: nc::point::Pt,
+    applied: u32,
+}
+
+/// The warnings found so far and what they wait for.
+#[derive(Default)]
+pub struct Warner {
+    pub diags: Vec<(usize, Diagnostic)>,
+    /// W107 is given once: the run stops at the first such move.
+    zero_feed_told: bool,
+    /// A G98/G99 block that kept the old F (W111 when a feed move uses it).
+    mode_change: Option<(usize, Span)>,
+    /// A corner word waiting for the next move, with the count of applied
+    /// corners when it was written (W112 when that count stays).
+    corner: Option<(usize, Span, u32)>,
+}
+
+/// The word of `letter` (an address code) in the block.
+fn find(ws: &[grammar::ast::Word], letter: u8) -> Option<&grammar::ast::Word> {
+    ws.iter().find(|w| addr_code(w.addr) == letter)
+}
+
+fn has(lits: &[Word], letter: u8) -> bool {
+    lits.iter().any(|w| w.addr == letter - b'A')
+}
+
+fn has_g(lits: &[Word], code: f64) -> bool {
+    lits.iter()
+        .any(|w| w.addr == b'G' - b'A' && (w.value - code).abs() < 1e-9)
+}
+
+impl Warner {
+    pub fn before(&self, nc: &Nc) -> Before {
+        Before {
+            per_rev: nc.st.per_rev(),
+            pos: nc.st.pos,
+            applied: nc.st.contour.applied,
+        }
+    }
+
+    fn warn(&mut self, unit: usize, code: &'static str, span: Span, msg: String) {
+        self.diags
+            .push((unit, Diagnostic::warning(code, span, msg)));
+    }
+
+    /// W107: the block ran a feed move at F = 0 (the kernel's E7001).
+    pub fn zero_feed(&mut self, unit: usize, span: Span) {
+        if !std::mem::replace(&mut self.zero_feed_told, true) {
+            self.warn(
+                unit,
+                "W107",
+                span,
+                "this feed move runs at F = 0: no F is in force here, so the run stops with E7001; give an F".into(),
+            );
+        }
+    }
+
+    /// The warnings of a block that ran without error.
+    pub fn after(
+        &mut self,
+        unit: usize,
+        nc: &Nc,
+        block: (&[grammar::ast::Word], Span),
+        lits: &[Word],
+        counts: &Counts,
+        before: Before,
+    ) {
+        let (ws, span) = block;
+        self.inch_lengths(unit, nc, ws, lits);
+        self.feed_mode(unit, nc, lits, span, counts, &before);
+        self.no_motion(unit, nc, lits, span, &before);
+        self.corners(unit, nc, ws, lits, counts, &before);
+        if counts.threads > 0 && nc.st.css_mode() {
+            self.warn(
+                unit,
+                "W110",
+                span,
+                "thread cut in constant surface speed (G96): the spindle speed changes with X, and the lead follows it; cut threads in G97".into(),
+            );
+        }
+        self.spindle_max(unit, nc, ws, lits);
+    }
+
+    /// W105: in calculator mode a G20 length written without a point and
+    /// ≥ 100 is probably an increment count (§1.9). Lengths: X Z U W R I
+    /// K (not X/U of a G04, which are seconds; not I of a thread, which is
+    /// threads per inch).
+    fn inch_lengths(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], lits: &[Word]) {
+        if !nc.st.inch() || nc.machine.machine.decimal_point != DecimalPoint::Calculator {
+            return;
+        }
+        let dwell = has_g(lits, 4.0);
+        let thread = matches!(nc.st.group(gcode::MOTION), 320..=349 | 920);
+        for w in ws {
+            let Addr::Letter(c) = w.addr else { continue };
+            let length = match c {
+                'Z' | 'W' | 'R' | 'K' => true,
+                'X' | 'U' => !dwell,
+                'I' => !thread,
+                _ => false,
+            };
+            let WordValue::Literal(v, flags) = value_of(w) else {
+                continue;
+            };
+            if length && flags & NO_POINT != 0 && v.abs() >= 100.0 {
+                self.warn(
+                    unit,
+                    "W105",
+                    w.span,
+                    format!(
+                        "{c}{v} without a decimal point is {v} inches here (G20, calculator mode); did you mean increments ({c}{})?",
+                        v / 10_000.0
+                    ),
+                );
+            }
+        }
+    }
+
+    /// W111: G98/G99 changed the feed mode and the block gave no F, so the
+    /// old number is read in the new unit; said at the mode change when a
+    /// feed move uses it.
+    fn feed_mode(
+        &mut self,
+        unit: usize,
+        nc: &Nc,
+        lits: &[Word],
+        span: Span,
+        counts: &Counts,
+        before: &Before,
+    ) {
+        if has(lits, b'F') {
+            self.mode_change = None;
+        } else if nc.st.per_rev() != before.per_rev && nc.st.feed != 0.0 {
+            self.mode_change = Some((unit, span));
+        }
+        if counts.feeds == 0 {
+            return;
+        }
+        if let Some((u, at)) = self.mode_change.take() {
+            let (now, was) = match nc.st.per_rev() {
+                true => ("mm/rev (G99)", "mm/min"),
+                false => ("mm/min (G98)", "mm/rev"),
+            };
+            self.warn(
+                u,
+                "W111",
+                at,
+                format!(
+                    "the feed mode changes to {now} without a new F: the F{} given in {was} is now read in {now}",
+                    nc::event::Num(nc.st.feed)
+                ),
+            );
+        }
+    }
+
+    /// W108: an arc with R, an ellipse or a parabola whose end is its
+    /// start: no move, nothing printed (§4.1).
+    fn no_motion(&mut self, unit: usize, nc: &Nc, lits: &[Word], span: Span, before: &Before) {
+        let one_shot = lits.iter().any(|w| {
+            w.addr == b'G' - b'A'
+                && gcode::group(crate::words::round_g(w.value)) == Some(gcode::ONE_SHOT)
+        });
+        if one_shot || nc.st.modal.drill().is_some() || has_g(lits, 22.0) {
+            return;
+        }
+        let what = match nc.st.group(gcode::MOTION) {
+            20 | 30 if has(lits, b'R') => "arc",
+            62 | 63 if has(lits, b'A') || has(lits, b'B') => "ellipse",
+            72 | 73 if has(lits, b'P') => "parabola",
+            _ => return,
+        };
+        if nc.st.pos.dist(before.pos) < 1e-9 {
+            self.warn(
+                unit,
+                "W108",
+                span,
+                format!("this {what} ends where it starts: it makes no move and nothing is cut"),
+            );
+        }
+    }
+
+    /// W112: a corner word (L, D, ,C, ,R) whose element was printed without
+    /// its corner: the next move goes the same way, is not G01–G03, or a
+    /// group-00 code came first (§5.1).
+    fn corners(
+        &mut self,
+        unit: usize,
+        nc: &Nc,
+        ws: &[grammar::ast::Word],
+        lits: &[Word],
+        counts: &Counts,
+        before: &Before,
+    ) {
+        // The waiting element was printed by this block (with or without
+        // its corner) when the block printed anything at all.
+        if counts.events > 0 {
+            if let Some((u, at, applied)) = self.corner.take() {
+                if nc.st.contour.applied == applied {
+                    self.warn(
+                        u,
+                        "W112",
+                        at,
+                        "this chamfer or rounding is ignored: the next move goes the same way, is not G01–G03, or a group-00 code comes first".into(),
+                    );
+                }
+            }
+        }
+        let motion = nc.st.group(gcode::MOTION);
+        let one_shot = lits.iter().any(|w| {
+            w.addr == b'G' - b'A'
+                && gcode::group(crate::words::round_g(w.value)) == Some(gcode::ONE_SHOT)
+        });
+        if !matches!(motion, 10 | 20 | 30) || one_shot || nc.st.modal.drill().is_some() {
+            return;
+        }
+        let l = find(ws, b'L' - b'A').filter(|_| {
+            !lits
+                .iter()
+                .any(|w| w.addr == b'M' - b'A' && round_half_away(w.value) == 98.0)
+        });
+        let word = l
+            .or(find(ws, nc::words::COMMA_C))
+            .or(find(ws, b'D' - b'A'))
+            .or(find(ws, nc::words::COMMA_R));
+        if let Some(w) = word {
+            self.corner = Some((unit, w.span, before.applied.max(nc.st.contour.applied)));
+        }
+    }
+
+    /// W114: a literal S above the spindle maximum in G97 (the runtime
+    /// clamps it, §6.2); not the G50 S limit, not a G96 surface speed, not
+    /// a gear code.
+    fn spindle_max(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], lits: &[Word]) {
+        let m = &nc.machine.spindle;
+        if m.r#type != SpindleType::Analog || nc.st.css_mode() || has_g(lits, 50.0) {
+            return;
+        }
+        let Some(w) = find(ws, b'S' - b'A') else {
+            return;
+        };
+        if let WordValue::Literal(s, _) = value_of(w) {
+            if s > m.max_rpm {
+                self.warn(
+                    unit,
+                    "W114",
+                    w.span,
+                    format!(
+                        "S{} is above the spindle maximum of {} rpm: the spindle turns at {} rpm",
+                        nc::event::Num(s),
+                        nc::event::Num(m.max_rpm),
+                        nc::event::Num(m.max_rpm)
+                    ),
+                );
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_sort_events() {
+        let mut c = Counts::default();
+        c.emit(Event::Line {
+            x: 1.0,
+            z: 0.0,
+            c: None,
+        });
+        c.emit(Event::Rapid {
+            x: 1.0,
+            z: 0.0,
+            c: None,
+        });
+        c.emit(Event::M(8));
+        assert_eq!((c.events, c.motions, c.feeds, c.threads), (3, 2, 1, 0));
+    }
+}

@@ -1,0 +1,137 @@
+//! The warnings of dialect.md §8 that the compiler reports from a block's
+//! words (W106, W109), from the call graph (W115) and from the dry run of
+//! a static program (W105, W107, W108, W110, W111, W112, W114): each fires
+//! where the section of the code says and not on the corrected program.
+//! Every expected (code, line) pair is read off the program by hand.
+
+use compiler::{compile, Options};
+
+/// (code, line) of every warning of the W105–W115 family, in order.
+fn warnings(src: &str) -> Vec<(&'static str, usize)> {
+    let c = compile("w.nc", src.as_bytes(), &Options::default());
+    assert!(!c.has_errors(), "{}", c.render());
+    c.diags
+        .iter()
+        .filter(|(_, d)| !matches!(d.code, "W101" | "W104" | "W113" | "W116" | "W117"))
+        .map(|(f, d)| (d.code, c.files[*f].line_col(d.span.start).0))
+        .collect()
+}
+
+#[test]
+fn w105_inch_lengths_without_a_point_in_calculator_mode() {
+    // §1.9: G20, calculator mode (the reference), |value| ≥ 100, no point.
+    // U630 is the roughing depth of the first G71 block; R5 is below 100.
+    let src = "G20\nG00 X2. Z0.1\nG71 U630 R5\nG71 P10 Q20 U0.01 W0.005 F0.01\nN10 G00 X1.\nG01 Z-1.\nN20 X2.\nM30\n";
+    assert_eq!(warnings(src), [("W105", 3)]);
+    // With the point, or in G21, nothing.
+    assert_eq!(warnings(&src.replace("U630", "U0.063")), []);
+    assert_eq!(warnings("G21\nG00 X150 Z100\nM30\n"), []);
+    // G04 X is seconds, not a length.
+    assert_eq!(warnings("G20\nG04 X150\nM30\n"), []);
+}
+
+#[test]
+fn w106_two_codes_of_one_group() {
+    // G00 and G01 are both group 01 (§3): the warning at the second.
+    assert_eq!(warnings("G00 G01 X20 F0.1\nM30\n"), [("W106", 1)]);
+    // G98 (group 03) and G01 (group 01): different groups.
+    assert_eq!(warnings("G98 G01 X20 F100\nM30\n"), []);
+}
+
+#[test]
+fn w107_a_roughing_cycle_at_f0_as_in_seed_004() {
+    // Seed 004's G71 example: the F20 stands in the profile (N60), used
+    // by G70 only; the roughing of N40 runs at the modal F, which is 0.
+    let src = "O0004\nG00 X200 Z262\nN30 G71 U5 R1\nN40 G71 P50 Q80 U0.6 W0.2\nN50 G00 X160\nN60 G01 Z260 F20\nN70 G01 X195 Z210\nN80 G01 Z200\nM30\n";
+    assert_eq!(warnings(src), [("W107", 4)]);
+    // An F on the cycle block: none.
+    assert_eq!(warnings(&src.replace("W0.2\n", "W0.2 F0.3\n")), []);
+    // Any feed move: G01 with no F since power-on.
+    assert_eq!(warnings("G00 X20 Z2\nG01 X10\nM30\n"), [("W107", 2)]);
+}
+
+#[test]
+fn w108_an_arc_or_conic_that_ends_where_it_starts() {
+    // §4.1 rule 3: G02 with R from X20 Z0 to X20 Z0.
+    assert_eq!(
+        warnings("G98 F100\nG00 X20 Z0\nG02 X20 Z0 R5\nM30\n"),
+        [("W108", 3)]
+    );
+    // An ellipse with X and Z omitted (end = start).
+    assert_eq!(
+        warnings("G98 F100\nG00 X20 Z0\nG6.2 A10 B5\nM30\n"),
+        [("W108", 3)]
+    );
+    // A full circle by I/K is a move.
+    assert_eq!(warnings("G98 F100\nG00 X20 Z0\nG02 I-5\nM30\n"), []);
+}
+
+#[test]
+fn w109_g28_without_axes() {
+    assert_eq!(warnings("G28\nM30\n"), [("W109", 1)]);
+    assert_eq!(warnings("G28 U0 W0\nM30\n"), []);
+}
+
+#[test]
+fn w110_a_thread_in_constant_surface_speed() {
+    // §4.10: G92 in G96.
+    assert_eq!(
+        warnings("G96 S150 M03\nG00 X25 Z5\nG92 X19 Z-20 F1.5\nG00 X30\nM30\n"),
+        [("W110", 3)]
+    );
+    assert_eq!(
+        warnings("G97 S800 M03\nG00 X25 Z5\nG92 X19 Z-20 F1.5\nG00 X30\nM30\n"),
+        []
+    );
+}
+
+#[test]
+fn w111_a_feed_mode_change_without_f_at_the_change() {
+    // §4.10: F200 mm/min would be read as 200 mm/rev after G99.
+    assert_eq!(
+        warnings("G98 G01 X20 F200\nG99\nM03 S500\nG01 Z-10\nM30\n"),
+        [("W111", 2)]
+    );
+    // A new F before the next feed move: nothing.
+    assert_eq!(warnings("G98 G01 X20 F200\nG99\nG01 Z-10 F0.2\nM30\n"), []);
+    // Only rapids follow: the old F is never used.
+    assert_eq!(warnings("G98 G01 X20 F200\nG99\nG00 Z10\nM30\n"), []);
+}
+
+#[test]
+fn w112_a_corner_word_ignored() {
+    // §5.1: the next move goes the same way (Z-10 then Z-20).
+    assert_eq!(
+        warnings("G98 F100\nG01 Z-10 ,C1\nG01 Z-20\nM30\n"),
+        [("W112", 2)]
+    );
+    // The next move is a G00.
+    assert_eq!(
+        warnings("G98 F100\nG01 Z-10 L1\nG00 X30\nM30\n"),
+        [("W112", 2)]
+    );
+    // A real corner: the chamfer is made.
+    assert_eq!(warnings("G98 F100\nG01 Z-10 ,C1\nG01 X30\nM30\n"), []);
+}
+
+#[test]
+fn w114_s_above_the_spindle_maximum() {
+    // The reference spindle's maximum is 3000 rpm (machine.md).
+    assert_eq!(warnings("G97 S99999 M03\nM30\n"), [("W114", 1)]);
+    assert_eq!(warnings("G97 S2000 M03\nM30\n"), []);
+    // In G96 S is a surface speed, and G50 S is the limit itself.
+    assert_eq!(warnings("G50 S5000\nG96 S4000 M03\nM30\n"), []);
+}
+
+#[test]
+fn w115_unconditional_recursion() {
+    // The example: M98 P0004 inside O0004.
+    let src = "M98 P0004\nM30\nO0004\nG00 U1\nM98 P0004\nM99\n";
+    assert_eq!(warnings(src), [("W115", 5)]);
+    // Through two programs: both calls lead back.
+    let src = "M98 P1\nM30\nO0001\nM98 P2\nM99\nO0002\nM98 P1\nM99\n";
+    assert_eq!(warnings(src), [("W115", 4), ("W115", 7)]);
+    // Behind a condition: no warning.
+    let src = "M98 P0004\nM30\nO0004\n#1=#1+1\nIF [#1 GT 3] GOTO 9\nM98 P0004\nN9 M99\n";
+    assert_eq!(warnings(src), []);
+}

@@ -1,0 +1,131 @@
+//! A feed move at F = 0 (dialect.md §4.1 G01, E7001): the move is printed
+//! as it is, after its `FEED F=0`, and the block stops there with E7001,
+//! the alarm the runtime raises when it would execute it. The kernel
+//! raises it too so that a canon run without interpolation ends as a run
+//! through the runtime does, with the alarm as the last line.
+
+use crate::base::error::{Alarm, NcError};
+use crate::base::event::Event;
+use crate::base::point::Pt;
+use crate::exec::Sink;
+
+/// A sink that passes events on until a feed move runs at F = 0, then
+/// drops the rest of the block and keeps the alarm.
+pub struct Watch<'a> {
+    inner: &'a mut dyn Sink,
+    /// The last `FEED` printed was F = 0.
+    zero: bool,
+    /// The tool's position (work coordinates, X as a radius).
+    at: Pt,
+    fault: Option<NcError>,
+}
+
+impl<'a> Watch<'a> {
+    /// `printed`: the last `FEED` printed before the block (F, per rev);
+    /// `at`: where the tool stands.
+    pub fn new(inner: &'a mut dyn Sink, printed: Option<(f64, bool)>, at: Pt) -> Watch<'a> {
+        Watch {
+            inner,
+            zero: printed.is_some_and(|(f, _)| f == 0.0),
+            at,
+            fault: None,
+        }
+    }
+
+    /// The end of the block: E7001 if a feed move ran at F = 0.
+    pub fn finish(self) -> Option<NcError> {
+        self.fault
+    }
+}
+
+impl Sink for Watch<'_> {
+    fn emit(&mut self, e: Event) {
+        if self.fault.is_some() {
+            return;
+        }
+        if let Event::Feed { f, .. } = e {
+            self.zero = f == 0.0;
+        }
+        let end = match e {
+            Event::Rapid { x, z, .. }
+            | Event::Line { x, z, .. }
+            | Event::Arc { x, z, .. }
+            | Event::Ellipse { x, z, .. }
+            | Event::Parabola { x, z, .. }
+            | Event::Thread { x, z, .. }
+            | Event::ArcThread { x, z, .. }
+            | Event::Skip { x, z } => Some(Pt::new(x / 2.0, z)),
+            _ => None,
+        };
+        // A line or skip that goes nowhere is no move for the runtime
+        // either; an arc with equal ends is a full circle.
+        let moves = match e {
+            Event::Line { .. } | Event::Skip { .. } => end.is_some_and(|p| p.dist(self.at) > 1e-9),
+            _ => true,
+        };
+        let zero_move = e.is_feed() && self.zero && moves;
+        self.inner.emit(e);
+        if let Some(p) = end {
+            self.at = p;
+        }
+        if zero_move {
+            self.fault = Some(NcError::new(
+                Alarm::ZeroFeed,
+                "a feed move with F = 0 cannot run: give the block or an earlier one an F",
+            ));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::base::event::Event;
+    use crate::exec::cycles::testing::{words, Lathe};
+    use alloc::string::{String, ToString};
+    use alloc::vec::Vec;
+
+    /// The canon of every block, the faulty one's events included (they
+    /// reach the sink before its alarm), and the alarm's code.
+    fn run(blocks: &[&str]) -> (Vec<String>, u16) {
+        let mut m = Lathe::new();
+        let mut events: Vec<Event> = Vec::new();
+        for b in blocks {
+            if let Err(e) = m.nc.exec(&words(b), &mut events) {
+                return (events.iter().map(|e| e.to_string()).collect(), e.code);
+            }
+        }
+        (events.iter().map(|e| e.to_string()).collect(), 0)
+    }
+
+    #[test]
+    fn a_feed_move_without_f_is_printed_then_stops() {
+        // No F since power-on: the move is printed as it is (FEED F=0),
+        // then E7001 (dialect.md §4.1, G01).
+        let (canon, code) = run(&["G98 G01 X10", "G00 X50"]);
+        assert_eq!(code, 7001);
+        assert_eq!(canon, ["FEED F=0 MODE=MIN", "LINE X=10 Z=0"]);
+    }
+
+    #[test]
+    fn rapids_and_a_move_that_goes_nowhere_run_at_f0() {
+        let (canon, code) = run(&["G00 X10 Z5", "G98 G01 X10 Z5", "G00 X20"]);
+        assert_eq!(code, 0, "{canon:?}");
+    }
+
+    #[test]
+    fn a_roughing_cycle_at_f0_stops_after_its_first_feed_move() {
+        // G90 X40 Z-10 from X50 Z2: a rapid to X40, then the first feed
+        // leg to Z-10, then E7001; the rest of the cycle is not printed.
+        let (canon, code) = run(&["G00 X50 Z2", "G98 G90 X40 Z-10"]);
+        assert_eq!(code, 7001);
+        assert_eq!(
+            canon,
+            [
+                "RAPID X=50 Z=2",
+                "RAPID X=40 Z=2",
+                "FEED F=0 MODE=MIN",
+                "LINE X=40 Z=-10"
+            ]
+        );
+    }
+}
