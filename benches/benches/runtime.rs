@@ -12,7 +12,8 @@
 //! is printed on stderr.
 
 use benches::pipeline::{
-    commands, end_to_end, end_to_end_split, plan_all, vm_plan, vm_plan_split, Ticker,
+    commands, end_to_end, end_to_end_split, plan_all, spindle_commands, vm_plan, vm_plan_split,
+    Ticker,
 };
 use benches::{arcs, build as module, short_segments, threads};
 use criterion::{
@@ -84,7 +85,7 @@ fn runtime_benches(c: &mut Criterion) {
     }
 
     group.throughput(Throughput::Elements(1));
-    let thread_cmds = commands(&threads(400));
+    let thread_cmds = spindle_commands(&threads(400));
     for (name, cmds) in [
         ("short_segments", &short_cmds),
         ("arcs", &arc_cmds),
