@@ -504,22 +504,21 @@ impl Certifier {
     }
 
     /// Pops the end points this period's path reached, in order. One
-    /// that the path cut by (it came within a period's travel, moves away
-    /// and reaches the next one) is a violation at its nearest approach,
-    /// and the walk goes on from the next, so that one miss does not hide
-    /// the rest.
+    /// that the path cut by (it came within a period's travel of it and
+    /// moves away) is a violation at its nearest approach, and the walk
+    /// goes on from the next, so that one miss does not hide the rest.
     fn end_points(&mut self, prev: &SetPoint, p: &SetPoint) {
         let (a, b) = (V2::from_xz(prev.x, prev.z), V2::from_xz(p.x, p.z));
         // Where the work shift changed (G50, G54…, a tool offset) the
         // work point jumped: the period's path is the axes' step in the
-        // old frame, then the jump (a move may land in the same period).
+        // old frame before the jump, or in the new one after it.
         let moved = V2::new((p.axis_x - prev.axis_x) * 0.5, p.axis_z - prev.axis_z);
         let joined = ((b - a) - moved).norm() <= 1e-9;
         let dist = |e: V2| {
             if joined {
                 seg_dist(e, a, b)
             } else {
-                seg_dist(e, a, a + moved).min((e - b).norm())
+                seg_dist(e, a, a + moved).min(seg_dist(e, b - moved, b))
             }
         };
         while let Some(m) = self.pending.front().copied() {
@@ -530,9 +529,7 @@ impl Certifier {
                 self.pending.pop_front();
                 continue;
             }
-            let next = self.pending.get(1).map(|n| dist(n.end));
-            let cut = d > m.nearest && m.nearest <= (b - a).norm();
-            if cut && next.is_some_and(|n| n <= END_POINT_MM) {
+            if d > m.nearest && m.nearest <= (b - a).norm() {
                 self.missed(&m);
                 self.done = Some(m);
                 self.pending.pop_front();
@@ -856,6 +853,29 @@ mod tests {
             .summary()
             .to_string()
             .contains("end points: 2 of 2 reached"));
+    }
+
+    #[test]
+    fn a_shift_and_the_first_step_in_one_period() {
+        // Standing at machine X40 Z10 = work X40 Z10; G55 moves work zero
+        // so that the point is X35, and the same period steps 0.003 mm
+        // (diameter) towards X30: the zero-length RAPID X35 is where the
+        // step began in the new frame, so it is reached.
+        let mut c = Certifier::new(&Config::default(), 40.0, 10.0, 0.0);
+        c.emit(Event::Origin { x: 5.0, z: 0.0 });
+        c.emit(Event::Rapid {
+            x: 35.0,
+            z: 10.0,
+            c: None,
+        });
+        c.period(&at(1, (40.0, 10.0), (0.0, 0.0), Motion::None));
+        c.period(&at(2, (39.997, 10.0), (-5.0, 0.0), Motion::Rapid));
+        c.finish(true);
+        assert_eq!(c.violation(), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 1 of 1 reached"));
     }
 
     #[test]
