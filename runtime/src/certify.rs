@@ -672,7 +672,7 @@ impl fmt::Display for Summary<'_> {
                 )?,
                 (Kind::SurfaceSpeed, Some(w)) => write!(
                     f,
-                    "; G96: worst {:.4} % off ({} periods, line {})",
+                    "; surface speed: worst {:.4} % off the G96 target ({} periods, line {})",
                     w.ratio * 100.0,
                     c.css_periods,
                     w.line
