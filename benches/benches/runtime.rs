@@ -4,16 +4,18 @@
 //! split in two threads (`…_split`: the interpreter on one, the planning
 //! on the other), and the cost of one
 //! interpolation period (`period`), on generated short-segment and
-//! arc-heavy programs.
+//! arc-heavy programs, and for the period a thread-heavy one (G92
+//! passes: spindle-synchronised periods, run-outs, rapids back).
 //!
 //! Targets: plan ≥ 5 M blocks/s, end to end ≥ 1 M blocks/s, one period
 //! ≤ 100 ns mean. The distribution of single periods (worst included)
 //! is printed on stderr.
 
 use benches::pipeline::{
-    commands, end_to_end, end_to_end_split, plan_all, vm_plan, vm_plan_split, Ticker,
+    commands, end_to_end, end_to_end_split, plan_all, spindle_commands, vm_plan, vm_plan_split,
+    Ticker,
 };
-use benches::{arcs, build as module, short_segments};
+use benches::{arcs, build as module, short_segments, threads};
 use criterion::{
     criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput,
 };
@@ -83,7 +85,12 @@ fn runtime_benches(c: &mut Criterion) {
     }
 
     group.throughput(Throughput::Elements(1));
-    for (name, cmds) in [("short_segments", &short_cmds), ("arcs", &arc_cmds)] {
+    let thread_cmds = spindle_commands(&threads(400));
+    for (name, cmds) in [
+        ("short_segments", &short_cmds),
+        ("arcs", &arc_cmds),
+        ("threads", &thread_cmds),
+    ] {
         let mut t = Ticker::new(cmds.clone());
         group.bench_function(BenchmarkId::new("period", name), |b| {
             b.iter_custom(|iters| {

@@ -75,6 +75,20 @@ pub fn short_segments(n: usize) -> String {
     s
 }
 
+/// Thread-heavy: `n` G92 passes of an M24×1.5 thread 30 mm long at
+/// 800 rev/min, each 0.05 mm deeper, back to the first depth every 12
+/// passes (about 0.4 s of spindle-synchronised motion each).
+pub fn threads(n: usize) -> String {
+    let mut s = String::with_capacity(n * 24);
+    s.push_str("O0003\nG97 S800 M03\nG00 X26 Z5\n");
+    for i in 0..n {
+        let x = 23.6 - 0.05 * (i % 12) as f64;
+        let _ = writeln!(s, "G92 X{x:.3} Z-30 F1.5");
+    }
+    s.push_str("M30\n");
+    s
+}
+
 /// Quarter arcs of 1–6 mm radius, alternating G02/G03, at F1500.
 pub fn arcs(n: usize) -> String {
     let mut g = Lcg(11);

@@ -9,8 +9,22 @@ use runtime::translate::Translator;
 use runtime::{AutoAck, Config, Engine};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// The commands a program turns into (VM and translation done once).
+/// The commands a program turns into (VM and translation done once):
+/// its moves.
 pub fn commands(src: &str) -> Vec<Command> {
+    let mut out = all_commands(src);
+    out.retain(|c| matches!(c, Command::Move(_)));
+    out
+}
+
+/// Its moves and PLC functions (the spindle a thread waits for).
+pub fn spindle_commands(src: &str) -> Vec<Command> {
+    let mut out = all_commands(src);
+    out.retain(|c| matches!(c, Command::Move(_) | Command::Plc(_)));
+    out
+}
+
+fn all_commands(src: &str) -> Vec<Command> {
     let machine = nc::Machine::reference();
     let mut vm = vm::Vm::new(crate::build(src), machine.clone());
     let mut events: Vec<nc::Event> = Vec::new();
@@ -20,7 +34,6 @@ pub fn commands(src: &str) -> Vec<Command> {
     for e in &events {
         t.event(e, &vm.nc, &machine, &mut out);
     }
-    out.retain(|c| matches!(c, Command::Move(_)));
     out
 }
 

@@ -125,7 +125,7 @@ typedef enum GbcPlcKind {
  */
 typedef enum GbcMotion {
   /**
-   * Standing (dwell, PLC wait, stop).
+   * Standing (PLC wait, stop, end).
    */
   GBC_MOTION_NONE = 0,
   /**
@@ -133,13 +133,21 @@ typedef enum GbcMotion {
    */
   GBC_MOTION_RAPID = 1,
   /**
-   * A cutting feed.
+   * A cutting feed along a straight line.
    */
   GBC_MOTION_FEED = 2,
   /**
    * A spindle-synchronised thread.
    */
   GBC_MOTION_THREAD = 3,
+  /**
+   * A cutting feed along a curve (G02/G03, G6.2/G6.3, G7.2/G7.3).
+   */
+  GBC_MOTION_ARC = 4,
+  /**
+   * A G04 dwell counting down.
+   */
+  GBC_MOTION_DWELL = 5,
 } GbcMotion;
 
 /**

@@ -98,14 +98,18 @@ pub enum GbcStopKind {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum GbcMotion {
-    /// Standing (dwell, PLC wait, stop).
+    /// Standing (PLC wait, stop, end).
     None = 0,
     /// G00.
     Rapid = 1,
-    /// A cutting feed.
+    /// A cutting feed along a straight line.
     Feed = 2,
     /// A spindle-synchronised thread.
     Thread = 3,
+    /// A cutting feed along a curve (G02/G03, G6.2/G6.3, G7.2/G7.3).
+    Arc = 4,
+    /// A G04 dwell counting down.
+    Dwell = 5,
 }
 
 /// One period's output of `gbc_tick`.
@@ -165,6 +169,8 @@ impl From<&SetPoint> for GbcSetPoint {
                 Motion::Rapid => GbcMotion::Rapid,
                 Motion::Feed => GbcMotion::Feed,
                 Motion::Thread => GbcMotion::Thread,
+                Motion::Arc => GbcMotion::Arc,
+                Motion::Dwell => GbcMotion::Dwell,
             },
         }
     }

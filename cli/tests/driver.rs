@@ -196,7 +196,7 @@ fn a_machine_with_a_c_axis() {
     );
     let t = text(&trace.stdout);
     assert!(
-        t.starts_with("time_s,x,z,c,spindle_rpm,feed,line,file\n"),
+        t.starts_with("time_s,x,z,c,spindle_rpm,feed,line,motion,tool,file\n"),
         "{t:.80}"
     );
     let last = t.lines().last().unwrap_or_default();

@@ -51,10 +51,13 @@ fn the_trace_names_file_and_line() {
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let t = text(&out.stdout);
     let mut lines = t.lines();
-    assert_eq!(lines.next(), Some("time_s,x,z,spindle_rpm,feed,line,file"));
-    // Every period names part.nc; the feed of line 5 is among them.
+    assert_eq!(
+        lines.next(),
+        Some("time_s,x,z,spindle_rpm,feed,line,motion,tool,file")
+    );
+    // Every period names part.nc; the feed of line 5 (tool 1) is among them.
     assert!(lines.clone().all(|l| l.ends_with(",part.nc")), "{t:.400}");
-    assert!(lines.any(|l| l.ends_with(",5,part.nc")));
+    assert!(lines.any(|l| l.ends_with(",5,feed,1,part.nc")));
     let out = gbvm(
         &["run", "part.gbc", "--emit", "trace", "--format", "json"],
         &d,

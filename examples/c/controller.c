@@ -1,7 +1,8 @@
 /*
  * A controller loop in C over libgbc: load a compiled program, tick it once
  * per interpolation period until it ends, and print one line per period in
- * the format of `gbvm run FILE --emit trace` (time_s,x,z,spindle_rpm,feed,line).
+ * the format of `gbvm run FILE --emit trace`
+ * (time_s,x,z,spindle_rpm,feed,line,motion,tool,file).
  *
  *   controller PROGRAM.gbc [MACHINE.toml] > trace.csv
  *
@@ -107,6 +108,25 @@ static void put_csv_field(const char *t) {
     putchar('"');
 }
 
+/* The word of gbvm's trace for a kind of motion. */
+static const char *motion_word(GbcMotion m) {
+    switch (m) {
+    case GBC_MOTION_RAPID:
+        return "rapid";
+    case GBC_MOTION_FEED:
+        return "feed";
+    case GBC_MOTION_THREAD:
+        return "thread";
+    case GBC_MOTION_ARC:
+        return "arc";
+    case GBC_MOTION_DWELL:
+        return "dwell";
+    case GBC_MOTION_NONE:
+    default:
+        return "none";
+    }
+}
+
 static int fail(const char *what, GbcStatus s) {
     char msg[512];
     if (gbc_last_error(msg, sizeof msg, NULL) != GBC_STATUS_OK)
@@ -187,8 +207,8 @@ int main(int argc, char **argv) {
         }
         if (!header) {
             header = 1;
-            printf(sp.has_c ? "time_s,x,z,c,spindle_rpm,feed,line,file\n"
-                            : "time_s,x,z,spindle_rpm,feed,line,file\n");
+            printf(sp.has_c ? "time_s,x,z,c,spindle_rpm,feed,line,motion,tool,file\n"
+                            : "time_s,x,z,spindle_rpm,feed,line,motion,tool,file\n");
         }
         put_fixed(sp.time_s, 6);
         putchar(',');
@@ -203,7 +223,7 @@ int main(int argc, char **argv) {
         put_fixed(sp.spindle_rpm, 3);
         putchar(',');
         put_fixed(sp.feed, 3);
-        printf(",%u,", sp.line);
+        printf(",%u,%s,%u,", sp.line, motion_word(sp.motion), sp.tool);
         char file[256];
         if ((s = gbc_file_name(ctl, sp.file, file, sizeof file)) != GBC_STATUS_OK) {
             status = fail("file name", s);

@@ -50,10 +50,33 @@ pub enum Motion {
     None,
     /// G00.
     Rapid,
-    /// A cutting feed.
+    /// A cutting feed along a straight line (G01, G31).
     Feed,
     /// A spindle-synchronised thread.
     Thread,
+    /// A cutting feed along a curve: G02/G03, G6.2/G6.3, G7.2/G7.3.
+    Arc,
+    /// A G04 dwell counting down (the axes stand).
+    Dwell,
+}
+
+impl Motion {
+    /// The word of the trace's `motion` column (docs/formats.md).
+    pub fn word(self) -> &'static str {
+        match self {
+            Motion::None => "none",
+            Motion::Rapid => "rapid",
+            Motion::Feed => "feed",
+            Motion::Thread => "thread",
+            Motion::Arc => "arc",
+            Motion::Dwell => "dwell",
+        }
+    }
+
+    /// A cutting move: a feed, an arc or a thread.
+    pub fn cuts(self) -> bool {
+        matches!(self, Motion::Feed | Motion::Arc | Motion::Thread)
+    }
 }
 
 /// One period's output.
@@ -785,6 +808,7 @@ impl<P: Plc> Engine<P> {
                     if self.hold {
                         self.state = RunState::Held;
                     } else {
+                        self.motion = Motion::Dwell;
                         self.dwell_left -= 1;
                         if self.dwell_left == 0 {
                             self.finish_item();
@@ -1120,10 +1144,10 @@ impl<P: Plc> Engine<P> {
 
     /// A feed (or a braking thread) along the exact path.
     fn step_path(&mut self) {
-        self.motion = if matches!(self.cur.kind, MoveKind::Thread(_)) {
-            Motion::Thread
-        } else {
-            Motion::Feed
+        self.motion = match (self.cur.kind, self.cur.curve) {
+            (MoveKind::Thread(_), _) => Motion::Thread,
+            (_, crate::geom::Curve::Line { .. }) => Motion::Feed,
+            _ => Motion::Arc,
         };
         if let MoveKind::Skip(_) = self.cur.kind {
             if self.skip_hit.is_none() && self.skip_active {

@@ -27,7 +27,8 @@
 //! period loop), [`follow`] (axes following thread chains), [`spindle`],
 //! [`smooth`] (optional jerk limiting),
 //! [`plc`], [`command`], [`config`], and the outputs [`trace`], [`plot`]
-//! (with [`simplify`]), [`stats`].
+//! (with [`simplify`]), [`stats`], and the motion certificate of
+//! `gbvm check`, [`certify`].
 //!
 //! Determinism: all arithmetic is IEEE double in a fixed order and every
 //! transcendental function comes from `libm`, so identical input and
@@ -40,6 +41,7 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod certify;
 pub mod command;
 pub mod config;
 pub mod follow;

@@ -135,7 +135,12 @@ impl Plot {
             }
             self.tool = Some(p.tool);
         }
-        let kind = p.motion;
+        // The plot draws a curve as a feed and a dwell as standing.
+        let kind = match p.motion {
+            Motion::Arc => Motion::Feed,
+            Motion::Dwell => Motion::None,
+            k => k,
+        };
         if kind == Motion::None {
             self.close();
             self.last = Some((kind, pt));

@@ -84,19 +84,19 @@ impl Stats {
         if let Some(op) = self.operations.last_mut() {
             op.time_s += self.dt;
             match p.motion {
-                Motion::Feed | Motion::Thread => op.cut_mm += d,
+                Motion::Feed | Motion::Arc | Motion::Thread => op.cut_mm += d,
                 Motion::Rapid => op.rapid_mm += d,
-                Motion::None => {}
+                Motion::None | Motion::Dwell => {}
             }
         }
         match p.motion {
-            Motion::Feed => self.cut_mm += d,
+            Motion::Feed | Motion::Arc => self.cut_mm += d,
             Motion::Thread => {
                 self.cut_mm += d;
                 self.thread_mm += d;
             }
             Motion::Rapid => self.rapid_mm += d,
-            Motion::None => {}
+            Motion::None | Motion::Dwell => {}
         }
         if let Some(c) = p.c {
             let turned = self.last_c.map_or(0.0, |l| (c - l).abs());

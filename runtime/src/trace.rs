@@ -1,22 +1,48 @@
 //! The per-period trace: one line per interpolation period, as CSV under
-//! [`CSV_HEADER`] or as JSON lines with the same fields. X is a diameter
-//! in work coordinates, as in the canon; `feed` is the actual path speed
-//! in mm/min; `line` the source line of the block being executed and
-//! `file` the source file it is in (the name given to the compiler: a
-//! library program found with `-I` names its own file). Positions carry 6
+//! [`CSV_HEADER`] or as JSON lines with the same fields. X is a diameter,
+//! in work coordinates as in the canon ([`Frame::Work`]) or in machine
+//! coordinates as the drives get it ([`Frame::Machine`]); `feed` is the
+//! actual path speed in mm/min; `line` the source line of the block being
+//! executed; `motion` the kind of motion of the period as a word
+//! ([`crate::Motion::word`]); `tool` the active tool number; `file` the
+//! source file of the line (the name given to the compiler: a library
+//! program found with `-I` names its own file). Positions carry 6
 //! decimals (finer than the 0.001 mm resolution) so a reader can
 //! differentiate them. On a machine with a C axis a `c` column (degrees)
-//! follows `z` ([`CSV_HEADER_C`]); without one the trace is as before.
-//! `file` is the last column, so the columns before it keep their places.
-//! The format is documented in `docs/formats.md`.
+//! follows `z` ([`CSV_HEADER_C`]). `file` is the last column, so the
+//! columns before it keep their places. The format is documented in
+//! `docs/formats.md`.
 
 use crate::interpolate::SetPoint;
 use core::fmt::{self, Write};
 
 /// The CSV header of a machine without a C axis.
-pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line,file";
+pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line,motion,tool,file";
 /// The CSV header of a machine with a C axis.
-pub const CSV_HEADER_C: &str = "time_s,x,z,c,spindle_rpm,feed,line,file";
+pub const CSV_HEADER_C: &str = "time_s,x,z,c,spindle_rpm,feed,line,motion,tool,file";
+
+/// The coordinates a trace gives X and Z in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Frame {
+    /// The programmed point in work coordinates, as the canon prints it:
+    /// an origin change (G50, G54–G59) moves it without motion.
+    #[default]
+    Work,
+    /// The axis set points in machine coordinates (from machine zero,
+    /// work zero and tool offset applied): continuous across an origin
+    /// change, what the drives follow.
+    Machine,
+}
+
+impl Frame {
+    /// X (a diameter) and Z of a set point in this frame.
+    pub fn xz(self, p: &SetPoint) -> (f64, f64) {
+        match self {
+            Frame::Work => (p.x, p.z),
+            Frame::Machine => (p.axis_x, p.axis_z),
+        }
+    }
+}
 
 /// The CSV header of a machine with (`true`) or without a C axis.
 pub fn csv_header(c_axis: bool) -> &'static str {
@@ -84,46 +110,46 @@ impl fmt::Display for JsonStr<'_> {
     }
 }
 
-/// One CSV line (with its `\n`); `file` is the name of `p.file`.
-pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint, file: &str) -> fmt::Result {
-    write!(
-        w,
-        "{},{},{},",
-        Fixed(p.time_s, 6),
-        Fixed(p.x, 6),
-        Fixed(p.z, 6)
-    )?;
+/// One CSV line (with its `\n`) in `frame`; `file` is the name of `p.file`.
+pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint, frame: Frame, file: &str) -> fmt::Result {
+    let (x, z) = frame.xz(p);
+    write!(w, "{},{},{},", Fixed(p.time_s, 6), Fixed(x, 6), Fixed(z, 6))?;
     if let Some(c) = p.c {
         write!(w, "{},", Fixed(c, 6))?;
     }
     writeln!(
         w,
-        "{},{},{},{}",
+        "{},{},{},{},{},{}",
         Fixed(p.spindle_rpm, 3),
         Fixed(p.feed, 3),
         p.line,
+        p.motion.word(),
+        p.tool,
         CsvField(file)
     )
 }
 
-/// One JSON line (with its `\n`); `file` is the name of `p.file`.
-pub fn write_json<W: Write>(w: &mut W, p: &SetPoint, file: &str) -> fmt::Result {
+/// One JSON line (with its `\n`) in `frame`; `file` is the name of `p.file`.
+pub fn write_json<W: Write>(w: &mut W, p: &SetPoint, frame: Frame, file: &str) -> fmt::Result {
+    let (x, z) = frame.xz(p);
     write!(
         w,
         "{{\"time_s\":{},\"x\":{},\"z\":{},",
         Fixed(p.time_s, 6),
-        Fixed(p.x, 6),
-        Fixed(p.z, 6)
+        Fixed(x, 6),
+        Fixed(z, 6)
     )?;
     if let Some(c) = p.c {
         write!(w, "\"c\":{},", Fixed(c, 6))?;
     }
     writeln!(
         w,
-        "\"spindle_rpm\":{},\"feed\":{},\"line\":{},\"file\":{}}}",
+        "\"spindle_rpm\":{},\"feed\":{},\"line\":{},\"motion\":\"{}\",\"tool\":{},\"file\":{}}}",
         Fixed(p.spindle_rpm, 3),
         Fixed(p.feed, 3),
         p.line,
+        p.motion.word(),
+        p.tool,
         JsonStr(file)
     )
 }
@@ -131,6 +157,7 @@ pub fn write_json<W: Write>(w: &mut W, p: &SetPoint, file: &str) -> fmt::Result 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::interpolate::Motion;
     use alloc::string::String;
 
     #[test]
@@ -142,30 +169,32 @@ mod tests {
             spindle_rpm: 800.0,
             feed: 1200.0,
             line: 7,
+            motion: Motion::Arc,
+            tool: 3,
             ..Default::default()
         };
         let mut s = String::new();
-        write_csv(&mut s, &p, "part.nc").unwrap();
+        write_csv(&mut s, &p, Frame::Work, "part.nc").unwrap();
         assert_eq!(
             s,
-            "0.001000,40.000000,0.000000,800.000,1200.000,7,part.nc\n"
+            "0.001000,40.000000,0.000000,800.000,1200.000,7,arc,3,part.nc\n"
         );
         s.clear();
-        write_json(&mut s, &p, "part.nc").unwrap();
-        assert_eq!(s, "{\"time_s\":0.001000,\"x\":40.000000,\"z\":0.000000,\"spindle_rpm\":800.000,\"feed\":1200.000,\"line\":7,\"file\":\"part.nc\"}\n");
+        write_json(&mut s, &p, Frame::Work, "part.nc").unwrap();
+        assert_eq!(s, "{\"time_s\":0.001000,\"x\":40.000000,\"z\":0.000000,\"spindle_rpm\":800.000,\"feed\":1200.000,\"line\":7,\"motion\":\"arc\",\"tool\":3,\"file\":\"part.nc\"}\n");
         // With a C axis the angle follows z.
         let p = SetPoint {
             c: Some(-90.5),
             ..p
         };
         s.clear();
-        write_csv(&mut s, &p, "part.nc").unwrap();
+        write_csv(&mut s, &p, Frame::Work, "part.nc").unwrap();
         assert_eq!(
             s,
-            "0.001000,40.000000,0.000000,-90.500000,800.000,1200.000,7,part.nc\n"
+            "0.001000,40.000000,0.000000,-90.500000,800.000,1200.000,7,arc,3,part.nc\n"
         );
         s.clear();
-        write_json(&mut s, &p, "part.nc").unwrap();
+        write_json(&mut s, &p, Frame::Work, "part.nc").unwrap();
         assert!(
             s.contains("\"z\":0.000000,\"c\":-90.500000,\"spindle_rpm\""),
             "{s}"
@@ -177,17 +206,54 @@ mod tests {
         let p = SetPoint::default();
         let mut s = String::new();
         // CSV: a comma or a quote makes a quoted field, quotes doubled.
-        write_csv(&mut s, &p, "a,b \"c\".nc").unwrap();
+        write_csv(&mut s, &p, Frame::Work, "a,b \"c\".nc").unwrap();
         assert!(s.ends_with(",0,\"a,b \"\"c\"\".nc\"\n"), "{s}");
         s.clear();
-        write_csv(&mut s, &p, "lib/O9001.nc").unwrap();
+        write_csv(&mut s, &p, Frame::Work, "lib/O9001.nc").unwrap();
         assert!(s.ends_with(",0,lib/O9001.nc\n"), "{s}");
         // JSON: backslash and quote escaped.
         s.clear();
-        write_json(&mut s, &p, "C:\\nc\\\"x\".nc").unwrap();
+        write_json(&mut s, &p, Frame::Work, "C:\\nc\\\"x\".nc").unwrap();
         assert!(
             s.ends_with("\"file\":\"C:\\\\nc\\\\\\\"x\\\".nc\"}\n"),
             "{s}"
         );
+    }
+
+    #[test]
+    fn the_machine_frame_gives_the_axis_set_points() {
+        // Work X40 Z0 with the work zero at machine X-100 Z-300 (G54) and
+        // a tool offset: the axes are at Z-299.75 (diameter).
+        let p = SetPoint {
+            time_s: 1.0,
+            x: 40.0,
+            z: 0.0,
+            axis_x: -60.5,
+            axis_z: -299.75,
+            motion: Motion::Dwell,
+            tool: 12,
+            ..Default::default()
+        };
+        let mut s = String::new();
+        write_csv(&mut s, &p, Frame::Machine, "a.nc").unwrap();
+        assert_eq!(
+            s,
+            "1.000000,-60.500000,-299.750000,0.000,0.000,0,dwell,12,a.nc\n"
+        );
+        s.clear();
+        write_csv(&mut s, &p, Frame::Work, "a.nc").unwrap();
+        assert_eq!(
+            s,
+            "1.000000,40.000000,0.000000,0.000,0.000,0,dwell,12,a.nc\n"
+        );
+        s.clear();
+        write_json(&mut s, &p, Frame::Machine, "a.nc").unwrap();
+        assert!(
+            s.starts_with("{\"time_s\":1.000000,\"x\":-60.500000,\"z\":-299.750000,"),
+            "{s}"
+        );
+        // The header names every column of a line.
+        assert_eq!(CSV_HEADER.split(',').count(), 9);
+        assert_eq!(CSV_HEADER_C.split(',').count(), 10);
     }
 }

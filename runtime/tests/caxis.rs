@@ -154,18 +154,24 @@ fn the_trace_has_a_c_column_only_with_a_c_axis() {
     assert!(with.pts.iter().all(|p| p.c.is_some()));
     assert_eq!(
         runtime::trace::csv_header(with.cfg.c.is_some()),
-        "time_s,x,z,c,spindle_rpm,feed,line,file"
+        "time_s,x,z,c,spindle_rpm,feed,line,motion,tool,file"
     );
     let without = common::run("G00 X20 Z5\nG01 Z0 F600\nM30\n");
     assert!(without.pts.iter().all(|p| p.c.is_none()));
     assert!(without.cfg.c.is_none());
     assert_eq!(
         runtime::trace::csv_header(without.cfg.c.is_some()),
-        "time_s,x,z,spindle_rpm,feed,line,file"
+        "time_s,x,z,spindle_rpm,feed,line,motion,tool,file"
     );
     let mut line = String::new();
-    runtime::trace::write_csv(&mut line, &without.pts[0], "p.nc").unwrap();
-    assert_eq!(line.split(',').count(), 7, "{line}");
+    runtime::trace::write_csv(
+        &mut line,
+        &without.pts[0],
+        runtime::trace::Frame::Work,
+        "p.nc",
+    )
+    .unwrap();
+    assert_eq!(line.split(',').count(), 9, "{line}");
 }
 
 #[test]

@@ -52,7 +52,7 @@ fn arcs_stay_on_their_circle() {
         let (rr, z) = (p.x / 2.0, p.z);
         let d1 = ((rr - 10.0).powi(2) + (z + 10.0).powi(2)).sqrt();
         let d2 = ((rr - 10.0).powi(2) + (z + 30.0).powi(2)).sqrt();
-        if p.line >= 4 && p.line <= 5 && p.motion == Motion::Feed {
+        if p.line >= 4 && p.line <= 5 && p.motion == Motion::Arc {
             on_arc += 1;
             let d = if p.line == 4 { d1 } else { d2 };
             assert!((d - 10.0).abs() < 1e-6, "off the circle by {}", d - 10.0);
@@ -473,7 +473,7 @@ fn ellipse_and_parabola_follow_the_exact_curve() {
         let p = V2::from_xz(sp.axis_x, sp.axis_z);
         last = p;
         if let runtime::geom::Curve::Ellipse { c, u, a, b, .. } = ellipse.curve {
-            if sp.line == 2 && sp.motion == runtime::Motion::Feed {
+            if sp.line == 2 && sp.motion == runtime::Motion::Arc {
                 let d = p - c;
                 let (x, y) = (d.dot(u), d.dot(u.perp()));
                 let f = (x / a).powi(2) + (y / b).powi(2);
@@ -490,7 +490,7 @@ fn ellipse_and_parabola_follow_the_exact_curve() {
             ..
         } = parabola
         {
-            if sp.line == 3 && sp.motion == runtime::Motion::Feed {
+            if sp.line == 3 && sp.motion == runtime::Motion::Arc {
                 let d = p - o;
                 let (x, y) = (d.dot(u), d.dot(u.perp()));
                 let err = x - (x0 + (y - y0).powi(2) / (2.0 * pp));

@@ -9,6 +9,9 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use vm::{Status, Vm};
 
+#[path = "gbvm/check.rs"]
+mod check;
+
 /// mimalloc (cli::allocator says why).
 #[global_allocator]
 static ALLOCATOR: cli::allocator::Mimalloc = cli::allocator::Mimalloc;
@@ -45,20 +48,42 @@ enum Format {
     Json,
 }
 
+/// The coordinates of the trace (runtime::trace::Frame).
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum FrameArg {
+    Work,
+    Machine,
+}
+
+impl From<FrameArg> for runtime::trace::Frame {
+    fn from(f: FrameArg) -> Self {
+        match f {
+            FrameArg::Work => runtime::trace::Frame::Work,
+            FrameArg::Machine => runtime::trace::Frame::Machine,
+        }
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Run a module and print what the machine is told to do.
     Run {
         file: PathBuf,
         /// canon: the motion listing (docs/formats.md); trace: one line
-        /// per interpolation period (time_s,x,z,spindle_rpm,feed,line,file;
-        /// a c column after z on a machine with a C axis). Default: canon,
-        /// or nothing when --stats takes standard output.
+        /// per interpolation period
+        /// (time_s,x,z,spindle_rpm,feed,line,motion,tool,file; a c column
+        /// after z on a machine with a C axis). Default: canon, or nothing
+        /// when --stats takes standard output.
         #[arg(long, value_enum)]
         emit: Option<Emit>,
         /// Format of the trace: CSV with a header, or JSON lines.
         #[arg(long, value_enum, default_value = "csv")]
         format: Format,
+        /// Coordinates of the trace's x and z: work (the programmed point,
+        /// as the canon) or machine (the axis set points from machine
+        /// zero, work zero and tool offset applied). Default: work.
+        #[arg(long, value_enum, value_name = "work|machine")]
+        frame: Option<FrameArg>,
         /// Draw the XZ toolpath into an SVG file, framed on the cutting
         /// moves (rapids dashed, feeds solid, threads in their own colour;
         /// start point, tool changes and stock marked).
@@ -97,6 +122,20 @@ enum Command {
         /// crash-safely whenever the program changes them).
         #[arg(long, value_name = "FILE")]
         vars: Option<PathBuf>,
+    },
+    /// Run a module through the runtime and certify every period: axis
+    /// velocity, acceleration (and jerk where limited) within the
+    /// machine's limits, every canon end point reached, thread leads,
+    /// G96 and the spindle. Prints one summary line; exit 0 when all
+    /// hold, 1 with the first violation, 2 when the run does not end.
+    Check {
+        file: PathBuf,
+        #[arg(long, value_name = "FILE")]
+        machine: Option<PathBuf>,
+        /// Simulated seconds the run may last (E6006 past it); default
+        /// run.max_time_s.
+        #[arg(long, value_name = "S")]
+        max_time: Option<f64>,
     },
     /// Print the annotated listing of a module.
     Disasm { file: PathBuf },
@@ -214,6 +253,19 @@ fn main() -> ExitCode {
             Ok(m) => print_out(&m.disassemble()),
             Err(e) => fail(&e),
         },
+        Command::Check {
+            file,
+            machine,
+            max_time,
+        } => {
+            if let Some(t) = max_time.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 1.0e6)) {
+                note(format_args!(
+                    "gbvm: error: --max-time {t}: give seconds above 0, at most 1000000"
+                ));
+                return cli::exit::Exit::Usage.into();
+            }
+            check::check(&file, machine.as_deref(), max_time)
+        }
         Command::Verify { file } => match load(&file) {
             Ok(_) => print_out(&format!("{}: ok\n", file.display())),
             Err(e) => fail(&e),
@@ -222,6 +274,7 @@ fn main() -> ExitCode {
             file,
             emit,
             format,
+            frame,
             plot,
             stock,
             stats,
@@ -251,6 +304,10 @@ fn main() -> ExitCode {
                 );
                 return cli::exit::Exit::Usage.into();
             }
+            if emit != Some(Emit::Trace) && frame.is_some() {
+                note(format_args!("gbvm: error: --frame applies to --emit trace"));
+                return cli::exit::Exit::Usage.into();
+            }
             if let Some(t) = max_time.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 1.0e6)) {
                 note(format_args!(
                     "gbvm: error: --max-time {t}: give seconds above 0, at most 1000000"
@@ -275,6 +332,7 @@ fn main() -> ExitCode {
             let out = Outputs {
                 canon: emit == Some(Emit::Canon),
                 trace: (emit == Some(Emit::Trace)).then_some(format),
+                frame: frame.map_or(runtime::trace::Frame::Work, Into::into),
                 plot,
                 stock,
                 stats: stats_out,
@@ -399,6 +457,8 @@ struct Outputs {
     canon: bool,
     /// The per-period trace on stdout.
     trace: Option<Format>,
+    /// The coordinates of the trace.
+    frame: runtime::trace::Frame,
     plot: Option<PathBuf>,
     stock: Option<runtime::plot::Stock>,
     stats: Option<(StatsFormat, StatsTo)>,
@@ -539,8 +599,12 @@ fn run_timed(
             if let Some(f) = out.trace {
                 line.clear();
                 let _ = match f {
-                    Format::Csv => runtime::trace::write_csv(&mut line, &sp, name(sp.file)),
-                    Format::Json => runtime::trace::write_json(&mut line, &sp, name(sp.file)),
+                    Format::Csv => {
+                        runtime::trace::write_csv(&mut line, &sp, out.frame, name(sp.file))
+                    }
+                    Format::Json => {
+                        runtime::trace::write_json(&mut line, &sp, out.frame, name(sp.file))
+                    }
                 };
                 canon.write(&line);
             }

@@ -1,0 +1,87 @@
+//! `gbvm check`: runs a module through the runtime as `gbvm run` does and
+//! certifies every period (runtime::certify): axis velocity, acceleration
+//! and jerk within the machine's limits, every canon end point reached,
+//! thread leads, G96 and the spindle. One summary line on stdout; the
+//! first violation on stderr, placed by its source line.
+
+use super::{fail, load, note, printable, E_TIME};
+use runtime::certify::Certifier;
+use runtime::RunState;
+use std::io::Write;
+use std::path::Path;
+use std::process::ExitCode;
+
+/// Exit code of a run that breaks the certificate.
+const VIOLATION: u8 = 1;
+
+pub(super) fn check(file: &Path, machine: Option<&Path>, max_time: Option<f64>) -> ExitCode {
+    let module = match load(file) {
+        Ok(m) => m,
+        Err(e) => return fail(&e),
+    };
+    let files: Vec<String> = module.files.iter().map(|f| f.name.clone()).collect();
+    let machine = match cli::load_machine(machine) {
+        Ok(m) => m,
+        Err(e) => return fail(&e),
+    };
+    let mut ctl = match runtime::Controller::new(module, machine, runtime::AutoAck) {
+        Ok(c) => c,
+        Err(runtime::LoadError::Machine) => {
+            return fail(&format!(
+                "{} was compiled for another machine configuration (its compile-time keys differ); compile it again with this --machine",
+                file.display()
+            ))
+        }
+        Err(e) => return fail(&format!("{}: {e}", file.display())),
+    };
+    let engine = ctl.engine();
+    let start = engine.position();
+    let mut cert = Certifier::new(engine.config(), start.x(), start.z, engine.c());
+    let period = engine.config().period_s;
+    let max_time = max_time.unwrap_or(ctl.machine().run.max_time_s);
+    let max_ticks = (max_time / period).ceil() as u64;
+    let mut last = runtime::SetPoint::default();
+    ctl.cycle_start();
+    for _ in 0..max_ticks {
+        ctl.run_ahead_tap(&mut cert);
+        last = ctl.tick();
+        cert.period(&last);
+        match ctl.state() {
+            RunState::Stopped(_) | RunState::Idle => ctl.cycle_start(),
+            RunState::Ended | RunState::Alarm(_) => break,
+            _ => {}
+        }
+    }
+    let ended = ctl.state() == RunState::Ended;
+    cert.finish(ended);
+    let name = |i: u16| printable(files.get(usize::from(i)).map_or("", String::as_str));
+    let verdict = match (ended, cert.violation()) {
+        (true, None) => "certified",
+        _ => "not certified",
+    };
+    let mut out = std::io::stdout().lock();
+    let printed = writeln!(out, "{verdict}: {}", cert.summary()).and_then(|()| out.flush());
+    if let Err(e) = printed {
+        return super::output_failed(&e);
+    }
+    if !ended {
+        // An alarm, or the time bound: the run did not reach its end, so
+        // nothing is certified (exit 2, as `gbvm run`).
+        match ctl.alarm() {
+            Some(a) => note(format_args!("{}", printable(&a.header()))),
+            None => note(format_args!(
+                "{}:{}:1: alarm[E{E_TIME:04}]: the run did not end within {max_time} s of simulated time (run.max_time_s, --max-time)",
+                name(last.file),
+                last.line
+            )),
+        }
+        return cli::exit::Exit::Alarm.into();
+    }
+    match cert.violation() {
+        Some(v) => {
+            note(format_args!("{}:{}: violation: {v}", name(v.file), v.line));
+            ExitCode::from(VIOLATION)
+        }
+        None => ExitCode::SUCCESS,
+    }
+}

@@ -1,0 +1,1121 @@
+//! The motion certificate (`gbvm check`): checks a run's set points period
+//! by period against the machine's limits, independently of how the
+//! interpolator made them.
+//!
+//! Fed with the canon events (as a [`Sink`], in program order, ahead of
+//! the motion) and with every period's [`SetPoint`], a [`Certifier`]
+//! checks:
+//!
+//! - per axis (X radial, Z, C), from finite differences of the axis set
+//!   points in **machine** coordinates (so an origin change is no jump):
+//!   velocity within the rapid rate in rapid periods and within the
+//!   maximum cutting feed otherwise, acceleration within the axis's limit,
+//!   and jerk within its limit where the machine limits jerk (not in or
+//!   next to thread periods, which follow the spindle and are never
+//!   jerk-limited); all within [`LIMIT_TOL`] of the limit (rounding);
+//! - every end point of the canon's moves reached in order, within
+//!   [`END_POINT_MM`], in work coordinates as the canon gives them;
+//! - the lead of a thread (long-axis travel per spindle turn) within
+//!   [`LEAD_TOL`] of the programmed one (G34: of the lead at that point),
+//!   away from the incomplete leads at both ends: the distance the long
+//!   axis needs to reach thread speed at the acceleration both axes allow
+//!   ([`incomplete_lead`]);
+//! - G96: while cutting, the spindle at the speed the surface speed asks
+//!   at the programmed diameter (clamped by G50 S, the spindle's range and
+//!   override), within [`CSS_TOL`], except while the spindle is still
+//!   changing speed at its full acceleration;
+//! - the spindle within its top speed and its acceleration.
+//!
+//! It keeps the worst figure of each kind and the first violation. Its
+//! state is a few numbers and the queue of end points not reached yet.
+
+use crate::config::{Axis, Config};
+use crate::interpolate::{Motion, SetPoint};
+use crate::math::{PI, V2};
+use alloc::collections::VecDeque;
+use core::fmt;
+use nc::event::SpindleDir;
+use nc::{Event, Sink};
+
+/// Velocity, acceleration, jerk and spindle limits hold within this share
+/// of the limit (1e-6: floating-point rounding, nothing more).
+pub const LIMIT_TOL: f64 = 1e-6;
+/// A canon end point is reached when the path passes within this distance
+/// (the 0.001 mm resolution), mm.
+pub const END_POINT_MM: f64 = 0.001;
+/// The measured lead may differ from the programmed one by this share.
+pub const LEAD_TOL: f64 = 1e-4;
+/// A G96 spindle speed may differ from its target by this share.
+pub const CSS_TOL: f64 = 1e-6;
+/// The lead is checked from this much beyond the incomplete-lead length
+/// (and one period's travel), a margin for the discrete entry.
+pub const ENTRY_MARGIN: f64 = 0.1;
+
+/// What a figure measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Axis velocity.
+    Velocity,
+    /// Axis acceleration.
+    Acceleration,
+    /// Axis jerk.
+    Jerk,
+    /// A canon end point not reached (distance of the nearest approach).
+    EndPoint,
+    /// Thread lead.
+    Lead,
+    /// G96 surface speed (the spindle speed against its target).
+    SurfaceSpeed,
+    /// Spindle speed.
+    SpindleSpeed,
+    /// Spindle acceleration.
+    SpindleAccel,
+}
+
+impl Kind {
+    /// Every kind, in the order of the summary.
+    pub const ALL: [Kind; 8] = [
+        Kind::Velocity,
+        Kind::Acceleration,
+        Kind::Jerk,
+        Kind::EndPoint,
+        Kind::Lead,
+        Kind::SurfaceSpeed,
+        Kind::SpindleSpeed,
+        Kind::SpindleAccel,
+    ];
+
+    fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Velocity => "velocity",
+            Kind::Acceleration => "acceleration",
+            Kind::Jerk => "jerk",
+            Kind::EndPoint => "end point",
+            Kind::Lead => "thread lead",
+            Kind::SurfaceSpeed => "surface speed",
+            Kind::SpindleSpeed => "spindle speed",
+            Kind::SpindleAccel => "spindle acceleration",
+        }
+    }
+}
+
+/// What a figure is of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Subject {
+    /// The X slide (radial).
+    X,
+    /// The Z slide.
+    Z,
+    /// The C axis (degrees).
+    C,
+    /// The spindle.
+    Spindle,
+    /// The tool's path.
+    Path,
+}
+
+impl Subject {
+    fn name(self) -> &'static str {
+        match self {
+            Subject::X => "X",
+            Subject::Z => "Z",
+            Subject::C => "C",
+            Subject::Spindle => "spindle",
+            Subject::Path => "path",
+        }
+    }
+
+    /// The unit of a figure of this kind.
+    fn unit(self, kind: Kind) -> &'static str {
+        let deg = self == Subject::C;
+        match kind {
+            Kind::Velocity if deg => "deg/s",
+            Kind::Acceleration if deg => "deg/s²",
+            Kind::Jerk if deg => "deg/s³",
+            Kind::Velocity => "mm/s",
+            Kind::Acceleration => "mm/s²",
+            Kind::Jerk => "mm/s³",
+            Kind::EndPoint => "mm",
+            Kind::Lead => "mm/rev",
+            Kind::SurfaceSpeed | Kind::SpindleSpeed => "rev/min",
+            Kind::SpindleAccel => "rev/min/s",
+        }
+    }
+}
+
+/// One figure at its place: a violation, or the worst of its kind.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Figure {
+    /// What it measures.
+    pub kind: Kind,
+    /// Of which axis (or the spindle, or the path).
+    pub subject: Subject,
+    /// Time at the end of the period, s.
+    pub time_s: f64,
+    /// Source file index of the block running (as [`SetPoint::file`]).
+    pub file: u16,
+    /// Its source line.
+    pub line: u32,
+    /// The measured value (velocity, acceleration …; for a lead or a G96
+    /// speed, the measured lead or rpm).
+    pub value: f64,
+    /// Its limit (for a lead or a G96 speed: the programmed lead, the
+    /// target rpm).
+    pub limit: f64,
+    /// How far it is from holding: |value| / limit for limits, the
+    /// relative (or, for end points, absolute) deviation otherwise.
+    pub ratio: f64,
+}
+
+impl Figure {
+    /// Whether the figure breaks its bound.
+    pub fn violates(&self) -> bool {
+        match self.kind {
+            Kind::EndPoint => self.ratio > END_POINT_MM,
+            Kind::Lead => self.ratio > LEAD_TOL,
+            Kind::SurfaceSpeed => self.ratio > CSS_TOL,
+            _ => self.ratio > 1.0 + LIMIT_TOL,
+        }
+    }
+}
+
+impl fmt::Display for Figure {
+    /// `at 1.234000 s: Z acceleration 15000.000 mm/s² exceeds its limit 2000.000 mm/s²`
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let unit = self.subject.unit(self.kind);
+        write!(f, "at {:.6} s: ", self.time_s)?;
+        match self.kind {
+            Kind::EndPoint => write!(
+                f,
+                "a canon end point is not reached: the path passes {:.4} mm from it at the nearest (tolerance {END_POINT_MM} mm)",
+                self.value
+            ),
+            Kind::Lead => write!(
+                f,
+                "thread lead {:.6} {unit} where {:.6} is programmed ({:.4} % off, tolerance {} %)",
+                self.value,
+                self.limit,
+                self.ratio * 100.0,
+                LEAD_TOL * 100.0
+            ),
+            Kind::SurfaceSpeed => write!(
+                f,
+                "G96 spindle speed {:.3} {unit} where the surface speed asks {:.3} ({:.4} % off)",
+                self.value,
+                self.limit,
+                self.ratio * 100.0
+            ),
+            _ => write!(
+                f,
+                "{} {} {:.3} {unit} exceeds its limit {:.3} {unit}",
+                self.subject.name(),
+                self.kind.name(),
+                self.value.abs(),
+                self.limit
+            ),
+        }
+    }
+}
+
+/// The spindle state the canon set before a move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct SpindleCmd {
+    on: bool,
+    /// G96 surface speed, m/min (`None` in G97).
+    css: Option<f64>,
+    /// G50 S (infinite when none).
+    clamp: f64,
+}
+
+/// A canon move whose end point the path has not reached yet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Pending {
+    /// End point, work coordinates (radius, Z).
+    end: V2,
+    /// Start: the previous end point (`None` when unknown).
+    start: Option<V2>,
+    /// Lead and lead change of a straight thread.
+    thread: Option<(f64, f64)>,
+    spindle: SpindleCmd,
+    /// The nearest approach so far: distance and place.
+    nearest: f64,
+    at: (f64, u16, u32),
+}
+
+/// The checker of one run (see the module's text).
+#[derive(Debug, Clone)]
+pub struct Certifier {
+    dt: f64,
+    axes: [Option<Axis>; 3],
+    jerk: bool,
+    spindle: crate::config::SpindleConfig,
+    spindle_ovr: f64,
+    /// Machine positions (X radius, Z, C) of the last four periods, the
+    /// newest last (the axes stood before the first period).
+    pos: [[f64; 3]; 4],
+    /// The motion of the last three periods, the newest last.
+    motion: [Motion; 3],
+    prev: Option<SetPoint>,
+    prev_rpm: f64,
+    /// The move whose end point was reached last.
+    done: Option<Pending>,
+    pending: VecDeque<Pending>,
+    last_end: Option<V2>,
+    cmd: SpindleCmd,
+    periods: u64,
+    end_points: u64,
+    reached: u64,
+    lead_periods: u64,
+    css_periods: u64,
+    worst: [Option<Figure>; 8],
+    first: Option<Figure>,
+}
+
+impl Certifier {
+    /// A certifier for a run with settings `cfg` whose axes start at
+    /// machine X `axis_x` (a diameter), Z `axis_z` and C `c` (degrees).
+    pub fn new(cfg: &Config, axis_x: f64, axis_z: f64, c: f64) -> Certifier {
+        let start = [axis_x * 0.5, axis_z, c];
+        Certifier {
+            dt: cfg.period_s,
+            axes: [Some(cfg.x), Some(cfg.z), cfg.c],
+            jerk: cfg.jerk_limited,
+            spindle: cfg.spindle,
+            spindle_ovr: cfg.spindle_override_pct / 100.0,
+            pos: [start; 4],
+            motion: [Motion::None; 3],
+            prev: None,
+            prev_rpm: 0.0,
+            done: None,
+            pending: VecDeque::new(),
+            last_end: None,
+            cmd: SpindleCmd {
+                on: false,
+                css: None,
+                clamp: f64::INFINITY,
+            },
+            periods: 0,
+            end_points: 0,
+            reached: 0,
+            lead_periods: 0,
+            css_periods: 0,
+            worst: [None; 8],
+            first: None,
+        }
+    }
+
+    /// The first violation, if any.
+    pub fn violation(&self) -> Option<&Figure> {
+        self.first.as_ref()
+    }
+
+    /// The worst figure of a kind so far (`None`: nothing measured).
+    pub fn worst(&self, kind: Kind) -> Option<&Figure> {
+        self.worst[kind.index()].as_ref()
+    }
+
+    /// Periods checked.
+    pub fn periods(&self) -> u64 {
+        self.periods
+    }
+
+    fn note(&mut self, fig: Figure) {
+        let w = &mut self.worst[fig.kind.index()];
+        if w.is_none_or(|w| fig.ratio > w.ratio) {
+            *w = Some(fig);
+        }
+        if self.first.is_none() && fig.violates() {
+            self.first = Some(fig);
+        }
+    }
+
+    /// Checks one period.
+    pub fn period(&mut self, p: &SetPoint) {
+        self.periods += 1;
+        self.pos.copy_within(1.., 0);
+        self.pos[3] = [p.axis_x * 0.5, p.axis_z, p.c.unwrap_or(0.0)];
+        self.motion.copy_within(1.., 0);
+        self.motion[2] = p.motion;
+        self.axis_limits(p);
+        self.spindle_limits(p);
+        let prev = self.prev.unwrap_or(SetPoint {
+            // Before the first period: at the start, the same work shift.
+            x: p.x - (self.pos[3][0] - self.pos[2][0]) * 2.0,
+            z: p.z - (self.pos[3][1] - self.pos[2][1]),
+            axis_x: self.pos[2][0] * 2.0,
+            axis_z: self.pos[2][1],
+            ..*p
+        });
+        // The move running: the one whose end point is next, unless the
+        // path is still at the end point reached last (reached within
+        // its tolerance, that move may have a step to go).
+        let here = V2::from_xz(p.x, p.z);
+        let running = match self.done {
+            Some(d) if (d.end - here).norm() <= END_POINT_MM => Some(d),
+            _ => self.pending.front().copied(),
+        };
+        if let Some(m) = running {
+            self.thread_lead(&prev, p, &m);
+            self.surface_speed(&prev, p, &m);
+        }
+        self.end_points(&prev, p);
+        self.prev_rpm = p.spindle_rpm;
+        self.prev = Some(*p);
+    }
+
+    /// Velocity, acceleration and jerk of X, Z and C.
+    fn axis_limits(&mut self, p: &SetPoint) {
+        let (dt, [p0, p1, p2, p3]) = (self.dt, self.pos);
+        let subjects = [Subject::X, Subject::Z, Subject::C];
+        for (i, ax) in self.axes.into_iter().enumerate() {
+            let Some(ax) = ax else { continue };
+            let at = |kind, value: f64, limit: f64| Figure {
+                kind,
+                subject: subjects[i],
+                time_s: p.time_s,
+                file: p.file,
+                line: p.line,
+                value,
+                limit,
+                ratio: value.abs() / limit,
+            };
+            let vlim = if p.motion == Motion::Rapid {
+                ax.rapid
+            } else {
+                ax.max_feed
+            };
+            self.note(at(Kind::Velocity, (p3[i] - p2[i]) / dt, vlim));
+            let a = (p3[i] - 2.0 * p2[i] + p1[i]) / (dt * dt);
+            self.note(at(Kind::Acceleration, a, ax.accel));
+            let thread = self.motion.contains(&Motion::Thread);
+            if self.jerk && !thread {
+                let j = (p3[i] - 3.0 * p2[i] + 3.0 * p1[i] - p0[i]) / (dt * dt * dt);
+                self.note(at(Kind::Jerk, j, ax.jerk));
+            }
+        }
+    }
+
+    fn spindle_limits(&mut self, p: &SetPoint) {
+        let at = |kind, value: f64, limit: f64| Figure {
+            kind,
+            subject: Subject::Spindle,
+            time_s: p.time_s,
+            file: p.file,
+            line: p.line,
+            value,
+            limit,
+            ratio: value.abs() / limit,
+        };
+        let top = self.spindle.max_rpm;
+        let accel = self.spindle.accel_rpm_s;
+        self.note(at(Kind::SpindleSpeed, p.spindle_rpm, top));
+        let a = (p.spindle_rpm - self.prev_rpm) / self.dt;
+        self.note(at(Kind::SpindleAccel, a, accel));
+    }
+
+    /// The lead of a thread period, away from the incomplete leads.
+    fn thread_lead(&mut self, prev: &SetPoint, p: &SetPoint, m: &Pending) {
+        let (Some((lead, dlead)), Some(start), Motion::Thread) = (m.thread, m.start, p.motion)
+        else {
+            return;
+        };
+        let turns = p.spindle_turns - prev.spindle_turns;
+        if turns <= 1e-9 {
+            return;
+        }
+        let d = m.end - start;
+        let long_z = d.z.abs() >= d.r.abs();
+        let long = |v: V2| if long_z { v.z } else { v.r };
+        let (a, b) = (V2::from_xz(prev.x, prev.z), V2::from_xz(p.x, p.z));
+        let q0 = (long(a) - long(start)).abs();
+        let q1 = (long(b) - long(start)).abs();
+        let rest = (long(m.end) - long(b)).abs();
+        let want = if dlead == 0.0 {
+            lead
+        } else {
+            libm::sqrt((lead * lead + dlead * (q0 + q1)).max(0.0))
+        };
+        let v = want * p.spindle_rpm.abs() / 60.0;
+        let [ax, az, _] = self.axes;
+        let (Some(ax), Some(az)) = (ax, az) else {
+            return;
+        };
+        let (la, sa) = if long_z { (az, ax) } else { (ax, az) };
+        let short = if long_z { d.r } else { d.z };
+        let room = incomplete_lead(v, la.accel, sa.accel, long(d), short) * (1.0 + ENTRY_MARGIN)
+            + v * self.dt;
+        if q0 < room || rest < room {
+            return;
+        }
+        self.lead_periods += 1;
+        let got = (long(b) - long(a)).abs() / turns;
+        self.note(Figure {
+            kind: Kind::Lead,
+            subject: Subject::Path,
+            time_s: p.time_s,
+            file: p.file,
+            line: p.line,
+            value: got,
+            limit: want,
+            ratio: (got - want).abs() / want,
+        });
+    }
+
+    /// G96 while cutting: the spindle at the surface speed's target.
+    fn surface_speed(&mut self, prev: &SetPoint, p: &SetPoint, m: &Pending) {
+        let (Some(vc), true, Motion::Feed | Motion::Arc) = (m.spindle.css, m.spindle.on, p.motion)
+        else {
+            return;
+        };
+        // The spindle of a period follows the diameter it began at.
+        let d = prev.x.abs();
+        let lim = m.spindle.clamp.min(self.spindle.max_rpm);
+        let n = if d < 1e-9 {
+            lim
+        } else {
+            (1000.0 * vc / (PI * d) * self.spindle_ovr).min(lim)
+        };
+        let target = if n > 0.0 {
+            n.max(self.spindle.min_rpm)
+        } else {
+            return;
+        };
+        let rpm = p.spindle_rpm.abs();
+        let step = (p.spindle_rpm - prev.spindle_rpm).abs();
+        if step >= self.spindle.accel_rpm_s * self.dt * (1.0 - 1e-9) {
+            return; // still changing speed at full acceleration
+        }
+        self.css_periods += 1;
+        self.note(Figure {
+            kind: Kind::SurfaceSpeed,
+            subject: Subject::Spindle,
+            time_s: p.time_s,
+            file: p.file,
+            line: p.line,
+            value: rpm,
+            limit: target,
+            ratio: (rpm - target).abs() / target,
+        });
+    }
+
+    /// Pops the end points this period's path reached, in order. One
+    /// that the path cut by (it came within a period's travel of it and
+    /// moves away) is a violation at its nearest approach, and the walk
+    /// goes on from the next, so that one miss does not hide the rest.
+    fn end_points(&mut self, prev: &SetPoint, p: &SetPoint) {
+        let (a, b) = (V2::from_xz(prev.x, prev.z), V2::from_xz(p.x, p.z));
+        // Where the work shift changed (G50, G54…, a tool offset) the
+        // work point jumped: the period's path is the axes' step in the
+        // old frame before the jump, or in the new one after it.
+        let moved = V2::new((p.axis_x - prev.axis_x) * 0.5, p.axis_z - prev.axis_z);
+        let joined = ((b - a) - moved).norm() <= 1e-9;
+        let dist = |e: V2| {
+            if joined {
+                seg_dist(e, a, b)
+            } else {
+                seg_dist(e, a, a + moved).min(seg_dist(e, b - moved, b))
+            }
+        };
+        while let Some(m) = self.pending.front().copied() {
+            let d = dist(m.end);
+            if d <= END_POINT_MM {
+                self.reached += 1;
+                self.done = Some(m);
+                self.pending.pop_front();
+                continue;
+            }
+            if d > m.nearest && m.nearest <= (b - a).norm() {
+                self.missed(&m);
+                self.done = Some(m);
+                self.pending.pop_front();
+                continue;
+            }
+            if let Some(f) = self.pending.front_mut() {
+                if d < f.nearest {
+                    f.nearest = d;
+                    f.at = (p.time_s, p.file, p.line);
+                }
+            }
+            break;
+        }
+    }
+
+    fn missed(&mut self, m: &Pending) {
+        let (time_s, file, line) = m.at;
+        self.note(Figure {
+            kind: Kind::EndPoint,
+            subject: Subject::Path,
+            time_s,
+            file,
+            line,
+            value: m.nearest,
+            limit: END_POINT_MM,
+            ratio: m.nearest,
+        });
+    }
+
+    /// Ends the run: `ended` when the program ran to its end (else the
+    /// end points still ahead are not owed).
+    pub fn finish(&mut self, ended: bool) {
+        if !ended {
+            return;
+        }
+        if let Some(m) = self.pending.front().copied() {
+            self.missed(&m);
+        }
+    }
+
+    fn push_move(&mut self, x: f64, z: f64, thread: Option<(f64, f64)>) {
+        let end = V2::from_xz(x, z);
+        self.end_points += 1;
+        self.pending.push_back(Pending {
+            end,
+            start: self.last_end,
+            thread,
+            spindle: self.cmd,
+            nearest: f64::INFINITY,
+            at: (0.0, 0, 0),
+        });
+        self.last_end = Some(end);
+    }
+
+    /// The one-line summary: the worst figure of each kind.
+    pub fn summary(&self) -> Summary<'_> {
+        Summary(self)
+    }
+}
+
+/// The distance the long axis of a thread needs to reach speed `v` from
+/// rest (or to stop from it): v²/(2a) at the highest long-axis
+/// acceleration that keeps both axes within their limits, `a_long`, and
+/// `a_short` × long/short travel for a taper (`long`, `short`: the
+/// travels of the two axes, slide units).
+pub fn incomplete_lead(v: f64, a_long: f64, a_short: f64, long: f64, short: f64) -> f64 {
+    let a = if short.abs() > 1e-12 {
+        a_long.min(a_short * (long / short).abs())
+    } else {
+        a_long
+    };
+    v * v / (2.0 * a)
+}
+
+/// Distance from `p` to the segment `a`–`b`.
+fn seg_dist(p: V2, a: V2, b: V2) -> f64 {
+    let d = b - a;
+    let len2 = d.r * d.r + d.z * d.z;
+    let t = if len2 > 0.0 {
+        (((p - a).r * d.r + (p - a).z * d.z) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + V2::new(d.r * t, d.z * t))).norm()
+}
+
+impl Sink for Certifier {
+    fn emit(&mut self, e: Event) {
+        match e {
+            Event::Rapid { x, z, .. }
+            | Event::Line { x, z, .. }
+            | Event::Skip { x, z }
+            | Event::Arc { x, z, .. }
+            | Event::Ellipse { x, z, .. }
+            | Event::Parabola { x, z, .. }
+            | Event::ArcThread { x, z, .. } => self.push_move(x, z, None),
+            Event::Thread {
+                x, z, lead, dlead, ..
+            } => self.push_move(x, z, Some((lead, dlead.unwrap_or(0.0)))),
+            Event::Speed { s, css, max } => {
+                if let Some(m) = max {
+                    self.cmd.clamp = if m > 0.0 { m } else { f64::INFINITY };
+                }
+                self.cmd.css = css.then_some(s.max(0.0));
+            }
+            Event::Spindle(d) => self.cmd.on = d != SpindleDir::Stop,
+            // The tool goes home by a way of its own: the next move's
+            // start is not the last end point.
+            Event::Home { .. } => self.last_end = None,
+            _ => {}
+        }
+    }
+}
+
+/// The summary line (see [`Certifier::summary`]).
+pub struct Summary<'a>(&'a Certifier);
+
+impl fmt::Display for Summary<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let c = self.0;
+        write!(
+            f,
+            "{} periods ({:.3} s)",
+            c.periods,
+            c.periods as f64 * c.dt
+        )?;
+        for kind in Kind::ALL {
+            let w = c.worst(kind);
+            match (kind, w) {
+                (Kind::Jerk, None) if !c.jerk => write!(f, "; jerk: not limited")?,
+                (Kind::EndPoint, _) => {
+                    write!(f, "; end points: {} of {} reached", c.reached, c.end_points)?
+                }
+                (Kind::Lead, Some(w)) => write!(
+                    f,
+                    "; thread lead: worst {:.4} % off ({} periods, line {})",
+                    w.ratio * 100.0,
+                    c.lead_periods,
+                    w.line
+                )?,
+                (Kind::SurfaceSpeed, Some(w)) => write!(
+                    f,
+                    "; surface speed: worst {:.4} % off the G96 target ({} periods, line {})",
+                    w.ratio * 100.0,
+                    c.css_periods,
+                    w.line
+                )?,
+                (_, Some(w)) => write!(
+                    f,
+                    "; {}: worst {:.1} % of the limit ({} {:.3} {}, line {})",
+                    kind.name(),
+                    w.ratio * 100.0,
+                    w.subject.name(),
+                    w.value.abs(),
+                    w.subject.unit(kind),
+                    w.line
+                )?,
+                (_, None) => write!(f, "; {}: none", kind.name())?,
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::string::ToString;
+    use alloc::vec::Vec;
+
+    /// A run on the reference machine (X 1500, Z 2000 mm/s², feeds
+    /// ≤ 4000/5000 mm/min, rapids 6000/10000 mm/min, period 1 ms),
+    /// starting at machine zero = work zero.
+    fn certifier() -> Certifier {
+        Certifier::new(&Config::default(), 0.0, 0.0, 0.0)
+    }
+
+    /// A set point at period `k` (time k ms), work = machine + `shift`
+    /// (diameter, Z).
+    fn at(k: u32, axis: (f64, f64), shift: (f64, f64), motion: Motion) -> SetPoint {
+        SetPoint {
+            time_s: f64::from(k) * 0.001,
+            x: axis.0 + shift.0,
+            z: axis.1 + shift.1,
+            axis_x: axis.0,
+            axis_z: axis.1,
+            line: 10 + k,
+            motion,
+            ..SetPoint::default()
+        }
+    }
+
+    /// Z positions of a stop-to-stop feed at 2000 mm/s² (the limit):
+    /// z = −a·t²/2 for 10 periods, then braking symmetrically.
+    fn z_profile(a: f64) -> Vec<f64> {
+        let dt = 0.001;
+        let mut z = Vec::new();
+        for k in 1..=10 {
+            let t = f64::from(k) * dt;
+            z.push(-a * t * t / 2.0);
+        }
+        let top = -a * (10.0 * dt) * (10.0 * dt) / 2.0;
+        for k in 1..=10 {
+            let t = f64::from(10 - k) * dt;
+            z.push(2.0 * top + a * t * t / 2.0);
+        }
+        z
+    }
+
+    #[test]
+    fn a_move_at_the_limits_is_certified() {
+        let mut c = certifier();
+        let z = z_profile(2000.0);
+        // The canon end point: Z = 2 × (−2000 × 0.01² / 2) = −0.2.
+        c.emit(Event::Line {
+            x: 0.0,
+            z: -0.2,
+            c: None,
+        });
+        for (k, &z) in z.iter().enumerate() {
+            c.period(&at(k as u32 + 1, (0.0, z), (0.0, 0.0), Motion::Feed));
+        }
+        c.finish(true);
+        assert_eq!(c.violation(), None);
+        // Top speed 2000 × 0.01 = 20 mm/s, but the finite difference of
+        // period 10 is (z10 − z9)/dt = 2000 × (0.1² − 0.09²)/2 … /dt
+        // = 19 mm/s; the acceleration is exactly the limit.
+        let v = c.worst(Kind::Velocity).unwrap();
+        assert!((v.value.abs() - 19.0).abs() < 1e-6, "{v:?}");
+        let a = c.worst(Kind::Acceleration).unwrap();
+        assert!((a.ratio - 1.0).abs() < 1e-6, "{a:?}");
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 1 of 1 reached"));
+    }
+
+    #[test]
+    fn a_thread_start_in_one_period_is_caught() {
+        // Z from rest to 1.5 mm/rev × 600 rev/min = 15 mm/s at once: the
+        // second difference is 0.015 mm / (1 ms)² = 15 000 mm/s².
+        let mut c = certifier();
+        c.period(&at(1, (0.0, 0.0), (0.0, 0.0), Motion::Thread));
+        c.period(&at(2, (0.0, -0.015), (0.0, 0.0), Motion::Thread));
+        let v = *c.violation().expect("a violation");
+        assert_eq!(
+            (v.kind, v.subject, v.line),
+            (Kind::Acceleration, Subject::Z, 12)
+        );
+        assert!((v.value.abs() - 15_000.0).abs() < 1e-6, "{v:?}");
+        assert_eq!(v.limit, 2000.0);
+        let text = v.to_string();
+        assert!(
+            text.contains(
+                "at 0.002000 s: Z acceleration 15000.000 mm/s² exceeds its limit 2000.000 mm/s²"
+            ),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn feeds_and_rapids_have_their_own_speed_limits() {
+        // 0.07 mm of radius in 1 ms = 70 mm/s: above X's cutting feed
+        // (4000 mm/min = 66.667 mm/s), below its rapid (100 mm/s). The
+        // acceleration is measured too, so X builds the speed slowly:
+        // 70 mm/s at 1500 mm/s² takes 47 periods (70/1.5).
+        for (motion, bad) in [(Motion::Rapid, false), (Motion::Feed, true)] {
+            let mut c = certifier();
+            let (mut r, mut v, mut k) = (0.0f64, 0.0f64, 0);
+            while k < 200 {
+                v = (v + 1.5).min(70.0); // mm/s gained per period
+                r += v * 0.001;
+                k += 1;
+                c.period(&at(k, (2.0 * r, 0.0), (0.0, 0.0), motion));
+            }
+            let f = c.worst(Kind::Velocity).unwrap();
+            assert!((f.value - 70.0).abs() < 1e-6, "{f:?}");
+            assert_eq!(c.violation().is_some(), bad, "{motion:?}");
+            if bad {
+                let f = c.violation().unwrap();
+                assert_eq!(
+                    (f.kind, f.subject, f.limit),
+                    (Kind::Velocity, Subject::X, 4000.0 / 60.0)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn an_origin_change_is_no_jump_and_end_points_follow_it() {
+        // G00 Z-0.2 in work = machine; then G50 moves work zero by 100 mm
+        // (work Z = machine Z + 100): the next end point, Z = 99.8 in the
+        // new work frame, is the machine's Z −0.2 again … back to 0.
+        let mut c = certifier();
+        c.emit(Event::Line {
+            x: 0.0,
+            z: -0.2,
+            c: None,
+        });
+        let z = z_profile(2000.0);
+        let mut k = 0;
+        for &z in &z {
+            k += 1;
+            c.period(&at(k, (0.0, z), (0.0, 0.0), Motion::Feed));
+        }
+        c.emit(Event::Origin { x: 0.0, z: 100.0 });
+        c.emit(Event::Line {
+            x: 0.0,
+            z: 100.0,
+            c: None,
+        });
+        k += 1;
+        c.period(&at(k, (0.0, -0.2), (0.0, 100.0), Motion::None));
+        for &z in &z {
+            k += 1;
+            c.period(&at(k, (0.0, -0.2 - z), (0.0, 100.0), Motion::Feed));
+        }
+        c.finish(true);
+        assert_eq!(c.violation(), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 2 of 2 reached"));
+    }
+
+    #[test]
+    fn a_shift_and_the_first_step_in_one_period() {
+        // Standing at machine X40 Z10 = work X40 Z10; G55 moves work zero
+        // so that the point is X35, and the same period steps 0.003 mm
+        // (diameter) towards X30: the zero-length RAPID X35 is where the
+        // step began in the new frame, so it is reached.
+        let mut c = Certifier::new(&Config::default(), 40.0, 10.0, 0.0);
+        c.emit(Event::Origin { x: 5.0, z: 0.0 });
+        c.emit(Event::Rapid {
+            x: 35.0,
+            z: 10.0,
+            c: None,
+        });
+        c.period(&at(1, (40.0, 10.0), (0.0, 0.0), Motion::None));
+        c.period(&at(2, (39.997, 10.0), (-5.0, 0.0), Motion::Rapid));
+        c.finish(true);
+        assert_eq!(c.violation(), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 1 of 1 reached"));
+    }
+
+    #[test]
+    fn an_end_point_not_reached_is_reported_where_the_path_came_nearest() {
+        // The path stops 0.002 mm short of Z−0.2: it came nearest on its
+        // last period (line 30), 0.002 mm away.
+        let mut c = certifier();
+        c.emit(Event::Line {
+            x: 0.0,
+            z: -0.2,
+            c: None,
+        });
+        for (k, &z) in z_profile(2000.0).iter().enumerate() {
+            c.period(&at(k as u32 + 1, (0.0, z * 0.99), (0.0, 0.0), Motion::Feed));
+        }
+        assert_eq!(c.violation(), None); // not yet: the run goes on
+        c.finish(true);
+        let f = *c.violation().expect("the end point is missed");
+        assert_eq!((f.kind, f.line), (Kind::EndPoint, 30));
+        assert!((f.value - 0.002).abs() < 1e-9, "{f:?}");
+        // A run that stopped early (an alarm) owes no end points.
+        let mut c = certifier();
+        c.emit(Event::Line {
+            x: 0.0,
+            z: -0.2,
+            c: None,
+        });
+        c.finish(false);
+        assert_eq!(c.violation(), None);
+    }
+
+    #[test]
+    fn a_corner_cut_between_two_periods_is_a_miss_and_the_walk_goes_on() {
+        // G01 Z−0.1 then X0.1 (radius 0.05) at 20 mm/s: the periods at Z
+        // −0.095 and then (X 0.03, Z −0.1)… jump over the corner Z−0.1: the
+        // chord from (r 0, Z −0.095) to (r 0.015, Z −0.1) passes it at
+        // 0.005 × 0.015 / hypot(0.015, 0.005) = 0.0047434 mm, its nearest
+        // (period 6, line 16). The next end point is reached.
+        let mut c = certifier();
+        c.emit(Event::Line {
+            x: 0.0,
+            z: -0.1,
+            c: None,
+        });
+        c.emit(Event::Line {
+            x: 0.1,
+            z: -0.1,
+            c: None,
+        });
+        let path = [
+            (0.0, -0.02),
+            (0.0, -0.04),
+            (0.0, -0.06),
+            (0.0, -0.08),
+            (0.0, -0.095),
+            (0.03, -0.1),
+            (0.07, -0.1),
+            (0.1, -0.1),
+        ];
+        for (k, &xz) in path.iter().enumerate() {
+            c.period(&at(k as u32 + 1, xz, (0.0, 0.0), Motion::Feed));
+        }
+        c.finish(true);
+        let f = *c.worst(Kind::EndPoint).expect("the corner is missed");
+        assert_eq!(f.line, 16);
+        let want = 0.005 * 0.015 / libm::hypot(0.015, 0.005);
+        assert!(
+            (f.value - want).abs() < 1e-12 && (want - 0.0047434).abs() < 1e-7,
+            "{f:?}"
+        );
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 1 of 2 reached"));
+    }
+
+    #[test]
+    fn incomplete_lead_lengths() {
+        // 1.5 mm/rev at 600 rev/min: 15 mm/s; Z at 2000 mm/s² needs
+        // 15² / (2 × 2000) = 0.05625 mm.
+        assert!((incomplete_lead(15.0, 2000.0, 1500.0, 30.0, 0.0) - 0.05625).abs() < 1e-12);
+        // A 45° taper: X (1500 mm/s²) must follow Z one to one, so Z may
+        // accelerate at only 1500: 225 / 3000 = 0.075 mm.
+        assert!((incomplete_lead(15.0, 2000.0, 1500.0, 10.0, -10.0) - 0.075).abs() < 1e-12);
+        // A shallow taper (X 1 in Z 4): X allows 1500 × 4 = 6000 > 2000.
+        assert!((incomplete_lead(15.0, 2000.0, 1500.0, -8.0, 2.0) - 0.05625).abs() < 1e-12);
+    }
+
+    /// A G32 Z−30 with lead 1.5 at 600 rev/min (0.01 rev per period):
+    /// Z ramps at 2000 mm/s² to 15 mm/s (7.5 periods: take 8 at the
+    /// limit, then exactly 0.015 mm per period), with one wrong period
+    /// at `bad` where Z moves 0.0151 mm.
+    fn thread(bad: Option<u32>) -> Certifier {
+        let mut c = certifier();
+        c.emit(Event::Spindle(SpindleDir::Cw));
+        c.emit(Event::Rapid {
+            x: 0.0,
+            z: 0.0,
+            c: None,
+        });
+        c.emit(Event::Thread {
+            x: 0.0,
+            z: -30.0,
+            c: None,
+            lead: 1.5,
+            dlead: None,
+            q: None,
+        });
+        let (mut z, mut v, mut turns) = (0.0f64, 0.0f64, 0.0);
+        // 1900 periods: Z ends at about −28.4, short of the run-out.
+        for k in 1..=1900u32 {
+            v = (v + 2.0).min(15.0); // mm/s: 2000 mm/s² × 1 ms
+            let step = if Some(k) == bad { 0.0151 } else { v * 0.001 };
+            z -= step;
+            turns += 0.01;
+            let p = SetPoint {
+                spindle_rpm: 600.0,
+                spindle_turns: turns,
+                ..at(k, (0.0, z), (0.0, 0.0), Motion::Thread)
+            };
+            c.period(&p);
+        }
+        c
+    }
+
+    #[test]
+    fn the_lead_is_checked_after_the_incomplete_lead() {
+        // The ramp (lead below 1.5) is within the incomplete lead:
+        // 0.05625 × 1.1 + 0.015 = 0.0769 mm; period 8 ends at
+        // 2+4+…+14 µm + 15 = 0.071 mm, so period 9, which starts there,
+        // is left out too; from period 10 on (Z −0.086 at its start) the
+        // lead is 1.5.
+        // Periods 10 to 1900 are checked: 1891. (The spindle is at 600
+        // from the first period, a jump the spindle check reports; only
+        // the lead matters here.)
+        let c = thread(None);
+        let w = c.worst(Kind::Lead).unwrap();
+        assert!(w.ratio < 1e-9 && !w.violates(), "{w:?}");
+        assert!(
+            c.summary().to_string().contains("(1891 periods"),
+            "{}",
+            c.summary()
+        );
+        // A period of 0.0151 mm in a turn of 0.01: lead 1.51, 0.667 % off.
+        let c = thread(Some(500));
+        let f = *c.worst(Kind::Lead).unwrap();
+        assert!(f.violates());
+        assert_eq!(f.line, 510);
+        assert!((f.value - 1.51).abs() < 1e-9 && f.limit == 1.5, "{f:?}");
+    }
+
+    #[test]
+    fn the_spindle_keeps_its_acceleration() {
+        // 1000 rev/min/s is 1 rev/min per period: a step of 2 is twice it.
+        let mut c = certifier();
+        let p = |k, rpm| SetPoint {
+            spindle_rpm: rpm,
+            ..at(k, (0.0, 0.0), (0.0, 0.0), Motion::None)
+        };
+        c.period(&p(1, 1.0));
+        c.period(&p(2, 2.0));
+        assert_eq!(c.violation(), None);
+        c.period(&p(3, 4.0));
+        let f = *c.violation().unwrap();
+        assert_eq!(
+            (f.kind, f.value, f.limit),
+            (Kind::SpindleAccel, 2000.0, 1000.0)
+        );
+    }
+
+    #[test]
+    fn g96_holds_the_surface_speed() {
+        // G96 S150 at X50: 1000 × 150 / (π × 50) = 954.93 rev/min.
+        let target = 1000.0 * 150.0 / (PI * 50.0);
+        let run = |rpm: [f64; 3]| {
+            let mut c = Certifier::new(&Config::default(), 50.0, 0.0, 0.0);
+            c.emit(Event::Speed {
+                s: 150.0,
+                css: true,
+                max: None,
+            });
+            c.emit(Event::Spindle(SpindleDir::Cw));
+            c.emit(Event::Line {
+                x: 50.0,
+                z: -10.0,
+                c: None,
+            });
+            // Feeding at X50 (it stays: a face would change the target).
+            for (k, rpm) in rpm.into_iter().enumerate() {
+                c.period(&SetPoint {
+                    spindle_rpm: rpm,
+                    ..at(
+                        k as u32 + 1,
+                        (50.0, -0.001 * k as f64),
+                        (0.0, 0.0),
+                        Motion::Feed,
+                    )
+                });
+            }
+            c.worst(Kind::SurfaceSpeed).copied()
+        };
+        let held = run([target; 3]).unwrap();
+        assert!(held.ratio < 1e-12 && !held.violates(), "{held:?}");
+        // 900 rev/min steady: (954.93 − 900) / 954.93 = 5.75 % off.
+        let off = run([900.0; 3]).unwrap();
+        assert!(off.violates());
+        assert!((off.ratio - (target - 900.0) / target).abs() < 1e-12);
+        assert!((off.ratio - 0.0575).abs() < 1e-4);
+        // Still speeding up at the spindle's 1 rev/min per period: exempt.
+        let chasing = run([898.0, 899.0, 900.0]).unwrap();
+        assert_eq!(chasing.time_s, 0.001, "only the first period counts");
+    }
+
+    #[test]
+    fn jerk_is_checked_where_the_machine_limits_it() {
+        // Z starts at 2000 mm/s² at once: the third difference of
+        // 0, 0, 0, −0.001 mm (a·dt²/2) is 0.001 mm / 1e-9 s³ = 1e6 mm/s³,
+        // 40 × the 25 000 mm/s³ limit. Without jerk limiting it is not
+        // checked.
+        for jerk in [false, true] {
+            let cfg = Config {
+                jerk_limited: jerk,
+                ..Config::default()
+            };
+            let mut c = Certifier::new(&cfg, 0.0, 0.0, 0.0);
+            for (k, z) in [0.0, 0.0, 0.0, -0.001].into_iter().enumerate() {
+                c.period(&at(k as u32 + 1, (0.0, z), (0.0, 0.0), Motion::Feed));
+            }
+            let w = c.worst(Kind::Jerk);
+            if jerk {
+                let w = w.unwrap();
+                assert!(
+                    (w.value + 1.0e6).abs() < 1e-3 && w.limit == 25_000.0,
+                    "{w:?}"
+                );
+                assert_eq!(c.violation().map(|f| f.kind), Some(Kind::Jerk));
+            } else {
+                assert!(w.is_none());
+                assert!(c.summary().to_string().contains("jerk: not limited"));
+            }
+        }
+    }
+}
