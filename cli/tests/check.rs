@@ -8,71 +8,40 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// Programs whose threads or taps break the axis limits today (the
-/// thread entry, the pull-outs and the tapping reversals of issue 15,
-/// which another change makes accelerate within limits), with the first
-/// violation `gbvm check` measured on the reference machine. The list is
-/// to be emptied once that change is merged: a listed program that
+/// Programs `gbvm check` does not certify yet, with the first violation
+/// it measures on the reference machine: a thread chain's corner taken at
+/// thread speed passes its canon point about a micrometre off, and the
+/// lead of a run-out, a variable lead and a pull-out is measured where the
+/// programmed one does not hold (issue 15, open). A listed program that
 /// passes fails this test, so that it leaves the list.
 const FAILS_TODAY: &[(&str, &str)] = &[
     (
-        "g32_2_arc_thread",
-        "X acceleration 5279.419 mm/s² at 0.427 s",
-    ),
-    (
         "g32_runout_chain",
-        "Z acceleration 2020.151 mm/s² at 0.540 s",
+        "thread lead 3.1 mm/rev where 2 is programmed, line 13",
     ),
-    ("g33_tapping", "Z acceleration 2013.400 mm/s² at 0.353 s"),
     (
         "g34_variable_lead",
-        "Z acceleration 8000.000 mm/s² at 0.756 s",
+        "thread lead 2.0047 mm/rev where 3.3138 is programmed, line 12",
     ),
     (
-        "g76_dmin_radial",
-        "Z acceleration 2013.400 mm/s² at 0.353 s",
+        "g76_m24x1_5",
+        "canon end point passed 0.0013 mm off, line 13",
     ),
-    ("g76_internal", "Z acceleration 2016.097 mm/s² at 0.613 s"),
-    ("g76_m24x1_5", "Z acceleration 2020.151 mm/s² at 0.603 s"),
-    ("g76_taper", "Z acceleration 2020.151 mm/s² at 0.503 s"),
     (
         "g78_cut_in_modes",
-        "Z acceleration 2020.151 mm/s² at 0.503 s",
+        "canon end point passed 0.0010 mm off, line 14",
     ),
-    ("g84_rigid_m29", "Z acceleration 2013.400 mm/s² at 0.353 s"),
     (
         "g92_new_run_modal_lead",
-        "Z acceleration 2016.097 mm/s² at 0.613 s",
+        "canon end point passed 0.0011 mm off, line 10",
     ),
     (
         "g92_taper_pullout",
-        "Z acceleration 2016.097 mm/s² at 0.613 s",
+        "canon end point passed 0.0011 mm off, line 10",
     ),
-    ("g92_thread_m24", "Z acceleration 2020.151 mm/s² at 0.603 s"),
-    ("g92_two_start", "Z acceleration 2020.151 mm/s² at 0.503 s"),
     (
         "part_shaft_m30",
-        "Z acceleration 17470.454 mm/s² at 141.406 s (G76 pull-out)",
-    ),
-    (
-        "doosan-lynx300__O0201",
-        "Z acceleration 24062.069 mm/s² at 50.794 s",
-    ),
-    (
-        "doosan-lynx300__O3380",
-        "Z acceleration 23999.998 mm/s² at 54.206 s",
-    ),
-    (
-        "enier-cnc__round_head_plug.nc",
-        "Z acceleration 50134.787 mm/s² at 356.697 s",
-    ),
-    (
-        "icnc__T2019-1-S43-Giordano-O0001.TXT",
-        "Z acceleration 2008.279 mm/s² at 127.007 s",
-    ),
-    (
-        "icnc__T2019-1-S43-Laura-programa1.txt",
-        "Z acceleration 5999.972 mm/s² at 1292.770 s",
+        "thread lead 2.4 mm/rev where 2 is programmed, line 46",
     ),
 ];
 
@@ -159,7 +128,7 @@ fn judge(results: Vec<(String, Verdict)>) -> (usize, Vec<String>) {
             (Verdict::Violation(e), false) => wrong.push(format!("{name}: {e}")),
             // Exit 1 names the place: `FILE:LINE: violation: at T s: …`.
             (Verdict::Violation(e), true) => {
-                if !e.contains(": violation: at ") || !e.contains(" exceeds its limit ") {
+                if !e.contains(": violation: at ") {
                     wrong.push(format!("{name}: the violation reads {e:?}"));
                 }
             }
@@ -203,8 +172,8 @@ fn every_conformance_program_that_runs_is_certified() {
     }
     let (certified, wrong) = judge(results);
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
-    // 72 cases with a canon, 15 of them in FAILS_TODAY (2026-12).
-    assert!(certified >= 50, "only {certified} certified");
+    // 72 cases with a canon, 7 of them in FAILS_TODAY (2026-12).
+    assert!(certified >= 60, "only {certified} certified");
     let _ = std::fs::remove_dir_all(out);
 }
 
