@@ -21,7 +21,7 @@ use alloc::vec::Vec;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, SpindleDir, StopKind};
-use crate::base::gcode::{self, Code};
+use crate::base::gcode::{self, Drill, Motion, OneShot, Polar, SpeedMode, G};
 use crate::base::geom::{self, Element};
 use crate::base::machine::{ArcWithoutCenter, DecimalPoint, Machine, SpindleType};
 use crate::base::point::Pt;
@@ -157,7 +157,8 @@ impl Nc {
             nc.before_motion(p, words, s)
         })?;
         self.remember(p);
-        self.st.exact_stop = p.has_g(90) || self.st.modal.path_mode() == PathMode::ExactStop;
+        self.st.exact_stop =
+            p.has_g(OneShot::ExactStop) || self.st.modal.path_mode() == PathMode::ExactStop;
         self.motion(p, sink, &mut out)?;
         contour::in_order(self, sink, |nc, s| {
             nc.after_motion(p, s);
@@ -180,29 +181,26 @@ impl Nc {
 
     /// Group 0: the block's modal codes, in written order.
     fn modal_settings(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
-        for &(code, _) in p.gs() {
-            let Some(group) = gcode::group(code) else {
-                continue;
-            };
-            match group {
-                gcode::ONE_SHOT => {}
-                gcode::SPEED_MODE => self.speed_mode(code, p, sink),
-                gcode::STROKE => {
-                    self.st.modal.set(group, code);
+        for g in p.gs() {
+            match g {
+                G::OneShot(_) => {}
+                G::SpeedMode(code) => self.speed_mode(code, p, sink),
+                G::Stroke(code) => {
+                    self.st.modal.set(g);
                     crate::exec::stroke::select(self, code, p);
                 }
-                gcode::WORK => {
+                G::Work(_) => {
                     let before = self.st.origin();
-                    self.st.modal.set(group, code);
+                    self.st.modal.set(g);
                     self.print_origin_if_moved(before, sink);
                 }
-                gcode::MOTION => {
-                    self.st.modal.set(group, code);
+                G::Motion(_) => {
+                    self.st.modal.set(g);
                     // Any group-01 code cancels the drilling cycles.
-                    self.st.modal.set(gcode::DRILL, 800);
+                    self.st.modal.drill = Drill::Off;
                 }
-                gcode::POLAR if code == 121 => return self.polar_or_cylinder(code),
-                _ => self.st.modal.set(group, code),
+                G::Polar(Polar::On) => return self.polar_or_cylinder(true),
+                _ => self.st.modal.set(g),
             }
         }
         if let Some(code) = p.one_shot() {
@@ -213,8 +211,8 @@ impl Nc {
 
     /// G12.1 and G7.1 need the C axis (E2003); where it exists their canon
     /// is not specified yet (E2099, dialect.md §4.6).
-    fn polar_or_cylinder(&self, code: Code) -> Result<(), NcError> {
-        let what = if code == 121 {
+    fn polar_or_cylinder(&self, polar: bool) -> Result<(), NcError> {
+        let what = if polar {
             "G12.1 polar interpolation"
         } else {
             "G7.1 cylindrical interpolation"
@@ -229,18 +227,18 @@ impl Nc {
         }
     }
 
-    fn unsupported_one_shot(&self, code: Code) -> Result<(), NcError> {
+    fn unsupported_one_shot(&self, code: OneShot) -> Result<(), NcError> {
         match code {
-            71 => self.polar_or_cylinder(code),
+            OneShot::Cylindrical => self.polar_or_cylinder(false),
             _ => Ok(()),
         }
     }
 
     /// G96/G97 without S that changes the mode prints the new speed.
-    fn speed_mode(&mut self, code: Code, p: &Parsed, sink: &mut dyn Sink) {
+    fn speed_mode(&mut self, code: SpeedMode, p: &Parsed, sink: &mut dyn Sink) {
         let was_css = self.st.css_mode();
-        self.st.modal.set(gcode::SPEED_MODE, code);
-        let now_css = code == 960;
+        self.st.modal.speed_mode = code;
+        let now_css = code == SpeedMode::SurfaceSpeed;
         if was_css == now_css || p.has(b'S') {
             return;
         }
@@ -290,7 +288,7 @@ impl Nc {
     ) -> Result<(), NcError> {
         // Thread chains, M29 rules; a drilling block's M is its clamp code.
         let clamp = crate::exec::cycles::before_block(self, p, sink)?;
-        let g50 = p.one_shot() == Some(500);
+        let g50 = p.one_shot() == Some(OneShot::SetCoordinates);
         for w in words {
             match w.addr {
                 a if a == b'M' - b'A' => {
@@ -386,14 +384,14 @@ impl Nc {
         out: &mut Outcome,
     ) -> Result<(), NcError> {
         if let Some(code) = p.one_shot() {
-            if code == 90 {
+            if code == OneShot::ExactStop {
                 // G09: its move decides about waiting corners.
                 return self.one_shot(code, p, sink, out);
             }
             contour::before_one_shot(self, code, sink)?;
             return contour::in_order(self, sink, |nc, s| nc.one_shot(code, p, s, out));
         }
-        if p.has_g(220) {
+        if p.has_g(gcode::Stroke::On) {
             // G22 owns the block's X Z I K: they are its limits.
             return Ok(());
         }
@@ -401,9 +399,9 @@ impl Nc {
             self.flush_if_moving(p, sink)?;
             return crate::exec::cycles::drill(self, drill, p, sink, out);
         }
-        let code = self.st.group(gcode::MOTION);
-        if !matches!(code, 0 | 10 | 20 | 30 | 50 | 51) {
-            return if matches!(code, 62 | 63 | 72 | 73) {
+        let code = self.st.modal.motion;
+        if !code.is_contour() {
+            return if code.is_conic() {
                 contour::conic(self, code, p, sink, out)
             } else {
                 self.flush_if_moving(p, sink)?;
@@ -411,22 +409,24 @@ impl Nc {
             };
         }
         let corner = contour::corner_word(self, code, p)?;
-        let arc_words = matches!(code, 20 | 30) && (p.has(b'I') || p.has(b'K') || p.has(b'R'));
-        let angle_words = matches!(code, 0 | 10) && contour::has_angle(p);
+        let arc_words = code.is_arc() && (p.has(b'I') || p.has(b'K') || p.has(b'R'));
+        let angle_words = code.is_straight() && contour::has_angle(p);
         if !p.has_axis() && !arc_words && !angle_words && !self.st.c_block {
             return Ok(());
         }
         let target = self.target(p);
         match code {
-            0 | 10 => contour::straight(self, code == 0, p, corner, sink)?,
-            20 | 30 => {
-                if let Some(e) = self.arc_element(self.st.pos, code == 20, target, p)? {
+            Motion::Rapid | Motion::Line => {
+                contour::straight(self, code == Motion::Rapid, p, corner, sink)?
+            }
+            Motion::ArcCw | Motion::ArcCcw => {
+                if let Some(e) = self.arc_element(self.st.pos, code == Motion::ArcCw, target, p)? {
                     contour::feed_element(self, e, corner, sink)?;
                 }
             }
             _ => {
                 contour::flush(self, sink)?;
-                self.three_point_arc(code == 51, target, p, sink)?
+                self.three_point_arc(code == Motion::ThreePointAbs, target, p, sink)?
             }
         }
         out.moved = true;
@@ -595,21 +595,21 @@ impl Nc {
 
     fn one_shot(
         &mut self,
-        code: Code,
+        code: OneShot,
         p: &Parsed,
         sink: &mut dyn Sink,
         out: &mut Outcome,
     ) -> Result<(), NcError> {
         match code {
-            40 => self.dwell(p, sink),
-            90 => {
+            OneShot::Dwell => self.dwell(p, sink),
+            OneShot::ExactStop => {
                 // G09: exact stop is the runtime's; the motion runs as usual.
                 let mut q = p.clone();
                 q.clear_gs();
                 return self.motion(&q, sink, out);
             }
-            280 => self.home(p, 1, sink),
-            300 => {
+            OneShot::Home => self.home(p, 1, sink),
+            OneShot::HomeN => {
                 let n = p.get(b'P').map_or(2.0, round_half_away);
                 if !(2.0..=4.0).contains(&n) {
                     return fail(
@@ -619,7 +619,7 @@ impl Nc {
                 }
                 self.home(p, n as u32, sink)
             }
-            310 => {
+            OneShot::Skip => {
                 let to = self.target(p);
                 self.feed_due(sink);
                 self.st.pos = to;
@@ -627,10 +627,12 @@ impl Nc {
                 out.skip = Some(to);
                 sink.emit(Event::Skip { x: to.x(), z: to.z });
             }
-            360 | 370 => crate::exec::measure::run(self, code == 360, p, sink)?,
-            500 => self.set_coordinates(p, sink),
-            520 => self.set_local(p, sink),
-            530 => {
+            OneShot::MeasureX | OneShot::MeasureZ => {
+                crate::exec::measure::run(self, code == OneShot::MeasureX, p, sink)?
+            }
+            OneShot::SetCoordinates => self.set_coordinates(p, sink),
+            OneShot::Local => self.set_local(p, sink),
+            OneShot::MachineCoords => {
                 if p.has(b'U') || p.has(b'W') {
                     return fail(
                         Alarm::IncompatibleWords,
@@ -647,18 +649,31 @@ impl Nc {
                 }
                 self.rapid(m.sub(origin), sink);
             }
-            700..=730 => return crate::exec::compound::run(self, code, p, sink, out),
-            740 | 750 | 760 | 780 => {
+            OneShot::Finish | OneShot::RoughTurn | OneShot::RoughFace | OneShot::Pattern => {
+                return crate::exec::compound::run(self, code, p, sink, out)
+            }
+            OneShot::PeckFace
+            | OneShot::PeckGroove
+            | OneShot::MultiThread
+            | OneShot::SpiralThread => {
                 return crate::exec::cycles::one_shot(self, code, p, sink, out)
             }
             _ => {
                 return fail(
                     Alarm::NotSupportedYet,
-                    format!("{} is not implemented yet", gcode::name(code)),
+                    format!("{} is not implemented yet", code.name()),
                 )
             }
         }
-        out.moved = matches!(code, 280 | 300 | 310 | 360 | 370 | 530);
+        out.moved = matches!(
+            code,
+            OneShot::Home
+                | OneShot::HomeN
+                | OneShot::Skip
+                | OneShot::MeasureX
+                | OneShot::MeasureZ
+                | OneShot::MachineCoords
+        );
         Ok(())
     }
 

@@ -7,15 +7,14 @@ use alloc::vec::Vec;
 use super::out::Out;
 use super::profile::check_codes;
 use crate::base::error::NcError;
-use crate::base::gcode;
 use crate::base::words::{addr, Word};
 use crate::block;
 use crate::exec::{Nc, Sink};
 
 pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Result<(), NcError> {
     let a = nc.st.pos;
-    let motion = nc.st.group(gcode::MOTION);
-    let comp = nc.st.group(gcode::COMP);
+    let motion = nc.st.modal.motion;
+    let comp = nc.st.modal.comp;
     for (words, tag) in blocks {
         let tag = *tag;
         let p = block::parse(words, &nc.machine).map_err(|e| e.at(tag))?;
@@ -38,7 +37,7 @@ pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Res
     }
     .rapid(a);
     // The modes in force before G70 are back (cycles.md §8, comp.md §8).
-    nc.st.modal.set(gcode::MOTION, motion);
-    nc.st.modal.set(gcode::COMP, comp);
+    nc.st.modal.motion = motion;
+    nc.st.modal.comp = comp;
     Ok(())
 }

@@ -19,7 +19,7 @@ mod rough;
 mod tests;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
+use crate::base::gcode::OneShot;
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
@@ -99,7 +99,7 @@ fn too_many(passes: f64) -> Result<(), NcError> {
 /// A G70–G73 block; `nc.profile` holds the ns…nf blocks for a cycle block.
 pub fn run(
     nc: &mut Nc,
-    code: Code,
+    code: OneShot,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
@@ -110,7 +110,7 @@ pub fn run(
         return fail(Alarm::BadProfile, "the cycle needs both P (ns) and Q (nf)");
     }
     if !has_p {
-        return if code == 700 {
+        return if code == OneShot::Finish {
             fail(Alarm::MissingWord, "G70 needs P (ns) and Q (nf)")
         } else {
             first_block(nc, code, p)
@@ -118,19 +118,22 @@ pub fn run(
     }
     out.moved = true;
     match code {
-        700 => finish::run(nc, &blocks, sink),
-        710 | 720 => stock_removal(nc, code == 720, p, &blocks, sink),
+        OneShot::Finish => finish::run(nc, &blocks, sink),
+        OneShot::RoughTurn | OneShot::RoughFace => {
+            stock_removal(nc, code == OneShot::RoughFace, p, &blocks, sink)
+        }
         _ => pattern_repeat(nc, p, &blocks, sink),
     }
 }
 
 /// `G71 U R`, `G72 W R`, `G73 U W R`: words left out keep their value.
-fn first_block(nc: &mut Nc, code: Code, p: &Parsed) -> Result<(), NcError> {
+fn first_block(nc: &mut Nc, code: OneShot, p: &Parsed) -> Result<(), NcError> {
     let r = nc.len_of(p, b'R');
+    let turning = code == OneShot::RoughTurn;
     match code {
-        710 | 720 => {
-            let depth = nc.len_of(p, if code == 710 { b'U' } else { b'W' });
-            let st = if code == 710 {
+        OneShot::RoughTurn | OneShot::RoughFace => {
+            let depth = nc.len_of(p, if turning { b'U' } else { b'W' });
+            let st = if turning {
                 &mut nc.st.compound.g71
             } else {
                 &mut nc.st.compound.g72

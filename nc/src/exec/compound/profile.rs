@@ -7,7 +7,7 @@ use alloc::format;
 use alloc::vec::Vec;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::{self, Code};
+use crate::base::gcode::{Drill, Motion, G};
 use crate::base::geom::{self, Element};
 use crate::base::point::Pt;
 use crate::base::words::Word;
@@ -65,12 +65,12 @@ fn parse_at(nc: &Nc, words: &[Word], tag: u32) -> Result<Parsed, NcError> {
 pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kind, NcError> {
     let (words, tag) = first(blocks)?;
     let p = parse_at(nc, words, *tag)?;
-    let code = p.motion().unwrap_or(nc.st.group(gcode::MOTION));
+    let code = p.motion().unwrap_or(nc.st.modal.motion);
     let name = if facing { "G72" } else { "G71" };
-    if !matches!(code, 0 | 10) {
+    if !code.is_straight() {
         let msg = format!(
             "the first profile block (ns) of {name} must move with G00 or G01, not {}",
-            gcode::name(code)
+            code.name()
         );
         return Err(NcError::new(Alarm::BadProfileStart, msg).at(*tag));
     }
@@ -99,13 +99,16 @@ pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
     if let Some(code) = p.one_shot() {
         let msg = format!(
             "{} (group 00) may not stand in a G70–G73 profile",
-            gcode::name(code)
+            code.name()
         );
         return Err(NcError::new(Alarm::BadProfile, msg).at(tag));
     }
-    for &(code, _) in p.gs() {
-        if gcode::group(code) == Some(gcode::DRILL) && code != 800 {
-            let msg = format!("{} may not stand in a G70–G73 profile", gcode::name(code));
+    for g in p.gs() {
+        if let G::Drill(
+            code @ (Drill::FaceDrill | Drill::FaceTap | Drill::SideDrill | Drill::SideTap),
+        ) = g
+        {
+            let msg = format!("{} may not stand in a G70–G73 profile", code.name());
             return Err(NcError::new(Alarm::BadProfile, msg).at(tag));
         }
     }
@@ -119,7 +122,7 @@ pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
 pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
     first(blocks)?;
     let mut pos = nc.st.pos;
-    let mut code = nc.st.group(gcode::MOTION);
+    let mut code = nc.st.modal.motion;
     let mut segs: Vec<Seg> = Vec::with_capacity(blocks.len());
     // The element waiting for its corner: its index and the corner.
     let mut waiting: Option<(usize, Corner)> = None;
@@ -136,12 +139,14 @@ pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> 
         pos = el.end();
         let seg = Seg {
             curve: Curve::new(el),
-            rapid: code == 0,
+            rapid: code == Motion::Rapid,
             ns: i == 0,
         };
         match waiting.take() {
             // A G00 takes no corner (W112): the waiting one is dropped.
-            Some((at, c)) if code != 0 => join(&mut segs, at, seg, c).map_err(|e| e.at(*tag))?,
+            Some((at, c)) if code != Motion::Rapid => {
+                join(&mut segs, at, seg, c).map_err(|e| e.at(*tag))?
+            }
             _ => segs.push(seg),
         }
         waiting = corner.map(|c| (segs.len() - 1, c));
@@ -176,10 +181,10 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
 }
 
 /// The element one profile block describes, `None` when it does not move.
-fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>, NcError> {
+fn element(nc: &Nc, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Element>, NcError> {
     let to = nc.target_from(p, from);
     match code {
-        0 | 10 => {
+        Motion::Rapid | Motion::Line => {
             let Some(deg) = contour::angle_of(p) else {
                 return Ok(p.has_axis().then_some(Element::Line { from, to }));
             };
@@ -201,17 +206,19 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Element>,
             };
             Ok(Some(Element::Line { from, to: end }))
         }
-        20 | 30 => nc.arc_element(from, code == 20, to, p),
-        50 | 51 => three_point(nc, code == 51, p, from, to).map(Some),
-        62 | 63 | 72 | 73 => fail(
+        Motion::ArcCw | Motion::ArcCcw => nc.arc_element(from, code == Motion::ArcCw, to, p),
+        Motion::ThreePoint | Motion::ThreePointAbs => {
+            three_point(nc, code == Motion::ThreePointAbs, p, from, to).map(Some)
+        }
+        c if c.is_conic() => fail(
             Alarm::NotSupportedYet,
-            format!("{} in a G71–G73 profile is not supported yet", gcode::name(code)),
+            format!("{} in a G71–G73 profile is not supported yet", c.name()),
         ),
         _ => fail(
             Alarm::BadProfile,
             format!(
                 "{} may not stand in a G71–G73 profile: only G00, G01, G02, G03 (and G05) describe it",
-                gcode::name(code)
+                code.name()
             ),
         ),
     }

@@ -4,7 +4,7 @@
 use super::lead;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event};
-use crate::base::gcode::Code;
+use crate::base::gcode::Motion;
 use crate::base::geom;
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
@@ -17,12 +17,12 @@ const ANGLE_EPS: f64 = 1e-9;
 /// A G32.2 (322, clockwise) or G32.3 (323) block.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let cw = code == 322;
+    let cw = code == Motion::ArcThreadCw;
     // I is the centre here, so the lead is F only.
     let written = lead::written(nc, p, false);
     lead::remember(nc, written);

@@ -12,7 +12,7 @@ use super::words::{self, before, sign};
 use super::{lead, Func};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::SpindleDir;
-use crate::base::gcode::Code;
+use crate::base::gcode::Drill;
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
@@ -20,8 +20,8 @@ use crate::exec::{Nc, Outcome, Sink};
 /// The data of the drilling cycle in force, and the rigid tapping mode.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct DrillState {
-    /// The group-10 code the data belongs to (0: none yet).
-    code: Code,
+    /// The group-10 code the data belongs to (`None`: none yet).
+    code: Option<Drill>,
     data: Data,
     /// An M29 waits for its G84/G88 block.
     m29: bool,
@@ -61,16 +61,16 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
     let st = &mut nc.st.cycles.drill;
     // (Only M29 or a rigid cycle leaves something to clear.)
     if st.m29 || st.rigid {
-        if p.has_g(800) || p.has_m(2) || p.has_m(30) {
+        if p.has_g(Drill::Off) || p.has_m(2) || p.has_m(30) {
             st.m29 = false;
             st.rigid = false;
         }
-        if p.has_g(830) || p.has_g(870) || p.motion().is_some() {
+        if p.has_g(Drill::FaceDrill) || p.has_g(Drill::SideDrill) || p.motion().is_some() {
             st.rigid = false;
         }
     }
     let drills = matches!(f, Func::Drill(_)) && moves;
-    let taps = drills && matches!(f, Func::Drill(840 | 880));
+    let taps = drills && matches!(f, Func::Drill(d) if d.taps());
     if p.has_m(29) {
         if st.m29 {
             return fail(
@@ -106,7 +106,7 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
 /// A block while G83, G84, G87 or G88 is in force.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Drill,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
@@ -125,7 +125,7 @@ pub(crate) fn run(
     }
     let repeats = words::count(p, b'K')?.unwrap_or(1);
     let holes = Holes::of_block(nc, code, p)?;
-    let path = if matches!(code, 840 | 880) {
+    let path = if code.taps() {
         tap_path(nc, &holes, repeats)?
     } else {
         drill_path(nc, &holes, repeats)?
@@ -136,12 +136,12 @@ pub(crate) fn run(
 }
 
 /// A block naming the code starts new data; every block may change it.
-fn take_data(nc: &mut Nc, code: Code, p: &Parsed) -> Result<(), NcError> {
+fn take_data(nc: &mut Nc, code: Drill, p: &Parsed) -> Result<(), NcError> {
     let mut d = nc.st.cycles.drill.data;
-    if p.has_g(code) || nc.st.cycles.drill.code != code {
+    if p.has_g(code) || nc.st.cycles.drill.code != Some(code) {
         d = Data::default();
     }
-    let tapping = matches!(code, 840 | 880);
+    let tapping = code.taps();
     if tapping {
         if let Some(l) = lead::written(nc, p, true) {
             d.lead = Some(l);
@@ -161,7 +161,7 @@ fn take_data(nc: &mut Nc, code: Code, p: &Parsed) -> Result<(), NcError> {
     if let Some(ms) = p.get(b'P') {
         d.dwell_ms = round_half_away(ms).max(0.0);
     }
-    nc.st.cycles.drill.code = code;
+    nc.st.cycles.drill.code = Some(code);
     nc.st.cycles.drill.data = d;
     Ok(())
 }
@@ -184,8 +184,8 @@ struct Holes {
 }
 
 impl Holes {
-    fn of_block(nc: &mut Nc, code: Code, p: &Parsed) -> Result<Holes, NcError> {
-        let along_z = matches!(code, 830 | 840);
+    fn of_block(nc: &mut Nc, code: Drill, p: &Parsed) -> Result<Holes, NcError> {
+        let along_z = code.along_z();
         let here = nc.st.pos;
         let r_of = |v: f64| v / 2.0;
         let (abs_pos, inc_pos, abs_s, inc_s) = if along_z {

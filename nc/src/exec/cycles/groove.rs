@@ -7,7 +7,7 @@ use alloc::vec::Vec;
 use super::legs::{self, Leg};
 use super::words::{self, sign};
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
+use crate::base::gcode::OneShot;
 use crate::base::point::Pt;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
@@ -34,12 +34,12 @@ struct Groove {
 /// the second cuts.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: OneShot,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let g74 = code == 740;
+    let g74 = code == OneShot::PeckFace;
     if !p.has_axis() {
         if let Some(e) = nc.len_of(p, b'R') {
             let st = &mut nc.st.cycles.groove;

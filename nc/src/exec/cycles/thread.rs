@@ -13,7 +13,7 @@ use super::legs::Leg;
 use super::words::{sign, EPS};
 use super::{lead, Func};
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
+use crate::base::gcode::Motion;
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
@@ -117,7 +117,8 @@ fn start_angle(q: f64) -> Option<f64> {
 /// this block does not continue the chain, and a block that is not a
 /// G32/G34 move ends the chain.
 pub(crate) fn next_block(nc: &mut Nc, f: Func, p: &Parsed, sink: &mut dyn Sink) {
-    let continues = matches!(f, Func::Motion(320 | 340)) && p.has_axis();
+    let continues =
+        matches!(f, Func::Motion(Motion::Thread | Motion::VariableThread)) && p.has_axis();
     if !continues {
         return flush(nc, sink);
     }
@@ -156,12 +157,12 @@ fn print(legs: &[Leg], sink: &mut dyn Sink) {
 /// A G32 (320), G32.1 (321) or G34 (340) block.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let rigid = code == 321;
+    let rigid = code == Motion::RigidThread;
     let written = lead::written(nc, p, true).map(|l| if rigid { l.abs() } else { l });
     lead::remember(nc, written);
     remember_runout(nc, p)?;
@@ -172,10 +173,10 @@ pub(crate) fn run(
         from: nc.st.pos,
         to: nc.target(p),
         lead: lead::resolve(nc, written)?,
-        dlead: (code == 340).then(|| nc.len_of(p, b'R').unwrap_or(0.0)),
+        dlead: (code == Motion::VariableThread).then(|| nc.len_of(p, b'R').unwrap_or(0.0)),
         q: start_q(nc, code, p),
     };
-    if code == 340 {
+    if code == Motion::VariableThread {
         check_variable_lead(nc, &mv)?;
     }
     let runout = runout(nc, &mv)?;
@@ -209,10 +210,12 @@ fn remember_runout(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
 
 /// The start angle: G32's Q (0.001°) on the first block of a chain only,
 /// G32.1's C (degrees); G34 has none.
-fn start_q(nc: &Nc, code: Code, p: &Parsed) -> f64 {
+fn start_q(nc: &Nc, code: Motion, p: &Parsed) -> f64 {
     match code {
-        320 if !nc.st.cycles.chain.open => p.get(b'Q').map_or(0.0, |q| round_half_away(q) / 1000.0),
-        321 => p.get(b'C').unwrap_or(0.0),
+        Motion::Thread if !nc.st.cycles.chain.open => {
+            p.get(b'Q').map_or(0.0, |q| round_half_away(q) / 1000.0)
+        }
+        Motion::RigidThread => p.get(b'C').unwrap_or(0.0),
         _ => 0.0,
     }
 }

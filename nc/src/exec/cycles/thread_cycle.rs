@@ -9,7 +9,7 @@ use super::turning::{self, Cycle};
 use super::words::sign;
 use super::{lead, words};
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
+use crate::base::gcode::Motion;
 use crate::base::point::Pt;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
@@ -17,12 +17,12 @@ use crate::exec::{Nc, Outcome, Sink};
 /// A G92 (920) or G92.1 (921) block.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let rigid = code == 921;
+    let rigid = code == Motion::RigidThreadCycle;
     // The rigid cycle's F < 0 is a left-hand lead; the canon prints |F|.
     let written = lead::written(nc, p, true).map(|l| if rigid { l.abs() } else { l });
     lead::remember(nc, written);
