@@ -36,6 +36,7 @@ use crate::math::{sqrt, PI, V2};
 use crate::plc::PlcFunction;
 use crate::profile::brake_limit_above;
 use alloc::vec::Vec;
+use nc::geom::Element;
 
 /// A move ready for interpolation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -465,8 +466,13 @@ impl Planner {
         }
         let curve = match (m.kind, m.path) {
             (MoveKind::Rapid | MoveKind::Offset, _) => Curve::line(from, to),
-            (_, crate::command::Path::Line { to }) => Curve::line(from, to),
-            (_, crate::command::Path::Arc { to, centre, ccw }) => Curve::arc(from, to, centre, ccw),
+            (_, crate::command::Path::Line { to }) => Curve::of(Element::Line { from, to }),
+            (_, crate::command::Path::Arc { to, centre, ccw }) => Curve::of(Element::Arc {
+                from,
+                to,
+                centre,
+                cw: !ccw,
+            }),
             (_, crate::command::Path::Ellipse { to, a, b, q, ccw }) => {
                 Curve::ellipse(from, to, a, b, q, ccw).unwrap_or(Curve::line(from, to))
             }
