@@ -8,4 +8,6 @@ pub mod conic;
 pub mod corner;
 pub mod curve;
 pub mod elem;
+pub mod legs;
 pub mod offset;
+pub mod single;

@@ -10,6 +10,7 @@ use crate::base::gcode::Motion;
 use crate::base::point::Pt;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
+pub(crate) use crate::plan::single::{g90_legs, g94_legs, Cycle};
 
 /// What a block leaves out keeps the value of the previous cycle of the
 /// same run: the end point, R and (G92) L.
@@ -34,16 +35,6 @@ impl Run {
             starts: 1,
         }
     }
-}
-
-/// One cycle of a run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Cycle {
-    pub a: Pt,
-    pub end: Pt,
-    /// R: G90/G92 cut start radius minus end radius, G94 start Z minus end Z.
-    pub taper: f64,
-    pub starts: i64,
 }
 
 /// The values of this block's cycle of the `code` run, from its words and
@@ -94,28 +85,6 @@ pub(crate) fn next_cycle(nc: &mut Nc, code: Motion, p: &Parsed) -> Result<Cycle,
         taper,
         starts,
     })
-}
-
-/// G90 (§1): rapid to the cut start X + 2R, cut to the end, X back at
-/// feed, rapid to A.
-pub(crate) fn g90_legs(c: &Cycle) -> [Leg; 4] {
-    [
-        Leg::Rapid(Pt::new(c.end.r + c.taper, c.a.z)),
-        Leg::Line(c.end),
-        Leg::Line(Pt::new(c.a.r, c.end.z)),
-        Leg::Rapid(c.a),
-    ]
-}
-
-/// G94 (§2): rapid to the cut start Z + R, face to the end, Z back at
-/// feed, rapid to A.
-pub(crate) fn g94_legs(c: &Cycle) -> [Leg; 4] {
-    [
-        Leg::Rapid(Pt::new(c.a.r, c.end.z + c.taper)),
-        Leg::Line(c.end),
-        Leg::Line(Pt::new(c.end.r, c.a.z)),
-        Leg::Rapid(c.a),
-    ]
 }
 
 /// A G90 or G94 block: a block without an axis word does not cut (§4).
