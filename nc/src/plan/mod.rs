@@ -13,3 +13,4 @@ pub mod groove;
 pub mod legs;
 pub mod offset;
 pub mod single;
+pub mod threading;

@@ -4,7 +4,7 @@
 use super::words::EPS;
 use crate::base::event::Event;
 use crate::exec::{Nc, Sink};
-pub(crate) use crate::plan::legs::{jk_pair, pass, same, thread, Leg, PullOut};
+pub(crate) use crate::plan::legs::{jk_pair, same, Leg, PullOut};
 
 /// Prints a path from the current point. With `skip_zero` a move that ends
 /// where the tool already is, is left out: a leg the cycle generates
