@@ -12,5 +12,6 @@ pub mod elem;
 pub mod groove;
 pub mod legs;
 pub mod offset;
+pub mod roughing;
 pub mod single;
 pub mod threading;

@@ -4,12 +4,12 @@
 
 use alloc::vec::Vec;
 
-use super::out::Out;
 use super::profile::check_codes;
 use crate::base::error::NcError;
 use crate::base::words::{addr, Word};
 use crate::block;
 use crate::exec::{Nc, Sink};
+use crate::plan::roughing::Path;
 
 pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Result<(), NcError> {
     let a = nc.st.pos;
@@ -30,12 +30,9 @@ pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Res
     // An element still waiting for a corner word of the nf block is
     // printed whole before the return (W112).
     crate::exec::contour::flush(nc, sink)?;
-    Out {
-        nc: &mut *nc,
-        sink: &mut *sink,
-        mirrored: false,
-    }
-    .rapid(a);
+    let mut back = Path::new(nc.st.pos, false);
+    back.rapid(a);
+    super::out::print(nc, sink, back.steps());
     // The modes in force before G70 are back (cycles.md §8, comp.md §8).
     nc.st.modal.motion = motion;
     nc.st.modal.comp = comp;

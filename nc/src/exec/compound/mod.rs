@@ -11,10 +11,7 @@ use alloc::vec::Vec;
 
 mod finish;
 mod out;
-mod pattern;
-mod pockets;
 mod profile;
-mod rough;
 #[cfg(test)]
 mod tests;
 
@@ -24,8 +21,8 @@ use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::curve::swap;
-use out::Out;
-use profile::{Kind, Seg};
+use crate::plan::roughing::{pattern, pockets, rough, too_many, Job, Path};
+use profile::Kind;
 
 /// First-block values of G71 (U Δd, R e) or G72 (W Δd, R e).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -64,35 +61,6 @@ impl Default for CompoundState {
                 passes: 1.0,
             },
         }
-    }
-}
-
-/// A G71/G72 cycle in its frame (see the module comment).
-pub struct Job {
-    /// The cycle start A and A′ = A moved by the finishing allowance.
-    pub a: Pt,
-    pub a1: Pt,
-    /// The offset profile P′ (K′ of type II), ns element first.
-    pub segs: Vec<Seg>,
-    /// Depth of cut Δd and retract e.
-    pub dd: f64,
-    pub e: f64,
-    pub k1: bool,
-    pub j1: bool,
-}
-
-/// Passes a cycle may make: a depth of cut far below the stock would
-/// otherwise print millions of legs.
-const MAX_PASSES: f64 = 100_000.0;
-
-fn too_many(passes: f64) -> Result<(), NcError> {
-    if passes <= MAX_PASSES {
-        Ok(())
-    } else {
-        fail(
-            Alarm::BadRoughing,
-            format!("the cycle would make more than {MAX_PASSES} passes"),
-        )
     }
 }
 
@@ -233,15 +201,15 @@ fn stock_removal(
         k1,
         j1,
     };
-    let mut out = Out {
-        nc,
-        sink,
-        mirrored: facing,
+    // The legs made before an alarm are printed, as a control would
+    // have moved them, then the alarm.
+    let mut path = Path::new(nc.st.pos, facing);
+    let done = match kind {
+        Kind::Plain => rough::run(&mut path, &job),
+        Kind::Pockets => pockets::run(&mut path, &job),
     };
-    match kind {
-        Kind::Plain => rough::run(&mut out, &job),
-        Kind::Pockets => pockets::run(&mut out, &job),
-    }
+    out::print(nc, sink, path.steps());
+    done
 }
 
 /// G73.
@@ -266,14 +234,8 @@ fn pattern_repeat(
         passes: relief.passes as u32,
         allowance: allowance(nc, p),
     };
-    pattern::run(
-        &mut Out {
-            nc,
-            sink,
-            mirrored: false,
-        },
-        &segs,
-        &pat,
-    );
+    let mut path = Path::new(nc.st.pos, false);
+    pattern::run(&mut path, &segs, &pat);
+    out::print(nc, sink, path.steps());
     Ok(())
 }

@@ -14,27 +14,8 @@ use crate::base::words::Word;
 use crate::block::{self, Parsed};
 use crate::exec::contour::{self, Corner};
 use crate::exec::Nc;
-use crate::plan::curve::{Axis, Curve, EPS};
-
-/// One element of a profile.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Seg {
-    pub curve: Curve,
-    /// Written as G00: the ns infeed of the cycles is then a rapid.
-    pub rapid: bool,
-    /// The element of the first (ns) block.
-    pub ns: bool,
-}
-
-impl Seg {
-    /// The same element with its curve changed (moved, mirrored).
-    pub fn map(self, f: impl Fn(&Curve) -> Curve) -> Seg {
-        Seg {
-            curve: f(&self.curve),
-            ..self
-        }
-    }
-}
+use crate::plan::curve::Curve;
+use crate::plan::roughing::Seg;
 
 /// The two types of G71/G72 (cycles.md §15): read from the ns block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -243,22 +224,4 @@ fn three_point(nc: &Nc, absolute: bool, p: &Parsed, from: Pt, to: Pt) -> Result<
         centre,
         cw,
     })
-}
-
-/// The deepest point of a curve below the level `base` (r), infeed
-/// direction `sx`: sx·(r − base) at its largest.
-pub fn max_depth(c: &Curve, base: f64, sx: f64) -> f64 {
-    let (lo, hi) = c.range(Axis::R, 0.0, 1.0);
-    (sx * (lo - base)).max(sx * (hi - base))
-}
-
-/// Where the tail of a profile starts (cycles.md §5): the final elements
-/// that lie on or outside the start level `base` at every point. The ns
-/// element is never part of it, so `segs` holds the elements after it.
-pub fn tail_start(segs: &[Seg], base: f64, sx: f64) -> usize {
-    let mut t = segs.len();
-    while t > 0 && max_depth(&segs[t - 1].curve, base, sx) <= EPS {
-        t -= 1;
-    }
-    t
 }
