@@ -4,6 +4,7 @@
 //! calls them.
 
 pub mod angle;
+pub mod comp;
 pub mod conic;
 pub mod corner;
 pub mod curve;
