@@ -15,4 +15,5 @@ pub mod legs;
 pub mod offset;
 pub mod roughing;
 pub mod single;
+pub mod thread;
 pub mod threading;

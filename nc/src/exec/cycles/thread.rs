@@ -7,16 +7,13 @@
 //! the tool's point already moved) and is printed by `next_block`, at the
 //! start of the next block's group 1, with or without its run-out.
 
-use alloc::format;
-
 use super::legs::Leg;
-use super::words::{sign, EPS};
 use super::{lead, Func};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Motion;
-use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
+pub(crate) use crate::plan::thread::{runout, Move, Runout};
 
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Chain {
@@ -27,90 +24,6 @@ pub(crate) struct Chain {
     /// The block that ends the chain if the next block does not continue
     /// it, with the run-out it then gets.
     pub pending: Option<(Move, Runout)>,
-}
-
-/// One thread block's move and how it prints.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Move {
-    pub from: Pt,
-    pub to: Pt,
-    pub lead: f64,
-    /// G34: the lead change per revolution.
-    pub dlead: Option<f64>,
-    /// The start angle in degrees (0: not printed).
-    pub q: f64,
-}
-
-/// A run-out: `j` on the short axis (signed), `k` along the long axis.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Runout {
-    pub j: f64,
-    pub k: f64,
-}
-
-impl Move {
-    /// Z is the long axis when it moves at least as far as X (a radius).
-    fn z_long(&self) -> bool {
-        (self.to.z - self.from.z).abs() >= (self.to.r - self.from.r).abs()
-    }
-
-    fn long_length(&self) -> f64 {
-        if self.z_long() {
-            (self.to.z - self.from.z).abs()
-        } else {
-            (self.to.r - self.from.r).abs()
-        }
-    }
-
-    /// The lead after `s` mm along the long axis (§17: ℓ = √(F² + 2Rs)).
-    fn lead_at(&self, s: f64) -> f64 {
-        let r = self.dlead.unwrap_or(0.0);
-        libm::sqrt((self.lead * self.lead + 2.0 * r * s).max(0.0))
-    }
-
-    /// The move as one leg.
-    fn plain(&self) -> Leg {
-        Leg::Thread {
-            to: self.to,
-            lead: self.lead,
-            dlead: self.dlead,
-            q: start_angle(self.q),
-        }
-    }
-
-    /// The move with its run-out (§16.5): up to P1, k before the end along
-    /// the long axis, then to the end's long-axis coordinate, lifted j on
-    /// the short axis, at lead·max(1, |j|/k).
-    pub fn with_runout(&self, ro: Runout) -> [Leg; 2] {
-        let (dr, dz) = (self.to.r - self.from.r, self.to.z - self.from.z);
-        let (p1, lifted) = if self.z_long() {
-            let z1 = self.to.z - sign(dz) * ro.k;
-            let r1 = self.from.r + (z1 - self.from.z) / dz * dr;
-            (Pt::new(r1, z1), Pt::new(r1 + ro.j, self.to.z))
-        } else {
-            let r1 = self.to.r - sign(dr) * ro.k;
-            let z1 = self.from.z + (r1 - self.from.r) / dr * dz;
-            (Pt::new(r1, z1), Pt::new(self.to.r, z1 + ro.j))
-        };
-        let f = (ro.j.abs() / ro.k).max(1.0);
-        let first = Leg::Thread {
-            to: p1,
-            lead: self.lead,
-            dlead: self.dlead,
-            q: start_angle(self.q),
-        };
-        let second = Leg::Thread {
-            to: lifted,
-            lead: self.lead_at(self.long_length() - ro.k) * f,
-            dlead: self.dlead.map(|d| d * f),
-            q: None,
-        };
-        [first, second]
-    }
-}
-
-fn start_angle(q: f64) -> Option<f64> {
-    (q.abs() > EPS).then_some(q)
 }
 
 /// Before every block: a waiting block is printed, with its run-out when
@@ -179,7 +92,7 @@ pub(crate) fn run(
     if code == Motion::VariableThread {
         check_variable_lead(nc, &mv)?;
     }
-    let runout = runout(nc, &mv)?;
+    let runout = runout(nc.st.cycles.chain.runout, &mv)?;
     nc.st.pos = mv.to;
     out.moved = true;
     match runout {
@@ -218,25 +131,6 @@ fn start_q(nc: &Nc, code: Motion, p: &Parsed) -> f64 {
         Motion::RigidThread => p.get(b'C').unwrap_or(0.0),
         _ => 0.0,
     }
-}
-
-/// The run-out this move gets if it ends its chain; J = 0 or K = 0 is
-/// none, and k must be shorter than the move (E4010).
-fn runout(nc: &Nc, mv: &Move) -> Result<Option<Runout>, NcError> {
-    let Some((j, k)) = nc.st.cycles.chain.runout else {
-        return Ok(None);
-    };
-    if j.abs() <= EPS || k <= EPS {
-        return Ok(None);
-    }
-    let length = mv.long_length();
-    if k >= length - EPS {
-        return fail(
-            Alarm::BadThread,
-            format!("the run-out K{k:.4} is not shorter than the thread move ({length:.4} mm)"),
-        );
-    }
-    Ok(Some(Runout { j, k }))
 }
 
 /// G34 (§17.2): the lead √(F² + 2·R·s) must stay above 0 and within the

@@ -6,7 +6,7 @@ use crate::base::error::{fail, Alarm, NcError};
 use crate::block::{round_half_away, Parsed};
 use crate::exec::Nc;
 
-pub(crate) use crate::plan::legs::{sign, EPS};
+pub(crate) use crate::plan::legs::EPS;
 
 /// mm per increment (0.001 mm, or 0.0001 inch under G20).
 fn increment(nc: &Nc) -> f64 {
