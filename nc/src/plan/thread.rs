@@ -1,5 +1,6 @@
 //! Single thread moves G32, G32.1, G34 as legs (cycles.md §16, §17): the
-//! move, its run-out at the end of a chain and the variable lead. The
+//! move, its run-out at the end of a chain and the variable lead; the
+//! long-axis rule of the arc threads G32.2/G32.3 (dialect.md §4.3). The
 //! executor (`exec::cycles`) keeps the chain and prints.
 
 use alloc::format;
@@ -7,6 +8,7 @@ use alloc::format;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
 use crate::plan::legs::{sign, Leg, EPS};
+use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
 /// One thread block's move and how it prints.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -109,6 +111,39 @@ pub fn runout(words: Option<(f64, f64)>, mv: &Move) -> Result<Option<Runout>, Nc
         );
     }
     Ok(Some(Runout { j, k }))
+}
+
+/// Angles closer than this (radians) are the same.
+const ANGLE_EPS: f64 = 1e-9;
+
+/// The lead is measured along one axis for the whole arc: Z if its
+/// tangent has |dZ| ≥ |dr| everywhere, X if |dr| ≥ |dZ| everywhere; an arc
+/// that crosses a 45° direction has neither (E4010).
+///
+/// At the angle θ of a point about the centre (from +Z towards +r) the
+/// tangent's |dZ| : |dr| is |sin θ| : |cos θ|, so the classes change only
+/// at θ = 45° + n·90°: the arc must not pass one strictly inside.
+pub fn check_long_axis(from: Pt, to: Pt, c: Pt, cw: bool) -> Result<(), NcError> {
+    let a0 = libm::atan2(from.r - c.r, from.z - c.z);
+    let a1 = libm::atan2(to.r - c.r, to.z - c.z);
+    // The sweep in the arc's direction; end = start is a full circle.
+    let mut sweep = crate::base::geom::rem_euclid(if cw { a0 - a1 } else { a1 - a0 }, TAU);
+    if sweep < ANGLE_EPS {
+        sweep = TAU;
+    }
+    let dir = if cw { -1.0 } else { 1.0 };
+    for n in 0..4 {
+        let boundary = FRAC_PI_4 + f64::from(n) * FRAC_PI_2;
+        // How far along the arc the boundary lies.
+        let at = crate::base::geom::rem_euclid(dir * (boundary - a0), TAU);
+        if at > ANGLE_EPS && at < sweep - ANGLE_EPS {
+            return fail(
+                Alarm::BadThread,
+                "G32.2/G32.3: the arc has no single long axis (its tangent crosses 45°)",
+            );
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
