@@ -45,7 +45,8 @@ pub fn coord(p: Pt, axis: Axis) -> f64 {
     }
 }
 
-/// A line or an arc with its angles resolved once. Angles are measured in
+/// An [`Element`] with its angles resolved once, for the roughing cycles'
+/// searches ([`Curve::new`] and [`Curve::element`] convert). Angles are measured in
 /// the (z, r) plane from +Z towards +r, so G03 (counter-clockwise in the ZX
 /// view) has a positive sweep.
 #[derive(Debug, Clone, Copy, PartialEq)]
