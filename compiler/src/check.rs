@@ -70,10 +70,11 @@ pub fn is_static(units: &[Unit], programs: &[Program]) -> bool {
     })
 }
 
-/// Errors a dry run reports at compile time; the others (value and
+/// Errors a dry run reports at compile time: those of dialect.md §8.1–§8.3
+/// (E1xxx–E4xxx) and a tool number past the table; the others (value and
 /// machine faults) stay run-time alarms.
 fn compile_time(code: u16) -> bool {
-    (1000..5000).contains(&code) || code == 7004
+    (1000..5000).contains(&code) || code == nc::error::Alarm::ToolNumber.code()
 }
 
 enum Flow {

@@ -9,9 +9,10 @@
 use grammar::ast::Addr;
 use grammar::{Diagnostic, Span};
 use nc::block::round_half_away;
+use nc::gcode::{self, Motion};
 use nc::machine::{DecimalPoint, SpindleType};
 use nc::words::{Word, NO_POINT};
-use nc::{gcode, Event, Nc, Sink};
+use nc::{Event, Nc, Sink};
 
 use crate::words::{addr_code, value_of, WordValue};
 
@@ -132,7 +133,8 @@ impl Warner {
             return;
         }
         let dwell = has_g(lits, 4.0);
-        let thread = matches!(nc.st.group(gcode::MOTION), 320..=349 | 920);
+        let motion = nc.st.modal.motion;
+        let thread = motion.is_thread() && motion != Motion::RigidThreadCycle;
         for w in ws {
             let Addr::Letter(c) = w.addr else { continue };
             let length = match c {
@@ -205,10 +207,12 @@ impl Warner {
         if one_shot || nc.st.modal.drill().is_some() || has_g(lits, 22.0) {
             return;
         }
-        let what = match nc.st.group(gcode::MOTION) {
-            20 | 30 if has(lits, b'R') => "arc",
-            62 | 63 if has(lits, b'A') || has(lits, b'B') => "ellipse",
-            72 | 73 if has(lits, b'P') => "parabola",
+        let what = match nc.st.modal.motion {
+            Motion::ArcCw | Motion::ArcCcw if has(lits, b'R') => "arc",
+            Motion::EllipseCw | Motion::EllipseCcw if has(lits, b'A') || has(lits, b'B') => {
+                "ellipse"
+            }
+            Motion::ParabolaCw | Motion::ParabolaCcw if has(lits, b'P') => "parabola",
             _ => return,
         };
         if nc.st.pos.dist(before.pos) < 1e-9 {
@@ -247,12 +251,15 @@ impl Warner {
                 }
             }
         }
-        let motion = nc.st.group(gcode::MOTION);
+        let motion = nc.st.modal.motion;
         let one_shot = lits.iter().any(|w| {
             w.addr == b'G' - b'A'
                 && gcode::group(crate::words::round_g(w.value)) == Some(gcode::ONE_SHOT)
         });
-        if !matches!(motion, 10 | 20 | 30) || one_shot || nc.st.modal.drill().is_some() {
+        if !matches!(motion, Motion::Line | Motion::ArcCw | Motion::ArcCcw)
+            || one_shot
+            || nc.st.modal.drill().is_some()
+        {
             return;
         }
         let l = find(ws, b'L' - b'A').filter(|_| {

@@ -14,14 +14,19 @@
 //! and the layers below it (the test `nc/tests/layers.rs` reads the sources
 //! and fails on an import that points up or a circle across layers):
 //!
-//! 1. [`base`] — points and units, the G-code table, words, the machine
-//!    configuration, events, the geometry element, errors. (Rust's own
-//!    crate is called `core`, hence the name.)
+//! 1. [`base`] — points and units, the G-code table with one typed enum
+//!    per modal group, words, the machine configuration, events, the
+//!    geometry element, the alarms. (Rust's own crate is called `core`,
+//!    hence the name.)
 //! 2. [`block`] — parsing and checking one block's words into a
 //!    [`block::Parsed`] block; macro arithmetic on word values.
-//! 3. [`modal`] — the modal state and how a block changes it.
-//! 4. [`plan`] — pure geometry: corners, angle programming, compound
-//!    profiles, nose-radius offsets. Arguments in, path elements out.
+//! 3. [`modal`] — the modal state, one typed field per group, and how a
+//!    block changes it.
+//! 4. [`plan`] — pure geometry: corners, angle programming, conics, the
+//!    single cycles, grooving, drilling and tapping, threading passes and
+//!    run-outs, the roughing cycles, nose-radius offsets and corners.
+//!    Arguments and a read-only context in, path elements (legs) out; no
+//!    sink and no kernel.
 //! 5. [`exec`] — the stateful executor [`Nc`]: position, variables, tool
 //!    life, data setting, stroke check, the contour and compensation queue,
 //!    the cycles, and the order of events.

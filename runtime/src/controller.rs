@@ -80,7 +80,7 @@ pub struct AlarmInfo {
 impl AlarmInfo {
     /// `FILE:LINE:COL: alarm[E7003]: message` (canon.md).
     pub fn header(&self) -> String {
-        let code = if (500..1000).contains(&self.code) || (3000..4000).contains(&self.code) {
+        let code = if nc::NcError::is_program_alarm(self.code) {
             format!("{}", self.code)
         } else {
             format!("E{:04}", self.code)
@@ -94,11 +94,17 @@ impl AlarmInfo {
 
 /// The wording of the runtime's own alarms.
 pub fn runtime_alarm_message(code: u32) -> &'static str {
-    match code {
-        7001 => "a feed move with F = 0 cannot run",
-        7002 => "the axes leave their travel (soft limit) or enter the area G22 forbids",
-        7003 => "a feed-per-revolution move waited too long for the stopped spindle",
-        4010 => {
+    use nc::error::Alarm;
+    let alarm = u16::try_from(code).ok().and_then(Alarm::from_code);
+    match alarm {
+        Some(Alarm::ZeroFeed) => "a feed move with F = 0 cannot run",
+        Some(Alarm::StrokeLimit) => {
+            "the axes leave their travel (soft limit) or enter the area G22 forbids"
+        }
+        Some(Alarm::SpindleStopped) => {
+            "a feed-per-revolution move waited too long for the stopped spindle"
+        }
+        Some(Alarm::BadThread) => {
             "the thread needs a feed above the axis's maximum cutting feed at this spindle speed"
         }
         _ => "run-time alarm",

@@ -5,6 +5,9 @@
 //! curve to rounding; ellipses and parabolas have no closed-form arc
 //! length, so the interpolator advances λ by a midpoint step of the arc
 //! length (error O(ds³) per period) and lands on λ = 1 at the end.
+//!
+//! A line or an arc is the kernel's element ([`nc::geom::Element`]) put in
+//! this form by [`Curve::of`]; the conics exist only here.
 
 use crate::math::{is_pos, rem_euclid, sqrt, wrap_pi, TAU, V2};
 
@@ -93,6 +96,19 @@ fn turn(u: V2, a: f64) -> V2 {
 }
 
 impl Curve {
+    /// The interpolation form of a kernel element.
+    pub fn of(e: nc::geom::Element) -> Curve {
+        match e {
+            nc::geom::Element::Line { from, to } => Curve::line(from, to),
+            nc::geom::Element::Arc {
+                from,
+                to,
+                centre,
+                cw,
+            } => Curve::arc(from, to, centre, !cw),
+        }
+    }
+
     /// The straight line from `from` to `to`.
     pub fn line(from: V2, to: V2) -> Curve {
         Curve::Line {
@@ -375,6 +391,30 @@ mod tests {
         assert!((b.length() - 30.0 * core::f64::consts::FRAC_PI_2).abs() < 1e-9);
         let full = Curve::arc(from, from, V2::ZERO, true);
         assert!((full.length() - 20.0 * core::f64::consts::PI).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_kernel_element_becomes_the_same_curve() {
+        use nc::geom::Element;
+        // G02 (cw) from (r 10, z 0) to (r 0, z 10) about the origin: in the
+        // ZX view (Z right, X up) clockwise from 90° down to 0° is a quarter
+        // circle, 5π long; G03 the other three quarters, 15π.
+        let (from, to) = (V2::new(10.0, 0.0), V2::new(0.0, 10.0));
+        let arc = |cw| Element::Arc {
+            from,
+            to,
+            centre: V2::ZERO,
+            cw,
+        };
+        let g02 = Curve::of(arc(true));
+        assert!((g02.length() - 5.0 * core::f64::consts::PI).abs() < 1e-9);
+        let g03 = Curve::of(arc(false));
+        assert!((g03.length() - 15.0 * core::f64::consts::PI).abs() < 1e-9);
+        assert!(near(
+            g02.point(0.5),
+            V2::new(10.0, 10.0) * (0.5 * core::f64::consts::SQRT_2)
+        ));
+        assert_eq!(Curve::of(Element::Line { from, to }), Curve::line(from, to));
     }
 
     #[test]

@@ -21,6 +21,7 @@ use crate::plc::{Plc, PlcFunction};
 use crate::profile::{approach, brake_limit, brake_limit_above};
 use crate::smooth::Smoother;
 use crate::spindle::Spindle;
+use nc::error::Alarm;
 
 /// What the machine is doing, as a controller's status line shows it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -703,7 +704,7 @@ impl<P: Plc> Engine<P> {
             return;
         }
         if area.forbids(self.out.x(), self.out.z) {
-            self.raise(7002, self.tag);
+            self.raise(Alarm::StrokeLimit.into(), self.tag);
         }
     }
 
@@ -868,7 +869,7 @@ impl<P: Plc> Engine<P> {
     fn check_move(&self, seg: &Segment) -> Option<u32> {
         if let MoveKind::Feed(f) | MoveKind::Skip(f) = seg.kind {
             if !crate::math::is_pos(f.f) {
-                return Some(7001);
+                return Some(Alarm::ZeroFeed.into());
             }
         }
         let (x, z) = (&self.cfg.x, &self.cfg.z);
@@ -883,7 +884,7 @@ impl<P: Plc> Engine<P> {
                 let bad_x = x.soft_limits && (p.r < x.min - 1e-9 || p.r > x.max + 1e-9);
                 let bad_z = z.soft_limits && (p.z < z.min - 1e-9 || p.z > z.max + 1e-9);
                 if bad_x || bad_z {
-                    return Some(7002);
+                    return Some(Alarm::StrokeLimit.into());
                 }
             }
         }
@@ -1033,7 +1034,7 @@ impl<P: Plc> Engine<P> {
                 self.stall_s += self.dt;
                 if self.stall_s >= self.cfg.spindle.stall_timeout_s && self.v == 0.0 {
                     let tag = self.tag;
-                    self.raise(7003, tag);
+                    self.raise(Alarm::SpindleStopped.into(), tag);
                     return 0.0;
                 }
             } else {
@@ -1281,7 +1282,7 @@ impl<P: Plc> Engine<P> {
                 self.stall_s += self.dt;
                 if self.stall_s >= self.cfg.spindle.stall_timeout_s {
                     let tag = self.tag;
-                    self.raise(7003, tag);
+                    self.raise(Alarm::SpindleStopped.into(), tag);
                 }
                 return;
             }
@@ -1307,7 +1308,7 @@ impl<P: Plc> Engine<P> {
                 || !crate::math::is_pos(t.lead)
             {
                 let tag = self.tag;
-                self.raise(4010, tag);
+                self.raise(Alarm::BadThread.into(), tag);
                 return;
             }
             // The long axis's share of the path acceleration.

@@ -36,6 +36,8 @@ use crate::math::{sqrt, PI, V2};
 use crate::plc::PlcFunction;
 use crate::profile::brake_limit_above;
 use alloc::vec::Vec;
+use nc::error::Alarm;
+use nc::geom::Element;
 
 /// A move ready for interpolation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -483,13 +485,18 @@ impl Planner {
         }
         Ok(match (m.kind, m.path) {
             (MoveKind::Rapid | MoveKind::Offset, _) => Curve::line(from, m.path.to()),
-            (_, crate::command::Path::Line { to }) => Curve::line(from, to),
-            (_, crate::command::Path::Arc { to, centre, ccw }) => Curve::arc(from, to, centre, ccw),
+            (_, crate::command::Path::Line { to }) => Curve::of(Element::Line { from, to }),
+            (_, crate::command::Path::Arc { to, centre, ccw }) => Curve::of(Element::Arc {
+                from,
+                to,
+                centre,
+                cw: !ccw,
+            }),
             (_, crate::command::Path::Ellipse { to, a, b, q, ccw }) => {
-                Curve::ellipse(from, to, a, b, q, ccw).ok_or(4005u32)?
+                Curve::ellipse(from, to, a, b, q, ccw).ok_or(u32::from(Alarm::BadEllipse))?
             }
             (_, crate::command::Path::Parabola { to, p, q, ccw }) => {
-                Curve::parabola(from, to, p, q, ccw).ok_or(4006u32)?
+                Curve::parabola(from, to, p, q, ccw).ok_or(u32::from(Alarm::BadParabola))?
             }
         })
     }

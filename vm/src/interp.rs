@@ -10,6 +10,7 @@ use alloc::vec::Vec;
 use crate::vars::{slot, Vars};
 use isa::{Instr, Module};
 use nc::block::round_half_away;
+use nc::error::Alarm as AlarmCode;
 use nc::event::StopKind;
 use nc::value::{self, is_vacant, Bin, Func, Rel, VACANT};
 use nc::words::Words;
@@ -34,7 +35,7 @@ impl Alarm {
     /// `FILE:LINE:COL: alarm[E5001]: message` (`alarm[3005]` for user
     /// alarms, canon.md).
     pub fn header(&self) -> String {
-        let code = if (500..1000).contains(&self.code) || (3000..4000).contains(&self.code) {
+        let code = if NcError::is_program_alarm(self.code) {
             self.code.to_string()
         } else {
             format!("E{:04}", self.code)
@@ -151,7 +152,13 @@ pub struct Vm {
 
 type Fault = NcError;
 
-fn fault<T>(code: u16, msg: impl Into<String>) -> Result<T, Fault> {
+fn fault<T>(alarm: AlarmCode, msg: impl Into<String>) -> Result<T, Fault> {
+    Err(NcError::new(alarm, msg))
+}
+
+/// An alarm the program raises itself (`#3000 = n`, `G65 H99`): its
+/// number is the program's, not one of dialect.md §8's.
+fn program_alarm<T>(code: u16, msg: impl Into<String>) -> Result<T, Fault> {
     Err(NcError::numbered(code, msg))
 }
 
@@ -310,12 +317,11 @@ impl Vm {
             .files
             .get(loc.file as usize)
             .map_or_else(String::new, |f| f.name.clone());
-        let msg =
-            if (3000..4000).contains(&(e.code as u32)) || (500..1000).contains(&(e.code as u32)) {
-                self.msg_text()
-            } else {
-                e.message.clone()
-            };
+        let msg = if NcError::is_program_alarm(e.code as u32) {
+            self.msg_text()
+        } else {
+            e.message.clone()
+        };
         sink.emit(Event::Alarm {
             code: e.code as u32,
             msg: msg.clone(),
@@ -340,7 +346,7 @@ impl Vm {
         self.blocks += 1;
         if self.blocks > self.max_blocks {
             return fault(
-                6005,
+                AlarmCode::BlockBudget,
                 format!("the block budget of {} blocks is used up", self.max_blocks),
             );
         }
@@ -380,7 +386,10 @@ impl Vm {
 
     fn exec_one(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
         let Some(&instr) = self.module.code.get(self.pc as usize) else {
-            return fault(6001, "execution ran outside the program");
+            return fault(
+                AlarmCode::JumpTargetMissing,
+                "execution ran outside the program",
+            );
         };
         self.pc += 1;
         match instr {
@@ -422,7 +431,7 @@ impl Vm {
             Instr::BitXor { dst, a, b } => self.bin(Bin::Xor, dst, a, b)?,
             Instr::Func { dst, a, f } => {
                 let Some(f) = Func::from_code(f) else {
-                    return fault(2099, "unknown function code");
+                    return fault(AlarmCode::NotSupportedYet, "unknown function code");
                 };
                 let v = value::func(f, self.reg(a))?;
                 self.set(dst, v);
@@ -433,7 +442,7 @@ impl Vm {
             }
             Instr::Cmp { dst, a, b, op } => {
                 let Some(op) = Rel::from_code(op) else {
-                    return fault(2099, "unknown comparison code");
+                    return fault(AlarmCode::NotSupportedYet, "unknown comparison code");
                 };
                 self.set(dst, value::compare(op, self.reg(a), self.reg(b)));
             }
@@ -459,7 +468,7 @@ impl Vm {
                     Some(pc) => self.pc = pc,
                     None => {
                         return fault(
-                            6001,
+                            AlarmCode::JumpTargetMissing,
                             format!("GOTO {n}: there is no block N{n} in this program"),
                         )
                     }
@@ -544,7 +553,7 @@ impl Vm {
             }
             Instr::Alarm { code, msg } => {
                 self.msg = Some(msg);
-                return fault(code, self.msg_text());
+                return program_alarm(code, self.msg_text());
             }
             Instr::Halt => {
                 // Running past the last block: a waiting corner element is
@@ -624,12 +633,15 @@ impl Vm {
             || (!macro_level && subs >= MAX_SUB_LEVELS)
         {
             return fault(
-                6004,
+                AlarmCode::CallsTooDeep,
                 "calls nested too deep (4 macro levels, 4 subprogram levels, 8 in all)",
             );
         }
         let Some(entry) = self.module.programs.get(callee as usize).map(|p| p.entry) else {
-            return fault(6003, "the called program does not exist");
+            return fault(
+                AlarmCode::CalledProgramMissing,
+                "the called program does not exist",
+            );
         };
         if macro_level {
             self.vars.push_level(&args);
@@ -680,7 +692,7 @@ impl Vm {
                 Some(pc) => self.pc = pc,
                 None => {
                     return fault(
-                        6002,
+                        AlarmCode::ReturnTargetMissing,
                         format!("M99 P{n}: the calling program has no block N{n}"),
                     )
                 }
@@ -703,7 +715,7 @@ impl Vm {
                 Some(pc) => self.pc = pc,
                 None => {
                     return fault(
-                        6002,
+                        AlarmCode::ReturnTargetMissing,
                         format!("M99 P{n}: the main program has no block N{n}"),
                     )
                 }
@@ -740,7 +752,7 @@ impl Vm {
         if nc::sysvar::is_system(n) {
             return Ok(self.nc.read_var(n)?.unwrap_or(VACANT));
         }
-        fault(5008, format!("#{n} names no variable"))
+        fault(AlarmCode::NoSuchVariable, format!("#{n} names no variable"))
     }
 
     /// #4115: the number of the running program.
@@ -781,7 +793,10 @@ impl Vm {
             return Ok(());
         }
         match n {
-            0 => fault(5007, "#0 is always vacant and cannot be written"),
+            0 => fault(
+                AlarmCode::VariableAccess,
+                "#0 is always vacant and cannot be written",
+            ),
             3000 => {
                 let code = if is_vacant(v) {
                     0.0
@@ -790,11 +805,11 @@ impl Vm {
                 };
                 if !(0.0..=999.0).contains(&code) {
                     return fault(
-                        5010,
+                        AlarmCode::ValueOutOfRange,
                         format!("#3000 = {code}: the alarm number must be 0…999"),
                     );
                 }
-                fault(3000 + code as u16, self.msg_text())
+                program_alarm(3000 + code as u16, self.msg_text())
             }
             3006 => {
                 let text = self.msg_text();
@@ -805,7 +820,7 @@ impl Vm {
             n if nc::sysvar::is_system(n) => {
                 self.nc.write_var(n, (!is_vacant(v)).then_some(v), sink)
             }
-            _ => fault(5008, format!("#{n} names no variable")),
+            _ => fault(AlarmCode::NoSuchVariable, format!("#{n} names no variable")),
         }
     }
 
@@ -830,11 +845,14 @@ impl Vm {
 /// A variable number from a value: rounded; vacant E5009, negative E5008.
 fn var_number(v: f64) -> Result<u32, Fault> {
     if is_vacant(v) {
-        return fault(5009, "a vacant value cannot name a variable");
+        return fault(
+            AlarmCode::NullValue,
+            "a vacant value cannot name a variable",
+        );
     }
     let n = round_half_away(v);
     if !(0.0..=u32::MAX as f64).contains(&n) {
-        return fault(5008, format!("#{n} names no variable"));
+        return fault(AlarmCode::NoSuchVariable, format!("#{n} names no variable"));
     }
     Ok(n as u32)
 }
@@ -842,12 +860,15 @@ fn var_number(v: f64) -> Result<u32, Fault> {
 /// A jump or call target: vacant is E5009.
 fn target_number(v: f64) -> Result<u32, Fault> {
     if is_vacant(v) {
-        return fault(5009, "a vacant value cannot be a jump or call target");
+        return fault(
+            AlarmCode::NullValue,
+            "a vacant value cannot be a jump or call target",
+        );
     }
     let n = round_half_away(v);
     if !(0.0..=99_999_999.0).contains(&n) {
         return fault(
-            5010,
+            AlarmCode::ValueOutOfRange,
             format!("{n} is not a valid sequence or program number"),
         );
     }
@@ -861,7 +882,10 @@ fn count_of(v: f64) -> Result<u32, Fault> {
     }
     let n = round_half_away(v);
     if !(0.0..=9999.0).contains(&n) {
-        return fault(5010, format!("the repeat count {n} is outside 1…9999"));
+        return fault(
+            AlarmCode::ValueOutOfRange,
+            format!("the repeat count {n} is outside 1…9999"),
+        );
     }
     Ok((n as u32).max(1))
 }

@@ -128,6 +128,14 @@ impl Alarm {
     }
 }
 
+/// The canon's code of an alarm (`ALARM CODE=7002`), as the runtime keeps
+/// it beside the numbers programs raise themselves.
+impl From<Alarm> for u32 {
+    fn from(a: Alarm) -> u32 {
+        a.code() as u32
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::Alarm;

@@ -40,6 +40,12 @@ impl NcError {
         }
     }
 
+    /// Whether the number is one a program raised itself: `#3000 = n`
+    /// (3000–3999) or `G65 H99` (500–999), whose message is the program's.
+    pub fn is_program_alarm(code: u32) -> bool {
+        (500..1000).contains(&code) || (3000..4000).contains(&code)
+    }
+
     /// The alarm of §8, `None` for one the program raised itself.
     pub fn alarm(&self) -> Option<Alarm> {
         Alarm::from_code(self.code)

@@ -226,7 +226,10 @@ mod tests {
     }
 }
 
-/// One element of a contour: the geometry a block moves along.
+/// One element of a contour: the geometry a block moves along. It is the
+/// one element type of the kernel and the runtime: the planners' `Curve`
+/// (`plan::curve`) is an element with its angles worked out once, the
+/// runtime's `Curve` (`runtime::geom`) its interpolation form.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Element {
     Line {

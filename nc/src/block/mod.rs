@@ -8,7 +8,7 @@ pub mod value;
 use alloc::format;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::{self, Code};
+use crate::base::gcode::{self, Code, Drill, Motion, OneShot, Plane, G};
 use crate::base::machine::Machine;
 use crate::base::words::{addr, addr_name, Word, ADDR_COUNT, COMMA_A, COMMA_C, COMMA_R};
 
@@ -26,8 +26,8 @@ pub struct Parsed {
     /// The block's one-shot (group 00) code and its last group-01 code,
     /// noted as the G codes are added: the kernel asks for them many
     /// times per block.
-    one_shot: Option<Code>,
-    motion: Option<Code>,
+    one_shot: Option<OneShot>,
+    motion: Option<Motion>,
     /// M codes in written order with the word index.
     m: [(u32, u8); 3],
     m_len: usize,
@@ -39,16 +39,21 @@ pub struct Parsed {
 }
 
 impl Parsed {
-    pub fn gs(&self) -> &[(Code, u8)] {
-        &self.g[..self.g_len]
+    /// The block's G codes, typed, in written order.
+    pub fn gs(&self) -> impl DoubleEndedIterator<Item = G> + '_ {
+        // Every stored code passed `gcode::group`, so each has a type.
+        self.g[..self.g_len]
+            .iter()
+            .filter_map(|&(c, _)| G::from_code(c))
     }
 
     pub fn ms(&self) -> &[(u32, u8)] {
         &self.m[..self.m_len]
     }
 
-    pub fn has_g(&self, code: Code) -> bool {
-        self.gs().iter().any(|&(c, _)| c == code)
+    pub fn has_g(&self, g: impl Into<G>) -> bool {
+        let code = g.into().code();
+        self.g[..self.g_len].iter().any(|&(c, _)| c == code)
     }
 
     pub fn has_m(&self, code: u32) -> bool {
@@ -87,12 +92,12 @@ impl Parsed {
     }
 
     /// The group-00 code of the block, if any.
-    pub fn one_shot(&self) -> Option<Code> {
+    pub fn one_shot(&self) -> Option<OneShot> {
         self.one_shot
     }
 
     /// The last group-01 code written in the block.
-    pub fn motion(&self) -> Option<Code> {
+    pub fn motion(&self) -> Option<Motion> {
         self.motion
     }
 
@@ -176,32 +181,30 @@ fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
             format!("{} is not in this dialect: {hint}", gcode::name(code)),
         );
     }
-    let Some(group) = gcode::group(code) else {
+    let Some(g) = G::from_code(code) else {
         return fail(
             Alarm::UnknownGCode,
             format!("unknown G code {}", gcode::name(code)),
         );
     };
-    if group == gcode::ONE_SHOT {
-        if let Some(other) = p.one_shot() {
-            return fail(
-                Alarm::OneShotConflict,
-                format!(
-                    "{} and {} are both one-shot (group 00) codes: write them in separate blocks",
-                    gcode::name(other),
-                    gcode::name(code)
-                ),
-            );
-        }
+    if let (G::OneShot(_), Some(other)) = (g, p.one_shot()) {
+        return fail(
+            Alarm::OneShotConflict,
+            format!(
+                "{} and {} are both one-shot (group 00) codes: write them in separate blocks",
+                gcode::name(other.code()),
+                gcode::name(code)
+            ),
+        );
     }
     if p.g_len == MAX_G {
         return fail(Alarm::AddressRepeated, "too many G codes in one block");
     }
     p.g[p.g_len] = (code, idx);
     p.g_len += 1;
-    match group {
-        gcode::ONE_SHOT => p.one_shot = Some(code),
-        gcode::MOTION => p.motion = Some(code),
+    match g {
+        G::OneShot(c) => p.one_shot = Some(c),
+        G::Motion(c) => p.motion = Some(c),
         _ => {}
     }
     Ok(())
@@ -232,10 +235,20 @@ fn integer_only(p: &Parsed, letter: u8) -> bool {
         // Every use of P and Q is a count, a number or 0.001 units (§1.9).
         b'T' | b'H' | b'O' | b'N' | b'P' | b'Q' => true,
         // L is a count except as the chamfer of G01–G03.
-        b'L' => p.has_m(98) || [330, 780, 920, 921].iter().any(|&c| p.has_g(c)),
+        b'L' => {
+            p.has_m(98)
+                || p.has_g(OneShot::SpiralThread)
+                || [
+                    Motion::Tapping,
+                    Motion::ThreadCycle,
+                    Motion::RigidThreadCycle,
+                ]
+                .iter()
+                .any(|&c| p.has_g(c))
+        }
         // G78 D (finishing passes) and the drilling repeats K are counts.
-        b'D' => p.has_g(780),
-        b'K' => [830, 840, 870, 880].iter().any(|&c| p.has_g(c)),
+        b'D' => p.has_g(OneShot::SpiralThread),
+        b'K' => p.gs().any(|g| matches!(g, G::Drill(d) if d != Drill::Off)),
         _ => false,
     }
 }
@@ -245,15 +258,16 @@ fn integer_only(p: &Parsed, letter: u8) -> bool {
 /// names none runs the modal function, which the kernel checks
 /// (`cycles::before_block`).
 fn negative_f_allowed(p: &Parsed) -> bool {
-    if [321, 921, 840, 880].iter().any(|&c| p.has_g(c)) {
+    let left_hand = |g: G| match g {
+        G::Motion(m) => matches!(m, Motion::RigidThread | Motion::RigidThreadCycle),
+        G::Drill(d) => d.taps(),
+        _ => false,
+    };
+    if p.gs().any(left_hand) {
         return true;
     }
-    !p.gs().iter().any(|&(c, _)| {
-        matches!(
-            gcode::group(c),
-            Some(gcode::ONE_SHOT | gcode::MOTION | gcode::DRILL)
-        )
-    })
+    !p.gs()
+        .any(|g| matches!(g, G::OneShot(_) | G::Motion(_) | G::Drill(_)))
 }
 
 fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
@@ -294,7 +308,7 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     }
     // In G04 X and U are both the dwell in seconds and X wins (seed G04
     // note 3), so only moves forbid the pair.
-    if p.has(b'X') && p.has(b'U') && p.one_shot() != Some(40) {
+    if p.has(b'X') && p.has(b'U') && p.one_shot() != Some(OneShot::Dwell) {
         return fail(
             Alarm::IncompatibleWords,
             "X and U in one block: write the X end point either absolute or incremental",
@@ -309,7 +323,11 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     if p.has(b'Y') || p.has(b'V') {
         return fail(Alarm::AxisNotConfigured, "this machine has no Y axis");
     }
-    if !m.axes.c.enabled && p.has(b'C') && p.one_shot().is_none() && p.motion() != Some(321) {
+    if !m.axes.c.enabled
+        && p.has(b'C')
+        && p.one_shot().is_none()
+        && p.motion() != Some(Motion::RigidThread)
+    {
         return fail(Alarm::AxisNotConfigured, "this machine has no C axis");
     }
     // Outside G65 (which never reaches the kernel) H is the incremental C
@@ -373,11 +391,11 @@ fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
 fn check_foreign(p: &Parsed) -> Result<(), NcError> {
     // One pass over the G codes; the rules then apply in their order.
     let (mut g92, mut peck, mut plane) = (false, false, false);
-    for &(c, _) in p.gs() {
-        match c {
-            920 => g92 = true,
-            740 | 750 => peck = true,
-            170 | 190 => plane = true,
+    for g in p.gs() {
+        match g {
+            G::Motion(Motion::ThreadCycle) => g92 = true,
+            G::OneShot(OneShot::PeckFace | OneShot::PeckGroove) => peck = true,
+            G::Plane(Plane::Xy | Plane::Yz) => plane = true,
             _ => {}
         }
     }
@@ -427,8 +445,7 @@ mod tests {
         let scan = |p: &super::Parsed, group: u8, last: bool| -> Option<Code> {
             let mut found = p
                 .gs()
-                .iter()
-                .map(|&(c, _)| c)
+                .map(|g| g.code())
                 .filter(|&c| gcode::group(c) == Some(group));
             if last {
                 found.next_back()
@@ -452,13 +469,19 @@ mod tests {
                     };
                     parsed += 1;
                     assert_eq!(
-                        p.one_shot(),
+                        p.one_shot().map(|c| c.code()),
                         scan(&p, gcode::ONE_SHOT, false),
                         "G{a} G{b} G{c}"
                     );
-                    assert_eq!(p.motion(), scan(&p, gcode::MOTION, true), "G{a} G{b} G{c}");
+                    assert_eq!(
+                        p.motion().map(|c| c.code()),
+                        scan(&p, gcode::MOTION, true),
+                        "G{a} G{b} G{c}"
+                    );
                     p.clear_gs();
-                    assert!(p.gs().is_empty() && p.one_shot().is_none() && p.motion().is_none());
+                    assert!(
+                        p.gs().next().is_none() && p.one_shot().is_none() && p.motion().is_none()
+                    );
                 }
             }
         }

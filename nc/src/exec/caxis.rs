@@ -33,7 +33,7 @@
 use alloc::format;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode;
+use crate::base::gcode::{self, Motion, OneShot};
 use crate::base::machine::DecimalPoint;
 use crate::base::words::{Word, NO_POINT};
 use crate::block::Parsed;
@@ -54,7 +54,9 @@ pub(crate) fn programs_c(nc: &Nc, p: &Parsed) -> bool {
     // arguments are the macro's.
     !matches!(
         func(nc, p),
-        Func::Motion(321) | Func::OneShot(71) | Func::OneShot(650)
+        Func::Motion(Motion::RigidThread)
+            | Func::OneShot(OneShot::Cylindrical)
+            | Func::OneShot(OneShot::MacroCall)
     )
 }
 
@@ -70,24 +72,29 @@ pub(crate) fn check(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
         );
     }
     match func(nc, p) {
-        Func::OneShot(280 | 300) | Func::Drill(_) => Ok(()),
-        Func::Motion(0 | 10) => check_line(nc, p),
-        Func::Motion(20 | 30 | 50 | 51) => fail(
+        Func::OneShot(OneShot::Home | OneShot::HomeN) | Func::Drill(_) => Ok(()),
+        Func::Motion(code) if code.is_straight() => check_line(nc, p),
+        Func::Motion(code) if code.is_contour() => fail(
             Alarm::IncompatibleWords,
             "C/H cannot stand in a circular move: helical interpolation with C is not supported",
         ),
-        Func::Motion(code) if crate::exec::cycles::is_thread_code(code) => fail(
+        Func::Motion(code) if code.is_thread() => fail(
             Alarm::IncompatibleWords,
             format!(
                 "C/H cannot stand in a {} thread block: the spindle cannot turn as C while it cuts",
-                gcode::name(code)
+                code.name()
             ),
         ),
-        Func::Motion(code) | Func::OneShot(code) => fail(
-            Alarm::IncompatibleWords,
-            format!("C/H cannot stand in a {} block", gcode::name(code)),
-        ),
+        Func::Motion(code) => not_here(code.code()),
+        Func::OneShot(code) => not_here(code.code()),
     }
+}
+
+fn not_here(code: gcode::Code) -> Result<(), NcError> {
+    fail(
+        Alarm::IncompatibleWords,
+        format!("C/H cannot stand in a {} block", gcode::name(code)),
+    )
 }
 
 fn check_line(nc: &Nc, p: &Parsed) -> Result<(), NcError> {

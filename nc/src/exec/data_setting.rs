@@ -6,6 +6,7 @@
 //! nothing and leave the modal state alone. Words that the mode does not
 //! use are ignored (the compiler warns W104 where it can tell).
 
+use crate::base::gcode::OneShot;
 use alloc::format;
 
 use crate::base::error::{fail, Alarm, NcError};
@@ -49,7 +50,10 @@ fn is_g10_or_g11(w: &Word) -> bool {
     // turned away without rounding.)
     w.addr == addr(b'G')
         && (9.9..11.1).contains(&w.value)
-        && matches!(round_half_away(w.value * 10.0) as i64, 100 | 110)
+        && matches!(
+            OneShot::from_code(round_half_away(w.value * 10.0) as u16),
+            Some(OneShot::DataSetting | OneShot::DataSettingEnd)
+        )
 }
 
 /// Executes the block when it belongs to data setting (a G10 or G11
@@ -61,11 +65,11 @@ pub fn intercept(nc: &mut Nc, words: &[Word]) -> Result<Option<Outcome>, NcError
         return Ok(None);
     }
     let p = block::parse(words, &nc.machine)?;
-    if p.has_g(100) {
+    if p.has_g(OneShot::DataSetting) {
         nc.st.data.mode = open(nc, &p)?;
         return Ok(Some(Outcome::default()));
     }
-    if p.has_g(110) {
+    if p.has_g(OneShot::DataSettingEnd) {
         // G11 ends either mode; without one it does nothing (W104).
         nc.st.data.mode = Mode::Off;
         return Ok(Some(Outcome::default()));

@@ -23,7 +23,7 @@ use alloc::vec::Vec;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, SpindleDir, StopKind};
-use crate::base::gcode::{self, Code};
+use crate::base::gcode::{self, Drill, Motion, OneShot, Polar, SpeedMode, Work, G};
 use crate::base::geom::{self, Element};
 use crate::base::machine::{ArcWithoutCenter, DecimalPoint, Machine, SpindleType};
 use crate::base::point::Pt;
@@ -167,7 +167,8 @@ impl Nc {
             nc.before_motion(p, words, s)
         })?;
         self.remember(p);
-        self.st.exact_stop = p.has_g(90) || self.st.modal.path_mode() == PathMode::ExactStop;
+        self.st.exact_stop =
+            p.has_g(OneShot::ExactStop) || self.st.modal.path_mode() == PathMode::ExactStop;
         self.motion(p, sink, &mut out)?;
         contour::in_order(self, sink, |nc, s| {
             nc.after_motion(p, s);
@@ -190,30 +191,27 @@ impl Nc {
 
     /// Group 0: the block's modal codes, in written order.
     fn modal_settings(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
-        for &(code, _) in p.gs() {
-            let Some(group) = gcode::group(code) else {
-                continue;
-            };
-            match group {
-                gcode::ONE_SHOT => {}
-                gcode::SPEED_MODE => self.speed_mode(code, p, sink),
-                gcode::STROKE => {
-                    self.st.modal.set(group, code);
+        for g in p.gs() {
+            match g {
+                G::OneShot(_) => {}
+                G::SpeedMode(code) => self.speed_mode(code, p, sink),
+                G::Stroke(code) => {
+                    self.st.modal.set(g);
                     crate::exec::stroke::select(self, code, p);
                 }
-                gcode::WORK => self.select_work(code, p, sink),
-                gcode::MOTION => {
-                    self.st.modal.set(group, code);
+                G::Work(code) => self.select_work(code, p, sink),
+                G::Motion(_) => {
+                    self.st.modal.set(g);
                     // Any group-01 code cancels the drilling cycles.
-                    self.st.modal.set(gcode::DRILL, 800);
+                    self.st.modal.drill = Drill::Off;
                 }
-                gcode::POLAR if code == 121 => plane::polar_on(self, p, sink)?,
-                gcode::POLAR => plane::polar_off(self, p, sink)?,
-                gcode::POLAR_CMD => plane::polar_command(self, code)?,
-                _ => self.st.modal.set(group, code),
+                G::Polar(Polar::On) => plane::polar_on(self, p, sink)?,
+                G::Polar(_) => plane::polar_off(self, p, sink)?,
+                G::PolarCmd(code) => plane::polar_command(self, code)?,
+                _ => self.st.modal.set(g),
             }
         }
-        if p.one_shot() == Some(71) {
+        if p.one_shot() == Some(OneShot::Cylindrical) {
             // G7.1 switches a mode (plane.rs).
             plane::cylinder(self, p, sink)?;
         }
@@ -221,10 +219,10 @@ impl Nc {
     }
 
     /// G96/G97 without S that changes the mode prints the new speed.
-    fn speed_mode(&mut self, code: Code, p: &Parsed, sink: &mut dyn Sink) {
+    fn speed_mode(&mut self, code: SpeedMode, p: &Parsed, sink: &mut dyn Sink) {
         let was_css = self.st.css_mode();
-        self.st.modal.set(gcode::SPEED_MODE, code);
-        let now_css = code == 960;
+        self.st.modal.speed_mode = code;
+        let now_css = code == SpeedMode::SurfaceSpeed;
         if was_css == now_css || p.has(b'S') {
             return;
         }
@@ -258,13 +256,13 @@ impl Nc {
     /// G54–G59: the tool stays where it is on the machine and its
     /// coordinates change to the new system's. With G50 in the block the
     /// selection is ignored and G50 alone acts (seed 000, G54–G59 note 6).
-    fn select_work(&mut self, code: Code, p: &Parsed, sink: &mut dyn Sink) {
-        if p.one_shot() == Some(500) {
+    fn select_work(&mut self, code: Work, p: &Parsed, sink: &mut dyn Sink) {
+        if p.one_shot() == Some(OneShot::SetCoordinates) {
             return;
         }
         let before = self.st.origin();
         let machine = self.st.machine_pos();
-        self.st.modal.set(gcode::WORK, code);
+        self.st.modal.work = code;
         self.st.pos = machine.sub(self.st.origin());
         self.print_origin_if_moved(before, sink);
     }
@@ -288,7 +286,7 @@ impl Nc {
     ) -> Result<(), NcError> {
         // Thread chains, M29 rules; a drilling block's M is its clamp code.
         let clamp = crate::exec::cycles::before_block(self, p, sink)?;
-        let g50 = p.one_shot() == Some(500);
+        let g50 = p.one_shot() == Some(OneShot::SetCoordinates);
         for w in words {
             match w.addr {
                 a if a == b'M' - b'A' => {
@@ -392,14 +390,14 @@ impl Nc {
             return plane::motion(self, st, p, sink, out);
         }
         if let Some(code) = p.one_shot() {
-            if code == 90 {
+            if code == OneShot::ExactStop {
                 // G09: its move decides about waiting corners.
                 return self.one_shot(code, p, sink, out);
             }
             contour::before_one_shot(self, code, sink)?;
             return contour::in_order(self, sink, |nc, s| nc.one_shot(code, p, s, out));
         }
-        if p.has_g(220) {
+        if p.has_g(gcode::Stroke::On) {
             // G22 owns the block's X Z I K: they are its limits.
             return Ok(());
         }
@@ -407,9 +405,9 @@ impl Nc {
             self.flush_if_moving(p, sink)?;
             return crate::exec::cycles::drill(self, drill, p, sink, out);
         }
-        let code = self.st.group(gcode::MOTION);
-        if !matches!(code, 0 | 10 | 20 | 30 | 50 | 51) {
-            return if matches!(code, 62 | 63 | 72 | 73) {
+        let code = self.st.modal.motion;
+        if !code.is_contour() {
+            return if code.is_conic() {
                 contour::conic(self, code, p, sink, out)
             } else {
                 self.flush_if_moving(p, sink)?;
@@ -419,23 +417,26 @@ impl Nc {
         let corner = contour::corner_word(self, code, p)?;
         // G05 with a mid point and no end point ends where it starts: a
         // full circle, which it cannot make (E4004 below).
-        let arc_words = (matches!(code, 20 | 30) && (p.has(b'I') || p.has(b'K') || p.has(b'R')))
-            || (matches!(code, 50 | 51) && (p.has(b'I') || p.has(b'K')));
-        let angle_words = matches!(code, 0 | 10) && contour::has_angle(p);
+        let arc_words = (code.is_arc() && (p.has(b'I') || p.has(b'K') || p.has(b'R')))
+            || (matches!(code, Motion::ThreePoint | Motion::ThreePointAbs)
+                && (p.has(b'I') || p.has(b'K')));
+        let angle_words = code.is_straight() && contour::has_angle(p);
         if !p.has_axis() && !arc_words && !angle_words && !self.st.c_block {
             return Ok(());
         }
         let target = self.target(p);
         match code {
-            0 | 10 => contour::straight(self, code == 0, p, corner, sink)?,
-            20 | 30 => {
-                if let Some(e) = self.arc_element(self.st.pos, code == 20, target, p)? {
+            Motion::Rapid | Motion::Line => {
+                contour::straight(self, code == Motion::Rapid, p, corner, sink)?
+            }
+            Motion::ArcCw | Motion::ArcCcw => {
+                if let Some(e) = self.arc_element(self.st.pos, code == Motion::ArcCw, target, p)? {
                     contour::feed_element(self, e, corner, sink)?;
                 }
             }
             _ => {
                 contour::flush(self, sink)?;
-                self.three_point_arc(code == 51, target, p, sink)?
+                self.three_point_arc(code == Motion::ThreePointAbs, target, p, sink)?
             }
         }
         out.moved = true;
@@ -604,21 +605,21 @@ impl Nc {
 
     fn one_shot(
         &mut self,
-        code: Code,
+        code: OneShot,
         p: &Parsed,
         sink: &mut dyn Sink,
         out: &mut Outcome,
     ) -> Result<(), NcError> {
         match code {
-            40 => self.dwell(p, sink),
-            90 => {
+            OneShot::Dwell => self.dwell(p, sink),
+            OneShot::ExactStop => {
                 // G09: exact stop is the runtime's; the motion runs as usual.
                 let mut q = p.clone();
                 q.clear_gs();
                 return self.motion(&q, sink, out);
             }
-            280 => self.home(p, 1, sink),
-            300 => {
+            OneShot::Home => self.home(p, 1, sink),
+            OneShot::HomeN => {
                 let n = p.get(b'P').map_or(2.0, round_half_away);
                 if !(2.0..=4.0).contains(&n) {
                     return fail(
@@ -628,7 +629,7 @@ impl Nc {
                 }
                 self.home(p, n as u32, sink)
             }
-            310 => {
+            OneShot::Skip => {
                 let to = self.target(p);
                 self.feed_due(sink);
                 self.st.pos = to;
@@ -636,10 +637,12 @@ impl Nc {
                 out.skip = Some(to);
                 sink.emit(Event::Skip { x: to.x(), z: to.z });
             }
-            360 | 370 => crate::exec::measure::run(self, code == 360, p, sink)?,
-            500 => self.set_coordinates(p, sink),
-            520 => self.set_local(p, sink),
-            530 => {
+            OneShot::MeasureX | OneShot::MeasureZ => {
+                crate::exec::measure::run(self, code == OneShot::MeasureX, p, sink)?
+            }
+            OneShot::SetCoordinates => self.set_coordinates(p, sink),
+            OneShot::Local => self.set_local(p, sink),
+            OneShot::MachineCoords => {
                 if p.has(b'U') || p.has(b'W') {
                     return fail(
                         Alarm::IncompatibleWords,
@@ -656,20 +659,33 @@ impl Nc {
                 }
                 self.rapid(m.sub(origin), sink);
             }
-            700..=730 => return crate::exec::compound::run(self, code, p, sink, out),
-            740 | 750 | 760 | 780 => {
+            OneShot::Finish | OneShot::RoughTurn | OneShot::RoughFace | OneShot::Pattern => {
+                return crate::exec::compound::run(self, code, p, sink, out)
+            }
+            OneShot::PeckFace
+            | OneShot::PeckGroove
+            | OneShot::MultiThread
+            | OneShot::SpiralThread => {
                 return crate::exec::cycles::one_shot(self, code, p, sink, out)
             }
             // G7.1 switched its mode in group 0 (plane.rs).
-            71 => {}
+            OneShot::Cylindrical => {}
             _ => {
                 return fail(
                     Alarm::NotSupportedYet,
-                    format!("{} is not implemented yet", gcode::name(code)),
+                    format!("{} is not implemented yet", code.name()),
                 )
             }
         }
-        out.moved = matches!(code, 280 | 300 | 310 | 360 | 370 | 530);
+        out.moved = matches!(
+            code,
+            OneShot::Home
+                | OneShot::HomeN
+                | OneShot::Skip
+                | OneShot::MeasureX
+                | OneShot::MeasureZ
+                | OneShot::MachineCoords
+        );
         Ok(())
     }
 

@@ -281,7 +281,11 @@ fn write_bits(nc: &mut Nc, n: u32, byte: u8) {
             // Setting №001.0 changes the G20/G21 mode too (seed 000).
             let inch = on(0);
             m.machine.power_on_units = if inch { Units::Inch } else { Units::Mm };
-            nc.st.modal.set(gcode::UNITS, if inch { 200 } else { 210 });
+            nc.st.modal.units = if inch {
+                gcode::Units::Inch
+            } else {
+                gcode::Units::Metric
+            };
             nc.machine.axes.x.diameter = on(2);
         }
         5 => m.coords.ppd = on(1),

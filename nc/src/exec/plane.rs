@@ -30,12 +30,11 @@ use alloc::format;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, Plane, PlaneMotion};
-use crate::base::gcode;
+use crate::base::gcode::{Comp, FeedMode, Motion, OneShot, Polar, PolarCmd};
 use crate::base::geom;
 use crate::base::point::Pt;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
-use crate::modal::Comp;
 
 /// Which interpolation is on, and the plane's own data.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -82,8 +81,8 @@ impl PlaneState {
 
 /// Whether the block starts polar or cylindrical interpolation.
 fn starts(nc: &Nc, p: &Parsed) -> bool {
-    p.has_g(121)
-        || (p.one_shot() == Some(71)
+    p.has_g(Polar::On)
+        || (p.one_shot() == Some(OneShot::Cylindrical)
             && nc.st.plane.is_none()
             && p.get(b'C').is_some_and(|c| c != 0.0))
 }
@@ -106,13 +105,13 @@ pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Resu
             ),
         );
     }
-    if p.has_g(990) && st.kind == Kind::Polar {
+    if p.has_g(FeedMode::PerRev) && st.kind == Kind::Polar {
         return fail(
             Alarm::PolarInComp,
             "G99 during polar interpolation: its F is a tangential feed per minute",
         );
     }
-    if p.has_g(410) || p.has_g(420) {
+    if p.has_g(Comp::Left) || p.has_g(Comp::Right) {
         return fail(
             Alarm::NotSupportedYet,
             format!(
@@ -125,7 +124,7 @@ pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Resu
         Kind::Polar => p.has(b'Z') || p.has(b'W'),
         Kind::Cylinder(_) => p.has(b'X') || p.has(b'U'),
     };
-    if other_axis && p.one_shot().is_none_or(|c| c != 40) {
+    if other_axis && p.one_shot().is_none_or(|c| c != OneShot::Dwell) {
         let axis = if st.kind == Kind::Polar { 'Z' } else { 'X' };
         return fail(
             Alarm::NotSupportedYet,
@@ -191,7 +190,7 @@ pub(crate) fn polar_on(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(
             ),
         );
     }
-    nc.st.modal.set(gcode::POLAR, 121);
+    nc.st.modal.polar = Polar::On;
     nc.st.plane = Some(PlaneState {
         kind: Kind::Polar,
         pt: Pt::new(0.0, nc.st.pos.r),
@@ -209,8 +208,8 @@ pub(crate) fn polar_off(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<
             "G13.1 stands alone in its block: move before it or after it",
         );
     }
-    nc.st.modal.set(gcode::POLAR, 131);
-    nc.st.modal.set(gcode::POLAR_CMD, 150);
+    nc.st.modal.polar = Polar::Off;
+    nc.st.modal.polar_cmd = PolarCmd::Off;
     if matches!(
         nc.st.plane,
         Some(PlaneState {
@@ -228,7 +227,7 @@ pub(crate) fn polar_off(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<
 }
 
 /// G16 only inside G12.1 (E2007).
-pub(crate) fn polar_command(nc: &mut Nc, code: gcode::Code) -> Result<(), NcError> {
+pub(crate) fn polar_command(nc: &mut Nc, code: PolarCmd) -> Result<(), NcError> {
     let polar = matches!(
         nc.st.plane,
         Some(PlaneState {
@@ -236,13 +235,13 @@ pub(crate) fn polar_command(nc: &mut Nc, code: gcode::Code) -> Result<(), NcErro
             ..
         })
     );
-    if code == 160 && !polar {
+    if code == PolarCmd::On && !polar {
         return fail(
             Alarm::IncompatibleWords,
             "G16 (polar coordinates) works only during polar interpolation: write G12.1 before it",
         );
     }
-    nc.st.modal.set(gcode::POLAR_CMD, code);
+    nc.st.modal.polar_cmd = code;
     Ok(())
 }
 
@@ -304,36 +303,32 @@ pub(crate) fn motion(
 ) -> Result<(), NcError> {
     if let Some(code) = p.one_shot() {
         return match code {
-            40 => nc.one_shot(code, p, sink, out),
+            OneShot::Dwell => nc.one_shot(code, p, sink, out),
             // G7.1 acted in group 0.
-            71 => Ok(()),
+            OneShot::Cylindrical => Ok(()),
             _ => fail(
                 Alarm::IncompatibleWords,
-                format!("{} cannot run during {}", gcode::name(code), st.what()),
+                format!("{} cannot run during {}", code.name(), st.what()),
             ),
         };
     }
-    let code = nc.st.group(gcode::MOTION);
+    let code = nc.st.modal.motion;
     match code {
-        0 | 10 | 20 | 30 => {}
-        62 | 63 | 72 | 73 => {
+        c if c.is_straight() || c.is_arc() => {}
+        c if c.is_conic() => {
             return fail(
                 Alarm::NotSupportedYet,
-                format!(
-                    "{} during {} is not supported yet",
-                    gcode::name(code),
-                    st.what()
-                ),
+                format!("{} during {} is not supported yet", code.name(), st.what()),
             )
         }
         _ => {
             return fail(
                 Alarm::IncompatibleWords,
-                format!("{} cannot run during {}", gcode::name(code), st.what()),
+                format!("{} cannot run during {}", code.name(), st.what()),
             )
         }
     }
-    let arc = matches!(code, 20 | 30);
+    let arc = code.is_arc();
     let moves = p.has_axis() || p.has(b'C') || p.has(b'H');
     if !moves && !(arc && (p.has(b'I') || p.has(b'J') || p.has(b'R'))) {
         return Ok(());
@@ -341,7 +336,7 @@ pub(crate) fn motion(
     let to = target(nc, &st, p);
     let from = st.pt;
     let motion = if arc {
-        let cw = code == 20;
+        let cw = code == Motion::ArcCw;
         match centre(nc, &st, from, to, cw, p)? {
             Some(c) => {
                 let (ca, cb) = st.printed(c);
@@ -350,7 +345,7 @@ pub(crate) fn motion(
             }
             None => return Ok(()),
         }
-    } else if code == 0 {
+    } else if code == Motion::Rapid {
         (PlaneMotion::Rapid, None)
     } else {
         (PlaneMotion::Line, None)
@@ -375,7 +370,7 @@ fn target(nc: &Nc, st: &PlaneState, p: &Parsed) -> Pt {
     let mut t = st.pt;
     let deg = |letter| p.word(letter).map(|w| crate::exec::caxis::degrees(nc, w));
     match st.kind {
-        Kind::Polar if nc.st.group(gcode::POLAR_CMD) == 160 => {
+        Kind::Polar if nc.st.modal.polar_cmd == PolarCmd::On => {
             let (mut rho, mut theta) = (libm::hypot(t.z, t.r), libm::atan2(t.r, t.z).to_degrees());
             if let Some(x) = nc.len_of(p, b'X') {
                 rho = x;

@@ -2,7 +2,6 @@
 //! spindle, the modal codes and the state of each feature.
 
 use crate::base::event::SpindleDir;
-use crate::base::gcode::Code;
 use crate::base::machine::Machine;
 use crate::base::point::Pt;
 use crate::modal::Modal;
@@ -114,10 +113,6 @@ impl State {
             data: crate::exec::data_setting::DataState::power_on(m),
             plane: None,
         }
-    }
-
-    pub fn group(&self, g: u8) -> Code {
-        self.modal.group(g)
     }
 
     pub fn inch(&self) -> bool {

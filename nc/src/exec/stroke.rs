@@ -15,6 +15,7 @@
 //! tool offsets are the runtime's, which checks the slide path every
 //! period.
 
+use crate::base::gcode::Stroke;
 use alloc::format;
 
 use crate::base::error::{Alarm, NcError};
@@ -93,9 +94,9 @@ fn ordered(a: f64, b: f64) -> (f64, f64) {
 /// G22 (on, with X Z I K or the machine's №100/№101 for what the block
 /// leaves out) or G23 (off). Without stroke check 2 (№172.4 = 0), G22 has
 /// no effect.
-pub fn select(nc: &mut Nc, code: u16, p: &Parsed) {
+pub fn select(nc: &mut Nc, code: Stroke, p: &Parsed) {
     let m = &nc.machine.stroke_check_2;
-    if code != 220 || !m.enabled {
+    if code != Stroke::On || !m.enabled {
         nc.st.stroke2 = None;
         return;
     }

@@ -56,9 +56,10 @@ pub enum ConicKind {
     Parabola { p: f64, q: f64 },
 }
 
-/// A line, an arc or a conic with its parameters resolved once. Angles are
-/// measured in the (z, r) plane from +Z towards +r, so G03
-/// (counter-clockwise in the ZX view) has a positive sweep.
+/// A line, an arc or a conic with its parameters resolved once, for the
+/// roughing cycles' searches ([`Curve::new`] and [`Curve::element`] convert
+/// lines and arcs). Angles are measured in the (z, r) plane from +Z towards
+/// +r, so G03 (counter-clockwise in the ZX view) has a positive sweep.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Curve {
     Line {

@@ -4,8 +4,16 @@
 //! calls them.
 
 pub mod angle;
+pub mod comp;
 pub mod conic;
 pub mod corner;
 pub mod curve;
+pub mod drill;
 pub mod elem;
+pub mod groove;
+pub mod legs;
 pub mod offset;
+pub mod roughing;
+pub mod single;
+pub mod thread;
+pub mod threading;

@@ -1,7 +1,7 @@
 //! Ending a compensated element on its own normal (comp.md §6): before a
 //! cancel move, a change of side, a suspension or the end of the run.
 
-use super::{startup, Leg, Role};
+use super::{Leg, Role};
 use crate::base::error::NcError;
 use crate::base::geom::Element;
 use crate::plan::offset::{check_forward, over};
@@ -12,7 +12,7 @@ use crate::plan::offset::{check_forward, over};
 pub fn close(e: &Element, l: &mut Leg) -> Result<(), NcError> {
     let tool = l.tool;
     match l.role {
-        Role::Start => l.end = Some(startup::end(e, None, &tool)),
+        Role::Start => l.end = Some(crate::plan::comp::startup_end(e, None, &tool)),
         Role::Body => {
             let end = over(e, e.end(), &tool);
             l.end = Some(end);

@@ -5,10 +5,10 @@
 //! reaches the crossing of the two offset curves, found here on the true
 //! offset of the conic.
 
-use super::corner::{kind, Kind};
 use super::Tool;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::geom::Element;
+use crate::plan::comp::{kind, Kind};
 use crate::plan::curve::Curve;
 use crate::plan::elem::{cross, tangent_at};
 use crate::plan::offset::{self, normal};

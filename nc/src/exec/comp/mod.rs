@@ -33,7 +33,7 @@ pub(crate) use cycle::turning_cycle;
 pub(crate) use print::printed;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::{self, Code};
+use crate::base::gcode::{Comp, OneShot, Work, G};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::block::Parsed;
@@ -135,15 +135,6 @@ impl CompState {
     }
 }
 
-/// +1 (G41), −1 (G42) or `None` (G40) for a group-07 code.
-fn side_of(code: Code) -> Option<f64> {
-    match code {
-        410 => Some(1.0),
-        420 => Some(-1.0),
-        _ => None,
-    }
-}
-
 /// Whether the compensation is running (an element may be waiting).
 pub(crate) fn running(nc: &Nc) -> bool {
     nc.st.comp.running.is_some()
@@ -232,21 +223,28 @@ pub(crate) fn conic_compensated(nc: &Nc) -> Result<bool, NcError> {
     ))
 }
 
-/// The last code of modal group `g` the block writes.
-fn last_code(p: &Parsed, g: u8) -> Option<Code> {
-    p.gs()
-        .iter()
-        .rev()
-        .map(|&(c, _)| c)
-        .find(|&c| gcode::group(c) == Some(g))
+/// The last group-07 code the block writes.
+fn last_comp(p: &Parsed) -> Option<Comp> {
+    p.gs().rev().find_map(|g| match g {
+        G::Comp(c) => Some(c),
+        _ => None,
+    })
+}
+
+/// The last group-14 code the block writes.
+fn last_work(p: &Parsed) -> Option<Work> {
+    p.gs().rev().find_map(|g| match g {
+        G::Work(c) => Some(c),
+        _ => None,
+    })
 }
 
 /// The error of a function that needs compensation off: G31/G53 E4031,
 /// G36/G37 E4032 (dialect.md §4.7).
 fn needs_off(p: &Parsed) -> Option<Alarm> {
     match p.one_shot() {
-        Some(310 | 530) => Some(Alarm::CompOnArc),
-        Some(360 | 370) => Some(Alarm::MeasureInComp),
+        Some(OneShot::Skip | OneShot::MachineCoords) => Some(Alarm::CompOnArc),
+        Some(OneShot::MeasureX | OneShot::MeasureZ) => Some(Alarm::MeasureInComp),
         _ => None,
     }
 }
@@ -255,14 +253,14 @@ fn needs_off(p: &Parsed) -> Option<Alarm> {
 /// functions that need compensation off (also when this block writes
 /// G41/G42), and a G54–G59 that moves the zero suspends it (comp.md §8).
 pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
-    let mode = last_code(p, gcode::COMP).unwrap_or(nc.st.group(gcode::COMP));
-    if running(nc) || side_of(mode).is_some() {
+    let mode = last_comp(p).unwrap_or(nc.st.modal.comp);
+    if running(nc) || mode.side().is_some() {
         if let (Some(code), Some(g)) = (needs_off(p), p.one_shot()) {
             return fail(
                 code,
                 format!(
                     "{} needs nose-radius compensation off (G40 and a cancel move first)",
-                    gcode::name(g)
+                    g.name()
                 ),
             );
         }
@@ -275,14 +273,14 @@ pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Resu
 
 /// Whether the block's G54–G59 selects a system with another zero.
 fn moves_origin(nc: &Nc, p: &Parsed) -> bool {
-    let Some(code) = last_code(p, gcode::WORK) else {
+    let Some(code) = last_work(p) else {
         return false;
     };
-    if p.one_shot() == Some(500) {
+    if p.one_shot() == Some(OneShot::SetCoordinates) {
         // G50 wins over G54–G59 in one block; the selection is ignored.
         return false;
     }
-    let index = (code.saturating_sub(540) / 10).min(5) as usize;
+    let index = code.index();
     let now = nc.st.work.get(nc.st.work_index());
     nc.st.work.get(index) != now
 }
@@ -290,15 +288,21 @@ fn moves_origin(nc: &Nc, p: &Parsed) -> bool {
 /// Blocks whose function cancels compensation (comp.md §8): the waiting
 /// element was already printed by the flush the function makes.
 fn cancels(p: &Parsed) -> bool {
-    let cycle = matches!(p.one_shot(), Some(710 | 720 | 730)) && p.has(b'P');
-    matches!(p.one_shot(), Some(280 | 300)) || cycle || p.has_m(2) || p.has_m(30)
+    let cycle = matches!(
+        p.one_shot(),
+        Some(OneShot::RoughTurn | OneShot::RoughFace | OneShot::Pattern)
+    ) && p.has(b'P');
+    matches!(p.one_shot(), Some(OneShot::Home | OneShot::HomeN))
+        || cycle
+        || p.has_m(2)
+        || p.has_m(30)
 }
 
 /// After each block: the cancelling functions leave G40 in force, and the
 /// 7th consecutive block without a move while compensating is E4034.
 pub(crate) fn end_of_block(nc: &mut Nc, p: &Parsed, moved: bool) -> Result<(), NcError> {
     if cancels(p) {
-        nc.st.modal.set(gcode::COMP, 400);
+        nc.st.modal.comp = Comp::Off;
         nc.st.comp.stop();
     }
     let zero = core::mem::take(&mut nc.st.comp.zero_move);

@@ -4,18 +4,17 @@
 
 use alloc::vec::Vec;
 
-use super::out::Out;
 use super::profile::check_codes;
 use crate::base::error::NcError;
-use crate::base::gcode;
 use crate::base::words::{addr, Word};
 use crate::block;
 use crate::exec::{Nc, Sink};
+use crate::plan::roughing::Path;
 
 pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Result<(), NcError> {
     let a = nc.st.pos;
-    let motion = nc.st.group(gcode::MOTION);
-    let comp = nc.st.group(gcode::COMP);
+    let motion = nc.st.modal.motion;
+    let comp = nc.st.modal.comp;
     for (words, tag) in blocks {
         let tag = *tag;
         let p = block::parse(words, &nc.machine).map_err(|e| e.at(tag))?;
@@ -31,14 +30,11 @@ pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Res
     // An element still waiting for a corner word of the nf block is
     // printed whole before the return (W112).
     crate::exec::contour::flush(nc, sink)?;
-    Out {
-        nc: &mut *nc,
-        sink: &mut *sink,
-        mirrored: false,
-    }
-    .rapid(a);
+    let mut back = Path::new(nc.st.pos, false);
+    back.rapid(a);
+    super::out::print(nc, sink, back.steps());
     // The modes in force before G70 are back (cycles.md §8, comp.md §8).
-    nc.st.modal.set(gcode::MOTION, motion);
-    nc.st.modal.set(gcode::COMP, comp);
+    nc.st.modal.motion = motion;
+    nc.st.modal.comp = comp;
     Ok(())
 }

@@ -13,22 +13,18 @@ use alloc::vec::Vec;
 mod conic_tests;
 mod finish;
 mod out;
-mod pattern;
-mod pockets;
 mod profile;
-mod rough;
 #[cfg(test)]
 mod tests;
-mod turn;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
+use crate::base::gcode::OneShot;
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::curve::swap;
-use out::Out;
-use profile::{Kind, Seg};
+use crate::plan::roughing::{pattern, pockets, rough, too_many, Job, Path};
+use profile::Kind;
 
 /// First-block values of G71 (U Δd, R e) or G72 (W Δd, R e).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -70,39 +66,10 @@ impl Default for CompoundState {
     }
 }
 
-/// A G71/G72 cycle in its frame (see the module comment).
-pub struct Job {
-    /// The cycle start A and A′ = A moved by the finishing allowance.
-    pub a: Pt,
-    pub a1: Pt,
-    /// The offset profile P′ (K′ of type II), ns element first.
-    pub segs: Vec<Seg>,
-    /// Depth of cut Δd and retract e.
-    pub dd: f64,
-    pub e: f64,
-    pub k1: bool,
-    pub j1: bool,
-}
-
-/// Passes a cycle may make: a depth of cut far below the stock would
-/// otherwise print millions of legs.
-const MAX_PASSES: f64 = 100_000.0;
-
-fn too_many(passes: f64) -> Result<(), NcError> {
-    if passes <= MAX_PASSES {
-        Ok(())
-    } else {
-        fail(
-            Alarm::BadRoughing,
-            format!("the cycle would make more than {MAX_PASSES} passes"),
-        )
-    }
-}
-
 /// A G70–G73 block; `nc.profile` holds the ns…nf blocks for a cycle block.
 pub fn run(
     nc: &mut Nc,
-    code: Code,
+    code: OneShot,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
@@ -113,7 +80,7 @@ pub fn run(
         return fail(Alarm::BadProfile, "the cycle needs both P (ns) and Q (nf)");
     }
     if !has_p {
-        return if code == 700 {
+        return if code == OneShot::Finish {
             fail(Alarm::MissingWord, "G70 needs P (ns) and Q (nf)")
         } else {
             first_block(nc, code, p)
@@ -121,19 +88,22 @@ pub fn run(
     }
     out.moved = true;
     match code {
-        700 => finish::run(nc, &blocks, sink),
-        710 | 720 => stock_removal(nc, code == 720, p, &blocks, sink),
+        OneShot::Finish => finish::run(nc, &blocks, sink),
+        OneShot::RoughTurn | OneShot::RoughFace => {
+            stock_removal(nc, code == OneShot::RoughFace, p, &blocks, sink)
+        }
         _ => pattern_repeat(nc, p, &blocks, sink),
     }
 }
 
 /// `G71 U R`, `G72 W R`, `G73 U W R`: words left out keep their value.
-fn first_block(nc: &mut Nc, code: Code, p: &Parsed) -> Result<(), NcError> {
+fn first_block(nc: &mut Nc, code: OneShot, p: &Parsed) -> Result<(), NcError> {
     let r = nc.len_of(p, b'R');
+    let turning = code == OneShot::RoughTurn;
     match code {
-        710 | 720 => {
-            let depth = nc.len_of(p, if code == 710 { b'U' } else { b'W' });
-            let st = if code == 710 {
+        OneShot::RoughTurn | OneShot::RoughFace => {
+            let depth = nc.len_of(p, if turning { b'U' } else { b'W' });
+            let st = if turning {
                 &mut nc.st.compound.g71
             } else {
                 &mut nc.st.compound.g72
@@ -233,15 +203,15 @@ fn stock_removal(
         k1,
         j1,
     };
-    let mut out = Out {
-        nc,
-        sink,
-        mirrored: facing,
+    // The legs made before an alarm are printed, as a control would
+    // have moved them, then the alarm.
+    let mut path = Path::new(nc.st.pos, facing);
+    let done = match kind {
+        Kind::Plain => rough::run(&mut path, &job),
+        Kind::Pockets => pockets::run(&mut path, &job),
     };
-    match kind {
-        Kind::Plain => rough::run(&mut out, &job),
-        Kind::Pockets => pockets::run(&mut out, &job),
-    }
+    out::print(nc, sink, path.steps());
+    done
 }
 
 /// G73.
@@ -266,14 +236,8 @@ fn pattern_repeat(
         passes: relief.passes as u32,
         allowance: allowance(nc, p),
     };
-    pattern::run(
-        &mut Out {
-            nc,
-            sink,
-            mirrored: false,
-        },
-        &segs,
-        &pat,
-    );
+    let mut path = Path::new(nc.st.pos, false);
+    pattern::run(&mut path, &segs, &pat);
+    out::print(nc, sink, path.steps());
     Ok(())
 }

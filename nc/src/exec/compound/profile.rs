@@ -7,37 +7,15 @@ use alloc::format;
 use alloc::vec::Vec;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::{self, Code};
+use crate::base::gcode::{Drill, Motion, G};
 use crate::base::geom::{self, Element};
 use crate::base::point::Pt;
 use crate::base::words::Word;
 use crate::block::{self, Parsed};
 use crate::exec::contour::{self, Corner};
 use crate::exec::Nc;
-use crate::plan::curve::{Axis, Curve, EPS};
-
-/// One element of a profile.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Seg {
-    pub curve: Curve,
-    /// Written as G00: the ns infeed of the cycles is then a rapid.
-    pub rapid: bool,
-    /// The element of the first (ns) block.
-    pub ns: bool,
-    /// The tag of the profile block it comes from (`Nc::push_profile`),
-    /// for errors about it.
-    pub tag: u32,
-}
-
-impl Seg {
-    /// The same element with its curve changed (moved, mirrored).
-    pub fn map(self, f: impl Fn(&Curve) -> Curve) -> Seg {
-        Seg {
-            curve: f(&self.curve),
-            ..self
-        }
-    }
-}
+use crate::plan::curve::Curve;
+use crate::plan::roughing::Seg;
 
 /// The two types of G71/G72 (cycles.md §15): read from the ns block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -68,12 +46,12 @@ fn parse_at(nc: &Nc, words: &[Word], tag: u32) -> Result<Parsed, NcError> {
 pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kind, NcError> {
     let (words, tag) = first(blocks)?;
     let p = parse_at(nc, words, *tag)?;
-    let code = p.motion().unwrap_or(nc.st.group(gcode::MOTION));
+    let code = p.motion().unwrap_or(nc.st.modal.motion);
     let name = if facing { "G72" } else { "G71" };
-    if !matches!(code, 0 | 10) {
+    if !code.is_straight() {
         let msg = format!(
             "the first profile block (ns) of {name} must move with G00 or G01, not {}",
-            gcode::name(code)
+            code.name()
         );
         return Err(NcError::new(Alarm::BadProfileStart, msg).at(*tag));
     }
@@ -102,13 +80,16 @@ pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
     if let Some(code) = p.one_shot() {
         let msg = format!(
             "{} (group 00) may not stand in a G70–G73 profile",
-            gcode::name(code)
+            code.name()
         );
         return Err(NcError::new(Alarm::BadProfile, msg).at(tag));
     }
-    for &(code, _) in p.gs() {
-        if gcode::group(code) == Some(gcode::DRILL) && code != 800 {
-            let msg = format!("{} may not stand in a G70–G73 profile", gcode::name(code));
+    for g in p.gs() {
+        if let G::Drill(
+            code @ (Drill::FaceDrill | Drill::FaceTap | Drill::SideDrill | Drill::SideTap),
+        ) = g
+        {
+            let msg = format!("{} may not stand in a G70–G73 profile", code.name());
             return Err(NcError::new(Alarm::BadProfile, msg).at(tag));
         }
     }
@@ -122,7 +103,7 @@ pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
 pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
     first(blocks)?;
     let mut pos = nc.st.pos;
-    let mut code = nc.st.group(gcode::MOTION);
+    let mut code = nc.st.modal.motion;
     let mut segs: Vec<Seg> = Vec::with_capacity(blocks.len());
     // The element waiting for its corner: its index and the corner.
     let mut waiting: Option<(usize, Corner)> = None;
@@ -139,13 +120,15 @@ pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> 
         pos = curve.end();
         let seg = Seg {
             curve,
-            rapid: code == 0,
+            rapid: code == Motion::Rapid,
             ns: i == 0,
             tag: *tag,
         };
         match waiting.take() {
             // A G00 takes no corner (W112): the waiting one is dropped.
-            Some((at, c)) if code != 0 => join(&mut segs, at, seg, c).map_err(|e| e.at(*tag))?,
+            Some((at, c)) if code != Motion::Rapid => {
+                join(&mut segs, at, seg, c).map_err(|e| e.at(*tag))?
+            }
             _ => segs.push(seg),
         }
         waiting = corner.map(|c| (segs.len() - 1, c));
@@ -189,10 +172,10 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
 }
 
 /// The curve one profile block describes, `None` when it does not move.
-fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Curve>, NcError> {
+fn element(nc: &Nc, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curve>, NcError> {
     let to = nc.target_from(p, from);
     match code {
-        0 | 10 => {
+        Motion::Rapid | Motion::Line => {
             let Some(deg) = contour::angle_of(p) else {
                 let line = Element::Line { from, to };
                 return Ok(p.has_axis().then_some(Curve::new(line)));
@@ -215,19 +198,24 @@ fn element(nc: &Nc, code: Code, p: &Parsed, from: Pt) -> Result<Option<Curve>, N
             };
             Ok(Some(Curve::new(Element::Line { from, to: end })))
         }
-        20 | 30 => Ok(nc.arc_element(from, code == 20, to, p)?.map(Curve::new)),
-        50 | 51 => three_point(nc, code == 51, p, from, to).map(|e| Some(Curve::new(e))),
+        Motion::ArcCw | Motion::ArcCcw => {
+            Ok(nc.arc_element(from, code == Motion::ArcCw, to, p)?.map(Curve::new))
+        }
+        Motion::ThreePoint | Motion::ThreePointAbs => {
+            three_point(nc, code == Motion::ThreePointAbs, p, from, to).map(|e| Some(Curve::new(e)))
+        }
         // Seed 000, G6.2 note 8 and G7.2 note 7: conics may shape a profile.
-        62 | 63 | 72 | 73 if p.has_axis() => {
-            let (ellipse, cw) = (matches!(code, 62 | 63), matches!(code, 62 | 72));
+        c if c.is_conic() && p.has_axis() => {
+            let ellipse = matches!(c, Motion::EllipseCw | Motion::EllipseCcw);
+            let cw = matches!(c, Motion::EllipseCw | Motion::ParabolaCw);
             contour::conic::profile_curve(nc, ellipse, cw, p, from, to)
         }
-        62 | 63 | 72 | 73 => Ok(None),
+        c if c.is_conic() => Ok(None),
         _ => fail(
             Alarm::BadProfile,
             format!(
                 "{} may not stand in a G71–G73 profile: only G00, G01, G02, G03, G05, G6.2/G6.3 and G7.2/G7.3 describe it",
-                gcode::name(code)
+                code.name()
             ),
         ),
     }
@@ -252,22 +240,4 @@ fn three_point(nc: &Nc, absolute: bool, p: &Parsed, from: Pt, to: Pt) -> Result<
         centre,
         cw,
     })
-}
-
-/// The deepest point of a curve below the level `base` (r), infeed
-/// direction `sx`: sx·(r − base) at its largest.
-pub fn max_depth(c: &Curve, base: f64, sx: f64) -> f64 {
-    let (lo, hi) = c.range(Axis::R, 0.0, 1.0);
-    (sx * (lo - base)).max(sx * (hi - base))
-}
-
-/// Where the tail of a profile starts (cycles.md §5): the final elements
-/// that lie on or outside the start level `base` at every point. The ns
-/// element is never part of it, so `segs` holds the elements after it.
-pub fn tail_start(segs: &[Seg], base: f64, sx: f64) -> usize {
-    let mut t = segs.len();
-    while t > 0 && max_depth(&segs[t - 1].curve, base, sx) <= EPS {
-        t -= 1;
-    }
-    t
 }

@@ -451,7 +451,7 @@ fn g70_runs_the_profile_and_returns_to_a() {
         rapid(40.0, 2.0),
     ];
     assert_eq!(got, want);
-    assert_eq!(nc.st.group(gcode::MOTION), 10);
+    assert_eq!(nc.st.modal.motion, gcode::Motion::Line);
     assert_eq!(nc.st.feed, 50.0);
 }
 

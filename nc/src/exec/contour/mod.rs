@@ -23,7 +23,7 @@ pub use crate::plan::corner::{corner, Corner};
 pub use queue::ContourState;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
+use crate::base::gcode::{Motion, OneShot};
 use crate::base::geom::Element;
 use crate::base::machine::ChamferType;
 use crate::base::point::Pt;
@@ -37,13 +37,13 @@ use queue::{AngleFirst, Move};
 /// G6.2, G6.3, G7.2, G7.3 blocks.
 pub fn conic(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let ellipse = matches!(code, 62 | 63);
-    let cw = matches!(code, 62 | 72);
+    let ellipse = matches!(code, Motion::EllipseCw | Motion::EllipseCcw);
+    let cw = matches!(code, Motion::EllipseCw | Motion::ParabolaCw);
     if conic::run(nc, ellipse, cw, p, sink)? {
         out.moved = true;
     }
@@ -53,7 +53,7 @@ pub fn conic(
 /// The corner word of a block whose motion is `code` (dialect.md §5.1,
 /// §5.3): `L`/`,C` chamfer, `D`/`,R` rounding. E2040 for both at once, on
 /// G00, or not greater than 0. Other motions give L and D other meanings.
-pub(crate) fn corner_word(nc: &Nc, code: Code, p: &Parsed) -> Result<Option<Corner>, NcError> {
+pub(crate) fn corner_word(nc: &Nc, code: Motion, p: &Parsed) -> Result<Option<Corner>, NcError> {
     // With M98 the L is the repeat count.
     let l = p.word(b'L').filter(|_| !p.has_m(98));
     let comma_c = p.word_at(COMMA_C);
@@ -62,10 +62,10 @@ pub(crate) fn corner_word(nc: &Nc, code: Code, p: &Parsed) -> Result<Option<Corn
     let Some(word) = chamfer.or(round) else {
         return Ok(None);
     };
-    if !matches!(code, 0 | 10 | 20 | 30) {
+    if !(code.is_straight() || code.is_arc()) {
         return Ok(None);
     }
-    if code == 0 {
+    if code == Motion::Rapid {
         return fail(
             Alarm::BadCornerLength,
             "a chamfer or corner rounding cannot be given on G00",
@@ -221,16 +221,20 @@ pub fn flush(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
 /// Before a block's group-00 function: G09 lets its move decide; G04 may
 /// stand between the two blocks of an angle pair (its corner word is then
 /// ignored, a group-00 code came first); any other flushes.
-pub(crate) fn before_one_shot(nc: &mut Nc, code: Code, sink: &mut dyn Sink) -> Result<(), NcError> {
+pub(crate) fn before_one_shot(
+    nc: &mut Nc,
+    code: OneShot,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
     match code {
-        90 => Ok(()),
-        40 if nc.st.contour.angle_waiting() => {
+        OneShot::ExactStop => Ok(()),
+        OneShot::Dwell if nc.st.contour.angle_waiting() => {
             nc.st.contour.drop_angle_corner();
             Ok(())
         }
         // Under compensation G04 is a block without a move (comp.md §7):
         // the element keeps waiting; its corner word is ignored (W112).
-        40 if crate::exec::comp::running(nc) => {
+        OneShot::Dwell if crate::exec::comp::running(nc) => {
             nc.st.contour.drop_corners();
             Ok(())
         }

@@ -4,25 +4,22 @@
 use super::lead;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event};
-use crate::base::gcode::Code;
+use crate::base::gcode::Motion;
 use crate::base::geom;
 use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
-use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
-
-/// Angles closer than this (radians) are the same.
-const ANGLE_EPS: f64 = 1e-9;
+use crate::plan::thread::check_long_axis;
 
 /// A G32.2 (322, clockwise) or G32.3 (323) block.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let cw = code == 322;
+    let cw = code == Motion::ArcThreadCw;
     // I is the centre here, so the lead is F only.
     let written = lead::written(nc, p, false);
     lead::remember(nc, written);
@@ -71,42 +68,12 @@ fn centre(nc: &Nc, p: &Parsed, cw: bool, from: Pt, to: Pt) -> Result<Option<Pt>,
     )
 }
 
-/// The lead is measured along one axis for the whole arc: Z if its
-/// tangent has |dZ| ≥ |dr| everywhere, X if |dr| ≥ |dZ| everywhere; an arc
-/// that crosses a 45° direction has neither (E4010).
-///
-/// At the angle θ of a point about the centre (from +Z towards +r) the
-/// tangent's |dZ| : |dr| is |sin θ| : |cos θ|, so the classes change only
-/// at θ = 45° + n·90°: the arc must not pass one strictly inside.
-fn check_long_axis(from: Pt, to: Pt, c: Pt, cw: bool) -> Result<(), NcError> {
-    let a0 = libm::atan2(from.r - c.r, from.z - c.z);
-    let a1 = libm::atan2(to.r - c.r, to.z - c.z);
-    // The sweep in the arc's direction; end = start is a full circle.
-    let mut sweep = crate::base::geom::rem_euclid(if cw { a0 - a1 } else { a1 - a0 }, TAU);
-    if sweep < ANGLE_EPS {
-        sweep = TAU;
-    }
-    let dir = if cw { -1.0 } else { 1.0 };
-    for n in 0..4 {
-        let boundary = FRAC_PI_4 + f64::from(n) * FRAC_PI_2;
-        // How far along the arc the boundary lies.
-        let at = crate::base::geom::rem_euclid(dir * (boundary - a0), TAU);
-        if at > ANGLE_EPS && at < sweep - ANGLE_EPS {
-            return fail(
-                Alarm::BadThread,
-                "G32.2/G32.3: the arc has no single long axis (its tangent crosses 45°)",
-            );
-        }
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
-    use super::check_long_axis;
     use crate::base::event::{Dir, Event};
     use crate::base::point::Pt;
     use crate::exec::cycles::testing::{assert_line, run_err, Lathe};
+    use crate::plan::thread::check_long_axis;
     use alloc::string::ToString;
 
     #[test]

@@ -2,26 +2,22 @@
 //! drilling, G84/G88 rigid tapping with the M29 rules, G80 (cycles.md §21,
 //! §22).
 
-use alloc::format;
-use alloc::vec;
 use alloc::vec::Vec;
 
 use super::legs::{self, Leg};
-use super::tapping::{self, Hole};
-use super::words::{self, before, sign};
+use super::words;
 use super::{lead, Func};
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::event::SpindleDir;
-use crate::base::gcode::Code;
-use crate::base::point::Pt;
+use crate::base::gcode::Drill;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
+use crate::plan::drill::{drill_path, tap_holes, Holes, Pecks};
 
 /// The data of the drilling cycle in force, and the rigid tapping mode.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct DrillState {
-    /// The group-10 code the data belongs to (0: none yet).
-    code: Code,
+    /// The group-10 code the data belongs to (`None`: none yet).
+    code: Option<Drill>,
     data: Data,
     /// An M29 waits for its G84/G88 block.
     m29: bool,
@@ -61,16 +57,16 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
     let st = &mut nc.st.cycles.drill;
     // (Only M29 or a rigid cycle leaves something to clear.)
     if st.m29 || st.rigid {
-        if p.has_g(800) || p.has_m(2) || p.has_m(30) {
+        if p.has_g(Drill::Off) || p.has_m(2) || p.has_m(30) {
             st.m29 = false;
             st.rigid = false;
         }
-        if p.has_g(830) || p.has_g(870) || p.motion().is_some() {
+        if p.has_g(Drill::FaceDrill) || p.has_g(Drill::SideDrill) || p.motion().is_some() {
             st.rigid = false;
         }
     }
     let drills = matches!(f, Func::Drill(_)) && moves;
-    let taps = drills && matches!(f, Func::Drill(840 | 880));
+    let taps = drills && matches!(f, Func::Drill(d) if d.taps());
     if p.has_m(29) {
         if st.m29 {
             return fail(
@@ -106,7 +102,7 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
 /// A block while G83, G84, G87 or G88 is in force.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Drill,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
@@ -124,11 +120,17 @@ pub(crate) fn run(
         return Ok(());
     }
     let repeats = words::count(p, b'K')?.unwrap_or(1);
-    let holes = Holes::of_block(nc, code, p)?;
-    let path = if matches!(code, 840 | 880) {
+    let holes = holes_of_block(nc, code, p)?;
+    let path = if code.taps() {
         tap_path(nc, &holes, repeats)?
     } else {
-        drill_path(nc, &holes, repeats)?
+        let d = nc.st.cycles.drill.data;
+        let pecks = Pecks {
+            peck: d.peck,
+            retract: d.retract,
+            deep: d.deep,
+        };
+        drill_path(&holes, &pecks, repeats)?
     };
     legs::emit(nc, &path, true, sink);
     out.moved = true;
@@ -136,12 +138,12 @@ pub(crate) fn run(
 }
 
 /// A block naming the code starts new data; every block may change it.
-fn take_data(nc: &mut Nc, code: Code, p: &Parsed) -> Result<(), NcError> {
+fn take_data(nc: &mut Nc, code: Drill, p: &Parsed) -> Result<(), NcError> {
     let mut d = nc.st.cycles.drill.data;
-    if p.has_g(code) || nc.st.cycles.drill.code != code {
+    if p.has_g(code) || nc.st.cycles.drill.code != Some(code) {
         d = Data::default();
     }
-    let tapping = matches!(code, 840 | 880);
+    let tapping = code.taps();
     if tapping {
         if let Some(l) = lead::written(nc, p, true) {
             d.lead = Some(l);
@@ -161,162 +163,70 @@ fn take_data(nc: &mut Nc, code: Code, p: &Parsed) -> Result<(), NcError> {
     if let Some(ms) = p.get(b'P') {
         d.dwell_ms = round_half_away(ms).max(0.0);
     }
-    nc.st.cycles.drill.code = code;
+    nc.st.cycles.drill.code = Some(code);
     nc.st.cycles.drill.data = d;
     Ok(())
 }
 
-/// The holes of one block: along Z at an X (G83/G84) or along X at a Z
-/// (G87/G88). `s` is the coordinate along the drilling axis (r for X).
-struct Holes {
-    along_z: bool,
-    /// The hole position (r, or Z for G87/G88), and how far each repeat
-    /// moves it (an incremental position is applied again, §21).
-    pos: f64,
-    step: f64,
-    s0: f64,
-    s1: f64,
-    /// The C angle of the first hole and the turn per repeat (H).
-    c: f64,
-    c_step: f64,
-    dwell_s: f64,
-    clamp: Option<u32>,
-}
-
-impl Holes {
-    fn of_block(nc: &mut Nc, code: Code, p: &Parsed) -> Result<Holes, NcError> {
-        let along_z = matches!(code, 830 | 840);
-        let here = nc.st.pos;
-        let r_of = |v: f64| v / 2.0;
-        let (abs_pos, inc_pos, abs_s, inc_s) = if along_z {
-            (b'X', b'U', b'Z', b'W')
+/// The holes of a block from its words and the drilling data.
+fn holes_of_block(nc: &mut Nc, code: Drill, p: &Parsed) -> Result<Holes, NcError> {
+    let along_z = code.along_z();
+    let here = nc.st.pos;
+    let r_of = |v: f64| v / 2.0;
+    let (abs_pos, inc_pos, abs_s, inc_s) = if along_z {
+        (b'X', b'U', b'Z', b'W')
+    } else {
+        (b'Z', b'W', b'X', b'U')
+    };
+    // X and U are diameters; the drilling coordinate of G87 is r.
+    let scale = |letter: u8, v: f64| {
+        if matches!(letter, b'X' | b'U') {
+            r_of(v)
         } else {
-            (b'Z', b'W', b'X', b'U')
-        };
-        // X and U are diameters; the drilling coordinate of G87 is r.
-        let scale = |letter: u8, v: f64| {
-            if matches!(letter, b'X' | b'U') {
-                r_of(v)
-            } else {
-                v
-            }
-        };
-        let (at_pos, at_s) = if along_z {
-            (here.r, here.z)
-        } else {
-            (here.z, here.r)
-        };
-        let step = nc.len_of(p, inc_pos).map_or(0.0, |v| scale(inc_pos, v));
-        let pos = match nc.len_of(p, abs_pos) {
-            Some(v) => scale(abs_pos, v),
-            None => at_pos + step,
-        };
-        let s1 = if let Some(v) = nc.len_of(p, abs_s) {
-            scale(abs_s, v)
-        } else if let Some(v) = nc.len_of(p, inc_s) {
-            at_s + scale(inc_s, v)
-        } else {
-            match nc.st.cycles.drill.data.bottom {
-                Some(b) => b,
-                None => {
-                    return fail(
-                        Alarm::MissingWord,
-                        "the first drilling block needs the hole's bottom",
-                    )
-                }
-            }
-        };
-        nc.st.cycles.drill.data.bottom = Some(s1);
-        Ok(Holes {
-            along_z,
-            pos,
-            step,
-            s0: at_s,
-            s1,
-            c: crate::exec::caxis::target_from(nc, p, nc.st.c),
-            c_step: crate::exec::caxis::step(nc, p),
-            dwell_s: nc.st.cycles.drill.data.dwell_ms / 1000.0,
-            clamp: nc.st.cycles.drill.clamp,
-        })
-    }
-
-    /// The C angle of hole `n` (0 first).
-    fn c_at(&self, n: i64) -> f64 {
-        self.c + n as f64 * self.c_step
-    }
-
-    /// The point of hole `n` (0 first) at `s` along the drilling axis.
-    fn at(&self, n: i64, s: f64) -> Pt {
-        let pos = self.pos + n as f64 * self.step;
-        if self.along_z {
-            Pt::new(pos, s)
-        } else {
-            Pt::new(s, pos)
-        }
-    }
-}
-
-/// G83/G87: position, clamp, the pecks (§21 step 3), dwell, back to the
-/// start level, unclamp; K times.
-fn drill_path(nc: &Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
-    let d = nc.st.cycles.drill.data;
-    let mut out = Vec::new();
-    for n in 0..repeats {
-        if out.len() > words::MAX_LEGS {
-            return fail(Alarm::ZeroStep, format!("K{repeats}: too many holes"));
-        }
-        out.push(Leg::RapidC(h.at(n, h.s0), h.c_at(n)));
-        if let Some(m) = h.clamp {
-            out.push(Leg::M(m));
-        }
-        for (rapid, s) in feed_to_bottom(h.s0, h.s1, &d)? {
-            let to = h.at(n, s);
-            out.push(if rapid { Leg::Rapid(to) } else { Leg::Line(to) });
-        }
-        if h.dwell_s > 0.0 {
-            out.push(Leg::Dwell(h.dwell_s));
-        }
-        out.push(Leg::Rapid(h.at(n, h.s0)));
-        if let Some(m) = h.clamp {
-            out.push(Leg::M(m.saturating_add(1)));
-        }
-    }
-    Ok(out)
-}
-
-/// The feed to the bottom along the drilling axis: (rapid?, s) steps.
-/// Without a peck (or J0 without a retract) one feed; otherwise a feed to
-/// each peck depth, then J0: back R (never behind s0), J1: out to s0 and
-/// in again to R short of the depth reached; the last feed reaches s1.
-fn feed_to_bottom(s0: f64, s1: f64, d: &Data) -> Result<Vec<(bool, f64)>, NcError> {
-    if d.peck <= 0.0 || (!d.deep && d.retract <= 0.0) {
-        return Ok(vec![(false, s1)]);
-    }
-    let sd = sign(s1 - s0);
-    // A retract point behind the start level is the start level.
-    let back = |t: f64| {
-        let p = t - sd * d.retract;
-        if sd * (p - s0) < 0.0 {
-            s0
-        } else {
-            p
+            v
         }
     };
-    let mut out = Vec::new();
-    for t in words::stops(s0, s1, d.peck, Alarm::ZeroStep)? {
-        out.push((false, t));
-        if !before(s0, s1, t) {
-            break;
+    let (at_pos, at_s) = if along_z {
+        (here.r, here.z)
+    } else {
+        (here.z, here.r)
+    };
+    let step = nc.len_of(p, inc_pos).map_or(0.0, |v| scale(inc_pos, v));
+    let pos = match nc.len_of(p, abs_pos) {
+        Some(v) => scale(abs_pos, v),
+        None => at_pos + step,
+    };
+    let s1 = if let Some(v) = nc.len_of(p, abs_s) {
+        scale(abs_s, v)
+    } else if let Some(v) = nc.len_of(p, inc_s) {
+        at_s + scale(inc_s, v)
+    } else {
+        match nc.st.cycles.drill.data.bottom {
+            Some(b) => b,
+            None => {
+                return fail(
+                    Alarm::MissingWord,
+                    "the first drilling block needs the hole's bottom",
+                )
+            }
         }
-        if d.deep {
-            out.push((true, s0));
-        }
-        out.push((true, back(t)));
-    }
-    Ok(out)
+    };
+    nc.st.cycles.drill.data.bottom = Some(s1);
+    Ok(Holes {
+        along_z,
+        pos,
+        step,
+        s0: at_s,
+        s1,
+        c: crate::exec::caxis::target_from(nc, p, nc.st.c),
+        c_step: crate::exec::caxis::step(nc, p),
+        dwell_s: nc.st.cycles.drill.data.dwell_ms / 1000.0,
+        clamp: nc.st.cycles.drill.clamp,
+    })
 }
 
-/// G84/G88: the tapping holes (§22); the hand is the lead's sign.
+/// G84/G88: the M29 rule and the lead, then the tapping holes (§22); the
+/// hand is the lead's sign.
 fn tap_path(nc: &mut Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
     if repeats < 1 {
         return Ok(Vec::new());
@@ -333,27 +243,7 @@ fn tap_path(nc: &mut Nc, h: &Holes, repeats: i64) -> Result<Vec<Leg>, NcError> {
         None => lead::resolve(nc, None)?,
     };
     lead::check(nc, lead.abs())?;
-    let dir = if lead < 0.0 {
-        SpindleDir::Ccw
-    } else {
-        SpindleDir::Cw
-    };
-    let mut spindle = nc.st.spindle;
-    let mut out = Vec::new();
-    for n in 0..repeats {
-        if out.len() > words::MAX_LEGS {
-            return fail(Alarm::ZeroStep, format!("K{repeats}: too many holes"));
-        }
-        let hole = Hole {
-            top: h.at(n, h.s0),
-            bottom: h.at(n, h.s1),
-            c: h.c_at(n),
-            lead: lead.abs(),
-            dwell_s: h.dwell_s,
-            clamp: h.clamp,
-        };
-        tapping::tap_hole(&hole, dir, &mut spindle, &mut out);
-    }
+    let out = tap_holes(h, lead, nc.st.spindle, repeats)?;
     let st = &mut nc.st.cycles.drill;
     st.m29 = false;
     st.rigid = true;

@@ -1,16 +1,13 @@
 //! G74 face grooving / peck drilling along Z and G75 grooving along X
 //! (cycles.md §9, §10): pecks along one axis, steps along the other.
 
-use alloc::vec;
-use alloc::vec::Vec;
-
-use super::legs::{self, Leg};
-use super::words::{self, sign};
-use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
-use crate::base::point::Pt;
+use super::legs;
+use super::words;
+use crate::base::error::NcError;
+use crate::base::gcode::OneShot;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
+use crate::plan::groove::{g74_path, g75_path, Groove};
 
 /// The peck retract e of the last G74 and of the last G75 first block.
 #[derive(Debug, Clone, Copy, Default)]
@@ -19,27 +16,16 @@ pub(crate) struct Retracts {
     g75: f64,
 }
 
-/// A cycle block's words, the axes not yet exchanged: `peck` along the
-/// pecking axis, `step` between columns/rows, `relief` at the bottom.
-struct Groove {
-    a: Pt,
-    end: Pt,
-    step: f64,
-    peck: f64,
-    relief: f64,
-    retract: f64,
-}
-
 /// A G74 (740) or G75 (750) block: the first block (no axis word) sets e,
 /// the second cuts.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: OneShot,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let g74 = code == 740;
+    let g74 = code == OneShot::PeckFace;
     if !p.has_axis() {
         if let Some(e) = nc.len_of(p, b'R') {
             let st = &mut nc.st.cycles.groove;
@@ -64,92 +50,6 @@ pub(crate) fn run(
     legs::emit(nc, &path, true, sink);
     out.moved = true;
     Ok(())
-}
-
-/// Which coordinate pecks and which one steps.
-#[derive(Clone, Copy)]
-struct Axes {
-    /// G74 pecks along Z and steps in r; G75 the other way round.
-    peck_z: bool,
-}
-
-impl Axes {
-    /// (peck coordinate, step coordinate) of a point.
-    fn split(self, p: Pt) -> (f64, f64) {
-        if self.peck_z {
-            (p.z, p.r)
-        } else {
-            (p.r, p.z)
-        }
-    }
-
-    fn pt(self, peck: f64, step: f64) -> Pt {
-        if self.peck_z {
-            Pt::new(step, peck)
-        } else {
-            Pt::new(peck, step)
-        }
-    }
-}
-
-/// G74: columns in r, pecks along Z.
-fn g74_path(g: &Groove) -> Result<Vec<Leg>, NcError> {
-    path(
-        g,
-        Axes { peck_z: true },
-        "G74 with P0 while X differs from the start X: no X step",
-    )
-}
-
-/// G75: rows in Z, pecks along r.
-fn g75_path(g: &Groove) -> Result<Vec<Leg>, NcError> {
-    path(
-        g,
-        Axes { peck_z: false },
-        "G75 with Q0 while Z differs from the start Z: no Z step",
-    )
-}
-
-/// Both cycles in the (peck, step) coordinates of `ax`.
-fn path(g: &Groove, ax: Axes, zero_step: &str) -> Result<Vec<Leg>, NcError> {
-    let (a_peck, a_step) = ax.split(g.a);
-    let (e_peck, e_step) = ax.split(g.end);
-    let ss = sign(e_step - a_step);
-    if ss != 0.0 && g.step <= 0.0 {
-        return fail(Alarm::ZeroStep, zero_step);
-    }
-    let mut lines = vec![a_step];
-    if ss != 0.0 {
-        lines.extend(words::stops(a_step, e_step, g.step, Alarm::ZeroStep)?);
-    }
-    // The relief moves against the step direction; with a single column
-    // (row) Δd keeps its own sign.
-    let relief = if lines.len() == 1 {
-        g.relief
-    } else {
-        -ss * g.relief.abs()
-    };
-    let sp = sign(e_peck - a_peck);
-    let pecks = words::stops(a_peck, e_peck, g.peck, Alarm::ZeroStep)?;
-    let mut out = Vec::new();
-    for (n, &line) in lines.iter().enumerate() {
-        if out.len() > words::MAX_LEGS {
-            return fail(Alarm::ZeroStep, "the steps are too small for this cycle");
-        }
-        for (j, &t) in pecks.iter().enumerate() {
-            out.push(Leg::Line(ax.pt(t, line)));
-            if j + 1 < pecks.len() {
-                out.push(Leg::Rapid(ax.pt(t - sp * g.retract, line)));
-            }
-        }
-        out.push(Leg::Rapid(ax.pt(e_peck, line + relief)));
-        out.push(Leg::Rapid(ax.pt(a_peck, line + relief)));
-        out.push(Leg::Rapid(match lines.get(n + 1) {
-            Some(&next) => ax.pt(a_peck, next),
-            None => g.a,
-        }));
-    }
-    Ok(out)
 }
 
 #[cfg(test)]

@@ -26,7 +26,7 @@ mod words;
 pub(crate) mod testing;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::{self, Code};
+use crate::base::gcode::{self, Drill, Motion, OneShot, G};
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
 
@@ -51,33 +51,25 @@ pub struct CycleState {
     pub(crate) drill: drill::DrillState,
 }
 
-/// The group-01 codes that are threads: any other group-01 code ends a
-/// thread run and clears its J/K words (dialect.md §4.3).
-const THREAD_CODES: [Code; 8] = [320, 321, 322, 323, 330, 340, 920, 921];
-
-pub(crate) fn is_thread_code(code: Code) -> bool {
-    THREAD_CODES.contains(&code)
-}
-
 /// What a block does in group 2 of canon.md's order, once its modal codes
 /// have taken effect (the same choice as `Nc::motion`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Func {
     /// A group-00 function owns the block.
-    OneShot(Code),
+    OneShot(OneShot),
     /// A drilling/tapping cycle of group 10 is in force.
-    Drill(Code),
+    Drill(Drill),
     /// The group-01 motion in force.
-    Motion(Code),
+    Motion(Motion),
 }
 
 pub(crate) fn func(nc: &Nc, p: &Parsed) -> Func {
     // G09 only adds an exact stop: the block's motion runs as usual.
     match p.one_shot() {
-        Some(code) if code != 90 => Func::OneShot(code),
+        Some(code) if code != OneShot::ExactStop => Func::OneShot(code),
         _ => match nc.st.modal.drill() {
             Some(drill) => Func::Drill(drill),
-            None => Func::Motion(nc.st.group(gcode::MOTION)),
+            None => Func::Motion(nc.st.modal.motion),
         },
     }
 }
@@ -87,9 +79,9 @@ pub(crate) fn func(nc: &Nc, p: &Parsed) -> Func {
 /// the tapping cycles G84/G88.
 pub fn f_is_lead(nc: &Nc, p: &Parsed) -> bool {
     match func(nc, p) {
-        Func::OneShot(code) => matches!(code, 760 | 780),
-        Func::Drill(code) => matches!(code, 840 | 880),
-        Func::Motion(code) => is_thread_code(code),
+        Func::OneShot(code) => matches!(code, OneShot::MultiThread | OneShot::SpiralThread),
+        Func::Drill(code) => code.taps(),
+        Func::Motion(code) => code.is_thread(),
     }
 }
 
@@ -109,7 +101,11 @@ pub fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<Opti
 /// cycles have (dialect.md §4.3, cycles.md §22); block.rs lets a negative
 /// F through when the block's function depends on the modal state.
 fn check_negative_f(p: &Parsed, f: Func) -> Result<(), NcError> {
-    let left_hand = matches!(f, Func::Motion(321 | 921) | Func::Drill(840 | 880));
+    let left_hand = matches!(
+        f,
+        Func::Motion(Motion::RigidThread | Motion::RigidThreadCycle)
+            | Func::Drill(Drill::FaceTap | Drill::SideTap)
+    );
     match p.get(b'F') {
         Some(v) if v < 0.0 && !left_hand => fail(
             Alarm::LiteralOutOfRange,
@@ -123,17 +119,15 @@ fn check_negative_f(p: &Parsed, f: Func) -> Result<(), NcError> {
 /// and G92; any group-01 code or a one-shot code other than G04 ends the
 /// G90/G92/G94 run (cycles.md §3, §4, §16).
 fn forget(nc: &mut Nc, p: &Parsed) {
-    let group01 = |c: Code| gcode::group(c) == Some(gcode::MOTION);
     let st = &mut nc.st.cycles;
-    if p.gs()
-        .iter()
-        .any(|&(c, _)| group01(c) && !is_thread_code(c))
-    {
+    if p.gs().any(|g| matches!(g, G::Motion(m) if !m.is_thread())) {
         st.g92_pull = None;
         st.chain.runout = None;
     }
-    let ends_run = p.gs().iter().any(|&(c, _)| {
-        group01(c) || (gcode::group(c) == Some(gcode::ONE_SHOT) && !matches!(c, 40 | 90))
+    let ends_run = p.gs().any(|g| match g {
+        G::Motion(_) => true,
+        G::OneShot(o) => !matches!(o, OneShot::Dwell | OneShot::ExactStop),
+        _ => false,
     });
     if ends_run {
         st.run = None;
@@ -150,20 +144,22 @@ pub fn flush(nc: &mut Nc, sink: &mut dyn Sink) {
 /// A block whose group-01 code is one of this module's.
 pub fn motion(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
     match code {
-        900 | 940 => turning::run(nc, code, p, sink, out),
-        920 | 921 => thread_cycle::run(nc, code, p, sink, out),
-        320 | 321 | 340 => thread::run(nc, code, p, sink, out),
-        322 | 323 => arc_thread::run(nc, code, p, sink, out),
-        330 => tapping::g33(nc, p, sink, out),
+        Motion::TurningCycle | Motion::FacingCycle => turning::run(nc, code, p, sink, out),
+        Motion::ThreadCycle | Motion::RigidThreadCycle => thread_cycle::run(nc, code, p, sink, out),
+        Motion::Thread | Motion::RigidThread | Motion::VariableThread => {
+            thread::run(nc, code, p, sink, out)
+        }
+        Motion::ArcThreadCw | Motion::ArcThreadCcw => arc_thread::run(nc, code, p, sink, out),
+        Motion::Tapping => tapping::g33(nc, p, sink, out),
         _ => fail(
             Alarm::NotSupportedYet,
-            format!("{} is not implemented yet", gcode::name(code)),
+            format!("{} is not implemented yet", gcode::name(code.code())),
         ),
     }
 }
@@ -171,18 +167,18 @@ pub fn motion(
 /// G74, G75, G76, G78 blocks (group 00).
 pub fn one_shot(
     nc: &mut Nc,
-    code: Code,
+    code: OneShot,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
     match code {
-        740 | 750 => groove::run(nc, code, p, sink, out),
-        760 => multi::g76(nc, p, sink, out),
-        780 => multi::g78(nc, p, sink, out),
+        OneShot::PeckFace | OneShot::PeckGroove => groove::run(nc, code, p, sink, out),
+        OneShot::MultiThread => multi::g76(nc, p, sink, out),
+        OneShot::SpiralThread => multi::g78(nc, p, sink, out),
         _ => fail(
             Alarm::NotSupportedYet,
-            format!("{} is not implemented yet", gcode::name(code)),
+            format!("{} is not implemented yet", gcode::name(code.code())),
         ),
     }
 }
@@ -191,7 +187,7 @@ pub fn one_shot(
 /// block that selects it.
 pub fn drill(
     nc: &mut Nc,
-    code: Code,
+    code: Drill,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,

@@ -2,18 +2,14 @@
 //! depths, flank or alternating infeed, run-in, pull-out and starts.
 
 use alloc::format;
-use alloc::vec::Vec;
 
 use super::lead;
-use super::legs::{self, jk_pair, thread, Leg, PullOut};
-use super::words::{self, sign, EPS};
+use super::legs::{self, jk_pair, PullOut};
+use super::words;
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
-
-/// No thread cycle cuts more passes than this.
-const MAX_PASSES: usize = 100_000;
+use crate::plan::threading::{check_depths, g76_path, g78_path, Infeed, Passes, Thread};
 
 /// The words of the last G76 first block (§0: m = 1, r = 0, a = 60 before
 /// any).
@@ -88,111 +84,6 @@ fn digits(p: &Parsed) -> Result<Option<(i64, i64, f64)>, NcError> {
     Ok(Some((v / 10000, (v / 100) % 100, (v % 100) as f64)))
 }
 
-/// The thread of a second block: the start A, the end D = (X, Z) at full
-/// depth, the taper i (radius, start minus end), the height k.
-#[derive(Debug, Clone, Copy)]
-struct Thread {
-    a: Pt,
-    end: Pt,
-    taper: f64,
-    height: f64,
-    /// First depth Δd, and the lead.
-    first: f64,
-    lead: f64,
-}
-
-impl Thread {
-    fn sz(&self) -> f64 {
-        sign(self.end.z - self.a.z)
-    }
-
-    /// +1 for an outside thread (A above the root), −1 inside.
-    fn so(&self) -> f64 {
-        sign(self.a.r - self.end.r)
-    }
-
-    /// The radius of a pass at depth δ at z: the root line moved out by
-    /// k − δ (§11).
-    fn r_at(&self, depth: f64, z: f64) -> f64 {
-        let span = self.a.z - self.end.z;
-        let t = if span.abs() > EPS {
-            (z - self.end.z) / span
-        } else {
-            0.0
-        };
-        self.end.r + self.taper * t + self.so() * (self.height - depth)
-    }
-
-    fn at(&self, depth: f64, z: f64) -> Pt {
-        Pt::new(self.r_at(depth, z), z)
-    }
-}
-
-/// The roughing depths (§11, §19.1): decreasing Δd·√n or equal steps of
-/// Δd, each at least Δdmin deeper than the last; the pass that would reach
-/// k − d is cut at k − d and ends the roughing.
-fn rough_depths(
-    t: &Thread,
-    dmin: f64,
-    allowance: f64,
-    decreasing: bool,
-) -> Result<Vec<f64>, NcError> {
-    let last = t.height - allowance;
-    let mut out = Vec::new();
-    if last <= EPS {
-        return Ok(out);
-    }
-    let mut previous = 0.0;
-    for n in 1u32.. {
-        if n as usize > MAX_PASSES {
-            return fail(
-                Alarm::BadThread,
-                "the first depth Δd is too small: the thread would take too many passes",
-            );
-        }
-        let mut depth = if decreasing {
-            t.first * libm::sqrt(f64::from(n))
-        } else {
-            previous + t.first
-        };
-        if depth - previous < dmin {
-            depth = previous + dmin;
-        }
-        if depth >= last - EPS {
-            out.push(last);
-            break;
-        }
-        out.push(depth);
-        previous = depth;
-    }
-    Ok(out)
-}
-
-/// The finishing passes at full depth k: the first removes d, the others
-/// nothing.
-fn finish(depths: &mut Vec<f64>, height: f64, passes: i64) -> Result<(), NcError> {
-    let n = usize::try_from(passes).unwrap_or(0);
-    if n > MAX_PASSES {
-        return fail(
-            Alarm::BadThread,
-            format!("{passes} finishing passes are too many"),
-        );
-    }
-    depths.extend(core::iter::repeat_n(height, n));
-    Ok(())
-}
-
-/// k and Δd of a second block must be positive (§11, §19).
-fn check_depths(k: f64, dd: f64) -> Result<(), NcError> {
-    if k <= 0.0 || dd <= 0.0 {
-        return fail(
-            Alarm::BadThread,
-            format!("thread height k ({k:.4}) and first depth Δd ({dd:.4}) must be positive"),
-        );
-    }
-    Ok(())
-}
-
 /// A G76 block: the first block sets the modal words, the second cuts.
 pub(crate) fn g76(
     nc: &mut Nc,
@@ -239,14 +130,15 @@ pub(crate) fn g76(
             PullOut::from_pair((g, g))
         }
     };
-    let mut depths = rough_depths(&t, first.dmin, first.allowance, true)?;
-    finish(&mut depths, t.height, first.finishing)?;
-    let tan = libm::tan((angle / 2.0).to_radians());
-    let mut path = Vec::new();
-    for depth in depths {
-        let z = t.a.z + t.sz() * depth * tan;
-        g76_pass(&t, depth, z, pull, &mut path)?;
-    }
+    let passes = Passes {
+        dmin: first.dmin,
+        allowance: first.allowance,
+        decreasing: true,
+        finishing: first.finishing,
+        angle,
+        pull,
+    };
+    let path = g76_path(&t, &passes)?;
     legs::emit(nc, &path, true, sink);
     out.moved = true;
     Ok(())
@@ -269,22 +161,6 @@ fn g76_first(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
     }
     f.pull = jk_pair(nc.len_of(p, b'J'), nc.len_of(p, b'K'));
     nc.st.cycles.g76 = f;
-    Ok(())
-}
-
-/// One G76 pass at `depth`, starting at `z` (§11 "One pass").
-fn g76_pass(
-    t: &Thread,
-    depth: f64,
-    z: f64,
-    pull: Option<PullOut>,
-    out: &mut Vec<Leg>,
-) -> Result<(), NcError> {
-    let start = t.at(depth, z);
-    out.push(Leg::Rapid(start));
-    legs::pass(start, t.at(depth, t.end.z), t.lead, 0.0, pull, t.so(), out)?;
-    out.push(Leg::Rapid(Pt::new(t.a.r, t.end.z)));
-    out.push(Leg::Rapid(t.a));
     Ok(())
 }
 
@@ -311,39 +187,23 @@ pub(crate) fn g78(
         lead: lead::resolve(nc, lead::written(nc, p, true))?,
     };
     let pull = f.pull.and_then(PullOut::from_pair);
-    let mut depths = rough_depths(&t, f.dmin, f.allowance, f.decreasing)?;
-    finish(&mut depths, t.height, f.finishing)?;
-    let tan = libm::tan((f.angle / 2.0).to_radians());
-    let mut path = Vec::new();
-    for (i, &depth) in depths.iter().enumerate() {
-        let z = t.a.z + cut_in_shift(f.cut_in, i + 1, depth * tan);
-        for j in 0..f.starts {
-            if path.len() > words::MAX_LEGS {
-                return fail(
-                    Alarm::BadThread,
-                    format!("G78 L{}: too many starts", f.starts),
-                );
-            }
-            let q = j as f64 * 360.0 / f.starts as f64;
-            g78_pass(&t, depth, z, q, f.run_in, pull, &mut path)?;
-        }
-    }
+    let passes = Passes {
+        dmin: f.dmin,
+        allowance: f.allowance,
+        decreasing: f.decreasing,
+        finishing: f.finishing,
+        angle: f.angle,
+        pull,
+    };
+    let infeed = Infeed {
+        cut_in: f.cut_in,
+        starts: f.starts,
+        run_in: f.run_in,
+    };
+    let path = g78_path(&t, &passes, &infeed)?;
     legs::emit(nc, &path, true, sink);
     out.moved = true;
     Ok(())
-}
-
-/// The start shift of pass n (1-based) at depth δ, `flank` = δ·tan(a/2):
-/// r = 1 along the left (−Z side) flank, 2 the right, 3 alternating
-/// (§19.2).
-fn cut_in_shift(cut_in: i64, n: usize, flank: f64) -> f64 {
-    match cut_in {
-        1 => flank,
-        2 => -flank,
-        3 if n % 2 == 1 => flank,
-        3 => -flank,
-        _ => 0.0,
-    }
 }
 
 /// P(mmrraa) Q(Δdmin) R(d) [J K] [D] [L] [E], with the range checks of
@@ -390,43 +250,6 @@ fn g78_first(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
     }
     f.pull = jk_pair(nc.len_of(p, b'J'), nc.len_of(p, b'K'));
     nc.st.cycles.g78 = f;
-    Ok(())
-}
-
-/// One G78 pass at `depth` from `z` for one start (§19.3): with a run-in E
-/// the tool starts E further out and enters at 45° over E along Z.
-fn g78_pass(
-    t: &Thread,
-    depth: f64,
-    z: f64,
-    q: f64,
-    run_in: f64,
-    pull: Option<PullOut>,
-    out: &mut Vec<Leg>,
-) -> Result<(), NcError> {
-    let end = t.at(depth, t.end.z);
-    let length = (t.end.z - z).abs();
-    let entry = run_in.max(0.0) + pull.map_or(0.0, |p| p.z);
-    if run_in > 0.0 && entry >= length - EPS {
-        return fail(
-            Alarm::BadThread,
-            format!("G78: the run-in and the pull-out ({entry:.4} mm) are not shorter than the pass ({length:.4} mm)"),
-        );
-    }
-    let mut q = q;
-    let mut from = t.at(depth, z);
-    if run_in > 0.0 {
-        out.push(Leg::Rapid(Pt::new(from.r + t.so() * run_in, z)));
-        let z1 = z + t.sz() * run_in;
-        from = t.at(depth, z1);
-        out.push(thread(from, t.lead, q));
-        q = 0.0;
-    } else {
-        out.push(Leg::Rapid(from));
-    }
-    legs::pass(from, end, t.lead, q, pull, t.so(), out)?;
-    out.push(Leg::Rapid(Pt::new(t.a.r, t.end.z)));
-    out.push(Leg::Rapid(t.a));
     Ok(())
 }
 

@@ -2,23 +2,15 @@
 //! tapping hole of G84/G88 (§22).
 
 use alloc::format;
-use alloc::vec::Vec;
 
-use super::legs::{self, thread, Leg};
+use super::legs;
 use super::{lead, words};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::SpindleDir;
 use crate::base::point::Pt;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
-
-fn reverse(dir: SpindleDir) -> SpindleDir {
-    match dir {
-        SpindleDir::Cw => SpindleDir::Ccw,
-        SpindleDir::Ccw => SpindleDir::Cw,
-        SpindleDir::Stop => SpindleDir::Stop,
-    }
-}
+use crate::plan::drill::g33_path;
 
 /// A G33 block: taps along Z at the current X, once per start.
 pub(crate) fn g33(
@@ -60,68 +52,6 @@ pub(crate) fn g33(
     legs::emit(nc, &path, false, sink);
     out.moved = true;
     Ok(())
-}
-
-/// For each start: (restart), tap to the bottom, stop, reverse, back out,
-/// stop (§20).
-fn g33_path(
-    a: Pt,
-    bottom: Pt,
-    lead: f64,
-    starts: i64,
-    dir: SpindleDir,
-) -> Result<Vec<Leg>, NcError> {
-    let mut out = Vec::new();
-    for j in 0..starts {
-        if out.len() > words::MAX_LEGS {
-            return fail(Alarm::BadThread, format!("G33 L{starts}: too many starts"));
-        }
-        if j > 0 {
-            out.push(Leg::Spindle(dir));
-        }
-        out.push(thread(bottom, lead, j as f64 * 360.0 / starts as f64));
-        out.push(Leg::Spindle(SpindleDir::Stop));
-        out.push(Leg::Spindle(reverse(dir)));
-        out.push(thread(a, lead, 0.0));
-        out.push(Leg::Spindle(SpindleDir::Stop));
-    }
-    Ok(out)
-}
-
-/// One rigid tapping hole: its top (at the start level) and bottom.
-pub(crate) struct Hole {
-    pub top: Pt,
-    pub bottom: Pt,
-    /// The hole's C angle (degrees).
-    pub c: f64,
-    pub lead: f64,
-    pub dwell_s: f64,
-    pub clamp: Option<u32>,
-}
-
-/// The legs of a rigid tapping hole (§22): the tap turns `dir` (CW for a
-/// right-hand lead); `spindle`, the spindle's direction before the hole,
-/// is `dir` after it.
-pub(crate) fn tap_hole(h: &Hole, dir: SpindleDir, spindle: &mut SpindleDir, out: &mut Vec<Leg>) {
-    out.push(Leg::RapidC(h.top, h.c));
-    if let Some(m) = h.clamp {
-        out.push(Leg::M(m));
-    }
-    if *spindle != dir {
-        out.push(Leg::Spindle(dir));
-    }
-    out.push(thread(h.bottom, h.lead, 0.0));
-    if h.dwell_s > 0.0 {
-        out.push(Leg::Dwell(h.dwell_s));
-    }
-    out.push(Leg::Spindle(reverse(dir)));
-    out.push(thread(h.top, h.lead, 0.0));
-    // Turning the tapping way again, ready for the next hole.
-    out.push(Leg::Spindle(dir));
-    *spindle = dir;
-    if let Some(m) = h.clamp {
-        out.push(Leg::M(m.saturating_add(1)));
-    }
 }
 
 #[cfg(test)]

@@ -7,16 +7,13 @@
 //! the tool's point already moved) and is printed by `next_block`, at the
 //! start of the next block's group 1, with or without its run-out.
 
-use alloc::format;
-
 use super::legs::Leg;
-use super::words::{sign, EPS};
 use super::{lead, Func};
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
-use crate::base::point::Pt;
+use crate::base::gcode::Motion;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
+pub(crate) use crate::plan::thread::{runout, Move, Runout};
 
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Chain {
@@ -29,95 +26,12 @@ pub(crate) struct Chain {
     pub pending: Option<(Move, Runout)>,
 }
 
-/// One thread block's move and how it prints.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Move {
-    pub from: Pt,
-    pub to: Pt,
-    pub lead: f64,
-    /// G34: the lead change per revolution.
-    pub dlead: Option<f64>,
-    /// The start angle in degrees (0: not printed).
-    pub q: f64,
-}
-
-/// A run-out: `j` on the short axis (signed), `k` along the long axis.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Runout {
-    pub j: f64,
-    pub k: f64,
-}
-
-impl Move {
-    /// Z is the long axis when it moves at least as far as X (a radius).
-    fn z_long(&self) -> bool {
-        (self.to.z - self.from.z).abs() >= (self.to.r - self.from.r).abs()
-    }
-
-    fn long_length(&self) -> f64 {
-        if self.z_long() {
-            (self.to.z - self.from.z).abs()
-        } else {
-            (self.to.r - self.from.r).abs()
-        }
-    }
-
-    /// The lead after `s` mm along the long axis (§17: ℓ = √(F² + 2Rs)).
-    fn lead_at(&self, s: f64) -> f64 {
-        let r = self.dlead.unwrap_or(0.0);
-        libm::sqrt((self.lead * self.lead + 2.0 * r * s).max(0.0))
-    }
-
-    /// The move as one leg.
-    fn plain(&self) -> Leg {
-        Leg::Thread {
-            to: self.to,
-            lead: self.lead,
-            dlead: self.dlead,
-            q: start_angle(self.q),
-        }
-    }
-
-    /// The move with its run-out (§16.5): up to P1, k before the end along
-    /// the long axis, then to the end's long-axis coordinate, lifted j on
-    /// the short axis, at lead·max(1, |j|/k).
-    pub fn with_runout(&self, ro: Runout) -> [Leg; 2] {
-        let (dr, dz) = (self.to.r - self.from.r, self.to.z - self.from.z);
-        let (p1, lifted) = if self.z_long() {
-            let z1 = self.to.z - sign(dz) * ro.k;
-            let r1 = self.from.r + (z1 - self.from.z) / dz * dr;
-            (Pt::new(r1, z1), Pt::new(r1 + ro.j, self.to.z))
-        } else {
-            let r1 = self.to.r - sign(dr) * ro.k;
-            let z1 = self.from.z + (r1 - self.from.r) / dr * dz;
-            (Pt::new(r1, z1), Pt::new(self.to.r, z1 + ro.j))
-        };
-        let f = (ro.j.abs() / ro.k).max(1.0);
-        let first = Leg::Thread {
-            to: p1,
-            lead: self.lead,
-            dlead: self.dlead,
-            q: start_angle(self.q),
-        };
-        let second = Leg::Thread {
-            to: lifted,
-            lead: self.lead_at(self.long_length() - ro.k) * f,
-            dlead: self.dlead.map(|d| d * f),
-            q: None,
-        };
-        [first, second]
-    }
-}
-
-fn start_angle(q: f64) -> Option<f64> {
-    (q.abs() > EPS).then_some(q)
-}
-
 /// Before every block: a waiting block is printed, with its run-out when
 /// this block does not continue the chain, and a block that is not a
 /// G32/G34 move ends the chain.
 pub(crate) fn next_block(nc: &mut Nc, f: Func, p: &Parsed, sink: &mut dyn Sink) {
-    let continues = matches!(f, Func::Motion(320 | 340)) && p.has_axis();
+    let continues =
+        matches!(f, Func::Motion(Motion::Thread | Motion::VariableThread)) && p.has_axis();
     if !continues {
         return flush(nc, sink);
     }
@@ -156,12 +70,12 @@ fn print(legs: &[Leg], sink: &mut dyn Sink) {
 /// A G32 (320), G32.1 (321) or G34 (340) block.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let rigid = code == 321;
+    let rigid = code == Motion::RigidThread;
     let written = lead::written(nc, p, true).map(|l| if rigid { l.abs() } else { l });
     lead::remember(nc, written);
     remember_runout(nc, p)?;
@@ -172,13 +86,13 @@ pub(crate) fn run(
         from: nc.st.pos,
         to: nc.target(p),
         lead: lead::resolve(nc, written)?,
-        dlead: (code == 340).then(|| nc.len_of(p, b'R').unwrap_or(0.0)),
+        dlead: (code == Motion::VariableThread).then(|| nc.len_of(p, b'R').unwrap_or(0.0)),
         q: start_q(nc, code, p),
     };
-    if code == 340 {
+    if code == Motion::VariableThread {
         check_variable_lead(nc, &mv)?;
     }
-    let runout = runout(nc, &mv)?;
+    let runout = runout(nc.st.cycles.chain.runout, &mv)?;
     nc.st.pos = mv.to;
     out.moved = true;
     match runout {
@@ -209,31 +123,14 @@ fn remember_runout(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
 
 /// The start angle: G32's Q (0.001°) on the first block of a chain only,
 /// G32.1's C (degrees); G34 has none.
-fn start_q(nc: &Nc, code: Code, p: &Parsed) -> f64 {
+fn start_q(nc: &Nc, code: Motion, p: &Parsed) -> f64 {
     match code {
-        320 if !nc.st.cycles.chain.open => p.get(b'Q').map_or(0.0, |q| round_half_away(q) / 1000.0),
-        321 => p.get(b'C').unwrap_or(0.0),
+        Motion::Thread if !nc.st.cycles.chain.open => {
+            p.get(b'Q').map_or(0.0, |q| round_half_away(q) / 1000.0)
+        }
+        Motion::RigidThread => p.get(b'C').unwrap_or(0.0),
         _ => 0.0,
     }
-}
-
-/// The run-out this move gets if it ends its chain; J = 0 or K = 0 is
-/// none, and k must be shorter than the move (E4010).
-fn runout(nc: &Nc, mv: &Move) -> Result<Option<Runout>, NcError> {
-    let Some((j, k)) = nc.st.cycles.chain.runout else {
-        return Ok(None);
-    };
-    if j.abs() <= EPS || k <= EPS {
-        return Ok(None);
-    }
-    let length = mv.long_length();
-    if k >= length - EPS {
-        return fail(
-            Alarm::BadThread,
-            format!("the run-out K{k:.4} is not shorter than the thread move ({length:.4} mm)"),
-        );
-    }
-    Ok(Some(Runout { j, k }))
 }
 
 /// G34 (§17.2): the lead √(F² + 2·R·s) must stay above 0 and within the

@@ -1,28 +1,24 @@
 //! G92 threading cycle and G92.1 rigid threading cycle (cycles.md §3, §4,
 //! §12, §18).
 
-use alloc::format;
-use alloc::vec::Vec;
-
-use super::legs::{self, jk_pair, Leg, PullOut};
-use super::turning::{self, Cycle};
-use super::words::sign;
+use super::legs::{self, jk_pair, PullOut};
+use super::turning;
 use super::{lead, words};
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
-use crate::base::point::Pt;
+use crate::base::gcode::Motion;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
+use crate::plan::single::g92_path;
 
 /// A G92 (920) or G92.1 (921) block.
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let rigid = code == 921;
+    let rigid = code == Motion::RigidThreadCycle;
     // The rigid cycle's F < 0 is a left-hand lead; the canon prints |F|.
     let written = lead::written(nc, p, true).map(|l| if rigid { l.abs() } else { l });
     lead::remember(nc, written);
@@ -36,7 +32,7 @@ pub(crate) fn run(
     let cycle = turning::next_cycle(nc, code, p)?;
     check_repair(nc, p)?;
     let pull = if rigid { None } else { pull_out(nc, lead) };
-    let path = path(&cycle, lead, pull)?;
+    let path = g92_path(&cycle, lead, pull)?;
     legs::emit(nc, &path, true, sink);
     out.moved = true;
     Ok(())
@@ -72,26 +68,6 @@ fn check_repair(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
         );
     }
     Ok(())
-}
-
-/// The legs of one G92 cycle: for each start j, rapid to the cut start
-/// (X + 2R, zA), thread to the end (with the pull-out), X back at rapid,
-/// rapid to A. Start j > 1 begins at (j − 1)·360/L degrees (§18).
-pub(crate) fn path(c: &Cycle, lead: f64, pull: Option<PullOut>) -> Result<Vec<Leg>, NcError> {
-    let start = Pt::new(c.end.r + c.taper, c.a.z);
-    let so = sign(c.a.r - c.end.r);
-    let mut out = Vec::new();
-    for j in 0..c.starts {
-        if out.len() > words::MAX_LEGS {
-            return fail(Alarm::BadThread, format!("L{}: too many starts", c.starts));
-        }
-        let q = j as f64 * 360.0 / c.starts as f64;
-        out.push(Leg::Rapid(start));
-        legs::pass(start, c.end, lead, q, pull, so, &mut out)?;
-        out.push(Leg::Rapid(Pt::new(c.a.r, c.end.z)));
-        out.push(Leg::Rapid(c.a));
-    }
-    Ok(out)
 }
 
 #[cfg(test)]

@@ -6,16 +6,17 @@ use alloc::format;
 use super::legs::{self, Leg};
 use super::words;
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Code;
+use crate::base::gcode::Motion;
 use crate::base::point::Pt;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
+pub(crate) use crate::plan::single::{g90_legs, g94_legs, Cycle};
 
 /// What a block leaves out keeps the value of the previous cycle of the
 /// same run: the end point, R and (G92) L.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Run {
-    pub code: Code,
+    pub code: Motion,
     /// The end point's r and Z; `None` until a cycle of the run gives them
     /// (they then default to the start point A).
     pub r: Option<f64>,
@@ -25,7 +26,7 @@ pub(crate) struct Run {
 }
 
 impl Run {
-    fn new(code: Code) -> Run {
+    fn new(code: Motion) -> Run {
         Run {
             code,
             r: None,
@@ -36,20 +37,10 @@ impl Run {
     }
 }
 
-/// One cycle of a run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Cycle {
-    pub a: Pt,
-    pub end: Pt,
-    /// R: G90/G92 cut start radius minus end radius, G94 start Z minus end Z.
-    pub taper: f64,
-    pub starts: i64,
-}
-
 /// The values of this block's cycle of the `code` run, from its words and
 /// the previous cycle's; a new run starts when the block wrote the code or
 /// a run of another code was in force. The run keeps them.
-pub(crate) fn next_cycle(nc: &mut Nc, code: Code, p: &Parsed) -> Result<Cycle, NcError> {
+pub(crate) fn next_cycle(nc: &mut Nc, code: Motion, p: &Parsed) -> Result<Cycle, NcError> {
     let a = nc.st.pos;
     let mut run = match nc.st.cycles.run {
         Some(run) if run.code == code => run,
@@ -71,7 +62,7 @@ pub(crate) fn next_cycle(nc: &mut Nc, code: Code, p: &Parsed) -> Result<Cycle, N
     };
     let taper = words::length_or(nc, p, b'R', run.taper);
     let mut starts = run.starts;
-    if matches!(code, 920 | 921) {
+    if matches!(code, Motion::ThreadCycle | Motion::RigidThreadCycle) {
         starts = words::count(p, b'L')?.unwrap_or(starts);
         if starts < 1 {
             return fail(
@@ -96,32 +87,10 @@ pub(crate) fn next_cycle(nc: &mut Nc, code: Code, p: &Parsed) -> Result<Cycle, N
     })
 }
 
-/// G90 (§1): rapid to the cut start X + 2R, cut to the end, X back at
-/// feed, rapid to A.
-pub(crate) fn g90_legs(c: &Cycle) -> [Leg; 4] {
-    [
-        Leg::Rapid(Pt::new(c.end.r + c.taper, c.a.z)),
-        Leg::Line(c.end),
-        Leg::Line(Pt::new(c.a.r, c.end.z)),
-        Leg::Rapid(c.a),
-    ]
-}
-
-/// G94 (§2): rapid to the cut start Z + R, face to the end, Z back at
-/// feed, rapid to A.
-pub(crate) fn g94_legs(c: &Cycle) -> [Leg; 4] {
-    [
-        Leg::Rapid(Pt::new(c.a.r, c.end.z + c.taper)),
-        Leg::Line(c.end),
-        Leg::Line(Pt::new(c.end.r, c.a.z)),
-        Leg::Rapid(c.a),
-    ]
-}
-
 /// A G90 or G94 block: a block without an axis word does not cut (§4).
 pub(crate) fn run(
     nc: &mut Nc,
-    code: Code,
+    code: Motion,
     p: &Parsed,
     sink: &mut dyn Sink,
     out: &mut Outcome,
@@ -130,14 +99,14 @@ pub(crate) fn run(
         return Ok(());
     }
     let c = next_cycle(nc, code, p)?;
-    let mut path = if code == 900 {
+    let mut path = if code == Motion::TurningCycle {
         g90_legs(&c)
     } else {
         g94_legs(&c)
     };
     if let [Leg::Rapid(s), Leg::Line(e), Leg::Line(f), _] = &mut path {
         // Under G41/G42 the cut and the retract are moved (comp.md §9).
-        crate::exec::comp::turning_cycle(nc, code == 940, c.a, [s, e, f])?;
+        crate::exec::comp::turning_cycle(nc, code == Motion::FacingCycle, c.a, [s, e, f])?;
     }
     legs::emit(nc, &path, true, sink);
     out.moved = true;

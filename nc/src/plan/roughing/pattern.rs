@@ -1,8 +1,7 @@
 //! G73 pattern repeating (cycles.md §7): the whole profile, ns included,
 //! run d times, each time nearer to the allowance contour.
 
-use super::out::Out;
-use super::profile::Seg;
+use super::{Path, Seg};
 use crate::base::point::Pt;
 
 /// The words of a G73 cycle: relief Δi (radius) and Δk, pass count d, and
@@ -14,7 +13,7 @@ pub struct Pattern {
     pub allowance: Pt,
 }
 
-pub fn run(out: &mut Out, segs: &[Seg], pat: &Pattern) {
+pub fn run(out: &mut Path, segs: &[Seg], pat: &Pattern) {
     let a = out.pos();
     for n in 1..=pat.passes {
         // The first pass is Δi, Δk away from the allowance contour, the

@@ -5,8 +5,7 @@
 use alloc::format;
 use alloc::string::String;
 
-use super::profile::Seg;
-use super::Job;
+use super::{Job, Seg};
 use crate::base::error::{Alarm, NcError};
 use crate::base::event::Num;
 use crate::base::point::Pt;

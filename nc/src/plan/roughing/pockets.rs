@@ -6,10 +6,8 @@ use alloc::format;
 use alloc::vec;
 use alloc::vec::Vec;
 
-use super::out::Out;
-use super::profile::{tail_start, Seg};
 use super::turn::{turns_back, Frame};
-use super::{too_many, Job};
+use super::{tail_start, too_many, Job, Path, Seg};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
 use crate::plan::curve::{sign, Axis, EPS, SLACK};
@@ -130,7 +128,7 @@ impl Contour<'_> {
 }
 
 /// Runs the cycle from A to its return to A.
-pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
+pub fn run(out: &mut Path, job: &Job) -> Result<(), NcError> {
     let Some(ns) = job.segs.first().filter(|s| s.ns) else {
         return fail(Alarm::BadRoughing, "the ns block makes no infeed move");
     };
@@ -208,7 +206,7 @@ fn check(k: &Contour, frame: &Frame) -> Result<f64, NcError> {
 }
 
 /// Pass between depths `top` and `bottom` (§15.3, §15.5 step 2).
-fn pass(out: &mut Out, k: &Contour, top: f64, bottom: f64, e: f64) {
+fn pass(out: &mut Path, k: &Contour, top: f64, bottom: f64, e: f64) {
     for interval in k.intervals(top) {
         let pieces = k.cut(&interval, bottom);
         if !pieces.iter().any(|&p| k.deep(p, bottom)) {
@@ -222,7 +220,7 @@ fn pass(out: &mut Out, k: &Contour, top: f64, bottom: f64, e: f64) {
 }
 
 /// Band pieces followed, runs of deep pieces cut straight along the level.
-fn chain(out: &mut Out, k: &Contour, pieces: &[Piece], bottom: f64) {
+fn chain(out: &mut Path, k: &Contour, pieces: &[Piece], bottom: f64) {
     let mut i = 0;
     while let Some(&p) = pieces.get(i) {
         if k.deep(p, bottom) {
@@ -242,7 +240,7 @@ fn chain(out: &mut Out, k: &Contour, pieces: &[Piece], bottom: f64) {
 }
 
 /// §15.4: up to the safe depth τ, along the cut, down to S.
-fn travel(out: &mut Out, k: &Contour, s: Pt, e: f64) {
+fn travel(out: &mut Path, k: &Contour, s: Pt, e: f64) {
     let t = out.pos();
     let h = k.lowest_between(k.position(t), k.position(s));
     let r = k.level_r(k.depth(t).min(h - e));
@@ -252,7 +250,7 @@ fn travel(out: &mut Out, k: &Contour, s: Pt, e: f64) {
 }
 
 /// §15.5 step 3: K′ from A′ to C′, its tail included.
-fn allowance(out: &mut Out, segs: &[Seg]) {
+fn allowance(out: &mut Path, segs: &[Seg]) {
     for s in segs {
         out.follow(&s.curve, s.ns && s.rapid);
     }

@@ -3,16 +3,14 @@
 
 use alloc::vec::Vec;
 
-use super::out::Out;
-use super::profile::{tail_start, Seg};
 use super::turn::{turns_back, Frame};
-use super::{too_many, Job};
+use super::{tail_start, too_many, Job, Path, Seg};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
 use crate::plan::curve::{sign, Axis, Curve, EPS};
 
 /// Runs the cycle from A (the tool position) to its return to A.
-pub fn run(out: &mut Out, job: &Job) -> Result<(), NcError> {
+pub fn run(out: &mut Path, job: &Job) -> Result<(), NcError> {
     let Some((ns, rest)) = job.segs.split_first().filter(|(s, _)| s.ns) else {
         return fail(Alarm::BadRoughing, "the ns block makes no infeed move");
     };
