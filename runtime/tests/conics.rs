@@ -9,11 +9,12 @@ mod common;
 use common::*;
 use runtime::{Motion, RunState};
 
-/// The points of line `line` fed along, as (r, z) with r = X/2.
+/// The points of line `line` fed along (a curve is traced as `Arc`
+/// motion), as (r, z) with r = X/2.
 fn fed_points(r: &Run, line: u32) -> Vec<(f64, f64)> {
     r.pts
         .iter()
-        .filter(|p| p.line == line && p.motion == Motion::Feed)
+        .filter(|p| p.line == line && matches!(p.motion, Motion::Feed | Motion::Arc))
         .map(|p| (p.x / 2.0, p.z))
         .collect()
 }
