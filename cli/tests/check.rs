@@ -16,14 +16,6 @@ use std::process::{Command, Output};
 /// passes fails this test, so that it leaves the list.
 const FAILS_TODAY: &[(&str, &str)] = &[
     (
-        "g32_runout_chain",
-        "thread lead 3.1 mm/rev where 2 is programmed, line 13",
-    ),
-    (
-        "g34_variable_lead",
-        "thread lead 2.0047 mm/rev where 3.3138 is programmed, line 12",
-    ),
-    (
         "g76_m24x1_5",
         "canon end point passed 0.0013 mm off, line 13",
     ),

@@ -98,6 +98,9 @@ pub(crate) struct RunAhead {
     repeat: u32,
     /// The G22 area last handed to the motion.
     stroke: Option<nc::stroke::Area>,
+    /// The kernel's programmed point after the last block (`None`: not
+    /// seen yet, or re-seeded).
+    kernel_seen: Option<V2>,
 }
 
 impl RunAhead {
@@ -119,6 +122,7 @@ impl RunAhead {
             max_blocks,
             repeat: 1,
             stroke: None,
+            kernel_seen: None,
         }
     }
 
@@ -274,6 +278,13 @@ impl RunAhead {
 
     /// A block moved the programmed point by an event this build does not
     /// know: reach the kernel's point by a line at the modal feed.
+    ///
+    /// Not where the kernel's point differs from the tool's on purpose: a
+    /// G32/G34 block with run-out words waits for the next block (its
+    /// point has moved, its legs come with the next block), and after a
+    /// run-out the tool stands at the lifted end while the kernel's point
+    /// is the programmed end (§16.5). So only a block that moved the
+    /// kernel's point, with no thread block waiting, is resynchronised.
     fn resync(&mut self, tag: Tag) {
         if self.tr.in_plane() {
             // The kernel's point is the joints', the plane's moves are not.
@@ -281,7 +292,11 @@ impl RunAhead {
         }
         let p = self.vm.nc.position();
         let kernel = V2::new(p.r, p.z);
-        if (kernel - self.tr.work).max_abs() > 1e-6 {
+        let moved = self
+            .kernel_seen
+            .is_none_or(|k| (kernel - k).max_abs() > 1e-9);
+        self.kernel_seen = Some(kernel);
+        if moved && !self.vm.nc.thread_waiting() && (kernel - self.tr.work).max_abs() > 1e-6 {
             let kind = if self.tr.feed.f > 0.0 {
                 MoveKind::Feed(self.tr.feed)
             } else {
@@ -307,6 +322,7 @@ impl RunAhead {
         let stop_work = r.stop - r.shift;
         let hit_work = hit - r.shift;
         self.tr.work = stop_work;
+        self.kernel_seen = None;
         self.vm.nc.skip_ended(
             nc::point::Pt::new(stop_work.r, stop_work.z),
             nc::point::Pt::new(hit_work.r, hit_work.z),
@@ -341,6 +357,7 @@ impl RunAhead {
         let origin = origin_of(&self.vm);
         let work = at - origin;
         self.vm.nc.set_position(nc::point::Pt::new(work.r, work.z));
+        self.kernel_seen = None;
         let messages = core::mem::take(&mut self.tr.messages);
         self.tr = Translator::new(origin);
         self.tr.messages = messages;

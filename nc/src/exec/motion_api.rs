@@ -14,6 +14,14 @@ impl Nc {
         self.st.pos
     }
 
+    /// A G32/G34 block with run-out words waits for the next block, which
+    /// says whether it ends its chain (and runs out): its thread legs are
+    /// not printed yet, though [`position`](Nc::position) is already its
+    /// end point.
+    pub fn thread_waiting(&self) -> bool {
+        self.st.cycles.chain.pending.is_some()
+    }
+
     /// The work zero in machine coordinates (EXOFS + G5x + G50 + G52).
     pub fn origin(&self) -> Pt {
         self.st.origin()
