@@ -429,7 +429,7 @@ impl Certifier {
             return;
         }
         let d = m.end - start;
-        let long_z = d.z.abs() >= d.r.abs();
+        let long_z = long_is_z(d);
         let long = |v: V2| if long_z { v.z } else { v.r };
         let (a, b) = (V2::from_xz(prev.x, prev.z), V2::from_xz(p.x, p.z));
         let q0 = (long(a) - long(start)).abs();
@@ -603,6 +603,19 @@ pub fn incomplete_lead(v: f64, a_long: f64, a_short: f64, long: f64, short: f64)
     };
     v * v / (2.0 * a)
 }
+
+/// Whether Z is the long axis of a thread move of travel `d` (radius, Z):
+/// as the kernel names it, Z when it moves at least as far as X (a
+/// radius), a 45° move included. The tie is judged within [`TIE_MM`], so
+/// that a 45° pull-out chamfer whose end points went through a work shift
+/// or a diameter halving (a rounding of 1e-15 mm either way) keeps Z.
+pub fn long_is_z(d: V2) -> bool {
+    d.z.abs() >= d.r.abs() - TIE_MM
+}
+
+/// Two thread travels within this (mm) are equal when the long axis is
+/// chosen: far below the 0.001 mm resolution, far above rounding.
+pub const TIE_MM: f64 = 1e-9;
 
 /// Distance from `p` to the segment `a`–`b`.
 fn seg_dist(p: V2, a: V2, b: V2) -> f64 {
@@ -1025,6 +1038,62 @@ mod tests {
         assert!(f.violates());
         assert_eq!(f.line, 510);
         assert!((f.value - 1.51).abs() < 1e-9 && f.limit == 1.5, "{f:?}");
+    }
+
+    #[test]
+    fn a_45_degree_pull_out_is_measured_along_z() {
+        // The kernel's rule: Z is long when it moves at least as far as
+        // X; a travel rounded 1.8e-15 mm the other way is still a tie.
+        assert!(long_is_z(V2::new(2.0000000000000018, -2.0)));
+        assert!(long_is_z(V2::new(2.0, -2.0)));
+        assert!(!long_is_z(V2::new(2.001, -2.0)));
+        // G32 Z−30 at lead 1.5, 600 rev/min (Z ramped to 15 mm/s as in
+        // `thread`), then a 45° pull-out to r 2.0000000000000018 Z−32.
+        // Z stays locked at 0.015 mm per 0.01 turn; X starts from rest at
+        // the corner and, lagging, gains 1.5 mm/s per period (its
+        // 1500 mm/s²) up to 20 mm/s to catch up: measured along X the
+        // lead would reach 0.020 / 0.01 = 2.0, 33 % off. Along Z it is
+        // 1.5 in every period checked, the chamfer's too: from
+        // 15²/(2 × 1500) × 1.1 + 0.015 = 0.0975 mm past the corner.
+        let mut c = certifier();
+        c.emit(Event::Spindle(SpindleDir::Cw));
+        c.emit(Event::Rapid {
+            x: 0.0,
+            z: 0.0,
+            c: None,
+        });
+        for (x, z) in [(0.0, -30.0), (4.0000000000000036, -32.0)] {
+            c.emit(Event::Thread {
+                x,
+                z,
+                c: None,
+                lead: 1.5,
+                dlead: None,
+                q: None,
+            });
+        }
+        let (mut r, mut z, mut vz, mut vx, mut turns) = (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0);
+        let mut k = 0;
+        let mut chamfer = 0;
+        while z > -31.8 {
+            k += 1;
+            vz = (vz + 2.0).min(15.0);
+            z -= vz * 0.001;
+            if z < -30.0 {
+                vx = (vx + 1.5).min(20.0);
+                r += vx * 0.001;
+                chamfer += 1;
+            }
+            turns += 0.01;
+            c.period(&SetPoint {
+                spindle_rpm: 600.0,
+                spindle_turns: turns,
+                ..at(k, (2.0 * r, z), (0.0, 0.0), Motion::Thread)
+            });
+        }
+        assert!(vx == 20.0 && chamfer > 100, "{vx} {chamfer}");
+        let w = c.worst(Kind::Lead).unwrap();
+        assert!(w.ratio < 1e-9 && !w.violates(), "{w:?}");
     }
 
     #[test]
