@@ -9,11 +9,12 @@ mod common;
 use common::*;
 use runtime::{Motion, RunState};
 
-/// The points of line `line` fed along, as (r, z) with r = X/2.
+/// The points of line `line` fed along, as (r, z) with r = X/2 (a conic
+/// is a feed along a curve: [`Motion::Arc`]).
 fn fed_points(r: &Run, line: u32) -> Vec<(f64, f64)> {
     r.pts
         .iter()
-        .filter(|p| p.line == line && p.motion == Motion::Feed)
+        .filter(|p| p.line == line && p.motion == Motion::Arc)
         .map(|p| (p.x / 2.0, p.z))
         .collect()
 }
