@@ -101,6 +101,9 @@ pub(crate) struct RunAhead {
     /// The kernel's programmed point after the last block (`None`: not
     /// seen yet, or re-seeded).
     kernel_seen: Option<V2>,
+    /// The tag of a G32/G34 block the kernel holds back for its run-out:
+    /// its thread legs come with the next block and carry this tag.
+    wait_tag: Option<Tag>,
 }
 
 impl RunAhead {
@@ -123,6 +126,7 @@ impl RunAhead {
             repeat: 1,
             stroke: None,
             kernel_seen: None,
+            wait_tag: None,
         }
     }
 
@@ -228,12 +232,35 @@ impl RunAhead {
             block_end: false,
         };
         self.tr.skip_queued = false;
+        // A block held back for its run-out is printed at the start of
+        // this one: one leg when this block continues its chain, else two
+        // (up to P1 and the run-out). They belong to the held block.
+        let mut held = 0;
+        let mut held_tag = tag;
+        if let Some(t) = self.wait_tag {
+            if !self.events.is_empty() || status != Status::OutOfBudget {
+                held = if self.vm.nc.thread_chain_open() { 1 } else { 2 };
+                held_tag = Tag {
+                    block_end: false,
+                    ..t
+                };
+                self.wait_tag = None;
+            }
+        }
+        let mut legs = 0;
         for e in self.events.drain(..) {
             self.scratch.clear();
             self.tr
                 .event(&e, &self.vm.nc, &self.machine, &mut self.scratch);
+            let mut t = tag;
+            if legs < held && matches!(e, Event::Thread { .. }) {
+                legs += 1;
+                t = held_tag;
+                // The held block ends with its last leg.
+                t.block_end = legs == held;
+            }
             for c in self.scratch.drain(..) {
-                self.staged.push_back((c, tag));
+                self.staged.push_back((c, t));
             }
             tap.emit(e);
         }
@@ -241,6 +268,9 @@ impl RunAhead {
             Status::Event => {
                 self.blocks += 1;
                 self.resync(tag);
+                if self.vm.nc.thread_waiting() {
+                    self.wait_tag = Some(tag);
+                }
                 if self.vm.nc.exact_stop() {
                     self.staged.push_back((Command::ExactStop, tag));
                 }
@@ -358,6 +388,7 @@ impl RunAhead {
         let work = at - origin;
         self.vm.nc.set_position(nc::point::Pt::new(work.r, work.z));
         self.kernel_seen = None;
+        self.wait_tag = None;
         let messages = core::mem::take(&mut self.tr.messages);
         self.tr = Translator::new(origin);
         self.tr.messages = messages;

@@ -284,7 +284,8 @@ fn a_thread_that_starts_too_close_is_warned_at_run_time() {
 /// P1 = X29 Z-27 at lead 2 and runs out to X31 Z-30 (3 mm of Z for 1 mm
 /// of radius, lead 2 along Z): Z only ever goes down, at
 /// 2 × 400/60 / 1000 = 0.013333 mm per period while locked, and no
-/// rapid comes between the thread periods.
+/// rapid comes between the thread periods. The periods carry the line of
+/// the block they cut.
 #[test]
 fn a_run_out_chain_is_cut_in_one_go() {
     let src =
@@ -321,5 +322,16 @@ fn a_run_out_chain_is_cut_in_one_go() {
     assert!(
         (end.x - 31.0).abs() < 1e-9 && (end.z + 30.0).abs() < 1e-9,
         "{end:?}"
-    );
+    ); // The held block's legs come with the next block (M05, line 7) but
+       // are its own: line 5 up to Z-20, line 6 (the G32 Z-30 J1 K3) after.
+    for p in &r.pts[first..=last] {
+        let want = if p.z > -20.0 + 0.014 {
+            5
+        } else if p.z < -20.0 - 0.014 {
+            6
+        } else {
+            p.line
+        };
+        assert_eq!(p.line, want, "at Z{}", p.z);
+    }
 }

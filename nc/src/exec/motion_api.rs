@@ -22,6 +22,15 @@ impl Nc {
         self.st.cycles.chain.pending.is_some()
     }
 
+    /// The last block was a G32/G34 move, so that the next one may
+    /// continue its chain. Read after a block that found a block waiting
+    /// ([`thread_waiting`](Nc::thread_waiting)): when it continues the
+    /// chain, the waiting block was printed as one leg; when not, with its
+    /// run-out, as two.
+    pub fn thread_chain_open(&self) -> bool {
+        self.st.cycles.chain.open
+    }
+
     /// The work zero in machine coordinates (EXOFS + G5x + G50 + G52).
     pub fn origin(&self) -> Pt {
         self.st.origin()
