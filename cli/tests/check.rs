@@ -9,41 +9,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Programs `gbvm check` does not certify yet, with the first violation
-/// it measures on the reference machine: a thread chain's corner taken at
-/// thread speed passes its canon point about a micrometre off, and the
-/// lead of a run-out, a variable lead and a pull-out is measured where the
-/// programmed one does not hold (issue 15, open). A listed program that
-/// passes fails this test, so that it leaves the list.
-const FAILS_TODAY: &[(&str, &str)] = &[
-    (
-        "g32_runout_chain",
-        "thread lead 3.1 mm/rev where 2 is programmed, line 13",
-    ),
-    (
-        "g34_variable_lead",
-        "thread lead 2.0047 mm/rev where 3.3138 is programmed, line 12",
-    ),
-    (
-        "g76_m24x1_5",
-        "canon end point passed 0.0013 mm off, line 13",
-    ),
-    (
-        "g78_cut_in_modes",
-        "canon end point passed 0.0010 mm off, line 14",
-    ),
-    (
-        "g92_new_run_modal_lead",
-        "canon end point passed 0.0011 mm off, line 10",
-    ),
-    (
-        "g92_taper_pullout",
-        "canon end point passed 0.0011 mm off, line 10",
-    ),
-    (
-        "part_shaft_m30",
-        "thread lead 2.4 mm/rev where 2 is programmed, line 46",
-    ),
-];
+/// it measures on the reference machine (none today: the run-out chains,
+/// the 45° pull-outs and the corners a thread chain turns at speed are
+/// certified, issue 15). A listed program that passes fails this test,
+/// so that it leaves the list.
+const FAILS_TODAY: &[(&str, &str)] = &[];
 
 /// Simulated seconds a program may run in this test; one that does not
 /// end within them (a dwell waiting for a spindle that never turns …)
@@ -172,7 +142,7 @@ fn every_conformance_program_that_runs_is_certified() {
     }
     let (certified, wrong) = judge(results);
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
-    // 72 cases with a canon, 7 of them in FAILS_TODAY (2026-12).
+    // 72 cases with a canon, none in FAILS_TODAY (2026-12).
     assert!(certified >= 60, "only {certified} certified");
     let _ = std::fs::remove_dir_all(out);
 }

@@ -14,8 +14,12 @@
 //!   next to thread periods, which follow the spindle and are never
 //!   jerk-limited); all within [`LIMIT_TOL`] of the limit (rounding);
 //! - every end point of the canon's moves reached in order, within
-//!   [`END_POINT_MM`], in work coordinates as the canon gives them;
-//! - the lead of a thread (long-axis travel per spindle turn) within
+//!   [`END_POINT_MM`], in work coordinates as the canon gives them (at a
+//!   corner a thread chain turns at speed, within the period's
+//!   discretisation bound of the axes that follow the turn if larger,
+//!   [`chain_corner_mm`]);
+//! - the lead of a thread (travel per spindle turn along the long axis as
+//!   the kernel names it, [`long_is_z`]) within
 //!   [`LEAD_TOL`] of the programmed one (G34: of the lead at that point),
 //!   away from the incomplete leads at both ends: the distance the long
 //!   axis needs to reach thread speed at the acceleration both axes allow
@@ -176,7 +180,7 @@ impl Figure {
     /// Whether the figure breaks its bound.
     pub fn violates(&self) -> bool {
         match self.kind {
-            Kind::EndPoint => self.ratio > END_POINT_MM,
+            Kind::EndPoint => self.ratio > self.limit,
             Kind::Lead => self.ratio > LEAD_TOL,
             Kind::SurfaceSpeed => self.ratio > CSS_TOL,
             _ => self.ratio > 1.0 + LIMIT_TOL,
@@ -192,8 +196,8 @@ impl fmt::Display for Figure {
         match self.kind {
             Kind::EndPoint => write!(
                 f,
-                "a canon end point is not reached: the path passes {:.4} mm from it at the nearest (tolerance {END_POINT_MM} mm)",
-                self.value
+                "a canon end point is not reached: the path passes {:.4} mm from it at the nearest (tolerance {} mm)",
+                self.value, self.limit
             ),
             Kind::Lead => write!(
                 f,
@@ -241,6 +245,10 @@ struct Pending {
     start: Option<V2>,
     /// Lead and lead change of a straight thread.
     thread: Option<(f64, f64)>,
+    /// The distance within which the path reaches it: [`END_POINT_MM`],
+    /// or at a corner a thread chain turns at speed the bound of
+    /// [`chain_corner_mm`].
+    tol: f64,
     spindle: SpindleCmd,
     /// The nearest approach so far: distance and place.
     nearest: f64,
@@ -266,6 +274,9 @@ pub struct Certifier {
     done: Option<Pending>,
     pending: VecDeque<Pending>,
     last_end: Option<V2>,
+    /// The last event was a thread move: a thread move now continues its
+    /// chain (the runtime runs them on without a stop).
+    chain_open: bool,
     cmd: SpindleCmd,
     periods: u64,
     end_points: u64,
@@ -294,6 +305,7 @@ impl Certifier {
             done: None,
             pending: VecDeque::new(),
             last_end: None,
+            chain_open: false,
             cmd: SpindleCmd {
                 on: false,
                 css: None,
@@ -429,7 +441,7 @@ impl Certifier {
             return;
         }
         let d = m.end - start;
-        let long_z = d.z.abs() >= d.r.abs();
+        let long_z = long_is_z(d);
         let long = |v: V2| if long_z { v.z } else { v.r };
         let (a, b) = (V2::from_xz(prev.x, prev.z), V2::from_xz(p.x, p.z));
         let q0 = (long(a) - long(start)).abs();
@@ -523,7 +535,7 @@ impl Certifier {
         };
         while let Some(m) = self.pending.front().copied() {
             let d = dist(m.end);
-            if d <= END_POINT_MM {
+            if d <= m.tol {
                 self.reached += 1;
                 self.done = Some(m);
                 self.pending.pop_front();
@@ -554,7 +566,7 @@ impl Certifier {
             file,
             line,
             value: m.nearest,
-            limit: END_POINT_MM,
+            limit: m.tol,
             ratio: m.nearest,
         });
     }
@@ -573,10 +585,24 @@ impl Certifier {
     fn push_move(&mut self, x: f64, z: f64, thread: Option<(f64, f64)>) {
         let end = V2::from_xz(x, z);
         self.end_points += 1;
+        // A thread move that continues a chain: the corner where the
+        // previous one ends is taken at thread speed.
+        if let (true, Some(out), Some(start)) = (self.chain_open, thread, self.last_end) {
+            let ax = self.axes[0].map_or(0.0, |a| a.accel);
+            let az = self.axes[1].map_or(0.0, |a| a.accel);
+            let dt = self.dt;
+            if let Some(prev) = self.pending.back_mut() {
+                if let (Some(inc), Some(from)) = (prev.thread, prev.start) {
+                    let legs = [(prev.end - from, inc), (end - start, out)];
+                    prev.tol = END_POINT_MM.max(chain_corner_mm(legs, [ax, az], dt));
+                }
+            }
+        }
         self.pending.push_back(Pending {
             end,
             start: self.last_end,
             thread,
+            tol: END_POINT_MM,
             spindle: self.cmd,
             nearest: f64::INFINITY,
             at: (0.0, 0, 0),
@@ -604,6 +630,71 @@ pub fn incomplete_lead(v: f64, a_long: f64, a_short: f64, long: f64, short: f64)
     v * v / (2.0 * a)
 }
 
+/// Long-axis travel of a thread leg of travel `d` (radius, Z).
+fn long_len(d: V2) -> f64 {
+    if long_is_z(d) {
+        d.z.abs()
+    } else {
+        d.r.abs()
+    }
+}
+
+/// The travel per spindle turn (radius, Z) of a thread leg of travel `d`
+/// at lead `lead` along its long axis.
+fn per_turn(d: V2, lead: f64) -> V2 {
+    let l = long_len(d);
+    if l > 0.0 {
+        V2::new(d.r / l * lead, d.z / l * lead)
+    } else {
+        V2::ZERO
+    }
+}
+
+/// How far the set points may pass from the corner where a thread chain
+/// turns at speed from leg `legs[0]` into `legs[1]` (travel, (lead, lead
+/// change)), on axes of accelerations `acc` (radial X, Z) at period `dt`.
+///
+/// Up to the corner the axes follow the chain's point exactly; in the
+/// period in which the chain turns, an axis whose speed the corner
+/// changes may change its own by at most a·dt (it follows the new leg
+/// within its acceleration, `runtime::follow`), so its set point lies at
+/// most a·dt² from where the old leg's straight run would have put it,
+/// and an axis whose speed stays (the long axis, locked to the spindle)
+/// lies on it. The chord of that period runs from a point of the old leg
+/// towards that point: it passes the corner, which lies on the old leg's
+/// run within the period, at most √(Σ a²)·dt² away (over the axes whose
+/// speed changes: a continuous servo following the same law passes
+/// through the corner itself; the chord is the period's discretisation).
+/// 0.0015 mm for a pull-out that turns X (1500 mm/s²) at 1 ms. A corner
+/// where no axis changes speed gives 0.
+pub fn chain_corner_mm(legs: [(V2, (f64, f64)); 2], acc: [f64; 2], dt: f64) -> f64 {
+    let [(d0, (l0, dl0)), (d1, (l1, _))] = legs;
+    // The lead at the end of the incoming leg (G34: ℓ² + 2·R·L).
+    let l_end = libm::sqrt((l0 * l0 + 2.0 * dl0 * long_len(d0)).max(0.0));
+    let (u0, u1) = (per_turn(d0, l_end), per_turn(d1, l1));
+    let mut a2 = 0.0;
+    if (u0.r - u1.r).abs() > 1e-9 {
+        a2 += acc[0] * acc[0];
+    }
+    if (u0.z - u1.z).abs() > 1e-9 {
+        a2 += acc[1] * acc[1];
+    }
+    libm::sqrt(a2) * dt * dt
+}
+
+/// Whether Z is the long axis of a thread move of travel `d` (radius, Z):
+/// as the kernel names it, Z when it moves at least as far as X (a
+/// radius), a 45° move included. The tie is judged within [`TIE_MM`], so
+/// that a 45° pull-out chamfer whose end points went through a work shift
+/// or a diameter halving (a rounding of 1e-15 mm either way) keeps Z.
+pub fn long_is_z(d: V2) -> bool {
+    d.z.abs() >= d.r.abs() - TIE_MM
+}
+
+/// Two thread travels within this (mm) are equal when the long axis is
+/// chosen: far below the 0.001 mm resolution, far above rounding.
+pub const TIE_MM: f64 = 1e-9;
+
 /// Distance from `p` to the segment `a`–`b`.
 fn seg_dist(p: V2, a: V2, b: V2) -> f64 {
     let d = b - a;
@@ -618,6 +709,8 @@ fn seg_dist(p: V2, a: V2, b: V2) -> f64 {
 
 impl Sink for Certifier {
     fn emit(&mut self, e: Event) {
+        // Consecutive thread moves form a chain; anything between ends it.
+        let thread = matches!(e, Event::Thread { .. });
         match e {
             Event::Rapid { x, z, .. }
             | Event::Line { x, z, .. }
@@ -641,6 +734,7 @@ impl Sink for Certifier {
             Event::Home { .. } => self.last_end = None,
             _ => {}
         }
+        self.chain_open = thread;
     }
 }
 
@@ -1025,6 +1119,166 @@ mod tests {
         assert!(f.violates());
         assert_eq!(f.line, 510);
         assert!((f.value - 1.51).abs() < 1e-9 && f.limit == 1.5, "{f:?}");
+    }
+
+    #[test]
+    fn a_45_degree_pull_out_is_measured_along_z() {
+        // The kernel's rule: Z is long when it moves at least as far as
+        // X; a travel rounded 1.8e-15 mm the other way is still a tie.
+        assert!(long_is_z(V2::new(2.0000000000000018, -2.0)));
+        assert!(long_is_z(V2::new(2.0, -2.0)));
+        assert!(!long_is_z(V2::new(2.001, -2.0)));
+        // G32 Z−30 at lead 1.5, 600 rev/min (Z ramped to 15 mm/s as in
+        // `thread`), then a 45° pull-out to r 2.0000000000000018 Z−32.
+        // Z stays locked at 0.015 mm per 0.01 turn; X starts from rest at
+        // the corner and, lagging, gains 1.5 mm/s per period (its
+        // 1500 mm/s²) up to 20 mm/s to catch up: measured along X the
+        // lead would reach 0.020 / 0.01 = 2.0, 33 % off. Along Z it is
+        // 1.5 in every period checked, the chamfer's too: from
+        // 15²/(2 × 1500) × 1.1 + 0.015 = 0.0975 mm past the corner.
+        let mut c = certifier();
+        c.emit(Event::Spindle(SpindleDir::Cw));
+        c.emit(Event::Rapid {
+            x: 0.0,
+            z: 0.0,
+            c: None,
+        });
+        for (x, z) in [(0.0, -30.0), (4.0000000000000036, -32.0)] {
+            c.emit(Event::Thread {
+                x,
+                z,
+                c: None,
+                lead: 1.5,
+                dlead: None,
+                q: None,
+            });
+        }
+        let (mut r, mut z, mut vz, mut vx, mut turns) = (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0);
+        let mut k = 0;
+        let mut chamfer = 0;
+        while z > -31.8 {
+            k += 1;
+            vz = (vz + 2.0).min(15.0);
+            z -= vz * 0.001;
+            if z < -30.0 {
+                vx = (vx + 1.5).min(20.0);
+                r += vx * 0.001;
+                chamfer += 1;
+            }
+            turns += 0.01;
+            c.period(&SetPoint {
+                spindle_rpm: 600.0,
+                spindle_turns: turns,
+                ..at(k, (2.0 * r, z), (0.0, 0.0), Motion::Thread)
+            });
+        }
+        assert!(vx == 20.0 && chamfer > 100, "{vx} {chamfer}");
+        let w = c.worst(Kind::Lead).unwrap();
+        assert!(w.ratio < 1e-9 && !w.violates(), "{w:?}");
+    }
+
+    #[test]
+    fn the_bound_of_a_chain_corner() {
+        let (acc, dt) = ([1500.0, 2000.0], 0.001);
+        let b = |d0: (f64, f64), l0: f64, d1: (f64, f64), l1: f64| {
+            let legs = [
+                (V2::new(d0.0, d0.1), (l0, 0.0)),
+                (V2::new(d1.0, d1.1), (l1, 0.0)),
+            ];
+            chain_corner_mm(legs, acc, dt)
+        };
+        let near = |a: f64, b: f64| (a - b).abs() < 1e-15;
+        // Z thread into a 45° pull-out, lead 1.5: per turn (0, −1.5) then
+        // (1.5, −1.5); Z keeps its speed, X changes: 1500 × 0.001² mm.
+        assert!(near(b((0.0, -30.0), 1.5, (2.0, -2.0), 1.5), 0.0015));
+        // A taper (r 1 in Z 35) into its pull-out: still only X.
+        assert!(near(b((1.0, -35.0), 2.0, (1.0, -2.0), 2.0), 0.0015));
+        // A face thread (X long) into a run-out along Z: Z changes.
+        assert!(near(b((-10.0, 0.0), 1.5, (-2.0, -1.0), 1.5), 0.002));
+        // A run-out with J > K at lead × J/K keeps Z at 2 per turn (the
+        // kernel's rule): (0, −2) then X-long (3, −1) at lead 6, (6, −2).
+        assert!(near(b((0.0, -10.0), 2.0, (3.0, -1.0), 6.0), 0.0015));
+        // At the bare lead 2 Z would slow to 0.667 per turn: both axes,
+        // √(1500² + 2000²) × 0.001² = 0.0025 mm.
+        assert!(near(b((0.0, -10.0), 2.0, (3.0, -1.0), 2.0), 0.0025));
+        // A straight chain: nothing turns.
+        assert_eq!(b((0.0, -10.0), 2.0, (0.0, -5.0), 2.0), 0.0);
+        // G34: the lead at the end of the first leg, √(2² + 2 × 0.1 × 10)
+        // = √6, is the second leg's start: nothing turns.
+        let legs = [
+            (V2::new(0.0, -10.0), (2.0, 0.1)),
+            (V2::new(0.0, -5.0), (libm::sqrt(6.0), 0.1)),
+        ];
+        assert_eq!(chain_corner_mm(legs, acc, dt), 0.0);
+    }
+
+    /// Lead 1.5 at 600 rev/min (0.015 mm of Z a period) from Z−29.9551
+    /// into a 45° pull-out at Z−30: the period that turns ends 0.0149 mm
+    /// into the corner, 0.0001 mm past it, with X `x1` mm (radius) out.
+    /// Returns the certifier after six periods.
+    fn corner(x1: f64, thread: bool) -> Certifier {
+        let mut c = Certifier::new(&Config::default(), 0.0, -29.9551, 0.0);
+        c.emit(Event::Rapid {
+            x: 0.0,
+            z: -29.9551,
+            c: None,
+        });
+        for (x, z) in [(0.0, -30.0), (4.0, -32.0)] {
+            c.emit(if thread {
+                Event::Thread {
+                    x,
+                    z,
+                    c: None,
+                    lead: 1.5,
+                    dlead: None,
+                    q: None,
+                }
+            } else {
+                Event::Line { x, z, c: None }
+            });
+        }
+        let path = [
+            (0.0, -29.9701),
+            (0.0, -29.9851),
+            (x1, -30.0001),
+            (x1 + 0.003, -30.0151),
+            (x1 + 0.0075, -30.0301),
+            (x1 + 0.0135, -30.0451),
+        ];
+        for (k, &(r, z)) in path.iter().enumerate() {
+            c.period(&at(k as u32 + 1, (2.0 * r, z), (0.0, 0.0), Motion::Thread));
+        }
+        c
+    }
+
+    #[test]
+    fn a_chain_corner_at_speed_is_reached_within_one_period_of_acceleration() {
+        // X from rest at its full 1500 mm/s² moves a·dt² = 0.0015 mm in
+        // the period that turns: the chord from (r 0, Z −29.9851) to
+        // (0.0015, −30.0001) passes the corner (0, −30) at
+        // 0.0149 × 0.0015 / hypot(0.0015, 0.015) = 0.0014826 mm: more than
+        // 0.001, within the corner's bound of 0.0015 mm.
+        let want = 0.0149 * 0.0015 / libm::hypot(0.0015, 0.015);
+        assert!((want - 0.0014826).abs() < 1e-7);
+        let c = corner(0.0015, true);
+        assert!(c.worst(Kind::EndPoint).is_none(), "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 2 of 3 reached"));
+        // The same path programmed as feeds is no thread chain: 0.001 mm.
+        let c = corner(0.0015, false);
+        let f = *c.worst(Kind::EndPoint).expect("missed");
+        assert!(f.violates() && f.limit == END_POINT_MM, "{f:?}");
+        assert!((f.value - want).abs() < 1e-9, "{f:?}");
+        // An X that jumps twice a·dt² (0.003 mm) misses the corner by
+        // 0.0149 × 0.003 / hypot(0.003, 0.015) = 0.0029221 mm > 0.0015.
+        let c = corner(0.003, true);
+        let f = *c.worst(Kind::EndPoint).expect("missed");
+        assert!(f.violates() && (f.limit - 0.0015).abs() < 1e-15, "{f:?}");
+        let want = 0.0149 * 0.003 / libm::hypot(0.003, 0.015);
+        assert!((f.value - want).abs() < 1e-9 && (want - 0.0029221).abs() < 1e-7);
+        assert!(f.to_string().contains("(tolerance 0.0015 mm)"), "{f}");
     }
 
     #[test]

@@ -98,6 +98,12 @@ pub(crate) struct RunAhead {
     repeat: u32,
     /// The G22 area last handed to the motion.
     stroke: Option<nc::stroke::Area>,
+    /// The kernel's programmed point after the last block (`None`: not
+    /// seen yet, or re-seeded).
+    kernel_seen: Option<V2>,
+    /// The tag of a G32/G34 block the kernel holds back for its run-out:
+    /// its thread legs come with the next block and carry this tag.
+    wait_tag: Option<Tag>,
 }
 
 impl RunAhead {
@@ -119,6 +125,8 @@ impl RunAhead {
             max_blocks,
             repeat: 1,
             stroke: None,
+            kernel_seen: None,
+            wait_tag: None,
         }
     }
 
@@ -224,12 +232,35 @@ impl RunAhead {
             block_end: false,
         };
         self.tr.skip_queued = false;
+        // A block held back for its run-out is printed at the start of
+        // this one: one leg when this block continues its chain, else two
+        // (up to P1 and the run-out). They belong to the held block.
+        let mut held = 0;
+        let mut held_tag = tag;
+        if let Some(t) = self.wait_tag {
+            if !self.events.is_empty() || status != Status::OutOfBudget {
+                held = if self.vm.nc.thread_chain_open() { 1 } else { 2 };
+                held_tag = Tag {
+                    block_end: false,
+                    ..t
+                };
+                self.wait_tag = None;
+            }
+        }
+        let mut legs = 0;
         for e in self.events.drain(..) {
             self.scratch.clear();
             self.tr
                 .event(&e, &self.vm.nc, &self.machine, &mut self.scratch);
+            let mut t = tag;
+            if legs < held && matches!(e, Event::Thread { .. }) {
+                legs += 1;
+                t = held_tag;
+                // The held block ends with its last leg.
+                t.block_end = legs == held;
+            }
             for c in self.scratch.drain(..) {
-                self.staged.push_back((c, tag));
+                self.staged.push_back((c, t));
             }
             tap.emit(e);
         }
@@ -237,6 +268,9 @@ impl RunAhead {
             Status::Event => {
                 self.blocks += 1;
                 self.resync(tag);
+                if self.vm.nc.thread_waiting() {
+                    self.wait_tag = Some(tag);
+                }
                 if self.vm.nc.exact_stop() {
                     self.staged.push_back((Command::ExactStop, tag));
                 }
@@ -274,6 +308,13 @@ impl RunAhead {
 
     /// A block moved the programmed point by an event this build does not
     /// know: reach the kernel's point by a line at the modal feed.
+    ///
+    /// Not where the kernel's point differs from the tool's on purpose: a
+    /// G32/G34 block with run-out words waits for the next block (its
+    /// point has moved, its legs come with the next block), and after a
+    /// run-out the tool stands at the lifted end while the kernel's point
+    /// is the programmed end (§16.5). So only a block that moved the
+    /// kernel's point, with no thread block waiting, is resynchronised.
     fn resync(&mut self, tag: Tag) {
         if self.tr.in_plane() {
             // The kernel's point is the joints', the plane's moves are not.
@@ -281,7 +322,11 @@ impl RunAhead {
         }
         let p = self.vm.nc.position();
         let kernel = V2::new(p.r, p.z);
-        if (kernel - self.tr.work).max_abs() > 1e-6 {
+        let moved = self
+            .kernel_seen
+            .is_none_or(|k| (kernel - k).max_abs() > 1e-9);
+        self.kernel_seen = Some(kernel);
+        if moved && !self.vm.nc.thread_waiting() && (kernel - self.tr.work).max_abs() > 1e-6 {
             let kind = if self.tr.feed.f > 0.0 {
                 MoveKind::Feed(self.tr.feed)
             } else {
@@ -307,6 +352,7 @@ impl RunAhead {
         let stop_work = r.stop - r.shift;
         let hit_work = hit - r.shift;
         self.tr.work = stop_work;
+        self.kernel_seen = None;
         self.vm.nc.skip_ended(
             nc::point::Pt::new(stop_work.r, stop_work.z),
             nc::point::Pt::new(hit_work.r, hit_work.z),
@@ -341,6 +387,8 @@ impl RunAhead {
         let origin = origin_of(&self.vm);
         let work = at - origin;
         self.vm.nc.set_position(nc::point::Pt::new(work.r, work.z));
+        self.kernel_seen = None;
+        self.wait_tag = None;
         let messages = core::mem::take(&mut self.tr.messages);
         self.tr = Translator::new(origin);
         self.tr.messages = messages;

@@ -274,3 +274,64 @@ fn a_thread_that_starts_too_close_is_warned_at_run_time() {
     );
     assert!(none);
 }
+
+/// A G32 chain whose last block runs out (G32 Z-30 J1 K3): the kernel
+/// holds that block back until the next one says the chain ends, having
+/// moved its programmed point to X29 Z-30 already; the runtime must not
+/// take that for a move of its own (it used to rapid to Z-30, then cut
+/// the thread back up to Z-27). Hand figures: lead 2 at 400 rpm is
+/// 13.333 mm/s; the chain runs from Z5 without a stop through Z-20 to
+/// P1 = X29 Z-27 at lead 2 and runs out to X31 Z-30 (3 mm of Z for 1 mm
+/// of radius, lead 2 along Z): Z only ever goes down, at
+/// 2 × 400/60 / 1000 = 0.013333 mm per period while locked, and no
+/// rapid comes between the thread periods. The periods carry the line of
+/// the block they cut.
+#[test]
+fn a_run_out_chain_is_cut_in_one_go() {
+    let src =
+        "O0012\nG97 S400 M03\nG00 X40 Z5\nX29\nG32 Z-20 F2\nG32 Z-30 J1 K3\nM05\nG00 X40\nM30\n";
+    let r = run(src);
+    check_end_points(&r);
+    check_limits(&r, false);
+    let th: Vec<usize> = (0..r.pts.len())
+        .filter(|&k| r.pts[k].motion == Motion::Thread)
+        .collect();
+    let (first, last) = (th[0], *th.last().unwrap());
+    assert!(
+        r.pts[first..=last]
+            .iter()
+            .all(|p| p.motion == Motion::Thread),
+        "a move between the thread periods"
+    );
+    for w in r.pts[first..=last].windows(2) {
+        assert!(w[1].z <= w[0].z, "Z goes back up at {}", w[1].time_s);
+    }
+    // Through Z-20 at thread speed, locked at lead 2 from Z-1 to Z-26.9:
+    // 25.9 mm at 0.013333 mm per period is 1942.5 periods.
+    let locked: Vec<&[SetPoint]> = r.pts[first..=last]
+        .windows(2)
+        .filter(|w| w[0].z < -1.0 && w[1].z > -26.9)
+        .collect();
+    assert!((1942..=1944).contains(&locked.len()), "{}", locked.len());
+    for w in locked {
+        let lead = (w[0].z - w[1].z) / (w[1].spindle_turns - w[0].spindle_turns);
+        assert!((lead - 2.0).abs() < 1e-9, "lead {lead} at {}", w[1].time_s);
+        assert!((w[0].z - w[1].z - 2.0 * 400.0 / 60.0 * 0.001).abs() < 1e-6);
+    }
+    let end = r.pts[last];
+    assert!(
+        (end.x - 31.0).abs() < 1e-9 && (end.z + 30.0).abs() < 1e-9,
+        "{end:?}"
+    ); // The held block's legs come with the next block (M05, line 7) but
+       // are its own: line 5 up to Z-20, line 6 (the G32 Z-30 J1 K3) after.
+    for p in &r.pts[first..=last] {
+        let want = if p.z > -20.0 + 0.014 {
+            5
+        } else if p.z < -20.0 - 0.014 {
+            6
+        } else {
+            p.line
+        };
+        assert_eq!(p.line, want, "at Z{}", p.z);
+    }
+}

@@ -14,6 +14,23 @@ impl Nc {
         self.st.pos
     }
 
+    /// A G32/G34 block with run-out words waits for the next block, which
+    /// says whether it ends its chain (and runs out): its thread legs are
+    /// not printed yet, though [`position`](Nc::position) is already its
+    /// end point.
+    pub fn thread_waiting(&self) -> bool {
+        self.st.cycles.chain.pending.is_some()
+    }
+
+    /// The last block was a G32/G34 move, so that the next one may
+    /// continue its chain. Read after a block that found a block waiting
+    /// ([`thread_waiting`](Nc::thread_waiting)): when it continues the
+    /// chain, the waiting block was printed as one leg; when not, with its
+    /// run-out, as two.
+    pub fn thread_chain_open(&self) -> bool {
+        self.st.cycles.chain.open
+    }
+
     /// The work zero in machine coordinates (EXOFS + G5x + G50 + G52).
     pub fn origin(&self) -> Pt {
         self.st.origin()
