@@ -17,7 +17,7 @@ use crate::config::{Config, RapidOverride};
 use crate::follow::Follower;
 use crate::math::V2;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
-use crate::plc::{Plc, PlcFunction};
+use crate::plc::{Plc, PlcFunction, SpindleDir};
 use crate::profile::{approach, brake_limit, brake_limit_above};
 use crate::smooth::Smoother;
 use crate::spindle::Spindle;
@@ -206,6 +206,9 @@ struct ThreadRun {
     q: f64,
     /// Last synchronised path speed (the braking starts from it).
     v_sync: f64,
+    /// A rigid-tapping reversal is armed: the spindle brakes to the
+    /// chain's end and the axis follows it there.
+    rigid: bool,
 }
 
 impl ThreadRun {
@@ -219,6 +222,7 @@ impl ThreadRun {
         phi_base: 0.0,
         q: 0.0,
         v_sync: 0.0,
+        rigid: false,
     };
 }
 
@@ -742,6 +746,10 @@ impl<P: Plc> Engine<P> {
         self.q.pop();
         self.started = false;
         self.thread.phase = Phase::Off;
+        if self.spindle.rigid_out() {
+            // The move out of a rigid reversal is done.
+            self.spindle.rigid_end();
+        }
         if block_end && self.single_block && self.state == RunState::Running {
             self.state = RunState::Stopped(PauseKind::SingleBlock);
         }
@@ -1278,6 +1286,17 @@ impl<P: Plc> Engine<P> {
         self.motion = Motion::Thread;
         let work_x = (self.pos - self.shift).x();
         if self.thread.phase == Phase::WaitSpeed {
+            if let Some(at) = self.spindle.take_rigid_origin() {
+                // The move out of a rigid reversal: locked to the spindle
+                // from the bottom's angle, no index pulse to wait for.
+                self.thread = ThreadRun {
+                    phase: Phase::Locked,
+                    theta0: at,
+                    ..ThreadRun::OFF
+                };
+            }
+        }
+        if self.thread.phase == Phase::WaitSpeed {
             if self.spindle.commanded(work_x) <= 0.0 || self.spindle.stopped() {
                 self.stall_s += self.dt;
                 if self.stall_s >= self.cfg.spindle.stall_timeout_s {
@@ -1410,6 +1429,20 @@ impl<P: Plc> Engine<P> {
         let Some(target) = self.q.seg(k).copied() else {
             return;
         };
+        if !ramp && (target.v_exit <= 0.0 || !self.thread_next(k)) {
+            if !self.thread.rigid {
+                self.arm_rigid(k, &target, base);
+            }
+            if self.thread.rigid
+                && self
+                    .spindle
+                    .rigid_at()
+                    .is_some_and(|at| self.spindle.turns() >= at)
+            {
+                // The spindle stands at the bottom: so does the axis.
+                q = target.long_len;
+            }
+        }
         let guess = if k == 0 { self.lam } else { 0.0 };
         let lam = target
             .curve
@@ -1443,7 +1476,8 @@ impl<P: Plc> Engine<P> {
             .q
             .seg(k)
             .is_some_and(|s| q >= s.long_len && s.v_exit <= 0.0);
-        if v > lim || at_end {
+        let rigid = self.thread.rigid;
+        if !rigid && (v > lim || at_end) {
             self.thread.phase = Phase::Brake;
             self.thread.v_sync = self.v;
             self.step_path();
@@ -1473,6 +1507,67 @@ impl<P: Plc> Engine<P> {
         self.pos = target.curve.point(lam);
         self.v = v;
         self.thread.v_sync = v;
+        if rigid && at_end {
+            // At the bottom with the spindle: what is left is standing.
+            self.thread.phase = Phase::Brake;
+        }
+    }
+
+    /// Arms a rigid-tapping reversal when the chain ends on the k-th
+    /// queued move (`target`, started at lead revolution `base`) and the
+    /// spindle reverses right after it (dwells between allowed, no M05:
+    /// a floating holder's G33 stops the spindle first) before a thread
+    /// back. The spindle then brakes at min(its acceleration, the long
+    /// axis's / lead) to stand exactly where the axis reaches the end.
+    fn arm_rigid(&mut self, k: usize, target: &Segment, base: f64) {
+        let MoveKind::Thread(tk) = target.kind else {
+            return;
+        };
+        if self.spindle.is_measured() || tk.dlead.abs() > 1e-15 || !crate::math::is_pos(tk.lead) {
+            return;
+        }
+        let reverse = match self.spindle.dir() {
+            SpindleDir::Cw => SpindleDir::Ccw,
+            SpindleDir::Ccw => SpindleDir::Cw,
+            _ => return,
+        };
+        let mut j = k + 1;
+        let mut reversed = false;
+        loop {
+            match self.q.get(j).map(|i| i.kind) {
+                Some(ItemKind::Dwell(_)) if !reversed => {}
+                Some(ItemKind::Plc(PlcFunction::Spindle(d))) if !reversed && d == reverse => {
+                    reversed = true;
+                }
+                Some(ItemKind::Plc(PlcFunction::Speed { .. })) if reversed => {}
+                Some(ItemKind::Move(n)) if reversed && matches!(n.kind, MoveKind::Thread(_)) => {
+                    break;
+                }
+                _ => return,
+            }
+            j += 1;
+        }
+        let u_long = if target.len > 0.0 {
+            target.long_len / target.len
+        } else {
+            1.0
+        };
+        let a_long = if matches!(target.curve, crate::geom::Curve::Line { .. }) {
+            target.a * u_long
+        } else {
+            0.5 * target.a
+        };
+        let accel = (self.cfg.spindle.accel_rpm_s / 60.0).min(a_long / tk.lead);
+        let th = &self.thread;
+        let at = th.theta0 + th.theta_lag + base + target.long_len / tk.lead;
+        let rem = at - self.spindle.turns();
+        let w = self.spindle.rpm().abs() / 60.0;
+        if !crate::math::is_pos(accel) || rem < w * w / (2.0 * accel) + w * self.dt {
+            // Too late to stop the spindle there: the axis brakes alone.
+            return;
+        }
+        self.spindle.rigid_stop(at, accel);
+        self.thread.rigid = true;
     }
 
     /// W118 at a thread start: the chain's first move against the entry

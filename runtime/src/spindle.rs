@@ -11,6 +11,7 @@
 use crate::config::SpindleConfig;
 use crate::math::PI;
 use crate::plc::SpindleDir;
+use crate::profile::brake_limit;
 
 #[derive(Debug, Clone)]
 /// The spindle's state: direction, programmed speed, actual speed and angle.
@@ -31,6 +32,23 @@ pub struct Spindle {
     pub override_factor: f64,
     /// The host's encoder, once it feeds one.
     measured: Option<Measured>,
+    /// Rigid tapping: the spindle in position control for a reversal.
+    rigid: Option<Rigid>,
+}
+
+/// A rigid-tapping reversal: the spindle brakes at `accel` to stand
+/// exactly at `at` turns (the bottom of the tap), stands until it is
+/// reversed, and starts the other way at `accel` again.
+#[derive(Debug, Clone, Copy)]
+struct Rigid {
+    /// rev/s².
+    accel: f64,
+    /// Turns at the bottom.
+    at: f64,
+    /// Still braking to (or standing at) the bottom: not reversed yet.
+    holding: bool,
+    /// The move out has started from the bottom.
+    out: bool,
 }
 
 /// The measured spindle of the coming period.
@@ -58,6 +76,7 @@ impl Spindle {
             turns: 0.0,
             override_factor: override_pct / 100.0,
             measured: None,
+            rigid: None,
         }
     }
 
@@ -92,9 +111,62 @@ impl Spindle {
         self.measured.is_some()
     }
 
-    /// M03, M04 or M05.
+    /// M03, M04 or M05. A reversal releases a rigid-tapping hold.
     pub fn set_dir(&mut self, d: SpindleDir) {
+        if let Some(r) = &mut self.rigid {
+            if d != self.dir {
+                r.holding = false;
+            }
+        }
         self.dir = d;
+    }
+
+    /// M03, M04 or M05 as in force.
+    pub fn dir(&self) -> SpindleDir {
+        self.dir
+    }
+
+    /// Rigid tapping: brake at `accel` rev/s² so as to stand exactly at
+    /// `at` turns, and reverse at that acceleration too.
+    pub fn rigid_stop(&mut self, at: f64, accel: f64) {
+        self.rigid = Some(Rigid {
+            accel,
+            at,
+            holding: true,
+            out: false,
+        });
+    }
+
+    /// Whether a rigid-tapping stop is armed and not yet released.
+    pub fn rigid_holding(&self) -> bool {
+        self.rigid.is_some_and(|r| r.holding)
+    }
+
+    /// The bottom's turns of a rigid reversal released by the spindle's
+    /// reversal (the move out starts from there), taken once.
+    pub fn take_rigid_origin(&mut self) -> Option<f64> {
+        match &mut self.rigid {
+            Some(r) if !r.holding && !r.out => {
+                r.out = true;
+                Some(r.at)
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether the move out of a rigid reversal is running.
+    pub fn rigid_out(&self) -> bool {
+        self.rigid.is_some_and(|r| r.out)
+    }
+
+    /// The turns of an armed rigid stop.
+    pub fn rigid_at(&self) -> Option<f64> {
+        self.rigid.map(|r| r.at)
+    }
+
+    /// Ends a rigid-tapping reversal (its move out is done, or a reset).
+    pub fn rigid_end(&mut self) {
+        self.rigid = None;
     }
 
     /// A SPEED event: S in G97 (rpm) or G96 (m/min), and a `G50 S` limit.
@@ -161,6 +233,25 @@ impl Spindle {
             self.rpm = m.rpm;
             return;
         }
+        if let Some(r) = self.rigid {
+            // Position control: at most `accel`, braking to land exactly
+            // on the bottom's turns while holding.
+            let w = self.rpm * self.sign() / 60.0;
+            let mut target = self.commanded(x) / 60.0;
+            let rem = (r.at - self.turns).max(0.0);
+            if r.holding {
+                target = target.min(brake_limit(rem, 0.0, r.accel, dt));
+            }
+            let step = r.accel * dt;
+            let w = target.clamp(w - step, w + step);
+            if r.holding && w * dt >= rem - 1e-12 {
+                self.turns = r.at;
+            } else {
+                self.turns += w.abs() * dt;
+            }
+            self.rpm = w * 60.0 * self.sign();
+            return;
+        }
         let target = self.commanded(x) * self.sign();
         let step = self.cfg.accel_rpm_s * dt;
         self.rpm = target.clamp(self.rpm - step, self.rpm + step);
@@ -199,6 +290,7 @@ impl Spindle {
     /// Back to stopped with no speed programmed (reset).
     pub fn reset(&mut self) {
         self.dir = SpindleDir::Stop;
+        self.rigid = None;
     }
 }
 

@@ -118,38 +118,84 @@ fn a_pull_out_turns_x_within_its_acceleration() {
     assert_eq!((last_thread.x, last_thread.z), (33.0, -21.5));
 }
 
-/// Rigid tapping (M29, G84 Z-10 F1.5 at 300 rpm): at the bottom Z brakes
-/// from 1.5 × 5 = 7.5 mm/s within 2000 mm/s² (7.5² / 4000 = 0.0141 mm
-/// before the bottom), stands while the spindle reverses, and ramps up
-/// again after the index pulse of the reversed spindle; it never exceeds
-/// its acceleration and reaches the bottom exactly.
+/// Rigid tapping (M29, G84 Z-10 F1.5 P200 at 600 rpm) on the reference
+/// machine with a spindle that could brake at 2000 rev/s² (120 000
+/// rpm/s). Hand figures: Z may accelerate at 2000 mm/s², so the spindle's
+/// rigid-tap acceleration is 2000 / 1.5 = 1333.33 rev/s² (80 000 rpm/s).
+/// From 600 rpm = 10 rev/s it stops in 10 / 1333.33 = 7.5 ms and
+/// 10² / (2 × 1333.33) = 0.0375 turns, Z with it in 1.5 × 0.0375 =
+/// 0.05625 mm. Through the whole reversal Z = −10 + 1.5 × |turns − θb|
+/// (θb: the turns at the bottom), the bottom reached exactly when the
+/// spindle stands; the tap never turns while Z stands; Z and the spindle
+/// start out at the same 1333.33 rev/s² (Z 2000 mm/s²).
 #[test]
-fn a_tapping_reversal_stays_within_the_acceleration() {
+fn a_rigid_tapping_reversal_follows_the_spindle() {
     let src =
-        "O0013\nG97 M03 S300\nG00 X0 Z5\nM29 S300\nG84 X0 Z-10 F1.5 P200\nG80\nG00 X50 Z50\nM30\n";
-    let r = run(src);
+        "O0013\nG97 M03 S600\nG00 X0 Z5\nM29 S600\nG84 X0 Z-10 F1.5 P200\nG80\nG00 X50 Z50\nM30\n";
+    let r = run_with(
+        src,
+        Machine::reference(),
+        runtime::AutoAck,
+        |c| c.spindle.accel_rpm_s = 120_000.0,
+        |_, _| {},
+        600.0,
+    );
     check_end_points(&r);
     check_limits(&r, false);
+    let dt = r.cfg.period_s;
     let bottom = r.pts.iter().map(|p| p.z).fold(f64::MAX, f64::min);
     assert_eq!(bottom, -10.0);
-    // The last locked period before the bottom is within a period's
-    // travel (0.0075 mm) of the braking distance.
-    let down = thread_periods(&r.pts, 5);
-    let mut last_locked = None;
-    for w in down.windows(2) {
-        let ((_, z0, t0), (_, z1, t1)) = (w[0], w[1]);
-        if z1 < z0 && ((z0 - z1) - 1.5 * (t1 - t0)).abs() < 1e-9 {
-            last_locked = Some(z1);
+    // The bottom's turns: the first period standing there.
+    let kb = r.pts.iter().position(|p| p.z == -10.0).unwrap();
+    let theta_b = r.pts[kb].spindle_turns;
+    // The tap never turns while Z stands at the bottom.
+    for p in r.pts.iter().filter(|p| p.z == -10.0) {
+        assert_eq!(p.spindle_turns, theta_b, "the tap turned at the bottom");
+    }
+    // The reversal: from the last period at full speed down to the
+    // spindle's stop, and from its restart until it is at speed again.
+    let mut k = kb;
+    while r.pts[k - 1].spindle_rpm < 600.0 - 1e-9 {
+        k -= 1;
+    }
+    let start = k - 1;
+    let mut end = kb;
+    while r.pts[end].spindle_rpm > -600.0 + 1e-9 {
+        end += 1;
+    }
+    let mut decel = 0.0f64;
+    for (i, p) in r.pts[start..=end].iter().enumerate() {
+        let z = -10.0 + 1.5 * (p.spindle_turns - theta_b).abs();
+        assert!((p.z - z).abs() < 1e-9, "period {i}: Z {} not {z}", p.z);
+        if i > 0 {
+            let dw = (p.spindle_rpm - r.pts[start + i - 1].spindle_rpm).abs() / 60.0 / dt;
+            decel = decel.max(dw);
         }
     }
-    let braked = last_locked.unwrap() + 10.0;
-    let exit = exit_length(1.5, 300.0, 2000.0);
-    assert!((exit - 0.0140625).abs() < 1e-12);
-    assert!((braked - exit).abs() <= 0.0075, "braked over {braked}");
-    // The spindle turned the other way while Z stood at the bottom.
-    let at_bottom: Vec<&SetPoint> = r.pts.iter().filter(|p| p.z == -10.0).collect();
+    // The spindle brakes and starts at its rigid-tap acceleration, no more.
+    assert!(decel <= 2000.0 / 1.5 + 1e-6, "{decel} rev/s²");
+    assert!(decel > 2000.0 / 1.5 - 1e-6, "{decel} rev/s²");
+    // Braking took 0.0375 turns = 0.05625 mm (7.5 periods: 8).
+    let braked = r.pts[start].z + 10.0;
+    assert!((braked - 0.05625).abs() <= 0.015, "braked over {braked}");
+    assert!(kb - start <= 9, "{} periods", kb - start);
+}
+
+/// G33 taps with a floating holder (cycles.md §20: M05 at the bottom,
+/// then the reverse): no rigid reversal. Z brakes to the bottom alone at
+/// 2000 mm/s² (1.25 × 5 = 6.25 mm/s: 6.25² / 4000 = 0.0098 mm) while the
+/// spindle still turns, and stands while the spindle stops and reverses.
+#[test]
+fn a_floating_tap_still_brakes_z_alone() {
+    let r = run("O0014\nG97 M03 S300\nG00 X0 Z3\nG33 Z-15 F1.25\nG00 X50 Z50\nM30\n");
+    check_end_points(&r);
+    check_limits(&r, false);
+    let at_bottom: Vec<&SetPoint> = r.pts.iter().filter(|p| p.z == -15.0).collect();
+    let turned = at_bottom.last().unwrap().spindle_turns - at_bottom[0].spindle_turns;
+    // The spindle stops from 300 rpm at 1000 rpm/s (0.3 s, 0.75 turn)
+    // and restarts the other way while Z stands.
+    assert!(turned > 0.75, "{turned} turns at the bottom");
     assert!(at_bottom.iter().any(|p| p.spindle_rpm < 0.0));
-    assert!(at_bottom.iter().any(|p| p.spindle_rpm > 0.0));
 }
 
 fn conformance() -> Option<PathBuf> {
