@@ -181,6 +181,32 @@ fn a_rigid_tapping_reversal_follows_the_spindle() {
     assert!(kb - start <= 9, "{} periods", kb - start);
 }
 
+/// The same rigid tap at 300 rpm on the reference spindle (1000 rpm/s =
+/// 16.67 rev/s², below Z's 2000 / 1.5 = 1333.33): the spindle brakes at
+/// its own acceleration, from 5 rev/s in 0.3 s and 5² / (2 × 16.67) =
+/// 0.75 turn, so Z follows it over the last 1.5 × 0.75 = 1.125 mm at
+/// 1.5 × 16.67 = 25 mm/s², Z = −10 + 1.5 × (θb − turns) in every period.
+#[test]
+fn a_rigid_tap_brakes_with_the_spindle_at_its_own_acceleration() {
+    let src = "O0015\nG97 M03 S300\nG00 X0 Z5\nM29 S300\nG84 X0 Z-10 F1.5\nG80\nG00 X50 Z50\nM30\n";
+    let r = run(src);
+    check_end_points(&r);
+    check_limits(&r, false);
+    let kb = r.pts.iter().position(|p| p.z == -10.0).unwrap();
+    let theta_b = r.pts[kb].spindle_turns;
+    // 0.3 s of braking: 300 periods before the bottom, Z locked to the
+    // spindle in each, the spindle never faster than 1000 rpm/s.
+    for k in kb - 300..=kb {
+        let p = &r.pts[k];
+        let z = -10.0 + 1.5 * (theta_b - p.spindle_turns);
+        assert!((p.z - z).abs() < 1e-9, "period {k}: Z {} not {z}", p.z);
+        let dw = (p.spindle_rpm - r.pts[k - 1].spindle_rpm).abs();
+        assert!(dw <= 1.0 + 1e-9, "{dw} rpm in a period");
+    }
+    let braked = r.pts[kb - 300].z + 10.0;
+    assert!((braked - 1.125).abs() <= 0.0075, "braked over {braked}");
+}
+
 /// G33 taps with a floating holder (cycles.md §20: M05 at the bottom,
 /// then the reverse): no rigid reversal. Z brakes to the bottom alone at
 /// 2000 mm/s² (1.25 × 5 = 6.25 mm/s: 6.25² / 4000 = 0.0098 mm) while the
