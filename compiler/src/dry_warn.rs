@@ -9,7 +9,7 @@
 use grammar::ast::Addr;
 use grammar::{Diagnostic, Span};
 use nc::block::round_half_away;
-use nc::gcode::{self, Motion};
+use nc::gcode::{self, Motion, OneShot, Stroke};
 use nc::machine::{DecimalPoint, SpindleType};
 use nc::words::{Word, NO_POINT};
 use nc::{Event, Nc, Sink};
@@ -67,9 +67,21 @@ fn has(lits: &[Word], letter: u8) -> bool {
     lits.iter().any(|w| w.addr == letter - b'A')
 }
 
-fn has_g(lits: &[Word], code: f64) -> bool {
+/// The block's G codes as the kernel codes them (tenths: G6.2 is 62).
+fn g_codes(lits: &[Word]) -> impl Iterator<Item = gcode::Code> + '_ {
     lits.iter()
-        .any(|w| w.addr == b'G' - b'A' && (w.value - code).abs() < 1e-9)
+        .filter(|w| w.addr == b'G' - b'A')
+        .map(|w| crate::words::round_g(w.value))
+}
+
+fn has_g(lits: &[Word], g: impl Into<gcode::G>) -> bool {
+    let code = g.into().code();
+    g_codes(lits).any(|c| c == code)
+}
+
+/// Whether a group-00 code owns the block.
+fn has_one_shot(lits: &[Word]) -> bool {
+    g_codes(lits).any(|c| gcode::group(c) == Some(gcode::ONE_SHOT))
 }
 
 impl Warner {
@@ -132,7 +144,7 @@ impl Warner {
         if !nc.st.inch() || nc.machine.machine.decimal_point != DecimalPoint::Calculator {
             return;
         }
-        let dwell = has_g(lits, 4.0);
+        let dwell = has_g(lits, OneShot::Dwell);
         let motion = nc.st.modal.motion;
         let thread = motion.is_thread() && motion != Motion::RigidThreadCycle;
         for w in ws {
@@ -200,11 +212,8 @@ impl Warner {
     /// W108: an arc with R, an ellipse or a parabola whose end is its
     /// start: no move, nothing printed (§4.1).
     fn no_motion(&mut self, unit: usize, nc: &Nc, lits: &[Word], span: Span, before: &Before) {
-        let one_shot = lits.iter().any(|w| {
-            w.addr == b'G' - b'A'
-                && gcode::group(crate::words::round_g(w.value)) == Some(gcode::ONE_SHOT)
-        });
-        if one_shot || nc.st.modal.drill().is_some() || has_g(lits, 22.0) {
+        let one_shot = has_one_shot(lits);
+        if one_shot || nc.st.modal.drill().is_some() || has_g(lits, Stroke::On) {
             return;
         }
         let what = match nc.st.modal.motion {
@@ -252,10 +261,7 @@ impl Warner {
             }
         }
         let motion = nc.st.modal.motion;
-        let one_shot = lits.iter().any(|w| {
-            w.addr == b'G' - b'A'
-                && gcode::group(crate::words::round_g(w.value)) == Some(gcode::ONE_SHOT)
-        });
+        let one_shot = has_one_shot(lits);
         if !matches!(motion, Motion::Line | Motion::ArcCw | Motion::ArcCcw)
             || one_shot
             || nc.st.modal.drill().is_some()
@@ -281,7 +287,10 @@ impl Warner {
     /// a gear code.
     fn spindle_max(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], lits: &[Word]) {
         let m = &nc.machine.spindle;
-        if m.r#type != SpindleType::Analog || nc.st.css_mode() || has_g(lits, 50.0) {
+        if m.r#type != SpindleType::Analog
+            || nc.st.css_mode()
+            || has_g(lits, OneShot::SetCoordinates)
+        {
             return;
         }
         let Some(w) = find(ws, b'S' - b'A') else {
