@@ -83,7 +83,7 @@ impl<'a> Gen<'a> {
         let module = Module {
             machine: machine.compile_keys(),
             code: Vec::with_capacity(instrs),
-            lines: Vec::with_capacity(instrs),
+
             consts: Vec::with_capacity(2 * blocks),
             ..Module::default()
         };
@@ -544,7 +544,37 @@ impl<'a> Gen<'a> {
             return;
         }
         let after = crate::profile::before_exec(self, block, split);
-        for w in &split.nc {
+        // A block whose words are all known now (literals, or folded
+        // values) is one typed block: a record of its words, in order,
+        // and one `block` instruction at the block's place.
+        let mut known: smallvec::SmallVec<[isa::BlockWord; 8]> = smallvec::SmallVec::new();
+        let all_known = split.nc.iter().all(|w| match w.value {
+            WordValue::Literal(value, flags) => {
+                known.push(isa::BlockWord {
+                    addr: w.addr,
+                    value,
+                    flags,
+                });
+                true
+            }
+            WordValue::Expr(e) => match self.expr.known_value(e).filter(|_| self.optimize) {
+                // A vacant value leaves the word out.
+                Some(v) if v.is_nan() => true,
+                Some(value) => {
+                    known.push(isa::BlockWord {
+                        addr: w.addr,
+                        value,
+                        flags: 0,
+                    });
+                    true
+                }
+                None => false,
+            },
+        });
+        let typed = all_known
+            .then(|| self.module.push_block(&known))
+            .flatten();
+        for w in split.nc.iter().filter(|_| typed.is_none()) {
             self.set_loc(w.span);
             match w.value {
                 WordValue::Literal(v, flags) => {
@@ -583,7 +613,10 @@ impl<'a> Gen<'a> {
                 let s = self.string(&c.text);
                 self.emit(Instr::SetMsg { s });
             }
-            self.emit(Instr::Exec { flags: 0 });
+            self.emit(match typed {
+                Some(rec) => Instr::Block { rec },
+                None => Instr::Exec { flags: 0 },
+            });
             // G31 writes the skip position into #995–#999.
             for var in 995..=999 {
                 self.expr.forget(var);

@@ -127,10 +127,40 @@ impl Module {
                 Some(p) => write!(text, " (O{:04})", p.number),
                 None => text.write_str(" (?)"),
             },
+            Operand::Rec(b) => self.annotate_block(text, b),
             _ => Ok(()),
         }
     }
 }
+
+impl Module {
+    /// A typed block's words as G-code (`(G1 X12.5 Z-33.25 F0.2)`),
+    /// each value written as the decimal-point rule reads it: with a
+    /// point unless it was written without one (`X50` vs `X50.`).
+    fn annotate_block(&self, text: &mut String, rec: u32) -> fmt::Result {
+        let mut words = String::new();
+        let mut result = Ok(());
+        let found = self.block_words(rec, |w| {
+            let name = crate::addr::name(w.addr).unwrap_or("?");
+            let sep = if words.is_empty() { "" } else { " " };
+            let value = alloc::format!("{}", w.value);
+            let point = if w.flags & NO_POINT == 0 && !value.contains('.') {
+                "."
+            } else {
+                ""
+            };
+            result = result.and(write!(words, "{sep}{name}{value}{point}"));
+        });
+        result?;
+        match found {
+            Some(()) => write!(text, " ({words})"),
+            None => text.write_str(" (?)"),
+        }
+    }
+}
+
+/// `wordk`/record flag bit 0: written without a decimal point.
+const NO_POINT: u8 = 1;
 
 /// A file name as listed: control characters escaped as Rust does
 /// (`\n`, `\u{1b}`), so a crafted name cannot break the listing into

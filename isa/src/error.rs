@@ -148,6 +148,28 @@ pub enum TableError {
         /// Entries of the line table.
         lines: usize,
     },
+    /// The line table's runs do not decode, or do not cover the code.
+    #[error("bad line table at byte {at}: {what}")]
+    BadLines {
+        /// File offset of the table.
+        at: usize,
+        /// What is wrong.
+        what: &'static str,
+    },
+    /// A typed block record that does not decode.
+    #[error("bad typed block record at byte {at} of the blocks section: {what}")]
+    BadBlock {
+        /// Offset of the record in the section.
+        at: usize,
+        /// What is wrong.
+        what: &'static str,
+    },
+    /// A `block` operand that is not where a record starts.
+    #[error("block at pc {pc} names no record")]
+    BlockOutOfRange {
+        /// Instruction index.
+        pc: u32,
+    },
     /// A source location names a file past the file table.
     #[error("source location of pc {pc} names a missing file")]
     FileOutOfRange {

@@ -3,7 +3,7 @@
 //! ```text
 //! magic    "GBC\0"
 //! version  u16                         (VERSION)
-//! section  × 8, in the order of Section::ALL:
+//! section  × 9, in the order of Section::ALL:
 //!          tag u8, length u32, payload[length]
 //! crc      u32                         CRC32 of every byte before it
 //! ```
@@ -17,28 +17,36 @@
 //! | `Strings`  | count u32, then each: length u32, UTF-8 bytes             |
 //! | `Programs` | count u32, then each: number, entry, end, seq count u32,  |
 //! |            | then `(number u32, pc u32)` per sequence entry            |
-//! | `Lines`    | count u32, then each: file u16, line u32, col u32         |
+//! | `Lines`    | instruction count u32, then the runs of the line table    |
+//! |            | (see [`LineTable`](crate::LineTable)), delta-encoded      |
 //! | `Files`    | count u32, then each: length u32, UTF-8 name, hash u32    |
 //! | `Machine`  | UTF-8 text, the whole payload                             |
 //! | `Regs`     | num_regs u16                                              |
+//! | `Blocks`   | the typed block records back to back (see [`block`])      |
 //!
 //! The order is fixed and nothing may be left over, so every accepted file
 //! has exactly one encoding: `from_bytes(b)?.to_bytes() == b`. New sections
-//! come with a new [`VERSION`].
+//! come with a new [`VERSION`]. `Blocks` is last so that a loader may keep
+//! the file's buffer as the section ([`Module::from_vec`]).
+//!
+//! [`block`]: crate::block
 
 use alloc::string::String;
 use alloc::vec::Vec;
+use core::ops::Range;
 
 use crate::encoding::{len_to_u32, Le, Reader};
 use crate::instr::MAX_ENCODED_LEN;
-use crate::{Instr, LoadError, Module, Program, SourceFileInfo, SourceLoc, TableError};
+use crate::{Instr, LineTable, LoadError, Module, Program, SourceFileInfo, TableError};
 
 /// The first four bytes of every `.gbc` file.
 pub const MAGIC: [u8; 4] = *b"GBC\0";
 
 /// The format version this build reads and writes.
-/// Version 2 added `skipblock` (block delete decided at run time).
-pub const VERSION: u16 = 2;
+/// Version 2 added `skipblock` (block delete decided at run time);
+/// version 3 the typed blocks (`block`, the `Blocks` section) and the
+/// line table as delta-encoded runs.
+pub const VERSION: u16 = 3;
 
 /// Bytes before the first section: magic and version.
 pub const HEADER_LEN: usize = 6;
@@ -58,7 +66,7 @@ pub enum Section {
     Strings = 3,
     /// Program table.
     Programs = 4,
-    /// One source location per instruction.
+    /// The source location of every instruction, as runs.
     Lines = 5,
     /// Source files.
     Files = 6,
@@ -66,11 +74,13 @@ pub enum Section {
     Machine = 7,
     /// Register count.
     Regs = 8,
+    /// Typed block records.
+    Blocks = 9,
 }
 
 impl Section {
     /// Every section, in file order.
-    pub const ALL: [Section; 8] = [
+    pub const ALL: [Section; 9] = [
         Section::Code,
         Section::Consts,
         Section::Strings,
@@ -79,6 +89,7 @@ impl Section {
         Section::Files,
         Section::Machine,
         Section::Regs,
+        Section::Blocks,
     ];
 }
 
@@ -88,11 +99,12 @@ const CONST_LEN: usize = 8;
 const STRING_MIN: usize = 4;
 const PROGRAM_MIN: usize = 16;
 const SEQ_LEN: usize = 8;
-const LINE_LEN: usize = 10;
 const FILE_MIN: usize = 8;
 
-/// Parses the container; does not verify cross-references.
-pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
+/// Parses the container; does not verify cross-references. The module
+/// comes without its `blocks`, whose payload's place in `bytes` is
+/// returned for the caller to copy or keep.
+pub(crate) fn read(bytes: &[u8]) -> Result<(Module, Range<usize>), LoadError> {
     let head = bytes.get(..bytes.len().min(MAGIC.len())).unwrap_or(&[]);
     if !MAGIC.starts_with(head) {
         return Err(LoadError::BadMagic);
@@ -130,15 +142,7 @@ pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
     })?;
     let strings = payload(sections.strings, |s| table(s, STRING_MIN, read_string))?;
     let programs = payload(sections.programs, |s| table(s, PROGRAM_MIN, read_program))?;
-    let lines = payload(sections.lines, |s| {
-        table(s, LINE_LEN, |s| {
-            Ok(SourceLoc {
-                file: s.u16()?,
-                line: s.u32()?,
-                col: s.u32()?,
-            })
-        })
-    })?;
+    let lines = payload(sections.lines, read_lines)?;
     let files = payload(sections.files, |s| {
         table(s, FILE_MIN, |s| {
             Ok(SourceFileInfo {
@@ -152,7 +156,10 @@ pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
         utf8(s.rest(), at)
     })?;
     let num_regs = payload(sections.regs, Reader::u16)?;
-    Ok(Module {
+    let mut blocks = sections.blocks;
+    let start = blocks.pos();
+    let end = start + blocks.rest().len();
+    let module = Module {
         code,
         consts,
         strings,
@@ -161,7 +168,9 @@ pub(crate) fn read(bytes: &[u8]) -> Result<Module, LoadError> {
         files,
         machine,
         num_regs,
-    })
+        blocks: Vec::new(),
+    };
+    Ok((module, start..end))
 }
 
 /// Each section's payload, found from the section headers alone.
@@ -174,6 +183,7 @@ struct Sections<'a> {
     files: Reader<'a>,
     machine: Reader<'a>,
     regs: Reader<'a>,
+    blocks: Reader<'a>,
 }
 
 /// Walks the eight section headers: each tag where the format puts it,
@@ -203,6 +213,7 @@ fn layout<'a>(r: &mut Reader<'a>) -> Result<Sections<'a>, LoadError> {
         files: next(Section::Files)?,
         machine: next(Section::Machine)?,
         regs: next(Section::Regs)?,
+        blocks: next(Section::Blocks)?,
     })
 }
 
@@ -212,7 +223,7 @@ fn layout<'a>(r: &mut Reader<'a>) -> Result<Sections<'a>, LoadError> {
 /// so a code section out of proportion to its line table is refused
 /// before it costs memory (8 bytes per instruction decoded).
 fn declared_code(sections: &Sections<'_>) -> Result<usize, LoadError> {
-    let lines = sections.lines.clone().count(LINE_LEN)?;
+    let lines = sections.lines.clone().len_u32()?;
     let bytes = sections.code.remaining();
     let fits = lines <= bytes && bytes <= lines.saturating_mul(MAX_ENCODED_LEN);
     if fits {
@@ -262,6 +273,15 @@ fn read_code(s: &mut Reader<'_>, expected: usize) -> Result<Vec<Instr>, LoadErro
         code.push(Instr::read(s, pc)?);
     }
     Ok(code)
+}
+
+/// The line table: its instruction count, then runs to the end of the
+/// payload (held as they are encoded, so in no more memory than the
+/// section's bytes and a checkpoint per 32 runs).
+fn read_lines(s: &mut Reader<'_>) -> Result<LineTable, LoadError> {
+    let at = s.pos();
+    let count = s.u32()?;
+    LineTable::read(s.rest(), count).map_err(|e| TableError::BadLines { at, what: e.what() }.into())
 }
 
 fn read_string(s: &mut Reader<'_>) -> Result<String, LoadError> {
@@ -323,14 +343,7 @@ pub(crate) fn write(m: &Module) -> Vec<u8> {
             }
         }
     });
-    section_out(&mut out, Section::Lines, |out| {
-        len_to_u32(m.lines.len()).put(out);
-        for loc in &m.lines {
-            loc.file.put(out);
-            loc.line.put(out);
-            loc.col.put(out);
-        }
-    });
+    section_out(&mut out, Section::Lines, |out| m.lines.write(out));
     section_out(&mut out, Section::Files, |out| {
         len_to_u32(m.files.len()).put(out);
         for f in &m.files {
@@ -342,6 +355,9 @@ pub(crate) fn write(m: &Module) -> Vec<u8> {
         out.extend_from_slice(m.machine.as_bytes());
     });
     section_out(&mut out, Section::Regs, |out| m.num_regs.put(out));
+    section_out(&mut out, Section::Blocks, |out| {
+        out.extend_from_slice(&m.blocks);
+    });
     crc32fast::hash(&out).put(&mut out);
     out
 }

@@ -24,7 +24,7 @@
 //!     ],
 //!     consts: vec![12.5],
 //!     programs: vec![Program { number: 1, entry: 0, end: 3, seqs: vec![(10, 0)] }],
-//!     lines: vec![SourceLoc { file: 0, line: 1, col: 1 }; 3],
+//!     lines: vec![SourceLoc { file: 0, line: 1, col: 1 }; 3].into(),
 //!     files: vec![SourceFileInfo { name: "part.nc".into(), hash: 0 }],
 //!     num_regs: 1,
 //!     ..Module::default()
@@ -42,18 +42,22 @@
 
 extern crate alloc;
 
+pub mod block;
 mod disasm;
 mod encoding;
 mod error;
 pub mod format;
 mod instr;
+mod lines;
 mod module;
 mod opcodes;
 pub mod operand;
 mod verify;
 
 pub use error::{LoadError, TableError};
+pub use block::BlockWord;
 pub use instr::{Instr, Opcode};
+pub use lines::{LineTable, LineTableError};
 pub use module::{Module, Program, SourceFileInfo, SourceLoc};
 pub use operand::{
     addr, Addr, ArgVar, CmpCode, CmpOp, Const, FuncCode, MathFunc, Operand, OperandKind,

@@ -3,7 +3,8 @@
 use alloc::string::String;
 use alloc::vec::Vec;
 
-use crate::{Instr, LoadError};
+use crate::block::{encode_record, BlockWord};
+use crate::{Instr, LineTable, LoadError};
 
 /// A compiled module: what `gbcc` writes and the VM runs.
 ///
@@ -20,8 +21,8 @@ pub struct Module {
     pub strings: Vec<String>,
     /// Program table (`Prog` operands); `programs[0]` is the main program.
     pub programs: Vec<Program>,
-    /// Source location of each instruction (same length as `code`).
-    pub lines: Vec<SourceLoc>,
+    /// Source location of each instruction (as many as `code`), as runs.
+    pub lines: LineTable,
     /// Source files that `lines` refer to.
     pub files: Vec<SourceFileInfo>,
     /// The compile-relevant machine settings, canonical text: the VM refuses
@@ -30,6 +31,9 @@ pub struct Module {
     /// Registers used (`<= 256`); every `Reg` operand is `< num_regs`, so
     /// the VM can allocate the register file once.
     pub num_regs: u16,
+    /// The records of the typed blocks (`block` operands are offsets into
+    /// it), back to back; see [`block`](crate::block) for the layout.
+    pub blocks: Vec<u8>,
 }
 
 /// One `O` program of the module.
@@ -79,9 +83,40 @@ impl Module {
     /// allocates more than a small multiple of `bytes.len()`, whatever the
     /// bytes are.
     pub fn from_bytes(bytes: &[u8]) -> Result<Module, LoadError> {
-        let module = crate::format::read(bytes)?;
+        let (mut module, blocks) = crate::format::read(bytes)?;
+        module.blocks = bytes.get(blocks).unwrap_or_default().to_vec();
         module.verify()?;
         Ok(module)
+    }
+
+    /// Like [`Module::from_bytes`], but keeps the file's buffer as the
+    /// module's `blocks` (the section is last in the file): a large file
+    /// is then in memory once, not twice.
+    pub fn from_vec(mut bytes: Vec<u8>) -> Result<Module, LoadError> {
+        let (mut module, blocks) = crate::format::read(&bytes)?;
+        bytes.truncate(blocks.end);
+        bytes.drain(..blocks.start);
+        module.blocks = bytes;
+        module.verify()?;
+        Ok(module)
+    }
+
+    /// Appends a typed block of `words` to `blocks`; its offset for a
+    /// `block` instruction, or `None` (nothing added) when the words do
+    /// not fit a record (see [`block::encode_record`](crate::block::encode_record)).
+    pub fn push_block(&mut self, words: &[BlockWord]) -> Option<u32> {
+        let at = u32::try_from(self.blocks.len()).ok()?;
+        encode_record(words, &mut self.blocks).then_some(at)
+    }
+
+    /// The words of the typed block at `rec`, in order, each handed to
+    /// `f`; `None` if no well-formed record starts there (never on a
+    /// verified module's `block` operands).
+    pub fn block_words(&self, rec: u32, f: impl FnMut(BlockWord)) -> Option<()> {
+        let at = usize::try_from(rec).ok()?;
+        crate::block::decode_record(&self.blocks, at, f)
+            .ok()
+            .map(|_| ())
     }
 
     /// The pc of the first block numbered `seq` in program `prog`, if any.
@@ -113,6 +148,7 @@ impl PartialEq for Module {
             files,
             machine,
             num_regs,
+            blocks,
         } = self;
         *code == other.code
             && consts.len() == other.consts.len()
@@ -126,6 +162,7 @@ impl PartialEq for Module {
             && *files == other.files
             && *machine == other.machine
             && *num_regs == other.num_regs
+            && *blocks == other.blocks
     }
 }
 

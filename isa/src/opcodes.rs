@@ -83,6 +83,10 @@ macro_rules! for_each_instr {
             SetMsg = 0x32, "setmsg" { s: Str };
             /// Execute the block built since the last `Exec`.
             Exec = 0x33, "exec" { flags: U8 };
+            /// Execute the typed block whose record starts at byte `rec` of
+            /// the `Blocks` section: its words, all known at compile time,
+            /// go to the kernel as one block (no `wordk` run, no `exec`).
+            Block = 0x34, "block" { rec: Rec };
 
             // --- calls ---
             /// `M98 P… L count`: call a subprogram known at compile time.

@@ -95,6 +95,9 @@ define_operands! {
     CmpCode: u8,
     /// A block-skip switch, `1..=9` (`/` is 1, `/n` is n; see [`SWITCHES`]).
     Switch: u8,
+    /// A typed block: the byte offset of a record in `Module::blocks`;
+    /// must be where a record starts.
+    Rec: u32,
 }
 
 /// The block-skip switches a [`Switch`] operand may name.
@@ -131,6 +134,7 @@ impl fmt::Display for Operand {
                 None => write!(f, "cmp?{c}"),
             },
             Operand::Switch(n) => write!(f, "/{n}"),
+            Operand::Rec(b) => write!(f, "b{b}"),
         }
     }
 }

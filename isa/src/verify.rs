@@ -4,6 +4,7 @@
 
 use alloc::vec::Vec;
 
+use crate::block::Starts;
 use crate::encoding::len_to_u32;
 use crate::{addr, CmpOp, Instr, LoadError, MathFunc, Module, Operand, TableError, SWITCHES};
 
@@ -23,7 +24,9 @@ impl Module {
     /// instruction, each naming a listed file; a non-empty program table with
     /// distinct numbers, code ranges inside the code and sorted sequence
     /// tables pointing into their own program; a block-skip guard jumps
-    /// forward.
+    /// forward; every typed block record decodes (addresses valid,
+    /// varints and decimals well formed, raw values finite, nothing past
+    /// the section) and every `block` operand is where one starts.
     pub fn verify(&self) -> Result<(), LoadError> {
         self.verify_sizes()?;
         if self.num_regs > MAX_REGS {
@@ -36,9 +39,13 @@ impl Module {
         // it indexes is known to be sound.
         self.verify_programs()?;
         self.verify_lines()?;
+        let starts = Starts::scan(&self.blocks).map_err(|(at, e)| TableError::BadBlock {
+            at,
+            what: e.what(),
+        })?;
         for (pc, instr) in self.code.iter().enumerate() {
             let pc = len_to_u32(pc);
-            instr.try_visit_operands(|op| self.check_operand(pc, op))?;
+            instr.try_visit_operands(|op| self.check_operand(pc, op, &starts))?;
             if let Instr::SkipBlock { target, .. } = *instr {
                 // Forward only: between two charges of the block budget
                 // the pc must only move forward (the VM's bound).
@@ -76,11 +83,14 @@ impl Module {
         if !fits(self.machine.len()) {
             return too_large("machine text");
         }
+        if !fits(self.blocks.len()) {
+            return too_large("blocks section");
+        }
         Ok(())
     }
 
     #[inline]
-    fn check_operand(&self, pc: u32, op: Operand) -> Result<(), LoadError> {
+    fn check_operand(&self, pc: u32, op: Operand, starts: &Starts) -> Result<(), LoadError> {
         let below = |index: u32, len: usize| usize::try_from(index).is_ok_and(|i| i < len);
         let ok = match op {
             Operand::Reg(r) => u16::from(r) < self.num_regs,
@@ -93,6 +103,7 @@ impl Module {
             Operand::Addr(a) => a <= addr::MAX,
             Operand::ArgVar(v) => ARG_VARS.contains(&v),
             Operand::Switch(n) => SWITCHES.contains(&n),
+            Operand::Rec(b) => starts.contains(b),
             // Flags, alarm codes and variable numbers: any value; the VM
             // gives them meaning (an unknown #var is a run-time alarm).
             Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => true,
@@ -112,14 +123,20 @@ impl Module {
             }
             .into());
         }
-        match self
+        let files_ok = self
+            .lines
+            .max_file()
+            .is_none_or(|f| usize::from(f) < self.files.len());
+        if files_ok {
+            return Ok(());
+        }
+        // The first culprit, found only once there is one.
+        let pc = self
             .lines
             .iter()
             .position(|loc| usize::from(loc.file) >= self.files.len())
-        {
-            Some(pc) => Err(TableError::FileOutOfRange { pc: len_to_u32(pc) }.into()),
-            None => Ok(()),
-        }
+            .unwrap_or(0);
+        Err(TableError::FileOutOfRange { pc: len_to_u32(pc) }.into())
     }
 
     fn verify_programs(&self) -> Result<(), LoadError> {
@@ -173,6 +190,7 @@ fn operand_error(pc: u32, op: Operand) -> LoadError {
         Operand::Const(_) => return LoadError::ConstOutOfRange { pc },
         Operand::Str(_) => return LoadError::StringOutOfRange { pc },
         Operand::Prog(_) => return LoadError::ProgramOutOfRange { pc },
+        Operand::Rec(_) => return TableError::BlockOutOfRange { pc }.into(),
         Operand::FuncCode(_) => "math function",
         Operand::CmpCode(_) => "comparison",
         Operand::Addr(_) => "word address",

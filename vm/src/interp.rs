@@ -210,7 +210,6 @@ impl Vm {
         self.module
             .lines
             .get(self.last_exec as usize)
-            .copied()
             .unwrap_or_default()
     }
 
@@ -306,12 +305,7 @@ impl Vm {
         let _ = self.nc.flush(sink);
         // An error about a profile block names that block.
         let pc = e.at.unwrap_or(pc);
-        let loc = self
-            .module
-            .lines
-            .get(pc as usize)
-            .copied()
-            .unwrap_or_default();
+        let loc = self.module.lines.get(pc as usize).unwrap_or_default();
         let file = self
             .module
             .files
@@ -500,6 +494,19 @@ impl Vm {
                 self.msg = None;
             }
             Instr::Exec { .. } => {
+                self.synced = false;
+                return self.exec_block(sink);
+            }
+            Instr::Block { rec } => {
+                // A typed block: its words straight from the record into
+                // the scratch, then the kernel, as `wordk… exec` would.
+                let words = &mut self.words;
+                let read = self
+                    .module
+                    .block_words(rec, |w| words.push(w.addr, w.value, w.flags));
+                if read.is_none() {
+                    return fault(AlarmCode::JumpTargetMissing, "a typed block is missing");
+                }
                 self.synced = false;
                 return self.exec_block(sink);
             }

@@ -154,6 +154,7 @@ fn module(raw: Vec<(u8, u8, u8, u8, u32)>, cuts: (u32, u32), seqs: Vec<(u32, u32
         }],
         machine: String::new(),
         num_regs: u16::from(REGS),
+        blocks: Vec::new(),
     }
 }
 

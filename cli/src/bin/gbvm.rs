@@ -153,7 +153,8 @@ fn load(path: &Path) -> Result<isa::Module, String> {
              (gbcc {name} -o x.gbc && gbvm run x.gbc)"
         ));
     }
-    isa::Module::from_bytes(&bytes).map_err(|e| format!("{name}: not a valid .gbc module: {e}"))
+    // The buffer becomes the module's typed blocks: the file is held once.
+    isa::Module::from_vec(bytes).map_err(|e| format!("{name}: not a valid .gbc module: {e}"))
 }
 
 /// Text that comes from a module's tables (file names, messages), as the

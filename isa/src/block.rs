@@ -1,0 +1,344 @@
+//! Typed blocks: the records of the `Blocks` section that a `block`
+//! instruction hands to the kernel in one go.
+//!
+//! A record is one NC block whose words are all known at compile time:
+//!
+//! ```text
+//! record  count u8 (1..=255), then `count` words in the order written
+//! word    head u8: address (bits 0–4, 0..=28), flags (bits 5–6),
+//!                  raw (bit 7)
+//!         raw = 1: the value's f64 bits, u64 little-endian (finite)
+//!         raw = 0: the value as a decimal, one LEB128 varint v:
+//!                  v & 63 = exponent + 22 (exponent -22..=22),
+//!                  v >> 6 & 1 = sign, v >> 7 = mantissa (< 2^53)
+//! ```
+//!
+//! A decimal decodes as `mantissa × 10^exponent` computed with one exact
+//! division or multiplication: mantissa and power of ten are both exact
+//! doubles, so the result is the correctly rounded value of the decimal,
+//! the same `f64` the lexer (and `str::parse`) gives for that literal.
+//! The encoder keeps a decimal only when it decodes to the very bits it was
+//! given, and falls back to the raw bits otherwise, so every finite value
+//! survives bit for bit; a literal as written (`12.5`, `-33.25`, `0.2`)
+//! takes one to three bytes.
+
+use alloc::vec::Vec;
+
+/// A word of a typed block, as the kernel receives it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockWord {
+    /// The word address (see [`addr`](crate::addr)).
+    pub addr: u8,
+    /// The value.
+    pub value: f64,
+    /// The flags `wordk` carries (bit 0: written without a decimal point,
+    /// bit 1: written as a literal); only these two bits fit a record.
+    pub flags: u8,
+}
+
+/// The flag bits a record can carry.
+pub const FLAG_MASK: u8 = 0b11;
+
+/// The most words one record holds.
+pub const MAX_WORDS: usize = u8::MAX as usize;
+
+const ADDR_BITS: u8 = 0b1_1111;
+const FLAG_SHIFT: u32 = 5;
+const RAW: u8 = 0x80;
+
+/// Decimal exponents a compact value may have: 10^22 is the largest
+/// power of ten that is an exact double.
+const EXP_MAX: i32 = 22;
+const EXP_BIAS: u64 = EXP_MAX as u64;
+const EXP_CODES: u64 = 2 * EXP_BIAS + 1;
+/// Mantissas below 2^53 are exact doubles.
+const MANTISSA_LIMIT: u64 = 1 << 53;
+/// A u64 takes at most ten LEB128 bytes.
+const VARINT_MAX: usize = 10;
+
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// Why a record does not decode (the verifier reports it with the
+/// record's place).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RecordError {
+    /// The record or a value runs past the end of the section.
+    Truncated,
+    /// A record without words.
+    Empty,
+    /// A word address past `,R`.
+    BadAddress,
+    /// A varint longer than needed or than a u64.
+    BadVarint,
+    /// A decimal exponent outside -22..=22 or a mantissa of 2^53 or more.
+    BadDecimal,
+    /// A raw value that is infinite or NaN.
+    NotFinite,
+}
+
+impl RecordError {
+    /// What is wrong, in words.
+    pub const fn what(self) -> &'static str {
+        match self {
+            RecordError::Truncated => "record runs past the section",
+            RecordError::Empty => "record without words",
+            RecordError::BadAddress => "bad word address",
+            RecordError::BadVarint => "malformed varint",
+            RecordError::BadDecimal => "decimal out of range",
+            RecordError::NotFinite => "value not finite",
+        }
+    }
+}
+
+/// Appends the record of `words`; `false` (and nothing appended) when they
+/// do not fit one: no word, more than [`MAX_WORDS`], a bad address, flags
+/// outside [`FLAG_MASK`] or a value that is not finite.
+pub fn encode_record(words: &[BlockWord], out: &mut Vec<u8>) -> bool {
+    let Ok(count) = u8::try_from(words.len()) else {
+        return false;
+    };
+    let fits = |w: &BlockWord| {
+        w.addr <= crate::addr::MAX && w.flags & !FLAG_MASK == 0 && w.value.is_finite()
+    };
+    if count == 0 || !words.iter().all(fits) {
+        return false;
+    }
+    out.push(count);
+    for w in words {
+        let head = w.addr | w.flags << FLAG_SHIFT;
+        match decimal_of(w.value) {
+            Some(v) => {
+                out.push(head);
+                put_varint(v, out);
+            }
+            None => {
+                out.push(head | RAW);
+                out.extend_from_slice(&w.value.to_bits().to_le_bytes());
+            }
+        }
+    }
+    true
+}
+
+/// Decodes the record starting at `bytes[at]`, calling `f` with each word
+/// in order; returns the position just past it.
+pub fn decode_record(
+    bytes: &[u8],
+    at: usize,
+    mut f: impl FnMut(BlockWord),
+) -> Result<usize, RecordError> {
+    let mut pos = at;
+    let count = *bytes.get(pos).ok_or(RecordError::Truncated)?;
+    pos += 1;
+    if count == 0 {
+        return Err(RecordError::Empty);
+    }
+    for _ in 0..count {
+        let head = *bytes.get(pos).ok_or(RecordError::Truncated)?;
+        pos += 1;
+        let addr = head & ADDR_BITS;
+        if addr > crate::addr::MAX {
+            return Err(RecordError::BadAddress);
+        }
+        let (value, next) = if head & RAW != 0 {
+            raw_value(bytes, pos)?
+        } else {
+            decode_value(bytes, pos)?
+        };
+        pos = next;
+        f(BlockWord {
+            addr,
+            value,
+            flags: (head >> FLAG_SHIFT) & FLAG_MASK,
+        });
+    }
+    Ok(pos)
+}
+
+/// The compact form of `v`, if it has one: the varint of a decimal that
+/// decodes to exactly `v`. Tries the fewest decimals first, so `12.5`
+/// is stored as 125 × 10^-1.
+pub fn decimal_of(v: f64) -> Option<u64> {
+    if !v.is_finite() {
+        return None;
+    }
+    let sign = u64::from(v.is_sign_negative());
+    let a = v.abs();
+    for (decimals, &scale) in POW10.iter().enumerate() {
+        let scaled = a * scale;
+        if scaled >= MANTISSA_LIMIT as f64 {
+            break;
+        }
+        // The product is within an ulp or so of the mantissa sought;
+        // the neighbours cover truncation on either side.
+        let near = scaled as u64;
+        for m in [near, near + 1, near.saturating_sub(1)] {
+            let exp = -(decimals as i32);
+            let code = pack(m, sign, exp);
+            if m < MANTISSA_LIMIT && decimal_value(code).map(f64::to_bits) == Some(v.to_bits()) {
+                return Some(code);
+            }
+        }
+    }
+    None
+}
+
+fn pack(mantissa: u64, sign: u64, exp: i32) -> u64 {
+    // exp is within ±22 here, so the bias keeps it non-negative.
+    let exp_code = (i64::from(exp) + EXP_BIAS as i64) as u64;
+    mantissa << 7 | sign << 6 | exp_code
+}
+
+/// The value of a decimal's varint, or `None` if it is out of range.
+fn decimal_value(code: u64) -> Option<f64> {
+    let exp_code = code & 63;
+    let mantissa = code >> 7;
+    if exp_code >= EXP_CODES || mantissa >= MANTISSA_LIMIT {
+        return None;
+    }
+    let m = mantissa as f64;
+    let exp = exp_code as usize;
+    let bias = EXP_BIAS as usize;
+    // Both operands exact: one correctly rounded operation.
+    let magnitude = if exp >= bias {
+        m * *POW10.get(exp - bias)?
+    } else {
+        m / *POW10.get(bias - exp)?
+    };
+    Some(if code >> 6 & 1 == 1 {
+        -magnitude
+    } else {
+        magnitude
+    })
+}
+
+/// Appends the compact or raw form of one value (head byte not included):
+/// what a record stores after each word's head.
+pub fn encode_value(v: f64, out: &mut Vec<u8>) -> bool {
+    match decimal_of(v) {
+        Some(code) => {
+            put_varint(code, out);
+            true
+        }
+        None => {
+            out.extend_from_slice(&v.to_bits().to_le_bytes());
+            false
+        }
+    }
+}
+
+/// Reads a compact value at `bytes[at]`; returns it and the position
+/// past it.
+pub fn decode_value(bytes: &[u8], at: usize) -> Result<(f64, usize), RecordError> {
+    let (code, next) = get_varint(bytes, at)?;
+    let value = decimal_value(code).ok_or(RecordError::BadDecimal)?;
+    Ok((value, next))
+}
+
+/// Reads a raw value at `bytes[at]`.
+pub fn raw_value(bytes: &[u8], at: usize) -> Result<(f64, usize), RecordError> {
+    let end = at.checked_add(8).ok_or(RecordError::Truncated)?;
+    let raw: [u8; 8] = bytes
+        .get(at..end)
+        .and_then(|s| s.try_into().ok())
+        .ok_or(RecordError::Truncated)?;
+    let value = f64::from_bits(u64::from_le_bytes(raw));
+    if !value.is_finite() {
+        return Err(RecordError::NotFinite);
+    }
+    Ok((value, end))
+}
+
+/// Appends `v` as LEB128: seven bits a byte, low bits first, the high bit
+/// set on every byte but the last.
+pub(crate) fn put_varint(mut v: u64, out: &mut Vec<u8>) {
+    while v >= 0x80 {
+        out.push((v as u8 & 0x7f) | 0x80);
+        v >>= 7;
+    }
+    out.push(v as u8);
+}
+
+/// Reads a LEB128 varint; refuses one longer than a u64 or with a
+/// needless zero last byte (so every value has one encoding).
+pub(crate) fn get_varint(bytes: &[u8], at: usize) -> Result<(u64, usize), RecordError> {
+    let mut v: u64 = 0;
+    for i in 0..VARINT_MAX {
+        let byte = *bytes.get(at + i).ok_or(RecordError::Truncated)?;
+        let bits = u64::from(byte & 0x7f);
+        let shift = 7 * i as u32;
+        if shift == 63 && bits > 1 {
+            return Err(RecordError::BadVarint);
+        }
+        v |= bits << shift;
+        if byte & 0x80 == 0 {
+            if i > 0 && byte == 0 {
+                return Err(RecordError::BadVarint);
+            }
+            return Ok((v, at + i + 1));
+        }
+    }
+    Err(RecordError::BadVarint)
+}
+
+/// The record starts of a `Blocks` section, found by decoding every
+/// record in turn: what a `block` operand must point at.
+#[derive(Debug, Default)]
+pub(crate) struct Starts {
+    bits: Vec<u64>,
+}
+
+impl Starts {
+    /// Walks the whole section; the offset and fault of the first bad
+    /// record on failure.
+    pub(crate) fn scan(bytes: &[u8]) -> Result<Starts, (usize, RecordError)> {
+        let mut bits = alloc::vec![0u64; bytes.len().div_ceil(64)];
+        let mut pos = 0;
+        while pos < bytes.len() {
+            if let Some(word) = bits.get_mut(pos / 64) {
+                *word |= 1 << (pos % 64);
+            }
+            pos = decode_record(bytes, pos, |_| {}).map_err(|e| (pos, e))?;
+        }
+        Ok(Starts { bits })
+    }
+
+    pub(crate) fn contains(&self, at: u32) -> bool {
+        let Ok(at) = usize::try_from(at) else {
+            return false;
+        };
+        self.bits
+            .get(at / 64)
+            .is_some_and(|word| word >> (at % 64) & 1 == 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn literals_take_few_bytes() {
+        // 12.5 = 125 × 10^-1: (125 << 7 | 21) = 16021, two varint bytes.
+        assert_eq!(decimal_of(12.5), Some(125 << 7 | 21));
+        // -33.25 = -3325 × 10^-2: sign bit set, exponent code 20.
+        assert_eq!(decimal_of(-33.25), Some(3325 << 7 | 1 << 6 | 20));
+        // -0.0 keeps its sign: mantissa 0, sign 1, exponent 0 (code 22).
+        assert_eq!(decimal_of(-0.0), Some(1 << 6 | 22));
+        let mut out = Vec::new();
+        put_varint(16021, &mut out);
+        assert_eq!(out, [0x95, 0x7d]);
+    }
+
+    #[test]
+    fn overlong_varints_are_refused() {
+        assert_eq!(get_varint(&[0x80, 0x00], 0), Err(RecordError::BadVarint));
+        assert_eq!(get_varint(&[0xff; 11], 0), Err(RecordError::BadVarint));
+        assert_eq!(get_varint(&[0x80], 0), Err(RecordError::Truncated));
+        let max = [0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x01];
+        assert_eq!(get_varint(&max, 0), Ok((u64::MAX, 10)));
+    }
+}
