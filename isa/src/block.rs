@@ -109,7 +109,7 @@ pub fn encode_record(words: &[BlockWord], out: &mut Vec<u8>) -> bool {
     out.push(count);
     for w in words {
         let head = w.addr | w.flags << FLAG_SHIFT;
-        match decimal_of(w.value) {
+        match decimal_of(w.value).filter(|&c| shorter_than_raw(c)) {
             Some(v) => {
                 out.push(head);
                 put_varint(v, out);
@@ -159,8 +159,8 @@ pub fn decode_record(
 }
 
 /// The compact form of `v`, if it has one: the varint of a decimal that
-/// decodes to exactly `v`. Tries the fewest decimals first, so `12.5`
-/// is stored as 125 × 10^-1.
+/// decodes to exactly `v`, with the fewest digits (`12.5` is 125 × 10^-1,
+/// `3000` is 3 × 10^3).
 pub fn decimal_of(v: f64) -> Option<u64> {
     if !v.is_finite() {
         return None;
@@ -179,11 +179,32 @@ pub fn decimal_of(v: f64) -> Option<u64> {
             let exp = -(decimals as i32);
             let code = pack(m, sign, exp);
             if m < MANTISSA_LIMIT && decimal_value(code).map(f64::to_bits) == Some(v.to_bits()) {
-                return Some(code);
+                return Some(if decimals == 0 {
+                    strip_zeros(m, sign)
+                } else {
+                    code
+                });
             }
         }
     }
     None
+}
+
+/// An integer mantissa with its trailing zeros moved into the exponent
+/// (`m × 10^e` stays an integer below 2^53, so exact either way).
+fn strip_zeros(mut m: u64, sign: u64) -> u64 {
+    let mut exp = 0;
+    while m != 0 && m % 10 == 0 && exp < EXP_MAX {
+        m /= 10;
+        exp += 1;
+    }
+    pack(m, sign, exp)
+}
+
+/// Whether the compact form of a value is worth it: a varint of more
+/// than 8 bytes is longer than the raw bits.
+fn shorter_than_raw(code: u64) -> bool {
+    code < 1 << 56
 }
 
 fn pack(mantissa: u64, sign: u64, exp: i32) -> u64 {
@@ -215,31 +236,16 @@ fn decimal_value(code: u64) -> Option<f64> {
     })
 }
 
-/// Appends the compact or raw form of one value (head byte not included):
-/// what a record stores after each word's head.
-pub fn encode_value(v: f64, out: &mut Vec<u8>) -> bool {
-    match decimal_of(v) {
-        Some(code) => {
-            put_varint(code, out);
-            true
-        }
-        None => {
-            out.extend_from_slice(&v.to_bits().to_le_bytes());
-            false
-        }
-    }
-}
-
 /// Reads a compact value at `bytes[at]`; returns it and the position
 /// past it.
-pub fn decode_value(bytes: &[u8], at: usize) -> Result<(f64, usize), RecordError> {
+fn decode_value(bytes: &[u8], at: usize) -> Result<(f64, usize), RecordError> {
     let (code, next) = get_varint(bytes, at)?;
     let value = decimal_value(code).ok_or(RecordError::BadDecimal)?;
     Ok((value, next))
 }
 
 /// Reads a raw value at `bytes[at]`.
-pub fn raw_value(bytes: &[u8], at: usize) -> Result<(f64, usize), RecordError> {
+fn raw_value(bytes: &[u8], at: usize) -> Result<(f64, usize), RecordError> {
     let end = at.checked_add(8).ok_or(RecordError::Truncated)?;
     let raw: [u8; 8] = bytes
         .get(at..end)
@@ -328,6 +334,10 @@ mod tests {
         assert_eq!(decimal_of(-33.25), Some(3325 << 7 | 1 << 6 | 20));
         // -0.0 keeps its sign: mantissa 0, sign 1, exponent 0 (code 22).
         assert_eq!(decimal_of(-0.0), Some(1 << 6 | 22));
+        // 3000 = 3 × 10^3: exponent code 25.
+        assert_eq!(decimal_of(3000.0), Some(3 << 7 | 25));
+        // 0.1 + 0.2 needs 17 digits: no decimal form below 2^53.
+        assert_eq!(decimal_of(0.1 + 0.2), None);
         let mut out = Vec::new();
         put_varint(16021, &mut out);
         assert_eq!(out, [0x95, 0x7d]);

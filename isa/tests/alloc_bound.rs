@@ -8,7 +8,7 @@ mod common;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
-use common::{put_u32, reseal, sample_module, section};
+use common::{edit_lines, put_u32, reseal, sample_module, section};
 use isa::format::Section;
 use isa::Module;
 
@@ -103,7 +103,8 @@ fn allocation_is_bounded_by_input_size() {
     let mut big = sample_module();
     big.code
         .extend(std::iter::repeat_n(isa::Instr::Ret, 100_000));
-    big.lines.resize(big.code.len(), big.lines[0]);
+    let first = big.lines.get(0).unwrap();
+    edit_lines(&mut big, |l| l.resize(l.len() + 100_000, first));
     big.programs[1].end = big.code.len() as u32;
     let big = big.to_bytes();
     let used = allocated_by_load(&big);

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{put_u32, reseal, sample_module, seal, section};
+use common::{edit_lines, put_u32, reseal, sample_module, seal, section};
 use isa::format::{Section, CRC_LEN, HEADER_LEN, MAGIC, VERSION};
 use isa::{addr, Instr, LoadError, Module, Program, TableError};
 use proptest::prelude::*;
@@ -168,7 +168,6 @@ fn huge_length_fields() {
             "first seq count",
             section(&bytes, Section::Programs).payload + 4 + 12,
         ),
-        ("lines count", section(&bytes, Section::Lines).payload),
         ("files count", section(&bytes, Section::Files).payload),
         (
             "machine length",
@@ -189,12 +188,33 @@ fn huge_length_fields() {
 }
 
 #[test]
+fn a_huge_line_count_is_refused_against_the_code() {
+    // The line table's count is of instructions, not of its records: a
+    // huge one is out of proportion to the code section (164 bytes).
+    let bytes = sample_module().to_bytes();
+    let at = section(&bytes, Section::Lines).payload;
+    let code = section(&bytes, Section::Code).len;
+    let mut bad = bytes.clone();
+    put_u32(&mut bad, at, u32::MAX);
+    assert_eq!(
+        Module::from_bytes(&reseal(bad)),
+        Err(TableError::CodeSize {
+            bytes: code,
+            lines: u32::MAX as usize
+        }
+        .into())
+    );
+}
+
+#[test]
 fn code_ending_mid_instruction() {
     // Without the final `ret`, the code ends in `retseq r0`; cut its
     // operand byte off (and shorten the section to match).
     let mut module = sample_module();
     module.code.pop();
-    module.lines.pop();
+    edit_lines(&mut module, |l| {
+        l.pop();
+    });
     module.programs[1].end -= 1;
     let mut bytes = module.to_bytes();
     let code = section(&bytes, Section::Code);
@@ -572,7 +592,9 @@ fn bad_program_tables() {
 fn bad_line_tables() {
     rejects(
         with(|m| {
-            m.lines.pop();
+            edit_lines(m, |l| {
+                l.pop();
+            })
         }),
         TableError::LinesMismatch {
             lines: 40,
@@ -581,7 +603,7 @@ fn bad_line_tables() {
         .into(),
     );
     rejects(
-        with(|m| m.lines[7].file = 2),
+        with(|m| edit_lines(m, |l| l[7].file = 2)),
         TableError::FileOutOfRange { pc: 7 }.into(),
     );
     rejects(
@@ -698,7 +720,7 @@ proptest! {
                 1 => m.programs[which % 2].entry = value,
                 2 => m.programs[which % 2].end = value,
                 3 => m.programs[which % 2].seqs.push((value, value / 2)),
-                4 => m.lines[which % 41].file = value as u16,
+                4 => edit_lines(&mut m, |l| l[which % 41].file = value as u16),
                 _ => m.code[which % 41] = Instr::Jump { target: value },
             }
         }

@@ -5,16 +5,23 @@ mod common;
 
 use std::collections::BTreeSet;
 
-use common::sample_module;
+use common::{sample_module, typed_module};
 use isa::{Instr, LoadError, Module, Opcode, Operand, OperandKind, OperandMut};
 use proptest::prelude::*;
 
 #[test]
 fn sample_uses_every_opcode() {
-    let used: BTreeSet<Opcode> = sample_module().code.iter().map(Instr::opcode).collect();
+    // The typed blocks have a sample of their own.
+    let (sample, typed) = (sample_module(), typed_module());
+    let used: BTreeSet<Opcode> = sample
+        .code
+        .iter()
+        .chain(&typed.code)
+        .map(Instr::opcode)
+        .collect();
     let all: BTreeSet<Opcode> = Opcode::ALL.iter().copied().collect();
     let missing: Vec<_> = all.difference(&used).collect();
-    assert!(missing.is_empty(), "sample_module lacks {missing:?}");
+    assert!(missing.is_empty(), "the samples lack {missing:?}");
 }
 
 #[test]

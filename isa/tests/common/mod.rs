@@ -4,7 +4,7 @@
 #![allow(dead_code)] // each test binary uses a different subset
 
 use isa::format::{Section, CRC_LEN, HEADER_LEN};
-use isa::{addr, Instr, Module, Program, SourceFileInfo, SourceLoc};
+use isa::{addr, BlockWord, Instr, Module, Program, SourceFileInfo, SourceLoc};
 
 /// A main program `O0001` and a macro `O9010`, together using every opcode
 /// at least once (checked by `sample_uses_every_opcode`).
@@ -90,7 +90,7 @@ pub fn sample_module() -> Module {
                 seqs: vec![(1, main_len)],
             },
         ],
-        lines,
+        lines: lines.into(),
         files: vec![
             SourceFileInfo {
                 name: "part.nc".to_string(),
@@ -103,7 +103,74 @@ pub fn sample_module() -> Module {
         ],
         machine: "control=gsk980tdi\nunits=mm\n".to_string(),
         num_regs: 7,
+        blocks: Vec::new(),
     }
+}
+
+/// Changes the per-instruction locations of `m` through a plain vector
+/// (the table itself is runs and is only appended to).
+pub fn edit_lines(m: &mut Module, edit: impl FnOnce(&mut Vec<SourceLoc>)) {
+    let mut locs: Vec<SourceLoc> = m.lines.iter().collect();
+    edit(&mut locs);
+    m.lines = locs.into();
+}
+
+/// A main program of typed blocks: `G98 G0 X50. Z2.` then `G1 X12.5
+/// Z-33.25 F0.2` (literals as the lexer reads them), then a word stored
+/// raw (0.1 + 0.2 has no short decimal) and a computed -0 (flags 0).
+pub fn typed_module() -> Module {
+    let w = |letter: char, value: f64, flags: u8| BlockWord {
+        addr: addr::from_letter(letter).unwrap(),
+        value,
+        flags,
+    };
+    const LIT: u8 = 2; // a literal with a decimal point
+    const LIT_NO_POINT: u8 = 3;
+    let records: [&[BlockWord]; 3] = [
+        &[
+            w('G', 98.0, LIT_NO_POINT),
+            w('G', 0.0, LIT_NO_POINT),
+            w('X', 50.0, LIT),
+            w('Z', 2.0, LIT),
+        ],
+        &[
+            w('G', 1.0, LIT_NO_POINT),
+            w('X', 12.5, LIT),
+            w('Z', -33.25, LIT),
+            w('F', 0.2, LIT),
+        ],
+        &[w('U', 0.1 + 0.2, LIT), w('W', -0.0, 0)],
+    ];
+    let mut m = Module {
+        programs: vec![Program {
+            number: 1,
+            entry: 0,
+            end: 4,
+            seqs: vec![(10, 1)],
+        }],
+        files: vec![SourceFileInfo {
+            name: "typed.nc".to_string(),
+            hash: 0,
+        }],
+        num_regs: 1,
+        ..Module::default()
+    };
+    for (i, words) in records.iter().enumerate() {
+        let rec = m.push_block(words).expect("the words fit a record");
+        m.code.push(Instr::Block { rec });
+        m.lines.push(SourceLoc {
+            file: 0,
+            line: i as u32 + 1,
+            col: 1,
+        });
+    }
+    m.code.push(Instr::Halt);
+    m.lines.push(SourceLoc {
+        file: 0,
+        line: 3,
+        col: 1,
+    });
+    m
 }
 
 /// Recomputes the CRC trailer, so a forged change reaches the parser and the
