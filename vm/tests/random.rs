@@ -28,6 +28,23 @@ const VARS: [u32; 14] = [
 const ADDRS: [u8; 5] = [6, 23, 25, 5, 12];
 const BUDGET: u64 = 50;
 
+/// The typed blocks every generated module carries (`G0 X1 Z2.`,
+/// `G1 F0.5`, `M30`), and where each record starts.
+fn typed_blocks() -> (Vec<u8>, Vec<u32>) {
+    let w = |addr, value, flags| isa::BlockWord { addr, value, flags };
+    let records: [&[isa::BlockWord]; 3] = [
+        &[w(6, 0.0, 3), w(23, 1.0, 3), w(25, 2.0, 2)],
+        &[w(6, 1.0, 3), w(23, -2.5, 2), w(5, 0.5, 2)],
+        &[w(12, 30.0, 3)],
+    ];
+    let mut m = Module::default();
+    let recs = records
+        .iter()
+        .map(|words| m.push_block(words).expect("fits a record"))
+        .collect();
+    (m.blocks, recs)
+}
+
 /// One instruction from raw numbers; operands are brought into range so
 /// the module verifies (`len` instructions, `progs` programs).
 fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
@@ -37,7 +54,7 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
     let var = VARS[w as usize % VARS.len()];
     let target = w % len;
     let prog = w % progs;
-    match sel % 30 {
+    match sel % 31 {
         0 => Instr::LoadK { dst: ra, k },
         1 => Instr::LoadNull { dst: ra },
         2 => Instr::Mov { dst: ra, src: rb },
@@ -104,6 +121,12 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
         },
         27 => Instr::Ret,
         28 => Instr::RetSeq { seq: ra },
+        29 => {
+            let recs = typed_blocks().1;
+            Instr::Block {
+                rec: recs[w as usize % recs.len()],
+            }
+        }
         _ => Instr::Halt,
     }
 }
@@ -154,7 +177,7 @@ fn module(raw: Vec<(u8, u8, u8, u8, u32)>, cuts: (u32, u32), seqs: Vec<(u32, u32
         }],
         machine: String::new(),
         num_regs: u16::from(REGS),
-        blocks: Vec::new(),
+        blocks: typed_blocks().0,
     }
 }
 
@@ -200,12 +223,12 @@ proptest! {
 
 #[test]
 fn the_generator_reaches_every_family() {
-    // Selector values 0…29 cover every arm of `instr` (28 opcodes: jump
+    // Selector values 0…30 cover every arm of `instr` (29 opcodes: jump
     // and jumpifnot have two selectors each); a word address
     // outside the table would not verify.
-    let kinds: std::collections::HashSet<_> = (0..30u8)
+    let kinds: std::collections::HashSet<_> = (0..31u8)
         .map(|sel| instr((sel, 1, 2, 3, 4), 10, 2).opcode())
         .collect();
-    assert_eq!(kinds.len(), 28, "28 distinct opcodes");
+    assert_eq!(kinds.len(), 29, "29 distinct opcodes");
     assert!(ADDRS.iter().all(|&a| a <= addr::MAX));
 }

@@ -114,6 +114,20 @@ impl Asm {
         self.op(Instr::Word { addr, src });
     }
 
+    /// A typed block of literal words `(letter, value, flags)`, in order.
+    pub fn block(&mut self, words: &[(char, f64, u8)]) -> u32 {
+        let words: Vec<isa::BlockWord> = words
+            .iter()
+            .map(|&(letter, value, flags)| isa::BlockWord {
+                addr: addr::from_letter(letter).expect("a letter"),
+                value,
+                flags,
+            })
+            .collect();
+        let rec = self.m.push_block(&words).expect("the words fit a record");
+        self.op(Instr::Block { rec })
+    }
+
     /// The block built so far is executed.
     pub fn exec(&mut self) -> u32 {
         self.op(Instr::Exec { flags: 0 })
