@@ -71,7 +71,11 @@ fn dash_is_standard_input_and_output() {
     assert_eq!(text(&run.stdout), CANON);
     // -S -o - prints the listing; -E -o FILE writes the expansion there.
     let s = gbcc(&["part.nc", "-S", "-o", "-"], &d);
-    assert!(text(&s.stdout).contains("block b0 (G0 X10 Z2)"), "{}", text(&s.stdout));
+    assert!(
+        text(&s.stdout).contains("block b0 (G0 X10 Z2)"),
+        "{}",
+        text(&s.stdout)
+    );
     let e = gbcc(&["part.nc", "-E", "-o", "part.e.nc"], &d);
     assert_eq!(e.status.code(), Some(0));
     assert!(e.stdout.is_empty());

@@ -571,9 +571,7 @@ impl<'a> Gen<'a> {
                 None => false,
             },
         });
-        let typed = all_known
-            .then(|| self.module.push_block(&known))
-            .flatten();
+        let typed = all_known.then(|| self.module.push_block(&known)).flatten();
         for w in split.nc.iter().filter(|_| typed.is_none()) {
             self.set_loc(w.span);
             match w.value {

@@ -194,7 +194,7 @@ pub fn decimal_of(v: f64) -> Option<u64> {
 /// (`m × 10^e` stays an integer below 2^53, so exact either way).
 fn strip_zeros(mut m: u64, sign: u64) -> u64 {
     let mut exp = 0;
-    while m != 0 && m % 10 == 0 && exp < EXP_MAX {
+    while m != 0 && m.is_multiple_of(10) && exp < EXP_MAX {
         m /= 10;
         exp += 1;
     }

@@ -54,8 +54,8 @@ mod opcodes;
 pub mod operand;
 mod verify;
 
-pub use error::{LoadError, TableError};
 pub use block::BlockWord;
+pub use error::{LoadError, TableError};
 pub use instr::{Instr, Opcode};
 pub use lines::{LineTable, LineTableError};
 pub use module::{Module, Program, SourceFileInfo, SourceLoc};

@@ -189,7 +189,7 @@ impl LineTable {
 
     /// Encodes `run` after the closed ones.
     fn close(&mut self, run: Run) {
-        if self.closed % CHECK_EVERY == 0 {
+        if self.closed.is_multiple_of(CHECK_EVERY) {
             self.checkpoints.push(Checkpoint {
                 offset: u32::try_from(self.bytes.len()).unwrap_or(u32::MAX),
                 base: self.base,

@@ -39,10 +39,8 @@ impl Module {
         // it indexes is known to be sound.
         self.verify_programs()?;
         self.verify_lines()?;
-        let starts = Starts::scan(&self.blocks).map_err(|(at, e)| TableError::BadBlock {
-            at,
-            what: e.what(),
-        })?;
+        let starts = Starts::scan(&self.blocks)
+            .map_err(|(at, e)| TableError::BadBlock { at, what: e.what() })?;
         for (pc, instr) in self.code.iter().enumerate() {
             let pc = len_to_u32(pc);
             instr.try_visit_operands(|op| self.check_operand(pc, op, &starts))?;

@@ -110,7 +110,13 @@ fn records_that_do_not_fit_are_refused_whole() {
         vec![ok; 256],
         vec![BlockWord { addr: 29, ..ok }],
         vec![BlockWord { flags: 4, ..ok }],
-        vec![ok, BlockWord { value: f64::NAN, ..ok }],
+        vec![
+            ok,
+            BlockWord {
+                value: f64::NAN,
+                ..ok
+            },
+        ],
         vec![BlockWord {
             value: f64::INFINITY,
             ..ok
@@ -171,7 +177,10 @@ fn tampered_records_are_refused() {
         cases.push((b, want));
     };
     // Record 1's count 0.
-    edit(&|b| b[second] = 0, bad_block(second, "record without words"));
+    edit(
+        &|b| b[second] = 0,
+        bad_block(second, "record without words"),
+    );
     // Its G word's address 29 (past ,R), flags kept.
     edit(
         &|b| b[second + 1] = (b[second + 1] & !0x1f) | 29,
@@ -206,7 +215,9 @@ fn tampered_records_are_refused() {
         (&[1, 23, 0x96, 0x00], "malformed varint"),
         (&[1, 23, 45], "decimal out of range"),
         (
-            &[1, 23, 0x96, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x01],
+            &[
+                1, 23, 0x96, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x01,
+            ],
             "malformed varint",
         ),
     ];
@@ -259,23 +270,38 @@ fn tampered_line_tables_are_refused() {
     // By hand (isa/src/lines.rs): 4 instructions; a run of 3 (lines 1, 2,
     // 3, step 1: head 3 << 2 | 2 = 14, zigzag(+1) = 2, col 1), then the
     // halt on line 3 (head 1 << 2 = 4, line delta 0, col 1).
-    assert_eq!(
-        &bytes[at..at + lines.len],
-        &[4, 0, 0, 0, 14, 2, 1, 4, 0, 1]
-    );
+    assert_eq!(&bytes[at..at + lines.len], &[4, 0, 0, 0, 14, 2, 1, 4, 0, 1]);
     let bad = |what| Err(TableError::BadLines { at, what }.into());
     let cases: [(&[u8], Result<Module, LoadError>); 8] = [
         // A run of no instructions.
-        (&[4, 0, 0, 0, 2, 2, 1, 4, 0, 1], bad("run not in its one encoding")),
+        (
+            &[4, 0, 0, 0, 2, 2, 1, 4, 0, 1],
+            bad("run not in its one encoding"),
+        ),
         // One instruction with a step.
-        (&[4, 0, 0, 0, 14, 2, 1, 6, 0, 1], bad("run not in its one encoding")),
+        (
+            &[4, 0, 0, 0, 14, 2, 1, 6, 0, 1],
+            bad("run not in its one encoding"),
+        ),
         // A file "change" to the same file 0.
-        (&[4, 0, 0, 0, 15, 0, 2, 1, 4, 0, 1], bad("run not in its one encoding")),
+        (
+            &[4, 0, 0, 0, 15, 0, 2, 1, 4, 0, 1],
+            bad("run not in its one encoding"),
+        ),
         // Runs covering 3 of 4 instructions, and 5 of 4.
-        (&[4, 0, 0, 0, 14, 2, 1], bad("runs do not cover the instructions")),
-        (&[4, 0, 0, 0, 14, 2, 1, 8, 0, 1], bad("runs do not cover the instructions")),
+        (
+            &[4, 0, 0, 0, 14, 2, 1],
+            bad("runs do not cover the instructions"),
+        ),
+        (
+            &[4, 0, 0, 0, 14, 2, 1, 8, 0, 1],
+            bad("runs do not cover the instructions"),
+        ),
         // A line before line 0 (delta -4 from line 3: zigzag 7).
-        (&[4, 0, 0, 0, 14, 2, 1, 4, 7, 1], bad("line, column, file or pc out of range")),
+        (
+            &[4, 0, 0, 0, 14, 2, 1, 4, 7, 1],
+            bad("line, column, file or pc out of range"),
+        ),
         // A run cut short, and an overlong varint.
         (&[4, 0, 0, 0, 14, 2, 1, 4, 0], bad("malformed run")),
         (&[4, 0, 0, 0, 14, 2, 1, 4, 0x80, 0, 1], bad("malformed run")),
@@ -285,11 +311,7 @@ fn tampered_line_tables_are_refused() {
         assert_eq!(Module::from_bytes(&forged), want, "{payload:?}");
     }
     // A run in file 1 (head 4 | 1, file 1): there is one file only.
-    let forged = with_payload(
-        &bytes,
-        Section::Lines,
-        &[4, 0, 0, 0, 14, 2, 1, 5, 1, 0, 1],
-    );
+    let forged = with_payload(&bytes, Section::Lines, &[4, 0, 0, 0, 14, 2, 1, 5, 1, 0, 1]);
     assert_eq!(
         Module::from_bytes(&forged),
         Err(TableError::FileOutOfRange { pc: 3 }.into())

@@ -34,8 +34,16 @@ fn program(typed: bool, blocks: &[&[(char, f64, u8)]]) -> isa::Module {
 #[test]
 fn a_typed_block_runs_as_its_words() {
     let blocks: [&[(char, f64, u8)]; 3] = [
-        &[('G', 0.0, NO_POINT), ('X', 10.0, NO_POINT), ('Z', 2.0, NO_POINT)],
-        &[('G', 1.0, NO_POINT), ('Z', -5.0, NO_POINT), ('F', 100.0, NO_POINT)],
+        &[
+            ('G', 0.0, NO_POINT),
+            ('X', 10.0, NO_POINT),
+            ('Z', 2.0, NO_POINT),
+        ],
+        &[
+            ('G', 1.0, NO_POINT),
+            ('Z', -5.0, NO_POINT),
+            ('F', 100.0, NO_POINT),
+        ],
         &[('M', 30.0, NO_POINT)],
     ];
     // The canon of `G00 X10 Z2 / G01 Z-5 F100 / M30` on the reference
@@ -71,7 +79,11 @@ fn an_alarm_of_a_typed_block_names_its_line() {
     // line 2 in either form.
     let blocks: [&[(char, f64, u8)]; 2] = [
         &[('G', 0.0, NO_POINT), ('X', 10.0, POINT), ('Z', 2.0, POINT)],
-        &[('G', 1.0, NO_POINT), ('X', 10.0, POINT), ('G', 999.0, NO_POINT)],
+        &[
+            ('G', 1.0, NO_POINT),
+            ('X', 10.0, POINT),
+            ('G', 999.0, NO_POINT),
+        ],
     ];
     let typed = alarm_of(run(program(true, &blocks)).0);
     let words = alarm_of(run(program(false, &blocks)).0);
