@@ -290,35 +290,59 @@ pub(crate) fn get_varint(bytes: &[u8], at: usize) -> Result<(u64, usize), Record
     Err(RecordError::BadVarint)
 }
 
-/// The record starts of a `Blocks` section, found by decoding every
-/// record in turn: what a `block` operand must point at.
-#[derive(Debug, Default)]
-pub(crate) struct Starts {
-    bits: Vec<u64>,
+/// A walk over the records of a `Blocks` section, checking each one as
+/// it passes: the verifier follows the `block` operands with it in pc
+/// order (they must not go back), so it needs no table of record starts.
+#[derive(Debug)]
+pub(crate) struct Walk<'a> {
+    bytes: &'a [u8],
+    /// The start of the record last reached, and where the next begins.
+    here: Option<usize>,
+    next: usize,
 }
 
-impl Starts {
-    /// Walks the whole section; the offset and fault of the first bad
-    /// record on failure.
-    pub(crate) fn scan(bytes: &[u8]) -> Result<Starts, (usize, RecordError)> {
-        let mut bits = alloc::vec![0u64; bytes.len().div_ceil(64)];
-        let mut pos = 0;
-        while pos < bytes.len() {
-            if let Some(word) = bits.get_mut(pos / 64) {
-                *word |= 1 << (pos % 64);
-            }
-            pos = decode_record(bytes, pos, |_| {}).map_err(|e| (pos, e))?;
+impl<'a> Walk<'a> {
+    pub(crate) fn new(bytes: &'a [u8]) -> Walk<'a> {
+        Walk {
+            bytes,
+            here: None,
+            next: 0,
         }
-        Ok(Starts { bits })
     }
 
-    pub(crate) fn contains(&self, at: u32) -> bool {
+    /// Moves on to the record starting at `at`: `Ok(false)` if no record
+    /// starts there at or after the current one.
+    pub(crate) fn seek(&mut self, at: u32) -> Result<bool, (usize, RecordError)> {
         let Ok(at) = usize::try_from(at) else {
-            return false;
+            return Ok(false);
         };
-        self.bits
-            .get(at / 64)
-            .is_some_and(|word| word >> (at % 64) & 1 == 1)
+        loop {
+            match self.here {
+                Some(here) if here == at => return Ok(true),
+                Some(here) if here > at => return Ok(false),
+                _ => {}
+            }
+            if !self.step()? {
+                return Ok(false);
+            }
+        }
+    }
+
+    /// Checks every record not passed yet.
+    pub(crate) fn finish(&mut self) -> Result<(), (usize, RecordError)> {
+        while self.step()? {}
+        Ok(())
+    }
+
+    /// Decodes the next record; `false` at the end of the section.
+    fn step(&mut self) -> Result<bool, (usize, RecordError)> {
+        if self.next >= self.bytes.len() {
+            return Ok(false);
+        }
+        let start = self.next;
+        self.next = decode_record(self.bytes, start, |_| {}).map_err(|e| (start, e))?;
+        self.here = Some(start);
+        Ok(true)
     }
 }
 

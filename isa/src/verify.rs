@@ -4,7 +4,7 @@
 
 use alloc::vec::Vec;
 
-use crate::block::Starts;
+use crate::block::{RecordError, Walk};
 use crate::encoding::len_to_u32;
 use crate::{addr, CmpOp, Instr, LoadError, MathFunc, Module, Operand, TableError, SWITCHES};
 
@@ -26,7 +26,9 @@ impl Module {
     /// tables pointing into their own program; a block-skip guard jumps
     /// forward; every typed block record decodes (addresses valid,
     /// varints and decimals well formed, raw values finite, nothing past
-    /// the section) and every `block` operand is where one starts.
+    /// the section) and every `block` operand is where one starts, the
+    /// operands in pc order never going back (the compiler appends a
+    /// record per block; checking so needs no table of record starts).
     pub fn verify(&self) -> Result<(), LoadError> {
         self.verify_sizes()?;
         if self.num_regs > MAX_REGS {
@@ -39,11 +41,16 @@ impl Module {
         // it indexes is known to be sound.
         self.verify_programs()?;
         self.verify_lines()?;
-        let starts = Starts::scan(&self.blocks)
-            .map_err(|(at, e)| TableError::BadBlock { at, what: e.what() })?;
+        let bad_block = |(at, e): (usize, RecordError)| TableError::BadBlock { at, what: e.what() };
+        let mut records = Walk::new(&self.blocks);
         for (pc, instr) in self.code.iter().enumerate() {
             let pc = len_to_u32(pc);
-            instr.try_visit_operands(|op| self.check_operand(pc, op, &starts))?;
+            instr.try_visit_operands(|op| self.check_operand(pc, op))?;
+            if let Instr::Block { rec } = *instr {
+                if !records.seek(rec).map_err(bad_block)? {
+                    return Err(TableError::BlockOutOfRange { pc }.into());
+                }
+            }
             if let Instr::SkipBlock { target, .. } = *instr {
                 // Forward only: between two charges of the block budget
                 // the pc must only move forward (the VM's bound).
@@ -52,6 +59,7 @@ impl Module {
                 }
             }
         }
+        records.finish().map_err(bad_block)?;
         Ok(())
     }
 
@@ -88,7 +96,7 @@ impl Module {
     }
 
     #[inline]
-    fn check_operand(&self, pc: u32, op: Operand, starts: &Starts) -> Result<(), LoadError> {
+    fn check_operand(&self, pc: u32, op: Operand) -> Result<(), LoadError> {
         let below = |index: u32, len: usize| usize::try_from(index).is_ok_and(|i| i < len);
         let ok = match op {
             Operand::Reg(r) => u16::from(r) < self.num_regs,
@@ -101,7 +109,8 @@ impl Module {
             Operand::Addr(a) => a <= addr::MAX,
             Operand::ArgVar(v) => ARG_VARS.contains(&v),
             Operand::Switch(n) => SWITCHES.contains(&n),
-            Operand::Rec(b) => starts.contains(b),
+            // Followed through the records in `verify`.
+            Operand::Rec(_) => true,
             // Flags, alarm codes and variable numbers: any value; the VM
             // gives them meaning (an unknown #var is a run-time alarm).
             Operand::U8(_) | Operand::U16(_) | Operand::U32(_) | Operand::Var(_) => true,

@@ -239,6 +239,21 @@ fn tampered_records_are_refused() {
 }
 
 #[test]
+fn block_operands_must_not_go_back() {
+    // Records 1 then 0: the second operand goes back.
+    let mut m = typed_module();
+    m.code.swap(0, 1);
+    assert_eq!(
+        m.verify(),
+        Err(TableError::BlockOutOfRange { pc: 1 }.into())
+    );
+    // The same record twice in a row is allowed.
+    let mut m = typed_module();
+    m.code[1] = Instr::Block { rec: 0 };
+    assert_eq!(m.verify(), Ok(()));
+}
+
+#[test]
 fn block_operands_must_name_a_record() {
     let len = typed_module().blocks.len() as u32;
     for rec in [1, 11, 13, len, u32::MAX] {

@@ -159,8 +159,17 @@ fn module(raw: Vec<(u8, u8, u8, u8, u32)>, cuts: (u32, u32), seqs: Vec<(u32, u32
         p.seqs.dedup();
     }
     let progs = programs.len() as u32;
+    let mut code: Vec<Instr> = raw.into_iter().map(|r| instr(r, len, progs)).collect();
+    // `block` operands may not go back in pc order (the verifier's rule).
+    let mut last = 0;
+    for i in &mut code {
+        if let Instr::Block { rec } = i {
+            *rec = (*rec).max(last);
+            last = *rec;
+        }
+    }
     Module {
-        code: raw.into_iter().map(|r| instr(r, len, progs)).collect(),
+        code,
         consts: CONSTS.to_vec(),
         strings: vec!["MSG".to_string()],
         programs,
