@@ -277,7 +277,7 @@ fn read_code(s: &mut Reader<'_>, expected: usize) -> Result<Vec<Instr>, LoadErro
 
 /// The line table: its instruction count, then runs to the end of the
 /// payload (held as they are encoded, so in no more memory than the
-/// section's bytes and a checkpoint per 32 runs).
+/// section's bytes and a checkpoint per 8 runs).
 fn read_lines(s: &mut Reader<'_>) -> Result<LineTable, LoadError> {
     let at = s.pos();
     let count = s.u32()?;

@@ -27,7 +27,7 @@ use crate::block::{get_varint, put_varint};
 use crate::SourceLoc;
 
 /// Runs between two checkpoints.
-pub const CHECK_EVERY: u32 = 32;
+pub const CHECK_EVERY: u32 = 8;
 
 /// One run of instructions with regular locations.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -7,6 +7,7 @@ use alloc::string::ToString;
 use alloc::vec;
 use alloc::vec::Vec;
 
+use crate::loc_cache::LocCache;
 use crate::vars::{slot, Vars};
 use isa::{Instr, Module};
 use nc::block::round_half_away;
@@ -142,6 +143,8 @@ pub struct Vm {
     done: bool,
     /// The pc of the last `Exec` that ran.
     last_exec: u32,
+    /// Locations of recent blocks (asked for after every block).
+    locs: LocCache,
     /// Return [`Status::Sync`] before reading a current position; a
     /// controller whose motion lags the VM sets it.
     pub sync_positions: bool,
@@ -194,6 +197,7 @@ impl Vm {
             repeat: 1,
             done: false,
             last_exec: 0,
+            locs: LocCache::default(),
             sync_positions: false,
             synced: false,
             storage: None,
@@ -207,10 +211,7 @@ impl Vm {
 
     /// The source place of the block executed last (for traces).
     pub fn last_loc(&self) -> isa::SourceLoc {
-        self.module
-            .lines
-            .get(self.last_exec as usize)
-            .unwrap_or_default()
+        self.locs.get(&self.module.lines, self.last_exec)
     }
 
     /// Whether block-skip switch `switch` (1–9; `/` is 1) is on: a `/n`

@@ -21,6 +21,7 @@
 extern crate alloc;
 
 mod interp;
+mod loc_cache;
 mod vars;
 
 pub use interp::{Alarm, Status, Storage, Vm, PROFILE};
