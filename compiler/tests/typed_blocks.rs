@@ -1,0 +1,106 @@
+//! Lowering to typed blocks: a block whose words are all known when it
+//! is compiled becomes one `block` instruction with its words in order; a
+//! computed word keeps the block in word form.
+
+use compiler::{compile, Options};
+use isa::{BlockWord, Instr, Module};
+
+fn module(src: &str, optimize: bool) -> Module {
+    let options = Options {
+        optimize,
+        ..Options::default()
+    };
+    let c = compile("typed.nc", src.as_bytes(), &options);
+    assert!(!c.has_errors(), "{}", c.render());
+    c.module.expect("a module")
+}
+
+/// Each `block`'s words as `(address letter, value, flags)`.
+fn typed(m: &Module) -> Vec<Vec<(String, f64, u8)>> {
+    m.code
+        .iter()
+        .filter_map(|i| match *i {
+            Instr::Block { rec } => {
+                let mut words = Vec::new();
+                m.block_words(rec, |w: BlockWord| {
+                    let name = isa::addr::name(w.addr).unwrap_or("?").to_string();
+                    words.push((name, w.value, w.flags));
+                })
+                .expect("a record");
+                Some(words)
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+fn count(m: &Module, what: fn(&Instr) -> bool) -> usize {
+    m.code.iter().filter(|i| what(i)).count()
+}
+
+#[test]
+fn a_literal_program_has_no_word_form() {
+    let m = module("G98 G00 X50 Z2.\nG01 X12.5 Z-33.25 F0.2 M08\nM30\n", true);
+    // Flags as the lexer sets them: 3 a literal without a decimal point,
+    // 2 one with.
+    let s = |a: &str, v: f64, f: u8| (a.to_string(), v, f);
+    assert_eq!(
+        typed(&m),
+        [
+            vec![
+                s("G", 98.0, 3),
+                s("G", 0.0, 3),
+                s("X", 50.0, 3),
+                s("Z", 2.0, 2)
+            ],
+            vec![
+                s("G", 1.0, 3),
+                s("X", 12.5, 2),
+                s("Z", -33.25, 2),
+                s("F", 0.2, 2),
+                s("M", 8.0, 3)
+            ],
+            vec![s("M", 30.0, 3)],
+        ]
+    );
+    let word_form = |i: &Instr| {
+        matches!(
+            i,
+            Instr::WordK { .. } | Instr::Word { .. } | Instr::Exec { .. }
+        )
+    };
+    assert_eq!(count(&m, word_form), 0);
+    // Each block is located at its own line, column 1.
+    let pcs: Vec<usize> = (0..m.code.len())
+        .filter(|&pc| matches!(m.code[pc], Instr::Block { .. }))
+        .collect();
+    let lines: Vec<u32> = pcs
+        .iter()
+        .map(|&pc| m.lines.get(pc).unwrap().line)
+        .collect();
+    assert_eq!(lines, [1, 2, 3]);
+}
+
+#[test]
+fn computed_words_keep_the_word_form_folded_ones_do_not() {
+    let src = "#1 = 2\nG00 X[#1 * 5] Z#1\nG00 X[#100] Z1\nM30\n";
+    // Folded (-O1): #1 is known to be 2, so the first block is typed with
+    // computed values (flags 0); #100 is not known: word form.
+    let folded = module(src, true);
+    let blocks = typed(&folded);
+    assert_eq!(blocks.len(), 2, "{blocks:?}");
+    assert_eq!(
+        blocks[0],
+        [
+            ("G".to_string(), 0.0, 3),
+            ("X".to_string(), 10.0, 0),
+            ("Z".to_string(), 2.0, 0)
+        ]
+    );
+    assert_eq!(blocks[1], [("M".to_string(), 30.0, 3)]);
+    assert_eq!(count(&folded, |i| matches!(i, Instr::Exec { .. })), 1);
+    // Without folding both computed blocks are in word form.
+    let plain = module(src, false);
+    assert_eq!(typed(&plain).len(), 1);
+    assert_eq!(count(&plain, |i| matches!(i, Instr::Exec { .. })), 2);
+}
