@@ -260,6 +260,8 @@ impl LineTable {
     /// cover exactly `count` instructions.
     pub(crate) fn read(bytes: &[u8], count: u32) -> Result<LineTable, LineTableError> {
         let mut table = LineTable::new();
+        // The runs are encoded again as read, into as many bytes.
+        table.bytes.reserve_exact(bytes.len());
         let mut at = 0;
         while at < bytes.len() {
             let (run, next) = decode_run(bytes, at, table.base_for_next())?;
@@ -272,6 +274,7 @@ impl LineTable {
         if table.len() != count as usize {
             return Err(LineTableError::CountMismatch);
         }
+        table.checkpoints.shrink_to_fit();
         Ok(table)
     }
 
