@@ -154,6 +154,26 @@ fn typed_module_round_trips_and_lists_its_blocks() {
     assert_eq!(module.block_words(13, |_| {}), None, "not a record start");
 }
 
+#[test]
+fn from_vec_keeps_the_file_buffer_as_the_blocks() {
+    // The file is held once: the module's records are the file's own
+    // buffer, cut down to the last section, not a copy of it.
+    let module = typed_module();
+    let bytes = module.to_bytes();
+    let buffer = bytes.as_ptr();
+    let loaded = Module::from_vec(bytes).expect("loads");
+    assert_eq!(loaded.blocks.as_ptr(), buffer);
+    assert_eq!(loaded, module);
+    // A refused file is refused the same way by both loaders.
+    let mut bad = module.to_bytes();
+    bad[4] = 2; // version 2
+    assert_eq!(
+        Module::from_vec(bad.clone()),
+        Err(LoadError::UnsupportedVersion { found: 2 })
+    );
+    assert_eq!(Module::from_bytes(&bad), Module::from_vec(bad));
+}
+
 /// The typed module with its blocks section replaced.
 fn with_blocks(blocks: Vec<u8>) -> Module {
     Module {
