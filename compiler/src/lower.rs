@@ -83,7 +83,6 @@ impl<'a> Gen<'a> {
         let module = Module {
             machine: machine.compile_keys(),
             code: Vec::with_capacity(instrs),
-
             consts: Vec::with_capacity(2 * blocks),
             ..Module::default()
         };
