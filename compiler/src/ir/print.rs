@@ -26,7 +26,19 @@ const LOC_COLUMN: usize = 44;
 pub fn print(m: &Module, files: &[SourceFile]) -> String {
     let mut out = String::new();
     for f in &m.functions {
-        let p = Printer { m, f, files };
+        // Blocks are named by their place in the layout.
+        let mut place = vec![usize::MAX; f.blocks.len()];
+        for (i, b) in f.layout.iter().enumerate() {
+            if let Some(p) = place.get_mut(b.index()) {
+                *p = i;
+            }
+        }
+        let p = Printer {
+            m,
+            f,
+            files,
+            place,
+        };
         p.function(&mut out);
     }
     out
@@ -36,6 +48,8 @@ struct Printer<'a> {
     m: &'a Module,
     f: &'a Function,
     files: &'a [SourceFile],
+    /// Each block's place in the layout, by handle.
+    place: Vec<usize>,
 }
 
 impl Printer<'_> {
@@ -45,7 +59,7 @@ impl Printer<'_> {
             let Some(block) = self.f.blocks.get(b) else {
                 continue;
             };
-            let _ = writeln!(out, "{}:", name(b));
+            let _ = writeln!(out, "{}:", self.name(b));
             for &op in &block.ops {
                 let text = self.f.ops.get(op).map_or(String::new(), |o| self.op(o));
                 let loc = self.f.op_locs.get(op.index()).copied();
@@ -120,8 +134,8 @@ impl Printer<'_> {
 
     fn term(&self, t: &Terminator) -> String {
         match t {
-            Terminator::Follow(b) => format!("follow {}", name(*b)),
-            Terminator::Jump(b) => format!("jump {}", name(*b)),
+            Terminator::Follow(b) => format!("follow {}", self.name(*b)),
+            Terminator::Jump(b) => format!("jump {}", self.name(*b)),
             Terminator::Branch {
                 cond,
                 then,
@@ -129,11 +143,11 @@ impl Printer<'_> {
             } => format!(
                 "branch {} then {} else {}",
                 self.expr(*cond),
-                name(*then),
-                name(*otherwise)
+                self.name(*then),
+                self.name(*otherwise)
             ),
             Terminator::Skip { switch, skip, next } => {
-                format!("skip /{switch} to {} else {}", name(*skip), name(*next))
+                format!("skip /{switch} to {} else {}", self.name(*skip), self.name(*next))
             }
             Terminator::Goto { seq } => format!("goto N{}", self.bracketed(*seq)),
             Terminator::GotoIf {
@@ -148,9 +162,9 @@ impl Printer<'_> {
                 self.expr(*j),
                 rel_name(*op),
                 self.expr(*k),
-                name(*next)
+                self.name(*next)
             ),
-            Terminator::Call { call, next } => format!("{} then {}", self.call(call), name(*next)),
+            Terminator::Call { call, next } => format!("{} then {}", self.call(call), self.name(*next)),
             Terminator::Return { seq: None } => "return".into(),
             Terminator::Return { seq: Some(s) } => format!("return to N{}", self.bracketed(*s)),
             Terminator::Halt => "halt".into(),
@@ -179,6 +193,13 @@ impl Printer<'_> {
             let _ = write!(s, " #{var}={}", self.expr(v));
         }
         s
+    }
+
+    fn name(&self, b: Handle<Block>) -> String {
+        match self.place.get(b.index()) {
+            Some(&p) if p != usize::MAX => format!("bb{p}"),
+            _ => format!("(unplaced {b:?})"),
+        }
     }
 
     fn string(&self, i: u32) -> &str {
@@ -225,9 +246,7 @@ impl Printer<'_> {
     }
 }
 
-fn name(b: Handle<Block>) -> String {
-    format!("bb{}", b.index())
-}
+
 
 fn address(addr: u8) -> String {
     match addr {
