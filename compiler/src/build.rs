@@ -372,7 +372,8 @@ impl<'a> Builder<'a> {
     }
 
     pub(crate) fn push_word(&mut self, addr: u8, value: ir::WordValue, span: Span) {
-        self.f.words.push(ir::Word { addr, value, span });
+        self.f.words.push(ir::Word { addr, value });
+        self.f.word_spans.push(span);
     }
 
     pub(crate) fn add_expr(&mut self, e: ir::Expr) -> Handle<ir::Expr> {
@@ -393,6 +394,7 @@ impl<'a> Builder<'a> {
             ops: ir::Arena::with_capacity(blocks),
             op_locs: Vec::with_capacity(blocks),
             words: Vec::with_capacity(words),
+            word_spans: Vec::with_capacity(words),
             ..Default::default()
         };
         self.cur = None;
@@ -433,7 +435,13 @@ impl<'a> Builder<'a> {
                 self.known.forget_all();
                 let at = self.here();
                 let loc = self.loc_peek();
-                self.push_at(Op::Seq(seq.number), Loc { fresh: false, ..loc });
+                self.push_at(
+                    Op::Seq(seq.number),
+                    Loc {
+                        fresh: false,
+                        ..loc
+                    },
+                );
                 let loops = st.loops.iter().map(|l| l.id).collect();
                 st.seqs.push((seq.number, at, loops, block.span));
             }

@@ -10,7 +10,7 @@
 
 use crate::build::FileDiag;
 use crate::consts::ConstIndex;
-use crate::ir::{self, Callee, CallKind, Count, Expr, Function, Handle, Loc, Op, Terminator};
+use crate::ir::{self, CallKind, Callee, Count, Expr, Function, Handle, Loc, Op, Terminator};
 use crate::profile::PROFILE;
 use grammar::diag::LineHint;
 use grammar::{Diagnostic, SourceFile, Span};
@@ -24,7 +24,7 @@ pub fn emit(
     files: &[SourceFile],
     machine: &nc::Machine,
 ) -> (isa::Module, Vec<FileDiag>) {
-    let (words, items) = sizes(ir);
+    let (constants, items) = sizes(ir);
     let mut e = Emitter {
         ir,
         files,
@@ -32,7 +32,7 @@ pub fn emit(
             machine: machine.compile_keys(),
             code: Vec::with_capacity(items),
             lines: Vec::with_capacity(items),
-            consts: Vec::with_capacity(words),
+            consts: Vec::with_capacity(constants),
             ..isa::Module::default()
         },
         consts: ConstIndex::default(),
@@ -51,12 +51,13 @@ pub fn emit(
     (e.module, e.diags)
 }
 
-/// About the instructions of a module: one per word and per operation
-/// and terminator; the words, for the constant pool.
+/// About the constants and instructions of a module: two constants per
+/// operation (most are NC blocks: a new coordinate or two), an
+/// instruction per word, operation and terminator.
 fn sizes(ir: &ir::Module) -> (usize, usize) {
-    ir.functions.iter().fold((0, 0), |(w, n), f| {
+    ir.functions.iter().fold((0, 0), |(k, n), f| {
         (
-            w + f.words.len(),
+            k + 2 * f.ops.len(),
             n + f.words.len() + f.ops.len() + f.blocks.len(),
         )
     })
@@ -130,7 +131,12 @@ impl Emitter<'_> {
         if let Some(&s) = self.strings.get(&id.0) {
             return s;
         }
-        let text = self.ir.strings.get(id.0 as usize).cloned().unwrap_or_default();
+        let text = self
+            .ir
+            .strings
+            .get(id.0 as usize)
+            .cloned()
+            .unwrap_or_default();
         let s = self.module.strings.len() as u32;
         self.module.strings.push(text);
         self.strings.insert(id.0, s);
@@ -192,13 +198,13 @@ impl Emitter<'_> {
         }
         for Fixup { at, target } in fixups {
             let pc = starts.get(target.index()).copied().unwrap_or(0);
-            match self.module.code.get_mut(at) {
-                Some(
-                    Instr::Jump { target: t }
-                    | Instr::JumpIfNot { target: t, .. }
-                    | Instr::SkipBlock { target: t, .. },
-                ) => *t = pc,
-                _ => {}
+            if let Some(
+                Instr::Jump { target: t }
+                | Instr::JumpIfNot { target: t, .. }
+                | Instr::SkipBlock { target: t, .. },
+            ) = self.module.code.get_mut(at)
+            {
+                *t = pc;
             }
         }
         seqs.sort();
@@ -246,8 +252,8 @@ impl Emitter<'_> {
     /// comment's message and `exec` at the block.
     fn nc_block(&mut self, f: &Function, nc: &ir::NcBlock) {
         let (file, span) = (self.loc.file, self.span);
-        for w in f.words_of(nc) {
-            self.set_loc(file, w.span);
+        for (w, &at) in f.words_of(nc).iter().zip(f.word_spans_of(nc)) {
+            self.set_loc(file, at);
             match w.value {
                 ir::WordValue::Const(v, flags) => {
                     let k = self.konst(v);
@@ -404,7 +410,14 @@ impl Emitter<'_> {
     }
 
     /// `G65 Hm P#dst Q j R k` as register arithmetic into `#dst`.
-    fn macro_a(&mut self, f: &Function, op: ir::MacroAOp, dst: u32, j: Handle<Expr>, k: Handle<Expr>) {
+    fn macro_a(
+        &mut self,
+        f: &Function,
+        op: ir::MacroAOp,
+        dst: u32,
+        j: Handle<Expr>,
+        k: Handle<Expr>,
+    ) {
         use ir::MacroAOp as H;
         let j = self.expr(f, j);
         let k = self.expr(f, k);
@@ -426,17 +439,49 @@ impl Emitter<'_> {
                     b: out,
                 },
             ],
-            H::Add => vec![Instr::Add { dst: out, a: j, b: k }],
-            H::Sub => vec![Instr::Sub { dst: out, a: j, b: k }],
-            H::Mul => vec![Instr::Mul { dst: out, a: j, b: k }],
-            H::Div => vec![Instr::Div { dst: out, a: j, b: k }],
-            H::Or => vec![Instr::BitOr { dst: out, a: j, b: k }],
-            H::And => vec![Instr::BitAnd { dst: out, a: j, b: k }],
-            H::Xor => vec![Instr::BitXor { dst: out, a: j, b: k }],
+            H::Add => vec![Instr::Add {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Sub => vec![Instr::Sub {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Mul => vec![Instr::Mul {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Div => vec![Instr::Div {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Or => vec![Instr::BitOr {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::And => vec![Instr::BitAnd {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Xor => vec![Instr::BitXor {
+                dst: out,
+                a: j,
+                b: k,
+            }],
             H::Sqrt => vec![func(F::Sqrt, j)],
             H::Abs => vec![func(F::Abs, j)],
             H::Rem => vec![
-                Instr::Div { dst: out, a: j, b: k },
+                Instr::Div {
+                    dst: out,
+                    a: j,
+                    b: k,
+                },
                 func(F::Fix, out),
                 Instr::Mul {
                     dst: out,
@@ -466,7 +511,11 @@ impl Emitter<'_> {
                 let t = self.regs.alloc();
                 let (a, b) = (out, t);
                 vec![
-                    Instr::Mul { dst: out, a: j, b: j },
+                    Instr::Mul {
+                        dst: out,
+                        a: j,
+                        b: j,
+                    },
                     Instr::Mul { dst: t, a: k, b: k },
                     match op {
                         H::Hypot => Instr::Add { dst: out, a, b },
@@ -490,7 +539,11 @@ impl Emitter<'_> {
                     },
                 ]
             }
-            H::Atan2 => vec![Instr::Atan2 { dst: out, y: j, x: k }],
+            H::Atan2 => vec![Instr::Atan2 {
+                dst: out,
+                y: j,
+                x: k,
+            }],
         };
         for i in ops {
             self.emit(i);

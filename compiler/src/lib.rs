@@ -220,13 +220,8 @@ fn lower(
     opts: &Options,
     diags: &mut Vec<(usize, Diagnostic)>,
 ) -> (Option<isa::Module>, Option<ir::Module>) {
-    let (ir, mut found) = build::build(
-        units,
-        programs,
-        &opts.machine,
-        opts.optimize,
-        &opts.defines,
-    );
+    let (ir, mut found) =
+        build::build(units, programs, &opts.machine, opts.optimize, &opts.defines);
     diags.append(&mut found);
     if has_errors(diags) {
         return (None, Some(ir));
@@ -234,7 +229,10 @@ fn lower(
     if let Err(errors) = ir::validate(&ir) {
         for e in errors {
             let msg = format!("internal error: the IR is invalid: {}", e.message);
-            diags.push((e.loc.file as usize, Diagnostic::error("E0000", e.loc.span, msg)));
+            diags.push((
+                e.loc.file as usize,
+                Diagnostic::error("E0000", e.loc.span, msg),
+            ));
         }
         return (None, Some(ir));
     }

@@ -7,7 +7,8 @@ use compiler::ir::{self, Arena, Handle, Loc, Terminator};
 use compiler::{compile, compile_ir, Options};
 use std::path::Path;
 
-const PROGRAM: &str = "#1 = 2\nG98 G01 X#1 Z-[#1 + 1] F100\nIF [#2 GT 0] GOTO 10\nN10 M98 P9000\nM30\nO9000\nM99\n";
+const PROGRAM: &str =
+    "#1 = 2\nG98 G01 X#1 Z-[#1 + 1] F100\nIF [#2 GT 0] GOTO 10\nN10 M98 P9000\nM30\nO9000\nM99\n";
 
 /// The printer's line: the text padded to column 44, then the location.
 fn line(text: &str, loc: &str) -> String {
@@ -132,7 +133,10 @@ fn the_validator_accepts_sound_ir_and_names_each_fault() {
     if let Some(x) = f.blocks.get_mut(block(1)) {
         x.term = None;
     }
-    assert_eq!(errors(f), ["O0000 (function 0): block #1 has no terminator"]);
+    assert_eq!(
+        errors(f),
+        ["O0000 (function 0): block #1 has no terminator"]
+    );
 
     // A fall-through edge to a block that does not come next.
     let mut f = function(3);
@@ -229,7 +233,9 @@ fn every_real_program_builds_into_valid_ir() {
         for e in entries.flatten() {
             let path = e.path();
             let name = path.to_string_lossy().to_string();
-            let program = path.extension().is_none_or(|x| x == "nc" || x == "cnc" || x == "txt");
+            let program = path
+                .extension()
+                .is_none_or(|x| x == "nc" || x == "cnc" || x == "txt");
             if !program || name.ends_with("MANIFEST.tsv") || !path.is_file() {
                 continue;
             }

@@ -68,6 +68,8 @@ pub struct Function {
     /// The words of every NC block, block after block ([`NcBlock::words`]
     /// names a range of it).
     pub words: Vec<Word>,
+    /// Where each word came from (by index into `words`).
+    pub word_spans: Vec<Span>,
 }
 
 /// A basic block: operations run in order, then the terminator.
@@ -132,12 +134,12 @@ pub enum NcKind {
 }
 
 /// One word of an NC block: its address (`A` = 0 … `Z` = 25, then the
-/// comma addresses of `nc::words`), its value and its source.
+/// comma addresses of `nc::words`) and its value. (Its source is in
+/// [`Function::word_spans`]: a long program has millions of words.)
 #[derive(Debug, Clone, Copy)]
 pub struct Word {
     pub addr: u8,
     pub value: WordValue,
-    pub span: Span,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -351,10 +353,17 @@ pub enum Count {
 impl Function {
     /// The words of an NC block.
     pub fn words_of(&self, nc: &NcBlock) -> &[Word] {
-        self.words
-            .get(nc.words.0 as usize..nc.words.1 as usize)
-            .unwrap_or(&[])
+        self.words.get(range(nc)).unwrap_or(&[])
     }
+
+    /// The sources of the words of an NC block.
+    pub fn word_spans_of(&self, nc: &NcBlock) -> &[Span] {
+        self.word_spans.get(range(nc)).unwrap_or(&[])
+    }
+}
+
+fn range(nc: &NcBlock) -> std::ops::Range<usize> {
+    nc.words.0 as usize..nc.words.1 as usize
 }
 
 impl Terminator {

@@ -33,12 +33,7 @@ pub fn print(m: &Module, files: &[SourceFile]) -> String {
                 *p = i;
             }
         }
-        let p = Printer {
-            m,
-            f,
-            files,
-            place,
-        };
+        let p = Printer { m, f, files, place };
         p.function(&mut out);
     }
     out
@@ -65,7 +60,10 @@ impl Printer<'_> {
                 let loc = self.f.op_locs.get(op.index()).copied();
                 self.line(out, &text, loc);
             }
-            let text = block.term.as_ref().map_or("(no terminator)".into(), |t| self.term(t));
+            let text = block
+                .term
+                .as_ref()
+                .map_or("(no terminator)".into(), |t| self.term(t));
             let loc = self.f.term_locs.get(b.index()).copied();
             self.line(out, &text, loc);
         }
@@ -147,7 +145,11 @@ impl Printer<'_> {
                 self.name(*otherwise)
             ),
             Terminator::Skip { switch, skip, next } => {
-                format!("skip /{switch} to {} else {}", self.name(*skip), self.name(*next))
+                format!(
+                    "skip /{switch} to {} else {}",
+                    self.name(*skip),
+                    self.name(*next)
+                )
             }
             Terminator::Goto { seq } => format!("goto N{}", self.bracketed(*seq)),
             Terminator::GotoIf {
@@ -164,7 +166,9 @@ impl Printer<'_> {
                 self.expr(*k),
                 self.name(*next)
             ),
-            Terminator::Call { call, next } => format!("{} then {}", self.call(call), self.name(*next)),
+            Terminator::Call { call, next } => {
+                format!("{} then {}", self.call(call), self.name(*next))
+            }
             Terminator::Return { seq: None } => "return".into(),
             Terminator::Return { seq: Some(s) } => format!("return to N{}", self.bracketed(*s)),
             Terminator::Halt => "halt".into(),
@@ -245,8 +249,6 @@ impl Printer<'_> {
         }
     }
 }
-
-
 
 fn address(addr: u8) -> String {
     match addr {

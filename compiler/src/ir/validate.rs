@@ -80,7 +80,10 @@ impl Checker<'_> {
         let mut position = vec![None; f.blocks.len()];
         for (i, &b) in f.layout.iter().enumerate() {
             match position.get_mut(b.index()) {
-                None => self.fail(here, format!("the layout names block {b:?}, which is not one")),
+                None => self.fail(
+                    here,
+                    format!("the layout names block {b:?}, which is not one"),
+                ),
                 Some(Some(_)) => self.fail(here, format!("block {b:?} is laid out twice")),
                 Some(p) => *p = Some(i),
             }
@@ -98,7 +101,10 @@ impl Checker<'_> {
             let loc = f.term_locs.get(b.index()).copied().unwrap_or(here);
             for &op in &block.ops {
                 match owner.get_mut(op.index()) {
-                    None => self.fail(loc, format!("block {b:?} names operation {op:?}, which is not one")),
+                    None => self.fail(
+                        loc,
+                        format!("block {b:?} names operation {op:?}, which is not one"),
+                    ),
                     Some(true) => self.fail(loc, format!("operation {op:?} stands in two blocks")),
                     Some(o) => {
                         *o = true;
@@ -131,7 +137,10 @@ impl Checker<'_> {
             };
             for &o in operands {
                 if o >= h {
-                    self.fail(here, format!("expression {h:?} uses {o:?}, which does not come before it"));
+                    self.fail(
+                        here,
+                        format!("expression {h:?} uses {o:?}, which does not come before it"),
+                    );
                 }
             }
         }
@@ -166,7 +175,7 @@ impl Checker<'_> {
 
     fn nc(&mut self, nc: &NcBlock, loc: Loc) {
         let (a, b) = nc.words;
-        if a > b || b as usize > self.f.words.len() {
+        if a > b || b as usize > self.f.words.len() || b as usize > self.f.word_spans.len() {
             self.fail(loc, format!("the words {a}..{b} are not in the table"));
             return;
         }
@@ -194,7 +203,10 @@ impl Checker<'_> {
         };
         for s in t.successors() {
             if position.get(s.index()).copied().flatten().is_none() {
-                self.fail(loc, format!("block {b:?} goes to {s:?}, which is not laid out"));
+                self.fail(
+                    loc,
+                    format!("block {b:?} goes to {s:?}, which is not laid out"),
+                );
             }
         }
         if let Some(fall) = t.fall_through() {
