@@ -107,7 +107,7 @@ fn compile_keeping(
         };
         return (compiled, None);
     }
-    let (files, module, ir) = lower_and_check(&units, &programs, opts, &mut diags);
+    let (files, module, ir) = lower_and_check(&units, &programs, opts, keep_ir, &mut diags);
     free_in_background(units, programs);
     let failed = has_errors(&diags);
     let compiled = Compiled {
@@ -115,7 +115,7 @@ fn compile_keeping(
         files,
         diags,
     };
-    (compiled, ir.filter(|_| keep_ir))
+    (compiled, ir)
 }
 
 /// Builds the programs into IR and emits them, dry-runs a static one and
@@ -128,6 +128,7 @@ fn lower_and_check(
     units: &[Unit],
     programs: &[Program],
     opts: &Options,
+    keep_ir: bool,
     diags: &mut Vec<(usize, Diagnostic)>,
 ) -> (Vec<SourceFile>, Option<isa::Module>, Option<ir::Module>) {
     // A static program without G-code macros is dry-run.
@@ -149,6 +150,8 @@ fn lower_and_check(
         };
         let files = source_files(units);
         let (module, ir) = lower(units, &files, programs, opts, diags);
+        // (Not kept, the IR goes before the dry run is waited for.)
+        let ir = ir.filter(|_| keep_ir);
         let failed = has_errors(diags);
         let verified = module.as_ref().filter(|_| !failed).map(|m| m.verify());
         let found = match early {

@@ -9,8 +9,27 @@
 //! them. Analyses keep their facts in side tables keyed by handle too.
 //!
 //! Passes: `build` (syntax tree and linked programs → IR, with the constant
-//! folding of -O1 inside it for now), `validate` (after build), `emit`
-//! (IR → bytecode), and the `--emit=ir` printer.
+//! folding of -O1 inside it for now), `validate` (after build, on every
+//! compile: an invalid IR is the internal error E0000), `emit` (IR →
+//! bytecode), and the `--emit=ir` printer.
+//!
+//! Decisions:
+//! - The IR is a module of the compiler, not a crate: only the compiler's
+//!   passes make and read it, and its types need nothing but `grammar`'s
+//!   spans and `nc`'s value operators. It can move into a crate of its own
+//!   when something outside the compiler reads it.
+//! - The layout is explicit and `emit` adds or removes no jump: an edge the
+//!   code falls through (`Follow`, the `then` of `Branch`, the `next` of
+//!   `Skip`, `Call` and `GotoIf`) goes to the next block of the layout, an
+//!   edge that jumps is always a jump. So the bytecode is the one the
+//!   lowering before the IR made, instruction for instruction.
+//! - M02 and M30 stay words of an `Nc` operation: the kernel ends the run
+//!   when it executes them. A pass that knows the block's meaning (resolve)
+//!   can end the basic block there with `Halt`.
+//! - A G66 modal call is a `Call` terminator (the call is set up there);
+//!   the calls it makes after each move happen inside `Nc` operations, as
+//!   the VM makes them. The modal pass has to treat a move under G66 as a
+//!   call.
 
 mod handle;
 pub mod print;
