@@ -372,7 +372,7 @@ impl<'a> Builder<'a> {
     }
 
     pub(crate) fn push_word(&mut self, addr: u8, value: ir::WordValue, span: Span) {
-        self.f.words.push(ir::Word { addr, value });
+        self.f.words.push(ir::Word::new(addr, value));
         self.f.word_spans.push(span);
     }
 

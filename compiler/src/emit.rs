@@ -254,7 +254,7 @@ impl Emitter<'_> {
         let (file, span) = (self.loc.file, self.span);
         for (w, &at) in f.words_of(nc).iter().zip(f.word_spans_of(nc)) {
             self.set_loc(file, at);
-            match w.value {
+            match w.value() {
                 ir::WordValue::Const(v, flags) => {
                     let k = self.konst(v);
                     self.emit(Instr::WordK {

@@ -153,14 +153,49 @@ pub enum NcKind {
 }
 
 /// One word of an NC block: its address (`A` = 0 … `Z` = 25, then the
-/// comma addresses of `nc::words`) and its value. (Its source is in
-/// [`Function::word_spans`]: a long program has millions of words.)
+/// comma addresses of `nc::words`) and its value ([`Word::value`]). Its
+/// source is in [`Function::word_spans`].
+///
+/// A long program has millions of words: a word is 16 bytes, the value's
+/// kind beside the address instead of an enum's tag (which would make it
+/// 24 with the padding around the `f64`).
 #[derive(Debug, Clone, Copy)]
 pub struct Word {
     pub addr: u8,
-    pub value: WordValue,
+    /// The `nc::words` flags of a constant.
+    flags: u8,
+    /// Whether `bits` is an expression's handle (else a constant's bits).
+    computed: bool,
+    bits: u64,
 }
 
+impl Word {
+    pub fn new(addr: u8, value: WordValue) -> Word {
+        let (flags, computed, bits) = match value {
+            WordValue::Const(v, flags) => (flags, false, v.to_bits()),
+            WordValue::Expr(h) => (0, true, h.index() as u64),
+        };
+        Word {
+            addr,
+            flags,
+            computed,
+            bits,
+        }
+    }
+
+    pub fn value(&self) -> WordValue {
+        match self.computed {
+            false => WordValue::Const(f64::from_bits(self.bits), self.flags),
+            true => match Handle::from_index(self.bits as usize) {
+                Some(h) => WordValue::Expr(h),
+                // (`new` stored a handle's index, which has a handle.)
+                None => WordValue::Const(f64::NAN, 0),
+            },
+        }
+    }
+}
+
+/// A word's value.
 #[derive(Debug, Clone, Copy)]
 pub enum WordValue {
     /// A value known at compile time, with its `nc::words` flags (how it

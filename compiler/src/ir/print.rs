@@ -96,7 +96,7 @@ impl Printer<'_> {
                 for w in self.f.words_of(nc) {
                     s.push(' ');
                     s.push_str(&address(w.addr));
-                    match w.value {
+                    match w.value() {
                         WordValue::Const(v, flags) => s.push_str(&literal(v, flags)),
                         WordValue::Expr(e) => s.push_str(&self.bracketed(e)),
                     }

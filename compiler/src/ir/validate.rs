@@ -180,7 +180,7 @@ impl Checker<'_> {
             return;
         }
         for w in &self.f.words[a as usize..b as usize] {
-            if let WordValue::Expr(e) = w.value {
+            if let WordValue::Expr(e) = w.value() {
                 self.expr(e, loc);
             }
         }
