@@ -422,17 +422,18 @@ fn range(nc: &NcBlock) -> std::ops::Range<usize> {
 
 impl Terminator {
     /// The blocks control may go to from here (a computed GOTO and a return
-    /// go to blocks found at run time).
-    pub fn successors(&self) -> Vec<Handle<Block>> {
-        match self {
-            Terminator::Follow(b) | Terminator::Jump(b) => vec![*b],
+    /// go to blocks found at run time), the fall-through edge first.
+    pub fn successors(&self) -> impl Iterator<Item = Handle<Block>> {
+        let (a, b) = match self {
+            Terminator::Follow(b) | Terminator::Jump(b) => (Some(*b), None),
             Terminator::Branch {
                 then, otherwise, ..
-            } => vec![*then, *otherwise],
-            Terminator::Skip { skip, next, .. } => vec![*next, *skip],
-            Terminator::Call { next, .. } | Terminator::GotoIf { next, .. } => vec![*next],
-            Terminator::Goto { .. } | Terminator::Return { .. } | Terminator::Halt => Vec::new(),
-        }
+            } => (Some(*then), Some(*otherwise)),
+            Terminator::Skip { skip, next, .. } => (Some(*next), Some(*skip)),
+            Terminator::Call { next, .. } | Terminator::GotoIf { next, .. } => (Some(*next), None),
+            Terminator::Goto { .. } | Terminator::Return { .. } | Terminator::Halt => (None, None),
+        };
+        a.into_iter().chain(b)
     }
 
     /// The block the terminator goes on into without a jump, which must be
