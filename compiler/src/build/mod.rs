@@ -21,8 +21,8 @@ use std::collections::HashMap;
 /// A diagnostic with the index of its unit (source file).
 pub type FileDiag = (usize, Diagnostic);
 
-/// What the code of the program built so far ends with (the lowering's
-/// rule for the final `Halt`/`Ret` reads it).
+/// What the code of the program built so far ends with, as emitted (the
+/// rule for the program's final `Halt`/`Ret` reads it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Tail {
     /// Nothing yet.
