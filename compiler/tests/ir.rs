@@ -253,3 +253,30 @@ fn every_real_program_builds_into_valid_ir() {
     }
     assert!(seen >= 100, "only {seen} programs found");
 }
+
+#[test]
+fn a_packed_count_belongs_to_a_computed_m98_and_subprograms_take_no_arguments() {
+    let mut f = function(2);
+    let one = f.exprs.append(ir::Expr::Const(1.0));
+    let call = ir::Call {
+        kind: ir::CallKind::Sub,
+        callee: ir::Callee::Program(0),
+        count: ir::Count::Packed,
+        args: vec![(1, one)],
+    };
+    set_term(
+        &mut f,
+        0,
+        Terminator::Call {
+            call,
+            next: block(1),
+        },
+    );
+    assert_eq!(
+        errors(f),
+        [
+            "O0000 (function 0): only a computed M98 P packs its count into P",
+            "O0000 (function 0): a subprogram call passes no arguments",
+        ]
+    );
+}

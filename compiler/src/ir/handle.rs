@@ -126,3 +126,21 @@ impl<T> std::ops::Index<Handle<T>> for Arena<T> {
         &self.items[h.index()]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Arena, Handle};
+
+    #[test]
+    fn handles_name_their_items_and_cost_no_more_as_options() {
+        let mut a = Arena::default();
+        let x = a.append('x');
+        let y = a.append('y');
+        assert_eq!((x.index(), y.index(), a[y]), (0, 1, 'y'));
+        assert!(a.contains(y) && !a.contains(Handle::from_index(2).unwrap()));
+        // The last index a u32 can name (plus one) is u32::MAX - 1.
+        assert!(Handle::<char>::from_index(u32::MAX as usize - 1).is_some());
+        assert!(Handle::<char>::from_index(u32::MAX as usize).is_none());
+        assert_eq!(std::mem::size_of::<Option<Handle<char>>>(), 4);
+    }
+}

@@ -12,8 +12,8 @@
 //!   and block has its source location.
 
 use super::{
-    Block, Call, Callee, Count, Expr, Function, Handle, Loc, Module, NcBlock, Op, Terminator,
-    VarTarget, WordValue,
+    Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Loc, Module, NcBlock, Op,
+    Terminator, VarTarget, WordValue,
 };
 
 /// A fault of the IR, where it was found.
@@ -243,8 +243,15 @@ impl Checker<'_> {
             Callee::Program(_) => {}
             Callee::Dynamic(e) => self.expr(e, loc),
         }
-        if let Count::Expr(e) = call.count {
-            self.expr(e, loc);
+        match (call.count, call.kind, call.callee) {
+            (Count::Expr(e), ..) => self.expr(e, loc),
+            (Count::Packed, CallKind::Sub, Callee::Dynamic(_)) => {}
+            (Count::Packed, ..) => {
+                self.fail(loc, "only a computed M98 P packs its count into P".into())
+            }
+        }
+        if call.kind == CallKind::Sub && !call.args.is_empty() {
+            self.fail(loc, "a subprogram call passes no arguments".into());
         }
         for &(_, v) in &call.args {
             self.expr(v, loc);
