@@ -187,7 +187,7 @@ impl Emitter<'_> {
                 self.op(f, &f.ops[op], &mut seqs);
             }
             match &block.term {
-                Some(Terminator::Follow(_)) | None => {}
+                Some(Terminator::Follow(_) | Terminator::Ended) | None => {}
                 Some(t) => {
                     if let Some(&loc) = f.term_locs.get(b.index()) {
                         self.at(loc);
@@ -287,7 +287,7 @@ impl Emitter<'_> {
             fixups.push(Fixup { at, target });
         };
         match t {
-            Terminator::Follow(_) => {}
+            Terminator::Follow(_) | Terminator::Ended => {}
             Terminator::Jump(b) => jump(self, Instr::Jump { target: 0 }, *b),
             Terminator::Branch {
                 cond, otherwise, ..

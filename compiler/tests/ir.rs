@@ -27,8 +27,9 @@ fn printed(opts: &Options) -> String {
 fn expected(nc2: &str) -> String {
     // Line 3's test branches to a block that only jumps to N10 (the GOTO),
     // or else goes on at N10 too (the block after the IF); N10's call
-    // goes on into the M30 block, which halts (the main program's end).
-    // O9000 is its M99 alone: a program ending in M99 needs no end.
+    // goes on into the M30 block, which M30 ends; the main program's own
+    // end (halt) stands after it, unreached. O9000 is its M99 alone: a
+    // program ending in M99 needs no end.
     [
         "function O0000\nbb0:\n".to_string(),
         line("#1 = 2", "1:1"),
@@ -41,6 +42,8 @@ fn expected(nc2: &str) -> String {
         line("call m98 O9000 count 1 then bb3", "4:1"),
         "bb3:\n".into(),
         line("nc M30", "5:1"),
+        line("ended", "5:1"),
+        "bb4:\n".into(),
         line("halt", "5:1"),
         "function O0000\n".replace("0000", "9000") + "bb0:\n",
         line("return", "7:1"),

@@ -34,15 +34,15 @@ impl Builder<'_> {
     pub(crate) fn terminate(&mut self, term: Terminator) {
         let b = self.open();
         let loc = match term {
-            // (It adds no code: the next statement keeps its start.)
-            Terminator::Follow(_) => Loc {
+            // (They add no code: the next statement keeps its start.)
+            Terminator::Follow(_) | Terminator::Ended => Loc {
                 fresh: false,
                 ..self.loc_peek()
             },
             _ => self.loc(),
         };
         self.tail = match term {
-            Terminator::Follow(_) => self.tail,
+            Terminator::Follow(_) | Terminator::Ended => self.tail,
             Terminator::Return { seq: None } => Tail::Ret,
             _ => Tail::Other,
         };

@@ -581,6 +581,9 @@ impl<'a> Builder<'a> {
             let msg = block.comments.first().map(|c| c.text.clone());
             let msg = msg.map(|m| self.string(&m));
             self.nc_op(start, ir::NcKind::Run, msg);
+            if ends_program(split) {
+                self.terminate(Terminator::Ended);
+            }
             // G31 writes the skip position into #995–#999.
             for var in 995..=999 {
                 self.known.forget(var);
@@ -638,6 +641,14 @@ fn sizes(units: &[Unit], prog: &Program) -> (usize, usize) {
         })
         .sum();
     (prog.blocks.len(), words)
+}
+
+/// Whether an NC block ends the program: M02 or M30 written as a literal
+/// (the kernel ends the run when it executes them).
+fn ends_program(split: &words::Split<'_>) -> bool {
+    split.nc.iter().any(|w| {
+        w.addr == b'M' - b'A' && matches!(w.value.literal(), Some(m) if m == 2.0 || m == 30.0)
+    })
 }
 
 /// Does the program's last block end it (M02, M30, M99 or a GOTO)?

@@ -23,9 +23,10 @@
 //!   `Skip`, `Call` and `GotoIf`) goes to the next block of the layout, an
 //!   edge that jumps is always a jump. So the bytecode is the one the
 //!   lowering before the IR made, instruction for instruction.
-//! - M02 and M30 stay words of an `Nc` operation: the kernel ends the run
-//!   when it executes them. A pass that knows the block's meaning (resolve)
-//!   can end the basic block there with `Halt`.
+//! - M02 and M30 stay words of their `Nc` operation (the kernel ends the
+//!   run when it executes them), and the basic block ends after it with
+//!   `Ended`, which adds no code: the bytecode is the lowering's, which
+//!   went on with the next block's code.
 //! - A G66 modal call is a `Call` terminator (the call is set up there);
 //!   the calls it makes after each move happen inside `Nc` operations, as
 //!   the VM makes them. The modal pass has to treat a move under G66 as a
@@ -365,6 +366,10 @@ pub enum Terminator {
     Return { seq: Option<Handle<Expr>> },
     /// The end of the main program.
     Halt,
+    /// The block's last operation, an NC block with M02 or M30, ends the
+    /// program when the kernel executes it: nothing follows (the code of
+    /// the next block of the layout is not reached from here).
+    Ended,
 }
 
 /// A call of a program.
@@ -431,7 +436,10 @@ impl Terminator {
             } => (Some(*then), Some(*otherwise)),
             Terminator::Skip { skip, next, .. } => (Some(*next), Some(*skip)),
             Terminator::Call { next, .. } | Terminator::GotoIf { next, .. } => (Some(*next), None),
-            Terminator::Goto { .. } | Terminator::Return { .. } | Terminator::Halt => (None, None),
+            Terminator::Goto { .. }
+            | Terminator::Return { .. }
+            | Terminator::Halt
+            | Terminator::Ended => (None, None),
         };
         a.into_iter().chain(b)
     }

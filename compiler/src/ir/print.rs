@@ -172,6 +172,7 @@ impl Printer<'_> {
             Terminator::Return { seq: None } => "return".into(),
             Terminator::Return { seq: Some(s) } => format!("return to N{}", self.bracketed(*s)),
             Terminator::Halt => "halt".into(),
+            Terminator::Ended => "ended".into(),
         }
     }
 

@@ -231,7 +231,8 @@ impl Checker<'_> {
             | Terminator::Jump(_)
             | Terminator::Skip { .. }
             | Terminator::Return { seq: None }
-            | Terminator::Halt => {}
+            | Terminator::Halt
+            | Terminator::Ended => {}
         }
     }
 
