@@ -1,11 +1,12 @@
 //! Calls and returns: M98/M99, M9000–M9999, G65/G66/G67 and the G65 H
-//! operations of macro A (dialect.md §7.8–§7.11).
+//! operations of macro A (dialect.md §7.8–§7.11), built into the IR's call
+//! and return terminators and macro-A operations.
 
-use crate::lower::Gen;
+use crate::build::Builder;
+use crate::ir::{self, CallKind, Callee, Count, Op, Terminator};
 use crate::words::{Call, WordValue};
 use grammar::ast::{Expr, Value, Word};
 use grammar::Span;
-use isa::Instr;
 use nc::block::round_half_away;
 
 /// The program number and repeat count a literal `M98 P [L]` names.
@@ -21,23 +22,25 @@ pub fn m98_target(p: f64, l: Option<f64>) -> (u32, u32) {
     }
 }
 
-pub fn lower_call(g: &mut Gen<'_>, call: Call<'_>, span: Span) {
+pub fn build_call(g: &mut Builder<'_>, call: Call<'_>, span: Span) {
     match call {
         Call::Sub { p, l, span } => sub_call(g, p, l, span),
         Call::SubM { number, span } => {
             let Some(prog) = known(g, number, span, "M") else {
                 return;
             };
-            let count = load(g, 1.0);
-            g.emit(Instr::CallSub { prog, count });
+            let count = konst(g, 1.0);
+            g.call(ir::Call {
+                kind: CallKind::Sub,
+                callee: Callee::Program(prog),
+                count: Count::Expr(count),
+                args: Vec::new(),
+            });
         }
-        Call::Ret { p: None } => {
-            g.emit(Instr::Ret);
-        }
+        Call::Ret { p: None } => g.terminate(Terminator::Return { seq: None }),
         Call::Ret { p: Some(p) } => {
-            if let Some(seq) = g.value_reg(&p) {
-                g.emit(Instr::RetSeq { seq });
-            }
+            let seq = g.value(&p);
+            g.terminate(Terminator::Return { seq: Some(seq) });
         }
         Call::Macro {
             modal,
@@ -54,20 +57,17 @@ pub fn lower_call(g: &mut Gen<'_>, call: Call<'_>, span: Span) {
             span: s,
         } => macro_a(g, h, p, q, r, s.to(span)),
         Call::ModalCancel => {
-            g.emit(Instr::ModalCancel);
+            g.push(Op::ModalCancel);
         }
     }
 }
 
-fn load(g: &mut Gen<'_>, v: f64) -> u8 {
-    let r = g.expr.alloc();
-    let k = g.konst(v);
-    g.emit(Instr::LoadK { dst: r, k });
-    r
+fn konst(g: &mut Builder<'_>, v: f64) -> ir::Handle<ir::Expr> {
+    g.add_expr(ir::Expr::Const(v))
 }
 
 /// The program index of a literal call target, E2012 when it is nowhere.
-fn known(g: &mut Gen<'_>, number: u32, span: Span, how: &str) -> Option<u32> {
+fn known(g: &mut Builder<'_>, number: u32, span: Span, how: &str) -> Option<u32> {
     let found = g.program_index(number);
     if found.is_none() {
         g.error(
@@ -79,64 +79,44 @@ fn known(g: &mut Gen<'_>, number: u32, span: Span, how: &str) -> Option<u32> {
     found
 }
 
-fn sub_call(g: &mut Gen<'_>, p: Option<WordValue<'_>>, l: Option<WordValue<'_>>, span: Span) {
+fn sub_call(g: &mut Builder<'_>, p: Option<WordValue<'_>>, l: Option<WordValue<'_>>, span: Span) {
     let Some(p) = p else {
         g.error("E2006", span, "M98 needs P, the program to call");
         return;
     };
-    match (p.literal(), l.map(|l| l.literal())) {
+    let call = match (p.literal(), l.map(|l| l.literal())) {
         (Some(pv), None) | (Some(pv), Some(Some(_))) => {
             let (number, count) = m98_target(pv, l.and_then(|l| l.literal()));
             let Some(prog) = known(g, number, span, "M98") else {
                 return;
             };
-            let count = load(g, count as f64);
-            g.emit(Instr::CallSub { prog, count });
+            ir::Call {
+                kind: CallKind::Sub,
+                callee: Callee::Program(prog),
+                count: Count::Expr(konst(g, count as f64)),
+                args: Vec::new(),
+            }
         }
         _ => {
-            // Computed: split P at run time the way m98_target does.
-            let Some(num) = g.value_reg(&p) else { return };
+            // Computed: P is split at run time the way m98_target does.
+            let num = g.value(&p);
             let count = match l {
-                Some(l) => match g.value_reg(&l) {
-                    Some(r) => r,
-                    None => return,
-                },
-                None => {
-                    let count = g.expr.alloc();
-                    let k = g.konst(10_000.0);
-                    let ten_k = g.expr.alloc();
-                    g.emit(Instr::LoadK { dst: ten_k, k });
-                    g.emit(Instr::Div {
-                        dst: count,
-                        a: num,
-                        b: ten_k,
-                    });
-                    g.emit(Instr::Func {
-                        dst: count,
-                        a: count,
-                        f: nc::value::Func::Fix as u8,
-                    });
-                    let tmp = g.expr.alloc();
-                    g.emit(Instr::Mul {
-                        dst: tmp,
-                        a: count,
-                        b: ten_k,
-                    });
-                    g.emit(Instr::Sub {
-                        dst: num,
-                        a: num,
-                        b: tmp,
-                    });
-                    count
-                }
+                Some(l) => Count::Expr(g.value(&l)),
+                None => Count::Packed,
             };
-            g.emit(Instr::CallSubDyn { num, count });
+            ir::Call {
+                kind: CallKind::Sub,
+                callee: Callee::Dynamic(num),
+                count,
+                args: Vec::new(),
+            }
         }
-    }
+    };
+    g.call(call);
 }
 
 fn macro_call(
-    g: &mut Gen<'_>,
+    g: &mut Builder<'_>,
     modal: bool,
     p: Option<WordValue<'_>>,
     l: Option<WordValue<'_>>,
@@ -153,11 +133,11 @@ fn macro_call(
         return;
     };
     let count = match l {
-        Some(l) => g.value_reg(&l),
-        None => Some(load(g, 1.0)),
+        Some(l) => g.value(&l),
+        None => konst(g, 1.0),
     };
-    let Some(count) = count else { return };
     let increment = g.machine.machine.decimal_point == nc::machine::DecimalPoint::Increment;
+    let mut values = Vec::with_capacity(args.len());
     for a in args {
         let value = match a.value {
             // In increment mode a length without a point is in 0.001 mm.
@@ -168,35 +148,32 @@ fn macro_call(
             }
             v => v,
         };
-        if let Some(src) = g.value_reg(&value) {
-            g.emit(Instr::Arg { var: a.var, src });
-        }
+        values.push((a.var, g.value(&value)));
     }
-    match p.literal() {
+    let callee = match p.literal() {
         Some(pv) => {
             let number = round_half_away(pv).max(0.0) as u32;
             let Some(prog) = known(g, number, span, name) else {
                 return;
             };
-            g.emit(if modal {
-                Instr::ModalCall { prog, count }
-            } else {
-                Instr::CallMacro { prog, count }
-            });
+            Callee::Program(prog)
         }
-        None => {
-            let Some(num) = g.value_reg(&p) else { return };
-            g.emit(if modal {
-                Instr::ModalCallDyn { num, count }
-            } else {
-                Instr::CallMacroDyn { num, count }
-            });
-        }
-    }
+        None => Callee::Dynamic(g.value(&p)),
+    };
+    g.call(ir::Call {
+        kind: if modal {
+            CallKind::Modal
+        } else {
+            CallKind::Macro
+        },
+        callee,
+        count: Count::Expr(count),
+        args: values,
+    });
 }
 
 /// The destination `#i` of a G65 H block.
-fn destination(g: &mut Gen<'_>, p: Option<&Word>, span: Span) -> Option<u32> {
+fn destination(g: &mut Builder<'_>, p: Option<&Word>, span: Span) -> Option<u32> {
     let var = p.and_then(|w| match &w.value {
         Value::Expr(e) => match &**e {
             Expr::Var(v) => crate::expr::fold(&v.index).and_then(|r| r.ok()),
@@ -221,7 +198,7 @@ fn destination(g: &mut Gen<'_>, p: Option<&Word>, span: Span) -> Option<u32> {
 /// dialect.md §8). **Decision:** Q is a constant here, as the alarm
 /// numbers of a real program are; a variable Q is E2060 and a constant
 /// outside 0…99 is E1010, both at compile time.
-fn user_alarm(g: &mut Gen<'_>, q: Option<WordValue<'_>>, span: Span) {
+fn user_alarm(g: &mut Builder<'_>, q: Option<WordValue<'_>>, span: Span) {
     let n = match q {
         None => 0.0,
         Some(q) => match q.literal() {
@@ -241,21 +218,22 @@ fn user_alarm(g: &mut Gen<'_>, q: Option<WordValue<'_>>, span: Span) {
         return;
     }
     let msg = g.string("G65 H99 user alarm");
-    g.emit(Instr::Alarm {
+    g.push(Op::Alarm {
         code: 500 + n as u16,
         msg,
     });
 }
 
-fn operand(g: &mut Gen<'_>, v: Option<WordValue<'_>>) -> Option<u8> {
+/// Q or R of a G65 H block: 0 when absent.
+fn operand(g: &mut Builder<'_>, v: Option<WordValue<'_>>) -> ir::Handle<ir::Expr> {
     match v {
-        Some(v) => g.value_reg(&v),
-        None => Some(load(g, 0.0)),
+        Some(v) => g.value(&v),
+        None => konst(g, 0.0),
     }
 }
 
 fn macro_a(
-    g: &mut Gen<'_>,
+    g: &mut Builder<'_>,
     h: WordValue<'_>,
     p: Option<&Word>,
     q: Option<WordValue<'_>>,
@@ -280,169 +258,21 @@ fn macro_a(
     let Some(dst) = destination(g, p, span) else {
         return;
     };
-    let (Some(j), Some(k)) = (operand(g, q), operand(g, r)) else {
+    let (j, k) = (operand(g, q), operand(g, r));
+    let Some(op) = ir::MacroAOp::of(h) else {
+        g.error(
+            "E2060",
+            span,
+            format!("G65 H{h:02} is not an operation of this dialect"),
+        );
         return;
     };
-    let out = g.expr.alloc();
-    use nc::value::Func as F;
-    let ops: Vec<Instr> = match h {
-        1 => vec![
-            Instr::LoadK {
-                dst: out,
-                k: g.konst(0.0),
-            },
-            Instr::Add {
-                dst: out,
-                a: j,
-                b: out,
-            },
-        ],
-        2 => vec![Instr::Add {
-            dst: out,
-            a: j,
-            b: k,
-        }],
-        3 => vec![Instr::Sub {
-            dst: out,
-            a: j,
-            b: k,
-        }],
-        4 => vec![Instr::Mul {
-            dst: out,
-            a: j,
-            b: k,
-        }],
-        5 => vec![Instr::Div {
-            dst: out,
-            a: j,
-            b: k,
-        }],
-        11 => vec![Instr::BitOr {
-            dst: out,
-            a: j,
-            b: k,
-        }],
-        12 => vec![Instr::BitAnd {
-            dst: out,
-            a: j,
-            b: k,
-        }],
-        13 => vec![Instr::BitXor {
-            dst: out,
-            a: j,
-            b: k,
-        }],
-        21 => vec![Instr::Func {
-            dst: out,
-            a: j,
-            f: F::Sqrt as u8,
-        }],
-        22 => vec![Instr::Func {
-            dst: out,
-            a: j,
-            f: F::Abs as u8,
-        }],
-        23 => vec![
-            Instr::Div {
-                dst: out,
-                a: j,
-                b: k,
-            },
-            Instr::Func {
-                dst: out,
-                a: out,
-                f: F::Fix as u8,
-            },
-            Instr::Mul {
-                dst: out,
-                a: out,
-                b: k,
-            },
-            Instr::Sub {
-                dst: out,
-                a: j,
-                b: out,
-            },
-        ],
-        26 => vec![
-            Instr::LoadVar { dst: out, var: dst },
-            Instr::Mul {
-                dst: out,
-                a: out,
-                b: j,
-            },
-            Instr::Div {
-                dst: out,
-                a: out,
-                b: k,
-            },
-        ],
-        27 | 28 => {
-            let t = g.expr.alloc();
-            vec![
-                Instr::Mul {
-                    dst: out,
-                    a: j,
-                    b: j,
-                },
-                Instr::Mul { dst: t, a: k, b: k },
-                if h == 27 {
-                    Instr::Add {
-                        dst: out,
-                        a: out,
-                        b: t,
-                    }
-                } else {
-                    Instr::Sub {
-                        dst: out,
-                        a: out,
-                        b: t,
-                    }
-                },
-                Instr::Func {
-                    dst: out,
-                    a: out,
-                    f: F::Sqrt as u8,
-                },
-            ]
-        }
-        31..=33 => {
-            let f = [F::Sin, F::Cos, F::Tan][(h - 31) as usize];
-            vec![
-                Instr::Func {
-                    dst: out,
-                    a: k,
-                    f: f as u8,
-                },
-                Instr::Mul {
-                    dst: out,
-                    a: j,
-                    b: out,
-                },
-            ]
-        }
-        34 => vec![Instr::Atan2 {
-            dst: out,
-            y: j,
-            x: k,
-        }],
-        _ => {
-            g.error(
-                "E2060",
-                span,
-                format!("G65 H{h:02} is not an operation of this dialect"),
-            );
-            return;
-        }
-    };
-    for i in ops {
-        g.emit(i);
-    }
-    g.emit(Instr::StoreVar { var: dst, src: out });
+    g.push(Op::MacroA { op, dst, j, k });
 }
 
+/// G65 H80 (GOTO P) and H81–H86 (GOTO P when Q op R).
 fn macro_a_jump(
-    g: &mut Gen<'_>,
+    g: &mut Builder<'_>,
     h: u32,
     p: Option<&Word>,
     q: Option<WordValue<'_>>,
@@ -457,30 +287,13 @@ fn macro_a_jump(
         );
         return;
     };
-    let Some(seq) = g.value_reg(&crate::words::value_of(p)) else {
-        return;
-    };
-    let skip = if h == 80 {
-        None
-    } else {
-        let (Some(j), Some(k)) = (operand(g, q), operand(g, r)) else {
-            return;
-        };
-        let op = [0u8, 1, 2, 3, 4, 5][(h - 81) as usize];
-        let c = g.expr.alloc();
-        g.emit(Instr::Cmp {
-            dst: c,
-            a: j,
-            b: k,
-            op,
-        });
-        Some(g.emit(Instr::JumpIfNot { cond: c, target: 0 }))
-    };
-    g.emit(Instr::GotoSeq { seq });
-    if let Some(at) = skip {
-        let here = g.pc();
-        if let Instr::JumpIfNot { target, .. } = &mut g.module.code[at] {
-            *target = here;
+    let seq = g.value(&crate::words::value_of(p));
+    // H81…H86: EQ, NE, GT, LT, GE, LE, the order of the ISA's codes.
+    match nc::value::Rel::from_code((h - 80).saturating_sub(1) as u8).filter(|_| h != 80) {
+        None => g.terminate(Terminator::Goto { seq }),
+        Some(op) => {
+            let (j, k) = (operand(g, q), operand(g, r));
+            g.goto_if(seq, op, j, k);
         }
     }
 }

@@ -28,7 +28,7 @@
 use grammar::ast::{Addr, Ast, Block, Body, Expr, Line, Number, Value, Word};
 use grammar::Span;
 
-use crate::lower::Gen;
+use crate::build::Builder as Gen;
 use nc::block::round_half_away;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -297,7 +297,7 @@ fn to_variable_number(r: &mut Word) {
 
 /// After a G10 L52 block: the variable it may have filled is unknown to
 /// constant folding from here on.
-pub fn forget_read(expr: &mut crate::expr::ExprGen, split: &crate::words::Split<'_>) {
+pub fn forget_read(expr: &mut crate::expr::Known, split: &crate::words::Split<'_>) {
     let is = |w: &&crate::words::NcWord<'_>, c: u8| w.addr == c - b'A';
     if !split.nc.iter().any(|w| is(&w, b'N')) {
         return;

@@ -1,23 +1,18 @@
-//! Expressions into registers, with constant folding (dialect.md §7.4).
+//! Expressions into the IR, with constant folding (dialect.md §7.4).
 //! Folding uses the very functions the VM evaluates with (`nc::value`), so
 //! a folded program computes exactly what the unfolded one would.
 
+use crate::build::Builder;
 use crate::hash::IntMap;
-use crate::lower::Gen;
+use crate::ir::{self, Handle};
 use grammar::ast::{BinOp, Cond, Expr, Func, LogicOp, RelOp, UnOp};
-use isa::Instr;
 use nc::value::{self, Bin, Rel};
 use nc::NcError;
 
-/// Register allocation for the statement being compiled: a stack, reset at
-/// every block (no value lives across blocks in a register).
+/// Constant propagation (-O1): the variables whose value is known at
+/// this point of straight-line code; NaN is a known vacant value.
 #[derive(Default)]
-pub struct ExprGen {
-    next: u16,
-    max: u16,
-    overflow: bool,
-    /// Variables whose value is known at this point of straight-line code
-    /// (constant propagation, -O1); NaN is a known vacant value.
+pub struct Known {
     known: IntMap<u32, f64>,
 }
 
@@ -103,11 +98,7 @@ fn propagatable(n: u32) -> bool {
     matches!(n, 1..=33 | 100..=199 | 500..=999)
 }
 
-impl ExprGen {
-    pub fn reset(&mut self) {
-        self.next = 0;
-    }
-
+impl Known {
     /// A join point (a jump target, a loop head, a call): nothing is known.
     pub fn forget_all(&mut self) {
         self.known.clear();
@@ -144,202 +135,117 @@ impl ExprGen {
     }
 
     /// The value of `e` from constants and known variables (-O1).
-    pub fn known_value(&self, e: &Expr) -> Option<f64> {
+    pub fn value(&self, e: &Expr) -> Option<f64> {
         match fold_with(e, &self.known) {
             Some(Ok(v)) => Some(v),
             _ => None,
         }
     }
+}
 
-    pub fn touch(&mut self, n: u16) {
-        self.max = self.max.max(n);
-    }
-
-    pub fn max_regs(&self) -> u16 {
-        self.max
-    }
-
-    pub fn alloc(&mut self) -> u8 {
-        if self.next >= 255 {
-            self.overflow = true;
-            return 254;
-        }
-        let r = self.next as u8;
-        self.next += 1;
-        self.max = self.max.max(self.next);
-        r
-    }
-
-    fn free_to(&mut self, r: u8) {
-        self.next = r as u16 + 1;
-    }
-
-    /// A constant expression's value (folding always applies here: jump
-    /// targets and variable numbers are resolved at compile time if they
-    /// can be).
-    pub fn constant(&self, e: &Expr) -> Option<Result<f64, NcError>> {
-        fold(e)
-    }
-
-    pub fn compile(&mut self, g: &mut Gen<'_>, e: &Expr) -> Option<u8> {
-        let r = self.node(g, e);
-        if self.overflow {
-            g.error(
-                "E1014",
-                e.span(),
-                "expression too deep for the register file",
-            );
-            self.overflow = false;
-            return None;
-        }
-        Some(r)
-    }
-
-    fn load_const(&mut self, g: &mut Gen<'_>, v: f64) -> u8 {
-        let r = self.alloc();
-        let k = g.konst(v);
-        g.emit(Instr::LoadK { dst: r, k });
-        r
-    }
-
-    fn node(&mut self, g: &mut Gen<'_>, e: &Expr) -> u8 {
-        if g.optimize || matches!(e, Expr::Num(_)) {
-            let folded = if g.optimize {
-                fold_with(e, &self.known)
-            } else {
-                fold(e)
-            };
-            if let Some(Ok(v)) = folded {
-                return self.load_const(g, v);
-            }
-        }
-        match e {
-            Expr::Num(n) => self.load_const(g, n.value),
-            Expr::Var(v) => match fold(&v.index) {
-                Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
-                    let r = self.alloc();
-                    g.emit(Instr::LoadVar {
-                        dst: r,
-                        var: n as u32,
-                    });
-                    r
-                }
-                _ => {
-                    let idx = self.node(g, &v.index);
-                    g.emit(Instr::LoadVarInd { dst: idx, idx });
-                    idx
-                }
-            },
-            Expr::Paren { inner, .. } => self.node(g, inner),
-            Expr::Unary { op, operand, .. } => {
-                let a = self.node(g, operand);
-                if *op == UnOp::Neg {
-                    g.emit(Instr::Neg { dst: a, a });
-                }
-                a
-            }
-            Expr::Binary { op, lhs, rhs, span } => {
-                self.warn_if_faulty(g, e, *span);
-                let a = self.node(g, lhs);
-                let b = self.node(g, rhs);
-                let (dst, a, b) = (a, a, b);
-                g.emit(match op {
-                    BinOp::Add => Instr::Add { dst, a, b },
-                    BinOp::Sub => Instr::Sub { dst, a, b },
-                    BinOp::Mul => Instr::Mul { dst, a, b },
-                    BinOp::Div => Instr::Div { dst, a, b },
-                    BinOp::Mod => Instr::Mod { dst, a, b },
-                    BinOp::And => Instr::BitAnd { dst, a, b },
-                    BinOp::Or => Instr::BitOr { dst, a, b },
-                    BinOp::Xor => Instr::BitXor { dst, a, b },
-                });
-                self.free_to(dst);
-                dst
-            }
-            Expr::Call { func, arg, span } => {
-                self.warn_if_faulty(g, e, *span);
-                let a = self.node(g, arg);
-                g.emit(Instr::Func {
-                    dst: a,
-                    a,
-                    f: func_of(*func) as u8,
-                });
-                a
-            }
-            Expr::Atan2 { y, x, span } => {
-                self.warn_if_faulty(g, e, *span);
-                let a = self.node(g, y);
-                let b = self.node(g, x);
-                g.emit(Instr::Atan2 { dst: a, y: a, x: b });
-                self.free_to(a);
-                a
-            }
-        }
-    }
-
-    /// W116: the operation itself faults on constant operands, so the alarm
-    /// will fire whenever the block is reached.
-    fn warn_if_faulty(&self, g: &mut Gen<'_>, e: &Expr, span: grammar::Span) {
-        let operands_ok = match e {
-            Expr::Binary { lhs, rhs, .. } => {
-                matches!((fold(lhs), fold(rhs)), (Some(Ok(_)), Some(Ok(_))))
-            }
-            Expr::Call { arg, .. } => matches!(fold(arg), Some(Ok(_))),
-            Expr::Atan2 { y, x, .. } => matches!((fold(y), fold(x)), (Some(Ok(_)), Some(Ok(_)))),
-            _ => false,
+/// An expression into the IR. Every subexpression whose value is known is
+/// a constant: with -O1 from constants and known variables, with -O0 only
+/// the literal numbers. W116 for an operation that always faults.
+pub fn build(b: &mut Builder<'_>, e: &Expr) -> Handle<ir::Expr> {
+    if b.optimize || matches!(e, Expr::Num(_)) {
+        let folded = if b.optimize {
+            fold_with(e, &b.known.known)
+        } else {
+            fold(e)
         };
-        if let (true, Some(Err(err))) = (operands_ok, fold(e)) {
-            g.warn(
-                "W116",
-                span,
-                format!(
-                    "this always fails when reached: {} (alarm E{:04} at run time)",
-                    err.message, err.code
-                ),
-            );
+        if let Some(Ok(v)) = folded {
+            return b.add_expr(ir::Expr::Const(v));
         }
     }
-
-    pub fn cond(&mut self, g: &mut Gen<'_>, c: &Cond) -> Option<u8> {
-        let r = self.cond_node(g, c);
-        if self.overflow {
-            g.error(
-                "E1014",
-                c.span(),
-                "condition too deep for the register file",
-            );
-            self.overflow = false;
-            return None;
-        }
-        Some(r)
-    }
-
-    fn cond_node(&mut self, g: &mut Gen<'_>, c: &Cond) -> u8 {
-        match c {
-            Cond::Rel { op, lhs, rhs, .. } => {
-                let a = self.node(g, lhs);
-                let b = self.node(g, rhs);
-                g.emit(Instr::Cmp {
-                    dst: a,
-                    a,
-                    b,
-                    op: rel_of(*op) as u8,
-                });
-                self.free_to(a);
-                a
+    let node = match e {
+        Expr::Num(n) => ir::Expr::Const(n.value),
+        Expr::Var(v) => match fold(&v.index) {
+            Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
+                ir::Expr::Var(n as u32)
             }
-            Cond::Logic { op, lhs, rhs, .. } => {
-                let a = self.cond_node(g, lhs);
-                let b = self.cond_node(g, rhs);
-                let (dst, a, b) = (a, a, b);
-                g.emit(match op {
-                    LogicOp::And => Instr::BitAnd { dst, a, b },
-                    LogicOp::Or => Instr::BitOr { dst, a, b },
-                    LogicOp::Xor => Instr::BitXor { dst, a, b },
-                });
-                self.free_to(dst);
-                dst
+            _ => ir::Expr::VarInd(build(b, &v.index)),
+        },
+        Expr::Paren { inner, .. } => return build(b, inner),
+        Expr::Unary { op, operand, .. } => {
+            let a = build(b, operand);
+            if *op != UnOp::Neg {
+                return a;
+            }
+            ir::Expr::Neg(a)
+        }
+        Expr::Binary { op, lhs, rhs, span } => {
+            warn_if_faulty(b, e, *span);
+            let l = build(b, lhs);
+            let r = build(b, rhs);
+            ir::Expr::Binary {
+                op: bin_of(*op),
+                a: l,
+                b: r,
             }
         }
+        Expr::Call { func, arg, span } => {
+            warn_if_faulty(b, e, *span);
+            let a = build(b, arg);
+            ir::Expr::Func {
+                f: func_of(*func),
+                a,
+            }
+        }
+        Expr::Atan2 { y, x, span } => {
+            warn_if_faulty(b, e, *span);
+            let y = build(b, y);
+            let x = build(b, x);
+            ir::Expr::Atan2 { y, x }
+        }
+    };
+    b.add_expr(node)
+}
+
+/// W116: the operation itself faults on constant operands, so the alarm
+/// will fire whenever the block is reached.
+fn warn_if_faulty(b: &mut Builder<'_>, e: &Expr, span: grammar::Span) {
+    let operands_ok = match e {
+        Expr::Binary { lhs, rhs, .. } => {
+            matches!((fold(lhs), fold(rhs)), (Some(Ok(_)), Some(Ok(_))))
+        }
+        Expr::Call { arg, .. } => matches!(fold(arg), Some(Ok(_))),
+        Expr::Atan2 { y, x, .. } => matches!((fold(y), fold(x)), (Some(Ok(_)), Some(Ok(_)))),
+        _ => false,
+    };
+    if let (true, Some(Err(err))) = (operands_ok, fold(e)) {
+        b.warn(
+            "W116",
+            span,
+            format!(
+                "this always fails when reached: {} (alarm E{:04} at run time)",
+                err.message, err.code
+            ),
+        );
     }
+}
+
+/// A condition into the IR: comparisons, joined bitwise.
+pub fn build_cond(b: &mut Builder<'_>, c: &Cond) -> Handle<ir::Expr> {
+    let node = match c {
+        Cond::Rel { op, lhs, rhs, .. } => {
+            let l = build(b, lhs);
+            let r = build(b, rhs);
+            ir::Expr::Compare {
+                op: rel_of(*op),
+                a: l,
+                b: r,
+            }
+        }
+        Cond::Logic { op, lhs, rhs, .. } => {
+            let l = build_cond(b, lhs);
+            let r = build_cond(b, rhs);
+            let op = match op {
+                LogicOp::And => Bin::And,
+                LogicOp::Or => Bin::Or,
+                LogicOp::Xor => Bin::Xor,
+            };
+            ir::Expr::Binary { op, a: l, b: r }
+        }
+    };
+    b.add_expr(node)
 }

@@ -1,22 +1,25 @@
 //! The gbc compiler: parses a program file, links the programs it calls
-//! (from the file or from library folders), checks it and lowers it to a
-//! verified `.gbc` module.
+//! (from the file or from library folders), checks it, builds it into the
+//! IR (`ir`, pass `build`) and emits a verified `.gbc` module from that
+//! (pass `emit`).
 
 // Errors here are diagnostics, built once per faulty block on the cold
 // path: their size does not matter, boxing them would only add noise.
 #![allow(clippy::result_large_err)]
 
+pub mod build;
 pub mod calls;
 pub mod check;
 pub mod codes;
 pub mod consts;
 pub mod data_setting;
 pub mod dry_warn;
+pub mod emit;
 pub mod expr;
 pub mod hash;
+pub mod ir;
 pub mod link;
 pub mod lint;
-pub mod lower;
 pub mod profile;
 pub mod recursion;
 pub mod thread_room;
@@ -76,30 +79,47 @@ impl Compiled {
 
 /// Compiles the program file `name` with contents `bytes`.
 pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
+    compile_keeping(name, bytes, opts, false).0
+}
+
+/// Compiles as [`compile`] does, and gives the IR the module was emitted
+/// from too (`gbcc --emit=ir`; `None` after an error before the build).
+pub fn compile_ir(name: &str, bytes: &[u8], opts: &Options) -> (Compiled, Option<ir::Module>) {
+    compile_keeping(name, bytes, opts, true)
+}
+
+fn compile_keeping(
+    name: &str,
+    bytes: &[u8],
+    opts: &Options,
+    keep_ir: bool,
+) -> (Compiled, Option<ir::Module>) {
     let mut diags = Vec::new();
     let mut units = vec![parse_unit(name, bytes.into(), 0, &mut diags)];
     let mut programs = link::split(0, &units[0], &mut diags);
     link_libraries(&mut units, &mut programs, opts, &mut diags);
     diags.extend(recursion::check(&units, &programs));
     if has_errors(&diags) {
-        return Compiled {
+        let compiled = Compiled {
             module: None,
             files: source_files(&units),
             diags,
         };
+        return (compiled, None);
     }
-    let (files, module) = lower_and_check(&units, &programs, opts, &mut diags);
+    let (files, module, ir) = lower_and_check(&units, &programs, opts, keep_ir, &mut diags);
     free_in_background(units, programs);
     let failed = has_errors(&diags);
-    Compiled {
-        module: (!failed).then_some(module),
+    let compiled = Compiled {
+        module: module.filter(|_| !failed),
         files,
         diags,
-    }
+    };
+    (compiled, ir)
 }
 
-/// Lowers the programs, dry-runs a static one and verifies the module;
-/// the source files made on the way.
+/// Builds the programs into IR and emits them, dry-runs a static one and
+/// verifies the module; the source files made on the way, and the IR.
 ///
 /// The dry run needs only the trees: on a large program it runs on a
 /// second thread beside the lowering. Its finding counts only if the
@@ -108,8 +128,9 @@ fn lower_and_check(
     units: &[Unit],
     programs: &[Program],
     opts: &Options,
+    keep_ir: bool,
     diags: &mut Vec<(usize, Diagnostic)>,
-) -> (Vec<SourceFile>, isa::Module) {
+) -> (Vec<SourceFile>, Option<isa::Module>, Option<ir::Module>) {
     // A static program without G-code macros is dry-run.
     let dry_run = || {
         let table = &opts.machine.r#macro.g_code_macros;
@@ -128,9 +149,11 @@ fn lower_and_check(
             false => None,
         };
         let files = source_files(units);
-        let module = lower(units, &files, programs, opts, diags);
+        let (module, ir) = lower(units, &files, programs, opts, diags);
+        // (Not kept, the IR goes before the dry run is waited for.)
+        let ir = ir.filter(|_| keep_ir);
         let failed = has_errors(diags);
-        let verified = (!failed).then(|| module.verify());
+        let verified = module.as_ref().filter(|_| !failed).map(|m| m.verify());
         let found = match early {
             Some(run) => match run.join() {
                 Ok(found) => found,
@@ -154,7 +177,7 @@ fn lower_and_check(
                 ),
             ));
         }
-        (files, module)
+        (files, module, ir)
     })
 }
 
@@ -190,18 +213,34 @@ fn block_count(programs: &[Program]) -> usize {
     programs.iter().map(|p| p.blocks.len()).sum()
 }
 
-/// Lowers every program into a module that names its source files.
+/// Builds every program into IR, validates it and emits a module that
+/// names its source files. No module after a build error (the IR may
+/// then be incomplete) or an invalid IR (E0000).
 fn lower(
     units: &[Unit],
     files: &[SourceFile],
     programs: &[Program],
     opts: &Options,
     diags: &mut Vec<(usize, Diagnostic)>,
-) -> isa::Module {
-    let mut gen = lower::Gen::new(units, files, programs, &opts.machine, opts.optimize);
-    gen.lower_all(&opts.defines);
-    diags.append(&mut gen.diags);
-    let mut module = gen.module;
+) -> (Option<isa::Module>, Option<ir::Module>) {
+    let (ir, mut found) =
+        build::build(units, programs, &opts.machine, opts.optimize, &opts.defines);
+    diags.append(&mut found);
+    if has_errors(diags) {
+        return (None, Some(ir));
+    }
+    if let Err(errors) = ir::validate(&ir) {
+        for e in errors {
+            let msg = format!("internal error: the IR is invalid: {}", e.message);
+            diags.push((
+                e.loc.file as usize,
+                Diagnostic::error("E0000", e.loc.span, msg),
+            ));
+        }
+        return (None, Some(ir));
+    }
+    let (mut module, mut found) = emit::emit(&ir, files, &opts.machine);
+    diags.append(&mut found);
     module.files = units
         .iter()
         .map(|u| isa::SourceFileInfo {
@@ -209,7 +248,7 @@ fn lower(
             hash: crc32fast::hash(&u.bytes),
         })
         .collect();
-    module
+    (Some(module), Some(ir))
 }
 
 fn parse_unit(

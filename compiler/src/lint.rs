@@ -1,7 +1,7 @@
 //! Warnings a block's words show by themselves (dialect.md §8): W106, two
 //! G codes of one modal group; W109, G28/G30 without an axis word.
 
-use crate::lower::Gen;
+use crate::build::Builder as Gen;
 use crate::words::{round_g, Split, WordValue};
 use nc::gcode;
 

@@ -4,18 +4,17 @@
 //! making the program go on after nf.
 //!
 //! The profile blocks stay where they are written (a GOTO may reach them)
-//! and are also emitted, as `Exec { flags: PROFILE }` blocks the VM hands
-//! to the kernel, just before the cycle block; their code carries their
-//! own source lines, so a run-time error names them. After a G71/G72/G73
-//! block a `Jump` skips to the block after nf; after G70 the program simply
-//! goes on.
+//! and are also built, as `Profile` NC operations the VM hands to the
+//! kernel, just before the cycle block; they carry their own source
+//! lines, so a run-time error names them. After a G71/G72/G73 block a jump
+//! skips to the block after nf; after G70 the program simply goes on.
 
+use crate::build::Builder as Gen;
+use crate::ir::{self, Handle};
 use crate::link::{self, Program, Unit};
-use crate::lower::Gen;
 use crate::words::{self, Call, NcWord, WordValue};
 use grammar::ast::{Block, Body};
 use grammar::Span;
-use isa::Instr;
 use nc::block::round_half_away;
 use nc::gcode;
 use nc::words::{addr, COMMA_A, LITERAL, NO_POINT};
@@ -28,18 +27,23 @@ pub const PROFILE: u8 = 1;
 /// At most this many blocks from ns to nf (E2020).
 const MAX_BLOCKS: usize = 100;
 
-/// Lowering state: where blocks start and which jumps wait for a target.
+/// Build state: where the blocks after numbered ones start and which
+/// jumps wait for a target.
 #[derive(Debug, Default)]
 pub struct Profiles {
-    /// The block being lowered: (unit, line).
+    /// The block being built: (unit, line).
     current: Option<(usize, usize)>,
-    /// The pc at which each block of the program being lowered starts, as
-    /// (line, pc) in line order: a cycle's jump past nf stays in its own
-    /// program, and a vector is filled far faster than a map.
-    starts: Vec<(usize, u32)>,
+    /// The lines a jump past nf may go to, in line order: in a program
+    /// that names a cycle, every block after a numbered one (the IR starts
+    /// a basic block there).
+    targets: Vec<usize>,
+    /// The IR block at which each of those lines starts, as (line, block)
+    /// in line order: a cycle's jump past nf stays in its own program, and
+    /// a vector is filled far faster than a map.
+    starts: Vec<(usize, Handle<ir::Block>)>,
     /// Jumps after a cycle block, with the line of the block after nf
     /// (`None`: nf is the program's last block).
-    pending: Vec<(usize, Option<usize>)>,
+    pending: Vec<(Handle<ir::Block>, Option<usize>)>,
     /// Blocks of the program being lowered that name G70–G73 (skipped
     /// ones too): with fewer than two, no profile number can be shared.
     cycle_blocks: usize,
@@ -159,12 +163,35 @@ fn sequence(v: Option<Option<f64>>, l: char) -> Result<u32, String> {
     }
 }
 
+/// At the start of a program: the lines a jump past nf may go to.
+pub fn program_start(gen: &mut Gen<'_>, prog: &Program) {
+    let units: &[Unit] = gen.units;
+    let unit = &units[prog.unit];
+    let names = |&l: &usize| match link::block(unit, l).map(|b| &b.body) {
+        Some(Body::Words(ws)) => names_cycle(ws),
+        _ => false,
+    };
+    gen.profiles.targets.clear();
+    if !prog.blocks.iter().any(names) {
+        return;
+    }
+    let after_numbered = prog
+        .blocks
+        .windows(2)
+        .filter(|w| seq_of(unit, w[0]).is_some())
+        .map(|w| w[1]);
+    gen.profiles.targets.extend(after_numbered);
+}
+
 /// At the start of every block of a program (before block delete).
 pub fn block_start(gen: &mut Gen<'_>, line: usize) {
     let key = (gen.unit, line);
-    let pc = gen.pc();
     gen.profiles.current = Some(key);
-    gen.profiles.starts.push((line, pc));
+    if gen.profiles.targets.binary_search(&line).is_err() {
+        return;
+    }
+    let here = gen.here();
+    gen.profiles.starts.push((line, here));
     if gen.profiles.pending.is_empty() {
         return;
     }
@@ -172,22 +199,19 @@ pub fn block_start(gen: &mut Gen<'_>, line: usize) {
     let (due, wait): (Vec<_>, Vec<_>) = pending.into_iter().partition(|&(_, t)| t == Some(line));
     gen.profiles.pending = wait;
     for (at, _) in due {
-        patch(gen, at, pc);
-    }
-}
-
-fn patch(gen: &mut Gen<'_>, at: usize, target: u32) {
-    if let Some(Instr::Jump { target: t }) = gen.module.code.get_mut(at) {
-        *t = target;
+        gen.patch_jump(at, here);
     }
 }
 
 /// At the end of a program, before its final `Halt`/`Ret`: jumps past a
 /// last nf land there; E2022 for the whole program.
 pub fn program_end(gen: &mut Gen<'_>, prog: &Program) {
-    let pc = gen.pc();
-    for (at, _) in std::mem::take(&mut gen.profiles.pending) {
-        patch(gen, at, pc);
+    let pending = std::mem::take(&mut gen.profiles.pending);
+    if !pending.is_empty() {
+        let here = gen.here();
+        for (at, _) in pending {
+            gen.patch_jump(at, here);
+        }
     }
     gen.profiles.starts.clear();
     // (The check reads the whole program again: only where it can find
@@ -268,33 +292,33 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
     {
         return None;
     }
-    emit_profile(gen, unit, &lines);
+    build_profile(gen, unit, &lines);
     gen.set_loc(block.span);
     (cw.code != 700).then(|| After {
         resume: prog.blocks.get(j + 1).copied(),
     })
 }
 
-/// After the cycle block's `Exec`: G71–G73 go on after nf.
+/// After the cycle block: G71–G73 go on after nf.
 pub fn after_exec(gen: &mut Gen<'_>, after: Option<After>) {
     let Some(after) = after else { return };
-    let at = gen.emit(Instr::Jump { target: 0 });
-    match after.resume.and_then(|l| block_pc(&gen.profiles, l)) {
-        Some(pc) => patch(gen, at, pc),
+    let at = gen.jump_later();
+    match after.resume.and_then(|l| block_at(&gen.profiles, l)) {
+        Some(b) => gen.patch_jump(at, b),
         None => gen.profiles.pending.push((at, after.resume)),
     }
 }
 
-/// The pc where the code of `line`, a block of this program lowered
-/// already, starts.
-fn block_pc(profiles: &Profiles, line: usize) -> Option<u32> {
+/// The IR block where `line`, a block of this program built already,
+/// starts.
+fn block_at(profiles: &Profiles, line: usize) -> Option<Handle<ir::Block>> {
     let starts = &profiles.starts;
     let i = starts.binary_search_by_key(&line, |&(l, _)| l).ok()?;
     Some(starts[i].1)
 }
 
-/// The profile blocks as `Word`/`WordK` + `Exec { flags: PROFILE }`.
-fn emit_profile(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
+/// The profile blocks as `Profile` NC operations.
+fn build_profile(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
     for &l in lines {
         let Some(b) = link::block(unit, l) else {
             continue;
@@ -309,43 +333,28 @@ fn emit_profile(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
         gen.set_loc(b.span);
         // A `/n` profile block is left out of the profile when its switch
         // is on as the cycle block is read.
-        let guard = b.delete.map(|d| {
-            gen.emit(Instr::SkipBlock {
-                switch: d.switch,
-                target: 0,
-            })
-        });
-        gen.expr.reset();
-        emit_words(gen, &split.nc);
+        let guard = b.delete.map(|d| gen.skip_guard(d.switch));
+        gen.reset();
+        let start = gen.words_len();
+        build_words(gen, &split.nc);
         gen.set_loc(b.span);
-        gen.emit(Instr::Exec { flags: PROFILE });
+        gen.nc_op(start, ir::NcKind::Profile, None);
         if let Some(at) = guard {
             gen.end_guard(at);
         }
     }
-    gen.expr.reset();
+    gen.reset();
 }
 
-/// A profile block's words, each located at its own source. Computed
-/// words are evaluated when the cycle runs, like the cycle block's own.
-fn emit_words(gen: &mut Gen<'_>, ws: &[NcWord<'_>]) {
+/// A profile block's words, each with its own source. Computed words are
+/// evaluated when the cycle runs, like the cycle block's own.
+fn build_words(gen: &mut Gen<'_>, ws: &[NcWord<'_>]) {
     for w in ws {
-        gen.set_loc(w.span);
-        match w.value {
-            WordValue::Literal(v, flags) => {
-                let k = gen.konst(v);
-                gen.emit(Instr::WordK {
-                    addr: w.addr,
-                    k,
-                    flags,
-                });
-            }
-            WordValue::Expr(e) => {
-                if let Some(src) = gen.expr_reg(e) {
-                    gen.emit(Instr::Word { addr: w.addr, src });
-                }
-            }
-        }
+        let value = match w.value {
+            WordValue::Literal(v, flags) => ir::WordValue::Const(v, flags),
+            WordValue::Expr(e) => ir::WordValue::Expr(gen.expr(e)),
+        };
+        gen.push_word(w.addr, value, w.span);
     }
 }
 

@@ -37,6 +37,11 @@ struct Args {
     /// cycles are resolved (a run on the reference host).
     #[arg(short = 'E')]
     expand: bool,
+    /// --emit=ir: write the compiler's IR (every program's blocks, each
+    /// operation with its file:line:col) instead of a module; default
+    /// name FILE.ir.
+    #[arg(long = "emit", value_name = "WHAT", value_parser = ["ir"])]
+    emit: Option<String>,
     /// Library folder searched for called programs (repeatable).
     #[arg(short = 'I', value_name = "DIR")]
     include: Vec<PathBuf>,
@@ -324,11 +329,15 @@ fn compile_one<W: std::io::Write>(
         ));
         return Err(Exit::Input);
     }
-    let compiled = if job.flags.syntax_only {
-        syntax(&name, &bytes)
+    let emit_ir = job.args.emit.as_deref() == Some("ir");
+    let (compiled, ir) = if job.flags.syntax_only {
+        (syntax(&name, &bytes), None)
     } else {
         let _spinner = cli::progress::Spinner::start(format!("compiling {name}"), job.args.quiet);
-        compiler::compile(&name, &bytes, &job.opts)
+        match emit_ir {
+            true => compiler::compile_ir(&name, &bytes, &job.opts),
+            false => (compiler::compile(&name, &bytes, &job.opts), None),
+        }
     };
     let mut errors = false;
     for (f, d) in &compiled.diags {
@@ -354,7 +363,8 @@ fn compile_one<W: std::io::Write>(
         }
         return Ok(());
     }
-    let dest = output_name(file, args.output.as_deref(), args.listing);
+    let kind = Output::of(args);
+    let dest = output_name(file, args.output.as_deref(), kind);
     // `-o` was checked up front; a default name can meet the source too
     // (a source named `part.gbc`).
     if let Dest::File(out) = &dest {
@@ -370,10 +380,14 @@ fn compile_one<W: std::io::Write>(
         reporter.driver_error("no module was produced");
         return Err(Exit::Input);
     };
-    let out = if args.listing {
-        module.disassemble().into_bytes()
-    } else {
-        module.to_bytes()
+    let out = match (kind, &ir) {
+        (Output::Ir, Some(ir)) => compiler::ir::print::print(ir, &compiled.files).into_bytes(),
+        (Output::Ir, None) => {
+            reporter.driver_error("no IR was built");
+            return Err(Exit::Input);
+        }
+        (Output::Listing, _) => module.disassemble().into_bytes(),
+        (Output::Module, _) => module.to_bytes(),
     };
     let written = dest
         .write(&out)
@@ -384,9 +398,30 @@ fn compile_one<W: std::io::Write>(
     })
 }
 
-/// The output of `input`: `-o`, else its name with `.gbc` (`.s` with -S)
-/// in the current folder (`a.gbc` for standard input, as gcc's `a.out`).
-fn output_name(input: &Path, output: Option<&Path>, listing: bool) -> Dest {
+/// What a compile writes.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Output {
+    Module,
+    /// `-S`.
+    Listing,
+    /// `--emit=ir`.
+    Ir,
+}
+
+impl Output {
+    fn of(args: &Args) -> Output {
+        match (args.emit.as_deref(), args.listing) {
+            (Some("ir"), _) => Output::Ir,
+            (_, true) => Output::Listing,
+            _ => Output::Module,
+        }
+    }
+}
+
+/// The output of `input`: `-o`, else its name with `.gbc` (`.s` with -S,
+/// `.ir` with --emit=ir) in the current folder (`a.gbc` for standard
+/// input, as gcc's `a.out`).
+fn output_name(input: &Path, output: Option<&Path>, kind: Output) -> Dest {
     if let Some(o) = output {
         return Dest::new(o);
     }
@@ -394,7 +429,12 @@ fn output_name(input: &Path, output: Option<&Path>, listing: bool) -> Dest {
         Some(n) if input.as_os_str() != "-" => PathBuf::from(n),
         _ => PathBuf::from("a"),
     };
-    Dest::File(name.with_extension(if listing { "s" } else { "gbc" }))
+    let ext = match kind {
+        Output::Module => "gbc",
+        Output::Listing => "s",
+        Output::Ir => "ir",
+    };
+    Dest::File(name.with_extension(ext))
 }
 
 /// `-MD`: the rule naming the source, the library programs and the
@@ -405,7 +445,7 @@ fn write_deps(job: &Job, input: &Path, dest: &Dest, c: &Compiled) -> Result<(), 
     }
     let target = match dest {
         Dest::File(p) => p.clone(),
-        Dest::Stdout => match output_name(input, None, job.args.listing) {
+        Dest::Stdout => match output_name(input, None, Output::of(&job.args)) {
             Dest::File(p) => p,
             Dest::Stdout => PathBuf::from("a.gbc"),
         },

@@ -1,0 +1,680 @@
+//! Pass `build`: every block of every linked program into the IR.
+//!
+//! NC blocks become `Nc` operations (their words constants or
+//! expressions); macro statements become assignments, branches and jumps;
+//! M98/M99/G65/G66 become call and return terminators. The constant
+//! folding and propagation of -O1 happen here, as the blocks are read
+//! (`expr`); the diagnostics of the checks that need no run come out in
+//! block order.
+
+mod blocks;
+
+use crate::expr::Known;
+use crate::ir::{self, Handle, Loc, Op, Terminator};
+use crate::link::{self, Program, Unit};
+use crate::words::{self, WordValue};
+use grammar::ast::{Block, Body, Cond, Expr, Stmt};
+use grammar::{Diagnostic, Span};
+use nc::Machine;
+use std::collections::HashMap;
+
+/// A diagnostic with the index of its unit (source file).
+pub type FileDiag = (usize, Diagnostic);
+
+/// What the code of the program built so far ends with, as emitted (the
+/// rule for the program's final `Halt`/`Ret` reads it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Tail {
+    /// Nothing yet.
+    Nothing,
+    /// An M99 without P.
+    Ret,
+    /// The join of a `/n` block's guard.
+    Join,
+    /// Anything else.
+    Other,
+}
+
+pub struct Builder<'a> {
+    pub units: &'a [Unit],
+    pub programs: &'a [Program],
+    pub machine: &'a Machine,
+    pub optimize: bool,
+    pub diags: Vec<FileDiag>,
+    pub unit: usize,
+    /// Variables of known value at this point (-O1).
+    pub known: Known,
+    /// The number of the program being built.
+    program_number: u32,
+    /// G70–G73 profiles: block starts and jumps past nf.
+    pub(crate) profiles: crate::profile::Profiles,
+    /// Scratch for the literal check of each block (filled in place).
+    parsed: nc::block::Parsed,
+    module: ir::Module,
+    strings: HashMap<String, u32>,
+    /// The function being built and its open block.
+    f: ir::Function,
+    cur: Option<Handle<ir::Block>>,
+    /// The source of what is added next, and whether it starts a statement.
+    span: Span,
+    fresh: bool,
+    tail: Tail,
+}
+
+/// An open DO loop of the program being built.
+struct Loop {
+    label: u32,
+    id: u32,
+    start: Handle<ir::Block>,
+    /// Blocks whose branch leaves the loop (WHILE's test).
+    exits: Vec<Handle<ir::Block>>,
+    span: Span,
+}
+
+/// A literal jump waiting for its target: the block it ends.
+struct Pending {
+    at: Handle<ir::Block>,
+    seq: u32,
+    span: Span,
+    loops: Vec<u32>,
+}
+
+/// Per-program state.
+#[derive(Default)]
+struct ProgState {
+    loops: Vec<Loop>,
+    next_loop: u32,
+    gotos: Vec<Pending>,
+    /// (sequence number, its block, loop ids open at that block).
+    seqs: Vec<(u32, Handle<ir::Block>, Vec<u32>, Span)>,
+}
+
+/// Builds the IR of every program; `presets` are `-D` assignments run
+/// first.
+pub fn build(
+    units: &[Unit],
+    programs: &[Program],
+    machine: &Machine,
+    optimize: bool,
+    presets: &[(u32, f64)],
+) -> (ir::Module, Vec<FileDiag>) {
+    let mut b = Builder {
+        units,
+        programs,
+        machine,
+        optimize,
+        diags: Vec::new(),
+        unit: 0,
+        known: Known::default(),
+        program_number: 0,
+        profiles: Default::default(),
+        parsed: Default::default(),
+        module: ir::Module::default(),
+        strings: HashMap::new(),
+        f: ir::Function::default(),
+        cur: None,
+        span: Span::default(),
+        fresh: false,
+        tail: Tail::Nothing,
+    };
+    for (i, prog) in programs.iter().enumerate() {
+        b.build_program(i, prog, presets);
+    }
+    (b.module, b.diags)
+}
+
+impl<'a> Builder<'a> {
+    pub fn error(&mut self, code: &'static str, span: Span, msg: impl Into<String>) {
+        self.diags
+            .push((self.unit, Diagnostic::error(code, span, msg)));
+    }
+
+    pub fn warn(&mut self, code: &'static str, span: Span, msg: impl Into<String>) {
+        self.diags
+            .push((self.unit, Diagnostic::warning(code, span, msg)));
+    }
+
+    /// The source of the operations and terminators added next.
+    pub(crate) fn set_loc(&mut self, span: Span) {
+        self.span = span;
+    }
+
+    /// A new statement starts: what follows computes its values afresh.
+    pub fn reset(&mut self) {
+        self.fresh = true;
+    }
+
+    fn loc(&mut self) -> Loc {
+        Loc {
+            file: self.unit as u16,
+            fresh: std::mem::take(&mut self.fresh),
+            span: self.span,
+        }
+    }
+
+    pub fn string(&mut self, s: &str) -> ir::StrId {
+        if let Some(&i) = self.strings.get(s) {
+            return ir::StrId(i);
+        }
+        let i = self.module.strings.len() as u32;
+        self.module.strings.push(s.to_string());
+        self.strings.insert(s.to_string(), i);
+        ir::StrId(i)
+    }
+
+    /// The program table index of program `number`.
+    pub fn program_index(&self, number: u32) -> Option<u32> {
+        self.programs
+            .iter()
+            .position(|p| p.number == number)
+            .map(|i| i as u32)
+    }
+
+    // --- Programs --------------------------------------------------------
+
+    fn build_program(&mut self, index: usize, prog: &Program, presets: &[(u32, f64)]) {
+        self.unit = prog.unit;
+        self.program_number = prog.number;
+        self.set_loc(prog.span);
+        let (blocks, words) = sizes(self.units, prog);
+        self.f = ir::Function {
+            number: prog.number,
+            file: prog.unit as u16,
+            span: prog.span,
+            ops: ir::Arena::with_capacity(blocks),
+            op_locs: Vec::with_capacity(blocks),
+            words: Vec::with_capacity(words),
+            word_spans: Vec::with_capacity(words),
+            ..Default::default()
+        };
+        self.cur = None;
+        self.tail = Tail::Nothing;
+        if index == 0 {
+            for &(var, value) in presets {
+                self.reset();
+                let value = self.add_expr(ir::Expr::Const(value));
+                self.push(Op::Assign {
+                    target: ir::VarTarget::Direct(var),
+                    value,
+                    msg: None,
+                });
+            }
+        }
+        self.build_blocks(prog, index == 0);
+        let f = std::mem::take(&mut self.f);
+        self.module.functions.push(f);
+    }
+
+    fn build_blocks(&mut self, prog: &Program, main: bool) {
+        let mut st = ProgState::default();
+        self.known.forget_all();
+        let units: &'a [Unit] = self.units;
+        let unit = &units[prog.unit];
+        let mut data_setting = crate::data_setting::Checker::default();
+        crate::profile::program_start(self, prog);
+        for &line in &prog.blocks {
+            crate::profile::block_start(self, line);
+            let Some(block) = link::block(unit, line) else {
+                continue;
+            };
+            self.set_loc(block.span);
+            crate::profile::count_cycle(self, block);
+            data_setting.block(self, block);
+            if let Some(seq) = block.seq {
+                // A block with a number may be a jump target.
+                self.known.forget_all();
+                let at = self.here();
+                let loc = self.loc_peek();
+                self.push_at(
+                    Op::Seq(seq.number),
+                    Loc {
+                        fresh: false,
+                        ..loc
+                    },
+                );
+                let loops = st.loops.iter().map(|l| l.id).collect();
+                st.seqs.push((seq.number, at, loops, block.span));
+            }
+            // A `/n` block is kept behind a guard: the switch is the
+            // operator's, read when the block is (docs/language.md).
+            let guard = block.delete.map(|d| self.skip_guard(d.switch));
+            self.reset();
+            match &block.body {
+                Body::Words(_) => self.build_words(block),
+                Body::Stmt(s) => self.build_stmt(s, block, &mut st),
+            }
+            if let Some(at) = guard {
+                self.end_guard(at);
+            }
+        }
+        // Running off the end: the main program halts, a subprogram
+        // returns as if M99 (W101).
+        let end_span = prog
+            .blocks
+            .last()
+            .and_then(|&l| link::block(unit, l))
+            .map_or(prog.span, |b| b.span);
+        self.set_loc(end_span);
+        if !ends_explicitly(unit, prog) {
+            let what = if main {
+                "the main program ends"
+            } else {
+                "the subprogram returns as if M99"
+            };
+            self.warn(
+                "W101",
+                end_span,
+                format!(
+                    "O{:04} runs off its last block without M02, M30 or M99: {what}",
+                    prog.number
+                ),
+            );
+        }
+        crate::profile::program_end(self, prog);
+        // A program that ends in M99 needs no end of its own, unless a jump
+        // may land past it (a skipped last block goes on past its code).
+        let ends = self.tail == Tail::Ret;
+        if !ends || !st.gotos.is_empty() || !st.seqs.is_empty() || self.cur.is_some() {
+            self.reset();
+            self.terminate(if main {
+                Terminator::Halt
+            } else {
+                Terminator::Return { seq: None }
+            });
+        }
+        for open in std::mem::take(&mut st.loops) {
+            self.error(
+                "E2014",
+                open.span,
+                format!("DO {} has no END {}", open.label, open.label),
+            );
+        }
+        self.resolve_gotos(&mut st);
+    }
+
+    fn resolve_gotos(&mut self, st: &mut ProgState) {
+        // Each N number's first block and whether it recurs, found in one
+        // pass: a search of all blocks per GOTO was quadratic in a long
+        // chain of GOTOs.
+        let mut first: crate::hash::IntMap<u32, (usize, bool)> = Default::default();
+        for (i, (n, ..)) in st.seqs.iter().enumerate() {
+            first
+                .entry(*n)
+                .and_modify(|(_, again)| *again = true)
+                .or_insert((i, false));
+        }
+        for g in std::mem::take(&mut st.gotos) {
+            let found = first.get(&g.seq).map(|&(i, again)| (&st.seqs[i], again));
+            let Some(((_, target, loops, _), again)) = found else {
+                self.error(
+                    "E2010",
+                    g.span,
+                    format!(
+                        "GOTO {}: there is no block N{} in this program",
+                        g.seq, g.seq
+                    ),
+                );
+                continue;
+            };
+            if again {
+                self.warn(
+                    "W103",
+                    g.span,
+                    format!("N{} occurs more than once: the first block is used", g.seq),
+                );
+            }
+            if !loops.iter().all(|id| g.loops.contains(id)) {
+                self.error(
+                    "E2015",
+                    g.span,
+                    format!("GOTO {} jumps into a DO loop from outside it", g.seq),
+                );
+                continue;
+            }
+            let target = *target;
+            self.patch_jump(g.at, target);
+        }
+    }
+
+    // --- Statements ------------------------------------------------------
+
+    fn build_stmt(&mut self, s: &Stmt, block: &Block, st: &mut ProgState) {
+        match s {
+            Stmt::Assign { target, value, .. } => self.assign(target, value, block),
+            Stmt::Goto { target, .. } => self.goto(target, None, st),
+            Stmt::IfGoto { cond, target, .. } => {
+                let c = self.cond(cond);
+                self.goto(target, Some(c), st);
+            }
+            Stmt::IfThen { cond, then, .. } => {
+                let c = self.cond(cond);
+                let at = self.branch(c);
+                let before = self.known.snapshot();
+                self.build_stmt(then, block, st);
+                // The assignment may not have happened.
+                self.known.restore_minus_changes(before);
+                let here = self.here();
+                self.patch_branch(at, here);
+            }
+            Stmt::While { cond, label, span } => {
+                self.known.forget_all();
+                let start = self.here();
+                let c = self.cond(cond);
+                let exit = self.branch(c);
+                self.open_loop(label.value, start, vec![exit], *span, label.span, st);
+            }
+            Stmt::Do { label, span } => {
+                self.known.forget_all();
+                let start = self.here();
+                self.open_loop(label.value, start, Vec::new(), *span, label.span, st);
+            }
+            Stmt::End { label, span } => {
+                self.close_loop(label.value, *span, st);
+                self.known.forget_all();
+            }
+        }
+    }
+
+    fn open_loop(
+        &mut self,
+        label: u32,
+        start: Handle<ir::Block>,
+        exits: Vec<Handle<ir::Block>>,
+        span: Span,
+        label_span: Span,
+        st: &mut ProgState,
+    ) {
+        if !(1..=3).contains(&label) {
+            self.error(
+                "E2013",
+                label_span,
+                format!("DO/END label {label}: labels are 1, 2 or 3"),
+            );
+            return;
+        }
+        if st.loops.iter().any(|l| l.label == label) {
+            self.error(
+                "E2014",
+                span,
+                format!("DO {label} is already open: nested loops need different labels"),
+            );
+            return;
+        }
+        if st.loops.len() == 3 {
+            self.error("E2014", span, "loops nest at most three deep");
+            return;
+        }
+        st.next_loop += 1;
+        st.loops.push(Loop {
+            label,
+            id: st.next_loop,
+            start,
+            exits,
+            span,
+        });
+    }
+
+    fn close_loop(&mut self, label: u32, span: Span, st: &mut ProgState) {
+        if !(1..=3).contains(&label) {
+            self.error(
+                "E2013",
+                span,
+                format!("DO/END label {label}: labels are 1, 2 or 3"),
+            );
+            return;
+        }
+        let Some(open) = st.loops.pop() else {
+            self.error("E2014", span, format!("END {label} without a DO {label}"));
+            return;
+        };
+        if open.label != label {
+            self.error(
+                "E2014",
+                span,
+                format!("END {label} closes DO {}: loops are crossed", open.label),
+            );
+            return;
+        }
+        self.terminate(Terminator::Jump(open.start));
+        let here = self.here();
+        for at in open.exits {
+            self.patch_branch(at, here);
+        }
+    }
+
+    /// `GOTO n` (conditional when `cond` is the test).
+    fn goto(&mut self, target: &Expr, cond: Option<Handle<ir::Expr>>, st: &mut ProgState) {
+        let skip = cond.map(|c| self.branch(c));
+        match crate::expr::fold(target) {
+            Some(Ok(n)) => {
+                let n = nc::block::round_half_away(n);
+                if !(0.0..=99999.0).contains(&n) {
+                    self.error(
+                        "E2010",
+                        target.span(),
+                        format!("GOTO {n}: sequence numbers are 1…99999"),
+                    );
+                } else {
+                    let at = self.jump_later();
+                    let loops = st.loops.iter().map(|l| l.id).collect();
+                    st.gotos.push(Pending {
+                        at,
+                        seq: n as u32,
+                        span: target.span(),
+                        loops,
+                    });
+                }
+            }
+            _ => {
+                let seq = self.expr(target);
+                self.terminate(Terminator::Goto { seq });
+            }
+        }
+        if let Some(at) = skip {
+            let here = self.here();
+            self.patch_branch(at, here);
+        }
+    }
+
+    fn assign(&mut self, target: &grammar::ast::VarRef, value: &Expr, block: &Block) {
+        let src = self.expr(value);
+        let index = crate::expr::fold(&target.index);
+        let msg = if let Some(c) = block.comments.first() {
+            Some(self.string(&c.text))
+        } else if matches!(index, Some(Ok(v)) if v == 3000.0 || v == 3006.0) {
+            Some(self.string(""))
+        } else {
+            None
+        };
+        match index {
+            Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
+                if n == 0.0 {
+                    self.error(
+                        "E5007",
+                        target.span,
+                        "#0 is always vacant and cannot be written",
+                    );
+                    return;
+                }
+                self.push(Op::Assign {
+                    target: ir::VarTarget::Direct(n as u32),
+                    value: src,
+                    msg,
+                });
+                self.known.assigned(n as u32, value, self.optimize);
+            }
+            _ => {
+                let idx = self.expr(&target.index);
+                self.push(Op::Assign {
+                    target: ir::VarTarget::Indirect(idx),
+                    value: src,
+                    msg,
+                });
+                self.known.forget_all();
+            }
+        }
+    }
+
+    /// An expression of the program, folded as far as -O1 allows.
+    pub fn expr(&mut self, e: &Expr) -> Handle<ir::Expr> {
+        crate::expr::build(self, e)
+    }
+
+    fn cond(&mut self, c: &Cond) -> Handle<ir::Expr> {
+        crate::expr::build_cond(self, c)
+    }
+
+    /// A word's value as an expression (a literal is a constant).
+    pub fn value(&mut self, v: &WordValue<'_>) -> Handle<ir::Expr> {
+        match v {
+            WordValue::Literal(x, _) => self.add_expr(ir::Expr::Const(*x)),
+            WordValue::Expr(e) => self.expr(e),
+        }
+    }
+
+    // --- NC blocks -------------------------------------------------------
+
+    fn build_words(&mut self, block: &Block) {
+        let Body::Words(ws) = &block.body else { return };
+        let table = self.machine.r#macro.g_code_macros;
+        if let Some(call) = words::g_code_macro(ws, &table, self.program_number) {
+            match call {
+                Ok(split) => self.build_split(block, &split),
+                Err(d) => self.diags.push((self.unit, d)),
+            }
+            return;
+        }
+        match words::classify(ws) {
+            Ok(split) => self.build_split(block, &split),
+            Err(d) => self.diags.push((self.unit, d)),
+        }
+    }
+
+    fn build_split(&mut self, block: &Block, split: &words::Split<'_>) {
+        if let Err(e) = crate::check::literal_block(self.machine, &split.nc, &mut self.parsed) {
+            self.error(code_name(e.code), block.span, e.message);
+            return;
+        }
+        let after = crate::profile::before_exec(self, block, split);
+        let start = self.words_len();
+        for w in &split.nc {
+            match w.value {
+                WordValue::Literal(v, flags) => {
+                    self.push_word(w.addr, ir::WordValue::Const(v, flags), w.span)
+                }
+                WordValue::Expr(e) => match self.known.value(e).filter(|_| self.optimize) {
+                    // Folded: a computed value (no decimal-point rule);
+                    // a vacant one leaves the word out.
+                    Some(v) if v.is_nan() => {}
+                    Some(v) => self.push_word(w.addr, ir::WordValue::Const(v, 0), w.span),
+                    None => {
+                        let h = self.expr(e);
+                        self.push_word(w.addr, ir::WordValue::Expr(h), w.span);
+                    }
+                },
+            }
+        }
+        self.warn_unlisted_m(split);
+        crate::lint::block(self, split);
+        self.set_loc(block.span);
+        if !split.nc.is_empty() {
+            let msg = block.comments.first().map(|c| c.text.clone());
+            let msg = msg.map(|m| self.string(&m));
+            self.nc_op(start, ir::NcKind::Run, msg);
+            if ends_program(split) {
+                self.terminate(Terminator::Ended);
+            }
+            // G31 writes the skip position into #995–#999.
+            for var in 995..=999 {
+                self.known.forget(var);
+            }
+            // A G10 L52 read writes its variable.
+            crate::data_setting::forget_read(&mut self.known, split);
+        }
+        crate::profile::after_exec(self, after);
+        if let Some(call) = &split.call {
+            crate::calls::build_call(self, call.clone(), block.span);
+            // The called program may change any variable.
+            self.known.forget_all();
+        }
+    }
+
+    /// W113: an M code that neither the reference PLC table nor the
+    /// machine file's `[plc] m_codes` lists.
+    fn warn_unlisted_m(&mut self, split: &words::Split<'_>) {
+        const LISTED: &[u32] = &[
+            0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13, 14, 15, 20, 21, 24, 25, 29, 30, 32, 33, 41, 42,
+            43, 44, 50, 51, 52, 53, 54, 55, 56, 57, 58, 63, 64, 65,
+        ];
+        for w in &split.nc {
+            let (true, WordValue::Literal(v, _)) = (w.addr == b'M' - b'A', w.value) else {
+                continue;
+            };
+            let m = nc::block::round_half_away(v);
+            let listed = LISTED.contains(&(m as u32)) || self.machine.plc.lists_m(m as u32);
+            if (0.0..9000.0).contains(&m) && !listed {
+                self.warn(
+                    "W113",
+                    w.span,
+                    format!(
+                        "M{m} is not in the reference PLC table; it is handed to the PLC as it is"
+                    ),
+                );
+            }
+        }
+    }
+}
+
+/// A program's blocks and words: room for the IR (a count costs little
+/// beside the copies of growing arenas).
+fn sizes(units: &[Unit], prog: &Program) -> (usize, usize) {
+    let Some(unit) = units.get(prog.unit) else {
+        return (0, 0);
+    };
+    let words = prog
+        .blocks
+        .iter()
+        .filter_map(|&l| link::block(unit, l))
+        .map(|b| match &b.body {
+            Body::Words(ws) => ws.len(),
+            Body::Stmt(_) => 0,
+        })
+        .sum();
+    (prog.blocks.len(), words)
+}
+
+/// Whether an NC block ends the program: M02 or M30 written as a literal
+/// (the kernel ends the run when it executes them).
+fn ends_program(split: &words::Split<'_>) -> bool {
+    split.nc.iter().any(|w| {
+        w.addr == b'M' - b'A' && matches!(w.value.literal(), Some(m) if m == 2.0 || m == 30.0)
+    })
+}
+
+/// Does the program's last block end it (M02, M30, M99 or a GOTO)?
+fn ends_explicitly(unit: &Unit, prog: &Program) -> bool {
+    let Some(last) = prog
+        .blocks
+        .iter()
+        .rev()
+        .filter_map(|&l| link::block(unit, l))
+        .find(|b| match &b.body {
+            Body::Words(ws) => !ws.is_empty(),
+            Body::Stmt(_) => true,
+        })
+    else {
+        return false;
+    };
+    match &last.body {
+        Body::Stmt(s) => matches!(**s, Stmt::Goto { .. }),
+        Body::Words(ws) => ws.iter().any(|w| {
+            w.addr == grammar::ast::Addr::Letter('M')
+                && matches!(words::value_of(w).literal(), Some(m) if [2.0, 30.0, 99.0].contains(&m))
+        }),
+    }
+}
+
+/// `E4001` from 4001 (codes are static strings in diagnostics).
+pub fn code_name(code: u16) -> &'static str {
+    crate::codes::name(code)
+}

@@ -1,0 +1,667 @@
+//! Pass `emit`: the IR into bytecode.
+//!
+//! Blocks are laid out in the IR's layout order; a fall-through edge adds
+//! no code, every jump is a `Jump` (the IR says which edges jump). NC
+//! blocks become `word`/`wordk` instructions and `exec` (the VM hands the
+//! words to the kernel); expressions become register arithmetic. Registers
+//! are a stack per statement: a statement's first operation or terminator
+//! (`Loc::fresh`) starts again at register 0, and the values computed
+//! within a statement stay in their registers until it ends.
+
+use crate::build::FileDiag;
+use crate::consts::ConstIndex;
+use crate::ir::{self, CallKind, Callee, Count, Expr, Function, Handle, Loc, Op, Terminator};
+use crate::profile::PROFILE;
+use grammar::diag::LineHint;
+use grammar::{Diagnostic, SourceFile, Span};
+use isa::{Instr, SourceLoc};
+use nc::value::{Bin, Func as F};
+use std::collections::HashMap;
+
+/// Emits a validated module.
+pub fn emit(
+    ir: &ir::Module,
+    files: &[SourceFile],
+    machine: &nc::Machine,
+) -> (isa::Module, Vec<FileDiag>) {
+    let (constants, items) = sizes(ir);
+    let mut e = Emitter {
+        ir,
+        files,
+        module: isa::Module {
+            machine: machine.compile_keys(),
+            code: Vec::with_capacity(items),
+            consts: Vec::with_capacity(constants),
+            ..isa::Module::default()
+        },
+        consts: ConstIndex::default(),
+        strings: HashMap::new(),
+        loc: SourceLoc::default(),
+        hint: (usize::MAX, LineHint::default()),
+        regs: Regs::default(),
+        diags: Vec::new(),
+        file: 0,
+        span: Span::default(),
+    };
+    for f in &ir.functions {
+        e.function(f);
+    }
+    e.module.num_regs = e.regs.max.max(1);
+    (e.module, e.diags)
+}
+
+/// About the constants and instructions of a module: two constants per
+/// operation (most are NC blocks: a new coordinate or two), an
+/// instruction per word, operation and terminator.
+fn sizes(ir: &ir::Module) -> (usize, usize) {
+    ir.functions.iter().fold((0, 0), |(k, n), f| {
+        (
+            k + 2 * f.ops.len(),
+            n + f.words.len() + f.ops.len() + f.blocks.len(),
+        )
+    })
+}
+
+/// The register stack of the statement being emitted.
+#[derive(Default)]
+struct Regs {
+    next: u16,
+    max: u16,
+    overflow: bool,
+}
+
+impl Regs {
+    fn alloc(&mut self) -> u8 {
+        if self.next >= 255 {
+            self.overflow = true;
+            return 254;
+        }
+        let r = self.next as u8;
+        self.next += 1;
+        self.max = self.max.max(self.next);
+        r
+    }
+
+    fn free_to(&mut self, r: u8) {
+        self.next = r as u16 + 1;
+    }
+}
+
+struct Emitter<'a> {
+    ir: &'a ir::Module,
+    files: &'a [SourceFile],
+    module: isa::Module,
+    consts: ConstIndex,
+    /// IR string → module string.
+    strings: HashMap<u32, u32>,
+    loc: SourceLoc,
+    /// The line of the last location, where the next one is looked for
+    /// first (see `SourceFile::line_col_near`), and the file it is in.
+    hint: (usize, LineHint),
+    regs: Regs,
+    diags: Vec<FileDiag>,
+    /// The source of what is being emitted (for E1014).
+    file: usize,
+    span: Span,
+}
+
+/// A jump whose target block's pc is not known yet.
+struct Fixup {
+    at: usize,
+    target: Handle<ir::Block>,
+}
+
+impl Emitter<'_> {
+    fn emit(&mut self, instr: Instr) -> usize {
+        self.module.code.push(instr);
+        self.module.lines.push(self.loc);
+        self.module.code.len() - 1
+    }
+
+    fn pc(&self) -> u32 {
+        self.module.code.len() as u32
+    }
+
+    fn konst(&mut self, v: f64) -> u32 {
+        self.consts.index(&mut self.module.consts, v)
+    }
+
+    fn string(&mut self, id: ir::StrId) -> u32 {
+        if let Some(&s) = self.strings.get(&id.0) {
+            return s;
+        }
+        let text = self
+            .ir
+            .strings
+            .get(id.0 as usize)
+            .cloned()
+            .unwrap_or_default();
+        let s = self.module.strings.len() as u32;
+        self.module.strings.push(text);
+        self.strings.insert(id.0, s);
+        s
+    }
+
+    fn set_loc(&mut self, file: u16, span: Span) {
+        let file = file as usize;
+        if self.hint.0 != file {
+            self.hint = (file, LineHint::default());
+        }
+        let (line, col) = match self.files.get(file) {
+            Some(f) => f.line_col_near(span.start, &mut self.hint.1),
+            None => (0, 0),
+        };
+        self.loc = SourceLoc {
+            file: file as u16,
+            line: line as u32,
+            col: col as u32,
+        };
+        self.file = file;
+        self.span = span;
+    }
+
+    /// Where an operation or terminator comes from; a new statement starts
+    /// its registers afresh.
+    fn at(&mut self, loc: Loc) {
+        if loc.fresh {
+            self.regs.next = 0;
+        }
+        self.set_loc(loc.file, loc.span);
+    }
+
+    fn function(&mut self, f: &Function) {
+        let entry = self.pc();
+        let mut starts = vec![0u32; f.blocks.len()];
+        let mut fixups: Vec<Fixup> = Vec::new();
+        let mut seqs: Vec<(u32, u32)> = Vec::new();
+        for &b in &f.layout {
+            if let Some(s) = starts.get_mut(b.index()) {
+                *s = self.pc();
+            }
+            let block = &f.blocks[b];
+            for &op in &block.ops {
+                if let Some(&loc) = f.op_locs.get(op.index()) {
+                    self.at(loc);
+                }
+                self.op(f, &f.ops[op], &mut seqs);
+            }
+            match &block.term {
+                Some(Terminator::Follow(_) | Terminator::Ended) | None => {}
+                Some(t) => {
+                    if let Some(&loc) = f.term_locs.get(b.index()) {
+                        self.at(loc);
+                    }
+                    self.terminator(f, t, &mut fixups);
+                }
+            }
+        }
+        for Fixup { at, target } in fixups {
+            let pc = starts.get(target.index()).copied().unwrap_or(0);
+            if let Some(
+                Instr::Jump { target: t }
+                | Instr::JumpIfNot { target: t, .. }
+                | Instr::SkipBlock { target: t, .. },
+            ) = self.module.code.get_mut(at)
+            {
+                *t = pc;
+            }
+        }
+        seqs.sort();
+        let end = self.pc();
+        self.module.programs.push(isa::Program {
+            number: f.number,
+            entry,
+            end,
+            seqs,
+        });
+    }
+
+    fn op(&mut self, f: &Function, op: &Op, seqs: &mut Vec<(u32, u32)>) {
+        match op {
+            Op::Seq(n) => seqs.push((*n, self.pc())),
+            Op::Nc(nc) => self.nc_block(f, nc),
+            Op::Assign { target, value, msg } => {
+                let src = self.expr(f, *value);
+                if let Some(m) = msg {
+                    let s = self.string(*m);
+                    self.emit(Instr::SetMsg { s });
+                }
+                match target {
+                    ir::VarTarget::Direct(var) => {
+                        self.emit(Instr::StoreVar { var: *var, src });
+                    }
+                    ir::VarTarget::Indirect(i) => {
+                        let idx = self.expr(f, *i);
+                        self.emit(Instr::StoreVarInd { idx, src });
+                    }
+                }
+            }
+            Op::MacroA { op, dst, j, k } => self.macro_a(f, *op, *dst, *j, *k),
+            Op::Alarm { code, msg } => {
+                let msg = self.string(*msg);
+                self.emit(Instr::Alarm { code: *code, msg });
+            }
+            Op::ModalCancel => {
+                self.emit(Instr::ModalCancel);
+            }
+        }
+    }
+
+    /// One NC block: its words, each located at its own source, then the
+    /// comment's message and `exec` at the block. A block run where it
+    /// stands whose words are all known is one typed block instead: a
+    /// record of its words, in order, and one `block` instruction.
+    fn nc_block(&mut self, f: &Function, nc: &ir::NcBlock) {
+        let (file, span) = (self.loc.file, self.span);
+        let typed = match nc.kind {
+            ir::NcKind::Run => self.typed_block(f.words_of(nc)),
+            ir::NcKind::Profile => None,
+        };
+        let words = f.words_of(nc).iter().filter(|_| typed.is_none());
+        for (w, &at) in words.zip(f.word_spans_of(nc)) {
+            self.set_loc(file, at);
+            match w.value() {
+                ir::WordValue::Const(v, flags) => {
+                    let k = self.konst(v);
+                    self.emit(Instr::WordK {
+                        addr: w.addr,
+                        k,
+                        flags,
+                    });
+                }
+                ir::WordValue::Expr(e) => {
+                    let src = self.expr(f, e);
+                    self.emit(Instr::Word { addr: w.addr, src });
+                }
+            }
+        }
+        self.set_loc(file, span);
+        if let Some(m) = nc.msg {
+            let s = self.string(m);
+            self.emit(Instr::SetMsg { s });
+        }
+        let flags = match nc.kind {
+            ir::NcKind::Run => 0,
+            ir::NcKind::Profile => PROFILE,
+        };
+        self.emit(match typed {
+            Some(rec) => Instr::Block { rec },
+            None => Instr::Exec { flags },
+        });
+    }
+
+    /// The record of a block whose words are all constants, if they fit
+    /// one (`isa::block`); `None` leaves the block in word form.
+    fn typed_block(&mut self, words: &[ir::Word]) -> Option<u32> {
+        let mut known: smallvec::SmallVec<[isa::BlockWord; 8]> = smallvec::SmallVec::new();
+        for w in words {
+            let ir::WordValue::Const(value, flags) = w.value() else {
+                return None;
+            };
+            known.push(isa::BlockWord {
+                addr: w.addr,
+                value,
+                flags,
+            });
+        }
+        self.module.push_block(&known)
+    }
+
+    fn terminator(&mut self, f: &Function, t: &Terminator, fixups: &mut Vec<Fixup>) {
+        let mut jump = |e: &mut Self, instr: Instr, target: Handle<ir::Block>| {
+            let at = e.emit(instr);
+            fixups.push(Fixup { at, target });
+        };
+        match t {
+            Terminator::Follow(_) | Terminator::Ended => {}
+            Terminator::Jump(b) => jump(self, Instr::Jump { target: 0 }, *b),
+            Terminator::Branch {
+                cond, otherwise, ..
+            } => {
+                let c = self.expr(f, *cond);
+                jump(self, Instr::JumpIfNot { cond: c, target: 0 }, *otherwise);
+            }
+            Terminator::Skip { switch, skip, .. } => jump(
+                self,
+                Instr::SkipBlock {
+                    switch: *switch,
+                    target: 0,
+                },
+                *skip,
+            ),
+            Terminator::Goto { seq } => {
+                let seq = self.expr(f, *seq);
+                self.emit(Instr::GotoSeq { seq });
+            }
+            Terminator::GotoIf { seq, op, j, k, .. } => {
+                let seq = self.expr(f, *seq);
+                let (j, k) = (self.expr(f, *j), self.expr(f, *k));
+                let c = self.regs.alloc();
+                self.emit(Instr::Cmp {
+                    dst: c,
+                    a: j,
+                    b: k,
+                    op: *op as u8,
+                });
+                // Past the GOTO: the next block.
+                let past = self.pc() + 2;
+                self.emit(Instr::JumpIfNot {
+                    cond: c,
+                    target: past,
+                });
+                self.emit(Instr::GotoSeq { seq });
+            }
+            Terminator::Call { call, .. } => self.call(f, call),
+            Terminator::Return { seq: None } => {
+                self.emit(Instr::Ret);
+            }
+            Terminator::Return { seq: Some(s) } => {
+                let seq = self.expr(f, *s);
+                self.emit(Instr::RetSeq { seq });
+            }
+            Terminator::Halt => {
+                self.emit(Instr::Halt);
+            }
+        }
+    }
+
+    fn call(&mut self, f: &Function, call: &ir::Call) {
+        match (call.kind, call.callee) {
+            (CallKind::Sub, Callee::Program(prog)) => {
+                let count = self.count(f, call.count, 0);
+                self.emit(Instr::CallSub { prog, count });
+            }
+            (CallKind::Sub, Callee::Dynamic(p)) => {
+                let num = self.expr(f, p);
+                let count = self.count(f, call.count, num);
+                self.emit(Instr::CallSubDyn { num, count });
+            }
+            (kind, callee) => {
+                let count = self.count(f, call.count, 0);
+                for &(var, v) in &call.args {
+                    let src = self.expr(f, v);
+                    self.emit(Instr::Arg { var, src });
+                }
+                let modal = kind == CallKind::Modal;
+                match callee {
+                    Callee::Program(prog) if modal => self.emit(Instr::ModalCall { prog, count }),
+                    Callee::Program(prog) => self.emit(Instr::CallMacro { prog, count }),
+                    Callee::Dynamic(p) => {
+                        let num = self.expr(f, p);
+                        match modal {
+                            true => self.emit(Instr::ModalCallDyn { num, count }),
+                            false => self.emit(Instr::CallMacroDyn { num, count }),
+                        }
+                    }
+                };
+            }
+        }
+    }
+
+    /// The register of a call's count; `num` holds a computed M98 P, whose
+    /// `<count:4><program:4>` is split here: count = fix(P / 10000),
+    /// program = P − count × 10000.
+    fn count(&mut self, f: &Function, count: Count, num: u8) -> u8 {
+        match count {
+            Count::Expr(e) => self.expr(f, e),
+            Count::Packed => {
+                let count = self.regs.alloc();
+                let k = self.konst(10_000.0);
+                let ten_k = self.regs.alloc();
+                self.emit(Instr::LoadK { dst: ten_k, k });
+                self.emit(Instr::Div {
+                    dst: count,
+                    a: num,
+                    b: ten_k,
+                });
+                self.emit(Instr::Func {
+                    dst: count,
+                    a: count,
+                    f: F::Fix as u8,
+                });
+                let tmp = self.regs.alloc();
+                self.emit(Instr::Mul {
+                    dst: tmp,
+                    a: count,
+                    b: ten_k,
+                });
+                self.emit(Instr::Sub {
+                    dst: num,
+                    a: num,
+                    b: tmp,
+                });
+                count
+            }
+        }
+    }
+
+    /// `G65 Hm P#dst Q j R k` as register arithmetic into `#dst`.
+    fn macro_a(
+        &mut self,
+        f: &Function,
+        op: ir::MacroAOp,
+        dst: u32,
+        j: Handle<Expr>,
+        k: Handle<Expr>,
+    ) {
+        use ir::MacroAOp as H;
+        let j = self.expr(f, j);
+        let k = self.expr(f, k);
+        let out = self.regs.alloc();
+        let func = |f: F, a: u8| Instr::Func {
+            dst: out,
+            a,
+            f: f as u8,
+        };
+        let ops: Vec<Instr> = match op {
+            H::Set => vec![
+                Instr::LoadK {
+                    dst: out,
+                    k: self.konst(0.0),
+                },
+                Instr::Add {
+                    dst: out,
+                    a: j,
+                    b: out,
+                },
+            ],
+            H::Add => vec![Instr::Add {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Sub => vec![Instr::Sub {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Mul => vec![Instr::Mul {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Div => vec![Instr::Div {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Or => vec![Instr::BitOr {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::And => vec![Instr::BitAnd {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Xor => vec![Instr::BitXor {
+                dst: out,
+                a: j,
+                b: k,
+            }],
+            H::Sqrt => vec![func(F::Sqrt, j)],
+            H::Abs => vec![func(F::Abs, j)],
+            H::Rem => vec![
+                Instr::Div {
+                    dst: out,
+                    a: j,
+                    b: k,
+                },
+                func(F::Fix, out),
+                Instr::Mul {
+                    dst: out,
+                    a: out,
+                    b: k,
+                },
+                Instr::Sub {
+                    dst: out,
+                    a: j,
+                    b: out,
+                },
+            ],
+            H::MulDiv => vec![
+                Instr::LoadVar { dst: out, var: dst },
+                Instr::Mul {
+                    dst: out,
+                    a: out,
+                    b: j,
+                },
+                Instr::Div {
+                    dst: out,
+                    a: out,
+                    b: k,
+                },
+            ],
+            H::Hypot | H::HypotDiff => {
+                let t = self.regs.alloc();
+                let (a, b) = (out, t);
+                vec![
+                    Instr::Mul {
+                        dst: out,
+                        a: j,
+                        b: j,
+                    },
+                    Instr::Mul { dst: t, a: k, b: k },
+                    match op {
+                        H::Hypot => Instr::Add { dst: out, a, b },
+                        _ => Instr::Sub { dst: out, a, b },
+                    },
+                    func(F::Sqrt, out),
+                ]
+            }
+            H::Sin | H::Cos | H::Tan => {
+                let trig = match op {
+                    H::Sin => F::Sin,
+                    H::Cos => F::Cos,
+                    _ => F::Tan,
+                };
+                vec![
+                    func(trig, k),
+                    Instr::Mul {
+                        dst: out,
+                        a: j,
+                        b: out,
+                    },
+                ]
+            }
+            H::Atan2 => vec![Instr::Atan2 {
+                dst: out,
+                y: j,
+                x: k,
+            }],
+        };
+        for i in ops {
+            self.emit(i);
+        }
+        self.emit(Instr::StoreVar { var: dst, src: out });
+    }
+
+    /// An expression into the next free register; E1014 when the register
+    /// file is too small for it.
+    fn expr(&mut self, f: &Function, e: Handle<Expr>) -> u8 {
+        let r = self.node(f, e);
+        if std::mem::take(&mut self.regs.overflow) {
+            self.diags.push((
+                self.file,
+                Diagnostic::error(
+                    "E1014",
+                    self.span,
+                    "expression too deep for the register file",
+                ),
+            ));
+        }
+        r
+    }
+
+    fn node(&mut self, f: &Function, e: Handle<Expr>) -> u8 {
+        match f.exprs[e] {
+            Expr::Const(v) => {
+                let r = self.regs.alloc();
+                let k = self.konst(v);
+                self.emit(Instr::LoadK { dst: r, k });
+                r
+            }
+            Expr::Var(var) => {
+                let r = self.regs.alloc();
+                self.emit(Instr::LoadVar { dst: r, var });
+                r
+            }
+            Expr::VarInd(i) => {
+                let idx = self.node(f, i);
+                self.emit(Instr::LoadVarInd { dst: idx, idx });
+                idx
+            }
+            Expr::Neg(a) => {
+                let a = self.node(f, a);
+                self.emit(Instr::Neg { dst: a, a });
+                a
+            }
+            Expr::Binary { op, a, b } => {
+                let a = self.node(f, a);
+                let b = self.node(f, b);
+                let dst = a;
+                self.emit(match op {
+                    Bin::Add => Instr::Add { dst, a, b },
+                    Bin::Sub => Instr::Sub { dst, a, b },
+                    Bin::Mul => Instr::Mul { dst, a, b },
+                    Bin::Div => Instr::Div { dst, a, b },
+                    Bin::Mod => Instr::Mod { dst, a, b },
+                    Bin::And => Instr::BitAnd { dst, a, b },
+                    Bin::Or => Instr::BitOr { dst, a, b },
+                    Bin::Xor => Instr::BitXor { dst, a, b },
+                });
+                self.regs.free_to(dst);
+                dst
+            }
+            Expr::Func { f: func, a } => {
+                let a = self.node(f, a);
+                self.emit(Instr::Func {
+                    dst: a,
+                    a,
+                    f: func as u8,
+                });
+                a
+            }
+            Expr::Atan2 { y, x } => {
+                let a = self.node(f, y);
+                let b = self.node(f, x);
+                self.emit(Instr::Atan2 { dst: a, y: a, x: b });
+                self.regs.free_to(a);
+                a
+            }
+            Expr::Compare { op, a, b } => {
+                let a = self.node(f, a);
+                let b = self.node(f, b);
+                self.emit(Instr::Cmp {
+                    dst: a,
+                    a,
+                    b,
+                    op: op as u8,
+                });
+                self.regs.free_to(a);
+                a
+            }
+        }
+    }
+}
