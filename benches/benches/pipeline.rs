@@ -22,8 +22,10 @@ fn lines(src: &str) -> u64 {
 
 fn pipeline(c: &mut Criterion) {
     let mut g = c.benchmark_group("pipeline");
+    // About 0.7 s an iteration on a shared 2-core machine: 10 samples of
+    // one iteration each.
     g.sample_size(10)
-        .measurement_time(Duration::from_secs(8))
+        .measurement_time(Duration::from_secs(12))
         .warm_up_time(Duration::from_secs(1));
     let g1 = g1_blocks(G1_BLOCKS);
     g.throughput(Throughput::Elements(G1_BLOCKS as u64));
@@ -31,6 +33,7 @@ fn pipeline(c: &mut Criterion) {
         b.iter(|| lines(&g1))
     });
     let looped = macro_loop(LOOP_ITERATIONS);
+    g.measurement_time(Duration::from_secs(5));
     g.throughput(Throughput::Elements(LOOP_ITERATIONS as u64));
     g.bench_function("macro_loop_100k_compile_and_run_to_canon", |b| {
         b.iter(|| lines(&looped))
