@@ -33,7 +33,7 @@ fn pipeline(c: &mut Criterion) {
         b.iter(|| lines(&g1))
     });
     let looped = macro_loop(LOOP_ITERATIONS);
-    g.measurement_time(Duration::from_secs(5));
+    g.measurement_time(Duration::from_secs(8));
     g.throughput(Throughput::Elements(LOOP_ITERATIONS as u64));
     g.bench_function("macro_loop_100k_compile_and_run_to_canon", |b| {
         b.iter(|| lines(&looped))
