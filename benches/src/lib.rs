@@ -2,6 +2,7 @@
 //! generated programs and a sink that only counts.
 
 pub mod pipeline;
+pub mod whole;
 
 /// The benches measure with the allocator `gbcc` and `gbvm` use.
 #[global_allocator]
