@@ -24,16 +24,17 @@ pub fn block(gen: &mut Gen<'_>, split: &Split<'_>) {
 /// W106: two codes of one modal group; the last one written wins (§3).
 /// Two group-00 codes are E2002, checked by the kernel.
 fn same_group(gen: &mut Gen<'_>, split: &Split<'_>) {
-    let codes: Vec<_> = g_codes(split).collect();
-    for (i, &(code, w)) in codes.iter().enumerate() {
+    // (No list of the codes: this runs for every block, most of which
+    // hold one G code or none.)
+    for (i, (code, w)) in g_codes(split).enumerate().skip(1) {
         let Some(group) = gcode::group(code).filter(|&g| g != gcode::ONE_SHOT) else {
             continue;
         };
-        let earlier = codes[..i]
-            .iter()
-            .rev()
-            .find(|(c, _)| gcode::group(*c) == Some(group));
-        if let Some(&(first, _)) = earlier {
+        let earlier = g_codes(split)
+            .take(i)
+            .filter(|(c, _)| gcode::group(*c) == Some(group))
+            .last();
+        if let Some((first, _)) = earlier {
             gen.warn(
                 "W106",
                 w.span,

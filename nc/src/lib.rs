@@ -46,7 +46,7 @@ pub mod exec;
 pub mod modal;
 pub mod plan;
 
-pub use base::{error, event, gcode, geom, machine, plc, point, thread_room, words};
+pub use base::{error, event, gcode, geom, machine, mcode, plc, point, thread_room, words};
 pub use block::value;
 pub use exec::{
     comp, compound, contour, cycles, data_setting, measure, params, state, stroke, sysvar,

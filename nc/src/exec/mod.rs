@@ -26,6 +26,7 @@ use crate::base::event::{Dir, Event, SpindleDir, StopKind};
 use crate::base::gcode::{self, Drill, Motion, OneShot, Polar, SpeedMode, Work, G};
 use crate::base::geom::{self, Element};
 use crate::base::machine::{ArcWithoutCenter, DecimalPoint, Machine, SpindleType};
+use crate::base::mcode::{Timing, M};
 use crate::base::point::Pt;
 use crate::base::words::{Word, LITERAL, NO_POINT};
 use crate::block::{self, round_half_away, Parsed};
@@ -71,21 +72,6 @@ pub struct Nc {
     parsed: Option<Box<Parsed>>,
 }
 
-/// M codes that act after the motion (canon group 3).
-fn after_motion(m: u32) -> bool {
-    matches!(m, 5 | 9 | 11 | 13 | 33)
-}
-
-/// M codes that end or stop the program (canon group 4).
-fn is_stop(m: u32) -> bool {
-    matches!(m, 0 | 1 | 2 | 30)
-}
-
-/// M codes that the compiler and VM handle (calls and returns).
-fn is_call(m: u32) -> bool {
-    m == 98 || m == 99 || (9000..=9999).contains(&m)
-}
-
 impl Nc {
     pub fn new(machine: Machine) -> Nc {
         let st = State::power_on(&machine);
@@ -118,34 +104,50 @@ impl Nc {
     }
 
     /// A block with the G22 stroke check, when it is in force, and the
-    /// check for feed moves at F = 0 (zero_feed); of their alarms the one
-    /// of the earlier event (neither passes events on after its own).
+    /// check for feed moves at F = 0 (zero_feed) when the block can print
+    /// one; of their alarms the one of the earlier event (neither passes
+    /// events on after its own).
     fn exec_guarded(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        // (A block run from inside a block, as G70's profile, finds no
+        // parse kept and makes its own.)
+        let mut p = self.parsed.take().unwrap_or_default();
+        let result = block::parse_into(words, &self.machine, &mut p)
+            .and_then(|()| self.exec_watched(&p, words, sink));
+        self.parsed = Some(p);
+        result
+    }
+
+    /// The parsed block behind the sinks that check it.
+    fn exec_watched(
+        &mut self,
+        p: &Parsed,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<Outcome, NcError> {
+        let watched = crate::exec::zero_feed::may_fault(self, p);
+        if !watched && self.st.stroke2.is_none() {
+            // The usual block: nothing to check on its way out.
+            return self.exec_parsed(p, words, sink);
+        }
         let (printed, at) = (self.st.feed_printed, self.st.pos);
         let Some(area) = self.st.stroke2 else {
             let mut watch = crate::exec::zero_feed::Watch::new(sink, printed, at);
-            let result = self.exec_block(words, &mut watch);
+            let result = self.exec_parsed(p, words, &mut watch);
             return watch.finish().map_or(result, Err);
         };
         // G22 in force: every move passes the stroke check.
         let mut guard = crate::exec::stroke::Guard::new(sink, area, self.st.origin(), at);
+        if !watched {
+            let result = self.exec_parsed(p, words, &mut guard);
+            return guard.finish().map_or(result, Err);
+        }
         let mut watch = crate::exec::zero_feed::Watch::new(&mut guard, printed, at);
-        let result = self.exec_block(words, &mut watch);
+        let result = self.exec_parsed(p, words, &mut watch);
         let zero_feed = watch.finish();
         match guard.finish().or(zero_feed) {
             Some(e) => Err(e),
             None => result,
         }
-    }
-
-    fn exec_block(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
-        // (A block run from inside a block, as G70's profile, finds none
-        // and makes its own.)
-        let mut p = self.parsed.take().unwrap_or_default();
-        let result = block::parse_into(words, &self.machine, &mut p)
-            .and_then(|()| self.exec_parsed(&p, words, sink));
-        self.parsed = Some(p);
-        result
     }
 
     fn exec_parsed(
@@ -174,7 +176,7 @@ impl Nc {
             nc.after_motion(p, s);
             Ok(())
         })?;
-        if p.has_m(2) || p.has_m(30) {
+        if p.ends_program() {
             // The program ends: a waiting element is printed whole.
             contour::flush(self, sink)?;
         }
@@ -290,13 +292,13 @@ impl Nc {
         for w in words {
             match w.addr {
                 a if a == b'M' - b'A' => {
-                    let m = round_half_away(w.value) as u32;
-                    match m {
-                        3 => self.spindle(SpindleDir::Cw, sink),
-                        4 => self.spindle(SpindleDir::Ccw, sink),
-                        m if after_motion(m) || is_stop(m) || is_call(m) => {}
+                    // (0…9999: the block's check has passed.)
+                    match M::from_code(round_half_away(w.value) as u16) {
+                        M::SpindleCw => self.spindle(SpindleDir::Cw, sink),
+                        M::SpindleCcw => self.spindle(SpindleDir::Ccw, sink),
+                        m if m.timing() != Timing::Before => {}
                         m if clamp == Some(m) => {}
-                        m => sink.emit(Event::M(m)),
+                        m => sink.emit(Event::M(m.code().into())),
                     }
                 }
                 a if a == b'S' - b'A' => self.s_word(w, g50, sink)?,
@@ -792,23 +794,23 @@ impl Nc {
 
     /// Group 3: spindle stop and the "off" PLC codes.
     fn after_motion(&mut self, p: &Parsed, sink: &mut dyn Sink) {
-        for &(m, _) in p.ms() {
-            if m == 5 {
+        for &m in p.ms() {
+            if m == M::SpindleStop {
                 self.spindle(SpindleDir::Stop, sink);
-            } else if after_motion(m) {
-                sink.emit(Event::M(m));
+            } else if m.timing() == Timing::After {
+                sink.emit(Event::M(m.code().into()));
             }
         }
     }
 
     /// Group 4: program stops and ends.
     fn stops(&mut self, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) {
-        for &(m, _) in p.ms() {
+        for &m in p.ms() {
             let kind = match m {
-                0 => StopKind::M00,
-                1 if self.machine.operator.optional_stop => StopKind::M01,
-                2 => StopKind::M02,
-                30 => StopKind::M30,
+                M::Stop => StopKind::M00,
+                M::OptionalStop if self.machine.operator.optional_stop => StopKind::M01,
+                M::End => StopKind::M02,
+                M::EndRewind => StopKind::M30,
                 _ => continue,
             };
             sink.emit(Event::Stop(kind));
@@ -835,8 +837,8 @@ impl Nc {
                 self.st.last[(letter - b'A') as usize] = v;
             }
         }
-        if let Some(&(m, _)) = p.ms().last() {
-            self.st.last[(b'M' - b'A') as usize] = m as f64;
+        if let Some(&m) = p.ms().last() {
+            self.st.last[(b'M' - b'A') as usize] = f64::from(m.code());
         }
     }
 }

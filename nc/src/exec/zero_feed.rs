@@ -6,8 +6,31 @@
 
 use crate::base::error::{Alarm, NcError};
 use crate::base::event::Event;
+use crate::base::gcode::{Comp, OneShot};
 use crate::base::point::Pt;
-use crate::exec::Sink;
+use crate::block::Parsed;
+use crate::exec::{Nc, Sink};
+
+/// Whether the block about to run can print a feed move at F = 0, so that
+/// it needs a [`Watch`]; most blocks cannot, and run without one.
+///
+/// F = 0 is in force at the start of the block (printed or modal), or the
+/// block may print a `FEED` of 0: every `FEED` is the modal F
+/// (`Nc::feed_due`, which only the block's own F word changes), the feed
+/// an element or held event took when an earlier block queued it
+/// (contour queue, compensation), the F of a G70–G73 profile block, or a
+/// G36/G37 measuring feed. Each of those cases answers yes.
+pub fn may_fault(nc: &Nc, p: &Parsed) -> bool {
+    let st = &nc.st;
+    st.feed_printed.is_some_and(|(f, _)| f == 0.0)
+        || st.feed == 0.0
+        || p.has(b'F')
+        || matches!(p.one_shot(), Some(OneShot::MeasureX | OneShot::MeasureZ))
+        || st.contour.is_holding()
+        || st.modal.comp() != Comp::Off
+        || crate::exec::comp::running(nc)
+        || !nc.profile.is_empty()
+}
 
 /// A sink that passes events on until a feed move runs at F = 0, then
 /// drops the rest of the block and keeps the alarm.
@@ -43,10 +66,11 @@ impl Sink for Watch<'_> {
         if self.fault.is_some() {
             return;
         }
-        if let Event::Feed { f, .. } = e {
-            self.zero = f == 0.0;
-        }
         let end = match e {
+            Event::Feed { f, .. } => {
+                self.zero = f == 0.0;
+                None
+            }
             Event::Rapid { x, z, .. }
             | Event::Line { x, z, .. }
             | Event::Arc { x, z, .. }
@@ -57,13 +81,9 @@ impl Sink for Watch<'_> {
             | Event::Skip { x, z } => Some(Pt::new(x / 2.0, z)),
             _ => None,
         };
-        // A line or skip that goes nowhere is no move for the runtime
-        // either; an arc with equal ends is a full circle.
-        let moves = match e {
-            Event::Line { .. } | Event::Skip { .. } => end.is_some_and(|p| p.dist(self.at) > 1e-9),
-            _ => true,
-        };
-        let zero_move = e.is_feed() && self.zero && moves;
+        // Only a feed move after `FEED F=0` can fault: the usual event
+        // costs the match above and nothing more.
+        let zero_move = self.zero && e.is_feed() && self.moves(&e, end);
         self.inner.emit(e);
         if let Some(p) = end {
             self.at = p;
@@ -73,6 +93,18 @@ impl Sink for Watch<'_> {
                 Alarm::ZeroFeed,
                 "a feed move with F = 0 cannot run: give the block or an earlier one an F",
             ));
+        }
+    }
+}
+
+impl Watch<'_> {
+    /// Whether a feed event moves the tool. A line or skip that goes
+    /// nowhere is no move for the runtime either; an arc with equal ends
+    /// is a full circle.
+    fn moves(&self, e: &Event, end: Option<Pt>) -> bool {
+        match e {
+            Event::Line { .. } | Event::Skip { .. } => end.is_some_and(|p| p.dist(self.at) > 1e-9),
+            _ => true,
         }
     }
 }

@@ -26,6 +26,7 @@ use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{Motion, OneShot};
 use crate::base::geom::Element;
 use crate::base::machine::ChamferType;
+use crate::base::mcode::M;
 use crate::base::point::Pt;
 use crate::base::words::{COMMA_C, COMMA_R};
 use crate::block::Parsed;
@@ -55,7 +56,7 @@ pub fn conic(
 /// G00, or not greater than 0. Other motions give L and D other meanings.
 pub(crate) fn corner_word(nc: &Nc, code: Motion, p: &Parsed) -> Result<Option<Corner>, NcError> {
     // With M98 the L is the repeat count.
-    let l = p.word(b'L').filter(|_| !p.has_m(98));
+    let l = p.word(b'L').filter(|_| !p.has_m(M::SubCall));
     let comma_c = p.word_at(COMMA_C);
     let chamfer = l.or(comma_c);
     let round = p.word(b'D').or(p.word_at(COMMA_R));
