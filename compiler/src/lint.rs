@@ -17,6 +17,18 @@ fn g_codes<'s>(split: &'s Split<'_>) -> impl Iterator<Item = (u16, &'s crate::wo
 
 /// W106 and W109 for one block.
 pub fn block(gen: &mut Gen<'_>, split: &Split<'_>) {
+    let mut codes = g_codes(split);
+    let Some((first, _)) = codes.next() else {
+        return;
+    };
+    if codes.next().is_none() {
+        // One G code, the usual block: no two of a group, and W109 only
+        // for G28/G30 itself.
+        if matches!(first, 280 | 300) {
+            home_without_axes(gen, split);
+        }
+        return;
+    }
     same_group(gen, split);
     home_without_axes(gen, split);
 }

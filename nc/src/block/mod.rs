@@ -135,6 +135,7 @@ impl Parsed {
 }
 
 /// Rounds half away from zero, as every integer address does (§7.6).
+#[inline]
 pub fn round_half_away(v: f64) -> f64 {
     if v < 0.0 {
         -crate::base::geom::floor_non_negative((-v) + 0.5)

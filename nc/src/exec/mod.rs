@@ -111,13 +111,21 @@ impl Nc {
         // (A block run from inside a block, as G70's profile, finds no
         // parse kept and makes its own.)
         let mut p = self.parsed.take().unwrap_or_default();
-        let result = block::parse_into(words, &self.machine, &mut p)
-            .and_then(|()| self.exec_watched(&p, words, sink));
+        let result = match block::parse_into(words, &self.machine, &mut p) {
+            Err(e) => Err(e),
+            // The usual block: nothing to check on its way out, and the
+            // block's execution in line here (it runs for every block).
+            Ok(()) if self.st.stroke2.is_none() && !crate::exec::zero_feed::may_fault(self, &p) => {
+                self.exec_parsed(&p, words, sink)
+            }
+            Ok(()) => self.exec_watched(&p, words, sink),
+        };
         self.parsed = Some(p);
         result
     }
 
     /// The parsed block behind the sinks that check it.
+    #[inline(never)]
     fn exec_watched(
         &mut self,
         p: &Parsed,
@@ -125,24 +133,20 @@ impl Nc {
         sink: &mut dyn Sink,
     ) -> Result<Outcome, NcError> {
         let watched = crate::exec::zero_feed::may_fault(self, p);
-        if !watched && self.st.stroke2.is_none() {
-            // The usual block: nothing to check on its way out.
-            return self.exec_parsed(p, words, sink);
-        }
         let (printed, at) = (self.st.feed_printed, self.st.pos);
         let Some(area) = self.st.stroke2 else {
             let mut watch = crate::exec::zero_feed::Watch::new(sink, printed, at);
-            let result = self.exec_parsed(p, words, &mut watch);
+            let result = self.exec_behind(p, words, &mut watch);
             return watch.finish().map_or(result, Err);
         };
         // G22 in force: every move passes the stroke check.
         let mut guard = crate::exec::stroke::Guard::new(sink, area, self.st.origin(), at);
         if !watched {
-            let result = self.exec_parsed(p, words, &mut guard);
+            let result = self.exec_behind(p, words, &mut guard);
             return guard.finish().map_or(result, Err);
         }
         let mut watch = crate::exec::zero_feed::Watch::new(&mut guard, printed, at);
-        let result = self.exec_parsed(p, words, &mut watch);
+        let result = self.exec_behind(p, words, &mut watch);
         let zero_feed = watch.finish();
         match guard.finish().or(zero_feed) {
             Some(e) => Err(e),
@@ -150,6 +154,18 @@ impl Nc {
         }
     }
 
+    /// `exec_parsed` out of line, for the checked blocks.
+    #[inline(never)]
+    fn exec_behind(
+        &mut self,
+        p: &Parsed,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<Outcome, NcError> {
+        self.exec_parsed(p, words, sink)
+    }
+
+    #[inline(always)]
     fn exec_parsed(
         &mut self,
         p: &Parsed,
