@@ -24,14 +24,15 @@ use alloc::vec::Vec;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, SpindleDir, StopKind};
 use crate::base::gcode::{self, Drill, Motion, OneShot, Polar, SpeedMode, Work, G};
-use crate::base::geom::{self, Element};
-use crate::base::machine::{ArcWithoutCenter, DecimalPoint, Machine, SpindleType};
+use crate::base::geom::Element;
+use crate::base::machine::{DecimalPoint, Machine, SpindleType};
 use crate::base::mcode::{Timing, M};
 use crate::base::point::Pt;
 use crate::base::words::{Word, LITERAL, NO_POINT};
 use crate::block::{self, round_half_away, Parsed};
 use crate::exec::state::State;
 use crate::modal::PathMode;
+use crate::plan::reader::Reader;
 
 /// Where the events of a run go; the kernel does not know who listens.
 pub trait Sink {
@@ -469,42 +470,35 @@ impl Nc {
         Ok(())
     }
 
-    /// A length word in mm: the unit, and the decimal-point rule for
-    /// literals written without a point in increment mode.
-    pub(crate) fn length(&self, w: Word) -> f64 {
-        let mut v = w.value;
-        if w.flags & NO_POINT != 0 && self.machine.machine.decimal_point == DecimalPoint::Increment
-        {
-            v *= if self.st.inch() { 0.0001 } else { 0.001 };
+    /// The words of this block read against the state the kernel is in.
+    #[inline]
+    pub(crate) fn reader(&self) -> Reader<'_> {
+        Reader {
+            machine: &self.machine,
+            inch: self.st.inch(),
+            at: self.st.pos,
+            motion: self.st.modal.motion,
         }
-        v * self.st.unit()
     }
 
+    /// A length word in mm (plan::reader).
+    #[inline]
     pub(crate) fn len_of(&self, p: &Parsed, letter: u8) -> Option<f64> {
-        p.word(letter).map(|w| self.length(w))
+        self.reader().len_of(p, letter)
     }
 
     /// The end point of a move: X/Z absolute, U/W incremental, axes left
     /// out keep their coordinate.
+    #[inline(always)]
     pub(crate) fn target(&self, p: &Parsed) -> Pt {
         self.target_from(p, self.st.pos)
     }
 
     /// The end point of a move that starts at `from` (a profile block's U/W
     /// are relative to the previous profile point, not to the tool).
+    #[inline(always)]
     pub(crate) fn target_from(&self, p: &Parsed, from: Pt) -> Pt {
-        let mut t = from;
-        if let Some(x) = self.len_of(p, b'X') {
-            t.r = x / 2.0;
-        } else if let Some(u) = self.len_of(p, b'U') {
-            t.r += u / 2.0;
-        }
-        if let Some(z) = self.len_of(p, b'Z') {
-            t.z = z;
-        } else if let Some(w) = self.len_of(p, b'W') {
-            t.z += w;
-        }
-        t
+        self.reader().target_from(p, from)
     }
 
     /// A rapid to `to`, C already at its end angle (it started at `c_from`).
@@ -540,10 +534,8 @@ impl Nc {
     }
 
     /// The element of a G02/G03 block from `from` (the current point, or
-    /// the previous point of a profile): its arc from R or I/K, or a line
-    /// where `arc_without_center = "line"`. `None` for a 0° arc with R
-    /// (end = start), which is no move (W108), and for a block that names
-    /// neither a centre nor an axis.
+    /// the previous point of a profile), as plan::reader reads it.
+    #[inline(always)]
     pub(crate) fn arc_element(
         &self,
         from: Pt,
@@ -551,37 +543,7 @@ impl Nc {
         to: Pt,
         p: &Parsed,
     ) -> Result<Option<Element>, NcError> {
-        let centre = if let Some(r) = self.len_of(p, b'R') {
-            match geom::centre_from_radius(from, to, r, cw)? {
-                Some(c) => c,
-                None => return Ok(None),
-            }
-        } else if p.has(b'I') || p.has(b'K') {
-            let i = self.len_of(p, b'I').unwrap_or(0.0);
-            let k = self.len_of(p, b'K').unwrap_or(0.0);
-            let c = Pt::new(from.r + i, from.z + k);
-            geom::check_on_circle(from, to, c, self.machine.machine.arc_tolerance_mm)?;
-            c
-        } else if !p.has_axis() {
-            return Ok(None);
-        } else {
-            return match self.machine.machine.arc_without_center {
-                ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
-                ArcWithoutCenter::Alarm => fail(
-                    Alarm::MissingWord,
-                    format!(
-                        "{} needs R or I/K to define its centre",
-                        if cw { "G02" } else { "G03" }
-                    ),
-                ),
-            };
-        };
-        Ok(Some(Element::Arc {
-            from,
-            to,
-            centre,
-            cw,
-        }))
+        self.reader().arc_element(from, cw, to, p)
     }
 
     pub(crate) fn emit_arc(&mut self, cw: bool, to: Pt, c: Pt, sink: &mut dyn Sink) {
@@ -605,19 +567,12 @@ impl Nc {
         p: &Parsed,
         sink: &mut dyn Sink,
     ) -> Result<(), NcError> {
-        if !p.has(b'I') && !p.has(b'K') {
-            return fail(Alarm::MissingWord, "G05 needs the mid point I/K");
-        }
         let from = self.st.pos;
-        let i = self.len_of(p, b'I');
-        let k = self.len_of(p, b'K');
-        let mid = if absolute {
-            Pt::new(i.map_or(from.r, |x| x / 2.0), k.unwrap_or(from.z))
-        } else {
-            Pt::new(from.r + i.unwrap_or(0.0), from.z + k.unwrap_or(0.0))
+        let Element::Arc { centre, cw, .. } = self.reader().three_point(absolute, p, from, to)?
+        else {
+            return Ok(());
         };
-        let (c, cw) = geom::circle_through(from, mid, to)?;
-        self.emit_arc(cw, to, c, sink);
+        self.emit_arc(cw, to, centre, sink);
         Ok(())
     }
 
