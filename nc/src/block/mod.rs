@@ -59,24 +59,29 @@ impl Default for Parsed {
 
 impl Parsed {
     /// The block's G codes, typed, in written order.
+    #[inline]
     pub fn gs(&self) -> impl DoubleEndedIterator<Item = G> + '_ {
         self.g[..self.g_len].iter().copied()
     }
 
+    #[inline]
     pub fn ms(&self) -> &[M] {
         &self.m[..self.m_len]
     }
 
+    #[inline]
     pub fn has_g(&self, g: impl Into<G>) -> bool {
         let g = g.into();
         self.g[..self.g_len].contains(&g)
     }
 
+    #[inline]
     pub fn has_m(&self, m: M) -> bool {
         self.ms().contains(&m)
     }
 
     /// M02 or M30 ends the program in this block.
+    #[inline]
     pub fn ends_program(&self) -> bool {
         self.ms().iter().any(|m| m.ends_program())
     }

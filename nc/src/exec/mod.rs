@@ -795,6 +795,7 @@ impl Nc {
     }
 
     /// Before the motion: F is modal (the block's own move uses it); the last B D E F H M N O S T are kept for #4102….
+    #[inline]
     fn remember(&mut self, p: &Parsed) {
         // The F of a thread block is its lead, not a feed (cycles.md §0).
         if let Some(f) = p

@@ -231,7 +231,6 @@ mod tests {
     use super::*;
     use crate::base::machine::Machine;
     use crate::base::words::{addr, LITERAL};
-    use alloc::vec;
 
     /// A block of literal words with decimal points (no increment rule).
     fn block(ws: &[(u8, f64)], tag: u32) -> (Vec<Word>, u32) {
@@ -303,6 +302,6 @@ mod tests {
         };
         let e = ns_kind(&arc, &blocks, false).unwrap_err();
         assert_eq!((e.code, e.at), (Alarm::BadProfileStart.code(), Some(7)));
-        assert!(build(&r, &vec![]).is_err());
+        assert!(build(&r, &[]).is_err());
     }
 }
