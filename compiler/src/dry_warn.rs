@@ -63,25 +63,74 @@ fn find(ws: &[grammar::ast::Word], letter: u8) -> Option<&grammar::ast::Word> {
     ws.iter().find(|w| addr_code(w.addr) == letter)
 }
 
-fn has(lits: &[Word], letter: u8) -> bool {
-    lits.iter().any(|w| w.addr == letter - b'A')
+/// What the warnings ask about a block's words, found in one pass over
+/// them: the checks below run for every block of the dry run, and asking
+/// each question of the words anew cost more than the block's execution.
+struct Seen {
+    /// Bit `a`: address `a` among the literal words.
+    lits: u32,
+    /// Bit `a`: address `a` among the block's words as written.
+    written: u32,
+    /// A group-00 code owns the block.
+    one_shot: bool,
+    /// G04, G50, G22 are in the block.
+    dwell: bool,
+    set_coordinates: bool,
+    stroke_on: bool,
+    /// M98 is among the literal words.
+    m98: bool,
 }
 
-/// The block's G codes as the kernel codes them (tenths: G6.2 is 62).
-fn g_codes(lits: &[Word]) -> impl Iterator<Item = gcode::Code> + '_ {
-    lits.iter()
-        .filter(|w| w.addr == b'G' - b'A')
-        .map(|w| crate::words::round_g(w.value))
+impl Seen {
+    fn of(ws: &[grammar::ast::Word], lits: &[Word]) -> Seen {
+        let mut seen = Seen {
+            lits: 0,
+            written: 0,
+            one_shot: false,
+            dwell: false,
+            set_coordinates: false,
+            stroke_on: false,
+            m98: false,
+        };
+        for w in lits {
+            seen.lits |= bit(w.addr);
+            if w.addr == b'G' - b'A' {
+                // The kernel's code (tenths: G6.2 is 62), typed.
+                match gcode::G::from_code(crate::words::round_g(w.value)) {
+                    Some(gcode::G::OneShot(o)) => {
+                        seen.one_shot = true;
+                        seen.dwell |= o == OneShot::Dwell;
+                        seen.set_coordinates |= o == OneShot::SetCoordinates;
+                    }
+                    Some(gcode::G::Stroke(Stroke::On)) => seen.stroke_on = true,
+                    _ => {}
+                }
+            } else if w.addr == b'M' - b'A' {
+                seen.m98 |= round_half_away(w.value) == 98.0;
+            }
+        }
+        // The literal words are the written ones, or some of them (a call
+        // takes its P and L): as many means the same words.
+        seen.written = if ws.len() == lits.len() {
+            seen.lits
+        } else {
+            ws.iter().fold(0, |m, w| m | bit(addr_code(w.addr)))
+        };
+        seen
+    }
+
+    fn has(&self, letter: u8) -> bool {
+        self.lits & bit(letter - b'A') != 0
+    }
+
+    fn written(&self, a: u8) -> bool {
+        self.written & bit(a) != 0
+    }
 }
 
-fn has_g(lits: &[Word], g: impl Into<gcode::G>) -> bool {
-    let code = g.into().code();
-    g_codes(lits).any(|c| c == code)
-}
-
-/// Whether a group-00 code owns the block.
-fn has_one_shot(lits: &[Word]) -> bool {
-    g_codes(lits).any(|c| gcode::group(c) == Some(gcode::ONE_SHOT))
+/// The bit of address `a` (0..ADDR_COUNT, fewer than 32).
+fn bit(a: u8) -> u32 {
+    1u32.checked_shl(u32::from(a)).unwrap_or(0)
 }
 
 impl Warner {
@@ -121,10 +170,11 @@ impl Warner {
         before: Before,
     ) {
         let (ws, span) = block;
-        self.inch_lengths(unit, nc, ws, lits);
-        self.feed_mode(unit, nc, lits, span, counts, &before);
-        self.no_motion(unit, nc, lits, span, &before);
-        self.corners(unit, nc, ws, lits, counts, &before);
+        let seen = Seen::of(ws, lits);
+        self.inch_lengths(unit, nc, ws, &seen);
+        self.feed_mode(unit, nc, &seen, span, counts, &before);
+        self.no_motion(unit, nc, &seen, span, &before);
+        self.corners(unit, nc, ws, &seen, counts, &before);
         if counts.threads > 0 && nc.st.css_mode() {
             self.warn(
                 unit,
@@ -133,18 +183,18 @@ impl Warner {
                 "thread cut in constant surface speed (G96): the spindle speed changes with X, and the lead follows it; cut threads in G97".into(),
             );
         }
-        self.spindle_max(unit, nc, ws, lits);
+        self.spindle_max(unit, nc, ws, &seen);
     }
 
     /// W105: in calculator mode a G20 length written without a point and
     /// ≥ 100 is probably an increment count (§1.9). Lengths: X Z U W R I
     /// K (not X/U of a G04, which are seconds; not I of a thread, which is
     /// threads per inch).
-    fn inch_lengths(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], lits: &[Word]) {
+    fn inch_lengths(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
         if !nc.st.inch() || nc.machine.machine.decimal_point != DecimalPoint::Calculator {
             return;
         }
-        let dwell = has_g(lits, OneShot::Dwell);
+        let dwell = seen.dwell;
         let motion = nc.st.modal.motion;
         let thread = motion.is_thread() && motion != Motion::RigidThreadCycle;
         for w in ws {
@@ -179,12 +229,12 @@ impl Warner {
         &mut self,
         unit: usize,
         nc: &Nc,
-        lits: &[Word],
+        seen: &Seen,
         span: Span,
         counts: &Counts,
         before: &Before,
     ) {
-        if has(lits, b'F') {
+        if seen.has(b'F') {
             self.mode_change = None;
         } else if nc.st.per_rev() != before.per_rev && nc.st.feed != 0.0 {
             self.mode_change = Some((unit, span));
@@ -211,20 +261,21 @@ impl Warner {
 
     /// W108: an arc with R, an ellipse or a parabola whose end is its
     /// start: no move, nothing printed (§4.1).
-    fn no_motion(&mut self, unit: usize, nc: &Nc, lits: &[Word], span: Span, before: &Before) {
-        let one_shot = has_one_shot(lits);
-        if one_shot || nc.st.modal.drill().is_some() || has_g(lits, Stroke::On) {
+    fn no_motion(&mut self, unit: usize, nc: &Nc, seen: &Seen, span: Span, before: &Before) {
+        if seen.one_shot || nc.st.modal.drill().is_some() || seen.stroke_on {
             return;
         }
         let what = match nc.st.modal.motion {
-            Motion::ArcCw | Motion::ArcCcw if has(lits, b'R') => "arc",
-            Motion::EllipseCw | Motion::EllipseCcw if has(lits, b'A') || has(lits, b'B') => {
-                "ellipse"
-            }
-            Motion::ParabolaCw | Motion::ParabolaCcw if has(lits, b'P') => "parabola",
+            Motion::ArcCw | Motion::ArcCcw if seen.has(b'R') => "arc",
+            Motion::EllipseCw | Motion::EllipseCcw if seen.has(b'A') || seen.has(b'B') => "ellipse",
+            Motion::ParabolaCw | Motion::ParabolaCcw if seen.has(b'P') => "parabola",
             _ => return,
         };
-        if nc.st.pos.dist(before.pos) < 1e-9 {
+        // (Both coordinates within 1e-9 first: the distance is only
+        // computed for a block that may not have moved.)
+        let (now, was) = (nc.st.pos, before.pos);
+        let near = (now.r - was.r).abs() < 1e-9 && (now.z - was.z).abs() < 1e-9;
+        if near && now.dist(was) < 1e-9 {
             self.warn(
                 unit,
                 "W108",
@@ -242,7 +293,7 @@ impl Warner {
         unit: usize,
         nc: &Nc,
         ws: &[grammar::ast::Word],
-        lits: &[Word],
+        seen: &Seen,
         counts: &Counts,
         before: &Before,
     ) {
@@ -261,18 +312,22 @@ impl Warner {
             }
         }
         let motion = nc.st.modal.motion;
-        let one_shot = has_one_shot(lits);
         if !matches!(motion, Motion::Line | Motion::ArcCw | Motion::ArcCcw)
-            || one_shot
+            || seen.one_shot
             || nc.st.modal.drill().is_some()
         {
             return;
         }
-        let l = find(ws, b'L' - b'A').filter(|_| {
-            !lits
-                .iter()
-                .any(|w| w.addr == b'M' - b'A' && round_half_away(w.value) == 98.0)
-        });
+        let corner_words = [
+            b'L' - b'A',
+            nc::words::COMMA_C,
+            b'D' - b'A',
+            nc::words::COMMA_R,
+        ];
+        if !corner_words.iter().any(|&a| seen.written(a)) {
+            return;
+        }
+        let l = find(ws, b'L' - b'A').filter(|_| !seen.m98);
         let word = l
             .or(find(ws, nc::words::COMMA_C))
             .or(find(ws, b'D' - b'A'))
@@ -285,11 +340,12 @@ impl Warner {
     /// W114: a literal S above the spindle maximum in G97 (the runtime
     /// clamps it, §6.2); not the G50 S limit, not a G96 surface speed, not
     /// a gear code.
-    fn spindle_max(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], lits: &[Word]) {
+    fn spindle_max(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
         let m = &nc.machine.spindle;
         if m.r#type != SpindleType::Analog
             || nc.st.css_mode()
-            || has_g(lits, OneShot::SetCoordinates)
+            || seen.set_coordinates
+            || !seen.written(b'S' - b'A')
         {
             return;
         }

@@ -17,6 +17,18 @@ fn g_codes<'s>(split: &'s Split<'_>) -> impl Iterator<Item = (u16, &'s crate::wo
 
 /// W106 and W109 for one block.
 pub fn block(gen: &mut Gen<'_>, split: &Split<'_>) {
+    let mut codes = g_codes(split);
+    let Some((first, _)) = codes.next() else {
+        return;
+    };
+    if codes.next().is_none() {
+        // One G code, the usual block: no two of a group, and W109 only
+        // for G28/G30 itself.
+        if matches!(first, 280 | 300) {
+            home_without_axes(gen, split);
+        }
+        return;
+    }
     same_group(gen, split);
     home_without_axes(gen, split);
 }
@@ -24,16 +36,17 @@ pub fn block(gen: &mut Gen<'_>, split: &Split<'_>) {
 /// W106: two codes of one modal group; the last one written wins (§3).
 /// Two group-00 codes are E2002, checked by the kernel.
 fn same_group(gen: &mut Gen<'_>, split: &Split<'_>) {
-    let codes: Vec<_> = g_codes(split).collect();
-    for (i, &(code, w)) in codes.iter().enumerate() {
+    // (No list of the codes: this runs for every block, most of which
+    // hold one G code or none.)
+    for (i, (code, w)) in g_codes(split).enumerate().skip(1) {
         let Some(group) = gcode::group(code).filter(|&g| g != gcode::ONE_SHOT) else {
             continue;
         };
-        let earlier = codes[..i]
-            .iter()
-            .rev()
-            .find(|(c, _)| gcode::group(*c) == Some(group));
-        if let Some(&(first, _)) = earlier {
+        let earlier = g_codes(split)
+            .take(i)
+            .filter(|(c, _)| gcode::group(*c) == Some(group))
+            .last();
+        if let Some((first, _)) = earlier {
             gen.warn(
                 "W106",
                 w.span,

@@ -16,7 +16,7 @@ use crate::words::{self, Call, NcWord, WordValue};
 use grammar::ast::{Block, Body};
 use grammar::Span;
 use nc::block::round_half_away;
-use nc::gcode;
+use nc::gcode::{self, Drill, OneShot, G};
 use nc::words::{addr, COMMA_A, LITERAL, NO_POINT};
 use nc::Nc;
 use std::collections::HashSet;
@@ -58,7 +58,7 @@ pub struct After {
 /// A G70–G73 block's code and its P, Q words (`None`: absent; `Some(None)`:
 /// computed).
 struct CycleWords {
-    code: u16,
+    code: OneShot,
     p: Option<Option<f64>>,
     q: Option<Option<f64>>,
 }
@@ -67,9 +67,21 @@ fn letter(w: &NcWord<'_>, l: u8) -> bool {
     w.addr == addr(l)
 }
 
-fn literal_g(w: &NcWord<'_>) -> Option<u16> {
+/// A literal G word's code as the kernel types it (`None` for a computed
+/// word or a code not of the dialect).
+fn literal_g(w: &NcWord<'_>) -> Option<G> {
     match w.value {
-        WordValue::Literal(v, _) if letter(w, b'G') => Some(words::round_g(v)),
+        WordValue::Literal(v, _) if letter(w, b'G') => G::from_code(words::round_g(v)),
+        _ => None,
+    }
+}
+
+/// G70–G73: the cycles that take a profile.
+fn profile_cycle(g: Option<G>) -> Option<OneShot> {
+    match g? {
+        G::OneShot(
+            c @ (OneShot::Finish | OneShot::RoughTurn | OneShot::RoughFace | OneShot::Pattern),
+        ) => Some(c),
         _ => None,
     }
 }
@@ -81,15 +93,12 @@ pub(crate) fn names_cycle(ws: &[grammar::ast::Word]) -> bool {
     ws.iter().any(|w| {
         let g = w.addr == grammar::ast::Addr::Letter('G');
         let code = words::value_of(w).literal();
-        g && code.is_some_and(|v| matches!(words::round_g(v), 700 | 710 | 720 | 730))
+        g && profile_cycle(code.and_then(|v| G::from_code(words::round_g(v)))).is_some()
     })
 }
 
 fn cycle_words(ws: &[NcWord<'_>]) -> Option<CycleWords> {
-    let code = ws
-        .iter()
-        .filter_map(literal_g)
-        .find(|c| matches!(c, 700 | 710 | 720 | 730))?;
+    let code = ws.iter().find_map(|w| profile_cycle(literal_g(w)))?;
     let value = |l: u8| ws.iter().find(|w| letter(w, l)).map(|w| w.value.literal());
     Some(CycleWords {
         code,
@@ -246,7 +255,7 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
     let cw = cycle_words(&split.nc)?;
     integer_flags(gen, &cw, &split.nc, block.span);
     if cw.p.is_none() && cw.q.is_none() {
-        if cw.code == 700 {
+        if cw.code == OneShot::Finish {
             gen.error("E2006", block.span, "G70 needs P (ns) and Q (nf)");
         }
         return None;
@@ -294,7 +303,7 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
     }
     build_profile(gen, unit, &lines);
     gen.set_loc(block.span);
-    (cw.code != 700).then(|| After {
+    (cw.code != OneShot::Finish).then(|| After {
         resume: prog.blocks.get(j + 1).copied(),
     })
 }
@@ -363,8 +372,8 @@ fn build_words(gen: &mut Gen<'_>, ws: &[NcWord<'_>]) {
 fn integer_flags(gen: &mut Gen<'_>, cw: &CycleWords, ws: &[NcWord<'_>], span: Span) {
     let cycle = cw.p.is_some() || cw.q.is_some();
     let letters: &[u8] = match cw.code {
-        710 | 720 if cycle => b"JK",
-        730 if !cycle => b"R",
+        OneShot::RoughTurn | OneShot::RoughFace if cycle => b"JK",
+        OneShot::Pattern if !cycle => b"R",
         _ => b"",
     };
     for w in ws.iter().filter(|w| letters.iter().any(|&l| letter(w, l))) {
@@ -382,7 +391,13 @@ fn integer_flags(gen: &mut Gen<'_>, cw: &CycleWords, ws: &[NcWord<'_>], span: Sp
 }
 
 /// The static checks of the profile blocks; false after an error.
-fn check_blocks(gen: &mut Gen<'_>, unit: &Unit, code: u16, lines: &[usize], span: Span) -> bool {
+fn check_blocks(
+    gen: &mut Gen<'_>,
+    unit: &Unit,
+    code: OneShot,
+    lines: &[usize],
+    span: Span,
+) -> bool {
     let Some(&ns) = lines.first() else {
         gen.error(
             "E2020",
@@ -411,8 +426,8 @@ fn check_blocks(gen: &mut Gen<'_>, unit: &Unit, code: u16, lines: &[usize], span
 /// group-01 code other than G00/G01, or no word of the infeed axis. The
 /// modal code it inherits is checked by the kernel (at compile time in a
 /// static program, by the dry run).
-fn ns_fault(unit: &Unit, line: usize, code: u16) -> Option<(Span, String)> {
-    if !matches!(code, 710 | 720) {
+fn ns_fault(unit: &Unit, line: usize, code: OneShot) -> Option<(Span, String)> {
+    if !matches!(code, OneShot::RoughTurn | OneShot::RoughFace) {
         return None;
     }
     let b = link::block(unit, line)?;
@@ -420,21 +435,19 @@ fn ns_fault(unit: &Unit, line: usize, code: u16) -> Option<(Span, String)> {
         return None;
     };
     let split = words::classify(ws).ok()?;
-    let name = gcode::name(code);
-    let motion = split
-        .nc
-        .iter()
-        .rev()
-        .filter_map(literal_g)
-        .find(|&c| gcode::group(c) == Some(gcode::MOTION));
-    if let Some(m) = motion.filter(|m| !matches!(m, 0 | 10)) {
+    let name = code.name();
+    let motion = split.nc.iter().rev().find_map(|w| match literal_g(w) {
+        Some(G::Motion(m)) => Some(m),
+        _ => None,
+    });
+    if let Some(m) = motion.filter(|m| !m.is_straight()) {
         let msg = format!(
             "the first profile block (ns) of {name} must move with G00 or G01, not {}",
-            gcode::name(m)
+            m.name()
         );
         return Some((b.span, msg));
     }
-    let (axis, a, b2) = if code == 710 {
+    let (axis, a, b2) = if code == OneShot::RoughTurn {
         ("X(U)", b'X', b'U')
     } else {
         ("Z(W)", b'Z', b'W')
@@ -464,12 +477,11 @@ fn block_fault(b: &Block, last: bool) -> Option<String> {
             ))
         }
     }
-    for c in split.nc.iter().filter_map(literal_g) {
-        let group = gcode::group(c);
-        if group == Some(gcode::ONE_SHOT) || (group == Some(gcode::DRILL) && c != 800) {
+    for g in split.nc.iter().filter_map(literal_g) {
+        if matches!(g, G::OneShot(_)) || matches!(g, G::Drill(d) if d != Drill::Off) {
             return Some(format!(
                 "{} may not stand in a G70–G73 profile",
-                gcode::name(c)
+                gcode::name(g.code())
             ));
         }
     }
@@ -494,7 +506,12 @@ fn shared_numbers(gen: &mut Gen<'_>, prog: &Program) {
     let units: &[Unit] = gen.units;
     let unit = &units[prog.unit];
     let cycles = cycle_ranges(unit, prog);
-    if cycles.iter().filter(|(code, _)| *code != 700).count() < 2 {
+    if cycles
+        .iter()
+        .filter(|(code, _)| *code != OneShot::Finish)
+        .count()
+        < 2
+    {
         return;
     }
     let mut reported = HashSet::new();
@@ -525,7 +542,7 @@ fn shared_numbers(gen: &mut Gen<'_>, prog: &Program) {
 }
 
 /// Every cycle block of a program with its resolved ns…nf.
-fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(u16, (usize, usize))> {
+fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(OneShot, (usize, usize))> {
     let mut out = Vec::new();
     for &l in &prog.blocks {
         let Some(b) = link::block(unit, l) else {
@@ -577,7 +594,7 @@ pub fn hand_over(
             nc.push_profile(&lits, l as u32);
         }
     }
-    (cw.code != 700).then_some(j + 1)
+    (cw.code != OneShot::Finish).then_some(j + 1)
 }
 
 /// The span of the block an error is about: the tagged profile block, else

@@ -26,12 +26,21 @@ fn edges(units: &[Unit], programs: &[Program], p: &Program) -> Vec<Edge> {
             Body::Stmt(_) => break,
             Body::Words(ws) => ws,
         };
+        if !words::may_call(ws) {
+            // No call (classify would give every word and no call): only
+            // a program end matters, found without sorting the words.
+            if ws
+                .iter()
+                .any(|w| is_end(words::addr_code(w.addr), words::value_of(w)))
+            {
+                break;
+            }
+            continue;
+        }
         let Ok(split) = words::classify(ws) else {
             break;
         };
-        let ends = split.nc.iter().any(|w| {
-            w.addr == b'M' - b'A' && w.value.literal().is_some_and(|m| m == 2.0 || m == 30.0)
-        });
+        let ends = split.nc.iter().any(|w| is_end(w.addr, w.value));
         let target = match &split.call {
             Some(Call::Sub {
                 p: Some(t),
@@ -69,6 +78,11 @@ fn edges(units: &[Unit], programs: &[Program], p: &Program) -> Vec<Edge> {
         }
     }
     out
+}
+
+/// Whether a word is a literal M02 or M30.
+fn is_end(addr: u8, value: words::WordValue<'_>) -> bool {
+    addr == b'M' - b'A' && value.literal().is_some_and(|m| m == 2.0 || m == 30.0)
 }
 
 /// W115 at every unconditional call that leads back to its own program.

@@ -139,6 +139,11 @@ impl RoomCheck {
 
     /// The chain ended: its first and last legs against the room they need.
     pub fn finish(&mut self) {
+        // Most events end no chain: nothing to take apart.
+        if self.chain.is_empty() {
+            self.unmeasured = false;
+            return;
+        }
         let chain = core::mem::take(&mut self.chain);
         let unmeasured = core::mem::take(&mut self.unmeasured);
         let (Some(first), Some(last)) = (chain.first(), chain.last()) else {

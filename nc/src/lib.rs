@@ -15,8 +15,9 @@
 //! and fails on an import that points up or a circle across layers):
 //!
 //! 1. [`base`] — points and units, the G-code table with one typed enum
-//!    per modal group, words, the machine configuration, events, the
-//!    geometry element, the alarms. (Rust's own crate is called `core`,
+//!    per modal group, the M-code table (`base::mcode`: the codes the
+//!    kernel gives a meaning to, their class and canon group), words, the
+//!    machine configuration, events, the geometry element, the alarms. (Rust's own crate is called `core`,
 //!    hence the name.)
 //! 2. [`block`] — parsing and checking one block's words into a
 //!    [`block::Parsed`] block; macro arithmetic on word values.
@@ -24,8 +25,10 @@
 //!    block changes it.
 //! 4. [`plan`] — pure geometry: corners, angle programming, conics, the
 //!    single cycles, grooving, drilling and tapping, threading passes and
-//!    run-outs, the roughing cycles, nose-radius offsets and corners.
-//!    Arguments and a read-only context in, path elements (legs) out; no
+//!    run-outs, the roughing cycles and the reading of their ns…nf
+//!    profile (`plan::profile`), nose-radius offsets and corners.
+//!    Arguments and a read-only context (`plan::reader::Reader`: machine,
+//!    units, position, motion in force) in, path elements (legs) out; no
 //!    sink and no kernel.
 //! 5. [`exec`] — the stateful executor [`Nc`]: position, variables, tool
 //!    life, data setting, stroke check, the contour and compensation queue,
@@ -46,7 +49,7 @@ pub mod exec;
 pub mod modal;
 pub mod plan;
 
-pub use base::{error, event, gcode, geom, machine, plc, point, thread_room, words};
+pub use base::{error, event, gcode, geom, machine, mcode, plc, point, thread_room, words};
 pub use block::value;
 pub use exec::{
     comp, compound, contour, cycles, data_setting, measure, params, state, stroke, sysvar,

@@ -406,21 +406,76 @@ pub enum G {
 impl G {
     /// The typed code, `None` for a code not of the dialect.
     pub fn from_code(code: Code) -> Option<G> {
-        Some(match group(code)? {
-            ONE_SHOT => G::OneShot(OneShot::from_code(code)?),
-            MOTION => G::Motion(Motion::from_code(code)?),
-            SPEED_MODE => G::SpeedMode(SpeedMode::from_code(code)?),
-            FEED_MODE => G::FeedMode(FeedMode::from_code(code)?),
-            UNITS => G::Units(Units::from_code(code)?),
-            COMP => G::Comp(Comp::from_code(code)?),
-            STROKE => G::Stroke(Stroke::from_code(code)?),
-            DRILL => G::Drill(Drill::from_code(code)?),
-            MODAL_CALL => G::ModalCall(ModalCall::from_code(code)?),
-            WORK => G::Work(Work::from_code(code)?),
-            EXACT => G::PathMode(PathMode::from_code(code)?),
-            PLANE => G::Plane(Plane::from_code(code)?),
-            POLAR_CMD => G::PolarCmd(PolarCmd::from_code(code)?),
-            POLAR => G::Polar(Polar::from_code(code)?),
+        // A direct table, as `group`: this runs for every G word of every
+        // block the kernel parses.
+        TYPED.get(code as usize).copied().flatten()
+    }
+
+    /// `from_code` by the group's tables, to build [`TYPED`].
+    const fn by_group(code: Code) -> Option<G> {
+        if code as usize >= GROUP_OF.len() {
+            return None;
+        }
+        let Some(group) = GROUP_OF[code as usize] else {
+            return None;
+        };
+        Some(match group {
+            ONE_SHOT => match OneShot::from_code(code) {
+                Some(c) => G::OneShot(c),
+                None => return None,
+            },
+            MOTION => match Motion::from_code(code) {
+                Some(c) => G::Motion(c),
+                None => return None,
+            },
+            SPEED_MODE => match SpeedMode::from_code(code) {
+                Some(c) => G::SpeedMode(c),
+                None => return None,
+            },
+            FEED_MODE => match FeedMode::from_code(code) {
+                Some(c) => G::FeedMode(c),
+                None => return None,
+            },
+            UNITS => match Units::from_code(code) {
+                Some(c) => G::Units(c),
+                None => return None,
+            },
+            COMP => match Comp::from_code(code) {
+                Some(c) => G::Comp(c),
+                None => return None,
+            },
+            STROKE => match Stroke::from_code(code) {
+                Some(c) => G::Stroke(c),
+                None => return None,
+            },
+            DRILL => match Drill::from_code(code) {
+                Some(c) => G::Drill(c),
+                None => return None,
+            },
+            MODAL_CALL => match ModalCall::from_code(code) {
+                Some(c) => G::ModalCall(c),
+                None => return None,
+            },
+            WORK => match Work::from_code(code) {
+                Some(c) => G::Work(c),
+                None => return None,
+            },
+            EXACT => match PathMode::from_code(code) {
+                Some(c) => G::PathMode(c),
+                None => return None,
+            },
+            PLANE => match Plane::from_code(code) {
+                Some(c) => G::Plane(c),
+                None => return None,
+            },
+            POLAR_CMD => match PolarCmd::from_code(code) {
+                Some(c) => G::PolarCmd(c),
+                None => return None,
+            },
+            POLAR => match Polar::from_code(code) {
+                Some(c) => G::Polar(c),
+                None => return None,
+            },
             _ => return None,
         })
     }
@@ -445,6 +500,17 @@ impl G {
         }
     }
 }
+
+/// The typed code of every code below 1000, built once at compile time.
+const TYPED: [Option<G>; 1000] = {
+    let mut t = [None; 1000];
+    let mut code = 0;
+    while code < t.len() {
+        t[code] = G::by_group(code as Code);
+        code += 1;
+    }
+    t
+};
 
 const TABLE: &[(u8, &[Code])] = &[
     (ONE_SHOT, OneShot::CODES),

@@ -38,6 +38,7 @@ pub fn floor(v: f64) -> f64 {
 
 /// `floor` of a value ≥ 0 (or NaN): one comparison less than [`floor`],
 /// for the rounding of every G and M word and the planner's period counts.
+#[inline]
 pub fn floor_non_negative(v: f64) -> f64 {
     if v < 4_503_599_627_370_496.0 {
         (v as i64) as f64

@@ -10,6 +10,7 @@ pub mod gcode;
 pub mod geom;
 pub mod machine;
 pub mod machine_check;
+pub mod mcode;
 pub mod plc;
 pub mod point;
 pub mod thread_room;

@@ -10,6 +10,7 @@ use alloc::format;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{self, Code, Drill, Motion, OneShot, Plane, G};
 use crate::base::machine::Machine;
+use crate::base::mcode::{Class, M};
 use crate::base::words::{addr, addr_name, Word, ADDR_COUNT, COMMA_A, COMMA_C, COMMA_R};
 
 /// At most this many G words fit a block (one per modal group).
@@ -18,18 +19,19 @@ const MAX_G: usize = 16;
 /// The words of a block sorted by kind. The kernel parses every block it
 /// runs into one of these, so it is kept small and is filled in place
 /// ([`parse_into`]): only the presence mask says which values hold.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct Parsed {
-    /// G codes in written order with the word index.
-    g: [(Code, u8); MAX_G],
+    /// G codes in written order, typed as they are added: the kernel reads
+    /// them several times per block.
+    g: [G; MAX_G],
     g_len: usize,
     /// The block's one-shot (group 00) code and its last group-01 code,
     /// noted as the G codes are added: the kernel asks for them many
     /// times per block.
     one_shot: Option<OneShot>,
     motion: Option<Motion>,
-    /// M codes in written order with the word index.
-    m: [(u32, u8); 3],
+    /// M codes in written order, typed.
+    m: [M; 3],
     m_len: usize,
     /// Bit `a`: address `a` (every one but G and M) is written.
     present: u32,
@@ -38,26 +40,50 @@ pub struct Parsed {
     flags: [u8; ADDR_COUNT],
 }
 
+impl Default for Parsed {
+    fn default() -> Parsed {
+        Parsed {
+            // (A filler: only the first `g_len` codes count.)
+            g: [G::Motion(Motion::Rapid); MAX_G],
+            g_len: 0,
+            one_shot: None,
+            motion: None,
+            m: [M::Stop; 3],
+            m_len: 0,
+            present: 0,
+            value: [0.0; ADDR_COUNT],
+            flags: [0; ADDR_COUNT],
+        }
+    }
+}
+
 impl Parsed {
     /// The block's G codes, typed, in written order.
+    #[inline]
     pub fn gs(&self) -> impl DoubleEndedIterator<Item = G> + '_ {
-        // Every stored code passed `gcode::group`, so each has a type.
-        self.g[..self.g_len]
-            .iter()
-            .filter_map(|&(c, _)| G::from_code(c))
+        self.g[..self.g_len].iter().copied()
     }
 
-    pub fn ms(&self) -> &[(u32, u8)] {
+    #[inline]
+    pub fn ms(&self) -> &[M] {
         &self.m[..self.m_len]
     }
 
+    #[inline]
     pub fn has_g(&self, g: impl Into<G>) -> bool {
-        let code = g.into().code();
-        self.g[..self.g_len].iter().any(|&(c, _)| c == code)
+        let g = g.into();
+        self.g[..self.g_len].contains(&g)
     }
 
-    pub fn has_m(&self, code: u32) -> bool {
-        self.ms().iter().any(|&(c, _)| c == code)
+    #[inline]
+    pub fn has_m(&self, m: M) -> bool {
+        self.ms().contains(&m)
+    }
+
+    /// M02 or M30 ends the program in this block.
+    #[inline]
+    pub fn ends_program(&self) -> bool {
+        self.ms().iter().any(|m| m.ends_program())
     }
 
     /// The value of a letter address.
@@ -114,6 +140,7 @@ impl Parsed {
 }
 
 /// Rounds half away from zero, as every integer address does (§7.6).
+#[inline]
 pub fn round_half_away(v: f64) -> f64 {
     if v < 0.0 {
         -crate::base::geom::floor_non_negative((-v) + 0.5)
@@ -145,11 +172,10 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
     p.clear_gs();
     p.m_len = 0;
     p.present = 0;
-    for (i, w) in words.iter().enumerate() {
-        let idx = i.min(255) as u8;
+    for w in words {
         match w.addr {
-            a if a == addr(b'G') => add_g(p, w, idx)?,
-            a if a == addr(b'M') => add_m(p, w, idx)?,
+            a if a == addr(b'G') => add_g(p, w)?,
+            a if a == addr(b'M') => add_m(p, w)?,
             a if (a as usize) < ADDR_COUNT => {
                 if p.has_at(a) {
                     return fail(
@@ -167,7 +193,7 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
     check_words(p, m)
 }
 
-fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
+fn add_g(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
     if w.value < 0.0 || w.value > 9999.0 {
         return fail(
             Alarm::UnknownGCode,
@@ -200,7 +226,7 @@ fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
     if p.g_len == MAX_G {
         return fail(Alarm::AddressRepeated, "too many G codes in one block");
     }
-    p.g[p.g_len] = (code, idx);
+    p.g[p.g_len] = g;
     p.g_len += 1;
     match g {
         G::OneShot(c) => p.one_shot = Some(c),
@@ -210,7 +236,7 @@ fn add_g(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
     Ok(())
 }
 
-fn add_m(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
+fn add_m(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
     let code = round_half_away(w.value);
     if !(0.0..=9999.0).contains(&code) {
         return fail(
@@ -224,7 +250,8 @@ fn add_m(p: &mut Parsed, w: &Word, idx: u8) -> Result<(), NcError> {
     if p.m_len == 3 {
         return fail(Alarm::TooManyMCodes, "more than three M codes in one block");
     }
-    p.m[p.m_len] = (code as u32, idx);
+    // (0…9999: the range checked above.)
+    p.m[p.m_len] = M::from_code(code as u16);
     p.m_len += 1;
     Ok(())
 }
@@ -236,7 +263,7 @@ fn integer_only(p: &Parsed, letter: u8) -> bool {
         b'T' | b'H' | b'O' | b'N' | b'P' | b'Q' => true,
         // L is a count except as the chamfer of G01–G03.
         b'L' => {
-            p.has_m(98)
+            p.has_m(M::SubCall)
                 || p.has_g(OneShot::SpiralThread)
                 || [
                     Motion::Tapping,
@@ -361,12 +388,8 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
 }
 
 fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
-    let calls = p
-        .ms()
-        .iter()
-        .filter(|&&(c, _)| c == 98 || c == 99 || (9000..=9999).contains(&c))
-        .count();
-    let ends = p.ms().iter().any(|&(c, _)| matches!(c, 0 | 1 | 2 | 30));
+    let calls = p.ms().iter().filter(|m| m.class() == Class::Call).count();
+    let ends = p.ms().iter().any(|m| m.class() == Class::ProgramStop);
     if calls > 1 {
         return fail(
             Alarm::TooManyMCodes,
@@ -379,7 +402,7 @@ fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
             "M98/M99 cannot share a block with M00, M01, M02 or M30",
         );
     }
-    if p.has_m(97) {
+    if p.has_m(M::ForeignLocalCall) {
         return fail(
             Alarm::ForeignDialect,
             "M97 is a Haas/Citizen local subprogram call: put the block in an O program and call it with M98",

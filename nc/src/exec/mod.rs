@@ -24,13 +24,15 @@ use alloc::vec::Vec;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, SpindleDir, StopKind};
 use crate::base::gcode::{self, Drill, Motion, OneShot, Polar, SpeedMode, Work, G};
-use crate::base::geom::{self, Element};
-use crate::base::machine::{ArcWithoutCenter, DecimalPoint, Machine, SpindleType};
+use crate::base::geom::Element;
+use crate::base::machine::{DecimalPoint, Machine, SpindleType};
+use crate::base::mcode::{Timing, M};
 use crate::base::point::Pt;
 use crate::base::words::{Word, LITERAL, NO_POINT};
 use crate::block::{self, round_half_away, Parsed};
 use crate::exec::state::State;
 use crate::modal::PathMode;
+use crate::plan::reader::Reader;
 
 /// Where the events of a run go; the kernel does not know who listens.
 pub trait Sink {
@@ -71,21 +73,6 @@ pub struct Nc {
     parsed: Option<Box<Parsed>>,
 }
 
-/// M codes that act after the motion (canon group 3).
-fn after_motion(m: u32) -> bool {
-    matches!(m, 5 | 9 | 11 | 13 | 33)
-}
-
-/// M codes that end or stop the program (canon group 4).
-fn is_stop(m: u32) -> bool {
-    matches!(m, 0 | 1 | 2 | 30)
-}
-
-/// M codes that the compiler and VM handle (calls and returns).
-fn is_call(m: u32) -> bool {
-    m == 98 || m == 99 || (9000..=9999).contains(&m)
-}
-
 impl Nc {
     pub fn new(machine: Machine) -> Nc {
         let st = State::power_on(&machine);
@@ -118,19 +105,49 @@ impl Nc {
     }
 
     /// A block with the G22 stroke check, when it is in force, and the
-    /// check for feed moves at F = 0 (zero_feed); of their alarms the one
-    /// of the earlier event (neither passes events on after its own).
+    /// check for feed moves at F = 0 (zero_feed) when the block can print
+    /// one; of their alarms the one of the earlier event (neither passes
+    /// events on after its own).
     fn exec_guarded(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        // (A block run from inside a block, as G70's profile, finds no
+        // parse kept and makes its own.)
+        let mut p = self.parsed.take().unwrap_or_default();
+        let result = match block::parse_into(words, &self.machine, &mut p) {
+            Err(e) => Err(e),
+            // The usual block: nothing to check on its way out, and the
+            // block's execution in line here (it runs for every block).
+            Ok(()) if self.st.stroke2.is_none() && !crate::exec::zero_feed::may_fault(self, &p) => {
+                self.exec_parsed(&p, words, sink)
+            }
+            Ok(()) => self.exec_watched(&p, words, sink),
+        };
+        self.parsed = Some(p);
+        result
+    }
+
+    /// The parsed block behind the sinks that check it.
+    #[inline(never)]
+    fn exec_watched(
+        &mut self,
+        p: &Parsed,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<Outcome, NcError> {
+        let watched = crate::exec::zero_feed::may_fault(self, p);
         let (printed, at) = (self.st.feed_printed, self.st.pos);
         let Some(area) = self.st.stroke2 else {
             let mut watch = crate::exec::zero_feed::Watch::new(sink, printed, at);
-            let result = self.exec_block(words, &mut watch);
+            let result = self.exec_behind(p, words, &mut watch);
             return watch.finish().map_or(result, Err);
         };
         // G22 in force: every move passes the stroke check.
         let mut guard = crate::exec::stroke::Guard::new(sink, area, self.st.origin(), at);
+        if !watched {
+            let result = self.exec_behind(p, words, &mut guard);
+            return guard.finish().map_or(result, Err);
+        }
         let mut watch = crate::exec::zero_feed::Watch::new(&mut guard, printed, at);
-        let result = self.exec_block(words, &mut watch);
+        let result = self.exec_behind(p, words, &mut watch);
         let zero_feed = watch.finish();
         match guard.finish().or(zero_feed) {
             Some(e) => Err(e),
@@ -138,16 +155,18 @@ impl Nc {
         }
     }
 
-    fn exec_block(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
-        // (A block run from inside a block, as G70's profile, finds none
-        // and makes its own.)
-        let mut p = self.parsed.take().unwrap_or_default();
-        let result = block::parse_into(words, &self.machine, &mut p)
-            .and_then(|()| self.exec_parsed(&p, words, sink));
-        self.parsed = Some(p);
-        result
+    /// `exec_parsed` out of line, for the checked blocks.
+    #[inline(never)]
+    fn exec_behind(
+        &mut self,
+        p: &Parsed,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<Outcome, NcError> {
+        self.exec_parsed(p, words, sink)
     }
 
+    #[inline(always)]
     fn exec_parsed(
         &mut self,
         p: &Parsed,
@@ -174,7 +193,7 @@ impl Nc {
             nc.after_motion(p, s);
             Ok(())
         })?;
-        if p.has_m(2) || p.has_m(30) {
+        if p.ends_program() {
             // The program ends: a waiting element is printed whole.
             contour::flush(self, sink)?;
         }
@@ -290,13 +309,13 @@ impl Nc {
         for w in words {
             match w.addr {
                 a if a == b'M' - b'A' => {
-                    let m = round_half_away(w.value) as u32;
-                    match m {
-                        3 => self.spindle(SpindleDir::Cw, sink),
-                        4 => self.spindle(SpindleDir::Ccw, sink),
-                        m if after_motion(m) || is_stop(m) || is_call(m) => {}
+                    // (0…9999: the block's check has passed.)
+                    match M::from_code(round_half_away(w.value) as u16) {
+                        M::SpindleCw => self.spindle(SpindleDir::Cw, sink),
+                        M::SpindleCcw => self.spindle(SpindleDir::Ccw, sink),
+                        m if m.timing() != Timing::Before => {}
                         m if clamp == Some(m) => {}
-                        m => sink.emit(Event::M(m)),
+                        m => sink.emit(Event::M(m.code().into())),
                     }
                 }
                 a if a == b'S' - b'A' => self.s_word(w, g50, sink)?,
@@ -451,42 +470,35 @@ impl Nc {
         Ok(())
     }
 
-    /// A length word in mm: the unit, and the decimal-point rule for
-    /// literals written without a point in increment mode.
-    pub(crate) fn length(&self, w: Word) -> f64 {
-        let mut v = w.value;
-        if w.flags & NO_POINT != 0 && self.machine.machine.decimal_point == DecimalPoint::Increment
-        {
-            v *= if self.st.inch() { 0.0001 } else { 0.001 };
+    /// The words of this block read against the state the kernel is in.
+    #[inline]
+    pub(crate) fn reader(&self) -> Reader<'_> {
+        Reader {
+            machine: &self.machine,
+            inch: self.st.inch(),
+            at: self.st.pos,
+            motion: self.st.modal.motion,
         }
-        v * self.st.unit()
     }
 
+    /// A length word in mm (plan::reader).
+    #[inline]
     pub(crate) fn len_of(&self, p: &Parsed, letter: u8) -> Option<f64> {
-        p.word(letter).map(|w| self.length(w))
+        self.reader().len_of(p, letter)
     }
 
     /// The end point of a move: X/Z absolute, U/W incremental, axes left
     /// out keep their coordinate.
+    #[inline(always)]
     pub(crate) fn target(&self, p: &Parsed) -> Pt {
         self.target_from(p, self.st.pos)
     }
 
     /// The end point of a move that starts at `from` (a profile block's U/W
     /// are relative to the previous profile point, not to the tool).
+    #[inline(always)]
     pub(crate) fn target_from(&self, p: &Parsed, from: Pt) -> Pt {
-        let mut t = from;
-        if let Some(x) = self.len_of(p, b'X') {
-            t.r = x / 2.0;
-        } else if let Some(u) = self.len_of(p, b'U') {
-            t.r += u / 2.0;
-        }
-        if let Some(z) = self.len_of(p, b'Z') {
-            t.z = z;
-        } else if let Some(w) = self.len_of(p, b'W') {
-            t.z += w;
-        }
-        t
+        self.reader().target_from(p, from)
     }
 
     /// A rapid to `to`, C already at its end angle (it started at `c_from`).
@@ -522,10 +534,8 @@ impl Nc {
     }
 
     /// The element of a G02/G03 block from `from` (the current point, or
-    /// the previous point of a profile): its arc from R or I/K, or a line
-    /// where `arc_without_center = "line"`. `None` for a 0° arc with R
-    /// (end = start), which is no move (W108), and for a block that names
-    /// neither a centre nor an axis.
+    /// the previous point of a profile), as plan::reader reads it.
+    #[inline(always)]
     pub(crate) fn arc_element(
         &self,
         from: Pt,
@@ -533,37 +543,7 @@ impl Nc {
         to: Pt,
         p: &Parsed,
     ) -> Result<Option<Element>, NcError> {
-        let centre = if let Some(r) = self.len_of(p, b'R') {
-            match geom::centre_from_radius(from, to, r, cw)? {
-                Some(c) => c,
-                None => return Ok(None),
-            }
-        } else if p.has(b'I') || p.has(b'K') {
-            let i = self.len_of(p, b'I').unwrap_or(0.0);
-            let k = self.len_of(p, b'K').unwrap_or(0.0);
-            let c = Pt::new(from.r + i, from.z + k);
-            geom::check_on_circle(from, to, c, self.machine.machine.arc_tolerance_mm)?;
-            c
-        } else if !p.has_axis() {
-            return Ok(None);
-        } else {
-            return match self.machine.machine.arc_without_center {
-                ArcWithoutCenter::Line => Ok(Some(Element::Line { from, to })),
-                ArcWithoutCenter::Alarm => fail(
-                    Alarm::MissingWord,
-                    format!(
-                        "{} needs R or I/K to define its centre",
-                        if cw { "G02" } else { "G03" }
-                    ),
-                ),
-            };
-        };
-        Ok(Some(Element::Arc {
-            from,
-            to,
-            centre,
-            cw,
-        }))
+        self.reader().arc_element(from, cw, to, p)
     }
 
     pub(crate) fn emit_arc(&mut self, cw: bool, to: Pt, c: Pt, sink: &mut dyn Sink) {
@@ -587,19 +567,12 @@ impl Nc {
         p: &Parsed,
         sink: &mut dyn Sink,
     ) -> Result<(), NcError> {
-        if !p.has(b'I') && !p.has(b'K') {
-            return fail(Alarm::MissingWord, "G05 needs the mid point I/K");
-        }
         let from = self.st.pos;
-        let i = self.len_of(p, b'I');
-        let k = self.len_of(p, b'K');
-        let mid = if absolute {
-            Pt::new(i.map_or(from.r, |x| x / 2.0), k.unwrap_or(from.z))
-        } else {
-            Pt::new(from.r + i.unwrap_or(0.0), from.z + k.unwrap_or(0.0))
+        let Element::Arc { centre, cw, .. } = self.reader().three_point(absolute, p, from, to)?
+        else {
+            return Ok(());
         };
-        let (c, cw) = geom::circle_through(from, mid, to)?;
-        self.emit_arc(cw, to, c, sink);
+        self.emit_arc(cw, to, centre, sink);
         Ok(())
     }
 
@@ -792,23 +765,23 @@ impl Nc {
 
     /// Group 3: spindle stop and the "off" PLC codes.
     fn after_motion(&mut self, p: &Parsed, sink: &mut dyn Sink) {
-        for &(m, _) in p.ms() {
-            if m == 5 {
+        for &m in p.ms() {
+            if m == M::SpindleStop {
                 self.spindle(SpindleDir::Stop, sink);
-            } else if after_motion(m) {
-                sink.emit(Event::M(m));
+            } else if m.timing() == Timing::After {
+                sink.emit(Event::M(m.code().into()));
             }
         }
     }
 
     /// Group 4: program stops and ends.
     fn stops(&mut self, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) {
-        for &(m, _) in p.ms() {
+        for &m in p.ms() {
             let kind = match m {
-                0 => StopKind::M00,
-                1 if self.machine.operator.optional_stop => StopKind::M01,
-                2 => StopKind::M02,
-                30 => StopKind::M30,
+                M::Stop => StopKind::M00,
+                M::OptionalStop if self.machine.operator.optional_stop => StopKind::M01,
+                M::End => StopKind::M02,
+                M::EndRewind => StopKind::M30,
                 _ => continue,
             };
             sink.emit(Event::Stop(kind));
@@ -822,6 +795,7 @@ impl Nc {
     }
 
     /// Before the motion: F is modal (the block's own move uses it); the last B D E F H M N O S T are kept for #4102….
+    #[inline]
     fn remember(&mut self, p: &Parsed) {
         // The F of a thread block is its lead, not a feed (cycles.md §0).
         if let Some(f) = p
@@ -835,8 +809,8 @@ impl Nc {
                 self.st.last[(letter - b'A') as usize] = v;
             }
         }
-        if let Some(&(m, _)) = p.ms().last() {
-            self.st.last[(b'M' - b'A') as usize] = m as f64;
+        if let Some(&m) = p.ms().last() {
+            self.st.last[(b'M' - b'A') as usize] = f64::from(m.code());
         }
     }
 }

@@ -89,7 +89,17 @@ fn starts(nc: &Nc, p: &Parsed) -> bool {
 
 /// Before a block: what cannot happen inside either mode, and a corner
 /// still waiting is printed whole before a mode starts.
+#[inline]
 pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    // Outside both modes a block without G12.1 or a group-00 code (G7.1)
+    // neither starts one nor is checked: the usual block stops here.
+    if nc.st.plane.is_none() && p.one_shot().is_none() && !p.has_g(Polar::On) {
+        return Ok(());
+    }
+    check_block(nc, p, sink)
+}
+
+fn check_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
     if starts(nc, p) {
         crate::exec::contour::flush(nc, sink)?;
     }

@@ -115,19 +115,23 @@ impl State {
         }
     }
 
+    #[inline]
     pub fn inch(&self) -> bool {
         self.modal.inch()
     }
 
+    #[inline]
     pub fn per_rev(&self) -> bool {
         self.modal.per_rev()
     }
 
+    #[inline]
     pub fn css_mode(&self) -> bool {
         self.modal.css_mode()
     }
 
     /// Index 0..6 of the active work system (G54 = 0).
+    #[inline]
     pub fn work_index(&self) -> usize {
         self.modal.work_index()
     }
@@ -146,6 +150,7 @@ impl State {
     }
 
     /// Length unit factor of the words (mm per program unit).
+    #[inline]
     pub fn unit(&self) -> f64 {
         if self.inch() {
             25.4

@@ -6,8 +6,49 @@
 
 use crate::base::error::{Alarm, NcError};
 use crate::base::event::Event;
+use crate::base::gcode::{Comp, OneShot};
 use crate::base::point::Pt;
-use crate::exec::Sink;
+use crate::block::Parsed;
+use crate::exec::{Nc, Sink};
+
+/// Whether the block about to run can print a feed move at F = 0, so that
+/// it needs a [`Watch`]; most blocks cannot, and run without one.
+///
+/// Events an earlier block left waiting (the contour queue and the
+/// compensation look-ahead) carry the feed of their own block, and G70–G73
+/// run profile blocks with their own F: such blocks are always watched.
+/// G76 and G78 print thread passes and rapids only (plan::threading), no
+/// feed move. Otherwise a `FEED` of 0 is in force at the start of the
+/// block (printed or modal) or the block may print one: every other
+/// `FEED` is the modal F (`Nc::feed_due`, which only the block's own F
+/// word changes, unless it is a thread's lead) or a G36/G37 measuring
+/// feed.
+pub fn may_fault(nc: &Nc, p: &Parsed) -> bool {
+    let st = &nc.st;
+    if st.contour.is_holding()
+        || st.modal.comp() != Comp::Off
+        || crate::exec::comp::running(nc)
+        || !nc.profile.is_empty()
+    {
+        return true;
+    }
+    if matches!(
+        p.one_shot(),
+        Some(OneShot::MultiThread | OneShot::SpiralThread)
+    ) {
+        return false;
+    }
+    st.feed_printed.is_some_and(|(f, _)| f == 0.0)
+        || st.feed == 0.0
+        || (p.has(b'F') && !f_is_lead(nc, p))
+        || matches!(p.one_shot(), Some(OneShot::MeasureX | OneShot::MeasureZ))
+}
+
+/// Whether the F of a block without G codes is a thread lead, not a feed:
+/// as the modal state says, which such a block does not change.
+fn f_is_lead(nc: &Nc, p: &Parsed) -> bool {
+    p.gs().next().is_none() && crate::exec::cycles::f_is_lead(nc, p)
+}
 
 /// A sink that passes events on until a feed move runs at F = 0, then
 /// drops the rest of the block and keeps the alarm.
@@ -43,10 +84,11 @@ impl Sink for Watch<'_> {
         if self.fault.is_some() {
             return;
         }
-        if let Event::Feed { f, .. } = e {
-            self.zero = f == 0.0;
-        }
         let end = match e {
+            Event::Feed { f, .. } => {
+                self.zero = f == 0.0;
+                None
+            }
             Event::Rapid { x, z, .. }
             | Event::Line { x, z, .. }
             | Event::Arc { x, z, .. }
@@ -57,13 +99,9 @@ impl Sink for Watch<'_> {
             | Event::Skip { x, z } => Some(Pt::new(x / 2.0, z)),
             _ => None,
         };
-        // A line or skip that goes nowhere is no move for the runtime
-        // either; an arc with equal ends is a full circle.
-        let moves = match e {
-            Event::Line { .. } | Event::Skip { .. } => end.is_some_and(|p| p.dist(self.at) > 1e-9),
-            _ => true,
-        };
-        let zero_move = e.is_feed() && self.zero && moves;
+        // Only a feed move after `FEED F=0` can fault: the usual event
+        // costs the match above and nothing more.
+        let zero_move = self.zero && e.is_feed() && self.moves(&e, end);
         self.inner.emit(e);
         if let Some(p) = end {
             self.at = p;
@@ -73,6 +111,18 @@ impl Sink for Watch<'_> {
                 Alarm::ZeroFeed,
                 "a feed move with F = 0 cannot run: give the block or an earlier one an F",
             ));
+        }
+    }
+}
+
+impl Watch<'_> {
+    /// Whether a feed event moves the tool. A line or skip that goes
+    /// nowhere is no move for the runtime either; an arc with equal ends
+    /// is a full circle.
+    fn moves(&self, e: &Event, end: Option<Pt>) -> bool {
+        match e {
+            Event::Line { .. } | Event::Skip { .. } => end.is_some_and(|p| p.dist(self.at) > 1e-9),
+            _ => true,
         }
     }
 }
@@ -110,6 +160,38 @@ mod tests {
     fn rapids_and_a_move_that_goes_nowhere_run_at_f0() {
         let (canon, code) = run(&["G00 X10 Z5", "G98 G01 X10 Z5", "G00 X20"]);
         assert_eq!(code, 0, "{canon:?}");
+    }
+
+    #[test]
+    fn an_element_queued_at_f0_stops_the_block_that_prints_it() {
+        // The G01 X10 element waits for its L1 chamfer; the F100 block
+        // moves nothing; G01 Z-10 has no F of its own, yet prints the
+        // waiting element with the F = 0 it was queued with: shortened by
+        // the 1 mm chamfer to radius 4 (X8), then E7001 in that block.
+        let (canon, code) = run(&["G98 G00 X0 Z0", "G01 X10 F0 L1", "F100", "G01 Z-10"]);
+        assert_eq!(code, 7001);
+        assert_eq!(
+            canon,
+            ["RAPID X=0 Z=0", "FEED F=0 MODE=MIN", "LINE X=8 Z=0"]
+        );
+    }
+
+    #[test]
+    fn a_thread_lead_is_no_feed() {
+        // No F since power-on; G76's F is its lead and its passes are
+        // threads and rapids: the cycle runs to its end (no E7001) and
+        // prints no FEED.
+        let (canon, code) = run(&[
+            "G00 X32 Z5",
+            "G76 P20060 Q20 R0.02",
+            "G76 X25.1 Z-40 P2450 Q350 F4",
+        ]);
+        assert_eq!(code, 0, "{canon:?}");
+        assert!(canon.iter().any(|l| l.starts_with("THREAD")), "{canon:?}");
+        assert!(!canon.iter().any(|l| l.starts_with("FEED")), "{canon:?}");
+        // F = 0 is still in force for the feed move after the cycle.
+        let (_, code) = run(&["G00 X32 Z5", "G76 X25.1 Z-40 P2450 Q350 F4", "G01 Z-50"]);
+        assert_eq!(code, 7001);
     }
 
     #[test]

@@ -108,51 +108,61 @@ impl Modal {
     }
 
     /// G20 in force.
+    #[inline]
     pub fn inch(&self) -> bool {
         self.units == Units::Inch
     }
 
     /// G99 in force (feed per revolution).
+    #[inline]
     pub fn per_rev(&self) -> bool {
         self.feed_mode == FeedMode::PerRev
     }
 
     /// G96 in force (constant surface speed).
+    #[inline]
     pub fn css_mode(&self) -> bool {
         self.speed_mode == SpeedMode::SurfaceSpeed
     }
 
     /// Group 06: G20 or G21.
+    #[inline]
     pub fn units(&self) -> Units {
         self.units
     }
 
     /// Group 03: G98 or G99.
+    #[inline]
     pub fn feed_mode(&self) -> FeedMode {
         self.feed_mode
     }
 
     /// Group 02: G96 or G97.
+    #[inline]
     pub fn speed_mode(&self) -> SpeedMode {
         self.speed_mode
     }
 
     /// Group 07: G40, G41 or G42.
+    #[inline]
     pub fn comp(&self) -> Comp {
         self.comp
     }
 
     /// Group 15: G61 or G64.
+    #[inline]
     pub fn path_mode(&self) -> PathMode {
         self.path_mode
     }
 
     /// Group 10: the drilling cycle in force, `None` under G80.
+    #[inline]
     pub fn drill(&self) -> Option<Drill> {
         Some(self.drill).filter(|&c| c != Drill::Off)
     }
 
     /// Index 0..6 of the active work system (G54 = 0).
+    #[inline]
     pub fn work_index(&self) -> usize {
         self.work.index()
     }

@@ -4,9 +4,6 @@
 //! they work on parameter ranges of whole elements rather than building
 //! new, possibly degenerate, arcs.
 
-use alloc::vec;
-use alloc::vec::Vec;
-
 use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::plan::elem::{dot, left, norm, scale};
@@ -20,6 +17,62 @@ pub const EPS: f64 = 1e-6;
 /// through a rounded tangent point can dip a few µm past the tangent: that
 /// is rounding, not a profile turning back.
 pub const SLACK: f64 = 1e-3;
+
+/// A few curve parameters, kept in place: a curve has at most two roots
+/// or extremes on an axis, and the roughing cycles ask for them for every
+/// element at every level, so they are no heap vectors. Room for four
+/// (the two ends and two extremes between them).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Params {
+    v: [f64; 4],
+    n: usize,
+}
+
+impl Params {
+    /// Adds a parameter; the capacity is what the curves need (above),
+    /// and a fifth would be dropped rather than panic.
+    pub fn push(&mut self, s: f64) {
+        if let Some(slot) = self.v.get_mut(self.n) {
+            *slot = s;
+            self.n += 1;
+        }
+    }
+
+    fn of(values: impl IntoIterator<Item = f64>) -> Params {
+        let mut out = Params::default();
+        for s in values {
+            out.push(s);
+        }
+        out
+    }
+
+    /// In order, the ones within 1e-12 of the one before dropped.
+    fn sorted(mut self) -> Params {
+        self.v[..self.n].sort_by(f64::total_cmp);
+        let mut kept = Params::default();
+        for &s in self.iter() {
+            if kept.last().is_none_or(|&k| (s - k).abs() >= 1e-12) {
+                kept.push(s);
+            }
+        }
+        kept
+    }
+}
+
+impl core::ops::Deref for Params {
+    type Target = [f64];
+    fn deref(&self) -> &[f64] {
+        &self.v[..self.n]
+    }
+}
+
+impl IntoIterator for Params {
+    type Item = f64;
+    type IntoIter = core::iter::Take<core::array::IntoIter<f64, 4>>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.v.into_iter().take(self.n)
+    }
+}
 
 /// `sign(v)` of cycles.md §0: 0 when |v| ≤ 1e-6.
 pub fn sign(v: f64) -> f64 {
@@ -356,30 +409,25 @@ impl Curve {
         (s > 1e-12 && s < 1.0 - 1e-12).then_some(s)
     }
 
-    fn arc_params(a0: f64, sweep: f64, angles: &[f64]) -> Vec<f64> {
-        let mut out: Vec<f64> = angles
-            .iter()
-            .filter_map(|&a| Curve::param_of_angle(a0, sweep, a))
-            .collect();
-        out.sort_by(f64::total_cmp);
-        out.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-        out
+    fn arc_params(a0: f64, sweep: f64, angles: &[f64]) -> Params {
+        Params::of(
+            angles
+                .iter()
+                .filter_map(|&a| Curve::param_of_angle(a0, sweep, a)),
+        )
+        .sorted()
     }
 
     /// Parameters strictly inside (0, 1) where `axis` equals `level`.
-    pub fn roots(&self, axis: Axis, level: f64) -> Vec<f64> {
+    pub fn roots(&self, axis: Axis, level: f64) -> Params {
         match *self {
             Curve::Line { from, to } => {
                 let (a, b) = (coord(from, axis), coord(to, axis));
                 if (b - a).abs() < 1e-12 {
-                    return Vec::new();
+                    return Params::default();
                 }
                 let s = (level - a) / (b - a);
-                if s > 1e-12 && s < 1.0 - 1e-12 {
-                    vec![s]
-                } else {
-                    Vec::new()
-                }
+                Params::of((s > 1e-12 && s < 1.0 - 1e-12).then_some(s))
             }
             Curve::Arc {
                 centre,
@@ -389,11 +437,11 @@ impl Curve {
                 ..
             } => {
                 if radius < 1e-12 {
-                    return Vec::new();
+                    return Params::default();
                 }
                 let v = (level - coord(centre, axis)) / radius;
                 if v.abs() > 1.0 + 1e-12 {
-                    return Vec::new();
+                    return Params::default();
                 }
                 let v = v.clamp(-1.0, 1.0);
                 let angles = match axis {
@@ -420,7 +468,7 @@ impl Curve {
                     ConicKind::Ellipse { .. } => {
                         let rho = libm::hypot(c1, c2);
                         if rho < 1e-12 || (rest / rho).abs() > 1.0 + 1e-12 {
-                            return Vec::new();
+                            return Params::default();
                         }
                         let phi = libm::atan2(c2, c1);
                         let d = libm::acos((-rest / rho).clamp(-1.0, 1.0));
@@ -438,9 +486,9 @@ impl Curve {
 
     /// Parameters strictly inside (0, 1) where `axis` has an extreme (only
     /// arcs and conics have them).
-    pub fn extremes(&self, axis: Axis) -> Vec<f64> {
+    pub fn extremes(&self, axis: Axis) -> Params {
         match *self {
-            Curve::Line { .. } => Vec::new(),
+            Curve::Line { .. } => Params::default(),
             Curve::Arc { a0, sweep, .. } => {
                 let angles = match axis {
                     Axis::R => [FRAC_PI_2, -FRAC_PI_2],
@@ -465,7 +513,7 @@ impl Curve {
                     ConicKind::Parabola { .. } if c1.abs() > 1e-15 => {
                         linear_params(t0, t1, &[-c2 / (2.0 * c1)])
                     }
-                    ConicKind::Parabola { .. } => Vec::new(),
+                    ConicKind::Parabola { .. } => Params::default(),
                 }
             }
         }
@@ -473,13 +521,16 @@ impl Curve {
 
     /// The parameters of [s0, s1] where `axis` may turn: the ends and the
     /// extremes between them, in order.
-    fn samples(&self, axis: Axis, s0: f64, s1: f64) -> Vec<f64> {
-        let mut v = vec![s0];
-        v.extend(
-            self.extremes(axis)
-                .into_iter()
-                .filter(|&s| s > s0 && s < s1),
-        );
+    fn samples(&self, axis: Axis, s0: f64, s1: f64) -> Params {
+        let mut v = Params::default();
+        v.push(s0);
+        for s in self
+            .extremes(axis)
+            .into_iter()
+            .filter(|&s| s > s0 && s < s1)
+        {
+            v.push(s);
+        }
         v.push(s1);
         v
     }
@@ -498,11 +549,11 @@ impl Curve {
     /// end by no more than 1e-6 (cycles.md §15.1), and an arc not past an
     /// extreme by more than `SLACK`.
     pub fn monotone(&self, axis: Axis, dir: f64, s0: f64, s1: f64) -> bool {
-        let values: Vec<f64> = self
-            .samples(axis, s0, s1)
-            .into_iter()
-            .map(|s| coord(self.at(s), axis))
-            .collect();
+        let values = Params::of(
+            self.samples(axis, s0, s1)
+                .into_iter()
+                .map(|s| coord(self.at(s), axis)),
+        );
         let whole = match (values.first(), values.last()) {
             (Some(a), Some(b)) => dir * (b - a) >= -EPS,
             _ => true,
@@ -602,39 +653,37 @@ fn conic_basis(kind: ConicKind, t: f64) -> (f64, f64) {
 }
 
 /// The real roots of a·τ² + b·τ + c = 0 (a line when a is 0).
-fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+fn quadratic_roots(a: f64, b: f64, c: f64) -> Params {
     if a.abs() < 1e-15 {
         return if b.abs() < 1e-15 {
-            Vec::new()
+            Params::default()
         } else {
-            vec![-c / b]
+            Params::of([-c / b])
         };
     }
     let disc = b * b - 4.0 * a * c;
     if disc < 0.0 {
-        return Vec::new();
+        return Params::default();
     }
     // The form without cancellation: q = −(b + sign(b)·√disc)/2.
     let q = -0.5 * (b + if b < 0.0 { -1.0 } else { 1.0 } * libm::sqrt(disc));
     if q.abs() < 1e-300 {
-        return vec![0.0];
+        return Params::of([0.0]);
     }
-    vec![q / a, c / q]
+    Params::of([q / a, c / q])
 }
 
 /// The parameters s ∈ (0, 1) of the τ values, τ = t0 + (t1 − t0)·s.
-fn linear_params(t0: f64, t1: f64, taus: &[f64]) -> Vec<f64> {
+fn linear_params(t0: f64, t1: f64, taus: &[f64]) -> Params {
     if (t1 - t0).abs() < 1e-15 {
-        return Vec::new();
+        return Params::default();
     }
-    let mut out: Vec<f64> = taus
-        .iter()
-        .map(|&t| (t - t0) / (t1 - t0))
-        .filter(|&s| s > 1e-12 && s < 1.0 - 1e-12)
-        .collect();
-    out.sort_by(f64::total_cmp);
-    out.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-    out
+    Params::of(
+        taus.iter()
+            .map(|&t| (t - t0) / (t1 - t0))
+            .filter(|&s| s > 1e-12 && s < 1.0 - 1e-12),
+    )
+    .sorted()
 }
 
 /// The two coordinates exchanged (see `Curve::swapped`).

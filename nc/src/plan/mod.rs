@@ -13,6 +13,8 @@ pub mod elem;
 pub mod groove;
 pub mod legs;
 pub mod offset;
+pub mod profile;
+pub mod reader;
 pub mod roughing;
 pub mod single;
 pub mod thread;

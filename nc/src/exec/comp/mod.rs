@@ -292,10 +292,7 @@ fn cancels(p: &Parsed) -> bool {
         p.one_shot(),
         Some(OneShot::RoughTurn | OneShot::RoughFace | OneShot::Pattern)
     ) && p.has(b'P');
-    matches!(p.one_shot(), Some(OneShot::Home | OneShot::HomeN))
-        || cycle
-        || p.has_m(2)
-        || p.has_m(30)
+    matches!(p.one_shot(), Some(OneShot::Home | OneShot::HomeN)) || cycle || p.ends_program()
 }
 
 /// After each block: the cancelling functions leave G40 in force, and the

@@ -4,11 +4,11 @@
 
 use alloc::vec::Vec;
 
-use super::profile::check_codes;
 use crate::base::error::NcError;
 use crate::base::words::{addr, Word};
 use crate::block;
 use crate::exec::{Nc, Sink};
+use crate::plan::profile::check_codes;
 use crate::plan::roughing::Path;
 
 pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Result<(), NcError> {
@@ -18,7 +18,7 @@ pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Res
     for (words, tag) in blocks {
         let tag = *tag;
         let p = block::parse(words, &nc.machine).map_err(|e| e.at(tag))?;
-        check_codes(nc, &p, tag)?;
+        check_codes(&nc.reader(), &p, tag)?;
         let kept: Vec<Word> = words
             .iter()
             .filter(|w| w.addr != addr(b'M'))

@@ -13,7 +13,6 @@ use alloc::vec::Vec;
 mod conic_tests;
 mod finish;
 mod out;
-mod profile;
 #[cfg(test)]
 mod tests;
 
@@ -23,8 +22,8 @@ use crate::base::point::Pt;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::curve::swap;
+use crate::plan::profile::{self, Kind};
 use crate::plan::roughing::{pattern, pockets, rough, too_many, Job, Path};
-use profile::Kind;
 
 /// First-block values of G71 (U Δd, R e) or G72 (W Δd, R e).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -157,7 +156,7 @@ fn stock_removal(
     blocks: &[(Vec<crate::base::words::Word>, u32)],
     sink: &mut dyn Sink,
 ) -> Result<(), NcError> {
-    let kind = profile::ns_kind(nc, blocks, facing)?;
+    let kind = profile::ns_kind(&nc.reader(), blocks, facing)?;
     let first = if facing {
         nc.st.compound.g72
     } else {
@@ -177,7 +176,7 @@ fn stock_removal(
     }
     let k1 = count(p, b'K')? == Some(1.0);
     let j1 = count(p, b'J')? == Some(1.0);
-    let segs = profile::build(nc, blocks)?;
+    let segs = profile::build(&nc.reader(), blocks)?;
     let a = nc.st.pos;
     let shift = allowance(nc, p);
     let frame = |q: Pt| if facing { swap(q) } else { q };
@@ -229,7 +228,7 @@ fn pattern_repeat(
         );
     }
     too_many(relief.passes)?;
-    let segs = profile::build(nc, blocks)?;
+    let segs = profile::build(&nc.reader(), blocks)?;
     let pat = pattern::Pattern {
         di: relief.di,
         dk: relief.dk,

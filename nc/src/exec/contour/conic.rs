@@ -1,7 +1,7 @@
 //! Ellipse and parabola blocks G6.2/G6.3 and G7.2/G7.3 (dialect.md
 //! §4.1): the curve comes from `plan::conic`, the canon event from here.
 
-use crate::base::error::{fail, Alarm, NcError};
+use crate::base::error::NcError;
 use crate::base::event::{Dir, Event};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
@@ -9,73 +9,7 @@ use crate::block::Parsed;
 use crate::exec::{Nc, Sink};
 use crate::plan::conic::{ellipse_centre, parabola_vertex};
 use crate::plan::curve::Curve;
-
-/// The shape words of a conic block.
-#[derive(Debug, Clone, Copy)]
-enum Shape {
-    /// Semi-axes A, B (mm) and axis angle Q (degrees).
-    Ellipse { a: f64, b: f64, q: f64 },
-    /// Parameter P (mm) and axis angle Q (degrees, sign ignored).
-    Parabola { p: f64, q: f64 },
-}
-
-fn shape(nc: &Nc, ellipse: bool, p: &Parsed) -> Result<Shape, NcError> {
-    let q = p.get(b'Q').unwrap_or(0.0) * 0.001;
-    if ellipse {
-        return Ok(Shape::Ellipse {
-            a: nc.len_of(p, b'A').unwrap_or(0.0),
-            b: nc.len_of(p, b'B').unwrap_or(0.0),
-            q,
-        });
-    }
-    // P is an integer in increments, its sign ignored.
-    let inc = if nc.st.inch() { 0.0001 * 25.4 } else { 0.001 };
-    let pp = p.get(b'P').unwrap_or(0.0).abs() * inc;
-    if pp <= 0.0 {
-        return fail(
-            Alarm::BadParabola,
-            "G7.2/G7.3 need a parameter P greater than 0",
-        );
-    }
-    Ok(Shape::Parabola { p: pp, q: q.abs() })
-}
-
-/// The curve of a conic block from `from` to `to` as a profile element:
-/// an ellipse with A = B is the circular arc it prints as. `None` when the
-/// block does not move.
-pub fn profile_curve(
-    nc: &Nc,
-    ellipse: bool,
-    cw: bool,
-    p: &Parsed,
-    from: Pt,
-    to: Pt,
-) -> Result<Option<Curve>, NcError> {
-    match shape(nc, ellipse, p)? {
-        Shape::Ellipse { a, b, q } => {
-            let Some(c) = ellipse_centre(from, to, a, b, q, cw)? else {
-                return Ok(None);
-            };
-            Ok(Some(if (a - b).abs() < 1e-9 {
-                Curve::new(Element::Arc {
-                    from,
-                    to,
-                    centre: c,
-                    cw,
-                })
-            } else {
-                Curve::ellipse(from, to, c, a, b, q, cw)
-            }))
-        }
-        Shape::Parabola { p: pp, q } => {
-            if from.dist(to) < 1e-9 {
-                return Ok(None);
-            }
-            let vertex = parabola_vertex(from, to, pp, q, cw)?;
-            Ok(Some(Curve::parabola(from, to, vertex, pp, q, cw)))
-        }
-    }
-}
+use crate::plan::reader::Shape;
 
 /// A G6.2, G6.3, G7.2 or G7.3 block that may move.
 pub fn run(
@@ -90,14 +24,14 @@ pub fn run(
     }
     let (from, to) = (nc.st.pos, nc.target(p));
     if crate::exec::comp::conic_compensated(nc)? {
-        let Some(curve) = profile_curve(nc, ellipse, cw, p, from, to)? else {
+        let Some(curve) = nc.reader().conic_curve(ellipse, cw, p, from, to)? else {
             return Ok(false);
         };
         compensated(nc, &curve, sink)?;
         return Ok(true);
     }
     let dir = if cw { Dir::Cw } else { Dir::Ccw };
-    match shape(nc, ellipse, p)? {
+    match nc.reader().conic_shape(ellipse, p)? {
         Shape::Ellipse { a, b, q } => {
             let Some(c) = ellipse_centre(from, to, a, b, q, cw)? else {
                 return Ok(false);

@@ -25,9 +25,7 @@ pub use queue::ContourState;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{Motion, OneShot};
 use crate::base::geom::Element;
-use crate::base::machine::ChamferType;
 use crate::base::point::Pt;
-use crate::base::words::{COMMA_C, COMMA_R};
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::angle;
@@ -50,53 +48,10 @@ pub fn conic(
     Ok(())
 }
 
-/// The corner word of a block whose motion is `code` (dialect.md §5.1,
-/// §5.3): `L`/`,C` chamfer, `D`/`,R` rounding. E2040 for both at once, on
-/// G00, or not greater than 0. Other motions give L and D other meanings.
+/// The corner word of a block whose motion is `code` (plan::reader).
+#[inline]
 pub(crate) fn corner_word(nc: &Nc, code: Motion, p: &Parsed) -> Result<Option<Corner>, NcError> {
-    // With M98 the L is the repeat count.
-    let l = p.word(b'L').filter(|_| !p.has_m(98));
-    let comma_c = p.word_at(COMMA_C);
-    let chamfer = l.or(comma_c);
-    let round = p.word(b'D').or(p.word_at(COMMA_R));
-    let Some(word) = chamfer.or(round) else {
-        return Ok(None);
-    };
-    if !(code.is_straight() || code.is_arc()) {
-        return Ok(None);
-    }
-    if code == Motion::Rapid {
-        return fail(
-            Alarm::BadCornerLength,
-            "a chamfer or corner rounding cannot be given on G00",
-        );
-    }
-    if chamfer.is_some() && round.is_some() {
-        return fail(
-            Alarm::BadCornerLength,
-            "a block takes either a chamfer or a corner rounding, not both",
-        );
-    }
-    let size = nc.length(word);
-    // Written so that a NaN fails too.
-    if size.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
-        return fail(
-            Alarm::BadCornerLength,
-            "a chamfer or corner radius must be greater than 0",
-        );
-    }
-    Ok(Some(match chamfer {
-        // ,C is always Fanuc's type II; L follows №181.0.
-        Some(_) if comma_c.is_some() => Corner::Chamfer {
-            size,
-            kind: ChamferType::II,
-        },
-        Some(_) => Corner::Chamfer {
-            size,
-            kind: nc.machine.cycles.chamfer_type,
-        },
-        None => Corner::Round { radius: size },
-    }))
+    nc.reader().corner_word(code, p)
 }
 
 /// Whether a G00/G01 block asks for angle programming.

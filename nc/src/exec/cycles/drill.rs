@@ -9,6 +9,7 @@ use super::words;
 use super::{lead, Func};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Drill;
+use crate::base::mcode::M;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::drill::{drill_path, tap_holes, Holes, Pecks};
@@ -24,7 +25,7 @@ pub(crate) struct DrillState {
     /// A G84/G88 has tapped: later holes of the run tap without M29.
     rigid: bool,
     /// The clamp code of the block being executed.
-    clamp: Option<u32>,
+    clamp: Option<M>,
 }
 
 /// What a block that names the cycle starts afresh and later blocks may
@@ -43,21 +44,18 @@ struct Data {
     lead: Option<f64>,
 }
 
-/// M codes with their own meaning keep it in a drilling block; any other
-/// (PLC) code there is the cycle's clamp code α (canon.md block order).
-fn is_clamp_code(m: u32) -> bool {
-    !matches!(m, 0..=5 | 9 | 11 | 13 | 29 | 30 | 33 | 98 | 99 | 9000..=9999)
-}
-
 /// Before the block's group 1: the M29 rules (§22) and the clamp code of a
 /// drilling block, which `before_motion` must not print as a PLC M code.
-pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u32>, NcError> {
+/// M codes with their own meaning keep it in a drilling block; any other
+/// (PLC) code there is the cycle's clamp code α (canon.md block order,
+/// `M::can_clamp`).
+pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<M>, NcError> {
     // C/H count as axis words on a machine with a C axis.
     let moves = nc.axis_words(p);
     let st = &mut nc.st.cycles.drill;
     // (Only M29 or a rigid cycle leaves something to clear.)
     if st.m29 || st.rigid {
-        if p.has_g(Drill::Off) || p.has_m(2) || p.has_m(30) {
+        if p.has_g(Drill::Off) || p.ends_program() {
             st.m29 = false;
             st.rigid = false;
         }
@@ -67,7 +65,7 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
     }
     let drills = matches!(f, Func::Drill(_)) && moves;
     let taps = drills && matches!(f, Func::Drill(d) if d.taps());
-    if p.has_m(29) {
+    if p.has_m(M::RigidTapping) {
         if st.m29 {
             return fail(
                 Alarm::IncompatibleWords,
@@ -90,11 +88,7 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<u3
                 "a drilling block takes one M word (the clamp code)",
             );
         }
-        st.clamp = p
-            .ms()
-            .first()
-            .map(|&(m, _)| m)
-            .filter(|&m| is_clamp_code(m));
+        st.clamp = p.ms().first().copied().filter(|m| m.can_clamp());
     }
     Ok(st.clamp)
 }
@@ -221,7 +215,7 @@ fn holes_of_block(nc: &mut Nc, code: Drill, p: &Parsed) -> Result<Holes, NcError
         c: crate::exec::caxis::target_from(nc, p, nc.st.c),
         c_step: crate::exec::caxis::step(nc, p),
         dwell_s: nc.st.cycles.drill.data.dwell_ms / 1000.0,
-        clamp: nc.st.cycles.drill.clamp,
+        clamp: nc.st.cycles.drill.clamp.map(|m| m.code().into()),
     })
 }
 

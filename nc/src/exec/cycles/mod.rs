@@ -89,7 +89,11 @@ pub fn f_is_lead(nc: &Nc, p: &Parsed) -> bool {
 /// events: the end of a G32/G34 chain, the words a new run or a
 /// non-thread code forgets, the M29 rules and the clamp code of a drilling
 /// block. Returns the block's clamp M code, which is not a PLC M code.
-pub fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<Option<u32>, NcError> {
+pub fn before_block(
+    nc: &mut Nc,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+) -> Result<Option<crate::base::mcode::M>, NcError> {
     let f = func(nc, p);
     check_negative_f(p, f)?;
     thread::next_block(nc, f, p, sink);

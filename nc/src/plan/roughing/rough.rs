@@ -1,8 +1,6 @@
 //! G71/G72 type I (cycles.md §5, §6), computed in the G71 frame: the
 //! infeed runs along r, the cut along z. G72 arrives mirrored.
 
-use alloc::vec::Vec;
-
 use super::turn::{turns_back, Frame};
 use super::{tail_start, too_many, Job, Path, Seg};
 use crate::base::error::{fail, Alarm, NcError};
@@ -79,7 +77,7 @@ fn first_hit(c: &Curve, level: f64, sx: f64) -> Option<f64> {
     if out(0.0) {
         return Some(0.0);
     }
-    let mut hits: Vec<f64> = c.roots(Axis::R, level);
+    let mut hits = c.roots(Axis::R, level);
     if out(1.0) {
         hits.push(1.0);
     }

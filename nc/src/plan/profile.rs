@@ -1,20 +1,24 @@
 //! The ns…nf blocks handed over for a roughing cycle, read as contour
 //! elements (cycles.md §5, §7, §15). The blocks are not executed: only
 //! their geometry and their G00/G01 mode count; F, S, T and M words are
-//! ignored (cycles.md §5 "Decision (errors)").
+//! ignored (cycles.md §5 "Decision (errors)"). A pure function of the
+//! blocks and a [`Reader`] (the machine, the units, the point and the
+//! motion code the cycle starts from): the executor calls it at run time,
+//! and the compiler could at compile time.
 
 use alloc::format;
 use alloc::vec::Vec;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{Drill, Motion, G};
-use crate::base::geom::{self, Element};
+use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::base::words::Word;
 use crate::block::{self, Parsed};
-use crate::exec::contour::{self, Corner};
-use crate::exec::Nc;
+use crate::plan::angle::{angle_of, end_at_r, end_at_z};
+use crate::plan::corner::{corner, Corner};
 use crate::plan::curve::Curve;
+use crate::plan::reader::Reader;
 use crate::plan::roughing::Seg;
 
 /// The two types of G71/G72 (cycles.md §15): read from the ns block.
@@ -36,17 +40,17 @@ fn first(blocks: &[(Vec<Word>, u32)]) -> Result<&(Vec<Word>, u32), NcError> {
     })
 }
 
-fn parse_at(nc: &Nc, words: &[Word], tag: u32) -> Result<Parsed, NcError> {
-    block::parse(words, &nc.machine).map_err(|e| e.at(tag))
+fn parse_at(r: &Reader, words: &[Word], tag: u32) -> Result<Parsed, NcError> {
+    block::parse(words, r.machine).map_err(|e| e.at(tag))
 }
 
 /// E2021, checked before anything else about the ns block of G71/G72
 /// (dialect.md §4.8): its motion code, its own or the one in force, must be
 /// G00/G01, and it must name the infeed axis. Returns the cycle type.
-pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kind, NcError> {
+pub fn ns_kind(r: &Reader, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kind, NcError> {
     let (words, tag) = first(blocks)?;
-    let p = parse_at(nc, words, *tag)?;
-    let code = p.motion().unwrap_or(nc.st.modal.motion);
+    let p = parse_at(r, words, *tag)?;
+    let code = p.motion().unwrap_or(r.motion);
     let name = if facing { "G72" } else { "G71" };
     if !code.is_straight() {
         let msg = format!(
@@ -72,8 +76,8 @@ pub fn ns_kind(nc: &Nc, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<Kin
 /// E2020 for the codes a profile may not hold: group 00 and the drilling
 /// cycles (dialect.md §4.8); E2007 for C/H, since the cycles move X and Z
 /// only (without a C axis, block.rs has refused them already).
-pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
-    if nc.machine.axes.c.enabled && (p.has(b'C') || p.has(b'H')) {
+pub fn check_codes(r: &Reader, p: &Parsed, tag: u32) -> Result<(), NcError> {
+    if r.machine.axes.c.enabled && (p.has(b'C') || p.has(b'H')) {
         let msg = "C/H may not stand in a G70–G73 profile: the cycles move X and Z only";
         return Err(NcError::new(Alarm::IncompatibleWords, msg).at(tag));
     }
@@ -100,21 +104,21 @@ pub fn check_codes(nc: &Nc, p: &Parsed, tag: u32) -> Result<(), NcError> {
 /// Chamfers and roundings (L, D, ,C, ,R) join an element and the next
 /// moving block's one with the contour module's corner geometry, as in
 /// ordinary blocks (cycles.md §13 "the same rules apply inside profiles").
-pub fn build(nc: &Nc, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
+pub fn build(r: &Reader, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
     first(blocks)?;
-    let mut pos = nc.st.pos;
-    let mut code = nc.st.modal.motion;
+    let mut pos = r.at;
+    let mut code = r.motion;
     let mut segs: Vec<Seg> = Vec::with_capacity(blocks.len());
     // The element waiting for its corner: its index and the corner.
     let mut waiting: Option<(usize, Corner)> = None;
     for (i, (words, tag)) in blocks.iter().enumerate() {
-        let p = parse_at(nc, words, *tag)?;
-        check_codes(nc, &p, *tag)?;
+        let p = parse_at(r, words, *tag)?;
+        check_codes(r, &p, *tag)?;
         if let Some(c) = p.motion() {
             code = c;
         }
-        let corner = contour::corner_word(nc, code, &p).map_err(|e| e.at(*tag))?;
-        let Some(curve) = element(nc, code, &p, pos).map_err(|e| e.at(*tag))? else {
+        let corner = r.corner_word(code, &p).map_err(|e| e.at(*tag))?;
+        let Some(curve) = element(r, code, &p, pos).map_err(|e| e.at(*tag))? else {
             continue;
         };
         pos = curve.end();
@@ -149,7 +153,7 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
             "a chamfer or rounding next to an ellipse or parabola in a G71–G73 profile is not supported yet",
         );
     };
-    match contour::corner(&e1, &e2, c)? {
+    match corner(&e1, &e2, c)? {
         Some((e1, inserted, e2)) => {
             prev.curve = Curve::new(e1);
             // The corner word stands on the earlier block.
@@ -172,11 +176,11 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
 }
 
 /// The curve one profile block describes, `None` when it does not move.
-fn element(nc: &Nc, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curve>, NcError> {
-    let to = nc.target_from(p, from);
+fn element(r: &Reader, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curve>, NcError> {
+    let to = r.target_from(p, from);
     match code {
         Motion::Rapid | Motion::Line => {
-            let Some(deg) = contour::angle_of(p) else {
+            let Some(deg) = angle_of(p) else {
                 let line = Element::Line { from, to };
                 return Ok(p.has_axis().then_some(Curve::new(line)));
             };
@@ -185,8 +189,8 @@ fn element(nc: &Nc, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curve>,
             let x = p.has(b'X') || p.has(b'U');
             let z = p.has(b'Z') || p.has(b'W');
             let end = match (x, z) {
-                (true, false) => contour::end_at_r(from, deg, to.r)?,
-                (false, true) => contour::end_at_z(from, deg, to.z)?,
+                (true, false) => end_at_r(from, deg, to.r)?,
+                (false, true) => end_at_z(from, deg, to.z)?,
                 // X, Z and Q: an ordinary line, Q ignored (W104).
                 (true, true) => to,
                 (false, false) => {
@@ -199,16 +203,17 @@ fn element(nc: &Nc, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curve>,
             Ok(Some(Curve::new(Element::Line { from, to: end })))
         }
         Motion::ArcCw | Motion::ArcCcw => {
-            Ok(nc.arc_element(from, code == Motion::ArcCw, to, p)?.map(Curve::new))
+            Ok(r.arc_element(from, code == Motion::ArcCw, to, p)?.map(Curve::new))
         }
         Motion::ThreePoint | Motion::ThreePointAbs => {
-            three_point(nc, code == Motion::ThreePointAbs, p, from, to).map(|e| Some(Curve::new(e)))
+            let arc = r.three_point(code == Motion::ThreePointAbs, p, from, to)?;
+            Ok(Some(Curve::new(arc)))
         }
         // Seed 000, G6.2 note 8 and G7.2 note 7: conics may shape a profile.
         c if c.is_conic() && p.has_axis() => {
             let ellipse = matches!(c, Motion::EllipseCw | Motion::EllipseCcw);
             let cw = matches!(c, Motion::EllipseCw | Motion::ParabolaCw);
-            contour::conic::profile_curve(nc, ellipse, cw, p, from, to)
+            r.conic_curve(ellipse, cw, p, from, to)
         }
         c if c.is_conic() => Ok(None),
         _ => fail(
@@ -221,23 +226,82 @@ fn element(nc: &Nc, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curve>,
     }
 }
 
-/// G05 (mid point relative to the start) and G05.1 (absolute mid point).
-fn three_point(nc: &Nc, absolute: bool, p: &Parsed, from: Pt, to: Pt) -> Result<Element, NcError> {
-    if !p.has(b'I') && !p.has(b'K') {
-        return fail(Alarm::MissingWord, "G05 needs the mid point I/K");
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::base::machine::Machine;
+    use crate::base::words::{addr, LITERAL};
+
+    /// A block of literal words with decimal points (no increment rule).
+    fn block(ws: &[(u8, f64)], tag: u32) -> (Vec<Word>, u32) {
+        let words = ws
+            .iter()
+            .map(|&(l, value)| Word {
+                addr: addr(l),
+                value,
+                flags: LITERAL,
+            })
+            .collect();
+        (words, tag)
     }
-    let i = nc.len_of(p, b'I');
-    let k = nc.len_of(p, b'K');
-    let mid = if absolute {
-        Pt::new(i.map_or(from.r, |x| x / 2.0), k.unwrap_or(from.z))
-    } else {
-        Pt::new(from.r + i.unwrap_or(0.0), from.z + k.unwrap_or(0.0))
-    };
-    let (centre, cw) = geom::circle_through(from, mid, to)?;
-    Ok(Element::Arc {
-        from,
-        to,
-        centre,
-        cw,
-    })
+
+    fn ends(segs: &[Seg]) -> Vec<(f64, f64)> {
+        segs.iter()
+            .map(|s| (s.curve.end().x(), s.curve.end().z))
+            .collect()
+    }
+
+    /// The profile is read from the reader alone: no kernel runs.
+    #[test]
+    fn a_profile_reads_from_the_start_point_and_the_motion_in_force() {
+        let machine = Machine::reference();
+        let r = Reader {
+            machine: &machine,
+            inch: false,
+            at: Pt::xz(130.0, 2.0),
+            motion: Motion::Line,
+        };
+        let blocks = [
+            block(&[(b'G', 0.0), (b'X', 20.0)], 10),
+            block(&[(b'G', 1.0), (b'Z', -10.0)], 11),
+            block(&[(b'U', 20.0), (b'W', -5.0)], 12),
+        ];
+        let segs = build(&r, &blocks).unwrap();
+        // Ends worked out by hand: X20 Z2 (the ns rapid), then Z-10, then
+        // U20 W-5 from there: X40 Z-15.
+        assert_eq!(ends(&segs), [(20.0, 2.0), (20.0, -10.0), (40.0, -15.0)]);
+        assert_eq!(segs[0].curve.start(), Pt::xz(130.0, 2.0));
+        let flags: Vec<_> = segs.iter().map(|s| (s.rapid, s.ns, s.tag)).collect();
+        assert_eq!(
+            flags,
+            [(true, true, 10), (false, false, 11), (false, false, 12)]
+        );
+        assert_eq!(ns_kind(&r, &blocks, false).unwrap(), Kind::Plain);
+    }
+
+    #[test]
+    fn the_reader_gives_the_units_and_the_modal_motion() {
+        let machine = Machine::reference();
+        let r = Reader {
+            machine: &machine,
+            inch: true,
+            at: Pt::xz(50.8, 0.0),
+            motion: Motion::Line,
+        };
+        // No G code: G01 in force; inches: X1 is 25.4 mm (diameter), Z-1
+        // is -25.4 mm. X and Z in the ns block: the pocket type.
+        let blocks = [block(&[(b'X', 1.0), (b'Z', -1.0)], 7)];
+        let segs = build(&r, &blocks).unwrap();
+        assert_eq!(ends(&segs), [(25.4, -25.4)]);
+        assert!(!segs[0].rapid);
+        assert_eq!(ns_kind(&r, &blocks, false).unwrap(), Kind::Pockets);
+        // G02 in force at the ns block of G71: E2021, tagged with it.
+        let arc = Reader {
+            motion: Motion::ArcCw,
+            ..r
+        };
+        let e = ns_kind(&arc, &blocks, false).unwrap_err();
+        assert_eq!((e.code, e.at), (Alarm::BadProfileStart.code(), Some(7)));
+        assert!(build(&r, &[]).is_err());
+    }
 }
