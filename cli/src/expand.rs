@@ -16,8 +16,18 @@ pub struct Expand {
     /// The source line of the block being printed.
     line: u32,
     last_line: u32,
-    /// (X, Z) of the last point, for arc centres relative to the start.
+    /// (X, Z) of the last point as printed, for arc centres relative to
+    /// the start: the end of the last printed move, not the kernel's
+    /// position, which runs ahead of the printed moves under tool nose
+    /// radius compensation.
     at: (f64, f64),
+    /// Take `at` from the kernel at the next block: at the start, and
+    /// after a return to a reference point (whose machine position the
+    /// events do not carry).
+    resync: bool,
+    /// The work zero in machine coordinates (X a diameter), to print a
+    /// moved zero as the G50 that moves it there.
+    origin: (f64, f64),
     feed: Option<(f64, bool)>,
     /// The C angle of the last `C=` (the start of a G7.1 plane).
     c_now: f64,
@@ -28,13 +38,17 @@ pub struct Expand {
 }
 
 impl Expand {
-    pub fn new(seqs: HashMap<u32, u32>) -> Expand {
+    /// `origin` is the work zero (machine coordinates, X a diameter) the
+    /// run starts with.
+    pub fn new(seqs: HashMap<u32, u32>, origin: (f64, f64)) -> Expand {
         Expand {
             out: String::new(),
             seqs,
             line: 0,
             last_line: 0,
             at: (0.0, 0.0),
+            resync: true,
+            origin,
             feed: None,
             c_now: 0.0,
             plane_at: (0.0, 0.0),
@@ -55,6 +69,15 @@ impl Expand {
 
     fn block(&mut self, text: String) {
         let note = self.origin_comment();
+        if text.starts_with('#') {
+            // A comment on a #3000/#3006 line is its message: the source
+            // line goes on a line of its own before it.
+            if !note.is_empty() {
+                let _ = writeln!(self.out, "{}", note.trim_start());
+            }
+            let _ = writeln!(self.out, "{text}");
+            return;
+        }
         let _ = writeln!(self.out, "{text}{note}");
     }
 
@@ -77,7 +100,9 @@ impl Expand {
     /// starting at (`x`, `z`).
     pub fn block_events(&mut self, events: &[Event], line: u32, start: (f64, f64)) {
         self.line = line;
-        self.at = start;
+        if std::mem::take(&mut self.resync) {
+            self.at = start;
+        }
         for e in events {
             self.event(e);
         }
@@ -108,13 +133,11 @@ impl Expand {
                 a,
                 b,
             } => self.plane_move(*plane, *motion, *a, *b),
-            Event::Rapid { x, z, c } => format!("G00 X{} Z{}{}", n(*x), n(*z), c_word(*c)),
-            Event::Line { x, z, c } => format!("G01 X{} Z{}{}", n(*x), n(*z), c_word(*c)),
+            Event::Rapid { x, z, c } => format!("G00 X{} Z{}{}", w(*x), w(*z), c_word(*c)),
+            Event::Line { x, z, c } => format!("G01 X{} Z{}{}", w(*x), w(*z), c_word(*c)),
             Event::Arc { dir, x, z, cx, cz } => {
                 let g = if *dir == Dir::Cw { "G02" } else { "G03" };
-                // I is a radius value relative to the start, K relative too.
-                let (i, k) = ((cx - self.at.0) / 2.0, cz - self.at.1);
-                format!("{g} X{} Z{} I{} K{}", n(*x), n(*z), n(i), n(k))
+                format!("{g} X{} Z{}{}", w(*x), w(*z), self.centre(*cx, *cz))
             }
             // A thread's C= is the angle C holds (a G32 cannot turn C).
             Event::Thread {
@@ -126,18 +149,29 @@ impl Expand {
                 ..
             } => {
                 let mut s = match dlead {
-                    Some(d) => format!("G34 X{} Z{} F{} R{}", n(*x), n(*z), n(*lead), n(*d)),
-                    None => format!("G32 X{} Z{} F{}", n(*x), n(*z), n(*lead)),
+                    Some(d) => format!("G34 X{} Z{} F{} R{}", w(*x), w(*z), w(*lead), w(*d)),
+                    None => format!("G32 X{} Z{} F{}", w(*x), w(*z), w(*lead)),
                 };
-                if let Some(q) = q {
-                    let _ = write!(s, " Q{}", n(q * 1000.0));
-                }
+                s.push_str(&q_word(*q));
                 s
             }
-            Event::Dwell { s } => format!("G04 X{}", n(*s)),
+            Event::ArcThread {
+                dir,
+                x,
+                z,
+                cx,
+                cz,
+                lead,
+                q,
+            } => {
+                let g = if *dir == Dir::Cw { "G32.2" } else { "G32.3" };
+                let r = self.radius_word(*dir, (*x, *z), (*cx, *cz));
+                format!("{g} X{} Z{} R{} F{}{}", w(*x), w(*z), w(r), w(*lead), q_word(*q))
+            }
+            Event::Dwell { s } => format!("G04 X{}", w(*s)),
             Event::Feed { f, per_rev } => {
                 let m = self.mode(*f, *per_rev);
-                format!("{m}F{}", n(*f))
+                format!("{m}F{}", w(*f))
             }
             Event::Speed {
                 s,
@@ -158,14 +192,27 @@ impl Expand {
                 SpindleDir::Stop => "M05".into(),
             },
             Event::Tool { t, d } => format!("T{t:02}{d:02}"),
+            // Rigid tapping's legs are printed as G32 moves, which may not
+            // follow an M29: say so where it happens.
+            Event::M(29) => "M29 (RIGID TAPPING: ITS LEGS BELOW ARE G32 MOVES, WHICH NO PROGRAM MAY PUT AFTER M29; THIS OUTPUT DOES NOT COMPILE AGAIN)".into(),
             Event::M(code) => format!("M{code:02}"),
-            Event::Origin { x, z } => format!("(WORK ZERO AT MACHINE X{} Z{})", n(*x), n(*z)),
-            Event::Home { n: p, x, z, c } => format!(
-                "(AT REFERENCE POINT {p}:{}{}{})",
-                if *x { " X" } else { "" },
-                if *z { " Z" } else { "" },
-                if *c { " C" } else { "" }
-            ),
+            Event::Origin { x, z } => self.zero_moved(*x, *z),
+            Event::Home { n: p, x, z, c } => {
+                // From the point it stands at, so that the intermediate
+                // leg has no length and prints nothing (cycles.md §14).
+                self.resync = true;
+                let g = if *p == 1 {
+                    "G28".to_string()
+                } else {
+                    format!("G30 P{p}")
+                };
+                let axes: String = [(*x, " U0"), (*z, " W0"), (*c, " H0")]
+                    .iter()
+                    .filter(|(on, _)| *on)
+                    .map(|(_, word)| *word)
+                    .collect();
+                format!("{g}{axes}")
+            }
             Event::Stop(k) => match k {
                 StopKind::M00 => "M00".into(),
                 StopKind::M01 => "M01".into(),
@@ -174,14 +221,57 @@ impl Expand {
                 StopKind::M99 => "M99".into(),
             },
             Event::Skip { x, z } => format!("G31 X{} Z{}", n(*x), n(*z)),
-            Event::Message(t) => format!("(MESSAGE: {t})"),
-            Event::Alarm { code, msg } => format!("(ALARM {code}: {msg})"),
-            other => format!("({other})"),
+            Event::Message(t) => format!("#3006=1 ({})", comment(t)),
+            Event::Alarm { code, msg } => alarm(*code, msg),
+            other => format!("({})", comment(&other.to_string())),
         };
         if let Some((x, z)) = end_point(e) {
             self.at = (x, z);
         }
         self.block(text);
+    }
+}
+
+impl Expand {
+    /// The I/K words of an arc centred at (`cx`, `cz`) from the last point
+    /// as printed (I a radius), so that the centre read back is the
+    /// centre that ran.
+    fn centre(&self, cx: f64, cz: f64) -> String {
+        let (i, k) = ((cx - self.at.0) / 2.0, cz - self.at.1);
+        format!(" I{} K{}", w(i), w(k))
+    }
+
+    /// The R word of an arc from the last point to `end` about `centre`
+    /// (X diameters): its radius, negative beyond a half circle. An arc
+    /// thread is written with R, as the G32.2 read back takes its I as
+    /// the source of this program's arcs do not.
+    fn radius_word(&self, dir: Dir, end: (f64, f64), centre: (f64, f64)) -> f64 {
+        // (Z, radius) from the centre: Z across, X up, as a front lathe
+        // is seen, where G02 turns clockwise.
+        let u0 = (self.at.1 - centre.1, (self.at.0 - centre.0) / 2.0);
+        let u1 = (end.1 - centre.1, (end.0 - centre.0) / 2.0);
+        let cross = u0.0 * u1.1 - u0.1 * u1.0;
+        let long = if dir == Dir::Ccw {
+            cross < 0.0
+        } else {
+            cross > 0.0
+        };
+        let r = u1.0.hypot(u1.1);
+        if long {
+            -r
+        } else {
+            r
+        }
+    }
+
+    /// A work zero moved to (`x`, `z`) (machine coordinates), whatever
+    /// moved it (G50, G52, G54..G59, a work-offset variable), as the G50
+    /// that gives the point the tool stands at its coordinates from there.
+    fn zero_moved(&mut self, x: f64, z: f64) -> String {
+        let machine = (self.at.0 + self.origin.0, self.at.1 + self.origin.1);
+        self.origin = (x, z);
+        self.at = (machine.0 - x, machine.1 - z);
+        format!("G50 X{} Z{}", w(self.at.0), w(self.at.1))
     }
 }
 
@@ -230,7 +320,44 @@ impl Expand {
 
 /// The C word of a move on a machine with a C axis.
 fn c_word(c: Option<f64>) -> String {
-    c.map_or(String::new(), |c| format!(" C{}", n(c)))
+    c.map_or(String::new(), |c| format!(" C{}", w(c)))
+}
+
+/// The Q word of a thread's start angle, in the integer 0.001° the
+/// dialect takes.
+fn q_word(q: Option<f64>) -> String {
+    q.map_or(String::new(), |q| format!(" Q{}", (q * 1000.0).round()))
+}
+
+/// A value of a dimension word, every digit of it (the shortest text that
+/// reads back as the same `f64`), always with a decimal point, so that a
+/// machine that reads integers in increments reads it the same.
+fn w(v: f64) -> String {
+    let v = if v == 0.0 { 0.0 } else { v }; // no "-0"
+    let mut s = v.to_string();
+    if !s.contains('.') {
+        s.push('.');
+    }
+    s
+}
+
+/// Text for inside a comment: a parenthesis would nest or end it.
+fn comment(t: &str) -> String {
+    t.replace('(', "[").replace(')', "]")
+}
+
+/// A run-time alarm: a `#3000` alarm as the `#3000` write that raises it;
+/// another (a check of the dialect, the block budget) cannot be written as
+/// G-code, and the output says so where the run stopped.
+fn alarm(code: u32, msg: &str) -> String {
+    match code.checked_sub(3000).filter(|v| *v < 1000) {
+        Some(v) if msg.is_empty() => format!("#3000={v}"),
+        Some(v) => format!("#3000={v} ({})", comment(msg)),
+        None => format!(
+            "(ALARM {code}: {}: the run stops here; an alarm that is not a #3000 one is not written as G-code)",
+            comment(msg)
+        ),
+    }
 }
 
 /// Where an event leaves the tool.

@@ -495,8 +495,9 @@ fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> (String, Option<St
             }
         }
     }
-    let mut out = cli::expand::Expand::new(seqs);
     let mut vm = vm::Vm::new(module, machine.clone());
+    let zero = vm.nc.origin();
+    let mut out = cli::expand::Expand::new(seqs, (zero.x(), zero.z));
     let mut events: Vec<nc::Event> = Vec::new();
     loop {
         let start = (vm.nc.position().x(), vm.nc.position().z);
