@@ -8,6 +8,14 @@ use nc::Event;
 use std::collections::HashMap;
 use std::fmt::Write;
 
+/// The comment of an M29: why the output does not compile again.
+const RIGID_TAPPING: &str = "RIGID TAPPING: ITS LEGS BELOW ARE G32 MOVES, \
+    WHICH NO PROGRAM MAY PUT AFTER M29; THIS OUTPUT DOES NOT COMPILE AGAIN";
+
+/// The comment of a run-time alarm that no G-code raises.
+const NOT_WRITTEN: &str =
+    "the run stops here; an alarm that is not a #3000 one is not written as G-code";
+
 /// Turns canon events into G-code text.
 pub struct Expand {
     pub out: String,
@@ -28,6 +36,9 @@ pub struct Expand {
     /// The work zero in machine coordinates (X a diameter), to print a
     /// moved zero as the G50 that moves it there.
     origin: (f64, f64),
+    /// Every number gets a decimal point (the machine reads one without
+    /// as increments).
+    point: bool,
     feed: Option<(f64, bool)>,
     /// The C angle of the last `C=` (the start of a G7.1 plane).
     c_now: f64,
@@ -39,8 +50,9 @@ pub struct Expand {
 
 impl Expand {
     /// `origin` is the work zero (machine coordinates, X a diameter) the
-    /// run starts with.
-    pub fn new(seqs: HashMap<u32, u32>, origin: (f64, f64)) -> Expand {
+    /// run starts with; `point`, that every number is written with a
+    /// decimal point (on a machine that reads one without in increments).
+    pub fn new(seqs: HashMap<u32, u32>, origin: (f64, f64), point: bool) -> Expand {
         Expand {
             out: String::new(),
             seqs,
@@ -49,6 +61,7 @@ impl Expand {
             at: (0.0, 0.0),
             resync: true,
             origin,
+            point,
             feed: None,
             c_now: 0.0,
             plane_at: (0.0, 0.0),
@@ -133,11 +146,20 @@ impl Expand {
                 a,
                 b,
             } => self.plane_move(*plane, *motion, *a, *b),
-            Event::Rapid { x, z, c } => format!("G00 X{} Z{}{}", w(*x), w(*z), c_word(*c)),
-            Event::Line { x, z, c } => format!("G01 X{} Z{}{}", w(*x), w(*z), c_word(*c)),
+            Event::Rapid { x, z, c } => {
+                format!("G00 X{} Z{}{}", self.w(*x), self.w(*z), self.c_word(*c))
+            }
+            Event::Line { x, z, c } => {
+                format!("G01 X{} Z{}{}", self.w(*x), self.w(*z), self.c_word(*c))
+            }
             Event::Arc { dir, x, z, cx, cz } => {
                 let g = if *dir == Dir::Cw { "G02" } else { "G03" };
-                format!("{g} X{} Z{}{}", w(*x), w(*z), self.centre(*cx, *cz))
+                format!(
+                    "{g} X{} Z{}{}",
+                    self.w(*x),
+                    self.w(*z),
+                    self.centre(*cx, *cz)
+                )
             }
             // A thread's C= is the angle C holds (a G32 cannot turn C).
             Event::Thread {
@@ -149,8 +171,14 @@ impl Expand {
                 ..
             } => {
                 let mut s = match dlead {
-                    Some(d) => format!("G34 X{} Z{} F{} R{}", w(*x), w(*z), w(*lead), w(*d)),
-                    None => format!("G32 X{} Z{} F{}", w(*x), w(*z), w(*lead)),
+                    Some(d) => format!(
+                        "G34 X{} Z{} F{} R{}",
+                        self.w(*x),
+                        self.w(*z),
+                        self.w(*lead),
+                        self.w(*d)
+                    ),
+                    None => format!("G32 X{} Z{} F{}", self.w(*x), self.w(*z), self.w(*lead)),
                 };
                 s.push_str(&q_word(*q));
                 s
@@ -166,12 +194,19 @@ impl Expand {
             } => {
                 let g = if *dir == Dir::Cw { "G32.2" } else { "G32.3" };
                 let r = self.radius_word(*dir, (*x, *z), (*cx, *cz));
-                format!("{g} X{} Z{} R{} F{}{}", w(*x), w(*z), w(r), w(*lead), q_word(*q))
+                format!(
+                    "{g} X{} Z{} R{} F{}{}",
+                    self.w(*x),
+                    self.w(*z),
+                    self.w(r),
+                    self.w(*lead),
+                    q_word(*q)
+                )
             }
-            Event::Dwell { s } => format!("G04 X{}", w(*s)),
+            Event::Dwell { s } => format!("G04 X{}", self.w(*s)),
             Event::Feed { f, per_rev } => {
                 let m = self.mode(*f, *per_rev);
-                format!("{m}F{}", w(*f))
+                format!("{m}F{}", self.w(*f))
             }
             Event::Speed {
                 s,
@@ -194,7 +229,7 @@ impl Expand {
             Event::Tool { t, d } => format!("T{t:02}{d:02}"),
             // Rigid tapping's legs are printed as G32 moves, which may not
             // follow an M29: say so where it happens.
-            Event::M(29) => "M29 (RIGID TAPPING: ITS LEGS BELOW ARE G32 MOVES, WHICH NO PROGRAM MAY PUT AFTER M29; THIS OUTPUT DOES NOT COMPILE AGAIN)".into(),
+            Event::M(29) => format!("M29 ({RIGID_TAPPING})"),
             Event::M(code) => format!("M{code:02}"),
             Event::Origin { x, z } => self.zero_moved(*x, *z),
             Event::Home { n: p, x, z, c } => {
@@ -233,12 +268,29 @@ impl Expand {
 }
 
 impl Expand {
+    /// A value of a dimension word, every digit of it (the shortest text
+    /// that reads back as the same `f64`), with a decimal point on a
+    /// machine that reads a number without one in increments.
+    fn w(&self, v: f64) -> String {
+        let v = if v == 0.0 { 0.0 } else { v }; // no "-0"
+        let mut s = v.to_string();
+        if self.point && !s.contains('.') {
+            s.push('.');
+        }
+        s
+    }
+
+    /// The C word of a move on a machine with a C axis.
+    fn c_word(&self, c: Option<f64>) -> String {
+        c.map_or(String::new(), |c| format!(" C{}", self.w(c)))
+    }
+
     /// The I/K words of an arc centred at (`cx`, `cz`) from the last point
     /// as printed (I a radius), so that the centre read back is the
     /// centre that ran.
     fn centre(&self, cx: f64, cz: f64) -> String {
         let (i, k) = ((cx - self.at.0) / 2.0, cz - self.at.1);
-        format!(" I{} K{}", w(i), w(k))
+        format!(" I{} K{}", self.w(i), self.w(k))
     }
 
     /// The R word of an arc from the last point to `end` about `centre`
@@ -271,7 +323,7 @@ impl Expand {
         let machine = (self.at.0 + self.origin.0, self.at.1 + self.origin.1);
         self.origin = (x, z);
         self.at = (machine.0 - x, machine.1 - z);
-        format!("G50 X{} Z{}", w(self.at.0), w(self.at.1))
+        format!("G50 X{} Z{}", self.w(self.at.0), self.w(self.at.1))
     }
 }
 
@@ -318,27 +370,10 @@ impl Expand {
     }
 }
 
-/// The C word of a move on a machine with a C axis.
-fn c_word(c: Option<f64>) -> String {
-    c.map_or(String::new(), |c| format!(" C{}", w(c)))
-}
-
 /// The Q word of a thread's start angle, in the integer 0.001° the
 /// dialect takes.
 fn q_word(q: Option<f64>) -> String {
     q.map_or(String::new(), |q| format!(" Q{}", (q * 1000.0).round()))
-}
-
-/// A value of a dimension word, every digit of it (the shortest text that
-/// reads back as the same `f64`), always with a decimal point, so that a
-/// machine that reads integers in increments reads it the same.
-fn w(v: f64) -> String {
-    let v = if v == 0.0 { 0.0 } else { v }; // no "-0"
-    let mut s = v.to_string();
-    if !s.contains('.') {
-        s.push('.');
-    }
-    s
 }
 
 /// Text for inside a comment: a parenthesis would nest or end it.
@@ -353,10 +388,7 @@ fn alarm(code: u32, msg: &str) -> String {
     match code.checked_sub(3000).filter(|v| *v < 1000) {
         Some(v) if msg.is_empty() => format!("#3000={v}"),
         Some(v) => format!("#3000={v} ({})", comment(msg)),
-        None => format!(
-            "(ALARM {code}: {}: the run stops here; an alarm that is not a #3000 one is not written as G-code)",
-            comment(msg)
-        ),
+        None => format!("(ALARM {code}: {}: {NOT_WRITTEN})", comment(msg)),
     }
 }
 

@@ -497,7 +497,8 @@ fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> (String, Option<St
     }
     let mut vm = vm::Vm::new(module, machine.clone());
     let zero = vm.nc.origin();
-    let mut out = cli::expand::Expand::new(seqs, (zero.x(), zero.z));
+    let point = machine.machine.decimal_point == nc::machine::DecimalPoint::Increment;
+    let mut out = cli::expand::Expand::new(seqs, (zero.x(), zero.z), point);
     let mut events: Vec<nc::Event> = Vec::new();
     loop {
         let start = (vm.nc.position().x(), vm.nc.position().z);
