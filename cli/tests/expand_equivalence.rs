@@ -35,8 +35,8 @@ fn shared(dir: &str) -> Option<PathBuf> {
     d.is_dir().then_some(d)
 }
 
-fn scratch() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("gbc-expand-eq-{}", std::process::id()));
+fn scratch(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("gbc-expand-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     d
 }
@@ -209,7 +209,7 @@ fn corpus_cases(dir: &Path) -> Vec<Case> {
 
 #[test]
 fn every_program_that_compiles_expands_to_the_same_canon() {
-    let dir = scratch();
+    let dir = scratch("all");
     let mut cases = conformance_cases();
     cases.extend(corpus_cases(&dir));
     if cases.is_empty() {
@@ -240,5 +240,32 @@ fn every_program_that_compiles_expands_to_the_same_canon() {
     // one exempt are equivalent (before -E wrote zero shifts, reference
     // returns and messages as G-code: 82).
     assert!(equivalent >= 111, "only {equivalent} equivalent");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// An arc after a chamfer (L) ends its block where the chamfer begins, not
+/// where the block's words say: its I/K must be taken from the point the
+/// last printed move ended (the old `-E` took the kernel's programmed
+/// point, and the arc it wrote did not close: E4002).
+#[test]
+fn an_arc_after_a_chamfer_is_written_from_where_the_chamfer_ends() {
+    let dir = scratch("chamfer");
+    let src = dir.join("ld.nc");
+    std::fs::write(
+        &src,
+        "G00 X20 Z2\nG01 Z0 F100\nG01 Z-20\nG01 X60 L1\nG02 X60 Z-40 R12 L2\nG01 X80\nM30\n",
+    )
+    .unwrap();
+    let case = Case {
+        name: "chamfer".into(),
+        src,
+        machine: None,
+    };
+    match check(&case, &dir) {
+        Verdict::Equivalent => {}
+        Verdict::NotCompiled => panic!("the program itself does not compile"),
+        Verdict::ExpandedNotCompiled(text, err) => panic!("{err}\n{text}"),
+        Verdict::Different(why) => panic!("{why}"),
+    }
     let _ = std::fs::remove_dir_all(dir);
 }
