@@ -8,10 +8,6 @@ use nc::Event;
 use std::collections::HashMap;
 use std::fmt::Write;
 
-/// The comment of an M29: why the output does not compile again.
-const RIGID_TAPPING: &str = "RIGID TAPPING: ITS LEGS BELOW ARE G32 MOVES, \
-    WHICH NO PROGRAM MAY PUT AFTER M29; THIS OUTPUT DOES NOT COMPILE AGAIN";
-
 /// The comment of a run-time alarm that no G-code raises.
 const NOT_WRITTEN: &str =
     "the run stops here; an alarm that is not a #3000 one is not written as G-code";
@@ -36,6 +32,10 @@ pub struct Expand {
     /// The work zero in machine coordinates (X a diameter), to print a
     /// moved zero as the G50 that moves it there.
     origin: (f64, f64),
+    /// An M29 was printed and no move since: a block whose events are
+    /// one rigid-tapping hole is written as its G84/G88 block, as no
+    /// move may come between the M29 and it.
+    rigid: bool,
     /// Every number gets a decimal point (the machine reads one without
     /// as increments).
     point: bool,
@@ -62,6 +62,7 @@ impl Expand {
             resync: true,
             origin,
             point,
+            rigid: false,
             feed: None,
             c_now: 0.0,
             plane_at: (0.0, 0.0),
@@ -116,12 +117,27 @@ impl Expand {
         if std::mem::take(&mut self.resync) {
             self.at = start;
         }
+        if self.rigid {
+            if let Some(tap) = rigid_tap(events, self.at) {
+                self.at = tap.s0;
+                let text = self.tap_block(&tap);
+                self.block(text);
+                return;
+            }
+        }
         for e in events {
             self.event(e);
         }
     }
 
     fn event(&mut self, e: &Event) {
+        match e {
+            Event::M(29) => self.rigid = true,
+            // A move that is not a tapping cycle ends rigid tapping
+            // (cycles.md §22), in the program and in its expansion.
+            e if end_point(e).is_some() => self.rigid = false,
+            _ => {}
+        }
         if let Event::Rapid { c: Some(c), .. } | Event::Line { c: Some(c), .. } = e {
             self.c_now = *c;
         }
@@ -227,9 +243,6 @@ impl Expand {
                 SpindleDir::Stop => "M05".into(),
             },
             Event::Tool { t, d } => format!("T{t:02}{d:02}"),
-            // Rigid tapping's legs are printed as G32 moves, which may not
-            // follow an M29: say so where it happens.
-            Event::M(29) => format!("M29 ({RIGID_TAPPING})"),
             Event::M(code) => format!("M{code:02}"),
             Event::Origin { x, z } => self.zero_moved(*x, *z),
             Event::Home { n: p, x, z, c } => {
@@ -268,6 +281,25 @@ impl Expand {
 }
 
 impl Expand {
+    /// A rigid-tapping hole as its cycle block: G84 along Z, G88 along X.
+    fn tap_block(&self, tap: &Tap) -> String {
+        let (x, z) = (self.w(tap.s1.0), self.w(tap.s1.1));
+        let mut s = if tap.s1.0 == tap.s0.0 {
+            format!("G84 X{x} Z{z}")
+        } else {
+            format!("G88 Z{z} X{x}")
+        };
+        let lead = if tap.left { -tap.lead } else { tap.lead };
+        let _ = write!(s, " F{}", self.w(lead));
+        if let Some(d) = tap.dwell {
+            let _ = write!(s, " P{}", (d * 1000.0).round());
+        }
+        if let Some(m) = tap.m {
+            let _ = write!(s, " M{m}");
+        }
+        s
+    }
+
     /// A value of a dimension word, every digit of it (the shortest text
     /// that reads back as the same `f64`), with a decimal point on a
     /// machine that reads a number without one in increments.
@@ -368,6 +400,77 @@ impl Expand {
         }
         s
     }
+}
+
+/// One hole of rigid tapping as its events print it (cycles.md §22):
+/// [RAPID to s0] [M α] [SPINDLE tapping way] THREAD to s1 [DWELL]
+/// SPINDLE reverse, THREAD to s0, SPINDLE tapping way [M α+1].
+struct Tap {
+    s0: (f64, f64),
+    s1: (f64, f64),
+    lead: f64,
+    /// Turning CCW to tap: a left-hand thread, F < 0.
+    left: bool,
+    dwell: Option<f64>,
+    m: Option<u32>,
+}
+
+/// The hole a block's events tap, starting from `at`; None when they are
+/// anything else.
+fn rigid_tap(events: &[Event], at: (f64, f64)) -> Option<Tap> {
+    let mut rest = events;
+    let mut s0 = at;
+    if let [Event::Rapid { x, z, c: None }, more @ ..] = rest {
+        s0 = (*x, *z);
+        rest = more;
+    }
+    let mut m = None;
+    if let [Event::M(a), more @ ..] = rest {
+        m = Some(*a);
+        rest = more;
+    }
+    if let [Event::Spindle(_), more @ ..] = rest {
+        rest = more;
+    }
+    let [Event::Thread {
+        x,
+        z,
+        lead,
+        dlead: None,
+        q: None,
+        c: None,
+    }, more @ ..] = rest
+    else {
+        return None;
+    };
+    let (s1, lead) = ((*x, *z), *lead);
+    rest = more;
+    let mut dwell = None;
+    if let [Event::Dwell { s }, more @ ..] = rest {
+        dwell = Some(*s);
+        rest = more;
+    }
+    let [Event::Spindle(rev), Event::Thread {
+        x, z, lead: back, ..
+    }, Event::Spindle(tap), more @ ..] = rest
+    else {
+        return None;
+    };
+    let closes = (*x, *z) == s0 && *back == lead && rev != tap && *tap != SpindleDir::Stop;
+    let end_ok = match (m, more) {
+        (None, []) => true,
+        (Some(a), [Event::M(b)]) => *b == a + 1,
+        _ => false,
+    };
+    let along_one_axis = s1.0 == s0.0 || s1.1 == s0.1;
+    (closes && end_ok && along_one_axis && *rev != SpindleDir::Stop).then_some(Tap {
+        s0,
+        s1,
+        lead,
+        left: *tap == SpindleDir::Ccw,
+        dwell,
+        m,
+    })
 }
 
 /// The Q word of a thread's start angle, in the integer 0.001° the

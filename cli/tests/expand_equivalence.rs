@@ -18,11 +18,8 @@ use std::process::{Command, Output};
 
 /// Programs whose `-E` output does not compile again, each with the reason
 /// the output itself gives in a comment (the text the test looks for).
-const EXEMPT: &[(&str, &str, &str)] = &[(
-    "conformance/g84_rigid_m29",
-    "rigid tapping's legs are printed as G32 moves, and no move may follow M29 (E2007)",
-    "THIS OUTPUT DOES NOT COMPILE AGAIN",
-)];
+/// None today.
+const EXEMPT: &[(&str, &str, &str)] = &[];
 
 fn run(bin: &str, args: &[&str]) -> Output {
     Command::new(bin).args(args).output().unwrap()
@@ -236,10 +233,10 @@ fn every_program_that_compiles_expands_to_the_same_canon() {
     eprintln!("{equivalent} programs equivalent");
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
     // 2026-12: 112 programs compile (90 conformance cases less 14 compile
-    // errors, 82 corpus programs less 46 the compiler rejects): all but the
-    // one exempt are equivalent (before -E wrote zero shifts, reference
+    // errors, 82 corpus programs less 46 the compiler rejects): all are
+    // equivalent (before -E wrote zero shifts, reference
     // returns and messages as G-code: 82).
-    assert!(equivalent >= 111, "only {equivalent} equivalent");
+    assert!(equivalent >= 112, "only {equivalent} equivalent");
     let _ = std::fs::remove_dir_all(dir);
 }
 
