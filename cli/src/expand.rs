@@ -334,18 +334,7 @@ impl Expand {
         // is seen, where G02 turns clockwise.
         let u0 = (self.at.1 - centre.1, (self.at.0 - centre.0) / 2.0);
         let u1 = (end.1 - centre.1, (end.0 - centre.0) / 2.0);
-        let cross = u0.0 * u1.1 - u0.1 * u1.0;
-        let long = if dir == Dir::Ccw {
-            cross < 0.0
-        } else {
-            cross > 0.0
-        };
-        let r = u1.0.hypot(u1.1);
-        if long {
-            -r
-        } else {
-            r
-        }
+        signed_radius(dir, u0, u1)
     }
 
     /// A work zero moved to (`x`, `z`) (machine coordinates), whatever
@@ -388,17 +377,27 @@ impl Expand {
                 let k = self.radius.to_radians();
                 let u0 = ((from.1 - cb) * k, from.0 - ca);
                 let u1 = ((b - cb) * k, a - ca);
-                let cross = u0.0 * u1.1 - u0.1 * u1.0;
-                let long = if dir == Dir::Ccw {
-                    cross < 0.0
-                } else {
-                    cross > 0.0
-                };
-                let r = u1.0.hypot(u1.1);
-                let _ = write!(s, " R{}", n(if long { -r } else { r }));
+                let _ = write!(s, " R{}", n(signed_radius(dir, u0, u1)));
             }
         }
         s
+    }
+}
+
+/// The R word of an arc turning `dir` from `u0` to `u1` (the start and
+/// end relative to the centre, in a plane where G02 turns clockwise): its
+/// radius, negative when the arc sweeps more than a half circle.
+fn signed_radius(dir: Dir, u0: (f64, f64), u1: (f64, f64)) -> f64 {
+    let cross = u0.0 * u1.1 - u0.1 * u1.0;
+    let long = match dir {
+        Dir::Ccw => cross < 0.0,
+        Dir::Cw => cross > 0.0,
+    };
+    let r = u1.0.hypot(u1.1);
+    if long {
+        -r
+    } else {
+        r
     }
 }
 
