@@ -151,6 +151,46 @@ fn max_blocks_and_repeat() {
     );
 }
 
+/// A canned cycle counts as the moves it generates (dialect.md §7.12, "all
+/// passes counted"). G90 from X50 Z2 to X40 Z-20 makes four: rapid in, cut,
+/// out, rapid back (cycles.md). Blocks: G00 is 1, G90 is 2, its three
+/// further moves 3–5, M30 6.
+#[test]
+fn a_cycle_counts_its_moves_against_the_block_budget() {
+    let d = dir("budget_cycle");
+    std::fs::write(d.join("c.nc"), "G00 X50 Z2\nG90 X40 Z-20 F0.2\nM30\n").unwrap();
+    assert_eq!(gbcc(&["c.nc"], &d).status.code(), Some(0));
+    let cycle = "RAPID X=50 Z=2\nRAPID X=40 Z=2\nFEED F=0.2 MODE=MIN\nLINE X=40 Z=-20\n\
+                 LINE X=50 Z=-20\nRAPID X=50 Z=2\n";
+    let run = gbvm(&["run", "c.gbc", "--max-blocks", "6"], &d);
+    assert_eq!(text(&run.stdout), format!("{cycle}STOP KIND=M30\n"));
+    // One block fewer: the M30 block is past the budget.
+    let run = gbvm(&["run", "c.gbc", "--max-blocks", "5"], &d);
+    assert_eq!(run.status.code(), Some(2));
+    let out = text(&run.stdout);
+    assert_eq!(
+        out.strip_suffix('\n')
+            .and_then(|o| o.rsplit_once('\n'))
+            .map(|(a, _)| a),
+        Some(cycle.trim_end())
+    );
+    assert!(
+        text(&run.stderr).starts_with("c.nc:3:1: alarm[E6005]"),
+        "{}",
+        text(&run.stderr)
+    );
+    // Two fewer: the cycle itself does not fit and prints none of its moves.
+    let run = gbvm(&["run", "c.gbc", "--max-blocks", "4"], &d);
+    assert_eq!(run.status.code(), Some(2));
+    let out = text(&run.stdout);
+    assert!(out.starts_with("RAPID X=50 Z=2\nALARM CODE=6005 "), "{out}");
+    assert!(
+        text(&run.stderr).starts_with("c.nc:2:1: alarm[E6005]"),
+        "{}",
+        text(&run.stderr)
+    );
+}
+
 #[test]
 fn defines_and_expansion() {
     let d = dir("define");

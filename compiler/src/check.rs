@@ -226,7 +226,12 @@ impl DryRun<'_> {
                     counts: &mut counts,
                     room: &mut self.room,
                 };
+                // A cycle's legs count as steps, as they count as blocks
+                // in the VM's budget: a cycle with a tiny step against a
+                // huge depth does not hold up the compiler.
+                (self.nc).set_allowance(STEP_LIMIT.saturating_sub(self.steps));
                 let result = self.nc.exec(&lits, &mut sink);
+                self.steps = self.steps.saturating_add(self.nc.take_generated());
                 if result.is_ok() {
                     let block = (ws.as_slice(), block.span);
                     (self.warner).after(prog.unit, &self.nc, block, &lits, &counts, before);

@@ -179,3 +179,32 @@ fn a_mod_operand_beyond_64_bits_is_e5006_in_both() {
     assert_eq!(eval(&e), Err(5006), "{}", e.text());
     assert_eq!(run(&e), Err(5006), "{}", e.text());
 }
+
+/// The first finding of the `module` target: a G71 whose depth of cut
+/// (U0.001) is tiny against the stock (100 mm on the radius) plans about
+/// 90 000 passes and 700 000 legs; with the legs not charged to the block
+/// budget, a module of a few such cycles ran for minutes under a budget of
+/// 2 000 blocks. The legs of a cycle now count as blocks (dialect.md §7.12
+/// "all passes counted"), and a cycle that would print more legs than the
+/// budget has left stops with E6005 before it prints any.
+#[test]
+fn a_cycle_past_the_block_budget_stops_before_it_prints() {
+    let source = b"G00 X200 Z2\nG71 U0.001 R0.5\nG71 P10 Q20 U0 W0 F0.2\n\
+N10 G00 X20 Z2\nG01 Z-10\nX120 Z-20\nX80 Z-30\nX150 Z-40\nN20 X200\nM30\n";
+    let c = compiler::compile("deep.nc", source, &compiler::Options::default());
+    let module = c.module.expect("the program compiles");
+    let mut vm = vm::Vm::new(module, nc::Machine::reference());
+    vm.max_blocks = 2_000;
+    let mut events: Vec<nc::Event> = Vec::new();
+    let alarm = loop {
+        match vm.step(10_000, &mut events) {
+            vm::Status::Alarm(a) => break a,
+            vm::Status::Done => panic!("the run ended without the budget alarm"),
+            _ => {}
+        }
+    };
+    assert_eq!(alarm.code, 6005, "{}", alarm.message);
+    assert_eq!(alarm.line, 3, "the alarm names the cycle's block");
+    // The G00 of line 1, then the alarm: none of the cycle's legs.
+    assert_eq!(events.len(), 2, "{events:?}");
+}

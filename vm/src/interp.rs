@@ -338,7 +338,12 @@ impl Vm {
     }
 
     fn count_block(&mut self) -> Result<(), Fault> {
-        self.blocks += 1;
+        self.charge(1)
+    }
+
+    /// Charges `blocks` blocks to the budget.
+    fn charge(&mut self, blocks: u64) -> Result<(), Fault> {
+        self.blocks = self.blocks.saturating_add(blocks);
         if self.blocks > self.max_blocks {
             return fault(
                 AlarmCode::BlockBudget,
@@ -582,9 +587,15 @@ impl Vm {
     fn exec_block(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
         self.count_block()?;
         self.last_exec = self.pc - 1;
+        self.nc
+            .set_allowance(self.max_blocks.saturating_sub(self.blocks));
         let result = self.nc.exec(&self.words.list, sink);
         self.words.clear();
         self.msg = None;
+        // A canned cycle counts as the blocks it generates, the first
+        // being its own (all passes counted).
+        let generated = self.nc.take_generated();
+        self.charge(generated.saturating_sub(1))?;
         let out = result?;
         if let Some(p) = out.skip {
             self.vars.persistent[495] = p.x();

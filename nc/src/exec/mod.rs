@@ -71,6 +71,11 @@ pub struct Nc {
     /// The parse of the running block, kept between blocks so that no
     /// block builds or moves a fresh one (taken while a block runs).
     parsed: Option<Box<Parsed>>,
+    /// Legs the cycles have printed since the caller last took the count
+    /// ([`take_generated`](Nc::take_generated)), and how many more blocks
+    /// the caller's budget allows ([`set_allowance`](Nc::set_allowance)).
+    generated: u64,
+    allowance: u64,
 }
 
 impl Nc {
@@ -81,12 +86,47 @@ impl Nc {
             st,
             profile: Vec::new(),
             parsed: None,
+            generated: 0,
+            allowance: u64::MAX,
         }
     }
 
     /// Back to the power-on state (a new run).
     pub fn reset(&mut self) {
         self.st = State::power_on(&self.machine);
+    }
+
+    /// The legs the canned cycles printed since the last call, and the
+    /// count back to zero. A cycle stands for the blocks it generates, so
+    /// the block budget (dialect.md §7.12, "all passes counted") charges
+    /// them: a cycle whose step is tiny against its depth then ends the
+    /// run with E6005 instead of running for hours.
+    pub fn take_generated(&mut self) -> u64 {
+        core::mem::take(&mut self.generated)
+    }
+
+    /// How many blocks the run may still execute after the current one:
+    /// a cycle that would print more legs than that (its first leg being
+    /// its own block) stops with E6005 before it prints any.
+    pub fn set_allowance(&mut self, blocks: u64) {
+        self.allowance = blocks;
+    }
+
+    /// Charges the legs a cycle is about to print (see
+    /// [`take_generated`](Nc::take_generated)).
+    pub(crate) fn generate(&mut self, legs: usize) -> Result<(), NcError> {
+        let further = (legs as u64).saturating_sub(1);
+        if further > self.allowance {
+            return fail(
+                Alarm::BlockBudget,
+                format!(
+                    "the cycle makes {legs} moves, more than the {} blocks left in the block budget",
+                    self.allowance.saturating_add(1)
+                ),
+            );
+        }
+        self.generated = self.generated.saturating_add(legs as u64);
+        Ok(())
     }
 
     /// Hands over one ns…nf block for the next G70–G73 block.

@@ -32,7 +32,7 @@ pub fn run(nc: &mut Nc, blocks: &[(Vec<Word>, u32)], sink: &mut dyn Sink) -> Res
     crate::exec::contour::flush(nc, sink)?;
     let mut back = Path::new(nc.st.pos, false);
     back.rapid(a);
-    super::out::print(nc, sink, back.steps());
+    super::out::print(nc, sink, back.steps())?;
     // The modes in force before G70 are back (cycles.md §8, comp.md §8).
     nc.st.modal.motion = motion;
     nc.st.modal.comp = comp;

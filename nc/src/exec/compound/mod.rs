@@ -209,7 +209,7 @@ fn stock_removal(
         Kind::Plain => rough::run(&mut path, &job),
         Kind::Pockets => pockets::run(&mut path, &job),
     };
-    out::print(nc, sink, path.steps());
+    out::print(nc, sink, path.steps())?;
     done
 }
 
@@ -237,6 +237,6 @@ fn pattern_repeat(
     };
     let mut path = Path::new(nc.st.pos, false);
     pattern::run(&mut path, &segs, &pat);
-    out::print(nc, sink, path.steps());
+    out::print(nc, sink, path.steps())?;
     Ok(())
 }

@@ -4,13 +4,15 @@
 //! are the path of programmed G00/G01 blocks (corners, compensation), and a
 //! generated leg takes part in neither.
 
+use crate::base::error::NcError;
 use crate::base::event::Event;
 use crate::exec::{Nc, Sink};
 use crate::plan::curve::ConicKind;
 use crate::plan::roughing::Step;
 
 /// Prints `steps` from the tool position, moving it.
-pub fn print(nc: &mut Nc, sink: &mut dyn Sink, steps: &[Step]) {
+pub fn print(nc: &mut Nc, sink: &mut dyn Sink, steps: &[Step]) -> Result<(), NcError> {
+    nc.generate(steps.len())?;
     for &step in steps {
         match step {
             Step::Rapid(to) => {
@@ -64,4 +66,5 @@ pub fn print(nc: &mut Nc, sink: &mut dyn Sink, steps: &[Step]) {
             }
         }
     }
+    Ok(())
 }

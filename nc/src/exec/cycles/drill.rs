@@ -126,7 +126,7 @@ pub(crate) fn run(
         };
         drill_path(&holes, &pecks, repeats)?
     };
-    legs::emit(nc, &path, true, sink);
+    legs::emit(nc, &path, true, sink)?;
     out.moved = true;
     Ok(())
 }

@@ -47,7 +47,7 @@ pub(crate) fn run(
         retract: if g74 { st.g74 } else { st.g75 },
     };
     let path = if g74 { g74_path(&g)? } else { g75_path(&g)? };
-    legs::emit(nc, &path, true, sink);
+    legs::emit(nc, &path, true, sink)?;
     out.moved = true;
     Ok(())
 }

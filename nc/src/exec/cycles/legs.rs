@@ -2,6 +2,7 @@
 //! (`plan::legs`).
 
 use super::words::EPS;
+use crate::base::error::NcError;
 use crate::base::event::Event;
 use crate::exec::{Nc, Sink};
 pub(crate) use crate::plan::legs::{jk_pair, same, Leg, PullOut};
@@ -9,7 +10,13 @@ pub(crate) use crate::plan::legs::{jk_pair, same, Leg, PullOut};
 /// Prints a path from the current point. With `skip_zero` a move that ends
 /// where the tool already is, is left out: a leg the cycle generates
 /// (cycles.md §0); G33 prints its programmed moves whatever their length.
-pub(crate) fn emit(nc: &mut Nc, legs: &[Leg], skip_zero: bool, sink: &mut dyn Sink) {
+pub(crate) fn emit(
+    nc: &mut Nc,
+    legs: &[Leg],
+    skip_zero: bool,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
+    nc.generate(legs.len())?;
     for &leg in legs {
         let to = match leg {
             Leg::Rapid(to) | Leg::Line(to) | Leg::Thread { to, .. } => Some(to),
@@ -21,6 +28,7 @@ pub(crate) fn emit(nc: &mut Nc, legs: &[Leg], skip_zero: bool, sink: &mut dyn Si
         }
         emit_one(nc, leg, sink);
     }
+    Ok(())
 }
 
 fn emit_one(nc: &mut Nc, leg: Leg, sink: &mut dyn Sink) {

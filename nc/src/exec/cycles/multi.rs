@@ -139,7 +139,7 @@ pub(crate) fn g76(
         pull,
     };
     let path = g76_path(&t, &passes)?;
-    legs::emit(nc, &path, true, sink);
+    legs::emit(nc, &path, true, sink)?;
     out.moved = true;
     Ok(())
 }
@@ -201,7 +201,7 @@ pub(crate) fn g78(
         run_in: f.run_in,
     };
     let path = g78_path(&t, &passes, &infeed)?;
-    legs::emit(nc, &path, true, sink);
+    legs::emit(nc, &path, true, sink)?;
     out.moved = true;
     Ok(())
 }

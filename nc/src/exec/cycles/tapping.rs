@@ -49,7 +49,7 @@ pub(crate) fn g33(
     let bottom = Pt::new(a.r, nc.target(p).z);
     let path = g33_path(a, bottom, lead, starts, dir)?;
     // The moves of G33 are programmed: printed even when of zero length.
-    legs::emit(nc, &path, false, sink);
+    legs::emit(nc, &path, false, sink)?;
     out.moved = true;
     Ok(())
 }

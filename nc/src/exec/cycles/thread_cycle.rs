@@ -33,7 +33,7 @@ pub(crate) fn run(
     check_repair(nc, p)?;
     let pull = if rigid { None } else { pull_out(nc, lead) };
     let path = g92_path(&cycle, lead, pull)?;
-    legs::emit(nc, &path, true, sink);
+    legs::emit(nc, &path, true, sink)?;
     out.moved = true;
     Ok(())
 }

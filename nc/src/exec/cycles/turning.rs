@@ -108,7 +108,7 @@ pub(crate) fn run(
         // Under G41/G42 the cut and the retract are moved (comp.md §9).
         crate::exec::comp::turning_cycle(nc, code == Motion::FacingCycle, c.a, [s, e, f])?;
     }
-    legs::emit(nc, &path, true, sink);
+    legs::emit(nc, &path, true, sink)?;
     out.moved = true;
     Ok(())
 }
