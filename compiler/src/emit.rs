@@ -36,6 +36,7 @@ pub fn emit(
         },
         consts: ConstIndex::default(),
         strings: HashMap::new(),
+        profile_recs: HashMap::new(),
         loc: SourceLoc::default(),
         hint: (usize::MAX, LineHint::default()),
         regs: Regs::default(),
@@ -61,6 +62,9 @@ fn sizes(ir: &ir::Module) -> (usize, usize) {
         )
     })
 }
+
+/// A typed word as a key: address, value bits, flags.
+type RecordKey = (u8, u64, u8);
 
 /// The register stack of the statement being emitted.
 #[derive(Default)]
@@ -94,6 +98,9 @@ struct Emitter<'a> {
     consts: ConstIndex,
     /// IR string → module string.
     strings: HashMap<u32, u32>,
+    /// The records of the typed profile blocks by their words: the block
+    /// where a profile block stands shares its record.
+    profile_recs: HashMap<Vec<RecordKey>, u32>,
     loc: SourceLoc,
     /// The line of the last location, where the next one is looked for
     /// first (see `SourceFile::line_col_near`), and the file it is in.
@@ -248,15 +255,13 @@ impl Emitter<'_> {
     }
 
     /// One NC block: its words, each located at its own source, then the
-    /// comment's message and `exec` at the block. A block run where it
-    /// stands whose words are all known is one typed block instead: a
-    /// record of its words, in order, and one `block` instruction.
+    /// comment's message and `exec` at the block. A block whose words are
+    /// all known is one typed block instead: a record of its words, in
+    /// order, and one `block` instruction (`profile` for a G70–G73 profile
+    /// block, which has no use for the message).
     fn nc_block(&mut self, f: &Function, nc: &ir::NcBlock) {
         let (file, span) = (self.loc.file, self.span);
-        let typed = match nc.kind {
-            ir::NcKind::Run => self.typed_block(f.words_of(nc)),
-            ir::NcKind::Profile => None,
-        };
+        let typed = self.typed_block(f.words_of(nc), nc.kind);
         let words = f.words_of(nc).iter().filter(|_| typed.is_none());
         for (w, &at) in words.zip(f.word_spans_of(nc)) {
             self.set_loc(file, at);
@@ -276,23 +281,24 @@ impl Emitter<'_> {
             }
         }
         self.set_loc(file, span);
-        if let Some(m) = nc.msg {
+        let profile = nc.kind == ir::NcKind::Profile;
+        if let Some(m) = nc.msg.filter(|_| !profile || typed.is_none()) {
             let s = self.string(m);
             self.emit(Instr::SetMsg { s });
         }
-        let flags = match nc.kind {
-            ir::NcKind::Run => 0,
-            ir::NcKind::Profile => PROFILE,
-        };
-        self.emit(match typed {
-            Some(rec) => Instr::Block { rec },
-            None => Instr::Exec { flags },
+        self.emit(match (typed, profile) {
+            (Some(rec), false) => Instr::Block { rec },
+            (Some(rec), true) => Instr::Profile { rec },
+            (None, false) => Instr::Exec { flags: 0 },
+            (None, true) => Instr::Exec { flags: PROFILE },
         });
     }
 
     /// The record of a block whose words are all constants, if they fit
-    /// one (`isa::block`); `None` leaves the block in word form.
-    fn typed_block(&mut self, words: &[ir::Word]) -> Option<u32> {
+    /// one (`isa::block`); `None` leaves the block in word form. A profile
+    /// block's record is remembered, and a block with the same words
+    /// (the profile block where it stands) names it again.
+    fn typed_block(&mut self, words: &[ir::Word], kind: ir::NcKind) -> Option<u32> {
         let mut known: smallvec::SmallVec<[isa::BlockWord; 8]> = smallvec::SmallVec::new();
         for w in words {
             let ir::WordValue::Const(value, flags) = w.value() else {
@@ -304,7 +310,21 @@ impl Emitter<'_> {
                 flags,
             });
         }
-        self.module.push_block(&known)
+        if kind == ir::NcKind::Run && self.profile_recs.is_empty() {
+            return self.module.push_block(&known);
+        }
+        let key: Vec<RecordKey> = known
+            .iter()
+            .map(|w| (w.addr, w.value.to_bits(), w.flags))
+            .collect();
+        if let Some(&rec) = self.profile_recs.get(&key) {
+            return Some(rec);
+        }
+        let rec = self.module.push_block(&known)?;
+        if kind == ir::NcKind::Profile {
+            self.profile_recs.insert(key, rec);
+        }
+        Some(rec)
     }
 
     fn terminator(&mut self, f: &Function, t: &Terminator, fixups: &mut Vec<Fixup>) {

@@ -290,59 +290,37 @@ pub(crate) fn get_varint(bytes: &[u8], at: usize) -> Result<(u64, usize), Record
     Err(RecordError::BadVarint)
 }
 
-/// A walk over the records of a `Blocks` section, checking each one as
-/// it passes: the verifier follows the `block` operands with it in pc
-/// order (they must not go back), so it needs no table of record starts.
+/// Where the records of a `Blocks` section start, one bit per byte, each
+/// record checked as it is found. `block` and `profile` operands may name
+/// records in any order (a profile block and the same block where it
+/// stands share one record), so the verifier looks them up here; an eighth
+/// of the section's size, against a table of `u32` starts that would be
+/// half of it for the short records of a straight-line program.
 #[derive(Debug)]
-pub(crate) struct Walk<'a> {
-    bytes: &'a [u8],
-    /// The start of the record last reached, and where the next begins.
-    here: Option<usize>,
-    next: usize,
-}
+pub(crate) struct RecordStarts(Vec<u64>);
 
-impl<'a> Walk<'a> {
-    pub(crate) fn new(bytes: &'a [u8]) -> Walk<'a> {
-        Walk {
-            bytes,
-            here: None,
-            next: 0,
+impl RecordStarts {
+    /// Decodes every record of `bytes`; the first bad one is an error
+    /// with its place.
+    pub(crate) fn of(bytes: &[u8]) -> Result<RecordStarts, (usize, RecordError)> {
+        let mut bits = alloc::vec![0u64; bytes.len().div_ceil(64)];
+        let mut next = 0;
+        while next < bytes.len() {
+            let start = next;
+            next = decode_record(bytes, start, |_| {}).map_err(|e| (start, e))?;
+            bits[start / 64] |= 1 << (start % 64);
         }
+        Ok(RecordStarts(bits))
     }
 
-    /// Moves on to the record starting at `at`: `Ok(false)` if no record
-    /// starts there at or after the current one.
-    pub(crate) fn seek(&mut self, at: u32) -> Result<bool, (usize, RecordError)> {
+    /// Whether a record starts at byte `at`.
+    pub(crate) fn contains(&self, at: u32) -> bool {
         let Ok(at) = usize::try_from(at) else {
-            return Ok(false);
+            return false;
         };
-        loop {
-            match self.here {
-                Some(here) if here == at => return Ok(true),
-                Some(here) if here > at => return Ok(false),
-                _ => {}
-            }
-            if !self.step()? {
-                return Ok(false);
-            }
-        }
-    }
-
-    /// Checks every record not passed yet.
-    pub(crate) fn finish(&mut self) -> Result<(), (usize, RecordError)> {
-        while self.step()? {}
-        Ok(())
-    }
-
-    /// Decodes the next record; `false` at the end of the section.
-    fn step(&mut self) -> Result<bool, (usize, RecordError)> {
-        if self.next >= self.bytes.len() {
-            return Ok(false);
-        }
-        let start = self.next;
-        self.next = decode_record(self.bytes, start, |_| {}).map_err(|e| (start, e))?;
-        self.here = Some(start);
-        Ok(true)
+        self.0
+            .get(at / 64)
+            .is_some_and(|word| word & (1 << (at % 64)) != 0)
     }
 }
 

@@ -87,6 +87,10 @@ macro_rules! for_each_instr {
             /// the `Blocks` section: its words, all known at compile time,
             /// go to the kernel as one block (no `wordk` run, no `exec`).
             Block = 0x34, "block" { rec: Rec };
+            /// Hand the typed block at `rec` to the kernel as a G70–G73
+            /// profile block for the cycle that follows (as `exec` with its
+            /// profile flag), its tag being this pc.
+            Profile = 0x35, "profile" { rec: Rec };
 
             // --- calls ---
             /// `M98 P… L count`: call a subprogram known at compile time.

@@ -4,7 +4,7 @@
 
 use alloc::vec::Vec;
 
-use crate::block::{RecordError, Walk};
+use crate::block::{RecordError, RecordStarts};
 use crate::encoding::len_to_u32;
 use crate::{addr, CmpOp, Instr, LoadError, MathFunc, Module, Operand, TableError, SWITCHES};
 
@@ -42,12 +42,12 @@ impl Module {
         self.verify_programs()?;
         self.verify_lines()?;
         let bad_block = |(at, e): (usize, RecordError)| TableError::BadBlock { at, what: e.what() };
-        let mut records = Walk::new(&self.blocks);
+        let records = RecordStarts::of(&self.blocks).map_err(bad_block)?;
         for (pc, instr) in self.code.iter().enumerate() {
             let pc = len_to_u32(pc);
             instr.try_visit_operands(|op| self.check_operand(pc, op))?;
-            if let Instr::Block { rec } = *instr {
-                if !records.seek(rec).map_err(bad_block)? {
+            if let Instr::Block { rec } | Instr::Profile { rec } = *instr {
+                if !records.contains(rec) {
                     return Err(TableError::BlockOutOfRange { pc }.into());
                 }
             }
@@ -59,7 +59,6 @@ impl Module {
                 }
             }
         }
-        records.finish().map_err(bad_block)?;
         Ok(())
     }
 

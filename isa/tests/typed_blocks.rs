@@ -259,31 +259,34 @@ fn tampered_records_are_refused() {
 }
 
 #[test]
-fn block_operands_must_not_go_back() {
-    // Records 1 then 0: the second operand goes back.
+fn block_operands_may_name_records_in_any_order() {
+    // Records 1 then 0, and one named twice by a `profile`: a profile
+    // block and the block where it stands share a record (version 4).
     let mut m = typed_module();
     m.code.swap(0, 1);
-    assert_eq!(
-        m.verify(),
-        Err(TableError::BlockOutOfRange { pc: 1 }.into())
-    );
-    // The same record twice in a row is allowed.
-    let mut m = typed_module();
-    m.code[1] = Instr::Block { rec: 0 };
     assert_eq!(m.verify(), Ok(()));
+    m.code[2] = Instr::Profile { rec: 12 };
+    assert_eq!(m.verify(), Ok(()));
+    let back = Module::from_bytes(&m.to_bytes()).expect("the module loads");
+    assert_eq!(back, m);
+    let listing = m.disassemble();
+    let line = "  0002  profile b12 (G1 X12.5 Z-33.25 F0.2) ; typed.nc:3:1";
+    assert!(listing.contains(line), "{line:?} in\n{listing}");
 }
 
 #[test]
 fn block_operands_must_name_a_record() {
     let len = typed_module().blocks.len() as u32;
     for rec in [1, 11, 13, len, u32::MAX] {
-        let mut m = typed_module();
-        m.code[1] = Instr::Block { rec };
-        assert_eq!(
-            m.verify(),
-            Err(TableError::BlockOutOfRange { pc: 1 }.into()),
-            "b{rec}"
-        );
+        for instr in [Instr::Block { rec }, Instr::Profile { rec }] {
+            let mut m = typed_module();
+            m.code[1] = instr;
+            assert_eq!(
+                m.verify(),
+                Err(TableError::BlockOutOfRange { pc: 1 }.into()),
+                "{instr:?}"
+            );
+        }
     }
 }
 
@@ -302,51 +305,51 @@ fn tampered_line_tables_are_refused() {
     let bytes = typed_module().to_bytes();
     let lines = section(&bytes, Section::Lines);
     let at = lines.payload;
-    // By hand (isa/src/lines.rs): 4 instructions; a run of 3 (lines 1, 2,
+    // By hand (isa/src/lines.rs): 5 instructions; a run of 3 (lines 1, 2,
     // 3, step 1: head 3 << 2 | 2 = 14, zigzag(+1) = 2, col 1), then the
-    // halt on line 3 (head 1 << 2 = 4, line delta 0, col 1).
-    assert_eq!(&bytes[at..at + lines.len], &[4, 0, 0, 0, 14, 2, 1, 4, 0, 1]);
+    // profile and the halt on line 3 (head 2 << 2 = 8, line delta 0, col 1).
+    assert_eq!(&bytes[at..at + lines.len], &[5, 0, 0, 0, 14, 2, 1, 8, 0, 1]);
     let bad = |what| Err(TableError::BadLines { at, what }.into());
     let cases: [(&[u8], Result<Module, LoadError>); 8] = [
         // A run of no instructions.
         (
-            &[4, 0, 0, 0, 2, 2, 1, 4, 0, 1],
+            &[5, 0, 0, 0, 2, 2, 1, 8, 0, 1],
             bad("run not in its one encoding"),
         ),
         // One instruction with a step.
         (
-            &[4, 0, 0, 0, 14, 2, 1, 6, 0, 1],
+            &[5, 0, 0, 0, 14, 2, 1, 6, 0, 1],
             bad("run not in its one encoding"),
         ),
         // A file "change" to the same file 0.
         (
-            &[4, 0, 0, 0, 15, 0, 2, 1, 4, 0, 1],
+            &[5, 0, 0, 0, 15, 0, 2, 1, 8, 0, 1],
             bad("run not in its one encoding"),
         ),
-        // Runs covering 3 of 4 instructions, and 5 of 4.
+        // Runs covering 3 of 5 instructions, and 6 of 5.
         (
-            &[4, 0, 0, 0, 14, 2, 1],
+            &[5, 0, 0, 0, 14, 2, 1],
             bad("runs do not cover the instructions"),
         ),
         (
-            &[4, 0, 0, 0, 14, 2, 1, 8, 0, 1],
+            &[5, 0, 0, 0, 14, 2, 1, 12, 0, 1],
             bad("runs do not cover the instructions"),
         ),
         // A line before line 0 (delta -4 from line 3: zigzag 7).
         (
-            &[4, 0, 0, 0, 14, 2, 1, 4, 7, 1],
+            &[5, 0, 0, 0, 14, 2, 1, 8, 7, 1],
             bad("line, column, file or pc out of range"),
         ),
         // A run cut short, and an overlong varint.
-        (&[4, 0, 0, 0, 14, 2, 1, 4, 0], bad("malformed run")),
-        (&[4, 0, 0, 0, 14, 2, 1, 4, 0x80, 0, 1], bad("malformed run")),
+        (&[5, 0, 0, 0, 14, 2, 1, 8, 0], bad("malformed run")),
+        (&[5, 0, 0, 0, 14, 2, 1, 8, 0x80, 0, 1], bad("malformed run")),
     ];
     for (payload, want) in cases {
         let forged = with_payload(&bytes, Section::Lines, payload);
         assert_eq!(Module::from_bytes(&forged), want, "{payload:?}");
     }
-    // A run in file 1 (head 4 | 1, file 1): there is one file only.
-    let forged = with_payload(&bytes, Section::Lines, &[4, 0, 0, 0, 14, 2, 1, 5, 1, 0, 1]);
+    // A run in file 1 (head 8 | 1, file 1): there is one file only.
+    let forged = with_payload(&bytes, Section::Lines, &[5, 0, 0, 0, 14, 2, 1, 9, 1, 0, 1]);
     assert_eq!(
         Module::from_bytes(&forged),
         Err(TableError::FileOutOfRange { pc: 3 }.into())

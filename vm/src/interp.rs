@@ -516,6 +516,17 @@ impl Vm {
                 self.synced = false;
                 return self.exec_block(sink);
             }
+            Instr::Profile { rec } => {
+                let words = &mut self.words;
+                let read = self
+                    .module
+                    .block_words(rec, |w| words.push(w.addr, w.value, w.flags));
+                if read.is_none() {
+                    return fault(AlarmCode::JumpTargetMissing, "a typed block is missing");
+                }
+                self.nc.push_profile(&self.words.list, self.pc - 1);
+                self.words.clear();
+            }
             Instr::CallSub { prog, count } => {
                 self.nc.check_call()?;
                 let n = count_of(self.reg(count))?;

@@ -117,7 +117,8 @@ pub fn edit_lines(m: &mut Module, edit: impl FnOnce(&mut Vec<SourceLoc>)) {
 
 /// A main program of typed blocks: `G98 G0 X50. Z2.` then `G1 X12.5
 /// Z-33.25 F0.2` (literals as the lexer reads them), then a word stored
-/// raw (0.1 + 0.2 has no short decimal) and a computed -0 (flags 0).
+/// raw (0.1 + 0.2 has no short decimal) and a computed -0 (flags 0); then
+/// the second record again as a profile block.
 pub fn typed_module() -> Module {
     let w = |letter: char, value: f64, flags: u8| BlockWord {
         addr: addr::from_letter(letter).unwrap(),
@@ -145,7 +146,7 @@ pub fn typed_module() -> Module {
         programs: vec![Program {
             number: 1,
             entry: 0,
-            end: 4,
+            end: 5,
             seqs: vec![(10, 1)],
         }],
         files: vec![SourceFileInfo {
@@ -164,12 +165,15 @@ pub fn typed_module() -> Module {
             col: 1,
         });
     }
+    m.code.push(Instr::Profile { rec: 12 });
     m.code.push(Instr::Halt);
-    m.lines.push(SourceLoc {
-        file: 0,
-        line: 3,
-        col: 1,
-    });
+    for _ in 0..2 {
+        m.lines.push(SourceLoc {
+            file: 0,
+            line: 3,
+            col: 1,
+        });
+    }
     m
 }
 
