@@ -127,8 +127,11 @@ pub fn eval(e: &E) -> Result<Option<f64>, u16> {
                 "ROUND" => round(x),
                 "FIX" => x.trunc(),
                 "FUP" => x.signum() * x.abs().ceil(),
-                "SIN" => x.to_radians().sin(),
-                _ => x.to_radians().cos(),
+                // The VM's libm (dialect.md's functions name no library):
+                // the platform's sin may differ in the last bit, and a
+                // huge quotient under COS turns one bit into the 5th digit.
+                "SIN" => libm::sin(x.to_radians()),
+                _ => libm::cos(x.to_radians()),
             }
         }
     };

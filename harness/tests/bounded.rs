@@ -208,3 +208,35 @@ N10 G00 X20 Z2\nG01 Z-10\nX120 Z-20\nX80 Z-30\nX150 Z-40\nN20 X200\nM30\n";
     // The G00 of line 1, then the alarm: none of the cycle's legs.
     assert_eq!(events.len(), 2, "{events:?}");
 }
+
+/// The second finding of the `vm_expr` target: COS of a quotient of about
+/// −8.2·10¹² degrees. The reference took SIN and COS from the platform's
+/// library, the VM from the `libm` crate (docs/language.md: the same
+/// digits on every platform); a last-bit difference in one SIN, blown up
+/// by the quotient, moved the COS in its 5th digit. The reference now
+/// uses `libm` as the VM does, and both agree to the bit.
+#[test]
+fn cos_of_a_huge_quotient_agrees_with_the_reference() {
+    use harness::expr::{decode, eval, run};
+    let bytes = [
+        0xf9, 0xcf, 0xcf, 0xcf, 0xcf, 0xbd, 0xbd, 0xbd, 0xb5, 0xbd, 0xbd, 0xbd, 0xc5, 0xbd, 0xbd,
+        0xbd, 0xa7, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd,
+        0xbd, 0x5d, 0xbd, 0xbd, 0xbd, 0xbd, 0xbd, 0xcf, 0xcf, 0x5c, 0x5c, 0x5c, 0x5c, 0x5c, 0x5c,
+        0x40, 0x5c, 0x5c, 0x5c, 0x4f, 0x5c, 0x5c, 0x5c, 0x7c, 0x5c, 0x5c, 0x5c, 0x5c, 0x5c, 0x5c,
+        0x5c, 0x5c, 0xcf, 0xcf, 0xf9,
+    ];
+    let e = decode(&bytes);
+    assert_eq!(
+        e.text(),
+        "COS[[[[[SIN[-10.11]/SIN[-9.15]]/SIN[SIN[-9.85]]]/SIN[SIN[SIN[-9.63]]]]\
+         /SIN[SIN[SIN[SIN[-9.63]]]]]]"
+    );
+    let want = eval(&e).expect("no alarm").expect("a value");
+    let got = run(&e).expect("no alarm");
+    assert_eq!(want.to_bits(), got.to_bits(), "want {want}, got {got}");
+    // Each step correctly rounded (mpmath at 200 bits) gives
+    // -0.4454203620174174, as the platform's library does; `libm`'s SIN is
+    // an ulp off in one place. The chain is that ill-conditioned: a
+    // relative change of 10⁻¹⁶ in the argument moves its COS by 3·10⁻⁵.
+    assert!((got - -0.4454203620174174).abs() < 1e-4, "{got}");
+}
