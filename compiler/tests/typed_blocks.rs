@@ -120,22 +120,15 @@ fn a_literal_profile_is_typed_and_stored_once() {
         )
     };
     assert_eq!(count(&m, word_form), 0, "{}", m.disassemble());
-    let profile: Vec<u32> = m
-        .code
-        .iter()
-        .filter_map(|i| match *i {
-            Instr::Profile { rec } => Some(rec),
+    let records = |profile: bool| -> Vec<u32> {
+        let named = |i: &Instr| match *i {
+            Instr::Profile { rec } if profile => Some(rec),
+            Instr::Block { rec } if !profile => Some(rec),
             _ => None,
-        })
-        .collect();
-    let blocks: Vec<u32> = m
-        .code
-        .iter()
-        .filter_map(|i| match *i {
-            Instr::Block { rec } => Some(rec),
-            _ => None,
-        })
-        .collect();
+        };
+        m.code.iter().filter_map(named).collect()
+    };
+    let (profile, blocks) = (records(true), records(false));
     // G00, G71 ×2, then the three profile blocks where they stand, M30.
     assert_eq!(profile.len(), 3);
     assert_eq!(blocks.len(), 7);

@@ -504,26 +504,14 @@ impl Vm {
                 return self.exec_block(sink);
             }
             Instr::Block { rec } => {
-                // A typed block: its words straight from the record into
-                // the scratch, then the kernel, as `wordk… exec` would.
-                let words = &mut self.words;
-                let read = self
-                    .module
-                    .block_words(rec, |w| words.push(w.addr, w.value, w.flags));
-                if read.is_none() {
-                    return fault(AlarmCode::JumpTargetMissing, "a typed block is missing");
-                }
+                // A typed block: as `wordk… exec` would.
+                self.load_record(rec)?;
                 self.synced = false;
                 return self.exec_block(sink);
             }
             Instr::Profile { rec } => {
-                let words = &mut self.words;
-                let read = self
-                    .module
-                    .block_words(rec, |w| words.push(w.addr, w.value, w.flags));
-                if read.is_none() {
-                    return fault(AlarmCode::JumpTargetMissing, "a typed block is missing");
-                }
+                // A typed profile block: as `wordk… exec` with PROFILE.
+                self.load_record(rec)?;
                 self.nc.push_profile(&self.words.list, self.pc - 1);
                 self.words.clear();
             }
@@ -593,6 +581,20 @@ impl Vm {
         let v = value::binary(op, self.reg(a), self.reg(b))?;
         self.set(dst, v);
         Ok(())
+    }
+
+    /// The words of the typed block at `rec`, straight from its record
+    /// into the scratch.
+    #[inline]
+    fn load_record(&mut self, rec: u32) -> Result<(), Fault> {
+        let words = &mut self.words;
+        match self
+            .module
+            .block_words(rec, |w| words.push(w.addr, w.value, w.flags))
+        {
+            Some(()) => Ok(()),
+            None => fault(AlarmCode::JumpTargetMissing, "a typed block is missing"),
+        }
     }
 
     fn exec_block(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
