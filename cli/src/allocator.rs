@@ -9,11 +9,27 @@
 //! has no free block at hand. Every mimalloc block is aligned to a pointer's
 //! size, so allocations that need no more go through plain `mi_malloc`.
 //!
+//! Large buffers (a program's source, the module's tables, the output)
+//! go to the system allocator instead: it maps them from the system and
+//! gives them back when freed, where mimalloc keeps the freed memory of
+//! a grown table committed for a while, and `gbcc` held a third more than
+//! it needed at its peak (the 1M-block benchmark, README). Which one a
+//! block came from follows from its size, which `dealloc` and `realloc`
+//! are given too.
+//!
 //! The libraries leave the choice of allocator to whoever links them.
 
 use core::alloc::{GlobalAlloc, Layout};
 use core::ffi::c_void;
 use libmimalloc_sys as mi;
+use std::alloc::System;
+
+/// Blocks from this size are the system allocator's.
+const LARGE: usize = 1 << 16;
+
+fn is_large(size: usize) -> bool {
+    size >= LARGE
+}
 
 /// What every block `mi_malloc` returns is aligned to.
 const PLAIN_ALIGN: usize = core::mem::size_of::<usize>();
@@ -26,6 +42,9 @@ pub struct Mimalloc;
 unsafe impl GlobalAlloc for Mimalloc {
     #[inline]
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if is_large(layout.size()) {
+            return System.alloc(layout);
+        }
         if layout.align() <= PLAIN_ALIGN {
             mi::mi_malloc(layout.size()).cast()
         } else {
@@ -35,6 +54,9 @@ unsafe impl GlobalAlloc for Mimalloc {
 
     #[inline]
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        if is_large(layout.size()) {
+            return System.alloc_zeroed(layout);
+        }
         if layout.align() <= PLAIN_ALIGN {
             mi::mi_zalloc(layout.size()).cast()
         } else {
@@ -43,17 +65,43 @@ unsafe impl GlobalAlloc for Mimalloc {
     }
 
     #[inline]
-    unsafe fn dealloc(&self, ptr: *mut u8, _layout: Layout) {
-        mi::mi_free(ptr.cast::<c_void>());
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        if is_large(layout.size()) {
+            System.dealloc(ptr, layout);
+        } else {
+            mi::mi_free(ptr.cast::<c_void>());
+        }
     }
 
     #[inline]
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        match (is_large(layout.size()), is_large(new_size)) {
+            (true, true) => return System.realloc(ptr, layout, new_size),
+            (false, false) => {}
+            // Across the line: into a block of the other allocator.
+            _ => return self.move_to(ptr, layout, new_size),
+        }
         if layout.align() <= PLAIN_ALIGN {
             mi::mi_realloc(ptr.cast::<c_void>(), new_size).cast()
         } else {
             mi::mi_realloc_aligned(ptr.cast::<c_void>(), new_size, layout.align()).cast()
         }
+    }
+}
+
+impl Mimalloc {
+    /// `realloc` from one allocator's block to the other's: a new block,
+    /// the bytes both hold, the old block freed.
+    unsafe fn move_to(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let Ok(new_layout) = Layout::from_size_align(new_size, layout.align()) else {
+            return core::ptr::null_mut();
+        };
+        let new = self.alloc(new_layout);
+        if !new.is_null() {
+            core::ptr::copy_nonoverlapping(ptr, new, layout.size().min(new_size));
+            self.dealloc(ptr, layout);
+        }
+        new
     }
 }
 
@@ -67,7 +115,21 @@ mod tests {
     fn blocks_are_aligned_and_keep_their_bytes() {
         let a = Mimalloc;
         for align in [1, 2, 4, 8, 16, 32, 64, 4096] {
-            for size in [1, 7, 8, 24, 48, 192, 200, 1000, 5000, 70_000] {
+            // (The last sizes grow across `LARGE`, or start past it.)
+            for size in [
+                1,
+                7,
+                8,
+                24,
+                48,
+                192,
+                200,
+                1000,
+                5000,
+                70_000,
+                400_000,
+                2 << 20,
+            ] {
                 let Ok(layout) = Layout::from_size_align(size, align) else {
                     continue;
                 };

@@ -30,6 +30,27 @@ impl Dest {
         }
     }
 
+    /// Writes what `produce` hands its sink, buffered, piece by piece;
+    /// the message names the output and the cause.
+    pub fn write_with(
+        &self,
+        produce: impl FnOnce(&mut dyn FnMut(&[u8]) -> std::io::Result<()>) -> std::io::Result<()>,
+    ) -> Result<(), String> {
+        fn to(
+            out: impl Write,
+            produce: impl FnOnce(&mut dyn FnMut(&[u8]) -> std::io::Result<()>) -> std::io::Result<()>,
+        ) -> std::io::Result<()> {
+            let mut out = std::io::BufWriter::with_capacity(1 << 16, out);
+            produce(&mut |bytes| out.write_all(bytes))?;
+            out.flush()
+        }
+        let done = match self {
+            Dest::Stdout => to(std::io::stdout().lock(), produce),
+            Dest::File(p) => std::fs::File::create(p).and_then(|f| to(f, produce)),
+        };
+        done.map_err(|e| format!("cannot write {}: {e}", self.name()))
+    }
+
     /// Writes `bytes` in full; the message names the output and the cause.
     pub fn write(&self, bytes: &[u8]) -> Result<(), String> {
         let done = match self {

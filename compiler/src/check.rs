@@ -85,13 +85,37 @@ enum Flow {
 struct DryRun<'a> {
     units: &'a [Unit],
     programs: &'a [Program],
+    skip: [bool; 9],
+    run: Runner,
+}
+
+/// The kernel a dry run drives, and what watches it.
+struct Runner {
     nc: Nc,
     steps: u64,
-    skip: [bool; 9],
     /// W118 on the canon events.
     room: RoomCheck,
     /// W105–W112, W114 on what each block did.
     warner: crate::dry_warn::Warner,
+}
+
+impl Runner {
+    fn new(m: &Machine) -> Self {
+        Runner {
+            nc: Nc::new(m.clone()),
+            steps: 0,
+            room: RoomCheck::new(m),
+            warner: Default::default(),
+        }
+    }
+
+    /// The warnings found, after the last block.
+    fn warnings(mut self) -> Vec<(usize, Diagnostic)> {
+        self.room.finish();
+        let mut found = self.warner.diags;
+        found.append(&mut self.room.warnings);
+        found
+    }
 }
 
 const STEP_LIMIT: u64 = 200_000;
@@ -120,17 +144,12 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
         let mut run = DryRun {
             units,
             programs,
-            nc: Nc::new(m.clone()),
-            steps: 0,
             skip,
-            room: RoomCheck::new(m),
-            warner: Default::default(),
+            run: Runner::new(m),
         };
         let error = run.program(0, 0).err();
         if skip == first {
-            run.room.finish();
-            found.append(&mut run.warner.diags);
-            found.append(&mut run.room.warnings);
+            found.append(&mut run.run.warnings());
         }
         if let Some((unit, d)) = error {
             let d = if skip == first {
@@ -201,8 +220,8 @@ impl DryRun<'_> {
             let Body::Words(ws) = &block.body else {
                 continue;
             };
-            self.steps += 1;
-            if self.steps > STEP_LIMIT {
+            self.run.steps += 1;
+            if self.run.steps > STEP_LIMIT {
                 return Ok(Flow::End);
             }
             let (lits, call, resume) = if words::may_call(ws) || crate::profile::names_cycle(ws) {
@@ -211,53 +230,16 @@ impl DryRun<'_> {
                 };
                 // A G70–G73 cycle gets its profile; G71–G73 go on after nf.
                 let resume =
-                    crate::profile::hand_over(&mut self.nc, unit, prog, &split.nc, &self.skip);
+                    crate::profile::hand_over(&mut self.run.nc, unit, prog, &split.nc, &self.skip);
                 (literal_words(&split.nc), split.call, resume)
             } else {
                 // Most blocks: no call, no cycle, every word an NC word.
                 (plain_literals(ws), None, None)
             };
             if !lits.is_empty() {
-                self.room.unit = prog.unit;
-                self.room.span = block.span;
-                let before = self.warner.before(&self.nc);
-                let mut counts = crate::dry_warn::Counts::default();
-                let mut sink = Watchers {
-                    counts: &mut counts,
-                    room: &mut self.room,
-                };
-                // A cycle's legs count as steps, as they count as blocks
-                // in the VM's budget: a cycle with a tiny step against a
-                // huge depth does not hold up the compiler.
-                (self.nc).set_allowance(STEP_LIMIT.saturating_sub(self.steps));
-                let result = self.nc.exec(&lits, &mut sink);
-                self.steps = self.steps.saturating_add(self.nc.take_generated());
-                if result.is_ok() {
-                    let block = (ws.as_slice(), block.span);
-                    (self.warner).after(prog.unit, &self.nc, block, &lits, &counts, before);
-                }
-                match result {
-                    Ok(out) if out.end.is_some() => return Ok(Flow::End),
-                    Ok(_) => {}
-                    // A feed move at F = 0 (E7001 when run): W107, and the
-                    // run goes on, the block done.
-                    Err(e) if e.code == nc::error::Alarm::ZeroFeed.code() => {
-                        self.warner.zero_feed(prog.unit, block.span);
-                    }
-                    Err(e) if compile_time(e.code) => {
-                        let span = crate::profile::error_span(unit, e.at, block.span);
-                        let mut d = error_at(&e, span);
-                        if span != block.span {
-                            // The error is about a profile block: say which
-                            // cycle ran it.
-                            d = d.with_note(format!(
-                                "in the profile of the cycle at line {}",
-                                line_of(unit, block.span)
-                            ));
-                        }
-                        return Err((prog.unit, d));
-                    }
-                    Err(_) => return Ok(Flow::End),
+                let at = (prog.unit, unit, block, ws.as_slice());
+                if let Flow::End = self.run.exec(at, &lits)? {
+                    return Ok(Flow::End);
                 }
             }
             next = resume.unwrap_or(next);
@@ -265,7 +247,7 @@ impl DryRun<'_> {
                 None => {}
                 Some(Call::Sub { p: Some(p), l, .. }) => {
                     // E4035: M98 while nose-radius compensation is on.
-                    if let Err(e) = self.nc.check_call() {
+                    if let Err(e) = self.run.nc.check_call() {
                         return Err((prog.unit, error_at(&e, block.span)));
                     }
                     let (Some(p), l) = (p.literal(), l.and_then(|l| l.literal())) else {
@@ -289,6 +271,127 @@ impl DryRun<'_> {
             }
         }
         Ok(if index == 0 { Flow::End } else { Flow::Go })
+    }
+}
+
+/// A block where the dry run stands: its unit's index, the unit, the
+/// block and its words.
+type At<'u> = (
+    usize,
+    &'u Unit,
+    &'u grammar::ast::Block,
+    &'u [grammar::ast::Word],
+);
+
+impl Runner {
+    /// Runs a block's literal words `lits` through the kernel: whether the
+    /// run goes on, or the compile-time error it found.
+    fn exec(&mut self, at: At<'_>, lits: &[Word]) -> Result<Flow, (usize, Diagnostic)> {
+        let (index, unit, block, ws) = at;
+        self.room.unit = index;
+        self.room.span = block.span;
+        let before = self.warner.before(&self.nc);
+        let mut counts = crate::dry_warn::Counts::default();
+        let mut sink = Watchers {
+            counts: &mut counts,
+            room: &mut self.room,
+        };
+        // A cycle's legs count as steps, as they count as blocks in the
+        // VM's budget: a cycle with a tiny step against a huge depth does
+        // not hold up the compiler.
+        (self.nc).set_allowance(STEP_LIMIT.saturating_sub(self.steps));
+        let result = self.nc.exec(lits, &mut sink);
+        self.steps = self.steps.saturating_add(self.nc.take_generated());
+        if result.is_ok() {
+            (self.warner).after(index, &self.nc, (ws, block.span), lits, &counts, before);
+        }
+        match result {
+            Ok(out) if out.end.is_some() => Ok(Flow::End),
+            Ok(_) => Ok(Flow::Go),
+            // A feed move at F = 0 (E7001 when run): W107, and the run
+            // goes on, the block done.
+            Err(e) if e.code == nc::error::Alarm::ZeroFeed.code() => {
+                self.warner.zero_feed(index, block.span);
+                Ok(Flow::Go)
+            }
+            Err(e) if compile_time(e.code) => {
+                let span = crate::profile::error_span(unit, e.at, block.span);
+                let mut d = error_at(&e, span);
+                if span != block.span {
+                    // The error is about a profile block: say which cycle
+                    // ran it.
+                    d = d.with_note(format!(
+                        "in the profile of the cycle at line {}",
+                        line_of(unit, block.span)
+                    ));
+                }
+                Err((index, d))
+            }
+            Err(_) => Ok(Flow::End),
+        }
+    }
+}
+
+/// The dry run of a static program compiled a chunk at a time
+/// (`crate::stream`). Its blocks are plain: no call, no G70–G73 cycle and
+/// no `/` (so one switch state), so each chunk runs as it is parsed, the
+/// kernel's state carried from one to the next; what it finds is what
+/// [`dry_run`] finds on the whole program.
+pub struct ChunkedRun {
+    run: Runner,
+    /// The run has ended (M02/M30, the step limit, a run-time fault).
+    ended: bool,
+    error: Option<(usize, Diagnostic)>,
+}
+
+impl ChunkedRun {
+    pub fn new(m: &Machine) -> Self {
+        ChunkedRun {
+            run: Runner::new(m),
+            ended: false,
+            error: None,
+        }
+    }
+
+    /// Runs the blocks of one chunk (`prog`'s, in `unit`).
+    pub fn chunk(&mut self, unit: &Unit, prog: &Program) {
+        for block in prog.blocks.iter().filter_map(|&l| link::block(unit, l)) {
+            let Body::Words(ws) = &block.body else {
+                continue;
+            };
+            if self.ended {
+                return;
+            }
+            self.run.steps += 1;
+            if self.run.steps > STEP_LIMIT {
+                self.ended = true;
+                return;
+            }
+            let lits = plain_literals(ws);
+            if lits.is_empty() {
+                continue;
+            }
+            match self.run.exec((prog.unit, unit, block, ws), &lits) {
+                Ok(Flow::Go) => {}
+                Ok(Flow::End) => self.ended = true,
+                Err(found) => {
+                    self.error = Some(found);
+                    self.ended = true;
+                }
+            }
+        }
+    }
+
+    /// Whether it has found a compile-time error.
+    pub fn failed(&self) -> bool {
+        self.error.is_some()
+    }
+
+    /// What it found, in [`dry_run`]'s order.
+    pub fn finish(self) -> Vec<(usize, Diagnostic)> {
+        let mut found = self.run.warnings();
+        found.extend(self.error);
+        found
     }
 }
 

@@ -24,31 +24,18 @@ pub fn emit(
     files: &[SourceFile],
     machine: &nc::Machine,
 ) -> (isa::Module, Vec<FileDiag>) {
-    let (constants, items) = sizes(ir);
-    let mut e = Emitter {
-        ir,
-        files,
-        module: isa::Module {
-            machine: machine.compile_keys(),
-            code: Vec::with_capacity(items),
-            consts: Vec::with_capacity(constants),
-            ..isa::Module::default()
-        },
-        consts: ConstIndex::default(),
-        strings: HashMap::new(),
-        profile_recs: HashMap::new(),
-        loc: SourceLoc::default(),
-        hint: (usize::MAX, LineHint::default()),
-        regs: Regs::default(),
-        diags: Vec::new(),
-        file: 0,
-        span: Span::default(),
+    let (constants, instrs) = sizes(ir);
+    let room = Room {
+        constants,
+        instrs,
+        records: 0,
     };
+    let mut e = Emitter::new(files, machine, room);
+    e.sync_strings(&ir.strings);
     for f in &ir.functions {
         e.function(f);
     }
-    e.module.num_regs = e.regs.max.max(1);
-    (e.module, e.diags)
+    e.finish()
 }
 
 /// About the constants and instructions of a module: two constants per
@@ -91,8 +78,9 @@ impl Regs {
     }
 }
 
-struct Emitter<'a> {
-    ir: &'a ir::Module,
+pub(crate) struct Emitter<'a> {
+    /// The IR's strings (copied: a module built in chunks adds to them).
+    ir_strings: Vec<String>,
     files: &'a [SourceFile],
     module: isa::Module,
     consts: ConstIndex,
@@ -112,13 +100,64 @@ struct Emitter<'a> {
     span: Span,
 }
 
+/// What the module is expected to hold: room made for it up front spares
+/// copying a large table as it grows (and holding it twice meanwhile).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Room {
+    pub constants: usize,
+    pub instrs: usize,
+    /// Bytes of typed-block records.
+    pub records: usize,
+}
+
+/// A program being emitted: where it starts and its sequence numbers.
+pub(crate) struct OpenProgram {
+    entry: u32,
+    seqs: Vec<(u32, u32)>,
+}
+
 /// A jump whose target block's pc is not known yet.
 struct Fixup {
     at: usize,
     target: Handle<ir::Block>,
 }
 
-impl Emitter<'_> {
+impl<'a> Emitter<'a> {
+    pub(crate) fn new(files: &'a [SourceFile], machine: &nc::Machine, room: Room) -> Self {
+        Emitter {
+            ir_strings: Vec::new(),
+            files,
+            module: isa::Module {
+                machine: machine.compile_keys(),
+                code: Vec::with_capacity(room.instrs),
+                consts: Vec::with_capacity(room.constants),
+                blocks: Vec::with_capacity(room.records),
+                ..isa::Module::default()
+            },
+            consts: ConstIndex::default(),
+            strings: HashMap::new(),
+            profile_recs: HashMap::new(),
+            loc: SourceLoc::default(),
+            hint: (usize::MAX, LineHint::default()),
+            regs: Regs::default(),
+            diags: Vec::new(),
+            file: 0,
+            span: Span::default(),
+        }
+    }
+
+    /// Takes the IR strings added since the last call.
+    pub(crate) fn sync_strings(&mut self, strings: &[String]) {
+        let new = strings.get(self.ir_strings.len()..).unwrap_or_default();
+        self.ir_strings.extend_from_slice(new);
+    }
+
+    /// The module, and the diagnostics found on the way.
+    pub(crate) fn finish(mut self) -> (isa::Module, Vec<FileDiag>) {
+        self.module.num_regs = self.regs.max.max(1);
+        (self.module, self.diags)
+    }
+
     fn emit(&mut self, instr: Instr) -> usize {
         self.module.code.push(instr);
         self.module.lines.push(self.loc);
@@ -138,8 +177,7 @@ impl Emitter<'_> {
             return s;
         }
         let text = self
-            .ir
-            .strings
+            .ir_strings
             .get(id.0 as usize)
             .cloned()
             .unwrap_or_default();
@@ -177,10 +215,26 @@ impl Emitter<'_> {
     }
 
     fn function(&mut self, f: &Function) {
-        let entry = self.pc();
+        let mut program = self.open_program();
+        self.part(f, &mut program);
+        self.close_program(f.number, program);
+    }
+
+    /// A program starts here.
+    pub(crate) fn open_program(&self) -> OpenProgram {
+        OpenProgram {
+            entry: self.pc(),
+            seqs: Vec::new(),
+        }
+    }
+
+    /// Emits a function, or a part of one (`crate::stream`): its jumps
+    /// stay within the part, and an open last block goes on in the code
+    /// of the next part.
+    pub(crate) fn part(&mut self, f: &Function, program: &mut OpenProgram) {
+        let seqs = &mut program.seqs;
         let mut starts = vec![0u32; f.blocks.len()];
         let mut fixups: Vec<Fixup> = Vec::new();
-        let mut seqs: Vec<(u32, u32)> = Vec::new();
         for &b in &f.layout {
             if let Some(s) = starts.get_mut(b.index()) {
                 *s = self.pc();
@@ -190,7 +244,7 @@ impl Emitter<'_> {
                 if let Some(&loc) = f.op_locs.get(op.index()) {
                     self.at(loc);
                 }
-                self.op(f, &f.ops[op], &mut seqs);
+                self.op(f, &f.ops[op], seqs);
             }
             match &block.term {
                 Some(Terminator::Follow(_) | Terminator::Ended) | None => {}
@@ -213,10 +267,15 @@ impl Emitter<'_> {
                 *t = pc;
             }
         }
+    }
+
+    /// The program ends here: into the program table.
+    pub(crate) fn close_program(&mut self, number: u32, program: OpenProgram) {
+        let OpenProgram { entry, mut seqs } = program;
         seqs.sort();
         let end = self.pc();
         self.module.programs.push(isa::Program {
-            number: f.number,
+            number,
             entry,
             end,
             seqs,

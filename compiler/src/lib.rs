@@ -22,6 +22,7 @@ pub mod link;
 pub mod lint;
 pub mod profile;
 pub mod recursion;
+pub mod stream;
 pub mod thread_room;
 pub mod words;
 
@@ -41,6 +42,9 @@ pub struct Options {
     pub optimize: bool,
     /// `-D '#100=5'`: variables preset at the start of the run.
     pub defines: Vec<(u32, f64)>,
+    /// A longer program of plain blocks is compiled a chunk of about
+    /// this many bytes at a time (`stream`).
+    pub chunk_bytes: usize,
 }
 
 impl Default for Options {
@@ -50,9 +54,15 @@ impl Default for Options {
             include: Vec::new(),
             optimize: true,
             defines: Vec::new(),
+            chunk_bytes: CHUNK_BYTES,
         }
     }
 }
+
+/// The chunk of a long plain program (`stream`): its tree and IR are all
+/// of the program that `gbcc` holds besides the source and the module,
+/// a few megabytes; shorter, the chunks would cost more than they save.
+pub const CHUNK_BYTES: usize = 1 << 16;
 
 /// The result of a compilation: the module when there was no error, and
 /// every diagnostic with the file it belongs to.
@@ -79,23 +89,34 @@ impl Compiled {
 
 /// Compiles the program file `name` with contents `bytes`.
 pub fn compile(name: &str, bytes: &[u8], opts: &Options) -> Compiled {
+    compile_keeping(name, bytes.into(), opts, false).0
+}
+
+/// Compiles as [`compile`] does, from a source the caller shares (the
+/// compiler holds it without a copy).
+pub fn compile_shared(name: &str, bytes: Arc<[u8]>, opts: &Options) -> Compiled {
     compile_keeping(name, bytes, opts, false).0
 }
 
 /// Compiles as [`compile`] does, and gives the IR the module was emitted
 /// from too (`gbcc --emit=ir`; `None` after an error before the build).
 pub fn compile_ir(name: &str, bytes: &[u8], opts: &Options) -> (Compiled, Option<ir::Module>) {
-    compile_keeping(name, bytes, opts, true)
+    compile_keeping(name, bytes.into(), opts, true)
 }
 
 fn compile_keeping(
     name: &str,
-    bytes: &[u8],
+    bytes: Arc<[u8]>,
     opts: &Options,
     keep_ir: bool,
 ) -> (Compiled, Option<ir::Module>) {
+    if !keep_ir {
+        if let Some(compiled) = stream::compile(name, &bytes, opts) {
+            return (compiled, None);
+        }
+    }
     let mut diags = Vec::new();
-    let mut units = vec![parse_unit(name, bytes.into(), 0, &mut diags)];
+    let mut units = vec![parse_unit(name, bytes, 0, &mut diags)];
     let mut programs = link::split(0, &units[0], &mut diags);
     link_libraries(&mut units, &mut programs, opts, &mut diags);
     diags.extend(recursion::check(&units, &programs));

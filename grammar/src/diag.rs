@@ -90,7 +90,8 @@ pub struct SourceFile {
     /// The printable text, made when first rendered: most compilations
     /// render nothing, and only need line numbers.
     text: OnceLock<String>,
-    line_starts: Vec<usize>,
+    /// (`u32`: spans are; half the table of a long program.)
+    line_starts: Vec<u32>,
 }
 
 impl SourceFile {
@@ -106,12 +107,11 @@ impl SourceFile {
 
     /// 1-based line and column (in bytes) of a byte offset.
     pub fn line_col(&self, offset: u32) -> (usize, usize) {
-        let offset = offset as usize;
         let line = match self.line_starts.binary_search(&offset) {
             Ok(i) => i,
             Err(i) => i - 1,
         };
-        (line + 1, offset - self.line_starts[line] + 1)
+        (line + 1, (offset - self.line_starts[line]) as usize + 1)
     }
 
     /// [`SourceFile::line_col`] for offsets asked for in source order:
@@ -128,19 +128,15 @@ impl SourceFile {
         let line = [hint.line, hint.line + 1]
             .into_iter()
             .find(|&i| self.on_line(at, i))
-            .unwrap_or_else(|| match self.line_starts.binary_search(&at) {
+            .unwrap_or_else(|| match self.line_starts.binary_search(&offset) {
                 Ok(i) => i,
                 Err(i) => i - 1,
             });
-        let start = self.line_starts[line];
+        let start = self.line_starts[line] as usize;
         *hint = LineHint {
             line,
             start,
-            end: self
-                .line_starts
-                .get(line + 1)
-                .copied()
-                .unwrap_or(usize::MAX),
+            end: (self.line_starts.get(line + 1)).map_or(usize::MAX, |&e| e as usize),
         };
         (line + 1, at - start + 1)
     }
@@ -149,7 +145,8 @@ impl SourceFile {
     #[inline]
     fn on_line(&self, at: usize, i: usize) -> bool {
         let starts = &self.line_starts;
-        starts.get(i).is_some_and(|&s| s <= at) && starts.get(i + 1).is_none_or(|&e| at < e)
+        starts.get(i).is_some_and(|&s| s as usize <= at)
+            && starts.get(i + 1).is_none_or(|&e| at < e as usize)
     }
 
     pub fn text(&self) -> &str {
@@ -245,12 +242,8 @@ impl SourceFile {
 
     /// The byte range of line index `i`, its line end included.
     pub fn line_range(&self, i: usize) -> Option<Range<usize>> {
-        let start = *self.line_starts.get(i)?;
-        let end = self
-            .line_starts
-            .get(i + 1)
-            .copied()
-            .unwrap_or(self.bytes.len());
+        let start = *self.line_starts.get(i)? as usize;
+        let end = (self.line_starts.get(i + 1)).map_or(self.bytes.len(), |&e| e as usize);
         Some(start..end)
     }
 
@@ -310,12 +303,13 @@ fn printable(bytes: &[u8]) -> String {
 
 /// The offset of every line start: 0, and after each LF, CR LF or lone CR
 /// (a lone CR ends a line too, dialect.md §1.3).
-fn line_starts(bytes: &[u8]) -> Vec<usize> {
+fn line_starts(bytes: &[u8]) -> Vec<u32> {
     let mut starts = vec![0];
     for end in memchr::memchr2_iter(b'\n', b'\r', bytes) {
         // The CR of a CR LF is no line end of its own: its LF is.
         if bytes[end] == b'\n' || bytes.get(end + 1) != Some(&b'\n') {
-            starts.push(end + 1);
+            // (Past 4 GiB no span can point anyway.)
+            starts.push(u32::try_from(end + 1).unwrap_or(u32::MAX));
         }
     }
     starts

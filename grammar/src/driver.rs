@@ -41,6 +41,20 @@ pub fn parse(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
     }
 }
 
+/// Parses a part of a file. See [`crate::parse_lines`].
+pub fn parse_lines(src: &[u8], start: usize, len: usize) -> (Ast, Vec<Diagnostic>, usize) {
+    let limit = end_of_input(src);
+    let start = start.min(limit);
+    let from = start.saturating_add(len).min(limit);
+    let end = match memchr::memchr(b'\n', &src[from..limit]) {
+        Some(lf) => from + lf + 1,
+        None => limit,
+    };
+    let (ast, diags) = run(src, start, end, true);
+    let next = if end >= limit { src.len() } else { end };
+    (ast, diags, next)
+}
+
 /// Parses every block alone, without batches or word runs: the plain path
 /// that the batched one must equal (tests compare them).
 #[cfg(test)]
@@ -690,10 +704,32 @@ mod tests {
                 assert!(batched == single, "{}", entry.path().display());
                 let halves = super::parse_in_halves(&bytes);
                 assert!(halves == single, "halves: {}", entry.path().display());
+                for len in [0, 7, 100] {
+                    let parts = in_parts(&bytes, len);
+                    assert!(
+                        parts == single,
+                        "parts of {len}: {}",
+                        entry.path().display()
+                    );
+                }
                 files += 1;
             }
         }
         assert!(files > 40, "only {files} files");
+    }
+
+    /// A file parsed with `parse_lines`, `len` bytes at a time, joined.
+    fn in_parts(src: &[u8], len: usize) -> (super::Ast, Vec<super::Diagnostic>) {
+        let (mut ast, mut diags) = (super::Ast { lines: Vec::new() }, Vec::new());
+        let mut start = 0;
+        while start < src.len() {
+            let (part, found, next) = super::parse_lines(src, start, len);
+            assert!(next > start, "no progress at {start}");
+            ast.lines.extend(part.lines);
+            diags.extend(found);
+            start = next;
+        }
+        (ast, diags)
     }
 
     const ALPHABET: &[u8] = b"GXZNOF#[]=+-*/.,;()% \n\r0123456789EQIFTHENGOTODOWHILESIN\x1a";
@@ -704,11 +740,13 @@ mod tests {
         /// Random G-code-like text, faults included, parses the same both ways.
         #[test]
         fn batches_equal_single_blocks_on_random_text(
-            src in proptest::collection::vec(proptest::sample::select(ALPHABET), 0..300)
+            src in proptest::collection::vec(proptest::sample::select(ALPHABET), 0..300),
+            len in 0usize..40,
         ) {
             let single = super::parse_unbatched(&src);
             proptest::prop_assert!(super::parse(&src) == single);
             proptest::prop_assert!(super::parse_in_halves(&src) == single);
+            proptest::prop_assert!(in_parts(&src, len) == single);
         }
     }
 }

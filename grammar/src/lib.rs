@@ -1,6 +1,8 @@
 //! The front end of gbc: bytes in, syntax tree and diagnostics out.
 //!
-//! [`parse`] is the only entry point; how it works can change behind it.
+//! [`parse`] is the entry point, and [`parse_lines`] parses a part of a
+//! file in the same way (a long program, a chunk at a time); how they work
+//! can change behind them.
 //! Today: `compact` cuts lines into blocks and removes blanks and comments,
 //! `lexer` (logos) makes tokens with source spans, `grammar.lalrpop` (with
 //! `parser`) parses blocks in batches, `errors` turns a parse failure into
@@ -29,4 +31,16 @@ pub use span::Span;
 /// Never panics.
 pub fn parse(src: &[u8]) -> (Ast, Vec<Diagnostic>) {
     driver::parse(src)
+}
+
+/// Parses the lines of `src` from byte `start` (a line start) up to about
+/// `len` bytes further: to the end of the line there, or to the end of the
+/// input. Spans are byte ranges of the whole `src`. Returns the tree and
+/// diagnostics of those lines, and where the next part starts (`src.len()`
+/// after the last one).
+///
+/// Nothing carries over from one line to the next, so parsing a file part
+/// by part gives, joined in order, exactly what [`parse`] gives.
+pub fn parse_lines(src: &[u8], start: usize, len: usize) -> (Ast, Vec<Diagnostic>, usize) {
+    driver::parse_lines(src, start, len)
 }

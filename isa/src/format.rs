@@ -311,67 +311,145 @@ fn read_program(s: &mut Reader<'_>) -> Result<Program, LoadError> {
 
 /// Serializes `m` as laid out above.
 pub(crate) fn write(m: &Module) -> Vec<u8> {
-    let mut out = Vec::new();
-    out.extend_from_slice(&MAGIC);
-    VERSION.put(&mut out);
-    section_out(&mut out, Section::Code, |out| {
-        for instr in &m.code {
-            instr.encode(out);
-        }
+    // Room for all of it: growing the buffer would copy a large module
+    // (and hold it twice for a moment).
+    let mut out = Vec::with_capacity(size_bound(m));
+    let written = write_with(m, &mut |bytes: &[u8]| {
+        out.extend_from_slice(bytes);
+        Ok::<(), core::convert::Infallible>(())
     });
-    section_out(&mut out, Section::Consts, |out| {
-        len_to_u32(m.consts.len()).put(out);
-        for k in &m.consts {
-            k.to_bits().put(out);
-        }
-    });
-    section_out(&mut out, Section::Strings, |out| {
-        len_to_u32(m.strings.len()).put(out);
-        for s in &m.strings {
-            string_out(out, s);
-        }
-    });
-    section_out(&mut out, Section::Programs, |out| {
-        len_to_u32(m.programs.len()).put(out);
-        for p in &m.programs {
-            p.number.put(out);
-            p.entry.put(out);
-            p.end.put(out);
-            len_to_u32(p.seqs.len()).put(out);
-            for &(seq, pc) in &p.seqs {
-                seq.put(out);
-                pc.put(out);
-            }
-        }
-    });
-    section_out(&mut out, Section::Lines, |out| m.lines.write(out));
-    section_out(&mut out, Section::Files, |out| {
-        len_to_u32(m.files.len()).put(out);
-        for f in &m.files {
-            string_out(out, &f.name);
-            f.hash.put(out);
-        }
-    });
-    section_out(&mut out, Section::Machine, |out| {
-        out.extend_from_slice(m.machine.as_bytes());
-    });
-    section_out(&mut out, Section::Regs, |out| m.num_regs.put(out));
-    section_out(&mut out, Section::Blocks, |out| {
-        out.extend_from_slice(&m.blocks);
-    });
-    crc32fast::hash(&out).put(&mut out);
-    out
+    match written {
+        Ok(()) => out,
+        Err(never) => match never {},
+    }
 }
 
-fn section_out(out: &mut Vec<u8>, tag: Section, payload: impl FnOnce(&mut Vec<u8>)) {
-    out.push(tag as u8);
-    let len_at = out.len();
-    0u32.put(out);
-    payload(out);
-    let len = len_to_u32(out.len() - len_at - 4);
-    if let Some(slot) = out.get_mut(len_at..len_at + 4) {
-        slot.copy_from_slice(&len.to_le_bytes());
+/// Serializes `m` as [`write`] does, handing the bytes to `sink` a piece
+/// at a time: the file is never whole in memory (a large module goes
+/// straight to its file). Stops at the sink's first error.
+pub(crate) fn write_with<E>(
+    m: &Module,
+    sink: &mut dyn FnMut(&[u8]) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut out = Out {
+        sink,
+        crc: crc32fast::Hasher::new(),
+    };
+    out.put(&MAGIC)?;
+    out.put(&VERSION.to_le_bytes())?;
+    code_section(&mut out, &m.code)?;
+    let mut scratch = Vec::new();
+    out.section(
+        Section::Consts,
+        small(&mut scratch, |o| {
+            len_to_u32(m.consts.len()).put(o);
+            for k in &m.consts {
+                k.to_bits().put(o);
+            }
+        }),
+    )?;
+    out.section(
+        Section::Strings,
+        small(&mut scratch, |o| {
+            len_to_u32(m.strings.len()).put(o);
+            for s in &m.strings {
+                string_out(o, s);
+            }
+        }),
+    )?;
+    out.section(
+        Section::Programs,
+        small(&mut scratch, |o| programs_out(o, &m.programs)),
+    )?;
+    out.section(Section::Lines, small(&mut scratch, |o| m.lines.write(o)))?;
+    out.section(
+        Section::Files,
+        small(&mut scratch, |o| {
+            len_to_u32(m.files.len()).put(o);
+            for f in &m.files {
+                string_out(o, &f.name);
+                f.hash.put(o);
+            }
+        }),
+    )?;
+    out.section(Section::Machine, m.machine.as_bytes())?;
+    out.section(Section::Regs, &m.num_regs.to_le_bytes())?;
+    out.section(Section::Blocks, &m.blocks)?;
+    let crc = out.crc.finalize();
+    (out.sink)(&crc.to_le_bytes())
+}
+
+/// The sink, and the CRC of every byte handed to it.
+struct Out<'s, E> {
+    sink: &'s mut dyn FnMut(&[u8]) -> Result<(), E>,
+    crc: crc32fast::Hasher,
+}
+
+impl<E> Out<'_, E> {
+    fn put(&mut self, bytes: &[u8]) -> Result<(), E> {
+        self.crc.update(bytes);
+        (self.sink)(bytes)
     }
+
+    fn head(&mut self, tag: Section, len: usize) -> Result<(), E> {
+        self.put(&[tag as u8])?;
+        self.put(&len_to_u32(len).to_le_bytes())
+    }
+
+    fn section(&mut self, tag: Section, payload: &[u8]) -> Result<(), E> {
+        self.head(tag, payload.len())?;
+        self.put(payload)
+    }
+}
+
+/// A small section's payload, built in `scratch`.
+fn small(scratch: &mut Vec<u8>, payload: impl FnOnce(&mut Vec<u8>)) -> &[u8] {
+    scratch.clear();
+    payload(scratch);
+    scratch
+}
+
+/// The code: its length from the opcodes' widths, then the instructions
+/// encoded a few thousand at a time.
+fn code_section<E>(out: &mut Out<'_, E>, code: &[Instr]) -> Result<(), E> {
+    const PIECE: usize = 4096;
+    let len = code.iter().map(|i| i.opcode().encoded_len()).sum();
+    out.head(Section::Code, len)?;
+    let mut piece = Vec::with_capacity(PIECE * MAX_ENCODED_LEN);
+    for instrs in code.chunks(PIECE) {
+        piece.clear();
+        for instr in instrs {
+            instr.encode(&mut piece);
+        }
+        out.put(&piece)?;
+    }
+    Ok(())
+}
+
+fn programs_out(o: &mut Vec<u8>, programs: &[Program]) {
+    len_to_u32(programs.len()).put(o);
+    for p in programs {
+        p.number.put(o);
+        p.entry.put(o);
+        p.end.put(o);
+        len_to_u32(p.seqs.len()).put(o);
+        for &(seq, pc) in &p.seqs {
+            seq.put(o);
+            pc.put(o);
+        }
+    }
+}
+
+/// At least the bytes [`write`] writes for `m`.
+fn size_bound(m: &Module) -> usize {
+    const SLACK: usize = 256;
+    let code: usize = m.code.iter().map(|i| i.opcode().encoded_len()).sum();
+    let strings: usize = m.strings.iter().map(|s| 4 + s.len()).sum();
+    let programs: usize = m.programs.iter().map(|p| 16 + 8 * p.seqs.len()).sum();
+    let files: usize = m.files.iter().map(|f| 8 + f.name.len()).sum();
+    let lines = m.lines.heap_bytes();
+    let tables = 8 * m.consts.len() + strings + programs + files + lines;
+    SLACK + code + tables + m.machine.len() + m.blocks.len()
 }
 
 fn string_out(out: &mut Vec<u8>, s: &str) {

@@ -79,6 +79,13 @@ impl Module {
         crate::format::write(self)
     }
 
+    /// Serializes as [`Module::to_bytes`] does, handing the bytes to
+    /// `sink` a piece at a time, so that a large module goes to its file
+    /// without a second copy in memory. Stops at the sink's first error.
+    pub fn write_to<E>(&self, mut sink: impl FnMut(&[u8]) -> Result<(), E>) -> Result<(), E> {
+        crate::format::write_with(self, &mut sink)
+    }
+
     /// Parses a `.gbc` file and verifies it. Never panics and never
     /// allocates more than a small multiple of `bytes.len()`, whatever the
     /// bytes are.

@@ -274,6 +274,7 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
         include: args.include.clone(),
         optimize,
         defines,
+        ..Options::default()
     };
     Ok((
         Job {
@@ -323,6 +324,9 @@ fn compile_one<W: std::io::Write>(
         reporter.driver_error(&e);
         Exit::Input
     })?;
+    // The compiler keeps the source shared with its diagnostics: one copy,
+    // made here, and the buffer read goes.
+    let bytes: std::sync::Arc<[u8]> = bytes.into();
     if cli::io::is_module(&bytes) {
         reporter.driver_error(&format!(
             "{name} is a compiled .gbc module, not a program: run it with `gbvm run {name}`"
@@ -336,7 +340,10 @@ fn compile_one<W: std::io::Write>(
         let _spinner = cli::progress::Spinner::start(format!("compiling {name}"), job.args.quiet);
         match emit_ir {
             true => compiler::compile_ir(&name, &bytes, &job.opts),
-            false => (compiler::compile(&name, &bytes, &job.opts), None),
+            false => (
+                compiler::compile_shared(&name, bytes.clone(), &job.opts),
+                None,
+            ),
         }
     };
     let mut errors = false;
@@ -380,18 +387,19 @@ fn compile_one<W: std::io::Write>(
         reporter.driver_error("no module was produced");
         return Err(Exit::Input);
     };
-    let out = match (kind, &ir) {
-        (Output::Ir, Some(ir)) => compiler::ir::print::print(ir, &compiled.files).into_bytes(),
+    let written = match (kind, &ir) {
+        (Output::Ir, Some(ir)) => {
+            dest.write(compiler::ir::print::print(ir, &compiled.files).as_bytes())
+        }
         (Output::Ir, None) => {
             reporter.driver_error("no IR was built");
             return Err(Exit::Input);
         }
-        (Output::Listing, _) => module.disassemble().into_bytes(),
-        (Output::Module, _) => module.to_bytes(),
+        (Output::Listing, _) => dest.write(module.disassemble().as_bytes()),
+        // Straight to the file: a large module is not copied whole first.
+        (Output::Module, _) => dest.write_with(|sink| module.write_to(sink)),
     };
-    let written = dest
-        .write(&out)
-        .and_then(|()| write_deps(job, file, &dest, &compiled));
+    let written = written.and_then(|()| write_deps(job, file, &dest, &compiled));
     written.map_err(|e| {
         reporter.driver_error(&e);
         Exit::Write

@@ -79,6 +79,21 @@ struct Pending {
     loops: Vec<u32>,
 }
 
+/// What building a program carries from block to block.
+#[derive(Default)]
+pub(crate) struct ProgBuild {
+    state: ProgState,
+    data_setting: crate::data_setting::Checker,
+}
+
+/// How a program ends: its last block's span, and whether that block
+/// ends it (M02, M30, M99 or a GOTO).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ProgEnd {
+    pub span: Span,
+    pub explicit: bool,
+}
+
 /// Per-program state.
 #[derive(Default)]
 struct ProgState {
@@ -98,25 +113,7 @@ pub fn build(
     optimize: bool,
     presets: &[(u32, f64)],
 ) -> (ir::Module, Vec<FileDiag>) {
-    let mut b = Builder {
-        units,
-        programs,
-        machine,
-        optimize,
-        diags: Vec::new(),
-        unit: 0,
-        known: Known::default(),
-        program_number: 0,
-        profiles: Default::default(),
-        parsed: Default::default(),
-        module: ir::Module::default(),
-        strings: HashMap::new(),
-        f: ir::Function::default(),
-        cur: None,
-        span: Span::default(),
-        fresh: false,
-        tail: Tail::Nothing,
-    };
+    let mut b = Builder::new(units, programs, machine, optimize);
     for (i, prog) in programs.iter().enumerate() {
         b.build_program(i, prog, presets);
     }
@@ -124,6 +121,33 @@ pub fn build(
 }
 
 impl<'a> Builder<'a> {
+    pub(crate) fn new(
+        units: &'a [Unit],
+        programs: &'a [Program],
+        machine: &'a Machine,
+        optimize: bool,
+    ) -> Self {
+        Builder {
+            units,
+            programs,
+            machine,
+            optimize,
+            diags: Vec::new(),
+            unit: 0,
+            known: Known::default(),
+            program_number: 0,
+            profiles: Default::default(),
+            parsed: Default::default(),
+            module: ir::Module::default(),
+            strings: HashMap::new(),
+            f: ir::Function::default(),
+            cur: None,
+            span: Span::default(),
+            fresh: false,
+            tail: Tail::Nothing,
+        }
+    }
+
     pub fn error(&mut self, code: &'static str, span: Span, msg: impl Into<String>) {
         self.diags
             .push((self.unit, Diagnostic::error(code, span, msg)));
@@ -170,13 +194,120 @@ impl<'a> Builder<'a> {
             .map(|i| i as u32)
     }
 
+    // --- A program in chunks (`crate::stream`) ----------------------------
+
+    /// The same builder over other units and programs: the next chunk's.
+    pub(crate) fn rebind<'b>(
+        self,
+        units: &'b [Unit],
+        programs: &'b [Program],
+        machine: &'b Machine,
+    ) -> Builder<'b> {
+        Builder {
+            units,
+            programs,
+            machine,
+            optimize: self.optimize,
+            diags: self.diags,
+            unit: self.unit,
+            known: self.known,
+            program_number: self.program_number,
+            profiles: self.profiles,
+            parsed: self.parsed,
+            module: self.module,
+            strings: self.strings,
+            f: self.f,
+            cur: self.cur,
+            span: self.span,
+            fresh: self.fresh,
+            tail: self.tail,
+        }
+    }
+
+    /// Starts the main program (`prog`: its first chunk's blocks).
+    pub(crate) fn start_chunks(&mut self, prog: &Program) {
+        let (blocks, words) = sizes(self.units, prog);
+        self.start_program(prog, blocks, words);
+        self.start_blocks(prog);
+    }
+
+    /// Builds one chunk's blocks and hands them over as a part of the
+    /// function: its last block stays open and goes on in the next part.
+    pub(crate) fn build_chunk(&mut self, prog: &Program, pb: &mut ProgBuild) -> ir::Function {
+        self.build_blocks(prog, pb);
+        self.take_part()
+    }
+
+    /// Ends the program after its last chunk; the last part.
+    pub(crate) fn end_chunks(
+        &mut self,
+        prog: &Program,
+        pb: ProgBuild,
+        end: ProgEnd,
+    ) -> ir::Function {
+        self.end_program(prog, true, pb, end);
+        self.take_part()
+    }
+
+    /// The function built so far; the next part starts empty, with no
+    /// open block.
+    fn take_part(&mut self) -> ir::Function {
+        let next = ir::Function {
+            number: self.f.number,
+            file: self.f.file,
+            span: self.f.span,
+            ..Default::default()
+        };
+        self.cur = None;
+        std::mem::replace(&mut self.f, next)
+    }
+
+    /// The module being built: its strings (its functions stay empty).
+    pub(crate) fn module(&self) -> &ir::Module {
+        &self.module
+    }
+
+    pub(crate) fn take_diags(&mut self) -> Vec<FileDiag> {
+        std::mem::take(&mut self.diags)
+    }
+
     // --- Programs --------------------------------------------------------
 
     fn build_program(&mut self, index: usize, prog: &Program, presets: &[(u32, f64)]) {
+        let (blocks, words) = sizes(self.units, prog);
+        self.start_program(prog, blocks, words);
+        if index == 0 {
+            for &(var, value) in presets {
+                self.reset();
+                let value = self.add_expr(ir::Expr::Const(value));
+                self.push(Op::Assign {
+                    target: ir::VarTarget::Direct(var),
+                    value,
+                    msg: None,
+                });
+            }
+        }
+        let mut pb = ProgBuild::default();
+        self.start_blocks(prog);
+        self.build_blocks(prog, &mut pb);
+        let unit = &self.units[prog.unit];
+        let end = ProgEnd {
+            span: (prog.blocks.last())
+                .and_then(|&l| link::block(unit, l))
+                .map_or(prog.span, |b| b.span),
+            explicit: ends_explicitly(unit, prog),
+        };
+        self.end_program(prog, index == 0, pb, end);
+        let f = std::mem::take(&mut self.f);
+        self.module.functions.push(f);
+    }
+
+    /// A new function for `prog`, with room for `blocks` operations and
+    /// `words` words.
+    fn start_program(&mut self, prog: &Program, blocks: usize, words: usize) {
         self.unit = prog.unit;
         self.program_number = prog.number;
         self.set_loc(prog.span);
-        let (blocks, words) = sizes(self.units, prog);
         self.f = ir::Function {
             number: prog.number,
             file: prog.unit as u16,
@@ -189,29 +320,19 @@ impl<'a> Builder<'a> {
         };
         self.cur = None;
         self.tail = Tail::Nothing;
-        if index == 0 {
-            for &(var, value) in presets {
-                self.reset();
-                let value = self.add_expr(ir::Expr::Const(value));
-                self.push(Op::Assign {
-                    target: ir::VarTarget::Direct(var),
-                    value,
-                    msg: None,
-                });
-            }
-        }
-        self.build_blocks(prog, index == 0);
-        let f = std::mem::take(&mut self.f);
-        self.module.functions.push(f);
     }
 
-    fn build_blocks(&mut self, prog: &Program, main: bool) {
-        let mut st = ProgState::default();
+    /// What comes before a program's first block is built.
+    fn start_blocks(&mut self, prog: &Program) {
         self.known.forget_all();
+        crate::profile::program_start(self, prog);
+    }
+
+    /// Builds the blocks of `prog` (all of them, or those of one chunk).
+    fn build_blocks(&mut self, prog: &Program, pb: &mut ProgBuild) {
         let units: &'a [Unit] = self.units;
         let unit = &units[prog.unit];
-        let mut data_setting = crate::data_setting::Checker::default();
-        crate::profile::program_start(self, prog);
+        let st = &mut pb.state;
         for &line in &prog.blocks {
             crate::profile::block_start(self, line);
             let Some(block) = link::block(unit, line) else {
@@ -219,7 +340,7 @@ impl<'a> Builder<'a> {
             };
             self.set_loc(block.span);
             crate::profile::count_cycle(self, block);
-            data_setting.block(self, block);
+            pb.data_setting.block(self, block);
             if let Some(seq) = block.seq {
                 // A block with a number may be a jump target.
                 self.known.forget_all();
@@ -241,21 +362,22 @@ impl<'a> Builder<'a> {
             self.reset();
             match &block.body {
                 Body::Words(_) => self.build_words(block),
-                Body::Stmt(s) => self.build_stmt(s, block, &mut st),
+                Body::Stmt(s) => self.build_stmt(s, block, st),
             }
             if let Some(at) = guard {
                 self.end_guard(at);
             }
         }
+    }
+
+    /// After the last block: the end of the program (W101 when it runs
+    /// off its last block), open loops, and the GOTOs' targets.
+    fn end_program(&mut self, prog: &Program, main: bool, pb: ProgBuild, end: ProgEnd) {
+        let mut st = pb.state;
         // Running off the end: the main program halts, a subprogram
         // returns as if M99 (W101).
-        let end_span = prog
-            .blocks
-            .last()
-            .and_then(|&l| link::block(unit, l))
-            .map_or(prog.span, |b| b.span);
-        self.set_loc(end_span);
-        if !ends_explicitly(unit, prog) {
+        self.set_loc(end.span);
+        if !end.explicit {
             let what = if main {
                 "the main program ends"
             } else {
@@ -263,7 +385,7 @@ impl<'a> Builder<'a> {
             };
             self.warn(
                 "W101",
-                end_span,
+                end.span,
                 format!(
                     "O{:04} runs off its last block without M02, M30 or M99: {what}",
                     prog.number
@@ -653,24 +775,22 @@ fn ends_program(split: &words::Split<'_>) -> bool {
 
 /// Does the program's last block end it (M02, M30, M99 or a GOTO)?
 fn ends_explicitly(unit: &Unit, prog: &Program) -> bool {
-    let Some(last) = prog
-        .blocks
-        .iter()
-        .rev()
+    (prog.blocks.iter().rev())
         .filter_map(|&l| link::block(unit, l))
-        .find(|b| match &b.body {
-            Body::Words(ws) => !ws.is_empty(),
-            Body::Stmt(_) => true,
-        })
-    else {
-        return false;
-    };
-    match &last.body {
-        Body::Stmt(s) => matches!(**s, Stmt::Goto { .. }),
-        Body::Words(ws) => ws.iter().any(|w| {
+        .find_map(block_ends)
+        .unwrap_or(false)
+}
+
+/// Whether a block ends its program (M02, M30, M99 or a GOTO); `None`
+/// for a block of no words, which the rule passes over.
+pub(crate) fn block_ends(block: &Block) -> Option<bool> {
+    match &block.body {
+        Body::Stmt(s) => Some(matches!(**s, Stmt::Goto { .. })),
+        Body::Words(ws) if ws.is_empty() => None,
+        Body::Words(ws) => Some(ws.iter().any(|w| {
             w.addr == grammar::ast::Addr::Letter('M')
                 && matches!(words::value_of(w).literal(), Some(m) if [2.0, 30.0, 99.0].contains(&m))
-        }),
+        })),
     }
 }
 

@@ -32,9 +32,30 @@ pub fn validate(m: &Module) -> Result<(), Vec<Error>> {
             f,
             name: format!("O{:04} (function {i})", f.number),
             errors: &mut errors,
+            part: false,
         }
         .function();
     }
+    match errors.is_empty() {
+        true => Ok(()),
+        false => Err(errors),
+    }
+}
+
+/// Checks a part of a function built a chunk at a time (`crate::stream`)
+/// against the module `m` (its strings). The rules are a function's, but
+/// for the end: a part may have no block, and its last block may be open
+/// (it goes on into the next part's first one).
+pub fn validate_part(m: &Module, f: &Function) -> Result<(), Vec<Error>> {
+    let mut errors = Vec::new();
+    Checker {
+        m,
+        f,
+        name: format!("O{:04} (a part)", f.number),
+        errors: &mut errors,
+        part: true,
+    }
+    .function();
     match errors.is_empty() {
         true => Ok(()),
         false => Err(errors),
@@ -46,6 +67,8 @@ struct Checker<'a> {
     f: &'a Function,
     name: String,
     errors: &'a mut Vec<Error>,
+    /// A part of a function: see [`validate_part`].
+    part: bool,
 }
 
 impl Checker<'_> {
@@ -73,7 +96,7 @@ impl Checker<'_> {
         if f.term_locs.len() != f.blocks.len() {
             self.fail(here, "not every block has a location".into());
         }
-        if f.layout.is_empty() {
+        if f.layout.is_empty() && !self.part {
             self.fail(here, "the function has no block".into());
         }
         // Where each block stands in the layout.
@@ -198,7 +221,9 @@ impl Checker<'_> {
         loc: Loc,
     ) {
         let Some(t) = &block.term else {
-            self.fail(loc, format!("block {b:?} has no terminator"));
+            if !(self.part && next.is_none()) {
+                self.fail(loc, format!("block {b:?} has no terminator"));
+            }
             return;
         };
         for s in t.successors() {

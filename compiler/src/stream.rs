@@ -1,0 +1,302 @@
+//! Long straight programs, compiled a chunk at a time.
+//!
+//! CAM output is mostly one long program of plain blocks: moves, feeds,
+//! speeds, M codes; no macro statement, no computed word, no call, no
+//! G70–G73 cycle and no `/`. No block of such a program needs another to
+//! be built, emitted or dry-run, so each chunk of lines is parsed, built
+//! into IR, validated, emitted and dry-run before the next is parsed, and
+//! its tree and IR are gone by then. `gbcc` then holds the source, the
+//! module, and one chunk's tree and IR (docs/language.md, "How a long
+//! program is compiled").
+//!
+//! The passes are the whole-file path's, given one chunk at a time, so the
+//! module and the diagnostics are the ones it gives (tests compare them
+//! byte for byte). A program found not to be plain on the way, or with an
+//! error, is left to the whole-file path, which then compiles it from the
+//! start: its diagnostics come out exactly as they always do.
+
+use crate::build::{self, Builder, FileDiag, ProgBuild, ProgEnd};
+use crate::check::ChunkedRun;
+use crate::emit::{Emitter, Room};
+use crate::link::{self, Program, Unit};
+use crate::{words, Compiled, Options};
+use grammar::ast::{Ast, Body, Line, Value};
+use grammar::{SourceFile, Span};
+use std::sync::Arc;
+
+/// Compiles `bytes` a chunk of `opts.chunk_bytes` at a time; `None` when
+/// the program must go the whole-file way (short, not plain, or faulty).
+pub fn compile(name: &str, bytes: &Arc<[u8]>, opts: &Options) -> Option<Compiled> {
+    let table = &opts.machine.r#macro.g_code_macros;
+    // (A G code may call a macro when the table names one; `-D` presets
+    // are operations before the first block.)
+    let wanted =
+        bytes.len() > opts.chunk_bytes && opts.defines.is_empty() && table.iter().all(|&n| n == 0);
+    if !wanted {
+        return None;
+    }
+    let files = vec![SourceFile::new(name.to_string(), bytes.clone())];
+    let mut run = Run {
+        name,
+        bytes,
+        opts,
+        files: &files,
+        found: Found::default(),
+        shape: Shape::default(),
+    };
+    let (module, found) = run.chunks()?;
+    Some(Compiled {
+        module: Some(module),
+        files,
+        diags: found.into_diags(),
+    })
+}
+
+/// The diagnostics, kept apart by pass: the whole-file path gives those of
+/// every pass in turn, and so must this.
+#[derive(Default)]
+struct Found {
+    parse: Vec<FileDiag>,
+    split: Vec<FileDiag>,
+    build: Vec<FileDiag>,
+    emit: Vec<FileDiag>,
+    dry_run: Vec<FileDiag>,
+}
+
+impl Found {
+    fn into_diags(self) -> Vec<FileDiag> {
+        let Found {
+            mut parse,
+            split,
+            build,
+            emit,
+            dry_run,
+        } = self;
+        for more in [split, build, emit, dry_run] {
+            parse.extend(more);
+        }
+        parse
+    }
+
+    fn any_error(&self) -> bool {
+        [
+            &self.parse,
+            &self.split,
+            &self.build,
+            &self.emit,
+            &self.dry_run,
+        ]
+        .iter()
+        .any(|ds| ds.iter().any(|(_, d)| d.is_error()))
+    }
+}
+
+/// What the chunks seen so far say of the program as a whole.
+#[derive(Default)]
+struct Shape {
+    /// Its number and O line (from the first chunk).
+    number: u32,
+    span: Span,
+    numbered: bool,
+    /// A block with words has been seen: an O line after it would start
+    /// a second program.
+    any_block: bool,
+    /// The last block, and whether the last with words ends the program
+    /// (build's W101 rule).
+    end: Option<ProgEnd>,
+}
+
+struct Run<'a> {
+    name: &'a str,
+    bytes: &'a Arc<[u8]>,
+    opts: &'a Options,
+    files: &'a [SourceFile],
+    found: Found,
+    shape: Shape,
+}
+
+impl Run<'_> {
+    /// Every chunk in turn; the module and what was found, or `None`
+    /// as soon as the program turns out not to be for this path.
+    fn chunks(&mut self) -> Option<(isa::Module, Found)> {
+        let opts = self.opts;
+        let mut builder = Builder::new(&[], &[], &opts.machine, opts.optimize);
+        let mut emitter = Emitter::new(self.files, &opts.machine, room(self.bytes.len()));
+        let mut program = emitter.open_program();
+        let mut prog_build = ProgBuild::default();
+        let mut dry_run = ChunkedRun::new(&opts.machine);
+        let mut start = 0;
+        loop {
+            let (unit, next) = self.parse(start, start == 0)?;
+            // A file of one chunk is the whole-file path's.
+            if start == 0 && next >= self.bytes.len() {
+                return None;
+            }
+            let prog = self.program(&unit, start == 0)?;
+            let units = [unit];
+            let programs = [prog];
+            let mut b = builder.rebind(&units, &programs, &opts.machine);
+            if start == 0 {
+                b.start_chunks(&programs[0]);
+            }
+            let mut parts = vec![b.build_chunk(&programs[0], &mut prog_build)];
+            let last = next >= self.bytes.len();
+            if last {
+                let end = self.shape.end.unwrap_or(ProgEnd {
+                    span: self.shape.span,
+                    explicit: false,
+                });
+                let pb = std::mem::take(&mut prog_build);
+                parts.push(b.end_chunks(&programs[0], pb, end));
+            }
+            self.found.build.append(&mut b.take_diags());
+            emitter.sync_strings(&b.module().strings);
+            for part in &parts {
+                crate::ir::validate::validate_part(b.module(), part).ok()?;
+                emitter.part(part, &mut program);
+            }
+            drop(parts);
+            dry_run.chunk(&units[0], &programs[0]);
+            if self.found.any_error() || dry_run.failed() {
+                return None;
+            }
+            builder = b.rebind(&[], &[], &opts.machine);
+            if last {
+                break;
+            }
+            start = next;
+        }
+        emitter.close_program(self.shape.number, program);
+        let (mut module, mut emitted) = emitter.finish();
+        self.found.emit.append(&mut emitted);
+        self.found.dry_run = dry_run.finish();
+        module.files = vec![isa::SourceFileInfo {
+            name: self.name.to_string(),
+            hash: crc32fast::hash(self.bytes),
+        }];
+        // (An error, or a module that does not verify: the whole-file
+        // path reports it.)
+        if self.found.any_error() || module.verify().is_err() {
+            return None;
+        }
+        Some((module, std::mem::take(&mut self.found)))
+    }
+
+    /// Parses the chunk from `start`: its unit, and where the next starts.
+    fn parse(&mut self, start: usize, first: bool) -> Option<(Unit, usize)> {
+        let len = self.opts.chunk_bytes;
+        let (mut ast, mut found, mut next) = grammar::parse_lines(self.bytes, start, len);
+        // The first chunk runs on to a block with words: the O line, if
+        // any, stands before it (comment lines may lead into it).
+        while first && next < self.bytes.len() && !ast.lines.iter().any(has_words) {
+            let (more, also, after) = grammar::parse_lines(self.bytes, next, len);
+            ast.lines.extend(more.lines);
+            found.extend(also);
+            next = after;
+        }
+        crate::data_setting::prepare(&mut ast);
+        self.found.parse.extend(found.into_iter().map(|d| (0, d)));
+        if self.found.any_error() || !self.plain(&ast, first) {
+            return None;
+        }
+        let unit = Unit {
+            name: self.name.to_string(),
+            bytes: self.bytes.clone(),
+            ast,
+        };
+        Some((unit, next))
+    }
+
+    /// Whether a chunk's lines keep the program plain, noting its shape.
+    fn plain(&mut self, ast: &Ast, first: bool) -> bool {
+        for line in &ast.lines {
+            match line {
+                Line::Percent(_) => {}
+                // One O line, in the first chunk, before any block: one
+                // program.
+                Line::ProgramStart(p) => {
+                    if !first || self.shape.any_block || self.shape.numbered {
+                        return false;
+                    }
+                    (self.shape.number, self.shape.span) = (p.number, p.span);
+                    self.shape.numbered = true;
+                }
+                Line::Block(b) => {
+                    let Body::Words(ws) = &b.body else {
+                        return false;
+                    };
+                    if b.delete.is_some() || !ws.iter().all(plain_word) {
+                        return false;
+                    }
+                    if words::may_call(ws) || crate::profile::names_cycle(ws) {
+                        return false;
+                    }
+                    self.shape.any_block |= !ws.is_empty();
+                    let explicit = match build::block_ends(b) {
+                        Some(ends) => ends,
+                        None => self.shape.end.is_some_and(|e| e.explicit),
+                    };
+                    self.shape.end = Some(ProgEnd {
+                        span: b.span,
+                        explicit,
+                    });
+                }
+            }
+        }
+        true
+    }
+
+    /// The chunk's blocks as the program's; for the first chunk, the
+    /// program as `link::split` finds it (with its W117).
+    fn program(&mut self, unit: &Unit, first: bool) -> Option<Program> {
+        if first {
+            let mut programs = link::split(0, unit, &mut self.found.split);
+            return match programs.len() {
+                1 => programs.pop(),
+                _ => None,
+            };
+        }
+        let blocks = (unit.ast.lines.iter().enumerate())
+            .filter(|(_, l)| matches!(l, Line::Block(_)))
+            .map(|(i, _)| i)
+            .collect();
+        Some(Program {
+            number: self.shape.number,
+            unit: 0,
+            blocks,
+            span: self.shape.span,
+        })
+    }
+}
+
+/// A literal word that is not G10/G11 (data setting spans blocks; its
+/// programs take the whole-file path).
+fn plain_word(w: &grammar::ast::Word) -> bool {
+    match &w.value {
+        Value::Number(n) => {
+            let data_setting = (10.0..12.0).contains(&n.value);
+            !(w.addr == grammar::ast::Addr::Letter('G') && data_setting)
+        }
+        Value::Expr(_) => false,
+    }
+}
+
+fn has_words(line: &Line) -> bool {
+    match line {
+        Line::Block(b) => !matches!(&b.body, Body::Words(ws) if ws.is_empty()),
+        _ => false,
+    }
+}
+
+/// Room for the module of a plain program of `bytes` bytes. The tables
+/// are only reserved, not written: a bound costs no memory until it is
+/// used, and a table that grows copies itself. A plain block takes a line
+/// of over 8 bytes (`G1X1Z1` and its line end) and one instruction, and
+/// its record is shorter than its text.
+fn room(bytes: usize) -> Room {
+    Room {
+        constants: 0,
+        instrs: bytes / 8,
+        records: bytes,
+    }
+}
