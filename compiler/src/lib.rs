@@ -59,9 +59,11 @@ impl Default for Options {
     }
 }
 
-/// The chunk of a long plain program (`stream`): its tree and IR are all
-/// of the program that `gbcc` holds besides the source and the module,
-/// a few megabytes; shorter, the chunks would cost more than they save.
+/// The chunk of a long plain program (`stream`): its tree and IR (about
+/// 20 bytes a source byte) are, with the next chunks on their way, all of
+/// the program that `gbcc` holds besides the source and the module. At
+/// 32 KiB or 1 MiB the 1M-block benchmark compiled no faster; at 1 MiB
+/// it held 20 MB more.
 pub const CHUNK_BYTES: usize = 1 << 16;
 
 /// The result of a compilation: the module when there was no error, and

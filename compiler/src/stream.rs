@@ -17,11 +17,12 @@
 
 use crate::build::{self, Builder, FileDiag, ProgBuild, ProgEnd};
 use crate::check::ChunkedRun;
-use crate::emit::{Emitter, Room};
+use crate::emit::{Emitter, OpenProgram, Room};
 use crate::link::{self, Program, Unit};
 use crate::{words, Compiled, Options};
 use grammar::ast::{Ast, Body, Line, Value};
 use grammar::{SourceFile, Span};
+use std::sync::mpsc::{Receiver, SyncSender};
 use std::sync::Arc;
 
 /// Compiles `bytes` a chunk of `opts.chunk_bytes` at a time; `None` when
@@ -36,15 +37,48 @@ pub fn compile(name: &str, bytes: &Arc<[u8]>, opts: &Options) -> Option<Compiled
         return None;
     }
     let files = vec![SourceFile::new(name.to_string(), bytes.clone())];
-    let mut run = Run {
+    let front = Front {
         name,
         bytes,
         opts,
-        files: &files,
-        found: Found::default(),
+        parse: Vec::new(),
+        split: Vec::new(),
         shape: Shape::default(),
+        dry_run: ChunkedRun::new(&opts.machine),
     };
-    let (module, found) = run.chunks()?;
+    // The front end (parse, dry run) runs a chunk ahead of the back end
+    // (build, emit), on a thread of its own; two chunks wait between them
+    // at most.
+    let (front, back) = std::thread::scope(|s| {
+        let (to_back, chunks) = std::sync::mpsc::sync_channel(2);
+        let front = std::thread::Builder::new()
+            .name("gbc-front".into())
+            .spawn_scoped(s, move || front.run(to_back))
+            .ok()?;
+        let back = Back::new(&files, opts).run(chunks);
+        // (A panic in the front end is the caller's, as in one thread.)
+        let front = front
+            .join()
+            .unwrap_or_else(|p| std::panic::resume_unwind(p));
+        Some((front?, back?))
+    })?;
+    let (mut module, build, emit) = back;
+    module.files = vec![isa::SourceFileInfo {
+        name: name.to_string(),
+        hash: crc32fast::hash(bytes),
+    }];
+    let found = Found {
+        parse: front.parse,
+        split: front.split,
+        build,
+        emit,
+        dry_run: front.dry_run.finish(),
+    };
+    // (An error, or a module that does not verify: the whole-file path
+    // reports it.)
+    if found.any_error() || module.verify().is_err() {
+        return None;
+    }
     Some(Compiled {
         module: Some(module),
         files,
@@ -54,7 +88,6 @@ pub fn compile(name: &str, bytes: &Arc<[u8]>, opts: &Options) -> Option<Compiled
 
 /// The diagnostics, kept apart by pass: the whole-file path gives those of
 /// every pass in turn, and so must this.
-#[derive(Default)]
 struct Found {
     parse: Vec<FileDiag>,
     split: Vec<FileDiag>,
@@ -87,8 +120,12 @@ impl Found {
             &self.dry_run,
         ]
         .iter()
-        .any(|ds| ds.iter().any(|(_, d)| d.is_error()))
+        .any(|ds| any_error(ds))
     }
+}
+
+fn any_error(diags: &[FileDiag]) -> bool {
+    diags.iter().any(|(_, d)| d.is_error())
 }
 
 /// What the chunks seen so far say of the program as a whole.
@@ -106,80 +143,60 @@ struct Shape {
     end: Option<ProgEnd>,
 }
 
-struct Run<'a> {
+/// A chunk on its way from the front end to the back end.
+struct Chunk {
+    unit: Unit,
+    prog: Program,
+    first: bool,
+    /// How the program ends, with its last chunk.
+    end: Option<ProgEnd>,
+}
+
+/// Parses the chunks, checks that they are plain and dry-runs them.
+struct Front<'a> {
     name: &'a str,
     bytes: &'a Arc<[u8]>,
     opts: &'a Options,
-    files: &'a [SourceFile],
-    found: Found,
+    parse: Vec<FileDiag>,
+    split: Vec<FileDiag>,
     shape: Shape,
+    dry_run: ChunkedRun,
 }
 
-impl Run<'_> {
-    /// Every chunk in turn; the module and what was found, or `None`
-    /// as soon as the program turns out not to be for this path.
-    fn chunks(&mut self) -> Option<(isa::Module, Found)> {
-        let opts = self.opts;
-        let mut builder = Builder::new(&[], &[], &opts.machine, opts.optimize);
-        let mut emitter = Emitter::new(self.files, &opts.machine, room(self.bytes.len()));
-        let mut program = emitter.open_program();
-        let mut prog_build = ProgBuild::default();
-        let mut dry_run = ChunkedRun::new(&opts.machine);
+impl Front<'_> {
+    /// Every chunk in turn to the back end; itself when all went, or
+    /// `None` as soon as the program turns out not to be for this path
+    /// (or the back end stops taking chunks).
+    fn run(mut self, to_back: SyncSender<Chunk>) -> Option<Self> {
         let mut start = 0;
-        loop {
-            let (unit, next) = self.parse(start, start == 0)?;
+        while start < self.bytes.len() {
+            let first = start == 0;
+            let (unit, next) = self.parse(start, first)?;
             // A file of one chunk is the whole-file path's.
-            if start == 0 && next >= self.bytes.len() {
-                return None;
-            }
-            let prog = self.program(&unit, start == 0)?;
-            let units = [unit];
-            let programs = [prog];
-            let mut b = builder.rebind(&units, &programs, &opts.machine);
-            if start == 0 {
-                b.start_chunks(&programs[0]);
-            }
-            let mut parts = vec![b.build_chunk(&programs[0], &mut prog_build)];
             let last = next >= self.bytes.len();
-            if last {
-                let end = self.shape.end.unwrap_or(ProgEnd {
-                    span: self.shape.span,
-                    explicit: false,
-                });
-                let pb = std::mem::take(&mut prog_build);
-                parts.push(b.end_chunks(&programs[0], pb, end));
-            }
-            self.found.build.append(&mut b.take_diags());
-            emitter.sync_strings(&b.module().strings);
-            for part in &parts {
-                crate::ir::validate::validate_part(b.module(), part).ok()?;
-                emitter.part(part, &mut program);
-            }
-            drop(parts);
-            dry_run.chunk(&units[0], &programs[0]);
-            if self.found.any_error() || dry_run.failed() {
+            if first && last {
                 return None;
             }
-            builder = b.rebind(&[], &[], &opts.machine);
-            if last {
-                break;
+            let prog = self.program(&unit, first)?;
+            self.dry_run.chunk(&unit, &prog);
+            if self.dry_run.failed() {
+                return None;
             }
+            let end = self.shape.end.unwrap_or(ProgEnd {
+                span: self.shape.span,
+                explicit: false,
+            });
+            let end = last.then_some(end);
+            let chunk = Chunk {
+                unit,
+                prog,
+                first,
+                end,
+            };
+            to_back.send(chunk).ok()?;
             start = next;
         }
-        emitter.close_program(self.shape.number, program);
-        let (mut module, mut emitted) = emitter.finish();
-        self.found.emit.append(&mut emitted);
-        self.found.dry_run = dry_run.finish();
-        module.files = vec![isa::SourceFileInfo {
-            name: self.name.to_string(),
-            hash: crc32fast::hash(self.bytes),
-        }];
-        // (An error, or a module that does not verify: the whole-file
-        // path reports it.)
-        if self.found.any_error() || module.verify().is_err() {
-            return None;
-        }
-        Some((module, std::mem::take(&mut self.found)))
+        Some(self)
     }
 
     /// Parses the chunk from `start`: its unit, and where the next starts.
@@ -195,8 +212,8 @@ impl Run<'_> {
             next = after;
         }
         crate::data_setting::prepare(&mut ast);
-        self.found.parse.extend(found.into_iter().map(|d| (0, d)));
-        if self.found.any_error() || !self.plain(&ast, first) {
+        self.parse.extend(found.into_iter().map(|d| (0, d)));
+        if any_error(&self.parse) || !self.plain(&ast, first) {
             return None;
         }
         let unit = Unit {
@@ -250,7 +267,10 @@ impl Run<'_> {
     /// program as `link::split` finds it (with its W117).
     fn program(&mut self, unit: &Unit, first: bool) -> Option<Program> {
         if first {
-            let mut programs = link::split(0, unit, &mut self.found.split);
+            let mut programs = link::split(0, unit, &mut self.split);
+            if any_error(&self.split) {
+                return None;
+            }
             return match programs.len() {
                 1 => programs.pop(),
                 _ => None,
@@ -266,6 +286,78 @@ impl Run<'_> {
             blocks,
             span: self.shape.span,
         })
+    }
+}
+
+/// Builds the chunks into IR, validates and emits them.
+struct Back<'a> {
+    opts: &'a Options,
+    builder: Builder<'a>,
+    emitter: Emitter<'a>,
+    program: OpenProgram,
+    prog_build: ProgBuild,
+    build: Vec<FileDiag>,
+}
+
+impl<'a> Back<'a> {
+    fn new(files: &'a [SourceFile], opts: &'a Options) -> Self {
+        let bytes = files.first().map_or(0, |f| f.bytes().len());
+        let emitter = Emitter::new(files, &opts.machine, room(bytes));
+        Back {
+            opts,
+            builder: Builder::new(&[], &[], &opts.machine, opts.optimize),
+            program: emitter.open_program(),
+            emitter,
+            prog_build: ProgBuild::default(),
+            build: Vec::new(),
+        }
+    }
+
+    /// Takes the chunks until the last: the module, and the diagnostics
+    /// of build and emit; `None` on an error, or when the front end
+    /// stopped before the last chunk.
+    fn run(
+        mut self,
+        chunks: Receiver<Chunk>,
+    ) -> Option<(isa::Module, Vec<FileDiag>, Vec<FileDiag>)> {
+        let number = loop {
+            let chunk = chunks.recv().ok()?;
+            let number = chunk.prog.number;
+            let last = chunk.end.is_some();
+            self.chunk(chunk)?;
+            if last {
+                break number;
+            }
+        };
+        self.emitter.close_program(number, self.program);
+        let (module, emit) = self.emitter.finish();
+        Some((module, self.build, emit))
+    }
+
+    /// One chunk, built, validated and emitted (with the program's end
+    /// after the last); `None` on an error.
+    fn chunk(&mut self, chunk: Chunk) -> Option<()> {
+        let machine = &self.opts.machine;
+        let units = [chunk.unit];
+        let programs = [chunk.prog];
+        let builder = std::mem::replace(&mut self.builder, Builder::new(&[], &[], machine, false));
+        let mut b = builder.rebind(&units, &programs, machine);
+        if chunk.first {
+            b.start_chunks(&programs[0]);
+        }
+        let mut parts = vec![b.build_chunk(&programs[0], &mut self.prog_build)];
+        if let Some(end) = chunk.end {
+            let pb = std::mem::take(&mut self.prog_build);
+            parts.push(b.end_chunks(&programs[0], pb, end));
+        }
+        self.build.append(&mut b.take_diags());
+        self.emitter.sync_strings(&b.module().strings);
+        for part in &parts {
+            crate::ir::validate::validate_part(b.module(), part).ok()?;
+            self.emitter.part(part, &mut self.program);
+        }
+        self.builder = b.rebind(&[], &[], machine);
+        (!any_error(&self.build)).then_some(())
     }
 }
 
