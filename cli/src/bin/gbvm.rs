@@ -236,10 +236,20 @@ impl<W: Write> Sink for Canon<W> {
             return;
         }
         self.alarmed = matches!(e, Event::Alarm { .. });
-        if self.error.is_none() {
-            if let Err(err) = writeln!(self.out, "{e}") {
-                self.error = Some(err);
-            }
+        if self.error.is_some() {
+            return;
+        }
+        // Moves (most of the canon) as bytes; the rest through Display.
+        let mut line = nc::base::canon_line::LineBuf::default();
+        let written = match e.write_fast(&mut line) {
+            true => self
+                .out
+                .write_all(line.as_bytes())
+                .and_then(|()| self.out.write_all(b"\n")),
+            false => writeln!(self.out, "{e}"),
+        };
+        if let Err(err) = written {
+            self.error = Some(err);
         }
     }
 }

@@ -3,6 +3,7 @@
 //! errors. Nothing here refers to the state of a running kernel.
 
 pub mod alarm;
+pub mod canon_line;
 pub mod decimal;
 pub mod error;
 pub mod event;
