@@ -36,10 +36,24 @@ pub fn front_end(data: &[u8]) {
 }
 
 /// The whole compiler: bytes → a module or diagnostics. A module it emits
-/// always verifies and runs within its budget.
+/// always verifies and runs within its budget; a plain program compiled
+/// a few lines at a time (`compiler::stream`) gives the same module and
+/// diagnostics as compiled whole.
 pub fn compiler(data: &[u8]) {
     let c = compile("fuzz.nc", data, &Options::default());
-    let _ = c.render();
+    let text = c.render();
+    let small_chunks = Options {
+        chunk_bytes: 16,
+        ..Options::default()
+    };
+    if let Some(s) = compiler::stream::compile("fuzz.nc", &data.into(), &small_chunks) {
+        assert_eq!(s.render(), text, "the chunked compile reports otherwise");
+        let bytes = |m: &Option<isa::Module>| m.as_ref().map(isa::Module::to_bytes);
+        assert!(
+            bytes(&s.module) == bytes(&c.module),
+            "the chunked module differs"
+        );
+    }
     if let Some(module) = c.module {
         let bytes = module.to_bytes();
         let back = isa::Module::from_bytes(&bytes);

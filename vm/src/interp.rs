@@ -273,11 +273,18 @@ impl Vm {
         Status::OutOfBudget
     }
 
-    /// Hands changed persistent variables to the storage.
+    /// Hands changed persistent variables to the storage. (Asked after
+    /// every instruction: the question is inline, the storing is not.)
+    #[inline]
     fn persist(&mut self) -> Result<(), Fault> {
-        if !self.vars.persistent_dirty {
-            return Ok(());
+        match self.vars.persistent_dirty {
+            false => Ok(()),
+            true => self.store_persistent(),
         }
+    }
+
+    #[cold]
+    fn store_persistent(&mut self) -> Result<(), Fault> {
         let Some(storage) = self.storage.as_mut() else {
             return Ok(());
         };
@@ -769,12 +776,18 @@ impl Vm {
         Next::Sync
     }
 
+    /// (Inline: the common and local variables, the rest out of line.)
+    #[inline]
     fn read_var(&self, n: u32) -> Result<f64, Fault> {
+        match slot(n) {
+            Some(s) => Ok(self.vars.get(&s)),
+            None => self.read_other_var(n),
+        }
+    }
+
+    fn read_other_var(&self, n: u32) -> Result<f64, Fault> {
         if n == 0 {
             return Ok(VACANT);
-        }
-        if let Some(s) = slot(n) {
-            return Ok(self.vars.get(&s));
         }
         match n {
             4114 => return Ok(self.last_sequence().map_or(VACANT, f64::from)),
@@ -819,11 +832,18 @@ impl Vm {
             .map(|&(n, _)| n)
     }
 
+    #[inline]
     fn write_var(&mut self, n: u32, v: f64, sink: &mut dyn Sink) -> Result<(), Fault> {
-        if let Some(s) = slot(n) {
-            self.vars.set(&s, v);
-            return Ok(());
+        match slot(n) {
+            Some(s) => {
+                self.vars.set(&s, v);
+                Ok(())
+            }
+            None => self.write_other_var(n, v, sink),
         }
+    }
+
+    fn write_other_var(&mut self, n: u32, v: f64, sink: &mut dyn Sink) -> Result<(), Fault> {
         match n {
             0 => fault(
                 AlarmCode::VariableAccess,
