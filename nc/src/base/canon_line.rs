@@ -77,7 +77,7 @@ trait TrailingZeros {
 impl TrailingZeros for u64 {
     fn trailing_zeros_decimal(mut self) -> usize {
         let mut zeros = 0;
-        while self % 10 == 0 && zeros < 4 {
+        while self.is_multiple_of(10) && zeros < 4 {
             self /= 10;
             zeros += 1;
         }
