@@ -3,11 +3,12 @@
 //! CAM output is mostly one long program of plain blocks: moves, feeds,
 //! speeds, M codes; no macro statement, no computed word, no call, no
 //! G70–G73 cycle and no `/`. No block of such a program needs another to
-//! be built, emitted or dry-run, so each chunk of lines is parsed, built
-//! into IR, validated, emitted and dry-run before the next is parsed, and
-//! its tree and IR are gone by then. `gbcc` then holds the source, the
-//! module, and one chunk's tree and IR (docs/language.md, "How a long
-//! program is compiled").
+//! be built, emitted or dry-run, so each chunk of lines is parsed and
+//! dry-run (the front end, on a thread of its own), then built into IR,
+//! validated and emitted (the back end), and dropped; the front end works
+//! a chunk or two ahead. `gbcc` then holds the source, the
+//! module, and a few chunks' trees and IR (docs/manual.md, "A long
+//! program, a chunk at a time").
 //!
 //! The passes are the whole-file path's, given one chunk at a time, so the
 //! module and the diagnostics are the ones it gives (tests compare them
