@@ -52,6 +52,12 @@ impl Progress {
     /// Moves the bar to `pos`; `msg` is asked for only when the bar is
     /// drawn. Cheap enough to call every period.
     pub fn set(&mut self, pos: u64, msg: impl FnOnce() -> String) {
+        self.set_from(|| (pos, msg()));
+    }
+
+    /// [`Progress::set`] with the position asked for too only when the
+    /// bar is drawn (`gbvm run` looks the source line up for it).
+    pub fn set_from(&mut self, at: impl FnOnce() -> (u64, String)) {
         if !self.enabled {
             return;
         }
@@ -65,8 +71,9 @@ impl Progress {
             }
             self.bar.set_draw_target(ProgressDrawTarget::stderr());
         }
+        let (pos, msg) = at();
         self.bar.set_position(pos);
-        self.bar.set_message(msg());
+        self.bar.set_message(msg);
     }
 
     /// Takes the bar off the screen (before the tool prints its results).

@@ -423,8 +423,10 @@ fn run(
     let status = loop {
         match vm.step(1 << 16, &mut sink) {
             Status::Event | Status::OutOfBudget | Status::Sync => {
-                let line = vm.last_loc().line;
-                progress.set(line.into(), || format!("line {line}"));
+                progress.set_from(|| {
+                    let line = vm.last_loc().line;
+                    (line.into(), format!("line {line}"))
+                });
             }
             other => break other,
         }
