@@ -213,10 +213,12 @@ impl Front<'_> {
             next = after;
         }
         crate::data_setting::prepare(&mut ast);
-        self.parse.extend(found.into_iter().map(|d| (0, d)));
-        if any_error(&self.parse) || !self.plain(&ast, first) {
+        // (Only the chunk's own diagnostics are looked at: the earlier
+        // ones had no error, or the path was left.)
+        if found.iter().any(|d| d.is_error()) || !self.plain(&ast, first) {
             return None;
         }
+        self.parse.extend(found.into_iter().map(|d| (0, d)));
         let unit = Unit {
             name: self.name.to_string(),
             bytes: self.bytes.clone(),
@@ -351,14 +353,18 @@ impl<'a> Back<'a> {
             let pb = std::mem::take(&mut self.prog_build);
             parts.push(b.end_chunks(&programs[0], pb, end));
         }
-        self.build.append(&mut b.take_diags());
+        let mut found = b.take_diags();
+        if any_error(&found) {
+            return None;
+        }
+        self.build.append(&mut found);
         self.emitter.sync_strings(&b.module().strings);
         for part in &parts {
             crate::ir::validate::validate_part(b.module(), part).ok()?;
             self.emitter.part(part, &mut self.program);
         }
         self.builder = b.rebind(&[], &[], machine);
-        (!any_error(&self.build)).then_some(())
+        Some(())
     }
 }
 

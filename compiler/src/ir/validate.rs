@@ -27,19 +27,10 @@ pub struct Error {
 pub fn validate(m: &Module) -> Result<(), Vec<Error>> {
     let mut errors = Vec::new();
     for (i, f) in m.functions.iter().enumerate() {
-        Checker {
-            m,
-            f,
-            name: format!("O{:04} (function {i})", f.number),
-            errors: &mut errors,
-            part: false,
-        }
-        .function();
+        let name = format!("O{:04} (function {i})", f.number);
+        check(m, f, name, false, &mut errors);
     }
-    match errors.is_empty() {
-        true => Ok(()),
-        false => Err(errors),
-    }
+    faults(errors)
 }
 
 /// Checks a part of a function built a chunk at a time (`crate::stream`)
@@ -48,14 +39,28 @@ pub fn validate(m: &Module) -> Result<(), Vec<Error>> {
 /// (it goes on into the next part's first one).
 pub fn validate_part(m: &Module, f: &Function) -> Result<(), Vec<Error>> {
     let mut errors = Vec::new();
+    check(
+        m,
+        f,
+        format!("O{:04} (a part)", f.number),
+        true,
+        &mut errors,
+    );
+    faults(errors)
+}
+
+fn check(m: &Module, f: &Function, name: String, part: bool, errors: &mut Vec<Error>) {
     Checker {
         m,
         f,
-        name: format!("O{:04} (a part)", f.number),
-        errors: &mut errors,
-        part: true,
+        name,
+        errors,
+        part,
     }
     .function();
+}
+
+fn faults(errors: Vec<Error>) -> Result<(), Vec<Error>> {
     match errors.is_empty() {
         true => Ok(()),
         false => Err(errors),

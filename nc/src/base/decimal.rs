@@ -135,15 +135,21 @@ mod tests {
         }
     }
 
+    /// xorshift64: the next of a fixed, reproducible sequence.
+    fn xorshift(x: &mut u64) -> u64 {
+        *x ^= *x << 13;
+        *x ^= *x >> 7;
+        *x ^= *x << 17;
+        *x
+    }
+
     #[test]
     fn agrees_with_the_exact_formatter_across_magnitudes() {
         // xorshift64: a fixed, reproducible spread of bit patterns and of
         // decimal-looking values (the canon's usual inputs).
         let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
         for i in 0..200_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            let x = xorshift(&mut x);
             let random_bits = f64::from_bits(x);
             check(random_bits);
             let decimal = (x % 2_000_000_001) as f64 / 10f64.powi(i % 9) - 1000.0;
@@ -158,10 +164,7 @@ mod tests {
         // half, up to the fast path's bound and past it.
         let mut x: u64 = 0x2545_f491_4f6c_dd1d;
         for _ in 0..50_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            let n = (x % (1 << 42)) as f64;
+            let n = (xorshift(&mut x) % (1 << 42)) as f64;
             for d in [
                 0.0, 0.2, 0.2499, 0.25, 0.2501, 0.3, 0.5, 0.7499, 0.75, 0.7501,
             ] {
