@@ -48,3 +48,31 @@ fn an_error_writes_no_listing_and_other_values_are_usage_errors() {
     let out = gbcc(&["bad.nc", "--emit=asm"], &d);
     assert_eq!(out.status.code(), Some(64));
 }
+
+/// The `modal` pass's notes: a block after a join of G98 and G99 says
+/// the feed mode is unknown there (worked out by hand: #1 = 1 is known,
+/// but the IF stays a branch at -O0).
+#[test]
+fn the_listing_notes_the_modal_groups_not_known() {
+    let d = dir("modal");
+    std::fs::write(
+        d.join("join.nc"),
+        "#1=1\nIF[#1EQ1]GOTO10\nG99\nN10 G01 X1 F1\nM30\n",
+    )
+    .unwrap();
+    let out = gbcc(&["join.nc", "--emit=ir", "-O0", "-o", "-", "-q"], &d);
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.contains("nc G1 X1 F1"))
+        .expect("the N10 block");
+    assert_eq!(lines[at + 1].trim(), "; modal unknown: feed mode");
+    // Before G99 everything is known: no note.
+    let g99 = lines
+        .iter()
+        .position(|l| l.contains("nc G99"))
+        .expect("G99");
+    assert!(!lines[g99 + 1].contains("modal"), "{text}");
+}

@@ -20,6 +20,7 @@ pub mod hash;
 pub mod ir;
 pub mod link;
 pub mod lint;
+pub mod modal;
 pub mod profile;
 pub mod recursion;
 pub mod stream;

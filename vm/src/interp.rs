@@ -209,6 +209,12 @@ impl Vm {
         &self.module
     }
 
+    /// The index of the instruction that runs next (for a debugger or a
+    /// test that steps one instruction at a time).
+    pub fn pc(&self) -> u32 {
+        self.pc
+    }
+
     /// The source place of the block executed last (for traces).
     pub fn last_loc(&self) -> isa::SourceLoc {
         self.locs.get(&self.module.lines, self.last_exec)

@@ -389,7 +389,10 @@ fn compile_one<W: std::io::Write>(
     };
     let written = match (kind, &ir) {
         (Output::Ir, Some(ir)) => {
-            dest.write(compiler::ir::print::print(ir, &compiled.files).as_bytes())
+            let facts = compiler::modal::analyze(ir, &job.opts.machine);
+            let notes = |f, op| facts.note(ir, f, op);
+            let text = compiler::ir::print::print_with(ir, &compiled.files, &notes);
+            dest.write(text.as_bytes())
         }
         (Output::Ir, None) => {
             reporter.driver_error("no IR was built");

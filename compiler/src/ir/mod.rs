@@ -10,8 +10,10 @@
 //!
 //! Passes: `build` (syntax tree and linked programs → IR, with the constant
 //! folding of -O1 inside it for now), `validate` (after build, on every
-//! compile: an invalid IR is the internal error E0000), `emit` (IR →
-//! bytecode), and the `--emit=ir` printer.
+//! compile: an invalid IR is the internal error E0000), `modal` (the
+//! modal groups known before each operation, `crate::modal`; only the
+//! `--emit=ir` printer reads it so far), `emit` (IR → bytecode), and the
+//! `--emit=ir` printer.
 //!
 //! Decisions:
 //! - The IR is a module of the compiler, not a crate: only the compiler's

@@ -24,8 +24,17 @@ const LOC_COLUMN: usize = 44;
 
 /// The module as text; `files` name the units of the locations.
 pub fn print(m: &Module, files: &[SourceFile]) -> String {
+    print_with(m, files, &|_, _| None)
+}
+
+/// What an analysis says of an operation (of the function with this
+/// index), printed on a comment line under it.
+pub type Notes<'a> = dyn Fn(usize, Handle<Op>) -> Option<String> + 'a;
+
+/// The module as text, each operation followed by its note, if any.
+pub fn print_with(m: &Module, files: &[SourceFile], notes: &Notes) -> String {
     let mut out = String::new();
-    for f in &m.functions {
+    for (index, f) in m.functions.iter().enumerate() {
         // Blocks are named by their place in the layout.
         let mut place = vec![usize::MAX; f.blocks.len()];
         for (i, b) in f.layout.iter().enumerate() {
@@ -33,7 +42,14 @@ pub fn print(m: &Module, files: &[SourceFile]) -> String {
                 *p = i;
             }
         }
-        let p = Printer { m, f, files, place };
+        let p = Printer {
+            m,
+            f,
+            files,
+            place,
+            index,
+            notes,
+        };
         p.function(&mut out);
     }
     out
@@ -45,6 +61,9 @@ struct Printer<'a> {
     files: &'a [SourceFile],
     /// Each block's place in the layout, by handle.
     place: Vec<usize>,
+    /// The function's index in the module, for `notes`.
+    index: usize,
+    notes: &'a Notes<'a>,
 }
 
 impl Printer<'_> {
@@ -59,6 +78,9 @@ impl Printer<'_> {
                 let text = self.f.ops.get(op).map_or(String::new(), |o| self.op(o));
                 let loc = self.f.op_locs.get(op.index()).copied();
                 self.line(out, &text, loc);
+                if let Some(note) = (self.notes)(self.index, op) {
+                    let _ = writeln!(out, "        ; {note}");
+                }
             }
             let text = block
                 .term

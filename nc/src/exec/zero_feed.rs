@@ -22,7 +22,8 @@ use crate::exec::{Nc, Sink};
 /// block (printed or modal) or the block may print one: every other
 /// `FEED` is the modal F (`Nc::feed_due`, which only the block's own F
 /// word changes, unless it is a thread's lead) or a G36/G37 measuring
-/// feed.
+/// feed. So a block whose F is not 0 cannot make one: the feed it prints
+/// is F times the unit (1 or 25.4), not 0 either.
 pub fn may_fault(nc: &Nc, p: &Parsed) -> bool {
     let st = &nc.st;
     if st.contour.is_holding()
@@ -40,7 +41,7 @@ pub fn may_fault(nc: &Nc, p: &Parsed) -> bool {
     }
     st.feed_printed.is_some_and(|(f, _)| f == 0.0)
         || st.feed == 0.0
-        || (p.has(b'F') && !f_is_lead(nc, p))
+        || (p.get(b'F').is_some_and(|f| f == 0.0) && !f_is_lead(nc, p))
         || matches!(p.one_shot(), Some(OneShot::MeasureX | OneShot::MeasureZ))
 }
 
@@ -154,6 +155,25 @@ mod tests {
         let (canon, code) = run(&["G98 G01 X10", "G00 X50"]);
         assert_eq!(code, 7001);
         assert_eq!(canon, ["FEED F=0 MODE=MIN", "LINE X=10 Z=0"]);
+    }
+
+    #[test]
+    fn a_block_that_writes_f0_is_watched() {
+        // F100 is in force; the block's own F0 is the feed of its move.
+        let (canon, code) = run(&["G98 G01 X10 F100", "G01 X20 F0", "G00 X50"]);
+        assert_eq!(code, 7001);
+        assert_eq!(
+            canon,
+            [
+                "FEED F=100 MODE=MIN",
+                "LINE X=10 Z=0",
+                "FEED F=0 MODE=MIN",
+                "LINE X=20 Z=0"
+            ]
+        );
+        // And back from F0 to a feed: the block runs.
+        let (_, code) = run(&["G98 G00 X10 F0", "G01 X20 F100"]);
+        assert_eq!(code, 0);
     }
 
     #[test]

@@ -1,0 +1,287 @@
+//! Pass `modal`: what it knows is what the kernel has.
+//!
+//! Every conformance, corpus and example program is compiled to IR and
+//! analysed, then run in the VM one instruction at a time. Before each NC
+//! block the VM hands to the kernel, every group the pass says it knows
+//! must hold that code in the kernel (read as #4001…, as a program would).
+//! Hand-written programs then check joins, calls and the rules.
+
+use compiler::ir::{Module as Ir, NcKind, Op};
+use compiler::modal::{analyze, Facts, State, GROUPS};
+use compiler::{compile_ir, Options};
+use grammar::SourceFile;
+use isa::Instr;
+use nc::event::Event;
+use nc::gcode::{self, Code};
+use nc::Machine;
+use std::collections::HashMap;
+use std::path::Path;
+use vm::{Status, Vm};
+
+/// The IR and the module of `src` (no errors allowed).
+fn build(name: &str, src: &[u8], machine: &Machine) -> Option<(Ir, isa::Module, Vec<SourceFile>)> {
+    let opts = Options {
+        machine: machine.clone(),
+        ..Options::default()
+    };
+    let (c, ir) = compile_ir(name, src, &opts);
+    Some((ir?, c.module?, c.files))
+}
+
+/// The states the pass gives the NC blocks run where they are, by
+/// source place (file, line, column).
+fn states_by_place(
+    ir: &Ir,
+    facts: &Facts,
+    files: &[SourceFile],
+) -> HashMap<(u16, u32, u32), Vec<Option<State>>> {
+    let mut map: HashMap<_, Vec<_>> = HashMap::new();
+    for (fi, f) in ir.functions.iter().enumerate() {
+        for (op, o) in f.ops.iter() {
+            if !matches!(o, Op::Nc(nc) if nc.kind == NcKind::Run) {
+                continue;
+            }
+            let Some(loc) = f.op_locs.get(op.index()) else {
+                continue;
+            };
+            let Some(file) = files.get(loc.file as usize) else {
+                continue;
+            };
+            let (line, col) = file.line_col(loc.span.start);
+            let key = (loc.file, line as u32, col as u32);
+            map.entry(key)
+                .or_default()
+                .push(facts.before(fi, op).copied());
+        }
+    }
+    map
+}
+
+/// The kernel's code in `group` (#4001… hold the code over ten).
+fn kernel_code(vm: &Vm, group: u8) -> Code {
+    let v = vm.variable(4000 + u32::from(group)).unwrap_or(f64::NAN);
+    (v * 10.0).round() as Code
+}
+
+/// Runs `module`; at each NC block, the pass's known groups must be the
+/// kernel's. The number of blocks checked.
+fn check_run(
+    name: &str,
+    module: isa::Module,
+    machine: Machine,
+    places: &HashMap<(u16, u32, u32), Vec<Option<State>>>,
+) -> usize {
+    let mut vm = Vm::new(module, machine);
+    let mut sink: Vec<Event> = Vec::new();
+    let mut checked = 0;
+    for _ in 0..2_000_000 {
+        let pc = vm.pc();
+        let runs_block = matches!(vm.module().code.get(pc as usize), Some(Instr::Block { .. }))
+            || matches!(
+                vm.module().code.get(pc as usize),
+                Some(Instr::Exec { flags }) if flags & vm::PROFILE == 0
+            );
+        if runs_block {
+            let loc = vm.module().lines.get(pc as usize).unwrap_or_default();
+            let key = (loc.file, loc.line, loc.col);
+            let states = places.get(&key).map(Vec::as_slice).unwrap_or(&[]);
+            // Several blocks may share a place (a G65 H form's parts);
+            // one of them is the block run.
+            let agrees = |s: &Option<State>| match s {
+                None => false,
+                Some(s) => GROUPS
+                    .iter()
+                    .all(|&g| s.code(g).is_none_or(|c| c == kernel_code(&vm, g))),
+            };
+            assert!(
+                states.iter().any(agrees),
+                "{name}:{}:{}: the pass says {states:?}, the kernel has {:?}",
+                loc.line,
+                loc.col,
+                GROUPS.map(|g| kernel_code(&vm, g))
+            );
+            checked += 1;
+        }
+        sink.clear();
+        match vm.step(1, &mut sink) {
+            Status::Done | Status::Alarm(_) => break,
+            _ => {}
+        }
+    }
+    checked
+}
+
+fn machine_of(path: &Path) -> Machine {
+    let toml = path.with_extension("toml");
+    match std::fs::read_to_string(&toml) {
+        Ok(text) => {
+            Machine::from_toml(&text).unwrap_or_else(|e| panic!("{}: {e:?}", toml.display()))
+        }
+        Err(_) => Machine::reference(),
+    }
+}
+
+#[test]
+fn what_the_pass_knows_is_what_the_kernel_has() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dirs = [
+        root.join("../../shared/conformance"),
+        root.join("../../shared/corpus/public"),
+        root.join("../examples"),
+    ];
+    let (mut programs, mut blocks) = (0, 0);
+    for dir in dirs {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for path in entries.flatten().map(|e| e.path()) {
+            // (The corpus names programs as their authors did, some
+            // without an extension.)
+            let ext = path.extension().and_then(|e| e.to_str());
+            if !path.is_file()
+                || path.file_name().is_some_and(|n| n == "run")
+                || matches!(ext, Some("tsv" | "toml" | "canon" | "err" | "md" | "sh"))
+            {
+                continue;
+            }
+            let src = std::fs::read(&path).expect("readable");
+            let name = path.display().to_string();
+            let machine = machine_of(&path);
+            let Some((ir, module, files)) = build(&name, &src, &machine) else {
+                continue;
+            };
+            let facts = analyze(&ir, &machine);
+            let places = states_by_place(&ir, &facts, &files);
+            blocks += check_run(&name, module, machine, &places);
+            programs += 1;
+        }
+    }
+    eprintln!("{blocks} blocks of {programs} programs checked");
+    assert!(programs >= 100, "only {programs} programs compiled");
+}
+
+/// The state the pass gives the NC block on `line` of `src` (the first
+/// one there), compiled for the reference machine.
+fn before_line(src: &str, line: usize) -> Option<State> {
+    let machine = Machine::reference();
+    let (ir, _, files) = build("t.nc", src.as_bytes(), &machine).expect("compiles");
+    let facts = analyze(&ir, &machine);
+    for (fi, f) in ir.functions.iter().enumerate() {
+        for (op, o) in f.ops.iter() {
+            let loc = f.op_locs[op.index()];
+            if matches!(o, Op::Nc(_)) && files[loc.file as usize].line_col(loc.span.start).0 == line
+            {
+                return facts.before(fi, op).copied();
+            }
+        }
+    }
+    panic!("no NC block on line {line}");
+}
+
+fn code(s: &Option<State>, group: u8) -> Option<Code> {
+    s.as_ref().expect("reached").code(group)
+}
+
+#[test]
+fn a_straight_program_knows_every_group() {
+    let s = before_line("G99 G01 X10 F0.1\nG20 G00 X20\nG42 G55\nM30\n", 4);
+    let s = s.expect("reached");
+    assert_eq!(s.unknown_groups().count(), 0, "{s:?}");
+    assert_eq!(s.code(gcode::MOTION), Some(0));
+    assert_eq!(s.code(gcode::FEED_MODE), Some(990));
+    assert_eq!(s.code(gcode::UNITS), Some(200));
+    assert_eq!(s.code(gcode::COMP), Some(420));
+    assert_eq!(s.code(gcode::WORK), Some(550));
+}
+
+#[test]
+fn a_join_forgets_only_what_differs() {
+    // One path sets G99 and G01, the other nothing: at N10 the feed mode
+    // and the motion are unknown, the units (G21 on both) known.
+    let src = "#1=1\nIF[#1EQ1]GOTO10\nG99 G01 X5 F1\nN10 X1\nM30\n";
+    let s = before_line(src, 4);
+    assert_eq!(code(&s, gcode::FEED_MODE), None);
+    assert_eq!(code(&s, gcode::MOTION), None);
+    assert_eq!(code(&s, gcode::UNITS), Some(210));
+    // Both paths set the same codes: known.
+    let src = "#1=1\nIF[#1EQ1]GOTO10\nG99\nN10 G99 X1\nM30\n";
+    assert_eq!(code(&before_line(src, 5), gcode::FEED_MODE), Some(990));
+}
+
+#[test]
+fn a_loop_head_joins_its_back_edge() {
+    let src = "G00 X50 Z2\n#1=0\nWHILE[#1LT3]DO1\nG01 X#1 F100\n#1=#1+1\nEND1\nM30\n";
+    // Into the body: G00 the first time, G01 after: unknown.
+    assert_eq!(code(&before_line(src, 4), gcode::MOTION), None);
+    assert_eq!(code(&before_line(src, 7), gcode::MOTION), None);
+    // Without the G01 in the loop, G00 all along.
+    let src = "G00 X50 Z2\n#1=0\nWHILE[#1LT3]DO1\nX#1\n#1=#1+1\nEND1\nM30\n";
+    assert_eq!(code(&before_line(src, 7), gcode::MOTION), Some(0));
+}
+
+#[test]
+fn a_call_applies_what_the_subprogram_sets() {
+    // O1000 sets G99 and leaves the motion as the caller had it.
+    let src = "O0001\nG01 X10 F1\nM98 P1000\nX20\nM30\nO1000\nG99\nM99\n";
+    let s = before_line(src, 4);
+    assert_eq!(code(&s, gcode::FEED_MODE), Some(990));
+    assert_eq!(code(&s, gcode::MOTION), Some(10));
+    // Inside O1000 the state is the caller's, as called.
+    assert_eq!(code(&before_line(src, 7), gcode::MOTION), Some(10));
+    assert_eq!(code(&before_line(src, 7), gcode::FEED_MODE), Some(980));
+    // A subprogram that sets G99 on one path only.
+    let src = "O0001\nM98 P1000\nX20\nM30\nO1000\n#1=1\nIF[#1EQ2]GOTO9\nG99\nN9 M99\n";
+    assert_eq!(code(&before_line(src, 3), gcode::FEED_MODE), None);
+    assert_eq!(code(&before_line(src, 3), gcode::MOTION), Some(0));
+}
+
+#[test]
+fn a_computed_g_code_forgets_everything() {
+    // (#500 is stored on the machine: not known when compiling.)
+    let s = before_line("#1=#500+1\nG#1 X10 F1\nM30\n", 3).expect("reached");
+    assert_eq!(s.unknown_groups().count(), GROUPS.len());
+}
+
+#[test]
+fn the_kernels_side_effects_are_followed() {
+    // A group-01 code cancels G83; G28 leaves G40.
+    let src = "G83 X0 Z-5 Q1000 F1\nG42 G01 X10 F1\nG28 U0\nM30\n";
+    let s = before_line(src, 2);
+    assert_eq!(code(&s, gcode::DRILL), Some(830));
+    let s = before_line(src, 4);
+    assert_eq!(code(&s, gcode::DRILL), Some(800));
+    assert_eq!(code(&s, gcode::COMP), Some(400));
+    // G54–G59 beside G50 is ignored.
+    assert_eq!(
+        code(&before_line("G50 G55 X100 Z100\nM30\n", 2), gcode::WORK),
+        Some(540)
+    );
+}
+
+#[test]
+fn a_compound_cycle_forgets_what_its_profile_sets() {
+    // The profile sets G00/G01 and G99: after G71 and G70 the motion and
+    // feed mode are unknown, the units still known.
+    let src = "G00 X40 Z2\nG71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F100\nN10 G00 G99 X20\nG01 Z-10 F0.1\nN20 X40\nG70 P10 Q20\nM30\n";
+    let s = before_line(src, 8);
+    assert_eq!(code(&s, gcode::MOTION), None);
+    assert_eq!(code(&s, gcode::FEED_MODE), None);
+    assert_eq!(code(&s, gcode::UNITS), Some(210));
+}
+
+#[test]
+fn a_program_that_is_never_called_is_not_reached() {
+    let src = "O0001\nG00 X10\nM30\nO1000\nG01 X5\nM99\n";
+    assert!(before_line(src, 2).is_some());
+    assert!(before_line(src, 5).is_none());
+}
+
+#[test]
+fn a_repeated_call_joins_its_runs() {
+    // L2: the second run starts in G99, the first in G98.
+    let src = "O0001\nM98 P1000 L2\nM30\nO1000\nX1\nG99\nM99\n";
+    assert_eq!(code(&before_line(src, 5), gcode::FEED_MODE), None);
+    assert_eq!(code(&before_line(src, 3), gcode::FEED_MODE), Some(990));
+    let src = "O0001\nM98 P1000\nM30\nO1000\nX1\nG99\nM99\n";
+    assert_eq!(code(&before_line(src, 5), gcode::FEED_MODE), Some(980));
+}
