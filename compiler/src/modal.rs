@@ -318,6 +318,7 @@ fn summaries(m: &Module, module: &ModuleFacts) -> Vec<Option<State>> {
 struct Walk<'a> {
     f: &'a Function,
     summaries: &'a [Option<State>],
+    module: &'a ModuleFacts,
     /// The state at the start of each block (by handle).
     block_in: Vec<Option<State>>,
     /// The states that may enter at a numbered block (`Op::Seq`).
@@ -336,6 +337,8 @@ struct ModuleFacts {
     /// other than a constant 0 or 1 repeats the callee; a call whose
     /// program is computed may repeat any.
     repeats: Vec<bool>,
+    /// By function: its program number.
+    numbers: Vec<u32>,
 }
 
 impl ModuleFacts {
@@ -349,21 +352,50 @@ impl ModuleFacts {
                 let Some(Terminator::Call { call, .. }) = &b.term else {
                     continue;
                 };
-                match call.callee {
-                    Callee::Program(i) if !once(f, call.count) => {
+                match callee(m, f, call.callee) {
+                    Some(i) if !once(f, call.count) => {
                         if let Some(r) = repeats.get_mut(i as usize) {
                             *r = true;
                         }
                     }
-                    Callee::Program(_) => {}
-                    Callee::Dynamic(_) => repeats.iter_mut().for_each(|r| *r = true),
+                    Some(_) => {}
+                    None => repeats.iter_mut().for_each(|r| *r = true),
                 }
             }
         }
         ModuleFacts {
             m99_p: returns_to_seq(m),
             repeats,
+            numbers: m.functions.iter().map(|f| f.number).collect(),
         }
+    }
+
+    /// The functions a call may run: one, or (its program computed) any.
+    fn callees(&self, f: &Function, callee: Callee) -> Vec<u32> {
+        match callee_in(&self.numbers, f, callee) {
+            Some(i) => vec![i],
+            None => (0..self.numbers.len() as u32).collect(),
+        }
+    }
+}
+
+/// The function a call runs, when it is known: a program of the module,
+/// or a computed number that folded to one.
+fn callee(m: &Module, f: &Function, callee: Callee) -> Option<u32> {
+    let numbers: Vec<u32> = m.functions.iter().map(|f| f.number).collect();
+    callee_in(&numbers, f, callee)
+}
+
+fn callee_in(numbers: &[u32], f: &Function, callee: Callee) -> Option<u32> {
+    match callee {
+        Callee::Program(i) => Some(i),
+        Callee::Dynamic(h) => match f.exprs.get(h) {
+            Some(Expr::Const(v)) => numbers
+                .iter()
+                .position(|&n| f64::from(n) == *v)
+                .map(|i| i as u32),
+            _ => None,
+        },
     }
 }
 
@@ -387,12 +419,13 @@ impl<'a> Walk<'a> {
     fn new(
         f: &'a Function,
         summaries: &'a [Option<State>],
-        module: &ModuleFacts,
+        module: &'a ModuleFacts,
         index: usize,
     ) -> Walk<'a> {
         Walk {
             f,
             summaries,
+            module,
             block_in: vec![None; f.blocks.len()],
             seq_in: module.m99_p.then(State::unknown),
             repeats: module.repeats.get(index).copied().unwrap_or(true),
@@ -498,21 +531,17 @@ impl<'a> Walk<'a> {
 
     /// The state after a call, `None` when the callee never returns.
     fn after_call(&self, call: &Call, before: &State) -> Option<State> {
+        let callee = callee_in(&self.module.numbers, self.f, call.callee);
         if call.kind == CallKind::Modal {
             let mut s = *before;
-            s.g66 = match call.callee {
-                Callee::Program(i) => Fact::Is(ModalCall::Program(i)),
-                Callee::Dynamic(_) => Fact::Unknown,
-            };
+            s.g66 = callee.map_or(Fact::Unknown, |i| Fact::Is(ModalCall::Program(i)));
             return Some(s);
         }
         // (A count of 0 runs the callee once, as 1 does.)
-        match call.callee {
-            Callee::Program(_) if !before.summarised() => Some(State::unknown()),
-            Callee::Program(i) => {
-                Some(before.after_call(self.summaries.get(i as usize)?.as_ref()?))
-            }
-            Callee::Dynamic(_) => Some(State::unknown()),
+        match callee {
+            Some(_) if !before.summarised() => Some(State::unknown()),
+            Some(i) => Some(before.after_call(self.summaries.get(i as usize)?.as_ref()?)),
+            None => Some(State::unknown()),
         }
     }
 
@@ -558,7 +587,7 @@ impl<'a> Walk<'a> {
             match self.f.blocks.get(b).and_then(|k| k.term.as_ref()) {
                 Some(Terminator::Return { .. }) => exit = Some(join(exit, &out)),
                 Some(Terminator::Call { call, .. }) => {
-                    if let Callee::Program(i) = call.callee {
+                    for i in self.module.callees(self.f, call.callee) {
                         calls.push((i, out));
                     }
                 }
@@ -585,8 +614,12 @@ impl<'a> Walk<'a> {
             let Some(Op::Nc(nc)) = self.f.ops.get(op) else {
                 continue;
             };
-            if let (NcKind::Run, Fact::Is(ModalCall::Program(i))) = (nc.kind, s.g66) {
-                calls.push((i, nc_block(self.f, nc, *s)));
+            let after = nc_block(self.f, nc, *s);
+            match (nc.kind, s.g66) {
+                (NcKind::Profile, _) | (_, Fact::Is(ModalCall::Off)) => {}
+                (_, Fact::Is(ModalCall::Program(i))) => calls.push((i, after)),
+                // (Under a G66 of a computed program, any.)
+                _ => calls.extend((0..self.module.numbers.len() as u32).map(|i| (i, after))),
             }
         }
     }
