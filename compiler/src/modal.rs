@@ -23,9 +23,8 @@
 //! - G54–G59 in a block with G50 is ignored; G13.1 ends the polar
 //!   command mode too;
 //! - G28, G30, G71–G73 with P, and M02/M30 leave G40 in force;
-//! - G70–G73 run their profile blocks: a group a profile block sets is
-//!   unknown after the cycle (G70 restores some of them, G71–G73 do not
-//!   run them as blocks: the join of both);
+//! - G70 runs its profile blocks as blocks, then puts the motion and the
+//!   compensation back; G71–G73 only read theirs;
 //! - between G10 and G11 blocks are data, not commands, except that a
 //!   parameter may switch G20/G21: units are unknown there;
 //! - under G66 any block may call the macro: its summary is joined in;
@@ -128,12 +127,20 @@ pub struct State {
     pub g66: Fact<ModalCall>,
     /// Between G10 and G11.
     pub data: Fact<bool>,
-    /// The groups (bits by index into [`GROUPS`]) that profile blocks
-    /// waiting for their G70–G73 set.
-    profile_sets: u16,
+    /// What the profile blocks waiting for their G70–G73 set, in the
+    /// order they run (`Entry`: a group they leave alone).
+    profile: Groups,
 }
 
-const ALL_GROUPS: u16 = (1 << GROUPS.len()) - 1;
+/// A fact per group, by index into [`GROUPS`].
+type Groups = [Fact<Code>; GROUPS.len()];
+
+/// Puts `code` in force in `group`.
+fn set(groups: &mut Groups, group: u8, code: Code) {
+    if let Some(i) = GROUPS.iter().position(|&g| g == group) {
+        groups[i] = Fact::Is(code);
+    }
+}
 
 impl State {
     /// Power-on: the machine's codes (machine.md §1), no G66, no G10.
@@ -143,7 +150,7 @@ impl State {
             groups: GROUPS.map(|g| Fact::Is(modal.group(g))),
             g66: Fact::Is(ModalCall::Off),
             data: Fact::Is(false),
-            profile_sets: 0,
+            profile: [Fact::Entry; GROUPS.len()],
         }
     }
 
@@ -155,7 +162,7 @@ impl State {
             groups: [Fact::Entry; GROUPS.len()],
             g66: Fact::Is(ModalCall::Off),
             data: Fact::Is(false),
-            profile_sets: 0,
+            profile: [Fact::Entry; GROUPS.len()],
         }
     }
 
@@ -165,7 +172,7 @@ impl State {
             groups: [Fact::Unknown; GROUPS.len()],
             g66: Fact::Unknown,
             data: Fact::Unknown,
-            profile_sets: ALL_GROUPS,
+            profile: [Fact::Unknown; GROUPS.len()],
         }
     }
 
@@ -193,15 +200,18 @@ impl State {
     }
 
     fn join(&self, other: &State) -> State {
-        let mut groups = self.groups;
-        for (a, b) in groups.iter_mut().zip(&other.groups) {
-            *a = a.join(*b);
-        }
+        let join = |a: &Groups, b: &Groups| {
+            let mut out = *a;
+            for (x, y) in out.iter_mut().zip(b) {
+                *x = x.join(*y);
+            }
+            out
+        };
         State {
-            groups,
+            groups: join(&self.groups, &other.groups),
             g66: self.g66.join(other.g66),
             data: self.data.join(other.data),
-            profile_sets: self.profile_sets | other.profile_sets,
+            profile: join(&self.profile, &other.profile),
         }
     }
 
@@ -215,14 +225,17 @@ impl State {
             groups,
             g66: summary.g66.at_call(self.g66),
             data: summary.data.at_call(self.data),
-            profile_sets: self.profile_sets | summary.profile_sets,
+            // (Profile blocks waiting across a call: the callee may run
+            // them, or add its own.)
+            profile: core::array::from_fn(|i| match (self.profile[i], summary.profile[i]) {
+                (Fact::Entry, Fact::Entry) => Fact::Entry,
+                _ => Fact::Unknown,
+            }),
         }
     }
 
     fn set(&mut self, group: u8, code: Code) {
-        if let Some(i) = GROUPS.iter().position(|&g| g == group) {
-            self.groups[i] = Fact::Is(code);
-        }
+        set(&mut self.groups, group, code);
     }
 
     fn forget(&mut self, group: u8) {
@@ -704,7 +717,7 @@ fn nc_block(f: &Function, nc: &NcBlock, s: State) -> State {
 fn commands(f: &Function, nc: &NcBlock, codes: &[Code], mut s: State) -> State {
     let g50 = codes.contains(&OneShot::SetCoordinates.code());
     for &code in codes {
-        set_code(&mut s, code, g50);
+        set_code(&mut s.groups, code, g50);
     }
     let has = |c: OneShot| codes.contains(&c.code());
     let roughing = has(OneShot::RoughTurn) || has(OneShot::RoughFace) || has(OneShot::Pattern);
@@ -715,19 +728,29 @@ fn commands(f: &Function, nc: &NcBlock, codes: &[Code], mut s: State) -> State {
     {
         s.set(gcode::COMP, Comp::Off.code());
     }
+    if has(OneShot::Finish) {
+        finish(&mut s);
+    }
     if roughing || has(OneShot::Finish) {
-        for (i, fact) in s.groups.iter_mut().enumerate() {
-            if s.profile_sets & 1 << i != 0 {
-                *fact = Fact::Unknown;
-            }
-        }
-        s.profile_sets = 0;
+        s.profile = [Fact::Entry; GROUPS.len()];
     }
     s
 }
 
+/// G70 runs its profile blocks as blocks, then puts the motion and the
+/// compensation back as they were (`compound::finish`); G71–G73 only read
+/// theirs.
+fn finish(s: &mut State) {
+    for (i, (now, profile)) in s.groups.iter_mut().zip(&s.profile).enumerate() {
+        let restored = matches!(GROUPS[i], gcode::MOTION | gcode::COMP);
+        if *profile != Fact::Entry && !restored {
+            *now = *profile;
+        }
+    }
+}
+
 /// One G code of a block, as `Nc::modal_settings` puts it in force.
-fn set_code(s: &mut State, code: Code, g50: bool) {
+fn set_code(s: &mut Groups, code: Code, g50: bool) {
     let Some(g) = G::from_code(code) else {
         // Not of the dialect: the kernel's alarm.
         return;
@@ -735,38 +758,32 @@ fn set_code(s: &mut State, code: Code, g50: bool) {
     match g {
         G::OneShot(_) | G::ModalCall(_) => {}
         G::Motion(_) => {
-            s.set(gcode::MOTION, code);
-            s.set(gcode::DRILL, Drill::Off.code());
+            set(s, gcode::MOTION, code);
+            set(s, gcode::DRILL, Drill::Off.code());
         }
         G::Work(_) if g50 => {}
         G::Polar(Polar::Off) => {
-            s.set(gcode::POLAR, code);
-            s.set(gcode::POLAR_CMD, PolarCmd::Off.code());
+            set(s, gcode::POLAR, code);
+            set(s, gcode::POLAR_CMD, PolarCmd::Off.code());
         }
         _ => {
             if let Some(group) = gcode::group(code) {
-                s.set(group, code);
+                set(s, group, code);
             }
         }
     }
 }
 
-/// A profile block waits for its cycle: the groups it would set are
-/// noted (by running its codes on a state that knows nothing else).
+/// A profile block waits for its cycle: what it would set is added to
+/// what the profile blocks before it set.
 fn profile_block(f: &Function, nc: &NcBlock, mut s: State) -> State {
     let Some(codes) = g_codes(f, nc) else {
-        s.profile_sets = ALL_GROUPS;
+        s.profile = [Fact::Unknown; GROUPS.len()];
         return s;
     };
-    let mut scratch = State::entry();
     let g50 = codes.contains(&OneShot::SetCoordinates.code());
     for &code in &codes {
-        set_code(&mut scratch, code, g50);
-    }
-    for (i, fact) in scratch.groups.iter().enumerate() {
-        if *fact != Fact::Entry {
-            s.profile_sets |= 1 << i;
-        }
+        set_code(&mut s.profile, code, g50);
     }
     s
 }

@@ -259,14 +259,20 @@ fn the_kernels_side_effects_are_followed() {
 }
 
 #[test]
-fn a_compound_cycle_forgets_what_its_profile_sets() {
-    // The profile sets G00/G01 and G99: after G71 and G70 the motion and
-    // feed mode are unknown, the units still known.
+fn a_compound_cycle_runs_or_reads_its_profile() {
+    // The profile (N10–N20, skipped where it stands) sets G00/G01 and
+    // G99. G71 only reads it: G98 still holds at G70. G70 runs it as
+    // blocks, then puts the motion back: G99 and G00 at M30.
     let src = "G00 X40 Z2\nG71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F100\nN10 G00 G99 X20\nG01 Z-10 F0.1\nN20 X40\nG70 P10 Q20\nM30\n";
+    let s = before_line(src, 7);
+    assert_eq!(code(&s, gcode::FEED_MODE), Some(980));
+    assert_eq!(code(&s, gcode::MOTION), Some(0));
     let s = before_line(src, 8);
-    assert_eq!(code(&s, gcode::MOTION), None);
-    assert_eq!(code(&s, gcode::FEED_MODE), None);
+    assert_eq!(code(&s, gcode::FEED_MODE), Some(990));
+    assert_eq!(code(&s, gcode::MOTION), Some(0));
     assert_eq!(code(&s, gcode::UNITS), Some(210));
+    // The profile's G01 cancelled no drilling cycle: none was in force.
+    assert_eq!(code(&s, gcode::DRILL), Some(800));
 }
 
 #[test]
@@ -393,4 +399,70 @@ fn random_programs_know_only_what_the_kernel_has() {
     eprintln!("{blocks} blocks of {run} random programs checked");
     // (All 300 compiled when this was written.)
     assert!(run >= 280, "only {run} of 300 random programs compiled");
+}
+
+/// Whether every word of an NC block is a constant.
+fn literal(f: &compiler::ir::Function, nc: &compiler::ir::NcBlock) -> bool {
+    f.words_of(nc)
+        .iter()
+        .all(|w| matches!(w.value(), compiler::ir::WordValue::Const(..)))
+}
+
+/// The share of the NC blocks run where they stand that a `resolve` pass
+/// could turn into typed operations: words all known and every modal
+/// group known before the block (the README reports it).
+#[test]
+fn nearly_every_block_of_the_suites_has_its_modal_state_known() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dirs = [
+        root.join("../../shared/conformance"),
+        root.join("../../shared/corpus/public"),
+        root.join("../examples"),
+    ];
+    let (mut all, mut literal_blocks, mut known, mut unreached) = (0, 0, 0, 0);
+    for dir in dirs {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for path in entries.flatten().map(|e| e.path()) {
+            let ext = path.extension().and_then(|e| e.to_str());
+            if !path.is_file()
+                || path.file_name().is_some_and(|n| n == "run")
+                || matches!(ext, Some("tsv" | "toml" | "canon" | "err" | "md" | "sh"))
+            {
+                continue;
+            }
+            let src = std::fs::read(&path).expect("readable");
+            let machine = machine_of(&path);
+            let Some((ir, _, _)) = build(&path.display().to_string(), &src, &machine) else {
+                continue;
+            };
+            let facts = analyze(&ir, &machine);
+            for (fi, f) in ir.functions.iter().enumerate() {
+                for (op, o) in f.ops.iter() {
+                    let Op::Nc(nc) = o else { continue };
+                    if nc.kind != NcKind::Run {
+                        continue;
+                    }
+                    let Some(state) = facts.before(fi, op) else {
+                        // (Profile blocks skipped where they stand.)
+                        unreached += 1;
+                        continue;
+                    };
+                    all += 1;
+                    if literal(f, nc) {
+                        literal_blocks += 1;
+                        known += usize::from(state.unknown_groups().count() == 0);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{known} of {all} NC blocks resolvable ({literal_blocks} with literal words; \
+         {unreached} more not run where they stand)"
+    );
+    // (92 % when this was written: the rest follow a join of different
+    // codes, mostly a main program's M99, which may run it again.)
+    assert!(known * 100 >= all * 90, "{known} of {all}");
 }
