@@ -137,6 +137,16 @@ impl Parsed {
     pub fn has_axis(&self) -> bool {
         self.has_any(mask(b"XZUW"))
     }
+
+    /// A plain move: axis words, perhaps F and N, and at most a G00 or
+    /// G01 (the usual block of CAM output).
+    pub fn is_plain_move(&self) -> bool {
+        self.present & !mask(b"XZUWFN") == 0
+            && self.has_axis()
+            && self.m_len == 0
+            && self.g_len == usize::from(self.motion.is_some())
+            && matches!(self.motion, None | Some(Motion::Rapid | Motion::Line))
+    }
 }
 
 /// Rounds half away from zero, as every integer address does (§7.6).

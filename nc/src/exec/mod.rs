@@ -10,6 +10,7 @@ pub mod data_setting;
 pub mod measure;
 mod motion_api;
 pub mod params;
+mod plain;
 pub mod plane;
 pub mod state;
 pub mod stroke;
@@ -76,6 +77,9 @@ pub struct Nc {
     /// the caller's budget allows ([`set_allowance`](Nc::set_allowance)).
     generated: u64,
     allowance: u64,
+    /// Plain moves take their short path (`plain`); off, every block runs
+    /// the general one, for tests that compare both.
+    plain_path: bool,
 }
 
 impl Nc {
@@ -88,7 +92,15 @@ impl Nc {
             parsed: None,
             generated: 0,
             allowance: u64::MAX,
+            plain_path: true,
         }
+    }
+
+    /// Whether plain moves take their short path (on by default); the
+    /// general path gives the same events and state, which tests check
+    /// by running programs both ways.
+    pub fn set_plain_path(&mut self, on: bool) {
+        self.plain_path = on;
     }
 
     /// Back to the power-on state (a new run).
@@ -157,7 +169,11 @@ impl Nc {
             // The usual block: nothing to check on its way out, and the
             // block's execution in line here (it runs for every block).
             Ok(()) if self.st.stroke2.is_none() && !crate::exec::zero_feed::may_fault(self, &p) => {
-                self.exec_parsed(&p, words, sink)
+                if plain::takes(self, &p) {
+                    plain::run(self, &p, sink)
+                } else {
+                    self.exec_parsed(&p, words, sink)
+                }
             }
             Ok(()) => self.exec_watched(&p, words, sink),
         };

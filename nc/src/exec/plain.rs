@@ -1,0 +1,132 @@
+//! The plain move: a block of axis words, F and N, with at most a G00 or
+//! G01, run where no mode acts on it: no plane mode (G12.1, G7.1),
+//! nothing held behind a waiting element, no drilling cycle left in force.
+//! It is the usual block of CAM output, and this is `Nc::exec_parsed` for
+//! it without the steps that do nothing then:
+//! - `comp::before_block` acts on group-00 codes and G54–G59 only;
+//! - `plane::before_block` on a plane mode, group-00 codes and G12.1;
+//! - `contour::in_order` holds events only while an element waits;
+//! - `caxis` on C and H words;
+//! - the group-1 and group-4 steps on M, S and T words;
+//! - `Nc::motion`'s other branches on a plane mode, a group-00 code, G22,
+//!   a drilling cycle or another motion code.
+//!
+//! The steps it keeps are the same functions `exec_parsed` calls, in the
+//! same order, outside `contour::in_order`: so it is not taken while an
+//! element waits (the one step here that can print, the end of a thread
+//! chain, would then have to be held). `compiler/tests/plain_path.rs`
+//! runs every suite program and random macro programs both ways
+//! (`Nc::set_plain_path`) and compares events and state after each
+//! instruction.
+
+use crate::base::error::NcError;
+use crate::base::gcode::{Drill, Motion, PathMode};
+use crate::block::Parsed;
+use crate::exec::{contour, Nc, Outcome, Sink};
+
+/// Whether block `p` takes the plain path in the kernel's state.
+#[inline]
+pub(crate) fn takes(nc: &Nc, p: &Parsed) -> bool {
+    let st = &nc.st;
+    nc.plain_path
+        && p.is_plain_move()
+        && st.plane.is_none()
+        && !st.contour.is_holding()
+        && (p.motion().is_some() || st.modal.drill == Drill::Off)
+        && matches!(
+            p.motion().unwrap_or(st.modal.motion),
+            Motion::Rapid | Motion::Line
+        )
+}
+
+/// Runs a block [`takes`] accepted.
+pub(crate) fn run(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+    nc.st.c_block = false;
+    if let Some(code) = p.motion() {
+        // (`Nc::modal_settings`: a group-01 code cancels drilling.)
+        nc.st.modal.motion = code;
+        nc.st.modal.drill = Drill::Off;
+    }
+    // Its M is no clamp code: the block has none.
+    crate::exec::cycles::before_block(nc, p, sink)?;
+    nc.remember(p);
+    nc.st.exact_stop = nc.st.modal.path_mode() == PathMode::ExactStop;
+    let code = nc.st.modal.motion;
+    let corner = contour::corner_word(nc, code, p)?;
+    contour::straight(nc, code == Motion::Rapid, p, corner, sink)?;
+    contour::end_of_block(nc)?;
+    crate::exec::comp::end_of_block(nc, p, true)?;
+    Ok(Outcome {
+        moved: true,
+        ..Outcome::default()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::exec::cycles::testing::Lathe;
+    use alloc::format;
+
+    /// Runs `blocks` from `a` with the short path on and off: the same
+    /// canon or alarm, and the same kernel state, after every block.
+    fn both_ways(a: &mut Lathe, blocks: &[&str]) {
+        let mut b = Lathe { nc: a.nc.clone() };
+        b.nc.set_plain_path(false);
+        for block in blocks {
+            assert_eq!(a.try_run(block), b.try_run(block), "{block}");
+            let (sa, sb) = (format!("{:?}", a.nc.st), format!("{:?}", b.nc.st));
+            assert!(sa == sb, "{block}: the states differ");
+        }
+    }
+
+    #[test]
+    fn in_polar_interpolation_a_plain_block_moves_in_the_plane() {
+        let blocks = [
+            "G00 X40 Z-2 C0",
+            "G98 G12.1",
+            "G01 X20 C10 F100",
+            "X10",
+            "G01 X30",
+            "G13.1",
+            "X40",
+        ];
+        both_ways(&mut Lathe::with_c(), &blocks);
+    }
+
+    #[test]
+    fn behind_a_waiting_chamfer_and_in_a_drilling_cycle() {
+        let blocks = [
+            "G98 G01 X20 Z0 F100",
+            "G01 X26 Z-8 L1",
+            "Z-20",
+            "X30 Z-25 L2",
+            "W-5",
+            "G00 X0 Z5",
+            "G83 X0 Z-5 Q1000 F50",
+            "Z-8",
+            "G80",
+            "Z2",
+        ];
+        both_ways(&mut Lathe::new(), &blocks);
+    }
+
+    #[test]
+    fn after_threads_and_under_compensation() {
+        let blocks = [
+            "G00 X20 Z2",
+            "G32 W-10 F1.5",
+            "Z-20",
+            // The G01 ends the chain: its last thread is printed first.
+            "G01 U2 F100",
+            "G32 W-5 F1.5",
+            "G00 U2",
+            "T0101",
+            "G42 G01 X20 Z0 F1",
+            "Z-10",
+            "X30",
+            "G40 X40",
+            "M30",
+        ];
+        both_ways(&mut Lathe::new(), &blocks);
+    }
+}
