@@ -53,6 +53,9 @@ const EXP_BIAS: u64 = EXP_MAX as u64;
 const EXP_CODES: u64 = 2 * EXP_BIAS + 1;
 /// Mantissas below 2^53 are exact doubles.
 const MANTISSA_LIMIT: u64 = 1 << 53;
+/// 2⁻⁵⁰: how far from an integer a scaled value may be and still be a
+/// decimal's mantissa (`decimal_of`).
+const SKIP_BOUND: f64 = 1.0 / (1u64 << 50) as f64;
 /// A u64 takes at most ten LEB128 bytes.
 const VARINT_MAX: usize = 10;
 
@@ -172,9 +175,18 @@ pub fn decimal_of(v: f64) -> Option<u64> {
         if scaled >= MANTISSA_LIMIT as f64 {
             break;
         }
+        // A mantissa m that decodes to `v` is within m·2⁻⁵² of the
+        // product (two roundings of 2⁻⁵³): a product farther than
+        // scaled·2⁻⁵⁰ from every integer has none, and costs no decoding.
+        // (Past 2⁵¹ the bound is 2 or more, so no product is skipped.)
+        let near = scaled as u64;
+        // (Exact: the product less its integer part.)
+        let frac = scaled - near as f64;
+        if frac.min(1.0 - frac) > scaled * SKIP_BOUND {
+            continue;
+        }
         // The product is within an ulp or so of the mantissa sought;
         // the neighbours cover truncation on either side.
-        let near = scaled as u64;
         for m in [near, near + 1, near.saturating_sub(1)] {
             let exp = -(decimals as i32);
             let code = pack(m, sign, exp);
@@ -343,6 +355,66 @@ mod tests {
         let mut out = Vec::new();
         put_varint(16021, &mut out);
         assert_eq!(out, [0x95, 0x7d]);
+    }
+
+    /// `decimal_of` without its skip of exponents: every exponent, every
+    /// candidate decoded. The skip must never change the answer.
+    fn decimal_by_search(v: f64) -> Option<u64> {
+        let sign = u64::from(v.is_sign_negative());
+        let a = v.abs();
+        for (decimals, &scale) in POW10.iter().enumerate() {
+            let scaled = a * scale;
+            if scaled >= MANTISSA_LIMIT as f64 {
+                break;
+            }
+            let near = scaled as u64;
+            for m in [near, near + 1, near.saturating_sub(1)] {
+                let code = pack(m, sign, -(decimals as i32));
+                if m < MANTISSA_LIMIT && decimal_value(code).map(f64::to_bits) == Some(v.to_bits())
+                {
+                    return Some(if decimals == 0 {
+                        strip_zeros(m, sign)
+                    } else {
+                        code
+                    });
+                }
+            }
+        }
+        None
+    }
+
+    #[test]
+    fn skipping_exponents_changes_no_answer() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for i in 0..200_000 {
+            let r = next();
+            let v = match i % 3 {
+                // Decimals as written: up to 17 digits, up to 22 places.
+                0 => {
+                    let m = (r >> 11) % 10u64.pow((r % 17 + 1) as u32);
+                    let e = (r >> 5) % 23;
+                    let v = m as f64 / POW10[e as usize];
+                    if r & 1 == 0 {
+                        v
+                    } else {
+                        -v
+                    }
+                }
+                // Any finite double.
+                1 => f64::from_bits(r),
+                // Near the 2^51 and 2^53 edges of the mantissa.
+                _ => ((1u64 << 51) + (r % (3 << 51))) as f64 / POW10[(r % 4) as usize],
+            };
+            if v.is_finite() {
+                assert_eq!(decimal_of(v), decimal_by_search(v), "{v:e}");
+            }
+        }
     }
 
     #[test]
