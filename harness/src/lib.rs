@@ -36,9 +36,11 @@ pub fn front_end(data: &[u8]) {
 }
 
 /// The whole compiler: bytes → a module or diagnostics. A module it emits
-/// always verifies and runs within its budget; a plain program compiled
-/// a few lines at a time (`compiler::stream`) gives the same module and
-/// diagnostics as compiled whole.
+/// always verifies and runs within its budget, to the same events and the
+/// same end with the kernel's short path for plain moves as without it
+/// (`nc::exec::plain`); a plain program compiled a few lines at a time
+/// (`compiler::stream`) gives the same module and diagnostics as compiled
+/// whole.
 pub fn compiler(data: &[u8]) {
     let c = compile("fuzz.nc", data, &Options::default());
     let text = c.render();
@@ -59,7 +61,11 @@ pub fn compiler(data: &[u8]) {
         let back = isa::Module::from_bytes(&bytes);
         assert!(back.is_ok(), "a compiled module must verify: {back:?}");
         if let Ok(m) = back {
-            run_bounded(m);
+            let short = run_bounded(m.clone(), true);
+            assert!(
+                short == run_bounded(m, false),
+                "the plain-move path runs otherwise"
+            );
         }
     }
 }
@@ -77,7 +83,7 @@ pub fn module(data: &[u8]) {
     fixed.extend_from_slice(&crc32fast::hash(&fixed).to_le_bytes());
     if let Ok(m) = isa::Module::from_bytes(&fixed) {
         let _ = m.disassemble();
-        run_bounded(m);
+        run_bounded(m, true);
     }
 }
 
@@ -93,23 +99,44 @@ pub fn machine(data: &[u8]) {
     }
 }
 
+/// How a bounded run went: a hash of every event, how it ended and the
+/// kernel's state at the end, as text.
+#[derive(PartialEq)]
+struct Run {
+    events: u64,
+    end: String,
+    state: String,
+}
+
 /// Runs a verified module on the reference machine with a small block
-/// budget; it must end (done, alarm or budget) within `MAX_STEPS`.
-fn run_bounded(module: isa::Module) {
+/// budget, plain moves on the kernel's short path or not; it must end
+/// (done, alarm or budget) within `MAX_STEPS`.
+fn run_bounded(module: isa::Module, plain: bool) -> Run {
+    use std::hash::{Hash, Hasher};
     let mut vm = Vm::new(module, Machine::reference());
     vm.max_blocks = MAX_BLOCKS;
+    vm.nc.set_plain_path(plain);
     let mut events: Vec<nc::Event> = Vec::new();
+    let mut hash = std::collections::hash_map::DefaultHasher::new();
     // Instructions spent (whole slices of 10 000) and early returns (an
     // event or a sync ends a slice early; each needs a block at least).
     let (mut steps, mut stops) = (0u64, 0u64);
     while steps < MAX_STEPS && stops < MAX_STEPS {
-        match vm.step(10_000, &mut events) {
+        let status = vm.step(10_000, &mut events);
+        // Hashed, not kept: memory stays flat.
+        format!("{events:?}").hash(&mut hash);
+        events.clear();
+        match status {
             Status::OutOfBudget => steps += 10_000,
             Status::Event | Status::Sync => stops += 1,
-            _ => return,
+            end => {
+                return Run {
+                    events: hash.finish(),
+                    end: format!("{end:?}"),
+                    state: format!("{:?}", vm.nc.st),
+                }
+            }
         }
-        // The events are not under test here; keep memory flat.
-        events.clear();
     }
     panic!("a verified module ran {MAX_STEPS} instructions within {MAX_BLOCKS} blocks");
 }
