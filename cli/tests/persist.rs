@@ -95,3 +95,42 @@ fn killed_runs_never_leave_a_torn_file() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// G31 leaves its end point in #995/#996 (no skip signal in a plain run:
+/// the move ends at its target, X10 Z-5), and those are persistent: they
+/// reach the variables file as any store to #500–#999 does.
+#[test]
+fn a_skip_position_reaches_the_variables_file() {
+    let dir = temp_dir("skip");
+    let src = dir.join("skip.nc");
+    std::fs::write(&src, "G98 G00 X20 Z2\nG31 X10 Z-5 F100\nM30\n").unwrap();
+    let gbc = dir.join("skip.gbc");
+    let vars = dir.join("skip.vars");
+    let _ = std::fs::remove_file(&vars);
+    let ok = Command::new(env!("CARGO_BIN_EXE_gbcc"))
+        .args([
+            src.as_os_str(),
+            "-q".as_ref(),
+            "-o".as_ref(),
+            gbc.as_os_str(),
+        ])
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    let out = Command::new(env!("CARGO_BIN_EXE_gbvm"))
+        .arg("run")
+        .arg(&gbc)
+        .arg("--vars")
+        .arg(&vars)
+        .args(["--emit", "canon", "-q"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&vars).expect("the variables file");
+    assert!(text.lines().any(|l| l == "#995=10"), "{text:?}");
+    assert!(text.lines().any(|l| l == "#996=-5"), "{text:?}");
+}

@@ -8,7 +8,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::loc_cache::LocCache;
-use crate::vars::{slot, Vars};
+use crate::vars::{slot, Slot, Vars};
 use isa::{Instr, Module};
 use nc::block::round_half_away;
 use nc::error::Alarm as AlarmCode;
@@ -624,11 +624,12 @@ impl Vm {
         self.charge(generated.saturating_sub(1))?;
         let out = result?;
         if let Some(p) = out.skip {
-            self.vars.persistent[495] = p.x();
-            self.vars.persistent[496] = p.z;
-            self.vars.persistent[497] = VACANT;
-            self.vars.persistent[498] = VACANT;
-            self.vars.persistent[499] = VACANT;
+            // #995–#999 are persistent: set as a store would, so that
+            // the storage gets them.
+            let values = [p.x(), p.z, VACANT, VACANT, VACANT];
+            for (i, v) in (495..).zip(values) {
+                self.vars.set(&Slot::Persistent(i), v);
+            }
         }
         // G10 L52 `N… R#var`: the kernel read the parameter, the variable
         // is ours to write.
