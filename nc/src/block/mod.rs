@@ -138,14 +138,17 @@ impl Parsed {
         self.has_any(mask(b"XZUW"))
     }
 
-    /// A plain move: axis words, perhaps F and N, and at most a G00 or
-    /// G01 (the usual block of CAM output).
+    /// A plain move: axis words, perhaps F, N and an arc's R or I/K, and
+    /// at most a G00–G03 (the usual block of CAM output).
     pub fn is_plain_move(&self) -> bool {
-        self.present & !mask(b"XZUWFN") == 0
+        self.present & !mask(b"XZUWFNRIK") == 0
             && self.has_axis()
             && self.m_len == 0
             && self.g_len == usize::from(self.motion.is_some())
-            && matches!(self.motion, None | Some(Motion::Rapid | Motion::Line))
+            && matches!(
+                self.motion,
+                None | Some(Motion::Rapid | Motion::Line | Motion::ArcCw | Motion::ArcCcw)
+            )
     }
 }
 

@@ -1,6 +1,7 @@
-//! The plain move: a block of axis words, F and N, with at most a G00 or
-//! G01, run where no mode acts on it: no plane mode (G12.1, G7.1),
-//! nothing held behind a waiting element, no drilling cycle left in force.
+//! The plain move: a block of axis words, F and N (and an arc's R or I/K),
+//! with at most a G00–G03, run where no mode acts on it: no plane mode
+//! (G12.1, G7.1), nothing held behind a waiting element, no drilling cycle
+//! left in force.
 //! It is the usual block of CAM output, and this is `Nc::exec_parsed` for
 //! it without the steps that do nothing then:
 //! - `comp::before_block` acts on group-00 codes and G54–G59 only;
@@ -33,10 +34,12 @@ pub(crate) fn takes(nc: &Nc, p: &Parsed) -> bool {
         && st.plane.is_none()
         && !st.contour.is_holding()
         && (p.motion().is_some() || st.modal.drill == Drill::Off)
-        && matches!(
-            p.motion().unwrap_or(st.modal.motion),
-            Motion::Rapid | Motion::Line
-        )
+        && match p.motion().unwrap_or(st.modal.motion) {
+            // (R, I and K are an arc's; on a line they are refused.)
+            Motion::Rapid | Motion::Line => !p.has(b'R') && !p.has(b'I') && !p.has(b'K'),
+            Motion::ArcCw | Motion::ArcCcw => true,
+            _ => false,
+        }
 }
 
 /// Runs a block [`takes`] accepted.
@@ -53,7 +56,14 @@ pub(crate) fn run(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<Outcom
     nc.st.exact_stop = nc.st.modal.path_mode() == PathMode::ExactStop;
     let code = nc.st.modal.motion;
     let corner = contour::corner_word(nc, code, p)?;
-    contour::straight(nc, code == Motion::Rapid, p, corner, sink)?;
+    if code.is_arc() {
+        let target = nc.target(p);
+        if let Some(e) = nc.arc_element(nc.st.pos, code == Motion::ArcCw, target, p)? {
+            contour::feed_element(nc, e, corner, sink)?;
+        }
+    } else {
+        contour::straight(nc, code == Motion::Rapid, p, corner, sink)?;
+    }
     contour::end_of_block(nc)?;
     crate::exec::comp::end_of_block(nc, p, true)?;
     Ok(Outcome {
@@ -111,6 +121,22 @@ mod tests {
     }
 
     #[test]
+    fn arcs_by_radius_and_centre_with_corners() {
+        let blocks = [
+            "G98 G00 X20 Z2",
+            "G01 Z0 F100",
+            "G02 X30 Z-5 R5",
+            "G03 X40 Z-10 I10 K0",
+            "Z-15 R5",
+            "G02 W-5 R5 L1",
+            "G01 Z-30",
+            "G02 X50 Z-30 I-5 K-5",
+            "G00 X60",
+        ];
+        both_ways(&mut Lathe::new(), &blocks);
+    }
+
+    #[test]
     fn after_threads_and_under_compensation() {
         let blocks = [
             "G00 X20 Z2",
@@ -123,6 +149,7 @@ mod tests {
             "T0101",
             "G42 G01 X20 Z0 F1",
             "Z-10",
+            "G02 X30 Z-15 R5",
             "X30",
             "G40 X40",
             "M30",
