@@ -84,8 +84,22 @@ fn sub_call(g: &mut Builder<'_>, p: Option<WordValue<'_>>, l: Option<WordValue<'
         g.error("E2006", span, "M98 needs P, the program to call");
         return;
     };
-    let call = match (p.literal(), l.map(|l| l.literal())) {
-        (Some(pv), None) | (Some(pv), Some(Some(_))) => {
+    let call = match (p.literal(), l) {
+        // A written program and a computed count: with L, P is the program
+        // itself (no count packed in it), known now.
+        (Some(pv), Some(count)) if count.literal().is_none() => {
+            let (number, _) = m98_target(pv, Some(1.0));
+            let Some(prog) = known(g, number, span, "M98") else {
+                return;
+            };
+            ir::Call {
+                kind: CallKind::Sub,
+                callee: Callee::Program(prog),
+                count: Count::Expr(g.value(&count)),
+                args: Vec::new(),
+            }
+        }
+        (Some(pv), _) => {
             let (number, count) = m98_target(pv, l.and_then(|l| l.literal()));
             let Some(prog) = known(g, number, span, "M98") else {
                 return;

@@ -120,10 +120,34 @@ fn a_literal_division_by_zero_warns_and_alarms_only_when_reached() {
     assert_eq!(canon, ["RAPID X=5 Z=0", "STOP KIND=M30"]);
 }
 
+/// `M98 P… L[…]`: a written program with a computed count is a call of a
+/// known program (`callsub`, not looked up at run time), run L times.
+#[test]
+fn a_computed_count_calls_a_known_program() {
+    let src = "#1=#500\nM98 P1000 L[#1+2]\nM30\nO1000\nG00 U2\nM99\n";
+    let c = compile("l.nc", src.as_bytes(), &Options::default());
+    assert!(!c.has_errors(), "{}", c.render());
+    let module = c.module.expect("module");
+    assert!(module
+        .code
+        .iter()
+        .any(|i| matches!(i, isa::Instr::CallSub { .. })));
+    assert!(!module
+        .code
+        .iter()
+        .any(|i| matches!(i, isa::Instr::CallSubDyn { .. })));
+    // #500 is vacant: L[vacant + 2] = 2 runs.
+    let (canon, status) = canon_of(&module.to_bytes());
+    assert_eq!(status, Status::Done);
+    assert_eq!(canon, ["RAPID X=2 Z=0", "RAPID X=4 Z=0", "STOP KIND=M30"]);
+}
+
 #[test]
 fn structure_errors_are_compile_errors_at_their_line() {
-    let cases: [(&str, &str, usize); 6] = [
+    let cases: [(&str, &str, usize); 7] = [
         ("G00 X10\nM98 P1234\nM30\n", "E2012", 2),
+        // With L, P is the program even when L is computed.
+        ("#1=#500\nM98 P1234 L[#1+1]\nM30\n", "E2012", 2),
         ("GOTO 50\nM30\n", "E2010", 1),
         ("WHILE[1LT2]DO4\nEND4\n", "E2013", 1),
         ("G00 X0\nEND1\n", "E2014", 2),
