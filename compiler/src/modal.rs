@@ -46,6 +46,7 @@ use crate::ir::{
 use nc::block::round_half_away;
 use nc::gcode::{self, Code, Comp, Drill, OneShot, Polar, PolarCmd, G};
 use nc::Machine;
+use smallvec::SmallVec;
 
 /// The modal groups the pass follows, in `#4001…` order.
 pub const GROUPS: [u8; 12] = [
@@ -122,8 +123,7 @@ pub enum ModalCall {
 /// The modal state at a point of the program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct State {
-    /// By index into [`GROUPS`].
-    pub groups: [Fact<Code>; GROUPS.len()],
+    pub groups: Groups,
     pub g66: Fact<ModalCall>,
     /// Between G10 and G11.
     pub data: Fact<bool>,
@@ -133,7 +133,7 @@ pub struct State {
 }
 
 /// A fact per group, by index into [`GROUPS`].
-type Groups = [Fact<Code>; GROUPS.len()];
+pub type Groups = [Fact<Code>; GROUPS.len()];
 
 /// Puts `code` in force in `group`.
 fn set(groups: &mut Groups, group: u8, code: Code) {
@@ -356,6 +356,7 @@ struct ModuleFacts {
 
 impl ModuleFacts {
     fn of(m: &Module) -> ModuleFacts {
+        let numbers: Vec<u32> = m.functions.iter().map(|f| f.number).collect();
         let mut repeats = vec![false; m.functions.len()];
         if let Some(main) = repeats.first_mut() {
             *main = true;
@@ -365,7 +366,7 @@ impl ModuleFacts {
                 let Some(Terminator::Call { call, .. }) = &b.term else {
                     continue;
                 };
-                match callee(m, f, call.callee) {
+                match callee_in(&numbers, f, call.callee) {
                     Some(i) if !once(f, call.count) => {
                         if let Some(r) = repeats.get_mut(i as usize) {
                             *r = true;
@@ -379,7 +380,7 @@ impl ModuleFacts {
         ModuleFacts {
             m99_p: returns_to_seq(m),
             repeats,
-            numbers: m.functions.iter().map(|f| f.number).collect(),
+            numbers,
         }
     }
 
@@ -392,13 +393,8 @@ impl ModuleFacts {
     }
 }
 
-/// The function a call runs, when it is known: a program of the module,
-/// or a computed number that folded to one.
-fn callee(m: &Module, f: &Function, callee: Callee) -> Option<u32> {
-    let numbers: Vec<u32> = m.functions.iter().map(|f| f.number).collect();
-    callee_in(&numbers, f, callee)
-}
-
+/// The function a call runs (by index), when it is known: a program of
+/// the module, or a computed number that folded to one of `numbers`.
 fn callee_in(numbers: &[u32], f: &Function, callee: Callee) -> Option<u32> {
     match callee {
         Callee::Program(i) => Some(i),
@@ -656,8 +652,8 @@ fn returns_to_seq(m: &Module) -> bool {
 }
 
 /// A block's G codes, or `None` when one of them is computed.
-fn g_codes(f: &Function, nc: &NcBlock) -> Option<Vec<Code>> {
-    let mut codes = Vec::new();
+fn g_codes(f: &Function, nc: &NcBlock) -> Option<SmallVec<[Code; 4]>> {
+    let mut codes = SmallVec::new();
     for w in f.words_of(nc) {
         if w.addr != b'G' - b'A' {
             continue;
