@@ -35,7 +35,7 @@ pub(crate) fn takes(nc: &Nc, p: &Parsed) -> bool {
         && !st.contour.is_holding()
         && (p.motion().is_some() || st.modal.drill == Drill::Off)
         && match p.motion().unwrap_or(st.modal.motion) {
-            // (R, I and K are an arc's; on a line they are refused.)
+            // (R, I or K on a line: the general path, which ignores them.)
             Motion::Rapid | Motion::Line => !p.has(b'R') && !p.has(b'I') && !p.has(b'K'),
             Motion::ArcCw | Motion::ArcCcw => true,
             _ => false,
