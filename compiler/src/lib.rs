@@ -331,7 +331,9 @@ fn targets(unit: &Unit, prog: &Program, table: &[u32; 10]) -> Vec<u32> {
         match split.call {
             Some(words::Call::Sub { p: Some(p), l, .. }) => {
                 if let Some(p) = p.literal() {
-                    out.push(calls::m98_target(p, l.and_then(|l| l.literal())).0);
+                    // With an L, written or computed, P is the program.
+                    let l = l.map(|l| l.literal().unwrap_or(1.0));
+                    out.push(calls::m98_target(p, l).0);
                 }
             }
             Some(words::Call::SubM { number, .. }) => out.push(number),
