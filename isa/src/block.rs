@@ -283,6 +283,15 @@ pub(crate) fn put_varint(mut v: u64, out: &mut Vec<u8>) {
 /// Reads a LEB128 varint; refuses one longer than a u64 or with a
 /// needless zero last byte (so every value has one encoding).
 pub(crate) fn get_varint(bytes: &[u8], at: usize) -> Result<(u64, usize), RecordError> {
+    // Most values take one or two bytes (a literal as written): read
+    // without the loop. (A second byte of 0 is overlong: the loop says so.)
+    match bytes.get(at..) {
+        Some(&[b0, ..]) if b0 < 0x80 => return Ok((u64::from(b0), at + 1)),
+        Some(&[b0, b1, ..]) if b1 < 0x80 && b1 != 0 => {
+            return Ok((u64::from(b0 & 0x7f) | u64::from(b1) << 7, at + 2));
+        }
+        _ => {}
+    }
     let mut v: u64 = 0;
     for i in 0..VARINT_MAX {
         let byte = *bytes.get(at + i).ok_or(RecordError::Truncated)?;
@@ -424,5 +433,39 @@ mod tests {
         assert_eq!(get_varint(&[0x80], 0), Err(RecordError::Truncated));
         let max = [0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x01];
         assert_eq!(get_varint(&max, 0), Ok((u64::MAX, 10)));
+    }
+
+    /// LEB128 as its definition reads, byte after byte: the reference
+    /// for the short forms `get_varint` reads without its loop.
+    fn leb128(bytes: &[u8]) -> Result<(u64, usize), RecordError> {
+        let mut v = 0u64;
+        for (i, &b) in bytes.iter().enumerate().take(VARINT_MAX) {
+            v |= u64::from(b & 0x7f).checked_shl(7 * i as u32).unwrap_or(0);
+            if b & 0x80 == 0 {
+                let overlong = i > 0 && b == 0;
+                let too_big = i == VARINT_MAX - 1 && b > 1;
+                return match overlong || too_big {
+                    true => Err(RecordError::BadVarint),
+                    false => Ok((v, i + 1)),
+                };
+            }
+        }
+        match bytes.len() < VARINT_MAX {
+            true => Err(RecordError::Truncated),
+            false => Err(RecordError::BadVarint),
+        }
+    }
+
+    #[test]
+    fn every_one_and_two_byte_start_reads_as_the_definition_says() {
+        for b0 in 0..=255u8 {
+            for b1 in 0..=255u8 {
+                for tail in [&[][..], &[0x05], &[0x85, 0x01]] {
+                    let bytes = [&[0x11, b0, b1][..], tail].concat();
+                    let want = leb128(&bytes[1..]).map(|(v, n)| (v, n + 1));
+                    assert_eq!(get_varint(&bytes, 1), want, "{bytes:02x?}");
+                }
+            }
+        }
     }
 }

@@ -45,27 +45,56 @@ impl LineBuf {
 
     /// `name` and the number as the canon prints it; `None` for a value
     /// the integer path does not take.
+    ///
+    /// Byte by byte into the line, where a copy of each piece (name,
+    /// sign, digits) was a call to `memcpy` for a few bytes: a fifth of
+    /// this function's time.
     fn field(&mut self, name: &[u8], v: f64) -> Option<()> {
         let n = decimal::ten_thousandths(v)?;
-        self.push(name)?;
         let abs = n.unsigned_abs();
         let (whole, frac) = (abs / 10_000, abs % 10_000);
+        let digits = decimal_digits(whole);
+        let mut at = self.len;
+        // The name, a sign, the digits, a point and four decimals.
+        if at + name.len() + 1 + digits + 5 > CAPACITY {
+            return None;
+        }
+        for &b in name {
+            self.bytes[at] = b;
+            at += 1;
+        }
         if n < 0 {
-            self.push(b"-")?;
+            self.bytes[at] = b'-';
+            at += 1;
         }
-        self.push(itoa::Buffer::new().format(whole).as_bytes())?;
-        if frac == 0 {
-            return Some(());
+        put_digits(&mut self.bytes[at..at + digits], whole);
+        at += digits;
+        if frac != 0 {
+            // Four decimals, the trailing zeros dropped.
+            self.bytes[at] = b'.';
+            put_digits(&mut self.bytes[at + 1..at + 5], frac);
+            at += 5 - frac.trailing_zeros_decimal();
         }
-        // Four decimals, the trailing zeros dropped.
-        let mut digits = [b'.', 0, 0, 0, 0];
-        let mut rest = frac;
-        for d in digits[1..].iter_mut().rev() {
-            *d = b'0' + (rest % 10) as u8;
-            rest /= 10;
-        }
-        let used = 5 - frac.trailing_zeros_decimal();
-        self.push(&digits[..used])
+        self.len = at;
+        Some(())
+    }
+}
+
+/// The number of decimal digits of `v` (1 for 0).
+fn decimal_digits(mut v: u64) -> usize {
+    let mut digits = 1;
+    while v >= 10 {
+        v /= 10;
+        digits += 1;
+    }
+    digits
+}
+
+/// `v`'s last `out.len()` decimal digits, with leading zeros, into `out`.
+fn put_digits(out: &mut [u8], mut v: u64) {
+    for d in out.iter_mut().rev() {
+        *d = b'0' + (v % 10) as u8;
+        v /= 10;
     }
 }
 

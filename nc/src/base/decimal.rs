@@ -19,9 +19,13 @@ pub fn ten_thousandths(v: f64) -> Option<i64> {
     // the same integer (and no tie is near).
     let y = v * 10_000.0;
     if y.abs() < FAST_BELOW {
-        let r = libm::round(y);
-        if (y - r).abs() < 0.25 {
-            return Some(r as i64);
+        // An integer within about a half of y (the sum's rounding is far
+        // below that at this size; which one a tie gives does not matter,
+        // as a value near a half is not taken here), in two instructions
+        // where a call to `round` took about twenty.
+        let r = (y + 0.5f64.copysign(y)) as i64;
+        if (y - r as f64).abs() < 0.25 {
+            return Some(r);
         }
     }
     if !v.is_finite() {
