@@ -72,7 +72,7 @@ fn dash_is_standard_input_and_output() {
     // -S -o - prints the listing; -E -o FILE writes the expansion there.
     let s = gbcc(&["part.nc", "-S", "-o", "-"], &d);
     assert!(
-        text(&s.stdout).contains("block b0 (G0 X10 Z2)"),
+        text(&s.stdout).contains("move b0 (G0 X10 Z2)"),
         "{}",
         text(&s.stdout)
     );

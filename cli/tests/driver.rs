@@ -44,7 +44,7 @@ fn compile_and_run_with_the_default_output_name() {
         "RAPID X=10 Z=2\nFEED F=100 MODE=MIN\nLINE X=10 Z=-5\nSTOP KIND=M30\n"
     );
     assert_eq!(gbvm(&["verify", "part.gbc"], &d).status.code(), Some(0));
-    assert!(text(&gbvm(&["disasm", "part.gbc"], &d).stdout).contains("block b0 (G0 X10 Z2)"));
+    assert!(text(&gbvm(&["disasm", "part.gbc"], &d).stdout).contains("move b0 (G0 X10 Z2)"));
 }
 
 #[test]

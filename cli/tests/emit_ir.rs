@@ -66,7 +66,7 @@ fn the_listing_notes_the_modal_groups_not_known() {
     let lines: Vec<&str> = text.lines().collect();
     let at = lines
         .iter()
-        .position(|l| l.contains("nc G1 X1 F1"))
+        .position(|l| l.contains("move G1 X1 F1"))
         .expect("the N10 block");
     assert_eq!(lines[at + 1].trim(), "; modal unknown: feed mode");
     // Before G99 everything is known: no note.

@@ -345,11 +345,12 @@ impl<'a> Emitter<'a> {
             let s = self.string(m);
             self.emit(Instr::SetMsg { s });
         }
-        self.emit(match (typed, profile) {
-            (Some(rec), false) => Instr::Block { rec },
-            (Some(rec), true) => Instr::Profile { rec },
-            (None, false) => Instr::Exec { flags: 0 },
-            (None, true) => Instr::Exec { flags: PROFILE },
+        self.emit(match (typed, nc.kind) {
+            (Some(rec), ir::NcKind::Run) => Instr::Block { rec },
+            (Some(rec), ir::NcKind::Move(_)) => Instr::Move { rec },
+            (Some(rec), ir::NcKind::Profile) => Instr::Profile { rec },
+            (None, ir::NcKind::Run | ir::NcKind::Move(_)) => Instr::Exec { flags: 0 },
+            (None, ir::NcKind::Profile) => Instr::Exec { flags: PROFILE },
         });
     }
 
@@ -369,7 +370,7 @@ impl<'a> Emitter<'a> {
                 flags,
             });
         }
-        if kind == ir::NcKind::Run && self.profile_recs.is_empty() {
+        if kind.runs_here() && self.profile_recs.is_empty() {
             return self.module.push_block(&known);
         }
         let key: Vec<RecordKey> = known

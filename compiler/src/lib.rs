@@ -23,6 +23,7 @@ pub mod lint;
 pub mod modal;
 pub mod profile;
 pub mod recursion;
+pub mod resolve;
 pub mod stream;
 pub mod thread_room;
 pub mod words;
@@ -46,6 +47,9 @@ pub struct Options {
     /// A longer program of plain blocks is compiled a chunk of about
     /// this many bytes at a time (`stream`).
     pub chunk_bytes: usize,
+    /// Pass `resolve`: plain moves become typed moves (off only to
+    /// compare the two forms in tests).
+    pub resolve: bool,
 }
 
 impl Default for Options {
@@ -56,6 +60,7 @@ impl Default for Options {
             optimize: true,
             defines: Vec::new(),
             chunk_bytes: CHUNK_BYTES,
+            resolve: true,
         }
     }
 }
@@ -247,11 +252,14 @@ fn lower(
     opts: &Options,
     diags: &mut Vec<(usize, Diagnostic)>,
 ) -> (Option<isa::Module>, Option<ir::Module>) {
-    let (ir, mut found) =
+    let (mut ir, mut found) =
         build::build(units, programs, &opts.machine, opts.optimize, &opts.defines);
     diags.append(&mut found);
     if has_errors(diags) {
         return (None, Some(ir));
+    }
+    if opts.resolve {
+        resolve::module(&mut ir);
     }
     if let Err(errors) = ir::validate(&ir) {
         for e in errors {

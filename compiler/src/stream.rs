@@ -381,6 +381,11 @@ impl<'a> Back<'a> {
         }
         self.build.append(&mut found);
         self.emitter.sync_strings(&b.module().strings);
+        for part in &mut parts {
+            if self.opts.resolve {
+                crate::resolve::function(part);
+            }
+        }
         for part in &parts {
             crate::ir::validate::validate_part(b.module(), part).ok()?;
             self.emitter.part(part, &mut self.program);

@@ -78,7 +78,7 @@ fn guards_loops_and_macro_a_jumps_are_blocks_and_terminators() {
     // END jumps back to; the test leaves the loop for the G65 block.
     for want in [
         line("skip /1 to bb2 else bb1", "1:1"),
-        "bb1:\n".to_string() + &line("nc G1 X1", "1:1"),
+        "bb1:\n".to_string() + &line("move G1 X1", "1:1"),
         "bb2:\n".to_string() + &line("branch #1 LT 3 then bb3 else bb4", "2:1"),
         "bb3:\n".to_string() + &line("#1 = #1 + 1", "3:1") + &line("jump bb2", "4:1"),
         "bb4:\n".to_string() + &line("goto N7 if #1 EQ 3 else bb5", "5:1"),

@@ -6,7 +6,7 @@
 //! must hold that code in the kernel (read as #4001…, as a program would).
 //! Hand-written programs then check joins, calls and the rules.
 
-use compiler::ir::{Module as Ir, NcKind, Op};
+use compiler::ir::{Module as Ir, Op};
 use compiler::modal::{analyze, Facts, State, GROUPS};
 use compiler::{compile_ir, Options};
 use grammar::SourceFile;
@@ -40,7 +40,7 @@ fn states_by_place(
     let mut map: HashMap<_, Vec<_>> = HashMap::new();
     for (fi, f) in ir.functions.iter().enumerate() {
         for (op, o) in f.ops.iter() {
-            if !matches!(o, Op::Nc(nc) if nc.kind == NcKind::Run) {
+            if !matches!(o, Op::Nc(nc) if nc.kind.runs_here()) {
                 continue;
             }
             let Some(loc) = f.op_locs.get(op.index()) else {
@@ -78,11 +78,13 @@ fn check_run(
     let mut checked = 0;
     for _ in 0..2_000_000 {
         let pc = vm.pc();
-        let runs_block = matches!(vm.module().code.get(pc as usize), Some(Instr::Block { .. }))
-            || matches!(
-                vm.module().code.get(pc as usize),
-                Some(Instr::Exec { flags }) if flags & vm::PROFILE == 0
-            );
+        let runs_block = matches!(
+            vm.module().code.get(pc as usize),
+            Some(Instr::Block { .. } | Instr::Move { .. })
+        ) || matches!(
+            vm.module().code.get(pc as usize),
+            Some(Instr::Exec { flags }) if flags & vm::PROFILE == 0
+        );
         if runs_block {
             let loc = vm.module().lines.get(pc as usize).unwrap_or_default();
             let key = (loc.file, loc.line, loc.col);
@@ -303,7 +305,7 @@ fn nearly_every_block_of_the_suites_has_its_modal_state_known() {
         for (fi, f) in ir.functions.iter().enumerate() {
             for (op, o) in f.ops.iter() {
                 let Op::Nc(nc) = o else { continue };
-                if nc.kind != NcKind::Run {
+                if !nc.kind.runs_here() {
                     continue;
                 }
                 let Some(state) = facts.before(fi, op) else {

@@ -1,6 +1,6 @@
 //! Lowering to typed blocks: a block whose words are all known when it
-//! is compiled becomes one `block` instruction with its words in order; a
-//! computed word keeps the block in word form.
+//! is compiled becomes one `block` instruction (`move` for a plain move)
+//! with its words in order; a computed word keeps the block in word form.
 
 use compiler::{compile, Options};
 use isa::{BlockWord, Instr, Module};
@@ -15,12 +15,12 @@ fn module(src: &str, optimize: bool) -> Module {
     c.module.expect("a module")
 }
 
-/// Each `block`'s words as `(address letter, value, flags)`.
+/// Each `block`'s and `move`'s words as `(address letter, value, flags)`.
 fn typed(m: &Module) -> Vec<Vec<(String, f64, u8)>> {
     m.code
         .iter()
         .filter_map(|i| match *i {
-            Instr::Block { rec } => {
+            Instr::Block { rec } | Instr::Move { rec } => {
                 let mut words = Vec::new();
                 m.block_words(rec, |w: BlockWord| {
                     let name = isa::addr::name(w.addr).unwrap_or("?").to_string();
@@ -72,7 +72,7 @@ fn a_literal_program_has_no_word_form() {
     assert_eq!(count(&m, word_form), 0);
     // Each block is located at its own line, column 1.
     let pcs: Vec<usize> = (0..m.code.len())
-        .filter(|&pc| matches!(m.code[pc], Instr::Block { .. }))
+        .filter(|&pc| matches!(m.code[pc], Instr::Block { .. } | Instr::Move { .. }))
         .collect();
     let lines: Vec<u32> = pcs
         .iter()
@@ -98,6 +98,8 @@ fn computed_words_keep_the_word_form_folded_ones_do_not() {
         ]
     );
     assert_eq!(blocks[1], [("M".to_string(), 30.0, 3)]);
+    // (Its words folded to constants, the first is a plain move.)
+    assert_eq!(count(&folded, |i| matches!(i, Instr::Move { .. })), 1);
     assert_eq!(count(&folded, |i| matches!(i, Instr::Exec { .. })), 1);
     // Without folding both computed blocks are in word form.
     let plain = module(src, false);
@@ -123,7 +125,7 @@ fn a_literal_profile_is_typed_and_stored_once() {
     let records = |profile: bool| -> Vec<u32> {
         let named = |i: &Instr| match *i {
             Instr::Profile { rec } if profile => Some(rec),
-            Instr::Block { rec } if !profile => Some(rec),
+            Instr::Block { rec } | Instr::Move { rec } if !profile => Some(rec),
             _ => None,
         };
         m.code.iter().filter_map(named).collect()
@@ -173,7 +175,10 @@ fn nearly_every_block_of_the_shared_programs_is_typed() {
         let c = compile("p.nc", &src, &Options::default());
         let Some(m) = c.module else { continue };
         let typed = count(&m, |i| {
-            matches!(i, Instr::Block { .. } | Instr::Profile { .. })
+            matches!(
+                i,
+                Instr::Block { .. } | Instr::Move { .. } | Instr::Profile { .. }
+            )
         });
         let words = count(&m, |i| matches!(i, Instr::Exec { .. }));
         let text = String::from_utf8_lossy(&src).to_uppercase();

@@ -133,6 +133,40 @@ pub fn decode_record(
     at: usize,
     mut f: impl FnMut(BlockWord),
 ) -> Result<usize, RecordError> {
+    walk_record(bytes, at, |addr, flags, stored| {
+        f(BlockWord {
+            addr,
+            value: stored.value(),
+            flags,
+        })
+    })
+}
+
+/// A word's value as stored: checked, a decimal not yet worked out (the
+/// verifier needs few values, and the division is most of a word's cost).
+#[derive(Clone, Copy)]
+enum Stored {
+    Raw(f64),
+    Decimal(u64),
+}
+
+impl Stored {
+    fn value(self) -> f64 {
+        match self {
+            Stored::Raw(v) => v,
+            // (A code `walk_record` passed on has a value.)
+            Stored::Decimal(code) => decimal_value(code).unwrap_or(f64::NAN),
+        }
+    }
+}
+
+/// Checks the record at `bytes[at]` word by word, calling `f` with each
+/// word's address, flags and stored value; the position past it.
+fn walk_record(
+    bytes: &[u8],
+    at: usize,
+    mut f: impl FnMut(u8, u8, Stored),
+) -> Result<usize, RecordError> {
     let mut pos = at;
     let count = *bytes.get(pos).ok_or(RecordError::Truncated)?;
     pos += 1;
@@ -147,16 +181,17 @@ pub fn decode_record(
             return Err(RecordError::BadAddress);
         }
         let (value, next) = if head & RAW != 0 {
-            raw_value(bytes, pos)?
+            let (v, next) = raw_value(bytes, pos)?;
+            (Stored::Raw(v), next)
         } else {
-            decode_value(bytes, pos)?
+            let (code, next) = get_varint(bytes, pos)?;
+            if !is_decimal(code) {
+                return Err(RecordError::BadDecimal);
+            }
+            (Stored::Decimal(code), next)
         };
         pos = next;
-        f(BlockWord {
-            addr,
-            value,
-            flags: (head >> FLAG_SHIFT) & FLAG_MASK,
-        });
+        f(addr, (head >> FLAG_SHIFT) & FLAG_MASK, value);
     }
     Ok(pos)
 }
@@ -248,12 +283,10 @@ fn decimal_value(code: u64) -> Option<f64> {
     })
 }
 
-/// Reads a compact value at `bytes[at]`; returns it and the position
-/// past it.
-fn decode_value(bytes: &[u8], at: usize) -> Result<(f64, usize), RecordError> {
-    let (code, next) = get_varint(bytes, at)?;
-    let value = decimal_value(code).ok_or(RecordError::BadDecimal)?;
-    Ok((value, next))
+/// Whether a varint is a decimal's code: an exponent within ±22 and a
+/// mantissa below 2^53 (what `decimal_value` takes).
+fn is_decimal(code: u64) -> bool {
+    code & 63 < EXP_CODES && code >> 7 < MANTISSA_LIMIT
 }
 
 /// Reads a raw value at `bytes[at]`.
@@ -282,16 +315,25 @@ pub(crate) fn put_varint(mut v: u64, out: &mut Vec<u8>) {
 
 /// Reads a LEB128 varint; refuses one longer than a u64 or with a
 /// needless zero last byte (so every value has one encoding).
+#[inline]
 pub(crate) fn get_varint(bytes: &[u8], at: usize) -> Result<(u64, usize), RecordError> {
     // Most values take one or two bytes (a literal as written): read
     // without the loop. (A second byte of 0 is overlong: the loop says so.)
-    match bytes.get(at..) {
-        Some(&[b0, ..]) if b0 < 0x80 => return Ok((u64::from(b0), at + 1)),
-        Some(&[b0, b1, ..]) if b1 < 0x80 && b1 != 0 => {
-            return Ok((u64::from(b0 & 0x7f) | u64::from(b1) << 7, at + 2));
+    if let Some(&b0) = bytes.get(at) {
+        if b0 < 0x80 {
+            return Ok((u64::from(b0), at + 1));
         }
-        _ => {}
+        if let Some(&b1) = bytes.get(at + 1) {
+            if b1 < 0x80 && b1 != 0 {
+                return Ok((u64::from(b0 & 0x7f) | u64::from(b1) << 7, at + 2));
+            }
+        }
     }
+    varint_loop(bytes, at)
+}
+
+/// `get_varint` byte by byte.
+fn varint_loop(bytes: &[u8], at: usize) -> Result<(u64, usize), RecordError> {
     let mut v: u64 = 0;
     for i in 0..VARINT_MAX {
         let byte = *bytes.get(at + i).ok_or(RecordError::Truncated)?;
@@ -311,38 +353,102 @@ pub(crate) fn get_varint(bytes: &[u8], at: usize) -> Result<(u64, usize), Record
     Err(RecordError::BadVarint)
 }
 
+/// Whether a record's words make a plain move, as a `move` instruction
+/// needs: X/Z/U/W, F, N, R, I and K each at most once, and at most one G
+/// whose value is 0, 1, 2 or 3. Fed the words in turn.
+struct MoveShape {
+    seen: u32,
+    plain: bool,
+}
+
+impl MoveShape {
+    const G: u32 = letter(b'G');
+    const ALLOWED: u32 = letter(b'X')
+        | letter(b'Z')
+        | letter(b'U')
+        | letter(b'W')
+        | letter(b'F')
+        | letter(b'N')
+        | letter(b'R')
+        | letter(b'I')
+        | letter(b'K')
+        | Self::G;
+
+    fn new() -> MoveShape {
+        MoveShape {
+            seen: 0,
+            plain: true,
+        }
+    }
+
+    #[inline]
+    fn word(&mut self, addr: u8, value: Stored) {
+        // (Addresses are below 29 in a record that decodes.)
+        let bit = 1u32 << addr;
+        let fits = match bit {
+            Self::G => matches!(value.value(), 0.0 | 1.0 | 2.0 | 3.0),
+            _ => Self::ALLOWED & bit != 0,
+        };
+        self.plain &= fits && self.seen & bit == 0;
+        self.seen |= bit;
+    }
+}
+
+/// The address bit of a letter.
+const fn letter(c: u8) -> u32 {
+    1 << (c - b'A')
+}
+
 /// Where the records of a `Blocks` section start, one bit per byte, each
-/// record checked as it is found. `block` and `profile` operands may name
+/// record checked as it is found, and which of them are plain moves (a
+/// bit at the same place). `block`, `profile` and `move` operands may name
 /// records in any order (a profile block and the same block where it
-/// stands share one record), so the verifier looks them up here; an eighth
-/// of the section's size, against a table of `u32` starts that would be
-/// half of it for the short records of a straight-line program.
+/// stands share one record), so the verifier looks them up here; a
+/// quarter of the section's size, against a table of `u32` starts that
+/// would be half of it for the short records of a straight-line program.
 #[derive(Debug)]
-pub(crate) struct RecordStarts(Vec<u64>);
+pub(crate) struct RecordStarts {
+    starts: Vec<u64>,
+    moves: Vec<u64>,
+}
 
 impl RecordStarts {
     /// Decodes every record of `bytes`; the first bad one is an error
     /// with its place.
     pub(crate) fn of(bytes: &[u8]) -> Result<RecordStarts, (usize, RecordError)> {
-        let mut bits = alloc::vec![0u64; bytes.len().div_ceil(64)];
+        let mut starts = alloc::vec![0u64; bytes.len().div_ceil(64)];
+        let mut moves = starts.clone();
         let mut next = 0;
         while next < bytes.len() {
             let start = next;
-            next = decode_record(bytes, start, |_| {}).map_err(|e| (start, e))?;
-            bits[start / 64] |= 1 << (start % 64);
+            let mut shape = MoveShape::new();
+            next = walk_record(bytes, start, |addr, _, value| shape.word(addr, value))
+                .map_err(|e| (start, e))?;
+            starts[start / 64] |= 1 << (start % 64);
+            if shape.plain {
+                moves[start / 64] |= 1 << (start % 64);
+            }
         }
-        Ok(RecordStarts(bits))
+        Ok(RecordStarts { starts, moves })
     }
 
     /// Whether a record starts at byte `at`.
     pub(crate) fn contains(&self, at: u32) -> bool {
-        let Ok(at) = usize::try_from(at) else {
-            return false;
-        };
-        self.0
-            .get(at / 64)
-            .is_some_and(|word| word & (1 << (at % 64)) != 0)
+        bit(&self.starts, at)
     }
+
+    /// Whether the record at byte `at` is a plain move.
+    pub(crate) fn is_move(&self, at: u32) -> bool {
+        bit(&self.moves, at)
+    }
+}
+
+fn bit(bits: &[u64], at: u32) -> bool {
+    let Ok(at) = usize::try_from(at) else {
+        return false;
+    };
+    bits.get(at / 64)
+        .is_some_and(|word| word & (1 << (at % 64)) != 0)
 }
 
 #[cfg(test)]

@@ -170,6 +170,12 @@ pub enum TableError {
         /// Instruction index.
         pc: u32,
     },
+    /// A `move` whose record is not a plain move.
+    #[error("move at pc {pc} names a record that is not a plain move")]
+    NotAMove {
+        /// Instruction index.
+        pc: u32,
+    },
     /// A source location names a file past the file table.
     #[error("source location of pc {pc} names a missing file")]
     FileOutOfRange {

@@ -47,7 +47,7 @@ pub const MAGIC: [u8; 4] = *b"GBC\0";
 /// version 3 the typed blocks (`block`, the `Blocks` section) and the
 /// line table as delta-encoded runs; version 4 `profile` (a G70–G73
 /// profile block as a typed record, shared with the block where it stands).
-pub const VERSION: u16 = 4;
+pub const VERSION: u16 = 5;
 
 /// Bytes before the first section: magic and version.
 pub const HEADER_LEN: usize = 6;

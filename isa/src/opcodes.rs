@@ -91,6 +91,11 @@ macro_rules! for_each_instr {
             /// profile block for the cycle that follows (as `exec` with its
             /// profile flag), its tag being this pc.
             Profile = 0x35, "profile" { rec: Rec };
+            /// Execute the typed block at `rec` as a plain move: its words
+            /// are X/Z/U/W, F, N and an arc's R or I/K, each at most once,
+            /// and at most one G written as 0–3 (the verifier checks), so
+            /// the kernel reads them without its general block parse.
+            Move = 0x36, "move" { rec: Rec };
 
             // --- calls ---
             /// `M98 P… L count`: call a subprogram known at compile time.

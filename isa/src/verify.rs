@@ -46,9 +46,14 @@ impl Module {
         for (pc, instr) in self.code.iter().enumerate() {
             let pc = len_to_u32(pc);
             instr.try_visit_operands(|op| self.check_operand(pc, op))?;
-            if let Instr::Block { rec } | Instr::Profile { rec } = *instr {
+            if let Instr::Block { rec } | Instr::Profile { rec } | Instr::Move { rec } = *instr {
                 if !records.contains(rec) {
                     return Err(TableError::BlockOutOfRange { pc }.into());
+                }
+            }
+            if let Instr::Move { rec } = *instr {
+                if !records.is_move(rec) {
+                    return Err(TableError::NotAMove { pc }.into());
                 }
             }
             if let Instr::SkipBlock { target, .. } = *instr {

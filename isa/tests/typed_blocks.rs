@@ -142,7 +142,7 @@ fn typed_module_round_trips_and_lists_its_blocks() {
     // 12 bytes, record 1 the 14 above.
     for line in [
         "  0000  block b0 (G98 G0 X50. Z2.) ; typed.nc:1:1",
-        "N10:\n  0001  block b12 (G1 X12.5 Z-33.25 F0.2) ; typed.nc:2:1",
+        "N10:\n  0001  move b12 (G1 X12.5 Z-33.25 F0.2) ; typed.nc:2:1",
         "  0002  block b26 (U0.30000000000000004 W-0.) ; typed.nc:3:1",
     ] {
         assert!(listing.contains(line), "{line:?} in\n{listing}");
@@ -278,7 +278,11 @@ fn block_operands_may_name_records_in_any_order() {
 fn block_operands_must_name_a_record() {
     let len = typed_module().blocks.len() as u32;
     for rec in [1, 11, 13, len, u32::MAX] {
-        for instr in [Instr::Block { rec }, Instr::Profile { rec }] {
+        for instr in [
+            Instr::Block { rec },
+            Instr::Profile { rec },
+            Instr::Move { rec },
+        ] {
             let mut m = typed_module();
             m.code[1] = instr;
             assert_eq!(
@@ -287,6 +291,39 @@ fn block_operands_must_name_a_record() {
                 "{instr:?}"
             );
         }
+    }
+}
+
+/// A `move` must name a plain move: X/Z/U/W, F, N, R, I and K each once
+/// and at most one G written as 0–3. Records by hand, each a `move`.
+#[test]
+fn move_operands_must_name_a_plain_move() {
+    let w = |letter: char, value: f64| BlockWord {
+        addr: isa::addr::from_letter(letter).unwrap(),
+        value,
+        flags: 2,
+    };
+    let cases: [(&[BlockWord], bool); 10] = [
+        (&[w('G', 1.0), w('X', 1.0), w('Z', -2.0), w('F', 0.2)], true),
+        (&[w('N', 5.0), w('U', 1.0), w('W', -2.0)], true),
+        (&[w('G', 3.0), w('X', 1.0), w('I', 1.0), w('K', 0.0)], true),
+        (&[w('G', 2.0), w('Z', 1.0), w('R', 4.0)], true),
+        (&[w('G', 4.0), w('X', 1.0)], false),
+        (&[w('G', 1.5), w('X', 1.0)], false),
+        (&[w('G', 0.0), w('G', 1.0), w('X', 1.0)], false),
+        (&[w('X', 1.0), w('X', 2.0)], false),
+        (&[w('X', 1.0), w('M', 3.0)], false),
+        (&[w('X', 1.0), w('S', 300.0)], false),
+    ];
+    for (words, plain) in cases {
+        let mut m = typed_module();
+        let rec = m.push_block(words).expect("a record");
+        m.code[1] = Instr::Move { rec };
+        let want = match plain {
+            true => Ok(()),
+            false => Err(TableError::NotAMove { pc: 1 }.into()),
+        };
+        assert_eq!(m.verify(), want, "{words:?}");
     }
 }
 

@@ -522,6 +522,12 @@ impl Vm {
                 self.synced = false;
                 return self.exec_block(sink);
             }
+            Instr::Move { rec } => {
+                // A typed plain move: the kernel's short parse.
+                self.load_record(rec)?;
+                self.synced = false;
+                return self.exec_with(sink, Nc::exec_move);
+            }
             Instr::Profile { rec } => {
                 // A typed profile block: as `wordk… exec` with PROFILE.
                 self.load_record(rec)?;
@@ -611,11 +617,21 @@ impl Vm {
     }
 
     fn exec_block(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
+        self.exec_with(sink, Nc::exec)
+    }
+
+    /// Executes the block built by the kernel's `exec` (or `exec_move`).
+    #[inline(always)]
+    fn exec_with(
+        &mut self,
+        sink: &mut dyn Sink,
+        exec: fn(&mut Nc, &[nc::words::Word], &mut dyn Sink) -> Result<nc::Outcome, NcError>,
+    ) -> Result<Next, Fault> {
         self.count_block()?;
         self.last_exec = self.pc - 1;
         self.nc
             .set_allowance(self.max_blocks.saturating_sub(self.blocks));
-        let result = self.nc.exec(&self.words.list, sink);
+        let result = exec(&mut self.nc, &self.words.list, sink);
         self.words.clear();
         self.msg = None;
         // A canned cycle counts as the blocks it generates, the first

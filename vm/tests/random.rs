@@ -54,7 +54,7 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
     let var = VARS[w as usize % VARS.len()];
     let target = w % len;
     let prog = w % progs;
-    match sel % 31 {
+    match sel % 32 {
         0 => Instr::LoadK { dst: ra, k },
         1 => Instr::LoadNull { dst: ra },
         2 => Instr::Mov { dst: ra, src: rb },
@@ -127,6 +127,10 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
                 rec: recs[w as usize % recs.len()],
             }
         }
+        // (The first two records are plain moves.)
+        30 => Instr::Move {
+            rec: typed_blocks().1[w as usize % 2],
+        },
         _ => Instr::Halt,
     }
 }

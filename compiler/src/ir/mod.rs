@@ -9,7 +9,8 @@
 //! them. Analyses keep their facts in side tables keyed by handle too.
 //!
 //! Passes: `build` (syntax tree and linked programs → IR, with the constant
-//! folding of -O1 inside it for now), `validate` (after build, on every
+//! folding of -O1 inside it for now), `resolve` (NC blocks that are plain
+//! moves typed as such, `crate::resolve`), `validate` (after them, on every
 //! compile: an invalid IR is the internal error E0000), `modal` (the
 //! modal groups known before each operation, `crate::modal`; only the
 //! `--emit=ir` printer reads it so far), `emit` (IR → bytecode), and the
@@ -42,6 +43,7 @@ pub use handle::{Arena, Handle};
 pub use validate::validate;
 
 use grammar::Span;
+use nc::gcode::Motion;
 use nc::value::{Bin, Func, Rel};
 
 /// A place in a source file: the unit (file) index and a byte span.
@@ -153,6 +155,18 @@ pub enum NcKind {
     Run,
     /// A G70–G73 profile block, handed to the cycle block that follows.
     Profile,
+    /// Executed where it stands, a plain move (pass `resolve`): its words
+    /// are constants, X/Z/U/W (one at least), F, N and an arc's R or I/K,
+    /// each once, and the G code, if any, is written as 0–3: the motion,
+    /// or `None` for the one in force.
+    Move(Option<Motion>),
+}
+
+impl NcKind {
+    /// Whether the block is executed where it stands.
+    pub fn runs_here(self) -> bool {
+        self != NcKind::Profile
+    }
 }
 
 /// One word of an NC block: its address (`A` = 0 … `Z` = 25, then the

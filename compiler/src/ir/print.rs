@@ -113,6 +113,7 @@ impl Printer<'_> {
             Op::Nc(nc) => {
                 let mut s = String::from(match nc.kind {
                     NcKind::Run => "nc",
+                    NcKind::Move(_) => "move",
                     NcKind::Profile => "profile",
                 });
                 for w in self.f.words_of(nc) {

@@ -12,7 +12,7 @@
 //!   and block has its source location.
 
 use super::{
-    Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Loc, Module, NcBlock, Op,
+    Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Loc, Module, NcBlock, NcKind, Op,
     Terminator, VarTarget, WordValue,
 };
 
@@ -214,6 +214,15 @@ impl Checker<'_> {
         }
         if let Some(s) = nc.msg {
             self.string(s.0, loc);
+        }
+        if let NcKind::Move(motion) = nc.kind {
+            let words = &self.f.words[a as usize..b as usize];
+            if crate::resolve::plain_move(words) != Some(motion) {
+                self.fail(
+                    loc,
+                    "a typed move whose words are not its plain move".into(),
+                );
+            }
         }
     }
 

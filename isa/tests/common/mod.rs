@@ -118,7 +118,8 @@ pub fn edit_lines(m: &mut Module, edit: impl FnOnce(&mut Vec<SourceLoc>)) {
 /// A main program of typed blocks: `G98 G0 X50. Z2.` then `G1 X12.5
 /// Z-33.25 F0.2` (literals as the lexer reads them), then a word stored
 /// raw (0.1 + 0.2 has no short decimal) and a computed -0 (flags 0); then
-/// the second record again as a profile block.
+/// the second record again as a profile block. The second is run as a
+/// `move`, the others as `block`s.
 pub fn typed_module() -> Module {
     let w = |letter: char, value: f64, flags: u8| BlockWord {
         addr: addr::from_letter(letter).unwrap(),
@@ -158,7 +159,11 @@ pub fn typed_module() -> Module {
     };
     for (i, words) in records.iter().enumerate() {
         let rec = m.push_block(words).expect("the words fit a record");
-        m.code.push(Instr::Block { rec });
+        // (The second is a plain move.)
+        m.code.push(match i {
+            1 => Instr::Move { rec },
+            _ => Instr::Block { rec },
+        });
         m.lines.push(SourceLoc {
             file: 0,
             line: i as u32 + 1,

@@ -206,6 +206,49 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
     check_words(p, m)
 }
 
+/// The addresses a plain move may write besides its G code
+/// ([`Parsed::is_plain_move`]).
+const MOVE_WORDS: u32 = mask(b"XZUWFNRIK");
+
+/// [`parse_into`] for the words of a plain move whose G code, if any, is
+/// written as G00–G03 exactly (what the compiler types as `move`): the
+/// same result, without decoding a G code in general or the rules that
+/// no such block can break. Any other block is handed to `parse_into`,
+/// so the result never depends on the words being of that shape.
+pub fn parse_move(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcError> {
+    p.clear_gs();
+    p.m_len = 0;
+    p.present = 0;
+    for w in words {
+        let a = w.addr;
+        if a == addr(b'G') {
+            let motion = match w.value {
+                0.0 => Motion::Rapid,
+                1.0 => Motion::Line,
+                2.0 => Motion::ArcCw,
+                3.0 => Motion::ArcCcw,
+                _ => return parse_into(words, m, p),
+            };
+            if p.g_len != 0 {
+                return parse_into(words, m, p);
+            }
+            p.g[0] = G::Motion(motion);
+            p.g_len = 1;
+            p.motion = Some(motion);
+        } else if a < 32 && MOVE_WORDS & 1 << a != 0 && !p.has_at(a) {
+            p.present |= 1 << a;
+            p.value[a as usize] = w.value;
+            p.flags[a as usize] = w.flags;
+        } else {
+            return parse_into(words, m, p);
+        }
+    }
+    // `check_words` for these words: the integer-only rule and the C, H,
+    // Y, comma-word, M-code and foreign rules have nothing to look at.
+    check_sign(p, b'F')?;
+    check_end_point(p)
+}
+
 fn add_g(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
     if w.value < 0.0 || w.value > 9999.0 {
         return fail(
@@ -337,29 +380,9 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
         }
     }
     for letter in [b'F', b'S'] {
-        if let Some(v) = p.get(letter) {
-            if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) {
-                return fail(
-                    Alarm::LiteralOutOfRange,
-                    format!("{} must not be negative", letter as char),
-                );
-            }
-        }
+        check_sign(p, letter)?;
     }
-    // In G04 X and U are both the dwell in seconds and X wins (seed G04
-    // note 3), so only moves forbid the pair.
-    if p.has(b'X') && p.has(b'U') && p.one_shot() != Some(OneShot::Dwell) {
-        return fail(
-            Alarm::IncompatibleWords,
-            "X and U in one block: write the X end point either absolute or incremental",
-        );
-    }
-    if p.has(b'Z') && p.has(b'W') {
-        return fail(
-            Alarm::IncompatibleWords,
-            "Z and W in one block: write the Z end point either absolute or incremental",
-        );
-    }
+    check_end_point(p)?;
     if p.has(b'Y') || p.has(b'V') {
         return fail(Alarm::AxisNotConfigured, "this machine has no Y axis");
     }
@@ -398,6 +421,37 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     }
     check_m_codes(p)?;
     check_foreign(p)
+}
+
+/// F and S are not negative (but F of a left-hand tap, or of a block
+/// without a code that feeds).
+fn check_sign(p: &Parsed, letter: u8) -> Result<(), NcError> {
+    match p.get(letter) {
+        Some(v) if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) => fail(
+            Alarm::LiteralOutOfRange,
+            format!("{} must not be negative", letter as char),
+        ),
+        _ => Ok(()),
+    }
+}
+
+/// An end point is written absolute or incremental, not both.
+fn check_end_point(p: &Parsed) -> Result<(), NcError> {
+    // In G04 X and U are both the dwell in seconds and X wins (seed G04
+    // note 3), so only moves forbid the pair.
+    if p.has(b'X') && p.has(b'U') && p.one_shot() != Some(OneShot::Dwell) {
+        return fail(
+            Alarm::IncompatibleWords,
+            "X and U in one block: write the X end point either absolute or incremental",
+        );
+    }
+    if p.has(b'Z') && p.has(b'W') {
+        return fail(
+            Alarm::IncompatibleWords,
+            "Z and W in one block: write the Z end point either absolute or incremental",
+        );
+    }
+    Ok(())
 }
 
 fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
@@ -458,10 +512,76 @@ fn check_foreign(p: &Parsed) -> Result<(), NcError> {
 
 #[cfg(test)]
 mod tests {
-    use super::{parse, round_half_away};
+    use super::{parse, parse_into, parse_move, round_half_away, Parsed};
     use crate::base::gcode::{self, Code};
     use crate::base::machine::Machine;
-    use crate::base::words::{addr, Word, LITERAL};
+    use crate::base::words::{addr, Word, LITERAL, NO_POINT};
+    use alloc::format;
+    use alloc::vec::Vec;
+
+    /// `parse_move` gives what `parse_into` gives, alarm or parse, on
+    /// every block of a G code (none, G00–G03, and codes it hands on)
+    /// with every set of the plain move's other addresses, F of both
+    /// signs, with and without decimal points; and on blocks it hands on
+    /// (a repeated address, a second G, an M, a T).
+    #[test]
+    fn parse_move_agrees_with_parse_into() {
+        let m = Machine::reference();
+        let letters = *b"XZUWFNRIK";
+        let gs: [Option<f64>; 7] = [
+            None,
+            Some(0.0),
+            Some(1.0),
+            Some(2.0),
+            Some(3.0),
+            Some(4.0),
+            Some(1.5),
+        ];
+        let extras: [&[(u8, f64)]; 5] = [
+            &[],
+            &[(b'X', 3.0)],
+            &[(b'G', 1.0)],
+            &[(b'M', 3.0)],
+            &[(b'T', 101.0)],
+        ];
+        let mut compared = 0;
+        for g in gs {
+            for set in 0u32..1 << letters.len() {
+                for (f, flags) in [(-0.2, LITERAL), (100.0, LITERAL | NO_POINT)] {
+                    for extra in extras {
+                        let mut words: Vec<Word> = Vec::new();
+                        let mut push = |letter: u8, value: f64| {
+                            words.push(Word {
+                                addr: addr(letter),
+                                value,
+                                flags,
+                            });
+                        };
+                        if let Some(code) = g {
+                            push(b'G', code);
+                        }
+                        for (i, &letter) in letters.iter().enumerate() {
+                            if set & 1 << i != 0 {
+                                push(letter, if letter == b'F' { f } else { 1.5 + i as f64 });
+                            }
+                        }
+                        for &(letter, value) in extra.iter() {
+                            push(letter, value);
+                        }
+                        let (mut a, mut b) = (Parsed::default(), Parsed::default());
+                        let ra = parse_into(&words, &m, &mut a);
+                        let rb = parse_move(&words, &m, &mut b);
+                        assert_eq!(format!("{ra:?}"), format!("{rb:?}"), "{words:?}");
+                        if ra.is_ok() {
+                            assert_eq!(format!("{a:?}"), format!("{b:?}"), "{words:?}");
+                        }
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(compared, 7 * 512 * 2 * 5);
+    }
 
     /// The one-shot and motion codes noted while parsing are what a scan
     /// of the block's G codes finds (the first group-00 code, the last

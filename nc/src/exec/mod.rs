@@ -29,7 +29,7 @@ use crate::base::geom::Element;
 use crate::base::machine::{DecimalPoint, Machine, SpindleType};
 use crate::base::mcode::{Timing, M};
 use crate::base::point::Pt;
-use crate::base::words::{Word, LITERAL, NO_POINT};
+use crate::base::words::{addr, Word, LITERAL, NO_POINT};
 use crate::block::{self, round_half_away, Parsed};
 use crate::exec::state::State;
 use crate::modal::PathMode;
@@ -156,15 +156,49 @@ impl Nc {
         crate::exec::tool_life::timed(self, words, sink, Nc::exec_guarded)
     }
 
+    /// Executes a plain move the compiler typed (the `move` instruction:
+    /// X/Z/U/W, F, N and an arc's R or I/K, and at most a G00–G03
+    /// written as 0–3): as [`exec`](Nc::exec) does, its words read by
+    /// [`block::parse_move`], which skips what such a block cannot hold.
+    /// Other words are taken as `exec` takes them.
+    pub fn exec_move(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        // In a G10 data-setting mode a block is data; a G10 or G11 is not
+        // a move (data_setting::intercept).
+        let other_g = |w: &Word| w.addr == addr(b'G') && !(0.0..=3.0).contains(&w.value);
+        if self.st.data.mode != crate::exec::data_setting::Mode::Off || words.iter().any(other_g) {
+            return self.exec(words, sink);
+        }
+        crate::exec::tool_life::timed(self, words, sink, Nc::exec_guarded_move)
+    }
+
     /// A block with the G22 stroke check, when it is in force, and the
     /// check for feed moves at F = 0 (zero_feed) when the block can print
     /// one; of their alarms the one of the earlier event (neither passes
     /// events on after its own).
     fn exec_guarded(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
+        self.guarded(words, sink, block::parse_into)
+    }
+
+    /// `exec_guarded` for a typed plain move.
+    fn exec_guarded_move(
+        &mut self,
+        words: &[Word],
+        sink: &mut dyn Sink,
+    ) -> Result<Outcome, NcError> {
+        self.guarded(words, sink, block::parse_move)
+    }
+
+    #[inline(always)]
+    fn guarded(
+        &mut self,
+        words: &[Word],
+        sink: &mut dyn Sink,
+        parse: fn(&[Word], &Machine, &mut Parsed) -> Result<(), NcError>,
+    ) -> Result<Outcome, NcError> {
         // (A block run from inside a block, as G70's profile, finds no
         // parse kept and makes its own.)
         let mut p = self.parsed.take().unwrap_or_default();
-        let result = match block::parse_into(words, &self.machine, &mut p) {
+        let result = match parse(words, &self.machine, &mut p) {
             Err(e) => Err(e),
             // The usual block: nothing to check on its way out, and the
             // block's execution in line here (it runs for every block).

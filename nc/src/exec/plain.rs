@@ -136,6 +136,58 @@ mod tests {
         both_ways(&mut Lathe::new(), &blocks);
     }
 
+    /// Runs every block of `blocks` through `Nc::exec_move` on one kernel
+    /// and `Nc::exec` on another: the same canon or alarm, and the same
+    /// state, after each (`exec_move` takes any words; it is only faster
+    /// for a plain move's).
+    fn move_both_ways(blocks: &[&str]) {
+        use crate::exec::cycles::testing::words;
+        use alloc::vec::Vec;
+        let mut a = Lathe::new();
+        let mut b = Lathe { nc: a.nc.clone() };
+        for block in blocks {
+            let mut events: Vec<crate::base::event::Event> = Vec::new();
+            let moved =
+                a.nc.exec_move(&words(block), &mut events)
+                    .map_err(|e| e.code);
+            let moved = moved.map(|_| events.iter().map(|e| format!("{e}")).collect());
+            assert_eq!(moved, b.try_run(block), "{block}");
+            let (sa, sb) = (format!("{:?}", a.nc.st), format!("{:?}", b.nc.st));
+            assert!(sa == sb, "{block}: the states differ");
+        }
+    }
+
+    #[test]
+    fn a_typed_move_runs_as_its_block_in_every_mode() {
+        move_both_ways(&[
+            "G98 G00 X40 Z2",
+            "G01 X30 Z-5 F100",
+            "U2 W-1",
+            // Data: a parameter block that looks like a move.
+            "G10 L52",
+            "N181 W0",
+            "G11",
+            // Tool life by minutes times the moves.
+            "G10 L3",
+            "P1 L1 Q2",
+            "G11",
+            "T0101",
+            "G01 X20 Z-10 F50",
+            // F 0, the stroke limit, a plane mode's and a chamfer's moves.
+            "G01 X25 F0",
+            "G01 X25 Z-12 F80",
+            "G22 X100. Z50. I-10. K-20.",
+            "G00 X120 Z0",
+            "G01 X26 Z-8 L1",
+            "Z-20",
+            "G02 X30 Z-22 R2",
+            "G01 X30 Z-25 F-1",
+            "X30 U1",
+            "G04 X1",
+            "M30",
+        ]);
+    }
+
     #[test]
     fn after_threads_and_under_compensation() {
         let blocks = [

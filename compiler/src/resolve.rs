@@ -1,0 +1,130 @@
+//! Pass `resolve`: NC blocks that are plain moves become typed moves.
+//!
+//! A block executed where it stands whose words are all constants and make
+//! a plain move (X/Z/U/W, at least one, F, N and an arc's R or I/K, each
+//! once, and at most a G code written as 0–3) is marked
+//! [`NcKind::Move`] with its motion. `emit` gives it the `move`
+//! instruction, whose words the kernel reads with its short parse
+//! (`nc::block::parse_move`) instead of decoding every word in general.
+//!
+//! The kernel's rules on the words themselves were checked when the block
+//! was built (a literal block that breaks one is a compile error), and
+//! `parse_move` checks again the few a plain move can break; what depends
+//! on the modal state (a plane mode, a waiting chamfer, a G10 data mode)
+//! the kernel decides as it runs the move, as for any block.
+
+use crate::ir::{Function, Module, NcKind, Op, Word, WordValue};
+use nc::gcode::Motion;
+use nc::words::addr;
+
+/// Marks the plain moves of every function.
+pub fn module(ir: &mut Module) {
+    for f in &mut ir.functions {
+        function(f);
+    }
+}
+
+/// Marks the plain moves of `f` (a whole function or a chunk's part).
+pub fn function(f: &mut Function) {
+    for i in 0..f.ops.len() {
+        let Some(h) = crate::ir::Handle::from_index(i) else {
+            continue;
+        };
+        let Some(Op::Nc(nc)) = f.ops.get_mut(h) else {
+            continue;
+        };
+        let (a, b) = (nc.words.0 as usize, nc.words.1 as usize);
+        if nc.kind != NcKind::Run {
+            continue;
+        }
+        if let Some(motion) = f.words.get(a..b).and_then(plain_move) {
+            nc.kind = NcKind::Move(motion);
+        }
+    }
+}
+
+/// The motion of words that make a plain move (`None` inside: the one in
+/// force), or `None` when they do not.
+pub fn plain_move(words: &[Word]) -> Option<Option<Motion>> {
+    const AXES: u32 = bits(b"XZUW");
+    const OTHERS: u32 = bits(b"FNRIK");
+    let mut seen = 0u32;
+    let mut motion = None;
+    for w in words {
+        let WordValue::Const(value, _) = w.value() else {
+            return None;
+        };
+        let bit = 1u32.checked_shl(u32::from(w.addr))?;
+        if seen & bit != 0 {
+            return None;
+        }
+        seen |= bit;
+        if w.addr == addr(b'G') {
+            motion = Some(motion_of(value)?);
+        } else if (AXES | OTHERS) & bit == 0 {
+            return None;
+        }
+    }
+    (seen & AXES != 0).then_some(motion)
+}
+
+/// G00–G03 written as 0–3 (not `G1.0`'s other spellings, which the
+/// kernel rounds: those stay in word form).
+fn motion_of(value: f64) -> Option<Motion> {
+    Some(match value {
+        0.0 => Motion::Rapid,
+        1.0 => Motion::Line,
+        2.0 => Motion::ArcCw,
+        3.0 => Motion::ArcCcw,
+        _ => return None,
+    })
+}
+
+/// The address bits of some letters.
+const fn bits(letters: &[u8]) -> u32 {
+    let mut m = 0;
+    let mut i = 0;
+    while i < letters.len() {
+        m |= 1 << addr(letters[i]);
+        i += 1;
+    }
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ir::Handle;
+
+    fn words(spec: &[(u8, f64)]) -> Vec<Word> {
+        spec.iter()
+            .map(|&(l, v)| Word::new(addr(l), WordValue::Const(v, 0)))
+            .collect()
+    }
+
+    #[test]
+    fn plain_moves_and_blocks_that_are_not() {
+        let line = [(b'G', 1.0), (b'X', 12.5), (b'Z', -3.0), (b'F', 100.0)];
+        assert_eq!(plain_move(&words(&line)), Some(Some(Motion::Line)));
+        let modal = [(b'N', 10.0), (b'U', 1.0), (b'W', -2.0)];
+        assert_eq!(plain_move(&words(&modal)), Some(None));
+        let arc = [(b'G', 3.0), (b'X', 20.0), (b'Z', -5.0), (b'R', 5.0)];
+        assert_eq!(plain_move(&words(&arc)), Some(Some(Motion::ArcCcw)));
+        for not in [
+            &[(b'G', 1.0), (b'F', 100.0)][..],        // no axis
+            &[(b'G', 4.0), (b'X', 1.0)],              // a dwell
+            &[(b'G', 1.5), (b'X', 1.0)],              // not 0–3
+            &[(b'G', 0.0), (b'G', 1.0), (b'X', 1.0)], // two G codes
+            &[(b'X', 1.0), (b'X', 2.0)],              // X twice
+            &[(b'X', 1.0), (b'M', 3.0)],              // an M code
+            &[(b'X', 1.0), (b'S', 300.0)],            // S
+            &[(b'X', 1.0), (b'C', 30.0)],             // a C axis word
+            &[(b'G', 1.0), (b'X', 1.0), (b'L', 2.0)], // a chamfer
+        ] {
+            assert_eq!(plain_move(&words(not)), None, "{not:?}");
+        }
+        let mut computed = words(&line);
+        computed[1] = Word::new(addr(b'X'), WordValue::Expr(Handle::from_index(0).unwrap()));
+        assert_eq!(plain_move(&computed), None);
+    }
+}
