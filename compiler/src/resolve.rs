@@ -13,7 +13,7 @@
 //! on the modal state (a plane mode, a waiting chamfer, a G10 data mode)
 //! the kernel decides as it runs the move, as for any block.
 
-use crate::ir::{Function, Module, NcKind, Op, Word, WordValue};
+use crate::ir::{Function, Module, NcKind, Op, Word};
 use nc::gcode::Motion;
 use nc::words::addr;
 
@@ -26,11 +26,8 @@ pub fn module(ir: &mut Module) {
 
 /// Marks the plain moves of `f` (a whole function or a chunk's part).
 pub fn function(f: &mut Function) {
-    for i in 0..f.ops.len() {
-        let Some(h) = crate::ir::Handle::from_index(i) else {
-            continue;
-        };
-        let Some(Op::Nc(nc)) = f.ops.get_mut(h) else {
+    for op in f.ops.items_mut() {
+        let Op::Nc(nc) = op else {
             continue;
         };
         let (a, b) = (nc.words.0 as usize, nc.words.1 as usize);
@@ -51,9 +48,7 @@ pub fn plain_move(words: &[Word]) -> Option<Option<Motion>> {
     let mut seen = 0u32;
     let mut motion = None;
     for w in words {
-        let WordValue::Const(value, _) = w.value() else {
-            return None;
-        };
+        let value = w.constant()?;
         let bit = 1u32.checked_shl(u32::from(w.addr))?;
         if seen & bit != 0 {
             return None;
@@ -94,7 +89,7 @@ const fn bits(letters: &[u8]) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ir::Handle;
+    use crate::ir::{Handle, WordValue};
 
     fn words(spec: &[(u8, f64)]) -> Vec<Word> {
         spec.iter()

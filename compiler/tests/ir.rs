@@ -216,6 +216,30 @@ fn the_validator_accepts_sound_ir_and_names_each_fault() {
             "O0000 (function 0): expression #0 uses #1, which does not come before it",
         ]
     );
+
+    // A typed move with a computed word (its words become a record).
+    let mut f = function(1);
+    let x = f.exprs.append(ir::Expr::Const(1.0));
+    for w in [
+        ir::Word::new(23, ir::WordValue::Expr(x)),
+        ir::Word::new(25, ir::WordValue::Const(-2.0, 0)),
+    ] {
+        f.words.push(w);
+        f.word_spans.push(grammar::Span::default());
+    }
+    let op = f.ops.append(ir::Op::Nc(ir::NcBlock {
+        words: (0, 2),
+        kind: ir::NcKind::Move(None),
+        msg: None,
+    }));
+    f.op_locs.push(loc());
+    if let Some(x) = f.blocks.get_mut(block(0)) {
+        x.ops.push(op);
+    }
+    assert_eq!(
+        errors(f),
+        ["O0000 (function 0): a typed move with a computed word"]
+    );
 }
 
 /// Every conformance, corpus and example program builds into valid IR

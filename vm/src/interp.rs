@@ -620,7 +620,8 @@ impl Vm {
         self.exec_with(sink, Nc::exec)
     }
 
-    /// Executes the block built by the kernel's `exec` (or `exec_move`).
+    /// Executes the block built so far with the kernel's `exec` (or
+    /// `exec_move`).
     #[inline(always)]
     fn exec_with(
         &mut self,

@@ -114,6 +114,12 @@ impl<T> Arena<T> {
             .filter_map(|(i, t)| Some((Handle::from_index(i)?, t)))
     }
 
+    /// Every item, mutable, in order (a pass that rewrites items where
+    /// they are).
+    pub fn items_mut(&mut self) -> impl Iterator<Item = &mut T> {
+        self.items.iter_mut()
+    }
+
     /// Whether `h` names an item of this arena.
     pub fn contains(&self, h: Handle<T>) -> bool {
         h.index() < self.items.len()

@@ -187,6 +187,12 @@ pub struct Word {
 }
 
 impl Word {
+    /// The value of a constant word; `None` for a computed one.
+    #[inline]
+    pub fn constant(&self) -> Option<f64> {
+        (!self.computed).then(|| f64::from_bits(self.bits))
+    }
+
     pub fn new(addr: u8, value: WordValue) -> Word {
         let (flags, computed, bits) = match value {
             WordValue::Const(v, flags) => (flags, false, v.to_bits()),

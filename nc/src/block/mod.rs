@@ -425,6 +425,7 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
 
 /// F and S are not negative (but F of a left-hand tap, or of a block
 /// without a code that feeds).
+#[inline]
 fn check_sign(p: &Parsed, letter: u8) -> Result<(), NcError> {
     match p.get(letter) {
         Some(v) if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) => fail(
@@ -436,6 +437,7 @@ fn check_sign(p: &Parsed, letter: u8) -> Result<(), NcError> {
 }
 
 /// An end point is written absolute or incremental, not both.
+#[inline]
 fn check_end_point(p: &Parsed) -> Result<(), NcError> {
     // In G04 X and U are both the dwell in seconds and X wins (seed G04
     // note 3), so only moves forbid the pair.
