@@ -38,7 +38,8 @@ pub fn front_end(data: &[u8]) {
 /// The whole compiler: bytes → a module or diagnostics. A module it emits
 /// always verifies and runs within its budget, to the same events and the
 /// same end with the kernel's short path for plain moves as without it
-/// (`nc::exec::plain`); a plain program compiled a few lines at a time
+/// (`nc::exec::plain`), and as the module compiled without typed moves
+/// (pass `resolve`); a plain program compiled a few lines at a time
 /// (`compiler::stream`) gives the same module and diagnostics as compiled
 /// whole.
 pub fn compiler(data: &[u8]) {
@@ -66,6 +67,16 @@ pub fn compiler(data: &[u8]) {
                 short == run_bounded(m, false),
                 "the plain-move path runs otherwise"
             );
+            let untyped = Options {
+                resolve: false,
+                ..Options::default()
+            };
+            if let Some(words) = compile("fuzz.nc", data, &untyped).module {
+                assert!(
+                    short == run_bounded(words, true),
+                    "the module without typed moves runs otherwise"
+                );
+            }
         }
     }
 }
