@@ -314,10 +314,11 @@ impl<'a> Emitter<'a> {
     }
 
     /// One NC block: its words, each located at its own source, then the
-    /// comment's message and `exec` at the block. A block whose words are
-    /// all known is one typed block instead: a record of its words, in
-    /// order, and one `block` instruction (`profile` for a G70–G73 profile
-    /// block, which has no use for the message).
+    /// comment's message and `exec` at the block (`execmove` for a typed
+    /// move). A block whose words are all known is one typed block
+    /// instead: a record of its words, in order, and one `block`
+    /// instruction (`move` for a typed move, `profile` for a G70–G73
+    /// profile block, which has no use for the message).
     fn nc_block(&mut self, f: &Function, nc: &ir::NcBlock) {
         let (file, span) = (self.loc.file, self.span);
         let typed = self.typed_block(f.words_of(nc), nc.kind);
@@ -349,7 +350,8 @@ impl<'a> Emitter<'a> {
             (Some(rec), ir::NcKind::Run) => Instr::Block { rec },
             (Some(rec), ir::NcKind::Move(_)) => Instr::Move { rec },
             (Some(rec), ir::NcKind::Profile) => Instr::Profile { rec },
-            (None, ir::NcKind::Run | ir::NcKind::Move(_)) => Instr::Exec { flags: 0 },
+            (None, ir::NcKind::Run) => Instr::Exec { flags: 0 },
+            (None, ir::NcKind::Move(_)) => Instr::ExecMove,
             (None, ir::NcKind::Profile) => Instr::Exec { flags: PROFILE },
         });
     }

@@ -1,11 +1,13 @@
 //! Pass `resolve`: NC blocks that are plain moves become typed moves.
 //!
-//! A block executed where it stands whose words are all constants and make
-//! a plain move (X/Z/U/W, at least one, F, N and an arc's R or I/K, each
-//! once, and at most a G code written as 0–3) is marked
-//! [`NcKind::Move`] with its motion. `emit` gives it the `move`
-//! instruction, whose words the kernel reads with its short parse
-//! (`nc::block::parse_move`) instead of decoding every word in general.
+//! A block executed where it stands whose words make a plain move (X/Z/U/W,
+//! at least one, F, N and an arc's R or I/K, each once, and at most a G
+//! code written as 0–3) is marked [`NcKind::Move`] with its motion. Its
+//! words other than G may be computed (`G1 X#5 Z#4`). `emit` gives a move
+//! of constants the `move` instruction and its record, a move with a
+//! computed word its words and `execmove`; either way the kernel reads the
+//! words with its short parse (`nc::block::parse_move`) instead of decoding
+//! every word in general.
 //!
 //! The kernel's rules on the words themselves were checked when the block
 //! was built (a literal block that breaks one is a compile error), and
@@ -48,14 +50,14 @@ pub fn plain_move(words: &[Word]) -> Option<Option<Motion>> {
     let mut seen = 0u32;
     let mut motion = None;
     for w in words {
-        let value = w.constant()?;
         let bit = 1u32.checked_shl(u32::from(w.addr))?;
         if seen & bit != 0 {
             return None;
         }
         seen |= bit;
         if w.addr == addr(b'G') {
-            motion = Some(motion_of(value)?);
+            // (A computed G could be any code.)
+            motion = Some(motion_of(w.constant()?)?);
         } else if (AXES | OTHERS) & bit == 0 {
             return None;
         }
@@ -118,8 +120,16 @@ mod tests {
         ] {
             assert_eq!(plain_move(&words(not)), None, "{not:?}");
         }
+        // Computed words: any but the G code.
+        let expr = WordValue::Expr(Handle::from_index(0).unwrap());
         let mut computed = words(&line);
-        computed[1] = Word::new(addr(b'X'), WordValue::Expr(Handle::from_index(0).unwrap()));
+        computed[1] = Word::new(addr(b'X'), expr);
+        computed[3] = Word::new(addr(b'F'), expr);
+        assert_eq!(plain_move(&computed), Some(Some(Motion::Line)));
+        computed[0] = Word::new(addr(b'G'), expr);
         assert_eq!(plain_move(&computed), None);
+        let mut dwell = words(&[(b'G', 4.0), (b'X', 1.0)]);
+        dwell[1] = Word::new(addr(b'X'), expr);
+        assert_eq!(plain_move(&dwell), None);
     }
 }

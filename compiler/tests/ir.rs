@@ -217,10 +217,12 @@ fn the_validator_accepts_sound_ir_and_names_each_fault() {
         ]
     );
 
-    // A typed move with a computed word (its words become a record).
+    // A typed move with a computed G code (it could be any code). Its
+    // computed X is allowed (`execmove`).
     let mut f = function(1);
     let x = f.exprs.append(ir::Expr::Const(1.0));
     for w in [
+        ir::Word::new(6, ir::WordValue::Expr(x)),
         ir::Word::new(23, ir::WordValue::Expr(x)),
         ir::Word::new(25, ir::WordValue::Const(-2.0, 0)),
     ] {
@@ -228,7 +230,7 @@ fn the_validator_accepts_sound_ir_and_names_each_fault() {
         f.word_spans.push(grammar::Span::default());
     }
     let op = f.ops.append(ir::Op::Nc(ir::NcBlock {
-        words: (0, 2),
+        words: (0, 3),
         kind: ir::NcKind::Move(None),
         msg: None,
     }));
@@ -238,7 +240,7 @@ fn the_validator_accepts_sound_ir_and_names_each_fault() {
     }
     assert_eq!(
         errors(f),
-        ["O0000 (function 0): a typed move with a computed word"]
+        ["O0000 (function 0): a typed move with a computed G code"]
     );
 }
 

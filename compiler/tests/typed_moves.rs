@@ -1,9 +1,9 @@
-//! Pass `resolve` types plain moves (`move`, read by the kernel's short
-//! parse) and changes nothing else: every suite program and a few hundred
-//! random macro programs compile with and without it to the same code but
-//! for `block` ↔ `move`, and run in the VM both ways one instruction at a
-//! time; after each, the status, the events printed and the kernel's whole
-//! state must be the same.
+//! Pass `resolve` types plain moves (`move` and `execmove`, read by the
+//! kernel's short parse) and changes nothing else: every suite program and
+//! a few hundred random macro programs compile with and without it to the
+//! same code but for `block` ↔ `move` and `exec` ↔ `execmove`, and run in
+//! the VM both ways one instruction at a time; after each, the status, the
+//! events printed and the kernel's whole state must be the same.
 
 use compiler::{compile, Options};
 use isa::{Instr, Module};
@@ -17,11 +17,26 @@ use common::{random_program, Rng};
 /// Instructions run per program at most (the suites' loops are short).
 const STEPS: usize = 100_000;
 
-/// What one program gave: moves typed, instructions compared.
+/// What one program gave: moves typed (those with a computed word
+/// apart), instructions compared.
 #[derive(Default)]
 struct Compared {
-    moves: usize,
+    moves: Moves,
     steps: usize,
+}
+
+/// Typed moves: of constants (`move`), with a computed word (`execmove`).
+#[derive(Default, Clone, Copy)]
+struct Moves {
+    constant: usize,
+    computed: usize,
+}
+
+impl std::ops::AddAssign for Moves {
+    fn add_assign(&mut self, o: Moves) {
+        self.constant += o.constant;
+        self.computed += o.computed;
+    }
 }
 
 /// The module of `src` with and without `resolve`, if it compiles.
@@ -37,14 +52,17 @@ fn both_modules(src: &[u8], machine: &Machine) -> Option<[Module; 2]> {
 }
 
 /// The code is the same but for `move` where the other has `block`, on
-/// the same record; the number of moves.
-fn moves_only_differ(name: &str, typed: &Module, words: &Module) -> usize {
+/// the same record, and `execmove` where it has `exec`; the moves.
+fn moves_only_differ(name: &str, typed: &Module, words: &Module) -> Moves {
     assert_eq!(typed.code.len(), words.code.len(), "{name}: code length");
     assert_eq!(typed.blocks, words.blocks, "{name}: records");
-    let mut moves = 0;
+    let mut moves = Moves::default();
     for (pc, (a, b)) in typed.code.iter().zip(&words.code).enumerate() {
         match (a, b) {
-            (Instr::Move { rec }, Instr::Block { rec: other }) if rec == other => moves += 1,
+            (Instr::Move { rec }, Instr::Block { rec: other }) if rec == other => {
+                moves.constant += 1
+            }
+            (Instr::ExecMove, Instr::Exec { flags: 0 }) => moves.computed += 1,
             _ => assert_eq!(a, b, "{name}: pc {pc}"),
         }
     }
@@ -97,20 +115,27 @@ fn every_suite_program_runs_the_same_with_typed_moves() {
             total.steps += c.steps;
         }
     }
+    let Moves { constant, computed } = total.moves;
     eprintln!(
-        "{programs} programs, {} typed moves, {} instructions compared",
-        total.moves, total.steps
+        "{programs} programs, {constant} typed moves of constants, {computed} with a computed \
+         word, {} instructions compared",
+        total.steps
     );
     assert!(programs >= 100, "only {programs} programs compiled");
     // The suites are mostly plain moves: most of their blocks are typed.
-    assert!(total.moves >= 1000, "only {} typed moves", total.moves);
+    assert!(constant >= 1000, "only {constant} typed moves");
+    // Their macro programs compute a few points of contours.
+    assert!(
+        computed >= 5,
+        "only {computed} typed moves with a computed word"
+    );
 }
 
 #[test]
 fn random_programs_run_the_same_with_typed_moves() {
     let mut rng = Rng(0x7e5d_0e5d_2026_1203);
     let machine = Machine::reference();
-    let (mut programs, mut moves) = (0, 0);
+    let (mut programs, mut moves) = (0, Moves::default());
     for i in 0..300 {
         let src = random_program(&mut rng);
         let name = format!("random{i}.nc\n{src}");
@@ -119,9 +144,14 @@ fn random_programs_run_the_same_with_typed_moves() {
             moves += c.moves;
         }
     }
-    eprintln!("{programs} programs, {moves} typed moves");
+    let Moves { constant, computed } = moves;
+    eprintln!("{programs} programs, {constant} typed moves, {computed} with a computed word");
     assert!(programs >= 280, "only {programs} of 300 compiled");
-    assert!(moves >= 100, "only {moves} typed moves");
+    assert!(constant >= 100, "only {constant} typed moves");
+    assert!(
+        computed >= 100,
+        "only {computed} typed moves with a computed word"
+    );
 }
 
 /// A long plain program takes the chunked path (`stream`): its moves are
@@ -136,7 +166,8 @@ fn a_long_plain_program_is_typed_chunk_by_chunk() {
     assert!(src.len() > Options::default().chunk_bytes);
     let machine = Machine::reference();
     let [typed, words] = both_modules(src.as_bytes(), &machine).expect("compiles");
-    assert_eq!(moves_only_differ("long", &typed, &words), 20_000);
+    let moves = moves_only_differ("long", &typed, &words);
+    assert_eq!((moves.constant, moves.computed), (20_000, 0));
     let c = same_both_ways("long", src.as_bytes(), &machine).expect("compiles");
     assert!(c.steps > 20_000);
 }

@@ -46,8 +46,10 @@ pub const MAGIC: [u8; 4] = *b"GBC\0";
 /// Version 2 added `skipblock` (block delete decided at run time);
 /// version 3 the typed blocks (`block`, the `Blocks` section) and the
 /// line table as delta-encoded runs; version 4 `profile` (a G70–G73
-/// profile block as a typed record, shared with the block where it stands).
-pub const VERSION: u16 = 5;
+/// profile block as a typed record, shared with the block where it stands);
+/// version 5 `move` (a typed plain move); version 6 `execmove` (a plain
+/// move with computed words).
+pub const VERSION: u16 = 6;
 
 /// Bytes before the first section: magic and version.
 pub const HEADER_LEN: usize = 6;

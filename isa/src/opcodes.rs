@@ -96,6 +96,14 @@ macro_rules! for_each_instr {
             /// and at most one G written as 0–3 (the verifier checks), so
             /// the kernel reads them without its general block parse.
             Move = 0x36, "move" { rec: Rec };
+            /// Execute the block built since the last `exec` as a plain
+            /// move whose words are computed: the compiler emits it for a
+            /// block of X/Z/U/W, F, N and an arc's R or I/K, each at most
+            /// once, with at most one G written as 0–3, so the kernel
+            /// reads its words with the short parse of `move`. (Words
+            /// computed at run time cannot be checked here: the kernel's
+            /// short parse hands any other block to its general one.)
+            ExecMove = 0x37, "execmove";
 
             // --- calls ---
             /// `M98 P… L count`: call a subprogram known at compile time.

@@ -342,51 +342,58 @@ fn tampered_line_tables_are_refused() {
     let bytes = typed_module().to_bytes();
     let lines = section(&bytes, Section::Lines);
     let at = lines.payload;
-    // By hand (isa/src/lines.rs): 5 instructions; a run of 3 (lines 1, 2,
+    // By hand (isa/src/lines.rs): 6 instructions; a run of 3 (lines 1, 2,
     // 3, step 1: head 3 << 2 | 2 = 14, zigzag(+1) = 2, col 1), then the
-    // profile and the halt on line 3 (head 2 << 2 = 8, line delta 0, col 1).
-    assert_eq!(&bytes[at..at + lines.len], &[5, 0, 0, 0, 14, 2, 1, 8, 0, 1]);
+    // profile, the execmove and the halt on line 3 (head 3 << 2 = 12, line
+    // delta 0, col 1).
+    assert_eq!(
+        &bytes[at..at + lines.len],
+        &[6, 0, 0, 0, 14, 2, 1, 12, 0, 1]
+    );
     let bad = |what| Err(TableError::BadLines { at, what }.into());
     let cases: [(&[u8], Result<Module, LoadError>); 8] = [
         // A run of no instructions.
         (
-            &[5, 0, 0, 0, 2, 2, 1, 8, 0, 1],
+            &[6, 0, 0, 0, 2, 2, 1, 12, 0, 1],
             bad("run not in its one encoding"),
         ),
         // One instruction with a step.
         (
-            &[5, 0, 0, 0, 14, 2, 1, 6, 0, 1],
+            &[6, 0, 0, 0, 14, 2, 1, 6, 0, 1],
             bad("run not in its one encoding"),
         ),
         // A file "change" to the same file 0.
         (
-            &[5, 0, 0, 0, 15, 0, 2, 1, 8, 0, 1],
+            &[6, 0, 0, 0, 15, 0, 2, 1, 12, 0, 1],
             bad("run not in its one encoding"),
         ),
-        // Runs covering 3 of 5 instructions, and 6 of 5.
+        // Runs covering 3 of 6 instructions, and 7 of 6.
         (
-            &[5, 0, 0, 0, 14, 2, 1],
+            &[6, 0, 0, 0, 14, 2, 1],
             bad("runs do not cover the instructions"),
         ),
         (
-            &[5, 0, 0, 0, 14, 2, 1, 12, 0, 1],
+            &[6, 0, 0, 0, 14, 2, 1, 16, 0, 1],
             bad("runs do not cover the instructions"),
         ),
         // A line before line 0 (delta -4 from line 3: zigzag 7).
         (
-            &[5, 0, 0, 0, 14, 2, 1, 8, 7, 1],
+            &[6, 0, 0, 0, 14, 2, 1, 12, 7, 1],
             bad("line, column, file or pc out of range"),
         ),
         // A run cut short, and an overlong varint.
-        (&[5, 0, 0, 0, 14, 2, 1, 8, 0], bad("malformed run")),
-        (&[5, 0, 0, 0, 14, 2, 1, 8, 0x80, 0, 1], bad("malformed run")),
+        (&[6, 0, 0, 0, 14, 2, 1, 12, 0], bad("malformed run")),
+        (
+            &[6, 0, 0, 0, 14, 2, 1, 12, 0x80, 0, 1],
+            bad("malformed run"),
+        ),
     ];
     for (payload, want) in cases {
         let forged = with_payload(&bytes, Section::Lines, payload);
         assert_eq!(Module::from_bytes(&forged), want, "{payload:?}");
     }
-    // A run in file 1 (head 8 | 1, file 1): there is one file only.
-    let forged = with_payload(&bytes, Section::Lines, &[5, 0, 0, 0, 14, 2, 1, 9, 1, 0, 1]);
+    // A run in file 1 (head 12 | 1, file 1): there is one file only.
+    let forged = with_payload(&bytes, Section::Lines, &[6, 0, 0, 0, 14, 2, 1, 13, 1, 0, 1]);
     assert_eq!(
         Module::from_bytes(&forged),
         Err(TableError::FileOutOfRange { pc: 3 }.into())

@@ -528,6 +528,11 @@ impl Vm {
                 self.synced = false;
                 return self.exec_with(sink, Nc::exec_move);
             }
+            Instr::ExecMove => {
+                // A plain move with computed words: the short parse too.
+                self.synced = false;
+                return self.exec_with(sink, Nc::exec_move);
+            }
             Instr::Profile { rec } => {
                 // A typed profile block: as `wordk… exec` with PROFILE.
                 self.load_record(rec)?;

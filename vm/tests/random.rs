@@ -54,7 +54,7 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
     let var = VARS[w as usize % VARS.len()];
     let target = w % len;
     let prog = w % progs;
-    match sel % 32 {
+    match sel % 33 {
         0 => Instr::LoadK { dst: ra, k },
         1 => Instr::LoadNull { dst: ra },
         2 => Instr::Mov { dst: ra, src: rb },
@@ -131,6 +131,7 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
         30 => Instr::Move {
             rec: typed_blocks().1[w as usize % 2],
         },
+        31 => Instr::ExecMove,
         _ => Instr::Halt,
     }
 }

@@ -13,7 +13,7 @@
 
 use super::{
     Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Loc, Module, NcBlock, NcKind, Op,
-    Terminator, VarTarget, WordValue,
+    Terminator, VarTarget, Word, WordValue,
 };
 
 /// A fault of the IR, where it was found.
@@ -215,13 +215,15 @@ impl Checker<'_> {
         if let Some(s) = nc.msg {
             self.string(s.0, loc);
         }
-        // A move's words become a record: they must be constants. (That
-        // they make a plain move, the module's verifier checks on every
-        // compile, at less cost than here, where it held up the chunked
-        // path's back end.)
+        // A move's G code is a constant: computed, it could be any code.
+        // (That a move of constants makes a plain move, the module's
+        // verifier checks on every compile, at less cost than here, where
+        // it held up the chunked path's back end; a move with a computed
+        // word the kernel checks as it runs.)
         let words = &self.f.words[a as usize..b as usize];
-        if matches!(nc.kind, NcKind::Move(_)) && words.iter().any(|w| w.constant().is_none()) {
-            self.fail(loc, "a typed move with a computed word".into());
+        let computed_g = |w: &Word| w.addr == nc::words::addr(b'G') && w.constant().is_none();
+        if matches!(nc.kind, NcKind::Move(_)) && words.iter().any(computed_g) {
+            self.fail(loc, "a typed move with a computed G code".into());
         }
     }
 

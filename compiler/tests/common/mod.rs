@@ -92,6 +92,12 @@ const SETTERS: &[&str] = &[
     "G32 W-5 F1.5",
     "G02 X30 Z-12 R3",
     "G01 X20 A30 F1",
+    // Moves with computed words (#500 may be vacant: its word drops out).
+    "G01 X[20+#1] Z-#100 F[#1+1]",
+    "G00 U#1 W[0-#100]",
+    "X#500 Z-3",
+    "G02 X[30+#1] Z-12 R[#100*3]",
+    "G01 Z-4 F[#1-1]",
 ];
 
 /// A random main program of settings, branches, loops, GOTOs and calls,

@@ -147,7 +147,7 @@ pub fn typed_module() -> Module {
         programs: vec![Program {
             number: 1,
             entry: 0,
-            end: 5,
+            end: 6,
             seqs: vec![(10, 1)],
         }],
         files: vec![SourceFileInfo {
@@ -171,8 +171,10 @@ pub fn typed_module() -> Module {
         });
     }
     m.code.push(Instr::Profile { rec: 12 });
+    // (A move of the words built before it: here, none.)
+    m.code.push(Instr::ExecMove);
     m.code.push(Instr::Halt);
-    for _ in 0..2 {
+    for _ in 0..3 {
         m.lines.push(SourceLoc {
             file: 0,
             line: 3,
