@@ -12,14 +12,15 @@ use nc::{Machine, Nc, NcError};
 use smallvec::SmallVec;
 
 /// Checks the literal words of a block (a computed word is checked when
-/// it runs), parsing them into the scratch `p`.
+/// it runs), parsing them into the scratch `p` (with the kernel's short
+/// parse when they make a plain move: the same result).
 pub fn literal_block(
     m: &Machine,
     ws: &[NcWord<'_>],
     p: &mut nc::block::Parsed,
 ) -> Result<(), NcError> {
     let lits = literal_words(ws);
-    nc::block::parse_into(&lits, m, p)?;
+    nc::block::parse_move(&lits, m, p)?;
     if let Some(t) = p.get(b'T') {
         let t = nc::block::round_half_away(t).max(0.0) as u32;
         nc::exec::check_tool(m, t / 100, t % 100)?;
@@ -300,7 +301,10 @@ impl Runner {
         // VM's budget: a cycle with a tiny step against a huge depth does
         // not hold up the compiler.
         (self.nc).set_allowance(STEP_LIMIT.saturating_sub(self.steps));
-        let result = self.nc.exec(lits, &mut sink);
+        // `exec_move` is `exec` with the short parse of a plain move (any
+        // other block goes the general way): most blocks of a long
+        // program are plain moves.
+        let result = self.nc.exec_move(lits, &mut sink);
         self.steps = self.steps.saturating_add(self.nc.take_generated());
         if result.is_ok() {
             (self.warner).after(index, &self.nc, (ws, block.span), lits, &counts, before);
