@@ -127,7 +127,7 @@ pub fn random_program(rng: &mut Rng) -> String {
             3 => {
                 src += &format!(
                     "G66 P1001\n{}\nG67\n",
-                    rng.pick(&["G01 X20 Z-2 F1", "X30", "G98"])
+                    rng.pick(&["G01 X20 Z-2 F1", "X30", "G98", "G01 X[20+#1] Z-#100 F1"])
                 )
             }
             4 => src += &format!("#1=#1+{}\n", rng.below(2)),
