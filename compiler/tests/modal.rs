@@ -80,7 +80,7 @@ fn check_run(
         let pc = vm.pc();
         let runs_block = matches!(
             vm.module().code.get(pc as usize),
-            Some(Instr::Block { .. } | Instr::Move { .. })
+            Some(Instr::Block { .. } | Instr::Move { .. } | Instr::ExecMove)
         ) || matches!(
             vm.module().code.get(pc as usize),
             Some(Instr::Exec { flags }) if flags & vm::PROFILE == 0

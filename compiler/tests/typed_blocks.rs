@@ -66,7 +66,7 @@ fn a_literal_program_has_no_word_form() {
     let word_form = |i: &Instr| {
         matches!(
             i,
-            Instr::WordK { .. } | Instr::Word { .. } | Instr::Exec { .. }
+            Instr::WordK { .. } | Instr::Word { .. } | Instr::Exec { .. } | Instr::ExecMove
         )
     };
     assert_eq!(count(&m, word_form), 0);
@@ -120,7 +120,7 @@ fn a_literal_profile_is_typed_and_stored_once() {
     let word_form = |i: &Instr| {
         matches!(
             i,
-            Instr::WordK { .. } | Instr::Word { .. } | Instr::Exec { .. }
+            Instr::WordK { .. } | Instr::Word { .. } | Instr::Exec { .. } | Instr::ExecMove
         )
     };
     assert_eq!(count(&m, word_form), 0, "{}", m.disassemble());
