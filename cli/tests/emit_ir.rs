@@ -20,9 +20,10 @@ fn gbcc(args: &[&str], cwd: &Path) -> Output {
 
 /// X written with a point keeps it, #1 is unknown (no assignment), M30
 /// ends the program (the main program's halt follows, unreached): the
-/// listing worked out by hand.
+/// listing worked out by hand. The first block is not a plain move (two
+/// G codes): after it the pass does not follow the position.
 const PART: &str = "G98 G01 X10. Z#1 F100\nM30\n";
-const LISTING: &str = "function O0000\nbb0:\n    nc G98 G1 X10. Z#1 F100                  ; part.nc:1:1\n    nc M30                                   ; part.nc:2:1\n    ended                                    ; part.nc:2:1\nbb1:\n    halt                                     ; part.nc:2:1\n";
+const LISTING: &str = "function O0000\nbb0:\n    nc G98 G1 X10. Z#1 F100                  ; part.nc:1:1\n    nc M30                                   ; part.nc:2:1\n        ; modal unknown: position X, position Z\n    ended                                    ; part.nc:2:1\nbb1:\n    halt                                     ; part.nc:2:1\n";
 
 #[test]
 fn the_listing_goes_to_name_dot_ir_or_to_standard_output() {

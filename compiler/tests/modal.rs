@@ -66,16 +66,17 @@ fn kernel_code(vm: &Vm, group: u8) -> Code {
 }
 
 /// Runs `module`; at each NC block, the pass's known groups must be the
-/// kernel's. The number of blocks checked.
+/// kernel's, and so must every coordinate of the position it knows. The
+/// number of blocks checked, and of those with a coordinate known.
 fn check_run(
     name: &str,
     module: isa::Module,
     machine: Machine,
     places: &HashMap<(u16, u32, u32), Vec<Option<State>>>,
-) -> usize {
+) -> (usize, usize) {
     let mut vm = Vm::new(module, machine);
     let mut sink: Vec<Event> = Vec::new();
-    let mut checked = 0;
+    let (mut checked, mut positions) = (0, 0);
     for _ in 0..2_000_000 {
         let pc = vm.pc();
         let runs_block = matches!(
@@ -91,20 +92,32 @@ fn check_run(
             let states = places.get(&key).map(Vec::as_slice).unwrap_or(&[]);
             // Several blocks may share a place (a G65 H form's parts);
             // one of them is the block run.
+            let at = vm.nc.position();
             let agrees = |s: &Option<State>| match s {
                 None => false,
-                Some(s) => GROUPS
-                    .iter()
-                    .all(|&g| s.code(g).is_none_or(|c| c == kernel_code(&vm, g))),
+                Some(s) => {
+                    GROUPS
+                        .iter()
+                        .all(|&g| s.code(g).is_none_or(|c| c == kernel_code(&vm, g)))
+                        && s.position()
+                            .iter()
+                            .zip([at.r, at.z])
+                            .all(|(known, v)| known.is_none_or(|k| k.to_bits() == v.to_bits()))
+                }
             };
             assert!(
                 states.iter().any(agrees),
-                "{name}:{}:{}: the pass says {states:?}, the kernel has {:?}",
+                "{name}:{}:{}: the pass says {states:?}, the kernel has {:?} at {at:?}",
                 loc.line,
                 loc.col,
                 GROUPS.map(|g| kernel_code(&vm, g))
             );
             checked += 1;
+            let known = states
+                .iter()
+                .flatten()
+                .any(|s| s.position() != [None, None]);
+            positions += usize::from(known);
         }
         sink.clear();
         match vm.step(1, &mut sink) {
@@ -112,22 +125,24 @@ fn check_run(
             _ => {}
         }
     }
-    checked
+    (checked, positions)
 }
 
 #[test]
 fn what_the_pass_knows_is_what_the_kernel_has() {
-    let (mut programs, mut blocks) = (0, 0);
+    let (mut programs, mut blocks, mut positions) = (0, 0, 0);
     for (name, src, machine) in common::suite() {
         let Some((ir, module, files)) = build(&name, &src, &machine) else {
             continue;
         };
         let facts = analyze(&ir, &machine);
         let places = states_by_place(&ir, &facts, &files);
-        blocks += check_run(&name, module, machine, &places);
+        let (checked, known) = check_run(&name, module, machine, &places);
+        blocks += checked;
+        positions += known;
         programs += 1;
     }
-    eprintln!("{blocks} blocks of {programs} programs checked");
+    eprintln!("{blocks} blocks of {programs} programs checked, {positions} with a position known");
     assert!(programs >= 100, "only {programs} programs compiled");
 }
 
@@ -267,7 +282,7 @@ fn a_repeated_call_joins_its_runs() {
 fn random_programs_know_only_what_the_kernel_has() {
     let mut rng = Rng(0x5eed_1234_abcd_0001);
     let machine = Machine::reference();
-    let (mut run, mut blocks) = (0, 0);
+    let (mut run, mut blocks, mut positions) = (0, 0, 0);
     for i in 0..300 {
         let src = random_program(&mut rng);
         let name = format!("random{i}.nc");
@@ -276,10 +291,15 @@ fn random_programs_know_only_what_the_kernel_has() {
         };
         let facts = analyze(&ir, &machine);
         let places = states_by_place(&ir, &facts, &files);
-        blocks += check_run(&format!("{name}\n{src}"), module, machine.clone(), &places);
+        let (checked, known) =
+            check_run(&format!("{name}\n{src}"), module, machine.clone(), &places);
+        blocks += checked;
+        positions += known;
         run += 1;
     }
-    eprintln!("{blocks} blocks of {run} random programs checked");
+    eprintln!(
+        "{blocks} blocks of {run} random programs checked, {positions} with a position known"
+    );
     // (All 300 compiled when this was written.)
     assert!(run >= 280, "only {run} of 300 random programs compiled");
 }
@@ -328,4 +348,60 @@ fn nearly_every_block_of_the_suites_has_its_modal_state_known() {
     // (94 % when this was written: the rest follow a join of different
     // codes, mostly a main program's M99, which may run it again.)
     assert!(known * 100 >= all * 90, "{known} of {all}");
+}
+
+/// The position before the NC block on `line`: radius (X / 2) and Z.
+fn position(src: &str, line: usize) -> [Option<f64>; 2] {
+    before_line(src, line).expect("reached").position()
+}
+
+#[test]
+fn the_position_follows_plain_moves_g50_and_blocks_that_do_not_move() {
+    // Absolute, then incremental (U is on the diameter), then a block
+    // with only modes and a dwell whose X is a time.
+    let src = "G00 X50 Z2\nG01 U-10 W-5 F100\nG04 X1.5\nG98 S500 M03\nG02 X30 Z-8 R5\nM30\n";
+    assert_eq!(position(src, 2), [Some(25.0), Some(2.0)]);
+    assert_eq!(position(src, 3), [Some(20.0), Some(-3.0)]);
+    assert_eq!(position(src, 5), [Some(20.0), Some(-3.0)]);
+    assert_eq!(position(src, 6), [Some(15.0), Some(-8.0)]);
+    // G50 makes the point the given coordinates; inches are read as the
+    // kernel reads them (25.4 mm each).
+    let src = "G50 X100 Z50\nG20\nG00 W-1\nM30\n";
+    assert_eq!(position(src, 2), [Some(50.0), Some(50.0)]);
+    assert_eq!(position(src, 4), [Some(50.0), Some(50.0 - 25.4)]);
+}
+
+#[test]
+fn the_position_is_unknown_after_cycles_offsets_and_computed_words() {
+    // A computed X: the radius is unknown, Z is not.
+    let src = "G00 X50 Z2\nG01 X#1 Z-5 F100\nM30\n";
+    assert_eq!(position(src, 3), [None, Some(-5.0)]);
+    // A cycle, a return to the reference point, a change of work system,
+    // a tool offset written: unknown after each.
+    for block in ["G90 X40 Z-10 F100", "G28 U0 W0", "G55", "#2001=0.5"] {
+        let src = format!("G00 X50 Z2\n{block}\nM30\n");
+        assert_eq!(position(&src, 3), [None, None], "{block}");
+    }
+    // A variable of the program moves nothing.
+    assert_eq!(
+        position("G00 X50 Z2\n#100=3\nM30\n", 3),
+        [Some(25.0), Some(2.0)]
+    );
+}
+
+#[test]
+fn the_position_joins_paths_and_crosses_calls() {
+    // Both branches end at the same point; then only Z agrees.
+    let same = "G00 X50 Z2\nIF[#1EQ1]GOTO10\nG00 X40\nG00 X50\nN10 M08\nM30\n";
+    assert_eq!(position(same, 5), [Some(25.0), Some(2.0)]);
+    let differ = "G00 X50 Z2\nIF[#1EQ1]GOTO10\nG00 X40\nN10 M08\nM30\n";
+    assert_eq!(position(differ, 4), [None, Some(2.0)]);
+    // A subprogram that does not move leaves the position known; a move
+    // in a subprogram is not followed (it runs in the modes its caller
+    // left, which its summary does not know), not even on the axis it
+    // leaves alone.
+    let still = "O0001\nG00 X50 Z2\nM98 P1000\nM30\nO1000\nS800 M03\nM99\n";
+    assert_eq!(position(still, 4), [Some(25.0), Some(2.0)]);
+    let moves = "O0001\nG00 X50 Z2\nM98 P1000\nM30\nO1000\nG00 X30\nM99\n";
+    assert_eq!(position(moves, 4), [None, None]);
 }

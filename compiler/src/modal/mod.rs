@@ -36,12 +36,16 @@
 //! not the kernel, keeps the modal call (#4012 reads G67 always), so the
 //! pass follows G66 as the calls it makes, in [`State::g66`].
 //!
-//! Not yet followed: the position (the analysis of X/Z through moves and
-//! cycles is left for the `resolve` pass that needs it).
+//! The position is followed too, where the kernel's reader gives it
+//! (`position`): through plain moves, G50 and blocks that do not move.
+
+mod position;
+
+pub use position::Position;
 
 use crate::ir::{
     Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Module, NcBlock, NcKind, Op,
-    Terminator, WordValue,
+    Terminator, VarTarget, WordValue,
 };
 use nc::block::round_half_away;
 use nc::gcode::{self, Code, Comp, Drill, OneShot, Polar, PolarCmd, G};
@@ -127,6 +131,8 @@ pub struct State {
     pub g66: Fact<ModalCall>,
     /// Between G10 and G11.
     pub data: Fact<bool>,
+    /// Where the tool stands (`position`).
+    pub pos: Position,
     /// What the profile blocks waiting for their G70–G73 set, in the
     /// order they run (`Entry`: a group they leave alone).
     profile: Groups,
@@ -150,6 +156,7 @@ impl State {
             groups: GROUPS.map(|g| Fact::Is(modal.group(g))),
             g66: Fact::Is(ModalCall::Off),
             data: Fact::Is(false),
+            pos: position::power_on(m),
             profile: [Fact::Entry; GROUPS.len()],
         }
     }
@@ -162,6 +169,7 @@ impl State {
             groups: [Fact::Entry; GROUPS.len()],
             g66: Fact::Is(ModalCall::Off),
             data: Fact::Is(false),
+            pos: [Fact::Entry; 2],
             profile: [Fact::Entry; GROUPS.len()],
         }
     }
@@ -172,6 +180,7 @@ impl State {
             groups: [Fact::Unknown; GROUPS.len()],
             g66: Fact::Unknown,
             data: Fact::Unknown,
+            pos: [Fact::Unknown; 2],
             profile: [Fact::Unknown; GROUPS.len()],
         }
     }
@@ -188,6 +197,15 @@ impl State {
             Fact::Is(c) => Some(c),
             _ => None,
         }
+    }
+
+    /// The coordinates of the position that are known here: the radius
+    /// (X / 2) and Z, in mm, as the kernel holds them.
+    pub fn position(&self) -> [Option<f64>; 2] {
+        self.pos.map(|f| match f {
+            Fact::Is(bits) => Some(f64::from_bits(bits)),
+            Fact::Entry | Fact::Unknown => None,
+        })
     }
 
     /// The groups whose code is not known here.
@@ -211,6 +229,7 @@ impl State {
             groups: join(&self.groups, &other.groups),
             g66: self.g66.join(other.g66),
             data: self.data.join(other.data),
+            pos: [0, 1].map(|i| self.pos[i].join(other.pos[i])),
             profile: join(&self.profile, &other.profile),
         }
     }
@@ -225,6 +244,7 @@ impl State {
             groups,
             g66: summary.g66.at_call(self.g66),
             data: summary.data.at_call(self.data),
+            pos: [0, 1].map(|i| summary.pos[i].at_call(self.pos[i])),
             // (Profile blocks waiting across a call: the callee may run
             // them, or add its own.)
             profile: core::array::from_fn(|i| match (self.profile[i], summary.profile[i]) {
@@ -272,7 +292,7 @@ const MAX_ROUNDS: usize = 64;
 
 /// Runs the pass over a module built for `machine`.
 pub fn analyze(m: &Module, machine: &Machine) -> Facts {
-    let module = ModuleFacts::of(m);
+    let module = ModuleFacts::of(m, machine);
     let summaries = summaries(m, &module);
     let mut entries: Vec<Option<State>> = vec![None; m.functions.len()];
     if let Some(e) = entries.first_mut() {
@@ -352,10 +372,15 @@ struct ModuleFacts {
     repeats: Vec<bool>,
     /// By function: its program number.
     numbers: Vec<u32>,
+    /// The machine, whose reader the position is read with.
+    machine: Machine,
+    /// A block has G7.1 (cylindrical interpolation): the position is not
+    /// followed.
+    cylindrical: bool,
 }
 
 impl ModuleFacts {
-    fn of(m: &Module) -> ModuleFacts {
+    fn of(m: &Module, machine: &Machine) -> ModuleFacts {
         let numbers: Vec<u32> = m.functions.iter().map(|f| f.number).collect();
         let mut repeats = vec![false; m.functions.len()];
         if let Some(main) = repeats.first_mut() {
@@ -381,6 +406,8 @@ impl ModuleFacts {
             m99_p: returns_to_seq(m),
             repeats,
             numbers,
+            machine: machine.clone(),
+            cylindrical: uses_cylindrical(m),
         }
     }
 
@@ -559,14 +586,29 @@ impl<'a> Walk<'a> {
         match op {
             Op::Nc(nc) if nc.kind == NcKind::Profile => profile_block(self.f, nc, s),
             Op::Nc(nc) => {
-                let after = nc_block(self.f, nc, s);
+                let after = nc_block(self.f, nc, s, self.module);
                 self.modal_call_after(after)
             }
             Op::ModalCancel => State {
                 g66: Fact::Is(ModalCall::Off),
                 ..s
             },
-            Op::Seq(_) | Op::Assign { .. } | Op::MacroA { .. } | Op::Alarm { .. } => s,
+            // A system variable may be a work or tool offset: the zero,
+            // and so the tool's coordinates, may move.
+            Op::Assign {
+                target: VarTarget::Direct(n),
+                ..
+            }
+            | Op::MacroA { dst: n, .. }
+                if *n < 1000 =>
+            {
+                s
+            }
+            Op::Assign { .. } | Op::MacroA { .. } => State {
+                pos: [Fact::Unknown; 2],
+                ..s
+            },
+            Op::Seq(_) | Op::Alarm { .. } => s,
         }
     }
 
@@ -623,7 +665,7 @@ impl<'a> Walk<'a> {
             let Some(Op::Nc(nc)) = self.f.ops.get(op) else {
                 continue;
             };
-            let after = nc_block(self.f, nc, *s);
+            let after = nc_block(self.f, nc, *s, self.module);
             match (nc.kind, s.g66) {
                 (NcKind::Profile, _) | (_, Fact::Is(ModalCall::Off)) => {}
                 (_, Fact::Is(ModalCall::Program(i))) => calls.push((i, after)),
@@ -640,6 +682,18 @@ enum Target {
     Block(Handle<Block>),
     /// Every numbered block of the function.
     Numbered,
+}
+
+/// Whether a block of the module has G7.1, written or computed.
+fn uses_cylindrical(m: &Module) -> bool {
+    m.functions.iter().any(|f| {
+        f.ops.iter().any(|(_, op)| match op {
+            Op::Nc(nc) => {
+                g_codes(f, nc).is_none_or(|codes| codes.contains(&OneShot::Cylindrical.code()))
+            }
+            _ => false,
+        })
+    })
 }
 
 /// Whether a subprogram returns with `M99 P` somewhere in the module.
@@ -682,7 +736,7 @@ fn has_word(f: &Function, nc: &NcBlock, letter: u8, values: &[f64]) -> bool {
 }
 
 /// The state after an NC block the kernel runs.
-fn nc_block(f: &Function, nc: &NcBlock, s: State) -> State {
+fn nc_block(f: &Function, nc: &NcBlock, s: State, module: &ModuleFacts) -> State {
     let Some(codes) = g_codes(f, nc) else {
         // Any code, G10 included.
         return s.join(&State::unknown());
@@ -703,14 +757,26 @@ fn nc_block(f: &Function, nc: &NcBlock, s: State) -> State {
     let mut data = s;
     data.forget(gcode::UNITS);
     match s.data {
-        Fact::Is(false) => commands(f, nc, &codes, s),
+        Fact::Is(false) => commands(f, nc, &codes, s, module),
         Fact::Is(true) => data,
-        Fact::Entry | Fact::Unknown => data.join(&commands(f, nc, &codes, s)),
+        Fact::Entry | Fact::Unknown => data.join(&commands(f, nc, &codes, s, module)),
     }
 }
 
 /// The state after a block of commands (not data) with these G codes.
-fn commands(f: &Function, nc: &NcBlock, codes: &[Code], mut s: State) -> State {
+fn commands(
+    f: &Function,
+    nc: &NcBlock,
+    codes: &[Code],
+    mut s: State,
+    module: &ModuleFacts,
+) -> State {
+    s.pos = match module.cylindrical {
+        // (The pass does not follow G7.1's mode, in which moves are
+        // taken on the unrolled cylinder.)
+        true => [Fact::Unknown; 2],
+        false => position::after_block(f, nc, codes, &s, &module.machine),
+    };
     let g50 = codes.contains(&OneShot::SetCoordinates.code());
     for &code in codes {
         set_code(&mut s.groups, code, g50);
@@ -786,7 +852,8 @@ fn profile_block(f: &Function, nc: &NcBlock, mut s: State) -> State {
 
 impl Facts {
     /// The `--emit=ir` note of an NC block: the groups whose code is not
-    /// known before it, or that no path from the main program reaches it.
+    /// known before it and the coordinates of the position that are not,
+    /// or that no path from the main program reaches it.
     pub fn note(&self, m: &Module, f: usize, op: Handle<Op>) -> Option<String> {
         let function = m.functions.get(f)?;
         if !matches!(function.ops.get(op), Some(Op::Nc(_))) {
@@ -795,7 +862,12 @@ impl Facts {
         let Some(s) = self.before(f, op) else {
             return Some("modal: not reached".into());
         };
-        let unknown: Vec<&str> = s.unknown_groups().map(group_name).collect();
+        let mut unknown: Vec<&str> = s.unknown_groups().map(group_name).collect();
+        for (known, axis) in s.position().iter().zip(["position X", "position Z"]) {
+            if known.is_none() {
+                unknown.push(axis);
+            }
+        }
         (!unknown.is_empty()).then(|| format!("modal unknown: {}", unknown.join(", ")))
     }
 }

@@ -1,0 +1,185 @@
+//! The position the tool stands at, as pass `modal` follows it: the
+//! kernel's programmed point (work coordinates, X as a radius,
+//! `nc::point::Pt`), an axis at a time.
+//!
+//! The end point of a move is read by the kernel's own reader
+//! (`nc::plan::reader::Reader`, the code the executor reads blocks with),
+//! from words the kernel's block parse took, so a known coordinate is the
+//! very `f64` the kernel will hold. The pass knows the position only
+//! through blocks whose effect on it is plain:
+//! - a plain move (pass `resolve`: X/Z/U/W, F, N and an arc's R or I/K,
+//!   at most a G00–G03) with the motion, drilling, compensation, plane,
+//!   polar and unit groups known and none of them in a mode that bends
+//!   the path (G41/G42, G12.1, G7.1, a drilling cycle, another plane);
+//! - G50 with axis words, which makes the point those coordinates;
+//! - a block that does not move: no axis word, and only G04 (whose X
+//!   is a time), G00–G03 set for later, the feed and speed modes and the
+//!   path modes;
+//! - an assignment to a plain variable (#1–#999).
+//!
+//! Anything else — a cycle, a return to the reference point, a change of
+//! work system or local origin, an assignment to a system variable (a
+//! work or tool offset moves the zero), a computed axis word — makes the
+//! axes it may change unknown.
+
+use super::{Fact, State};
+use crate::ir::{Function, NcBlock, NcKind, WordValue};
+use nc::gcode::{self, Code, Comp, Drill, Motion, OneShot, Plane, Polar, PolarCmd, Units, G};
+use nc::plan::reader::Reader;
+use nc::point::Pt;
+use nc::words::{addr, Word};
+use nc::Machine;
+use smallvec::SmallVec;
+
+/// The position: the bits of the radius and of Z.
+pub type Position = [Fact<u64>; 2];
+
+/// Where the kernel puts the tool at power-on.
+pub fn power_on(m: &Machine) -> Position {
+    known(nc::Nc::new(m.clone()).position())
+}
+
+fn known(p: Pt) -> Position {
+    [p.r, p.z].map(|v| match v.is_nan() {
+        true => Fact::Unknown,
+        false => Fact::Is(v.to_bits()),
+    })
+}
+
+/// The known coordinates of `pos` as a point, NaN where unknown.
+fn point(pos: &Position) -> Pt {
+    let [r, z] = pos.map(|f| match f {
+        Fact::Is(bits) => f64::from_bits(bits),
+        Fact::Entry | Fact::Unknown => f64::NAN,
+    });
+    Pt::new(r, z)
+}
+
+/// Codes that, in a block without axis words, move nothing: they set a
+/// mode for later blocks (G00–G03 too).
+const STILL: [Code; 18] = [
+    0, 10, 20, 30, 150, 180, 200, 210, 220, 230, 400, 610, 640, 800, 960, 970, 980, 990,
+];
+
+/// The position after an NC block the kernel runs as commands (`codes`
+/// its G codes), from the state `before` it.
+pub(super) fn after_block(
+    f: &Function,
+    nc: &NcBlock,
+    codes: &[Code],
+    before: &State,
+    m: &Machine,
+) -> Position {
+    let words = f.words_of(nc);
+    let axis = |w: &crate::ir::Word| b"XZUWCH".iter().any(|&l| w.addr == addr(l));
+    if codes.contains(&OneShot::Dwell.code()) && codes.len() == 1 {
+        return before.pos;
+    }
+    if !words.iter().any(axis) && codes.iter().all(|c| STILL.contains(c)) {
+        return before.pos;
+    }
+    let g50 = codes == [OneShot::SetCoordinates.code()];
+    let plain = matches!(nc.kind, NcKind::Move(_)) && motion_plain(codes, before);
+    if !(plain
+        || g50
+            && words
+                .iter()
+                .all(|w| b"GXZUWN".iter().any(|&l| w.addr == addr(l))))
+    {
+        return [Fact::Unknown; 2];
+    }
+    let Some(inch) = units(before) else {
+        return [Fact::Unknown; 2];
+    };
+    read_end(words, before, inch, m)
+}
+
+/// The end point of a plain move or a G50 from its constant words, the
+/// kernel's way; an axis with a computed word is unknown, and an axis
+/// without a word keeps what it was (in a summary, the caller's).
+fn read_end(words: &[crate::ir::Word], before: &State, inch: bool, m: &Machine) -> Position {
+    let mut lits: SmallVec<[Word; 8]> = SmallVec::new();
+    let mut written = [Written::No; 2];
+    for w in words {
+        let axis = match w.addr {
+            a if a == addr(b'X') || a == addr(b'U') => Some(0),
+            a if a == addr(b'Z') || a == addr(b'W') => Some(1),
+            _ => None,
+        };
+        match w.value() {
+            WordValue::Const(value, flags) => {
+                lits.push(Word {
+                    addr: w.addr,
+                    value,
+                    flags,
+                });
+                if let Some(i) = axis {
+                    written[i] = written[i].max(Written::Constant);
+                }
+            }
+            WordValue::Expr(_) => {
+                if let Some(i) = axis {
+                    written[i] = Written::Computed;
+                }
+            }
+        }
+    }
+    let mut p = nc::block::Parsed::default();
+    if nc::block::parse_move(&lits, m, &mut p).is_err() {
+        // (The kernel's alarm: nothing runs after the block.)
+        return [Fact::Unknown; 2];
+    }
+    let from = point(&before.pos);
+    let reader = Reader {
+        machine: m,
+        inch,
+        at: from,
+        motion: p.motion().unwrap_or(Motion::Line),
+    };
+    let to = known(reader.target_from(&p, from));
+    [0, 1].map(|i| match written[i] {
+        Written::No => before.pos[i],
+        Written::Constant => to[i],
+        Written::Computed => Fact::Unknown,
+    })
+}
+
+/// How a block writes an axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Written {
+    No,
+    Constant,
+    /// (A vacant value leaves the word out, so the axis may keep its
+    /// coordinate or not.)
+    Computed,
+}
+
+/// Whether a plain move's path is the straight line or arc it names: its
+/// motion is G00–G03 and no mode bends or moves it.
+fn motion_plain(codes: &[Code], s: &State) -> bool {
+    let is = |group, code: Code| s.code(group) == Some(code);
+    let motion = codes.first().copied().or(s.code(gcode::MOTION));
+    let straight_or_arc = motion.is_some_and(|c| {
+        matches!(
+            G::from_code(c),
+            Some(G::Motion(
+                Motion::Rapid | Motion::Line | Motion::ArcCw | Motion::ArcCcw
+            ))
+        )
+    });
+    straight_or_arc
+        && (!codes.is_empty() || is(gcode::DRILL, Drill::Off.code()))
+        && is(gcode::COMP, Comp::Off.code())
+        && is(gcode::PLANE, Plane::Zx.code())
+        && is(gcode::POLAR, Polar::Off.code())
+        && is(gcode::POLAR_CMD, PolarCmd::Off.code())
+}
+
+/// G20 in force, when the units are known.
+fn units(s: &State) -> Option<bool> {
+    match s.code(gcode::UNITS)? {
+        c if c == Units::Inch.code() => Some(true),
+        c if c == Units::Metric.code() => Some(false),
+        _ => None,
+    }
+}
