@@ -5,9 +5,10 @@
 use grammar::{Diagnostic, Severity};
 
 /// The warnings of the language reference, W101…W117, and gbc's own
-/// W118 (a thread without the room to reach or leave its speed).
+/// W118 (a thread without the room to reach or leave its speed) and W119
+/// (an arc of a program with macros that cannot be drawn).
 pub const FIRST: u16 = 101;
-pub const LAST: u16 = 118;
+pub const LAST: u16 = 119;
 
 /// What becomes of a warning.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -142,7 +143,7 @@ mod tests {
     #[test]
     fn unknown_switches_are_refused() {
         let mut p = Policy::default();
-        for bad in ["foo", "no-W100", "W119", "error=E1001", "no-error=", "W"] {
+        for bad in ["foo", "no-W100", "W120", "error=E1001", "no-error=", "W"] {
             let e = p.apply(bad).unwrap_err();
             assert!(e.contains(&format!("'-W{bad}'")), "{e}");
         }

@@ -18,6 +18,7 @@ pub mod emit;
 pub mod expr;
 pub mod hash;
 pub mod ir;
+pub mod known_faults;
 pub mod link;
 pub mod lint;
 pub mod modal;
@@ -161,14 +162,11 @@ fn lower_and_check(
     diags: &mut Vec<(usize, Diagnostic)>,
 ) -> (Vec<SourceFile>, Option<isa::Module>, Option<ir::Module>) {
     // A static program without G-code macros is dry-run.
-    let dry_run = || {
-        let table = &opts.machine.r#macro.g_code_macros;
-        let wanted =
-            !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
-        match wanted {
-            true => check::dry_run(units, programs, &opts.machine),
-            false => Vec::new(),
-        }
+    let table = &opts.machine.r#macro.g_code_macros;
+    let dry = !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
+    let dry_run = || match dry {
+        true => check::dry_run(units, programs, &opts.machine),
+        false => Vec::new(),
     };
     let parallel = block_count(programs) >= PARALLEL_BLOCKS;
     std::thread::scope(|s| {
@@ -179,6 +177,13 @@ fn lower_and_check(
         };
         let files = source_files(units);
         let (module, ir) = lower(units, &files, programs, opts, diags);
+        // Not dry-run, a program may still hold a geometry alarm the
+        // pass `modal` proves (W119).
+        let arcs = ir.as_ref().is_some_and(known_faults::has_arcs);
+        if let (false, Some(ir), false, true) = (dry, &ir, has_errors(diags), arcs) {
+            let facts = modal::analyze(ir, &opts.machine);
+            diags.extend(known_faults::arcs(ir, &facts, &opts.machine));
+        }
         // (Not kept, the IR goes before the dry run is waited for.)
         let ir = ir.filter(|_| keep_ir);
         let failed = has_errors(diags);

@@ -39,7 +39,7 @@
 //! The position is followed too, where the kernel's reader gives it
 //! (`position`): through plain moves, G50 and blocks that do not move.
 
-mod position;
+pub mod position;
 
 pub use position::Position;
 

@@ -144,6 +144,52 @@ fn read_end(words: &[crate::ir::Word], before: &State, inch: bool, m: &Machine) 
     })
 }
 
+/// The kernel's alarm for a plain arc (G02/G03 with constant words) that
+/// cannot be drawn from where the tool stands, when that point and the
+/// modes are known before the block (`s`): the alarm it raises whenever
+/// it is reached.
+pub fn arc_fault(f: &Function, nc: &NcBlock, s: &State, m: &Machine) -> Option<nc::NcError> {
+    let NcKind::Move(written) = nc.kind else {
+        return None;
+    };
+    let motion = written.or_else(|| match G::from_code(s.code(gcode::MOTION)?) {
+        Some(G::Motion(c)) => Some(c),
+        _ => None,
+    })?;
+    let codes: SmallVec<[Code; 1]> = written.map(Motion::code).into_iter().collect();
+    if !motion.is_arc() || !motion_plain(&codes, s) || s.data != Fact::Is(false) {
+        return None;
+    }
+    let [Fact::Is(r), Fact::Is(z)] = s.pos else {
+        return None;
+    };
+    let mut lits: SmallVec<[Word; 8]> = SmallVec::new();
+    for w in f.words_of(nc) {
+        let WordValue::Const(value, flags) = w.value() else {
+            return None;
+        };
+        lits.push(Word {
+            addr: w.addr,
+            value,
+            flags,
+        });
+    }
+    let mut p = nc::block::Parsed::default();
+    // (A fault of the words themselves is a compile error already.)
+    nc::block::parse_move(&lits, m, &mut p).ok()?;
+    let from = Pt::new(f64::from_bits(r), f64::from_bits(z));
+    let reader = Reader {
+        machine: m,
+        inch: units(s)?,
+        at: from,
+        motion,
+    };
+    let to = reader.target_from(&p, from);
+    reader
+        .arc_element(from, motion == Motion::ArcCw, to, &p)
+        .err()
+}
+
 /// How a block writes an axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 enum Written {
