@@ -144,6 +144,9 @@ fn what_the_pass_knows_is_what_the_kernel_has() {
     }
     eprintln!("{blocks} blocks of {programs} programs checked, {positions} with a position known");
     assert!(programs >= 100, "only {programs} programs compiled");
+    // (1 488 of 2 672 when this was written: cycles, G28 and calls make
+    // the position unknown until the next absolute move.)
+    assert!(positions * 100 >= blocks * 45, "{positions} of {blocks}");
 }
 
 /// The state the pass gives the NC block on `line` of `src` (the first
@@ -300,8 +303,13 @@ fn random_programs_know_only_what_the_kernel_has() {
     eprintln!(
         "{blocks} blocks of {run} random programs checked, {positions} with a position known"
     );
-    // (All 300 compiled when this was written.)
+    // (All 300 compiled when this was written; 141 blocks had a
+    // coordinate known: their calls and G66 make most unknown.)
     assert!(run >= 280, "only {run} of 300 random programs compiled");
+    assert!(
+        positions >= 100,
+        "only {positions} blocks with a position known"
+    );
 }
 
 /// Whether every word of an NC block is a constant.

@@ -756,6 +756,10 @@ fn nc_block(f: &Function, nc: &NcBlock, s: State, module: &ModuleFacts) -> State
     }
     let mut data = s;
     data.forget(gcode::UNITS);
+    // (A G10 L52 block's R#var may write a work offset.)
+    if has_word(f, nc, b'R', &[]) {
+        data.pos = [Fact::Unknown; 2];
+    }
     match s.data {
         Fact::Is(false) => commands(f, nc, &codes, s, module),
         Fact::Is(true) => data,

@@ -11,7 +11,8 @@
 //!   at most a G00–G03) with the motion, drilling, compensation, plane,
 //!   polar and unit groups known and none of them in a mode that bends
 //!   the path (G41/G42, G12.1, G7.1, a drilling cycle, another plane);
-//! - G50 with axis words, which makes the point those coordinates;
+//! - G50, whose axis words make the point those coordinates (its S, the
+//!   spindle clamp, moves nothing);
 //! - a block that does not move: no axis word, and only G04 (whose X
 //!   is a time), G00–G03 set for later, the feed and speed modes and the
 //!   path modes;
@@ -84,7 +85,7 @@ pub(super) fn after_block(
         || g50
             && words
                 .iter()
-                .all(|w| b"GXZUWN".iter().any(|&l| w.addr == addr(l))))
+                .all(|w| b"GXZUWNS".iter().any(|&l| w.addr == addr(l))))
     {
         return [Fact::Unknown; 2];
     }
