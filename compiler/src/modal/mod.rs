@@ -156,7 +156,8 @@ impl State {
             groups: GROUPS.map(|g| Fact::Is(modal.group(g))),
             g66: Fact::Is(ModalCall::Off),
             data: Fact::Is(false),
-            pos: position::power_on(m),
+            // (A program starts wherever the last one left the tool.)
+            pos: [Fact::Unknown; 2],
             profile: [Fact::Entry; GROUPS.len()],
         }
     }

@@ -18,6 +18,10 @@
 //!   path modes;
 //! - an assignment to a plain variable (#1–#999).
 //!
+//! A program starts with the position unknown: it runs from wherever the
+//! tool stands (`gbvm` starts at the machine's power-on point, a
+//! controller wherever the last program ended).
+//!
 //! Anything else — a cycle, a return to the reference point, a change of
 //! work system or local origin, an assignment to a system variable (a
 //! work or tool offset moves the zero), a computed axis word — makes the
@@ -34,11 +38,6 @@ use smallvec::SmallVec;
 
 /// The position: the bits of the radius and of Z.
 pub type Position = [Fact<u64>; 2];
-
-/// Where the kernel puts the tool at power-on.
-pub fn power_on(m: &Machine) -> Position {
-    known(nc::Nc::new(m.clone()).position())
-}
 
 fn known(p: Pt) -> Position {
     [p.r, p.z].map(|v| match v.is_nan() {

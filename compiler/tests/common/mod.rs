@@ -104,7 +104,9 @@ const SETTERS: &[&str] = &[
 /// and the subprograms it calls: O1000 (by M98, with a count) and O1001
 /// (by G66 after moves).
 pub fn random_program(rng: &mut Rng) -> String {
-    let mut src = String::from("O0001\n#100=[#500+1]*0+1\n#1=0\n");
+    // (The tool starts where the last program left it: a first absolute
+    // move tells where it is.)
+    let mut src = String::from("O0001\n#100=[#500+1]*0+1\n#1=0\nG00 X50 Z2\n");
     let mut label = 10;
     for _ in 0..rng.below(12) + 3 {
         match rng.below(8) {
