@@ -20,10 +20,11 @@ fn gbcc(args: &[&str], cwd: &Path) -> Output {
 
 /// X written with a point keeps it, #1 is unknown (no assignment), M30
 /// ends the program (the main program's halt follows, unreached): the
-/// listing worked out by hand. The first block is not a plain move (two
-/// G codes): after it the pass does not follow the position.
+/// listing worked out by hand. The position is unknown where a program
+/// starts, and the first block is not a plain move (two G codes) whose
+/// end the pass would follow.
 const PART: &str = "G98 G01 X10. Z#1 F100\nM30\n";
-const LISTING: &str = "function O0000\nbb0:\n    nc G98 G1 X10. Z#1 F100                  ; part.nc:1:1\n    nc M30                                   ; part.nc:2:1\n        ; modal unknown: position X, position Z\n    ended                                    ; part.nc:2:1\nbb1:\n    halt                                     ; part.nc:2:1\n";
+const LISTING: &str = "function O0000\nbb0:\n    nc G98 G1 X10. Z#1 F100                  ; part.nc:1:1\n        ; modal unknown: position X, position Z\n    nc M30                                   ; part.nc:2:1\n        ; modal unknown: position X, position Z\n    ended                                    ; part.nc:2:1\nbb1:\n    halt                                     ; part.nc:2:1\n";
 
 #[test]
 fn the_listing_goes_to_name_dot_ir_or_to_standard_output() {
@@ -52,13 +53,14 @@ fn an_error_writes_no_listing_and_other_values_are_usage_errors() {
 
 /// The `modal` pass's notes: a block after a join of G98 and G99 says
 /// the feed mode is unknown there (worked out by hand: #1 = 1 is known,
-/// but the IF stays a branch at -O0).
+/// but the IF stays a branch at -O0; the first move tells where the tool
+/// is, and neither path moves it).
 #[test]
 fn the_listing_notes_the_modal_groups_not_known() {
     let d = dir("modal");
     std::fs::write(
         d.join("join.nc"),
-        "#1=1\nIF[#1EQ1]GOTO10\nG99\nN10 G01 X1 F1\nM30\n",
+        "G00 X0 Z0\n#1=1\nIF[#1EQ1]GOTO10\nG99\nN10 G01 X1 F1\nM30\n",
     )
     .unwrap();
     let out = gbcc(&["join.nc", "--emit=ir", "-O0", "-o", "-", "-q"], &d);
