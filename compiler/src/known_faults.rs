@@ -7,8 +7,9 @@
 //! knows the tool's position and the modes before a plain arc of constant
 //! words on every path that reaches it, the arc is the same whenever it
 //! runs; if the kernel's reader cannot draw it (a radius too small for
-//! the chord, an end point off the circle of I/K), the alarm will happen
-//! whenever the block is reached. The compiler says so, as W116 does for
+//! the chord, an end point off the circle of I/K, no centre at all), the
+//! alarm will happen whenever the block is reached (a test runs random
+//! programs to every block W119 names and finds that alarm there). The compiler says so, as W116 does for
 //! value errors, and the alarm itself stays at run time.
 
 use crate::ir::{Module, Op};

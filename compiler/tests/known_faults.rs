@@ -2,6 +2,12 @@
 //! point the compiler knows the tool stands at, whatever path reaches it.
 
 use compiler::{compile, Options};
+use isa::Instr;
+use nc::Machine;
+use vm::{Status, Vm};
+
+mod common;
+use common::Rng;
 
 /// The codes and lines of the diagnostics of `src`, and whether it
 /// compiled to a module.
@@ -62,4 +68,96 @@ fn a_static_program_gets_the_error_itself() {
     let (found, compiled) = diagnostics("G00 X0 Z0\nG02 X20 Z-30 R2\nM30\n");
     assert!(!compiled);
     assert_eq!(found, [("E4001".to_string(), 2)]);
+}
+
+/// A macro program of random moves (arcs by R and by I/K, many of them
+/// impossible), with branches that join, a loop and a mode change now
+/// and then.
+fn arc_program(rng: &mut Rng) -> String {
+    let mut src = String::from("#1=0\nG00 X40 Z2\n");
+    let mut label = 10;
+    for _ in 0..rng.below(12) + 4 {
+        let (x, z) = (rng.below(60), rng.below(40));
+        match rng.below(9) {
+            0 | 1 => src += &format!("G01 X{x} Z-{z} F100\n"),
+            2 => src += &format!("U{} W-{}\n", rng.below(9), rng.below(9)),
+            3 | 4 => {
+                let g = 2 + rng.below(2);
+                src += &format!("G0{g} X{x} Z-{z} R{}\n", 1 + rng.below(30));
+            }
+            5 => {
+                let g = 2 + rng.below(2);
+                let (i, k) = (rng.below(20), rng.below(20));
+                src += &format!("G0{g} X{x} Z-{z} I{i} K-{k}\n");
+            }
+            6 => {
+                src += &format!("IF[#500EQ1]GOTO{label}\nG00 X{x}\nN{label} M08\n");
+                label += 10;
+            }
+            7 => src += "#1=0\nWHILE[#1LT2]DO1\nG01 W-1 F100\n#1=#1+1\nEND1\n",
+            _ => src += rng.pick(&["G20\n", "G21\n", "G99\n", "G98\n", "T0101\n"]),
+        }
+    }
+    src + "M30\n"
+}
+
+/// "Whenever it is reached": in 300 random macro programs of moves, every
+/// run that reaches a block W119 names stops there with the alarm W119
+/// named (E4001, E4002, or E2006 for a modal arc without its centre).
+#[test]
+fn a_run_that_reaches_a_w119_block_alarms_there() {
+    let mut rng = Rng(0x0119_0119_2026_1203);
+    let (mut warned, mut reached) = (0, 0);
+    for _ in 0..300 {
+        let src = arc_program(&mut rng);
+        let c = compile("t.nc", src.as_bytes(), &Options::default());
+        let Some(module) = c.module else {
+            continue;
+        };
+        // Each W119's line and the alarm it names ("raises E4001 …").
+        let named: Vec<(u32, u32)> = c
+            .diags
+            .iter()
+            .filter(|(_, d)| d.code == "W119")
+            .map(|(f, d)| {
+                let code = d.message.split_once("raises E").and_then(|(_, rest)| {
+                    rest.split_whitespace().next().and_then(|c| c.parse().ok())
+                });
+                let line = c.files[*f].line_col(d.span.start).0 as u32;
+                (line, code.unwrap_or_else(|| panic!("{}", d.message)))
+            })
+            .collect();
+        let lines: Vec<u32> = named.iter().map(|&(line, _)| line).collect();
+        warned += lines.len();
+        if lines.is_empty() {
+            continue;
+        }
+        let mut vm = Vm::new(module, Machine::reference());
+        let mut sink = Vec::new();
+        for _ in 0..100_000 {
+            let pc = vm.pc() as usize;
+            let runs_block = matches!(
+                vm.module().code.get(pc),
+                Some(Instr::Block { .. } | Instr::Move { .. } | Instr::ExecMove)
+            ) || matches!(
+                vm.module().code.get(pc),
+                Some(Instr::Exec { flags }) if flags & vm::PROFILE == 0
+            );
+            let line = vm.module().lines.get(pc).unwrap_or_default().line;
+            let status = vm.step(1, &mut sink);
+            sink.clear();
+            if runs_block && lines.contains(&line) {
+                reached += 1;
+                let alarmed = matches!(&status, Status::Alarm(a)
+                    if named.contains(&(line, a.code)) && a.line == line);
+                assert!(alarmed, "{src}\nline {line}: {status:?}");
+                break;
+            }
+            if matches!(status, Status::Done | Status::Alarm(_)) {
+                break;
+            }
+        }
+    }
+    eprintln!("{warned} W119 warnings, {reached} of their blocks reached");
+    assert!(reached >= 10, "only {reached} W119 blocks reached");
 }
