@@ -17,14 +17,22 @@ use crate::modal::{position, Facts};
 use grammar::Diagnostic;
 use nc::Machine;
 
-/// Whether a block of `ir` writes G02 or G03: the analysis W119 needs
-/// costs about as much as the rest of the compile, and only a program
-/// with an arc can have one.
-pub fn has_arcs(ir: &Module) -> bool {
+/// Operations past which a program is not searched: the analysis W119
+/// needs costs about half as much again as the rest of the compile (on
+/// 20 000 blocks of lines and arcs after one macro line, 145 M
+/// instructions without it, 232 M with it), which a long program that
+/// merely has a macro line should not pay. Hand-written macro programs
+/// are far shorter.
+pub const MAX_OPS: usize = 20_000;
+
+/// Whether W119 is looked for in `ir`: a program with an arc (G02 or
+/// G03 written), not longer than [`MAX_OPS`].
+pub fn wanted(ir: &Module) -> bool {
     let arc = |w: &crate::ir::Word| {
         w.addr == nc::words::addr(b'G') && matches!(w.constant(), Some(v) if v == 2.0 || v == 3.0)
     };
-    ir.functions.iter().any(|f| f.words.iter().any(arc))
+    let ops: usize = ir.functions.iter().map(|f| f.ops.len()).sum();
+    ops <= MAX_OPS && ir.functions.iter().any(|f| f.words.iter().any(arc))
 }
 
 /// W119 for each plain arc of `ir` that `facts` prove cannot be drawn.

@@ -179,7 +179,7 @@ fn lower_and_check(
         let (module, ir) = lower(units, &files, programs, opts, diags);
         // Not dry-run, a program may still hold a geometry alarm the
         // pass `modal` proves (W119).
-        let arcs = ir.as_ref().is_some_and(known_faults::has_arcs);
+        let arcs = ir.as_ref().is_some_and(known_faults::wanted);
         if let (false, Some(ir), false, true) = (dry, &ir, has_errors(diags), arcs) {
             let facts = modal::analyze(ir, &opts.machine);
             diags.extend(known_faults::arcs(ir, &facts, &opts.machine));

@@ -161,3 +161,13 @@ fn a_run_that_reaches_a_w119_block_alarms_there() {
     eprintln!("{warned} W119 warnings, {reached} of their blocks reached");
     assert!(reached >= 10, "only {reached} W119 blocks reached");
 }
+
+/// A program longer than the search's bound compiles without it.
+#[test]
+fn a_long_program_is_not_searched() {
+    let head = "#1=1\nG00 X0 Z0\nG02 X20 Z-30 R2\n";
+    let short = format!("{head}M30\n");
+    assert_eq!(w119(&short), [3]);
+    let moves = "G01 X1 Z-1 F100\n".repeat(compiler::known_faults::MAX_OPS);
+    assert!(w119(&format!("{head}{moves}M30\n")).is_empty());
+}

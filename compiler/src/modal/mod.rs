@@ -329,15 +329,21 @@ fn unknown_facts(f: &Function) -> Vec<Option<State>> {
 /// `None` for a program that never returns.
 fn summaries(m: &Module, module: &ModuleFacts) -> Vec<Option<State>> {
     let mut sums: Vec<Option<State>> = vec![None; m.functions.len()];
+    // (Only a call reads a summary: a program nothing calls, the main
+    // one mostly, needs none, and its walks were most of the pass.)
+    let called = module.called(m);
     for _ in 0..MAX_ROUNDS {
         let next: Vec<Option<State>> = m
             .functions
             .iter()
             .enumerate()
-            .map(|(i, f)| {
-                Walk::new(f, &sums, module, i)
-                    .run(Some(State::entry()))
-                    .exit
+            .map(|(i, f)| match called.get(i) {
+                Some(true) => {
+                    Walk::new(f, &sums, module, i)
+                        .run(Some(State::entry()))
+                        .exit
+                }
+                _ => None,
             })
             .collect();
         if next == sums {
@@ -413,6 +419,24 @@ impl ModuleFacts {
     }
 
     /// The functions a call may run: one, or (its program computed) any.
+    /// By function: whether a call (M98, G65, G66) may run it.
+    fn called(&self, m: &Module) -> Vec<bool> {
+        let mut called = vec![false; m.functions.len()];
+        for f in &m.functions {
+            for (_, b) in f.blocks.iter() {
+                let Some(Terminator::Call { call, .. }) = &b.term else {
+                    continue;
+                };
+                for i in self.callees(f, call.callee) {
+                    if let Some(c) = called.get_mut(i as usize) {
+                        *c = true;
+                    }
+                }
+            }
+        }
+        called
+    }
+
     fn callees(&self, f: &Function, callee: Callee) -> Vec<u32> {
         match callee_in(&self.numbers, f, callee) {
             Some(i) => vec![i],
