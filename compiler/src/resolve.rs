@@ -57,24 +57,12 @@ pub fn plain_move(words: &[Word]) -> Option<Option<Motion>> {
         seen |= bit;
         if w.addr == addr(b'G') {
             // (A computed G could be any code.)
-            motion = Some(motion_of(w.constant()?)?);
+            motion = Some(nc::block::written_motion(w.constant()?)?);
         } else if (AXES | OTHERS) & bit == 0 {
             return None;
         }
     }
     (seen & AXES != 0).then_some(motion)
-}
-
-/// G00–G03 written as 0–3 (not `G1.0`'s other spellings, which the
-/// kernel rounds: those stay in word form).
-fn motion_of(value: f64) -> Option<Motion> {
-    Some(match value {
-        0.0 => Motion::Rapid,
-        1.0 => Motion::Line,
-        2.0 => Motion::ArcCw,
-        3.0 => Motion::ArcCcw,
-        _ => return None,
-    })
 }
 
 /// The address bits of some letters.

@@ -2,7 +2,6 @@
 //! point the compiler knows the tool stands at, whatever path reaches it.
 
 use compiler::{compile, Options};
-use isa::Instr;
 use nc::Machine;
 use vm::{Status, Vm};
 
@@ -136,13 +135,7 @@ fn a_run_that_reaches_a_w119_block_alarms_there() {
         let mut sink = Vec::new();
         for _ in 0..100_000 {
             let pc = vm.pc() as usize;
-            let runs_block = matches!(
-                vm.module().code.get(pc),
-                Some(Instr::Block { .. } | Instr::Move { .. } | Instr::ExecMove)
-            ) || matches!(
-                vm.module().code.get(pc),
-                Some(Instr::Exec { flags }) if flags & vm::PROFILE == 0
-            );
+            let runs_block = vm.module().code.get(pc).is_some_and(common::runs_block);
             let line = vm.module().lines.get(pc).unwrap_or_default().line;
             let status = vm.step(1, &mut sink);
             sink.clear();

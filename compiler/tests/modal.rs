@@ -10,7 +10,6 @@ use compiler::ir::{Module as Ir, Op};
 use compiler::modal::{analyze, Facts, State, GROUPS};
 use compiler::{compile_ir, Options};
 use grammar::SourceFile;
-use isa::Instr;
 use nc::event::Event;
 use nc::gcode::{self, Code};
 use nc::Machine;
@@ -79,14 +78,12 @@ fn check_run(
     let (mut checked, mut positions) = (0, 0);
     for _ in 0..2_000_000 {
         let pc = vm.pc();
-        let runs_block = matches!(
-            vm.module().code.get(pc as usize),
-            Some(Instr::Block { .. } | Instr::Move { .. } | Instr::ExecMove)
-        ) || matches!(
-            vm.module().code.get(pc as usize),
-            Some(Instr::Exec { flags }) if flags & vm::PROFILE == 0
-        );
-        if runs_block {
+        if vm
+            .module()
+            .code
+            .get(pc as usize)
+            .is_some_and(common::runs_block)
+        {
             let loc = vm.module().lines.get(pc as usize).unwrap_or_default();
             let key = (loc.file, loc.line, loc.col);
             let states = places.get(&key).map(Vec::as_slice).unwrap_or(&[]);

@@ -5,9 +5,8 @@
 //! must be the same.
 
 use compiler::{compile, Options};
-use nc::event::Event;
 use nc::Machine;
-use vm::{Status, Vm};
+use vm::Vm;
 
 mod common;
 use common::{random_program, Rng};
@@ -23,35 +22,12 @@ fn same_both_ways(name: &str, src: &[u8], machine: &Machine) -> Option<usize> {
         ..Options::default()
     };
     let module = compile(name, src, &opts).module?;
-    let mut vms = [true, false].map(|plain| {
+    let vms = [true, false].map(|plain| {
         let mut vm = Vm::new(module.clone(), machine.clone());
         vm.nc.set_plain_path(plain);
         vm
     });
-    let mut sinks: [Vec<Event>; 2] = Default::default();
-    for step in 0..STEPS {
-        let [a, b] = &mut vms;
-        let [sa, sb] = &mut sinks;
-        let status = a.step(1, sa);
-        let other = b.step(1, sb);
-        assert_eq!(
-            format!("{status:?}"),
-            format!("{other:?}"),
-            "{name}: status at step {step}"
-        );
-        assert_eq!(sa, sb, "{name}: events at step {step}");
-        assert_eq!(
-            format!("{:?}", a.nc.st),
-            format!("{:?}", b.nc.st),
-            "{name}: kernel state after step {step}"
-        );
-        sa.clear();
-        sb.clear();
-        if matches!(status, Status::Done | Status::Alarm(_)) {
-            return Some(step + 1);
-        }
-    }
-    Some(STEPS)
+    Some(common::lockstep(name, vms, STEPS))
 }
 
 #[test]

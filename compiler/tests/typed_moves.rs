@@ -7,9 +7,8 @@
 
 use compiler::{compile, Options};
 use isa::{Instr, Module};
-use nc::event::Event;
 use nc::Machine;
-use vm::{Status, Vm};
+use vm::Vm;
 
 mod common;
 use common::{random_program, Rng};
@@ -72,37 +71,9 @@ fn moves_only_differ(name: &str, typed: &Module, words: &Module) -> Moves {
 fn same_both_ways(name: &str, src: &[u8], machine: &Machine) -> Option<Compared> {
     let [typed, words] = both_modules(src, machine)?;
     let moves = moves_only_differ(name, &typed, &words);
-    let mut vms = [typed, words].map(|m| Vm::new(m, machine.clone()));
-    let mut sinks: [Vec<Event>; 2] = Default::default();
-    for step in 0..STEPS {
-        let [a, b] = &mut vms;
-        let [sa, sb] = &mut sinks;
-        let status = a.step(1, sa);
-        let other = b.step(1, sb);
-        assert_eq!(
-            format!("{status:?}"),
-            format!("{other:?}"),
-            "{name}: status at step {step}"
-        );
-        assert_eq!(sa, sb, "{name}: events at step {step}");
-        assert_eq!(
-            format!("{:?}", a.nc.st),
-            format!("{:?}", b.nc.st),
-            "{name}: kernel state after step {step}"
-        );
-        sa.clear();
-        sb.clear();
-        if matches!(status, Status::Done | Status::Alarm(_)) {
-            return Some(Compared {
-                moves,
-                steps: step + 1,
-            });
-        }
-    }
-    Some(Compared {
-        moves,
-        steps: STEPS,
-    })
+    let vms = [typed, words].map(|m| Vm::new(m, machine.clone()));
+    let steps = common::lockstep(name, vms, STEPS);
+    Some(Compared { moves, steps })
 }
 
 #[test]

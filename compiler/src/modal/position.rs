@@ -29,7 +29,10 @@
 
 use super::{Fact, State};
 use crate::ir::{Function, NcBlock, NcKind, WordValue};
-use nc::gcode::{self, Code, Comp, Drill, Motion, OneShot, Plane, Polar, PolarCmd, Units, G};
+use nc::gcode::{
+    self, Code, Comp, Drill, FeedMode, Motion, OneShot, PathMode, Plane, Polar, PolarCmd,
+    SpeedMode, Stroke, Units, G,
+};
 use nc::plan::reader::Reader;
 use nc::point::Pt;
 use nc::words::{addr, Word};
@@ -58,7 +61,24 @@ fn point(pos: &Position) -> Pt {
 /// Codes that, in a block without axis words, move nothing: they set a
 /// mode for later blocks (G00–G03 too).
 const STILL: [Code; 18] = [
-    0, 10, 20, 30, 150, 180, 200, 210, 220, 230, 400, 610, 640, 800, 960, 970, 980, 990,
+    Motion::Rapid.code(),
+    Motion::Line.code(),
+    Motion::ArcCw.code(),
+    Motion::ArcCcw.code(),
+    PolarCmd::Off.code(),
+    Plane::Zx.code(),
+    Units::Inch.code(),
+    Units::Metric.code(),
+    Stroke::On.code(),
+    Stroke::Off.code(),
+    Comp::Off.code(),
+    PathMode::ExactStop.code(),
+    PathMode::Continuous.code(),
+    Drill::Off.code(),
+    SpeedMode::SurfaceSpeed.code(),
+    SpeedMode::Rpm.code(),
+    FeedMode::PerMinute.code(),
+    FeedMode::PerRev.code(),
 ];
 
 /// The position after an NC block the kernel runs as commands (`codes`
@@ -98,32 +118,20 @@ pub(super) fn after_block(
 /// kernel's way; an axis with a computed word is unknown, and an axis
 /// without a word keeps what it was (in a summary, the caller's).
 fn read_end(words: &[crate::ir::Word], before: &State, inch: bool, m: &Machine) -> Position {
-    let mut lits: SmallVec<[Word; 8]> = SmallVec::new();
     let mut written = [Written::No; 2];
     for w in words {
         let axis = match w.addr {
-            a if a == addr(b'X') || a == addr(b'U') => Some(0),
-            a if a == addr(b'Z') || a == addr(b'W') => Some(1),
-            _ => None,
+            a if a == addr(b'X') || a == addr(b'U') => 0,
+            a if a == addr(b'Z') || a == addr(b'W') => 1,
+            _ => continue,
         };
-        match w.value() {
-            WordValue::Const(value, flags) => {
-                lits.push(Word {
-                    addr: w.addr,
-                    value,
-                    flags,
-                });
-                if let Some(i) = axis {
-                    written[i] = written[i].max(Written::Constant);
-                }
-            }
-            WordValue::Expr(_) => {
-                if let Some(i) = axis {
-                    written[i] = Written::Computed;
-                }
-            }
-        }
+        let how = match w.constant() {
+            Some(_) => Written::Constant,
+            None => Written::Computed,
+        };
+        written[axis] = written[axis].max(how);
     }
+    let lits = constant_words(words);
     let mut p = nc::block::Parsed::default();
     if nc::block::parse_move(&lits, m, &mut p).is_err() {
         // (The kernel's alarm: nothing runs after the block.)
@@ -163,17 +171,11 @@ pub fn arc_fault(f: &Function, nc: &NcBlock, s: &State, m: &Machine) -> Option<n
     let [Fact::Is(r), Fact::Is(z)] = s.pos else {
         return None;
     };
-    let mut lits: SmallVec<[Word; 8]> = SmallVec::new();
-    for w in f.words_of(nc) {
-        let WordValue::Const(value, flags) = w.value() else {
-            return None;
-        };
-        lits.push(Word {
-            addr: w.addr,
-            value,
-            flags,
-        });
+    let words = f.words_of(nc);
+    if words.iter().any(|w| w.constant().is_none()) {
+        return None;
     }
+    let lits = constant_words(words);
     let mut p = nc::block::Parsed::default();
     // (A fault of the words themselves is a compile error already.)
     nc::block::parse_move(&lits, m, &mut p).ok()?;
@@ -188,6 +190,21 @@ pub fn arc_fault(f: &Function, nc: &NcBlock, s: &State, m: &Machine) -> Option<n
     reader
         .arc_element(from, motion == Motion::ArcCw, to, &p)
         .err()
+}
+
+/// The constant words of a block, as the kernel takes them.
+fn constant_words(words: &[crate::ir::Word]) -> SmallVec<[Word; 8]> {
+    words
+        .iter()
+        .filter_map(|w| match w.value() {
+            WordValue::Const(value, flags) => Some(Word {
+                addr: w.addr,
+                value,
+                flags,
+            }),
+            WordValue::Expr(_) => None,
+        })
+        .collect()
 }
 
 /// How a block writes an axis.

@@ -1,9 +1,12 @@
-//! What the tests of the compiler's passes share: the suite programs and
-//! a generator of random macro programs.
+//! What the tests of the compiler's passes share: the suite programs, a
+//! generator of random macro programs, and ways to run modules in the VM.
 #![allow(dead_code)]
 
+use isa::Instr;
+use nc::event::Event;
 use nc::Machine;
 use std::path::Path;
+use vm::{Status, Vm};
 
 /// Every program of the conformance suite, the public corpus and the
 /// examples, with its name and the machine it is for.
@@ -146,4 +149,44 @@ pub fn random_program(rng: &mut Rng) -> String {
         rng.pick(SETTERS)
     );
     src
+}
+
+/// Whether `instr` hands an NC block to the kernel where it stands (a
+/// G70–G73 profile block waits for its cycle instead).
+pub fn runs_block(instr: &Instr) -> bool {
+    match *instr {
+        Instr::Block { .. } | Instr::Move { .. } | Instr::ExecMove => true,
+        Instr::Exec { flags } => flags & vm::PROFILE == 0,
+        _ => false,
+    }
+}
+
+/// Runs two VMs one instruction at a time, at most `steps`: after each,
+/// the status, the events printed and the kernel's whole state must be
+/// the same. The number of instructions compared.
+pub fn lockstep(name: &str, mut vms: [Vm; 2], steps: usize) -> usize {
+    let mut sinks: [Vec<Event>; 2] = Default::default();
+    for step in 0..steps {
+        let [a, b] = &mut vms;
+        let [sa, sb] = &mut sinks;
+        let status = a.step(1, sa);
+        let other = b.step(1, sb);
+        assert_eq!(
+            format!("{status:?}"),
+            format!("{other:?}"),
+            "{name}: status at step {step}"
+        );
+        assert_eq!(sa, sb, "{name}: events at step {step}");
+        assert_eq!(
+            format!("{:?}", a.nc.st),
+            format!("{:?}", b.nc.st),
+            "{name}: kernel state after step {step}"
+        );
+        sa.clear();
+        sb.clear();
+        if matches!(status, Status::Done | Status::Alarm(_)) {
+            return step + 1;
+        }
+    }
+    steps
 }

@@ -210,6 +210,19 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
 /// ([`Parsed::is_plain_move`]).
 const MOVE_WORDS: u32 = mask(b"XZUWFNRIK");
 
+/// The motion of a G word whose value is exactly 0, 1, 2 or 3 (G00–G03),
+/// the G code of a plain move; `None` for any other value, which the
+/// general parse decodes (and rounds).
+pub fn written_motion(value: f64) -> Option<Motion> {
+    Some(match value {
+        0.0 => Motion::Rapid,
+        1.0 => Motion::Line,
+        2.0 => Motion::ArcCw,
+        3.0 => Motion::ArcCcw,
+        _ => return None,
+    })
+}
+
 /// [`parse_into`] for the words of a plain move whose G code, if any, is
 /// written as G00–G03 exactly (what the compiler types as `move`): the
 /// same result, without decoding a G code in general or the rules that
@@ -222,12 +235,8 @@ pub fn parse_move(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
     for w in words {
         let a = w.addr;
         if a == addr(b'G') {
-            let motion = match w.value {
-                0.0 => Motion::Rapid,
-                1.0 => Motion::Line,
-                2.0 => Motion::ArcCw,
-                3.0 => Motion::ArcCcw,
-                _ => return parse_into(words, m, p),
+            let Some(motion) = written_motion(w.value) else {
+                return parse_into(words, m, p);
             };
             if p.g_len != 0 {
                 return parse_into(words, m, p);
