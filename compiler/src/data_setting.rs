@@ -294,19 +294,3 @@ fn to_variable_number(r: &mut Word) {
         e => Value::Expr(Box::new(e.clone())),
     };
 }
-
-/// After a G10 L52 block: the variable it may have filled is unknown to
-/// constant folding from here on.
-pub fn forget_read(expr: &mut crate::expr::Known, split: &crate::words::Split<'_>) {
-    let is = |w: &&crate::words::NcWord<'_>, c: u8| w.addr == c - b'A';
-    if !split.nc.iter().any(|w| is(&w, b'N')) {
-        return;
-    }
-    let Some(r) = split.nc.iter().find(|w| is(w, b'R')) else {
-        return;
-    };
-    match r.value.literal() {
-        Some(v) if v >= 0.0 => expr.forget(round_half_away(v) as u32),
-        _ => expr.forget_all(),
-    }
-}

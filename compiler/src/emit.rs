@@ -273,6 +273,9 @@ impl<'a> Emitter<'a> {
     pub(crate) fn close_program(&mut self, number: u32, program: OpenProgram) {
         let OpenProgram { entry, mut seqs } = program;
         seqs.sort();
+        // A number repeated on a block of no code of its own (`N5` alone,
+        // then `N5 G00 X2`) names one pc twice: one entry says it.
+        seqs.dedup();
         let end = self.pc();
         self.module.programs.push(isa::Program {
             number,

@@ -3,18 +3,10 @@
 //! a folded program computes exactly what the unfolded one would.
 
 use crate::build::Builder;
-use crate::hash::IntMap;
 use crate::ir::{self, Handle};
 use grammar::ast::{BinOp, Cond, Expr, Func, LogicOp, RelOp, UnOp};
 use nc::value::{self, Bin, Rel};
 use nc::NcError;
-
-/// Constant propagation (-O1): the variables whose value is known at
-/// this point of straight-line code; NaN is a known vacant value.
-#[derive(Default)]
-pub struct Known {
-    known: IntMap<u32, f64>,
-}
 
 pub fn bin_of(op: BinOp) -> Bin {
     match op {
@@ -63,97 +55,33 @@ pub fn rel_of(op: RelOp) -> Rel {
 
 /// The value of an expression that reads no variable; `None` when it does.
 pub fn fold(e: &Expr) -> Option<Result<f64, NcError>> {
-    fold_with(e, &IntMap::default())
-}
-
-/// The value of an expression whose variables are all in `known`.
-pub fn fold_with(e: &Expr, known: &IntMap<u32, f64>) -> Option<Result<f64, NcError>> {
-    let f = |e: &Expr| fold_with(e, known);
     Some(match e {
         Expr::Num(n) => Ok(n.value),
-        Expr::Var(v) => match f(&v.index)? {
-            Ok(n) if n.fract() == 0.0 && n >= 0.0 => return known.get(&(n as u32)).map(|v| Ok(*v)),
-            _ => return None,
-        },
-        Expr::Paren { inner, .. } => return f(inner),
+        Expr::Var(_) => return None,
+        Expr::Paren { inner, .. } => return fold(inner),
         Expr::Unary { op, operand, .. } => {
-            let v = f(operand)?;
+            let v = fold(operand)?;
             v.map(|v| if *op == UnOp::Neg { value::neg(v) } else { v })
         }
         Expr::Binary { op, lhs, rhs, .. } => {
-            let (a, b) = (f(lhs)?, f(rhs)?);
+            let (a, b) = (fold(lhs)?, fold(rhs)?);
             a.and_then(|a| b.and_then(|b| value::binary(bin_of(*op), a, b)))
         }
-        Expr::Call { func, arg, .. } => f(arg)?.and_then(|a| value::func(func_of(*func), a)),
+        Expr::Call { func, arg, .. } => fold(arg)?.and_then(|a| value::func(func_of(*func), a)),
         Expr::Atan2 { y, x, .. } => {
-            let (a, b) = (f(y)?, f(x)?);
+            let (a, b) = (fold(y)?, fold(x)?);
             a.and_then(|y| b.and_then(|x| value::atan2(y, x)))
         }
     })
 }
 
-/// Plain variables a program can hold constants in (system variables
-/// change behind the compiler's back).
-fn propagatable(n: u32) -> bool {
-    matches!(n, 1..=33 | 100..=199 | 500..=999)
-}
-
-impl Known {
-    /// A join point (a jump target, a loop head, a call): nothing is known.
-    pub fn forget_all(&mut self) {
-        self.known.clear();
-    }
-
-    pub fn forget(&mut self, var: u32) {
-        // Mostly nothing is known: spare the hashing then.
-        if !self.known.is_empty() {
-            self.known.remove(&var);
-        }
-    }
-
-    pub fn snapshot(&self) -> IntMap<u32, f64> {
-        self.known.clone()
-    }
-
-    /// After a conditional statement: keep only what it left unchanged.
-    pub fn restore_minus_changes(&mut self, before: IntMap<u32, f64>) {
-        let now = std::mem::take(&mut self.known);
-        self.known = before
-            .into_iter()
-            .filter(|(k, v)| now.get(k).is_some_and(|w| w.to_bits() == v.to_bits()))
-            .collect();
-    }
-
-    /// After `#var = e`: remember its value when it is a constant.
-    pub fn assigned(&mut self, var: u32, value: &Expr, optimize: bool) {
-        match fold_with(value, &self.known) {
-            Some(Ok(v)) if optimize && propagatable(var) => {
-                self.known.insert(var, v);
-            }
-            _ => self.forget(var),
-        }
-    }
-
-    /// The value of `e` from constants and known variables (-O1).
-    pub fn value(&self, e: &Expr) -> Option<f64> {
-        match fold_with(e, &self.known) {
-            Some(Ok(v)) => Some(v),
-            _ => None,
-        }
-    }
-}
-
-/// An expression into the IR. Every subexpression whose value is known is
-/// a constant: with -O1 from constants and known variables, with -O0 only
-/// the literal numbers. W116 for an operation that always faults.
+/// An expression into the IR. With -O1 every subexpression that reads no
+/// variable is a constant (pass `fold` adds what the variables bring),
+/// with -O0 only the literal numbers. W116 for an operation that always
+/// faults.
 pub fn build(b: &mut Builder<'_>, e: &Expr) -> Handle<ir::Expr> {
     if b.optimize || matches!(e, Expr::Num(_)) {
-        let folded = if b.optimize {
-            fold_with(e, &b.known.known)
-        } else {
-            fold(e)
-        };
-        if let Some(Ok(v)) = folded {
+        if let Some(Ok(v)) = fold(e) {
             return b.add_expr(ir::Expr::Const(v));
         }
     }

@@ -16,6 +16,7 @@ pub mod data_setting;
 pub mod dry_warn;
 pub mod emit;
 pub mod expr;
+pub mod fold;
 pub mod hash;
 pub mod ir;
 pub mod known_faults;
@@ -262,6 +263,9 @@ fn lower(
     diags.append(&mut found);
     if has_errors(diags) {
         return (None, Some(ir));
+    }
+    if opts.optimize {
+        fold::module(&mut ir);
     }
     if opts.resolve {
         resolve::module(&mut ir);

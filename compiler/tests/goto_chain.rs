@@ -37,6 +37,14 @@ fn a_repeated_n_warns_and_the_first_is_used_and_a_missing_one_is_e2010() {
     let mut events: Vec<Event> = Vec::new();
     vm.run(&mut events);
     assert_eq!(events[0].to_string(), "RAPID X=1 Z=0");
+    // The same, where the first N5 is a block of no code of its own: both
+    // name the same place (this was an internal error, E0000).
+    let src = "GOTO5\nG00 X9 Z0\nN5\nN5 G00 X2 Z0\nM30\n";
+    let c = compile("dup.nc", src.as_bytes(), &Options::default());
+    let mut vm = Vm::new(c.module.expect("a module"), Machine::reference());
+    let mut events: Vec<Event> = Vec::new();
+    vm.run(&mut events);
+    assert_eq!(events[0].to_string(), "RAPID X=2 Z=0");
     let c = compile("miss.nc", b"GOTO7\nN5 M30\n", &Options::default());
     assert!(c.render().contains("error[E2010]"), "{}", c.render());
 }

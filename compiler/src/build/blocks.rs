@@ -157,8 +157,8 @@ impl Builder<'_> {
         at
     }
 
-    /// Points the guard ending `at` past the block just built. Both ways
-    /// meet there, so nothing the block set is known after it.
+    /// Points the guard ending `at` past the block just built, where both
+    /// ways meet.
     pub(crate) fn end_guard(&mut self, at: Handle<ir::Block>) {
         let join = self.here();
         if let Some(ir::Block {
@@ -168,7 +168,6 @@ impl Builder<'_> {
         {
             *skip = join;
         }
-        self.known.forget_all();
         self.tail = Tail::Join;
     }
 

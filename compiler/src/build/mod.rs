@@ -9,7 +9,6 @@
 
 mod blocks;
 
-use crate::expr::Known;
 use crate::ir::{self, Handle, Loc, Op, Terminator};
 use crate::link::{self, Program, Unit};
 use crate::words::{self, WordValue};
@@ -42,8 +41,6 @@ pub struct Builder<'a> {
     pub optimize: bool,
     pub diags: Vec<FileDiag>,
     pub unit: usize,
-    /// Variables of known value at this point (-O1).
-    pub known: Known,
     /// The number of the program being built.
     program_number: u32,
     /// G70–G73 profiles: block starts and jumps past nf.
@@ -134,7 +131,6 @@ impl<'a> Builder<'a> {
             optimize,
             diags: Vec::new(),
             unit: 0,
-            known: Known::default(),
             program_number: 0,
             profiles: Default::default(),
             parsed: Default::default(),
@@ -210,7 +206,6 @@ impl<'a> Builder<'a> {
             optimize: self.optimize,
             diags: self.diags,
             unit: self.unit,
-            known: self.known,
             program_number: self.program_number,
             profiles: self.profiles,
             parsed: self.parsed,
@@ -324,7 +319,6 @@ impl<'a> Builder<'a> {
 
     /// What comes before a program's first block is built.
     fn start_blocks(&mut self, prog: &Program) {
-        self.known.forget_all();
         crate::profile::program_start(self, prog);
     }
 
@@ -342,8 +336,6 @@ impl<'a> Builder<'a> {
             crate::profile::count_cycle(self, block);
             pb.data_setting.block(self, block);
             if let Some(seq) = block.seq {
-                // A block with a number may be a jump target.
-                self.known.forget_all();
                 let at = self.here();
                 let loc = self.loc_peek();
                 self.push_at(
@@ -471,28 +463,22 @@ impl<'a> Builder<'a> {
             Stmt::IfThen { cond, then, .. } => {
                 let c = self.cond(cond);
                 let at = self.branch(c);
-                let before = self.known.snapshot();
                 self.build_stmt(then, block, st);
-                // The assignment may not have happened.
-                self.known.restore_minus_changes(before);
                 let here = self.here();
                 self.patch_branch(at, here);
             }
             Stmt::While { cond, label, span } => {
-                self.known.forget_all();
                 let start = self.here();
                 let c = self.cond(cond);
                 let exit = self.branch(c);
                 self.open_loop(label.value, start, vec![exit], *span, label.span, st);
             }
             Stmt::Do { label, span } => {
-                self.known.forget_all();
                 let start = self.here();
                 self.open_loop(label.value, start, Vec::new(), *span, label.span, st);
             }
             Stmt::End { label, span } => {
                 self.close_loop(label.value, *span, st);
-                self.known.forget_all();
             }
         }
     }
@@ -623,7 +609,6 @@ impl<'a> Builder<'a> {
                     value: src,
                     msg,
                 });
-                self.known.assigned(n as u32, value, self.optimize);
             }
             _ => {
                 let idx = self.expr(&target.index);
@@ -632,7 +617,6 @@ impl<'a> Builder<'a> {
                     value: src,
                     msg,
                 });
-                self.known.forget_all();
             }
         }
     }
@@ -684,12 +668,12 @@ impl<'a> Builder<'a> {
                 WordValue::Literal(v, flags) => {
                     self.push_word(w.addr, ir::WordValue::Const(v, flags), w.span)
                 }
-                WordValue::Expr(e) => match self.known.value(e).filter(|_| self.optimize) {
+                WordValue::Expr(e) => match crate::expr::fold(e).filter(|_| self.optimize) {
                     // Folded: a computed value (no decimal-point rule);
                     // a vacant one leaves the word out.
-                    Some(v) if v.is_nan() => {}
-                    Some(v) => self.push_word(w.addr, ir::WordValue::Const(v, 0), w.span),
-                    None => {
+                    Some(Ok(v)) if v.is_nan() => {}
+                    Some(Ok(v)) => self.push_word(w.addr, ir::WordValue::Const(v, 0), w.span),
+                    _ => {
                         let h = self.expr(e);
                         self.push_word(w.addr, ir::WordValue::Expr(h), w.span);
                     }
@@ -706,18 +690,10 @@ impl<'a> Builder<'a> {
             if ends_program(split) {
                 self.terminate(Terminator::Ended);
             }
-            // G31 writes the skip position into #995–#999.
-            for var in 995..=999 {
-                self.known.forget(var);
-            }
-            // A G10 L52 read writes its variable.
-            crate::data_setting::forget_read(&mut self.known, split);
         }
         crate::profile::after_exec(self, after);
         if let Some(call) = &split.call {
             crate::calls::build_call(self, call.clone(), block.span);
-            // The called program may change any variable.
-            self.known.forget_all();
         }
     }
 

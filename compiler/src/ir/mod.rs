@@ -8,13 +8,14 @@
 //! as naga does, so that passes that do not care about sources never see
 //! them. Analyses keep their facts in side tables keyed by handle too.
 //!
-//! Passes: `build` (syntax tree and linked programs → IR, with the constant
-//! folding of -O1 inside it for now), `resolve` (NC blocks that are plain
-//! moves typed as such, `crate::resolve`), `validate` (after them, on every
-//! compile: an invalid IR is the internal error E0000), `modal` (the
-//! modal groups known before each operation, `crate::modal`; only the
-//! `--emit=ir` printer reads it so far), `emit` (IR → bytecode), and the
-//! `--emit=ir` printer.
+//! Passes: `build` (syntax tree and linked programs → IR; with -O1 it
+//! folds the expressions that read no variable), `fold` (-O1: constant
+//! propagation over the control-flow graph, `crate::fold`), `resolve` (NC
+//! blocks that are plain moves typed as such, `crate::resolve`),
+//! `validate` (after them, on every compile: an invalid IR is the
+//! internal error E0000), `modal` (the modal groups and the position known
+//! before each operation, `crate::modal`; the `--emit=ir` printer and
+//! W119 read it), `emit` (IR → bytecode), and the `--emit=ir` printer.
 //!
 //! Decisions:
 //! - The IR is a module of the compiler, not a crate: only the compiler's

@@ -1,0 +1,451 @@
+//! Pass `fold` (-O1): constant propagation over the control-flow graph.
+//!
+//! A forward data-flow analysis finds, before each operation, the plain
+//! variables whose value is the same on every path that reaches it; then
+//! every expression (assignment values, word values, conditions, call
+//! operands) whose variables are all known there becomes a constant, and
+//! every subexpression of one that is not. A word whose value is known to
+//! be vacant is left out of its block, as the VM leaves it out.
+//!
+//! Build folds the expressions that read no variable (and warns of those
+//! that always fault, W116); this pass adds what the variables bring. It
+//! replaces the propagation `build` made as it read the blocks, which
+//! forgot everything at a numbered block, a loop or a conditional, and
+//! did not see that a move under G66 calls the macro, which may change a
+//! common variable.
+//!
+//! Decisions (what is known where):
+//! - A program starts knowing nothing: it may be called with any values,
+//!   and a main program runs from wherever the last one left the memory.
+//! - Only #1–#33, #100–#199 and #500–#999 are followed; system variables
+//!   change behind the program's back.
+//! - A numbered block can be entered by a computed GOTO or by a
+//!   subprogram's `M99 P`: there it joins what such jumps carry (nothing,
+//!   for `M99 P`). Static GOTOs are edges of the graph.
+//! - After M98 nothing is known (the subprogram shares the caller's
+//!   locals); after G65 the locals are (the macro has its own), the
+//!   common variables are not. G66 changes nothing where it stands; under
+//!   it, every NC block may call the macro: the common variables are
+//!   forgotten after each one. Whether G66 may be in force is followed as
+//!   well; a program starts with it in force when the module has a G66.
+//! - An NC block writes #995–#999 (G31's skip position) and, for a G10 L52
+//!   read (N and R words), the variable R names.
+//! - A value whose computation faults stays in the code: the alarm is the
+//!   run's, with its line.
+
+use crate::ir::{
+    Block, Call, CallKind, Count, Expr, Function, Handle, Module, NcBlock, Op, Terminator,
+    VarTarget, Word, WordValue,
+};
+use nc::value;
+use nc::words::addr;
+use std::collections::BTreeMap;
+
+/// Rounds over the layout before the analysis gives up (and folds
+/// nothing): far more than the loops of a real program nest.
+const MAX_ROUNDS: usize = 64;
+
+/// Plain variables a program can hold constants in.
+fn followed(n: u32) -> bool {
+    matches!(n, 1..=33 | 100..=199 | 500..=999)
+}
+
+fn common(n: u32) -> bool {
+    matches!(n, 100..=199 | 500..=999)
+}
+
+/// What is known at a point of the program.
+#[derive(Debug, Clone, PartialEq, Default)]
+struct Facts {
+    /// Variable → the bits of its value (NaN bits: known vacant).
+    vars: BTreeMap<u32, u64>,
+    /// Whether a G66 modal call may be in force.
+    g66: bool,
+}
+
+impl Facts {
+    fn join(&self, other: &Facts) -> Facts {
+        let vars = self
+            .vars
+            .iter()
+            .filter(|(k, v)| other.vars.get(k) == Some(v))
+            .map(|(k, v)| (*k, *v))
+            .collect();
+        Facts {
+            vars,
+            g66: self.g66 || other.g66,
+        }
+    }
+
+    fn get(&self, n: u32) -> Option<f64> {
+        match n {
+            // #0 is always vacant (it cannot be written).
+            0 => Some(value::VACANT),
+            _ => self.vars.get(&n).map(|b| f64::from_bits(*b)),
+        }
+    }
+
+    fn set(&mut self, n: u32, v: Option<f64>) {
+        match v {
+            Some(v) if followed(n) => {
+                self.vars.insert(n, v.to_bits());
+            }
+            _ => {
+                self.vars.remove(&n);
+            }
+        }
+    }
+
+    fn forget_commons(&mut self) {
+        self.vars.retain(|n, _| !common(*n));
+    }
+}
+
+fn join(slot: &Option<Facts>, f: &Facts) -> Facts {
+    match slot {
+        Some(s) => s.join(f),
+        None => f.clone(),
+    }
+}
+
+/// Folds every function of `m`.
+pub fn module(m: &mut Module) {
+    let g66 = m.functions.iter().any(has_modal_call);
+    let m99_p = m.functions.iter().skip(1).any(|f| {
+        f.blocks
+            .iter()
+            .any(|(_, b)| matches!(b.term, Some(Terminator::Return { seq: Some(_) })))
+    });
+    for f in &mut m.functions {
+        if reads_variables(f) {
+            function(f, g66, m99_p);
+        }
+    }
+}
+
+fn has_modal_call(f: &Function) -> bool {
+    f.blocks.iter().any(|(_, b)| {
+        matches!(&b.term, Some(Terminator::Call { call, .. }) if call.kind == CallKind::Modal)
+    })
+}
+
+/// Whether anything in `f` reads a variable (most long programs do not).
+fn reads_variables(f: &Function) -> bool {
+    f.exprs
+        .iter()
+        .any(|(_, e)| matches!(e, Expr::Var(_) | Expr::VarInd(_)))
+}
+
+/// Folds `f`. `g66`: whether the module sets a modal call; `m99_p`:
+/// whether a subprogram may return into a numbered block.
+fn function(f: &mut Function, g66: bool, m99_p: bool) {
+    let entry = Facts {
+        vars: BTreeMap::new(),
+        g66,
+    };
+    let Some(flow) = Flow::solve(f, entry, m99_p) else {
+        return;
+    };
+    let layout = f.layout.clone();
+    for b in layout {
+        let Some(mut facts) = flow.block_in.get(b.index()).cloned().flatten() else {
+            continue; // Unreached: nothing to fold with.
+        };
+        let ops = f.blocks.get(b).map(|k| k.ops.clone()).unwrap_or_default();
+        for op in ops {
+            if let (Some(Op::Seq(_)), Some(seq)) = (f.ops.get(op), &flow.seq_in) {
+                facts = facts.join(seq);
+            }
+            rewrite_op(f, op, &facts);
+            if let Some(o) = f.ops.get(op) {
+                transfer(f, o, &mut facts);
+            }
+        }
+        if let Some(term) = f.blocks.get(b).and_then(|k| k.term.clone()) {
+            rewrite_term(f, &term, &facts);
+        }
+    }
+}
+
+/// The facts at the start of each block, at the fixed point.
+struct Flow {
+    block_in: Vec<Option<Facts>>,
+    /// What a jump to a number carries (`None`: no such jump).
+    seq_in: Option<Facts>,
+    /// Whether the module has a G66.
+    g66: bool,
+}
+
+impl Flow {
+    /// Iterates to the fixed point; `None` when it takes too many rounds.
+    fn solve(f: &Function, entry: Facts, m99_p: bool) -> Option<Flow> {
+        let start = *f.layout.first()?;
+        let mut flow = Flow {
+            block_in: vec![None; f.blocks.len()],
+            seq_in: m99_p.then(Facts::default),
+            g66: entry.g66,
+        };
+        *flow.block_in.get_mut(start.index())? = Some(entry);
+        for _ in 0..MAX_ROUNDS {
+            if !flow.round(f) {
+                return Some(flow);
+            }
+        }
+        None
+    }
+
+    /// One pass over the layout; whether anything changed.
+    fn round(&mut self, f: &Function) -> bool {
+        let mut changed = false;
+        for &b in &f.layout {
+            let Some(out) = self.block_out(f, b) else {
+                continue;
+            };
+            let Some(term) = f.blocks.get(b).and_then(|k| k.term.as_ref()) else {
+                continue;
+            };
+            for (target, facts) in edges(term, out, self.g66) {
+                let slot = match target {
+                    Some(t) => match self.block_in.get_mut(t.index()) {
+                        Some(slot) => slot,
+                        None => continue,
+                    },
+                    None => &mut self.seq_in,
+                };
+                let new = join(slot, &facts);
+                changed |= slot.as_ref() != Some(&new);
+                *slot = Some(new);
+            }
+        }
+        changed
+    }
+
+    /// The facts after the operations of block `b` (`None`: unreached).
+    fn block_out(&self, f: &Function, b: Handle<Block>) -> Option<Facts> {
+        let mut facts = self.block_in.get(b.index())?.clone()?;
+        for &op in &f.blocks.get(b)?.ops {
+            let o = f.ops.get(op)?;
+            if let (Op::Seq(_), Some(seq)) = (o, &self.seq_in) {
+                facts = facts.join(seq);
+            }
+            transfer(f, o, &mut facts);
+        }
+        Some(facts)
+    }
+}
+
+/// Where control goes after a terminator, with what it knows; `None` as
+/// the target: every numbered block.
+fn edges(term: &Terminator, out: Facts, g66: bool) -> Vec<(Option<Handle<Block>>, Facts)> {
+    match term {
+        Terminator::Call { call, next } => vec![(Some(*next), after_call(call, out, g66))],
+        Terminator::Goto { .. } | Terminator::Return { seq: Some(_) } => vec![(None, out)],
+        Terminator::GotoIf { next, .. } => vec![(Some(*next), out.clone()), (None, out)],
+        // (M99 running a program again starts it knowing nothing, which
+        // its entry already says.)
+        t => t.successors().map(|s| (Some(s), out.clone())).collect(),
+    }
+}
+
+/// What a call leaves known. `g66`: whether the module has a G66 (the
+/// callee may set or cancel one).
+fn after_call(call: &Call, mut facts: Facts, g66: bool) -> Facts {
+    match call.kind {
+        CallKind::Modal => facts.g66 = true,
+        CallKind::Macro => {
+            facts.forget_commons();
+            facts.g66 = g66;
+        }
+        CallKind::Sub => {
+            facts.vars.clear();
+            facts.g66 = g66;
+        }
+    }
+    facts
+}
+
+/// What one operation changes.
+fn transfer(f: &Function, op: &Op, facts: &mut Facts) {
+    match op {
+        Op::Assign { target, value, .. } => match target_var(f, *target, facts) {
+            Some(n) => {
+                let v = eval(f, *value, facts).and_then(Result::ok);
+                facts.set(n, v);
+            }
+            None => facts.vars.clear(),
+        },
+        Op::MacroA { dst, .. } => facts.set(*dst, None),
+        Op::Nc(nc) => nc_block(f, nc, facts),
+        Op::ModalCancel => facts.g66 = false,
+        Op::Seq(_) | Op::Alarm { .. } => {}
+    }
+}
+
+/// The variable an assignment writes, when it is known.
+fn target_var(f: &Function, target: VarTarget, facts: &Facts) -> Option<u32> {
+    match target {
+        VarTarget::Direct(n) => Some(n),
+        VarTarget::Indirect(i) => match eval(f, i, facts)? {
+            Ok(n) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => Some(n as u32),
+            _ => None,
+        },
+    }
+}
+
+/// What an NC block writes: G31's skip position, a G10 L52 read's
+/// variable and, under G66, whatever the macro it calls writes.
+fn nc_block(f: &Function, nc: &NcBlock, facts: &mut Facts) {
+    for var in 995..=999 {
+        facts.vars.remove(&var);
+    }
+    let words = f.words_of(nc);
+    let has = |c: u8| words.iter().find(|w| w.addr == addr(c));
+    if let (Some(_), Some(r)) = (has(b'N'), has(b'R')) {
+        match r.constant() {
+            Some(v) if v >= 0.0 => {
+                facts.vars.remove(&(nc::block::round_half_away(v) as u32));
+            }
+            _ => facts.vars.clear(),
+        }
+    }
+    if facts.g66 {
+        facts.forget_commons();
+    }
+}
+
+/// The value of expression `h` where `facts` hold: `None` when it reads a
+/// variable not known there.
+fn eval(f: &Function, h: Handle<Expr>, facts: &Facts) -> Option<Result<f64, nc::NcError>> {
+    let e = |h| eval(f, h, facts);
+    Some(match f.exprs.get(h)? {
+        Expr::Const(v) => Ok(*v),
+        Expr::Var(n) => Ok(facts.get(*n)?),
+        Expr::VarInd(i) => match e(*i)? {
+            Ok(n) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
+                Ok(facts.get(n as u32)?)
+            }
+            _ => return None,
+        },
+        Expr::Neg(a) => e(*a)?.map(value::neg),
+        Expr::Binary { op, a, b } => {
+            let (a, b) = (e(*a)?, e(*b)?);
+            a.and_then(|a| b.and_then(|b| value::binary(*op, a, b)))
+        }
+        Expr::Func { f: func, a } => e(*a)?.and_then(|a| value::func(*func, a)),
+        Expr::Atan2 { y, x } => {
+            let (y, x) = (e(*y)?, e(*x)?);
+            y.and_then(|y| x.and_then(|x| value::atan2(y, x)))
+        }
+        Expr::Compare { op, a, b } => {
+            let (a, b) = (e(*a)?, e(*b)?);
+            a.and_then(|a| b.map(|b| value::compare(*op, a, b)))
+        }
+    })
+}
+
+/// Folds the tree of `h`: the whole of it when its value is known, else
+/// each largest subtree whose value is. The value of `h`, when known.
+fn fold(f: &mut Function, h: Handle<Expr>, facts: &Facts) -> Option<f64> {
+    match eval(f, h, facts) {
+        Some(Ok(v)) => {
+            if let Some(e) = f.exprs.get_mut(h) {
+                *e = Expr::Const(v);
+            }
+            return Some(v);
+        }
+        // A fault stays where it happens, with its line.
+        Some(Err(_)) => return None,
+        None => {}
+    }
+    for child in children(f, h) {
+        fold(f, child, facts);
+    }
+    None
+}
+
+fn children(f: &Function, h: Handle<Expr>) -> Vec<Handle<Expr>> {
+    match f.exprs.get(h) {
+        Some(Expr::VarInd(a) | Expr::Neg(a) | Expr::Func { a, .. }) => vec![*a],
+        Some(Expr::Binary { a, b, .. } | Expr::Compare { a, b, .. }) => vec![*a, *b],
+        Some(Expr::Atan2 { y, x }) => vec![*y, *x],
+        Some(Expr::Const(_) | Expr::Var(_)) | None => Vec::new(),
+    }
+}
+
+/// Folds the expressions of one operation, with what is known before it.
+fn rewrite_op(f: &mut Function, op: Handle<Op>, facts: &Facts) {
+    match f.ops.get(op).cloned() {
+        Some(Op::Assign { target, value, .. }) => {
+            if let VarTarget::Indirect(i) = target {
+                fold(f, i, facts);
+            }
+            fold(f, value, facts);
+        }
+        Some(Op::MacroA { j, k, .. }) => {
+            fold(f, j, facts);
+            fold(f, k, facts);
+        }
+        Some(Op::Nc(nc)) => {
+            let kept = rewrite_words(f, &nc, facts);
+            if let Some(Op::Nc(nc)) = f.ops.get_mut(op) {
+                nc.words.1 = nc.words.0 + kept;
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Folds the words of an NC block and moves those left (a vacant one is
+/// left out) to the front of its range; how many are left. (The words
+/// past the new end of the range belong to no block.)
+fn rewrite_words(f: &mut Function, nc: &NcBlock, facts: &Facts) -> u32 {
+    let (a, b) = (nc.words.0 as usize, nc.words.1 as usize);
+    let mut kept = a;
+    for i in a..b {
+        let (Some(&w), Some(&span)) = (f.words.get(i), f.word_spans.get(i)) else {
+            break;
+        };
+        let w = match w.value() {
+            WordValue::Expr(h) => match fold(f, h, facts) {
+                Some(v) if value::is_vacant(v) => continue,
+                Some(v) => Word::new(w.addr, WordValue::Const(v, 0)),
+                None => w,
+            },
+            WordValue::Const(..) => w,
+        };
+        f.words[kept] = w;
+        f.word_spans[kept] = span;
+        kept += 1;
+    }
+    (kept - a) as u32
+}
+
+/// Folds the operands of a terminator, with what is known at the end of
+/// its block.
+fn rewrite_term(f: &mut Function, term: &Terminator, facts: &Facts) {
+    match term {
+        Terminator::Branch { cond, .. } => {
+            fold(f, *cond, facts);
+        }
+        Terminator::Goto { seq } | Terminator::Return { seq: Some(seq) } => {
+            fold(f, *seq, facts);
+        }
+        Terminator::GotoIf { seq, j, k, .. } => {
+            for h in [*seq, *j, *k] {
+                fold(f, h, facts);
+            }
+        }
+        Terminator::Call { call, .. } => {
+            if let crate::ir::Callee::Dynamic(h) = call.callee {
+                fold(f, h, facts);
+            }
+            if let Count::Expr(h) = call.count {
+                fold(f, h, facts);
+            }
+            for &(_, h) in &call.args {
+                fold(f, h, facts);
+            }
+        }
+        _ => {}
+    }
+}

@@ -1,0 +1,259 @@
+//! Pass `fold`: constant propagation over the control-flow graph.
+//!
+//! Small programs whose IR after the passes is worked out by hand (what is
+//! known where follows from the rules in `compiler/src/fold.rs`), and a
+//! few hundred random macro programs of branches, loops, numbered blocks,
+//! computed GOTOs and calls, each run to its end compiled with -O0 (no
+//! folding) and -O1: the events, the end status and every variable a
+//! program can write must be the same, bit for bit.
+
+use compiler::{compile, compile_ir, ir, Options};
+use isa::{Instr, Module};
+use nc::event::Event;
+use nc::Machine;
+use vm::Vm;
+
+mod common;
+use common::Rng;
+
+/// The IR listing of `src` after the passes (-O1).
+fn listing(src: &str) -> String {
+    let (c, ir) = compile_ir("t.nc", src.as_bytes(), &Options::default());
+    assert!(!c.has_errors(), "{}", c.render());
+    let ir = ir.expect("the IR of a program that compiles");
+    assert_eq!(ir::validate(&ir), Ok(()));
+    ir::print::print(&ir, &c.files)
+}
+
+/// The printed operations of `src`'s source line `line`.
+fn ops_of_line(src: &str, line: usize) -> Vec<String> {
+    let at = format!("; t.nc:{line}:");
+    listing(src)
+        .lines()
+        .filter(|l| l.contains(&at))
+        .map(|l| l.split(';').next().unwrap_or("").trim().to_string())
+        .collect()
+}
+
+fn assert_op(src: &str, line: usize, want: &str) {
+    let ops = ops_of_line(src, line);
+    assert!(
+        ops.iter().any(|o| o == want),
+        "line {line}: {want:?} not in {ops:?}\n{}",
+        listing(src)
+    );
+}
+
+#[test]
+fn a_numbered_block_keeps_what_is_known_unless_a_computed_goto_brings_other_values() {
+    // No jump to a number: N10 is entered only from line 1.
+    assert_op(
+        "#1=2\nN10 G01 X#1 Z-1 F100\nM30\n",
+        2,
+        "move G1 X2 Z-1 F100",
+    );
+    // A computed GOTO may enter N10 after line 3, with #1 = 3.
+    let src = "#1=2\nN10 G01 X#1 Z-1 F100\n#1=3\nIF[#9GT0]GOTO#8\nM30\n";
+    assert_op(src, 2, "move G1 X#1 Z-1 F100");
+    // ... or with #1 = 2 as on line 1: the same value both ways.
+    let src = "#1=2\nN10 G01 X#1 Z-1 F100\nIF[#9GT0]GOTO#8\nM30\n";
+    assert_op(src, 2, "move G1 X2 Z-1 F100");
+}
+
+#[test]
+fn a_loop_keeps_what_its_body_leaves_unchanged() {
+    let src = "#1=2\n#3=0\nWHILE[#3LT3]DO1\nG01 X#1 Z#3 F100\n#3=#3+1\nEND1\nM30\n";
+    assert_op(src, 4, "move G1 X2 Z#3 F100");
+    assert_op(src, 3, "branch #3 LT 3 then bb2 else bb3");
+    assert_op(src, 5, "#3 = #3 + 1");
+}
+
+#[test]
+fn after_a_conditional_assignment_only_a_value_the_same_both_ways_is_known() {
+    assert_op(
+        "#1=2\nIF[#9GT0]THEN#1=2\nG01 X#1 Z-1 F100\nM30\n",
+        3,
+        "move G1 X2 Z-1 F100",
+    );
+    assert_op(
+        "#1=2\nIF[#9GT0]THEN#1=3\nG01 X#1 Z-1 F100\nM30\n",
+        3,
+        "move G1 X#1 Z-1 F100",
+    );
+}
+
+#[test]
+fn a_macro_call_keeps_the_locals_and_a_subprogram_call_keeps_nothing() {
+    let src = "#1=2\n#100=5\nG65 P9000\nG01 X#1 Z#100 F100\nM98 P9000\nG01 X#1 Z-1\nM30\nO9000\n#100=7\nM99\n";
+    assert_op(src, 4, "move G1 X2 Z#100 F100");
+    assert_op(src, 6, "move G1 X#1 Z-1");
+}
+
+#[test]
+fn under_g66_a_move_may_change_the_common_variables() {
+    // The move on line 4 calls O9000, which sets #100 = 20: folding #100
+    // as 1 on line 5 would be wrong.
+    let src = "G66 P9000\n#100=1\n#1=4\nG01 U1 W-1 F100\n#101=#100+#1\nG67\nG00 X#101 Z5\nM30\nO9000\n#100=20\nM99\n";
+    assert_op(src, 5, "#101 = #100 + 4");
+    let events = run(&module(src, true));
+    assert!(
+        events.iter().any(|e| e.to_string() == "RAPID X=24 Z=5"),
+        "{events:?}"
+    );
+}
+
+#[test]
+fn a_vacant_value_leaves_its_word_out() {
+    // #0 is always vacant; #1 is known to be too.
+    let src = "G01 X#0 Z-1 F100\n#1=#0\nG01 X20 Z#1\nM30\n";
+    assert_op(src, 1, "move G1 Z-1 F100");
+    assert_op(src, 3, "move G1 X20");
+}
+
+#[test]
+fn a_value_that_faults_stays_to_raise_its_alarm_when_it_runs() {
+    let src = "#1=0\n#2=1/#1\nG01 X#2 Z-1 F100\nM30\n";
+    assert_op(src, 2, "#2 = 1 / #1");
+    assert_op(src, 3, "move G1 X#2 Z-1 F100");
+}
+
+fn module(src: &str, optimize: bool) -> Module {
+    let opts = Options {
+        optimize,
+        ..Options::default()
+    };
+    let c = compile("t.nc", src.as_bytes(), &opts);
+    let text = c.render();
+    c.module.unwrap_or_else(|| panic!("{src}\n{text}"))
+}
+
+fn run(m: &Module) -> Vec<Event> {
+    let mut vm = Vm::new(m.clone(), Machine::reference());
+    let mut events = Vec::new();
+    vm.run(&mut events);
+    events
+}
+
+/// Statements over a few locals and common variables: assignments,
+/// conditionals, loops, numbered blocks, forward GOTOs (static and
+/// computed), calls and moves with computed words.
+fn random_program(rng: &mut Rng) -> String {
+    const VARS: &[&str] = &["#1", "#2", "#3", "#100", "#101", "#500"];
+    const VALUES: &[&str] = &[
+        "1", "2", "-3", "0.5", "#0", "#1", "#2", "#3", "#100", "#101", "#500",
+    ];
+    let mut src = String::from("O0001\nG00 X50 Z2\n");
+    let mut label = 10;
+    let val = |rng: &mut Rng| rng.pick(VALUES).to_string();
+    let expr = |rng: &mut Rng| match rng.below(6) {
+        0 => val(rng),
+        1 => format!("{}+{}", val(rng), val(rng)),
+        2 => format!("{}-{}", val(rng), val(rng)),
+        3 => format!("[{}+{}]*0.5", val(rng), val(rng)),
+        4 => format!("ABS[{}]", val(rng)),
+        _ => format!("{}/{}", val(rng), val(rng)),
+    };
+    for _ in 0..rng.below(16) + 4 {
+        let var = rng.pick(VARS);
+        match rng.below(12) {
+            0..=2 => src += &format!("{var}={}\n", expr(rng)),
+            3 => src += &format!("IF[{}GT{}]THEN{var}={}\n", val(rng), val(rng), expr(rng)),
+            4 => {
+                src += &format!(
+                    "IF[{}LT{}]GOTO{label}\n{var}={}\nN{label} G01 X[{}+30] Z-1 F100\n",
+                    val(rng),
+                    val(rng),
+                    expr(rng),
+                    val(rng)
+                );
+                label += 10;
+            }
+            5 => {
+                src += &format!(
+                    "#30={label}\n{var}={}\nIF[{}EQ{}]GOTO#30\n{var}={}\nN{label} {var}={var}+1\n",
+                    expr(rng),
+                    val(rng),
+                    val(rng),
+                    expr(rng)
+                );
+                label += 10;
+            }
+            6 => {
+                src += &format!(
+                    "#20=0\nWHILE[#20LT2]DO1\nG01 X[{}+30] Z-#20 F100\n{var}={}\n#20=#20+1\nEND1\n",
+                    val(rng),
+                    expr(rng)
+                )
+            }
+            7 => {
+                src += &format!(
+                    "N{label} G01 X[{}+30] Z[{}-2] F[{}+100]\n",
+                    val(rng),
+                    val(rng),
+                    val(rng)
+                );
+                label += 10;
+            }
+            8 => src += rng.pick(&["M98 P1000\n", "G65 P1002 A#1 B#100\n"]),
+            9 => src += "G66 P1001\nG01 U1 W-1 F100\nG67\n",
+            10 => src += &format!("G04 X[ABS[{}]*0.01]\n", val(rng)),
+            _ => src += &format!("G01 X[{}+30] Z-#2 F100\n", val(rng)),
+        }
+        if rng.below(4) == 0 {
+            src += &format!("N{label}\n");
+            label += 10;
+        }
+    }
+    src += "#31=#1\n#32=#2\n#33=#3\nM30\n";
+    src += "O1000\n#1=#1+1\n#100=#100*2\nM99\n";
+    src += "O1001\n#101=#101+1\n#1=9\nM99\n";
+    src += "O1002\n#100=#1+#2\n#500=#2\nM99\n";
+    src
+}
+
+/// Variables a program may have written: locals, commons, persistents.
+const WRITTEN: &[u32] = &[1, 2, 3, 20, 30, 31, 32, 33, 100, 101, 500];
+
+/// What a run gave: its events, how it ended, the variables' bits.
+fn outcome(m: Module) -> (Vec<Event>, String, Vec<u64>) {
+    let mut vm = Vm::new(m, Machine::reference());
+    let mut events = Vec::new();
+    let status = vm.run(&mut events);
+    let vars = WRITTEN
+        .iter()
+        .map(|&n| vm.variable(n).map_or(u64::MAX, f64::to_bits))
+        .collect();
+    (events, format!("{status:?}"), vars)
+}
+
+fn variable_loads(m: &Module) -> usize {
+    m.code
+        .iter()
+        .filter(|i| matches!(i, Instr::LoadVar { .. } | Instr::LoadVarInd { .. }))
+        .count()
+}
+
+#[test]
+fn random_macro_programs_run_the_same_folded_and_not() {
+    let mut rng = Rng(0x5eed_f01d);
+    let (mut loads_o0, mut loads_o1, mut events) = (0, 0, 0);
+    // (`FOLD_CASES=n` runs more: the note of the stop gives a long run.)
+    let cases = std::env::var("FOLD_CASES").map_or(300, |n| n.parse().unwrap_or(300));
+    for i in 0..cases {
+        let src = random_program(&mut rng);
+        let (o0, o1) = (module(&src, false), module(&src, true));
+        loads_o0 += variable_loads(&o0);
+        loads_o1 += variable_loads(&o1);
+        let (a, b) = (outcome(o0), outcome(o1));
+        assert_eq!(a, b, "program {i}:\n{src}");
+        events += a.0.len();
+    }
+    // The programs run (moves, not just alarms), and folding removes a
+    // good share of the variable reads.
+    assert!(events >= 1_500, "{events} events");
+    eprintln!("variable reads: -O0 {loads_o0}, -O1 {loads_o1}; events {events}");
+    assert!(
+        loads_o1 * 100 <= loads_o0 * 95,
+        "-O1 reads {loads_o1} variables where -O0 reads {loads_o0}"
+    );
+}
