@@ -19,8 +19,13 @@ pub fn literal_block(
     ws: &[NcWord<'_>],
     p: &mut nc::block::Parsed,
 ) -> Result<(), NcError> {
-    let lits = literal_words(ws);
-    nc::block::parse_move(&lits, m, p)?;
+    word_rules(m, &literal_words(ws), p)
+}
+
+/// The kernel's rules on the words of a block, which hold whatever state
+/// it runs in (its parse, and a T's tool and offset numbers).
+pub fn word_rules(m: &Machine, lits: &[Word], p: &mut nc::block::Parsed) -> Result<(), NcError> {
+    nc::block::parse_move(lits, m, p)?;
     if let Some(t) = p.get(b'T') {
         let t = nc::block::round_half_away(t).max(0.0) as u32;
         nc::exec::check_tool(m, t / 100, t % 100)?;

@@ -141,15 +141,16 @@ fn warn_if_faulty(b: &mut Builder<'_>, e: &Expr, span: grammar::Span) {
         _ => false,
     };
     if let (true, Some(Err(err))) = (operands_ok, fold(e)) {
-        b.warn(
-            "W116",
-            span,
-            format!(
-                "this always fails when reached: {} (alarm E{:04} at run time)",
-                err.message, err.code
-            ),
-        );
+        b.warn("W116", span, always_fails(&err));
     }
+}
+
+/// The message of W116 for the alarm `err`.
+pub fn always_fails(err: &NcError) -> String {
+    format!(
+        "this always fails when reached: {} (alarm E{:04} at run time)",
+        err.message, err.code
+    )
 }
 
 /// A condition into the IR: comparisons, joined bitwise.

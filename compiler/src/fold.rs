@@ -31,15 +31,24 @@
 //! - An NC block writes #995–#999 (G31's skip position) and, for a G10 L52
 //!   read (N and R words), the variable R names.
 //! - A value whose computation faults stays in the code: the alarm is the
-//!   run's, with its line.
+//!   run's, with its line. Where a variable's known value proves it, the
+//!   pass warns (W116, as build does for a fault of constants alone); so
+//!   it does for a block whose computed words all became constants and
+//!   break one of the kernel's rules on words (a G, M or T value, words
+//!   that cannot stand together), and for a computed GOTO to a number no
+//!   block of the program has.
 
+use crate::build::FileDiag;
 use crate::ir::{
     Block, Call, CallKind, Count, Expr, Function, Handle, Module, NcBlock, Op, Terminator,
     VarTarget, Word, WordValue,
 };
-use nc::value;
+use grammar::{Diagnostic, Span};
+use nc::error::Alarm;
+use nc::value::{self, Bin};
 use nc::words::addr;
-use std::collections::BTreeMap;
+use nc::{Machine, NcError};
+use std::collections::{BTreeMap, BTreeSet};
 
 /// Rounds over the layout before the analysis gives up (and folds
 /// nothing): far more than the loops of a real program nest.
@@ -108,19 +117,24 @@ fn join(slot: &Option<Facts>, f: &Facts) -> Facts {
     }
 }
 
-/// Folds every function of `m`.
-pub fn module(m: &mut Module) {
+/// Folds every function of `m`; the W116 warnings of what the values
+/// known prove (a fault of constant operands alone is build's to warn of).
+pub fn module(m: &mut Module, machine: &Machine) -> Vec<FileDiag> {
     let g66 = m.functions.iter().any(has_modal_call);
     let m99_p = m.functions.iter().skip(1).any(|f| {
         f.blocks
             .iter()
             .any(|(_, b)| matches!(b.term, Some(Terminator::Return { seq: Some(_) })))
     });
+    let mut diags = Vec::new();
     for f in &mut m.functions {
         if reads_variables(f) {
-            function(f, g66, m99_p);
+            let file = usize::from(f.file);
+            let warnings = function(f, machine, g66, m99_p);
+            diags.extend(warnings.into_iter().map(|d| (file, d)));
         }
     }
+    diags
 }
 
 fn has_modal_call(f: &Function) -> bool {
@@ -136,35 +150,24 @@ fn reads_variables(f: &Function) -> bool {
         .any(|(_, e)| matches!(e, Expr::Var(_) | Expr::VarInd(_)))
 }
 
-/// Folds `f`. `g66`: whether the module sets a modal call; `m99_p`:
-/// whether a subprogram may return into a numbered block.
-fn function(f: &mut Function, g66: bool, m99_p: bool) {
+/// Folds `f`; its warnings. `g66`: whether the module sets a modal call;
+/// `m99_p`: whether a subprogram may return into a numbered block.
+fn function(f: &mut Function, machine: &Machine, g66: bool, m99_p: bool) -> Vec<Diagnostic> {
     let entry = Facts {
         vars: BTreeMap::new(),
         g66,
     };
     let Some(flow) = Flow::solve(f, entry, m99_p) else {
-        return;
+        return Vec::new();
     };
-    let layout = f.layout.clone();
-    for b in layout {
-        let Some(mut facts) = flow.block_in.get(b.index()).cloned().flatten() else {
-            continue; // Unreached: nothing to fold with.
-        };
-        let ops = f.blocks.get(b).map(|k| k.ops.clone()).unwrap_or_default();
-        for op in ops {
-            if let (Some(Op::Seq(_)), Some(seq)) = (f.ops.get(op), &flow.seq_in) {
-                facts = facts.join(seq);
-            }
-            rewrite_op(f, op, &facts);
-            if let Some(o) = f.ops.get(op) {
-                transfer(f, o, &mut facts);
-            }
-        }
-        if let Some(term) = f.blocks.get(b).and_then(|k| k.term.clone()) {
-            rewrite_term(f, &term, &facts);
+    let mut r = Rewrite::new(f, machine);
+    for b in r.f.layout.clone() {
+        // (An unreached block has nothing to fold with.)
+        if let Some(facts) = flow.block_in.get(b.index()).cloned().flatten() {
+            r.block(b, facts, flow.seq_in.as_ref());
         }
     }
+    r.warnings
 }
 
 /// The facts at the start of each block, at the fixed point.
@@ -295,6 +298,9 @@ fn target_var(f: &Function, target: VarTarget, facts: &Facts) -> Option<u32> {
 /// What an NC block writes: G31's skip position, a G10 L52 read's
 /// variable and, under G66, whatever the macro it calls writes.
 fn nc_block(f: &Function, nc: &NcBlock, facts: &mut Facts) {
+    if facts.vars.is_empty() {
+        return; // Nothing to forget (most blocks of a long program).
+    }
     for var in 995..=999 {
         facts.vars.remove(&var);
     }
@@ -343,24 +349,250 @@ fn eval(f: &Function, h: Handle<Expr>, facts: &Facts) -> Option<Result<f64, nc::
     })
 }
 
-/// Folds the tree of `h`: the whole of it when its value is known, else
-/// each largest subtree whose value is. The value of `h`, when known.
-fn fold(f: &mut Function, h: Handle<Expr>, facts: &Facts) -> Option<f64> {
-    match eval(f, h, facts) {
-        Some(Ok(v)) => {
-            if let Some(e) = f.exprs.get_mut(h) {
-                *e = Expr::Const(v);
-            }
-            return Some(v);
+/// The rewriting of one function, with what it finds to warn of.
+struct Rewrite<'a> {
+    f: &'a mut Function,
+    machine: &'a Machine,
+    /// The numbers of the function's blocks (computed GOTO targets).
+    seqs: BTreeSet<u32>,
+    warnings: Vec<Diagnostic>,
+    /// Scratch for the kernel's parse of a block made constant.
+    parsed: nc::block::Parsed,
+}
+
+impl<'a> Rewrite<'a> {
+    fn new(f: &'a mut Function, machine: &'a Machine) -> Rewrite<'a> {
+        let seqs = f
+            .ops
+            .iter()
+            .filter_map(|(_, o)| match o {
+                Op::Seq(n) => Some(*n),
+                _ => None,
+            })
+            .collect();
+        Rewrite {
+            f,
+            machine,
+            seqs,
+            warnings: Vec::new(),
+            parsed: nc::block::Parsed::default(),
         }
-        // A fault stays where it happens, with its line.
-        Some(Err(_)) => return None,
-        None => {}
     }
-    for child in children(f, h) {
-        fold(f, child, facts);
+
+    /// Folds block `b`, entered with `facts`; `seq_in`: what a jump to a
+    /// number brings.
+    fn block(&mut self, b: Handle<Block>, mut facts: Facts, seq_in: Option<&Facts>) {
+        let ops = self.f.blocks.get(b).map(|k| k.ops.clone()).unwrap_or_default();
+        for op in ops {
+            if let (Some(Op::Seq(_)), Some(seq)) = (self.f.ops.get(op), seq_in) {
+                facts = facts.join(seq);
+            }
+            self.op(op, &facts);
+            if let Some(o) = self.f.ops.get(op) {
+                transfer(self.f, o, &mut facts);
+            }
+        }
+        if let Some(term) = self.f.blocks.get(b).and_then(|k| k.term.clone()) {
+            let span = self.f.term_locs.get(b.index()).map_or(self.f.span, |l| l.span);
+            self.term(&term, &facts, span);
+        }
     }
-    None
+
+    /// W116 at `span`: `e` happens whenever the program gets there.
+    fn warn(&mut self, span: Span, e: &NcError) {
+        let msg = crate::expr::always_fails(e);
+        self.warnings.push(Diagnostic::warning("W116", span, msg));
+    }
+
+    /// Folds the tree of `h`: the whole of it when its value is known,
+    /// else each largest subtree whose value is. The value of `h`, when
+    /// known. A fault proven with a variable's value is W116 at `span`.
+    fn fold(&mut self, h: Handle<Expr>, facts: &Facts, span: Span) -> Option<f64> {
+        match eval(self.f, h, facts) {
+            Some(Ok(v)) => {
+                if let Some(e) = self.f.exprs.get_mut(h) {
+                    *e = Expr::Const(v);
+                }
+                return Some(v);
+            }
+            // The fault stays where it happens, with its line.
+            Some(Err(_)) => {
+                self.warn_fault(h, facts, span);
+                return None;
+            }
+            None => self.check_division(h, facts, span),
+        }
+        for child in children(self.f, h) {
+            self.fold(child, facts, span);
+        }
+        None
+    }
+
+    /// A division by a value known to be zero (or vacant) faults whatever
+    /// the dividend, a variable not known here: W116.
+    fn check_division(&mut self, h: Handle<Expr>, facts: &Facts, span: Span) {
+        let Some(&Expr::Binary { op: Bin::Div, a, b }) = self.f.exprs.get(h) else {
+            return;
+        };
+        if !matches!(self.f.exprs.get(a), Some(Expr::Var(_))) {
+            return;
+        }
+        if let Some(Ok(divisor)) = eval(self.f, b, facts) {
+            if let Err(e) = value::binary(Bin::Div, 0.0, divisor) {
+                self.warn(span, &e);
+            }
+        }
+    }
+
+    /// W116 for the operation of the tree of `h` that faults, when a
+    /// variable's value is what proves it (build warns of an operation
+    /// whose operands are constants).
+    fn warn_fault(&mut self, h: Handle<Expr>, facts: &Facts, span: Span) {
+        let kids = children(self.f, h);
+        for &c in &kids {
+            if let Some(Err(_)) = eval(self.f, c, facts) {
+                return self.warn_fault(c, facts, span);
+            }
+        }
+        let proven_by_variable = kids.iter().any(|&c| reads_variable(self.f, c));
+        if let (true, Some(Err(e))) = (proven_by_variable, eval(self.f, h, facts)) {
+            self.warn(span, &e);
+        }
+    }
+
+    /// Folds the expressions of one operation, with what is known before
+    /// it.
+    fn op(&mut self, op: Handle<Op>, facts: &Facts) {
+        let span = self
+            .f
+            .op_locs
+            .get(op.index())
+            .map_or(self.f.span, |l| l.span);
+        match self.f.ops.get(op).cloned() {
+            Some(Op::Assign { target, value, .. }) => {
+                if let VarTarget::Indirect(i) = target {
+                    self.fold(i, facts, span);
+                }
+                self.fold(value, facts, span);
+            }
+            Some(Op::MacroA { j, k, .. }) => {
+                self.fold(j, facts, span);
+                self.fold(k, facts, span);
+            }
+            Some(Op::Nc(nc)) => {
+                let computed = self.f.words_of(&nc).iter().any(|w| w.constant().is_none());
+                let kept = self.words(&nc, facts);
+                let Some(Op::Nc(nc)) = self.f.ops.get_mut(op) else {
+                    return;
+                };
+                nc.words.1 = nc.words.0 + kept;
+                let nc = nc.clone();
+                if computed && nc.kind.runs_here() {
+                    self.check_words(&nc, span);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Folds the words of an NC block and moves those left (a vacant one
+    /// is left out) to the front of its range; how many are left. (The
+    /// words past the new end of the range belong to no block.)
+    fn words(&mut self, nc: &NcBlock, facts: &Facts) -> u32 {
+        let (a, b) = (nc.words.0 as usize, nc.words.1 as usize);
+        let mut kept = a;
+        for i in a..b {
+            let (Some(&w), Some(&span)) = (self.f.words.get(i), self.f.word_spans.get(i)) else {
+                break;
+            };
+            let w = match w.value() {
+                WordValue::Expr(h) => match self.fold(h, facts, span) {
+                    Some(v) if value::is_vacant(v) => continue,
+                    Some(v) => Word::new(w.addr, WordValue::Const(v, 0)),
+                    None => w,
+                },
+                WordValue::Const(..) => w,
+            };
+            self.f.words[kept] = w;
+            self.f.word_spans[kept] = span;
+            kept += 1;
+        }
+        (kept - a) as u32
+    }
+
+    /// A block whose computed words all became constants: the kernel's
+    /// rules on words (a G, M or T value, words that cannot stand
+    /// together) decide now what they will decide whenever it runs.
+    fn check_words(&mut self, nc: &NcBlock, span: Span) {
+        let words = self.f.words_of(nc);
+        let lits: Option<Vec<nc::words::Word>> = words
+            .iter()
+            .map(|w| match w.value() {
+                WordValue::Const(value, flags) => Some(nc::words::Word {
+                    addr: w.addr,
+                    value,
+                    flags,
+                }),
+                WordValue::Expr(_) => None,
+            })
+            .collect();
+        let Some(lits) = lits else { return };
+        if let Err(e) = crate::check::word_rules(self.machine, &lits, &mut self.parsed) {
+            self.warn(span, &e);
+        }
+    }
+
+    /// Folds the operands of a terminator, with what is known at the end
+    /// of its block.
+    fn term(&mut self, term: &Terminator, facts: &Facts, span: Span) {
+        match term {
+            Terminator::Branch { cond, .. } => {
+                self.fold(*cond, facts, span);
+            }
+            Terminator::Goto { seq } => {
+                if let Some(n) = self.fold(*seq, facts, span) {
+                    self.check_goto(n, span);
+                }
+            }
+            Terminator::Return { seq: Some(seq) } => {
+                self.fold(*seq, facts, span);
+            }
+            Terminator::GotoIf { seq, j, k, .. } => {
+                for h in [*seq, *j, *k] {
+                    self.fold(h, facts, span);
+                }
+            }
+            Terminator::Call { call, .. } => {
+                if let crate::ir::Callee::Dynamic(h) = call.callee {
+                    self.fold(h, facts, span);
+                }
+                if let Count::Expr(h) = call.count {
+                    self.fold(h, facts, span);
+                }
+                for &(_, h) in &call.args {
+                    self.fold(h, facts, span);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// A computed GOTO whose target is known: W116 when no block of the
+    /// program has that number (the VM's E6001).
+    fn check_goto(&mut self, v: f64, span: Span) {
+        let n = nc::block::round_half_away(v);
+        let valid = !value::is_vacant(v) && (0.0..=99_999_999.0).contains(&n);
+        if valid && !self.seqs.contains(&(n as u32)) {
+            let msg = format!("GOTO {n}: there is no block N{n} in this program");
+            self.warn(span, &NcError::new(Alarm::JumpTargetMissing, msg));
+        }
+    }
+}
+
+/// Whether the tree of `h` reads a variable.
+fn reads_variable(f: &Function, h: Handle<Expr>) -> bool {
+    matches!(f.exprs.get(h), Some(Expr::Var(_) | Expr::VarInd(_)))
+        || children(f, h).into_iter().any(|c| reads_variable(f, c))
 }
 
 fn children(f: &Function, h: Handle<Expr>) -> Vec<Handle<Expr>> {
@@ -369,83 +601,5 @@ fn children(f: &Function, h: Handle<Expr>) -> Vec<Handle<Expr>> {
         Some(Expr::Binary { a, b, .. } | Expr::Compare { a, b, .. }) => vec![*a, *b],
         Some(Expr::Atan2 { y, x }) => vec![*y, *x],
         Some(Expr::Const(_) | Expr::Var(_)) | None => Vec::new(),
-    }
-}
-
-/// Folds the expressions of one operation, with what is known before it.
-fn rewrite_op(f: &mut Function, op: Handle<Op>, facts: &Facts) {
-    match f.ops.get(op).cloned() {
-        Some(Op::Assign { target, value, .. }) => {
-            if let VarTarget::Indirect(i) = target {
-                fold(f, i, facts);
-            }
-            fold(f, value, facts);
-        }
-        Some(Op::MacroA { j, k, .. }) => {
-            fold(f, j, facts);
-            fold(f, k, facts);
-        }
-        Some(Op::Nc(nc)) => {
-            let kept = rewrite_words(f, &nc, facts);
-            if let Some(Op::Nc(nc)) = f.ops.get_mut(op) {
-                nc.words.1 = nc.words.0 + kept;
-            }
-        }
-        _ => {}
-    }
-}
-
-/// Folds the words of an NC block and moves those left (a vacant one is
-/// left out) to the front of its range; how many are left. (The words
-/// past the new end of the range belong to no block.)
-fn rewrite_words(f: &mut Function, nc: &NcBlock, facts: &Facts) -> u32 {
-    let (a, b) = (nc.words.0 as usize, nc.words.1 as usize);
-    let mut kept = a;
-    for i in a..b {
-        let (Some(&w), Some(&span)) = (f.words.get(i), f.word_spans.get(i)) else {
-            break;
-        };
-        let w = match w.value() {
-            WordValue::Expr(h) => match fold(f, h, facts) {
-                Some(v) if value::is_vacant(v) => continue,
-                Some(v) => Word::new(w.addr, WordValue::Const(v, 0)),
-                None => w,
-            },
-            WordValue::Const(..) => w,
-        };
-        f.words[kept] = w;
-        f.word_spans[kept] = span;
-        kept += 1;
-    }
-    (kept - a) as u32
-}
-
-/// Folds the operands of a terminator, with what is known at the end of
-/// its block.
-fn rewrite_term(f: &mut Function, term: &Terminator, facts: &Facts) {
-    match term {
-        Terminator::Branch { cond, .. } => {
-            fold(f, *cond, facts);
-        }
-        Terminator::Goto { seq } | Terminator::Return { seq: Some(seq) } => {
-            fold(f, *seq, facts);
-        }
-        Terminator::GotoIf { seq, j, k, .. } => {
-            for h in [*seq, *j, *k] {
-                fold(f, h, facts);
-            }
-        }
-        Terminator::Call { call, .. } => {
-            if let crate::ir::Callee::Dynamic(h) = call.callee {
-                fold(f, h, facts);
-            }
-            if let Count::Expr(h) = call.count {
-                fold(f, h, facts);
-            }
-            for &(_, h) in &call.args {
-                fold(f, h, facts);
-            }
-        }
-        _ => {}
     }
 }

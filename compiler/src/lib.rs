@@ -265,7 +265,7 @@ fn lower(
         return (None, Some(ir));
     }
     if opts.optimize {
-        fold::module(&mut ir);
+        diags.extend(fold::module(&mut ir, &opts.machine));
     }
     if opts.resolve {
         resolve::module(&mut ir);

@@ -117,6 +117,55 @@ fn a_value_that_faults_stays_to_raise_its_alarm_when_it_runs() {
     assert_op(src, 3, "move G1 X#2 Z-1 F100");
 }
 
+/// The W116 warnings of `src` (-O1): line and the alarm code named.
+fn w116(src: &str) -> Vec<(usize, u32)> {
+    let c = compile("t.nc", src.as_bytes(), &Options::default());
+    c.diags
+        .iter()
+        .filter(|(_, d)| d.code == "W116")
+        .map(|(_, d)| {
+            let line = src[..d.span.start as usize].matches('\n').count() + 1;
+            let code = d.message.split("alarm E").nth(1).unwrap_or("");
+            (line, code[..4].parse().unwrap_or(0))
+        })
+        .collect()
+}
+
+/// The line and code of the alarm that ends the run of `src`.
+fn alarm(src: &str) -> Option<(usize, u32)> {
+    let mut vm = Vm::new(module(src, true), Machine::reference());
+    match vm.run(&mut Vec::new()) {
+        vm::Status::Alarm(a) => Some((a.line as usize, a.code)),
+        _ => None,
+    }
+}
+
+#[test]
+fn a_fault_the_known_values_prove_is_w116_and_the_run_raises_it_there() {
+    for (src, line, code) in [
+        // Division by a variable known to be 0.
+        ("#1=0\n#2=1/#1\nM30\n", 2, 5001),
+        // A square root of a value known negative, past a numbered block.
+        ("#1=-4\nN10 #2=SQRT[#1]\nM30\n", 2, 5002),
+        // A division by a variable known to be 0, of one not known.
+        ("#1=0\n#2=#9/#1\nM30\n", 2, 5001),
+        // A computed GOTO to a number no block has.
+        ("#5=15\nGOTO#5\nN10 M30\n", 2, 6001),
+        // A G code that does not exist, once its value is known.
+        ("#1=1.5\nG#1 X10 Z1\nM30\n", 2, 2001),
+        // A tool number beyond the tool table.
+        ("#1=9999\nT#1\nM30\n", 2, 7004),
+    ] {
+        assert_eq!(w116(src), [(line, code)], "{src}");
+        assert_eq!(alarm(src), Some((line, code)), "{src}");
+    }
+    // Known only on one path: no warning.
+    let src = "#1=1\nIF[#9GT0]THEN#1=0\n#2=1/#1\nM30\n";
+    assert_eq!(w116(src), []);
+    // A fault of constants alone is build's W116, warned of once.
+    assert_eq!(w116("#1=5\n#2=#1+1/0\nM30\n"), [(2, 5001)]);
+}
+
 fn module(src: &str, optimize: bool) -> Module {
     let opts = Options {
         optimize,
@@ -214,16 +263,41 @@ fn random_program(rng: &mut Rng) -> String {
 /// Variables a program may have written: locals, commons, persistents.
 const WRITTEN: &[u32] = &[1, 2, 3, 20, 30, 31, 32, 33, 100, 101, 500];
 
-/// What a run gave: its events, how it ended, the variables' bits.
-fn outcome(m: Module) -> (Vec<Event>, String, Vec<u64>) {
+/// What a run gave: its events, how it ended, the variables' bits, and
+/// the line and code of its alarm.
+type Outcome = (Vec<Event>, String, Vec<u64>, Option<u32>, Option<u32>);
+
+/// Runs `m` one instruction at a time. No line of `warned` (W116) may be
+/// left without its alarm: the run must stop on it or stay.
+fn outcome(m: Module, warned: &[usize], src: &str) -> Outcome {
+    let line_of = |m: &Module, pc: u32| m.lines.get(pc as usize).map_or(0, |l| l.line as usize);
     let mut vm = Vm::new(m, Machine::reference());
     let mut events = Vec::new();
-    let status = vm.run(&mut events);
+    let status = loop {
+        let before = line_of(vm.module(), vm.pc());
+        let status = vm.step(1, &mut events);
+        let after = line_of(vm.module(), vm.pc());
+        let left = matches!(status, vm::Status::Event | vm::Status::OutOfBudget) && after != before;
+        assert!(
+            !(left && warned.contains(&before)),
+            "line {before} ran past its W116:\n{src}"
+        );
+        if !matches!(
+            status,
+            vm::Status::Event | vm::Status::OutOfBudget | vm::Status::Sync
+        ) {
+            break status;
+        }
+    };
     let vars = WRITTEN
         .iter()
         .map(|&n| vm.variable(n).map_or(u64::MAX, f64::to_bits))
         .collect();
-    (events, format!("{status:?}"), vars)
+    let (line, code) = match &status {
+        vm::Status::Alarm(a) => (Some(a.line), Some(a.code)),
+        _ => (None, None),
+    };
+    (events, format!("{status:?}"), vars, line, code)
 }
 
 fn variable_loads(m: &Module) -> usize {
@@ -236,7 +310,7 @@ fn variable_loads(m: &Module) -> usize {
 #[test]
 fn random_macro_programs_run_the_same_folded_and_not() {
     let mut rng = Rng(0x5eed_f01d);
-    let (mut loads_o0, mut loads_o1, mut events) = (0, 0, 0);
+    let (mut loads_o0, mut loads_o1, mut events, mut warned) = (0, 0, 0, 0);
     // (`FOLD_CASES=n` runs more: the note of the stop gives a long run.)
     let cases = std::env::var("FOLD_CASES").map_or(300, |n| n.parse().unwrap_or(300));
     for i in 0..cases {
@@ -244,14 +318,25 @@ fn random_macro_programs_run_the_same_folded_and_not() {
         let (o0, o1) = (module(&src, false), module(&src, true));
         loads_o0 += variable_loads(&o0);
         loads_o1 += variable_loads(&o1);
-        let (a, b) = (outcome(o0), outcome(o1));
+        let warnings = w116(&src);
+        // (On an IF line the warning is of the statement after THEN or
+        // GOTO, which the condition may skip.)
+        let unconditional = |l: &usize| !src.lines().nth(l - 1).unwrap_or("").starts_with("IF");
+        let lines: Vec<usize> = warnings.iter().map(|w| w.0).filter(unconditional).collect();
+        let (a, b) = (outcome(o0, &[], &src), outcome(o1, &lines, &src));
         assert_eq!(a, b, "program {i}:\n{src}");
+        // A run that alarms on a line W116 names raises the alarm named.
+        if let Some(&(_, code)) = warnings.iter().find(|(l, _)| a.3 == Some(*l as u32)) {
+            assert_eq!(a.4, Some(code), "program {i}:\n{src}");
+            warned += 1;
+        }
         events += a.0.len();
     }
     // The programs run (moves, not just alarms), and folding removes a
     // good share of the variable reads.
     assert!(events >= 1_500, "{events} events");
-    eprintln!("variable reads: -O0 {loads_o0}, -O1 {loads_o1}; events {events}");
+    eprintln!("variable reads: -O0 {loads_o0}, -O1 {loads_o1}; events {events}; {warned} alarms on a W116 line");
+    assert!(warned >= 15, "{warned} runs alarmed where W116 said");
     assert!(
         loads_o1 * 100 <= loads_o0 * 95,
         "-O1 reads {loads_o1} variables where -O0 reads {loads_o0}"
