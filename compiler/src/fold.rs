@@ -382,7 +382,12 @@ impl<'a> Rewrite<'a> {
     /// Folds block `b`, entered with `facts`; `seq_in`: what a jump to a
     /// number brings.
     fn block(&mut self, b: Handle<Block>, mut facts: Facts, seq_in: Option<&Facts>) {
-        let ops = self.f.blocks.get(b).map(|k| k.ops.clone()).unwrap_or_default();
+        let ops = self
+            .f
+            .blocks
+            .get(b)
+            .map(|k| k.ops.clone())
+            .unwrap_or_default();
         for op in ops {
             if let (Some(Op::Seq(_)), Some(seq)) = (self.f.ops.get(op), seq_in) {
                 facts = facts.join(seq);
@@ -393,7 +398,11 @@ impl<'a> Rewrite<'a> {
             }
         }
         if let Some(term) = self.f.blocks.get(b).and_then(|k| k.term.clone()) {
-            let span = self.f.term_locs.get(b.index()).map_or(self.f.span, |l| l.span);
+            let span = self
+                .f
+                .term_locs
+                .get(b.index())
+                .map_or(self.f.span, |l| l.span);
             self.term(&term, &facts, span);
         }
     }
