@@ -281,7 +281,14 @@ fn macro_a(
         );
         return;
     };
-    g.push(Op::MacroA { op, dst, j, k });
+    let value = op.value(dst, j, k, &mut |e| g.add_expr(e));
+    g.push(Op::MacroA {
+        op,
+        dst,
+        j,
+        k,
+        value,
+    });
 }
 
 /// G65 H80 (GOTO P) and H81–H86 (GOTO P when Q op R).

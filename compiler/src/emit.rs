@@ -305,7 +305,10 @@ impl<'a> Emitter<'a> {
                     }
                 }
             }
-            Op::MacroA { op, dst, j, k } => self.macro_a(f, *op, *dst, *j, *k),
+            Op::MacroA { dst, value, .. } => {
+                let src = self.expr(f, *value);
+                self.emit(Instr::StoreVar { var: *dst, src });
+            }
             Op::Alarm { code, msg } => {
                 let msg = self.string(*msg);
                 self.emit(Instr::Alarm { code: *code, msg });
@@ -518,148 +521,6 @@ impl<'a> Emitter<'a> {
                 count
             }
         }
-    }
-
-    /// `G65 Hm P#dst Q j R k` as register arithmetic into `#dst`.
-    fn macro_a(
-        &mut self,
-        f: &Function,
-        op: ir::MacroAOp,
-        dst: u32,
-        j: Handle<Expr>,
-        k: Handle<Expr>,
-    ) {
-        use ir::MacroAOp as H;
-        let j = self.expr(f, j);
-        let k = self.expr(f, k);
-        let out = self.regs.alloc();
-        let func = |f: F, a: u8| Instr::Func {
-            dst: out,
-            a,
-            f: f as u8,
-        };
-        let ops: Vec<Instr> = match op {
-            H::Set => vec![
-                Instr::LoadK {
-                    dst: out,
-                    k: self.konst(0.0),
-                },
-                Instr::Add {
-                    dst: out,
-                    a: j,
-                    b: out,
-                },
-            ],
-            H::Add => vec![Instr::Add {
-                dst: out,
-                a: j,
-                b: k,
-            }],
-            H::Sub => vec![Instr::Sub {
-                dst: out,
-                a: j,
-                b: k,
-            }],
-            H::Mul => vec![Instr::Mul {
-                dst: out,
-                a: j,
-                b: k,
-            }],
-            H::Div => vec![Instr::Div {
-                dst: out,
-                a: j,
-                b: k,
-            }],
-            H::Or => vec![Instr::BitOr {
-                dst: out,
-                a: j,
-                b: k,
-            }],
-            H::And => vec![Instr::BitAnd {
-                dst: out,
-                a: j,
-                b: k,
-            }],
-            H::Xor => vec![Instr::BitXor {
-                dst: out,
-                a: j,
-                b: k,
-            }],
-            H::Sqrt => vec![func(F::Sqrt, j)],
-            H::Abs => vec![func(F::Abs, j)],
-            H::Rem => vec![
-                Instr::Div {
-                    dst: out,
-                    a: j,
-                    b: k,
-                },
-                func(F::Fix, out),
-                Instr::Mul {
-                    dst: out,
-                    a: out,
-                    b: k,
-                },
-                Instr::Sub {
-                    dst: out,
-                    a: j,
-                    b: out,
-                },
-            ],
-            H::MulDiv => vec![
-                Instr::LoadVar { dst: out, var: dst },
-                Instr::Mul {
-                    dst: out,
-                    a: out,
-                    b: j,
-                },
-                Instr::Div {
-                    dst: out,
-                    a: out,
-                    b: k,
-                },
-            ],
-            H::Hypot | H::HypotDiff => {
-                let t = self.regs.alloc();
-                let (a, b) = (out, t);
-                vec![
-                    Instr::Mul {
-                        dst: out,
-                        a: j,
-                        b: j,
-                    },
-                    Instr::Mul { dst: t, a: k, b: k },
-                    match op {
-                        H::Hypot => Instr::Add { dst: out, a, b },
-                        _ => Instr::Sub { dst: out, a, b },
-                    },
-                    func(F::Sqrt, out),
-                ]
-            }
-            H::Sin | H::Cos | H::Tan => {
-                let trig = match op {
-                    H::Sin => F::Sin,
-                    H::Cos => F::Cos,
-                    _ => F::Tan,
-                };
-                vec![
-                    func(trig, k),
-                    Instr::Mul {
-                        dst: out,
-                        a: j,
-                        b: out,
-                    },
-                ]
-            }
-            H::Atan2 => vec![Instr::Atan2 {
-                dst: out,
-                y: j,
-                x: k,
-            }],
-        };
-        for i in ops {
-            self.emit(i);
-        }
-        self.emit(Instr::StoreVar { var: dst, src: out });
     }
 
     /// An expression into the next free register; E1014 when the register

@@ -277,7 +277,10 @@ fn transfer(f: &Function, op: &Op, facts: &mut Facts) {
             }
             None => facts.vars.clear(),
         },
-        Op::MacroA { dst, .. } => facts.set(*dst, None),
+        Op::MacroA { dst, value, .. } => {
+            let v = eval(f, *value, facts).and_then(Result::ok);
+            facts.set(*dst, v);
+        }
         Op::Nc(nc) => nc_block(f, nc, facts),
         Op::ModalCancel => facts.g66 = false,
         Op::Seq(_) | Op::Alarm { .. } => {}
@@ -484,9 +487,8 @@ impl<'a> Rewrite<'a> {
                 }
                 self.fold(value, facts, span);
             }
-            Some(Op::MacroA { j, k, .. }) => {
-                self.fold(j, facts, span);
-                self.fold(k, facts, span);
+            Some(Op::MacroA { value, .. }) => {
+                self.fold(value, facts, span);
             }
             Some(Op::Nc(nc)) => {
                 let computed = self.f.words_of(&nc).iter().any(|w| w.constant().is_none());

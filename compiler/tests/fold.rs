@@ -103,6 +103,17 @@ fn under_g66_a_move_may_change_the_common_variables() {
 }
 
 #[test]
+fn macro_a_operations_fold_like_assignments() {
+    // H01 sets #1 = 5, H02 #2 = 5 + 3, H26 #2 = #2 * 3 / 4 (it reads its
+    // own destination), H21 #3 = sqrt of a #9 nobody set: not known.
+    let src = "G65 H01 P#1 Q5\nG65 H02 P#2 Q#1 R3\nG65 H26 P#2 Q3 R4\nG65 H21 P#3 Q#9\nG01 X#2 Z#3 F100\nM30\n";
+    assert_op(src, 2, "g65 H02 #2 = 8");
+    assert_op(src, 3, "g65 H26 #2 = 6");
+    assert_op(src, 4, "g65 H21 #3 = SQRT[#9]");
+    assert_op(src, 5, "move G1 X6 Z#3 F100");
+}
+
+#[test]
 fn a_vacant_value_leaves_its_word_out() {
     // #0 is always vacant; #1 is known to be too.
     let src = "G01 X#0 Z-1 F100\n#1=#0\nG01 X20 Z#1\nM30\n";
@@ -245,7 +256,13 @@ fn random_program(rng: &mut Rng) -> String {
             }
             8 => src += rng.pick(&["M98 P1000\n", "G65 P1002 A#1 B#100\n"]),
             9 => src += "G66 P1001\nG01 U1 W-1 F100\nG67\n",
-            10 => src += &format!("G04 X[ABS[{}]*0.01]\n", val(rng)),
+            10 => {
+                let h = rng.pick(&[
+                    "01", "02", "03", "04", "05", "21", "22", "23", "26", "27", "31",
+                ]);
+                let var = &var[1..];
+                src += &format!("G65 H{h} P#{var} Q{} R{}\n", val(rng), val(rng));
+            }
             _ => src += &format!("G01 X[{}+30] Z-#2 F100\n", val(rng)),
         }
         if rng.below(4) == 0 {

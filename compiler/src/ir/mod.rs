@@ -119,12 +119,16 @@ pub enum Op {
         value: Handle<Expr>,
         msg: Option<StrId>,
     },
-    /// A macro-A operation `G65 Hm P#dst Q j R k` (H01–H34).
+    /// A macro-A operation `G65 Hm P#dst Q j R k` (H01–H34): `value`, the
+    /// operation written out as an expression of `j` and `k`
+    /// ([`MacroAOp::value`]), is stored into `#dst`. Emit computes it and
+    /// fold evaluates it as it does any expression.
     MacroA {
         op: MacroAOp,
         dst: u32,
         j: Handle<Expr>,
         k: Handle<Expr>,
+        value: Handle<Expr>,
     },
     /// A user alarm (`G65 H99 Q n`: alarm 500 + n).
     Alarm { code: u16, msg: StrId },
@@ -318,6 +322,77 @@ impl MacroAOp {
             34 => Atan2,
             _ => return None,
         })
+    }
+
+    /// The value the operation stores, as an expression of `j`, `k` and
+    /// (H26) `#dst`, its nodes made by `add`. Operands are evaluated in the
+    /// order the operation reads them, `j` before `k`.
+    pub fn value(
+        self,
+        dst: u32,
+        j: Handle<Expr>,
+        k: Handle<Expr>,
+        add: &mut impl FnMut(Expr) -> Handle<Expr>,
+    ) -> Handle<Expr> {
+        use MacroAOp::*;
+        fn bin<F: FnMut(Expr) -> Handle<Expr>>(
+            op: Bin,
+            a: Handle<Expr>,
+            b: Handle<Expr>,
+            add: &mut F,
+        ) -> Handle<Expr> {
+            add(Expr::Binary { op, a, b })
+        }
+        match self {
+            // `j + 0`: a vacant j stores 0, as an addition does.
+            Set => {
+                let zero = add(Expr::Const(0.0));
+                bin(Bin::Add, j, zero, add)
+            }
+            Add => bin(Bin::Add, j, k, add),
+            Sub => bin(Bin::Sub, j, k, add),
+            Mul => bin(Bin::Mul, j, k, add),
+            Div => bin(Bin::Div, j, k, add),
+            Or => bin(Bin::Or, j, k, add),
+            And => bin(Bin::And, j, k, add),
+            Xor => bin(Bin::Xor, j, k, add),
+            Sqrt => add(Expr::Func {
+                f: Func::Sqrt,
+                a: j,
+            }),
+            Abs => add(Expr::Func { f: Func::Abs, a: j }),
+            Rem => {
+                let q = bin(Bin::Div, j, k, add);
+                let fix = add(Expr::Func { f: Func::Fix, a: q });
+                let whole = bin(Bin::Mul, fix, k, add);
+                bin(Bin::Sub, j, whole, add)
+            }
+            MulDiv => {
+                let old = add(Expr::Var(dst));
+                let product = bin(Bin::Mul, old, j, add);
+                bin(Bin::Div, product, k, add)
+            }
+            Hypot | HypotDiff => {
+                let jj = bin(Bin::Mul, j, j, add);
+                let kk = bin(Bin::Mul, k, k, add);
+                let op = if self == Hypot { Bin::Add } else { Bin::Sub };
+                let sum = bin(op, jj, kk, add);
+                add(Expr::Func {
+                    f: Func::Sqrt,
+                    a: sum,
+                })
+            }
+            Sin | Cos | Tan => {
+                let f = match self {
+                    Sin => Func::Sin,
+                    Cos => Func::Cos,
+                    _ => Func::Tan,
+                };
+                let t = add(Expr::Func { f, a: k });
+                bin(Bin::Mul, j, t, add)
+            }
+            Atan2 => add(Expr::Atan2 { y: j, x: k }),
+        }
     }
 
     /// The H number.

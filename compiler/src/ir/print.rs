@@ -11,8 +11,8 @@
 //! ```
 
 use super::{
-    Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Loc, MacroAOp, Module, NcKind,
-    Op, Terminator, VarTarget, WordValue,
+    Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Loc, Module, NcKind, Op,
+    Terminator, VarTarget, WordValue,
 };
 use grammar::SourceFile;
 use nc::value::{Bin, Rel};
@@ -141,13 +141,9 @@ impl Printer<'_> {
                 }
                 s
             }
-            Op::MacroA { op, dst, j, k } => format!(
-                "g65 H{:02} #{dst} = {} {} {}",
-                op.h(),
-                self.expr(*j),
-                macro_a_name(*op),
-                self.expr(*k)
-            ),
+            Op::MacroA { op, dst, value, .. } => {
+                format!("g65 H{:02} #{dst} = {}", op.h(), self.expr(*value))
+            }
             Op::Alarm { code, msg } => format!("alarm {code} {:?}", self.string(msg.0)),
             Op::ModalCancel => "g67".into(),
         }
@@ -320,29 +316,5 @@ fn rel_name(op: Rel) -> &'static str {
         Rel::Lt => "LT",
         Rel::Ge => "GE",
         Rel::Le => "LE",
-    }
-}
-
-fn macro_a_name(op: MacroAOp) -> &'static str {
-    use MacroAOp::*;
-    match op {
-        Set => "set",
-        Add => "+",
-        Sub => "-",
-        Mul => "*",
-        Div => "/",
-        Or => "OR",
-        And => "AND",
-        Xor => "XOR",
-        Sqrt => "sqrt",
-        Abs => "abs",
-        Rem => "rem",
-        MulDiv => "muldiv",
-        Hypot => "hypot",
-        HypotDiff => "hypotdiff",
-        Sin => "sin",
-        Cos => "cos",
-        Tan => "tan",
-        Atan2 => "atan2",
     }
 }

@@ -187,9 +187,10 @@ impl Checker<'_> {
                     self.string(s.0, loc);
                 }
             }
-            Op::MacroA { j, k, .. } => {
+            Op::MacroA { j, k, value, .. } => {
                 self.expr(*j, loc);
                 self.expr(*k, loc);
+                self.expr(*value, loc);
             }
             Op::Alarm { msg, .. } => self.string(msg.0, loc),
         }
