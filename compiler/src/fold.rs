@@ -30,6 +30,9 @@
 //!   well; a program starts with it in force when the module has a G66.
 //! - An NC block writes #995–#999 (G31's skip position) and, for a G10 L52
 //!   read (N and R words), the variable R names.
+//! - A program whose blocks would between them hold more known values
+//!   than `STORED_PER_OP` per operation is not folded (memory stays
+//!   proportional to the code); blocks that know the same share one map.
 //! - A value whose computation faults stays in the code: the alarm is the
 //!   run's, with its line. Where a variable's known value proves it, the
 //!   pass warns (W116, as build does for a fault of constants alone); so
@@ -48,11 +51,18 @@ use nc::error::Alarm;
 use nc::value::{self, Bin};
 use nc::words::addr;
 use nc::{Machine, NcError};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::rc::Rc;
 
 /// Rounds over the layout before the analysis gives up (and folds
 /// nothing): far more than the loops of a real program nest.
 const MAX_ROUNDS: usize = 64;
+
+/// The analysis of a function may hold this many values per operation,
+/// and this many in any case (a few megabytes at most for a long program;
+/// a real one holds far fewer: most blocks share their maps).
+const STORED_PER_OP: usize = 8;
+const STORED_MIN: usize = 1 << 16;
 
 /// Plain variables a program can hold constants in.
 fn followed(n: u32) -> bool {
@@ -64,26 +74,41 @@ fn common(n: u32) -> bool {
 }
 
 /// What is known at a point of the program.
+///
+/// The map is shared between the points that know the same (most of a
+/// program's blocks): it is copied only where something changes.
 #[derive(Debug, Clone, PartialEq, Default)]
 struct Facts {
     /// Variable → the bits of its value (NaN bits: known vacant).
-    vars: BTreeMap<u32, u64>,
+    vars: Rc<BTreeMap<u32, u64>>,
     /// Whether a G66 modal call may be in force.
     g66: bool,
 }
 
 impl Facts {
     fn join(&self, other: &Facts) -> Facts {
-        let vars = self
+        let g66 = self.g66 || other.g66;
+        if Rc::ptr_eq(&self.vars, &other.vars) {
+            return Facts {
+                vars: self.vars.clone(),
+                g66,
+            };
+        }
+        let both: BTreeMap<u32, u64> = self
             .vars
             .iter()
             .filter(|(k, v)| other.vars.get(k) == Some(v))
             .map(|(k, v)| (*k, *v))
             .collect();
-        Facts {
-            vars,
-            g66: self.g66 || other.g66,
-        }
+        // (Where one side knows no more than the join, its map serves.)
+        let vars = if both.len() == self.vars.len() {
+            self.vars.clone()
+        } else if both.len() == other.vars.len() {
+            other.vars.clone()
+        } else {
+            Rc::new(both)
+        };
+        Facts { vars, g66 }
     }
 
     fn get(&self, n: u32) -> Option<f64> {
@@ -97,16 +122,30 @@ impl Facts {
     fn set(&mut self, n: u32, v: Option<f64>) {
         match v {
             Some(v) if followed(n) => {
-                self.vars.insert(n, v.to_bits());
+                if self.vars.get(&n) != Some(&v.to_bits()) {
+                    Rc::make_mut(&mut self.vars).insert(n, v.to_bits());
+                }
             }
-            _ => {
-                self.vars.remove(&n);
-            }
+            _ => self.forget(n),
+        }
+    }
+
+    fn forget(&mut self, n: u32) {
+        if self.vars.contains_key(&n) {
+            Rc::make_mut(&mut self.vars).remove(&n);
+        }
+    }
+
+    fn forget_all(&mut self) {
+        if !self.vars.is_empty() {
+            self.vars = Rc::default();
         }
     }
 
     fn forget_commons(&mut self) {
-        self.vars.retain(|n, _| !common(*n));
+        if self.vars.keys().any(|n| common(*n)) {
+            Rc::make_mut(&mut self.vars).retain(|n, _| !common(*n));
+        }
     }
 }
 
@@ -154,7 +193,7 @@ fn reads_variables(f: &Function) -> bool {
 /// `m99_p`: whether a subprogram may return into a numbered block.
 fn function(f: &mut Function, machine: &Machine, g66: bool, m99_p: bool) -> Vec<Diagnostic> {
     let entry = Facts {
-        vars: BTreeMap::new(),
+        vars: Rc::default(),
         g66,
     };
     let Some(flow) = Flow::solve(f, entry, m99_p) else {
@@ -177,28 +216,41 @@ struct Flow {
     seq_in: Option<Facts>,
     /// Whether the module has a G66.
     g66: bool,
+    /// The maps the slots hold: how many slots hold each, and its size.
+    held: HashMap<*const BTreeMap<u32, u64>, (usize, usize)>,
+    /// Entries of the distinct maps held, and how many may be: the
+    /// analysis of a program where many blocks know many different values
+    /// stops there (its memory stays proportional to the code).
+    entries: usize,
+    budget: usize,
 }
 
 impl Flow {
-    /// Iterates to the fixed point; `None` when it takes too many rounds.
+    /// Iterates to the fixed point; `None` when it takes too many rounds
+    /// or stores more than its budget.
     fn solve(f: &Function, entry: Facts, m99_p: bool) -> Option<Flow> {
         let start = *f.layout.first()?;
         let mut flow = Flow {
             block_in: vec![None; f.blocks.len()],
             seq_in: m99_p.then(Facts::default),
             g66: entry.g66,
+            held: HashMap::new(),
+            entries: 0,
+            budget: STORED_PER_OP * f.ops.len() + STORED_MIN,
         };
+        flow.hold(&entry, 1);
         *flow.block_in.get_mut(start.index())? = Some(entry);
         for _ in 0..MAX_ROUNDS {
-            if !flow.round(f) {
+            if !flow.round(f)? {
                 return Some(flow);
             }
         }
         None
     }
 
-    /// One pass over the layout; whether anything changed.
-    fn round(&mut self, f: &Function) -> bool {
+    /// One pass over the layout; whether anything changed (`None`: over
+    /// the budget).
+    fn round(&mut self, f: &Function) -> Option<bool> {
         let mut changed = false;
         for &b in &f.layout {
             let Some(out) = self.block_out(f, b) else {
@@ -216,11 +268,36 @@ impl Flow {
                     None => &mut self.seq_in,
                 };
                 let new = join(slot, &facts);
-                changed |= slot.as_ref() != Some(&new);
-                *slot = Some(new);
+                if slot.as_ref() == Some(&new) {
+                    continue;
+                }
+                changed = true;
+                let old = slot.replace(new.clone());
+                self.hold(&new, 1);
+                if let Some(old) = old {
+                    self.hold(&old, -1);
+                }
+            }
+            if self.entries > self.budget {
+                return None;
             }
         }
-        changed
+        Some(changed)
+    }
+
+    /// Counts a slot's hold (`by` = 1) or release (-1) of `facts`' map.
+    fn hold(&mut self, facts: &Facts, by: isize) {
+        let key = Rc::as_ptr(&facts.vars);
+        let (slots, len) = self.held.entry(key).or_insert((0, facts.vars.len()));
+        *slots = slots.saturating_add_signed(by);
+        match (*slots, by > 0) {
+            (1, true) => self.entries += *len,
+            (0, false) => {
+                self.entries -= *len;
+                self.held.remove(&key);
+            }
+            _ => {}
+        }
     }
 
     /// The facts after the operations of block `b` (`None`: unreached).
@@ -260,7 +337,7 @@ fn after_call(call: &Call, mut facts: Facts, g66: bool) -> Facts {
             facts.g66 = g66;
         }
         CallKind::Sub => {
-            facts.vars.clear();
+            facts.forget_all();
             facts.g66 = g66;
         }
     }
@@ -275,7 +352,7 @@ fn transfer(f: &Function, op: &Op, facts: &mut Facts) {
                 let v = eval(f, *value, facts).and_then(Result::ok);
                 facts.set(n, v);
             }
-            None => facts.vars.clear(),
+            None => facts.forget_all(),
         },
         Op::MacroA { dst, value, .. } => {
             let v = eval(f, *value, facts).and_then(Result::ok);
@@ -305,16 +382,16 @@ fn nc_block(f: &Function, nc: &NcBlock, facts: &mut Facts) {
         return; // Nothing to forget (most blocks of a long program).
     }
     for var in 995..=999 {
-        facts.vars.remove(&var);
+        facts.forget(var);
     }
     let words = f.words_of(nc);
     let has = |c: u8| words.iter().find(|w| w.addr == addr(c));
     if let (Some(_), Some(r)) = (has(b'N'), has(b'R')) {
         match r.constant() {
             Some(v) if v >= 0.0 => {
-                facts.vars.remove(&(nc::block::round_half_away(v) as u32));
+                facts.forget(nc::block::round_half_away(v) as u32);
             }
-            _ => facts.vars.clear(),
+            _ => facts.forget_all(),
         }
     }
     if facts.g66 {
@@ -612,5 +689,52 @@ fn children(f: &Function, h: Handle<Expr>) -> Vec<Handle<Expr>> {
         Some(Expr::Binary { a, b, .. } | Expr::Compare { a, b, .. }) => vec![*a, *b],
         Some(Expr::Atan2 { y, x }) => vec![*y, *x],
         Some(Expr::Const(_) | Expr::Var(_)) | None => Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{compile_ir, Options};
+
+    /// 300 common variables set, then `ifs` IF blocks; `changes`: whether
+    /// each sets #2 to a value of its own first (so that every block after
+    /// it knows the 300 and a different #2, then joins without it).
+    fn wide(ifs: usize, changes: bool) -> String {
+        let mut s: String = (100..400).map(|v| format!("#{v}={v}\n")).collect();
+        for i in 0..ifs {
+            if changes {
+                s += &format!("#2={i}\n");
+            }
+            s += &format!("IF[#1GT{i}]THEN#2=#2+1\n");
+        }
+        s + "G01 X#100 Z#399 F100\nM30\n"
+    }
+
+    fn solve(src: &str) -> Option<Flow> {
+        let (c, ir) = compile_ir("t.nc", src.as_bytes(), &Options::default());
+        assert!(!c.has_errors(), "{}", c.render());
+        let ir = ir.expect("IR");
+        let f = ir.functions.first().expect("a main program");
+        let entry = Facts::default();
+        Flow::solve(f, entry, false)
+    }
+
+    #[test]
+    fn blocks_that_know_the_same_share_one_map() {
+        // Every block knows the 300 commons: one map of 300 and few more
+        // (the THEN blocks' #2 is not known after the first join).
+        let flow = solve(&wide(2000, false)).expect("solved");
+        assert!(flow.entries <= 3 * 300, "{} entries held", flow.entries);
+    }
+
+    #[test]
+    fn a_program_past_the_budget_is_not_folded() {
+        // Each join makes a map of its own (#2 differs on its two paths):
+        // 2 000 maps of 300 would be 600 000 entries, over the budget of
+        // 8 per operation (about 4 300 operations) and 65 536.
+        assert!(solve(&wide(2000, true)).is_none());
+        // A tenth of that fits.
+        assert!(solve(&wide(100, true)).is_some());
     }
 }
