@@ -305,7 +305,21 @@ impl<'a> Emitter<'a> {
                     }
                 }
             }
-            Op::MacroA { dst, value, .. } => {
+            Op::MacroA {
+                op,
+                dst,
+                j,
+                k,
+                value,
+            } => {
+                // R is read even where the operation ignores it, after Q,
+                // as the control reads every address of the block: a
+                // fault there (`R#[0-1]`) is the block's alarm.
+                let ignored = !op.reads_r() && !matches!(f.exprs.get(*k), Some(Expr::Const(_)));
+                if ignored {
+                    self.expr(f, *j);
+                    self.expr(f, *k);
+                }
                 let src = self.expr(f, *value);
                 self.emit(Instr::StoreVar { var: *dst, src });
             }

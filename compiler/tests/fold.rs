@@ -111,6 +111,12 @@ fn macro_a_operations_fold_like_assignments() {
     assert_op(src, 3, "g65 H26 #2 = 6");
     assert_op(src, 4, "g65 H21 #3 = SQRT[#9]");
     assert_op(src, 5, "move G1 X6 Z#3 F100");
+    // H01 ignores R, but R is still read: a variable that does not exist
+    // there is the block's alarm, folded or not.
+    let src = "G65 H01 P#1 Q5 R#[0-1]\nG00 X#1 Z1\nM30\n";
+    assert_eq!(alarm(src), Some((1, 5008)));
+    let mut vm = Vm::new(module(src, false), Machine::reference());
+    assert!(matches!(vm.run(&mut Vec::new()), vm::Status::Alarm(a) if a.code == 5008));
 }
 
 #[test]

@@ -395,6 +395,11 @@ impl MacroAOp {
         }
     }
 
+    /// Whether the value depends on R (`k`): H01, H21 and H22 ignore it.
+    pub fn reads_r(self) -> bool {
+        !matches!(self, MacroAOp::Set | MacroAOp::Sqrt | MacroAOp::Abs)
+    }
+
     /// The H number.
     pub fn h(self) -> u32 {
         use MacroAOp::*;
