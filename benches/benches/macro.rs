@@ -1,6 +1,8 @@
 //! Criterion group `macro`: a 1M-iteration WHILE loop with arithmetic and a
 //! move per iteration, a pure arithmetic loop (macro operations per
-//! second), and an ellipse drawn point by point by a macro.
+//! second), an ellipse drawn point by point by a macro, and the compile of
+//! a long macro program (the passes' cost where they have work: pass
+//! `fold` follows 300 known variables through 20 000 statements).
 
 use benches::{build, Count};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -24,6 +26,21 @@ fn pure_arithmetic() -> String {
 
 /// An ellipse of 3600 points: X = 2a·cos t, Z = b·sin t.
 const ELLIPSE: &str = "#1=40\n#2=20\n#3=0\nG00 X80 Z0\nWHILE[#3LE360]DO1\nG01 X[2*#1*COS[#3]] Z[#2*SIN[#3]-20] F0.1\n#3=#3+0.1\nEND1\nM30\n";
+
+/// The 300 common variables #100–#199 and #500–#699 set, then 5 000
+/// rounds of a conditional assignment, a numbered move with computed
+/// words, an arithmetic statement and a dwell: 20 000 statements.
+fn long_macro_program() -> String {
+    let vars: Vec<u32> = (100..200).chain(500..700).collect();
+    let mut s: String = vars.iter().map(|v| format!("#{v}={v}\n")).collect();
+    for (i, v) in (0..5_000).zip(vars.iter().cycle()) {
+        s += &format!(
+            "IF[#1GT{i}]THEN#2=#2+1\nN{} G01 X[#{v}*0.1] Z-#2 F0.2\n#3=#{v}*2+#3\nG04 X[#{v}*0.001]\n",
+            i + 1
+        );
+    }
+    s + "M30\n"
+}
 
 fn run(module: &isa::Module) -> u64 {
     let mut vm = Vm::new(module.clone(), nc::Machine::reference());
@@ -52,6 +69,11 @@ fn macros(c: &mut Criterion) {
     g.throughput(Throughput::Elements(3601));
     g.bench_function("ellipse_by_points_3601_blocks", |b| {
         b.iter(|| run(&ellipse))
+    });
+    let long = long_macro_program();
+    g.throughput(Throughput::Elements(20_000));
+    g.bench_function("compile_20k_macro_statements", |b| {
+        b.iter(|| build(&long).code.len())
     });
     g.finish();
 }

@@ -20,6 +20,9 @@ pub struct Expand {
     /// The source line of the block being printed.
     line: u32,
     last_line: u32,
+    /// Whether its words were computed as it ran (the compiler did not
+    /// know them).
+    dynamic: bool,
     /// (X, Z) of the last point as printed, for arc centres relative to
     /// the start: the end of the last printed move, not the kernel's
     /// position, which runs ahead of the printed moves under tool nose
@@ -58,6 +61,7 @@ impl Expand {
             seqs,
             line: 0,
             last_line: 0,
+            dynamic: false,
             at: (0.0, 0.0),
             resync: true,
             origin,
@@ -75,9 +79,10 @@ impl Expand {
             return String::new();
         }
         self.last_line = self.line;
+        let dynamic = if self.dynamic { ", DYNAMIC" } else { "" };
         match self.seqs.get(&self.line) {
-            Some(n) => format!(" (N{n}, LINE {})", self.line),
-            None => format!(" (LINE {})", self.line),
+            Some(n) => format!(" (N{n}, LINE {}{dynamic})", self.line),
+            None => format!(" (LINE {}{dynamic})", self.line),
         }
     }
 
@@ -111,9 +116,11 @@ fn n(v: f64) -> Num {
 
 impl Expand {
     /// Prints the events of one block that ran at source `line`, the tool
-    /// starting at (`x`, `z`).
-    pub fn block_events(&mut self, events: &[Event], line: u32, start: (f64, f64)) {
+    /// starting at (`x`, `z`); `dynamic`: its words were computed as it
+    /// ran.
+    pub fn block_events(&mut self, events: &[Event], line: u32, dynamic: bool, start: (f64, f64)) {
         self.line = line;
+        self.dynamic = dynamic;
         if std::mem::take(&mut self.resync) {
             self.at = start;
         }

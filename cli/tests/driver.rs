@@ -210,6 +210,23 @@ fn defines_and_expansion() {
 }
 
 #[test]
+fn the_expanded_program_marks_the_blocks_computed_as_it_ran() {
+    let d = dir("dynamic");
+    // Line 5's words change with #1 (computed in the loop): DYNAMIC. #5 is
+    // 7 on every path, so pass fold made line 6 a literal block: not
+    // marked; nor are the literal blocks.
+    let src = "G98 G00 X50 Z2\n#1=0\n#5=7\nWHILE[#1LT2]DO1\nG01 X[40-#1] Z-#1 F100\nG01 X#5 Z-9\n#1=#1+1\nEND1\nM30\n";
+    std::fs::write(d.join("e.nc"), src).unwrap();
+    let e = gbcc(&["e.nc", "-E"], &d);
+    assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
+    assert_eq!(
+        text(&e.stdout),
+        "G00 X50 Z2 (LINE 1)\nG98 F100 (LINE 5, DYNAMIC)\nG01 X40 Z0\nG01 X7 Z-9 (LINE 6)\n\
+         G01 X39 Z-1 (LINE 5, DYNAMIC)\nG01 X7 Z-9 (LINE 6)\nM30 (LINE 9)\n"
+    );
+}
+
+#[test]
 fn a_machine_with_a_c_axis() {
     let d = dir("caxis");
     std::fs::write(d.join("c.toml"), "[axes.c]\nenabled = true\n").unwrap();

@@ -215,6 +215,12 @@ impl Vm {
         self.pc
     }
 
+    /// The pc of the instruction that executed the last block (a typed
+    /// `block` or `move`, or `exec`/`execmove` after the block's words).
+    pub fn last_block_pc(&self) -> u32 {
+        self.last_exec
+    }
+
     /// The source place of the block executed last (for traces).
     pub fn last_loc(&self) -> isa::SourceLoc {
         self.locs.get(&self.module.lines, self.last_exec)

@@ -514,7 +514,14 @@ fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> (String, Option<St
     loop {
         let start = (vm.nc.position().x(), vm.nc.position().z);
         let status = vm.step(1 << 16, &mut events);
-        out.block_events(&events, vm.last_loc().line, start);
+        // A block of words computed at run time (`exec`, `execmove`): its
+        // values are this run's, not the program's.
+        let at = vm.last_block_pc() as usize;
+        let dynamic = matches!(
+            vm.module().code.get(at),
+            Some(isa::Instr::Exec { .. } | isa::Instr::ExecMove)
+        );
+        out.block_events(&events, vm.last_loc().line, dynamic, start);
         events.clear();
         match status {
             vm::Status::Event | vm::Status::OutOfBudget | vm::Status::Sync => continue,
