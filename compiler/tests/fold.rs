@@ -90,6 +90,38 @@ fn a_macro_call_keeps_the_locals_and_a_subprogram_call_keeps_nothing() {
 }
 
 #[test]
+fn a_called_program_knows_what_every_call_passes() {
+    // O9010's #1 and #2 are the arguments of its one call; #3 was not
+    // passed: vacant, its word left out.
+    let one = "G65 P9010 A10 B2\nM30\nO9010\nG01 X#1 Z-#2 F100\nG01 X#3 Z-3\nM99\n";
+    assert_op(one, 4, "move G1 X10 Z-2 F100");
+    assert_op(one, 5, "move G1 Z-3");
+    // The caller's own locals are not the macro's.
+    let own = "#1=5\n#3=6\nG65 P9010 A10 B2\nM30\nO9010\nG01 X#1 Z-#2 F100\nG01 X#3 Z-3\nM99\n";
+    assert_op(own, 6, "move G1 X10 Z-2 F100");
+    assert_op(own, 7, "move G1 Z-3");
+    // Two calls with different values of A: #1 is not known, #2 is.
+    let two = "G65 P9010 A10 B2\nG65 P9010 A20 B2\nM30\nO9010\nG01 X#1 Z-#2 F100\nM99\n";
+    assert_op(two, 5, "move G1 X#1 Z-2 F100");
+    // M98 shares the locals: O1000 knows #5 (and #100) from its caller.
+    let sub = "#5=3\n#100=4\nM98 P1000\nM30\nO1000\nG01 X#5 Z-#100 F100\nM99\n";
+    assert_op(sub, 6, "move G1 X3 Z-4 F100");
+    // Called twice by its count, it starts the second time with what the
+    // first left: nothing is passed but a macro's arguments.
+    let twice = "#5=3\nM98 P1000 L2\nM30\nO1000\nG01 X#5 Z-1 F100\n#5=#5+1\nM99\n";
+    assert_op(twice, 5, "move G1 X#5 Z-1 F100");
+    let g65_twice = "#100=4\nG65 P9010 L2 A10\nM30\nO9010\nG01 X#1 Z-#100 F100\n#100=#100+1\nM99\n";
+    assert_op(g65_twice, 5, "move G1 X10 Z[-#100] F100");
+    // A G66 macro knows its arguments, not the common variables (it runs
+    // after later moves).
+    let modal = "#100=4\nG66 P9010 A7\nG01 U1 F100\nG67\nM30\nO9010\nG00 X#1 Z#100\nM99\n";
+    assert_op(modal, 7, "move G0 X7 Z#100");
+    // A call of a computed program number may reach any program.
+    let computed = "#9=9010\nG65 P#9 A10\nG65 P9010 A10\nM30\nO9010\nG01 X#1 Z-1 F100\nM99\n";
+    assert_op(computed, 6, "move G1 X#1 Z-1 F100");
+}
+
+#[test]
 fn under_g66_a_move_may_change_the_common_variables() {
     // The move on line 4 calls O9000, which sets #100 = 20: folding #100
     // as 1 on line 5 would be wrong.
@@ -260,7 +292,14 @@ fn random_program(rng: &mut Rng) -> String {
                 );
                 label += 10;
             }
-            8 => src += rng.pick(&["M98 P1000\n", "G65 P1002 A#1 B#100\n"]),
+            8 => {
+                src += rng.pick(&[
+                    "M98 P1000\n",
+                    "G65 P1002 A#1 B#100\n",
+                    "G65 P1002 A3 B[2+0.5]\n",
+                    "M98 P1000 L2\n",
+                ])
+            }
             9 => src += "G66 P1001\nG01 U1 W-1 F100\nG67\n",
             10 => {
                 let h = rng.pick(&[

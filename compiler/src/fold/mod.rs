@@ -15,8 +15,10 @@
 //! common variable.
 //!
 //! Decisions (what is known where):
-//! - A program starts knowing nothing: it may be called with any values,
-//!   and a main program runs from wherever the last one left the memory.
+//! - The main program starts knowing nothing (it runs from wherever the
+//!   last program left the memory), and so does a program called from
+//!   nowhere; a called program knows what every call of it passes
+//!   (`entries`).
 //! - Only #1–#33, #100–#199 and #500–#999 are followed; system variables
 //!   change behind the program's back.
 //! - A numbered block can be entered by a computed GOTO or by a
@@ -53,6 +55,8 @@ use nc::words::addr;
 use nc::{Machine, NcError};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::rc::Rc;
+
+mod entries;
 
 /// Rounds over the layout before the analysis gives up (and folds
 /// nothing): far more than the loops of a real program nest.
@@ -165,11 +169,16 @@ pub fn module(m: &mut Module, machine: &Machine) -> Vec<FileDiag> {
             .iter()
             .any(|(_, b)| matches!(b.term, Some(Terminator::Return { seq: Some(_) })))
     });
+    let unknown = Facts {
+        vars: Rc::default(),
+        g66,
+    };
+    let starts = entries::of(m, &unknown, m99_p);
     let mut diags = Vec::new();
-    for f in &mut m.functions {
+    for (f, entry) in m.functions.iter_mut().zip(starts) {
         if reads_variables(f) {
             let file = usize::from(f.file);
-            let warnings = function(f, machine, g66, m99_p);
+            let warnings = function(f, machine, entry, m99_p);
             diags.extend(warnings.into_iter().map(|d| (file, d)));
         }
     }
@@ -189,13 +198,9 @@ fn reads_variables(f: &Function) -> bool {
         .any(|(_, e)| matches!(e, Expr::Var(_) | Expr::VarInd(_)))
 }
 
-/// Folds `f`; its warnings. `g66`: whether the module sets a modal call;
-/// `m99_p`: whether a subprogram may return into a numbered block.
-fn function(f: &mut Function, machine: &Machine, g66: bool, m99_p: bool) -> Vec<Diagnostic> {
-    let entry = Facts {
-        vars: Rc::default(),
-        g66,
-    };
+/// Folds `f`, which starts knowing `entry`; its warnings. `m99_p`: whether
+/// a subprogram may return into a numbered block.
+fn function(f: &mut Function, machine: &Machine, entry: Facts, m99_p: bool) -> Vec<Diagnostic> {
     let Some(flow) = Flow::solve(f, entry, m99_p) else {
         return Vec::new();
     };
