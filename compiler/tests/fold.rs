@@ -83,10 +83,20 @@ fn after_a_conditional_assignment_only_a_value_the_same_both_ways_is_known() {
 }
 
 #[test]
-fn a_macro_call_keeps_the_locals_and_a_subprogram_call_keeps_nothing() {
-    let src = "#1=2\n#100=5\nG65 P9000\nG01 X#1 Z#100 F100\nM98 P9000\nG01 X#1 Z-1\nM30\nO9000\n#100=7\nM99\n";
-    assert_op(src, 4, "move G1 X2 Z#100 F100");
-    assert_op(src, 6, "move G1 X#1 Z-1");
+fn a_call_forgets_only_what_its_program_may_write() {
+    // O9000 writes #100 and its own #1 (a local of its level when G65
+    // calls it, the caller's when M98 does); O9001 writes nothing.
+    let src = "#1=2\n#100=5\n#101=6\nG65 P9000\nG01 X#1 Z#100 F100\nG01 X#101 Z-2\nM98 P9001\nG01 X#1 Z#101\nM98 P9000\nG01 X#1 Z#101\nM30\nO9000\n#100=7\n#1=8\nM99\nO9001\nG00 U1\nM99\n";
+    assert_op(src, 5, "move G1 X2 Z#100 F100");
+    assert_op(src, 6, "move G1 X6 Z-2");
+    assert_op(src, 8, "move G1 X2 Z6");
+    assert_op(src, 10, "move G1 X#1 Z6");
+    // What the programs a callee calls write counts too, and a call of a
+    // computed program number may write anything.
+    let nested = "#1=2\n#101=6\nM98 P9001\nG01 X#1 Z#101 F100\nM30\nO9001\nM98 P9002\nM99\nO9002\n#101=1\nM99\n";
+    assert_op(nested, 4, "move G1 X2 Z#101 F100");
+    let computed = "#1=2\n#9=9001\nM98 P#9\nG01 X#1 Z-1 F100\nM30\nO9001\nM99\n";
+    assert_op(computed, 4, "move G1 X#1 Z-1 F100");
 }
 
 #[test]
@@ -132,6 +142,10 @@ fn under_g66_a_move_may_change_the_common_variables() {
         events.iter().any(|e| e.to_string() == "RAPID X=24 Z=5"),
         "{events:?}"
     );
+    // The same through a subprogram whose move calls the macro: O9001
+    // writes nothing itself, but may write what O9000 writes.
+    let src = "#100=1\nG66 P9000\nM98 P9001\nG67\nG00 X#100 Z5\nM30\nO9000\n#100=20\nM99\nO9001\nG01 U1 W-1 F100\nM99\n";
+    assert_op(src, 5, "move G0 X#100 Z5");
 }
 
 #[test]
@@ -300,7 +314,12 @@ fn random_program(rng: &mut Rng) -> String {
                     "M98 P1000 L2\n",
                 ])
             }
-            9 => src += "G66 P1001\nG01 U1 W-1 F100\nG67\n",
+            9 => {
+                src += rng.pick(&[
+                    "G66 P1001\nG01 U1 W-1 F100\nG67\n",
+                    "G66 P1001\nM98 P1000\nG67\n",
+                ])
+            }
             10 => {
                 let h = rng.pick(&[
                     "01", "02", "03", "04", "05", "21", "22", "23", "26", "27", "31",
@@ -316,7 +335,7 @@ fn random_program(rng: &mut Rng) -> String {
         }
     }
     src += "#31=#1\n#32=#2\n#33=#3\nM30\n";
-    src += "O1000\n#1=#1+1\n#100=#100*2\nM99\n";
+    src += "O1000\n#1=#1+1\nG01 W-0.5 F100\n#100=#100*2\nM99\n";
     src += "O1001\n#101=#101+1\n#1=9\nM99\n";
     src += "O1002\n#100=#1+#2\n#500=#2\nM99\n";
     src

@@ -15,7 +15,7 @@
 //!   computed program number, or when the callers' facts do not settle
 //!   within a few rounds (recursion with values that keep changing).
 
-use super::{common, eval, Facts, Flow};
+use super::{common, eval, Facts, Flow, Scope};
 use crate::ir::{Call, CallKind, Callee, Count, Expr, Function, Module, Terminator};
 use nc::value;
 use std::collections::BTreeMap;
@@ -24,8 +24,9 @@ use std::rc::Rc;
 /// Rounds of the callers' analyses before the entries are given up.
 const MAX_ROUNDS: usize = 8;
 
-/// The facts each function of `m` starts with; `unknown`: knowing nothing.
-pub(super) fn of(m: &Module, unknown: &Facts, m99_p: bool) -> Vec<Facts> {
+/// The facts each function of `m` starts with.
+pub(super) fn of(m: &Module, scope: &Scope) -> Vec<Facts> {
+    let unknown = &scope.unknown();
     let n = m.functions.len();
     let mut entries = vec![unknown.clone(); n];
     if n == 1 || m.functions.iter().any(calls_computed_program) {
@@ -34,7 +35,7 @@ pub(super) fn of(m: &Module, unknown: &Facts, m99_p: bool) -> Vec<Facts> {
     for _ in 0..MAX_ROUNDS {
         let mut next: Vec<Option<Facts>> = vec![None; n];
         for (f, entry) in m.functions.iter().zip(&entries) {
-            for (callee, passed) in calls(f, entry, unknown, m99_p) {
+            for (callee, passed) in calls(f, entry, scope) {
                 if let Some(slot) = next.get_mut(callee) {
                     *slot = Some(super::join(slot, &passed));
                 }
@@ -63,8 +64,8 @@ fn calls_computed_program(f: &Function) -> bool {
 
 /// The calls `f` makes where it starts with `entry`, each with what it
 /// passes. Where `f`'s analysis gives up, its calls pass nothing known.
-fn calls(f: &Function, entry: &Facts, unknown: &Facts, m99_p: bool) -> Vec<(usize, Facts)> {
-    let flow = Flow::solve(f, entry.clone(), m99_p);
+fn calls(f: &Function, entry: &Facts, scope: &Scope) -> Vec<(usize, Facts)> {
+    let flow = Flow::solve(f, entry.clone(), scope);
     let mut out = Vec::new();
     for &b in &f.layout {
         let Some(Terminator::Call { call, .. }) = f.blocks.get(b).and_then(|k| k.term.as_ref())
@@ -80,7 +81,7 @@ fn calls(f: &Function, entry: &Facts, unknown: &Facts, m99_p: bool) -> Vec<(usiz
                 Some(before) => passed(f, call, &before),
                 None => continue,
             },
-            None => unknown.clone(),
+            None => scope.unknown(),
         };
         out.push((callee as usize, passed));
     }

@@ -24,9 +24,10 @@
 //! - A numbered block can be entered by a computed GOTO or by a
 //!   subprogram's `M99 P`: there it joins what such jumps carry (nothing,
 //!   for `M99 P`). Static GOTOs are edges of the graph.
-//! - After M98 nothing is known (the subprogram shares the caller's
-//!   locals); after G65 the locals are (the macro has its own), the
-//!   common variables are not. G66 changes nothing where it stands; under
+//! - After a call, what its program may write (`writes`) stops being
+//!   known: a macro's common variables only (its locals are its own), a
+//!   subprogram's locals too (it shares the caller's). G66 changes nothing
+//!   where it stands; under
 //!   it, every NC block may call the macro: the common variables are
 //!   forgotten after each one. Whether G66 may be in force is followed as
 //!   well; a program starts with it in force when the module has a G66.
@@ -45,7 +46,7 @@
 
 use crate::build::FileDiag;
 use crate::ir::{
-    Block, Call, CallKind, Count, Expr, Function, Handle, Module, NcBlock, Op, Terminator,
+    Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Module, NcBlock, Op, Terminator,
     VarTarget, Word, WordValue,
 };
 use grammar::{Diagnostic, Span};
@@ -57,6 +58,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::rc::Rc;
 
 mod entries;
+mod writes;
 
 /// Rounds over the layout before the analysis gives up (and folds
 /// nothing): far more than the loops of a real program nest.
@@ -169,20 +171,41 @@ pub fn module(m: &mut Module, machine: &Machine) -> Vec<FileDiag> {
             .iter()
             .any(|(_, b)| matches!(b.term, Some(Terminator::Return { seq: Some(_) })))
     });
-    let unknown = Facts {
-        vars: Rc::default(),
+    let scope = Scope {
         g66,
+        m99_p,
+        writes: writes::of(m),
     };
-    let starts = entries::of(m, &unknown, m99_p);
+    let starts = entries::of(m, &scope);
     let mut diags = Vec::new();
     for (f, entry) in m.functions.iter_mut().zip(starts) {
         if reads_variables(f) {
             let file = usize::from(f.file);
-            let warnings = function(f, machine, entry, m99_p);
+            let warnings = function(f, machine, entry, &scope);
             diags.extend(warnings.into_iter().map(|d| (file, d)));
         }
     }
     diags
+}
+
+/// What the module tells the analysis of each of its programs.
+struct Scope {
+    /// Whether the module has a G66.
+    g66: bool,
+    /// Whether a subprogram may return into a numbered block (`M99 P`).
+    m99_p: bool,
+    /// What each program may write, its callees included.
+    writes: Vec<writes::Writes>,
+}
+
+impl Scope {
+    /// Knowing nothing.
+    fn unknown(&self) -> Facts {
+        Facts {
+            vars: Rc::default(),
+            g66: self.g66,
+        }
+    }
 }
 
 fn has_modal_call(f: &Function) -> bool {
@@ -198,10 +221,9 @@ fn reads_variables(f: &Function) -> bool {
         .any(|(_, e)| matches!(e, Expr::Var(_) | Expr::VarInd(_)))
 }
 
-/// Folds `f`, which starts knowing `entry`; its warnings. `m99_p`: whether
-/// a subprogram may return into a numbered block.
-fn function(f: &mut Function, machine: &Machine, entry: Facts, m99_p: bool) -> Vec<Diagnostic> {
-    let Some(flow) = Flow::solve(f, entry, m99_p) else {
+/// Folds `f`, which starts knowing `entry`; its warnings.
+fn function(f: &mut Function, machine: &Machine, entry: Facts, scope: &Scope) -> Vec<Diagnostic> {
+    let Some(flow) = Flow::solve(f, entry, scope) else {
         return Vec::new();
     };
     let mut r = Rewrite::new(f, machine);
@@ -215,12 +237,11 @@ fn function(f: &mut Function, machine: &Machine, entry: Facts, m99_p: bool) -> V
 }
 
 /// The facts at the start of each block, at the fixed point.
-struct Flow {
+struct Flow<'s> {
+    scope: &'s Scope,
     block_in: Vec<Option<Facts>>,
     /// What a jump to a number carries (`None`: no such jump).
     seq_in: Option<Facts>,
-    /// Whether the module has a G66.
-    g66: bool,
     /// The maps the slots hold: how many slots hold each, and its size.
     held: HashMap<*const BTreeMap<u32, u64>, (usize, usize)>,
     /// Entries of the distinct maps held, and how many may be: the
@@ -230,15 +251,15 @@ struct Flow {
     budget: usize,
 }
 
-impl Flow {
+impl<'s> Flow<'s> {
     /// Iterates to the fixed point; `None` when it takes too many rounds
     /// or stores more than its budget.
-    fn solve(f: &Function, entry: Facts, m99_p: bool) -> Option<Flow> {
+    fn solve(f: &Function, entry: Facts, scope: &'s Scope) -> Option<Flow<'s>> {
         let start = *f.layout.first()?;
         let mut flow = Flow {
+            scope,
             block_in: vec![None; f.blocks.len()],
-            seq_in: m99_p.then(Facts::default),
-            g66: entry.g66,
+            seq_in: scope.m99_p.then(|| scope.unknown()),
             held: HashMap::new(),
             entries: 0,
             budget: STORED_PER_OP * f.ops.len() + STORED_MIN,
@@ -264,7 +285,7 @@ impl Flow {
             let Some(term) = f.blocks.get(b).and_then(|k| k.term.as_ref()) else {
                 continue;
             };
-            for (target, facts) in edges(term, out, self.g66) {
+            for (target, facts) in edges(term, out, self.scope) {
                 let slot = match target {
                     Some(t) => match self.block_in.get_mut(t.index()) {
                         Some(slot) => slot,
@@ -321,9 +342,9 @@ impl Flow {
 
 /// Where control goes after a terminator, with what it knows; `None` as
 /// the target: every numbered block.
-fn edges(term: &Terminator, out: Facts, g66: bool) -> Vec<(Option<Handle<Block>>, Facts)> {
+fn edges(term: &Terminator, out: Facts, scope: &Scope) -> Vec<(Option<Handle<Block>>, Facts)> {
     match term {
-        Terminator::Call { call, next } => vec![(Some(*next), after_call(call, out, g66))],
+        Terminator::Call { call, next } => vec![(Some(*next), after_call(call, out, scope))],
         Terminator::Goto { .. } | Terminator::Return { seq: Some(_) } => vec![(None, out)],
         Terminator::GotoIf { next, .. } => vec![(Some(*next), out.clone()), (None, out)],
         // (M99 running a program again starts it knowing nothing, which
@@ -332,20 +353,24 @@ fn edges(term: &Terminator, out: Facts, g66: bool) -> Vec<(Option<Handle<Block>>
     }
 }
 
-/// What a call leaves known. `g66`: whether the module has a G66 (the
-/// callee may set or cancel one).
-fn after_call(call: &Call, mut facts: Facts, g66: bool) -> Facts {
-    match call.kind {
-        CallKind::Modal => facts.g66 = true,
-        CallKind::Macro => {
-            facts.forget_commons();
-            facts.g66 = g66;
-        }
-        CallKind::Sub => {
-            facts.forget_all();
-            facts.g66 = g66;
-        }
+/// What a call leaves known: all but what its program may write (only
+/// its common variables, for a macro). The callee may set or cancel a G66.
+fn after_call(call: &Call, mut facts: Facts, scope: &Scope) -> Facts {
+    if call.kind == CallKind::Modal {
+        facts.g66 = true;
+        return facts;
     }
+    let commons_only = call.kind == CallKind::Macro;
+    let writes = match call.callee {
+        Callee::Program(i) => scope.writes.get(i as usize),
+        Callee::Dynamic(_) => None,
+    };
+    match writes {
+        Some(w) => w.forget_in(&mut facts, commons_only),
+        None if commons_only => facts.forget_commons(),
+        None => facts.forget_all(),
+    }
+    facts.g66 = scope.g66;
     facts
 }
 
@@ -386,22 +411,29 @@ fn nc_block(f: &Function, nc: &NcBlock, facts: &mut Facts) {
     if facts.vars.is_empty() {
         return; // Nothing to forget (most blocks of a long program).
     }
-    for var in 995..=999 {
-        facts.forget(var);
-    }
-    let words = f.words_of(nc);
-    let has = |c: u8| words.iter().find(|w| w.addr == addr(c));
-    if let (Some(_), Some(r)) = (has(b'N'), has(b'R')) {
-        match r.constant() {
-            Some(v) if v >= 0.0 => {
-                facts.forget(nc::block::round_half_away(v) as u32);
-            }
-            _ => facts.forget_all(),
-        }
+    match nc_writes(f, nc) {
+        Some(vars) => vars.into_iter().for_each(|n| facts.forget(n)),
+        None => facts.forget_all(),
     }
     if facts.g66 {
         facts.forget_commons();
     }
+}
+
+/// The variables an NC block itself writes: #995–#999 (G31's skip
+/// position) and, for a G10 L52 read (N and R words), the one R names;
+/// `None`: any (a computed R).
+fn nc_writes(f: &Function, nc: &NcBlock) -> Option<Vec<u32>> {
+    let mut vars: Vec<u32> = (995..=999).collect();
+    let words = f.words_of(nc);
+    let has = |c: u8| words.iter().find(|w| w.addr == addr(c));
+    if let (Some(_), Some(r)) = (has(b'N'), has(b'R')) {
+        match r.constant() {
+            Some(v) if v >= 0.0 => vars.push(nc::block::round_half_away(v) as u32),
+            _ => return None,
+        }
+    }
+    Some(vars)
 }
 
 /// The value of expression `h` where `facts` hold: `None` when it reads a
@@ -656,7 +688,7 @@ impl<'a> Rewrite<'a> {
                 }
             }
             Terminator::Call { call, .. } => {
-                if let crate::ir::Callee::Dynamic(h) = call.callee {
+                if let Callee::Dynamic(h) = call.callee {
                     self.fold(h, facts, span);
                 }
                 if let Count::Expr(h) = call.count {
@@ -716,21 +748,27 @@ mod tests {
         s + "G01 X#100 Z#399 F100\nM30\n"
     }
 
-    fn solve(src: &str) -> Option<Flow> {
+    /// The values the main program's analysis holds at its fixed point;
+    /// `None` when it gives up.
+    fn held(src: &str) -> Option<usize> {
         let (c, ir) = compile_ir("t.nc", src.as_bytes(), &Options::default());
         assert!(!c.has_errors(), "{}", c.render());
         let ir = ir.expect("IR");
         let f = ir.functions.first().expect("a main program");
-        let entry = Facts::default();
-        Flow::solve(f, entry, false)
+        let scope = Scope {
+            g66: false,
+            m99_p: false,
+            writes: writes::of(&ir),
+        };
+        Flow::solve(f, scope.unknown(), &scope).map(|flow| flow.entries)
     }
 
     #[test]
     fn blocks_that_know_the_same_share_one_map() {
         // Every block knows the 300 commons: one map of 300 and few more
         // (the THEN blocks' #2 is not known after the first join).
-        let flow = solve(&wide(2000, false)).expect("solved");
-        assert!(flow.entries <= 3 * 300, "{} entries held", flow.entries);
+        let entries = held(&wide(2000, false)).expect("solved");
+        assert!(entries <= 3 * 300, "{entries} entries held");
     }
 
     #[test]
@@ -738,8 +776,8 @@ mod tests {
         // Each join makes a map of its own (#2 differs on its two paths):
         // 2 000 maps of 300 would be 600 000 entries, over the budget of
         // 8 per operation (about 4 300 operations) and 65 536.
-        assert!(solve(&wide(2000, true)).is_none());
-        // A tenth of that fits.
-        assert!(solve(&wide(100, true)).is_some());
+        assert!(held(&wide(2000, true)).is_none());
+        // A twentieth of that fits.
+        assert!(held(&wide(100, true)).is_some());
     }
 }
