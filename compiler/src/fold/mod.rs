@@ -27,10 +27,10 @@
 //! - After a call, what its program may write (`writes`) stops being
 //!   known: a macro's common variables only (its locals are its own), a
 //!   subprogram's locals too (it shares the caller's). G66 changes nothing
-//!   where it stands; under
-//!   it, every NC block may call the macro: the common variables are
-//!   forgotten after each one. Whether G66 may be in force is followed as
-//!   well; a program starts with it in force when the module has a G66.
+//!   where it stands; under it, every NC block may call the macro: the
+//!   common variables are forgotten after each one. Whether G66 may be in
+//!   force is followed as well; the main program starts with it in force
+//!   when the module has a G66.
 //! - An NC block writes #995–#999 (G31's skip position) and, for a G10 L52
 //!   read (N and R words), the variable R names.
 //! - A program whose blocks would between them hold more known values
