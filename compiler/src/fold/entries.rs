@@ -41,7 +41,9 @@ pub(super) fn of(m: &Module, scope: &Scope) -> Vec<Facts> {
                 }
             }
         }
-        // (The main program is entered by no call.)
+        // (The main program also starts the run, knowing nothing.) From
+        // knowing nothing, each round can only know more: what a round
+        // keeps is what every call passes, on every round before it.
         let next: Vec<Facts> = next
             .into_iter()
             .enumerate()
