@@ -41,9 +41,9 @@ pub(super) fn of(m: &Module, scope: &Scope) -> Vec<Facts> {
                 }
             }
         }
-        // (The main program also starts the run, knowing nothing.) From
-        // knowing nothing, each round can only know more: what a round
-        // keeps is what every call passes, on every round before it.
+        // (The main program also starts the run, knowing nothing.) The
+        // rounds start from entries that know nothing and can only come
+        // to know more; they stop where each entry is what its calls pass.
         let next: Vec<Facts> = next
             .into_iter()
             .enumerate()
