@@ -578,6 +578,9 @@ impl<'a> Emitter<'a> {
                 a
             }
             Expr::Binary { op, a, b } => {
+                if let Some(r) = self.binary_k(f, op, a, b) {
+                    return r;
+                }
                 let a = self.node(f, a);
                 let b = self.node(f, b);
                 let dst = a;
@@ -611,6 +614,13 @@ impl<'a> Emitter<'a> {
                 a
             }
             Expr::Compare { op, a, b } => {
+                if let Some(&Expr::Const(v)) = f.exprs.get(b) {
+                    let a = self.node(f, a);
+                    let k = self.konst(v);
+                    let op = op as u8;
+                    self.emit(Instr::CmpK { dst: a, a, k, op });
+                    return a;
+                }
                 let a = self.node(f, a);
                 let b = self.node(f, b);
                 self.emit(Instr::Cmp {
@@ -623,5 +633,28 @@ impl<'a> Emitter<'a> {
                 a
             }
         }
+    }
+
+    /// `a + k`, `a - k`, `a * k` (and `k + a`, `k * a`, which are the same
+    /// numbers: IEEE addition and multiplication commute) with the
+    /// constant read from the pool; `None` for other operations.
+    fn binary_k(&mut self, f: &Function, op: Bin, a: Handle<Expr>, b: Handle<Expr>) -> Option<u8> {
+        let konst = |h: Handle<Expr>| match f.exprs.get(h) {
+            Some(&Expr::Const(v)) => Some(v),
+            _ => None,
+        };
+        let (reg, v) = match (op, konst(a), konst(b)) {
+            (Bin::Add | Bin::Sub | Bin::Mul, _, Some(v)) => (a, v),
+            (Bin::Add | Bin::Mul, Some(v), None) => (b, v),
+            _ => return None,
+        };
+        let a = self.node(f, reg);
+        let k = self.konst(v);
+        self.emit(match op {
+            Bin::Add => Instr::AddK { dst: a, a, k },
+            Bin::Sub => Instr::SubK { dst: a, a, k },
+            _ => Instr::MulK { dst: a, a, k },
+        });
+        Some(a)
     }
 }

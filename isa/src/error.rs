@@ -136,7 +136,7 @@ pub enum TableError {
         code: usize,
     },
     /// The code section's length cannot hold one instruction per entry
-    /// of the line table (an instruction takes 1 to 7 bytes, the longest
+    /// of the line table (an instruction takes 1 to 8 bytes, the longest
     /// encoding in the opcode table); found from
     /// the declared sizes, before the code is decoded.
     #[error(

@@ -57,6 +57,15 @@ macro_rules! for_each_instr {
             Atan2 = 0x1A, "atan2" { dst: Reg, y: Reg, x: Reg };
             /// `dst = a <op> b` (1 or 0) for a [`CmpOp`](crate::CmpOp) code.
             Cmp = 0x1B, "cmp" { dst: Reg, a: Reg, b: Reg, op: CmpCode };
+            /// `dst = a + consts[k]`: an operand that is a constant is
+            /// read from the pool, not loaded into a register first.
+            AddK = 0x1C, "addk" { dst: Reg, a: Reg, k: Const };
+            /// `dst = a - consts[k]`.
+            SubK = 0x1D, "subk" { dst: Reg, a: Reg, k: Const };
+            /// `dst = a * consts[k]`.
+            MulK = 0x1E, "mulk" { dst: Reg, a: Reg, k: Const };
+            /// `dst = a <op> consts[k]` (1 or 0).
+            CmpK = 0x1F, "cmpk" { dst: Reg, a: Reg, k: Const, op: CmpCode };
 
             // --- control flow ---
             /// Continue at `target`.

@@ -738,11 +738,11 @@ proptest! {
 #[test]
 fn a_code_section_out_of_proportion_to_its_line_table() {
     // The sample's 41 instructions take more than 41 bytes; a code section
-    // of 41 × 7 + 1 bytes (7: the longest instruction, `wordk`/`alarm`)
-    // cannot hold 41 instructions, nor can one of 40 bytes.
+    // of 41 × 8 + 1 bytes (8: the longest instruction, `cmpk`) cannot
+    // hold 41 instructions, nor can one of 40 bytes.
     let module = sample_module();
     assert_eq!(module.code.len(), 41);
-    for len in [40, 41 * 7 + 1] {
+    for len in [40, 41 * 8 + 1] {
         let bytes = module.to_bytes();
         let code = section(&bytes, Section::Code);
         let mut forged = bytes[..code.payload].to_vec();
@@ -759,20 +759,20 @@ fn a_code_section_out_of_proportion_to_its_line_table() {
             "{len} bytes"
         );
     }
-    // At the bounds, 41 and 41 × 7 bytes of `ret`s, the sizes pass and the
+    // At the bounds, 41 and 41 × 8 bytes of `ret`s, the sizes pass and the
     // verifier finds the real count (41 one-byte `ret`s are a well-formed
-    // code section; 287 of them are not one per source location).
+    // code section; 328 of them are not one per source location).
     let bytes = module.to_bytes();
     let code = section(&bytes, Section::Code);
     let mut forged = bytes[..code.payload].to_vec();
-    put_u32(&mut forged, code.len_field, 41 * 7);
-    forged.resize(code.payload + 41 * 7, isa::Opcode::Ret as u8);
+    put_u32(&mut forged, code.len_field, 41 * 8);
+    forged.resize(code.payload + 41 * 8, isa::Opcode::Ret as u8);
     forged.extend_from_slice(&bytes[code.payload + code.len..]);
     assert_eq!(
         Module::from_bytes(&reseal(forged)),
         Err(TableError::LinesMismatch {
             lines: 41,
-            code: 41 * 7
+            code: 41 * 8
         }
         .into())
     );

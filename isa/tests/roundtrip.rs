@@ -5,18 +5,19 @@ mod common;
 
 use std::collections::BTreeSet;
 
-use common::{sample_module, typed_module};
+use common::{constant_operands_module, sample_module, typed_module};
 use isa::{Instr, LoadError, Module, Opcode, Operand, OperandKind, OperandMut};
 use proptest::prelude::*;
 
 #[test]
 fn sample_uses_every_opcode() {
-    // The typed blocks have a sample of their own.
-    let (sample, typed) = (sample_module(), typed_module());
+    // The typed blocks and the constant operands have samples of their own.
+    let (sample, typed, k) = (sample_module(), typed_module(), constant_operands_module());
     let used: BTreeSet<Opcode> = sample
         .code
         .iter()
         .chain(&typed.code)
+        .chain(&k.code)
         .map(Instr::opcode)
         .collect();
     let all: BTreeSet<Opcode> = Opcode::ALL.iter().copied().collect();
@@ -27,6 +28,9 @@ fn sample_uses_every_opcode() {
 #[test]
 fn sample_verifies() {
     assert_eq!(sample_module().verify(), Ok(()));
+    let k = constant_operands_module();
+    assert_eq!(k.verify(), Ok(()));
+    assert_eq!(Module::from_bytes(&k.to_bytes()), Ok(k));
 }
 
 #[test]
@@ -64,6 +68,16 @@ fn instruction_text() {
         (Instr::LoadK { dst: 0, k: 3 }, "loadk r0, k3"),
         (Instr::LoadVar { dst: 1, var: 100 }, "loadvar r1, #100"),
         (Instr::Func { dst: 1, a: 2, f: 6 }, "func r1, r2, SQRT"),
+        (Instr::MulK { dst: 1, a: 2, k: 3 }, "mulk r1, r2, k3"),
+        (
+            Instr::CmpK {
+                dst: 1,
+                a: 2,
+                k: 3,
+                op: 3,
+            },
+            "cmpk r1, r2, k3, LT",
+        ),
         (
             Instr::Cmp {
                 dst: 1,

@@ -459,12 +459,11 @@ impl Vm {
                 let v = value::atan2(self.reg(y), self.reg(x))?;
                 self.set(dst, v);
             }
-            Instr::Cmp { dst, a, b, op } => {
-                let Some(op) = Rel::from_code(op) else {
-                    return fault(AlarmCode::NotSupportedYet, "unknown comparison code");
-                };
-                self.set(dst, value::compare(op, self.reg(a), self.reg(b)));
-            }
+            Instr::Cmp { dst, a, b, op } => self.compare(op, dst, self.reg(a), self.reg(b))?,
+            Instr::AddK { dst, a, k } => self.bin_k(Bin::Add, dst, a, k)?,
+            Instr::SubK { dst, a, k } => self.bin_k(Bin::Sub, dst, a, k)?,
+            Instr::MulK { dst, a, k } => self.bin_k(Bin::Mul, dst, a, k)?,
+            Instr::CmpK { dst, a, k, op } => self.compare(op, dst, self.reg(a), self.konst(k))?,
             Instr::Jump { target } => self.jump(target)?,
             Instr::JumpIfNot { cond, target } => {
                 if value::compare(Rel::Eq, self.reg(cond), 0.0) == 1.0 || is_vacant(self.reg(cond))
@@ -610,6 +609,21 @@ impl Vm {
     fn bin(&mut self, op: Bin, dst: u8, a: u8, b: u8) -> Result<(), Fault> {
         let v = value::binary(op, self.reg(a), self.reg(b))?;
         self.set(dst, v);
+        Ok(())
+    }
+
+    /// `a op consts[k]`, as `bin` with the constant in a register.
+    fn bin_k(&mut self, op: Bin, dst: u8, a: u8, k: u32) -> Result<(), Fault> {
+        let v = value::binary(op, self.reg(a), self.konst(k))?;
+        self.set(dst, v);
+        Ok(())
+    }
+
+    fn compare(&mut self, op: u8, dst: u8, a: f64, b: f64) -> Result<(), Fault> {
+        let Some(op) = Rel::from_code(op) else {
+            return fault(AlarmCode::NotSupportedYet, "unknown comparison code");
+        };
+        self.set(dst, value::compare(op, a, b));
         Ok(())
     }
 

@@ -488,3 +488,66 @@ fn the_running_program_number() {
         Ok(1.0)
     );
 }
+
+/// `addk`, `subk`, `mulk` and `cmpk` give what the register forms give
+/// with the constant loaded first (the same `nc::value` rules: vacant as
+/// 0, an overflow the same alarm), bit for bit, over operands that reach
+/// each rule: vacant, ±0, huge, ordinary.
+#[test]
+fn constant_operands_compute_as_registers_do() {
+    let values = [
+        None,
+        Some(0.0),
+        Some(-0.0),
+        Some(1.5),
+        Some(-2.0),
+        Some(1e308),
+    ];
+    let constants = [0.0, -0.0, 2.5, -1e308, 1e308];
+    let bits = |r: Result<f64, u32>| r.map(f64::to_bits);
+    for x in values {
+        for k in constants {
+            let with_k = |form: &dyn Fn(u8, u8, u32) -> Instr| {
+                bits(eval(|a| {
+                    put(a, 0, x);
+                    let k = a.k(k);
+                    a.line(LINE);
+                    a.op(form(0, 0, k));
+                    0
+                }))
+            };
+            let with_reg = |form: &dyn Fn(u8, u8, u8) -> Instr| {
+                bits(eval(|a| {
+                    put(a, 0, x);
+                    a.load(1, k);
+                    a.line(LINE);
+                    a.op(form(0, 0, 1));
+                    0
+                }))
+            };
+            let case = format!("{x:?} with {k}");
+            assert_eq!(
+                with_k(&|dst, a, k| Instr::AddK { dst, a, k }),
+                with_reg(&|dst, a, b| Instr::Add { dst, a, b }),
+                "add {case}"
+            );
+            assert_eq!(
+                with_k(&|dst, a, k| Instr::SubK { dst, a, k }),
+                with_reg(&|dst, a, b| Instr::Sub { dst, a, b }),
+                "sub {case}"
+            );
+            assert_eq!(
+                with_k(&|dst, a, k| Instr::MulK { dst, a, k }),
+                with_reg(&|dst, a, b| Instr::Mul { dst, a, b }),
+                "mul {case}"
+            );
+            for op in 0..6u8 {
+                assert_eq!(
+                    with_k(&|dst, a, k| Instr::CmpK { dst, a, k, op }),
+                    with_reg(&|dst, a, b| Instr::Cmp { dst, a, b, op }),
+                    "cmp {op} {case}"
+                );
+            }
+        }
+    }
+}

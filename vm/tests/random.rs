@@ -54,7 +54,7 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
     let var = VARS[w as usize % VARS.len()];
     let target = w % len;
     let prog = w % progs;
-    match sel % 33 {
+    match sel % 37 {
         0 => Instr::LoadK { dst: ra, k },
         1 => Instr::LoadNull { dst: ra },
         2 => Instr::Mov { dst: ra, src: rb },
@@ -132,6 +132,15 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
             rec: typed_blocks().1[w as usize % 2],
         },
         31 => Instr::ExecMove,
+        32 => Instr::AddK { dst: ra, a: rb, k },
+        33 => Instr::SubK { dst: ra, a: rb, k },
+        34 => Instr::MulK { dst: ra, a: rb, k },
+        35 => Instr::CmpK {
+            dst: ra,
+            a: rb,
+            k,
+            op: (w % 6) as u8,
+        },
         _ => Instr::Halt,
     }
 }
@@ -237,12 +246,12 @@ proptest! {
 
 #[test]
 fn the_generator_reaches_every_family() {
-    // Selector values 0…30 cover every arm of `instr` (29 opcodes: jump
-    // and jumpifnot have two selectors each); a word address
-    // outside the table would not verify.
-    let kinds: std::collections::HashSet<_> = (0..31u8)
+    // Selector values 0…35 cover every arm of `instr` but `halt` (34
+    // opcodes: jump and jumpifnot have two selectors each); a word
+    // address outside the table would not verify.
+    let kinds: std::collections::HashSet<_> = (0..36u8)
         .map(|sel| instr((sel, 1, 2, 3, 4), 10, 2).opcode())
         .collect();
-    assert_eq!(kinds.len(), 29, "29 distinct opcodes");
+    assert_eq!(kinds.len(), 34, "34 distinct opcodes");
     assert!(ADDRS.iter().all(|&a| a <= addr::MAX));
 }

@@ -184,6 +184,51 @@ pub fn typed_module() -> Module {
     m
 }
 
+/// A main program of arithmetic and a comparison with constant operands
+/// (`addk`, `subk`, `mulk`, `cmpk`, format version 7), on `#100`.
+pub fn constant_operands_module() -> Module {
+    use Instr::*;
+    let code = vec![
+        LoadVar { dst: 0, var: 100 },
+        AddK { dst: 0, a: 0, k: 0 },
+        SubK { dst: 0, a: 0, k: 1 },
+        MulK { dst: 0, a: 0, k: 1 },
+        CmpK {
+            dst: 1,
+            a: 0,
+            k: 0,
+            op: 3,
+        },
+        StoreVar { var: 101, src: 1 },
+        Halt,
+    ];
+    let lines = (1..=code.len() as u32).map(|line| SourceLoc {
+        file: 0,
+        line,
+        col: 1,
+    });
+    let mut m = Module {
+        programs: vec![Program {
+            number: 1,
+            entry: 0,
+            end: code.len() as u32,
+            seqs: Vec::new(),
+        }],
+        files: vec![SourceFileInfo {
+            name: "k.nc".to_string(),
+            hash: 0,
+        }],
+        consts: vec![1.5, 2.0],
+        num_regs: 2,
+        code,
+        ..Module::default()
+    };
+    for loc in lines.collect::<Vec<_>>() {
+        m.lines.push(loc);
+    }
+    m
+}
+
 /// Recomputes the CRC trailer, so a forged change reaches the parser and the
 /// verifier instead of being caught by the checksum.
 pub fn reseal(mut bytes: Vec<u8>) -> Vec<u8> {
