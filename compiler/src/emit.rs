@@ -635,16 +635,16 @@ impl<'a> Emitter<'a> {
         }
     }
 
-    /// `a + k`, `a - k`, `a * k` (and `k + a`, `k * a`, which are the same
-    /// numbers: IEEE addition and multiplication commute) with the
-    /// constant read from the pool; `None` for other operations.
+    /// `a + k`, `a - k`, `a * k`, `a / k` (and `k + a`, `k * a`, which are
+    /// the same numbers: IEEE addition and multiplication commute) with
+    /// the constant read from the pool; `None` for other operations.
     fn binary_k(&mut self, f: &Function, op: Bin, a: Handle<Expr>, b: Handle<Expr>) -> Option<u8> {
         let konst = |h: Handle<Expr>| match f.exprs.get(h) {
             Some(&Expr::Const(v)) => Some(v),
             _ => None,
         };
         let (reg, v) = match (op, konst(a), konst(b)) {
-            (Bin::Add | Bin::Sub | Bin::Mul, _, Some(v)) => (a, v),
+            (Bin::Add | Bin::Sub | Bin::Mul | Bin::Div, _, Some(v)) => (a, v),
             (Bin::Add | Bin::Mul, Some(v), None) => (b, v),
             _ => return None,
         };
@@ -653,7 +653,8 @@ impl<'a> Emitter<'a> {
         self.emit(match op {
             Bin::Add => Instr::AddK { dst: a, a, k },
             Bin::Sub => Instr::SubK { dst: a, a, k },
-            _ => Instr::MulK { dst: a, a, k },
+            Bin::Mul => Instr::MulK { dst: a, a, k },
+            _ => Instr::DivK { dst: a, a, k },
         });
         Some(a)
     }

@@ -48,8 +48,8 @@ pub const MAGIC: [u8; 4] = *b"GBC\0";
 /// line table as delta-encoded runs; version 4 `profile` (a G70–G73
 /// profile block as a typed record, shared with the block where it stands);
 /// version 5 `move` (a typed plain move); version 6 `execmove` (a plain
-/// move with computed words); version 7 `addk`, `subk`, `mulk` and `cmpk`
-/// (arithmetic and comparisons with a constant operand).
+/// move with computed words); version 7 `addk`, `subk`, `mulk`, `divk`
+/// and `cmpk` (arithmetic and comparisons with a constant operand).
 pub const VERSION: u16 = 7;
 
 /// Bytes before the first section: magic and version.

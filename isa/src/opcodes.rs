@@ -64,6 +64,8 @@ macro_rules! for_each_instr {
             SubK = 0x1D, "subk" { dst: Reg, a: Reg, k: Const };
             /// `dst = a * consts[k]`.
             MulK = 0x1E, "mulk" { dst: Reg, a: Reg, k: Const };
+            /// `dst = a / consts[k]`. (0x1x is full: the byte is free.)
+            DivK = 0x0F, "divk" { dst: Reg, a: Reg, k: Const };
             /// `dst = a <op> consts[k]` (1 or 0).
             CmpK = 0x1F, "cmpk" { dst: Reg, a: Reg, k: Const, op: CmpCode };
 

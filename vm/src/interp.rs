@@ -463,6 +463,7 @@ impl Vm {
             Instr::AddK { dst, a, k } => self.bin_k(Bin::Add, dst, a, k)?,
             Instr::SubK { dst, a, k } => self.bin_k(Bin::Sub, dst, a, k)?,
             Instr::MulK { dst, a, k } => self.bin_k(Bin::Mul, dst, a, k)?,
+            Instr::DivK { dst, a, k } => self.bin_k(Bin::Div, dst, a, k)?,
             Instr::CmpK { dst, a, k, op } => self.compare(op, dst, self.reg(a), self.konst(k))?,
             Instr::Jump { target } => self.jump(target)?,
             Instr::JumpIfNot { cond, target } => {

@@ -489,10 +489,10 @@ fn the_running_program_number() {
     );
 }
 
-/// `addk`, `subk`, `mulk` and `cmpk` give what the register forms give
-/// with the constant loaded first (the same `nc::value` rules: vacant as
-/// 0, an overflow the same alarm), bit for bit, over operands that reach
-/// each rule: vacant, ±0, huge, ordinary.
+/// `addk`, `subk`, `mulk`, `divk` and `cmpk` give what the register forms
+/// give with the constant loaded first (the same `nc::value` rules: vacant
+/// as 0, an overflow or a division by zero the same alarm), bit for bit,
+/// over operands that reach each rule: vacant, ±0, huge, ordinary.
 #[test]
 fn constant_operands_compute_as_registers_do() {
     let values = [
@@ -540,6 +540,11 @@ fn constant_operands_compute_as_registers_do() {
                 with_k(&|dst, a, k| Instr::MulK { dst, a, k }),
                 with_reg(&|dst, a, b| Instr::Mul { dst, a, b }),
                 "mul {case}"
+            );
+            assert_eq!(
+                with_k(&|dst, a, k| Instr::DivK { dst, a, k }),
+                with_reg(&|dst, a, b| Instr::Div { dst, a, b }),
+                "div {case}"
             );
             for op in 0..6u8 {
                 assert_eq!(

@@ -54,7 +54,7 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
     let var = VARS[w as usize % VARS.len()];
     let target = w % len;
     let prog = w % progs;
-    match sel % 37 {
+    match sel % 38 {
         0 => Instr::LoadK { dst: ra, k },
         1 => Instr::LoadNull { dst: ra },
         2 => Instr::Mov { dst: ra, src: rb },
@@ -141,6 +141,7 @@ fn instr(raw: (u8, u8, u8, u8, u32), len: u32, progs: u32) -> Instr {
             k,
             op: (w % 6) as u8,
         },
+        36 => Instr::DivK { dst: ra, a: rb, k },
         _ => Instr::Halt,
     }
 }
@@ -246,12 +247,12 @@ proptest! {
 
 #[test]
 fn the_generator_reaches_every_family() {
-    // Selector values 0…35 cover every arm of `instr` but `halt` (34
+    // Selector values 0…36 cover every arm of `instr` but `halt` (35
     // opcodes: jump and jumpifnot have two selectors each); a word
     // address outside the table would not verify.
-    let kinds: std::collections::HashSet<_> = (0..36u8)
+    let kinds: std::collections::HashSet<_> = (0..37u8)
         .map(|sel| instr((sel, 1, 2, 3, 4), 10, 2).opcode())
         .collect();
-    assert_eq!(kinds.len(), 34, "34 distinct opcodes");
+    assert_eq!(kinds.len(), 35, "35 distinct opcodes");
     assert!(ADDRS.iter().all(|&a| a <= addr::MAX));
 }

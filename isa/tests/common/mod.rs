@@ -185,7 +185,7 @@ pub fn typed_module() -> Module {
 }
 
 /// A main program of arithmetic and a comparison with constant operands
-/// (`addk`, `subk`, `mulk`, `cmpk`, format version 7), on `#100`.
+/// (`addk`, `subk`, `mulk`, `divk`, `cmpk`, format version 7), on `#100`.
 pub fn constant_operands_module() -> Module {
     use Instr::*;
     let code = vec![
@@ -193,6 +193,7 @@ pub fn constant_operands_module() -> Module {
         AddK { dst: 0, a: 0, k: 0 },
         SubK { dst: 0, a: 0, k: 1 },
         MulK { dst: 0, a: 0, k: 1 },
+        DivK { dst: 0, a: 0, k: 1 },
         CmpK {
             dst: 1,
             a: 0,
