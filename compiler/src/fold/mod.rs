@@ -347,8 +347,9 @@ fn edges(term: &Terminator, out: Facts, scope: &Scope) -> Vec<(Option<Handle<Blo
         Terminator::Call { call, next } => vec![(Some(*next), after_call(call, out, scope))],
         Terminator::Goto { .. } | Terminator::Return { seq: Some(_) } => vec![(None, out)],
         Terminator::GotoIf { next, .. } => vec![(Some(*next), out.clone()), (None, out)],
-        // (M99 running a program again starts it knowing nothing, which
-        // its entry already says.)
+        // (M99 running the main program again starts it knowing nothing,
+        // as its entry does; a call's count that runs its program again
+        // is `entries`' to follow.)
         t => t.successors().map(|s| (Some(s), out.clone())).collect(),
     }
 }
