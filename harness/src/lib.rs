@@ -68,25 +68,26 @@ pub fn compiler(data: &[u8]) {
                 short == run_bounded(m, false),
                 "the plain-move path runs otherwise"
             );
-            let untyped = Options {
-                resolve: false,
-                ..Options::default()
-            };
-            if let Some(words) = compile("fuzz.nc", data, &untyped).module {
-                assert!(
-                    short == run_bounded(words, true),
-                    "the module without typed moves runs otherwise"
-                );
-            }
-            let unfolded = Options {
-                optimize: false,
-                ..Options::default()
-            };
-            if let Some(o0) = compile("fuzz.nc", data, &unfolded).module {
-                assert!(
-                    short == run_bounded(o0, true),
-                    "the module without folding (-O0) runs otherwise"
-                );
+            let variants = [
+                (
+                    Options {
+                        resolve: false,
+                        ..Options::default()
+                    },
+                    "the module without typed moves runs otherwise",
+                ),
+                (
+                    Options {
+                        optimize: false,
+                        ..Options::default()
+                    },
+                    "the module without folding (-O0) runs otherwise",
+                ),
+            ];
+            for (opts, what) in variants {
+                if let Some(other) = compile("fuzz.nc", data, &opts).module {
+                    assert!(short == run_bounded(other, true), "{what}");
+                }
             }
         }
     }

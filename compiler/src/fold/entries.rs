@@ -58,10 +58,7 @@ pub(super) fn of(m: &Module, scope: &Scope) -> Vec<Facts> {
 }
 
 fn calls_computed_program(f: &Function) -> bool {
-    f.blocks.iter().any(|(_, b)| {
-        matches!(&b.term, Some(Terminator::Call { call, .. })
-            if matches!(call.callee, Callee::Dynamic(_)))
-    })
+    super::writes::calls(f).any(|(callee, _)| callee.is_none())
 }
 
 /// The calls `f` makes where it starts with `entry`, each with what it

@@ -165,6 +165,9 @@ fn join(slot: &Option<Facts>, f: &Facts) -> Facts {
 /// Folds every function of `m`; the W116 warnings of what the values
 /// known prove (a fault of constant operands alone is build's to warn of).
 pub fn module(m: &mut Module, machine: &Machine) -> Vec<FileDiag> {
+    if !m.functions.iter().any(reads_variables) {
+        return Vec::new(); // Nothing to fold (a plain program).
+    }
     let g66 = m.functions.iter().any(has_modal_call);
     let m99_p = m.functions.iter().skip(1).any(|f| {
         f.blocks
@@ -209,9 +212,7 @@ impl Scope {
 }
 
 fn has_modal_call(f: &Function) -> bool {
-    f.blocks.iter().any(|(_, b)| {
-        matches!(&b.term, Some(Terminator::Call { call, .. }) if call.kind == CallKind::Modal)
-    })
+    writes::calls(f).any(|(_, kind)| kind == CallKind::Modal)
 }
 
 /// Whether anything in `f` reads a variable (most long programs do not).
@@ -331,9 +332,7 @@ impl<'s> Flow<'s> {
         let mut facts = self.block_in.get(b.index())?.clone()?;
         for &op in &f.blocks.get(b)?.ops {
             let o = f.ops.get(op)?;
-            if let (Op::Seq(_), Some(seq)) = (o, &self.seq_in) {
-                facts = facts.join(seq);
-            }
+            facts = entering(o, facts, self.seq_in.as_ref());
             transfer(f, o, &mut facts);
         }
         Some(facts)
@@ -375,6 +374,15 @@ fn after_call(call: &Call, mut facts: Facts, scope: &Scope) -> Facts {
     facts
 }
 
+/// The facts before `o`: a numbered block also joins what a jump to a
+/// number brings (`seq_in`).
+fn entering(o: &Op, facts: Facts, seq_in: Option<&Facts>) -> Facts {
+    match (o, seq_in) {
+        (Op::Seq(_), Some(seq)) => facts.join(seq),
+        _ => facts,
+    }
+}
+
 /// What one operation changes.
 fn transfer(f: &Function, op: &Op, facts: &mut Facts) {
     match op {
@@ -413,7 +421,7 @@ fn nc_block(f: &Function, nc: &NcBlock, facts: &mut Facts) {
         return; // Nothing to forget (most blocks of a long program).
     }
     match nc_writes(f, nc) {
-        Some(vars) => vars.into_iter().for_each(|n| facts.forget(n)),
+        Some(vars) => vars.for_each(|n| facts.forget(n)),
         None => facts.forget_all(),
     }
     if facts.g66 {
@@ -424,17 +432,17 @@ fn nc_block(f: &Function, nc: &NcBlock, facts: &mut Facts) {
 /// The variables an NC block itself writes: #995–#999 (G31's skip
 /// position) and, for a G10 L52 read (N and R words), the one R names;
 /// `None`: any (a computed R).
-fn nc_writes(f: &Function, nc: &NcBlock) -> Option<Vec<u32>> {
-    let mut vars: Vec<u32> = (995..=999).collect();
+fn nc_writes(f: &Function, nc: &NcBlock) -> Option<impl Iterator<Item = u32>> {
     let words = f.words_of(nc);
     let has = |c: u8| words.iter().find(|w| w.addr == addr(c));
-    if let (Some(_), Some(r)) = (has(b'N'), has(b'R')) {
-        match r.constant() {
-            Some(v) if v >= 0.0 => vars.push(nc::block::round_half_away(v) as u32),
+    let read = match (has(b'N'), has(b'R')) {
+        (Some(_), Some(r)) => match r.constant() {
+            Some(v) if v >= 0.0 => Some(nc::block::round_half_away(v) as u32),
             _ => return None,
-        }
-    }
-    Some(vars)
+        },
+        _ => None,
+    };
+    Some((995..=999).chain(read))
 }
 
 /// The value of expression `h` where `facts` hold: `None` when it reads a
@@ -507,8 +515,8 @@ impl<'a> Rewrite<'a> {
             .map(|k| k.ops.clone())
             .unwrap_or_default();
         for op in ops {
-            if let (Some(Op::Seq(_)), Some(seq)) = (self.f.ops.get(op), seq_in) {
-                facts = facts.join(seq);
+            if let Some(o) = self.f.ops.get(op) {
+                facts = entering(o, facts, seq_in);
             }
             self.op(op, &facts);
             if let Some(o) = self.f.ops.get(op) {
@@ -639,8 +647,12 @@ impl<'a> Rewrite<'a> {
                 },
                 WordValue::Const(..) => w,
             };
-            self.f.words[kept] = w;
-            self.f.word_spans[kept] = span;
+            // (`kept` ≤ `i`, which is in range.)
+            if let (Some(dw), Some(ds)) =
+                (self.f.words.get_mut(kept), self.f.word_spans.get_mut(kept))
+            {
+                (*dw, *ds) = (w, span);
+            }
             kept += 1;
         }
         (kept - a) as u32

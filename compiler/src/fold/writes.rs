@@ -120,9 +120,9 @@ fn modal_writes(m: &Module, all: &[Writes]) -> Writes {
     w
 }
 
-/// `f`'s calls, other than G66's setting: the callee (`None`: computed)
+/// `f`'s calls, G66's setting included: the callee (`None`: computed)
 /// and the kind.
-fn calls(f: &Function) -> impl Iterator<Item = (Option<usize>, CallKind)> + '_ {
+pub(super) fn calls(f: &Function) -> impl Iterator<Item = (Option<usize>, CallKind)> + '_ {
     f.blocks.iter().filter_map(|(_, b)| match &b.term {
         Some(Terminator::Call { call, .. }) => {
             let callee = match call.callee {
