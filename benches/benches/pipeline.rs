@@ -14,7 +14,8 @@ const LOOP_ITERATIONS: usize = 100_000;
 
 /// Canon lines of a run; a failure stops the bench with its message.
 fn lines(src: &str) -> u64 {
-    match compile_and_run(src, std::io::sink()) {
+    // With the loop JIT as `gbvm run` has it by default.
+    match compile_and_run(src, std::io::sink(), jit::Mode::Auto) {
         Ok((n, _)) => n,
         Err(e) => panic!("the bench program failed: {e}"),
     }

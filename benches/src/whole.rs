@@ -27,6 +27,14 @@ pub fn macro_loop(n: usize) -> String {
     )
 }
 
+/// Issue #17's numeric loop: `n` rounds of arithmetic, comparisons and
+/// functions (one SIN, SQRT, ABS, FIX; a MOD-free IF), one move at the end.
+pub fn numeric_loop(n: usize) -> String {
+    format!(
+        "G98 G00 X50 Z2\n#1=0\n#2=0\n#3=0\nWHILE[#1LT{n}]DO1\n#4=#1*0.001\n#2=#2+SIN[#4]*0.5-#4*0.01\nIF[#2LT-100]THEN#2=#2+100\n#3=#3+SQRT[ABS[#2]]/[#1+1]-FIX[#4]\n#1=#1+1\nEND1\nG01 X[#2] Z[-#3] F100\nM30\n"
+    )
+}
+
 /// Prints each event as one canon line into a buffered writer, as
 /// `gbvm run --emit canon` does; counts the lines. Write errors are
 /// kept, not raised: a bench writes to a sink that cannot fail.
@@ -68,9 +76,14 @@ impl<W: Write> Sink for CanonText<W> {
 }
 
 /// The whole pipeline on one source text: compile, write the module's
-/// bytes, load and verify them, run on the reference machine printing the
-/// canon into `out`. Gives the canon's line count, or what failed.
-pub fn compile_and_run<W: Write>(src: &str, out: W) -> Result<(u64, Option<W>), String> {
+/// bytes, load and verify them, run on the reference machine (its loops
+/// compiled as `jit` says) printing the canon into `out`. Gives the
+/// canon's line count, or what failed.
+pub fn compile_and_run<W: Write>(
+    src: &str,
+    out: W,
+    jit: jit::Mode,
+) -> Result<(u64, Option<W>), String> {
     let compiled = compiler::compile("bench.nc", src.as_bytes(), &compiler::Options::default());
     if compiled.has_errors() {
         return Err(compiled.render());
@@ -78,6 +91,12 @@ pub fn compile_and_run<W: Write>(src: &str, out: W) -> Result<(u64, Option<W>), 
     let bytes = compiled.module.ok_or("no module")?.to_bytes();
     let module = isa::Module::from_vec(bytes).map_err(|e| e.to_string())?;
     let mut vm = vm::Vm::new(module, nc::Machine::reference());
+    // No budget: the numeric loop runs more blocks than the machine's
+    // default allows (`gbvm run --max-blocks` for the same).
+    vm.max_blocks = u64::MAX;
+    if let Some(tier) = jit::Jit::new(jit) {
+        vm.set_tier(Box::new(tier));
+    }
     let mut sink = CanonText::new(out);
     let status = vm.run(&mut sink);
     let lines = sink.lines;
@@ -94,7 +113,7 @@ mod tests {
 
     /// The canon of a program, as text.
     fn canon(src: &str) -> String {
-        match compile_and_run(src, Vec::new()) {
+        match compile_and_run(src, Vec::new(), jit::Mode::Off) {
             Ok((_, Some(text))) => String::from_utf8(text).unwrap_or_default(),
             other => panic!("the program runs: {other:?}"),
         }

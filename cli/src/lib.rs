@@ -6,6 +6,7 @@ pub mod exit;
 pub mod expand;
 pub mod explain;
 pub mod io;
+pub mod jit;
 pub mod program_info;
 pub mod progress;
 pub mod report;

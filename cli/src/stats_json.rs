@@ -62,11 +62,54 @@ pub struct Report {
     /// those of the run so far.
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub interrupted_at: Option<Stopped>,
+    /// What the loop JIT did; absent when it compiled nothing.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub jit: Option<Jit>,
+}
+
+/// The loop JIT's work in a run (`gbvm run --jit`).
+#[derive(Debug, Serialize, Deserialize, PartialEq)]
+pub struct Jit {
+    pub loops_compiled: u32,
+    /// Loops it could not compile (they ran interpreted).
+    pub loops_failed: u32,
+    pub compile_ms: f64,
+    /// Times compiled code was entered.
+    pub entries: u64,
+}
+
+impl Jit {
+    /// The report of a tier that compiled (or tried to compile) a loop.
+    pub fn of(s: vm::TierStats) -> Option<Jit> {
+        (s.compiled + s.failed > 0).then(|| Jit {
+            loops_compiled: s.compiled,
+            loops_failed: s.failed,
+            compile_ms: s.compile_ns as f64 / 1e6,
+            entries: s.entries,
+        })
+    }
+
+    /// The line of `gbvm --stats`.
+    pub fn line(&self) -> String {
+        let failed = match self.loops_failed {
+            0 => String::new(),
+            n => format!(" ({n} left interpreted)"),
+        };
+        format!(
+            "jit: {} loops compiled in {:.2} ms{failed}, code entered {} times\n",
+            self.loops_compiled, self.compile_ms, self.entries
+        )
+    }
 }
 
 impl Report {
     /// `files` names the module's source files (`SetPoint::file` indexes).
-    pub fn new(s: &Stats, files: &[String], interrupted_at: Option<Stopped>) -> Report {
+    pub fn new(
+        s: &Stats,
+        files: &[String],
+        interrupted_at: Option<Stopped>,
+        jit: Option<Jit>,
+    ) -> Report {
         let name = |i: u16| files.get(i as usize).cloned().unwrap_or_default();
         Report {
             cycle_time: Duration::of(s.total_s),
@@ -96,6 +139,7 @@ impl Report {
             c_deg: s.c_deg,
             blocks: s.blocks,
             interrupted_at,
+            jit,
         }
     }
 

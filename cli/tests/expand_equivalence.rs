@@ -13,6 +13,9 @@
 //! and the `-E` output's last line must be that comment. A `#3000` alarm is
 //! written as the `#3000` write and compared like any other line.
 
+mod cases;
+
+use cases::{conformance_cases, corpus_cases, Case};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -25,24 +28,10 @@ fn run(bin: &str, args: &[&str]) -> Output {
     Command::new(bin).args(args).output().unwrap()
 }
 
-fn shared(dir: &str) -> Option<PathBuf> {
-    let d = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared")
-        .join(dir);
-    d.is_dir().then_some(d)
-}
-
 fn scratch(tag: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("gbc-expand-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     d
-}
-
-/// One program: its name in reports, its source, its machine file.
-struct Case {
-    name: String,
-    src: PathBuf,
-    machine: Option<PathBuf>,
 }
 
 fn with_machine<'a>(mut args: Vec<&'a str>, machine: &'a Option<PathBuf>) -> Vec<&'a str> {
@@ -148,60 +137,6 @@ fn first_difference(a: &str, b: &str) -> String {
             _ => {}
         }
     }
-}
-
-fn conformance_cases() -> Vec<Case> {
-    let Some(suite) = shared("conformance") else {
-        return Vec::new();
-    };
-    let mut srcs: Vec<PathBuf> = std::fs::read_dir(&suite)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "nc"))
-        .collect();
-    srcs.sort();
-    srcs.into_iter()
-        .map(|src| {
-            let toml = src.with_extension("toml");
-            Case {
-                name: format!("conformance/{}", src.file_stem().unwrap().to_string_lossy()),
-                machine: toml.exists().then_some(toml),
-                src,
-            }
-        })
-        .collect()
-}
-
-/// The corpus on the machines of compiler/tests/corpus.rs: integer
-/// coordinates in increments where the manifest says so; the Doosan's
-/// arcs without a centre as lines.
-fn corpus_cases(dir: &Path) -> Vec<Case> {
-    let Some(corpus) = shared("corpus/public") else {
-        return Vec::new();
-    };
-    let manifest = std::fs::read_to_string(corpus.join("MANIFEST.tsv")).unwrap();
-    let mut cases = Vec::new();
-    for line in manifest.lines().skip(1) {
-        let cols: Vec<&str> = line.split('\t').collect();
-        let (file, features) = (cols[0], cols.get(6).copied().unwrap_or(""));
-        let increment = features.contains("int-units-no-decimal");
-        let doosan = file.starts_with("doosan-lynx300__");
-        let mut toml = String::from("[machine]\n");
-        if increment {
-            toml.push_str("decimal_point = \"increment\"\n");
-        }
-        if doosan {
-            toml.push_str("arc_without_center = \"line\"\n");
-        }
-        let path = dir.join(format!("m-{increment}-{doosan}.toml"));
-        std::fs::write(&path, toml).unwrap();
-        cases.push(Case {
-            name: format!("corpus/{file}"),
-            src: corpus.join(file),
-            machine: Some(path),
-        });
-    }
-    cases
 }
 
 #[test]

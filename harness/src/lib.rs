@@ -5,6 +5,7 @@
 //! seconds each on stable, from seeds and random mutations.
 
 pub mod expr;
+pub mod jit_diff;
 
 use compiler::{compile, Options};
 use nc::Machine;
@@ -38,7 +39,8 @@ pub fn front_end(data: &[u8]) {
 /// The whole compiler: bytes → a module or diagnostics. A module it emits
 /// always verifies and runs within its budget, to the same events and the
 /// same end with the kernel's short path for plain moves as without it
-/// (`nc::exec::plain`), as the module compiled without typed moves (pass
+/// (`nc::exec::plain`), with its loops compiled by the JIT, as the module
+/// compiled without typed moves (pass
 /// `resolve`) and as the module compiled without folding (-O0); a plain
 /// program compiled a few lines at a time
 /// (`compiler::stream`) gives the same module and diagnostics as compiled
@@ -63,10 +65,14 @@ pub fn compiler(data: &[u8]) {
         let back = isa::Module::from_bytes(&bytes);
         assert!(back.is_ok(), "a compiled module must verify: {back:?}");
         if let Ok(m) = back {
-            let short = run_bounded(m.clone(), true);
+            let short = run_bounded(m.clone(), true, jit::Mode::Off);
             assert!(
-                short == run_bounded(m, false),
+                short == run_bounded(m.clone(), false, jit::Mode::Off),
                 "the plain-move path runs otherwise"
+            );
+            assert!(
+                short == run_bounded(m, true, jit::Mode::Always),
+                "the module runs otherwise with its loops compiled"
             );
             let variants = [
                 (
@@ -86,7 +92,7 @@ pub fn compiler(data: &[u8]) {
             ];
             for (opts, what) in variants {
                 if let Some(other) = compile("fuzz.nc", data, &opts).module {
-                    assert!(short == run_bounded(other, true), "{what}");
+                    assert!(short == run_bounded(other, true, jit::Mode::Off), "{what}");
                 }
             }
         }
@@ -94,7 +100,7 @@ pub fn compiler(data: &[u8]) {
 }
 
 /// The `.gbc` loader and verifier: bytes → an error or a module that runs
-/// within its budget. The CRC trailer is made right first, so that the
+/// within its budget, the same with its loops compiled by the JIT. The CRC trailer is made right first, so that the
 /// fuzzer reaches the verifier instead of stopping at the checksum (the
 /// bytes are also tried as they are).
 pub fn module(data: &[u8]) {
@@ -106,7 +112,11 @@ pub fn module(data: &[u8]) {
     fixed.extend_from_slice(&crc32fast::hash(&fixed).to_le_bytes());
     if let Ok(m) = isa::Module::from_bytes(&fixed) {
         let _ = m.disassemble();
-        run_bounded(m, true);
+        let interpreted = run_bounded(m.clone(), true, jit::Mode::Off);
+        assert!(
+            interpreted == run_bounded(m, true, jit::Mode::Always),
+            "the module runs otherwise with its loops compiled"
+        );
     }
 }
 
@@ -132,13 +142,17 @@ struct Run {
 }
 
 /// Runs a verified module on the reference machine with a small block
-/// budget, plain moves on the kernel's short path or not; it must end
+/// budget, plain moves on the kernel's short path or not, its loops
+/// compiled by the JIT or not (`tier`); it must end
 /// (done, alarm or budget) within `MAX_STEPS`.
-fn run_bounded(module: isa::Module, plain: bool) -> Run {
+fn run_bounded(module: isa::Module, plain: bool, tier: jit::Mode) -> Run {
     use std::hash::{Hash, Hasher};
     let mut vm = Vm::new(module, Machine::reference());
     vm.max_blocks = MAX_BLOCKS;
     vm.nc.set_plain_path(plain);
+    if let Some(t) = jit::Jit::new(tier) {
+        vm.set_tier(Box::new(t));
+    }
     let mut events: Vec<nc::Event> = Vec::new();
     let mut hash = std::collections::hash_map::DefaultHasher::new();
     // Instructions spent (whole slices of 10 000) and early returns (an

@@ -145,6 +145,11 @@ proptest! {
     fn vm_against_reference_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..64)) {
         harness::expr::vm_against_reference(&data);
     }
+
+    #[test]
+    fn jit_against_interpreter_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..256)) {
+        harness::jit_diff::differential(&data);
+    }
 }
 
 #[test]

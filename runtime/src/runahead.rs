@@ -380,6 +380,10 @@ impl RunAhead {
         if let Some(storage) = self.vm.take_storage() {
             vm.set_storage(storage);
         }
+        // So does the loop tier (it compiles the clone afresh).
+        if let Some(tier) = self.vm.take_tier() {
+            vm.set_tier(tier);
+        }
         self.vm = vm;
         self.vm.sync_positions = true;
         self.vm.max_blocks = self.max_blocks;

@@ -8,6 +8,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::loc_cache::LocCache;
+use crate::tier::{Entry, LoopState, Tier};
 use crate::vars::{slot, Slot, Vars};
 use isa::{Instr, Module};
 use nc::block::round_half_away;
@@ -151,7 +152,17 @@ pub struct Vm {
     /// The motion was synchronised since the last NC block.
     synced: bool,
     storage: Option<Box<dyn Storage>>,
+    /// Compiled code for hot loops, if the host gave a tier.
+    tier: Option<Box<dyn Tier>>,
+    /// The pc after the instruction at which the tier's code last left
+    /// (it may be entered again there); `NO_PC` when none.
+    resume_at: u32,
+    /// Instructions the current `step` may still run.
+    fuel: u64,
 }
+
+/// No pc (`resume_at` unset).
+const NO_PC: u32 = u32::MAX;
 
 type Fault = NcError;
 
@@ -201,6 +212,9 @@ impl Vm {
             sync_positions: false,
             synced: false,
             storage: None,
+            tier: None,
+            resume_at: NO_PC,
+            fuel: 0,
         }
     }
 
@@ -257,12 +271,34 @@ impl Vm {
         self.storage.take()
     }
 
-    /// Runs at most `budget` instructions.
+    /// Runs hot loops through `tier` from now on (the `jit` crate's).
+    pub fn set_tier(&mut self, tier: Box<dyn Tier>) {
+        self.tier = Some(tier);
+    }
+
+    /// What the tier has done, if there is one.
+    pub fn tier_stats(&self) -> Option<crate::tier::TierStats> {
+        self.tier.as_ref().map(|t| t.stats())
+    }
+
+    /// The tier, taken out (a host that replaces the VM after a reset
+    /// hands it to the new one).
+    pub fn take_tier(&mut self) -> Option<Box<dyn Tier>> {
+        self.resume_at = NO_PC;
+        self.tier.take()
+    }
+
+    /// Runs at most `budget` instructions (those a tier ran included).
     pub fn step(&mut self, budget: u64, sink: &mut dyn Sink) -> Status {
         if self.done {
             return Status::Done;
         }
-        for _ in 0..budget {
+        self.fuel = budget;
+        while self.fuel > 0 {
+            self.fuel -= 1;
+            if self.pc == self.resume_at {
+                self.enter_tier(Entry::Resume);
+            }
             let pc = self.pc;
             let result = self
                 .exec_one(sink)
@@ -378,11 +414,39 @@ impl Vm {
     /// with E6005 at the latest. (GOTO, calls and M99 are charged where
     /// they run.)
     fn jump(&mut self, target: u32) -> Result<(), Fault> {
-        if target < self.pc {
-            self.count_block()?;
-        }
+        let from = self.pc - 1;
         self.pc = target;
+        if target <= from {
+            self.count_block()?;
+            if self.tier.is_some() {
+                self.enter_tier(Entry::BackEdge { from });
+            }
+        }
         Ok(())
+    }
+
+    /// Lets the tier run from the pc, if it has code there.
+    #[cold]
+    fn enter_tier(&mut self, entry: Entry) {
+        let Some(tier) = self.tier.as_mut() else {
+            return;
+        };
+        let (locals, common, persistent) = self.vars.split();
+        let state = LoopState {
+            regs: &mut self.regs,
+            locals,
+            common,
+            persistent,
+            words: &mut self.words,
+            blocks: &mut self.blocks,
+            max_blocks: self.max_blocks,
+            fuel: &mut self.fuel,
+        };
+        self.resume_at = NO_PC;
+        if let Some(pc) = tier.enter(&self.module, self.pc, entry, state) {
+            self.pc = pc;
+            self.resume_at = pc.saturating_add(1);
+        }
     }
 
     fn reg(&self, r: u8) -> f64 {

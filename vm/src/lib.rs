@@ -22,7 +22,9 @@ extern crate alloc;
 
 mod interp;
 mod loc_cache;
+mod tier;
 mod vars;
 
 pub use interp::{Alarm, Status, Storage, Vm, PROFILE};
 pub use nc::{Event, Sink};
+pub use tier::{Entry, LoopState, Tier, TierStats};

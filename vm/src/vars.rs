@@ -63,6 +63,16 @@ impl Vars {
         }
     }
 
+    /// The current call level's #1–#33, #100–#199 and #500–#999 (read
+    /// only), for a tier's compiled code.
+    pub fn split(&mut self) -> (&mut [f64; 33], &mut [f64; 100], &[f64; 500]) {
+        if self.locals.is_empty() {
+            self.locals.push([VACANT; 33]);
+        }
+        let top = self.locals.len() - 1;
+        (&mut self.locals[top], &mut self.common, &self.persistent)
+    }
+
     /// Sets a slot; a changed persistent value marks them dirty.
     pub fn set(&mut self, s: &Slot, v: f64) {
         match *s {

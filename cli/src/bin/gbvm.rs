@@ -122,6 +122,11 @@ enum Command {
         /// crash-safely whenever the program changes them).
         #[arg(long, value_name = "FILE")]
         vars: Option<PathBuf>,
+        /// Compile hot macro loops to machine code: auto (a loop that has
+        /// gone round 500 times), always (at its first round), off. The
+        /// output is the same either way.
+        #[arg(long, value_enum, default_value = "auto", require_equals = true)]
+        jit: cli::jit::JitMode,
     },
     /// Run a module through the runtime and certify every period: axis
     /// velocity, acceleration (and jerk where limited) within the
@@ -296,6 +301,7 @@ fn main() -> ExitCode {
             max_time,
             repeat,
             vars,
+            jit,
         } => {
             // --stats alone takes stdout; an explicit --emit keeps it.
             let stats_out = match (stats, emit) {
@@ -338,6 +344,7 @@ fn main() -> ExitCode {
                     repeat,
                     vars.as_deref(),
                     quiet,
+                    jit,
                 );
             }
             let out = Outputs {
@@ -357,6 +364,7 @@ fn main() -> ExitCode {
                 repeat,
                 vars.as_deref(),
                 &out,
+                jit,
             )
         }
     }
@@ -379,6 +387,7 @@ fn run(
     repeat: u32,
     vars: Option<&Path>,
     quiet: bool,
+    jit: cli::jit::JitMode,
 ) -> ExitCode {
     let module = match load(file) {
         Ok(m) => m,
@@ -400,6 +409,7 @@ fn run(
         vm.max_blocks = n;
     }
     vm.repeat = repeat.max(1);
+    jit.attach(&mut vm);
     let store = vars.map(Path::to_path_buf).or_else(|| {
         let f = &vm.nc.machine.r#macro.persistent_file;
         (!f.is_empty()).then(|| PathBuf::from(f))
@@ -513,6 +523,7 @@ fn run_timed(
     repeat: u32,
     vars: Option<&Path>,
     out: &Outputs,
+    jit: cli::jit::JitMode,
 ) -> ExitCode {
     catch_interrupt();
     let module = match load(file) {
@@ -544,6 +555,7 @@ fn run_timed(
         ctl.set_max_blocks(n);
     }
     ctl.set_repeat(repeat);
+    jit.attach(ctl.vm_mut());
     let store = vars.map(Path::to_path_buf).or_else(|| {
         let f = &ctl.machine().r#macro.persistent_file;
         (!f.is_empty()).then(|| PathBuf::from(f))
@@ -678,7 +690,13 @@ fn run_timed(
         line: last.line,
     });
     if let Some((format, StatsTo::Stdout)) = out.stats {
-        canon.write(&stats_text(&stats, format, &files, &stopped_at));
+        canon.write(&stats_text(
+            &stats,
+            format,
+            &files,
+            &stopped_at,
+            ctl.vm().tier_stats(),
+        ));
     }
     let output_error = canon.finish();
     if let Some(Err(e)) = vars_file.map(cli::vars::VarsFile::finish) {
@@ -705,7 +723,7 @@ fn run_timed(
         let _ = write!(
             std::io::stderr().lock(),
             "{}",
-            stats_text(&stats, format, &files, &stopped_at)
+            stats_text(&stats, format, &files, &stopped_at, ctl.vm().tier_stats())
         );
     }
     if let Some(at) = &stopped_at {
@@ -772,12 +790,17 @@ fn stats_text(
     format: StatsFormat,
     files: &[String],
     stopped_at: &Option<cli::stats_json::Stopped>,
+    tier: Option<vm::TierStats>,
 ) -> String {
+    let jit = tier.and_then(cli::stats_json::Jit::of);
     match format {
         StatsFormat::Text => {
             let mut t = stats.to_string();
             if let Some(at) = stopped_at {
                 t.push_str(&format!("interrupted at: {}:{}\n", at.file, at.line));
+            }
+            if let Some(j) = &jit {
+                t.push_str(&j.line());
             }
             t
         }
@@ -786,7 +809,7 @@ fn stats_text(
                 file: a.file.clone(),
                 line: a.line,
             });
-            let mut j = cli::stats_json::Report::new(stats, files, stopped).to_json();
+            let mut j = cli::stats_json::Report::new(stats, files, stopped, jit).to_json();
             j.push('\n');
             j
         }

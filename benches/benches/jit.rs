@@ -1,0 +1,79 @@
+//! Criterion group `jit` (issue #17): the macro programs run with the loop
+//! JIT off and on (compiled at a loop's first round), and the time to
+//! compile one loop.
+//!
+//! - `numeric_1M_*`: the numeric loop of `whole::numeric_loop`, 10⁶
+//!   rounds, one move at the end; compile + run to canon in one process.
+//! - `macro_loop_100k_*`: issue #14's loop (4 assignments and a G01 per
+//!   round), compile + run to canon.
+//! - `ellipse_*`: an ellipse of 3 601 points by a macro (`macro.rs`'s).
+//! - `compile_*`: Cranelift compiling one loop of the ellipse program and
+//!   of the numeric loop (the module made once).
+
+use benches::build;
+use benches::whole::{compile_and_run, macro_loop, numeric_loop};
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use std::time::Duration;
+
+const NUMERIC_ROUNDS: usize = 1_000_000;
+const LOOP_ROUNDS: usize = 100_000;
+
+/// An ellipse of 3601 points: X = 2a·cos t, Z = b·sin t.
+const ELLIPSE: &str = "#1=40\n#2=20\n#3=0\nG00 X80 Z0\nWHILE[#3LE360]DO1\nG01 X[2*#1*COS[#3]] Z[#2*SIN[#3]-20] F0.1\n#3=#3+0.1\nEND1\nM30\n";
+
+/// Canon lines of a run; a failure stops the bench with its message.
+fn lines(src: &str, mode: jit::Mode) -> u64 {
+    match compile_and_run(src, std::io::sink(), mode) {
+        Ok((n, _)) => n,
+        Err(e) => panic!("the bench program failed: {e}"),
+    }
+}
+
+fn runs(c: &mut Criterion) {
+    let mut g = c.benchmark_group("jit");
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(5))
+        .warm_up_time(Duration::from_secs(1));
+    let modes = [("off", jit::Mode::Off), ("on", jit::Mode::Always)];
+    let programs = [
+        ("numeric_1M", numeric_loop(NUMERIC_ROUNDS), NUMERIC_ROUNDS),
+        ("macro_loop_100k", macro_loop(LOOP_ROUNDS), LOOP_ROUNDS),
+        ("ellipse_3601", ELLIPSE.to_string(), 3601),
+    ];
+    for (name, src, rounds) in &programs {
+        g.throughput(Throughput::Elements(*rounds as u64));
+        for (mode_name, mode) in modes {
+            g.bench_function(format!("{name}_{mode_name}"), |b| {
+                b.iter(|| lines(src, mode))
+            });
+        }
+    }
+    g.finish();
+}
+
+/// Compile time of one loop: each iteration compiles it again (into the
+/// same JIT module, as a tier does for a module's loops).
+fn compile(c: &mut Criterion) {
+    let mut g = c.benchmark_group("jit");
+    g.sample_size(50).measurement_time(Duration::from_secs(5));
+    for (name, src) in [
+        ("ellipse", ELLIPSE.to_string()),
+        ("numeric", numeric_loop(10)),
+    ] {
+        let module = build(&src);
+        let Some(&(head, tail)) = jit::loops(&module).first() else {
+            panic!("the {name} program has no loop");
+        };
+        let mut compiler = match jit::Compiler::new() {
+            Ok(c) => c,
+            Err(e) => panic!("no JIT here: {e}"),
+        };
+        g.bench_function(format!("compile_{name}_loop"), |b| {
+            b.iter(|| compiler.compile(&module, head, tail))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, runs, compile);
+criterion_main!(benches);

@@ -1,0 +1,27 @@
+//! The JIT against the interpreter on random macro programs (the
+//! generator is `harness::jit_diff`): a fixed seed, a bounded count.
+//! `JIT_CASES=n` runs more (the stop's note gives a long run); the fuzz
+//! target `jit` runs the same comparison on a fuzzer's bytes.
+
+use harness::jit_diff::{compare, program, Choices};
+
+#[test]
+fn random_macro_programs_run_the_same_compiled_and_interpreted() {
+    let cases: u64 = std::env::var("JIT_CASES").map_or(400, |n| n.parse().unwrap_or(400));
+    let mut c = Choices::Seed(0x1175_c0de);
+    let (mut compiled, mut entries) = (0u64, 0u64);
+    for i in 0..cases {
+        let src = program(&mut c);
+        // Budgets and steps vary, so that runs end on E6005 inside
+        // compiled loops and steps end inside them too.
+        let max_blocks = [60, 400, 5_000][(i % 3) as usize];
+        let step = [1, 13, 1 << 16][((i / 3) % 3) as usize];
+        let stats = compare(&src, max_blocks, step);
+        compiled += u64::from(stats.compiled);
+        entries += stats.entries;
+    }
+    // The comparison is not empty: loops were compiled and their code ran.
+    eprintln!("{cases} programs: {compiled} loops compiled, code entered {entries} times");
+    assert!(compiled >= cases, "{compiled} loops compiled");
+    assert!(entries >= 10 * cases, "code entered {entries} times");
+}

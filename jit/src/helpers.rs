@@ -1,0 +1,66 @@
+//! The functions compiled code calls for what it does not inline: the
+//! kernel's own value functions (`nc::value`), so that a function or a MOD
+//! gives the interpreter's bits, and the word buffer.
+//!
+//! A fault is reported as NaN: no operation here returns NaN as a value
+//! (a result that is not finite is itself a fault, E5006), so the code
+//! takes NaN as "leave to the interpreter at this instruction", which then
+//! raises the alarm with its message.
+
+use nc::value::{self, Bin, Func};
+use nc::words::Words;
+
+/// The binary operations the code calls out for, by the number it passes.
+pub const BINARY_OPS: [Bin; 5] = [Bin::Div, Bin::Mod, Bin::And, Bin::Or, Bin::Xor];
+
+/// The index of `op` in [`BINARY_OPS`].
+pub fn binary_code(op: Bin) -> Option<u32> {
+    BINARY_OPS.iter().position(|&o| o == op).map(|i| i as u32)
+}
+
+pub extern "C" fn binary(op: u32, a: f64, b: f64) -> f64 {
+    match BINARY_OPS.get(op as usize) {
+        Some(&op) => value::binary(op, a, b).unwrap_or(f64::NAN),
+        None => f64::NAN,
+    }
+}
+
+pub extern "C" fn func(code: u32, a: f64) -> f64 {
+    let Some(f) = u8::try_from(code).ok().and_then(Func::from_code) else {
+        return f64::NAN;
+    };
+    value::func(f, a).unwrap_or(f64::NAN)
+}
+
+pub extern "C" fn atan2(y: f64, x: f64) -> f64 {
+    value::atan2(y, x).unwrap_or(f64::NAN)
+}
+
+/// Adds a word to the block being built.
+///
+/// # Safety
+/// `words` is the `Words` the VM lent for this entry of the code (the
+/// code passes on the pointer it was given, nothing else).
+pub unsafe extern "C" fn push_word(words: *mut Words, addr: u32, v: f64, flags: u32) {
+    // SAFETY: the caller's contract; the VM holds no other reference to
+    // its words while the code runs.
+    let words = unsafe { &mut *words };
+    words.push(addr as u8, v, flags as u8);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn faults_come_back_as_nan_and_values_as_the_kernel_computes_them() {
+        let div = binary_code(Bin::Div).unwrap_or(99);
+        assert!(binary(div, 1.0, 0.0).is_nan());
+        assert_eq!(binary(div, 1.0, 4.0), 0.25);
+        assert!(binary(99, 1.0, 1.0).is_nan());
+        assert!(func(Func::Sqrt as u32, -1.0).is_nan());
+        assert_eq!(func(Func::Sqrt as u32, 9.0), 3.0);
+        assert!(func(200, 1.0).is_nan());
+        assert!(atan2(0.0, 0.0).is_nan());
+    }
+}

@@ -1,0 +1,213 @@
+//! The gbc loop JIT: a [`vm::Tier`] that compiles a module's hot macro
+//! loops to machine code with Cranelift.
+//!
+//! The VM counts a loop's rounds at its backward jump and hands them to
+//! the tier; past a threshold ([`Mode`]) the tier compiles the loop, from
+//! its head to that jump, and from then on the round runs as machine code.
+//! What the code does not handle (NC blocks, calls, system variables, a
+//! fault, a charge the block budget cannot take) it leaves at, unexecuted,
+//! to the interpreter, which runs it and hands back at the next
+//! instruction: every block still goes through the kernel, every alarm is
+//! the interpreter's. Compiled code changes nothing else the interpreter
+//! would not: the same values bit for bit (`lower`'s module doc), the same
+//! block budget, the same variables at every exit.
+//!
+//! Compiling happens in the VM's thread, on the interpreter's side of a
+//! controller (the real-time half only consumes set points); a loop that
+//! fails to compile stays interpreted.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::time::Duration;
+
+use isa::Module;
+use vm::{Entry, LoopState, Tier, TierStats};
+
+mod helpers;
+mod lower;
+mod native;
+mod region;
+
+pub use region::is_native;
+
+use native::{Backend, Code};
+use region::Region;
+
+/// When loops are compiled (`gbvm run --jit`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Mode {
+    /// Never: everything is interpreted.
+    Off,
+    /// A loop is compiled once it has gone round [`AUTO_THRESHOLD`] times.
+    #[default]
+    Auto,
+    /// A loop is compiled at its first backward jump (for tests: compiled
+    /// code runs as much as it can).
+    Always,
+}
+
+/// Rounds after which `auto` compiles a loop: compiling one takes about as
+/// long as interpreting a few hundred rounds of it.
+pub const AUTO_THRESHOLD: u32 = 500;
+
+/// A compiled loop.
+struct Loop {
+    region: Region,
+    code: Code,
+}
+
+/// The JIT tier for one module's run (see the crate doc).
+pub struct Jit {
+    threshold: u32,
+    backend: Option<Backend>,
+    /// The code the compiled loops were made from (a tier serves one
+    /// module; another one starts it afresh).
+    code_id: Option<(usize, usize)>,
+    /// Rounds per loop (head, back edge) not compiled yet.
+    rounds: BTreeMap<(u32, u32), u32>,
+    /// Loops tried and not compiled.
+    rejected: BTreeSet<(u32, u32)>,
+    loops: Vec<Loop>,
+    /// Entry pc → the loop entered there (the outermost compiled).
+    entries: BTreeMap<u32, usize>,
+    stats: TierStats,
+}
+
+impl Jit {
+    /// A tier for `mode`; `None` for [`Mode::Off`].
+    pub fn new(mode: Mode) -> Option<Jit> {
+        let threshold = match mode {
+            Mode::Off => return None,
+            Mode::Auto => AUTO_THRESHOLD,
+            Mode::Always => 1,
+        };
+        Some(Jit {
+            threshold,
+            backend: None,
+            code_id: None,
+            rounds: BTreeMap::new(),
+            rejected: BTreeSet::new(),
+            loops: Vec::new(),
+            entries: BTreeMap::new(),
+            stats: TierStats::default(),
+        })
+    }
+
+    /// Forgets everything compiled if `module` is not the one it was for.
+    fn bind(&mut self, module: &Module) {
+        let id = (module.code.as_ptr() as usize, module.code.len());
+        if self.code_id != Some(id) {
+            self.rounds.clear();
+            self.rejected.clear();
+            self.entries.clear();
+            self.loops.clear();
+            self.backend = None;
+            self.code_id = Some(id);
+        }
+    }
+
+    /// Counts a round of the loop `head..=from`, compiling it when hot.
+    fn count_round(&mut self, module: &Module, head: u32, from: u32, num_regs: usize) {
+        let key = (head, from);
+        if self.rejected.contains(&key) {
+            return;
+        }
+        let rounds = self.rounds.entry(key).or_insert(0);
+        *rounds += 1;
+        if *rounds < self.threshold {
+            return;
+        }
+        self.rounds.remove(&key);
+        if self.compile(module, head, from, num_regs).is_none() {
+            self.stats.failed += 1;
+            self.rejected.insert(key);
+        }
+    }
+
+    fn compile(&mut self, module: &Module, head: u32, tail: u32, num_regs: usize) -> Option<()> {
+        let region = Region::find(module, head, tail)?;
+        if self.backend.is_none() {
+            self.backend = Some(Backend::new().ok()?);
+        }
+        let backend = self.backend.as_mut()?;
+        let (code, took) = backend.compile(module, &region, num_regs).ok()?;
+        self.stats.compiled += 1;
+        let ns = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
+        self.stats.compile_ns = self.stats.compile_ns.saturating_add(ns);
+        let index = self.loops.len();
+        for &pc in &region.entries {
+            // An outer loop's code takes over its inner loops' entries.
+            let outer = match self.entries.get(&pc) {
+                Some(&i) => self.loops[i].region.head <= region.head,
+                None => false,
+            };
+            if !outer {
+                self.entries.insert(pc, index);
+            }
+        }
+        self.loops.push(Loop { region, code });
+        Some(())
+    }
+}
+
+/// The compiler alone, for the benches (compile time per loop) and tools:
+/// it compiles a loop and keeps the code without running it.
+pub struct Compiler {
+    backend: Backend,
+}
+
+impl Compiler {
+    /// A compiler for this host; an error where Cranelift has no backend.
+    pub fn new() -> Result<Compiler, String> {
+        Backend::new().map(|backend| Compiler { backend })
+    }
+
+    /// Compiles the loop of `module` from `head` to the backward jump at
+    /// `tail`; how long it took.
+    pub fn compile(&mut self, module: &Module, head: u32, tail: u32) -> Result<Duration, String> {
+        let region = Region::find(module, head, tail)
+            .ok_or_else(|| format!("no loop the JIT compiles at {head}..={tail}"))?;
+        let num_regs = usize::from(module.num_regs.max(1));
+        self.backend
+            .compile(module, &region, num_regs)
+            .map(|(_, took)| took)
+    }
+}
+
+/// The loops of `module`, innermost first: (head, backward jump) of every
+/// backward `jump`.
+pub fn loops(module: &Module) -> Vec<(u32, u32)> {
+    let mut loops: Vec<(u32, u32)> = (0..)
+        .zip(&module.code)
+        .filter_map(|(pc, instr)| match *instr {
+            isa::Instr::Jump { target } if target <= pc => Some((target, pc)),
+            _ => None,
+        })
+        .collect();
+    loops.sort_by_key(|&(head, tail)| tail - head);
+    loops
+}
+
+impl Tier for Jit {
+    fn stats(&self) -> TierStats {
+        self.stats
+    }
+
+    fn enter(
+        &mut self,
+        module: &Module,
+        pc: u32,
+        entry: Entry,
+        state: LoopState<'_>,
+    ) -> Option<u32> {
+        self.bind(module);
+        if let Entry::BackEdge { from } = entry {
+            if !self.entries.contains_key(&pc) {
+                self.count_round(module, pc, from, state.regs.len());
+            }
+        }
+        let &index = self.entries.get(&pc)?;
+        let code = self.loops.get(index)?.code;
+        self.stats.entries += 1;
+        code.run(pc, state)
+    }
+}

@@ -1,0 +1,748 @@
+//! One loop's bytecode as a Cranelift function
+//! `fn(ctx: *mut Ctx, entry: u32) -> u32`: it runs from `entry` and
+//! returns the pc at which the interpreter goes on.
+//!
+//! Registers and the loop's locals and commons live in Cranelift variables
+//! (`declare_var`/`def_var`/`use_var`): loaded from the VM once at the
+//! entry, stored back once at the exit. The arithmetic is the kernel's
+//! (`nc::value`) written out: vacant counts as 0, a result that is not
+//! finite faults, −0 becomes 0; the same IEEE operations in the same
+//! order, none fused. The functions that round (SIN … EXP, ROUND, BIN,
+//! BCD), MOD and the bitwise operations call the kernel's code itself
+//! (`helpers`).
+
+use std::collections::{BTreeMap, HashSet};
+use std::mem::offset_of;
+
+use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
+use cranelift_codegen::ir::immediates::Ieee64;
+use cranelift_codegen::ir::{types, Block, BlockArg, FuncRef, InstBuilder, MemFlags, Type, Value};
+use cranelift_frontend::{FunctionBuilder, Switch, Variable};
+use isa::{Instr, Module};
+use nc::value::{Bin, Func, Rel, VACANT};
+
+use crate::helpers::binary_code;
+use crate::native::Ctx;
+use crate::region::{is_native, is_pure, Place, Region};
+
+/// The helpers, imported into the function being built.
+pub struct Refs {
+    pub binary: FuncRef,
+    pub func: FuncRef,
+    pub atan2: FuncRef,
+    pub push_word: FuncRef,
+}
+
+/// The pointers the entry block loads from the context (they dominate
+/// every other block).
+struct Bases {
+    regs: Value,
+    locals: Value,
+    common: Value,
+    persistent: Value,
+    words: Value,
+    max_blocks: Value,
+}
+
+/// The arithmetic written out inline.
+#[derive(Clone, Copy)]
+enum Arith {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+/// An operand: a register or a constant-pool entry.
+#[derive(Clone, Copy)]
+enum Src {
+    Reg(u8),
+    Const(u32),
+}
+
+pub struct Lower<'a, 'f> {
+    b: FunctionBuilder<'f>,
+    module: &'a Module,
+    region: &'a Region,
+    refs: Refs,
+    ctx: Value,
+    bases: Bases,
+    /// A variable per register below `num_regs` that the loop uses.
+    regs: Vec<Option<Variable>>,
+    vars: BTreeMap<u32, Variable>,
+    blocks: Variable,
+    fuel: Variable,
+    labels: BTreeMap<u32, Block>,
+    exit: Block,
+    /// Values known not to be vacant (constants, results that passed the
+    /// finite check): `num` of one is itself.
+    plain: HashSet<Value>,
+    /// The register the last instruction set to a comparison's result,
+    /// with that result as a truth value (a `jumpifnot` right after it
+    /// branches on the truth value).
+    last_compare: Option<(u8, Value)>,
+    /// In a restartable run (`Region::restart`): its start, and the sum
+    /// of `v − v` over its results so far, NaN once one was not finite.
+    pending: Option<(u32, Value)>,
+}
+
+const TRUSTED: MemFlags = MemFlags::trusted();
+
+impl<'a, 'f> Lower<'a, 'f> {
+    /// Builds the whole function into `b` (whose signature is set).
+    pub fn build(
+        mut b: FunctionBuilder<'f>,
+        module: &'a Module,
+        region: &'a Region,
+        refs: Refs,
+        ptr: Type,
+        num_regs: usize,
+    ) {
+        let start = b.create_block();
+        b.append_block_params_for_function_params(start);
+        b.switch_to_block(start);
+        let (ctx, entry) = (b.block_params(start)[0], b.block_params(start)[1]);
+        let field = |b: &mut FunctionBuilder, ty: Type, offset: usize| {
+            b.ins().load(ty, TRUSTED, ctx, offset as i32)
+        };
+        let bases = Bases {
+            regs: field(&mut b, ptr, offset_of!(Ctx, regs)),
+            locals: field(&mut b, ptr, offset_of!(Ctx, locals)),
+            common: field(&mut b, ptr, offset_of!(Ctx, common)),
+            persistent: field(&mut b, ptr, offset_of!(Ctx, persistent)),
+            words: field(&mut b, ptr, offset_of!(Ctx, words)),
+            max_blocks: field(&mut b, types::I64, offset_of!(Ctx, max_blocks)),
+        };
+        let blocks = b.declare_var(types::I64);
+        let fuel = b.declare_var(types::I64);
+        let exit = b.create_block();
+        b.append_block_param(exit, types::I32);
+        let mut regs = vec![None; num_regs];
+        for &r in &region.regs {
+            if let Some(slot) = regs.get_mut(r as usize) {
+                *slot = Some(b.declare_var(types::F64));
+            }
+        }
+        let vars = region
+            .vars
+            .iter()
+            .map(|&n| (n, b.declare_var(types::F64)))
+            .collect();
+        let labels = region
+            .leaders
+            .iter()
+            .map(|&pc| (pc, b.create_block()))
+            .collect();
+        let mut lower = Lower {
+            b,
+            module,
+            region,
+            refs,
+            ctx,
+            bases,
+            regs,
+            vars,
+            blocks,
+            fuel,
+            labels,
+            exit,
+            plain: HashSet::new(),
+            last_compare: None,
+            pending: None,
+        };
+        lower.load_state(entry);
+        lower.body();
+        lower.exit_block();
+        lower.b.seal_all_blocks();
+        lower.b.finalize();
+    }
+
+    /// The entry: the state into variables, then on to the entry's block.
+    fn load_state(&mut self, entry: Value) {
+        for (r, var) in self.cached_regs() {
+            let v = self
+                .b
+                .ins()
+                .load(types::F64, TRUSTED, self.bases.regs, 8 * r);
+            self.b.def_var(var, v);
+        }
+        for (base, offset, var) in self.cached_vars() {
+            let v = self.b.ins().load(types::F64, TRUSTED, base, offset);
+            self.b.def_var(var, v);
+        }
+        let blocks = self.load_ctx(types::I64, offset_of!(Ctx, blocks));
+        self.b.def_var(self.blocks, blocks);
+        let fuel = self.load_ctx(types::I64, offset_of!(Ctx, fuel));
+        self.b.def_var(self.fuel, fuel);
+        let mut switch = Switch::new();
+        for &pc in &self.region.entries {
+            if let Some(&block) = self.labels.get(&pc) {
+                switch.set_entry(u128::from(pc), block);
+            }
+        }
+        // An entry the loop does not have runs nothing.
+        let nowhere = self.b.create_block();
+        switch.emit(&mut self.b, entry, nowhere);
+        self.b.switch_to_block(nowhere);
+        self.b.ins().jump(self.exit, &[BlockArg::Value(entry)]);
+    }
+
+    /// The exit: the pc returned (the state is in the VM already).
+    fn exit_block(&mut self) {
+        self.b.switch_to_block(self.exit);
+        let pc = self.b.block_params(self.exit)[0];
+        self.b.ins().return_(&[pc]);
+    }
+
+    fn cached_regs(&self) -> Vec<(i32, Variable)> {
+        (0..)
+            .zip(&self.regs)
+            .filter_map(|(r, v)| v.map(|v| (r, v)))
+            .collect()
+    }
+
+    fn cached_vars(&self) -> Vec<(Value, i32, Variable)> {
+        self.vars
+            .iter()
+            .filter_map(|(&n, &var)| match Place::of(n) {
+                Place::Local(i) => Some((self.bases.locals, 8 * i as i32, var)),
+                Place::Common(i) => Some((self.bases.common, 8 * i as i32, var)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    fn load_ctx(&mut self, ty: Type, offset: usize) -> Value {
+        self.b.ins().load(ty, TRUSTED, self.ctx, offset as i32)
+    }
+
+    /// Every instruction of the loop, in order; a leader starts a block.
+    fn body(&mut self) {
+        let mut open = false;
+        for pc in self.region.head..=self.region.tail {
+            let instr = self.module.code[pc as usize];
+            let leader = self.labels.get(&pc).copied();
+            if open && (leader.is_some() || !is_pure(&instr)) {
+                self.check_run();
+            }
+            if let Some(block) = leader {
+                if open {
+                    self.b.ins().jump(block, &[]);
+                }
+                self.b.switch_to_block(block);
+                self.last_compare = None;
+            }
+            let compare = self.last_compare.take();
+            if let Instr::JumpIfNot { cond, target } = instr {
+                self.last_compare = compare.filter(|&(r, _)| r == cond);
+                self.jump_if_not(pc, cond, target);
+                open = false;
+                continue;
+            }
+            open = self.instr(pc, instr);
+        }
+        if open {
+            self.check_run();
+            self.exit_at(self.region.tail + 1);
+        }
+        // The blocks of leaders past the loop leave at their pc.
+        let outside: Vec<(u32, Block)> = self
+            .labels
+            .range(self.region.tail + 1..)
+            .map(|(&pc, &b)| (pc, b))
+            .collect();
+        for (pc, block) in outside {
+            self.b.switch_to_block(block);
+            self.exit_at(pc);
+        }
+    }
+
+    /// One instruction; whether the block goes on after it.
+    fn instr(&mut self, pc: u32, instr: Instr) -> bool {
+        use Instr::*;
+        if !is_native(&instr) {
+            self.exit_at(pc);
+            return false;
+        }
+        match instr {
+            LoadK { dst, k } => {
+                let v = self.konst(k);
+                self.set(dst, v);
+            }
+            LoadNull { dst } => {
+                let v = self.f64(VACANT);
+                self.set(dst, v);
+            }
+            Mov { dst, src } => {
+                let v = self.reg(src);
+                self.set(dst, v);
+            }
+            Neg { dst, a } => {
+                let a = self.reg(a);
+                let x = self.num(a);
+                let v = self.b.ins().fneg(x);
+                let v = self.plain_zero(v);
+                self.set(dst, v);
+            }
+            Add { dst, a, b } => self.arith(pc, Arith::Add, dst, a, Src::Reg(b)),
+            Sub { dst, a, b } => self.arith(pc, Arith::Sub, dst, a, Src::Reg(b)),
+            Mul { dst, a, b } => self.arith(pc, Arith::Mul, dst, a, Src::Reg(b)),
+            Div { dst, a, b } => self.arith(pc, Arith::Div, dst, a, Src::Reg(b)),
+            AddK { dst, a, k } => self.arith(pc, Arith::Add, dst, a, Src::Const(k)),
+            SubK { dst, a, k } => self.arith(pc, Arith::Sub, dst, a, Src::Const(k)),
+            MulK { dst, a, k } => self.arith(pc, Arith::Mul, dst, a, Src::Const(k)),
+            DivK { dst, a, k } => self.arith(pc, Arith::Div, dst, a, Src::Const(k)),
+            Mod { dst, a, b } => self.binary_call(pc, Bin::Mod, dst, a, b),
+            BitAnd { dst, a, b } => self.binary_call(pc, Bin::And, dst, a, b),
+            BitOr { dst, a, b } => self.binary_call(pc, Bin::Or, dst, a, b),
+            BitXor { dst, a, b } => self.binary_call(pc, Bin::Xor, dst, a, b),
+            Func { dst, a, f } => self.func(pc, dst, a, f),
+            Atan2 { dst, y, x } => {
+                let (y, x) = (self.reg(y), self.reg(x));
+                self.call_checked(pc, dst, self.refs.atan2, &[y, x]);
+            }
+            Cmp { dst, a, b, op } => self.compare(pc, dst, a, Src::Reg(b), op),
+            CmpK { dst, a, k, op } => self.compare(pc, dst, a, Src::Const(k), op),
+            LoadVar { dst, var } => {
+                let v = self.load_var(var);
+                self.set(dst, v);
+            }
+            StoreVar { var, src } => {
+                self.charge(pc);
+                let v = self.reg(src);
+                self.store_var(var, v);
+            }
+            Word { addr, src } => self.word(addr, src),
+            WordK { addr, k, flags } => {
+                let v = self.konst(k);
+                self.push_word(addr, v, flags);
+            }
+            Jump { target } => {
+                self.jump(pc, target);
+                return false;
+            }
+            _ => {
+                self.exit_at(pc);
+                return false;
+            }
+        }
+        true
+    }
+
+    fn f64(&mut self, v: f64) -> Value {
+        let value = self.b.ins().f64const(Ieee64::with_bits(v.to_bits()));
+        if !v.is_nan() {
+            self.plain.insert(value);
+        }
+        value
+    }
+
+    fn konst(&mut self, k: u32) -> Value {
+        let v = self
+            .module
+            .consts
+            .get(k as usize)
+            .copied()
+            .unwrap_or(VACANT);
+        self.f64(v)
+    }
+
+    fn reg(&mut self, r: u8) -> Value {
+        match self.regs.get(r as usize).copied().flatten() {
+            Some(var) => self.b.use_var(var),
+            None => self.f64(VACANT),
+        }
+    }
+
+    /// Sets a register: its variable, and the VM's register itself, so
+    /// that an exit leaves the state intact without storing anything (and
+    /// without carrying every value to the exit, which would make
+    /// compiling it several times slower).
+    fn set(&mut self, r: u8, v: Value) {
+        if let Some(var) = self.regs.get(r as usize).copied().flatten() {
+            self.b.def_var(var, v);
+            let offset = 8 * i32::from(r);
+            self.b.ins().store(TRUSTED, v, self.bases.regs, offset);
+        }
+    }
+
+    fn src(&mut self, s: Src) -> Value {
+        match s {
+            Src::Reg(r) => self.reg(r),
+            Src::Const(k) => self.konst(k),
+        }
+    }
+
+    fn load_var(&mut self, n: u32) -> Value {
+        match Place::of(n) {
+            Place::Local(_) | Place::Common(_) => match self.vars.get(&n) {
+                Some(&var) => self.b.use_var(var),
+                None => self.f64(VACANT),
+            },
+            Place::Persistent(i) => {
+                let base = self.bases.persistent;
+                self.b.ins().load(types::F64, TRUSTED, base, 8 * i as i32)
+            }
+            Place::Null | Place::Other => self.f64(VACANT),
+        }
+    }
+
+    /// A local or common variable: its variable, and the VM's (as `set`).
+    fn store_var(&mut self, n: u32, v: Value) {
+        let Some(&var) = self.vars.get(&n) else {
+            return;
+        };
+        self.b.def_var(var, v);
+        let (base, offset) = match Place::of(n) {
+            Place::Local(i) => (self.bases.locals, 8 * i as i32),
+            Place::Common(i) => (self.bases.common, 8 * i as i32),
+            _ => return,
+        };
+        self.b.ins().store(TRUSTED, v, base, offset);
+    }
+
+    /// A counter of the context: its variable and the context's field.
+    fn set_counter(&mut self, var: Variable, offset: usize, v: Value) {
+        self.b.def_var(var, v);
+        self.b.ins().store(TRUSTED, v, self.ctx, offset as i32);
+    }
+
+    /// Leaves for the interpreter, which goes on at `pc`.
+    fn exit_at(&mut self, pc: u32) {
+        let pc = self.b.ins().iconst(types::I32, i64::from(pc));
+        self.b.ins().jump(self.exit, &[BlockArg::Value(pc)]);
+    }
+
+    /// Goes on only where `ok`; elsewhere leaves at `pc` (unexecuted).
+    fn guard(&mut self, ok: Value, pc: u32) {
+        let (go_on, leave) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(ok, go_on, &[], leave, &[]);
+        // Each has its one predecessor now: sealed, their variables are
+        // the values here (no block parameters to build and remove).
+        self.b.seal_block(go_on);
+        self.b.seal_block(leave);
+        // The leaving path out of line, its pc made there: the hot path
+        // keeps its registers.
+        self.b.set_cold_block(leave);
+        self.b.switch_to_block(leave);
+        self.exit_at(pc);
+        self.b.switch_to_block(go_on);
+    }
+
+    /// `num`: vacant (NaN) counts as 0.
+    fn num(&mut self, v: Value) -> Value {
+        if self.plain.contains(&v) {
+            return v;
+        }
+        let vacant = self.b.ins().fcmp(FloatCC::Unordered, v, v);
+        let zero = self.f64(0.0);
+        let n = self.b.ins().select(vacant, zero, v);
+        self.plain.insert(n);
+        n
+    }
+
+    fn is_vacant(&mut self, v: Value) -> Value {
+        self.b.ins().fcmp(FloatCC::Unordered, v, v)
+    }
+
+    /// −0 as 0: `v + 0` is `v` for every other value (NaN and ±∞
+    /// included) and +0 for −0, in IEEE arithmetic.
+    fn plain_zero(&mut self, v: Value) -> Value {
+        let zero = self.f64(0.0);
+        let z = self.b.ins().fadd(v, zero);
+        self.plain.insert(z);
+        z
+    }
+
+    /// `finite`: a result that is not finite leaves for the interpreter,
+    /// which raises the alarm (E5006, or E5001 for x/0, E5002 for the root
+    /// of a negative value: the result is ±∞ or NaN then); −0 becomes 0.
+    fn finite(&mut self, pc: u32, v: Value) -> Value {
+        self.check_finite(pc, v);
+        self.plain_zero(v)
+    }
+
+    /// Leaves at `pc` unless `v` is finite: at once, or, in a restartable
+    /// run, at the run's end (and then at the run's start).
+    fn check_finite(&mut self, pc: u32, v: Value) {
+        match self.region.restart.get(&pc) {
+            Some(&start) => {
+                // v − v is 0 for a finite v, NaN otherwise; NaN stays.
+                let sum = match self.pending {
+                    Some((_, sum)) => sum,
+                    None => self.f64(0.0),
+                };
+                let d = self.b.ins().fsub(v, v);
+                let sum = self.b.ins().fadd(sum, d);
+                self.pending = Some((start, sum));
+            }
+            None => {
+                let magnitude = self.b.ins().fabs(v);
+                let inf = self.f64(f64::INFINITY);
+                let ok = self.b.ins().fcmp(FloatCC::LessThan, magnitude, inf);
+                self.guard(ok, pc);
+            }
+        }
+    }
+
+    /// The end of a restartable run: where one of its results was not
+    /// finite, back to its start.
+    fn check_run(&mut self) {
+        if let Some((start, sum)) = self.pending.take() {
+            let ok = self.b.ins().fcmp(FloatCC::Ordered, sum, sum);
+            self.guard(ok, start);
+        }
+    }
+
+    fn arith(&mut self, pc: u32, op: Arith, dst: u8, a: u8, b: Src) {
+        let a = self.reg(a);
+        let b = self.src(b);
+        let (x, y) = (self.num(a), self.num(b));
+        let r = match op {
+            Arith::Add => self.b.ins().fadd(x, y),
+            Arith::Sub => self.b.ins().fsub(x, y),
+            Arith::Mul => self.b.ins().fmul(x, y),
+            // x/0 is ±∞ or NaN: `finite` leaves for the interpreter's E5001.
+            Arith::Div => self.b.ins().fdiv(x, y),
+        };
+        let v = self.finite(pc, r);
+        self.set(dst, v);
+    }
+
+    /// A helper's result, or a leave at `pc` where it reports a fault.
+    fn call_checked(&mut self, pc: u32, dst: u8, f: FuncRef, args: &[Value]) {
+        let call = self.b.ins().call(f, args);
+        let v = self.b.inst_results(call)[0];
+        self.check_finite(pc, v);
+        self.plain.insert(v);
+        self.set(dst, v);
+    }
+
+    fn binary_call(&mut self, pc: u32, op: Bin, dst: u8, a: u8, b: u8) {
+        let code = binary_code(op).map_or(u32::MAX, |c| c);
+        let code = self.b.ins().iconst(types::I32, i64::from(code));
+        let (a, b) = (self.reg(a), self.reg(b));
+        self.call_checked(pc, dst, self.refs.binary, &[code, a, b]);
+    }
+
+    /// A comparison, as `value::compare` computes it: EQ and NE tell
+    /// vacant from 0, the others count it as 0; equality is relative.
+    fn compare(&mut self, pc: u32, dst: u8, a: u8, b: Src, op: u8) {
+        let Some(rel) = Rel::from_code(op) else {
+            // An unknown comparison is the interpreter's alarm (what
+            // follows is then never reached).
+            let never = self.b.ins().iconst(types::I8, 0);
+            self.guard(never, pc);
+            return;
+        };
+        let a = self.reg(a);
+        let b = self.src(b);
+        let result = match rel {
+            Rel::Eq | Rel::Ne => {
+                // `near` is false when either is vacant (NaN), so "both
+                // vacant, or near" is the kernel's three cases.
+                let (va, vb) = (self.is_vacant(a), self.is_vacant(b));
+                let both = self.b.ins().band(va, vb);
+                let near = self.near(a, b);
+                let same = self.b.ins().bor(both, near);
+                match rel {
+                    Rel::Eq => same,
+                    _ => self.b.ins().bxor_imm(same, 1),
+                }
+            }
+            _ => {
+                let (x, y) = (self.num(a), self.num(b));
+                let eq = self.near(x, y);
+                let (cc, join_eq) = match rel {
+                    Rel::Gt => (FloatCC::GreaterThan, false),
+                    Rel::Lt => (FloatCC::LessThan, false),
+                    Rel::Ge => (FloatCC::GreaterThan, true),
+                    _ => (FloatCC::LessThan, true),
+                };
+                let strict = self.b.ins().fcmp(cc, x, y);
+                if join_eq {
+                    self.b.ins().bor(strict, eq)
+                } else {
+                    let not_eq = self.b.ins().bxor_imm(eq, 1);
+                    self.b.ins().band(strict, not_eq)
+                }
+            }
+        };
+        let (one, zero) = (self.f64(1.0), self.f64(0.0));
+        let v = self.b.ins().select(result, one, zero);
+        self.plain.insert(v);
+        self.set(dst, v);
+        self.last_compare = Some((dst, result));
+    }
+
+    /// `near`: |a − b| ≤ 10⁻⁹·max(1, |a|, |b|) (false when either is NaN).
+    fn near(&mut self, a: Value, b: Value) -> Value {
+        let diff = self.b.ins().fsub(a, b);
+        let diff = self.b.ins().fabs(diff);
+        let one = self.f64(1.0);
+        let (ma, mb) = (self.b.ins().fabs(a), self.b.ins().fabs(b));
+        let scale = self.max(one, ma);
+        let scale = self.max(scale, mb);
+        let tolerance = self.f64(1e-9);
+        let bound = self.b.ins().fmul(tolerance, scale);
+        self.b.ins().fcmp(FloatCC::LessThanOrEqual, diff, bound)
+    }
+
+    /// `f64::max` of two values that are not NaN (a select: `fmax`'s NaN
+    /// rules cost a longer sequence, and no NaN comes here).
+    fn max(&mut self, a: Value, b: Value) -> Value {
+        let greater = self.b.ins().fcmp(FloatCC::GreaterThan, a, b);
+        self.b.ins().select(greater, a, b)
+    }
+
+    /// A function: the exact ones (ABS, SQRT, FIX, FUP) inline, whose IEEE
+    /// results are the same bits as `libm`'s; the others through the
+    /// kernel's `value::func` and its `libm` calls.
+    fn func(&mut self, pc: u32, dst: u8, a: u8, f: u8) {
+        let a = self.reg(a);
+        let inline = match Func::from_code(f) {
+            Some(Func::Abs) => {
+                let x = self.num(a);
+                Some(self.b.ins().fabs(x))
+            }
+            Some(Func::Sqrt) => {
+                // The root of a negative value is NaN: `finite` leaves for
+                // the interpreter's E5002.
+                let x = self.num(a);
+                Some(self.b.ins().sqrt(x))
+            }
+            Some(Func::Fix) => {
+                let x = self.num(a);
+                Some(self.b.ins().trunc(x))
+            }
+            Some(Func::Fup) => {
+                let x = self.num(a);
+                let up = self.b.ins().ceil(x);
+                let minus = self.b.ins().fneg(x);
+                let down = self.b.ins().ceil(minus);
+                let down = self.b.ins().fneg(down);
+                let zero = self.f64(0.0);
+                let negative = self.b.ins().fcmp(FloatCC::LessThan, x, zero);
+                Some(self.b.ins().select(negative, down, up))
+            }
+            _ => None,
+        };
+        match inline {
+            Some(v) => {
+                let v = self.finite(pc, v);
+                self.set(dst, v);
+            }
+            None => {
+                let code = self.b.ins().iconst(types::I32, i64::from(f));
+                self.call_checked(pc, dst, self.refs.func, &[code, a]);
+            }
+        }
+    }
+
+    fn word(&mut self, addr: u8, src: u8) {
+        // A vacant word is left out of the block (§7.5).
+        let v = self.reg(src);
+        let vacant = self.is_vacant(v);
+        let (push, after) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(vacant, after, &[], push, &[]);
+        self.b.seal_block(push);
+        self.b.switch_to_block(push);
+        self.push_word(addr, v, 0);
+        self.b.ins().jump(after, &[]);
+        self.b.seal_block(after);
+        self.b.switch_to_block(after);
+    }
+
+    fn push_word(&mut self, addr: u8, v: Value, flags: u8) {
+        let addr = self.b.ins().iconst(types::I32, i64::from(addr));
+        let flags = self.b.ins().iconst(types::I32, i64::from(flags));
+        let words = self.bases.words;
+        self.b
+            .ins()
+            .call(self.refs.push_word, &[words, addr, v, flags]);
+    }
+
+    /// Charges a block to the budget; one the budget cannot take leaves
+    /// at `pc`, where the interpreter charges it and raises E6005.
+    fn charge(&mut self, pc: u32) {
+        let blocks = self.b.use_var(self.blocks);
+        let ok = self
+            .b
+            .ins()
+            .icmp(IntCC::UnsignedLessThan, blocks, self.bases.max_blocks);
+        self.guard(ok, pc);
+        let blocks = self.b.ins().iadd_imm(blocks, 1);
+        self.set_counter(self.blocks, offset_of!(Ctx, blocks), blocks);
+    }
+
+    /// A jump, taken: within the loop a backward one is a round (fuel and a
+    /// block); out of the loop it leaves, unexecuted, for the interpreter.
+    fn jump(&mut self, pc: u32, target: u32) {
+        let Some(&block) = self
+            .labels
+            .get(&target)
+            .filter(|_| self.region.contains(target))
+        else {
+            self.exit_at(pc);
+            return;
+        };
+        if target <= pc {
+            self.round(pc);
+        }
+        self.b.ins().jump(block, &[]);
+    }
+
+    /// A backward jump costs a round of the loop's instructions from the
+    /// step's fuel (leaving while some are left), then a block.
+    fn round(&mut self, pc: u32) {
+        let cost = self.region.len() as i64;
+        let fuel = self.b.use_var(self.fuel);
+        let ok = self
+            .b
+            .ins()
+            .icmp_imm(IntCC::UnsignedGreaterThanOrEqual, fuel, cost);
+        self.guard(ok, pc);
+        self.charge(pc);
+        let fuel = self.b.use_var(self.fuel);
+        let fuel = self.b.ins().iadd_imm(fuel, -cost);
+        self.set_counter(self.fuel, offset_of!(Ctx, fuel), fuel);
+    }
+
+    /// Whether register `r` holds vacant or what EQ takes for 0.
+    fn is_zero_or_vacant(&mut self, r: u8) -> Value {
+        let c = self.reg(r);
+        let vacant = self.is_vacant(c);
+        let magnitude = self.b.ins().fabs(c);
+        let tiny = self.f64(1e-9);
+        let small = self.b.ins().fcmp(FloatCC::LessThanOrEqual, magnitude, tiny);
+        let inf = self.f64(f64::INFINITY);
+        let infinite = self.b.ins().fcmp(FloatCC::Equal, magnitude, inf);
+        let take = self.b.ins().bor(vacant, small);
+        self.b.ins().bor(take, infinite)
+    }
+
+    /// `jumpifnot`: taken when the condition is vacant or equal to 0 as
+    /// the kernel's EQ compares (|c| ≤ 10⁻⁹, and ±∞, whose relative
+    /// distance to 0 is no more than itself).
+    fn jump_if_not(&mut self, pc: u32, cond: u8, target: u32) {
+        let take = match self.last_compare.take() {
+            // Right after the comparison that set it: its truth value.
+            Some((_, truth)) => self.b.ins().bxor_imm(truth, 1),
+            None => self.is_zero_or_vacant(cond),
+        };
+        let taken = self.b.create_block();
+        // The next pc is a leader (`Region` makes every jump's one).
+        let next = match self.labels.get(&(pc + 1)) {
+            Some(&block) => block,
+            None => {
+                let block = self.b.create_block();
+                self.labels.insert(pc + 1, block);
+                block
+            }
+        };
+        self.b.ins().brif(take, taken, &[], next, &[]);
+        self.b.seal_block(taken);
+        self.b.switch_to_block(taken);
+        self.jump(pc, target);
+    }
+}

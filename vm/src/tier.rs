@@ -1,0 +1,77 @@
+//! A second execution tier for hot loops (the `jit` crate is one). The VM
+//! stays the only owner of its state: it lends a tier the part of it that
+//! compiled code may read and write ([`LoopState`]) and goes on at the pc
+//! the tier hands back. Whatever a tier runs must leave that state exactly
+//! as interpreting the same instructions would have; everything it does
+//! not handle it leaves to the interpreter, at the instruction not yet
+//! executed.
+
+use isa::Module;
+use nc::words::Words;
+
+/// How the VM came to a pc where a tier may take over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Entry {
+    /// A backward jump from `from` landed here (already charged to the
+    /// block budget): a loop went round once more.
+    BackEdge {
+        /// The pc of the jump.
+        from: u32,
+    },
+    /// The interpreter ran the instruction the tier's code left at last
+    /// and has come to the one after it.
+    Resume,
+}
+
+/// The VM state compiled code works on, lent for one entry.
+pub struct LoopState<'a> {
+    /// The registers.
+    pub regs: &'a mut [f64],
+    /// #1–#33 of the current call level (no call happens in compiled code).
+    pub locals: &'a mut [f64; 33],
+    /// #100–#199.
+    pub common: &'a mut [f64; 100],
+    /// #500–#999, read only: a write goes through the interpreter, which
+    /// hands it to the storage.
+    pub persistent: &'a [f64; 500],
+    /// The words of the block being built.
+    pub words: &'a mut Words,
+    /// Blocks charged to the budget so far.
+    pub blocks: &'a mut u64,
+    /// The budget: a charge past it is the interpreter's (E6005).
+    pub max_blocks: u64,
+    /// Instructions the current [`crate::Vm::step`] may still run; a tier
+    /// takes off what it ran, and leaves before it runs out.
+    pub fuel: &'a mut u64,
+}
+
+/// What a tier has done (`gbvm --stats`, the benches).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TierStats {
+    /// Loops compiled.
+    pub compiled: u32,
+    /// Loops that could not be compiled (they stay interpreted).
+    pub failed: u32,
+    /// Time spent compiling, in all, in nanoseconds.
+    pub compile_ns: u64,
+    /// Times compiled code was entered.
+    pub entries: u64,
+}
+
+/// A tier: compiled code for some of a module's loops.
+pub trait Tier: Send {
+    /// What it has done so far.
+    fn stats(&self) -> TierStats;
+
+    /// Runs compiled code from `pc`, if the tier has some that may be
+    /// entered there (compiling the loop first if it has become hot), and
+    /// returns the pc at which the interpreter goes on; `None` when nothing
+    /// ran.
+    fn enter(
+        &mut self,
+        module: &Module,
+        pc: u32,
+        entry: Entry,
+        state: LoopState<'_>,
+    ) -> Option<u32>;
+}
