@@ -1,14 +1,16 @@
 //! The JIT against the interpreter on random macro programs (the
 //! generator is `harness::jit_diff`): a fixed seed, a bounded count.
-//! `JIT_CASES=n` runs more (the stop's note gives a long run); the fuzz
-//! target `jit` runs the same comparison on a fuzzer's bytes.
+//! `JIT_CASES=n` runs more, `JIT_SEED=n` from another seed (the stop's
+//! note gives a long run); the fuzz target `jit` runs the same comparison
+//! on a fuzzer's bytes.
 
 use harness::jit_diff::{compare, program, Choices};
 
 #[test]
 fn random_macro_programs_run_the_same_compiled_and_interpreted() {
     let cases: u64 = std::env::var("JIT_CASES").map_or(400, |n| n.parse().unwrap_or(400));
-    let mut c = Choices::Seed(0x1175_c0de);
+    let seed = std::env::var("JIT_SEED").map_or(0x1175_c0de, |n| n.parse().unwrap_or(1));
+    let mut c = Choices::Seed(seed.max(1));
     let (mut compiled, mut entries) = (0u64, 0u64);
     for i in 0..cases {
         let src = program(&mut c);
