@@ -8,7 +8,8 @@
 #
 # RS274 is the rs274 command up to (not including) -g; it may start with
 # `env LD_LIBRARY_PATH=...`. GBCC and GBVM default to the release build
-# (target/release, fat LTO: what ships). The runs alternate gbc, rs274,
+# (target/release, fat LTO: what ships); GBVM_FLAGS are added to
+# `gbvm run` (e.g. `--jit=off`, `--max-blocks 10000000`). The runs alternate gbc, rs274,
 # gbc, ...; for each metric the best of RUNS (default 5) is printed:
 # wall time, user+sys CPU time (the machine may be shared: CPU time is
 # the steadier figure) and peak resident memory. gbc's wall and CPU are
@@ -28,6 +29,7 @@ runs=${3:-5}
 root=$(cd "$(dirname "$0")/../.." && pwd)
 gbcc=${GBCC:-$root/target/release/gbcc}
 gbvm=${GBVM:-$root/target/release/gbvm}
+read -r -a gbvm_flags <<<"${GBVM_FLAGS:-}"
 read -r -a rs274 <<<"$RS274"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -50,7 +52,7 @@ timed() {
 gbc_run() {
     : >"$tmp/one"
     timed "$tmp/one" "$gbcc" -q "$nc_file" -o "$tmp/p.gbc"
-    timed "$tmp/one" "$gbvm" run "$tmp/p.gbc" --emit canon
+    timed "$tmp/one" "$gbvm" run "$tmp/p.gbc" --emit canon "${gbvm_flags[@]}"
     awk '{ w += $1; c += $2; if ($3 > m) m = $3 }
         END { printf "%.4f %.2f %d\n", w, c, m }' "$tmp/one" >>"$tmp/gbc"
 }
@@ -62,7 +64,7 @@ rs274_run() {
 # The check: end points of gbc's LINE events and rs274's STRAIGHT_FEED
 # calls, side by side.
 "$gbcc" -q "$nc_file" -o "$tmp/p.gbc"
-"$gbvm" run "$tmp/p.gbc" --emit canon >"$tmp/gbc.canon"
+"$gbvm" run "$tmp/p.gbc" --emit canon "${gbvm_flags[@]}" >"$tmp/gbc.canon"
 "${rs274[@]}" -g "$ngc_file" >"$tmp/rs274.canon" 2>"$tmp/err"
 grep '^LINE ' "$tmp/gbc.canon" | sed 's/LINE X=\([^ ]*\) Z=\(.*\)/\1 \2/' >"$tmp/a"
 grep 'STRAIGHT_FEED(' "$tmp/rs274.canon" |

@@ -15,6 +15,22 @@
 #define GBC_PERSISTENT_COUNT 500
 
 /**
+ * `gbc_set_jit`: every macro loop interpreted.
+ */
+#define GBC_JIT_OFF 0
+
+/**
+ * `gbc_set_jit`: a macro loop compiled to machine code once it has gone
+ * round 500 times (the default).
+ */
+#define GBC_JIT_AUTO 1
+
+/**
+ * `gbc_set_jit`: every macro loop compiled at its first round.
+ */
+#define GBC_JIT_ALWAYS 2
+
+/**
  * Bytes of the text fields of [`GbcAlarm`], the terminating NUL included.
  */
 #define GBC_TEXT_CAPACITY 256
@@ -559,6 +575,15 @@ enum GbcStatus gbc_cycle_start(GbcController controller);
  * ticks); then it waits for cycle start.
  */
 enum GbcStatus gbc_reset(GbcController controller);
+
+/**
+ * Whether the program's hot macro loops run as machine code:
+ * [`GBC_JIT_OFF`], [`GBC_JIT_AUTO`] (the default) or [`GBC_JIT_ALWAYS`];
+ * the output is the same either way. Compiling happens in
+ * `gbc_run_ahead`, never in `gbc_tick`. Another value:
+ * [`GbcStatus::InvalidArgument`].
+ */
+enum GbcStatus gbc_set_jit(GbcController controller, uint8_t mode);
 
 /**
  * Single block: stop at the end of every block.

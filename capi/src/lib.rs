@@ -96,6 +96,8 @@ struct Ctl {
     host: GbcHost,
     panel: Panel,
     run: Option<Controller<HostPlc>>,
+    /// When macro loops are compiled (`gbc_set_jit`'s value).
+    jit: u8,
     /// A reset was asked for in an alarm: ticks are accepted again.
     reset_pending: bool,
     /// A panic was caught inside a call on this controller.
@@ -324,6 +326,7 @@ pub unsafe extern "C" fn gbc_controller_new(
             host,
             panel: Panel::of(&m.0),
             run: None,
+            jit: GBC_JIT_AUTO,
             reset_pending: false,
             poisoned: false,
         };
@@ -380,6 +383,7 @@ pub unsafe extern "C" fn gbc_controller_load(
             run.vm_mut().set_storage(Box::new(HostStorage(c.host)));
         }
         c.panel.apply(&mut run);
+        attach_jit(c.jit, &mut run);
         c.run = Some(run);
         Ok(())
     })
@@ -606,6 +610,45 @@ pub extern "C" fn gbc_reset(controller: GbcController) -> GbcStatus {
     with_ctl(controller, |c| {
         c.run()?.reset();
         c.reset_pending = true;
+        Ok(())
+    })
+}
+
+/// Gives the controller's VM the loop JIT for `mode` (or takes it away).
+/// Without the `jit` feature every loop is interpreted.
+fn attach_jit(mode: u8, run: &mut Controller<HostPlc>) {
+    let vm = run.vm_mut();
+    let _ = vm.take_tier();
+    #[cfg(feature = "jit")]
+    {
+        let mode = match mode {
+            GBC_JIT_ALWAYS => jit::Mode::Always,
+            GBC_JIT_AUTO => jit::Mode::Auto,
+            _ => jit::Mode::Off,
+        };
+        if let Some(tier) = jit::Jit::new(mode) {
+            vm.set_tier(Box::new(tier));
+        }
+    }
+    #[cfg(not(feature = "jit"))]
+    let _ = (mode, vm);
+}
+
+/// Whether the program's hot macro loops run as machine code:
+/// [`GBC_JIT_OFF`], [`GBC_JIT_AUTO`] (the default) or [`GBC_JIT_ALWAYS`];
+/// the output is the same either way. Compiling happens in
+/// `gbc_run_ahead`, never in `gbc_tick`. Another value:
+/// [`GbcStatus::InvalidArgument`].
+#[no_mangle]
+pub extern "C" fn gbc_set_jit(controller: GbcController, mode: u8) -> GbcStatus {
+    if !matches!(mode, GBC_JIT_OFF | GBC_JIT_AUTO | GBC_JIT_ALWAYS) {
+        return guard(|| handle_check(controller).and(Err(GbcStatus::InvalidArgument)));
+    }
+    with_ctl(controller, |c| {
+        c.jit = mode;
+        if let Some(run) = c.run.as_mut() {
+            attach_jit(mode, run);
+        }
         Ok(())
     })
 }

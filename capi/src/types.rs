@@ -57,6 +57,14 @@ pub type GbcController = u64;
 /// [`GbcHost::vars_load`] and [`GbcHost::vars_store`].
 pub const GBC_PERSISTENT_COUNT: usize = 500;
 
+/// `gbc_set_jit`: every macro loop interpreted.
+pub const GBC_JIT_OFF: u8 = 0;
+/// `gbc_set_jit`: a macro loop compiled to machine code once it has gone
+/// round 500 times (the default).
+pub const GBC_JIT_AUTO: u8 = 1;
+/// `gbc_set_jit`: every macro loop compiled at its first round.
+pub const GBC_JIT_ALWAYS: u8 = 2;
+
 /// What the machine is doing.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

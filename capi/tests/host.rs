@@ -201,3 +201,33 @@ fn the_skip_signal_ends_a_g31_move() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
 }
+
+/// `gbc_set_jit`: a macro loop run with its rounds compiled gives the
+/// same set points, period by period, as interpreted; #500 written inside
+/// the loop reaches the host's store all the same; a value outside the
+/// three modes is refused.
+#[test]
+fn a_compiled_macro_loop_gives_the_same_set_points() {
+    let prog = module(
+        "O1\n#1=0\nG00 X40 Z0\nWHILE[#1LE90]DO1\nG01 X[40+4*SIN[#1]] Z[-#1*0.1] F300\n#500=#1\n#1=#1+3\nEND1\nM30\n",
+    );
+    let mut runs = Vec::new();
+    for mode in [GBC_JIT_OFF, GBC_JIT_ALWAYS] {
+        let host = new_host(Host::default());
+        let (m, c) = new_controller(host, &prog);
+        assert_eq!(gbc_set_jit(c, mode), GbcStatus::Ok);
+        let points: Vec<(u64, u64, u32)> = run(c, |_| {})
+            .iter()
+            .map(|p| (p.x.to_bits(), p.z.to_bits(), p.line))
+            .collect();
+        let stored = unsafe { &(*host).stores }.last().map(|s| s[0]);
+        runs.push((points, stored));
+        assert_eq!(gbc_set_jit(c, 3), GbcStatus::InvalidArgument);
+        assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+        assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+        drop(unsafe { Box::from_raw(host) });
+    }
+    assert_eq!(runs[0].1, Some(90.0));
+    assert!(runs[0].0.len() > 100, "{} periods", runs[0].0.len());
+    assert!(runs[0] == runs[1], "the set points differ");
+}

@@ -8,7 +8,7 @@ use harness::jit_diff::{compare, program, Choices};
 
 #[test]
 fn random_macro_programs_run_the_same_compiled_and_interpreted() {
-    let cases: u64 = std::env::var("JIT_CASES").map_or(400, |n| n.parse().unwrap_or(400));
+    let cases: u64 = std::env::var("JIT_CASES").map_or(1000, |n| n.parse().unwrap_or(1000));
     let seed = std::env::var("JIT_SEED").map_or(0x1175_c0de, |n| n.parse().unwrap_or(1));
     let mut c = Choices::Seed(seed.max(1));
     let (mut compiled, mut entries) = (0u64, 0u64);

@@ -27,8 +27,6 @@ mod lower;
 mod native;
 mod region;
 
-pub use region::is_native;
-
 use native::{Backend, Code};
 use region::Region;
 
@@ -59,9 +57,6 @@ struct Loop {
 pub struct Jit {
     threshold: u32,
     backend: Option<Backend>,
-    /// The code the compiled loops were made from (a tier serves one
-    /// module; another one starts it afresh).
-    code_id: Option<(usize, usize)>,
     /// Rounds per loop (head, back edge) not compiled yet.
     rounds: BTreeMap<(u32, u32), u32>,
     /// Loops tried and not compiled.
@@ -83,26 +78,12 @@ impl Jit {
         Some(Jit {
             threshold,
             backend: None,
-            code_id: None,
             rounds: BTreeMap::new(),
             rejected: BTreeSet::new(),
             loops: Vec::new(),
             entries: BTreeMap::new(),
             stats: TierStats::default(),
         })
-    }
-
-    /// Forgets everything compiled if `module` is not the one it was for.
-    fn bind(&mut self, module: &Module) {
-        let id = (module.code.as_ptr() as usize, module.code.len());
-        if self.code_id != Some(id) {
-            self.rounds.clear();
-            self.rejected.clear();
-            self.entries.clear();
-            self.loops.clear();
-            self.backend = None;
-            self.code_id = Some(id);
-        }
     }
 
     /// Counts a round of the loop `head..=from`, compiling it when hot.
@@ -134,13 +115,16 @@ impl Jit {
         let ns = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
         self.stats.compile_ns = self.stats.compile_ns.saturating_add(ns);
         let index = self.loops.len();
+        // The widest loop's code takes over the entries it shares with
+        // the loops inside it (the earliest head, then the latest back
+        // edge).
+        let width = |r: &Region| (std::cmp::Reverse(r.head), r.tail);
         for &pc in &region.entries {
-            // An outer loop's code takes over its inner loops' entries.
-            let outer = match self.entries.get(&pc) {
-                Some(&i) => self.loops[i].region.head <= region.head,
-                None => false,
+            let narrower = match self.entries.get(&pc).and_then(|&i| self.loops.get(i)) {
+                Some(other) => width(&other.region) < width(&region),
+                None => true,
             };
-            if !outer {
+            if narrower {
                 self.entries.insert(pc, index);
             }
         }
@@ -192,6 +176,15 @@ impl Tier for Jit {
         self.stats
     }
 
+    fn bind(&mut self, _: &Module) {
+        // Code made for another module goes, and its memory with it.
+        self.rounds.clear();
+        self.rejected.clear();
+        self.entries.clear();
+        self.loops.clear();
+        self.backend = None;
+    }
+
     fn enter(
         &mut self,
         module: &Module,
@@ -199,14 +192,20 @@ impl Tier for Jit {
         entry: Entry,
         state: LoopState<'_>,
     ) -> Option<u32> {
-        self.bind(module);
         if let Entry::BackEdge { from } = entry {
             if !self.entries.contains_key(&pc) {
                 self.count_round(module, pc, from, state.regs.len());
             }
         }
         let &index = self.entries.get(&pc)?;
-        let code = self.loops.get(index)?.code;
+        let compiled = self.loops.get(index)?;
+        // The code checks the fuel at its backward jumps; no path from an
+        // entry to one is longer than the loop, so with this much it runs
+        // no instruction the step has not allowed.
+        if *state.fuel < compiled.region.len() {
+            return None;
+        }
+        let code = compiled.code;
         self.stats.entries += 1;
         code.run(pc, state)
     }

@@ -3,13 +3,20 @@
 //! returns the pc at which the interpreter goes on.
 //!
 //! Registers and the loop's locals and commons live in Cranelift variables
-//! (`declare_var`/`def_var`/`use_var`): loaded from the VM once at the
-//! entry, stored back once at the exit. The arithmetic is the kernel's
+//! (`declare_var`/`def_var`/`use_var`), loaded from the VM once at the
+//! entry; every write also goes to the VM at once, so that an exit has
+//! nothing to store (see `set`). The arithmetic is the kernel's
 //! (`nc::value`) written out: vacant counts as 0, a result that is not
 //! finite faults, −0 becomes 0; the same IEEE operations in the same
 //! order, none fused. The functions that round (SIN … EXP, ROUND, BIN,
 //! BCD), MOD and the bitwise operations call the kernel's code itself
 //! (`helpers`).
+//!
+//! The code is written for a short compile (the optimiser is off): no
+//! `num` of a value known not to be vacant, a comparison followed by its
+//! `jumpifnot` branches on the truth value, the leaving paths out of line,
+//! and in a restartable run (`Region::restart`) the finite checks summed
+//! and tested once at its end.
 
 use std::collections::{BTreeMap, HashSet};
 use std::mem::offset_of;

@@ -272,7 +272,9 @@ impl Vm {
     }
 
     /// Runs hot loops through `tier` from now on (the `jit` crate's).
-    pub fn set_tier(&mut self, tier: Box<dyn Tier>) {
+    pub fn set_tier(&mut self, mut tier: Box<dyn Tier>) {
+        tier.bind(&self.module);
+        self.resume_at = NO_PC;
         self.tier = Some(tier);
     }
 

@@ -63,6 +63,10 @@ pub trait Tier: Send {
     /// What it has done so far.
     fn stats(&self) -> TierStats;
 
+    /// The tier now serves a VM running `module` ([`crate::Vm::set_tier`]
+    /// says so): code made for any other module must go.
+    fn bind(&mut self, module: &Module);
+
     /// Runs compiled code from `pc`, if the tier has some that may be
     /// entered there (compiling the loop first if it has become hot), and
     /// returns the pc at which the interpreter goes on; `None` when nothing

@@ -1,0 +1,150 @@
+//! The VM's side of a second tier (`vm::Tier`), with a tier scripted
+//! here: when it is asked (a backward jump, and the instruction after the
+//! one its code left at), what it is lent, and that what it hands back
+//! counts: the pc, the variables, the block budget and the step's fuel.
+
+mod common;
+
+use common::{Asm, Canon};
+use isa::{Instr, Module};
+use std::sync::{Arc, Mutex};
+use vm::{Entry, LoopState, Status, Tier, TierStats};
+
+/// Records every entry; at the loop head it "runs" the loop body itself
+/// (#1 += 1 and r0 = #1, a block charged, 3 instructions of fuel) and
+/// leaves at the comparison, which the interpreter runs on.
+struct Script {
+    head: u32,
+    leave_at: u32,
+    seen: Arc<Mutex<Vec<(u32, Entry)>>>,
+}
+
+impl Tier for Script {
+    fn stats(&self) -> TierStats {
+        TierStats::default()
+    }
+
+    fn bind(&mut self, _: &Module) {}
+
+    fn enter(&mut self, _: &Module, pc: u32, entry: Entry, s: LoopState<'_>) -> Option<u32> {
+        self.seen.lock().unwrap().push((pc, entry));
+        if pc != self.head || *s.fuel < 3 || *s.blocks >= s.max_blocks {
+            return None;
+        }
+        s.locals[0] += 1.0;
+        s.regs[0] = s.locals[0];
+        *s.blocks += 1;
+        *s.fuel -= 3;
+        Some(self.leave_at)
+    }
+}
+
+/// `#1 = 0; loop: #1 = #1 + 1 (3 instructions); if #1 < 5 goto loop`.
+fn counting_loop() -> (Module, u32, u32) {
+    let mut a = Asm::new();
+    a.load(0, 0.0);
+    a.op(Instr::StoreVar { var: 1, src: 0 });
+    let head = a.here();
+    a.op(Instr::LoadVar { dst: 0, var: 1 });
+    let one = a.k(1.0);
+    a.op(Instr::AddK {
+        dst: 0,
+        a: 0,
+        k: one,
+    });
+    a.op(Instr::StoreVar { var: 1, src: 0 });
+    let five = a.k(5.0);
+    a.op(Instr::CmpK {
+        dst: 1,
+        a: 0,
+        k: five,
+        op: 3,
+    });
+    let test = a.here();
+    a.op(Instr::JumpIfNot { cond: 1, target: 0 });
+    let back = a.op(Instr::Jump { target: head });
+    let end = a.here();
+    a.set(
+        test,
+        Instr::JumpIfNot {
+            cond: 1,
+            target: end,
+        },
+    );
+    a.op(Instr::Halt);
+    (a.build(), head, back)
+}
+
+#[test]
+fn a_tier_is_asked_at_backward_jumps_and_its_pc_and_state_count() {
+    let (module, head, back) = counting_loop();
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let mut vm = common::vm(module);
+    // The tier's code leaves at the comparison (its "body" done).
+    let compare = head + 3;
+    vm.set_tier(Box::new(Script {
+        head,
+        leave_at: compare,
+        seen: seen.clone(),
+    }));
+    let status = vm.run(&mut Canon::default());
+    assert_eq!(status, Status::Done);
+    // Round 1 interpreted (#1 = 1); rounds 2–5 by the tier at each back
+    // edge: #1 ends at 5 as interpreting all would give.
+    assert_eq!(vm.variable(1).unwrap(), 5.0);
+    let seen = seen.lock().unwrap().clone();
+    let back_edges = seen
+        .iter()
+        .filter(|(pc, e)| *pc == head && *e == Entry::BackEdge { from: back })
+        .count();
+    assert_eq!(back_edges, 4);
+    // After each leave the VM offers the next instruction (the tier has
+    // nothing there and says so).
+    assert!(seen.contains(&(compare + 1, Entry::Resume)));
+}
+
+#[test]
+fn the_fuel_a_tier_uses_ends_the_step() {
+    let (module, head, _) = counting_loop();
+    let mut vm = common::vm(module);
+    vm.set_tier(Box::new(Script {
+        head,
+        leave_at: head + 3,
+        seen: Arc::new(Mutex::new(Vec::new())),
+    }));
+    // 6 instructions take the run to the first back edge (the jump
+    // included); with 10, the tier's 3 and the rest leave the step out of
+    // budget before the loop ends, and the next steps finish it.
+    let mut canon = Canon::default();
+    assert_eq!(vm.step(10, &mut canon), Status::OutOfBudget);
+    assert!(vm.variable(1).unwrap() < 5.0);
+    assert_eq!(vm.run(&mut canon), Status::Done);
+    assert_eq!(vm.variable(1).unwrap(), 5.0);
+}
+
+#[test]
+fn a_charge_the_tier_makes_counts_against_the_block_budget() {
+    // Interpreted, the run charges 10 blocks (the first store of #1, 5
+    // stores in the loop, 4 back edges); the tier charges one block a
+    // round in place of the store, so with it the count is the same.
+    let ends = |budget: u64, tier: bool| {
+        let (module, head, _) = counting_loop();
+        let mut vm = common::vm(module);
+        vm.max_blocks = budget;
+        if tier {
+            vm.set_tier(Box::new(Script {
+                head,
+                leave_at: head + 3,
+                seen: Arc::new(Mutex::new(Vec::new())),
+            }));
+        }
+        match vm.run(&mut Canon::default()) {
+            Status::Alarm(a) => Some(a.code),
+            _ => None,
+        }
+    };
+    for tier in [false, true] {
+        assert_eq!(ends(10, tier), None);
+        assert_eq!(ends(9, tier), Some(6005));
+    }
+}
