@@ -12,7 +12,7 @@
 
 use benches::build;
 use benches::whole::{compile_and_run, macro_loop, numeric_loop};
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use std::time::Duration;
 
 const NUMERIC_ROUNDS: usize = 1_000_000;
@@ -51,8 +51,10 @@ fn runs(c: &mut Criterion) {
     g.finish();
 }
 
-/// Compile time of one loop: each iteration compiles it again (into the
-/// same JIT module, as a tier does for a module's loops).
+/// Compile time of one loop, as a run pays it: into a JIT module of its
+/// own (made, and dropped, outside the timing; one module that took every
+/// iteration's code would grow to thousands of functions, which no run
+/// has).
 fn compile(c: &mut Criterion) {
     let mut g = c.benchmark_group("jit");
     g.sample_size(50).measurement_time(Duration::from_secs(5));
@@ -64,12 +66,16 @@ fn compile(c: &mut Criterion) {
         let Some(&(head, tail)) = jit::loops(&module).first() else {
             panic!("the {name} program has no loop");
         };
-        let mut compiler = match jit::Compiler::new() {
+        let fresh = || match jit::Compiler::new() {
             Ok(c) => c,
             Err(e) => panic!("no JIT here: {e}"),
         };
         g.bench_function(format!("compile_{name}_loop"), |b| {
-            b.iter(|| compiler.compile(&module, head, tail))
+            b.iter_batched_ref(
+                fresh,
+                |compiler| compiler.compile(&module, head, tail),
+                BatchSize::PerIteration,
+            )
         });
     }
     g.finish();

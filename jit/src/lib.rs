@@ -62,8 +62,10 @@ pub struct Jit {
     /// Loops tried and not compiled.
     rejected: BTreeSet<(u32, u32)>,
     loops: Vec<Loop>,
-    /// Entry pc → the loop entered there (the outermost compiled).
-    entries: BTreeMap<u32, usize>,
+    /// By pc, the loop entered there plus one (0: none; the widest
+    /// compiled): made at the first compile, as long as the code, so that
+    /// the VM's question at every backward jump is one look.
+    entries: Vec<u32>,
     stats: TierStats,
 }
 
@@ -81,9 +83,15 @@ impl Jit {
             rounds: BTreeMap::new(),
             rejected: BTreeSet::new(),
             loops: Vec::new(),
-            entries: BTreeMap::new(),
+            entries: Vec::new(),
             stats: TierStats::default(),
         })
+    }
+
+    /// The compiled loop that may be entered at `pc`.
+    fn loop_at(&self, pc: u32) -> Option<&Loop> {
+        let number = *self.entries.get(pc as usize)? as usize;
+        self.loops.get(number.checked_sub(1)?)
     }
 
     /// Counts a round of the loop `head..=from`, compiling it when hot.
@@ -114,18 +122,25 @@ impl Jit {
         self.stats.compiled += 1;
         let ns = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
         self.stats.compile_ns = self.stats.compile_ns.saturating_add(ns);
-        let index = self.loops.len();
+        if self.entries.is_empty() {
+            self.entries = vec![0; module.code.len()];
+        }
+        let number = u32::try_from(self.loops.len() + 1).ok()?;
         // The widest loop's code takes over the entries it shares with
         // the loops inside it (the earliest head, then the latest back
         // edge).
         let width = |r: &Region| (std::cmp::Reverse(r.head), r.tail);
         for &pc in &region.entries {
-            let narrower = match self.entries.get(&pc).and_then(|&i| self.loops.get(i)) {
+            let Some(slot) = self.entries.get_mut(pc as usize) else {
+                continue;
+            };
+            let other = (*slot as usize).checked_sub(1);
+            let narrower = match other.and_then(|i| self.loops.get(i)) {
                 Some(other) => width(&other.region) < width(&region),
                 None => true,
             };
             if narrower {
-                self.entries.insert(pc, index);
+                *slot = number;
             }
         }
         self.loops.push(Loop { region, code });
@@ -192,13 +207,12 @@ impl Tier for Jit {
         entry: Entry,
         state: LoopState<'_>,
     ) -> Option<u32> {
-        if let Entry::BackEdge { from } = entry {
-            if !self.entries.contains_key(&pc) {
+        if self.loop_at(pc).is_none() {
+            if let Entry::BackEdge { from } = entry {
                 self.count_round(module, pc, from, state.regs.len());
             }
         }
-        let &index = self.entries.get(&pc)?;
-        let compiled = self.loops.get(index)?;
+        let compiled = self.loop_at(pc)?;
         // The code checks the fuel at its backward jumps; no path from an
         // entry to one is longer than the loop, so with this much it runs
         // no instruction the step has not allowed.
