@@ -125,7 +125,12 @@ enum Command {
         /// Compile hot macro loops to machine code: auto (a loop that has
         /// gone round 500 times), always (at its first round), off. The
         /// output is the same either way.
-        #[arg(long, value_enum, default_value = "auto", require_equals = true)]
+        #[arg(
+            long,
+            value_enum,
+            default_value = "auto",
+            value_name = "auto|always|off"
+        )]
         jit: cli::jit::JitMode,
     },
     /// Run a module through the runtime and certify every period: axis
