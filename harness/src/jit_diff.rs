@@ -144,6 +144,7 @@ fn statements(c: &mut Choices, src: &mut String, level: u32, label: &mut u32) {
                 *src += &format!("#{n}=#{n}+1\nEND{level}\n");
             }
             8 => {
+                // (A call and a system variable twice: weighted.)
                 *src += c.pick(&[
                     "M98 P1000\n",
                     "#5=#5021\n",
