@@ -11,23 +11,12 @@
 //!   of the numeric loop (the module made once).
 
 use benches::build;
-use benches::whole::{compile_and_run, macro_loop, numeric_loop};
+use benches::whole::{canon_lines, macro_loop, numeric_loop, ELLIPSE};
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use std::time::Duration;
 
 const NUMERIC_ROUNDS: usize = 1_000_000;
 const LOOP_ROUNDS: usize = 100_000;
-
-/// An ellipse of 3601 points: X = 2a·cos t, Z = b·sin t.
-const ELLIPSE: &str = "#1=40\n#2=20\n#3=0\nG00 X80 Z0\nWHILE[#3LE360]DO1\nG01 X[2*#1*COS[#3]] Z[#2*SIN[#3]-20] F0.1\n#3=#3+0.1\nEND1\nM30\n";
-
-/// Canon lines of a run; a failure stops the bench with its message.
-fn lines(src: &str, mode: jit::Mode) -> u64 {
-    match compile_and_run(src, std::io::sink(), mode) {
-        Ok((n, _)) => n,
-        Err(e) => panic!("the bench program failed: {e}"),
-    }
-}
 
 fn runs(c: &mut Criterion) {
     let mut g = c.benchmark_group("jit");
@@ -44,7 +33,7 @@ fn runs(c: &mut Criterion) {
         g.throughput(Throughput::Elements(*rounds as u64));
         for (mode_name, mode) in modes {
             g.bench_function(format!("{name}_{mode_name}"), |b| {
-                b.iter(|| lines(src, mode))
+                b.iter(|| canon_lines(src, mode))
             });
         }
     }

@@ -4,6 +4,7 @@
 //! a long macro program (the passes' cost where they have work: pass
 //! `fold` follows 300 known variables through 20 000 statements).
 
+use benches::whole::ELLIPSE;
 use benches::{build, Count};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::Duration;
@@ -23,9 +24,6 @@ fn loop_with_moves() -> String {
 fn pure_arithmetic() -> String {
     format!("#1=0\n#2=0\nWHILE[#1LT{ITER}]DO1\n#2=#2+#1*3-1\n#1=#1+1\nEND1\nM30\n")
 }
-
-/// An ellipse of 3600 points: X = 2a·cos t, Z = b·sin t.
-const ELLIPSE: &str = "#1=40\n#2=20\n#3=0\nG00 X80 Z0\nWHILE[#3LE360]DO1\nG01 X[2*#1*COS[#3]] Z[#2*SIN[#3]-20] F0.1\n#3=#3+0.1\nEND1\nM30\n";
 
 /// The 300 common variables #100–#199 and #500–#699 set, then 5 000
 /// rounds of a conditional assignment, a numbered move with computed

@@ -5,21 +5,14 @@
 //! `peer/compare.sh` times the same programs as whole processes against
 //! LinuxCNC's `rs274 -g`.
 
-use benches::whole::{compile_and_run, g1_blocks, macro_loop};
+use benches::whole::{canon_lines, g1_blocks, macro_loop};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::time::Duration;
 
 const G1_BLOCKS: usize = 200_000;
 const LOOP_ITERATIONS: usize = 100_000;
-
-/// Canon lines of a run; a failure stops the bench with its message.
-fn lines(src: &str) -> u64 {
-    // With the loop JIT as `gbvm run` has it by default.
-    match compile_and_run(src, std::io::sink(), jit::Mode::Auto) {
-        Ok((n, _)) => n,
-        Err(e) => panic!("the bench program failed: {e}"),
-    }
-}
+/// The loop JIT as `gbvm run` has it by default.
+const MODE: jit::Mode = jit::Mode::Auto;
 
 fn pipeline(c: &mut Criterion) {
     let mut g = c.benchmark_group("pipeline");
@@ -31,13 +24,13 @@ fn pipeline(c: &mut Criterion) {
     let g1 = g1_blocks(G1_BLOCKS);
     g.throughput(Throughput::Elements(G1_BLOCKS as u64));
     g.bench_function("g1_200k_compile_and_run_to_canon", |b| {
-        b.iter(|| lines(&g1))
+        b.iter(|| canon_lines(&g1, MODE))
     });
     let looped = macro_loop(LOOP_ITERATIONS);
     g.measurement_time(Duration::from_secs(8));
     g.throughput(Throughput::Elements(LOOP_ITERATIONS as u64));
     g.bench_function("macro_loop_100k_compile_and_run_to_canon", |b| {
-        b.iter(|| lines(&looped))
+        b.iter(|| canon_lines(&looped, MODE))
     });
     g.finish();
 }

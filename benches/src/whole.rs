@@ -27,6 +27,9 @@ pub fn macro_loop(n: usize) -> String {
     )
 }
 
+/// An ellipse of 3601 points by a macro: X = 2a·cos t, Z = b·sin t.
+pub const ELLIPSE: &str = "#1=40\n#2=20\n#3=0\nG00 X80 Z0\nWHILE[#3LE360]DO1\nG01 X[2*#1*COS[#3]] Z[#2*SIN[#3]-20] F0.1\n#3=#3+0.1\nEND1\nM30\n";
+
 /// Issue #17's numeric loop: `n` rounds of arithmetic, comparisons and
 /// functions (one SIN, SQRT, ABS, FIX; a MOD-free IF), one move at the end.
 pub fn numeric_loop(n: usize) -> String {
@@ -72,6 +75,15 @@ impl<W: Write> Sink for CanonText<W> {
                 self.error = Some(err);
             }
         }
+    }
+}
+
+/// The canon's line count of [`compile_and_run`] into a writer that
+/// discards it; a failure stops the bench with its message.
+pub fn canon_lines(src: &str, jit: jit::Mode) -> u64 {
+    match compile_and_run(src, std::io::sink(), jit) {
+        Ok((n, _)) => n,
+        Err(e) => panic!("the bench program failed: {e}"),
     }
 }
 

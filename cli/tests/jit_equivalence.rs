@@ -8,7 +8,7 @@
 
 mod cases;
 
-use cases::{conformance_cases, corpus_cases, Case};
+use cases::{conformance_cases, corpus_cases, example_cases, Case};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -63,23 +63,6 @@ fn check(case: &Case, dir: &Path) -> Option<Result<(), String>> {
             case.name, off.1, on.1
         )),
     })
-}
-
-fn example_cases() -> Vec<Case> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
-    let mut srcs: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "nc"))
-        .collect();
-    srcs.sort();
-    srcs.into_iter()
-        .map(|src| Case {
-            name: format!("examples/{}", src.file_stem().unwrap().to_string_lossy()),
-            src,
-            machine: None,
-        })
-        .collect()
 }
 
 #[test]

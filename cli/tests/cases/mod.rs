@@ -1,7 +1,10 @@
 //! The programs the whole-tool equivalence tests run: the conformance
-//! suite (with each case's machine file) and the public corpus (on the
+//! suite (with each case's machine file), the public corpus (on the
 //! machines of compiler/tests/corpus.rs), when ../shared is beside the
-//! repository.
+//! repository, and the examples.
+
+// Each test binary uses a different subset.
+#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 
@@ -19,17 +22,36 @@ fn shared(dir: &str) -> Option<PathBuf> {
     d.is_dir().then_some(d)
 }
 
-pub fn conformance_cases() -> Vec<Case> {
-    let Some(suite) = shared("conformance") else {
-        return Vec::new();
-    };
-    let mut srcs: Vec<PathBuf> = std::fs::read_dir(&suite)
+/// The `.nc` files of a folder, sorted.
+fn nc_files(dir: &Path) -> Vec<PathBuf> {
+    let mut srcs: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "nc"))
         .collect();
     srcs.sort();
-    srcs.into_iter()
+    srcs
+}
+
+/// The programs of `examples/`, on the reference machine.
+pub fn example_cases() -> Vec<Case> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
+    nc_files(&dir)
+        .into_iter()
+        .map(|src| Case {
+            name: format!("examples/{}", src.file_stem().unwrap().to_string_lossy()),
+            src,
+            machine: None,
+        })
+        .collect()
+}
+
+pub fn conformance_cases() -> Vec<Case> {
+    let Some(suite) = shared("conformance") else {
+        return Vec::new();
+    };
+    nc_files(&suite)
+        .into_iter()
         .map(|src| {
             let toml = src.with_extension("toml");
             Case {
