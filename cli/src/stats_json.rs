@@ -76,6 +76,8 @@ pub struct Jit {
     pub compile_ms: f64,
     /// Times compiled code was entered.
     pub entries: u64,
+    /// NC blocks the code ran itself (a direct call into the kernel).
+    pub blocks: u64,
 }
 
 impl Jit {
@@ -86,6 +88,7 @@ impl Jit {
             loops_failed: s.failed,
             compile_ms: s.compile_ns as f64 / 1e6,
             entries: s.entries,
+            blocks: s.blocks,
         })
     }
 
@@ -96,8 +99,8 @@ impl Jit {
             n => format!(" ({n} left interpreted)"),
         };
         format!(
-            "jit: {} loops compiled in {:.2} ms{failed}, code entered {} times\n",
-            self.loops_compiled, self.compile_ms, self.entries
+            "jit: {} loops compiled in {:.2} ms{failed}, code entered {} times, {} blocks run from it\n",
+            self.loops_compiled, self.compile_ms, self.entries, self.blocks
         )
     }
 }

@@ -258,6 +258,7 @@ pub fn compare(src: &str, max_blocks: u64, step: u64) -> TierStats {
         }
         all.compiled += stats.compiled;
         all.entries += stats.entries;
+        all.blocks += stats.blocks;
         all.failed += stats.failed;
     }
     all

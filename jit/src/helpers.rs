@@ -1,6 +1,7 @@
 //! The functions compiled code calls for what it does not inline: the
 //! kernel's own value functions (`nc::value`), so that a function or a MOD
-//! gives the interpreter's bits, and the word buffer.
+//! gives the interpreter's bits, the word buffer, and the kernel's
+//! executor for a block.
 //!
 //! A fault is reported as NaN: no operation here returns NaN as a value
 //! (a result that is not finite is itself a fault, E5006), so the code
@@ -9,6 +10,9 @@
 
 use nc::value::{self, Bin, Func};
 use nc::words::Words;
+use vm::Kernel;
+
+use crate::native::Ctx;
 
 /// The binary operations the code calls out for, by the number it passes.
 pub const BINARY_OPS: [Bin; 5] = [Bin::Div, Bin::Mod, Bin::And, Bin::Or, Bin::Xor];
@@ -46,6 +50,25 @@ pub unsafe extern "C" fn push_word(words: *mut Words, addr: u32, v: f64, flags: 
     // its words while the code runs.
     let words = unsafe { &mut *words };
     words.push(addr as u8, v, flags as u8);
+}
+
+/// Runs the block instruction at `pc` through the kernel the VM lent
+/// (`vm::Kernel::run_block`): 1 when it ran (the code then leaves at
+/// `pc + 1`), 0 when not (it leaves at `pc`, unexecuted).
+///
+/// # Safety
+/// `ctx` is the context `Code::run` made for this entry of the code: its
+/// `kernel` points at the `&mut dyn Kernel` of that call and its `words`
+/// at the VM's words; the code touches the state no more after this call.
+pub unsafe extern "C" fn block(ctx: *mut Ctx, pc: u32) -> u32 {
+    // SAFETY: the caller's contract: the pointers are live for this entry
+    // and nothing else uses them while the kernel runs.
+    let ctx = unsafe { &mut *ctx };
+    let kernel = unsafe { &mut *ctx.kernel.cast::<&mut dyn Kernel>() };
+    let words = unsafe { &mut *ctx.words };
+    let ran = kernel.run_block(pc, words, &mut ctx.blocks);
+    ctx.blocks_run += u64::from(ran);
+    u32::from(ran)
 }
 
 #[cfg(test)]

@@ -4,11 +4,13 @@
 //! The VM counts a loop's rounds at its backward jump and hands them to
 //! the tier; past a threshold ([`Mode`]) the tier compiles the loop, from
 //! its head to that jump, and from then on the round runs as machine code.
-//! What the code does not handle (NC blocks, calls, system variables, a
-//! fault, a charge the block budget cannot take) it leaves at, unexecuted,
-//! to the interpreter, which runs it and hands back at the next
-//! instruction: every block still goes through the kernel, every alarm is
-//! the interpreter's. Compiled code changes nothing else the interpreter
+//! An NC block the code runs by a direct call into the kernel's executor
+//! (the VM's [`vm::Kernel`]: the same code the interpreter runs it with)
+//! and then leaves, since the VM ends its step after every block. What
+//! the code does not handle (calls, system variables, a fault, a charge
+//! the block budget cannot take) it leaves at, unexecuted, to the
+//! interpreter, which runs it and hands back at the next instruction:
+//! every alarm is the interpreter's. Compiled code changes nothing else the interpreter
 //! would not: the same values bit for bit (`lower`'s module doc), the same
 //! block budget, the same variables at every exit.
 //!
@@ -221,6 +223,8 @@ impl Tier for Jit {
         }
         let code = compiled.code;
         self.stats.entries += 1;
-        code.run(pc, state)
+        let (next, blocks) = code.run(pc, state)?;
+        self.stats.blocks += blocks;
+        Some(next)
     }
 }

@@ -30,7 +30,7 @@ use nc::value::{Bin, Func, Rel, VACANT};
 
 use crate::helpers::binary_code;
 use crate::native::Ctx;
-use crate::region::{is_native, is_pure, Place, Region};
+use crate::region::{is_block, is_native, is_pure, Place, Region};
 
 /// The helpers, imported into the function being built.
 pub struct Refs {
@@ -38,6 +38,7 @@ pub struct Refs {
     pub func: FuncRef,
     pub atan2: FuncRef,
     pub push_word: FuncRef,
+    pub block: FuncRef,
 }
 
 /// The pointers the entry block loads from the context (they dominate
@@ -267,6 +268,10 @@ impl<'a, 'f> Lower<'a, 'f> {
     /// One instruction; whether the block goes on after it.
     fn instr(&mut self, pc: u32, instr: Instr) -> bool {
         use Instr::*;
+        if is_block(&instr) {
+            self.block(pc);
+            return false;
+        }
         if !is_native(&instr) {
             self.exit_at(pc);
             return false;
@@ -667,6 +672,18 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b
             .ins()
             .call(self.refs.push_word, &[words, addr, v, flags]);
+    }
+
+    /// An NC block, its words built: a direct call into the kernel's
+    /// executor, then a leave at the next pc (the VM finishes the block
+    /// and ends its step, as after every block); at `pc` itself, unrun,
+    /// when the kernel did not take it.
+    fn block(&mut self, pc: u32) {
+        let at = self.b.ins().iconst(types::I32, i64::from(pc));
+        let call = self.b.ins().call(self.refs.block, &[self.ctx, at]);
+        let ran = self.b.inst_results(call)[0];
+        let next = self.b.ins().iadd(at, ran);
+        self.b.ins().jump(self.exit, &[BlockArg::Value(next)]);
     }
 
     /// Charges a block to the budget; one the budget cannot take leaves

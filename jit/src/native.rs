@@ -11,7 +11,7 @@ use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{default_libcall_names, FuncId, Linkage, Module as _};
 use nc::words::Words;
-use vm::LoopState;
+use vm::{Kernel, LoopState};
 
 use crate::helpers;
 use crate::lower::{Lower, Refs};
@@ -29,6 +29,10 @@ pub struct Ctx {
     pub blocks: u64,
     pub max_blocks: u64,
     pub fuel: u64,
+    /// The kernel's executor (`helpers::block`): a `*mut &mut dyn Kernel`.
+    pub kernel: *mut std::ffi::c_void,
+    /// Blocks run through it (0 or 1: the code leaves after one).
+    pub blocks_run: u64,
 }
 
 /// A compiled loop: `fn(ctx, entry pc) -> pc to go on at`.
@@ -43,11 +47,13 @@ pub struct Code {
 
 impl Code {
     /// Runs the code from `pc` (one of the region's entries) on the VM's
-    /// state; returns the pc at which the interpreter goes on.
-    pub fn run(&self, pc: u32, state: LoopState<'_>) -> Option<u32> {
+    /// state; returns the pc at which the interpreter goes on, and the
+    /// blocks the code ran.
+    pub fn run(&self, pc: u32, state: LoopState<'_>) -> Option<(u32, u64)> {
         if state.regs.len() != self.num_regs {
             return None;
         }
+        let mut kernel: &mut dyn Kernel = state.kernel;
         let mut ctx = Ctx {
             regs: state.regs.as_mut_ptr(),
             locals: state.locals.as_mut_ptr(),
@@ -57,17 +63,21 @@ impl Code {
             blocks: *state.blocks,
             max_blocks: state.max_blocks,
             fuel: *state.fuel,
+            kernel: (&raw mut kernel).cast(),
+            blocks_run: 0,
         };
         // SAFETY: the code was compiled for a register file of this length
         // and touches only the locals (33), commons (100) and persistent
         // variables (500, read only) at indexes below those lengths, the
-        // words through `helpers::push_word`, and `ctx` itself; every one
-        // is borrowed mutably (or shared, the persistent ones) for this
-        // call, so nothing else reads or writes them meanwhile.
+        // words through `helpers::push_word`, the kernel through
+        // `helpers::block` (after which it touches nothing but returns),
+        // and `ctx` itself; every one is borrowed mutably (or shared, the
+        // persistent ones) for this call, so nothing else reads or writes
+        // them meanwhile.
         let next = unsafe { (self.entry)(&mut ctx, pc) };
         *state.blocks = ctx.blocks;
         *state.fuel = ctx.fuel;
-        Some(next)
+        Some((next, ctx.blocks_run))
     }
 }
 
@@ -77,6 +87,7 @@ struct HelperIds {
     func: FuncId,
     atan2: FuncId,
     push_word: FuncId,
+    block: FuncId,
 }
 
 /// The JIT module and its reusable contexts.
@@ -124,6 +135,7 @@ impl Backend {
         builder.symbol("gbc_func", helpers::func as *const u8);
         builder.symbol("gbc_atan2", helpers::atan2 as *const u8);
         builder.symbol("gbc_push_word", helpers::push_word as *const u8);
+        builder.symbol("gbc_block", helpers::block as *const u8);
         let mut module = JITModule::new(builder);
         let helpers = declare_helpers(&mut module)?;
         Ok(Backend {
@@ -181,6 +193,7 @@ impl Backend {
             func: m.declare_func_in_func(self.helpers.func, f),
             atan2: m.declare_func_in_func(self.helpers.atan2, f),
             push_word: m.declare_func_in_func(self.helpers.push_word, f),
+            block: m.declare_func_in_func(self.helpers.block, f),
         }
     }
 }
@@ -211,5 +224,6 @@ fn declare_helpers(module: &mut JITModule) -> Result<HelperIds, String> {
         func: declare("gbc_func", &[i32t, f64t], Some(f64t))?,
         atan2: declare("gbc_atan2", &[f64t, f64t], Some(f64t))?,
         push_word: declare("gbc_push_word", &[ptr, i32t, f64t, i32t], None)?,
+        block: declare("gbc_block", &[ptr, i32t], Some(i32t))?,
     })
 }

@@ -6,7 +6,8 @@
 //! Every instruction the code does not handle is an *exit*: the code
 //! stores its state and returns that instruction's pc, unexecuted, to the
 //! interpreter, which runs it and may come back in at the next pc (an
-//! entry). An instruction that would fault, or a charge the block budget
+//! entry). An NC block is an exit too, but one the code runs first, by a
+//! call into the kernel's executor, and leaves after. An instruction that would fault, or a charge the block budget
 //! cannot take, exits the same way, so that the interpreter raises the
 //! alarm with its own message and line.
 
@@ -62,6 +63,17 @@ pub fn is_native(instr: &Instr) -> bool {
         Word { .. } | WordK { .. } => true,
         LoadVar { var, .. } => Place::of(var) != Place::Other,
         StoreVar { var, .. } => Place::of(var).is_cached(),
+        _ => false,
+    }
+}
+
+/// Whether `instr` is an NC block, which the code runs by a direct call
+/// into the kernel's executor (`vm::Kernel`) and leaves after: the VM ends
+/// its step after every block.
+pub fn is_block(instr: &Instr) -> bool {
+    match *instr {
+        Instr::Exec { flags } => flags & vm::PROFILE == 0,
+        Instr::ExecMove | Instr::Move { .. } | Instr::Block { .. } => true,
         _ => false,
     }
 }

@@ -7,6 +7,7 @@ use alloc::string::ToString;
 use alloc::vec;
 use alloc::vec::Vec;
 
+use crate::block::{self, BlockRun, TierCall};
 use crate::loc_cache::LocCache;
 use crate::tier::{Entry, LoopState, Tier};
 use crate::vars::{slot, Slot, Vars};
@@ -299,28 +300,53 @@ impl Vm {
         while self.fuel > 0 {
             self.fuel -= 1;
             if self.pc == self.resume_at {
-                self.enter_tier(Entry::Resume);
+                if let Some(status) = self.resume(sink) {
+                    return status;
+                }
             }
             let pc = self.pc;
-            let result = self
-                .exec_one(sink)
-                .and_then(|next| self.persist().map(|()| next));
-            match result {
-                Ok(Next::Go) => {}
-                Ok(Next::Event) => return Status::Event,
-                Ok(Next::Sync) => return Status::Sync,
-                Ok(Next::Done) => {
-                    self.done = true;
-                    return Status::Done;
-                }
-                Err(e) => {
-                    self.done = true;
-                    let _ = self.persist();
-                    return Status::Alarm(self.alarm(pc, e, sink));
-                }
+            let result = self.exec_one(sink);
+            if let Some(status) = self.settle(pc, result, sink) {
+                return status;
             }
         }
         Status::OutOfBudget
+    }
+
+    /// The tier's code runs on from the pc, up to a block it runs (the
+    /// step ends there, as that block's instruction would end it), or up
+    /// to an instruction it leaves to the interpreter (`None`). (Out of
+    /// line: the interpreter's loop stays tight.)
+    #[inline(never)]
+    fn resume(&mut self, sink: &mut dyn Sink) -> Option<Status> {
+        let ran = self.enter_tier(Entry::Resume, sink)?;
+        self.settle(self.pc, ran, sink)
+    }
+
+    /// What the step does after the instruction at `pc` gave `result`:
+    /// goes on (`None`) or returns a status. (Inline: it follows every
+    /// instruction.)
+    #[inline(always)]
+    fn settle(
+        &mut self,
+        pc: u32,
+        result: Result<Next, Fault>,
+        sink: &mut dyn Sink,
+    ) -> Option<Status> {
+        match result.and_then(|next| self.persist().map(|()| next)) {
+            Ok(Next::Go) => None,
+            Ok(Next::Event) => Some(Status::Event),
+            Ok(Next::Sync) => Some(Status::Sync),
+            Ok(Next::Done) => {
+                self.done = true;
+                Some(Status::Done)
+            }
+            Err(e) => {
+                self.done = true;
+                let _ = self.persist();
+                Some(Status::Alarm(self.alarm(pc, e, sink)))
+            }
+        }
     }
 
     /// Hands changed persistent variables to the storage. (Asked after
@@ -395,19 +421,7 @@ impl Vm {
     }
 
     fn count_block(&mut self) -> Result<(), Fault> {
-        self.charge(1)
-    }
-
-    /// Charges `blocks` blocks to the budget.
-    fn charge(&mut self, blocks: u64) -> Result<(), Fault> {
-        self.blocks = self.blocks.saturating_add(blocks);
-        if self.blocks > self.max_blocks {
-            return fault(
-                AlarmCode::BlockBudget,
-                format!("the block budget of {} blocks is used up", self.max_blocks),
-            );
-        }
-        Ok(())
+        block::charge(&mut self.blocks, self.max_blocks, 1)
     }
 
     /// Continues at `target`. A transfer backwards may close a loop, so it
@@ -415,25 +429,44 @@ impl Vm {
     /// makes it: every loop of any module, compiled or crafted, then ends
     /// with E6005 at the latest. (GOTO, calls and M99 are charged where
     /// they run.)
-    fn jump(&mut self, target: u32) -> Result<(), Fault> {
+    ///
+    /// A tier may take over at a backward jump; if its code runs a block,
+    /// the jump ends as that block's instruction would.
+    fn jump(&mut self, target: u32, sink: &mut dyn Sink) -> Result<Next, Fault> {
         let from = self.pc - 1;
         self.pc = target;
         if target <= from {
             self.count_block()?;
             if self.tier.is_some() {
-                self.enter_tier(Entry::BackEdge { from });
+                if let Some(ran) = self.enter_tier(Entry::BackEdge { from }, sink) {
+                    return ran;
+                }
             }
         }
-        Ok(())
+        Ok(Next::Go)
     }
 
-    /// Lets the tier run from the pc, if it has code there.
-    #[cold]
-    fn enter_tier(&mut self, entry: Entry) {
-        let Some(tier) = self.tier.as_mut() else {
-            return;
-        };
+    /// Lets the tier run from the pc, if it has code there. If its code
+    /// ran a block (and left after it), that block's end, finished here:
+    /// an alarm names the block.
+    #[inline(never)]
+    fn enter_tier(&mut self, entry: Entry, sink: &mut dyn Sink) -> Option<Result<Next, Fault>> {
+        let tier = self.tier.as_mut()?;
         let (locals, common, persistent) = self.vars.split();
+        // (Field by field, not `block_run`: the tier and the variables are
+        // borrowed too.)
+        let mut call = TierCall {
+            run: BlockRun {
+                module: &self.module,
+                nc: &mut self.nc,
+                sink: &mut *sink,
+                max_blocks: self.max_blocks,
+                last_exec: &mut self.last_exec,
+                msg: &mut self.msg,
+                synced: &mut self.synced,
+            },
+            ran: None,
+        };
         let state = LoopState {
             regs: &mut self.regs,
             locals,
@@ -443,12 +476,21 @@ impl Vm {
             blocks: &mut self.blocks,
             max_blocks: self.max_blocks,
             fuel: &mut self.fuel,
+            kernel: &mut call,
         };
         self.resume_at = NO_PC;
-        if let Some(pc) = tier.enter(&self.module, self.pc, entry, state) {
+        let next = tier.enter(&self.module, self.pc, entry, state);
+        let ran = call.ran;
+        if let Some(pc) = next {
             self.pc = pc;
             self.resume_at = pc.saturating_add(1);
         }
+        let (at, result) = ran?;
+        // The code left after the block: it may go on from there.
+        self.pc = at.saturating_add(1);
+        self.resume_at = self.pc;
+        let result = result.and_then(|out| self.finish_block(out, sink));
+        Some(result.map_err(|e| about_block(e, at)))
     }
 
     fn reg(&self, r: u8) -> f64 {
@@ -531,11 +573,11 @@ impl Vm {
             Instr::MulK { dst, a, k } => self.bin_k(Bin::Mul, dst, a, k)?,
             Instr::DivK { dst, a, k } => self.bin_k(Bin::Div, dst, a, k)?,
             Instr::CmpK { dst, a, k, op } => self.compare(op, dst, self.reg(a), self.konst(k))?,
-            Instr::Jump { target } => self.jump(target)?,
+            Instr::Jump { target } => return self.jump(target, sink),
             Instr::JumpIfNot { cond, target } => {
                 if value::compare(Rel::Eq, self.reg(cond), 0.0) == 1.0 || is_vacant(self.reg(cond))
                 {
-                    self.jump(target)?;
+                    return self.jump(target, sink);
                 }
             }
             Instr::SkipBlock { switch, target } => {
@@ -584,26 +626,30 @@ impl Vm {
                 self.words.clear();
                 self.msg = None;
             }
+            // The NC blocks (`block::BlockRun`), then what follows them.
             Instr::Exec { .. } => {
-                self.synced = false;
-                return self.exec_block(sink);
+                let pc = self.pc - 1;
+                let (mut run, words, blocks) = self.block_run(sink);
+                let out = run.words(pc, words, blocks)?;
+                return self.finish_block(out, sink);
             }
             Instr::Block { rec } => {
-                // A typed block: as `wordk… exec` would.
-                self.load_record(rec)?;
-                self.synced = false;
-                return self.exec_block(sink);
+                let pc = self.pc - 1;
+                let (mut run, words, blocks) = self.block_run(sink);
+                let out = run.typed(pc, rec, words, blocks)?;
+                return self.finish_block(out, sink);
             }
             Instr::Move { rec } => {
-                // A typed plain move: the kernel's short parse.
-                self.load_record(rec)?;
-                self.synced = false;
-                return self.exec_with(sink, Nc::exec_move);
+                let pc = self.pc - 1;
+                let (mut run, words, blocks) = self.block_run(sink);
+                let out = run.typed_move(pc, rec, words, blocks)?;
+                return self.finish_block(out, sink);
             }
             Instr::ExecMove => {
-                // A plain move with computed words: the short parse too.
-                self.synced = false;
-                return self.exec_with(sink, Nc::exec_move);
+                let pc = self.pc - 1;
+                let (mut run, words, blocks) = self.block_run(sink);
+                let out = run.plain_move(pc, words, blocks)?;
+                return self.finish_block(out, sink);
             }
             Instr::Profile { rec } => {
                 // A typed profile block: as `wordk… exec` with PROFILE.
@@ -708,30 +754,31 @@ impl Vm {
         }
     }
 
-    fn exec_block(&mut self, sink: &mut dyn Sink) -> Result<Next, Fault> {
-        self.exec_with(sink, Nc::exec)
+    /// What running a block borrows: the kernel's part, the words, the
+    /// block count.
+    #[inline(always)]
+    fn block_run<'a>(
+        &'a mut self,
+        sink: &'a mut dyn Sink,
+    ) -> (BlockRun<'a>, &'a mut Words, &'a mut u64) {
+        let run = BlockRun {
+            module: &self.module,
+            nc: &mut self.nc,
+            sink,
+            max_blocks: self.max_blocks,
+            last_exec: &mut self.last_exec,
+            msg: &mut self.msg,
+            synced: &mut self.synced,
+        };
+        (run, &mut self.words, &mut self.blocks)
     }
 
-    /// Executes the block built so far with the kernel's `exec` (or
-    /// `exec_move`).
+    /// What follows a block in the VM: G31's skip position, G10 L52's
+    /// variable, the program's end, a G66 call after a move. (Inline: its
+    /// result, an `NcError` wide, returned through memory cost a tenth of a
+    /// compiled loop's round.)
     #[inline(always)]
-    fn exec_with(
-        &mut self,
-        sink: &mut dyn Sink,
-        exec: fn(&mut Nc, &[nc::words::Word], &mut dyn Sink) -> Result<nc::Outcome, NcError>,
-    ) -> Result<Next, Fault> {
-        self.count_block()?;
-        self.last_exec = self.pc - 1;
-        self.nc
-            .set_allowance(self.max_blocks.saturating_sub(self.blocks));
-        let result = exec(&mut self.nc, &self.words.list, sink);
-        self.words.clear();
-        self.msg = None;
-        // A canned cycle counts as the blocks it generates, the first
-        // being its own (all passes counted).
-        let generated = self.nc.take_generated();
-        self.charge(generated.saturating_sub(1))?;
-        let out = result?;
+    fn finish_block(&mut self, out: nc::Outcome, sink: &mut dyn Sink) -> Result<Next, Fault> {
         if let Some(p) = out.skip {
             // #995–#999 are persistent: set as a store would, so that
             // the storage gets them.
@@ -1011,6 +1058,13 @@ impl Vm {
 }
 
 /// A variable number from a value: rounded; vacant E5009, negative E5008.
+/// A fault of the block at `pc` that a tier's code ran: the alarm names
+/// that block (unless it names a profile block already).
+fn about_block(mut e: Fault, pc: u32) -> Fault {
+    e.at.get_or_insert(pc);
+    e
+}
+
 fn var_number(v: f64) -> Result<u32, Fault> {
     if is_vacant(v) {
         return fault(

@@ -20,6 +20,7 @@
 
 extern crate alloc;
 
+mod block;
 mod interp;
 mod loc_cache;
 mod tier;
@@ -27,4 +28,4 @@ mod vars;
 
 pub use interp::{Alarm, Status, Storage, Vm, PROFILE};
 pub use nc::{Event, Sink};
-pub use tier::{Entry, LoopState, Tier, TierStats};
+pub use tier::{Entry, Kernel, LoopState, Tier, TierStats};

@@ -4,7 +4,10 @@
 //! the tier hands back. Whatever a tier runs must leave that state exactly
 //! as interpreting the same instructions would have; everything it does
 //! not handle it leaves to the interpreter, at the instruction not yet
-//! executed.
+//! executed. An NC block it may run itself, by a direct call into the
+//! kernel's executor ([`Kernel`]), and then leave at the instruction
+//! after it: the VM finishes the block and ends its step there, as it
+//! does after every block.
 
 use isa::Module;
 use nc::words::Words;
@@ -43,6 +46,20 @@ pub struct LoopState<'a> {
     /// Instructions the current [`crate::Vm::step`] may still run; a tier
     /// takes off what it ran, and leaves before it runs out.
     pub fuel: &'a mut u64,
+    /// The kernel's executor, for a block the code has built.
+    pub kernel: &'a mut dyn Kernel,
+}
+
+/// The kernel's executor as a tier calls it: the block instruction at a pc
+/// (`exec`, `execmove`, `move`, `block`) run with the words built so far,
+/// exactly as the interpreter runs it, its block charged to `blocks`.
+pub trait Kernel {
+    /// Runs the block instruction at `pc`; `false` when that is not one
+    /// (or a block already ran in this entry): nothing ran then. After a
+    /// `true` the tier must leave at once, at `pc + 1`, without touching
+    /// the state again: the VM finishes the block (its outcome, an alarm
+    /// at `pc`) before anything else runs.
+    fn run_block(&mut self, pc: u32, words: &mut Words, blocks: &mut u64) -> bool;
 }
 
 /// What a tier has done (`gbvm --stats`, the benches).
@@ -56,6 +73,8 @@ pub struct TierStats {
     pub compile_ns: u64,
     /// Times compiled code was entered.
     pub entries: u64,
+    /// NC blocks compiled code ran by a direct call ([`Kernel`]).
+    pub blocks: u64,
 }
 
 /// A tier: compiled code for some of a module's loops.

@@ -148,3 +148,148 @@ fn a_charge_the_tier_makes_counts_against_the_block_budget() {
         assert_eq!(ends(9, tier), Some(6005));
     }
 }
+
+/// `r0 = 0; head: r0 += 1; r2 = r0·g − g; G[r2] X[r0] Z-1 (exec, line 3);
+/// if r0 < 3 goto head (line 5)`: G0 in round 1, G[g] after it.
+fn moving_loop(g: f64) -> (Module, u32, u32) {
+    let mut a = Asm::new();
+    a.load(0, 0.0);
+    let head = a.here();
+    let (one, gk) = (a.k(1.0), a.k(g));
+    a.line(2);
+    a.op(Instr::AddK {
+        dst: 0,
+        a: 0,
+        k: one,
+    });
+    a.op(Instr::MulK {
+        dst: 2,
+        a: 0,
+        k: gk,
+    });
+    a.op(Instr::SubK {
+        dst: 2,
+        a: 2,
+        k: gk,
+    });
+    a.line(3);
+    a.word_reg('G', 2);
+    a.word_reg('X', 0);
+    a.word('Z', -1.0);
+    let exec = a.exec();
+    a.line(5);
+    let three = a.k(3.0);
+    a.op(Instr::CmpK {
+        dst: 1,
+        a: 0,
+        k: three,
+        op: 3,
+    });
+    let test = a.here();
+    a.op(Instr::JumpIfNot { cond: 1, target: 0 });
+    a.op(Instr::Jump { target: head });
+    let end = a.here();
+    a.set(
+        test,
+        Instr::JumpIfNot {
+            cond: 1,
+            target: end,
+        },
+    );
+    a.op(Instr::Halt);
+    (a.build(), head, exec)
+}
+
+/// At the loop head it runs the round up to its block as the interpreter
+/// would, then the block itself through the kernel it is lent, and
+/// leaves after it. It records what the kernel said to each call.
+struct RunsBlocks {
+    head: u32,
+    exec: u32,
+    g: f64,
+    calls: Arc<Mutex<Vec<bool>>>,
+}
+
+impl Tier for RunsBlocks {
+    fn stats(&self) -> TierStats {
+        TierStats::default()
+    }
+
+    fn bind(&mut self, _: &Module) {}
+
+    fn enter(&mut self, _: &Module, pc: u32, _: Entry, s: LoopState<'_>) -> Option<u32> {
+        if pc != self.head || *s.fuel < 8 {
+            return None;
+        }
+        let mut calls = self.calls.lock().unwrap();
+        // Not a block: the kernel runs nothing.
+        calls.push(s.kernel.run_block(self.head, s.words, s.blocks));
+        s.regs[0] += 1.0;
+        s.regs[2] = s.regs[0] * self.g - self.g;
+        for (letter, v) in [('G', s.regs[2]), ('X', s.regs[0]), ('Z', -1.0)] {
+            s.words.push(isa::addr::from_letter(letter).unwrap(), v, 0);
+        }
+        *s.fuel -= 7;
+        calls.push(s.kernel.run_block(self.exec, s.words, s.blocks));
+        // One block an entry: a second is refused.
+        calls.push(s.kernel.run_block(self.exec, s.words, s.blocks));
+        Some(self.exec + 1)
+    }
+}
+
+/// Runs `moving_loop(g)`, with the scripted tier or without; the canon,
+/// the status and how many steps ended on a block.
+fn run_moving(g: f64, tier: Option<Arc<Mutex<Vec<bool>>>>) -> (Vec<String>, Status, usize) {
+    let (module, head, exec) = moving_loop(g);
+    let mut vm = common::vm(module);
+    if let Some(calls) = tier {
+        vm.set_tier(Box::new(RunsBlocks {
+            head,
+            exec,
+            g,
+            calls,
+        }));
+    }
+    let mut canon = Canon::default();
+    let mut events = 0;
+    let status = loop {
+        match vm.step(1 << 16, &mut canon) {
+            Status::Event => events += 1,
+            Status::OutOfBudget | Status::Sync => {}
+            other => break other,
+        }
+    };
+    (canon.0, status, events)
+}
+
+#[test]
+fn a_block_the_tier_runs_through_the_kernel_ends_the_step_as_the_interpreter_would() {
+    let calls = Arc::new(Mutex::new(Vec::new()));
+    let interpreted = run_moving(0.0, None);
+    let tiered = run_moving(0.0, Some(calls.clone()));
+    assert_eq!(interpreted.1, Status::Done);
+    assert_eq!(interpreted.2, 3);
+    let rapids = interpreted
+        .0
+        .iter()
+        .filter(|l| l.starts_with("RAPID"))
+        .count();
+    assert_eq!(rapids, 3, "{:?}", interpreted.0);
+    assert_eq!(tiered, interpreted);
+    // Rounds 2 and 3 by the tier: the head refused, the block run, a
+    // second block refused, each time.
+    let calls = calls.lock().unwrap().clone();
+    assert_eq!(calls, [false, true, false, false, true, false]);
+}
+
+#[test]
+fn an_alarm_of_a_block_the_tier_ran_names_that_block() {
+    // G7.7 (no such G code) in round 2, which the tier runs.
+    let calls = Arc::new(Mutex::new(Vec::new()));
+    let interpreted = run_moving(7.7, None);
+    let tiered = run_moving(7.7, Some(calls.clone()));
+    assert_eq!(tiered, interpreted);
+    let alarm = common::alarm_of(tiered.1);
+    assert_eq!(alarm.line, 3, "{alarm:?}");
+    assert!(calls.lock().unwrap()[1], "the tier ran the block");
+}

@@ -14,7 +14,8 @@ pub struct NcError {
     pub code: u16,
     pub message: String,
     /// The tag of the profile block (`Nc::push_profile`) that the error is
-    /// about, when it is about one rather than the block executing.
+    /// about, when it is about one rather than the block executing (the
+    /// VM also tags a block that a tier's compiled code ran: its pc).
     pub at: Option<u32>,
     /// The way out, when the alarm knows one (the compiler prints it as
     /// the diagnostic's help).
