@@ -41,6 +41,21 @@ pub(crate) fn charge(blocks: &mut u64, max: u64, n: u64) -> Result<(), NcError> 
     Ok(())
 }
 
+/// The words of the typed block at `rec`, from its record into `words`.
+/// (The one copy of the record decoder in the VM: with a second one the
+/// inliner left its varint reader out of line, 3 % more instructions on a
+/// long straight program.)
+#[inline]
+pub(crate) fn load_record(module: &Module, rec: u32, words: &mut Words) -> Result<(), NcError> {
+    match module.block_words(rec, |w| words.push(w.addr, w.value, w.flags)) {
+        Some(()) => Ok(()),
+        None => Err(NcError::new(
+            AlarmCode::JumpTargetMissing,
+            "a typed block is missing",
+        )),
+    }
+}
+
 impl BlockRun<'_> {
     /// Runs the block instruction at `pc` with `words` (its words so far);
     /// `None` when that instruction is not one (a tier's call).
@@ -93,7 +108,7 @@ impl BlockRun<'_> {
         words: &mut Words,
         blocks: &mut u64,
     ) -> Result<Outcome, NcError> {
-        self.load(rec, words)?;
+        load_record(self.module, rec, words)?;
         *self.synced = false;
         self.exec(pc, words, blocks, Nc::exec)
     }
@@ -107,24 +122,9 @@ impl BlockRun<'_> {
         words: &mut Words,
         blocks: &mut u64,
     ) -> Result<Outcome, NcError> {
-        self.load(rec, words)?;
+        load_record(self.module, rec, words)?;
         *self.synced = false;
         self.exec(pc, words, blocks, Nc::exec_move)
-    }
-
-    /// The words of the typed block at `rec`, from its record.
-    #[inline]
-    fn load(&self, rec: u32, words: &mut Words) -> Result<(), NcError> {
-        match self
-            .module
-            .block_words(rec, |w| words.push(w.addr, w.value, w.flags))
-        {
-            Some(()) => Ok(()),
-            None => Err(NcError::new(
-                AlarmCode::JumpTargetMissing,
-                "a typed block is missing",
-            )),
-        }
     }
 
     /// Executes the block built so far with one of the kernel's executors.

@@ -315,9 +315,11 @@ impl Vm {
 
     /// The tier's code runs on from the pc, up to a block it runs (the
     /// step ends there, as that block's instruction would end it), or up
-    /// to an instruction it leaves to the interpreter (`None`). (Out of
-    /// line: the interpreter's loop stays tight.)
-    #[inline(never)]
+    /// to an instruction it leaves to the interpreter (`None`). (Cold,
+    /// as `enter_tier`: out of the interpreter's loop, which without a
+    /// tier never comes here; inline it cost 2–3 % of an interpreted
+    /// program's instructions.)
+    #[cold]
     fn resume(&mut self, sink: &mut dyn Sink) -> Option<Status> {
         let ran = self.enter_tier(Entry::Resume, sink)?;
         self.settle(self.pc, ran, sink)
@@ -449,7 +451,7 @@ impl Vm {
     /// Lets the tier run from the pc, if it has code there. If its code
     /// ran a block (and left after it), that block's end, finished here:
     /// an alarm names the block.
-    #[inline(never)]
+    #[cold]
     fn enter_tier(&mut self, entry: Entry, sink: &mut dyn Sink) -> Option<Result<Next, Fault>> {
         let tier = self.tier.as_mut()?;
         let (locals, common, persistent) = self.vars.split();
@@ -653,7 +655,7 @@ impl Vm {
             }
             Instr::Profile { rec } => {
                 // A typed profile block: as `wordk… exec` with PROFILE.
-                self.load_record(rec)?;
+                block::load_record(&self.module, rec, &mut self.words)?;
                 self.nc.push_profile(&self.words.list, self.pc - 1);
                 self.words.clear();
             }
@@ -738,20 +740,6 @@ impl Vm {
         };
         self.set(dst, value::compare(op, a, b));
         Ok(())
-    }
-
-    /// The words of the typed block at `rec`, straight from its record
-    /// into the scratch.
-    #[inline]
-    fn load_record(&mut self, rec: u32) -> Result<(), Fault> {
-        let words = &mut self.words;
-        match self
-            .module
-            .block_words(rec, |w| words.push(w.addr, w.value, w.flags))
-        {
-            Some(()) => Ok(()),
-            None => fault(AlarmCode::JumpTargetMissing, "a typed block is missing"),
-        }
     }
 
     /// What running a block borrows: the kernel's part, the words, the
