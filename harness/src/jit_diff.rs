@@ -206,15 +206,18 @@ pub struct Outcome {
 }
 
 /// Runs `module` with the JIT in `mode`, `max_blocks` blocks at most and
-/// `step` instructions per call of `Vm::step`.
+/// `step` instructions per call of `Vm::step`, which ends at every block
+/// or not (`Vm::stop_at_blocks`).
 pub fn run(
     module: isa::Module,
     mode: jit::Mode,
     max_blocks: u64,
     step: u64,
+    stop_at_blocks: bool,
 ) -> (Outcome, TierStats) {
     let mut vm = Vm::new(module, Machine::reference());
     vm.max_blocks = max_blocks;
+    vm.stop_at_blocks = stop_at_blocks;
     if let Some(tier) = jit::Jit::new(mode) {
         vm.set_tier(Box::new(tier));
     }
@@ -247,19 +250,25 @@ pub fn compare(src: &str, max_blocks: u64, step: u64) -> TierStats {
         let Some(module) = compile("jit.nc", src.as_bytes(), &opts).module else {
             continue;
         };
-        let (off, _) = run(module.clone(), jit::Mode::Off, max_blocks, step);
-        let (on, stats) = run(module, jit::Mode::Always, max_blocks, step);
-        if off != on {
-            panic!(
-                "the JIT runs otherwise (-O{}, {max_blocks} blocks, step {step}):\n{src}\n{}",
-                u8::from(optimize),
-                difference(&off, &on)
-            );
+        let (off, _) = run(module.clone(), jit::Mode::Off, max_blocks, step, true);
+        // Compiled code leaves after each block where steps end at
+        // blocks, and runs its blocks through where they do not.
+        for stop_at_blocks in [true, false] {
+            let mode = jit::Mode::Always;
+            let (on, stats) = run(module.clone(), mode, max_blocks, step, stop_at_blocks);
+            if off != on {
+                panic!(
+                    "the JIT runs otherwise (-O{}, {max_blocks} blocks, step {step}, \
+                     stop at blocks: {stop_at_blocks}):\n{src}\n{}",
+                    u8::from(optimize),
+                    difference(&off, &on)
+                );
+            }
+            all.compiled += stats.compiled;
+            all.entries += stats.entries;
+            all.blocks += stats.blocks;
+            all.failed += stats.failed;
         }
-        all.compiled += stats.compiled;
-        all.entries += stats.entries;
-        all.blocks += stats.blocks;
-        all.failed += stats.failed;
     }
     all
 }

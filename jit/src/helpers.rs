@@ -10,7 +10,7 @@
 
 use nc::value::{self, Bin, Func};
 use nc::words::Words;
-use vm::Kernel;
+use vm::{Kernel, Ran};
 
 use crate::native::Ctx;
 
@@ -53,13 +53,13 @@ pub unsafe extern "C" fn push_word(words: *mut Words, addr: u32, v: f64, flags: 
 }
 
 /// Runs the block instruction at `pc` through the kernel the VM lent
-/// (`vm::Kernel::run_block`): 1 when it ran (the code then leaves at
-/// `pc + 1`), 0 when not (it leaves at `pc`, unexecuted).
+/// (`vm::Kernel::run_block`): what became of it, a [`Ran`] as `u32`.
 ///
 /// # Safety
 /// `ctx` is the context `Code::run` made for this entry of the code: its
 /// `kernel` points at the `&mut dyn Kernel` of that call and its `words`
-/// at the VM's words; the code touches the state no more after this call.
+/// at the VM's words; after `Ran::Leave` or `Ran::Not` the code touches
+/// the state no more.
 pub unsafe extern "C" fn block(ctx: *mut Ctx, pc: u32) -> u32 {
     // SAFETY: the caller's contract: the pointers are live for this entry
     // and nothing else uses them while the kernel runs.
@@ -67,8 +67,8 @@ pub unsafe extern "C" fn block(ctx: *mut Ctx, pc: u32) -> u32 {
     let kernel = unsafe { &mut *ctx.kernel.cast::<&mut dyn Kernel>() };
     let words = unsafe { &mut *ctx.words };
     let ran = kernel.run_block(pc, words, &mut ctx.blocks);
-    ctx.blocks_run += u64::from(ran);
-    u32::from(ran)
+    ctx.blocks_run += u64::from(ran != Ran::Not);
+    ran as u32
 }
 
 #[cfg(test)]

@@ -27,6 +27,7 @@ use cranelift_codegen::ir::{types, Block, BlockArg, FuncRef, InstBuilder, MemFla
 use cranelift_frontend::{FunctionBuilder, Switch, Variable};
 use isa::{Instr, Module};
 use nc::value::{Bin, Func, Rel, VACANT};
+use vm::Ran;
 
 use crate::helpers::binary_code;
 use crate::native::Ctx;
@@ -269,8 +270,9 @@ impl<'a, 'f> Lower<'a, 'f> {
     fn instr(&mut self, pc: u32, instr: Instr) -> bool {
         use Instr::*;
         if is_block(&instr) {
+            // The code goes on after it where the kernel says so.
             self.block(pc);
-            return false;
+            return true;
         }
         if !is_native(&instr) {
             self.exit_at(pc);
@@ -675,15 +677,29 @@ impl<'a, 'f> Lower<'a, 'f> {
     }
 
     /// An NC block, its words built: a direct call into the kernel's
-    /// executor, then a leave at the next pc (the VM finishes the block
-    /// and ends its step, as after every block); at `pc` itself, unrun,
-    /// when the kernel did not take it.
+    /// executor (`vm::Ran` says what became of it). `GoOn`: the code goes
+    /// on, the block count read again (the kernel charged the block);
+    /// `Leave`: it leaves at the next pc, for the VM to finish the block
+    /// and end its step; `Not`: it leaves at `pc` itself, unrun.
     fn block(&mut self, pc: u32) {
         let at = self.b.ins().iconst(types::I32, i64::from(pc));
         let call = self.b.ins().call(self.refs.block, &[self.ctx, at]);
         let ran = self.b.inst_results(call)[0];
+        let go_on = self
+            .b
+            .ins()
+            .icmp_imm(IntCC::Equal, ran, i64::from(Ran::GoOn as u32));
+        let (on, leave) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(go_on, on, &[], leave, &[]);
+        self.b.seal_block(on);
+        self.b.seal_block(leave);
+        self.b.switch_to_block(leave);
+        // Not (0) or Leave (1): at pc or after it.
         let next = self.b.ins().iadd(at, ran);
         self.b.ins().jump(self.exit, &[BlockArg::Value(next)]);
+        self.b.switch_to_block(on);
+        let blocks = self.load_ctx(types::I64, offset_of!(Ctx, blocks));
+        self.b.def_var(self.blocks, blocks);
     }
 
     /// Charges a block to the budget; one the budget cannot take leaves

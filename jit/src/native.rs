@@ -31,7 +31,7 @@ pub struct Ctx {
     pub fuel: u64,
     /// The kernel's executor (`helpers::block`): a `*mut &mut dyn Kernel`.
     pub kernel: *mut std::ffi::c_void,
-    /// Blocks run through it (0 or 1: the code leaves after one).
+    /// Blocks run through it.
     pub blocks_run: u64,
 }
 

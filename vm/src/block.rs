@@ -13,7 +13,7 @@ use nc::words::{Word, Words};
 use nc::{Nc, NcError, Outcome, Sink};
 
 use crate::interp::PROFILE;
-use crate::tier::Kernel;
+use crate::tier::{Kernel, Ran};
 
 /// The VM's fields that running a block touches, borrowed.
 pub(crate) struct BlockRun<'a> {
@@ -155,22 +155,33 @@ impl BlockRun<'_> {
 /// VM to finish once the code has left.
 pub(crate) struct TierCall<'a> {
     pub run: BlockRun<'a>,
-    /// The pc of the block and its outcome, once one ran.
+    /// The pc of the block and its outcome, once one ran that the VM
+    /// must finish.
     pub ran: Option<(u32, Result<Outcome, NcError>)>,
+    /// Whether a block whose outcome needs nothing of the VM is done once
+    /// run (`Vm::stop_at_blocks` off, no G66 call armed): the code goes on.
+    pub go_on: bool,
 }
 
 impl Kernel for TierCall<'_> {
-    fn run_block(&mut self, pc: u32, words: &mut Words, blocks: &mut u64) -> bool {
+    fn run_block(&mut self, pc: u32, words: &mut Words, blocks: &mut u64) -> Ran {
         if self.ran.is_some() {
-            // One block per entry: the VM finishes it before the next.
-            return false;
+            // The VM finishes a block before the next runs.
+            return Ran::Not;
         }
         match self.run.instr(pc, words, blocks) {
+            // No end, no G31 position, no G10 L52 variable: what
+            // `Vm::finish_block` would do is nothing.
+            Some(Ok(out))
+                if self.go_on && out.end.is_none() && out.skip.is_none() && out.store.is_none() =>
+            {
+                Ran::GoOn
+            }
             Some(result) => {
                 self.ran = Some((pc, result));
-                true
+                Ran::Leave
             }
-            None => false,
+            None => Ran::Not,
         }
     }
 }

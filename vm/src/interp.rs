@@ -150,6 +150,12 @@ pub struct Vm {
     /// Return [`Status::Sync`] before reading a current position; a
     /// controller whose motion lags the VM sets it.
     pub sync_positions: bool,
+    /// End a step after every NC block with [`Status::Event`] (the
+    /// default): a controller's runtime takes each block's events there.
+    /// A host that only collects the events (`Vm::run`, `gbvm run --emit
+    /// canon`) turns it off; steps then run on past blocks, and so does a
+    /// tier's compiled loop, whose blocks no longer end its run.
+    pub stop_at_blocks: bool,
     /// The motion was synchronised since the last NC block.
     synced: bool,
     storage: Option<Box<dyn Storage>>,
@@ -211,6 +217,7 @@ impl Vm {
             last_exec: 0,
             locs: LocCache::default(),
             sync_positions: false,
+            stop_at_blocks: true,
             synced: false,
             storage: None,
             tier: None,
@@ -337,7 +344,7 @@ impl Vm {
     ) -> Option<Status> {
         match result.and_then(|next| self.persist().map(|()| next)) {
             Ok(Next::Go) => None,
-            Ok(Next::Event) => Some(Status::Event),
+            Ok(Next::Event) => self.stop_at_blocks.then_some(Status::Event),
             Ok(Next::Sync) => Some(Status::Sync),
             Ok(Next::Done) => {
                 self.done = true;
@@ -377,12 +384,16 @@ impl Vm {
 
     /// Runs to the end; the final status (never `Event`/`OutOfBudget`).
     pub fn run(&mut self, sink: &mut dyn Sink) -> Status {
-        loop {
+        // Nothing is done between blocks here: they need not end a step.
+        let stop_at_blocks = core::mem::replace(&mut self.stop_at_blocks, false);
+        let status = loop {
             match self.step(1 << 16, sink) {
                 Status::Event | Status::OutOfBudget | Status::Sync => continue,
-                other => return other,
+                other => break other,
             }
-        }
+        };
+        self.stop_at_blocks = stop_at_blocks;
+        status
     }
 
     fn alarm(&mut self, pc: u32, e: Fault, sink: &mut dyn Sink) -> Alarm {
@@ -468,6 +479,10 @@ impl Vm {
                 synced: &mut self.synced,
             },
             ran: None,
+            // A block may be run through (its outcome needing nothing of
+            // the VM) where steps run on past blocks and no G66 call
+            // follows a move.
+            go_on: !self.stop_at_blocks && self.modal.is_none(),
         };
         let state = LoopState {
             regs: &mut self.regs,
@@ -482,16 +497,22 @@ impl Vm {
         };
         self.resume_at = NO_PC;
         let next = tier.enter(&self.module, self.pc, entry, state);
-        let ran = call.ran;
+        let TierCall { ran, .. } = call;
         if let Some(pc) = next {
             self.pc = pc;
             self.resume_at = pc.saturating_add(1);
         }
-        let (at, result) = ran?;
+        // (Read in place: moving the outcome whole, just written field by
+        // field, stalled the processor's store forwarding.)
+        let at = ran.as_ref()?.0;
         // The code left after the block: it may go on from there.
         self.pc = at.saturating_add(1);
         self.resume_at = self.pc;
-        let result = result.and_then(|out| self.finish_block(out, sink));
+        let result = match ran {
+            Some((_, Ok(ref out))) => self.finish_block(out, sink),
+            Some((_, Err(e))) => Err(e),
+            None => return None,
+        };
         Some(result.map_err(|e| about_block(e, at)))
     }
 
@@ -633,25 +654,25 @@ impl Vm {
                 let pc = self.pc - 1;
                 let (mut run, words, blocks) = self.block_run(sink);
                 let out = run.words(pc, words, blocks)?;
-                return self.finish_block(out, sink);
+                return self.finish_block(&out, sink);
             }
             Instr::Block { rec } => {
                 let pc = self.pc - 1;
                 let (mut run, words, blocks) = self.block_run(sink);
                 let out = run.typed(pc, rec, words, blocks)?;
-                return self.finish_block(out, sink);
+                return self.finish_block(&out, sink);
             }
             Instr::Move { rec } => {
                 let pc = self.pc - 1;
                 let (mut run, words, blocks) = self.block_run(sink);
                 let out = run.typed_move(pc, rec, words, blocks)?;
-                return self.finish_block(out, sink);
+                return self.finish_block(&out, sink);
             }
             Instr::ExecMove => {
                 let pc = self.pc - 1;
                 let (mut run, words, blocks) = self.block_run(sink);
                 let out = run.plain_move(pc, words, blocks)?;
-                return self.finish_block(out, sink);
+                return self.finish_block(&out, sink);
             }
             Instr::Profile { rec } => {
                 // A typed profile block: as `wordk… exec` with PROFILE.
@@ -766,7 +787,7 @@ impl Vm {
     /// result, an `NcError` wide, returned through memory cost a tenth of a
     /// compiled loop's round.)
     #[inline(always)]
-    fn finish_block(&mut self, out: nc::Outcome, sink: &mut dyn Sink) -> Result<Next, Fault> {
+    fn finish_block(&mut self, out: &nc::Outcome, sink: &mut dyn Sink) -> Result<Next, Fault> {
         if let Some(p) = out.skip {
             // #995–#999 are persistent: set as a store would, so that
             // the storage gets them.

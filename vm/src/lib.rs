@@ -28,4 +28,4 @@ mod vars;
 
 pub use interp::{Alarm, Status, Storage, Vm, PROFILE};
 pub use nc::{Event, Sink};
-pub use tier::{Entry, Kernel, LoopState, Tier, TierStats};
+pub use tier::{Entry, Kernel, LoopState, Ran, Tier, TierStats};

@@ -54,12 +54,28 @@ pub struct LoopState<'a> {
 /// (`exec`, `execmove`, `move`, `block`) run with the words built so far,
 /// exactly as the interpreter runs it, its block charged to `blocks`.
 pub trait Kernel {
-    /// Runs the block instruction at `pc`; `false` when that is not one
-    /// (or a block already ran in this entry): nothing ran then. After a
-    /// `true` the tier must leave at once, at `pc + 1`, without touching
-    /// the state again: the VM finishes the block (its outcome, an alarm
-    /// at `pc`) before anything else runs.
-    fn run_block(&mut self, pc: u32, words: &mut Words, blocks: &mut u64) -> bool;
+    /// Runs the block instruction at `pc`; see [`Ran`] for what the tier
+    /// does next.
+    fn run_block(&mut self, pc: u32, words: &mut Words, blocks: &mut u64) -> Ran;
+}
+
+/// What became of a block a tier handed to the [`Kernel`] (as `u32`, for
+/// compiled code).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Ran {
+    /// Nothing ran: `pc` is not a block instruction, or the VM has a
+    /// block of this entry to finish first. The tier leaves at `pc`.
+    Not = 0,
+    /// The block ran; the tier must leave at once, at `pc + 1`, without
+    /// touching the state again: the VM finishes the block (its outcome,
+    /// an alarm at `pc`) and ends its step.
+    Leave = 1,
+    /// The block ran and is done ([`crate::Vm::stop_at_blocks`] is off and
+    /// its outcome needs nothing of the VM): the tier goes on at `pc + 1`,
+    /// the block count read again (the block was charged to it), every
+    /// variable as it was.
+    GoOn = 2,
 }
 
 /// What a tier has done (`gbvm --stats`, the benches).

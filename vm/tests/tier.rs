@@ -8,7 +8,7 @@ mod common;
 use common::{Asm, Canon};
 use isa::{Instr, Module};
 use std::sync::{Arc, Mutex};
-use vm::{Entry, LoopState, Status, Tier, TierStats};
+use vm::{Entry, LoopState, Ran, Status, Tier, TierStats};
 
 /// Records every entry; at the loop head it "runs" the loop body itself
 /// (#1 += 1 and r0 = #1, a block charged, 3 instructions of fuel) and
@@ -207,7 +207,7 @@ struct RunsBlocks {
     head: u32,
     exec: u32,
     g: f64,
-    calls: Arc<Mutex<Vec<bool>>>,
+    calls: Arc<Mutex<Vec<Ran>>>,
 }
 
 impl Tier for RunsBlocks {
@@ -230,18 +230,27 @@ impl Tier for RunsBlocks {
             s.words.push(isa::addr::from_letter(letter).unwrap(), v, 0);
         }
         *s.fuel -= 7;
-        calls.push(s.kernel.run_block(self.exec, s.words, s.blocks));
-        // One block an entry: a second is refused.
-        calls.push(s.kernel.run_block(self.exec, s.words, s.blocks));
+        let ran = s.kernel.run_block(self.exec, s.words, s.blocks);
+        calls.push(ran);
+        if ran == Ran::Leave {
+            // The VM finishes that block first: a second is refused.
+            calls.push(s.kernel.run_block(self.exec, s.words, s.blocks));
+        }
         Some(self.exec + 1)
     }
 }
 
-/// Runs `moving_loop(g)`, with the scripted tier or without; the canon,
-/// the status and how many steps ended on a block.
-fn run_moving(g: f64, tier: Option<Arc<Mutex<Vec<bool>>>>) -> (Vec<String>, Status, usize) {
+/// Runs `moving_loop(g)`, with the scripted tier or without, its steps
+/// ending at blocks or not; the canon, the status and how many steps
+/// ended on a block.
+fn run_moving(
+    g: f64,
+    tier: Option<Arc<Mutex<Vec<Ran>>>>,
+    stop_at_blocks: bool,
+) -> (Vec<String>, Status, usize) {
     let (module, head, exec) = moving_loop(g);
     let mut vm = common::vm(module);
+    vm.stop_at_blocks = stop_at_blocks;
     if let Some(calls) = tier {
         vm.set_tier(Box::new(RunsBlocks {
             head,
@@ -265,8 +274,8 @@ fn run_moving(g: f64, tier: Option<Arc<Mutex<Vec<bool>>>>) -> (Vec<String>, Stat
 #[test]
 fn a_block_the_tier_runs_through_the_kernel_ends_the_step_as_the_interpreter_would() {
     let calls = Arc::new(Mutex::new(Vec::new()));
-    let interpreted = run_moving(0.0, None);
-    let tiered = run_moving(0.0, Some(calls.clone()));
+    let interpreted = run_moving(0.0, None, true);
+    let tiered = run_moving(0.0, Some(calls.clone()), true);
     assert_eq!(interpreted.1, Status::Done);
     assert_eq!(interpreted.2, 3);
     let rapids = interpreted
@@ -276,20 +285,38 @@ fn a_block_the_tier_runs_through_the_kernel_ends_the_step_as_the_interpreter_wou
         .count();
     assert_eq!(rapids, 3, "{:?}", interpreted.0);
     assert_eq!(tiered, interpreted);
-    // Rounds 2 and 3 by the tier: the head refused, the block run, a
-    // second block refused, each time.
+    // Rounds 2 and 3 by the tier: the head refused, the block run (to be
+    // finished by the VM), a second block refused, each time.
+    use Ran::*;
     let calls = calls.lock().unwrap().clone();
-    assert_eq!(calls, [false, true, false, false, true, false]);
+    assert_eq!(calls, [Not, Leave, Not, Not, Leave, Not]);
+}
+
+#[test]
+fn where_steps_run_past_blocks_the_tier_goes_on_after_its_blocks() {
+    let calls = Arc::new(Mutex::new(Vec::new()));
+    let interpreted = run_moving(0.0, None, true);
+    let tiered = run_moving(0.0, Some(calls.clone()), false);
+    // The same canon and end; no step ended on a block.
+    assert_eq!((&tiered.0, &tiered.1), (&interpreted.0, &interpreted.1));
+    assert_eq!(tiered.2, 0);
+    use Ran::*;
+    let calls = calls.lock().unwrap().clone();
+    assert_eq!(calls, [Not, GoOn, Not, GoOn]);
 }
 
 #[test]
 fn an_alarm_of_a_block_the_tier_ran_names_that_block() {
     // G7.7 (no such G code) in round 2, which the tier runs.
-    let calls = Arc::new(Mutex::new(Vec::new()));
-    let interpreted = run_moving(7.7, None);
-    let tiered = run_moving(7.7, Some(calls.clone()));
-    assert_eq!(tiered, interpreted);
-    let alarm = common::alarm_of(tiered.1);
-    assert_eq!(alarm.line, 3, "{alarm:?}");
-    assert!(calls.lock().unwrap()[1], "the tier ran the block");
+    for stop_at_blocks in [true, false] {
+        let calls = Arc::new(Mutex::new(Vec::new()));
+        let interpreted = run_moving(7.7, None, stop_at_blocks);
+        let tiered = run_moving(7.7, Some(calls.clone()), stop_at_blocks);
+        assert_eq!(tiered, interpreted);
+        let alarm = common::alarm_of(tiered.1);
+        assert_eq!(alarm.line, 3, "{alarm:?}");
+        // A block that faults is the VM's to finish, steps ending at
+        // blocks or not.
+        assert_eq!(calls.lock().unwrap()[1], Ran::Leave);
+    }
 }

@@ -414,6 +414,9 @@ fn run(
         vm.max_blocks = n;
     }
     vm.repeat = repeat.max(1);
+    // Only the canon is wanted: a step need not end at every block (it
+    // still ends every 65 536 instructions for the progress bar).
+    vm.stop_at_blocks = false;
     jit.attach(&mut vm);
     let store = vars.map(Path::to_path_buf).or_else(|| {
         let f = &vm.nc.machine.r#macro.persistent_file;
