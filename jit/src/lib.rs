@@ -5,14 +5,16 @@
 //! the tier; past a threshold ([`Mode`]) the tier compiles the loop, from
 //! its head to that jump, and from then on the round runs as machine code.
 //! An NC block the code runs by a direct call into the kernel's executor
-//! (the VM's [`vm::Kernel`]: the same code the interpreter runs it with)
-//! and then leaves, since the VM ends its step after every block. What
-//! the code does not handle (calls, system variables, a fault, a charge
-//! the block budget cannot take) it leaves at, unexecuted, to the
-//! interpreter, which runs it and hands back at the next instruction:
-//! every alarm is the interpreter's. Compiled code changes nothing else the interpreter
-//! would not: the same values bit for bit (`lower`'s module doc), the same
-//! block budget, the same variables at every exit.
+//! (the VM's [`vm::Kernel`]: the same code the interpreter runs it with);
+//! it goes on after it where the VM's steps run past blocks
+//! (`Vm::stop_at_blocks` off), and leaves after it where the VM must
+//! finish the block or end its step there. What the code does not handle
+//! (calls, system variables, a fault, a charge the block budget cannot
+//! take) it leaves at, unexecuted, to the interpreter, which runs it and
+//! hands back at the next instruction: every alarm is the interpreter's.
+//! Compiled code changes nothing else the interpreter would not: the same
+//! values bit for bit (`lower`'s module doc), the same block budget, the
+//! same variables at every exit.
 //!
 //! Compiling happens in the VM's thread, on the interpreter's side of a
 //! controller (the real-time half only consumes set points); a loop that

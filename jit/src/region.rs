@@ -6,10 +6,11 @@
 //! Every instruction the code does not handle is an *exit*: the code
 //! stores its state and returns that instruction's pc, unexecuted, to the
 //! interpreter, which runs it and may come back in at the next pc (an
-//! entry). An NC block is an exit too, but one the code runs first, by a
-//! call into the kernel's executor, and leaves after. An instruction that would fault, or a charge the block budget
-//! cannot take, exits the same way, so that the interpreter raises the
-//! alarm with its own message and line.
+//! entry). An NC block the code runs by a call into the kernel's executor;
+//! it may leave after it, so the pc after a block is an entry too. An
+//! instruction that would fault, or a charge the block budget cannot take,
+//! exits the same way, so that the interpreter raises the alarm with its
+//! own message and line.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -68,8 +69,7 @@ pub fn is_native(instr: &Instr) -> bool {
 }
 
 /// Whether `instr` is an NC block, which the code runs by a direct call
-/// into the kernel's executor (`vm::Kernel`) and leaves after: the VM ends
-/// its step after every block.
+/// into the kernel's executor (`vm::Kernel`), and may leave after (`vm::Ran`).
 pub fn is_block(instr: &Instr) -> bool {
     match *instr {
         Instr::Exec { flags } => flags & vm::PROFILE == 0,

@@ -5,9 +5,10 @@
 //! as interpreting the same instructions would have; everything it does
 //! not handle it leaves to the interpreter, at the instruction not yet
 //! executed. An NC block it may run itself, by a direct call into the
-//! kernel's executor ([`Kernel`]), and then leave at the instruction
-//! after it: the VM finishes the block and ends its step there, as it
-//! does after every block.
+//! kernel's executor ([`Kernel`]); it then leaves at the instruction after
+//! it, for the VM to finish the block and end its step, or, where steps
+//! run past blocks and the block needs nothing more of the VM, goes on
+//! ([`Ran`]).
 
 use isa::Module;
 use nc::words::Words;
