@@ -70,10 +70,11 @@ impl Code {
         // and touches only the locals (33), commons (100) and persistent
         // variables (500, read only) at indexes below those lengths, the
         // words through `helpers::push_word`, the kernel through
-        // `helpers::block` (after which it touches nothing but returns),
-        // and `ctx` itself; every one is borrowed mutably (or shared, the
-        // persistent ones) for this call, so nothing else reads or writes
-        // them meanwhile.
+        // `helpers::block` (which changes no register or variable when it
+        // lets the code go on, and after which the code touches nothing
+        // otherwise), and `ctx` itself; every one is borrowed mutably (or
+        // shared, the persistent ones) for this call, so nothing else
+        // reads or writes them meanwhile.
         let next = unsafe { (self.entry)(&mut ctx, pc) };
         *state.blocks = ctx.blocks;
         *state.fuel = ctx.fuel;
