@@ -82,7 +82,6 @@ impl BlockRun<'_> {
         words: &mut Words,
         blocks: &mut u64,
     ) -> Result<Outcome, NcError> {
-        *self.synced = false;
         self.exec(pc, words, blocks, Nc::exec)
     }
 
@@ -95,7 +94,6 @@ impl BlockRun<'_> {
         words: &mut Words,
         blocks: &mut u64,
     ) -> Result<Outcome, NcError> {
-        *self.synced = false;
         self.exec(pc, words, blocks, Nc::exec_move)
     }
 
@@ -109,8 +107,7 @@ impl BlockRun<'_> {
         blocks: &mut u64,
     ) -> Result<Outcome, NcError> {
         load_record(self.module, rec, words)?;
-        *self.synced = false;
-        self.exec(pc, words, blocks, Nc::exec)
+        self.words(pc, words, blocks)
     }
 
     /// `move`: a typed plain move (the short parse too).
@@ -123,8 +120,7 @@ impl BlockRun<'_> {
         blocks: &mut u64,
     ) -> Result<Outcome, NcError> {
         load_record(self.module, rec, words)?;
-        *self.synced = false;
-        self.exec(pc, words, blocks, Nc::exec_move)
+        self.plain_move(pc, words, blocks)
     }
 
     /// Executes the block built so far with one of the kernel's executors.
@@ -136,6 +132,8 @@ impl BlockRun<'_> {
         blocks: &mut u64,
         exec: impl FnOnce(&mut Nc, &[Word], &mut dyn Sink) -> Result<Outcome, NcError>,
     ) -> Result<Outcome, NcError> {
+        // A block makes the motion lag the VM again.
+        *self.synced = false;
         charge(blocks, self.max_blocks, 1)?;
         *self.last_exec = pc;
         self.nc

@@ -466,8 +466,8 @@ impl Vm {
     fn enter_tier(&mut self, entry: Entry, sink: &mut dyn Sink) -> Option<Result<Next, Fault>> {
         let tier = self.tier.as_mut()?;
         let (locals, common, persistent) = self.vars.split();
-        // (Field by field, not `block_run`: the tier and the variables are
-        // borrowed too.)
+        // (The tier, the registers and the variables are borrowed beside
+        // the block's part, and the words and block count go to the tier.)
         let mut call = TierCall {
             run: BlockRun {
                 module: &self.module,
@@ -650,30 +650,14 @@ impl Vm {
                 self.msg = None;
             }
             // The NC blocks (`block::BlockRun`), then what follows them.
-            Instr::Exec { .. } => {
-                let pc = self.pc - 1;
-                let (mut run, words, blocks) = self.block_run(sink);
-                let out = run.words(pc, words, blocks)?;
-                return self.finish_block(&out, sink);
-            }
+            Instr::Exec { .. } => return self.run_block(sink, |r, pc, w, b| r.words(pc, w, b)),
             Instr::Block { rec } => {
-                let pc = self.pc - 1;
-                let (mut run, words, blocks) = self.block_run(sink);
-                let out = run.typed(pc, rec, words, blocks)?;
-                return self.finish_block(&out, sink);
+                return self.run_block(sink, |r, pc, w, b| r.typed(pc, rec, w, b));
             }
             Instr::Move { rec } => {
-                let pc = self.pc - 1;
-                let (mut run, words, blocks) = self.block_run(sink);
-                let out = run.typed_move(pc, rec, words, blocks)?;
-                return self.finish_block(&out, sink);
+                return self.run_block(sink, |r, pc, w, b| r.typed_move(pc, rec, w, b));
             }
-            Instr::ExecMove => {
-                let pc = self.pc - 1;
-                let (mut run, words, blocks) = self.block_run(sink);
-                let out = run.plain_move(pc, words, blocks)?;
-                return self.finish_block(&out, sink);
-            }
+            Instr::ExecMove => return self.run_block(sink, |r, pc, w, b| r.plain_move(pc, w, b)),
             Instr::Profile { rec } => {
                 // A typed profile block: as `wordk… exec` with PROFILE.
                 block::load_record(&self.module, rec, &mut self.words)?;
@@ -763,29 +747,31 @@ impl Vm {
         Ok(())
     }
 
-    /// What running a block borrows: the kernel's part, the words, the
-    /// block count.
+    /// Runs the block instruction just read with `run` (one of
+    /// [`BlockRun`]'s), then finishes it.
     #[inline(always)]
-    fn block_run<'a>(
-        &'a mut self,
-        sink: &'a mut dyn Sink,
-    ) -> (BlockRun<'a>, &'a mut Words, &'a mut u64) {
-        let run = BlockRun {
+    fn run_block(
+        &mut self,
+        sink: &mut dyn Sink,
+        run: impl FnOnce(&mut BlockRun<'_>, u32, &mut Words, &mut u64) -> Result<nc::Outcome, Fault>,
+    ) -> Result<Next, Fault> {
+        let pc = self.pc - 1;
+        let mut kernel = BlockRun {
             module: &self.module,
             nc: &mut self.nc,
-            sink,
+            sink: &mut *sink,
             max_blocks: self.max_blocks,
             last_exec: &mut self.last_exec,
             msg: &mut self.msg,
             synced: &mut self.synced,
         };
-        (run, &mut self.words, &mut self.blocks)
+        let out = run(&mut kernel, pc, &mut self.words, &mut self.blocks)?;
+        self.finish_block(&out, sink)
     }
 
     /// What follows a block in the VM: G31's skip position, G10 L52's
-    /// variable, the program's end, a G66 call after a move. (Inline: its
-    /// result, an `NcError` wide, returned through memory cost a tenth of a
-    /// compiled loop's round.)
+    /// variable, the program's end, a G66 call after a move. (Inline: it
+    /// follows every block.)
     #[inline(always)]
     fn finish_block(&mut self, out: &nc::Outcome, sink: &mut dyn Sink) -> Result<Next, Fault> {
         if let Some(p) = out.skip {
