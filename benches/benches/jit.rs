@@ -8,7 +8,8 @@
 //!   round), compile + run to canon.
 //! - `ellipse_*`: an ellipse of 3 601 points by a macro (`macro.rs`'s).
 //! - `compile_*`: Cranelift compiling one loop of the ellipse program and
-//!   of the numeric loop (the module made once).
+//!   of the numeric loop (the module made once), quickly as a loop that has
+//!   just become hot is, and `_optimised` as one that has run long.
 
 use benches::build;
 use benches::whole::{canon_lines, macro_loop, numeric_loop, ELLIPSE};
@@ -55,17 +56,19 @@ fn compile(c: &mut Criterion) {
         let Some(&(head, tail)) = jit::loops(&module).first() else {
             panic!("the {name} program has no loop");
         };
-        let fresh = || match jit::Compiler::new() {
-            Ok(c) => c,
-            Err(e) => panic!("no JIT here: {e}"),
-        };
-        g.bench_function(format!("compile_{name}_loop"), |b| {
-            b.iter_batched_ref(
-                fresh,
-                |compiler| compiler.compile(&module, head, tail),
-                BatchSize::PerIteration,
-            )
-        });
+        for (full, level) in [(false, ""), (true, "_optimised")] {
+            let fresh = || match jit::Compiler::new(full) {
+                Ok(c) => c,
+                Err(e) => panic!("no JIT here: {e}"),
+            };
+            g.bench_function(format!("compile_{name}_loop{level}"), |b| {
+                b.iter_batched_ref(
+                    fresh,
+                    |compiler| compiler.compile(&module, head, tail),
+                    BatchSize::PerIteration,
+                )
+            });
+        }
     }
     g.finish();
 }

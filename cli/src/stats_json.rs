@@ -71,6 +71,9 @@ pub struct Report {
 #[derive(Debug, Serialize, Deserialize, PartialEq)]
 pub struct Jit {
     pub loops_compiled: u32,
+    /// Of those, loops compiled again with the optimiser after a long run.
+    #[serde(default)]
+    pub loops_optimized: u32,
     /// Loops it could not compile (they ran interpreted).
     pub loops_failed: u32,
     pub compile_ms: f64,
@@ -85,6 +88,7 @@ impl Jit {
     pub fn of(s: vm::TierStats) -> Option<Jit> {
         (s.compiled + s.failed > 0).then(|| Jit {
             loops_compiled: s.compiled,
+            loops_optimized: s.optimized,
             loops_failed: s.failed,
             compile_ms: s.compile_ns as f64 / 1e6,
             entries: s.entries,
@@ -98,8 +102,12 @@ impl Jit {
             0 => String::new(),
             n => format!(" ({n} left interpreted)"),
         };
+        let optimized = match self.loops_optimized {
+            0 => String::new(),
+            n => format!(" ({n} again, optimised)"),
+        };
         format!(
-            "jit: {} loops compiled in {:.2} ms{failed}, code entered {} times, {} blocks run from it\n",
+            "jit: {} loops compiled{optimized} in {:.2} ms{failed}, code entered {} times, {} blocks run from it\n",
             self.loops_compiled, self.compile_ms, self.entries, self.blocks
         )
     }

@@ -127,6 +127,9 @@ fn macro_loops_run_compiled_and_print_the_same() {
                 stats.contains("code entered 73 times, 72 blocks run from it"),
                 "{stats}"
             );
+            // 72 rounds of about 30 instructions: far from the million
+            // after which a loop is compiled again, optimised.
+            assert!(!stats.contains("optimised"), "{stats}");
         }
     }
     // The block budget used up inside compiled code: the same E6005 at the
@@ -141,5 +144,36 @@ fn macro_loops_run_compiled_and_print_the_same() {
     let on = canon(&gbc, &case, "always", &["--max-blocks", "40"]);
     assert!(off.0.contains("ALARM CODE=6005"), "{}", off.0);
     assert_eq!(off, on);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A loop that runs long is compiled twice under `--jit=auto`: quickly at
+/// its 500th round, and again with the optimiser once that code has run a
+/// million instructions (37 a round: past the 27 500th round of 40 000);
+/// the canon and every variable printed are those of the interpreter.
+#[test]
+fn a_long_loop_is_compiled_again_optimised_and_prints_the_same() {
+    let dir = scratch("long");
+    let src = "#1=0\n#2=0\n#3=0\nWHILE[#1LT40000]DO1\n#4=#1*0.001\n\
+               #2=#2+SIN[#4]*0.5-#4*0.01\nIF[#2LT-100]THEN#2=#2+100\n\
+               #3=#3+SQRT[ABS[#2]]/[#1+1]-FIX[#4]\n#1=#1+1\nEND1\n\
+               G00 X[#2] Z[-#3]\nM30\n";
+    let path = dir.join("long.nc");
+    std::fs::write(&path, src).unwrap();
+    let case = Case {
+        name: "long".into(),
+        src: path,
+        machine: None,
+    };
+    assert_eq!(check(&case, &dir), Some(Ok(())), "{src}");
+    let gbc = dir.join("long.gbc");
+    let off = canon(&gbc, &case, "off", &[]);
+    let auto = canon(&gbc, &case, "auto", &[]);
+    assert_eq!(off, auto);
+    let (stats, _) = canon(&gbc, &case, "auto", &["--stats"]);
+    assert!(
+        stats.contains("jit: 1 loops compiled (1 again, optimised)"),
+        "{stats}"
+    );
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -205,25 +205,33 @@ pub struct Outcome {
     pub vars: Vec<u64>,
 }
 
-/// Runs `module` with the JIT in `mode`, `max_blocks` blocks at most and
-/// `step` instructions per call of `Vm::step`, which ends at every block
-/// or not (`Vm::stop_at_blocks`).
+/// How a run goes: `max_blocks` blocks at most, `step` instructions per
+/// call of `Vm::step`, which ends at every block or not
+/// (`Vm::stop_at_blocks`).
+#[derive(Debug, Clone, Copy)]
+pub struct Runs {
+    pub max_blocks: u64,
+    pub step: u64,
+    pub stop_at_blocks: bool,
+}
+
+/// Runs `module` with the JIT in `mode`, its loops compiled again with
+/// the optimiser after `optimize_after` instructions (`jit::Jit`).
 pub fn run(
     module: isa::Module,
     mode: jit::Mode,
-    max_blocks: u64,
-    step: u64,
-    stop_at_blocks: bool,
+    optimize_after: u64,
+    how: Runs,
 ) -> (Outcome, TierStats) {
     let mut vm = Vm::new(module, Machine::reference());
-    vm.max_blocks = max_blocks;
-    vm.stop_at_blocks = stop_at_blocks;
+    vm.max_blocks = how.max_blocks;
+    vm.stop_at_blocks = how.stop_at_blocks;
     if let Some(tier) = jit::Jit::new(mode) {
-        vm.set_tier(Box::new(tier));
+        vm.set_tier(Box::new(tier.optimize_after(optimize_after)));
     }
     let mut events = Vec::new();
     let end = loop {
-        match vm.step(step, &mut events) {
+        match vm.step(how.step, &mut events) {
             Status::Event | Status::OutOfBudget | Status::Sync => continue,
             other => break other,
         }
@@ -239,7 +247,9 @@ pub fn run(
 /// The comparison for one program: compiled as `gbcc` does and without
 /// folding (more of its arithmetic is left to run), each run with the JIT
 /// off and always, with a small step and a block budget that may end the
-/// run inside a loop. Returns the always-run's JIT statistics.
+/// run inside a loop. The compiled runs take the quick code alone, and
+/// the optimised code from a few rounds in (the quick code replaced while
+/// the loop runs). Returns the compiled runs' JIT statistics.
 pub fn compare(src: &str, max_blocks: u64, step: u64) -> TierStats {
     let mut all = TierStats::default();
     for optimize in [true, false] {
@@ -250,21 +260,29 @@ pub fn compare(src: &str, max_blocks: u64, step: u64) -> TierStats {
         let Some(module) = compile("jit.nc", src.as_bytes(), &opts).module else {
             continue;
         };
-        let (off, _) = run(module.clone(), jit::Mode::Off, max_blocks, step, true);
+        let how = |stop_at_blocks| Runs {
+            max_blocks,
+            step,
+            stop_at_blocks,
+        };
+        let (off, _) = run(module.clone(), jit::Mode::Off, 0, how(true));
         // Compiled code leaves after each block where steps end at
         // blocks, and runs its blocks through where they do not.
-        for stop_at_blocks in [true, false] {
+        for (stop_at_blocks, optimize_after) in
+            [(true, u64::MAX), (false, u64::MAX), (true, 40), (false, 40)]
+        {
             let mode = jit::Mode::Always;
-            let (on, stats) = run(module.clone(), mode, max_blocks, step, stop_at_blocks);
+            let (on, stats) = run(module.clone(), mode, optimize_after, how(stop_at_blocks));
             if off != on {
                 panic!(
                     "the JIT runs otherwise (-O{}, {max_blocks} blocks, step {step}, \
-                     stop at blocks: {stop_at_blocks}):\n{src}\n{}",
+                     stop at blocks: {stop_at_blocks}, optimised after {optimize_after}):\n{src}\n{}",
                     u8::from(optimize),
                     difference(&off, &on)
                 );
             }
             all.compiled += stats.compiled;
+            all.optimized += stats.optimized;
             all.entries += stats.entries;
             all.blocks += stats.blocks;
             all.failed += stats.failed;

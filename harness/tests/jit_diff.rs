@@ -11,7 +11,7 @@ fn random_macro_programs_run_the_same_compiled_and_interpreted() {
     let cases: u64 = std::env::var("JIT_CASES").map_or(1000, |n| n.parse().unwrap_or(1000));
     let seed = std::env::var("JIT_SEED").map_or(0x1175_c0de, |n| n.parse().unwrap_or(1));
     let mut c = Choices::Seed(seed.max(1));
-    let (mut compiled, mut entries, mut blocks) = (0u64, 0u64, 0u64);
+    let (mut compiled, mut optimized, mut entries, mut blocks) = (0u64, 0u64, 0u64, 0u64);
     for i in 0..cases {
         let src = program(&mut c);
         // Budgets and steps vary, so that runs end on E6005 inside
@@ -20,16 +20,18 @@ fn random_macro_programs_run_the_same_compiled_and_interpreted() {
         let step = [1, 100, 1 << 16][((i / 3) % 3) as usize];
         let stats = compare(&src, max_blocks, step);
         compiled += u64::from(stats.compiled);
+        optimized += u64::from(stats.optimized);
         entries += stats.entries;
         blocks += stats.blocks;
     }
-    // The comparison is not empty: loops were compiled, their code ran,
-    // and ran blocks itself.
+    // The comparison is not empty: loops were compiled, and again with the
+    // optimiser, their code ran, and ran blocks itself.
     eprintln!(
-        "{cases} programs: {compiled} loops compiled, code entered {entries} times, \
-         {blocks} blocks run from it"
+        "{cases} programs: {compiled} loops compiled ({optimized} again, optimised), \
+         code entered {entries} times, {blocks} blocks run from it"
     );
     assert!(compiled >= cases, "{compiled} loops compiled");
+    assert!(optimized >= cases / 2, "{optimized} loops optimised");
     assert!(entries >= 10 * cases, "code entered {entries} times");
     assert!(blocks >= cases, "{blocks} blocks run from compiled code");
 }

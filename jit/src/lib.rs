@@ -16,6 +16,11 @@
 //! values bit for bit (`lower`'s module doc), the same block budget, the
 //! same variables at every exit.
 //!
+//! A loop is compiled twice if it runs long: first quickly, as soon as it
+//! is hot ([`Level`]: the loop waits for it), then, once its quick code has
+//! run [`OPTIMIZE_AFTER`] instructions, again with Cranelift's optimiser
+//! and register allocator, whose code then takes over at the next entry.
+//!
 //! Compiling happens in the VM's thread, on the interpreter's side of a
 //! controller (the real-time half only consumes set points); a loop that
 //! fails to compile stays interpreted.
@@ -31,7 +36,7 @@ mod lower;
 mod native;
 mod region;
 
-use native::{Backend, Code};
+use native::{Backend, Code, Level};
 use region::Region;
 
 /// When loops are compiled (`gbvm run --jit`).
@@ -51,16 +56,27 @@ pub enum Mode {
 /// long as interpreting a few hundred rounds of it.
 pub const AUTO_THRESHOLD: u32 = 500;
 
+/// Bytecode instructions a loop runs in quick code before it is compiled
+/// again at [`Level::Full`]: the full compile (about 300 µs for a loop of
+/// 30 instructions) is then paid back within the next few million
+/// instructions, at the quarter of a round the better code saves.
+pub const OPTIMIZE_AFTER: u64 = 1_000_000;
+
 /// A compiled loop.
 struct Loop {
     region: Region,
     code: Code,
+    level: Level,
+    /// Instructions its code has run (the fuel it spent).
+    work: u64,
 }
 
 /// The JIT tier for one module's run (see the crate doc).
 pub struct Jit {
     threshold: u32,
-    backend: Option<Backend>,
+    optimize_after: u64,
+    quick: Option<Backend>,
+    full: Option<Backend>,
     /// Rounds per loop (head, back edge) not compiled yet.
     rounds: BTreeMap<(u32, u32), u32>,
     /// Loops tried and not compiled.
@@ -83,7 +99,9 @@ impl Jit {
         };
         Some(Jit {
             threshold,
-            backend: None,
+            optimize_after: OPTIMIZE_AFTER,
+            quick: None,
+            full: None,
             rounds: BTreeMap::new(),
             rejected: BTreeSet::new(),
             loops: Vec::new(),
@@ -92,10 +110,59 @@ impl Jit {
         })
     }
 
-    /// The compiled loop that may be entered at `pc`.
-    fn loop_at(&self, pc: u32) -> Option<&Loop> {
+    /// Compiles a loop again with the optimiser once its quick code has
+    /// run `work` instructions (default [`OPTIMIZE_AFTER`]); 0 compiles
+    /// every loop at [`Level::Full`] at once (for tests).
+    pub fn optimize_after(mut self, work: u64) -> Jit {
+        self.optimize_after = work;
+        self
+    }
+
+    /// The index of the compiled loop that may be entered at `pc`.
+    fn loop_at(&self, pc: u32) -> Option<usize> {
         let number = *self.entries.get(pc as usize)? as usize;
-        self.loops.get(number.checked_sub(1)?)
+        number
+            .checked_sub(1)
+            .filter(|&index| index < self.loops.len())
+    }
+
+    /// The backend of `level`, made at its first use.
+    fn backend(&mut self, level: Level) -> Option<&mut Backend> {
+        let slot = match level {
+            Level::Quick => &mut self.quick,
+            Level::Full => &mut self.full,
+        };
+        if slot.is_none() {
+            *slot = Some(Backend::new(level).ok()?);
+        }
+        slot.as_mut()
+    }
+
+    /// Compiles loop `index` again at [`Level::Full`]; its quick code stays
+    /// if that fails (tried once either way).
+    fn optimize(&mut self, module: &Module, index: usize) {
+        let Some(quick) = self.loops.get_mut(index) else {
+            return;
+        };
+        quick.level = Level::Full;
+        let num_regs = quick.code.num_regs();
+        let region = quick.region.clone();
+        let Some(backend) = self.backend(Level::Full) else {
+            return;
+        };
+        let Ok((code, took)) = backend.compile(module, &region, num_regs) else {
+            return;
+        };
+        if let Some(compiled) = self.loops.get_mut(index) {
+            compiled.code = code;
+        }
+        self.stats.optimized += 1;
+        self.add_compile_time(took);
+    }
+
+    fn add_compile_time(&mut self, took: Duration) {
+        let ns = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
+        self.stats.compile_ns = self.stats.compile_ns.saturating_add(ns);
     }
 
     /// Counts a round of the loop `head..=from`, compiling it when hot.
@@ -118,14 +185,14 @@ impl Jit {
 
     fn compile(&mut self, module: &Module, head: u32, tail: u32, num_regs: usize) -> Option<()> {
         let region = Region::find(module, head, tail)?;
-        if self.backend.is_none() {
-            self.backend = Some(Backend::new().ok()?);
-        }
-        let backend = self.backend.as_mut()?;
+        let level = match self.optimize_after {
+            0 => Level::Full,
+            _ => Level::Quick,
+        };
+        let backend = self.backend(level)?;
         let (code, took) = backend.compile(module, &region, num_regs).ok()?;
         self.stats.compiled += 1;
-        let ns = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
-        self.stats.compile_ns = self.stats.compile_ns.saturating_add(ns);
+        self.add_compile_time(took);
         if self.entries.is_empty() {
             self.entries = vec![0; module.code.len()];
         }
@@ -147,7 +214,12 @@ impl Jit {
                 *slot = number;
             }
         }
-        self.loops.push(Loop { region, code });
+        self.loops.push(Loop {
+            region,
+            code,
+            level,
+            work: 0,
+        });
         Some(())
     }
 }
@@ -159,9 +231,11 @@ pub struct Compiler {
 }
 
 impl Compiler {
-    /// A compiler for this host; an error where Cranelift has no backend.
-    pub fn new() -> Result<Compiler, String> {
-        Backend::new().map(|backend| Compiler { backend })
+    /// A compiler for this host, quick or optimising (`full`); an error
+    /// where Cranelift has no backend.
+    pub fn new(full: bool) -> Result<Compiler, String> {
+        let level = if full { Level::Full } else { Level::Quick };
+        Backend::new(level).map(|backend| Compiler { backend })
     }
 
     /// Compiles the loop of `module` from `head` to the backward jump at
@@ -201,7 +275,8 @@ impl Tier for Jit {
         self.rejected.clear();
         self.entries.clear();
         self.loops.clear();
-        self.backend = None;
+        self.quick = None;
+        self.full = None;
     }
 
     fn enter(
@@ -216,17 +291,22 @@ impl Tier for Jit {
                 self.count_round(module, pc, from, state.regs.len());
             }
         }
-        let compiled = self.loop_at(pc)?;
+        let index = self.loop_at(pc)?;
+        let compiled = self.loops.get_mut(index)?;
         // The code checks the fuel at its backward jumps; no path from an
         // entry to one is longer than the loop, so with this much it runs
         // no instruction the step has not allowed.
         if *state.fuel < compiled.region.len() {
             return None;
         }
-        let code = compiled.code;
         self.stats.entries += 1;
-        let (next, blocks) = code.run(pc, state)?;
-        self.stats.blocks += blocks;
-        Some(next)
+        let run = compiled.code.run(pc, state)?;
+        compiled.work = compiled.work.saturating_add(run.work);
+        let optimize = compiled.level == Level::Quick && compiled.work >= self.optimize_after;
+        self.stats.blocks += run.blocks;
+        if optimize {
+            self.optimize(module, index);
+        }
+        Some(run.next)
     }
 }

@@ -8,11 +8,14 @@
 //! nothing to store (see `set`). The arithmetic is the kernel's
 //! (`nc::value`) written out: vacant counts as 0, a result that is not
 //! finite faults, −0 becomes 0; the same IEEE operations in the same
-//! order, none fused. The functions that round (SIN … EXP, ROUND, BIN,
-//! BCD), MOD and the bitwise operations call the kernel's code itself
-//! (`helpers`).
+//! order, none fused. The functions that round call the kernel's code
+//! itself (`helpers`): SIN, COS, ATAN and EXP, which have no domain to
+//! check, directly, the check of their result inline; TAN, ASIN, ACOS,
+//! LN, ROUND, BIN and BCD, MOD and the bitwise operations through the
+//! kernel's `value` functions, which check and raise.
 //!
-//! The code is written for a short compile (the optimiser is off): no
+//! The code is written for a short compile (at `Level::Quick` the
+//! optimiser is off): no
 //! `num` of a value known not to be vacant, a comparison followed by its
 //! `jumpifnot` branches on the truth value, the leaving paths out of line,
 //! and in a restartable run (`Region::restart`) the finite checks summed
@@ -23,18 +26,22 @@ use std::mem::offset_of;
 
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
 use cranelift_codegen::ir::immediates::Ieee64;
-use cranelift_codegen::ir::{types, Block, BlockArg, FuncRef, InstBuilder, MemFlags, Type, Value};
+use cranelift_codegen::ir::{
+    types, Block, BlockArg, FuncRef, InstBuilder, MemFlags, SigRef, Type, Value,
+};
 use cranelift_frontend::{FunctionBuilder, Switch, Variable};
 use isa::{Instr, Module};
 use nc::value::{Bin, Func, Rel, VACANT};
 use vm::Ran;
 
-use crate::helpers::binary_code;
+use crate::helpers::{self, binary_code};
 use crate::native::Ctx;
 use crate::region::{is_block, is_native, is_pure, Place, Region};
 
 /// The helpers, imported into the function being built.
 pub struct Refs {
+    /// `fn(f64) -> f64`, for the functions of `helpers::total`.
+    pub unary: SigRef,
     pub binary: FuncRef,
     pub func: FuncRef,
     pub atan2: FuncRef,
@@ -75,6 +82,7 @@ pub struct Lower<'a, 'f> {
     region: &'a Region,
     refs: Refs,
     ctx: Value,
+    ptr: Type,
     bases: Bases,
     /// A variable per register below `num_regs` that the loop uses.
     regs: Vec<Option<Variable>>,
@@ -148,6 +156,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             region,
             refs,
             ctx,
+            ptr,
             bases,
             regs,
             vars,
@@ -610,8 +619,10 @@ impl<'a, 'f> Lower<'a, 'f> {
     }
 
     /// A function: the exact ones (ABS, SQRT, FIX, FUP) inline, whose IEEE
-    /// results are the same bits as `libm`'s; the others through the
-    /// kernel's `value::func` and its `libm` calls.
+    /// results are the same bits as `libm`'s; those without a domain a
+    /// direct call of the kernel's computation (`helpers::total`: the same
+    /// `libm` call), whose result is checked here; the others through the
+    /// kernel's `value::func`, which checks and raises.
     fn func(&mut self, pc: u32, dst: u8, a: u8, f: u8) {
         let a = self.reg(a);
         let inline = match Func::from_code(f) {
@@ -639,7 +650,16 @@ impl<'a, 'f> Lower<'a, 'f> {
                 let negative = self.b.ins().fcmp(FloatCC::LessThan, x, zero);
                 Some(self.b.ins().select(negative, down, up))
             }
-            _ => None,
+            Some(g) => match helpers::total(g) {
+                Some(total) => {
+                    let x = self.num(a);
+                    let at = self.b.ins().iconst(self.ptr, total as usize as i64);
+                    let call = self.b.ins().call_indirect(self.refs.unary, at, &[x]);
+                    Some(self.b.inst_results(call)[0])
+                }
+                None => None,
+            },
+            None => None,
         };
         match inline {
             Some(v) => {

@@ -84,6 +84,9 @@ pub enum Ran {
 pub struct TierStats {
     /// Loops compiled.
     pub compiled: u32,
+    /// Loops compiled again, optimised, after running long (each is also
+    /// counted in `compiled`).
+    pub optimized: u32,
     /// Loops that could not be compiled (they stay interpreted).
     pub failed: u32,
     /// Time spent compiling, in all, in nanoseconds.

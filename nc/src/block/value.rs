@@ -141,11 +141,25 @@ fn deg(v: f64) -> f64 {
     v.to_radians()
 }
 
+/// SIN, COS and ATAN in degrees, as `func` computes them (public for the
+/// JIT, which calls them with its own finite check).
+pub fn sin_deg(x: f64) -> f64 {
+    libm::sin(deg(x))
+}
+
+pub fn cos_deg(x: f64) -> f64 {
+    libm::cos(deg(x))
+}
+
+pub fn atan_deg(x: f64) -> f64 {
+    libm::atan(x).to_degrees()
+}
+
 pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
     let x = num(a);
     finite(match f {
-        Func::Sin => libm::sin(deg(x)),
-        Func::Cos => libm::cos(deg(x)),
+        Func::Sin => sin_deg(x),
+        Func::Cos => cos_deg(x),
         Func::Tan => {
             // 90° + k·180° has no tangent.
             let k = (x - 90.0) / 180.0;
@@ -168,7 +182,7 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
             };
             r.to_degrees()
         }
-        Func::Atan => libm::atan(x).to_degrees(),
+        Func::Atan => atan_deg(x),
         Func::Sqrt => {
             if x < 0.0 {
                 return fail(
