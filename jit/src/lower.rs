@@ -98,9 +98,9 @@ pub struct Lower<'a, 'f> {
     /// with that result as a truth value (a `jumpifnot` right after it
     /// branches on the truth value).
     last_compare: Option<(u8, Value)>,
-    /// In a restartable run (`Region::restart`): its start, and the sum
-    /// of `v − v` over its results so far, NaN once one was not finite.
-    pending: Option<(u32, Value)>,
+    /// In a restartable run (`Region::restart`): its start, and its
+    /// results so far, whose finite check is at its end (`check_run`).
+    pending: Option<(u32, Vec<Value>)>,
 }
 
 const TRUSTED: MemFlags = MemFlags::trusted();
@@ -489,16 +489,10 @@ impl<'a, 'f> Lower<'a, 'f> {
     /// run, at the run's end (and then at the run's start).
     fn check_finite(&mut self, pc: u32, v: Value) {
         match self.region.restart.get(&pc) {
-            Some(&start) => {
-                // v − v is 0 for a finite v, NaN otherwise; NaN stays.
-                let sum = match self.pending {
-                    Some((_, sum)) => sum,
-                    None => self.f64(0.0),
-                };
-                let d = self.b.ins().fsub(v, v);
-                let sum = self.b.ins().fadd(sum, d);
-                self.pending = Some((start, sum));
-            }
+            Some(&start) => match &mut self.pending {
+                Some((_, results)) => results.push(v),
+                None => self.pending = Some((start, vec![v])),
+            },
             None => {
                 let magnitude = self.b.ins().fabs(v);
                 let inf = self.f64(f64::INFINITY);
@@ -510,9 +504,29 @@ impl<'a, 'f> Lower<'a, 'f> {
 
     /// The end of a restartable run: where one of its results was not
     /// finite, back to its start.
+    ///
+    /// The test is on the sum of the results, added pairwise (a tree, not
+    /// a chain): one addition a result. The sum is finite when every
+    /// result is; a result that is not (±∞, NaN) makes it ±∞ or NaN, and
+    /// `s − s` is NaN exactly then. Finite results whose sum overflows
+    /// (beyond 10³⁰⁸) only send the run back to the interpreter, which
+    /// runs it again and finds nothing.
     fn check_run(&mut self) {
-        if let Some((start, sum)) = self.pending.take() {
-            let ok = self.b.ins().fcmp(FloatCC::Ordered, sum, sum);
+        if let Some((start, mut results)) = self.pending.take() {
+            while results.len() > 1 {
+                results = results
+                    .chunks(2)
+                    .map(|pair| match *pair {
+                        [a, b] => self.b.ins().fadd(a, b),
+                        _ => pair[0],
+                    })
+                    .collect();
+            }
+            let Some(&sum) = results.first() else {
+                return;
+            };
+            let d = self.b.ins().fsub(sum, sum);
+            let ok = self.b.ins().fcmp(FloatCC::Ordered, d, d);
             self.guard(ok, start);
         }
     }
@@ -558,6 +572,13 @@ impl<'a, 'f> Lower<'a, 'f> {
             self.guard(never, pc);
             return;
         };
+        // A constant's part of `near`'s scale, max(1, |c|), is known now.
+        let scale = match b {
+            Src::Const(k) => self.module.consts.get(k as usize).copied(),
+            Src::Reg(_) => None,
+        }
+        .filter(|c| !c.is_nan())
+        .map(|c| c.abs().max(1.0));
         let a = self.reg(a);
         let b = self.src(b);
         let result = match rel {
@@ -566,7 +587,7 @@ impl<'a, 'f> Lower<'a, 'f> {
                 // vacant, or near" is the kernel's three cases.
                 let (va, vb) = (self.is_vacant(a), self.is_vacant(b));
                 let both = self.b.ins().band(va, vb);
-                let near = self.near(a, b);
+                let near = self.near(a, b, scale);
                 let same = self.b.ins().bor(both, near);
                 match rel {
                     Rel::Eq => same,
@@ -575,7 +596,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             }
             _ => {
                 let (x, y) = (self.num(a), self.num(b));
-                let eq = self.near(x, y);
+                let eq = self.near(x, y, scale);
                 let (cc, join_eq) = match rel {
                     Rel::Gt => (FloatCC::GreaterThan, false),
                     Rel::Lt => (FloatCC::LessThan, false),
@@ -598,14 +619,25 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.last_compare = Some((dst, result));
     }
 
-    /// `near`: |a − b| ≤ 10⁻⁹·max(1, |a|, |b|) (false when either is NaN).
-    fn near(&mut self, a: Value, b: Value) -> Value {
+    /// `near`: |a − b| ≤ 10⁻⁹·max(1, |a|, |b|) (false when either is NaN);
+    /// `b_scale` is max(1, |b|) where `b` is a constant (the same maximum:
+    /// a maximum is one of its operands, in any order).
+    fn near(&mut self, a: Value, b: Value, b_scale: Option<f64>) -> Value {
         let diff = self.b.ins().fsub(a, b);
         let diff = self.b.ins().fabs(diff);
-        let one = self.f64(1.0);
-        let (ma, mb) = (self.b.ins().fabs(a), self.b.ins().fabs(b));
-        let scale = self.max(one, ma);
-        let scale = self.max(scale, mb);
+        let ma = self.b.ins().fabs(a);
+        let scale = match b_scale {
+            Some(s) => {
+                let s = self.f64(s);
+                self.max(s, ma)
+            }
+            None => {
+                let one = self.f64(1.0);
+                let mb = self.b.ins().fabs(b);
+                let scale = self.max(one, ma);
+                self.max(scale, mb)
+            }
+        };
         let tolerance = self.f64(1e-9);
         let bound = self.b.ins().fmul(tolerance, scale);
         self.b.ins().fcmp(FloatCC::LessThanOrEqual, diff, bound)
