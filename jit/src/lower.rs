@@ -98,6 +98,10 @@ pub struct Lower<'a, 'f> {
     /// with that result as a truth value (a `jumpifnot` right after it
     /// branches on the truth value).
     last_compare: Option<(u8, Value)>,
+    /// A comparison's register not written (`Region::branches_on`): the
+    /// `jumpifnot`'s pc, the register and the truth value, for an exit
+    /// at that pc to write it.
+    unwritten: Option<(u32, u8, Value)>,
     /// In a restartable run (`Region::restart`): its start, and its
     /// results so far, whose finite check is at its end (`check_run`).
     pending: Option<(u32, Vec<Value>)>,
@@ -166,6 +170,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             exit,
             plain: HashSet::new(),
             last_compare: None,
+            unwritten: None,
             pending: None,
         };
         lower.load_state(entry);
@@ -432,6 +437,12 @@ impl<'a, 'f> Lower<'a, 'f> {
 
     /// Leaves for the interpreter, which goes on at `pc`.
     fn exit_at(&mut self, pc: u32) {
+        if let Some((at, dst, truth)) = self.unwritten.filter(|u| u.0 == pc) {
+            // The interpreter runs the `jumpifnot` at `at`, which reads
+            // the register.
+            debug_assert_eq!(at, pc);
+            self.write_truth(dst, truth);
+        }
         let pc = self.b.ins().iconst(types::I32, i64::from(pc));
         self.b.ins().jump(self.exit, &[BlockArg::Value(pc)]);
     }
@@ -612,11 +623,22 @@ impl<'a, 'f> Lower<'a, 'f> {
                 }
             }
         };
+        self.last_compare = Some((dst, result));
+        if self.region.branches_on(&self.module.code, pc, dst) {
+            // Only the `jumpifnot` reads it: the value is made where the
+            // code leaves at that instruction (`exit_at`).
+            self.unwritten = Some((pc + 1, dst, result));
+            return;
+        }
+        self.write_truth(dst, result);
+    }
+
+    /// A comparison's result, as a value (1 or 0), into register `dst`.
+    fn write_truth(&mut self, dst: u8, truth: Value) {
         let (one, zero) = (self.f64(1.0), self.f64(0.0));
-        let v = self.b.ins().select(result, one, zero);
+        let v = self.b.ins().select(truth, one, zero);
         self.plain.insert(v);
         self.set(dst, v);
-        self.last_compare = Some((dst, result));
     }
 
     /// `near`: |a − b| ≤ 10⁻⁹·max(1, |a|, |b|) (false when either is NaN);
@@ -836,5 +858,6 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.seal_block(taken);
         self.b.switch_to_block(taken);
         self.jump(pc, target);
+        self.unwritten = None;
     }
 }

@@ -144,6 +144,22 @@ impl Region {
         (self.head..=self.tail).contains(&pc)
     }
 
+    /// Whether the comparison at `pc` into `r` is read by nothing but the
+    /// `jumpifnot` right after it (which only it reaches, not a leader):
+    /// `r` is written again before it is read both where that falls
+    /// through and at its target in the loop. (A target outside the loop
+    /// is an exit at the `jumpifnot`, which the interpreter runs.)
+    pub fn branches_on(&self, code: &[Instr], pc: u32, r: u8) -> bool {
+        let branch = pc + 1;
+        let Some(&Instr::JumpIfNot { cond, target }) = code.get(branch as usize) else {
+            return false;
+        };
+        cond == r
+            && !self.leaders.contains(&branch)
+            && dead_at(code, branch + 1, r)
+            && (!self.contains(target) || dead_at(code, target, r))
+    }
+
     /// Instructions in the loop (what one round costs of the step's fuel).
     pub fn len(&self) -> u64 {
         u64::from(self.tail - self.head) + 1
@@ -194,6 +210,36 @@ impl Region {
             _ => {}
         });
     }
+}
+
+/// Whether register `r` is dead at `pc`: on the straight line from there,
+/// a pure instruction writes it before anything reads it. Anything else
+/// (a jump, a store, a block) ends the look as a read would. An exit on
+/// that line changes nothing: the interpreter runs the same instructions
+/// from there.
+fn dead_at(code: &[Instr], pc: u32, r: u8) -> bool {
+    for instr in code.iter().skip(pc as usize) {
+        if !is_pure(instr) {
+            return false;
+        }
+        let mut regs = Vec::new();
+        instr.visit_operands(|op| {
+            if let isa::Operand::Reg(reg) = op {
+                regs.push(reg);
+            }
+        });
+        // The first register operand is the destination (`is_pure`).
+        let Some((&dst, reads)) = regs.split_first() else {
+            continue;
+        };
+        if reads.contains(&r) {
+            return false;
+        }
+        if dst == r {
+            return true;
+        }
+    }
+    false
 }
 
 /// A run of pure instructions being collected.
@@ -279,6 +325,50 @@ mod tests {
         // 0–1 read only what 0 wrote; 5 reads r0, written before the
         // block (at 1), so its run cannot start over.
         assert_eq!(r.restart, BTreeMap::from([(0, 0), (1, 0)]));
+    }
+
+    /// A WHILE's head: the comparison's register is read by its
+    /// `jumpifnot` alone where both ways write it again before reading
+    /// it; not where one way reads it, or stores, or the branch is a
+    /// leader.
+    #[test]
+    fn a_comparison_read_only_by_its_branch() {
+        let head = |after: Instr| {
+            module(vec![
+                Instr::LoadVar { dst: 0, var: 1 },
+                Instr::CmpK {
+                    dst: 0,
+                    a: 0,
+                    k: 2,
+                    op: 3,
+                },
+                Instr::JumpIfNot { cond: 0, target: 6 },
+                after,
+                Instr::StoreVar { var: 1, src: 0 },
+                Instr::Jump { target: 0 },
+                Instr::LoadK { dst: 0, k: 1 },
+            ])
+        };
+        // 3 writes r0 (a load), and the target 6, outside, writes it.
+        let m = head(Instr::LoadVar { dst: 0, var: 1 });
+        let r = Region::find(&m, 0, 5).expect("a region");
+        assert!(r.branches_on(&m.code, 1, 0));
+        assert!(!r.branches_on(&m.code, 1, 1), "another register");
+        assert!(!r.branches_on(&m.code, 0, 0), "not a comparison's pc");
+        // 3 reads r0 (r1 = r0 + 1).
+        let m = head(Instr::AddK { dst: 1, a: 0, k: 1 });
+        let r = Region::find(&m, 0, 5).expect("a region");
+        assert!(!r.branches_on(&m.code, 1, 0));
+        // 3 is a store: the look ends there.
+        let m = head(Instr::StoreVar { var: 2, src: 1 });
+        let r = Region::find(&m, 0, 5).expect("a region");
+        assert!(!r.branches_on(&m.code, 1, 0));
+        // A jump to the branch makes it a leader.
+        let mut m = head(Instr::LoadVar { dst: 0, var: 1 });
+        m.code[5] = Instr::Jump { target: 2 };
+        let r = Region::find(&m, 2, 5).expect("a region");
+        assert!(r.leaders.contains(&2));
+        assert!(!r.branches_on(&m.code, 1, 0));
     }
 
     #[test]
