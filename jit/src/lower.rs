@@ -4,8 +4,11 @@
 //!
 //! Registers and the loop's locals and commons live in Cranelift variables
 //! (`declare_var`/`def_var`/`use_var`), loaded from the VM once at the
-//! entry; every write also goes to the VM at once, so that an exit has
-//! nothing to store (see `set`). The arithmetic is the kernel's
+//! entry. A variable's write also goes to the VM at once; a register is
+//! written into the VM only where the code leaves or calls the kernel, and
+//! only if the interpreter may read it from there (`store_live`: the
+//! registers are an expression's temporaries, most of them dead by the
+//! next statement). The arithmetic is the kernel's
 //! (`nc::value`) written out: vacant counts as 0, a result that is not
 //! finite faults, −0 becomes 0; the same IEEE operations in the same
 //! order, none fused. The functions that round call the kernel's code
@@ -36,7 +39,7 @@ use vm::Ran;
 
 use crate::helpers::{self, binary_code};
 use crate::native::Ctx;
-use crate::region::{is_block, is_native, is_pure, Place, Region};
+use crate::region::{dead_at, is_block, is_native, is_pure, Place, Region};
 
 /// The helpers, imported into the function being built.
 pub struct Refs {
@@ -382,15 +385,24 @@ impl<'a, 'f> Lower<'a, 'f> {
         }
     }
 
-    /// Sets a register: its variable, and the VM's register itself, so
-    /// that an exit leaves the state intact without storing anything (and
-    /// without carrying every value to the exit, which would make
-    /// compiling it several times slower).
+    /// Sets a register: its variable. The VM's register is written where
+    /// the code leaves or calls the kernel (`store_live`).
     fn set(&mut self, r: u8, v: Value) {
         if let Some(var) = self.regs.get(r as usize).copied().flatten() {
             self.b.def_var(var, v);
-            let offset = 8 * i32::from(r);
-            self.b.ins().store(TRUSTED, v, self.bases.regs, offset);
+        }
+    }
+
+    /// Writes into the VM the registers the interpreter may read from
+    /// `pc` on (`region::dead_at` says which it will not).
+    fn store_live(&mut self, pc: u32) {
+        for (r, var) in self.cached_regs() {
+            let r8 = u8::try_from(r).unwrap_or(u8::MAX);
+            if dead_at(&self.module.code, pc, r8) {
+                continue;
+            }
+            let v = self.b.use_var(var);
+            self.b.ins().store(TRUSTED, v, self.bases.regs, 8 * r);
         }
     }
 
@@ -443,6 +455,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             debug_assert_eq!(at, pc);
             self.write_truth(dst, truth);
         }
+        self.store_live(pc);
         let pc = self.b.ins().iconst(types::I32, i64::from(pc));
         self.b.ins().jump(self.exit, &[BlockArg::Value(pc)]);
     }
@@ -756,6 +769,7 @@ impl<'a, 'f> Lower<'a, 'f> {
     /// `Leave`: it leaves at the next pc, for the VM to finish the block
     /// and end its step; `Not`: it leaves at `pc` itself, unrun.
     fn block(&mut self, pc: u32) {
+        self.store_live(pc);
         let at = self.b.ins().iconst(types::I32, i64::from(pc));
         let call = self.b.ins().call(self.refs.block, &[self.ctx, at]);
         let ran = self.b.inst_results(call)[0];

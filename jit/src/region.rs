@@ -217,7 +217,7 @@ impl Region {
 /// (a jump, a store, a block) ends the look as a read would. An exit on
 /// that line changes nothing: the interpreter runs the same instructions
 /// from there.
-fn dead_at(code: &[Instr], pc: u32, r: u8) -> bool {
+pub fn dead_at(code: &[Instr], pc: u32, r: u8) -> bool {
     for instr in code.iter().skip(pc as usize) {
         if !is_pure(instr) {
             return false;
