@@ -150,7 +150,8 @@ fn macro_loops_run_compiled_and_print_the_same() {
 /// A loop that runs long is compiled twice under `--jit=auto`: quickly at
 /// its 500th round, and again with the optimiser once that code has run a
 /// million instructions (37 a round: past the 27 500th round of 40 000);
-/// the canon and every variable printed are those of the interpreter.
+/// the canon and every variable printed are those of the interpreter. Not
+/// so a loop that runs a block every few instructions.
 #[test]
 fn a_long_loop_is_compiled_again_optimised_and_prints_the_same() {
     let dir = scratch("long");
@@ -175,5 +176,18 @@ fn a_long_loop_is_compiled_again_optimised_and_prints_the_same() {
         stats.contains("jit: 1 loops compiled (1 again, optimised)"),
         "{stats}"
     );
+    // A long loop that runs a move every round (13 instructions) spends
+    // its time in the kernel: it keeps its quick code.
+    let src = "#1=0\nG00 X50 Z2\nWHILE[#1LT120000]DO1\n#2=#1*0.001\n\
+               #1=#1+1\nG01 X[50-#2] Z[-#2] F100\nEND1\nM30\n";
+    std::fs::write(dir.join("moves.nc"), src).unwrap();
+    let case = Case {
+        name: "moves".into(),
+        src: dir.join("moves.nc"),
+        machine: None,
+    };
+    assert_eq!(check(&case, &dir), Some(Ok(())), "{src}");
+    let (stats, _) = canon(&dir.join("moves.gbc"), &case, "auto", &["--stats"]);
+    assert!(stats.contains("jit: 1 loops compiled in"), "{stats}");
     let _ = std::fs::remove_dir_all(dir);
 }

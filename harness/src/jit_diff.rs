@@ -247,9 +247,9 @@ pub fn run(
 /// The comparison for one program: compiled as `gbcc` does and without
 /// folding (more of its arithmetic is left to run), each run with the JIT
 /// off and always, with a small step and a block budget that may end the
-/// run inside a loop. The compiled runs take the quick code alone, and
-/// the optimised code from a few rounds in (the quick code replaced while
-/// the loop runs). Returns the compiled runs' JIT statistics.
+/// run inside a loop. The compiled runs take the quick code alone, the
+/// optimised code alone, and the optimised code from a few rounds in (the
+/// quick code replaced while the loop runs, where it runs few blocks). Returns the compiled runs' JIT statistics.
 pub fn compare(src: &str, max_blocks: u64, step: u64) -> TierStats {
     let mut all = TierStats::default();
     for optimize in [true, false] {
@@ -269,7 +269,7 @@ pub fn compare(src: &str, max_blocks: u64, step: u64) -> TierStats {
         // Compiled code leaves after each block where steps end at
         // blocks, and runs its blocks through where they do not.
         for (stop_at_blocks, optimize_after) in
-            [(true, u64::MAX), (false, u64::MAX), (true, 40), (false, 40)]
+            [(true, u64::MAX), (false, u64::MAX), (true, 0), (false, 40)]
         {
             let mode = jit::Mode::Always;
             let (on, stats) = run(module.clone(), mode, optimize_after, how(stop_at_blocks));

@@ -18,8 +18,10 @@
 //!
 //! A loop is compiled twice if it runs long: first quickly, as soon as it
 //! is hot ([`Level`]: the loop waits for it), then, once its quick code has
-//! run [`OPTIMIZE_AFTER`] instructions, again with Cranelift's optimiser
-//! and register allocator, whose code then takes over at the next entry.
+//! run [`OPTIMIZE_AFTER`] instructions (unless it runs an NC block more
+//! often than every [`OPTIMIZE_BLOCKS_EVERY`]: its time is the kernel's),
+//! again with Cranelift's optimiser and register allocator, whose code then
+//! takes over at the next entry.
 //!
 //! Compiling happens in the VM's thread, on the interpreter's side of a
 //! controller (the real-time half only consumes set points); a loop that
@@ -57,10 +59,18 @@ pub enum Mode {
 pub const AUTO_THRESHOLD: u32 = 500;
 
 /// Bytecode instructions a loop runs in quick code before it is compiled
-/// again at [`Level::Full`]: the full compile (about 300 µs for a loop of
-/// 30 instructions) is then paid back within the next few million
-/// instructions, at the quarter of a round the better code saves.
+/// again at [`Level::Full`]: the full compile (0.3–0.4 ms for a loop of 20
+/// to 40 instructions, up to 1 ms with the caches cold) is then paid back
+/// within a few million instructions, at the third of a round the better
+/// code saves.
 pub const OPTIMIZE_AFTER: u64 = 1_000_000;
+
+/// Instructions per NC block below which a loop is not compiled again: a
+/// block is the kernel's work (the move executed, its canon), more than a
+/// hundred compiled instructions take, which faster code does not shorten.
+/// Issue #14's macro loop (a block every 15 instructions) lost 0.8 ms of
+/// its 13 by the full compile at its millionth instruction.
+pub const OPTIMIZE_BLOCKS_EVERY: u64 = 100;
 
 /// A compiled loop.
 struct Loop {
@@ -69,6 +79,8 @@ struct Loop {
     level: Level,
     /// Instructions its code has run (the fuel it spent).
     work: u64,
+    /// NC blocks its code has run.
+    blocks: u64,
 }
 
 /// The JIT tier for one module's run (see the crate doc).
@@ -111,8 +123,9 @@ impl Jit {
     }
 
     /// Compiles a loop again with the optimiser once its quick code has
-    /// run `work` instructions (default [`OPTIMIZE_AFTER`]); 0 compiles
-    /// every loop at [`Level::Full`] at once (for tests).
+    /// run `work` instructions (default [`OPTIMIZE_AFTER`]) and no more
+    /// than one NC block per [`OPTIMIZE_BLOCKS_EVERY`]; 0 compiles every
+    /// loop at [`Level::Full`] at once (for tests).
     pub fn optimize_after(mut self, work: u64) -> Jit {
         self.optimize_after = work;
         self
@@ -219,6 +232,7 @@ impl Jit {
             code,
             level,
             work: 0,
+            blocks: 0,
         });
         Some(())
     }
@@ -302,7 +316,10 @@ impl Tier for Jit {
         self.stats.entries += 1;
         let run = compiled.code.run(pc, state)?;
         compiled.work = compiled.work.saturating_add(run.work);
-        let optimize = compiled.level == Level::Quick && compiled.work >= self.optimize_after;
+        compiled.blocks = compiled.blocks.saturating_add(run.blocks);
+        let optimize = compiled.level == Level::Quick
+            && compiled.work >= self.optimize_after
+            && compiled.blocks.saturating_mul(OPTIMIZE_BLOCKS_EVERY) <= compiled.work;
         self.stats.blocks += run.blocks;
         if optimize {
             self.optimize(module, index);
