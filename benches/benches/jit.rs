@@ -56,12 +56,12 @@ fn compile(c: &mut Criterion) {
         let Some(&(head, tail)) = jit::loops(&module).first() else {
             panic!("the {name} program has no loop");
         };
-        for (full, level) in [(false, ""), (true, "_optimised")] {
-            let fresh = || match jit::Compiler::new(full) {
+        for (level, suffix) in [(jit::Level::Quick, ""), (jit::Level::Full, "_optimised")] {
+            let fresh = || match jit::Compiler::new(level) {
                 Ok(c) => c,
                 Err(e) => panic!("no JIT here: {e}"),
             };
-            g.bench_function(format!("compile_{name}_loop{level}"), |b| {
+            g.bench_function(format!("compile_{name}_loop{suffix}"), |b| {
                 b.iter_batched_ref(
                     fresh,
                     |compiler| compiler.compile(&module, head, tail),

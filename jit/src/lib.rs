@@ -38,7 +38,8 @@ mod lower;
 mod native;
 mod region;
 
-use native::{Backend, Code, Level};
+pub use native::Level;
+use native::{Backend, Code};
 use region::Region;
 
 /// When loops are compiled (`gbvm run --jit`).
@@ -245,10 +246,9 @@ pub struct Compiler {
 }
 
 impl Compiler {
-    /// A compiler for this host, quick or optimising (`full`); an error
-    /// where Cranelift has no backend.
-    pub fn new(full: bool) -> Result<Compiler, String> {
-        let level = if full { Level::Full } else { Level::Quick };
+    /// A compiler for this host at `level`; an error where Cranelift has no
+    /// backend.
+    pub fn new(level: Level) -> Result<Compiler, String> {
         Backend::new(level).map(|backend| Compiler { backend })
     }
 
