@@ -212,6 +212,18 @@ impl Region {
     }
 }
 
+/// The register operands of a pure instruction (`is_pure`): the first is
+/// its destination, the rest are read.
+fn registers(instr: &Instr) -> Vec<u8> {
+    let mut regs = Vec::new();
+    instr.visit_operands(|op| {
+        if let isa::Operand::Reg(r) = op {
+            regs.push(r);
+        }
+    });
+    regs
+}
+
 /// Whether register `r` is dead at `pc`: on the straight line from there,
 /// a pure instruction writes it before anything reads it. Anything else
 /// (a jump, a store, a block) ends the look as a read would. An exit on
@@ -222,13 +234,7 @@ pub fn dead_at(code: &[Instr], pc: u32, r: u8) -> bool {
         if !is_pure(instr) {
             return false;
         }
-        let mut regs = Vec::new();
-        instr.visit_operands(|op| {
-            if let isa::Operand::Reg(reg) = op {
-                regs.push(reg);
-            }
-        });
-        // The first register operand is the destination (`is_pure`).
+        let regs = registers(instr);
         let Some((&dst, reads)) = regs.split_first() else {
             continue;
         };
@@ -257,13 +263,7 @@ impl Run {
             self.written.clear();
         }
         self.members.push(pc);
-        let mut regs = Vec::new();
-        instr.visit_operands(|op| {
-            if let isa::Operand::Reg(r) = op {
-                regs.push(r);
-            }
-        });
-        // The first register operand is the destination; the rest are read.
+        let regs = registers(instr);
         if let Some((&dst, reads)) = regs.split_first() {
             if reads.iter().any(|r| !self.written.contains(r)) {
                 self.restartable = false;
