@@ -51,6 +51,10 @@ const VALUES: &[&str] = &[
     "-3",
     "0.5",
     "0.0000000001",
+    // Near 1 as EQ takes it, and just beyond (the JIT's comparison with a
+    // constant decides a value far from it alone).
+    "1.0000000005",
+    "1.000000003",
     "90",
     "1000",
     "#0",

@@ -19,7 +19,10 @@
 //!
 //! The code is written for a short compile (at `Level::Quick` the
 //! optimiser is off): no
-//! `num` of a value known not to be vacant, a comparison followed by its
+//! `num` of a value known not to be vacant, no −0 made 0 where the value
+//! cannot be −0, a comparison with a constant decided by the strict
+//! comparison alone where the value is far from the constant (the
+//! tolerance of `near` out of line), a comparison followed by its
 //! `jumpifnot` branches on the truth value, the leaving paths out of line,
 //! and in a restartable run (`Region::restart`) the finite checks summed
 //! and tested once at its end.
@@ -40,6 +43,18 @@ use vm::Ran;
 use crate::helpers::{self, binary_code};
 use crate::native::Ctx;
 use crate::region::{dead_at, is_block, is_native, is_pure, Place, Region};
+
+/// Bounds around a finite constant `c` beyond which no finite value is
+/// `near` it: c ∓ 4·10⁻⁹·max(1, |c|). `near(a, c)` needs
+/// |a − c| ≤ 10⁻⁹·max(1, |a|, |c|): where |a| ≤ max(1, |c|) the distance
+/// is four times that bound; where |a| is larger, a lies beyond c on the
+/// side away from 0 and |a − c| ≥ |a| − |c| > 10⁻⁹·|a|. Both with a margin
+/// of nearly 3·10⁻⁹ relative for the rounding of these few operations.
+/// (±∞ is `near` every finite value: the check excludes it.)
+pub fn far_bounds(c: f64) -> (f64, f64) {
+    let margin = 4e-9 * c.abs().max(1.0);
+    (c - margin, c + margin)
+}
 
 /// The helpers, imported into the function being built.
 pub struct Refs {
@@ -97,6 +112,9 @@ pub struct Lower<'a, 'f> {
     /// Values known not to be vacant (constants, results that passed the
     /// finite check): `num` of one is itself.
     plain: HashSet<Value>,
+    /// Values known not to be −0 (constants, results of `plain_zero`, a
+    /// sum with one such term): `plain_zero` of one is itself.
+    unsigned_zero: HashSet<Value>,
     /// The register the last instruction set to a comparison's result,
     /// with that result as a truth value (a `jumpifnot` right after it
     /// branches on the truth value).
@@ -172,6 +190,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             labels,
             exit,
             plain: HashSet::new(),
+            unsigned_zero: HashSet::new(),
             last_compare: None,
             unwritten: None,
             pending: None,
@@ -365,6 +384,9 @@ impl<'a, 'f> Lower<'a, 'f> {
         if !v.is_nan() {
             self.plain.insert(value);
         }
+        if v.to_bits() != (-0.0f64).to_bits() {
+            self.unsigned_zero.insert(value);
+        }
         value
     }
 
@@ -485,6 +507,9 @@ impl<'a, 'f> Lower<'a, 'f> {
         let zero = self.f64(0.0);
         let n = self.b.ins().select(vacant, zero, v);
         self.plain.insert(n);
+        if self.unsigned_zero.contains(&v) {
+            self.unsigned_zero.insert(n);
+        }
         n
     }
 
@@ -495,9 +520,14 @@ impl<'a, 'f> Lower<'a, 'f> {
     /// −0 as 0: `v + 0` is `v` for every other value (NaN and ±∞
     /// included) and +0 for −0, in IEEE arithmetic.
     fn plain_zero(&mut self, v: Value) -> Value {
+        if self.unsigned_zero.contains(&v) {
+            self.plain.insert(v);
+            return v;
+        }
         let zero = self.f64(0.0);
         let z = self.b.ins().fadd(v, zero);
         self.plain.insert(z);
+        self.unsigned_zero.insert(z);
         z
     }
 
@@ -559,15 +589,25 @@ impl<'a, 'f> Lower<'a, 'f> {
         let a = self.reg(a);
         let b = self.src(b);
         let (x, y) = (self.num(a), self.num(b));
-        let r = match op {
-            Arith::Add => self.b.ins().fadd(x, y),
-            Arith::Sub => self.b.ins().fsub(x, y),
-            Arith::Mul => self.b.ins().fmul(x, y),
+        let (r, unsigned) = match op {
+            // In IEEE arithmetic (round to nearest) a sum is −0 only when
+            // both terms are, a difference x − y only when x is −0 and y +0.
+            Arith::Add => (self.b.ins().fadd(x, y), self.unsigned_either(x, y)),
+            Arith::Sub => (self.b.ins().fsub(x, y), self.unsigned_zero.contains(&x)),
+            // A product or quotient is −0 from an underflow too.
+            Arith::Mul => (self.b.ins().fmul(x, y), false),
             // x/0 is ±∞ or NaN: `finite` leaves for the interpreter's E5001.
-            Arith::Div => self.b.ins().fdiv(x, y),
+            Arith::Div => (self.b.ins().fdiv(x, y), false),
         };
+        if unsigned {
+            self.unsigned_zero.insert(r);
+        }
         let v = self.finite(pc, r);
         self.set(dst, v);
+    }
+
+    fn unsigned_either(&self, x: Value, y: Value) -> bool {
+        self.unsigned_zero.contains(&x) || self.unsigned_zero.contains(&y)
     }
 
     /// A helper's result, or a leave at `pc` where it reports a fault.
@@ -596,16 +636,71 @@ impl<'a, 'f> Lower<'a, 'f> {
             self.guard(never, pc);
             return;
         };
-        // A constant's part of `near`'s scale, max(1, |c|), is known now.
-        let scale = match b {
+        let constant = match b {
             Src::Const(k) => self.module.consts.get(k as usize).copied(),
             Src::Reg(_) => None,
         }
-        .filter(|c| !c.is_nan())
-        .map(|c| c.abs().max(1.0));
+        .filter(|c| c.is_finite());
         let a = self.reg(a);
         let b = self.src(b);
-        let result = match rel {
+        let result = match constant {
+            Some(c) => self.compare_with_constant(rel, a, b, c),
+            None => self.full_compare(rel, a, b, None),
+        };
+        self.last_compare = Some((dst, result));
+        if self.region.branches_on(&self.module.code, pc, dst) {
+            // Only the `jumpifnot` reads it: the value is made where the
+            // code leaves at that instruction (`exit_at`).
+            self.unwritten = Some((pc + 1, dst, result));
+            return;
+        }
+        self.write_truth(dst, result);
+    }
+
+    /// A comparison with the finite constant `c` (`b`): where `a` is
+    /// finite and outside `far_bounds(c)` it is not `near` c, and the
+    /// strict comparison is the result; elsewhere the whole comparison,
+    /// out of line.
+    fn compare_with_constant(&mut self, rel: Rel, a: Value, b: Value, c: f64) -> Value {
+        let x = match rel {
+            Rel::Eq | Rel::Ne => a,
+            _ => self.num(a),
+        };
+        let (lo, hi) = far_bounds(c);
+        let (lo, hi) = (self.f64(lo), self.f64(hi));
+        let below = self.b.ins().fcmp(FloatCC::LessThan, x, lo);
+        let above = self.b.ins().fcmp(FloatCC::GreaterThan, x, hi);
+        let magnitude = self.b.ins().fabs(x);
+        let inf = self.f64(f64::INFINITY);
+        let finite = self.b.ins().fcmp(FloatCC::LessThan, magnitude, inf);
+        let outside = self.b.ins().bor(below, above);
+        let far = self.b.ins().band(outside, finite);
+        let truth = match rel {
+            Rel::Lt | Rel::Le => below,
+            Rel::Gt | Rel::Ge => above,
+            Rel::Eq => self.b.ins().iconst(types::I8, 0),
+            Rel::Ne => self.b.ins().iconst(types::I8, 1),
+        };
+        let (slow, join) = (self.b.create_block(), self.b.create_block());
+        let result = self.b.append_block_param(join, types::I8);
+        self.b
+            .ins()
+            .brif(far, join, &[BlockArg::Value(truth)], slow, &[]);
+        self.b.seal_block(slow);
+        self.b.set_cold_block(slow);
+        self.b.switch_to_block(slow);
+        let scale = c.abs().max(1.0);
+        let truth = self.full_compare(rel, a, b, Some(scale));
+        self.b.ins().jump(join, &[BlockArg::Value(truth)]);
+        self.b.seal_block(join);
+        self.b.switch_to_block(join);
+        result
+    }
+
+    /// `value::compare` written out; `scale` is max(1, |b|) where `b` is
+    /// a constant.
+    fn full_compare(&mut self, rel: Rel, a: Value, b: Value, scale: Option<f64>) -> Value {
+        match rel {
             Rel::Eq | Rel::Ne => {
                 // `near` is false when either is vacant (NaN), so "both
                 // vacant, or near" is the kernel's three cases.
@@ -635,15 +730,7 @@ impl<'a, 'f> Lower<'a, 'f> {
                     self.b.ins().band(strict, not_eq)
                 }
             }
-        };
-        self.last_compare = Some((dst, result));
-        if self.region.branches_on(&self.module.code, pc, dst) {
-            // Only the `jumpifnot` reads it: the value is made where the
-            // code leaves at that instruction (`exit_at`).
-            self.unwritten = Some((pc + 1, dst, result));
-            return;
         }
-        self.write_truth(dst, result);
     }
 
     /// A comparison's result, as a value (1 or 0), into register `dst`.
@@ -651,6 +738,7 @@ impl<'a, 'f> Lower<'a, 'f> {
         let (one, zero) = (self.f64(1.0), self.f64(0.0));
         let v = self.b.ins().select(truth, one, zero);
         self.plain.insert(v);
+        self.unsigned_zero.insert(v);
         self.set(dst, v);
     }
 
@@ -695,13 +783,19 @@ impl<'a, 'f> Lower<'a, 'f> {
         let inline = match Func::from_code(f) {
             Some(Func::Abs) => {
                 let x = self.num(a);
-                Some(self.b.ins().fabs(x))
+                let v = self.b.ins().fabs(x);
+                self.unsigned_zero.insert(v);
+                Some(v)
             }
             Some(Func::Sqrt) => {
                 // The root of a negative value is NaN: `finite` leaves for
-                // the interpreter's E5002.
+                // the interpreter's E5002. The root of −0 is −0.
                 let x = self.num(a);
-                Some(self.b.ins().sqrt(x))
+                let v = self.b.ins().sqrt(x);
+                if self.unsigned_zero.contains(&x) {
+                    self.unsigned_zero.insert(v);
+                }
+                Some(v)
             }
             Some(Func::Fix) => {
                 let x = self.num(a);
@@ -873,5 +967,96 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.switch_to_block(taken);
         self.jump(pc, target);
         self.unwritten = None;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nc::value::compare;
+
+    /// `n` steps of one unit in the last place from `x`, towards +∞
+    /// (`n` > 0) or −∞.
+    fn ulps(x: f64, n: i64) -> f64 {
+        let mut y = x;
+        for _ in 0..n.unsigned_abs() {
+            y = if n > 0 { y.next_up() } else { y.next_down() };
+        }
+        y
+    }
+
+    /// Beyond `far_bounds`, the kernel's every comparison with the constant
+    /// is the strict one: checked on the values next to each bound, around
+    /// ±max(1, |c|) (where the larger magnitude takes over the scale), and
+    /// spread over the far ranges.
+    #[test]
+    fn beyond_the_far_bounds_no_value_is_near() {
+        let constants = [
+            0.0,
+            1.0,
+            -1.0,
+            0.999_999_999_9,
+            -0.999_999_999_9,
+            1e-9,
+            -100.0,
+            1e6,
+            -1e6,
+            0.001,
+            123.456,
+            1e300,
+            -1e300,
+            1.7e308,
+            5e-324,
+        ];
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        for c in constants {
+            let (lo, hi) = far_bounds(c);
+            let s = c.abs().max(1.0);
+            let mut probes = Vec::new();
+            for base in [lo, hi, -s, s, -2.0 * s, 2.0 * s, f64::MAX, -f64::MAX] {
+                for n in -300..=300 {
+                    probes.push(ulps(base, n));
+                }
+            }
+            for _ in 0..20_000 {
+                seed = seed
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                let magnitude = 10f64.powf((seed >> 11) as f64 / (1u64 << 53) as f64 * 40.0 - 20.0);
+                let sign = if seed & 1 == 0 { 1.0 } else { -1.0 };
+                probes.push(c + sign * magnitude * s);
+            }
+            for a in probes.into_iter().filter(|a| a.is_finite()) {
+                let (below, above) = (a < lo, a > hi);
+                if !(below || above) {
+                    continue;
+                }
+                let truth = |b: bool| if b { 1.0 } else { 0.0 };
+                let expect = [
+                    (Rel::Eq, 0.0),
+                    (Rel::Ne, 1.0),
+                    (Rel::Lt, truth(below)),
+                    (Rel::Le, truth(below)),
+                    (Rel::Gt, truth(above)),
+                    (Rel::Ge, truth(above)),
+                ];
+                for (rel, want) in expect {
+                    assert_eq!(compare(rel, a, c), want, "{a:e} {rel:?} {c:e}");
+                }
+            }
+        }
+    }
+
+    /// The bounds are close: the values just inside them are the slow
+    /// path's, and a value near c is found near there.
+    #[test]
+    fn far_bounds_are_a_few_tolerances_wide() {
+        for c in [0.0, 1e6, -100.0, 0.5] {
+            let (lo, hi) = far_bounds(c);
+            let tolerance = 1e-9 * c.abs().max(1.0);
+            assert!(c - lo < 5.0 * tolerance && hi - c < 5.0 * tolerance);
+            assert_eq!(compare(Rel::Eq, c + 0.9 * tolerance, c), 1.0);
+            assert_eq!(compare(Rel::Eq, c + 1.1 * tolerance, c), 0.0);
+        }
     }
 }
