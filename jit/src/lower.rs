@@ -8,7 +8,9 @@
 //! written into the VM only where the code leaves or calls the kernel, and
 //! only if the interpreter may read it from there (`store_live`: the
 //! registers are an expression's temporaries, most of them dead by the
-//! next statement). The arithmetic is the kernel's
+//! next statement). The block count and the fuel are variables too,
+//! written into the context at the exit and before a call of the kernel's
+//! executor. The arithmetic is the kernel's
 //! (`nc::value`) written out: vacant counts as 0, a result that is not
 //! finite faults, −0 becomes 0; the same IEEE operations in the same
 //! order, none fused. The functions that round call the kernel's code
@@ -232,10 +234,12 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.ins().jump(self.exit, &[BlockArg::Value(entry)]);
     }
 
-    /// The exit: the pc returned (the state is in the VM already).
+    /// The exit: the counters written, the pc returned (the rest of the
+    /// state is in the VM already).
     fn exit_block(&mut self) {
         self.b.switch_to_block(self.exit);
         let pc = self.b.block_params(self.exit)[0];
+        self.store_counters();
         self.b.ins().return_(&[pc]);
     }
 
@@ -463,10 +467,16 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.ins().store(TRUSTED, v, base, offset);
     }
 
-    /// A counter of the context: its variable and the context's field.
-    fn set_counter(&mut self, var: Variable, offset: usize, v: Value) {
-        self.b.def_var(var, v);
-        self.b.ins().store(TRUSTED, v, self.ctx, offset as i32);
+    /// The counters' variables into the context, whose fields the kernel
+    /// and the caller read.
+    fn store_counters(&mut self) {
+        for (var, offset) in [
+            (self.blocks, offset_of!(Ctx, blocks)),
+            (self.fuel, offset_of!(Ctx, fuel)),
+        ] {
+            let v = self.b.use_var(var);
+            self.b.ins().store(TRUSTED, v, self.ctx, offset as i32);
+        }
     }
 
     /// Leaves for the interpreter, which goes on at `pc`.
@@ -858,15 +868,19 @@ impl<'a, 'f> Lower<'a, 'f> {
     }
 
     /// An NC block, its words built: a direct call into the kernel's
-    /// executor (`vm::Ran` says what became of it). `GoOn`: the code goes
-    /// on, the block count read again (the kernel charged the block);
+    /// executor (`vm::Ran` says what became of it), the counters written
+    /// for it. `GoOn`: the code goes on, the block count read again (the
+    /// kernel charged the block);
     /// `Leave`: it leaves at the next pc, for the VM to finish the block
     /// and end its step; `Not`: it leaves at `pc` itself, unrun.
     fn block(&mut self, pc: u32) {
         self.store_live(pc);
+        self.store_counters();
         let at = self.b.ins().iconst(types::I32, i64::from(pc));
         let call = self.b.ins().call(self.refs.block, &[self.ctx, at]);
         let ran = self.b.inst_results(call)[0];
+        let blocks = self.load_ctx(types::I64, offset_of!(Ctx, blocks));
+        self.b.def_var(self.blocks, blocks);
         let go_on = self
             .b
             .ins()
@@ -880,8 +894,6 @@ impl<'a, 'f> Lower<'a, 'f> {
         let next = self.b.ins().iadd(at, ran);
         self.b.ins().jump(self.exit, &[BlockArg::Value(next)]);
         self.b.switch_to_block(on);
-        let blocks = self.load_ctx(types::I64, offset_of!(Ctx, blocks));
-        self.b.def_var(self.blocks, blocks);
     }
 
     /// Charges a block to the budget; one the budget cannot take leaves
@@ -894,7 +906,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             .icmp(IntCC::UnsignedLessThan, blocks, self.bases.max_blocks);
         self.guard(ok, pc);
         let blocks = self.b.ins().iadd_imm(blocks, 1);
-        self.set_counter(self.blocks, offset_of!(Ctx, blocks), blocks);
+        self.b.def_var(self.blocks, blocks);
     }
 
     /// A jump, taken: within the loop a backward one is a round (fuel and a
@@ -927,7 +939,7 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.charge(pc);
         let fuel = self.b.use_var(self.fuel);
         let fuel = self.b.ins().iadd_imm(fuel, -cost);
-        self.set_counter(self.fuel, offset_of!(Ctx, fuel), fuel);
+        self.b.def_var(self.fuel, fuel);
     }
 
     /// Whether register `r` holds vacant or what EQ takes for 0.
