@@ -34,15 +34,19 @@ read -r -a rs274 <<<"$RS274"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# Runs a command under /usr/bin/time -v, stdout to $tmp/out; appends
-# "wall_s cpu_s rss_kb" to the file named by $1.
+# Runs a command twice, stdout to $tmp/out: bare, for the wall time, then
+# under /usr/bin/time -v for the CPU time and peak memory (starting
+# /usr/bin/time itself takes several ms, which would count against the
+# two processes of gbc twice); appends "wall_s cpu_s rss_kb" to the file
+# named by $1.
 timed() {
     local into=$1
     shift
     local t0 t1
     t0=$EPOCHREALTIME
-    /usr/bin/time -v -o "$tmp/time" "$@" >"$tmp/out" 2>"$tmp/err"
+    "$@" >"$tmp/out" 2>"$tmp/err"
     t1=$EPOCHREALTIME
+    /usr/bin/time -v -o "$tmp/time" "$@" >"$tmp/out" 2>"$tmp/err"
     awk -v t0="$t0" -v t1="$t1" '
         /User time/ { u = $NF } /System time/ { s = $NF }
         /Maximum resident/ { m = $NF }
