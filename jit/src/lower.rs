@@ -21,7 +21,9 @@
 //!
 //! The code is written for a short compile (at `Level::Quick` the
 //! optimiser is off): no
-//! `num` of a value known not to be vacant, no −0 made 0 where the value
+//! `num` of a value known not to be vacant, a variable's `num` kept beside
+//! it (`Cached`: tested where it is stored, not in every round that reads
+//! it), no −0 made 0 where the value
 //! cannot be −0, a comparison with a constant decided by the strict
 //! comparison alone where the value is far from the constant (the
 //! tolerance of `near` out of line), a comparison followed by its
@@ -29,7 +31,7 @@
 //! and in a restartable run (`Region::restart`) the finite checks summed
 //! and tested once at its end.
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::mem::offset_of;
 
 use cranelift_codegen::ir::condcodes::{FloatCC, IntCC};
@@ -89,6 +91,16 @@ enum Arith {
     Div,
 }
 
+/// A local or common variable of the loop: its value, and its value as
+/// `num` takes it (vacant as 0), kept beside it so that a round reads a
+/// variable's number without testing it: the test is made where the
+/// value is loaded or stored, and only there if it may be vacant.
+#[derive(Clone, Copy)]
+struct Cached {
+    value: Variable,
+    num: Variable,
+}
+
 /// An operand: a register or a constant-pool entry.
 #[derive(Clone, Copy)]
 enum Src {
@@ -106,7 +118,7 @@ pub struct Lower<'a, 'f> {
     bases: Bases,
     /// A variable per register below `num_regs` that the loop uses.
     regs: Vec<Option<Variable>>,
-    vars: BTreeMap<u32, Variable>,
+    vars: BTreeMap<u32, Cached>,
     blocks: Variable,
     fuel: Variable,
     labels: BTreeMap<u32, Block>,
@@ -117,6 +129,11 @@ pub struct Lower<'a, 'f> {
     /// Values known not to be −0 (constants, results of `plain_zero`, a
     /// sum with one such term): `plain_zero` of one is itself.
     unsigned_zero: HashSet<Value>,
+    /// Values known to be finite (finite constants, results that passed
+    /// the finite check, truth values).
+    finite: HashSet<Value>,
+    /// A variable's value as read, and its `num` as read beside it.
+    num_of: HashMap<Value, Value>,
     /// The register the last instruction set to a comparison's result,
     /// with that result as a truth value (a `jumpifnot` right after it
     /// branches on the truth value).
@@ -170,7 +187,11 @@ impl<'a, 'f> Lower<'a, 'f> {
         let vars = region
             .vars
             .iter()
-            .map(|&n| (n, b.declare_var(types::F64)))
+            .map(|&n| {
+                let value = b.declare_var(types::F64);
+                let num = b.declare_var(types::F64);
+                (n, Cached { value, num })
+            })
             .collect();
         let labels = region
             .leaders
@@ -193,6 +214,8 @@ impl<'a, 'f> Lower<'a, 'f> {
             exit,
             plain: HashSet::new(),
             unsigned_zero: HashSet::new(),
+            finite: HashSet::new(),
+            num_of: HashMap::new(),
             last_compare: None,
             unwritten: None,
             pending: None,
@@ -215,7 +238,7 @@ impl<'a, 'f> Lower<'a, 'f> {
         }
         for (base, offset, var) in self.cached_vars() {
             let v = self.b.ins().load(types::F64, TRUSTED, base, offset);
-            self.b.def_var(var, v);
+            self.def_cached(var, v);
         }
         let blocks = self.load_ctx(types::I64, offset_of!(Ctx, blocks));
         self.b.def_var(self.blocks, blocks);
@@ -250,7 +273,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             .collect()
     }
 
-    fn cached_vars(&self) -> Vec<(Value, i32, Variable)> {
+    fn cached_vars(&self) -> Vec<(Value, i32, Cached)> {
         self.vars
             .iter()
             .filter_map(|(&n, &var)| match Place::of(n) {
@@ -391,6 +414,9 @@ impl<'a, 'f> Lower<'a, 'f> {
         if v.to_bits() != (-0.0f64).to_bits() {
             self.unsigned_zero.insert(value);
         }
+        if v.is_finite() {
+            self.finite.insert(value);
+        }
         value
     }
 
@@ -441,8 +467,13 @@ impl<'a, 'f> Lower<'a, 'f> {
 
     fn load_var(&mut self, n: u32) -> Value {
         match Place::of(n) {
-            Place::Local(_) | Place::Common(_) => match self.vars.get(&n) {
-                Some(&var) => self.b.use_var(var),
+            Place::Local(_) | Place::Common(_) => match self.vars.get(&n).copied() {
+                Some(var) => {
+                    let v = self.b.use_var(var.value);
+                    let num = self.b.use_var(var.num);
+                    self.num_of.insert(v, num);
+                    v
+                }
                 None => self.f64(VACANT),
             },
             Place::Persistent(i) => {
@@ -458,13 +489,19 @@ impl<'a, 'f> Lower<'a, 'f> {
         let Some(&var) = self.vars.get(&n) else {
             return;
         };
-        self.b.def_var(var, v);
+        self.def_cached(var, v);
         let (base, offset) = match Place::of(n) {
             Place::Local(i) => (self.bases.locals, 8 * i as i32),
             Place::Common(i) => (self.bases.common, 8 * i as i32),
             _ => return,
         };
         self.b.ins().store(TRUSTED, v, base, offset);
+    }
+
+    fn def_cached(&mut self, var: Cached, v: Value) {
+        self.b.def_var(var.value, v);
+        let num = self.num(v);
+        self.b.def_var(var.num, num);
     }
 
     /// The counters' variables into the context, whose fields the kernel
@@ -513,12 +550,19 @@ impl<'a, 'f> Lower<'a, 'f> {
         if self.plain.contains(&v) {
             return v;
         }
+        if let Some(&n) = self.num_of.get(&v) {
+            self.plain.insert(n);
+            return n;
+        }
         let vacant = self.b.ins().fcmp(FloatCC::Unordered, v, v);
         let zero = self.f64(0.0);
         let n = self.b.ins().select(vacant, zero, v);
         self.plain.insert(n);
         if self.unsigned_zero.contains(&v) {
             self.unsigned_zero.insert(n);
+        }
+        if self.finite.contains(&v) {
+            self.finite.insert(n);
         }
         n
     }
@@ -546,7 +590,9 @@ impl<'a, 'f> Lower<'a, 'f> {
     /// of a negative value: the result is ±∞ or NaN then); −0 becomes 0.
     fn finite(&mut self, pc: u32, v: Value) -> Value {
         self.check_finite(pc, v);
-        self.plain_zero(v)
+        let z = self.plain_zero(v);
+        self.finite.insert(z);
+        z
     }
 
     /// Leaves at `pc` unless `v` is finite: at once, or, in a restartable
@@ -626,6 +672,7 @@ impl<'a, 'f> Lower<'a, 'f> {
         let v = self.b.inst_results(call)[0];
         self.check_finite(pc, v);
         self.plain.insert(v);
+        self.finite.insert(v);
         self.set(dst, v);
     }
 
@@ -680,11 +727,15 @@ impl<'a, 'f> Lower<'a, 'f> {
         let (lo, hi) = (self.f64(lo), self.f64(hi));
         let below = self.b.ins().fcmp(FloatCC::LessThan, x, lo);
         let above = self.b.ins().fcmp(FloatCC::GreaterThan, x, hi);
-        let magnitude = self.b.ins().fabs(x);
-        let inf = self.f64(f64::INFINITY);
-        let finite = self.b.ins().fcmp(FloatCC::LessThan, magnitude, inf);
         let outside = self.b.ins().bor(below, above);
-        let far = self.b.ins().band(outside, finite);
+        let far = if self.finite.contains(&x) {
+            outside
+        } else {
+            let magnitude = self.b.ins().fabs(x);
+            let inf = self.f64(f64::INFINITY);
+            let finite = self.b.ins().fcmp(FloatCC::LessThan, magnitude, inf);
+            self.b.ins().band(outside, finite)
+        };
         let truth = match rel {
             Rel::Lt | Rel::Le => below,
             Rel::Gt | Rel::Ge => above,
@@ -749,6 +800,7 @@ impl<'a, 'f> Lower<'a, 'f> {
         let v = self.b.ins().select(truth, one, zero);
         self.plain.insert(v);
         self.unsigned_zero.insert(v);
+        self.finite.insert(v);
         self.set(dst, v);
     }
 
