@@ -132,7 +132,7 @@ pub enum Level {
     /// counts: the loop waits for it): no optimiser (`lower` emits what it
     /// would have left of the arithmetic) and the single-pass register
     /// allocator, which spills every value across blocks. The ellipse's
-    /// loop: about 115 µs.
+    /// loop: about 120 µs.
     Quick,
     /// The optimiser and the backtracking register allocator, for a loop
     /// that has run long in quick code: 2.5× the compile time for code
