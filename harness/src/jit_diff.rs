@@ -269,6 +269,7 @@ pub fn compare(src: &str, max_blocks: u64, step: u64) -> TierStats {
             step,
             stop_at_blocks,
         };
+        verify_loops(&module, src);
         let (off, _) = run(module.clone(), jit::Mode::Off, 0, how(true));
         // Compiled code leaves after each block where steps end at
         // blocks, and runs its blocks through where they do not.
@@ -293,6 +294,27 @@ pub fn compare(src: &str, max_blocks: u64, step: u64) -> TierStats {
         }
     }
     all
+}
+
+/// Every loop of `module` the JIT takes compiles at both levels, and
+/// Cranelift's verifier accepts the function built (a run leaves the
+/// verifier off, and a function it would reject could run wrongly).
+fn verify_loops(module: &isa::Module, src: &str) {
+    // (The levels build the same function; the optimiser's passes are
+    // Cranelift's.)
+    for level in [jit::Level::Quick] {
+        let Ok(mut compiler) = jit::Compiler::verifying(level) else {
+            return;
+        };
+        for (head, tail) in jit::loops(module) {
+            if !jit::takes(module, head, tail) {
+                continue;
+            }
+            if let Err(e) = compiler.compile(module, head, tail) {
+                panic!("the loop {head}..={tail} ({level:?}) does not compile: {e}\n{src}");
+            }
+        }
+    }
 }
 
 /// What differs between two outcomes, briefly.

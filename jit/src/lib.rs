@@ -147,7 +147,7 @@ impl Jit {
             Level::Full => &mut self.full,
         };
         if slot.is_none() {
-            *slot = Some(Backend::new(level).ok()?);
+            *slot = Some(Backend::new(level, false).ok()?);
         }
         slot.as_mut()
     }
@@ -249,7 +249,14 @@ impl Compiler {
     /// A compiler for this host at `level`; an error where Cranelift has no
     /// backend.
     pub fn new(level: Level) -> Result<Compiler, String> {
-        Backend::new(level).map(|backend| Compiler { backend })
+        Backend::new(level, false).map(|backend| Compiler { backend })
+    }
+
+    /// The same, with Cranelift's verifier checking each function built
+    /// (which a run leaves off): a function it rejects is an error of
+    /// `compile`. For the tests.
+    pub fn verifying(level: Level) -> Result<Compiler, String> {
+        Backend::new(level, true).map(|backend| Compiler { backend })
     }
 
     /// Compiles the loop of `module` from `head` to the backward jump at
@@ -262,6 +269,12 @@ impl Compiler {
             .compile(module, &region, num_regs)
             .map(|(_, took)| took)
     }
+}
+
+/// Whether the JIT compiles the loop of `module` from `head` to the
+/// backward jump at `tail` (one it does not stays interpreted).
+pub fn takes(module: &Module, head: u32, tail: u32) -> bool {
+    Region::find(module, head, tail).is_some()
 }
 
 /// The loops of `module`, innermost first: (head, backward jump) of every

@@ -132,8 +132,15 @@ pub struct Lower<'a, 'f> {
     /// Values known to be finite (finite constants, results that passed
     /// the finite check, truth values).
     finite: HashSet<Value>,
-    /// A variable's value as read, and its `num` as read beside it.
-    num_of: HashMap<Value, Value>,
+    /// A variable's value as read, its `num` as read beside it, and the
+    /// block that read them: the `num` holds where that block dominates
+    /// (a value the variable had on every path can have a `num` that
+    /// differs by path, a block parameter).
+    num_of: HashMap<Value, (Value, Block)>,
+    /// The blocks entered only from one block (a guard's way on, a
+    /// join of paths that split in it): that block, their immediate
+    /// dominator.
+    idom: HashMap<Block, Block>,
     /// The register the last instruction set to a comparison's result,
     /// with that result as a truth value (a `jumpifnot` right after it
     /// branches on the truth value).
@@ -216,6 +223,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             unsigned_zero: HashSet::new(),
             finite: HashSet::new(),
             num_of: HashMap::new(),
+            idom: HashMap::new(),
             last_compare: None,
             unwritten: None,
             pending: None,
@@ -471,7 +479,9 @@ impl<'a, 'f> Lower<'a, 'f> {
                 Some(var) => {
                     let v = self.b.use_var(var.value);
                     let num = self.b.use_var(var.num);
-                    self.num_of.insert(v, num);
+                    if let Some(here) = self.b.current_block() {
+                        self.num_of.insert(v, (num, here));
+                    }
                     v
                 }
                 None => self.f64(VACANT),
@@ -529,8 +539,33 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.ins().jump(self.exit, &[BlockArg::Value(pc)]);
     }
 
+    /// Switches to `block`, entered only from `from` (or from paths that
+    /// split there).
+    fn continue_in(&mut self, block: Block, from: Option<Block>) {
+        if let Some(from) = from {
+            self.idom.insert(block, from);
+        }
+        self.b.switch_to_block(block);
+    }
+
+    /// Whether `block` is the current block or dominates it by the chain
+    /// `continue_in` recorded.
+    fn dominates(&self, block: Block) -> bool {
+        let mut at = self.b.current_block();
+        // (The chain has no cycle: each block is entered once.)
+        for _ in 0..=self.idom.len() {
+            match at {
+                Some(b) if b == block => return true,
+                Some(b) => at = self.idom.get(&b).copied(),
+                None => return false,
+            }
+        }
+        false
+    }
+
     /// Goes on only where `ok`; elsewhere leaves at `pc` (unexecuted).
     fn guard(&mut self, ok: Value, pc: u32) {
+        let here = self.b.current_block();
         let (go_on, leave) = (self.b.create_block(), self.b.create_block());
         self.b.ins().brif(ok, go_on, &[], leave, &[]);
         // Each has its one predecessor now: sealed, their variables are
@@ -542,7 +577,7 @@ impl<'a, 'f> Lower<'a, 'f> {
         self.b.set_cold_block(leave);
         self.b.switch_to_block(leave);
         self.exit_at(pc);
-        self.b.switch_to_block(go_on);
+        self.continue_in(go_on, here);
     }
 
     /// `num`: vacant (NaN) counts as 0.
@@ -550,9 +585,11 @@ impl<'a, 'f> Lower<'a, 'f> {
         if self.plain.contains(&v) {
             return v;
         }
-        if let Some(&n) = self.num_of.get(&v) {
-            self.plain.insert(n);
-            return n;
+        if let Some(&(n, at)) = self.num_of.get(&v) {
+            if self.dominates(at) {
+                self.plain.insert(n);
+                return n;
+            }
         }
         let vacant = self.b.ins().fcmp(FloatCC::Unordered, v, v);
         let zero = self.f64(0.0);
@@ -742,6 +779,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             Rel::Eq => self.b.ins().iconst(types::I8, 0),
             Rel::Ne => self.b.ins().iconst(types::I8, 1),
         };
+        let here = self.b.current_block();
         let (slow, join) = (self.b.create_block(), self.b.create_block());
         let result = self.b.append_block_param(join, types::I8);
         self.b
@@ -749,12 +787,12 @@ impl<'a, 'f> Lower<'a, 'f> {
             .brif(far, join, &[BlockArg::Value(truth)], slow, &[]);
         self.b.seal_block(slow);
         self.b.set_cold_block(slow);
-        self.b.switch_to_block(slow);
+        self.continue_in(slow, here);
         let scale = c.abs().max(1.0);
         let truth = self.full_compare(rel, a, b, Some(scale));
         self.b.ins().jump(join, &[BlockArg::Value(truth)]);
         self.b.seal_block(join);
-        self.b.switch_to_block(join);
+        self.continue_in(join, here);
         result
     }
 
@@ -900,14 +938,15 @@ impl<'a, 'f> Lower<'a, 'f> {
         // A vacant word is left out of the block (§7.5).
         let v = self.reg(src);
         let vacant = self.is_vacant(v);
+        let here = self.b.current_block();
         let (push, after) = (self.b.create_block(), self.b.create_block());
         self.b.ins().brif(vacant, after, &[], push, &[]);
         self.b.seal_block(push);
-        self.b.switch_to_block(push);
+        self.continue_in(push, here);
         self.push_word(addr, v, 0);
         self.b.ins().jump(after, &[]);
         self.b.seal_block(after);
-        self.b.switch_to_block(after);
+        self.continue_in(after, here);
     }
 
     fn push_word(&mut self, addr: u8, v: Value, flags: u8) {
@@ -937,6 +976,7 @@ impl<'a, 'f> Lower<'a, 'f> {
             .b
             .ins()
             .icmp_imm(IntCC::Equal, ran, i64::from(Ran::GoOn as u32));
+        let here = self.b.current_block();
         let (on, leave) = (self.b.create_block(), self.b.create_block());
         self.b.ins().brif(go_on, on, &[], leave, &[]);
         self.b.seal_block(on);
@@ -945,7 +985,7 @@ impl<'a, 'f> Lower<'a, 'f> {
         // Not (0) or Leave (1): at pc or after it.
         let next = self.b.ins().iadd(at, ran);
         self.b.ins().jump(self.exit, &[BlockArg::Value(next)]);
-        self.b.switch_to_block(on);
+        self.continue_in(on, here);
     }
 
     /// Charges a block to the budget; one the budget cannot take leaves

@@ -142,7 +142,9 @@ pub enum Level {
 }
 
 impl Backend {
-    pub fn new(level: Level) -> Result<Backend, String> {
+    /// A backend at `level`; `verify`: Cranelift's verifier checks each
+    /// function (the tests'; a run's compile leaves it off).
+    pub fn new(level: Level, verify: bool) -> Result<Backend, String> {
         let mut flags = settings::builder();
         let set = |flags: &mut settings::Builder, k: &str, v: &str| {
             flags
@@ -157,7 +159,11 @@ impl Backend {
         // cannot panic across it: `extern "C"` aborts).
         set(&mut flags, "opt_level", opt_level)?;
         set(&mut flags, "regalloc_algorithm", regalloc)?;
-        set(&mut flags, "enable_verifier", "false")?;
+        set(
+            &mut flags,
+            "enable_verifier",
+            if verify { "true" } else { "false" },
+        )?;
         set(&mut flags, "unwind_info", "false")?;
         set(&mut flags, "use_colocated_libcalls", "false")?;
         set(&mut flags, "is_pic", "false")?;
