@@ -51,9 +51,11 @@ use crate::region::{dead_at, is_block, is_native, is_pure, Place, Region};
 /// Bounds around a finite constant `c` beyond which no finite value is
 /// `near` it: c ∓ 4·10⁻⁹·max(1, |c|). `near(a, c)` needs
 /// |a − c| ≤ 10⁻⁹·max(1, |a|, |c|): where |a| ≤ max(1, |c|) the distance
-/// is four times that bound; where |a| is larger, a lies beyond c on the
-/// side away from 0 and |a − c| ≥ |a| − |c| > 10⁻⁹·|a|. Both with a margin
-/// of nearly 3·10⁻⁹ relative for the rounding of these few operations.
+/// is at least four times that bound; where |a| is larger, a lies beyond
+/// c on the side away from 0, and |a − c| ≥ |a| − |c| with
+/// |a| ≥ |c|·(1 + 4·10⁻⁹), so |a − c| > 10⁻⁹·|a|. Both with a margin of
+/// nearly 3·10⁻⁹ relative, far above the rounding of these few
+/// operations (10⁻¹⁶).
 /// (±∞ is `near` every finite value: the check excludes it.)
 pub fn far_bounds(c: f64) -> (f64, f64) {
     let margin = 4e-9 * c.abs().max(1.0);
