@@ -20,16 +20,15 @@
 //! kernel's `value` functions, which check and raise.
 //!
 //! The code is written for a short compile (at `Level::Quick` the
-//! optimiser is off): no
-//! `num` of a value known not to be vacant, a variable's `num` kept beside
-//! it (`Cached`: tested where it is stored, not in every round that reads
-//! it), no −0 made 0 where the value
-//! cannot be −0, a comparison with a constant decided by the strict
-//! comparison alone where the value is far from the constant (the
-//! tolerance of `near` out of line), a comparison followed by its
-//! `jumpifnot` branches on the truth value, the leaving paths out of line,
-//! and in a restartable run (`Region::restart`) the finite checks summed
-//! and tested once at its end.
+//! optimiser is off): no `num` of a value known not to be vacant, a
+//! variable's `num` kept beside it (`Cached`: tested where it is stored,
+//! not in every round that reads it), no −0 made 0 where the value cannot
+//! be −0, a comparison with a constant decided by the strict comparison
+//! alone where the value is far from the constant (the tolerance of
+//! `near` out of line), a comparison followed by its `jumpifnot` branches
+//! on the truth value, the leaving paths out of line, and in a
+//! restartable run (`Region::restart`) the finite checks summed and
+//! tested once at its end.
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::mem::offset_of;
