@@ -1,6 +1,7 @@
 //! Shared pieces of the gbc command-line tools.
 
 pub mod allocator;
+pub mod canon;
 pub mod depfile;
 pub mod exit;
 pub mod expand;

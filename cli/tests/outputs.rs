@@ -142,6 +142,32 @@ fn the_plot_is_small_titled_and_shows_stock_and_tools() {
     assert!(text(&out.stderr).contains("X<diameter> Z<length>"));
 }
 
+/// The canon of many moves (written on a thread of its own, in batches)
+/// comes out whole and in order, and an alarm's line is still the last.
+#[test]
+fn a_long_canon_is_whole_and_in_order_to_its_alarm() {
+    const MOVES: usize = 9000;
+    // X an integer, Z a quarter: both print exactly as `f64`'s Display.
+    let point = |i: usize| ((i % 50) as f64, -(((i % 70) + 1) as f64) / 4.0);
+    let mut src = String::from("G98 G01 X1 Z-1 F600\n");
+    for i in 0..MOVES {
+        let (x, z) = point(i);
+        src.push_str(&format!("X{x:.0} Z{z}\n"));
+    }
+    src.push_str("#3000=1(STOP HERE)\nX1 Z-2\nM30\n");
+    let d = compiled("long", &src);
+    let out = gbvm(&["run", "part.gbc", "--emit", "canon"], &d);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    let mut want = vec!["FEED F=600 MODE=MIN".to_string(), "LINE X=1 Z=-1".into()];
+    want.extend((0..MOVES).map(|i| {
+        let (x, z) = point(i);
+        format!("LINE X={x} Z={z}")
+    }));
+    want.push("ALARM CODE=3001 MSG=\"STOP HERE\"".into());
+    let got = text(&out.stdout);
+    assert_eq!(got.lines().collect::<Vec<_>>(), want);
+}
+
 #[test]
 fn no_progress_bar_off_a_terminal() {
     // The tests' stderr is a pipe: nothing but the statistics appear.

@@ -2,6 +2,7 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 
+use cli::canon::Canon;
 use nc::{Event, Machine, Sink};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -214,56 +215,6 @@ fn print_out(text: &str) -> ExitCode {
 
 /// Prints each event as one canon line. After the first write error it
 /// writes no more and keeps the error for the exit status.
-struct Canon<W: Write> {
-    out: W,
-    error: Option<std::io::Error>,
-    /// An `ALARM` line has been printed: it is the last line of the run.
-    alarmed: bool,
-}
-
-impl<W: Write> Canon<W> {
-    /// Writes `text` unless an earlier write failed.
-    fn write(&mut self, text: &str) {
-        if self.error.is_none() {
-            if let Err(err) = self.out.write_all(text.as_bytes()) {
-                self.error = Some(err);
-            }
-        }
-    }
-
-    /// Flushes, and gives the first write error.
-    fn finish(mut self) -> Option<std::io::Error> {
-        if let (None, Err(e)) = (&self.error, self.out.flush()) {
-            self.error = Some(e);
-        }
-        self.error
-    }
-}
-
-impl<W: Write> Sink for Canon<W> {
-    fn emit(&mut self, e: Event) {
-        if self.alarmed {
-            return;
-        }
-        self.alarmed = matches!(e, Event::Alarm { .. });
-        if self.error.is_some() {
-            return;
-        }
-        // Moves (most of the canon) as bytes; the rest through Display.
-        let mut line = nc::base::canon_line::LineBuf::default();
-        let written = match e.write_fast(&mut line) {
-            true => self
-                .out
-                .write_all(line.as_bytes())
-                .and_then(|()| self.out.write_all(b"\n")),
-            false => writeln!(self.out, "{e}"),
-        };
-        if let Err(err) = written {
-            self.error = Some(err);
-        }
-    }
-}
-
 fn main() -> ExitCode {
     let args: Args = match cli::exit::parse_args(std::env::args_os().collect()) {
         Ok(a) => a,
@@ -430,16 +381,10 @@ fn run(
         }),
         Err(e) => return fail(&e),
     };
-    let stdout = std::io::stdout();
-    let mut sink = Canon {
-        out: BufWriter::new(stdout.lock()),
-        error: None,
-        alarmed: false,
-    };
     // Block by block (as `Vm::run`), to move the progress bar.
     let mut progress = cli::progress::Progress::bar(main_lines, "run", quiet);
-    let status = loop {
-        match vm.step(1 << 16, &mut sink) {
+    let (status, output_error) = cli::canon::on_writer_thread(|sink| loop {
+        match vm.step(1 << 16, sink) {
             Status::Event | Status::OutOfBudget | Status::Sync => {
                 progress.set_from(|| {
                     let line = vm.last_loc().line;
@@ -448,9 +393,8 @@ fn run(
             }
             other => break other,
         }
-    };
+    });
     progress.finish();
-    let output_error = sink.finish();
     if let Status::Alarm(a) = &status {
         note(format_args!("{}", printable(&a.header())));
     }
@@ -585,11 +529,7 @@ fn run_timed(
     };
     let stdout = std::io::stdout();
     // The canon, the trace and the statistics share stdout.
-    let mut canon = Canon {
-        out: BufWriter::new(stdout.lock()),
-        error: None,
-        alarmed: false,
-    };
+    let mut canon = Canon::new(BufWriter::new(stdout.lock()));
     if out.trace == Some(Format::Csv) {
         let c_axis = ctl.engine().config().c.is_some();
         canon.write(&format!("{}\n", runtime::trace::csv_header(c_axis)));
@@ -662,7 +602,7 @@ fn run_timed(
                 _ => {}
             }
             // The output is what a timed run is for: once it fails, stop.
-            if canon.error.is_some() {
+            if canon.failed() {
                 break;
             }
             if ticks >= max_ticks {
