@@ -235,7 +235,7 @@ impl Compactor {
     }
 }
 
-fn terminator_at(src: &[u8], i: usize, limit: usize) -> Terminator {
+pub(crate) fn terminator_at(src: &[u8], i: usize, limit: usize) -> Terminator {
     if i >= limit {
         Terminator::Eof
     } else if src[i] == b';' {

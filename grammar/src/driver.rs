@@ -9,14 +9,16 @@
 //! whose words the driver has built, so the parser shifts and reduces once
 //! per run instead of once per word; a block that is nothing but one run
 //! (after a sequence number or not) skips the parser altogether, since the
-//! grammar can only make it a block of those words. When a batch fails,
+//! grammar can only make it a block of those words; such a block written
+//! plainly (blanks only between words, no comment) is lexed straight from
+//! the source, without compacting it first. When a batch fails,
 //! its blocks are parsed again one by one from their plain tokens, so a
 //! syntax error still costs only its own block and is reported exactly as
 //! a single-block parse sees it (tests check that both ways give the same
 //! result, on every fixture and on random text).
 
 use crate::ast::{Addr, Ast, Block, Body, Comment, Line, ProgramStart, Seq, Word};
-use crate::compact::{Compactor, Terminator};
+use crate::compact::{self, Compactor, OffsetMap, Terminator};
 use crate::diag::Diagnostic;
 use crate::errors;
 use crate::lexer::{self, RunRef, Spanned, Tok};
@@ -418,6 +420,12 @@ impl Driver<'_> {
 
     /// Scans and lexes the block at `start`; returns where it ends.
     fn block(&mut self, start: usize, limit: usize, after_semicolon: bool) -> (usize, Terminator) {
+        // (Not in the tests' plain mode: the reference.)
+        if self.batched && self.entries.is_empty() {
+            if let Some(end) = self.words_in_place(start, limit) {
+                return end;
+            }
+        }
         let scanned = self.compactor.scan(self.src, start, limit);
         let end = (scanned.end, scanned.terminator);
         let line = self.line_no;
@@ -505,6 +513,51 @@ impl Driver<'_> {
             }),
         }
         end
+    }
+
+    /// The usual block, literal words in place (`N10 G01 Z2`: blanks
+    /// only between words, no comment), lexed and put into the tree in one
+    /// pass over its bytes, where compacting it first and lexing the result
+    /// took two; where it ends, or `None` (nothing done) for any other
+    /// block. The tree is the one the other way gives: after a word's
+    /// digits a blank can only lead to the next word's letter (before a
+    /// digit, point or sign it would join the two, which the compactor
+    /// does), and `lexer::word_at` lexes as logos does.
+    fn words_in_place(&mut self, start: usize, limit: usize) -> Option<(usize, Terminator)> {
+        let src = &self.src[..limit];
+        let first = self.tokens.len();
+        let mut i = start;
+        while i < limit {
+            match src[i] {
+                b' ' | b'\t' => i += 1,
+                b'\n' | b'\r' | b';' => break,
+                _ => match lexer::word_at(src, i, &OffsetMap::InPlace(0)) {
+                    Some((tok, end)) => {
+                        self.tokens.push((i, tok, end));
+                        i = end;
+                    }
+                    None => break,
+                },
+            }
+        }
+        let stopped = i < limit && !matches!(src[i], b'\n' | b'\r' | b';');
+        let words = match stopped {
+            true => None,
+            false => plain_block(&self.tokens[first..]),
+        };
+        let span = match (self.tokens.get(first), self.tokens.last()) {
+            (Some(a), Some(z)) => Span::new(a.0, z.2),
+            _ => Span::default(),
+        };
+        self.tokens.truncate(first);
+        let (seq, words) = words?;
+        let parsed = Parsed::Words {
+            delete: None,
+            seq,
+            words,
+        };
+        self.finish(parsed, self.line_no, Vec::new(), span);
+        Some((i, compact::terminator_at(self.src, i, limit)))
     }
 
     /// A line of the tree that needs no parsing: straight in when nothing
@@ -732,6 +785,8 @@ mod tests {
         (ast, diags)
     }
 
+    const WORDISH: &[u8] = b"GXZNFgxzn0123456789..+-   \t\n\n\r;()O,#/";
+
     const ALPHABET: &[u8] = b"GXZNOF#[]=+-*/.,;()% \n\r0123456789EQIFTHENGOTODOWHILESIN\x1a";
 
     proptest::proptest! {
@@ -747,6 +802,17 @@ mod tests {
             proptest::prop_assert!(super::parse(&src) == single);
             proptest::prop_assert!(super::parse_in_halves(&src) == single);
             proptest::prop_assert!(in_parts(&src, len) == single);
+        }
+
+        /// Text mostly of literal words, upper and lower case, blanks and
+        /// tabs between and inside them, comments, `;` and line ends: the
+        /// blocks the driver lexes in place parse as the plain path
+        /// parses them, and so do the ones it leaves to the compactor.
+        #[test]
+        fn words_in_place_parse_as_the_plain_path(
+            src in proptest::collection::vec(proptest::sample::select(WORDISH), 0..300),
+        ) {
+            proptest::prop_assert!(super::parse(&src) == super::parse_unbatched(&src));
         }
     }
 }

@@ -1,7 +1,9 @@
 //! Tokens of one block, lexed with logos from the text [`crate::compact`]
 //! hands over (comments taken out, blanks removed wherever they stood
 //! inside a token; the others are skipped here), with their spans mapped
-//! back to offsets in the original source.
+//! back to offsets in the original source. A block of literal words only,
+//! most of any program, is lexed by [`word_at`] instead, one pass that
+//! makes the same tokens (tests compare the two on random text).
 //!
 //! Keywords win by longest match, so `DO1` is a loop and `D01` a word,
 //! `GOTO` is not `G` + `OTO`, and `ANDSIN` is `AND` `SIN`. A letter followed
@@ -349,6 +351,106 @@ fn lex_into(
     first: usize,
     out: &mut Vec<Spanned>,
 ) -> Result<(), Box<Diagnostic>> {
+    if !lex_words(text, &map, out) {
+        lex_tokens(text, &map, first, out)?;
+    }
+    for comment in comments {
+        check_comment_place(comment, &out[first..])?;
+    }
+    Ok(())
+}
+
+/// The usual block, literal words and perhaps a sequence number between
+/// blanks (`N10 G01 Z2 F.2`), lexed by [`word_at`], each word's
+/// value read in the same pass as its extent. The tokens are those logos
+/// makes: a letter followed by a sign or a
+/// digit or a point can only start a word (keywords are letters only), and
+/// the word runs to the end of its digits and points. `false`, with `out`
+/// as it was, at anything else (an `O`, a comma, an operator, a faulty
+/// number or word): logos lexes such a block and reports its faults.
+fn lex_words(text: &[u8], map: &OffsetMap<'_>, out: &mut Vec<Spanned>) -> bool {
+    let first = out.len();
+    let mut i = 0;
+    while i < text.len() {
+        if is_skipped(text[i]) {
+            i += 1;
+            continue;
+        }
+        match word_at(text, i, map) {
+            Some((tok, end)) => {
+                out.push((map.start(i), tok, map.end(end)));
+                i = end;
+            }
+            None => {
+                out.truncate(first);
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// What logos skips between tokens.
+fn is_skipped(b: u8) -> bool {
+    b == b' ' || b == b'\t'
+}
+
+/// The word or sequence number at `text[i]` and where it ends, as logos
+/// lexes it (its value read in the same pass, as [`number`] reads it);
+/// `None` for anything else, a value of more than 15 digits (logos's, by
+/// the standard parser) or a word that does not check.
+pub(crate) fn word_at(text: &[u8], i: usize, map: &OffsetMap<'_>) -> Option<(Tok, usize)> {
+    let letter = text[i].to_ascii_uppercase();
+    let seq = letter == b'N';
+    if !letter.is_ascii_uppercase() || letter == b'O' {
+        return None;
+    }
+    let mut end = i + 1;
+    let mut negative = false;
+    // (A sequence number takes no sign: `N-1` is `N` and `-`.)
+    if !seq && matches!(text.get(end), Some(b'+' | b'-')) {
+        negative = text[end] == b'-';
+        end += 1;
+    }
+    let start = end;
+    let mut mantissa = 0u64;
+    let mut point = None;
+    while let Some(&b) = text.get(end) {
+        match b {
+            b'0'..=b'9' => mantissa = mantissa * 10 + u64::from(b - b'0'),
+            b'.' if point.is_none() => point = Some(end),
+            // (`1.2.3`: logos reports it.)
+            b'.' => return None,
+            _ => break,
+        }
+        end += 1;
+        if end - start > 16 {
+            return None;
+        }
+    }
+    let digits = end - start - usize::from(point.is_some());
+    let decimals = point.map_or(0, |p| end - p - 1);
+    if digits == 0 || digits > 15 || (letter == b'G' && decimals > 1) {
+        return None;
+    }
+    let magnitude = mantissa as f64 / POW10[decimals];
+    let w = WordLit {
+        value: if negative { -magnitude } else { magnitude },
+        value_start: map.start(i + 1) as u32,
+        letter,
+        has_point: point.is_some(),
+        decimals: decimals as u8,
+    };
+    Some((if seq { Tok::Seq(w) } else { Tok::Word(w) }, end))
+}
+
+/// Lexes with logos: every token the language has.
+fn lex_tokens(
+    text: &[u8],
+    map: &OffsetMap<'_>,
+    first: usize,
+    out: &mut Vec<Spanned>,
+) -> Result<(), Box<Diagnostic>> {
     let mut lex = Tok::lexer(text);
     let mut depth = 0usize;
     let mut operators = 0usize;
@@ -453,9 +555,6 @@ fn lex_into(
             ));
         }
         out.push((start, tok, end));
-    }
-    for comment in comments {
-        check_comment_place(comment, &out[first..])?;
     }
     Ok(())
 }
@@ -683,6 +782,80 @@ mod tests {
             super::number(b"99999999999999999999").map(|n| n.value),
             Ok(1e20)
         );
+    }
+
+    /// Lexes `text` with logos alone.
+    fn by_logos(text: &[u8], map: &OffsetMap<'_>) -> Option<Vec<Spanned>> {
+        let mut out = Vec::new();
+        lex_tokens(text, map, 0, &mut out).ok().map(|()| out)
+    }
+
+    /// Lexes `text` with the word lexer alone.
+    fn by_words(text: &[u8]) -> Option<Vec<Spanned>> {
+        let mut out = Vec::new();
+        lex_words(text, &OffsetMap::InPlace(0), &mut out).then_some(out)
+    }
+
+    #[test]
+    fn the_word_lexer_takes_plain_blocks_only() {
+        let blocks = [
+            "N10 G01 X-1.5 Z2 F.2",
+            "g1x1.5z-2",
+            "X+1.",
+            "N5",
+            "G6.2 M3 S500",
+            "X12345678901234.5",
+        ];
+        for block in blocks {
+            let fast = by_words(block.as_bytes());
+            assert!(fast.is_some(), "{block}");
+            assert_eq!(fast, by_logos(block.as_bytes(), &OffsetMap::InPlace(0)));
+        }
+        // An O line, a computed word, a comma word, a keyword, a faulty
+        // number, a G with two decimals, a signed N: logos's.
+        // (And 16 digits, which logos reads with the standard parser.)
+        let blocks = [
+            "O1234",
+            "X#1",
+            "G01 X1,C2",
+            "GOTO10",
+            "X1.2.3",
+            "G1.25",
+            "N-1",
+            "X-",
+            "X1234567890123456",
+        ];
+        for block in blocks {
+            assert_eq!(by_words(block.as_bytes()), None, "{block}");
+        }
+    }
+
+    /// Bytes that make words and sequence numbers, and some that end the
+    /// word lexer's part (`O`, keywords' letters, operators, a comma).
+    const WORDISH: &[u8] = b"GXZNOFgxno0123456789..+-  \t,#[*EQDT";
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2048))]
+
+        /// Where the word lexer takes a block, logos makes the same tokens
+        /// of it, with the same spans, whether the text is the source's
+        /// own bytes or a copy with its offset table.
+        #[test]
+        fn the_word_lexer_agrees_with_logos(
+            text in proptest::collection::vec(proptest::sample::select(WORDISH), 0..40),
+            base in 0usize..5,
+            gaps in proptest::collection::vec(1u32..4, 40),
+        ) {
+            let offsets: Vec<u32> = gaps.iter().scan(0, |at, g| { *at += g; Some(*at) }).collect();
+            for map in [OffsetMap::InPlace(base), OffsetMap::Copied(&offsets)] {
+                let mut fast = Vec::new();
+                if lex_words(&text, &map, &mut fast) {
+                    proptest::prop_assert_eq!(by_logos(&text, &map), Some(fast));
+                } else {
+                    proptest::prop_assert!(fast.is_empty());
+                }
+            }
+        }
     }
 
     #[test]

@@ -203,6 +203,9 @@ pub fn decimal_of(v: f64) -> Option<u64> {
     if !v.is_finite() {
         return None;
     }
+    if let Some(code) = four_places(v) {
+        return Some(code);
+    }
     let sign = u64::from(v.is_sign_negative());
     let a = v.abs();
     for (decimals, &scale) in POW10.iter().enumerate() {
@@ -235,6 +238,42 @@ pub fn decimal_of(v: f64) -> Option<u64> {
         }
     }
     None
+}
+
+/// Below this magnitude two decimals of at most four places are 10⁻⁴ or
+/// more apart and an ulp is at most 2⁻²²: no two of them decode to the
+/// same double.
+const FOUR_PLACES_BELOW: f64 = 1e9;
+
+/// [`decimal_of`] for a value of at most four decimal places below
+/// [`FOUR_PLACES_BELOW`] (nearly every literal of a program), its mantissa
+/// read off `|v|·10⁴` without a search; `None` for any other value.
+///
+/// The same answer as the search, which goes up from no places and takes
+/// the first mantissa that decodes to `v`: the code found decodes to `v`,
+/// and no other decimal of at most four places does, since two of them
+/// are 10⁻⁴ or more apart and each would be within half an ulp of `v`. So
+/// the search finds nothing with fewer places, and at these places this
+/// mantissa (with no places, its trailing zeros moved into the exponent,
+/// as the search does).
+fn four_places(v: f64) -> Option<u64> {
+    // (`v` is finite: `decimal_of` checked.)
+    let a = v.abs();
+    if a >= FOUR_PLACES_BELOW {
+        return None;
+    }
+    let sign = u64::from(v.is_sign_negative());
+    // (Nearest or next: a wrong guess fails the check below. Below 10¹³,
+    // through i64, which converts in one instruction.)
+    let scaled = (a * 1e4 + 0.5) as i64 as u64;
+    let code = match scaled {
+        m if m % 10_000 == 0 => strip_zeros(m / 10_000, sign),
+        m if m % 1_000 == 0 => pack(m / 1_000, sign, -1),
+        m if m % 100 == 0 => pack(m / 100, sign, -2),
+        m if m % 10 == 0 => pack(m / 10, sign, -3),
+        m => pack(m, sign, -4),
+    };
+    (decimal_value(code).map(f64::to_bits) == Some(v.to_bits())).then_some(code)
 }
 
 /// An integer mantissa with its trailing zeros moved into the exponent
@@ -472,8 +511,9 @@ mod tests {
         assert_eq!(out, [0x95, 0x7d]);
     }
 
-    /// `decimal_of` without its skip of exponents: every exponent, every
-    /// candidate decoded. The skip must never change the answer.
+    /// `decimal_of` without its shortcuts (the four places read off, the
+    /// skip of exponents): every exponent, every candidate decoded. The
+    /// shortcuts must never change the answer.
     fn decimal_by_search(v: f64) -> Option<u64> {
         let sign = u64::from(v.is_sign_negative());
         let a = v.abs();
@@ -499,7 +539,7 @@ mod tests {
     }
 
     #[test]
-    fn skipping_exponents_changes_no_answer() {
+    fn shortcuts_change_no_answer() {
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
         let mut next = || {
             x ^= x << 13;
@@ -509,7 +549,18 @@ mod tests {
         };
         for i in 0..200_000 {
             let r = next();
-            let v = match i % 3 {
+            let v = match i % 4 {
+                // Up to four places (and a few more) around the bound
+                // below which they are read off without a search.
+                3 => {
+                    let m = (r >> 11) % 10u64.pow((r % 15 + 1) as u32);
+                    let v = m as f64 / POW10[(r >> 5) as usize % 7];
+                    if r & 1 == 0 {
+                        v
+                    } else {
+                        -v
+                    }
+                }
                 // Decimals as written: up to 17 digits, up to 22 places.
                 0 => {
                     let m = (r >> 11) % 10u64.pow((r % 17 + 1) as u32);
