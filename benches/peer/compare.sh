@@ -43,9 +43,17 @@ timed() {
     local into=$1
     shift
     local t0 t1
+    # The last run's output goes first, outside the timing, and what it
+    # left to be written back is written: truncating rs274's 23 MB of
+    # canon by the next redirection, and its writeback under way, fell
+    # on whichever run came next.
+    rm -f "$tmp/out"
+    sync
     t0=$EPOCHREALTIME
     "$@" >"$tmp/out" 2>"$tmp/err"
     t1=$EPOCHREALTIME
+    rm -f "$tmp/out"
+    sync
     /usr/bin/time -v -o "$tmp/time" "$@" >"$tmp/out" 2>"$tmp/err"
     awk -v t0="$t0" -v t1="$t1" '
         /User time/ { u = $NF } /System time/ { s = $NF }
