@@ -15,6 +15,7 @@ use nc::words::{Word, NO_POINT};
 use nc::{Event, Nc, Sink};
 
 use crate::words::{addr_code, value_of, WordValue};
+use std::collections::HashSet;
 
 /// The sink of the dry run: what a block printed, for the warnings.
 #[derive(Default)]
@@ -49,6 +50,11 @@ pub struct Before {
 #[derive(Default)]
 pub struct Warner {
     pub diags: Vec<(usize, Diagnostic)>,
+    /// Each warning is said once where it stands, however often the dry
+    /// run passes there (a loop, a subprogram called again): the thousands
+    /// of copies a program that loops until the step limit made told
+    /// nothing more than the first.
+    told: HashSet<(usize, &'static str, Span)>,
     /// W107 is given once: the run stops at the first such move.
     zero_feed_told: bool,
     /// A G98/G99 block that kept the old F (W111 when a feed move uses it).
@@ -143,8 +149,10 @@ impl Warner {
     }
 
     fn warn(&mut self, unit: usize, code: &'static str, span: Span, msg: String) {
-        self.diags
-            .push((unit, Diagnostic::warning(code, span, msg)));
+        if self.told.insert((unit, code, span)) {
+            self.diags
+                .push((unit, Diagnostic::warning(code, span, msg)));
+        }
     }
 
     /// W107: the block ran a feed move at F = 0 (the kernel's E7001).

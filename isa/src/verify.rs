@@ -26,9 +26,8 @@ impl Module {
     /// tables pointing into their own program; a block-skip guard jumps
     /// forward; every typed block record decodes (addresses valid,
     /// varints and decimals well formed, raw values finite, nothing past
-    /// the section) and every `block` operand is where one starts, the
-    /// operands in pc order never going back (the compiler appends a
-    /// record per block; checking so needs no table of record starts).
+    /// the section) and every `block`, `profile` and `move` operand is
+    /// where one starts (a `move`'s, where a plain move's does).
     pub fn verify(&self) -> Result<(), LoadError> {
         self.verify_sizes()?;
         if self.num_regs > MAX_REGS {
