@@ -213,8 +213,6 @@ fn print_out(text: &str) -> ExitCode {
     }
 }
 
-/// Prints each event as one canon line. After the first write error it
-/// writes no more and keeps the error for the exit status.
 fn main() -> ExitCode {
     let args: Args = match cli::exit::parse_args(std::env::args_os().collect()) {
         Ok(a) => a,
