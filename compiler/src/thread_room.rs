@@ -12,6 +12,7 @@
 use grammar::{Diagnostic, Span};
 use nc::thread_room::{entry_length, exit_length, long_axis_accel};
 use nc::{Event, Machine};
+use std::collections::HashSet;
 
 /// One thread move of the chain being collected.
 #[derive(Debug, Clone, Copy)]
@@ -48,6 +49,8 @@ pub struct RoomCheck {
     pub span: Span,
     /// Findings, one per block and kind, with their units.
     pub warnings: Vec<(usize, Diagnostic)>,
+    /// The (unit, block, kind) of each finding, to say each once.
+    told: HashSet<(usize, Span, String)>,
 }
 
 impl RoomCheck {
@@ -69,6 +72,7 @@ impl RoomCheck {
             unit: 0,
             span: Span::default(),
             warnings: Vec::new(),
+            told: HashSet::new(),
         }
     }
 
@@ -185,18 +189,15 @@ impl RoomCheck {
         }
     }
 
-    /// One warning per block and message kind (a cycle's passes repeat it).
+    /// One warning per block and message kind (a cycle's passes repeat
+    /// it), looked up in a set: a scan of the warnings so far made a
+    /// program of many thread blocks quadratic.
     fn warn(&mut self, (unit, span): (usize, Span), message: String) {
         let kind = message.split(':').next().unwrap_or_default().to_string();
-        if self
-            .warnings
-            .iter()
-            .any(|(u, w)| *u == unit && w.span == span && w.message.starts_with(&kind))
-        {
-            return;
+        if self.told.insert((unit, span, kind)) {
+            self.warnings
+                .push((unit, Diagnostic::warning("W118", span, message)));
         }
-        self.warnings
-            .push((unit, Diagnostic::warning("W118", span, message)));
     }
 }
 
@@ -280,6 +281,17 @@ mod tests {
             1
         );
         assert!(w[0].1.contains("needs 0.407 mm"), "{}", w[0].1);
+    }
+
+    /// A subprogram run twice (M98 L2) passes its thread twice: each
+    /// warning once, at the block, as the first test's two.
+    #[test]
+    fn a_block_run_again_is_named_once() {
+        let src = "O1\nG97 S1500 M03\nM98 P2 L2\nM30\nO2\nG00 X30 Z1\nG32 Z0 F3\nG00 X40\nM99\n";
+        let w = w118(src);
+        let lines: Vec<usize> = w.iter().map(|(l, _)| *l).collect();
+        assert_eq!(lines, [7, 7], "{w:?}");
+        assert!(w[0].1.contains("reach") && w[1].1.contains("stop"), "{w:?}");
     }
 
     /// S from a variable: not static, so the compiler cannot know it.
