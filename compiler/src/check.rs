@@ -93,6 +93,8 @@ struct DryRun<'a> {
     programs: &'a [Program],
     skip: [bool; 9],
     run: Runner,
+    /// Each program's sequence numbers, from its first cycle block on.
+    numbers: Vec<Option<crate::profile::Numbers>>,
 }
 
 /// The kernel a dry run drives, and what watches it.
@@ -152,6 +154,7 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
             programs,
             skip,
             run: Runner::new(m),
+            numbers: programs.iter().map(|_| None).collect(),
         };
         let error = run.program(0, 0).err();
         if skip == first {
@@ -235,8 +238,16 @@ impl DryRun<'_> {
                     return Ok(Flow::End);
                 };
                 // A G70–G73 cycle gets its profile; G71–G73 go on after nf.
-                let resume =
-                    crate::profile::hand_over(&mut self.run.nc, unit, prog, &split.nc, &self.skip);
+                let numbers = match self.numbers.get_mut(index) {
+                    Some(n) => n.get_or_insert_with(|| crate::profile::Numbers::of(unit, prog)),
+                    None => return Ok(Flow::End),
+                };
+                let resume = crate::profile::hand_over(
+                    &mut self.run.nc,
+                    (unit, prog, numbers),
+                    &split.nc,
+                    &self.skip,
+                );
                 (literal_words(&split.nc), split.call, resume)
             } else {
                 // Most blocks: no call, no cycle, every word an NC word.

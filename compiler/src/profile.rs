@@ -19,7 +19,8 @@ use nc::block::round_half_away;
 use nc::gcode::{self, Drill, OneShot, G};
 use nc::words::{addr, COMMA_A, LITERAL, NO_POINT};
 use nc::Nc;
-use std::collections::HashSet;
+use smallvec::SmallVec;
+use std::collections::{HashMap, HashSet};
 
 /// `Exec` flag of a profile block (the VM's `vm::PROFILE`).
 pub const PROFILE: u8 = 1;
@@ -47,6 +48,9 @@ pub struct Profiles {
     /// Blocks of the program being lowered that name G70–G73 (skipped
     /// ones too): with fewer than two, no profile number can be shared.
     cycle_blocks: usize,
+    /// The sequence numbers of the program being lowered, where it names
+    /// a cycle (`program_start`).
+    numbers: Numbers,
 }
 
 /// What follows a cycle block's `Exec`.
@@ -125,23 +129,43 @@ fn seq_of(unit: &Unit, line: usize) -> Option<u32> {
         .map(|s| s.number)
 }
 
-/// The index in `prog.blocks` of the first block numbered `n`, and whether
-/// another block carries the same number (W103).
-fn first_numbered(unit: &Unit, prog: &Program, n: u32) -> (Option<usize>, bool) {
-    let mut found = prog
-        .blocks
-        .iter()
-        .enumerate()
-        .filter(|(_, &l)| seq_of(unit, l) == Some(n));
-    (found.next().map(|(i, _)| i), found.next().is_some())
+/// A program's blocks by sequence number: where each number stands, as
+/// indices into `prog.blocks` in order. Built once a program that names a
+/// cycle: a scan of the blocks for each cycle's P and Q made a program of
+/// many cycles quadratic.
+#[derive(Debug, Default)]
+pub struct Numbers(HashMap<u32, SmallVec<[usize; 2]>>);
+
+impl Numbers {
+    pub fn of(unit: &Unit, prog: &Program) -> Numbers {
+        let mut places: HashMap<u32, SmallVec<[usize; 2]>> = HashMap::new();
+        for (i, &l) in prog.blocks.iter().enumerate() {
+            if let Some(n) = seq_of(unit, l) {
+                places.entry(n).or_default().push(i);
+            }
+        }
+        Numbers(places)
+    }
+
+    /// Where `n` stands, first to last.
+    fn places(&self, n: u32) -> &[usize] {
+        self.0.get(&n).map_or(&[], |p| p.as_slice())
+    }
+
+    /// The first block numbered `n`, and whether another block carries
+    /// the same number (W103).
+    fn first(&self, n: u32) -> (Option<usize>, bool) {
+        let places = self.places(n);
+        (places.first().copied(), places.len() > 1)
+    }
 }
 
 /// ns…nf as indices into `prog.blocks`, or the E2020 message.
-fn resolve(unit: &Unit, prog: &Program, ns: u32, nf: u32) -> Result<(usize, usize), String> {
-    let (Some(i), _) = first_numbered(unit, prog, ns) else {
+fn resolve(numbers: &Numbers, ns: u32, nf: u32) -> Result<(usize, usize), String> {
+    let (Some(i), _) = numbers.first(ns) else {
         return Err(format!("P{ns}: there is no block N{ns} in this program"));
     };
-    let (Some(j), _) = first_numbered(unit, prog, nf) else {
+    let (Some(j), _) = numbers.first(nf) else {
         return Err(format!("Q{nf}: there is no block N{nf} in this program"));
     };
     if j < i {
@@ -181,9 +205,11 @@ pub fn program_start(gen: &mut Gen<'_>, prog: &Program) {
         _ => false,
     };
     gen.profiles.targets.clear();
+    gen.profiles.numbers = Numbers::default();
     if !prog.blocks.iter().any(names) {
         return;
     }
+    gen.profiles.numbers = Numbers::of(unit, prog);
     let after_numbered = prog
         .blocks
         .windows(2)
@@ -242,9 +268,10 @@ fn current<'a>(gen: &Gen<'a>) -> Option<(&'a Unit, &'a Program, usize)> {
     let (unit, line) = gen.profiles.current?;
     let units: &'a [Unit] = gen.units;
     let programs: &'a [Program] = gen.programs;
+    // (A program's lines ascend: `link::split` takes them in order.)
     let prog = programs
         .iter()
-        .find(|p| p.unit == unit && p.blocks.contains(&line))?;
+        .find(|p| p.unit == unit && p.blocks.binary_search(&line).is_ok())?;
     Some((&units[unit], prog, line))
 }
 
@@ -268,15 +295,17 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
             return None;
         }
     };
-    let (i, j) = match resolve(unit, prog, ns, nf) {
+    let numbers = &gen.profiles.numbers;
+    let repeated = [ns, nf].map(|n| (n, numbers.first(n).1));
+    let (i, j) = match resolve(numbers, ns, nf) {
         Ok(r) => r,
         Err(msg) => {
             gen.error("E2020", block.span, msg);
             return None;
         }
     };
-    for n in [ns, nf] {
-        if first_numbered(unit, prog, n).1 {
+    for (n, repeated) in repeated {
+        if repeated {
             gen.warn(
                 "W103",
                 block.span,
@@ -505,7 +534,8 @@ fn block_fault(b: &Block, last: bool) -> Option<String> {
 fn shared_numbers(gen: &mut Gen<'_>, prog: &Program) {
     let units: &[Unit] = gen.units;
     let unit = &units[prog.unit];
-    let cycles = cycle_ranges(unit, prog);
+    let numbers = Numbers::of(unit, prog);
+    let cycles = cycle_ranges(unit, prog, &numbers);
     if cycles
         .iter()
         .filter(|(code, _)| *code != OneShot::Finish)
@@ -520,9 +550,8 @@ fn shared_numbers(gen: &mut Gen<'_>, prog: &Program) {
             let Some(n) = seq_of(unit, prog.blocks[k]) else {
                 continue;
             };
-            let twins = (0..prog.blocks.len())
-                .filter(|&m| m != k && seq_of(unit, prog.blocks[m]) == Some(n));
-            for m in twins {
+            let twins = numbers.places(n).iter().filter(|&&m| m != k);
+            for &m in twins {
                 let later = k.max(m);
                 let Some(b) =
                     link::block(unit, prog.blocks[later]).filter(|_| reported.insert(later))
@@ -542,7 +571,7 @@ fn shared_numbers(gen: &mut Gen<'_>, prog: &Program) {
 }
 
 /// Every cycle block of a program with its resolved ns…nf.
-fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(OneShot, (usize, usize))> {
+fn cycle_ranges(unit: &Unit, prog: &Program, numbers: &Numbers) -> Vec<(OneShot, (usize, usize))> {
     let mut out = Vec::new();
     for &l in &prog.blocks {
         let Some(b) = link::block(unit, l) else {
@@ -561,7 +590,7 @@ fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(OneShot, (usize, usize))> {
         let (Ok(ns), Ok(nf)) = (sequence(cw.p, 'P'), sequence(cw.q, 'Q')) else {
             continue;
         };
-        if let Ok(r) = resolve(unit, prog, ns, nf) {
+        if let Ok(r) = resolve(numbers, ns, nf) {
             out.push((cw.code, r));
         }
     }
@@ -573,14 +602,13 @@ fn cycle_ranges(unit: &Unit, prog: &Program) -> Vec<(OneShot, (usize, usize))> {
 /// index of `prog.blocks` where the program goes on (G71–G73: after nf).
 pub fn hand_over(
     nc: &mut Nc,
-    unit: &Unit,
-    prog: &Program,
+    (unit, prog, numbers): (&Unit, &Program, &Numbers),
     ws: &[NcWord<'_>],
     skip: &[bool; 9],
 ) -> Option<usize> {
     let cw = cycle_words(ws)?;
     let (ns, nf) = (sequence(cw.p, 'P').ok()?, sequence(cw.q, 'Q').ok()?);
-    let (i, j) = resolve(unit, prog, ns, nf).ok()?;
+    let (i, j) = resolve(numbers, ns, nf).ok()?;
     for &l in &prog.blocks[i..=j] {
         let Some(b) = link::block(unit, l).filter(|b| !skipped(skip, b)) else {
             continue;
