@@ -95,12 +95,17 @@ struct DryRun<'a> {
     run: Runner,
     /// Each program's sequence numbers, from its first cycle block on.
     numbers: Vec<Option<crate::profile::Numbers>>,
+    /// Each program's blocks the run has passed, a bit each (made when
+    /// the program first runs).
+    seen: Vec<Vec<u64>>,
 }
 
 /// The kernel a dry run drives, and what watches it.
 struct Runner {
     nc: Nc,
-    steps: u64,
+    /// Blocks run beyond each block's first pass (and a cycle's legs
+    /// beyond its first), against [`EXTRA_STEPS`].
+    extra: u64,
     /// W118 on the canon events.
     room: RoomCheck,
     /// W105–W112, W114 on what each block did.
@@ -111,7 +116,7 @@ impl Runner {
     fn new(m: &Machine) -> Self {
         Runner {
             nc: Nc::new(m.clone()),
-            steps: 0,
+            extra: 0,
             room: RoomCheck::new(m),
             warner: Default::default(),
         }
@@ -124,9 +129,26 @@ impl Runner {
         found.append(&mut self.room.warnings);
         found
     }
+
+    /// Counts a block about to run, `again` when the run has passed it
+    /// before: whether the run goes on. Past the budget it warns (W120)
+    /// at the block, and the run ends there.
+    fn step(&mut self, again: bool, unit: usize, span: Span) -> bool {
+        self.extra += u64::from(again);
+        if self.extra <= EXTRA_STEPS {
+            return true;
+        }
+        self.warner.budget_spent(unit, span, EXTRA_STEPS);
+        false
+    }
 }
 
-const STEP_LIMIT: u64 = 200_000;
+/// Blocks a dry run may run beyond its first pass over each block: a
+/// loop's rounds, a repeated call's passes, a cycle's legs. The first
+/// pass is free, so a straight program is dry-run whole however long
+/// (compile time stays linear in it); a program that loops for ever
+/// stops after this many more, with W120.
+const EXTRA_STEPS: u64 = 200_000;
 
 /// Runs a static program through the kernel: the warnings it finds
 /// (dry_warn, W118), then the first compile-time error, each with its unit.
@@ -155,6 +177,7 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
             skip,
             run: Runner::new(m),
             numbers: programs.iter().map(|_| None).collect(),
+            seen: programs.iter().map(|_| Vec::new()).collect(),
         };
         let error = run.program(0, 0).err();
         if skip == first {
@@ -207,6 +230,24 @@ fn has_deleted_blocks(units: &[Unit], programs: &[Program]) -> bool {
 }
 
 impl DryRun<'_> {
+    /// Marks block `at` (an index into its `blocks`) of program `index`
+    /// as passed: whether the run had passed it before.
+    fn passed(&mut self, index: usize, at: usize) -> bool {
+        let (Some(bits), Some(prog)) = (self.seen.get_mut(index), self.programs.get(index)) else {
+            return true;
+        };
+        if bits.is_empty() {
+            bits.resize(prog.blocks.len().div_ceil(64), 0);
+        }
+        let Some(word) = bits.get_mut(at / 64) else {
+            return true;
+        };
+        let bit = 1 << (at % 64);
+        let again = *word & bit != 0;
+        *word |= bit;
+        again
+    }
+
     fn program(&mut self, index: usize, depth: u32) -> Result<Flow, (usize, Diagnostic)> {
         let Some(prog) = self.programs.get(index) else {
             return Ok(Flow::End);
@@ -229,8 +270,8 @@ impl DryRun<'_> {
             let Body::Words(ws) = &block.body else {
                 continue;
             };
-            self.run.steps += 1;
-            if self.run.steps > STEP_LIMIT {
+            let again = self.passed(index, next - 1);
+            if !self.run.step(again, prog.unit, block.span) {
                 return Ok(Flow::End);
             }
             let (lits, call, resume) = if words::may_call(ws) || crate::profile::names_cycle(ws) {
@@ -313,15 +354,15 @@ impl Runner {
             counts: &mut counts,
             room: &mut self.room,
         };
-        // A cycle's legs count as steps, as they count as blocks in the
-        // VM's budget: a cycle with a tiny step against a huge depth does
-        // not hold up the compiler.
-        (self.nc).set_allowance(STEP_LIMIT.saturating_sub(self.steps));
+        // A cycle's legs after its first count against the extra steps,
+        // as they count as blocks in the VM's budget: a cycle with a tiny
+        // step against a huge depth does not hold up the compiler.
+        (self.nc).set_allowance(EXTRA_STEPS.saturating_sub(self.extra));
         // `exec_move` is `exec` with the short parse of a plain move (any
         // other block goes the general way): most blocks of a long
         // program are plain moves.
         let result = self.nc.exec_move(lits, &mut sink);
-        self.steps = self.steps.saturating_add(self.nc.take_generated());
+        self.extra = self.extra.saturating_add(self.nc.take_generated());
         if result.is_ok() {
             (self.warner).after(index, &self.nc, (ws, block.span), lits, &counts, before);
         }
@@ -333,6 +374,11 @@ impl Runner {
             Err(e) if e.code == nc::error::Alarm::ZeroFeed.code() => {
                 self.warner.zero_feed(index, block.span);
                 Ok(Flow::Go)
+            }
+            // A cycle with more legs than the budget has left.
+            Err(e) if e.code == nc::error::Alarm::BlockBudget.code() => {
+                self.warner.budget_spent(index, block.span, EXTRA_STEPS);
+                Ok(Flow::End)
             }
             Err(e) if compile_time(e.code) => {
                 let span = crate::profile::error_span(unit, e.at, block.span);
@@ -382,8 +428,8 @@ impl ChunkedRun {
             if self.ended {
                 return;
             }
-            self.run.steps += 1;
-            if self.run.steps > STEP_LIMIT {
+            // (A plain program runs each block once.)
+            if !self.run.step(false, prog.unit, block.span) {
                 self.ended = true;
                 return;
             }

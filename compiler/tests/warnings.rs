@@ -34,11 +34,14 @@ fn w105_inch_lengths_without_a_point_in_calculator_mode() {
 fn a_warning_is_said_once_however_often_the_dry_run_passes_there() {
     // The profile stands before its G71: after the cycle the run goes on
     // after N110, meets the G71 again, and loops until the dry run's step
-    // limit (a fuzzed program; it repeated each W105 5 127 times). U1000,
-    // R500 and U100 are inch lengths without a point: once each.
+    // budget (a fuzzed program; it repeated each W105 5 127 times). U1000,
+    // R500 and U100 are inch lengths without a point: once each. Where the
+    // run stops, W120 (once too), at a block of the loop.
     let src = "G18 G20 G40 G80 G90 G99\nN100 G00 X1.5513\nN103 G01 Z-.050 F.008\nN110 G00 X2.625\n\
                G00 X5. Z7.5\nG71 U1000 R500\nG71 P100 Q110 U100 W70 S460 F.008\n";
-    assert_eq!(warnings(src), [("W105", 6), ("W105", 6), ("W105", 7)]);
+    let (stop, found): (Vec<_>, Vec<_>) = warnings(src).into_iter().partition(|w| w.0 == "W120");
+    assert_eq!(found, [("W105", 6), ("W105", 6), ("W105", 7)]);
+    assert!(matches!(stop[..], [("W120", 5..=7)]), "{stop:?}");
 }
 
 #[test]

@@ -1,0 +1,90 @@
+//! How far the compile-time dry run goes: each block's first pass is
+//! free, so a straight program is dry-run to its end however long; the
+//! passes beyond (loop rounds, repeated calls, cycle legs) may add 200 000
+//! blocks, and where they run out the compiler says so (W120).
+
+use compiler::{compile, Options};
+
+/// (code, line) of every diagnostic.
+fn diagnostics(src: &str, opts: &Options) -> Vec<(&'static str, usize)> {
+    let c = compile("d.nc", src.as_bytes(), opts);
+    c.diags
+        .iter()
+        .map(|(f, d)| (d.code, c.files[*f].line_col(d.span.start).0))
+        .collect()
+}
+
+/// The whole-file path (one chunk as long as any program).
+fn whole_file() -> Options {
+    Options {
+        chunk_bytes: usize::MAX,
+        ..Options::default()
+    }
+}
+
+#[test]
+fn a_straight_program_is_dry_run_to_its_end() {
+    // 250 000 moves, then an arc of R1 from X0.5 Z-30.25 (the last move,
+    // i = 250 000: 250 000 mod 50 = 0, mod 70 = 30) to X90 Z-5, whose end
+    // is √(44.75² + 25.25²) = 51.38 mm away: E4001 at compile time, on
+    // line 250 002, however far past 200 000 blocks it stands.
+    let mut src = String::from("G98 G00 X50 Z2\n");
+    for i in 1..=250_000 {
+        src.push_str(&format!("G01 X{}.5 Z-{}.25 F100\n", i % 50, i % 70));
+    }
+    src.push_str("G02 X90 Z-5 R1\nM30\n");
+    let expected = [("E4001", 250_002)];
+    assert_eq!(diagnostics(&src, &Options::default()), expected);
+    assert_eq!(diagnostics(&src, &whole_file()), expected);
+}
+
+/// A main program that calls O0002 `l` times; O0002 is 39 moves and its
+/// M99, 40 blocks, on lines 5 to 44.
+fn repeated_call(l: u32) -> String {
+    let mut src = format!("O0001\nM98 P0002 L{l}\nM30\nO0002\n");
+    for i in 0..39 {
+        src.push_str(if i % 2 == 0 {
+            "G01 U1 F100\n"
+        } else {
+            "G01 U-1\n"
+        });
+    }
+    src.push_str("M99\n");
+    src
+}
+
+#[test]
+fn a_repeated_call_runs_its_first_pass_free_and_200_000_blocks_more() {
+    // Pass 1 of O0002 is its blocks' first; passes 2…L run 40 blocks
+    // again each. L5001: 5 000 × 40 = 200 000 again, all of the budget.
+    assert_eq!(diagnostics(&repeated_call(5001), &Options::default()), []);
+    // L5002: the 200 001st block run again is the first of pass 5 002,
+    // on line 5, where the run stops.
+    assert_eq!(
+        diagnostics(&repeated_call(5002), &Options::default()),
+        [("W120", 5)]
+    );
+    assert_eq!(
+        diagnostics(&repeated_call(9999), &Options::default()),
+        [("W120", 5)]
+    );
+}
+
+#[test]
+fn a_program_that_never_ends_is_told_once() {
+    // The profile (N10–N30) stands before its G71: after the cycle the
+    // run goes on after N30 and comes back to the G71, for ever.
+    let src = "G98 G00 X60 Z2\nN10 G00 X40\nN20 G01 Z-30 F100\nN30 X60\nG00 X60 Z2\n\
+               G71 U2 R1\nG71 P10 Q30 U0.5 W0.1 F150\nM30\n";
+    let found = diagnostics(src, &Options::default());
+    assert_eq!(found.len(), 1, "{found:?}");
+    let (code, line) = found[0];
+    assert_eq!(code, "W120");
+    // (Which block of the loop spends the budget depends on the cycle's
+    // legs; it is one of them.)
+    assert!((5..=7).contains(&line), "{found:?}");
+    // With the cycle before its profile the run ends at M30.
+    let right = "G98 G00 X60 Z2\nG71 U2 R1\nG71 P10 Q30 U0.5 W0.1 F150\nN10 G00 X40\n\
+                 N20 G01 Z-30 F100\nN30 X60\nM30\n";
+    assert_eq!(diagnostics(right, &Options::default()), []);
+}
