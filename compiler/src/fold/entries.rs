@@ -35,11 +35,11 @@ pub(super) fn of(m: &Module, scope: &Scope) -> Vec<Facts> {
     for _ in 0..MAX_ROUNDS {
         let mut next: Vec<Option<Facts>> = vec![None; n];
         for (f, entry) in m.functions.iter().zip(&entries) {
-            for (callee, passed) in calls(f, entry, scope) {
+            calls(f, entry, scope, |callee, passed| {
                 if let Some(slot) = next.get_mut(callee) {
                     *slot = Some(super::join(slot, &passed));
                 }
-            }
+            });
         }
         // (The main program also starts the run, knowing nothing.) The
         // rounds start from entries that know nothing and can only come
@@ -61,11 +61,12 @@ fn calls_computed_program(f: &Function) -> bool {
     super::writes::calls(f).any(|(callee, _)| callee.is_none())
 }
 
-/// The calls `f` makes where it starts with `entry`, each with what it
-/// passes. Where `f`'s analysis gives up, its calls pass nothing known.
-fn calls(f: &Function, entry: &Facts, scope: &Scope) -> Vec<(usize, Facts)> {
+/// Gives `each` the calls `f` makes where it starts with `entry`, each
+/// with what it passes, in turn: a caller joins each as it comes, so a
+/// program of many macro calls (each passing its 33 locals) does not hold
+/// them all. Where `f`'s analysis gives up, its calls pass nothing known.
+fn calls(f: &Function, entry: &Facts, scope: &Scope, mut each: impl FnMut(usize, Facts)) {
     let flow = Flow::solve(f, entry.clone(), scope);
-    let mut out = Vec::new();
     for &b in &f.layout {
         let Some(Terminator::Call { call, .. }) = f.blocks.get(b).and_then(|k| k.term.as_ref())
         else {
@@ -82,9 +83,8 @@ fn calls(f: &Function, entry: &Facts, scope: &Scope) -> Vec<(usize, Facts)> {
             },
             None => scope.unknown(),
         };
-        out.push((callee as usize, passed));
+        each(callee as usize, passed);
     }
-    out
 }
 
 /// What `call` passes to its program, made where `before` holds.
