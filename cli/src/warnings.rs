@@ -6,10 +6,11 @@ use grammar::{Diagnostic, Severity};
 
 /// The warnings of the language reference, W101…W117, and gbc's own
 /// W118 (a thread without the room to reach or leave its speed), W119
-/// (an arc of a program with macros that cannot be drawn) and W120 (the
-/// dry run stopped, its budget of repeated blocks spent).
+/// (an arc of a program with macros that cannot be drawn), W120 (the
+/// dry run stopped, its budget of repeated blocks spent) and W121 (calls
+/// that always nest too deep).
 pub const FIRST: u16 = 101;
-pub const LAST: u16 = 120;
+pub const LAST: u16 = 121;
 
 /// What becomes of a warning.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -144,7 +145,7 @@ mod tests {
     #[test]
     fn unknown_switches_are_refused() {
         let mut p = Policy::default();
-        for bad in ["foo", "no-W100", "W121", "error=E1001", "no-error=", "W"] {
+        for bad in ["foo", "no-W100", "W122", "error=E1001", "no-error=", "W"] {
             let e = p.apply(bad).unwrap_err();
             assert!(e.contains(&format!("'-W{bad}'")), "{e}");
         }

@@ -315,7 +315,9 @@ impl DryRun<'_> {
                     let Some(sub) = self.programs.iter().position(|q| q.number == number) else {
                         return Ok(Flow::End);
                     };
-                    if depth >= 4 {
+                    // (Deeper, the run ends with E6004: W121 says so
+                    // where the calls are unconditional.)
+                    if depth as usize >= nc::base::nesting::MAX_SUB_LEVELS {
                         return Ok(Flow::End);
                     }
                     for _ in 0..count.min(10_000) {

@@ -1,19 +1,27 @@
-//! W115: unconditional call recursion (dialect.md §7.12). A call is
-//! unconditional when its block carries no block delete and comes before
-//! any jump, loop, IF, return or program end of its program, so that every
-//! pass through the program reaches it; its target is a literal program
-//! number. A program that reaches itself through such calls only calls
-//! deeper on every pass and ends in E6004 at run time.
+//! W115 and W121: calls that nest too deep on every run (dialect.md
+//! §7.12). A call is unconditional when its block carries no block delete
+//! and comes before any jump, loop, IF, return or program end of its
+//! program, so that every pass through the program reaches it; its target
+//! is a literal program number.
+//!
+//! - W115: a program that reaches itself through such calls only calls
+//!   deeper on every pass and ends in E6004 at run time.
+//! - W121: a chain of such calls from the main program's start that goes
+//!   past the nesting limits ends in E6004 at its last call on every run.
 
 use crate::link::{self, Program, Unit};
 use crate::words::{self, Call};
 use grammar::ast::{Body, Stmt};
 use grammar::{Diagnostic, Span};
+use nc::base::nesting::{MAX_CALLS, MAX_MACRO_LEVELS, MAX_SUB_LEVELS};
+use std::collections::HashSet;
 
-/// One unconditional call: the program index it goes to, where it stands.
+/// One unconditional call: the program index it goes to, where it stands,
+/// and whether it opens a macro level (G65) or a subprogram level (M98).
 struct Edge {
     to: usize,
     span: Span,
+    macro_level: bool,
 }
 
 /// The unconditional calls of program `p`.
@@ -41,6 +49,7 @@ fn edges(units: &[Unit], programs: &[Program], p: &Program) -> Vec<Edge> {
             break;
         };
         let ends = split.nc.iter().any(|w| is_end(w.addr, w.value));
+        let macro_level = matches!(split.call, Some(Call::Macro { .. }));
         let target = match &split.call {
             Some(Call::Sub {
                 p: Some(t),
@@ -70,7 +79,11 @@ fn edges(units: &[Unit], programs: &[Program], p: &Program) -> Vec<Edge> {
         };
         if let (Some((n, span)), None) = (target, b.delete) {
             if let Some(to) = programs.iter().position(|q| q.number == n) {
-                out.push(Edge { to, span });
+                out.push(Edge {
+                    to,
+                    span,
+                    macro_level,
+                });
             }
         }
         if ends {
@@ -85,13 +98,17 @@ fn is_end(addr: u8, value: words::WordValue<'_>) -> bool {
     addr == b'M' - b'A' && value.literal().is_some_and(|m| m == 2.0 || m == 30.0)
 }
 
-/// W115 at every unconditional call that leads back to its own program.
+/// W115 at every unconditional call that leads back to its own program,
+/// then W121 at every call of a chain from the main program's start that
+/// goes past the nesting limits (not at a W115 call: it says so already).
 pub fn check(units: &[Unit], programs: &[Program]) -> Vec<(usize, Diagnostic)> {
     let graph: Vec<Vec<Edge>> = programs.iter().map(|p| edges(units, programs, p)).collect();
     let mut found = Vec::new();
+    let mut recursive = HashSet::new();
     for (from, p) in programs.iter().enumerate() {
         for e in &graph[from] {
             if reaches(&graph, e.to, from) {
+                recursive.insert(e.span);
                 found.push((
                     p.unit,
                     Diagnostic::warning(
@@ -106,7 +123,107 @@ pub fn check(units: &[Unit], programs: &[Program]) -> Vec<(usize, Diagnostic)> {
             }
         }
     }
+    let mut deep = Depths {
+        programs,
+        graph: &graph,
+        seen: HashSet::new(),
+        told: recursive,
+        chain: Vec::new(),
+        found: Vec::new(),
+    };
+    if !programs.is_empty() {
+        deep.walk(0, Levels::default());
+    }
+    found.append(&mut deep.found);
     found
+}
+
+/// The call levels open in a program: macro levels and subprogram levels.
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
+struct Levels {
+    macros: usize,
+    subs: usize,
+}
+
+impl Levels {
+    /// The levels after a call, or `None` past a limit (E6004).
+    fn enter(self, macro_level: bool) -> Option<Levels> {
+        let next = match macro_level {
+            true => Levels {
+                macros: self.macros + 1,
+                ..self
+            },
+            false => Levels {
+                subs: self.subs + 1,
+                ..self
+            },
+        };
+        let fits = next.macros <= MAX_MACRO_LEVELS
+            && next.subs <= MAX_SUB_LEVELS
+            && next.macros + next.subs <= MAX_CALLS;
+        fits.then_some(next)
+    }
+}
+
+/// The walk of the unconditional calls from the main program's start, for
+/// W121. Each (program, levels) is walked once, so however many calls a
+/// program makes the walk is at most the graph's size times the few level
+/// pairs there are.
+struct Depths<'a> {
+    programs: &'a [Program],
+    graph: &'a [Vec<Edge>],
+    seen: HashSet<(usize, Levels)>,
+    /// Calls already warned of.
+    told: HashSet<Span>,
+    /// The programs of the chain being walked, the main one first.
+    chain: Vec<u32>,
+    found: Vec<(usize, Diagnostic)>,
+}
+
+impl Depths<'_> {
+    fn walk(&mut self, from: usize, levels: Levels) {
+        if !self.seen.insert((from, levels)) {
+            return;
+        }
+        let Some(p) = self.programs.get(from) else {
+            return;
+        };
+        self.chain.push(p.number);
+        for e in &self.graph[from] {
+            match levels.enter(e.macro_level) {
+                Some(next) => self.walk(e.to, next),
+                None => self.too_deep(p.unit, e),
+            }
+        }
+        self.chain.pop();
+    }
+
+    /// W121 at call `e`, which goes past a limit.
+    fn too_deep(&mut self, unit: usize, e: &Edge) {
+        if !self.told.insert(e.span) {
+            return;
+        }
+        let (kind, limit) = match e.macro_level {
+            true => ("macro", MAX_MACRO_LEVELS),
+            false => ("subprogram", MAX_SUB_LEVELS),
+        };
+        // (The chain starts at the main program, whatever its number.)
+        let chain: Vec<String> = core::iter::once("the main program".to_string())
+            .chain(self.chain.iter().skip(1).map(|n| format!("O{n:04}")))
+            .collect();
+        let d = Diagnostic::warning(
+            "W121",
+            e.span,
+            format!(
+                "this call nests deeper than the control allows ({limit} {kind} levels, {MAX_CALLS} calls in all) on every run: the run stops here with E6004"
+            ),
+        )
+        .with_note(format!(
+            "the calls that reach it on every run: {}",
+            chain.join(" → ")
+        ));
+        self.found.push((unit, d));
+    }
 }
 
 /// Whether program `target` is reachable from `start` along the edges.

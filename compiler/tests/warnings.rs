@@ -1,5 +1,5 @@
 //! The warnings of dialect.md §8 that the compiler reports from a block's
-//! words (W106, W109), from the call graph (W115) and from the dry run of
+//! words (W106, W109), from the call graph (W115, W121) and from the dry run of
 //! a static program (W105, W107, W108, W110, W111, W112, W114): each fires
 //! where the section of the code says and not on the corrected program.
 //! Every expected (code, line) pair is read off the program by hand.
@@ -148,4 +148,59 @@ fn w115_unconditional_recursion() {
     // Behind a condition: no warning.
     let src = "M98 P0004\nM30\nO0004\n#1=#1+1\nIF [#1 GT 3] GOTO 9\nM98 P0004\nN9 M99\n";
     assert_eq!(warnings(src), []);
+}
+
+/// A main program calling O0001, each O000n calling O000(n+1) with
+/// `call` (`M98 P` or `G65 P`) down to O000`depth`, which moves; `guard`
+/// stands before the call of O0004.
+fn nested(call: &str, depth: u32, guard: &str) -> String {
+    let mut src = format!("{call}1\nM30\n");
+    for n in 1..depth {
+        let guard = if n == 4 { guard } else { "" };
+        src.push_str(&format!("O{n:04}\n{guard}{call}{}\nM99\n", n + 1));
+    }
+    src.push_str(&format!("O{depth:04}\nG01 U1 F100\nM99\n"));
+    src
+}
+
+/// The line and code of the alarm a run of `src` ends with.
+fn alarm_of(src: &str) -> Option<(u32, u32)> {
+    let c = compile("w.nc", src.as_bytes(), &Options::default());
+    let module = c.module?;
+    let mut vm = vm::Vm::new(module, Options::default().machine);
+    let mut events: Vec<nc::Event> = Vec::new();
+    match vm.run(&mut events) {
+        vm::Status::Alarm(a) => Some((a.code, a.line)),
+        _ => None,
+    }
+}
+
+#[test]
+fn w121_calls_that_always_nest_too_deep() {
+    // §7.12: four subprogram levels. The main program (lines 1–2), then
+    // O000n on lines 3n to 3n + 2, its call on line 3n + 1: O0005's call
+    // by O0004 (line 13) opens a fifth level.
+    let five = nested("M98 P", 5, "");
+    assert_eq!(warnings(&five), [("W121", 13)]);
+    // The run stops there.
+    assert_eq!(alarm_of(&five), Some((6004, 13)));
+    // Four levels: none, and the run ends at M30.
+    assert_eq!(warnings(&nested("M98 P", 4, "")), []);
+    assert_eq!(alarm_of(&nested("M98 P", 4, "")), None);
+    // Four macro levels, G65 each (the same lines): the fifth too deep.
+    let five = nested("G65 P", 5, "");
+    assert_eq!(warnings(&five), [("W121", 13)]);
+    assert_eq!(alarm_of(&five), Some((6004, 13)));
+    assert_eq!(warnings(&nested("G65 P", 4, "")), []);
+    // Behind a condition the call is not reached on every run: none.
+    let guarded = nested("M98 P", 5, "IF[#1EQ0]GOTO9\nN9\n");
+    assert_eq!(warnings(&guarded), []);
+    // Four of each kind, eight calls in all: the limit, not past it.
+    let mixed = "M98 P1\nM30\nO0001\nM98 P2\nM99\nO0002\nM98 P3\nM99\nO0003\nM98 P4\nM99\n\
+                 O0004\nG65 P5\nM99\nO0005\nG65 P6\nM99\nO0006\nG65 P7\nM99\nO0007\nG65 P8\nM99\n\
+                 O0008\nG01 U1 F100\nM99\n";
+    assert_eq!(warnings(mixed), []);
+    assert_eq!(alarm_of(mixed), None);
+    // Recursion is W115's alone, though it nests too deep as well.
+    assert_eq!(warnings("M98 P1\nM30\nO0001\nM98 P1\nM99\n"), [("W115", 4)]);
 }

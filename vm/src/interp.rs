@@ -12,6 +12,7 @@ use crate::loc_cache::LocCache;
 use crate::tier::{Entry, LoopState, Tier};
 use crate::vars::{slot, Slot, Vars};
 use isa::{Instr, Module};
+use nc::base::nesting::{MAX_CALLS, MAX_MACRO_LEVELS, MAX_SUB_LEVELS};
 use nc::block::round_half_away;
 use nc::error::Alarm as AlarmCode;
 use nc::event::StopKind;
@@ -94,11 +95,6 @@ struct Frame {
 /// `Exec` flag: hand the block to the kernel as a G70–G73 profile block
 /// (its tag is its pc) instead of executing it.
 pub const PROFILE: u8 = 1;
-
-/// Nesting limits (dialect.md §7.12).
-const MAX_MACRO_LEVELS: usize = 4;
-const MAX_SUB_LEVELS: usize = 4;
-const MAX_CALLS: usize = 8;
 
 struct ModalCall {
     prog: u32,

@@ -12,6 +12,7 @@ pub mod geom;
 pub mod machine;
 pub mod machine_check;
 pub mod mcode;
+pub mod nesting;
 pub mod plc;
 pub mod point;
 pub mod thread_room;
