@@ -108,7 +108,7 @@ pub fn check(units: &[Unit], programs: &[Program]) -> Vec<(usize, Diagnostic)> {
     for (from, p) in programs.iter().enumerate() {
         for e in &graph[from] {
             if reaches(&graph, e.to, from) {
-                recursive.insert(e.span);
+                recursive.insert((p.unit, e.span));
                 found.push((
                     p.unit,
                     Diagnostic::warning(
@@ -173,8 +173,8 @@ struct Depths<'a> {
     programs: &'a [Program],
     graph: &'a [Vec<Edge>],
     seen: HashSet<(usize, Levels)>,
-    /// Calls already warned of.
-    told: HashSet<Span>,
+    /// Calls already warned of, by unit and place.
+    told: HashSet<(usize, Span)>,
     /// The programs of the chain being walked, the main one first.
     chain: Vec<u32>,
     found: Vec<(usize, Diagnostic)>,
@@ -200,7 +200,7 @@ impl Depths<'_> {
 
     /// W121 at call `e`, which goes past a limit.
     fn too_deep(&mut self, unit: usize, e: &Edge) {
-        if !self.told.insert(e.span) {
+        if !self.told.insert((unit, e.span)) {
             return;
         }
         let (kind, limit) = match e.macro_level {
