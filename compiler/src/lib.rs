@@ -138,7 +138,7 @@ fn compile_keeping(
         };
         return (compiled, None);
     }
-    let (files, module, ir) = lower_and_check(&units, &programs, opts, keep_ir, &mut diags);
+    let (files, module, ir) = lower_and_check(&mut units, &programs, opts, keep_ir, &mut diags);
     free_in_background(units, programs);
     let failed = has_errors(&diags);
     let compiled = Compiled {
@@ -154,9 +154,11 @@ fn compile_keeping(
 ///
 /// The dry run needs only the trees: on a large program it runs on a
 /// second thread beside the lowering. Its finding counts only if the
-/// lowering found no error, as when it runs after it.
+/// lowering found no error, as when it runs after it. A program that is
+/// not dry-run gives its trees up once they are built into IR: the IR,
+/// the module and the trees are then never held all at once.
 fn lower_and_check(
-    units: &[Unit],
+    units: &mut [Unit],
     programs: &[Program],
     opts: &Options,
     keep_ir: bool,
@@ -165,10 +167,23 @@ fn lower_and_check(
     // A static program without G-code macros is dry-run.
     let table = &opts.machine.r#macro.g_code_macros;
     let dry = !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
-    let dry_run = || match dry {
-        true => check::dry_run(units, programs, &opts.machine),
-        false => Vec::new(),
-    };
+    if !dry {
+        let files = source_files(units);
+        let ir = build_ir(units, programs, opts, diags);
+        free_trees_in_background(units, programs);
+        let (module, ir) = lower_ir(ir, units, &files, opts, diags);
+        // Not dry-run, a program may still hold a geometry alarm the
+        // pass `modal` proves (W119).
+        let arcs = ir.as_ref().is_some_and(known_faults::wanted);
+        if let (Some(ir), false, true) = (&ir, has_errors(diags), arcs) {
+            let facts = modal::analyze(ir, &opts.machine);
+            diags.extend(known_faults::arcs(ir, &facts, &opts.machine));
+        }
+        let module = verified(module, Vec::new(), diags);
+        return (files, module, ir.filter(|_| keep_ir));
+    }
+    let units = &*units;
+    let dry_run = || check::dry_run(units, programs, &opts.machine);
     let parallel = block_count(programs) >= PARALLEL_BLOCKS;
     std::thread::scope(|s| {
         // (Without a second thread, the dry run comes after the lowering.)
@@ -177,18 +192,11 @@ fn lower_and_check(
             false => None,
         };
         let files = source_files(units);
-        let (module, ir) = lower(units, &files, programs, opts, diags);
-        // Not dry-run, a program may still hold a geometry alarm the
-        // pass `modal` proves (W119).
-        let arcs = ir.as_ref().is_some_and(known_faults::wanted);
-        if let (false, Some(ir), false, true) = (dry, &ir, has_errors(diags), arcs) {
-            let facts = modal::analyze(ir, &opts.machine);
-            diags.extend(known_faults::arcs(ir, &facts, &opts.machine));
-        }
+        let ir = build_ir(units, programs, opts, diags);
+        let (module, ir) = lower_ir(ir, units, &files, opts, diags);
         // (Not kept, the IR goes before the dry run is waited for.)
         let ir = ir.filter(|_| keep_ir);
         let failed = has_errors(diags);
-        let verified = module.as_ref().filter(|_| !failed).map(|m| m.verify());
         let found = match early {
             Some(run) => match run.join() {
                 Ok(found) => found,
@@ -199,21 +207,50 @@ fn lower_and_check(
             None if !failed => dry_run(),
             None => Vec::new(),
         };
-        if !failed {
-            diags.extend(found);
-        }
-        if let (Some(Err(e)), false) = (verified, has_errors(diags)) {
-            diags.push((
-                0,
-                Diagnostic::error(
-                    "E0000",
-                    grammar::Span::default(),
-                    format!("internal error: the generated module does not verify: {e}"),
-                ),
-            ));
-        }
-        (files, module, ir)
+        (files, verified(module, found, diags), ir)
     })
+}
+
+/// Verifies the module when the lowering found no error, adds the dry
+/// run's findings `found` (which count only then), and reports a module
+/// that does not verify (E0000).
+fn verified(
+    module: Option<isa::Module>,
+    found: Vec<(usize, Diagnostic)>,
+    diags: &mut Vec<(usize, Diagnostic)>,
+) -> Option<isa::Module> {
+    let failed = has_errors(diags);
+    let verified = module.as_ref().filter(|_| !failed).map(|m| m.verify());
+    if !failed {
+        diags.extend(found);
+    }
+    if let (Some(Err(e)), false) = (verified, has_errors(diags)) {
+        diags.push((
+            0,
+            Diagnostic::error(
+                "E0000",
+                grammar::Span::default(),
+                format!("internal error: the generated module does not verify: {e}"),
+            ),
+        ));
+    }
+    module
+}
+
+/// Hands the trees of a large program, built into IR, to a thread that
+/// frees them (see [`free_in_background`]); the units keep their names
+/// and sources.
+fn free_trees_in_background(units: &mut [Unit], programs: &[Program]) {
+    if block_count(programs) < PARALLEL_BLOCKS {
+        return;
+    }
+    let trees: Vec<grammar::ast::Ast> = units
+        .iter_mut()
+        .map(|u| std::mem::take(&mut u.ast))
+        .collect();
+    let _ = std::thread::Builder::new()
+        .name("gbc-free".into())
+        .spawn(move || drop(trees));
 }
 
 /// Frees the trees of a large program on a thread of its own: their
@@ -248,22 +285,37 @@ fn block_count(programs: &[Program]) -> usize {
     programs.iter().map(|p| p.blocks.len()).sum()
 }
 
-/// Builds every program into IR, validates it and emits a module that
-/// names its source files. No module after a build error (the IR may
-/// then be incomplete) or an invalid IR (E0000).
-fn lower(
+/// Builds every program into IR (pass `build`): `None` after a build
+/// error (the IR may then be incomplete; `--emit=ir` still prints it).
+fn build_ir(
     units: &[Unit],
-    files: &[SourceFile],
     programs: &[Program],
     opts: &Options,
     diags: &mut Vec<(usize, Diagnostic)>,
-) -> (Option<isa::Module>, Option<ir::Module>) {
-    let (mut ir, mut found) =
+) -> Result<ir::Module, ir::Module> {
+    let (ir, mut found) =
         build::build(units, programs, &opts.machine, opts.optimize, &opts.defines);
     diags.append(&mut found);
-    if has_errors(diags) {
-        return (None, Some(ir));
+    match has_errors(diags) {
+        true => Err(ir),
+        false => Ok(ir),
     }
+}
+
+/// Runs the passes after `build` on the IR, validates it and emits a
+/// module that names its source files. No module after a build error or
+/// an invalid IR (E0000).
+fn lower_ir(
+    ir: Result<ir::Module, ir::Module>,
+    units: &[Unit],
+    files: &[SourceFile],
+    opts: &Options,
+    diags: &mut Vec<(usize, Diagnostic)>,
+) -> (Option<isa::Module>, Option<ir::Module>) {
+    let mut ir = match ir {
+        Ok(ir) => ir,
+        Err(ir) => return (None, Some(ir)),
+    };
     if opts.optimize {
         diags.extend(fold::module(&mut ir, &opts.machine));
     }
