@@ -407,7 +407,7 @@ impl Runner {
 /// [`dry_run`] finds on the whole program.
 pub struct ChunkedRun {
     run: Runner,
-    /// The run has ended (M02/M30, the step limit, a run-time fault).
+    /// The run has ended (M02/M30, its budget of extra blocks, a run-time fault).
     ended: bool,
     error: Option<(usize, Diagnostic)>,
 }

@@ -52,7 +52,7 @@ pub struct Warner {
     pub diags: Vec<(usize, Diagnostic)>,
     /// Each warning is said once where it stands, however often the dry
     /// run passes there (a loop, a subprogram called again): the thousands
-    /// of copies a program that loops until the step limit made told
+    /// of copies a program that loops until its budget is spent made told
     /// nothing more than the first.
     told: HashSet<(usize, &'static str, Span)>,
     /// W107 is given once: the run stops at the first such move.
