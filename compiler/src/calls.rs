@@ -190,7 +190,7 @@ fn macro_call(
 fn destination(g: &mut Builder<'_>, p: Option<&Word>, span: Span) -> Option<u32> {
     let var = p.and_then(|w| match &w.value {
         Value::Expr(e) => match &**e {
-            Expr::Var(v) => crate::expr::fold(&v.index).and_then(|r| r.ok()),
+            Expr::Var(v) => crate::expr::fold(&v.index.expr()).and_then(|r| r.ok()),
             _ => None,
         },
         _ => None,

@@ -25,7 +25,7 @@
 //! first; the diagnostics come while lowering ([`Checker`]), in block
 //! order with the others.
 
-use grammar::ast::{Addr, Ast, Block, Body, Expr, Line, Number, Value, Word};
+use grammar::ast::{Addr, Ast, Block, Body, Expr, Line, Number, Value, VarIndex, Word};
 use grammar::Span;
 
 use crate::build::Builder as Gen;
@@ -289,8 +289,8 @@ fn to_variable_number(r: &mut Word) {
     let Expr::Var(v) = &**e else {
         return;
     };
-    r.value = match v.index.as_ref() {
-        Expr::Num(n) => Value::Number(*n),
-        e => Value::Expr(Box::new(e.clone())),
+    r.value = match &v.index {
+        VarIndex::Number(n, span) => Value::Number(Number::digits(*n, *span)),
+        VarIndex::Expr(e) => Value::Expr(e.clone()),
     };
 }

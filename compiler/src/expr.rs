@@ -87,12 +87,15 @@ pub fn build(b: &mut Builder<'_>, e: &Expr) -> Handle<ir::Expr> {
     }
     let node = match e {
         Expr::Num(n) => ir::Expr::Const(n.value),
-        Expr::Var(v) => match fold(&v.index) {
-            Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
-                ir::Expr::Var(n as u32)
+        Expr::Var(v) => {
+            let index = v.index.expr();
+            match fold(&index) {
+                Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
+                    ir::Expr::Var(n as u32)
+                }
+                _ => ir::Expr::VarInd(build(b, &index)),
             }
-            _ => ir::Expr::VarInd(build(b, &v.index)),
-        },
+        }
         Expr::Paren { inner, .. } => return build(b, inner),
         Expr::Unary { op, operand, .. } => {
             let a = build(b, operand);

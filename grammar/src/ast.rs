@@ -123,6 +123,18 @@ pub struct Number {
     pub span: Span,
 }
 
+impl Number {
+    /// The literal of digits `n` (no point) written at `span`.
+    pub fn digits(n: u32, span: Span) -> Number {
+        Number {
+            value: f64::from(n),
+            has_point: false,
+            decimals: 0,
+            span,
+        }
+    }
+}
+
 /// A macro statement.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stmt {
@@ -182,8 +194,30 @@ pub struct Label {
 /// `#n` or `#[expr]`: the number of a variable.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VarRef {
-    pub index: Box<Expr>,
+    pub index: VarIndex,
     pub span: Span,
+}
+
+/// The number of a variable: digits, held in place with their span (most
+/// variables of a macro program are written so; a box each made the tree
+/// a third larger), or computed (`##12`, `#[expr]`, and digits past a
+/// `u32`, which name no variable).
+#[derive(Debug, Clone, PartialEq)]
+pub enum VarIndex {
+    Number(u32, Span),
+    Expr(Box<Expr>),
+}
+
+impl VarIndex {
+    /// The index as an expression (digits as [`Expr::Num`]).
+    pub fn expr(&self) -> std::borrow::Cow<'_, Expr> {
+        match self {
+            VarIndex::Number(n, span) => {
+                std::borrow::Cow::Owned(Expr::Num(Number::digits(*n, *span)))
+            }
+            VarIndex::Expr(e) => std::borrow::Cow::Borrowed(e),
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]

@@ -167,14 +167,18 @@ pub(crate) mod actions {
     }
 
     /// The literal number of a variable: digits only (`#1.5` is no variable).
-    pub fn index(n: Number) -> R<Expr> {
+    pub fn index(n: Number) -> R<VarIndex> {
         if n.has_point {
             return fail(
                 Diagnostic::error("E1014", n.span, "variable number with a decimal point")
                     .with_label("`#` takes digits, `#n`, or `[expr]`"),
             );
         }
-        Ok(Expr::Num(n))
+        // (Digits past a `u32` name no variable: the run says so.)
+        Ok(match n.value <= f64::from(u32::MAX) {
+            true => VarIndex::Number(n.value as u32, n.span),
+            false => VarIndex::Expr(Box::new(Expr::Num(n))),
+        })
     }
 
     pub fn unary(op: UnOp, operand: Expr, span: Span) -> Expr {
@@ -236,7 +240,7 @@ mod tests {
     fn sexp(e: &Expr) -> String {
         match e {
             Expr::Num(n) => format!("{}", n.value),
-            Expr::Var(v) => format!("#{}", sexp(&v.index)),
+            Expr::Var(v) => format!("#{}", sexp(&v.index.expr())),
             Expr::Paren { inner, .. } => format!("[{}]", sexp(inner)),
             Expr::Unary { op, operand, .. } => format!("({op:?} {})", sexp(operand)),
             Expr::Binary { op, lhs, rhs, .. } => format!("({op:?} {} {})", sexp(lhs), sexp(rhs)),
@@ -302,7 +306,7 @@ mod tests {
         assert_eq!(value("##2"), "##2");
         assert_eq!(value("#[#2+1]"), "#[(Add #2 1)]");
         match stmt("#[#1]=5") {
-            Stmt::Assign { target, .. } => assert_eq!(sexp(&target.index), "[#1]"),
+            Stmt::Assign { target, .. } => assert_eq!(sexp(&target.index.expr()), "[#1]"),
             other => panic!("{other:?}"),
         }
     }

@@ -87,9 +87,13 @@ fn encloses(outer: Span, inner: Span, what: &str, path: &Path) {
 fn check_expr(e: &Expr, p: &Path) {
     let s = e.span();
     assert!(s.start < s.end, "{}: empty span {e:?}", p.display());
+    let index;
     let children: Vec<&Expr> = match e {
         Expr::Num(_) => vec![],
-        Expr::Var(v) => vec![&v.index],
+        Expr::Var(v) => {
+            index = v.index.expr();
+            vec![&*index]
+        }
         Expr::Paren { inner, .. } => vec![inner],
         Expr::Unary { operand, .. } => vec![operand],
         Expr::Binary { lhs, rhs, .. } => vec![lhs, rhs],
@@ -124,8 +128,9 @@ fn check_stmt(s: &Stmt, p: &Path) {
     match s {
         Stmt::Assign { target, value, .. } => {
             encloses(span, target.span, "assignment target", p);
-            encloses(target.span, target.index.span(), "variable index", p);
-            check_expr(&target.index, p);
+            let index = target.index.expr();
+            encloses(target.span, index.span(), "variable index", p);
+            check_expr(&index, p);
             encloses(span, value.span(), "assigned value", p);
             check_expr(value, p);
         }

@@ -586,7 +586,7 @@ impl<'a> Builder<'a> {
 
     fn assign(&mut self, target: &grammar::ast::VarRef, value: &Expr, block: &Block) {
         let src = self.expr(value);
-        let index = crate::expr::fold(&target.index);
+        let index = crate::expr::fold(&target.index.expr());
         let msg = if let Some(c) = block.comments.first() {
             Some(self.string(&c.text))
         } else if matches!(index, Some(Ok(v)) if v == 3000.0 || v == 3006.0) {
@@ -611,7 +611,7 @@ impl<'a> Builder<'a> {
                 });
             }
             _ => {
-                let idx = self.expr(&target.index);
+                let idx = self.expr(&target.index.expr());
                 self.push(Op::Assign {
                     target: ir::VarTarget::Indirect(idx),
                     value: src,
