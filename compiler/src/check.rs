@@ -7,6 +7,7 @@ use crate::thread_room::RoomCheck;
 use crate::words::{self, Call, NcWord, WordValue};
 use grammar::ast::{Body, Value};
 use grammar::{Diagnostic, Span};
+use nc::base::nesting::Levels;
 use nc::words::Word;
 use nc::{Machine, Nc, NcError};
 use smallvec::SmallVec;
@@ -179,7 +180,7 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
             numbers: programs.iter().map(|_| None).collect(),
             seen: programs.iter().map(|_| Vec::new()).collect(),
         };
-        let error = run.program(0, 0).err();
+        let error = run.program(0, Levels::default()).err();
         if skip == first {
             found.append(&mut run.run.warnings());
         }
@@ -248,7 +249,7 @@ impl DryRun<'_> {
         again
     }
 
-    fn program(&mut self, index: usize, depth: u32) -> Result<Flow, (usize, Diagnostic)> {
+    fn program(&mut self, index: usize, levels: Levels) -> Result<Flow, (usize, Diagnostic)> {
         let Some(prog) = self.programs.get(index) else {
             return Ok(Flow::End);
         };
@@ -303,35 +304,102 @@ impl DryRun<'_> {
             next = resume.unwrap_or(next);
             match call {
                 None => {}
-                Some(Call::Sub { p: Some(p), l, .. }) => {
+                Some(Call::Ret { p: None }) if index != 0 => return Ok(Flow::Go),
+                Some(call) => {
+                    let Some(target) = target(&call) else {
+                        return Ok(Flow::End);
+                    };
                     // E4035: M98 while nose-radius compensation is on.
-                    if let Err(e) = self.run.nc.check_call() {
-                        return Err((prog.unit, error_at(&e, block.span)));
-                    }
-                    let (Some(p), l) = (p.literal(), l.and_then(|l| l.literal())) else {
-                        return Ok(Flow::End);
-                    };
-                    let (number, count) = crate::calls::m98_target(p, l);
-                    let Some(sub) = self.programs.iter().position(|q| q.number == number) else {
-                        return Ok(Flow::End);
-                    };
-                    // (Deeper, the run ends with E6004: W121 says so
-                    // where the calls are unconditional.)
-                    if depth as usize >= nc::base::nesting::MAX_SUB_LEVELS {
-                        return Ok(Flow::End);
-                    }
-                    for _ in 0..count.min(10_000) {
-                        if let Flow::End = self.program(sub, depth + 1)? {
-                            return Ok(Flow::End);
+                    if !target.macro_level {
+                        if let Err(e) = self.run.nc.check_call() {
+                            return Err((prog.unit, error_at(&e, block.span)));
                         }
                     }
+                    if let Flow::End = self.call(target, levels)? {
+                        return Ok(Flow::End);
+                    }
                 }
-                Some(Call::Ret { p: None }) if index != 0 => return Ok(Flow::Go),
-                Some(_) => return Ok(Flow::End),
             }
         }
         Ok(if index == 0 { Flow::End } else { Flow::Go })
     }
+
+    /// Runs the called program `t.count` times from a program at `levels`.
+    fn call(&mut self, t: Target, levels: Levels) -> Result<Flow, (usize, Diagnostic)> {
+        let Some(sub) = self.programs.iter().position(|q| q.number == t.number) else {
+            return Ok(Flow::End);
+        };
+        // (Past a limit the run ends with E6004: W121 says so.)
+        let Some(inner) = levels.enter(t.macro_level) else {
+            return Ok(Flow::End);
+        };
+        for _ in 0..t.count {
+            if let Flow::End = self.program(sub, inner)? {
+                return Ok(Flow::End);
+            }
+        }
+        Ok(Flow::Go)
+    }
+}
+
+/// A call the dry run follows: the called program's number, how many
+/// times it runs, and whether it opens a macro level (G65) or a
+/// subprogram level (M98, an M-code call).
+struct Target {
+    number: u32,
+    count: u32,
+    macro_level: bool,
+}
+
+/// The target of a call of literal words that the dry run follows (any
+/// other ends it: G66, M99 P, a G65 H operation).
+fn target(call: &Call<'_>) -> Option<Target> {
+    match call {
+        Call::Sub { p: Some(p), l, .. } => {
+            let l = l.and_then(|l| l.literal());
+            let (number, count) = crate::calls::m98_target(p.literal()?, l);
+            // (More, and the run stops with an alarm at the call.)
+            (count <= MAX_REPEAT).then_some(Target {
+                number,
+                count,
+                macro_level: false,
+            })
+        }
+        &Call::SubM { number, .. } => Some(Target {
+            number,
+            count: 1,
+            macro_level: false,
+        }),
+        Call::Macro {
+            modal: false,
+            p: Some(p),
+            l,
+            ..
+        } => {
+            let count = match l {
+                Some(l) => repeat_count(l.literal()?)?,
+                None => 1,
+            };
+            Some(Target {
+                number: nc::block::round_half_away(p.literal()?).max(0.0) as u32,
+                count,
+                macro_level: true,
+            })
+        }
+        _ => None,
+    }
+}
+
+/// The most times a call repeats its program (dialect.md §7.9, §7.11).
+const MAX_REPEAT: u32 = 9999;
+
+/// A G65's L as the VM takes it: `None` outside 0…9999 (the run stops
+/// with an alarm there), at least one run.
+fn repeat_count(l: f64) -> Option<u32> {
+    let n = nc::block::round_half_away(l);
+    (0.0..=f64::from(MAX_REPEAT))
+        .contains(&n)
+        .then(|| (n as u32).max(1))
 }
 
 /// A block where the dry run stands: its unit's index, the unit, the

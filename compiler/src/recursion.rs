@@ -13,7 +13,7 @@ use crate::link::{self, Program, Unit};
 use crate::words::{self, Call};
 use grammar::ast::{Body, Stmt};
 use grammar::{Diagnostic, Span};
-use nc::base::nesting::{MAX_CALLS, MAX_MACRO_LEVELS, MAX_SUB_LEVELS};
+use nc::base::nesting::{Levels, MAX_CALLS, MAX_MACRO_LEVELS, MAX_SUB_LEVELS};
 use std::collections::HashSet;
 
 /// One unconditional call: the program index it goes to, where it stands,
@@ -136,33 +136,6 @@ pub fn check(units: &[Unit], programs: &[Program]) -> Vec<(usize, Diagnostic)> {
     }
     found.append(&mut deep.found);
     found
-}
-
-/// The call levels open in a program: macro levels and subprogram levels.
-#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
-struct Levels {
-    macros: usize,
-    subs: usize,
-}
-
-impl Levels {
-    /// The levels after a call, or `None` past a limit (E6004).
-    fn enter(self, macro_level: bool) -> Option<Levels> {
-        let next = match macro_level {
-            true => Levels {
-                macros: self.macros + 1,
-                ..self
-            },
-            false => Levels {
-                subs: self.subs + 1,
-                ..self
-            },
-        };
-        let fits = next.macros <= MAX_MACRO_LEVELS
-            && next.subs <= MAX_SUB_LEVELS
-            && next.macros + next.subs <= MAX_CALLS;
-        fits.then_some(next)
-    }
 }
 
 /// The walk of the unconditional calls from the main program's start, for

@@ -1,7 +1,8 @@
 //! How far the compile-time dry run goes: each block's first pass is
 //! free, so a straight program is dry-run to its end however long; the
 //! passes beyond (loop rounds, repeated calls, cycle legs) may add 200 000
-//! blocks, and where they run out the compiler says so (W120).
+//! blocks, and where they run out the compiler says so (W120). It follows
+//! M98, M-code calls (M9000–M9999) and G65 into the programs they call.
 
 use compiler::{compile, Options};
 
@@ -87,4 +88,45 @@ fn a_program_that_never_ends_is_told_once() {
     let right = "G98 G00 X60 Z2\nG71 U2 R1\nG71 P10 Q30 U0.5 W0.1 F150\nN10 G00 X40\n\
                  N20 G01 Z-30 F100\nN30 X60\nM30\n";
     assert_eq!(diagnostics(right, &Options::default()), []);
+}
+
+/// (code, line, message) of every diagnostic.
+fn messages(src: &str) -> Vec<(&'static str, usize, String)> {
+    let c = compile("d.nc", src.as_bytes(), &Options::default());
+    c.diags
+        .iter()
+        .map(|(f, d)| {
+            (
+                d.code,
+                c.files[*f].line_col(d.span.start).0,
+                d.message.clone(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn the_dry_run_follows_g65_and_m_code_calls() {
+    // G02 from X50 Z2 to X90 Z-5 (radii 25 → 45, 7 along Z) with R1:
+    // the end is √(20² + 7²) = 21.19 mm away, more than 2R. In a program
+    // called by G65 or by M9001: E4001 at compile time, in the callee.
+    let g65 = "G98 G00 X50 Z2\nG65 P9001 A1\nG00 X60\nM30\nO9001\nG02 X90 Z-5 R1\nM99\n";
+    let found = messages(g65);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!((found[0].0, found[0].1), ("E4001", 6));
+    assert!(found[0].2.contains("21.1896 mm away"), "{found:?}");
+    let m9001 = "G98 G00 X50 Z2\nM9001\nM30\nO9001\nG02 X90 Z-5 R1\nM99\n";
+    assert_eq!(diagnostics(m9001, &Options::default()), [("E4001", 5)]);
+    // G65's L: pass 1 goes U30 to X80 Z2, then arcs to X90 Z-5 (radii
+    // 40 → 45, 7 along Z: √74 = 8.60 mm, within 2R = 14); pass 2 goes
+    // U30 to X120 Z-5 and arcs back to X90 Z-5, 15 mm away: E4001 then.
+    let l2 = "G98 G00 X50 Z2\nG65 P9001 L2\nM30\nO9001\nG01 U30 F100\nG02 X90 Z-5 R7\nM99\n";
+    let found = messages(l2);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!((found[0].0, found[0].1), ("E4001", 6));
+    assert!(found[0].2.contains("15.0000 mm away"), "{found:?}");
+    assert_eq!(
+        diagnostics(&l2.replace("L2", "L1"), &Options::default()),
+        []
+    );
 }
