@@ -12,7 +12,7 @@ use crate::loc_cache::LocCache;
 use crate::tier::{Entry, LoopState, Tier};
 use crate::vars::{slot, Slot, Vars};
 use isa::{Instr, Module};
-use nc::base::nesting::{MAX_CALLS, MAX_MACRO_LEVELS, MAX_SUB_LEVELS};
+use nc::base::nesting::Levels;
 use nc::block::round_half_away;
 use nc::error::Alarm as AlarmCode;
 use nc::event::StopKind;
@@ -820,11 +820,11 @@ impl Vm {
     ) -> Result<(), Fault> {
         self.count_block()?;
         let macros = self.frames.iter().filter(|f| f.macro_level).count();
-        let subs = self.frames.len() - macros;
-        if self.frames.len() >= MAX_CALLS
-            || (macro_level && macros >= MAX_MACRO_LEVELS)
-            || (!macro_level && subs >= MAX_SUB_LEVELS)
-        {
+        let levels = Levels {
+            macros,
+            subs: self.frames.len() - macros,
+        };
+        if levels.enter(macro_level).is_none() {
             return fault(
                 AlarmCode::CallsTooDeep,
                 "calls nested too deep (4 macro levels, 4 subprogram levels, 8 in all)",
