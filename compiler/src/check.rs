@@ -329,7 +329,8 @@ impl DryRun<'_> {
         let Some(sub) = self.programs.iter().position(|q| q.number == t.number) else {
             return Ok(Flow::End);
         };
-        // (Past a limit the run ends with E6004: W121 says so.)
+        // (Past a limit the run ends with E6004, which W121 names where
+        // every run gets there.)
         let Some(inner) = levels.enter(t.macro_level) else {
             return Ok(Flow::End);
         };
