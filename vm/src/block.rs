@@ -35,7 +35,9 @@ pub(crate) fn charge(blocks: &mut u64, max: u64, n: u64) -> Result<(), NcError> 
     if *blocks > max {
         return Err(NcError::new(
             AlarmCode::BlockBudget,
-            alloc::format!("the block budget of {max} blocks is used up"),
+            alloc::format!(
+                "the block budget of {max} blocks is used up: a loop that does not end, or a program longer than run.max_blocks of the machine file or `gbvm run --max-blocks` allow"
+            ),
         ));
     }
     Ok(())
