@@ -144,7 +144,10 @@ fn max_blocks_and_repeat() {
         .starts_with("ALARM CODE=6005"));
     // The alarm says what sets the budget, for a program that is just long.
     let err = text(&run.stderr);
-    assert!(err.contains("run.max_blocks") && err.contains("--max-blocks"), "{err}");
+    assert!(
+        err.contains("run.max_blocks") && err.contains("--max-blocks"),
+        "{err}"
+    );
     std::fs::write(d.join("m99.nc"), "G00 U2\nM99\n").unwrap();
     assert_eq!(gbcc(&["m99.nc"], &d).status.code(), Some(0));
     let run = gbvm(&["run", "m99.gbc", "--repeat", "3"], &d);
