@@ -7,10 +7,11 @@ use grammar::{Diagnostic, Severity};
 /// The warnings of the language reference, W101…W117, and gbc's own
 /// W118 (a thread without the room to reach or leave its speed), W119
 /// (an arc of a program with macros that cannot be drawn), W120 (the
-/// dry run stopped, its budget of repeated blocks spent) and W121 (calls
-/// that always nest too deep).
+/// dry run stopped, its budget of repeated blocks spent), W121 (calls
+/// that always nest too deep) and W122 (a run longer than the block
+/// budget).
 pub const FIRST: u16 = 101;
-pub const LAST: u16 = 121;
+pub const LAST: u16 = 122;
 
 /// What becomes of a warning.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

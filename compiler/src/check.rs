@@ -107,6 +107,14 @@ struct Runner {
     /// Blocks run beyond each block's first pass (and a cycle's legs
     /// beyond its first), against [`EXTRA_STEPS`].
     extra: u64,
+    /// Blocks the kernel ran, a cycle counted as its legs: what the VM
+    /// charges to its block budget at the least.
+    executed: u64,
+    /// The machine's block budget (`run.max_blocks`).
+    max_blocks: u64,
+    /// The block past which `executed` first exceeded `max_blocks`, and
+    /// its unit (W122).
+    over: Option<(usize, Span)>,
     /// W118 on the canon events.
     room: RoomCheck,
     /// W105–W112, W114 on what each block did.
@@ -118,6 +126,9 @@ impl Runner {
         Runner {
             nc: Nc::new(m.clone()),
             extra: 0,
+            executed: 0,
+            max_blocks: m.run.max_blocks,
+            over: None,
             room: RoomCheck::new(m),
             warner: Default::default(),
         }
@@ -125,6 +136,9 @@ impl Runner {
 
     /// The warnings found, after the last block.
     fn warnings(mut self) -> Vec<(usize, Diagnostic)> {
+        if let Some((unit, span)) = self.over {
+            (self.warner).over_budget(unit, span, self.max_blocks, self.executed);
+        }
         self.room.finish();
         let mut found = self.warner.diags;
         found.append(&mut self.room.warnings);
@@ -413,6 +427,16 @@ type At<'u> = (
 );
 
 impl Runner {
+    /// Counts a block the kernel ran, `legs` the moves it generated (a
+    /// cycle: the VM charges them, at least one), and notes where the
+    /// count first passes the machine's block budget.
+    fn count_executed(&mut self, legs: u64, unit: usize, span: Span) {
+        self.executed = self.executed.saturating_add(legs.max(1));
+        if self.executed > self.max_blocks && self.over.is_none() {
+            self.over = Some((unit, span));
+        }
+    }
+
     /// Runs a block's literal words `lits` through the kernel: whether the
     /// run goes on, or the compile-time error it found.
     fn exec(&mut self, at: At<'_>, lits: &[Word]) -> Result<Flow, (usize, Diagnostic)> {
@@ -433,7 +457,9 @@ impl Runner {
         // other block goes the general way): most blocks of a long
         // program are plain moves.
         let result = self.nc.exec_move(lits, &mut sink);
-        self.extra = self.extra.saturating_add(self.nc.take_generated());
+        let legs = self.nc.take_generated();
+        self.extra = self.extra.saturating_add(legs);
+        self.count_executed(legs, index, block.span);
         if result.is_ok() {
             (self.warner).after(index, &self.nc, (ws, block.span), lits, &counts, before);
         }

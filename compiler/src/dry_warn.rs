@@ -180,6 +180,22 @@ impl Warner {
         }
     }
 
+    /// W122: by the block at `span` the run has used up the machine's
+    /// block budget of `max` (the dry run counted `counted` blocks in
+    /// all), so `gbvm` stops it there with E6005 at the latest.
+    pub fn over_budget(&mut self, unit: usize, span: Span, max: u64, counted: u64) {
+        let msg = format!(
+            "the run uses up the block budget here: by this block it has run more than run.max_blocks = {max} blocks, so `gbvm run` stops with E6005 at this block at the latest"
+        );
+        let help = format!(
+            "a program this long needs a larger budget: set run.max_blocks in the machine file, or run it with `gbvm run --max-blocks N`, N at least {counted} (the blocks the compile-time dry run counted)"
+        );
+        if self.told.insert((unit, "W122", span)) {
+            let d = Diagnostic::warning("W122", span, msg).with_help(help);
+            self.diags.push((unit, d));
+        }
+    }
+
     /// The warnings of a block that ran without error.
     pub fn after(
         &mut self,

@@ -130,3 +130,64 @@ fn the_dry_run_follows_g65_and_m_code_calls() {
         []
     );
 }
+
+/// The options of a machine whose run may execute `max` blocks, the
+/// program compiled a chunk of 4 KiB at a time or whole.
+fn budget(max: u64, chunked: bool) -> Options {
+    let mut opts = Options::default();
+    opts.machine.run.max_blocks = max;
+    opts.chunk_bytes = if chunked { 4096 } else { usize::MAX };
+    opts
+}
+
+/// The line of the alarm E6005 a run on the VM stops with, under a
+/// budget of `max` blocks (`None` when it ends without).
+fn vm_budget_line(src: &str, max: u64) -> Option<u32> {
+    let opts = budget(max, false);
+    let module = compile("d.nc", src.as_bytes(), &opts).module?;
+    let mut vm = vm::Vm::new(module, opts.machine.clone());
+    vm.max_blocks = max;
+    let mut events: Vec<nc::Event> = Vec::new();
+    match vm.run(&mut events) {
+        vm::Status::Alarm(a) if a.code == 6005 => Some(a.line),
+        _ => None,
+    }
+}
+
+#[test]
+fn a_run_longer_than_the_block_budget_is_told_where_it_stops() {
+    // A rapid on line 1, 1 500 moves on lines 2…1501, M30 on line 1502:
+    // 1 502 blocks. Under a budget of 1 000 the 1 001st block, on line
+    // 1001, is the first past it; the VM stops there too.
+    let mut src = String::from("G98 G00 X50 Z2\n");
+    for i in 1..=1500 {
+        src.push_str(&format!("G01 X{}.5 Z-{}.25 F100\n", i % 50, i % 70));
+    }
+    src.push_str("M30\n");
+    for chunked in [true, false] {
+        assert_eq!(diagnostics(&src, &budget(1000, chunked)), [("W122", 1001)]);
+        // The whole program fits in 1 502; with 1 501 its M30 is past it.
+        assert_eq!(diagnostics(&src, &budget(1502, chunked)), []);
+        assert_eq!(diagnostics(&src, &budget(1501, chunked)), [("W122", 1502)]);
+    }
+    assert_eq!(vm_budget_line(&src, 1000), Some(1001));
+    assert_eq!(vm_budget_line(&src, 1501), Some(1502));
+    assert_eq!(vm_budget_line(&src, 1502), None);
+    // The help says how large a budget the program needs.
+    let c = compile("d.nc", src.as_bytes(), &budget(1000, false));
+    let help = c.diags[0].1.help.clone().unwrap_or_default();
+    assert!(help.contains("N at least 1502"), "{help}");
+}
+
+#[test]
+fn a_cycle_counts_as_its_legs_against_the_block_budget() {
+    // G71 roughs X60 down to X20 at 1 mm a side: about 20 passes of
+    // several legs each, more than a budget of 10 blocks holds, so the
+    // run stops at the cycle's block, line 3, in the VM as in the
+    // dry run; with the default budget it does not.
+    let src = "G98 G00 X60 Z2\nG71 U1 R0.5\nG71 P10 Q30 U0.5 W0.1 F150\nN10 G00 X20\n\
+               N20 G01 Z-30 F100\nN30 X60\nG00 X100 Z50\nM30\n";
+    assert_eq!(diagnostics(src, &budget(10, false)), [("W122", 3)]);
+    assert_eq!(vm_budget_line(src, 10), Some(3));
+    assert_eq!(diagnostics(src, &Options::default()), []);
+}
