@@ -87,6 +87,9 @@ fn compile_time(code: u16) -> bool {
 enum Flow {
     Go,
     End,
+    /// A called program's `M99 P n`: its caller goes on at its first
+    /// block numbered n.
+    Back(u32),
 }
 
 struct DryRun<'a> {
@@ -318,24 +321,49 @@ impl DryRun<'_> {
             next = resume.unwrap_or(next);
             match call {
                 None => {}
-                Some(Call::Ret { p: None }) if index != 0 => return Ok(Flow::Go),
-                Some(call) => {
-                    let Some(target) = target(&call) else {
-                        return Ok(Flow::End);
-                    };
-                    // E4035: M98 while nose-radius compensation is on.
-                    if !target.macro_level {
-                        if let Err(e) = self.run.nc.check_call() {
-                            return Err((prog.unit, error_at(&e, block.span)));
-                        }
-                    }
-                    if let Flow::End = self.call(target, levels)? {
-                        return Ok(Flow::End);
-                    }
-                }
+                Some(Call::Ret { p }) if index != 0 => return Ok(returned(p)),
+                Some(call) => match self.called(&call, levels, (prog.unit, block.span))? {
+                    Flow::Go => {}
+                    Flow::End => return Ok(Flow::End),
+                    Flow::Back(n) => match self.block_numbered(index, n) {
+                        Some(at) => next = at,
+                        // (The run stops with E6002 there.)
+                        None => return Ok(Flow::End),
+                    },
+                },
             }
         }
         Ok(if index == 0 { Flow::End } else { Flow::Go })
+    }
+
+    /// Runs the program a block of a program at `levels` calls, when the
+    /// dry run follows the call; `at` is the calling block's unit and span.
+    fn called(
+        &mut self,
+        call: &Call<'_>,
+        levels: Levels,
+        at: (usize, Span),
+    ) -> Result<Flow, (usize, Diagnostic)> {
+        let Some(target) = target(call) else {
+            return Ok(Flow::End);
+        };
+        // E4035: M98 while nose-radius compensation is on.
+        if !target.macro_level {
+            if let Err(e) = self.run.nc.check_call() {
+                return Err((at.0, error_at(&e, at.1)));
+            }
+        }
+        self.call(target, levels)
+    }
+
+    /// The index in program `index`'s blocks of its first block numbered
+    /// `n`, where `M99 P n` returns to (as the VM finds it).
+    fn block_numbered(&mut self, index: usize, n: u32) -> Option<usize> {
+        let prog = self.programs.get(index)?;
+        let numbers = self.numbers.get_mut(index)?;
+        let unit = &self.units[prog.unit];
+        let numbers = numbers.get_or_insert_with(|| crate::profile::Numbers::of(unit, prog));
+        numbers.first(n).0
     }
 
     /// Runs the called program `t.count` times from a program at `levels`.
@@ -348,12 +376,31 @@ impl DryRun<'_> {
         let Some(inner) = levels.enter(t.macro_level) else {
             return Ok(Flow::End);
         };
+        // (An `M99 P` returns to the caller only from the last pass; the
+        // passes before it run the program again, as in the VM.)
+        let mut flow = Flow::Go;
         for _ in 0..t.count {
-            if let Flow::End = self.program(sub, inner)? {
+            flow = self.program(sub, inner)?;
+            if let Flow::End = flow {
                 return Ok(Flow::End);
             }
         }
-        Ok(Flow::Go)
+        Ok(flow)
+    }
+}
+
+/// How a called program's M99 returns: to the block after the call, to
+/// the block its literal P numbers (`M99 P n`), or, P computed, the dry
+/// run ends.
+fn returned(p: Option<WordValue<'_>>) -> Flow {
+    match p.map(|p| p.literal()) {
+        None => Flow::Go,
+        Some(Some(n)) => match nc::block::round_half_away(n) {
+            n if (0.0..=99_999_999.0).contains(&n) => Flow::Back(n as u32),
+            // (The run stops with an alarm there.)
+            _ => Flow::End,
+        },
+        Some(None) => Flow::End,
     }
 }
 
@@ -367,7 +414,7 @@ struct Target {
 }
 
 /// The target of a call of literal words that the dry run follows (any
-/// other ends it: G66, M99 P, a G65 H operation).
+/// other ends it: G66, a G65 H operation, the main program's M99).
 fn target(call: &Call<'_>) -> Option<Target> {
     match call {
         Call::Sub { p: Some(p), l, .. } => {
@@ -536,7 +583,7 @@ impl ChunkedRun {
             }
             match self.run.exec((prog.unit, unit, block, ws), &lits) {
                 Ok(Flow::Go) => {}
-                Ok(Flow::End) => self.ended = true,
+                Ok(_) => self.ended = true,
                 Err(found) => {
                     self.error = Some(found);
                     self.ended = true;

@@ -154,7 +154,7 @@ impl Numbers {
 
     /// The first block numbered `n`, and whether another block carries
     /// the same number (W103).
-    fn first(&self, n: u32) -> (Option<usize>, bool) {
+    pub(crate) fn first(&self, n: u32) -> (Option<usize>, bool) {
         let places = self.places(n);
         (places.first().copied(), places.len() > 1)
     }

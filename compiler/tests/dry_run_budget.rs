@@ -191,3 +191,41 @@ fn a_cycle_counts_as_its_legs_against_the_block_budget() {
     assert_eq!(vm_budget_line(src, 10), Some(3));
     assert_eq!(diagnostics(src, &Options::default()), []);
 }
+
+#[test]
+fn the_dry_run_returns_where_m99_p_says() {
+    // O0002 feeds to Z-10 and returns to the main program's N100, past
+    // line 3. From X50 Z-10, line 3's arc to X90 Z-5 would span
+    // √(20² + 5²) = 20.6 mm with R1: never run, so no error; the VM runs
+    // the program to its end without an alarm.
+    let skipped = "G98 G00 X50 Z2\nM98 P0002\nG02 X90 Z-5 R1\nN100 G01 X60 F100\nM30\n\
+                   O0002\nG01 Z-10 F100\nM99 P100\n";
+    assert_eq!(diagnostics(skipped, &Options::default()), []);
+    let module = compile("d.nc", skipped.as_bytes(), &Options::default()).module;
+    let mut vm = vm::Vm::new(module.expect("compiles"), Options::default().machine);
+    let mut events: Vec<nc::Event> = Vec::new();
+    assert!(
+        !matches!(vm.run(&mut events), vm::Status::Alarm(_)),
+        "{events:?}"
+    );
+    // The same arc at N100, where the run goes on: E4001 on line 4, found
+    // at compile time (the dry run used to end at the M99 P).
+    let run = "G98 G00 X50 Z2\nM98 P0002\nG00 X50\nN100 G02 X90 Z-5 R1\nM30\n\
+               O0002\nG01 Z-10 F100\nM99 P100\n";
+    assert_eq!(diagnostics(run, &Options::default()), [("E4001", 4)]);
+    // With L the passes before the last run O0002 again: W-10 once
+    // leaves Z-8, where an arc of R10.5 to X90 Z-5 spans √(20² + 3²) =
+    // 20.22 mm ≤ 21; twice leaves Z-18, √(20² + 13²) = 23.85 mm > 21.
+    let passes = |l: u32| {
+        format!(
+            "G98 G00 X50 Z2\nM98 P0002 L{l}\nG00 X50\nN100 G02 X90 Z-5 R10.5\nM30\n\
+             O0002\nG01 W-10 F100\nM99 P100\n"
+        )
+    };
+    assert_eq!(diagnostics(&passes(1), &Options::default()), []);
+    assert_eq!(diagnostics(&passes(2), &Options::default()), [("E4001", 4)]);
+    // No block N200 to return to: the run stops with E6002 there, and
+    // the dry run ends quietly.
+    let missing = run.replace("P100\n", "P200\n");
+    assert_eq!(diagnostics(&missing, &Options::default()), []);
+}
