@@ -146,7 +146,7 @@ mod tests {
     #[test]
     fn unknown_switches_are_refused() {
         let mut p = Policy::default();
-        for bad in ["foo", "no-W100", "W122", "error=E1001", "no-error=", "W"] {
+        for bad in ["foo", "no-W100", "W123", "error=E1001", "no-error=", "W"] {
             let e = p.apply(bad).unwrap_err();
             assert!(e.contains(&format!("'-W{bad}'")), "{e}");
         }
