@@ -8,10 +8,10 @@ use grammar::{Diagnostic, Severity};
 /// W118 (a thread without the room to reach or leave its speed), W119
 /// (an arc of a program with macros that cannot be drawn), W120 (the
 /// dry run stopped, its budget of repeated blocks spent), W121 (calls
-/// that always nest too deep) and W122 (a run longer than the block
-/// budget).
+/// that always nest too deep), W122 (a run longer than the block
+/// budget) and W123 (an `M99 P n` whose caller has no block Nn).
 pub const FIRST: u16 = 101;
-pub const LAST: u16 = 122;
+pub const LAST: u16 = 123;
 
 /// What becomes of a warning.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -146,7 +146,7 @@ mod tests {
     #[test]
     fn unknown_switches_are_refused() {
         let mut p = Policy::default();
-        for bad in ["foo", "no-W100", "W123", "error=E1001", "no-error=", "W"] {
+        for bad in ["foo", "no-W100", "W124", "error=E1001", "no-error=", "W"] {
             let e = p.apply(bad).unwrap_err();
             assert!(e.contains(&format!("'-W{bad}'")), "{e}");
         }

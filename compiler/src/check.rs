@@ -89,7 +89,13 @@ enum Flow {
     End,
     /// A called program's `M99 P n`: its caller goes on at its first
     /// block numbered n.
-    Back(u32),
+    Back(Return),
+}
+
+/// An `M99 P n`: the sequence number, and the M99 block's unit and span.
+struct Return {
+    seq: u32,
+    at: (usize, Span),
 }
 
 struct DryRun<'a> {
@@ -321,14 +327,20 @@ impl DryRun<'_> {
             next = resume.unwrap_or(next);
             match call {
                 None => {}
-                Some(Call::Ret { p }) if index != 0 => return Ok(returned(p)),
+                Some(Call::Ret { p }) if index != 0 => {
+                    return Ok(returned(p, (prog.unit, block.span)))
+                }
                 Some(call) => match self.called(&call, levels, (prog.unit, block.span))? {
                     Flow::Go => {}
                     Flow::End => return Ok(Flow::End),
-                    Flow::Back(n) => match self.block_numbered(index, n) {
+                    Flow::Back(back) => match self.block_numbered(index, back.seq) {
                         Some(at) => next = at,
-                        // (The run stops with E6002 there.)
-                        None => return Ok(Flow::End),
+                        // The run stops with E6002 at the M99.
+                        None => {
+                            let caller = (index != 0).then_some(prog.number);
+                            (self.run.warner).return_missing(back.at, back.seq, caller);
+                            return Ok(Flow::End);
+                        }
                     },
                 },
             }
@@ -389,14 +401,14 @@ impl DryRun<'_> {
     }
 }
 
-/// How a called program's M99 returns: to the block after the call, to
-/// the block its literal P numbers (`M99 P n`), or, P computed, the dry
-/// run ends.
-fn returned(p: Option<WordValue<'_>>) -> Flow {
+/// How a called program's M99 at `at` returns: to the block after the
+/// call, to the block its literal P numbers (`M99 P n`), or, P computed,
+/// the dry run ends.
+fn returned(p: Option<WordValue<'_>>, at: (usize, Span)) -> Flow {
     match p.map(|p| p.literal()) {
         None => Flow::Go,
         Some(Some(n)) => match nc::block::round_half_away(n) {
-            n if (0.0..=99_999_999.0).contains(&n) => Flow::Back(n as u32),
+            n if (0.0..=99_999_999.0).contains(&n) => Flow::Back(Return { seq: n as u32, at }),
             // (The run stops with an alarm there.)
             _ => Flow::End,
         },

@@ -196,6 +196,23 @@ impl Warner {
         }
     }
 
+    /// W123: the `M99 P seq` at `at` returns to a caller (`None`: the
+    /// main program, else its number) that has no block N`seq`, where
+    /// the run stops with E6002.
+    pub fn return_missing(&mut self, at: (usize, Span), seq: u32, caller: Option<u32>) {
+        let caller = caller.map_or("the main program".to_string(), |n| format!("O{n:04}"));
+        let msg = format!(
+            "M99 P{seq} returns to block N{seq} of the calling program, {caller}, which has none: the run stops here with E6002"
+        );
+        let help = format!(
+            "number the block {caller} should go on at N{seq}, or return with M99 alone (to the block after the call)"
+        );
+        if self.told.insert((at.0, "W123", at.1)) {
+            let d = Diagnostic::warning("W123", at.1, msg).with_help(help);
+            self.diags.push((at.0, d));
+        }
+    }
+
     /// The warnings of a block that ran without error.
     pub fn after(
         &mut self,

@@ -224,8 +224,23 @@ fn the_dry_run_returns_where_m99_p_says() {
     };
     assert_eq!(diagnostics(&passes(1), &Options::default()), []);
     assert_eq!(diagnostics(&passes(2), &Options::default()), [("E4001", 4)]);
-    // No block N200 to return to: the run stops with E6002 there, and
-    // the dry run ends quietly.
+    // No block N200 to return to: the run stops with E6002 at the M99,
+    // line 8, and the dry run warns there (W123).
     let missing = run.replace("P100\n", "P200\n");
-    assert_eq!(diagnostics(&missing, &Options::default()), []);
+    let found = messages(&missing);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!((found[0].0, found[0].1), ("W123", 8));
+    assert!(
+        found[0]
+            .2
+            .contains("N200 of the calling program, the main program"),
+        "{found:?}"
+    );
+    let module = compile("d.nc", missing.as_bytes(), &Options::default()).module;
+    let mut vm = vm::Vm::new(module.expect("compiles"), Options::default().machine);
+    let mut events: Vec<nc::Event> = Vec::new();
+    match vm.run(&mut events) {
+        vm::Status::Alarm(a) => assert_eq!((a.code, a.line), (6002, 8)),
+        other => panic!("{other:?}"),
+    }
 }
