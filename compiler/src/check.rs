@@ -103,7 +103,8 @@ struct DryRun<'a> {
     programs: &'a [Program],
     skip: [bool; 9],
     run: Runner,
-    /// Each program's sequence numbers, from its first cycle block on.
+    /// Each program's sequence numbers, made when first needed: by a
+    /// cycle's profile, or an `M99 P` returning to the program.
     numbers: Vec<Option<crate::profile::Numbers>>,
     /// Each program's blocks the run has passed, a bit each (made when
     /// the program first runs).
