@@ -173,7 +173,7 @@ impl Warner {
         let msg = format!(
             "the compile-time dry run stops here: it has run {extra} blocks beyond its first pass over each (loop rounds, repeated calls, cycle passes); what runs after this block is checked only when the program runs"
         );
-        let help = "does the program run for ever? After a G71-G73 cycle the run goes on after its profile's last block, so a profile that stands before its cycle sends the run back to the cycle. An M98 with a large L repeats its subprogram's blocks too";
+        let help = "does the program run for ever? After a G71-G73 cycle the run goes on after its profile's last block, so a profile that stands before its cycle sends the run back to the cycle. An M98 with a large L repeats its subprogram's blocks too, and an M99 P that returns to a block before its call runs the call again";
         if self.told.insert((unit, "W120", span)) {
             let d = Diagnostic::warning("W120", span, msg).with_help(help);
             self.diags.push((unit, d));

@@ -224,6 +224,11 @@ fn the_dry_run_returns_where_m99_p_says() {
     };
     assert_eq!(diagnostics(&passes(1), &Options::default()), []);
     assert_eq!(diagnostics(&passes(2), &Options::default()), [("E4001", 4)]);
+    // An M99 P back to a block before the call loops: each round runs
+    // lines 2, 3, 6 and 7 again, 4 blocks, so 50 000 rounds spend the
+    // 200 000 and the next round's first block, line 2, stops the run.
+    let looping = "G98\nN10 G00 U1\nM98 P2\nM30\nO0002\nG00 W1\nM99 P10\n";
+    assert_eq!(diagnostics(looping, &Options::default()), [("W120", 2)]);
     // No block N200 to return to: the run stops with E6002 at the M99,
     // line 8, and the dry run warns there (W123).
     let missing = run.replace("P100\n", "P200\n");
