@@ -120,10 +120,8 @@ struct Runner {
     /// Blocks the kernel ran, a cycle counted as its legs: what the VM
     /// charges to its block budget at the least.
     executed: u64,
-    /// The machine's block budget (`run.max_blocks`).
-    max_blocks: u64,
-    /// The block past which `executed` first exceeded `max_blocks`, and
-    /// its unit (W122).
+    /// The block past which `executed` first exceeded the machine's
+    /// block budget (`run.max_blocks`), and its unit (W122).
     over: Option<(usize, Span)>,
     /// W118 on the canon events.
     room: RoomCheck,
@@ -137,7 +135,6 @@ impl Runner {
             nc: Nc::new(m.clone()),
             extra: 0,
             executed: 0,
-            max_blocks: m.run.max_blocks,
             over: None,
             room: RoomCheck::new(m),
             warner: Default::default(),
@@ -147,7 +144,8 @@ impl Runner {
     /// The warnings found, after the last block.
     fn warnings(mut self) -> Vec<(usize, Diagnostic)> {
         if let Some((unit, span)) = self.over {
-            (self.warner).over_budget(unit, span, self.max_blocks, self.executed);
+            let max = self.nc.machine.run.max_blocks;
+            (self.warner).over_budget(unit, span, max, self.executed);
         }
         self.room.finish();
         let mut found = self.warner.diags;
@@ -492,7 +490,7 @@ impl Runner {
     /// count first passes the machine's block budget.
     fn count_executed(&mut self, legs: u64, unit: usize, span: Span) {
         self.executed = self.executed.saturating_add(legs.max(1));
-        if self.executed > self.max_blocks && self.over.is_none() {
+        if self.executed > self.nc.machine.run.max_blocks && self.over.is_none() {
             self.over = Some((unit, span));
         }
     }

@@ -155,6 +155,15 @@ impl Warner {
         }
     }
 
+    /// [`warn`](Self::warn) with a help line.
+    fn warn_help(&mut self, at: (usize, Span), code: &'static str, msg: String, help: String) {
+        let (unit, span) = at;
+        if self.told.insert((unit, code, span)) {
+            let d = Diagnostic::warning(code, span, msg).with_help(help);
+            self.diags.push((unit, d));
+        }
+    }
+
     /// W107: the block ran a feed move at F = 0 (the kernel's E7001).
     pub fn zero_feed(&mut self, unit: usize, span: Span) {
         if !std::mem::replace(&mut self.zero_feed_told, true) {
@@ -174,10 +183,7 @@ impl Warner {
             "the compile-time dry run stops here: it has run {extra} blocks beyond its first pass over each (loop rounds, repeated calls, cycle passes); what runs after this block is checked only when the program runs"
         );
         let help = "does the program run for ever? After a G71-G73 cycle the run goes on after its profile's last block, so a profile that stands before its cycle sends the run back to the cycle. An M98 with a large L repeats its subprogram's blocks too, and an M99 P that returns to a block before its call runs the call again";
-        if self.told.insert((unit, "W120", span)) {
-            let d = Diagnostic::warning("W120", span, msg).with_help(help);
-            self.diags.push((unit, d));
-        }
+        self.warn_help((unit, span), "W120", msg, help.into());
     }
 
     /// W122: by the block at `span` the run has used up the machine's
@@ -190,10 +196,7 @@ impl Warner {
         let help = format!(
             "a program this long needs a larger budget: set run.max_blocks in the machine file, or run it with `gbvm run --max-blocks N`, N at least {counted} (the blocks the compile-time dry run counted)"
         );
-        if self.told.insert((unit, "W122", span)) {
-            let d = Diagnostic::warning("W122", span, msg).with_help(help);
-            self.diags.push((unit, d));
-        }
+        self.warn_help((unit, span), "W122", msg, help);
     }
 
     /// W123: the `M99 P seq` at `at` returns to a caller (`None`: the
@@ -207,10 +210,7 @@ impl Warner {
         let help = format!(
             "number the block {caller} should go on at N{seq}, or return with M99 alone (to the block after the call)"
         );
-        if self.told.insert((at.0, "W123", at.1)) {
-            let d = Diagnostic::warning("W123", at.1, msg).with_help(help);
-            self.diags.push((at.0, d));
-        }
+        self.warn_help(at, "W123", msg, help);
     }
 
     /// The warnings of a block that ran without error.

@@ -23,16 +23,23 @@ fn whole_file() -> Options {
     }
 }
 
+/// A rapid to X50 Z2 on line 1, then `n` feed moves on lines 2…n + 1:
+/// move `i` (from 1) to X = i mod 50 + 0.5, Z = -(i mod 70 + 0.25).
+fn moves(n: u32) -> String {
+    let mut src = String::from("G98 G00 X50 Z2\n");
+    for i in 1..=n {
+        src.push_str(&format!("G01 X{}.5 Z-{}.25 F100\n", i % 50, i % 70));
+    }
+    src
+}
+
 #[test]
 fn a_straight_program_is_dry_run_to_its_end() {
     // 250 000 moves, then an arc of R1 from X0.5 Z-30.25 (the last move,
     // i = 250 000: 250 000 mod 50 = 0, mod 70 = 30) to X90 Z-5, whose end
     // is √(44.75² + 25.25²) = 51.38 mm away: E4001 at compile time, on
     // line 250 002, however far past 200 000 blocks it stands.
-    let mut src = String::from("G98 G00 X50 Z2\n");
-    for i in 1..=250_000 {
-        src.push_str(&format!("G01 X{}.5 Z-{}.25 F100\n", i % 50, i % 70));
-    }
+    let mut src = moves(250_000);
     src.push_str("G02 X90 Z-5 R1\nM30\n");
     let expected = [("E4001", 250_002)];
     assert_eq!(diagnostics(&src, &Options::default()), expected);
@@ -140,18 +147,25 @@ fn budget(max: u64, chunked: bool) -> Options {
     opts
 }
 
-/// The line of the alarm E6005 a run on the VM stops with, under a
-/// budget of `max` blocks (`None` when it ends without).
-fn vm_budget_line(src: &str, max: u64) -> Option<u32> {
+/// The (code, line) of the alarm a run on the VM stops with, under a
+/// budget of `max` blocks (`None` when it ends without). The program
+/// must compile.
+fn vm_alarm(src: &str, max: u64) -> Option<(u32, u32)> {
     let opts = budget(max, false);
-    let module = compile("d.nc", src.as_bytes(), &opts).module?;
-    let mut vm = vm::Vm::new(module, opts.machine.clone());
+    let module = compile("d.nc", src.as_bytes(), &opts).module;
+    let mut vm = vm::Vm::new(module.expect("compiles"), opts.machine.clone());
     vm.max_blocks = max;
     let mut events: Vec<nc::Event> = Vec::new();
     match vm.run(&mut events) {
-        vm::Status::Alarm(a) if a.code == 6005 => Some(a.line),
+        vm::Status::Alarm(a) => Some((a.code, a.line)),
         _ => None,
     }
+}
+
+/// The line of the alarm E6005 a run on the VM stops with, under a
+/// budget of `max` blocks (`None` when it ends without).
+fn vm_budget_line(src: &str, max: u64) -> Option<u32> {
+    vm_alarm(src, max).and_then(|(code, line)| (code == 6005).then_some(line))
 }
 
 #[test]
@@ -159,10 +173,7 @@ fn a_run_longer_than_the_block_budget_is_told_where_it_stops() {
     // A rapid on line 1, 1 500 moves on lines 2…1501, M30 on line 1502:
     // 1 502 blocks. Under a budget of 1 000 the 1 001st block, on line
     // 1001, is the first past it; the VM stops there too.
-    let mut src = String::from("G98 G00 X50 Z2\n");
-    for i in 1..=1500 {
-        src.push_str(&format!("G01 X{}.5 Z-{}.25 F100\n", i % 50, i % 70));
-    }
+    let mut src = moves(1500);
     src.push_str("M30\n");
     for chunked in [true, false] {
         assert_eq!(diagnostics(&src, &budget(1000, chunked)), [("W122", 1001)]);
@@ -201,13 +212,8 @@ fn the_dry_run_returns_where_m99_p_says() {
     let skipped = "G98 G00 X50 Z2\nM98 P0002\nG02 X90 Z-5 R1\nN100 G01 X60 F100\nM30\n\
                    O0002\nG01 Z-10 F100\nM99 P100\n";
     assert_eq!(diagnostics(skipped, &Options::default()), []);
-    let module = compile("d.nc", skipped.as_bytes(), &Options::default()).module;
-    let mut vm = vm::Vm::new(module.expect("compiles"), Options::default().machine);
-    let mut events: Vec<nc::Event> = Vec::new();
-    assert!(
-        !matches!(vm.run(&mut events), vm::Status::Alarm(_)),
-        "{events:?}"
-    );
+    let default_budget = Options::default().machine.run.max_blocks;
+    assert_eq!(vm_alarm(skipped, default_budget), None);
     // The same arc at N100, where the run goes on: E4001 on line 4, found
     // at compile time (the dry run used to end at the M99 P).
     let run = "G98 G00 X50 Z2\nM98 P0002\nG00 X50\nN100 G02 X90 Z-5 R1\nM30\n\
@@ -241,11 +247,5 @@ fn the_dry_run_returns_where_m99_p_says() {
             .contains("N200 of the calling program, the main program"),
         "{found:?}"
     );
-    let module = compile("d.nc", missing.as_bytes(), &Options::default()).module;
-    let mut vm = vm::Vm::new(module.expect("compiles"), Options::default().machine);
-    let mut events: Vec<nc::Event> = Vec::new();
-    match vm.run(&mut events) {
-        vm::Status::Alarm(a) => assert_eq!((a.code, a.line), (6002, 8)),
-        other => panic!("{other:?}"),
-    }
+    assert_eq!(vm_alarm(&missing, default_budget), Some((6002, 8)));
 }
