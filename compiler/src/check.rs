@@ -548,7 +548,13 @@ impl Runner {
                 }
                 Err((index, d))
             }
-            Err(_) => Ok(Flow::End),
+            // A run-time fault: every run of this static program stops
+            // there (W124).
+            Err(e) => {
+                let span = crate::profile::error_span(unit, e.at, block.span);
+                self.warner.run_stops((index, span), &e);
+                Ok(Flow::End)
+            }
         }
     }
 }

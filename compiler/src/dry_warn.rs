@@ -213,6 +213,15 @@ impl Warner {
         self.warn_help(at, "W123", msg, help);
     }
 
+    /// W124: the kernel faulted at `at`, where the run stops.
+    pub fn run_stops(&mut self, at: (usize, Span), e: &nc::NcError) {
+        let (unit, span) = at;
+        if self.told.insert((unit, "W124", span)) {
+            let d = crate::predict::warning(u32::from(e.code), &e.message, span);
+            self.diags.push((unit, d));
+        }
+    }
+
     /// The warnings of a block that ran without error.
     pub fn after(
         &mut self,

@@ -23,6 +23,7 @@ pub mod known_faults;
 pub mod link;
 pub mod lint;
 pub mod modal;
+pub mod predict;
 pub mod profile;
 pub mod recursion;
 pub mod resolve;
@@ -180,6 +181,11 @@ fn lower_and_check(
             diags.extend(known_faults::arcs(ir, &facts, &opts.machine));
         }
         let module = verified(module, Vec::new(), diags);
+        // Nor is its run's alarm an error; but where the run is known,
+        // the compiler makes it and says where it stops (W124).
+        if let (Some(m), false) = (&module, has_errors(diags)) {
+            diags.extend(predict::alarm(m, &files, &opts.machine, diags));
+        }
         return (files, module, ir.filter(|_| keep_ir));
     }
     let units = &*units;

@@ -153,9 +153,10 @@ fn a_bad_write_value_is_a_run_time_alarm() {
 #[test]
 fn tool_life_end_to_end() {
     // Group 1, life 2 uses: T0101 twice, then T0202; T0188 cancels the
-    // offset of the current tool (2). Group 3 was never set: E7005.
+    // offset of the current tool (2). Group 3 was never set: E7005 on
+    // line 10, which the dry run finds too (W124).
     let src = "G10 L3\nP1 L2 Q1\nT0101\nT0202\nG11\nT0199\nT0199\nT0199\nT0188\nT0399\nM30\n";
-    assert_eq!(diags(src), []);
+    assert_eq!(diags(src), [("W124", 10)]);
     let (canon, status, _) = run(src);
     assert_eq!(
         canon,

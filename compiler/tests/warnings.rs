@@ -192,9 +192,12 @@ fn w121_calls_that_always_nest_too_deep() {
     assert_eq!(warnings(&five), [("W121", 13)]);
     assert_eq!(alarm_of(&five), Some((6004, 13)));
     assert_eq!(warnings(&nested("G65 P", 4, "")), []);
-    // Behind a condition the call is not reached on every run: none.
+    // Behind a condition W121 does not take the call as made on every
+    // run. This run is known, though: #1 is vacant, which is not 0, so
+    // no GOTO; the fifth call, on line 15, stops it (W124).
     let guarded = nested("M98 P", 5, "IF[#1EQ0]GOTO9\nN9\n");
-    assert_eq!(warnings(&guarded), []);
+    assert_eq!(warnings(&guarded), [("W124", 15)]);
+    assert_eq!(alarm_of(&guarded), Some((6004, 15)));
     // Four of each kind, eight calls in all: the limit, not past it.
     let mixed = "M98 P1\nM30\nO0001\nM98 P2\nM99\nO0002\nM98 P3\nM99\nO0003\nM98 P4\nM99\n\
                  O0004\nG65 P5\nM99\nO0005\nG65 P6\nM99\nO0006\nG65 P7\nM99\nO0007\nG65 P8\nM99\n\

@@ -41,7 +41,8 @@ pub fn front_end(data: &[u8]) {
 /// same end with the kernel's short path for plain moves as without it
 /// (`nc::exec::plain`), with its loops compiled by the JIT, as the module
 /// compiled without typed moves (pass
-/// `resolve`) and as the module compiled without folding (-O0); a plain
+/// `resolve`) and as the module compiled without folding (-O0), and
+/// where W124 tells the alarm its run stops with, it does; a plain
 /// program compiled a few lines at a time
 /// (`compiler::stream`) gives the same module and diagnostics as compiled
 /// whole.
@@ -61,6 +62,7 @@ pub fn compiler(data: &[u8]) {
         );
     }
     if let Some(module) = c.module {
+        prediction_holds(&c.diags, &c.files, &module);
         let bytes = module.to_bytes();
         let back = isa::Module::from_bytes(&bytes);
         assert!(back.is_ok(), "a compiled module must verify: {back:?}");
@@ -97,6 +99,41 @@ pub fn compiler(data: &[u8]) {
             }
         }
     }
+}
+
+/// W124 tells the alarm a run stops with: a run with #500–#999 set (as
+/// `--vars` would) and its loops compiled by the JIT stops there too, with
+/// that alarm.
+fn prediction_holds(
+    diags: &[(usize, grammar::Diagnostic)],
+    files: &[grammar::SourceFile],
+    module: &isa::Module,
+) {
+    let Some((file, d)) = diags.iter().find(|(_, d)| d.code == "W124") else {
+        return;
+    };
+    let mut vm = Vm::new(module.clone(), Machine::reference());
+    vm.persistent_mut().fill(7.0);
+    if let Some(t) = jit::Jit::new(jit::Mode::Always) {
+        vm.set_tier(Box::new(t));
+    }
+    let Status::Alarm(a) = vm.run(&mut Discard) else {
+        panic!(
+            "W124 told an alarm the run does not stop with: {}",
+            d.message
+        );
+    };
+    let told = compiler::predict::warning(a.code, &a.message, d.span);
+    assert_eq!(told.message, d.message, "W124 told another alarm");
+    let line = files[*file].line_col(d.span.start).0;
+    assert_eq!(a.line as usize, line, "W124 told another line");
+}
+
+/// A sink for a run whose end alone is wanted.
+struct Discard;
+
+impl nc::Sink for Discard {
+    fn emit(&mut self, _: nc::Event) {}
 }
 
 /// The `.gbc` loader and verifier: bytes → an error or a module that runs

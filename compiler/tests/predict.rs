@@ -1,0 +1,218 @@
+//! W124: the alarm a run stops with, told at compile time. A static
+//! program's dry run gives it; a program with macros is run in the VM,
+//! unless it reads #500–#999 or a variable by a computed number. Every
+//! line and code here is worked out by hand and cross-checked against a
+//! run on the VM.
+
+use compiler::{compile, Options};
+
+/// (code, line, message) of every diagnostic.
+fn diagnostics(src: &str, opts: &Options) -> Vec<(&'static str, usize, String)> {
+    let c = compile("p.nc", src.as_bytes(), opts);
+    c.diags
+        .iter()
+        .map(|(f, d)| {
+            (
+                d.code,
+                c.files[*f].line_col(d.span.start).0,
+                d.message.clone(),
+            )
+        })
+        .collect()
+}
+
+/// (code, line) of every diagnostic.
+fn codes(src: &str, opts: &Options) -> Vec<(&'static str, usize)> {
+    diagnostics(src, opts)
+        .into_iter()
+        .map(|(code, line, _)| (code, line))
+        .collect()
+}
+
+/// The alarm (canon code, line) a run on the VM stops with, #500 preset
+/// to `v500` (vacant when `None`, as a run without `--vars` has it).
+fn vm_alarm(src: &str, opts: &Options, v500: Option<f64>) -> Option<(u32, u32)> {
+    let module = compile("p.nc", src.as_bytes(), opts).module;
+    let mut vm = vm::Vm::new(module.expect("compiles"), opts.machine.clone());
+    if let Some(v) = v500 {
+        vm.persistent_mut()[0] = v;
+    }
+    let mut events: Vec<nc::Event> = Vec::new();
+    match vm.run(&mut events) {
+        vm::Status::Alarm(a) => Some((a.code, a.line)),
+        _ => None,
+    }
+}
+
+/// The W124 diagnostics as (line, message).
+fn w124(src: &str, opts: &Options) -> Vec<(usize, String)> {
+    diagnostics(src, opts)
+        .into_iter()
+        .filter(|(code, ..)| *code == "W124")
+        .map(|(_, line, msg)| (line, msg))
+        .collect()
+}
+
+#[test]
+fn a_loop_that_divides_by_zero_is_told_at_its_block() {
+    // #1 = 3, 2, 1 move to X20, X30, X60; in the fourth round #1 = 0 and
+    // 60/#1 stops the run on line 4.
+    let src = "G98 G00 X50 Z2\n#1=3\nWHILE[#1GE0]DO1\nG01 X[60/#1] Z-10 F100\n\
+               #1=#1-1\nEND1\nM30\n";
+    let opts = Options::default();
+    assert_eq!(
+        w124(src, &opts),
+        [(
+            4,
+            "the run stops here with E5001: division by zero".to_string()
+        )]
+    );
+    assert_eq!(vm_alarm(src, &opts, None), Some((5001, 4)));
+    // Stopping at #1 = 1, the loop never divides by zero.
+    let fixed = src.replace("GE0", "GE1");
+    assert_eq!(codes(&fixed, &opts), []);
+    assert_eq!(vm_alarm(&fixed, &opts, None), None);
+}
+
+#[test]
+fn an_arc_too_small_for_its_chord_in_a_loop_is_told() {
+    // Each round draws an arc from r10 Z0 to r20 Z-10 (U20 is 10 mm of
+    // radius): its chord is √(10² + 10²) = 14.14 mm. R12 and R8 span it
+    // (24 and 16 mm); R4 (8 mm) does not: E4001 on line 4, third round.
+    let src = "G98 G00 X20 Z0\n#1=12\nWHILE[#1GT0]DO1\nG02 U20 W-10 R#1 F100\n\
+               G00 U-20 W10\n#1=#1-4\nEND1\nM30\n";
+    let opts = Options::default();
+    let found = w124(src, &opts);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, 4);
+    assert!(
+        found[0].1.starts_with("the run stops here with E4001: "),
+        "{found:?}"
+    );
+    assert_eq!(vm_alarm(src, &opts, None), Some((4001, 4)));
+}
+
+#[test]
+fn a_program_alarm_is_told_with_its_number_and_text() {
+    // #1 = 60 > 50: `#3000 = 5` stops the run on line 2 with alarm 3005.
+    let src = "#1=60\nIF[#1GT50]THEN#3000=5(DIAMETER TOO BIG)\nG00 X#1 Z2\nM30\n";
+    let opts = Options::default();
+    assert_eq!(
+        w124(src, &opts),
+        [(
+            2,
+            "the run stops here with alarm 3005: DIAMETER TOO BIG".to_string()
+        )]
+    );
+    assert_eq!(vm_alarm(src, &opts, None), Some((3005, 2)));
+}
+
+#[test]
+fn a_program_that_reads_persistent_variables_is_not_run() {
+    // Without --vars #500 is vacant and 60/#500 divides by zero on line
+    // 2; with #500 = 2 kept from an earlier run it does not. The compiler
+    // cannot know which, so it says nothing.
+    let src = "G98 G00 X50 Z2\n#1=60/#500\nG01 X#1 Z-5 F100\nM30\n";
+    let opts = Options::default();
+    assert_eq!(codes(src, &opts), []);
+    assert_eq!(vm_alarm(src, &opts, None), Some((5001, 2)));
+    assert_eq!(vm_alarm(src, &opts, Some(2.0)), None);
+}
+
+#[test]
+fn a_program_that_reads_a_variable_by_a_computed_number_is_not_run() {
+    // #[#1] is #500 here: the same doubt.
+    let src = "G98 G00 X50 Z2\n#1=500\n#2=60/#[#1]\nG01 X#2 Z-5 F100\nM30\n";
+    let opts = Options::default();
+    assert_eq!(codes(src, &opts), []);
+    assert_eq!(vm_alarm(src, &opts, None), Some((5001, 3)));
+}
+
+/// A loop of `rounds` rounds of a move, then a division by zero on
+/// line 7.
+fn long_loop(rounds: u32) -> String {
+    format!(
+        "G98 G00 X50 Z2\n#1=0\nWHILE[#1LT{rounds}]DO1\nG01 W-0.001 F100\n#1=#1+1\nEND1\n\
+         #2=1/[#1-#1]\nM30\n"
+    )
+}
+
+#[test]
+fn a_run_is_made_for_a_bounded_number_of_instructions() {
+    // 1 000 rounds run well inside 200 000 instructions: told on line 7.
+    let opts = Options::default();
+    let short = long_loop(1000);
+    assert_eq!(codes(&short, &opts), [("W124", 7)]);
+    assert_eq!(vm_alarm(&short, &opts, None), Some((5001, 7)));
+    // 100 000 rounds take more than 200 000 instructions (each round
+    // runs its move, its assignment and its test): the run stops short
+    // of line 7, and nothing is told, though the VM gets there.
+    let long = long_loop(100_000);
+    assert_eq!(codes(&long, &opts), []);
+    assert_eq!(vm_alarm(&long, &opts, None), Some((5001, 7)));
+}
+
+#[test]
+fn the_run_is_the_one_the_machine_file_makes() {
+    // Host input 0 (#1000) is what the machine file says: off on the
+    // reference machine, where line 1 raises alarm 3001; on, no alarm.
+    let src = "IF[#1000EQ0]THEN#3000=1(DOOR OPEN)\nG00 X50 Z2\nM30\n";
+    let reference = Options::default();
+    assert_eq!(codes(src, &reference), [("W124", 1)]);
+    assert_eq!(vm_alarm(src, &reference, None), Some((3001, 1)));
+    let mut door_shut = Options::default();
+    door_shut.machine.host.inputs = 1;
+    assert_eq!(codes(src, &door_shut), []);
+    assert_eq!(vm_alarm(src, &door_shut, None), None);
+    // Block skip: the reference machine has every switch on, so the `/`
+    // block is skipped; with the switches off it runs and alarms.
+    let src = "#1=1\n/#3000=2(SKIP OFF)\nG00 X50 Z2\nM30\n";
+    assert_eq!(codes(src, &reference), []);
+    assert_eq!(vm_alarm(src, &reference, None), None);
+    let mut switches_off = Options::default();
+    switches_off.machine.operator.block_skip = [false; 9];
+    assert_eq!(codes(src, &switches_off), [("W124", 2)]);
+    assert_eq!(vm_alarm(src, &switches_off, None), Some((3002, 2)));
+}
+
+#[test]
+fn a_static_program_s_run_time_fault_is_told_by_its_dry_run() {
+    // G22 forbids X-100…100, Z-100…100 (machine coordinates, the
+    // reference machine's zero): the rapid to X20 Z2 on line 3 ends in it.
+    let src = "O0001\nG22 X100 Z100 I-100 K-100\nG00 X20 Z2\nG00 X300\nM30\n";
+    let opts = Options::default();
+    let found = w124(src, &opts);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, 3);
+    assert!(
+        found[0].1.starts_with("the run stops here with E7002: "),
+        "{found:?}"
+    );
+    assert_eq!(vm_alarm(src, &opts, None), Some((7002, 3)));
+}
+
+#[test]
+fn an_alarm_another_warning_names_is_not_told_twice() {
+    // Folding proves 1/0 faults whenever line 2 runs (W116); the run
+    // stops there, which W116 already says.
+    let src = "G98 G00 X50 Z2\n#1=1/0\nM30\n";
+    let opts = Options::default();
+    assert_eq!(codes(src, &opts), [("W116", 2)]);
+    assert_eq!(vm_alarm(src, &opts, None), Some((5001, 2)));
+}
+
+#[test]
+fn a_cycle_longer_than_the_prediction_is_not_an_alarm() {
+    // Passes of 0.001 mm from r100 to r0: 100 000 passes of 4 moves,
+    // 400 000 legs, past the 200 000 or so blocks the prediction may
+    // charge. The machine's budget (2 000 000) holds them: no warning,
+    // though a run under the prediction's budget would stop with E6005.
+    let src = "G98 G00 X200 Z2\n#1=0.001\nG71 U#1 R0.5\nG71 P10 Q20 U0 W0 F100\n\
+               N10 G00 X0\nG01 Z-20\nN20 X200\nM30\n";
+    let opts = Options::default();
+    assert_eq!(codes(src, &opts), []);
+    assert_eq!(vm_alarm(src, &opts, None), None);
+    let mut small = Options::default();
+    small.machine.run.max_blocks = 200_100;
+    assert_eq!(vm_alarm(src, &small, None), Some((6005, 4)));
+}
