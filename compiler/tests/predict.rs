@@ -179,16 +179,24 @@ fn the_run_is_the_one_the_machine_file_makes() {
 fn a_static_program_s_run_time_fault_is_told_by_its_dry_run() {
     // G22 forbids X-100…100, Z-100…100 (machine coordinates, the
     // reference machine's zero): the rapid to X20 Z2 on line 3 ends in it.
+    // Compiled whole, and a few bytes at a time (`compiler::stream`).
     let src = "O0001\nG22 X100 Z100 I-100 K-100\nG00 X20 Z2\nG00 X300\nM30\n";
-    let opts = Options::default();
-    let found = w124(src, &opts);
-    assert_eq!(found.len(), 1, "{found:?}");
-    assert_eq!(found[0].0, 3);
-    assert!(
-        found[0].1.starts_with("the run stops here with E7002: "),
-        "{found:?}"
-    );
-    assert_eq!(vm_alarm(src, &opts, None), Some((7002, 3)));
+    for chunk_bytes in [usize::MAX, 16] {
+        let opts = Options {
+            chunk_bytes,
+            ..Options::default()
+        };
+        let chunked = compiler::stream::compile("p.nc", &src.as_bytes().into(), &opts);
+        assert_eq!(chunked.is_some(), chunk_bytes == 16);
+        let found = w124(src, &opts);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].0, 3);
+        assert!(
+            found[0].1.starts_with("the run stops here with E7002: "),
+            "{found:?}"
+        );
+        assert_eq!(vm_alarm(src, &opts, None), Some((7002, 3)));
+    }
 }
 
 #[test]
