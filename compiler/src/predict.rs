@@ -51,7 +51,9 @@ pub fn alarm(
     // instruction may run a cycle of many legs); E6005 is the run's own
     // only under the machine's budget.
     vm.max_blocks = budget.min(m.run.max_blocks);
-    let alarm = match vm.run_for(budget, &mut Discard) {
+    // (One step: it need not end at each block.)
+    vm.stop_at_blocks = false;
+    let alarm = match vm.step(budget, &mut Discard) {
         vm::Status::Alarm(a) if a.code != BUDGET || vm.max_blocks == m.run.max_blocks => a,
         _ => return None,
     };

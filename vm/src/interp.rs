@@ -392,16 +392,6 @@ impl Vm {
         status
     }
 
-    /// Runs at most `budget` instructions without stopping between
-    /// blocks: `Done`, `Alarm`, or `OutOfBudget` when the budget ran out
-    /// first (`Sync` only with [`Vm::sync_positions`] set).
-    pub fn run_for(&mut self, budget: u64, sink: &mut dyn Sink) -> Status {
-        let stop_at_blocks = core::mem::replace(&mut self.stop_at_blocks, false);
-        let status = self.step(budget, sink);
-        self.stop_at_blocks = stop_at_blocks;
-        status
-    }
-
     fn alarm(&mut self, pc: u32, e: Fault, sink: &mut dyn Sink) -> Alarm {
         // What was programmed before the faulty block still prints; a
         // second fault while flushing changes nothing about the first.
