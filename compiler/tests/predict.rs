@@ -224,3 +224,39 @@ fn a_cycle_longer_than_the_prediction_is_not_an_alarm() {
     small.machine.run.max_blocks = 200_100;
     assert_eq!(vm_alarm(src, &small, None), Some((6005, 4)));
 }
+
+#[test]
+fn an_alarm_in_a_library_program_is_told_in_its_file() {
+    // O9010 (found with -I) divides 60 by its A; the main program calls
+    // it with A = 2, 1, 0: the third call stops the run on O9010's line 2.
+    let dir = std::env::temp_dir().join(format!("gbc-predict-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a scratch folder");
+    let library = "O9010\n#2=60/#1\nG01 X#2 Z-5 F100\nM99\n";
+    std::fs::write(dir.join("O9010.nc"), library).expect("the library program");
+    let opts = Options {
+        include: vec![dir.clone()],
+        ..Options::default()
+    };
+    let src = "G98 G00 X50 Z2\n#5=2\nWHILE[#5GE0]DO1\nG65 P9010 A#5\n#5=#5-1\nEND1\nM30\n";
+    let c = compile("p.nc", src.as_bytes(), &opts);
+    let told: Vec<(&str, usize, &str)> = c
+        .diags
+        .iter()
+        .map(|(f, d)| {
+            let file = &c.files[*f];
+            (file.name.as_str(), file.line_col(d.span.start).0, d.code)
+        })
+        .collect();
+    let library_name = dir.join("O9010.nc").display().to_string();
+    assert_eq!(told, [(library_name.as_str(), 2, "W124")]);
+    let mut vm = vm::Vm::new(c.module.expect("compiles"), opts.machine.clone());
+    let mut events: Vec<nc::Event> = Vec::new();
+    let vm::Status::Alarm(a) = vm.run(&mut events) else {
+        panic!("the run ends without an alarm");
+    };
+    assert_eq!(
+        (a.code, a.file.as_str(), a.line),
+        (5001, library_name.as_str(), 2)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
