@@ -95,6 +95,12 @@ impl Policy {
         Ok(())
     }
 
+    /// Whether warning `code` is reported at all (not `-Wno-CODE`, not
+    /// `-w`): a check whose only finding is that warning need not run.
+    pub fn reports(&self, code: &str) -> bool {
+        !self.silent && index(code).is_none_or(|i| self.enabled[i])
+    }
+
     /// What becomes of `d`: errors stay errors; a warning is judged by its
     /// code (an unknown warning code follows `-w` and `-Werror` only).
     pub fn judge(&self, d: &Diagnostic) -> Verdict {
@@ -121,6 +127,19 @@ mod tests {
 
     fn w(code: &'static str) -> Diagnostic {
         Diagnostic::warning(code, Span::default(), "x")
+    }
+
+    #[test]
+    fn a_warning_turned_off_is_not_reported() {
+        let mut p = Policy::default();
+        assert!(p.reports("W124"));
+        p.apply("no-W124").unwrap();
+        assert!(!p.reports("W124"));
+        assert!(p.reports("W113"));
+        p.apply("W124").unwrap();
+        assert!(p.reports("W124"));
+        p.silence();
+        assert!(!p.reports("W113"));
     }
 
     #[test]

@@ -53,6 +53,9 @@ pub struct Options {
     /// Pass `resolve`: plain moves become typed moves (off only to
     /// compare the two forms in tests).
     pub resolve: bool,
+    /// Run a program with macros in the VM for W124 (`predict`); off
+    /// when the warning would not be reported (`-Wno-W124`, `-w`).
+    pub predict: bool,
 }
 
 impl Default for Options {
@@ -64,6 +67,7 @@ impl Default for Options {
             defines: Vec::new(),
             chunk_bytes: CHUNK_BYTES,
             resolve: true,
+            predict: true,
         }
     }
 }
@@ -183,7 +187,7 @@ fn lower_and_check(
         let module = verified(module, Vec::new(), diags);
         // Nor is its run's alarm an error; but where the run is known,
         // the compiler makes it and says where it stops (W124).
-        if let (Some(m), false) = (&module, has_errors(diags)) {
+        if let (Some(m), false, true) = (&module, has_errors(diags), opts.predict) {
             diags.extend(predict::alarm(m, &files, &opts.machine, diags));
         }
         return (files, module, ir.filter(|_| keep_ir));

@@ -6,7 +6,8 @@
 //! (dialect.md §0). Yet a `gbvm run` depends on nothing but the module
 //! and the machine file: the host's inputs, the clock, the offsets and
 //! the block-skip switches all start as the machine file sets them. Only
-//! #500–#999 come from outside (`--vars` keeps them between runs). So a
+//! #500–#999 come from outside (`--vars`, or the machine file's
+//! `macro.persistent_file`, keeps them between runs). So a
 //! program that reads none of those runs the same way every time it is
 //! run as the machine file has it, and the compiler can run it: in the VM
 //! itself, for a bounded number of instructions. Where that run stops

@@ -75,6 +75,19 @@ fn a_loop_that_divides_by_zero_is_told_at_its_block() {
 }
 
 #[test]
+fn the_run_is_not_made_when_its_warning_is_off() {
+    // (`gbcc -Wno-W124` and `-w` compile with `predict` off.)
+    let src = "G98 G00 X50 Z2\n#1=3\nWHILE[#1GE0]DO1\nG01 X[60/#1] Z-10 F100\n\
+               #1=#1-1\nEND1\nM30\n";
+    let off = Options {
+        predict: false,
+        ..Options::default()
+    };
+    assert_eq!(codes(src, &off), []);
+    assert_eq!(codes(src, &Options::default()), [("W124", 4)]);
+}
+
+#[test]
 fn an_arc_too_small_for_its_chord_in_a_loop_is_told() {
     // Each round draws an arc from r10 Z0 to r20 Z-10 (U20 is 10 mm of
     // radius): its chord is √(10² + 10²) = 14.14 mm. R12 and R8 span it

@@ -229,6 +229,7 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
     if args.no_warnings {
         policy.silence();
     }
+    let predict = policy.reports("W124");
     let optimize = match args.opt.as_str() {
         "0" => false,
         "1" | "2" | "s" => true,
@@ -274,6 +275,8 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
         include: args.include.clone(),
         optimize,
         defines,
+        // (W124's run at compile time is skipped when nobody will see it.)
+        predict,
         ..Options::default()
     };
     Ok((
