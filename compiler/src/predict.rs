@@ -16,7 +16,7 @@
 
 use grammar::{Diagnostic, SourceFile, Span};
 use isa::{Instr, Module};
-use nc::{Event, Machine, Sink};
+use nc::{Discard, Machine};
 
 /// Instructions a prediction may run beyond one for each instruction of
 /// the module (a straight program is run whole, as the dry run does):
@@ -109,12 +109,4 @@ fn block_span(file: &SourceFile, line: u32, col: u32) -> Option<Span> {
         .position(|&b| b == b'\n' || b == b'\r')
         .unwrap_or(text.len());
     Some(Span::new(start, start + len))
-}
-
-/// The prediction's sink: the run's events are not wanted, only how it
-/// ends.
-struct Discard;
-
-impl Sink for Discard {
-    fn emit(&mut self, _: Event) {}
 }

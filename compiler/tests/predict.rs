@@ -6,28 +6,8 @@
 
 use compiler::{compile, Options};
 
-/// (code, line, message) of every diagnostic.
-fn diagnostics(src: &str, opts: &Options) -> Vec<(&'static str, usize, String)> {
-    let c = compile("p.nc", src.as_bytes(), opts);
-    c.diags
-        .iter()
-        .map(|(f, d)| {
-            (
-                d.code,
-                c.files[*f].line_col(d.span.start).0,
-                d.message.clone(),
-            )
-        })
-        .collect()
-}
-
-/// (code, line) of every diagnostic.
-fn codes(src: &str, opts: &Options) -> Vec<(&'static str, usize)> {
-    diagnostics(src, opts)
-        .into_iter()
-        .map(|(code, line, _)| (code, line))
-        .collect()
-}
+mod common;
+use common::{codes, messages};
 
 /// The alarm (canon code, line) a run on the VM stops with, #500 preset
 /// to `v500` (vacant when `None`, as a run without `--vars` has it).
@@ -46,11 +26,22 @@ fn vm_alarm(src: &str, opts: &Options, v500: Option<f64>) -> Option<(u32, u32)> 
 
 /// The W124 diagnostics as (line, message).
 fn w124(src: &str, opts: &Options) -> Vec<(usize, String)> {
-    diagnostics(src, opts)
+    messages(src, opts)
         .into_iter()
         .filter(|(code, ..)| *code == "W124")
         .map(|(_, line, msg)| (line, msg))
         .collect()
+}
+
+/// One W124, on `line`, for the alarm E`code` (its message the kernel's),
+/// and the VM's run stops there with it.
+fn told_and_run(src: &str, opts: &Options, code: u32, line: usize) {
+    let found = w124(src, opts);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, line);
+    let head = format!("the run stops here with E{code}: ");
+    assert!(found[0].1.starts_with(&head), "{found:?}");
+    assert_eq!(vm_alarm(src, opts, None), Some((code, line as u32)));
 }
 
 #[test]
@@ -95,14 +86,7 @@ fn an_arc_too_small_for_its_chord_in_a_loop_is_told() {
     let src = "G98 G00 X20 Z0\n#1=12\nWHILE[#1GT0]DO1\nG02 U20 W-10 R#1 F100\n\
                G00 U-20 W10\n#1=#1-4\nEND1\nM30\n";
     let opts = Options::default();
-    let found = w124(src, &opts);
-    assert_eq!(found.len(), 1, "{found:?}");
-    assert_eq!(found[0].0, 4);
-    assert!(
-        found[0].1.starts_with("the run stops here with E4001: "),
-        "{found:?}"
-    );
-    assert_eq!(vm_alarm(src, &opts, None), Some((4001, 4)));
+    told_and_run(src, &opts, 4001, 4);
 }
 
 #[test]
@@ -201,14 +185,7 @@ fn a_static_program_s_run_time_fault_is_told_by_its_dry_run() {
         };
         let chunked = compiler::stream::compile("p.nc", &src.as_bytes().into(), &opts);
         assert_eq!(chunked.is_some(), chunk_bytes == 16);
-        let found = w124(src, &opts);
-        assert_eq!(found.len(), 1, "{found:?}");
-        assert_eq!(found[0].0, 3);
-        assert!(
-            found[0].1.starts_with("the run stops here with E7002: "),
-            "{found:?}"
-        );
-        assert_eq!(vm_alarm(src, &opts, None), Some((7002, 3)));
+        told_and_run(src, &opts, 7002, 3);
     }
 }
 

@@ -117,7 +117,7 @@ fn prediction_holds(
     if let Some(t) = jit::Jit::new(jit::Mode::Always) {
         vm.set_tier(Box::new(t));
     }
-    let Status::Alarm(a) = vm.run(&mut Discard) else {
+    let Status::Alarm(a) = vm.run(&mut nc::Discard) else {
         panic!(
             "W124 told an alarm the run does not stop with: {}",
             d.message
@@ -127,13 +127,6 @@ fn prediction_holds(
     assert_eq!(told.message, d.message, "W124 told another alarm");
     let line = files[*file].line_col(d.span.start).0;
     assert_eq!(a.line as usize, line, "W124 told another line");
-}
-
-/// A sink for a run whose end alone is wanted.
-struct Discard;
-
-impl nc::Sink for Discard {
-    fn emit(&mut self, _: nc::Event) {}
 }
 
 /// The `.gbc` loader and verifier: bytes → an error or a module that runs

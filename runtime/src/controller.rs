@@ -37,7 +37,7 @@ use crate::runahead::RunAhead;
 use crate::split::{Interpreter, Realtime};
 use alloc::format;
 use alloc::string::String;
-use nc::{Event, Machine, Sink};
+use nc::{Machine, Sink};
 use vm::Vm;
 
 /// Why a module cannot be run.
@@ -337,7 +337,7 @@ impl<P: Plc> Controller<P> {
 
     /// Runs the VM ahead of the motion (not real-time: it allocates).
     pub fn run_ahead(&mut self) {
-        self.run_ahead_tap(&mut Nothing);
+        self.run_ahead_tap(&mut nc::Discard);
     }
 
     /// As [`Controller::run_ahead`], handing every canon event the VM
@@ -346,13 +346,6 @@ impl<P: Plc> Controller<P> {
         self.ra.fill(&mut self.engine, tap);
         self.engine.replan();
     }
-}
-
-/// A sink that drops the events.
-pub(crate) struct Nothing;
-
-impl Sink for Nothing {
-    fn emit(&mut self, _: Event) {}
 }
 
 /// An alarm of the engine's own (not the VM's), placed by the tag of the

@@ -25,7 +25,7 @@
 
 use crate::command::{Command, Tag};
 use crate::config::RapidOverride;
-use crate::controller::{engine_alarm, AlarmInfo, Nothing};
+use crate::controller::{engine_alarm, AlarmInfo};
 use crate::interpolate::{Engine, RunState, SetPoint, SkipReport};
 use crate::math::V2;
 use crate::planner::{Full, Pushed};
@@ -248,7 +248,7 @@ impl Interpreter {
     /// Runs the VM until the look-ahead is queued, the ring is full, or
     /// the program must wait for the motion.
     pub fn run_ahead(&mut self) {
-        self.run_ahead_tap(&mut Nothing);
+        self.run_ahead_tap(&mut nc::Discard);
     }
 
     /// As [`Interpreter::run_ahead`], handing every canon event to `tap`.

@@ -548,11 +548,7 @@ fn run_timed(
     let mut ticks = 0u64;
     let mut timed_out = None;
     {
-        struct Quiet;
-        impl Sink for Quiet {
-            fn emit(&mut self, _: Event) {}
-        }
-        let mut quiet = Quiet;
+        let mut quiet = nc::Discard;
         let mut warned = Vec::new();
         let name = |i: u16| files.get(usize::from(i)).map_or("", String::as_str);
         ctl.cycle_start();

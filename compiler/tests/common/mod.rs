@@ -8,6 +8,26 @@ use nc::Machine;
 use std::path::Path;
 use vm::{Status, Vm};
 
+/// (code, line, message) of every diagnostic of `src`.
+pub fn messages(src: &str, opts: &compiler::Options) -> Vec<(&'static str, usize, String)> {
+    let c = compiler::compile("p.nc", src.as_bytes(), opts);
+    c.diags
+        .iter()
+        .map(|(f, d)| {
+            let line = c.files[*f].line_col(d.span.start).0;
+            (d.code, line, d.message.clone())
+        })
+        .collect()
+}
+
+/// (code, line) of every diagnostic of `src`.
+pub fn codes(src: &str, opts: &compiler::Options) -> Vec<(&'static str, usize)> {
+    messages(src, opts)
+        .into_iter()
+        .map(|(code, line, _)| (code, line))
+        .collect()
+}
+
 /// Every program of the conformance suite, the public corpus and the
 /// examples, with its name and the machine it is for.
 pub fn suite() -> Vec<(String, Vec<u8>, Machine)> {

@@ -46,6 +46,13 @@ impl Sink for Vec<Event> {
     }
 }
 
+/// A sink that drops the events: for a run whose end alone is wanted.
+pub struct Discard;
+
+impl Sink for Discard {
+    fn emit(&mut self, _: Event) {}
+}
+
 /// What a block did, for the caller's control flow.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Outcome {
