@@ -64,6 +64,37 @@ fn plain_literals(ws: &[grammar::ast::Word]) -> SmallVec<[Word; 8]> {
         .collect()
 }
 
+/// The NC words of a block as the modal warnings read them in a run of a
+/// program with macros (`predict`), where the block's computed values are
+/// gone: its literal words, and its computed ones with a NaN value, so
+/// that a word written counts as given. (A computed G or M is left out:
+/// its value decides what the warnings ask of it.)
+pub(crate) fn watched_words(ws: &[grammar::ast::Word]) -> SmallVec<[Word; 8]> {
+    // (Most blocks call nothing: every word is an NC word.)
+    if !words::may_call(ws) {
+        let each = |w: &grammar::ast::Word| watched(words::addr_code(w.addr), words::value_of(w));
+        return ws.iter().filter_map(each).collect();
+    }
+    match words::classify(ws) {
+        Ok(split) => split
+            .nc
+            .iter()
+            .filter_map(|w| watched(w.addr, w.value))
+            .collect(),
+        Err(_) => SmallVec::new(),
+    }
+}
+
+/// The word of [`watched_words`] for address `addr` and `value`.
+fn watched(addr: u8, value: WordValue<'_>) -> Option<Word> {
+    let (value, flags) = match value {
+        WordValue::Literal(value, flags) => (value, flags),
+        WordValue::Expr(_) if addr != b'G' - b'A' && addr != b'M' - b'A' => (f64::NAN, 0),
+        WordValue::Expr(_) => return None,
+    };
+    Some(Word { addr, value, flags })
+}
+
 /// A static program: no macro statement and no computed word (§0).
 pub fn is_static(units: &[Unit], programs: &[Program]) -> bool {
     programs.iter().all(|p| {

@@ -4,7 +4,8 @@
 //! without motion), W110 (thread in G96), W111 (feed mode changed without
 //! a new F), W112 (corner word ignored), W114 (S above the spindle
 //! maximum). A program with macro statements or computed words is not
-//! dry-run, and so gets none of them.
+//! dry-run: where its run is known, the compile-time run in the VM
+//! (`predict`) hands its blocks to the same [`Warner`], all but W107.
 
 use grammar::ast::Addr;
 use grammar::{Diagnostic, Span};

@@ -53,8 +53,9 @@ pub struct Options {
     /// Pass `resolve`: plain moves become typed moves (off only to
     /// compare the two forms in tests).
     pub resolve: bool,
-    /// Run a program with macros in the VM for W124 (`predict`); off
-    /// when the warning would not be reported (`-Wno-W124`, `-w`).
+    /// Run a program with macros in the VM for W124 and the modal
+    /// warnings (`predict`); off when none of those would be reported
+    /// (`-w`, `-Wno-` each of [`predict::CODES`]).
     pub predict: bool,
 }
 
@@ -175,7 +176,10 @@ fn lower_and_check(
     if !dry {
         let files = source_files(units);
         let ir = build_ir(units, programs, opts, diags);
-        free_trees_in_background(units, programs);
+        // (The prediction reads the trees: they go after it.)
+        if !opts.predict {
+            free_trees_in_background(units, programs);
+        }
         let (module, ir) = lower_ir(ir, units, &files, opts, diags);
         // Not dry-run, a program may still hold a geometry alarm the
         // pass `modal` proves (W119).
@@ -186,9 +190,14 @@ fn lower_and_check(
         }
         let module = verified(module, Vec::new(), diags);
         // Nor is its run's alarm an error; but where the run is known,
-        // the compiler makes it and says where it stops (W124).
+        // the compiler makes it, says where it stops (W124) and gives the
+        // warnings of the blocks it ran, as a dry run would.
         if let (Some(m), false, true) = (&module, has_errors(diags), opts.predict) {
-            diags.extend(predict::alarm(m, &files, &opts.machine, diags));
+            let found = predict::run(m, units, &files, &opts.machine, diags);
+            diags.extend(found);
+        }
+        if opts.predict {
+            free_trees_in_background(units, programs);
         }
         return (files, module, ir.filter(|_| keep_ir));
     }

@@ -44,19 +44,9 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
                         ),
                     ));
                 }
-                if numbers.contains(&p.number) {
-                    diags.push((
-                        unit_index,
-                        Diagnostic::error(
-                            "E1005",
-                            p.span,
-                            format!("program O{:04} is defined twice in this file", p.number),
-                        ),
-                    ));
-                }
                 // Words before the first O line are a main program of
-                // their own; comments or bare N blocks there just lead
-                // into the first program.
+                // their own, O0000; comments or bare N blocks there just
+                // lead into the first program.
                 let leading = std::mem::take(&mut before_first_o);
                 let blocks = if programs.is_empty() && has_words(unit, &leading) {
                     programs.push(Program {
@@ -65,10 +55,14 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
                         blocks: leading,
                         span: Span::default(),
                     });
+                    numbers.insert(0);
                     Vec::new()
                 } else {
                     leading
                 };
+                if numbers.contains(&p.number) {
+                    diags.push((unit_index, defined_twice(p, &programs)));
+                }
                 numbers.insert(p.number);
                 programs.push(Program {
                     number: p.number,
@@ -93,6 +87,19 @@ pub fn split(unit_index: usize, unit: &Unit, diags: &mut Vec<(usize, Diagnostic)
         });
     }
     programs
+}
+
+/// E1005 at the O line `p`, whose number `programs` already has.
+fn defined_twice(p: &grammar::ast::ProgramStart, programs: &[Program]) -> Diagnostic {
+    let msg = format!("program O{:04} is defined twice in this file", p.number);
+    let d = Diagnostic::error("E1005", p.span, msg);
+    // The main program that has no O line of its own is O0000.
+    match programs.first() {
+        Some(first) if p.number == 0 && first.span == Span::default() => d.with_help(
+            "the blocks before the first O line are the main program, O0000: give this program another number",
+        ),
+        _ => d,
+    }
 }
 
 fn has_words(unit: &Unit, lines: &[usize]) -> bool {

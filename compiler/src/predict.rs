@@ -1,4 +1,5 @@
-//! The run of a program with macros, made at compile time: W124.
+//! The run of a program with macros, made at compile time: W124 and the
+//! modal warnings.
 //!
 //! A static program is dry-run through the kernel (`check`), and a
 //! geometry fault in it is a compile error. A program with macros may
@@ -11,12 +12,25 @@
 //! program that reads none of those runs the same way every time it is
 //! run as the machine file has it, and the compiler can run it: in the VM
 //! itself, for a bounded number of instructions. Where that run stops
-//! with an alarm, the compiler warns at the alarm's block; the program
-//! still compiles.
+//! with an alarm, the compiler warns at the alarm's block (W124); the
+//! program still compiles. On the way, the blocks the run executes get
+//! the warnings a static program's dry run gives (`dry_warn`, W118),
+//! each block read as the VM left the kernel after it.
 
+use crate::dry_warn::{Counts, Warner};
+use crate::link::Unit;
+use crate::thread_room::RoomCheck;
+use grammar::ast::{Block, Body, Line};
 use grammar::{Diagnostic, SourceFile, Span};
 use isa::{Instr, Module};
-use nc::{Discard, Machine};
+use nc::{Event, Machine, Sink};
+
+/// The warnings a prediction may give: W124 and those of the blocks it
+/// runs. (The compile-time run is made only when one of them is
+/// reported.)
+pub const CODES: [&str; 8] = [
+    "W105", "W108", "W110", "W111", "W112", "W114", "W118", "W124",
+];
 
 /// Instructions a prediction may run beyond one for each instruction of
 /// the module (a straight program is run whole, as the dry run does):
@@ -33,18 +47,21 @@ const BUDGET: u32 = nc::error::Alarm::BlockBudget.code() as u32;
 /// `M99 P` target (W123).
 const NAMES_ALARM: [&str; 5] = ["W115", "W116", "W119", "W121", "W123"];
 
-/// The warning for the alarm the run of `module` stops with, if it stops
-/// with one within its budget and its run cannot depend on #500–#999.
-/// `diags` are the compilation's so far: an alarm a warning there already
-/// names at that line ([`NAMES_ALARM`]) is not told again.
-pub fn alarm(
+/// The warnings of the run of `module` (built from `units`, whose trees
+/// it reads: the warnings of a block ask for its words as written), if
+/// its run cannot depend on #500–#999: those of the blocks it ran, then
+/// W124 where it stops with an alarm within its budget. `diags` are the
+/// compilation's so far: an alarm a warning there already names at that
+/// line ([`NAMES_ALARM`]) is not told again.
+pub fn run(
     module: &Module,
+    units: &[Unit],
     files: &[SourceFile],
     m: &Machine,
     diags: &[(usize, Diagnostic)],
-) -> Option<(usize, Diagnostic)> {
+) -> Vec<(usize, Diagnostic)> {
     if module.code.iter().any(reads_from_outside) {
-        return None;
+        return Vec::new();
     }
     let mut vm = vm::Vm::new(module.clone(), m.clone());
     let budget = EXTRA_STEPS.saturating_add(module.code.len() as u64);
@@ -52,22 +69,133 @@ pub fn alarm(
     // instruction may run a cycle of many legs); E6005 is the run's own
     // only under the machine's budget.
     vm.max_blocks = budget.min(m.run.max_blocks);
-    // (One step: it need not end at each block.)
-    vm.stop_at_blocks = false;
-    let alarm = match vm.step(budget, &mut Discard) {
-        vm::Status::Alarm(a) if a.code != BUDGET || vm.max_blocks == m.run.max_blocks => a,
-        _ => return None,
-    };
-    let unit = files.iter().position(|f| f.name == alarm.file)?;
-    let span = block_span(files.get(unit)?, alarm.line, alarm.col)?;
+    let mut watch = Watch::new(units, files, m);
+    let status = watch.run(&mut vm, budget);
+    let mut found = watch.warnings();
+    if let vm::Status::Alarm(a) = status {
+        let own = a.code != BUDGET || vm.max_blocks == m.run.max_blocks;
+        found.extend(own.then(|| alarm(&a, files, diags)).flatten());
+    }
+    found
+}
+
+/// W124 for the alarm `a` the run stopped with, unless a warning of
+/// `diags` names it at its line.
+fn alarm(
+    a: &vm::Alarm,
+    files: &[SourceFile],
+    diags: &[(usize, Diagnostic)],
+) -> Option<(usize, Diagnostic)> {
+    let unit = files.iter().position(|f| f.name == a.file)?;
+    let span = block_span(files.get(unit)?, a.line, a.col)?;
     let line = |d: &Diagnostic| files[unit].line_col(d.span.start).0;
-    let told = diags.iter().any(|(u, d)| {
-        *u == unit && NAMES_ALARM.contains(&d.code) && line(d) == alarm.line as usize
-    });
+    let told = diags
+        .iter()
+        .any(|(u, d)| *u == unit && NAMES_ALARM.contains(&d.code) && line(d) == a.line as usize);
     if told {
         return None;
     }
-    Some((unit, warning(alarm.code, &alarm.message, span)))
+    Some((unit, warning(a.code, &a.message, span)))
+}
+
+/// What watches the blocks of the run: the dry run's warnings, fed with
+/// each block's words as written and the kernel's state around it.
+struct Watch<'a> {
+    units: &'a [Unit],
+    files: &'a [SourceFile],
+    warner: Warner,
+    room: RoomCheck,
+    /// The events of the block being run (its place is known once it ran).
+    events: Vec<Event>,
+    /// The index in its tree of the block found last: the next is most
+    /// often a few lines on.
+    near: usize,
+}
+
+impl<'a> Watch<'a> {
+    fn new(units: &'a [Unit], files: &'a [SourceFile], m: &Machine) -> Self {
+        Watch {
+            units,
+            files,
+            warner: Warner::default(),
+            room: RoomCheck::new(m),
+            events: Vec::new(),
+            near: 0,
+        }
+    }
+
+    /// Runs `vm` for at most `budget` instructions, a block at a time:
+    /// the status it ends with (never `Event`).
+    fn run(&mut self, vm: &mut vm::Vm, budget: u64) -> vm::Status {
+        vm.stop_at_blocks = true;
+        let mut left = budget;
+        loop {
+            let before = self.warner.before(&vm.nc);
+            self.events.clear();
+            match vm.step(left, &mut self.events) {
+                vm::Status::Event => self.block(vm, before),
+                other => return other,
+            }
+            left = vm.fuel_left();
+        }
+    }
+
+    /// The warnings of the block `vm` ran last, which started in `before`.
+    fn block(&mut self, vm: &vm::Vm, before: crate::dry_warn::Before) {
+        let loc = vm.last_loc();
+        let unit = loc.file as usize;
+        let Some(block) = self.block_at(loc) else {
+            return;
+        };
+        let Body::Words(ws) = &block.body else {
+            return;
+        };
+        self.room.unit = unit;
+        self.room.span = block.span;
+        let mut counts = Counts::default();
+        for e in self.events.drain(..) {
+            self.room.event(&e);
+            counts.emit(e);
+        }
+        let lits = crate::check::watched_words(ws);
+        let at = (ws.as_slice(), block.span);
+        (self.warner).after(unit, &vm.nc, at, &lits, &counts, before);
+    }
+
+    /// The block of the syntax tree that starts at `loc`.
+    fn block_at(&mut self, loc: isa::SourceLoc) -> Option<&'a Block> {
+        let i = loc.file as usize;
+        let (unit, file) = (self.units.get(i)?, self.files.get(i)?);
+        let line = file.line_range(usize::try_from(loc.line).ok()?.checked_sub(1)?)?;
+        let start = (line.start + usize::try_from(loc.col).ok()?.checked_sub(1)?) as u32;
+        let lines = &unit.ast.lines;
+        let starts_at = |at: usize| lines.get(at).map(|l| line_span(l).start);
+        // The lines after the last block found first, then a search.
+        let ahead =
+            (self.near..self.near.saturating_add(4)).find(|&at| starts_at(at) == Some(start));
+        let at = ahead.unwrap_or_else(|| lines.partition_point(|l| line_span(l).start < start));
+        self.near = at;
+        match lines.get(at)? {
+            Line::Block(b) if b.span.start == start => Some(b),
+            _ => None,
+        }
+    }
+
+    /// The warnings found, in the dry run's order.
+    fn warnings(mut self) -> Vec<(usize, Diagnostic)> {
+        self.room.finish();
+        let mut found = self.warner.diags;
+        found.append(&mut self.room.warnings);
+        found
+    }
+}
+
+fn line_span(l: &Line) -> Span {
+    match l {
+        Line::Percent(s) => *s,
+        Line::ProgramStart(p) => p.span,
+        Line::Block(b) => b.span,
+    }
 }
 
 /// W124 at `span`, for the alarm `code` (the canon's: 3000 + n for

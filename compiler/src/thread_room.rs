@@ -294,10 +294,17 @@ mod tests {
         assert!(w[0].1.contains("reach") && w[1].1.contains("stop"), "{w:?}");
     }
 
-    /// S from a variable: not static, so the compiler cannot know it.
+    /// S from a variable: the compile-time run of the program with macros
+    /// knows it (W124's run), and checks it as the dry run checks the
+    /// static program with S1500 written; from #500, which `--vars` may
+    /// set, the compiler cannot know it.
     #[test]
-    fn a_computed_speed_is_not_checked() {
+    fn a_computed_speed_is_checked_where_the_run_knows_it() {
         let src = "O1\n#1=1500\nG97 S#1 M03\nG00 X30 Z1\nG32 Z0 F3\nG00 X40\nM30\n";
-        assert!(w118(src).is_empty());
+        let literal = src.replace("#1=1500", "(S1500)").replace("S#1", "S1500");
+        let w = w118(&literal);
+        assert_eq!(w.iter().map(|(l, _)| *l).collect::<Vec<_>>(), [5, 5]);
+        assert_eq!(w118(src), w);
+        assert!(w118(&src.replace("#1=1500", "#1=#500")).is_empty());
     }
 }

@@ -144,7 +144,14 @@ fn a_computed_count_calls_a_known_program() {
 
 #[test]
 fn structure_errors_are_compile_errors_at_their_line() {
-    let cases: [(&str, &str, usize); 7] = [
+    let long_then_o0000 = "G01 X10 Z-1 F100\n".repeat(20_000) + "O0000\nM30\n";
+    let cases: [(&str, &str, usize); 10] = [
+        // The blocks before the first O line are the main program, O0000:
+        // a later O0000 defines it again (static, with macros, or after
+        // a long plain part compiled a chunk at a time).
+        ("G00 X10\nO0000\nM30\n", "E1005", 2),
+        ("#1=1\nG00 X10\nO0000\nM30\n", "E1005", 3),
+        (&long_then_o0000, "E1005", 20_001),
         ("G00 X10\nM98 P1234\nM30\n", "E2012", 2),
         // With L, P is the program even when L is computed.
         ("#1=#500\nM98 P1234 L[#1+1]\nM30\n", "E2012", 2),

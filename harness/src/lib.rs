@@ -63,6 +63,7 @@ pub fn compiler(data: &[u8]) {
     }
     if let Some(module) = c.module {
         prediction_holds(&c.diags, &c.files, &module);
+        dynamic_run_warns_too(data, (&c.diags, &c.files), &module);
         let bytes = module.to_bytes();
         let back = isa::Module::from_bytes(&bytes);
         assert!(back.is_ok(), "a compiled module must verify: {back:?}");
@@ -127,6 +128,57 @@ fn prediction_holds(
     assert_eq!(told.message, d.message, "W124 told another alarm");
     let line = files[*file].line_col(d.span.start).0;
     assert_eq!(a.line as usize, line, "W124 told another line");
+}
+
+/// The warnings of the blocks a run executes, which a static program gets
+/// from its dry run, the program made dynamic by a macro statement at its
+/// end gets from the compile-time run in the VM, at the same lines. (Not
+/// W107, which the VM's run tells as its alarm; and only for a program
+/// without calls or W120/W122, whose dry run and VM run count their
+/// budgets otherwise: calls cost instructions the dry run does not count.)
+fn dynamic_run_warns_too(
+    data: &[u8],
+    found: (&[(usize, grammar::Diagnostic)], &[grammar::SourceFile]),
+    module: &isa::Module,
+) {
+    const RAN: [&str; 7] = ["W105", "W108", "W110", "W111", "W112", "W114", "W118"];
+    let stops = |d: &grammar::Diagnostic| matches!(d.code, "W107" | "W120" | "W122");
+    let calls = module.code.iter().any(|i| {
+        use isa::Instr::*;
+        matches!(
+            i,
+            CallSub { .. }
+                | CallSubDyn { .. }
+                | CallMacro { .. }
+                | CallMacroDyn { .. }
+                | ModalCall { .. }
+                | ModalCallDyn { .. }
+        )
+    });
+    let (diags, files) = found;
+    if calls || diags.iter().any(|(_, d)| stops(d)) {
+        return;
+    }
+    let dynamic = compile(
+        "fuzz.nc",
+        &[data, b"\n#1=1\n"].concat(),
+        &Options::default(),
+    );
+    if dynamic.has_errors() {
+        return;
+    }
+    let ran = |diags: &[(usize, grammar::Diagnostic)], files: &[grammar::SourceFile]| {
+        (diags.iter())
+            .filter(|(_, d)| RAN.contains(&d.code))
+            .map(|(f, d)| (d.code, files[*f].line_col(d.span.start).0))
+            .collect::<std::collections::BTreeSet<_>>()
+    };
+    let found = ran(diags, files);
+    let predicted = ran(&dynamic.diags, &dynamic.files);
+    assert!(
+        found.is_subset(&predicted),
+        "the program made dynamic lacks warnings: {found:?} against {predicted:?}"
+    );
 }
 
 /// The `.gbc` loader and verifier: bytes → an error or a module that runs

@@ -35,6 +35,11 @@ fn programs() -> &'static [Vec<u8>] {
             b"#1=0\nWHILE[#1LT3]DO1\n#1=#1+1\nEND1\nG65 H99 Q3\nM30\n".to_vec(),
             b"O1\nG71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F0.2\nN10 G00 X20\nG01 Z-10\nN20 X30\nM30\n"
                 .to_vec(),
+            // The dry run's warnings of the modal state: W111, W114,
+            // W110, W108 (lines 2, 3, 7, 9).
+            b"G98 G01 X20 Z0 F200\nG99\nG97 S99999 M03\nG01 Z-10\nG96 S150\nG00 X25 Z5\n\
+              G92 X19 Z-20 F1.5\nG00 X30\nG02 X30 Z5 R5 F0.1\nM30\n"
+                .to_vec(),
             include_bytes!("../../examples/shaft.nc").to_vec(),
         ]);
         out

@@ -239,6 +239,13 @@ impl Vm {
         self.last_exec
     }
 
+    /// The instructions the last [`step`](Self::step) left of its budget
+    /// (a step that ends at a block leaves the rest: a host that watches
+    /// each block goes on with it).
+    pub fn fuel_left(&self) -> u64 {
+        self.fuel
+    }
+
     /// The source place of the block executed last (for traces).
     pub fn last_loc(&self) -> isa::SourceLoc {
         self.locs.get(&self.module.lines, self.last_exec)

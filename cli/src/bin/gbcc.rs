@@ -229,7 +229,7 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
     if args.no_warnings {
         policy.silence();
     }
-    let predict = policy.reports("W124");
+    let predict = compiler::predict::CODES.iter().any(|c| policy.reports(c));
     let optimize = match args.opt.as_str() {
         "0" => false,
         "1" | "2" | "s" => true,
