@@ -71,6 +71,39 @@ fn errors_exit_1_with_gcc_style_headers_and_json_on_request() {
 
 /// 64 (sysexits' EX_USAGE) for both tools: not gbvm's alarm code 2.
 #[test]
+fn diagnostics_are_printed_in_source_order() {
+    // The passes find these in their own order: W106 and W109 from the
+    // words, W119 from pass `modal`, then the compile-time run's W114 and
+    // W110 (its alarm at line 9 is W119's). gbcc prints them by line, as
+    // a reader meets them.
+    let d = dir("order");
+    let src = "#1=1\nG0 G1 X10 Z2 F100\nG28\nS99999 M3\nG96 S100\nG32 Z-10 F1.5\n\
+               G97 S500\nG0 X50 Z2\nG2 X20 Z-30\nM30\n";
+    std::fs::write(d.join("o.nc"), src).unwrap();
+    let out = gbcc(&["o.nc", "-o", "o.gbc"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    let headers: Vec<(&str, &str)> = err
+        .lines()
+        .filter(|l| l.starts_with("o.nc:"))
+        .filter_map(|l| {
+            let place = l.split(": ").next()?;
+            Some((place, l.split('[').nth(1)?.split(']').next()?))
+        })
+        .collect();
+    assert_eq!(
+        headers,
+        [
+            ("o.nc:2:4", "W106"),
+            ("o.nc:3:1", "W109"),
+            ("o.nc:4:1", "W114"),
+            ("o.nc:6:1", "W110"),
+            ("o.nc:9:1", "W119"),
+        ]
+    );
+}
+
+#[test]
 fn usage_errors_exit_64() {
     let d = dir("usage");
     assert_eq!(gbcc(&[], &d).status.code(), Some(64));

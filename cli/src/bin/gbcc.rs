@@ -349,8 +349,13 @@ fn compile_one<W: std::io::Write>(
             ),
         }
     };
+    // In source order, file by file, as a reader goes through the program
+    // (the passes find them in their own order: a run's warnings come
+    // after those of the words).
+    let mut diags: Vec<&(usize, grammar::Diagnostic)> = compiled.diags.iter().collect();
+    diags.sort_by_key(|(f, d)| (*f, d.span.start));
     let mut errors = false;
-    for (f, d) in &compiled.diags {
+    for (f, d) in diags {
         errors |= reporter.report(&compiled.files[*f], d);
     }
     if errors || compiled.has_errors() {
