@@ -249,6 +249,49 @@ fn defines_and_expansion() {
 }
 
 #[test]
+fn gbcc_predicts_the_run_with_the_vars_file_of_gbvm() {
+    // The same file for both: with #500 = 0 the run divides by zero on
+    // line 2, which gbcc tells and gbvm then stops at; a malformed file
+    // is refused naming its line.
+    let d = dir("vars");
+    std::fs::write(
+        d.join("v.nc"),
+        "G98 G00 X50 Z2\n#1=60/#500\nG01 X#1 Z-5 F100\nM30\n",
+    )
+    .unwrap();
+    std::fs::write(d.join("vars.txt"), "#500=0\n").unwrap();
+    let plain = gbcc(&["v.nc"], &d);
+    assert_eq!(plain.status.code(), Some(0));
+    assert!(
+        !text(&plain.stderr).contains("W124"),
+        "{}",
+        text(&plain.stderr)
+    );
+    let told = gbcc(&["v.nc", "--vars", "vars.txt"], &d);
+    assert_eq!(told.status.code(), Some(0));
+    assert!(
+        text(&told.stderr).starts_with("v.nc:2:1: warning[W124]: the run stops here with E5001"),
+        "{}",
+        text(&told.stderr)
+    );
+    let run = gbvm(&["run", "v.gbc", "--vars", "vars.txt"], &d);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        text(&run.stderr).contains("v.nc:2:1: alarm[E5001]"),
+        "{}",
+        text(&run.stderr)
+    );
+    std::fs::write(d.join("bad.txt"), "#500=0\n#1000=1\n").unwrap();
+    let bad = gbcc(&["v.nc", "--vars", "bad.txt"], &d);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(
+        text(&bad.stderr).contains("bad.txt:2: expected"),
+        "{}",
+        text(&bad.stderr)
+    );
+}
+
+#[test]
 fn the_expanded_program_marks_the_blocks_computed_as_it_ran() {
     let d = dir("dynamic");
     // Line 5's words change with #1 (computed in the loop): DYNAMIC. #5 is

@@ -57,6 +57,10 @@ pub struct Options {
     /// warnings (`predict`); off when none of those would be reported
     /// (`-w`, `-Wno-` each of [`predict::CODES`]).
     pub predict: bool,
+    /// #500–#999 as a run will start with them (`gbcc --vars FILE`, in
+    /// `gbvm run --vars`'s form; NaN is vacant): the compile-time run
+    /// starts with them too, so a program that reads them is run.
+    pub vars: Option<Box<[f64; 500]>>,
 }
 
 impl Default for Options {
@@ -69,6 +73,7 @@ impl Default for Options {
             chunk_bytes: CHUNK_BYTES,
             resolve: true,
             predict: true,
+            vars: None,
         }
     }
 }
@@ -193,7 +198,7 @@ fn lower_and_check(
         // the compiler makes it, says where it stops (W124) and gives the
         // warnings of the blocks it ran, as a dry run would.
         if let (Some(m), false, true) = (&module, has_errors(diags), opts.predict) {
-            let found = predict::run(m, units, &files, &opts.machine, diags);
+            let found = predict::run(m, units, &files, opts, diags);
             diags.extend(found);
         }
         if opts.predict {

@@ -9,8 +9,9 @@
 //! the block-skip switches all start as the machine file sets them. Only
 //! #500–#999 come from outside (`--vars`, or the machine file's
 //! `macro.persistent_file`, keeps them between runs). So a
-//! program that reads none of those runs the same way every time it is
-//! run as the machine file has it, and the compiler can run it: in the VM
+//! program that reads none of those (or only those `-D` presets, or all
+//! of them when `gbcc --vars` gives them) runs the same way every time it
+//! is run as the machine file has it, and the compiler can run it: in the VM
 //! itself, for a bounded number of instructions. Where that run stops
 //! with an alarm, the compiler warns at the alarm's block (W124); the
 //! program still compiles. On the way, the blocks the run executes get
@@ -48,22 +49,28 @@ const BUDGET: u32 = nc::error::Alarm::BlockBudget.code() as u32;
 const NAMES_ALARM: [&str; 5] = ["W115", "W116", "W119", "W121", "W123"];
 
 /// The warnings of the run of `module` (built from `units`, whose trees
-/// it reads: the warnings of a block ask for its words as written), if
-/// its run cannot depend on #500–#999: those of the blocks it ran, then
-/// W124 where it stops with an alarm within its budget. `diags` are the
-/// compilation's so far: an alarm a warning there already names at that
-/// line ([`NAMES_ALARM`]) is not told again.
+/// it reads: the warnings of a block ask for its words as written, with
+/// `opts`), if its run does not depend on #500–#999 it does not know:
+/// those of the blocks it ran, then W124 where it stops with an alarm
+/// within its budget. `diags` are the compilation's so far: an alarm a
+/// warning there already names at that line ([`NAMES_ALARM`]) is not
+/// told again.
 pub fn run(
     module: &Module,
     units: &[Unit],
     files: &[SourceFile],
-    m: &Machine,
+    opts: &crate::Options,
     diags: &[(usize, Diagnostic)],
 ) -> Vec<(usize, Diagnostic)> {
-    if module.code.iter().any(reads_from_outside) {
+    let m = &opts.machine;
+    let unknown = |i: &Instr| reads_from_outside(i, &opts.defines);
+    if opts.vars.is_none() && module.code.iter().any(unknown) {
         return Vec::new();
     }
     let mut vm = vm::Vm::new(module.clone(), m.clone());
+    if let Some(vars) = &opts.vars {
+        *vm.persistent_mut() = **vars;
+    }
     let budget = EXTRA_STEPS.saturating_add(module.code.len() as u64);
     // The blocks it may charge are bounded as its instructions are (one
     // instruction may run a cycle of many legs); E6005 is the run's own
@@ -74,17 +81,20 @@ pub fn run(
     let mut found = watch.warnings();
     if let vm::Status::Alarm(a) = status {
         let own = a.code != BUDGET || vm.max_blocks == m.run.max_blocks;
-        found.extend(own.then(|| alarm(&a, files, diags)).flatten());
+        let with_vars = opts.vars.is_some();
+        found.extend(own.then(|| alarm(&a, files, diags, with_vars)).flatten());
     }
     found
 }
 
-/// W124 for the alarm `a` the run stopped with, unless a warning of
-/// `diags` names it at its line.
+/// W124 for the alarm `a` the run stopped with (`with_vars`: starting with
+/// the #500–#999 of `gbcc --vars`), unless a warning of `diags` names it
+/// at its line.
 fn alarm(
     a: &vm::Alarm,
     files: &[SourceFile],
     diags: &[(usize, Diagnostic)],
+    with_vars: bool,
 ) -> Option<(usize, Diagnostic)> {
     let unit = files.iter().position(|f| f.name == a.file)?;
     let span = block_span(files.get(unit)?, a.line, a.col)?;
@@ -95,7 +105,15 @@ fn alarm(
     if told {
         return None;
     }
-    Some((unit, warning(a.code, &a.message, span)))
+    let d = match with_vars {
+        false => warning(a.code, &a.message, span),
+        true => stops_with(a.code, &a.message, span).with_note(
+            "every value this program uses is known when it is compiled, so `gbvm run` \
+             stops here every time it starts with the #500–#999 of --vars (and the \
+             machine file's settings)",
+        ),
+    };
+    Some((unit, d))
 }
 
 /// What watches the blocks of the run: the dry run's warnings, fed with
@@ -201,26 +219,31 @@ fn line_span(l: &Line) -> Span {
 /// W124 at `span`, for the alarm `code` (the canon's: 3000 + n for
 /// `#3000 = n`) with `message`: a static program's dry run gives it too.
 pub fn warning(code: u32, message: &str, span: Span) -> Diagnostic {
-    let code = match nc::error::NcError::is_program_alarm(code) {
-        true => format!("alarm {code}"),
-        false => format!("E{code:04}"),
-    };
-    Diagnostic::warning(
-        "W124",
-        span,
-        format!("the run stops here with {code}: {message}"),
-    )
-    .with_note(
+    stops_with(code, message, span).with_note(
         "every value this program uses is known when it is compiled, so `gbvm run` \
          stops here every time (with the machine file's settings)",
     )
 }
 
+/// W124's text, without its note.
+fn stops_with(code: u32, message: &str, span: Span) -> Diagnostic {
+    let code = match nc::error::NcError::is_program_alarm(code) {
+        true => format!("alarm {code}"),
+        false => format!("E{code:04}"),
+    };
+    let msg = format!("the run stops here with {code}: {message}");
+    Diagnostic::warning("W124", span, msg)
+}
+
 /// Whether `instr` reads a variable that `--vars` may have set before
-/// the run: #500–#999, or any variable by a computed number.
-fn reads_from_outside(instr: &Instr) -> bool {
+/// the run: one of #500–#999 that no `-D` of `defines` presets (a preset
+/// is stored at the main program's start, over what `--vars` set), or
+/// any variable by a computed number.
+fn reads_from_outside(instr: &Instr, defines: &[(u32, f64)]) -> bool {
     match *instr {
-        Instr::LoadVar { var, .. } => (500..=999).contains(&var),
+        Instr::LoadVar { var, .. } => {
+            (500..=999).contains(&var) && !defines.iter().any(|&(d, _)| d == var)
+        }
         Instr::LoadVarInd { .. } => true,
         _ => false,
     }

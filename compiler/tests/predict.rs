@@ -206,6 +206,50 @@ fn a_program_that_reads_persistent_variables_is_not_run() {
 }
 
 #[test]
+fn a_program_that_reads_persistent_variables_is_run_with_the_values_given() {
+    // `gbcc --vars FILE`: the run starts with FILE's #500, as `gbvm run
+    // --vars FILE` will: #500 = 0 divides by zero on line 2, #500 = 2 not.
+    let src = "G98 G00 X50 Z2\n#1=60/#500\nG01 X#1 Z-5 F100\nM30\n";
+    let with = |v500: f64| {
+        let mut vars = Box::new([f64::NAN; 500]);
+        vars[0] = v500;
+        Options {
+            vars: Some(vars),
+            ..Options::default()
+        }
+    };
+    let c = compile("p.nc", src.as_bytes(), &with(0.0));
+    let [(_, d)] = &c.diags[..] else {
+        panic!("one warning: {}", c.render());
+    };
+    assert_eq!((d.code, c.files[0].line_col(d.span.start).0), ("W124", 2));
+    assert!(
+        d.notes.iter().any(|n| n.contains("--vars")),
+        "{:?}",
+        d.notes
+    );
+    assert_eq!(
+        vm_alarm(src, &Options::default(), Some(0.0)),
+        Some((5001, 2))
+    );
+    assert_eq!(codes(src, &with(2.0)), []);
+}
+
+#[test]
+fn a_persistent_variable_preset_with_d_is_known() {
+    // `-D '#500=3'` is stored at the main program's start, over what
+    // --vars set: #1 runs 3, 2, 1, 0 and line 3 divides by zero.
+    let src = "#1=#500\nWHILE[#1GE0]DO1\nG01 X[60/#1] Z-10 F100\n#1=#1-1\nEND1\nM30\n";
+    let preset = Options {
+        defines: vec![(500, 3.0)],
+        ..Options::default()
+    };
+    told_and_run(src, &preset, 5001, 3);
+    // Without it, #500 is --vars's, unknown here.
+    assert_eq!(codes(src, &Options::default()), []);
+}
+
+#[test]
 fn a_program_that_reads_a_variable_by_a_computed_number_is_not_run() {
     // #[#1] is #500 here: the same doubt.
     let src = "G98 G00 X50 Z2\n#1=500\n#2=60/#[#1]\nG01 X#2 Z-5 F100\nM30\n";

@@ -66,6 +66,11 @@ struct Args {
     /// Machine file (TOML, docs/machine.md); the reference machine by default.
     #[arg(long = "machine", value_name = "FILE")]
     machine: Option<PathBuf>,
+    /// #500–#999 as the run will start with them (the file of `gbvm run
+    /// --vars`): the compile-time run that warns where the run stops
+    /// (W124) starts with them, so a program that reads them is run too.
+    #[arg(long = "vars", value_name = "FILE")]
+    vars: Option<PathBuf>,
     /// Print the long explanation of a diagnostic code (E4009, W113).
     #[arg(long = "explain", value_name = "CODE")]
     explain: Option<String>,
@@ -201,6 +206,12 @@ fn parse_define(d: &str) -> Result<(u32, f64), String> {
     Ok((var, value))
 }
 
+/// `--vars FILE`: its #500–#999, read once (the file stays `gbvm run`'s).
+fn read_vars(path: &Path) -> Result<Box<[f64; 500]>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    cli::vars::parse(&text, path).map(Box::new)
+}
+
 fn main() -> ExitCode {
     match run() {
         Ok(e) | Err(e) => e.into(),
@@ -263,6 +274,13 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
             return Err(Exit::Input);
         }
     };
+    let vars = match args.vars.as_deref().map(read_vars).transpose() {
+        Ok(vars) => vars,
+        Err(e) => {
+            let _ = writeln_stderr(&format!("gbcc: error: {e}"));
+            return Err(Exit::Input);
+        }
+    };
     let mut reporter = Reporter::new(
         std::io::BufWriter::new(std::io::stderr()),
         flags.format,
@@ -277,6 +295,7 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
         defines,
         // (W124's run at compile time is skipped when nobody will see it.)
         predict,
+        vars,
         ..Options::default()
     };
     Ok((
