@@ -149,9 +149,16 @@ impl<'a> Watch<'a> {
         let mut left = budget;
         loop {
             let before = self.warner.before(&vm.nc);
+            let charged = vm.blocks_charged();
             self.events.clear();
             match vm.step(left, &mut self.events) {
                 vm::Status::Event => self.block(vm, before),
+                // An M02/M30 block ends the run; running past the last
+                // block or the main program's M99 runs none.
+                vm::Status::Done if vm.blocks_charged() != charged => {
+                    self.block(vm, before);
+                    return vm::Status::Done;
+                }
                 other => return other,
             }
             left = vm.fuel_left();

@@ -149,6 +149,13 @@ fn w112_a_corner_word_ignored() {
     );
     // A real corner: the chamfer is made.
     assert_eq!(warnings("G98 F100\nG01 Z-10 ,C1\nG01 X30\nM30\n"), []);
+    // The M30 block prints the waiting element, without its corner.
+    assert_eq!(warnings("G98 F100\nG01 Z-10 ,C1\nM30\n"), [("W112", 2)]);
+    // The second block of a line (after `;`) is found at its column.
+    assert_eq!(
+        warnings("G98 F100;G01 Z-10 ,C1\nG01 Z-20\nM30\n"),
+        [("W112", 1)]
+    );
 }
 
 #[test]

@@ -239,6 +239,13 @@ impl Vm {
         self.last_exec
     }
 
+    /// The blocks charged to the block budget so far (a cycle counts as
+    /// its moves, a call as one block): a host that steps block by block
+    /// tells by it whether a step that ended the run ran a block.
+    pub fn blocks_charged(&self) -> u64 {
+        self.blocks
+    }
+
     /// The instructions the last [`step`](Self::step) left of its budget
     /// (a step that ends at a block leaves the rest: a host that watches
     /// each block goes on with it).
