@@ -193,6 +193,8 @@ fn lower_and_check(
             let facts = modal::analyze(ir, &opts.machine);
             diags.extend(known_faults::arcs(ir, &facts, &opts.machine));
         }
+        // (Not kept, the IR goes before the prediction.)
+        let ir = ir.filter(|_| keep_ir);
         let module = verified(module, Vec::new(), diags);
         // Nor is its run's alarm an error; but where the run is known,
         // the compiler makes it, says where it stops (W124) and gives the
@@ -204,7 +206,7 @@ fn lower_and_check(
         if opts.predict {
             free_trees_in_background(units, programs);
         }
-        return (files, module, ir.filter(|_| keep_ir));
+        return (files, module, ir);
     }
     let units = &*units;
     let dry_run = || check::dry_run(units, programs, &opts.machine);
