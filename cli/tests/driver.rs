@@ -281,6 +281,11 @@ fn gbcc_predicts_the_run_with_the_vars_file_of_gbvm() {
         "{}",
         text(&run.stderr)
     );
+    // -E runs the program from the same values.
+    std::fs::write(d.join("ok.txt"), "#500=2\n").unwrap();
+    let e = gbcc(&["v.nc", "-E", "--vars", "ok.txt"], &d);
+    assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
+    assert!(text(&e.stdout).contains("X30 Z-5"), "{}", text(&e.stdout));
     std::fs::write(d.join("bad.txt"), "#500=0\n#1000=1\n").unwrap();
     let bad = gbcc(&["v.nc", "--vars", "bad.txt"], &d);
     assert_eq!(bad.status.code(), Some(1));

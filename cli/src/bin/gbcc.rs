@@ -386,7 +386,7 @@ fn compile_one<W: std::io::Write>(
     let args = &job.args;
     if args.expand {
         let dest = Dest::new(args.output.as_deref().unwrap_or(Path::new("-")));
-        let (text, alarm) = expand(&compiled, &bytes, &job.opts.machine);
+        let (text, alarm) = expand(&compiled, &bytes, &job.opts);
         dest.write(text.as_bytes()).map_err(|e| {
             reporter.driver_error(&e);
             Exit::Write
@@ -515,9 +515,10 @@ fn explain(code: &str) -> Exit {
     }
 }
 
-/// -E: runs the module on the reference host and returns what it did as
-/// G-code, and the alarm that ended it early.
-fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> (String, Option<String>) {
+/// -E: runs the module on the reference host (#500–#999 from `--vars`)
+/// and returns what it did as G-code, and the alarm that ended it early.
+fn expand(c: &Compiled, src: &[u8], opts: &Options) -> (String, Option<String>) {
+    let machine = &opts.machine;
     let Some(module) = c.module.clone() else {
         return (String::new(), Some("no module was produced".into()));
     };
@@ -534,6 +535,9 @@ fn expand(c: &Compiled, src: &[u8], machine: &nc::Machine) -> (String, Option<St
         }
     }
     let mut vm = vm::Vm::new(module, machine.clone());
+    if let Some(vars) = &opts.vars {
+        *vm.persistent_mut() = **vars;
+    }
     let zero = vm.nc.origin();
     let point = machine.machine.decimal_point == nc::machine::DecimalPoint::Increment;
     let mut out = cli::expand::Expand::new(seqs, (zero.x(), zero.z), point);
