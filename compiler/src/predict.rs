@@ -105,16 +105,21 @@ fn alarm(
     if told {
         return None;
     }
-    let d = match with_vars {
-        false => warning(a.code, &a.message, span),
-        true => stops_with(a.code, &a.message, span).with_note(
-            "every value this program uses is known when it is compiled, so `gbvm run` \
-             stops here every time it starts with the #500–#999 of --vars (and the \
-             machine file's settings)",
-        ),
+    let note = match with_vars {
+        false => KNOWN,
+        true => KNOWN_WITH_VARS,
     };
-    Some((unit, d))
+    Some((unit, stops_with(a.code, &a.message, span).with_note(note)))
 }
+
+/// W124's note: why the run is known.
+const KNOWN: &str = "every value this program uses is known when it is compiled, so \
+                     `gbvm run` stops here every time (with the machine file's settings)";
+
+/// W124's note for a run that started with the #500–#999 of `--vars`.
+const KNOWN_WITH_VARS: &str = "every value this program uses is known when it is compiled, \
+                               so `gbvm run` stops here every time it starts with the \
+                               #500–#999 of --vars (and the machine file's settings)";
 
 /// What watches the blocks of the run: the dry run's warnings, fed with
 /// each block's words as written and the kernel's state around it.
@@ -226,10 +231,7 @@ fn line_span(l: &Line) -> Span {
 /// W124 at `span`, for the alarm `code` (the canon's: 3000 + n for
 /// `#3000 = n`) with `message`: a static program's dry run gives it too.
 pub fn warning(code: u32, message: &str, span: Span) -> Diagnostic {
-    stops_with(code, message, span).with_note(
-        "every value this program uses is known when it is compiled, so `gbvm run` \
-         stops here every time (with the machine file's settings)",
-    )
+    stops_with(code, message, span).with_note(KNOWN)
 }
 
 /// W124's text, without its note.
