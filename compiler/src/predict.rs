@@ -81,10 +81,42 @@ pub fn run(
     let mut found = watch.warnings();
     if let vm::Status::Alarm(a) = status {
         let own = a.code != BUDGET || vm.max_blocks == m.run.max_blocks;
-        let with_vars = opts.vars.is_some();
-        found.extend(own.then(|| alarm(&a, files, diags, with_vars)).flatten());
+        let told = own.then(|| alarm(&a, files, diags, opts.vars.is_some()));
+        let hint = |(unit, d): (usize, Diagnostic)| match argument_read(module) {
+            Some(help) => (unit, d.with_help(help)),
+            None => (unit, d),
+        };
+        found.extend(told.flatten().map(hint));
     }
     found
+}
+
+/// A hint for a main program that reads a local variable #1–#33 before
+/// any of its instructions sets it (in the order they are written): run
+/// as a main program, its arguments are vacant, which is likely what it
+/// stops on. (A macro body compiled on its own looks like that.)
+fn argument_read(module: &Module) -> Option<String> {
+    let main = module.programs.first()?;
+    let code = module.code.get(main.entry as usize..main.end as usize)?;
+    // Bit n: #n set by an instruction before.
+    let mut set = 0u64;
+    let var = code.iter().find_map(|i| match *i {
+        Instr::StoreVar { var, .. } if var < 64 => {
+            set |= 1 << var;
+            None
+        }
+        // (Which one it sets is known only when it runs.)
+        Instr::StoreVarInd { .. } => Some(None),
+        Instr::LoadVar { var, .. } if (1..=33).contains(&var) && set & (1 << var) == 0 => {
+            Some(Some(var))
+        }
+        _ => None,
+    })??;
+    Some(format!(
+        "O{:04} reads #{var} before it sets it: run as the main program, its arguments are vacant. \
+         If it is a macro called with G65 or G66, compile the program that calls it (with -I) to check the call",
+        main.number
+    ))
 }
 
 /// W124 for the alarm `a` the run stopped with (`with_vars`: starting with

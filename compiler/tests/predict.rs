@@ -250,6 +250,32 @@ fn a_persistent_variable_preset_with_d_is_known() {
 }
 
 #[test]
+fn a_macro_body_run_as_the_main_program_gets_a_hint() {
+    // O9001 reads its argument A (#1) first: run as the main program #1 is
+    // vacant, 60/#1 divides by zero on line 2, and the help says why.
+    let src = "O9001\n#2=60/#1\nG01 X#2 Z-5 F100\nM99\n";
+    let c = compile("p.nc", src.as_bytes(), &Options::default());
+    let [(_, d)] = &c.diags[..] else {
+        panic!("one warning: {}", c.render());
+    };
+    assert_eq!((d.code, c.files[0].line_col(d.span.start).0), ("W124", 2));
+    let help = d.help.as_deref().unwrap_or_default();
+    assert!(
+        help.starts_with("O9001 reads #1 before it sets it"),
+        "{help}"
+    );
+    // Setting #1 first (2, 1, then 0 on the third round), the alarm is
+    // told with no such hint.
+    let main = "O9001\n#1=2\nWHILE[#1GE0]DO1\n#2=60/#1\nG01 X#2 Z-5 F100\n#1=#1-1\nEND1\nM99\n";
+    let c = compile("p.nc", main.as_bytes(), &Options::default());
+    let [(_, d)] = &c.diags[..] else {
+        panic!("one warning: {}", c.render());
+    };
+    assert_eq!((d.code, c.files[0].line_col(d.span.start).0), ("W124", 4));
+    assert!(d.help.is_none(), "{:?}", d.help);
+}
+
+#[test]
 fn a_program_that_reads_a_variable_by_a_computed_number_is_not_run() {
     // #[#1] is #500 here: the same doubt.
     let src = "G98 G00 X50 Z2\n#1=500\n#2=60/#[#1]\nG01 X#2 Z-5 F100\nM30\n";
