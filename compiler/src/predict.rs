@@ -231,11 +231,11 @@ impl<'a> Watch<'a> {
         let line = file.line_range(usize::try_from(loc.line).ok()?.checked_sub(1)?)?;
         let start = (line.start + usize::try_from(loc.col).ok()?.checked_sub(1)?) as u32;
         let lines = &unit.ast.lines;
-        let starts_at = |at: usize| lines.get(at).map(|l| line_span(l).start);
+        let starts_at = |at: usize| lines.get(at).map(|l| l.span().start);
         // The lines after the last block found first, then a search.
         let ahead =
             (self.near..self.near.saturating_add(4)).find(|&at| starts_at(at) == Some(start));
-        let at = ahead.unwrap_or_else(|| lines.partition_point(|l| line_span(l).start < start));
+        let at = ahead.unwrap_or_else(|| lines.partition_point(|l| l.span().start < start));
         self.near = at;
         match lines.get(at)? {
             Line::Block(b) if b.span.start == start => Some(b),
@@ -249,14 +249,6 @@ impl<'a> Watch<'a> {
         let mut found = self.warner.diags;
         found.append(&mut self.room.warnings);
         found
-    }
-}
-
-fn line_span(l: &Line) -> Span {
-    match l {
-        Line::Percent(s) => *s,
-        Line::ProgramStart(p) => p.span,
-        Line::Block(b) => b.span,
     }
 }
 

@@ -34,6 +34,15 @@ fn w124(src: &str, opts: &Options) -> Vec<(usize, String)> {
         .collect()
 }
 
+/// The one diagnostic of `src` and its line.
+fn only(src: &str, opts: &Options) -> (grammar::Diagnostic, usize) {
+    let c = compile("p.nc", src.as_bytes(), opts);
+    let [(f, d)] = &c.diags[..] else {
+        panic!("one diagnostic: {}", c.render());
+    };
+    (d.clone(), c.files[*f].line_col(d.span.start).0)
+}
+
 /// One W124, on `line`, for the alarm E`code` (its message the kernel's),
 /// and the VM's run stops there with it.
 fn told_and_run(src: &str, opts: &Options, code: u32, line: usize) {
@@ -218,11 +227,8 @@ fn a_program_that_reads_persistent_variables_is_run_with_the_values_given() {
             ..Options::default()
         }
     };
-    let c = compile("p.nc", src.as_bytes(), &with(0.0));
-    let [(_, d)] = &c.diags[..] else {
-        panic!("one warning: {}", c.render());
-    };
-    assert_eq!((d.code, c.files[0].line_col(d.span.start).0), ("W124", 2));
+    let (d, line) = only(src, &with(0.0));
+    assert_eq!((d.code, line), ("W124", 2));
     assert!(
         d.notes.iter().any(|n| n.contains("--vars")),
         "{:?}",
@@ -254,11 +260,8 @@ fn a_macro_body_run_as_the_main_program_gets_a_hint() {
     // O9001 reads its argument A (#1) first: run as the main program #1 is
     // vacant, 60/#1 divides by zero on line 2, and the help says why.
     let src = "O9001\n#2=60/#1\nG01 X#2 Z-5 F100\nM99\n";
-    let c = compile("p.nc", src.as_bytes(), &Options::default());
-    let [(_, d)] = &c.diags[..] else {
-        panic!("one warning: {}", c.render());
-    };
-    assert_eq!((d.code, c.files[0].line_col(d.span.start).0), ("W124", 2));
+    let (d, line) = only(src, &Options::default());
+    assert_eq!((d.code, line), ("W124", 2));
     let help = d.help.as_deref().unwrap_or_default();
     assert!(
         help.starts_with("O9001 reads #1 before it sets it"),
@@ -267,11 +270,8 @@ fn a_macro_body_run_as_the_main_program_gets_a_hint() {
     // Setting #1 first (2, 1, then 0 on the third round), the alarm is
     // told with no such hint.
     let main = "O9001\n#1=2\nWHILE[#1GE0]DO1\n#2=60/#1\nG01 X#2 Z-5 F100\n#1=#1-1\nEND1\nM99\n";
-    let c = compile("p.nc", main.as_bytes(), &Options::default());
-    let [(_, d)] = &c.diags[..] else {
-        panic!("one warning: {}", c.render());
-    };
-    assert_eq!((d.code, c.files[0].line_col(d.span.start).0), ("W124", 4));
+    let (d, line) = only(main, &Options::default());
+    assert_eq!((d.code, line), ("W124", 4));
     assert!(d.help.is_none(), "{:?}", d.help);
 }
 

@@ -24,6 +24,16 @@ pub enum Line {
     Block(Block),
 }
 
+impl Line {
+    pub fn span(&self) -> Span {
+        match self {
+            Line::Percent(s) => *s,
+            Line::ProgramStart(p) => p.span,
+            Line::Block(b) => b.span,
+        }
+    }
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProgramStart {
     pub number: u32,

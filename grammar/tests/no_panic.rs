@@ -10,11 +10,7 @@ fn check(src: &[u8]) {
     let (ast, diags) = grammar::parse(src);
     let len = src.len() as u32;
     for line in &ast.lines {
-        let span = match line {
-            grammar::ast::Line::Percent(s) => *s,
-            grammar::ast::Line::ProgramStart(p) => p.span,
-            grammar::ast::Line::Block(b) => b.span,
-        };
+        let span = line.span();
         assert!(
             span.start <= span.end && span.end <= len,
             "{span:?} outside {len}"
