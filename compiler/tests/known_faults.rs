@@ -49,6 +49,22 @@ fn an_arc_that_cannot_close_is_warned_of_and_still_compiles() {
 }
 
 #[test]
+fn the_position_is_followed_through_a_block_with_two_motion_codes() {
+    // `G00 G01`: G01 wins (W106), and the block is a plain line to X10
+    // Z0; from there R1 cannot reach X20 Z-5 (half chord 7.07 mm).
+    let src = "#1=1\nG00 X20 Z2\nG00 G01 X10 Z0 F0.2\nG02 X20 Z-5 R1\nM30\n";
+    let (found, _) = diagnostics(src);
+    let w = |c: &str, l| (c.to_string(), l);
+    assert_eq!(found, [w("W106", 3), w("W119", 4)]);
+    // Written the other way round, the last code is G02 itself: the arc
+    // of line 3 goes from X20 Z2 to X10 Z0 with R10 and ends where line
+    // 4's short arc starts.
+    let src = "#1=1\nG00 X20 Z2\nG01 G02 X10 Z0 R10 F0.2\nG02 X20 Z-5 R1\nM30\n";
+    let (found, _) = diagnostics(src);
+    assert_eq!(found, [w("W106", 3), w("W119", 4)]);
+}
+
+#[test]
 fn no_warning_where_the_arc_can_be_drawn_or_its_start_is_not_known() {
     // R20 reaches.
     assert!(w119("#1=1\nG00 X0 Z0\nG02 X20 Z-30 R20\nM30\n").is_empty());
@@ -82,7 +98,10 @@ fn arc_program(rng: &mut Rng) -> String {
             2 => src += &format!("U{} W-{}\n", rng.below(9), rng.below(9)),
             3 | 4 => {
                 let g = 2 + rng.below(2);
-                src += &format!("G0{g} X{x} Z-{z} R{}\n", 1 + rng.below(30));
+                // (Now and then a block with two motion codes, W106: the
+                // last one runs.)
+                let lead = ["", "G01 "][usize::from(x % 4 == 0)];
+                src += &format!("{lead}G0{g} X{x} Z-{z} R{}\n", 1 + rng.below(30));
             }
             5 => {
                 let g = 2 + rng.below(2);

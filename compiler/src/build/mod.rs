@@ -663,7 +663,14 @@ impl<'a> Builder<'a> {
         }
         let after = crate::profile::before_exec(self, block, split);
         let start = self.words_len();
-        for w in &split.nc {
+        let last_motion = split.nc.iter().rposition(written_motion);
+        for (i, w) in split.nc.iter().enumerate() {
+            if written_motion(w) && Some(i) != last_motion {
+                // (W106: a later G00–G03 replaces it. Without it the
+                // block can be a plain move, and pass `modal` follows
+                // the position through it.)
+                continue;
+            }
             match w.value {
                 WordValue::Literal(v, flags) => {
                     self.push_word(w.addr, ir::WordValue::Const(v, flags), w.span)
@@ -743,6 +750,14 @@ fn sizes(units: &[Unit], prog: &Program) -> (usize, usize) {
 
 /// Whether an NC block ends the program: M02 or M30 written as a literal
 /// (the kernel ends the run when it executes them).
+/// Whether `w` is a G00–G03 written as a literal 0–3.
+fn written_motion(w: &words::NcWord<'_>) -> bool {
+    let WordValue::Literal(v, _) = w.value else {
+        return false;
+    };
+    w.addr == b'G' - b'A' && nc::block::written_motion(v).is_some()
+}
+
 fn ends_program(split: &words::Split<'_>) -> bool {
     split.nc.iter().any(|w| {
         w.addr == b'M' - b'A' && matches!(w.value.literal(), Some(m) if m == 2.0 || m == 30.0)
