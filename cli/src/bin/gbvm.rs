@@ -2,16 +2,33 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 
-use cli::canon::Canon;
-use nc::{Event, Machine, Sink};
-use std::io::{BufWriter, Write};
+use nc::Machine;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
 use vm::{Status, Vm};
 
 #[path = "gbvm/check.rs"]
 mod check;
+#[path = "gbvm/timed.rs"]
+mod timed;
+
+use timed::{Outputs, StatsTo};
+
+/// The alarm of a timed run that used up its simulated time (E6006,
+/// docs/machine.md): a run that cannot end (an endless dwell, a move of
+/// 10^20 mm, a feed override of 0) stops instead of writing without end.
+const E_TIME: u32 = 6006;
+
+/// What `gbvm run` runs, and how, whatever it writes.
+struct RunArgs<'a> {
+    file: &'a Path,
+    machine: (Option<&'a Path>, Option<Switch>),
+    max_blocks: Option<u64>,
+    repeat: u32,
+    vars: Option<&'a Path>,
+    jit: cli::jit::JitMode,
+}
 
 /// mimalloc (cli::allocator says why).
 #[global_allocator]
@@ -290,16 +307,16 @@ fn main() -> ExitCode {
                 Some(Ok(s)) => Some(s),
                 Some(Err(e)) => return fail(&e),
             };
+            let run_args = RunArgs {
+                file: &file,
+                machine: (machine.as_deref(), block_skip),
+                max_blocks,
+                repeat,
+                vars: vars.as_deref(),
+                jit,
+            };
             if emit == Some(Emit::Canon) && plot.is_none() && stats.is_none() {
-                return run(
-                    &file,
-                    (machine.as_deref(), block_skip),
-                    max_blocks,
-                    repeat,
-                    vars.as_deref(),
-                    quiet,
-                    jit,
-                );
+                return run(&run_args, quiet);
             }
             let out = Outputs {
                 canon: emit == Some(Emit::Canon),
@@ -311,15 +328,7 @@ fn main() -> ExitCode {
                 quiet,
                 max_time,
             };
-            run_timed(
-                &file,
-                (machine.as_deref(), block_skip),
-                max_blocks,
-                repeat,
-                vars.as_deref(),
-                &out,
-                jit,
-            )
+            timed::run_timed(&run_args, &out)
         }
     }
 }
@@ -334,21 +343,16 @@ fn load_machine((path, block_skip): (Option<&Path>, Option<Switch>)) -> Result<M
     Ok(machine)
 }
 
-fn run(
-    file: &Path,
-    machine: (Option<&Path>, Option<Switch>),
-    max_blocks: Option<u64>,
-    repeat: u32,
-    vars: Option<&Path>,
-    quiet: bool,
-    jit: cli::jit::JitMode,
-) -> ExitCode {
+/// Runs the module to its canon, without the runtime (the canon is
+/// written on a thread of its own).
+fn run(args: &RunArgs, quiet: bool) -> ExitCode {
+    let file = args.file;
     let module = match load(file) {
         Ok(m) => m,
         Err(e) => return fail(&e),
     };
     let main_lines = main_lines(&module);
-    let machine = match load_machine(machine) {
+    let machine = match load_machine(args.machine) {
         Ok(m) => m,
         Err(e) => return fail(&e),
     };
@@ -359,24 +363,16 @@ fn run(
         ));
     }
     let mut vm = Vm::new(module, machine);
-    if let Some(n) = max_blocks {
+    if let Some(n) = args.max_blocks {
         vm.max_blocks = n;
     }
-    vm.repeat = repeat.max(1);
+    vm.repeat = args.repeat.max(1);
     // Only the canon is wanted: a step need not end at every block (it
     // still ends every 65 536 instructions for the progress bar).
     vm.stop_at_blocks = false;
-    jit.attach(&mut vm);
-    let store = vars.map(Path::to_path_buf).or_else(|| {
-        let f = &vm.nc.machine.r#macro.persistent_file;
-        (!f.is_empty()).then(|| PathBuf::from(f))
-    });
-    let vars_file = match store.map(|p| cli::vars::VarsFile::open(&p)).transpose() {
-        Ok(v) => v.map(|(file, values)| {
-            *vm.persistent_mut() = values;
-            vm.set_storage(file.storage());
-            file
-        }),
+    args.jit.attach(&mut vm);
+    let vars_file = match open_vars(args.vars, &mut vm) {
+        Ok(v) => v,
         Err(e) => return fail(&e),
     };
     // Block by block (as `Vm::run`), to move the progress bar.
@@ -407,12 +403,6 @@ fn run(
     }
 }
 
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum StatsTo {
-    Stdout,
-    Stderr,
-}
-
 /// The main file's last line: the length of the progress bar.
 fn main_lines(module: &isa::Module) -> u64 {
     module
@@ -424,336 +414,18 @@ fn main_lines(module: &isa::Module) -> u64 {
         .unwrap_or(1)
 }
 
-/// What a run through the interpolation runtime writes.
-struct Outputs {
-    /// The canon on stdout.
-    canon: bool,
-    /// The per-period trace on stdout.
-    trace: Option<Format>,
-    /// The coordinates of the trace.
-    frame: runtime::trace::Frame,
-    plot: Option<PathBuf>,
-    stock: Option<runtime::plot::Stock>,
-    stats: Option<(StatsFormat, StatsTo)>,
-    quiet: bool,
-    /// `--max-time`, else the machine's run.max_time_s.
-    max_time: Option<f64>,
-}
-
-/// The alarm of a timed run that used up its simulated time (E6006,
-/// docs/machine.md): a run that cannot end (an endless dwell, a move of
-/// 10^20 mm, a feed override of 0) stops instead of writing without end.
-const E_TIME: u32 = 6006;
-
-/// Exit code of a run interrupted by Ctrl-C (128 + SIGINT, as a shell
-/// reports it).
-const INTERRUPTED: u8 = 130;
-
-/// Set by Ctrl-C; the run loop looks at it every period and stops.
-static STOP: AtomicBool = AtomicBool::new(false);
-
-/// Ctrl-C stops the run at the next period, so that the plot and the
-/// statistics of the run so far are still written; a second Ctrl-C ends
-/// the process at once.
-fn catch_interrupt() {
-    let _ = ctrlc::set_handler(|| {
-        if STOP.swap(true, Ordering::Relaxed) {
-            std::process::exit(INTERRUPTED.into());
-        }
-    });
-}
-
-/// Runs the module through the interpolation runtime, period by period,
-/// as the reference host: every PLC function completes at once and cycle
-/// start is pressed at every stop.
-fn run_timed(
-    file: &Path,
-    machine: (Option<&Path>, Option<Switch>),
-    max_blocks: Option<u64>,
-    repeat: u32,
-    vars: Option<&Path>,
-    out: &Outputs,
-    jit: cli::jit::JitMode,
-) -> ExitCode {
-    catch_interrupt();
-    let module = match load(file) {
-        Ok(m) => m,
-        Err(e) => return fail(&e),
-    };
-    let files: Vec<String> = module.files.iter().map(|f| f.name.clone()).collect();
-    let number = module
-        .programs
-        .first()
-        .map(|p| p.number)
-        .filter(|&n| n != 0);
-    let main_lines = main_lines(&module);
-    let machine = match load_machine(machine) {
-        Ok(m) => m,
-        Err(e) => return fail(&e),
-    };
-    let mut ctl = match runtime::Controller::new(module, machine, runtime::AutoAck) {
-        Ok(c) => c,
-        Err(runtime::LoadError::Machine) => {
-            return fail(&format!(
-                "{} was compiled for another machine configuration (its compile-time keys differ); compile it again with this --machine",
-                file.display()
-            ))
-        }
-        Err(e) => return fail(&format!("{}: {e}", file.display())),
-    };
-    if let Some(n) = max_blocks {
-        ctl.set_max_blocks(n);
-    }
-    ctl.set_repeat(repeat);
-    jit.attach(ctl.vm_mut());
+/// The file of #500–#999 the run starts from and leaves them in:
+/// `--vars`, else the machine's persistent file; none when neither names
+/// one. Its values are loaded into `vm`.
+fn open_vars(vars: Option<&Path>, vm: &mut Vm) -> Result<Option<cli::vars::VarsFile>, String> {
     let store = vars.map(Path::to_path_buf).or_else(|| {
-        let f = &ctl.machine().r#macro.persistent_file;
+        let f = &vm.nc.machine.r#macro.persistent_file;
         (!f.is_empty()).then(|| PathBuf::from(f))
     });
-    let vars_file = match store.map(|p| cli::vars::VarsFile::open(&p)).transpose() {
-        Ok(v) => v.map(|(file, values)| {
-            *ctl.vm_mut().persistent_mut() = values;
-            ctl.vm_mut().set_storage(file.storage());
-            file
-        }),
-        Err(e) => return fail(&e),
+    let Some((file, values)) = store.map(|p| cli::vars::VarsFile::open(&p)).transpose()? else {
+        return Ok(None);
     };
-    // The source, if it can still be read, for the plot's title and stock.
-    let info = match (&out.plot, files.first()) {
-        (Some(_), Some(name)) => std::fs::read(name)
-            .map(|b| cli::program_info::ProgramInfo::read(&String::from_utf8_lossy(&b)))
-            .unwrap_or_default(),
-        _ => Default::default(),
-    };
-    let stdout = std::io::stdout();
-    // The canon, the trace and the statistics share stdout.
-    let mut canon = Canon::new(BufWriter::new(stdout.lock()));
-    if out.trace == Some(Format::Csv) {
-        let c_axis = ctl.engine().config().c.is_some();
-        canon.write(&format!("{}\n", runtime::trace::csv_header(c_axis)));
-    }
-    let period = ctl.engine().config().period_s;
-    let mut stats = runtime::stats::Stats::new(period);
-    let mut plot = out.plot.as_ref().map(|_| runtime::plot::Plot::new());
-    let mut progress = cli::progress::Progress::bar(main_lines, "run", out.quiet);
-    // Where the first roughing cycle began: the stock's corner.
-    let mut cycle_start: Option<(f64, f64)> = None;
-    let mut last = runtime::SetPoint::default();
-    let mut line = String::new();
-    let mut interrupted = false;
-    let max_time = out.max_time.unwrap_or(ctl.machine().run.max_time_s);
-    // Whole periods: the bound is exact in ticks, not subject to a sum of
-    // rounded times.
-    let max_ticks = (max_time / period).ceil() as u64;
-    let mut ticks = 0u64;
-    let mut timed_out = None;
-    {
-        let mut quiet = nc::Discard;
-        let mut warned = Vec::new();
-        let name = |i: u16| files.get(usize::from(i)).map_or("", String::as_str);
-        ctl.cycle_start();
-        loop {
-            if out.canon {
-                ctl.run_ahead_tap(&mut canon);
-            } else {
-                ctl.run_ahead_tap(&mut quiet);
-            }
-            let sp = ctl.tick();
-            ticks += 1;
-            while let Some(w) = ctl.engine_mut().take_room_warning() {
-                room_warning(&mut warned, &w, name(w.tag.file));
-            }
-            if let Some(f) = out.trace {
-                line.clear();
-                let _ = match f {
-                    Format::Csv => {
-                        runtime::trace::write_csv(&mut line, &sp, out.frame, name(sp.file))
-                    }
-                    Format::Json => {
-                        runtime::trace::write_json(&mut line, &sp, out.frame, name(sp.file))
-                    }
-                };
-                canon.write(&line);
-            }
-            stats.add(&sp);
-            if let Some(p) = plot.as_mut() {
-                p.add(&sp);
-                if cycle_start.is_none() && sp.file == 0 && info.roughing.contains(&sp.line) {
-                    cycle_start = Some((last.x, last.z));
-                }
-            }
-            progress.set(sp.line.into(), || {
-                format!("line {} · {:.1} s of cycle time", sp.line, sp.time_s)
-            });
-            last = sp;
-            if STOP.load(Ordering::Relaxed) {
-                interrupted = true;
-                break;
-            }
-            match ctl.state() {
-                runtime::RunState::Stopped(_) | runtime::RunState::Idle => ctl.cycle_start(),
-                runtime::RunState::Ended | runtime::RunState::Alarm(_) => break,
-                _ => {}
-            }
-            // The output is what a timed run is for: once it fails, stop.
-            if canon.failed() {
-                break;
-            }
-            if ticks >= max_ticks {
-                timed_out = Some(sp);
-                break;
-            }
-        }
-    }
-    progress.finish();
-    stats.blocks = ctl.blocks();
-    let alarm = match timed_out {
-        Some(sp) => Some(time_alarm(&files, &sp, max_time)),
-        None => ctl.alarm(),
-    };
-    // A VM alarm printed its ALARM line with the canon (the kernel raises
-    // E7001 and E7002 too, at the same move as the runtime, so that a plain
-    // canon run ends the same way); the runtime's own (E7003, E4010, an
-    // E7001/E7002 the kernel cannot see) and the time bound end the canon
-    // here. The canon sink prints one ALARM line at most.
-    if let (Some(a), true) = (&alarm, out.canon) {
-        if matches!(a.code, 7001 | 7002 | 7003 | 4010 | E_TIME) {
-            canon.emit(Event::Alarm {
-                code: a.code,
-                msg: a.message.clone(),
-            });
-        }
-    }
-    let stopped_at = interrupted.then(|| cli::stats_json::Stopped {
-        file: files
-            .get(usize::from(last.file))
-            .cloned()
-            .unwrap_or_default(),
-        line: last.line,
-    });
-    if let Some((format, StatsTo::Stdout)) = out.stats {
-        canon.write(&stats_text(
-            &stats,
-            format,
-            &files,
-            &stopped_at,
-            ctl.vm().tier_stats(),
-        ));
-    }
-    let output_error = canon.finish();
-    if let Some(Err(e)) = vars_file.map(cli::vars::VarsFile::finish) {
-        return fail(&e);
-    }
-    if let (Some(path), Some(p)) = (&out.plot, plot.as_mut()) {
-        let stock = out.stock.or(info.billet).or_else(|| {
-            let (d, z) = cycle_start?;
-            Some(runtime::plot::Stock {
-                diameter: d.abs(),
-                right: z,
-                left: p.cut_zmin().filter(|&l| l < z)?,
-            })
-        });
-        if let Some(s) = stock {
-            p.set_stock(s);
-        }
-        let title = info.title(&file.display().to_string(), number);
-        if let Err(e) = std::fs::write(path, p.svg(&title)) {
-            return fail(&format!("{}: {e}", path.display()));
-        }
-    }
-    if let Some((format, StatsTo::Stderr)) = out.stats {
-        let _ = write!(
-            std::io::stderr().lock(),
-            "{}",
-            stats_text(&stats, format, &files, &stopped_at, ctl.vm().tier_stats())
-        );
-    }
-    if let Some(at) = &stopped_at {
-        let wrote = match (&out.plot, out.stats.is_some()) {
-            (Some(p), true) => format!(
-                "; the plot ({}) and the statistics hold the run so far",
-                p.display()
-            ),
-            (Some(p), false) => format!("; the plot ({}) holds the run so far", p.display()),
-            (None, true) => "; the statistics hold the run so far".to_string(),
-            (None, false) => String::new(),
-        };
-        note(format_args!(
-            "gbvm: interrupted at {}:{} after {:.3} s of cycle time{wrote}",
-            printable(&at.file),
-            at.line,
-            last.time_s
-        ));
-        return ExitCode::from(INTERRUPTED);
-    }
-    if let Some(a) = &alarm {
-        note(format_args!("{}", printable(&a.header())));
-    }
-    match (output_error, alarm) {
-        (Some(e), _) => output_failed(&e),
-        (None, Some(_)) => cli::exit::Exit::Alarm.into(),
-        (None, None) => ExitCode::SUCCESS,
-    }
-}
-
-/// W118 found at run time, once per block and kind (a cycle's passes
-/// repeat it), on stderr as gbcc prints warnings.
-fn room_warning(warned: &mut Vec<(u16, u32, bool)>, w: &runtime::RoomWarning, file: &str) {
-    let key = (w.tag.file, w.tag.line, w.exit);
-    if warned.contains(&key) {
-        return;
-    }
-    warned.push(key);
-    note(format_args!(
-        "{}:{}:{}: warning[W118]: {}",
-        printable(file),
-        w.tag.line,
-        w.tag.col,
-        w.message()
-    ));
-}
-
-/// E6006 at the block running when the time ran out.
-fn time_alarm(files: &[String], sp: &runtime::SetPoint, max_time: f64) -> runtime::AlarmInfo {
-    runtime::AlarmInfo {
-        code: E_TIME,
-        message: format!(
-            "the run did not end within {max_time} s of simulated time (run.max_time_s, --max-time)"
-        ),
-        file: files.get(usize::from(sp.file)).cloned().unwrap_or_default(),
-        line: sp.line,
-        col: 1,
-    }
-}
-
-/// The statistics as text or JSON.
-fn stats_text(
-    stats: &runtime::stats::Stats,
-    format: StatsFormat,
-    files: &[String],
-    stopped_at: &Option<cli::stats_json::Stopped>,
-    tier: Option<vm::TierStats>,
-) -> String {
-    let jit = tier.and_then(cli::stats_json::Jit::of);
-    match format {
-        StatsFormat::Text => {
-            let mut t = stats.to_string();
-            if let Some(at) = stopped_at {
-                t.push_str(&format!("interrupted at: {}:{}\n", at.file, at.line));
-            }
-            if let Some(j) = &jit {
-                t.push_str(&j.line());
-            }
-            t
-        }
-        StatsFormat::Json => {
-            let stopped = stopped_at.as_ref().map(|a| cli::stats_json::Stopped {
-                file: a.file.clone(),
-                line: a.line,
-            });
-            let mut j = cli::stats_json::Report::new(stats, files, stopped, jit).to_json();
-            j.push('\n');
-            j
-        }
-    }
+    *vm.persistent_mut() = values;
+    vm.set_storage(file.storage());
+    Ok(Some(file))
 }
