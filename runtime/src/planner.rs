@@ -248,6 +248,21 @@ pub const REPLAN_BATCH: usize = 32;
 /// Highest feed override: the envelope must allow it.
 const MAX_OVERRIDE: f64 = 1.5;
 
+/// What caps a segment's speed and acceleration, whatever its kind.
+struct Limits {
+    /// The path speed cap, mm/s.
+    cap: f64,
+    /// The acceleration along a line's direction.
+    a_line: f64,
+    /// The smaller axis acceleration.
+    amin: f64,
+    /// The curve's smallest radius (infinite for a line).
+    rmin: f64,
+    is_line: bool,
+    /// The C axis, when the move turns it.
+    c: Option<crate::config::Axis>,
+}
+
 impl Planner {
     /// A queue for these settings (its only allocation).
     pub fn new(cfg: &Config) -> Planner {
@@ -527,7 +542,6 @@ impl Planner {
             }
             _ => curve.end_tangents(),
         };
-        let amin = self.ax[0].min(self.ax[1]);
         let mut seg = Segment {
             kind: m.kind,
             curve,
@@ -551,14 +565,31 @@ impl Planner {
             long_len: 0.0,
             est_s: 0.0,
         };
-        // Hard caps of the path: per-axis feed limits (a curve sweeps its
-        // direction, so both count fully), the path limit, curvature.
-        let dir = if matches!(curve, Curve::Line { .. }) {
-            t0
-        } else {
-            (to - from).unit()
-        };
+        let lim = self.limits(&seg, dc);
+        match m.kind {
+            MoveKind::Rapid | MoveKind::Offset => self.rapid_segment(&mut seg, &lim, dc),
+            MoveKind::Feed(f) | MoveKind::Skip(f) => self.feed_segment(&mut seg, &lim, f),
+            MoveKind::Thread(t) => self.thread_segment(&mut seg, &lim, t),
+        }
+        seg.a = seg.a_scale * (1.0 - seg.f_n - seg.c_in.max(seg.c_out));
+        if !crate::math::is_pos(seg.a) {
+            seg.a = seg.a_scale * 0.25;
+        }
+        Some(seg)
+    }
+
+    /// The hard caps of a segment's path (`dc`: the C axis's turn).
+    fn limits(&self, seg: &Segment, dc: f64) -> Limits {
+        let (curve, len) = (seg.curve, seg.len);
+        let amin = self.ax[0].min(self.ax[1]);
+        // Per-axis feed limits (a curve sweeps its direction, so both
+        // count fully), the path limit, curvature.
         let is_line = matches!(curve, Curve::Line { .. });
+        let dir = if is_line {
+            seg.t0
+        } else {
+            (seg.to - seg.from).unit()
+        };
         let (ur, uz) = (dir.r.abs(), dir.z.abs());
         // C's share of the direction (only lines turn C).
         let c = self.c_axis.filter(|_| dc != 0.0);
@@ -585,78 +616,76 @@ impl Planner {
         if let Some(c) = &c {
             a_line = a_line.min(c.accel / uc);
         }
-        match m.kind {
-            MoveKind::Rapid | MoveKind::Offset => {
-                let d = to - from;
-                seg.v_max = f64::INFINITY;
-                seg.a = amin;
-                seg.a_scale = amin;
-                seg.est_s = (d.r.abs() / self.vrapid[0]).max(d.z.abs() / self.vrapid[1]);
-                if let Some(c) = &c {
-                    seg.est_s = seg.est_s.max(dc.abs() / c.rapid);
-                }
-            }
-            MoveKind::Feed(f) | MoveKind::Skip(f) => {
-                let dry = self.dry_run && matches!(m.kind, MoveKind::Feed(_));
-                let top = if f.per_rev || dry {
-                    cap
-                } else {
-                    let over = if let MoveKind::Skip(_) = m.kind {
-                        1.0
-                    } else {
-                        MAX_OVERRIDE
-                    };
-                    cap.min(f.f * over)
-                };
-                seg.v_max = top.max(0.0);
-                if is_line {
-                    seg.a_scale = a_line;
-                } else {
-                    seg.a_scale = amin;
-                    seg.f_n = (seg.v_max * seg.v_max / (rmin * amin)).min(0.5);
-                }
-                // Keep the corner share at the end until the next move is
-                // known; the real corner can only need less.
-                let blends = c.is_none() && !self.exact_stop && !self.jerk;
-                seg.c_out = if matches!(m.kind, MoveKind::Feed(_)) && blends {
-                    self.budget
-                } else {
-                    0.0
-                };
-                seg.est_s = len / self.nominal(f, to).min(seg.v_max).max(1e-3);
-            }
-            MoveKind::Thread(t) => {
-                let d = to - from;
-                seg.long_z = d.z.abs() >= d.r.abs();
-                seg.long_len = match curve {
-                    Curve::Arc { .. } => {
-                        let p = curve.point(1.0) - curve.point(0.0);
-                        if seg.long_z {
-                            p.z.abs()
-                        } else {
-                            p.r.abs()
-                        }
-                    }
-                    _ => {
-                        if seg.long_z {
-                            d.z.abs()
-                        } else {
-                            d.r.abs()
-                        }
-                    }
-                };
-                seg.v_max = cap;
-                seg.a_scale = if is_line { a_line } else { amin };
-                seg.f_n = if is_line { 0.0 } else { 0.5 };
-                let rps = self.rpm_hint.max(1.0) / 60.0;
-                seg.est_s = seg.long_len / (t.lead.max(1e-6) * rps);
-            }
+        Limits {
+            cap,
+            a_line,
+            amin,
+            rmin,
+            is_line,
+            c,
         }
-        seg.a = seg.a_scale * (1.0 - seg.f_n - seg.c_in.max(seg.c_out));
-        if !crate::math::is_pos(seg.a) {
-            seg.a = seg.a_scale * 0.25;
+    }
+
+    /// A rapid: each axis at its own rate, the path at the smaller
+    /// acceleration.
+    fn rapid_segment(&self, seg: &mut Segment, lim: &Limits, dc: f64) {
+        let d = seg.to - seg.from;
+        seg.v_max = f64::INFINITY;
+        seg.a = lim.amin;
+        seg.a_scale = lim.amin;
+        seg.est_s = (d.r.abs() / self.vrapid[0]).max(d.z.abs() / self.vrapid[1]);
+        if let Some(c) = &lim.c {
+            seg.est_s = seg.est_s.max(dc.abs() / c.rapid);
         }
-        Some(seg)
+    }
+
+    /// A feed (or a skip move): F up to the caps, with room for the
+    /// override above it.
+    fn feed_segment(&self, seg: &mut Segment, lim: &Limits, f: Feed) {
+        let kind = seg.kind;
+        let dry = self.dry_run && matches!(kind, MoveKind::Feed(_));
+        let top = if f.per_rev || dry {
+            lim.cap
+        } else {
+            let over = if let MoveKind::Skip(_) = kind {
+                1.0
+            } else {
+                MAX_OVERRIDE
+            };
+            lim.cap.min(f.f * over)
+        };
+        seg.v_max = top.max(0.0);
+        if lim.is_line {
+            seg.a_scale = lim.a_line;
+        } else {
+            seg.a_scale = lim.amin;
+            seg.f_n = (seg.v_max * seg.v_max / (lim.rmin * lim.amin)).min(0.5);
+        }
+        // Keep the corner share at the end until the next move is known;
+        // the real corner can only need less.
+        let blends = lim.c.is_none() && !self.exact_stop && !self.jerk;
+        seg.c_out = if matches!(kind, MoveKind::Feed(_)) && blends {
+            self.budget
+        } else {
+            0.0
+        };
+        seg.est_s = seg.len / self.nominal(f, seg.to).min(seg.v_max).max(1e-3);
+    }
+
+    /// A thread: its long axis (the one the lead is along) and the caps.
+    fn thread_segment(&self, seg: &mut Segment, lim: &Limits, t: crate::command::Thread) {
+        let d = seg.to - seg.from;
+        seg.long_z = d.z.abs() >= d.r.abs();
+        let along = |p: V2| if seg.long_z { p.z.abs() } else { p.r.abs() };
+        seg.long_len = match seg.curve {
+            Curve::Arc { .. } => along(seg.curve.point(1.0) - seg.curve.point(0.0)),
+            _ => along(d),
+        };
+        seg.v_max = lim.cap;
+        seg.a_scale = if lim.is_line { lim.a_line } else { lim.amin };
+        seg.f_n = if lim.is_line { 0.0 } else { 0.5 };
+        let rps = self.rpm_hint.max(1.0) / 60.0;
+        seg.est_s = seg.long_len / (t.lead.max(1e-6) * rps);
     }
 
     /// The C angle a move ends at: lines and rapids may turn C, nothing
