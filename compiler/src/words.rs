@@ -273,6 +273,34 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
         .first()
         .map_or(Span::default(), |w| w.span)
         .to(words.last().map_or(Span::default(), |w| w.span));
+    check_call_g(words, modal, span)?;
+    // The H form starts with H: an H after P is the call's argument #11
+    // (seed 003: `G65 P9100 H5` passes H5).
+    let h = words
+        .iter()
+        .find(|w| is(w, 'H') || is(w, 'P'))
+        .filter(|w| is(w, 'H'));
+    if let (Some(h), false) = (h, modal) {
+        return macro_a_call(words, h, span);
+    }
+    let mut call = MacroArgs::default();
+    for w in words.iter().skip(1) {
+        call.word(w)?;
+    }
+    Ok(Split {
+        nc: NcWords::new(),
+        call: Some(Call::Macro {
+            modal,
+            p: call.p,
+            l: call.l,
+            args: call.args,
+            span,
+        }),
+    })
+}
+
+/// E2002 unless the G65/G66 is the block's first word and its only G.
+fn check_call_g(words: &[Word], modal: bool, span: Span) -> Result<(), Diagnostic> {
     let name = if modal { "G66" } else { "G65" };
     if !words.first().is_some_and(|w| is(w, 'G')) {
         let at = words.iter().find(|w| is(w, 'G')).map_or(span, |w| w.span);
@@ -289,45 +317,52 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
             format!("no other G code may stand in a {name} block"),
         ));
     }
-    // The H form starts with H: an H after P is the call's argument #11
-    // (seed 003: `G65 P9100 H5` passes H5).
-    let h = words
+    Ok(())
+}
+
+/// `G65 H m P Q R`: a macro-A operation.
+fn macro_a_call<'a>(words: &'a [Word], h: &'a Word, span: Span) -> Result<Split<'a>, Diagnostic> {
+    let find = |c: char| words.iter().find(|w| is(w, c));
+    if let Some(extra) = words
         .iter()
-        .find(|w| is(w, 'H') || is(w, 'P'))
-        .filter(|w| is(w, 'H'));
-    if let (Some(h), false) = (h, modal) {
-        let find = |c: char| words.iter().find(|w| is(w, c));
-        if let Some(extra) = words
-            .iter()
-            .skip(1)
-            .find(|w| !matches!(w.addr, Addr::Letter('H' | 'P' | 'Q' | 'R')))
-        {
-            return Err(Diagnostic::error(
-                "E1011",
-                extra.span,
-                format!(
-                    "only H, P, Q and R may follow G65 H: {} is not allowed here",
-                    extra.addr
-                ),
-            ));
-        }
-        return Ok(Split {
-            nc: NcWords::new(),
-            call: Some(Call::MacroA {
-                h: value_of(h),
-                p: find('P'),
-                q: find('Q').map(value_of),
-                r: find('R').map(value_of),
-                span,
-            }),
-        });
+        .skip(1)
+        .find(|w| !matches!(w.addr, Addr::Letter('H' | 'P' | 'Q' | 'R')))
+    {
+        return Err(Diagnostic::error(
+            "E1011",
+            extra.span,
+            format!(
+                "only H, P, Q and R may follow G65 H: {} is not allowed here",
+                extra.addr
+            ),
+        ));
     }
-    let mut p = None;
-    let mut l = None;
-    let mut args = Vec::new();
-    let mut seen = [false; 26];
-    let mut ijk = [0u8; 3];
-    for w in words.iter().skip(1) {
+    Ok(Split {
+        nc: NcWords::new(),
+        call: Some(Call::MacroA {
+            h: value_of(h),
+            p: find('P'),
+            q: find('Q').map(value_of),
+            r: find('R').map(value_of),
+            span,
+        }),
+    })
+}
+
+/// The words of a G65/G66 call after its G: the program P, the count L
+/// and the arguments (argument specification I: A–Z; II: up to ten
+/// I, J, K sets).
+#[derive(Default)]
+struct MacroArgs<'a> {
+    p: Option<WordValue<'a>>,
+    l: Option<WordValue<'a>>,
+    args: Vec<Arg<'a>>,
+    seen: [bool; 26],
+    ijk: [u8; 3],
+}
+
+impl<'a> MacroArgs<'a> {
+    fn word(&mut self, w: &'a Word) -> Result<(), Diagnostic> {
         let Addr::Letter(c) = w.addr else {
             return Err(Diagnostic::error(
                 "E2061",
@@ -336,8 +371,8 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
             ));
         };
         match c {
-            'P' => p = Some(value_of(w)),
-            'L' => l = Some(value_of(w)),
+            'P' => self.p = Some(value_of(w)),
+            'L' => self.l = Some(value_of(w)),
             'G' | 'N' | 'O' => {
                 return Err(Diagnostic::error(
                     "E2061",
@@ -345,55 +380,54 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
                     format!("{c} cannot be a macro argument"),
                 ))
             }
-            'I' | 'J' | 'K' => {
-                let k = (c as u8 - b'I') as usize;
-                ijk[k] += 1;
-                if ijk[k] > 10 {
-                    return Err(Diagnostic::error(
-                        "E2061",
-                        w.span,
-                        format!("more than ten {c} arguments"),
-                    ));
-                }
-                let var = 4 + 3 * (ijk[k] - 1) + k as u8;
-                args.push(Arg {
-                    var,
-                    value: value_of(w),
-                    length: true,
-                });
-            }
-            c => {
-                let i = (c as u8 - b'A') as usize;
-                if seen[i] {
-                    return Err(Diagnostic::error(
-                        "E1011",
-                        w.span,
-                        format!("argument {c} is written twice"),
-                    ));
-                }
-                seen[i] = true;
-                if let Some(var) = arg_var_i(c) {
-                    let length = matches!(
-                        c,
-                        'A' | 'B' | 'C' | 'E' | 'R' | 'U' | 'V' | 'W' | 'X' | 'Y' | 'Z'
-                    );
-                    args.push(Arg {
-                        var,
-                        value: value_of(w),
-                        length,
-                    });
-                }
-            }
+            'I' | 'J' | 'K' => self.ijk_set(c, w)?,
+            c => self.letter(c, w)?,
         }
+        Ok(())
     }
-    Ok(Split {
-        nc: NcWords::new(),
-        call: Some(Call::Macro {
-            modal,
-            p,
-            l,
-            args,
-            span,
-        }),
-    })
+
+    /// I, J or K: the next set's (#4–#6, #7–#9, … #31–#33).
+    fn ijk_set(&mut self, c: char, w: &'a Word) -> Result<(), Diagnostic> {
+        let k = (c as u8 - b'I') as usize;
+        self.ijk[k] += 1;
+        if self.ijk[k] > 10 {
+            return Err(Diagnostic::error(
+                "E2061",
+                w.span,
+                format!("more than ten {c} arguments"),
+            ));
+        }
+        let var = 4 + 3 * (self.ijk[k] - 1) + k as u8;
+        self.args.push(Arg {
+            var,
+            value: value_of(w),
+            length: true,
+        });
+        Ok(())
+    }
+
+    /// Another letter: its variable of specification I, once.
+    fn letter(&mut self, c: char, w: &'a Word) -> Result<(), Diagnostic> {
+        let i = (c as u8 - b'A') as usize;
+        if self.seen[i] {
+            return Err(Diagnostic::error(
+                "E1011",
+                w.span,
+                format!("argument {c} is written twice"),
+            ));
+        }
+        self.seen[i] = true;
+        if let Some(var) = arg_var_i(c) {
+            let length = matches!(
+                c,
+                'A' | 'B' | 'C' | 'E' | 'R' | 'U' | 'V' | 'W' | 'X' | 'Y' | 'Z'
+            );
+            self.args.push(Arg {
+                var,
+                value: value_of(w),
+                length,
+            });
+        }
+        Ok(())
+    }
 }
