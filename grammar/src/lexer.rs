@@ -452,8 +452,7 @@ fn lex_tokens(
     out: &mut Vec<Spanned>,
 ) -> Result<(), Box<Diagnostic>> {
     let mut lex = Tok::lexer(text);
-    let mut depth = 0usize;
-    let mut operators = 0usize;
+    let mut bounds = Bounds::default();
     while let Some(next) = lex.next() {
         let range = lex.span();
         let start = map.start(range.start);
@@ -470,67 +469,94 @@ fn lex_tokens(
                 Tok::Seq(w)
             }
             Ok(tok) => tok,
-            Err(LexError::Number) => {
-                let slice = &text[range.clone()];
-                let (value, from) = match slice.first() {
-                    Some(c) if c.is_ascii_alphabetic() => (&slice[1..], map.start(range.start + 1)),
-                    _ => (slice, start),
-                };
-                let spelled: String = value.iter().map(|&b| b as char).collect();
-                let d = if value.iter().any(u8::is_ascii_digit) {
-                    Diagnostic::error(
-                        "E1007",
-                        Span::new(from, end),
-                        format!("malformed number `{spelled}`"),
-                    )
-                    .with_label("a number has at most one decimal point")
-                } else {
-                    Diagnostic::error(
-                        "E1007",
-                        Span::new(from, end),
-                        "malformed number: `.` without digits",
-                    )
-                    .with_label("a point needs a digit before or after it")
-                    .with_help("write `0.` or `.0`")
-                };
-                return Err(Box::new(d));
-            }
-            Err(LexError::Range) => {
-                let from = match text[range.clone()].first() {
-                    Some(c) if c.is_ascii_alphabetic() => map.start(range.start + 1),
-                    _ => start,
-                };
-                return Err(Box::new(
-                    Diagnostic::error(
-                        "E1010",
-                        Span::new(from, end),
-                        "number too large: it is not a finite value",
-                    )
-                    .with_label("more digits than a double can hold (about 1.8e308)"),
-                ));
-            }
+            Err(LexError::Number) => return Err(malformed_number(text, range, map, end)),
+            Err(LexError::Range) => return Err(too_large(text, range, map, end)),
             Err(LexError::Char) => return Err(Box::new(bad_char(text[range.start], start, end))),
         };
+        let prev = out[first..].last().map(|(_, t, _)| t);
+        bounds.count(&tok, prev, Span::new(start, end))?;
+        out.push((start, tok, end));
+    }
+    Ok(())
+}
+
+/// The start of a number's value in a token `range` of `text`: after its
+/// address letter, if it has one.
+fn value_start(text: &[u8], range: &core::ops::Range<usize>, map: &OffsetMap<'_>) -> usize {
+    match text[range.clone()].first() {
+        Some(c) if c.is_ascii_alphabetic() => map.start(range.start + 1),
+        _ => map.start(range.start),
+    }
+}
+
+/// E1007: a number with two decimal points, or a point without digits.
+#[cold]
+fn malformed_number(
+    text: &[u8],
+    range: core::ops::Range<usize>,
+    map: &OffsetMap<'_>,
+    end: usize,
+) -> Box<Diagnostic> {
+    let slice = &text[range.clone()];
+    let value = match slice.first() {
+        Some(c) if c.is_ascii_alphabetic() => &slice[1..],
+        _ => slice,
+    };
+    let span = Span::new(value_start(text, &range, map), end);
+    let spelled: String = value.iter().map(|&b| b as char).collect();
+    let d = if value.iter().any(u8::is_ascii_digit) {
+        Diagnostic::error("E1007", span, format!("malformed number `{spelled}`"))
+            .with_label("a number has at most one decimal point")
+    } else {
+        Diagnostic::error("E1007", span, "malformed number: `.` without digits")
+            .with_label("a point needs a digit before or after it")
+            .with_help("write `0.` or `.0`")
+    };
+    Box::new(d)
+}
+
+/// E1010: a number beyond the largest double.
+#[cold]
+fn too_large(
+    text: &[u8],
+    range: core::ops::Range<usize>,
+    map: &OffsetMap<'_>,
+    end: usize,
+) -> Box<Diagnostic> {
+    let span = Span::new(value_start(text, &range, map), end);
+    Box::new(
+        Diagnostic::error("E1010", span, "number too large: it is not a finite value")
+            .with_label("more digits than a double can hold (about 1.8e308)"),
+    )
+}
+
+/// The bounds on a block's expressions (E1014): how deep its brackets
+/// nest and how many operators it has, so that no later pass recurses or
+/// works without end.
+#[derive(Default)]
+struct Bounds {
+    depth: usize,
+    operators: usize,
+}
+
+impl Bounds {
+    /// Counts `tok`, which follows `prev` in its block.
+    #[inline]
+    fn count(&mut self, tok: &Tok, prev: Option<&Tok>, span: Span) -> Result<(), Box<Diagnostic>> {
         match tok {
             Tok::LBrack => {
-                depth += 1;
-                if depth > MAX_DEPTH {
-                    return Err(Box::new(
-                        Diagnostic::error(
-                            "E1014",
-                            Span::new(start, end),
-                            format!("brackets nested more than {MAX_DEPTH} deep"),
-                        )
-                        .with_label("too deep"),
-                    ));
+                self.depth += 1;
+                if self.depth > MAX_DEPTH {
+                    return Err(too_deep(span));
                 }
             }
-            Tok::RBrack => depth = depth.saturating_sub(1),
+            Tok::RBrack => self.depth = self.depth.saturating_sub(1),
             // A sign or `#` right after an address is part of a word value
             // and cannot nest.
-            Tok::Plus | Tok::Minus | Tok::Hash if !matches!(out[first..].last(), Some((_, t, _)) if t.is_letter() || *t == Tok::Comma) =>
+            Tok::Plus | Tok::Minus | Tok::Hash
+                if !prev.is_some_and(|t| t.is_letter() || *t == Tok::Comma) =>
             {
-                operators += 1;
+                self.operators += 1;
             }
             Tok::Star
             | Tok::Slash
@@ -539,24 +565,38 @@ fn lex_tokens(
             | Tok::Xor
             | Tok::Mod
             | Tok::Func(_)
-            | Tok::Atan => operators += 1,
+            | Tok::Atan => self.operators += 1,
             _ => {}
         }
-        if operators > MAX_OPERATORS {
-            return Err(Box::new(
-                Diagnostic::error(
-                    "E1014",
-                    Span::new(start, end),
-                    format!(
-                        "expression too long: more than {MAX_OPERATORS} operators in one block"
-                    ),
-                )
-                .with_help("split the computation over several assignments"),
-            ));
+        if self.operators > MAX_OPERATORS {
+            return Err(too_long(span));
         }
-        out.push((start, tok, end));
+        Ok(())
     }
-    Ok(())
+}
+
+#[cold]
+fn too_deep(span: Span) -> Box<Diagnostic> {
+    Box::new(
+        Diagnostic::error(
+            "E1014",
+            span,
+            format!("brackets nested more than {MAX_DEPTH} deep"),
+        )
+        .with_label("too deep"),
+    )
+}
+
+#[cold]
+fn too_long(span: Span) -> Box<Diagnostic> {
+    Box::new(
+        Diagnostic::error(
+            "E1014",
+            span,
+            format!("expression too long: more than {MAX_OPERATORS} operators in one block"),
+        )
+        .with_help("split the computation over several assignments"),
+    )
 }
 
 /// What a word token alone shows: a G value with more than one decimal
