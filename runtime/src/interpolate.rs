@@ -173,6 +173,27 @@ pub struct SkipReport {
     pub shift: V2,
 }
 
+/// A copy of what the queue's head item asks (the queue is not held
+/// borrowed while it runs).
+enum Head {
+    Move,
+    Dwell(f64),
+    Plc(PlcFunction),
+    Pause(PauseKind),
+    Stroke(Option<nc::stroke::Area>),
+    Plane(crate::polar::PlaneSwitch),
+    End,
+    Alarm(u32),
+}
+
+/// Whether a period goes on to the next queued item or is over.
+enum Flow {
+    /// The item took no time: the next one runs in this period.
+    Next,
+    /// The period's work is done.
+    Done,
+}
+
 /// One period of one axis in a rapid: from `p` at speed `v0` towards `t`
 /// at the axis's rapid rate × `f` and acceleration, landing exactly on
 /// `t`. Returns the new speed and position.
@@ -692,16 +713,6 @@ impl<P: Plc> Engine<P> {
 
     /// Executes head items until one takes the rest of the period.
     fn run(&mut self) {
-        enum Head {
-            Move,
-            Dwell(f64),
-            Plc(PlcFunction),
-            Pause(PauseKind),
-            Stroke(Option<nc::stroke::Area>),
-            Plane(crate::polar::PlaneSwitch),
-            End,
-            Alarm(u32),
-        }
         for _ in 0..64 {
             if self.state != RunState::Running
                 && self.state != RunState::Starved
@@ -709,23 +720,12 @@ impl<P: Plc> Engine<P> {
             {
                 return;
             }
-            let Some(item) = self.q.get(0) else {
+            let Some((head, tag, shift)) = self.head() else {
                 if self.state == RunState::Running {
                     self.state = RunState::Starved;
                 }
                 return;
             };
-            let head = match &item.kind {
-                ItemKind::Move(_) => Head::Move,
-                ItemKind::Dwell(s) => Head::Dwell(*s),
-                ItemKind::Plc(f) => Head::Plc(*f),
-                ItemKind::Pause(k) => Head::Pause(*k),
-                ItemKind::Stroke(a) => Head::Stroke(*a),
-                ItemKind::Plane(sw) => Head::Plane(*sw),
-                ItemKind::End => Head::End,
-                ItemKind::Alarm(c) => Head::Alarm(*c),
-            };
-            let (tag, shift) = (item.tag, item.shift);
             if self.state == RunState::Starved {
                 self.state = RunState::Running;
             }
@@ -734,68 +734,97 @@ impl<P: Plc> Engine<P> {
                 self.tag = tag;
                 self.fixed_work = None;
             }
-            match head {
+            let flow = match head {
                 Head::Move => {
                     self.step_move();
-                    return;
+                    Flow::Done
                 }
-                Head::Dwell(secs) => {
-                    if !self.started {
-                        self.started = true;
-                        let n = libm::round(secs.max(0.0) / self.dt);
-                        self.dwell_left = if n.is_finite() { n as u64 } else { u64::MAX };
-                    }
-                    if self.dwell_left == 0 {
-                        self.finish_item();
-                        continue;
-                    }
-                    if self.hold {
-                        self.state = RunState::Held;
-                    } else {
-                        self.motion = Motion::Dwell;
-                        self.dwell_left -= 1;
-                        if self.dwell_left == 0 {
-                            self.finish_item();
-                        }
-                    }
-                    return;
-                }
-                Head::Plc(f) => {
-                    if !self.started {
-                        self.started = true;
-                        self.apply_plc(f);
-                        self.plc.request(f);
-                    }
-                    if !self.plc.done(f) {
-                        return;
-                    }
-                    self.finish_item();
-                }
-                Head::Pause(PauseKind::M01) if !self.optional_stop => {
-                    self.finish_item();
-                }
+                Head::Dwell(secs) => self.step_dwell(secs),
+                Head::Plc(f) => self.step_plc(f),
+                Head::Pause(PauseKind::M01) if !self.optional_stop => self.finish_item_now(),
                 Head::Pause(k) => {
                     self.state = RunState::Stopped(k);
-                    return;
+                    Flow::Done
                 }
                 Head::Stroke(a) => {
                     self.stroke = a;
-                    self.finish_item();
+                    self.finish_item_now()
                 }
                 Head::Plane(sw) => {
                     self.switch_plane(&sw);
-                    self.finish_item();
+                    self.finish_item_now()
                 }
                 Head::End => {
                     self.state = RunState::Ended;
-                    return;
+                    Flow::Done
                 }
                 Head::Alarm(c) => {
                     self.raise(c, tag);
-                    return;
+                    Flow::Done
                 }
+            };
+            if let Flow::Done = flow {
+                return;
             }
         }
+    }
+
+    /// The queue's head item (a copy of what it asks), its tag and shift.
+    fn head(&self) -> Option<(Head, Tag, V2)> {
+        let item = self.q.get(0)?;
+        let head = match &item.kind {
+            ItemKind::Move(_) => Head::Move,
+            ItemKind::Dwell(s) => Head::Dwell(*s),
+            ItemKind::Plc(f) => Head::Plc(*f),
+            ItemKind::Pause(k) => Head::Pause(*k),
+            ItemKind::Stroke(a) => Head::Stroke(*a),
+            ItemKind::Plane(sw) => Head::Plane(*sw),
+            ItemKind::End => Head::End,
+            ItemKind::Alarm(c) => Head::Alarm(*c),
+        };
+        Some((head, item.tag, item.shift))
+    }
+
+    /// A dwell counts down a period at a time (not while held).
+    fn step_dwell(&mut self, secs: f64) -> Flow {
+        if !self.started {
+            self.started = true;
+            let n = libm::round(secs.max(0.0) / self.dt);
+            self.dwell_left = if n.is_finite() { n as u64 } else { u64::MAX };
+        }
+        if self.dwell_left == 0 {
+            return self.finish_item_now();
+        }
+        if self.hold {
+            self.state = RunState::Held;
+        } else {
+            self.motion = Motion::Dwell;
+            self.dwell_left -= 1;
+            if self.dwell_left == 0 {
+                self.finish_item();
+            }
+        }
+        Flow::Done
+    }
+
+    /// A PLC function is requested once, then waited for.
+    fn step_plc(&mut self, f: PlcFunction) -> Flow {
+        if !self.started {
+            self.started = true;
+            self.apply_plc(f);
+            self.plc.request(f);
+        }
+        if !self.plc.done(f) {
+            return Flow::Done;
+        }
+        self.finish_item_now()
+    }
+
+    /// Finishes the head item, which took no time: the next one may run
+    /// in this period.
+    fn finish_item_now(&mut self) -> Flow {
+        self.finish_item();
+        Flow::Next
     }
 
     /// What the simulation itself does for a PLC function.
