@@ -85,72 +85,7 @@ impl From<FrameArg> for runtime::trace::Frame {
 #[derive(Subcommand)]
 enum Command {
     /// Run a module and print what the machine is told to do.
-    Run {
-        file: PathBuf,
-        /// canon: the motion listing (docs/formats.md); trace: one line
-        /// per interpolation period
-        /// (time_s,x,z,spindle_rpm,feed,line,motion,tool,file; a c column
-        /// after z on a machine with a C axis). Default: canon, or nothing
-        /// when --stats takes standard output.
-        #[arg(long, value_enum)]
-        emit: Option<Emit>,
-        /// Format of the trace: CSV with a header, or JSON lines.
-        #[arg(long, value_enum, default_value = "csv")]
-        format: Format,
-        /// Coordinates of the trace's x and z: work (the programmed point,
-        /// as the canon) or machine (the axis set points from machine
-        /// zero, work zero and tool offset applied). Default: work.
-        #[arg(long, value_enum, value_name = "work|machine")]
-        frame: Option<FrameArg>,
-        /// Draw the XZ toolpath into an SVG file, framed on the cutting
-        /// moves (rapids dashed, feeds solid, threads in their own colour;
-        /// start point, tool changes and stock marked).
-        #[arg(long, value_name = "FILE.svg")]
-        plot: Option<PathBuf>,
-        /// The stock the plot draws: X<diameter> Z<length>, face at Z0
-        /// (default: the program's [BILLET line, else the corner of its
-        /// first roughing cycle).
-        #[arg(long, value_name = "X… Z…")]
-        stock: Option<String>,
-        /// Print cycle time in total, per tool and per operation (h:mm:ss
-        /// and seconds), distances and blocks: on stdout without --emit,
-        /// else on stderr. --stats=json for one JSON object.
-        #[arg(long, value_enum, num_args = 0..=1, require_equals = true, default_missing_value = "text", value_name = "FORMAT")]
-        stats: Option<StatsFormat>,
-        /// No progress bar.
-        #[arg(long, short = 'q')]
-        quiet: bool,
-        #[arg(long, value_name = "FILE")]
-        machine: Option<PathBuf>,
-        /// The block-skip switches /1–/9 at the start: on skips the `/`
-        /// blocks; default operator.block_skip of the machine file.
-        #[arg(long, value_enum, value_name = "on|off")]
-        block_skip: Option<Switch>,
-        /// Block budget (E6005 past it); default run.max_blocks.
-        #[arg(long, value_name = "N")]
-        max_blocks: Option<u64>,
-        /// Simulated seconds a timed run (--emit trace, --plot, --stats)
-        /// may last before it stops with E6006; default run.max_time_s.
-        #[arg(long, value_name = "S")]
-        max_time: Option<f64>,
-        /// Passes a main-program M99 makes before the run ends.
-        #[arg(long, value_name = "N", default_value_t = 1)]
-        repeat: u32,
-        /// Keep #500–#999 in FILE (loaded at the start, rewritten
-        /// crash-safely whenever the program changes them).
-        #[arg(long, value_name = "FILE")]
-        vars: Option<PathBuf>,
-        /// Compile hot macro loops to machine code: auto (a loop that has
-        /// gone round 500 times), always (at its first round), off. The
-        /// output is the same either way.
-        #[arg(
-            long,
-            value_enum,
-            default_value = "auto",
-            value_name = "auto|always|off"
-        )]
-        jit: cli::jit::JitMode,
-    },
+    Run(RunCmd),
     /// Run a module through the runtime and certify every period: axis
     /// velocity, acceleration (and jerk where limited) within the
     /// machine's limits, every canon end point reached, thread leads,
@@ -169,6 +104,75 @@ enum Command {
     Disasm { file: PathBuf },
     /// Load and verify a module.
     Verify { file: PathBuf },
+}
+
+/// `gbvm run`'s arguments.
+#[derive(clap::Args)]
+struct RunCmd {
+    file: PathBuf,
+    /// canon: the motion listing (docs/formats.md); trace: one line
+    /// per interpolation period
+    /// (time_s,x,z,spindle_rpm,feed,line,motion,tool,file; a c column
+    /// after z on a machine with a C axis). Default: canon, or nothing
+    /// when --stats takes standard output.
+    #[arg(long, value_enum)]
+    emit: Option<Emit>,
+    /// Format of the trace: CSV with a header, or JSON lines.
+    #[arg(long, value_enum, default_value = "csv")]
+    format: Format,
+    /// Coordinates of the trace's x and z: work (the programmed point,
+    /// as the canon) or machine (the axis set points from machine
+    /// zero, work zero and tool offset applied). Default: work.
+    #[arg(long, value_enum, value_name = "work|machine")]
+    frame: Option<FrameArg>,
+    /// Draw the XZ toolpath into an SVG file, framed on the cutting
+    /// moves (rapids dashed, feeds solid, threads in their own colour;
+    /// start point, tool changes and stock marked).
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+    /// The stock the plot draws: X<diameter> Z<length>, face at Z0
+    /// (default: the program's [BILLET line, else the corner of its
+    /// first roughing cycle).
+    #[arg(long, value_name = "X… Z…")]
+    stock: Option<String>,
+    /// Print cycle time in total, per tool and per operation (h:mm:ss
+    /// and seconds), distances and blocks: on stdout without --emit,
+    /// else on stderr. --stats=json for one JSON object.
+    #[arg(long, value_enum, num_args = 0..=1, require_equals = true, default_missing_value = "text", value_name = "FORMAT")]
+    stats: Option<StatsFormat>,
+    /// No progress bar.
+    #[arg(long, short = 'q')]
+    quiet: bool,
+    #[arg(long, value_name = "FILE")]
+    machine: Option<PathBuf>,
+    /// The block-skip switches /1–/9 at the start: on skips the `/`
+    /// blocks; default operator.block_skip of the machine file.
+    #[arg(long, value_enum, value_name = "on|off")]
+    block_skip: Option<Switch>,
+    /// Block budget (E6005 past it); default run.max_blocks.
+    #[arg(long, value_name = "N")]
+    max_blocks: Option<u64>,
+    /// Simulated seconds a timed run (--emit trace, --plot, --stats)
+    /// may last before it stops with E6006; default run.max_time_s.
+    #[arg(long, value_name = "S")]
+    max_time: Option<f64>,
+    /// Passes a main-program M99 makes before the run ends.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    repeat: u32,
+    /// Keep #500–#999 in FILE (loaded at the start, rewritten
+    /// crash-safely whenever the program changes them).
+    #[arg(long, value_name = "FILE")]
+    vars: Option<PathBuf>,
+    /// Compile hot macro loops to machine code: auto (a loop that has
+    /// gone round 500 times), always (at its first round), off. The
+    /// output is the same either way.
+    #[arg(
+        long,
+        value_enum,
+        default_value = "auto",
+        value_name = "auto|always|off"
+    )]
+    jit: cli::jit::JitMode,
 }
 
 /// Reads and verifies a module; `-` is standard input. A source program
@@ -244,93 +248,90 @@ fn main() -> ExitCode {
             file,
             machine,
             max_time,
-        } => {
-            if let Some(t) = max_time.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 1.0e6)) {
-                note(format_args!(
-                    "gbvm: error: --max-time {t}: give seconds above 0, at most 1000000"
-                ));
-                return cli::exit::Exit::Usage.into();
-            }
-            check::check(&file, machine.as_deref(), max_time)
-        }
+        } => match check_max_time(max_time) {
+            Ok(()) => check::check(&file, machine.as_deref(), max_time),
+            Err(code) => code,
+        },
         Command::Verify { file } => match load(&file) {
             Ok(_) => print_out(&format!("{}: ok\n", file.display())),
             Err(e) => fail(&e),
         },
-        Command::Run {
-            file,
-            emit,
-            format,
-            frame,
-            plot,
-            stock,
-            stats,
-            quiet,
-            machine,
-            block_skip,
-            max_blocks,
-            max_time,
-            repeat,
-            vars,
-            jit,
-        } => {
-            // --stats alone takes stdout; an explicit --emit keeps it.
-            let stats_out = match (stats, emit) {
-                (None, _) => None,
-                (Some(f), None) => Some((f, StatsTo::Stdout)),
-                (Some(f), Some(_)) => Some((f, StatsTo::Stderr)),
-            };
-            let emit = match (emit, stats) {
-                (Some(e), _) => Some(e),
-                (None, Some(_)) => None,
-                (None, None) => Some(Emit::Canon),
-            };
-            if emit != Some(Emit::Trace) && format == Format::Json {
-                let _ = writeln!(
-                    std::io::stderr(),
-                    "gbvm: error: --format json applies to --emit trace"
-                );
-                return cli::exit::Exit::Usage.into();
-            }
-            if emit != Some(Emit::Trace) && frame.is_some() {
-                note(format_args!("gbvm: error: --frame applies to --emit trace"));
-                return cli::exit::Exit::Usage.into();
-            }
-            if let Some(t) = max_time.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 1.0e6)) {
-                note(format_args!(
-                    "gbvm: error: --max-time {t}: give seconds above 0, at most 1000000"
-                ));
-                return cli::exit::Exit::Usage.into();
-            }
-            let stock = match stock.as_deref().map(cli::program_info::parse_stock) {
-                None => None,
-                Some(Ok(s)) => Some(s),
-                Some(Err(e)) => return fail(&e),
-            };
-            let run_args = RunArgs {
-                file: &file,
-                machine: (machine.as_deref(), block_skip),
-                max_blocks,
-                repeat,
-                vars: vars.as_deref(),
-                jit,
-            };
-            if emit == Some(Emit::Canon) && plot.is_none() && stats.is_none() {
-                return run(&run_args, quiet);
-            }
-            let out = Outputs {
-                canon: emit == Some(Emit::Canon),
-                trace: (emit == Some(Emit::Trace)).then_some(format),
-                frame: frame.map_or(runtime::trace::Frame::Work, Into::into),
-                plot,
-                stock,
-                stats: stats_out,
-                quiet,
-                max_time,
-            };
-            timed::run_timed(&run_args, &out)
-        }
+        Command::Run(cmd) => run_command(&cmd),
     }
+}
+
+/// `gbvm run`: checks the arguments' combinations, then runs to the
+/// canon alone, or through the runtime for the other outputs.
+fn run_command(cmd: &RunCmd) -> ExitCode {
+    // --stats alone takes stdout; an explicit --emit keeps it.
+    let stats_out = match (cmd.stats, cmd.emit) {
+        (None, _) => None,
+        (Some(f), None) => Some((f, StatsTo::Stdout)),
+        (Some(f), Some(_)) => Some((f, StatsTo::Stderr)),
+    };
+    let emit = match (cmd.emit, cmd.stats) {
+        (Some(e), _) => Some(e),
+        (None, Some(_)) => None,
+        (None, None) => Some(Emit::Canon),
+    };
+    if let Err(code) = check_run_options(cmd, emit) {
+        return code;
+    }
+    let stock = match cmd.stock.as_deref().map(cli::program_info::parse_stock) {
+        None => None,
+        Some(Ok(s)) => Some(s),
+        Some(Err(e)) => return fail(&e),
+    };
+    let run_args = RunArgs {
+        file: &cmd.file,
+        machine: (cmd.machine.as_deref(), cmd.block_skip),
+        max_blocks: cmd.max_blocks,
+        repeat: cmd.repeat,
+        vars: cmd.vars.as_deref(),
+        jit: cmd.jit,
+    };
+    if emit == Some(Emit::Canon) && cmd.plot.is_none() && cmd.stats.is_none() {
+        return run(&run_args, cmd.quiet);
+    }
+    let out = Outputs {
+        canon: emit == Some(Emit::Canon),
+        trace: (emit == Some(Emit::Trace)).then_some(cmd.format),
+        frame: cmd.frame.map_or(runtime::trace::Frame::Work, Into::into),
+        plot: cmd.plot.clone(),
+        stock,
+        stats: stats_out,
+        quiet: cmd.quiet,
+        max_time: cmd.max_time,
+    };
+    timed::run_timed(&run_args, &out)
+}
+
+/// Usage errors of `gbvm run`: options that apply only to the trace, and
+/// a --max-time out of range.
+fn check_run_options(cmd: &RunCmd, emit: Option<Emit>) -> Result<(), ExitCode> {
+    if emit != Some(Emit::Trace) && cmd.format == Format::Json {
+        let _ = writeln!(
+            std::io::stderr(),
+            "gbvm: error: --format json applies to --emit trace"
+        );
+        return Err(cli::exit::Exit::Usage.into());
+    }
+    if emit != Some(Emit::Trace) && cmd.frame.is_some() {
+        note(format_args!("gbvm: error: --frame applies to --emit trace"));
+        return Err(cli::exit::Exit::Usage.into());
+    }
+    check_max_time(cmd.max_time)
+}
+
+/// `--max-time` must be a number of seconds in (0, 10^6].
+fn check_max_time(max_time: Option<f64>) -> Result<(), ExitCode> {
+    if let Some(t) = max_time.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 1.0e6)) {
+        note(format_args!(
+            "gbvm: error: --max-time {t}: give seconds above 0, at most 1000000"
+        ));
+        return Err(cli::exit::Exit::Usage.into());
+    }
+    Ok(())
 }
 
 /// The machine file (or the reference machine) with the panel's
