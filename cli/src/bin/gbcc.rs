@@ -342,6 +342,24 @@ fn compile_one<W: std::io::Write>(
     file: &Path,
     reporter: &mut Reporter<W>,
 ) -> Result<(), Exit> {
+    let (name, bytes) = read_program(file, reporter)?;
+    let (compiled, ir) = compile(job, &name, &bytes);
+    report(&compiled, reporter)?;
+    if job.flags.syntax_only {
+        return Ok(());
+    }
+    if job.args.expand {
+        return write_expanded(job, &compiled, &bytes, reporter);
+    }
+    write_output(job, file, &compiled, ir.as_ref(), reporter)
+}
+
+/// The program's name and bytes; a `.gbc` module given as a program is an
+/// input error.
+fn read_program<W: std::io::Write>(
+    file: &Path,
+    reporter: &mut Reporter<W>,
+) -> Result<(String, std::sync::Arc<[u8]>), Exit> {
     let (name, bytes) = cli::io::read_input(file).map_err(|e| {
         reporter.driver_error(&e);
         Exit::Input
@@ -355,22 +373,37 @@ fn compile_one<W: std::io::Write>(
         ));
         return Err(Exit::Input);
     }
-    let emit_ir = job.args.emit.as_deref() == Some("ir");
-    let (compiled, ir) = if job.flags.syntax_only {
-        (syntax(&name, &bytes), None)
+    Ok((name, bytes))
+}
+
+/// Compiles as the job asks: the syntax alone, with the IR kept for
+/// `--emit=ir`, or to a module.
+fn compile(
+    job: &Job,
+    name: &str,
+    bytes: &std::sync::Arc<[u8]>,
+) -> (compiler::Compiled, Option<compiler::ir::Module>) {
+    if job.flags.syntax_only {
+        return (syntax(name, bytes), None);
+    }
+    let _spinner = cli::progress::Spinner::start(format!("compiling {name}"), job.args.quiet);
+    if job.args.emit.as_deref() == Some("ir") {
+        compiler::compile_ir(name, bytes, &job.opts)
     } else {
-        let _spinner = cli::progress::Spinner::start(format!("compiling {name}"), job.args.quiet);
-        match emit_ir {
-            true => compiler::compile_ir(&name, &bytes, &job.opts),
-            false => (
-                compiler::compile_shared(&name, bytes.clone(), &job.opts),
-                None,
-            ),
-        }
-    };
-    // In source order, file by file, as a reader goes through the program
-    // (the passes find them in their own order: a run's warnings come
-    // after those of the words).
+        (
+            compiler::compile_shared(name, bytes.clone(), &job.opts),
+            None,
+        )
+    }
+}
+
+/// Prints the diagnostics in source order, file by file, as a reader goes
+/// through the program (the passes find them in their own order: a run's
+/// warnings come after those of the words); an error fails the compile.
+fn report<W: std::io::Write>(
+    compiled: &compiler::Compiled,
+    reporter: &mut Reporter<W>,
+) -> Result<(), Exit> {
     let mut diags: Vec<&(usize, grammar::Diagnostic)> = compiled.diags.iter().collect();
     diags.sort_by_key(|(f, d)| (*f, d.span.start));
     let mut errors = false;
@@ -380,23 +413,39 @@ fn compile_one<W: std::io::Write>(
     if errors || compiled.has_errors() {
         return Err(Exit::Input);
     }
-    if job.flags.syntax_only {
-        return Ok(());
+    Ok(())
+}
+
+/// `-E`: the program as plain G-code (an alarm of its run fails it).
+fn write_expanded<W: std::io::Write>(
+    job: &Job,
+    compiled: &compiler::Compiled,
+    bytes: &[u8],
+    reporter: &mut Reporter<W>,
+) -> Result<(), Exit> {
+    let dest = Dest::new(job.args.output.as_deref().unwrap_or(Path::new("-")));
+    let (text, alarm) = expand(compiled, bytes, &job.opts);
+    dest.write(text.as_bytes()).map_err(|e| {
+        reporter.driver_error(&e);
+        Exit::Write
+    })?;
+    if let Some(a) = alarm {
+        reporter.alarm(&a);
+        return Err(Exit::Input);
     }
+    Ok(())
+}
+
+/// Writes the module, its listing (`-S`) or its IR (`--emit=ir`), and the
+/// dependency file.
+fn write_output<W: std::io::Write>(
+    job: &Job,
+    file: &Path,
+    compiled: &compiler::Compiled,
+    ir: Option<&compiler::ir::Module>,
+    reporter: &mut Reporter<W>,
+) -> Result<(), Exit> {
     let args = &job.args;
-    if args.expand {
-        let dest = Dest::new(args.output.as_deref().unwrap_or(Path::new("-")));
-        let (text, alarm) = expand(&compiled, &bytes, &job.opts);
-        dest.write(text.as_bytes()).map_err(|e| {
-            reporter.driver_error(&e);
-            Exit::Write
-        })?;
-        if let Some(a) = alarm {
-            reporter.alarm(&a);
-            return Err(Exit::Input);
-        }
-        return Ok(());
-    }
     let kind = Output::of(args);
     let dest = output_name(file, args.output.as_deref(), kind);
     // `-o` was checked up front; a default name can meet the source too
@@ -414,7 +463,7 @@ fn compile_one<W: std::io::Write>(
         reporter.driver_error("no module was produced");
         return Err(Exit::Input);
     };
-    let written = match (kind, &ir) {
+    let written = match (kind, ir) {
         (Output::Ir, Some(ir)) => {
             let facts = compiler::modal::analyze(ir, &job.opts.machine);
             let notes = |f, op| facts.note(ir, f, op);
@@ -429,7 +478,7 @@ fn compile_one<W: std::io::Write>(
         // Straight to the file: a large module is not copied whole first.
         (Output::Module, _) => dest.write_with(|sink| module.write_to(sink)),
     };
-    let written = written.and_then(|()| write_deps(job, file, &dest, &compiled));
+    let written = written.and_then(|()| write_deps(job, file, &dest, compiled));
     written.map_err(|e| {
         reporter.driver_error(&e);
         Exit::Write
