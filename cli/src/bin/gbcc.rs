@@ -233,13 +233,7 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
         return Err(explain(code));
     }
     let flags = parse_flags(&args.flags).map_err(|e| usage(&e))?;
-    let mut policy = cli::warnings::Policy::default();
-    for w in &args.warn {
-        policy.apply(w).map_err(|e| usage(&e))?;
-    }
-    if args.no_warnings {
-        policy.silence();
-    }
+    let policy = warning_policy(&args)?;
     let predict = compiler::predict::CODES.iter().any(|c| policy.reports(c));
     let optimize = match args.opt.as_str() {
         "0" => false,
@@ -251,36 +245,18 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
         let def = parse_define(d).map_err(|msg| usage(&msg))?;
         defines.push(def);
     }
-    let several = args.files.len() > 1;
-    if several && !flags.syntax_only && (args.output.is_some() || deps.mf.is_some()) {
-        return Err(usage("-o or -MF with several input files"));
-    }
-    if args.files.iter().filter(|f| f.as_os_str() == "-").count() > 1 {
-        return Err(usage("standard input (-) given twice"));
-    }
-    if let Some(out) = &args.output {
-        if let Some(src) = args.files.iter().find(|f| cli::io::same_file(f, out)) {
-            return Err(usage(&format!(
-                "the output {} is the input {}: refusing to overwrite the source",
-                out.display(),
-                src.display()
-            )));
-        }
-    }
-    let machine = match cli::load_machine(args.machine.as_deref()) {
-        Ok(m) => m,
-        Err(e) => {
-            let _ = writeln_stderr(&format!("gbcc: error: {e}"));
-            return Err(Exit::Input);
-        }
+    check_files(&args, &flags, &deps)?;
+    let input_error = |e: String| {
+        let _ = writeln_stderr(&format!("gbcc: error: {e}"));
+        Exit::Input
     };
-    let vars = match args.vars.as_deref().map(read_vars).transpose() {
-        Ok(vars) => vars,
-        Err(e) => {
-            let _ = writeln_stderr(&format!("gbcc: error: {e}"));
-            return Err(Exit::Input);
-        }
-    };
+    let machine = cli::load_machine(args.machine.as_deref()).map_err(input_error)?;
+    let vars = args
+        .vars
+        .as_deref()
+        .map(read_vars)
+        .transpose()
+        .map_err(input_error)?;
     let mut reporter = Reporter::new(
         std::io::BufWriter::new(std::io::stderr()),
         flags.format,
@@ -307,6 +283,40 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
         },
         reporter,
     ))
+}
+
+/// The warnings reported, from -W and -w in order.
+fn warning_policy(args: &Args) -> Result<cli::warnings::Policy, Exit> {
+    let mut policy = cli::warnings::Policy::default();
+    for w in &args.warn {
+        policy.apply(w).map_err(|e| usage(&e))?;
+    }
+    if args.no_warnings {
+        policy.silence();
+    }
+    Ok(policy)
+}
+
+/// Usage errors of the input files: one output for several, standard
+/// input twice, an output that is an input.
+fn check_files(args: &Args, flags: &Flags, deps: &DepOptions) -> Result<(), Exit> {
+    let several = args.files.len() > 1;
+    if several && !flags.syntax_only && (args.output.is_some() || deps.mf.is_some()) {
+        return Err(usage("-o or -MF with several input files"));
+    }
+    if args.files.iter().filter(|f| f.as_os_str() == "-").count() > 1 {
+        return Err(usage("standard input (-) given twice"));
+    }
+    if let Some(out) = &args.output {
+        if let Some(src) = args.files.iter().find(|f| cli::io::same_file(f, out)) {
+            return Err(usage(&format!(
+                "the output {} is the input {}: refusing to overwrite the source",
+                out.display(),
+                src.display()
+            )));
+        }
+    }
+    Ok(())
 }
 
 fn run() -> Result<Exit, Exit> {
