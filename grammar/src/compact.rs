@@ -130,43 +130,26 @@ impl Compactor {
     /// Scans the block starting at `start`; `limit` is the end of the input
     /// (a final Ctrl-Z excluded).
     pub fn scan<'a>(&'a mut self, src: &'a [u8], start: usize, limit: usize) -> Scanned<'a> {
-        // In place while the block holds only plain bytes and blanks that
-        // separate tokens (the lexer skips those).
-        let mut i = start;
-        let mut first = None;
-        let mut last = start;
-        loop {
-            let run = i;
-            i = plain_run(src, i, limit);
-            if i > run {
-                first.get_or_insert(run);
-                last = i;
-            }
-            if i >= limit || class(src[i]) == END {
-                return Scanned {
-                    text: &src[start..i],
-                    map: OffsetMap::InPlace(start),
-                    comments: Vec::new(),
-                    span: first.map(|f| Span::new(f, last)),
-                    end: i,
-                    terminator: terminator_at(src, i, limit),
-                    error: None,
-                };
-            }
-            if class(src[i]) != BLANK {
-                break;
-            }
-            let mut j = i + 1;
-            while j < limit && class(src[j]) == BLANK {
-                j += 1;
-            }
-            if i > start && last == i && j < limit && joins(src[i - 1], src[j]) {
-                break;
-            }
-            i = j;
+        match in_place(src, start, limit) {
+            Ok(scanned) => scanned,
+            Err(stop) => self.copied(src, start, stop, limit),
         }
+    }
 
-        // Slow path: copy the significant bytes.
+    /// The slow path: copies the block's significant bytes (those before
+    /// `stop`, then the rest, its comments taken out).
+    fn copied<'a>(
+        &'a mut self,
+        src: &'a [u8],
+        start: usize,
+        stop: Stop,
+        limit: usize,
+    ) -> Scanned<'a> {
+        let Stop {
+            at: mut i,
+            mut first,
+            mut last,
+        } = stop;
         self.buf.clear();
         self.offsets.clear();
         for (k, &b) in src[start..i].iter().enumerate() {
@@ -205,10 +188,7 @@ impl Compactor {
                     }
                 },
                 CLOSE => {
-                    error = Some(
-                        Diagnostic::error("E1002", Span::new(i, i + 1), "`)` without `(`")
-                            .with_label("no comment is open here"),
-                    );
+                    error = Some(unopened(i));
                     i += 1;
                     break;
                 }
@@ -233,6 +213,61 @@ impl Compactor {
             error,
         }
     }
+}
+
+/// Where the in-place scan of a block gave up: the byte `at`, and the
+/// block's first and last significant bytes so far.
+struct Stop {
+    at: usize,
+    first: Option<usize>,
+    last: usize,
+}
+
+/// The block at `start` lexed in place, while it holds only plain bytes
+/// and blanks that separate tokens (the lexer skips those); where it
+/// holds more, where the copy must start.
+#[inline]
+fn in_place(src: &[u8], start: usize, limit: usize) -> Result<Scanned<'_>, Stop> {
+    let mut i = start;
+    let mut first = None;
+    let mut last = start;
+    loop {
+        let run = i;
+        i = plain_run(src, i, limit);
+        if i > run {
+            first.get_or_insert(run);
+            last = i;
+        }
+        if i >= limit || class(src[i]) == END {
+            return Ok(Scanned {
+                text: &src[start..i],
+                map: OffsetMap::InPlace(start),
+                comments: Vec::new(),
+                span: first.map(|f| Span::new(f, last)),
+                end: i,
+                terminator: terminator_at(src, i, limit),
+                error: None,
+            });
+        }
+        if class(src[i]) != BLANK {
+            break;
+        }
+        let mut j = i + 1;
+        while j < limit && class(src[j]) == BLANK {
+            j += 1;
+        }
+        if i > start && last == i && j < limit && joins(src[i - 1], src[j]) {
+            break;
+        }
+        i = j;
+    }
+    Err(Stop { at: i, first, last })
+}
+
+/// E1002: a `)` outside a comment.
+fn unopened(at: usize) -> Diagnostic {
+    Diagnostic::error("E1002", Span::new(at, at + 1), "`)` without `(`")
+        .with_label("no comment is open here")
 }
 
 pub(crate) fn terminator_at(src: &[u8], i: usize, limit: usize) -> Terminator {
