@@ -532,7 +532,6 @@ impl<'a> Fault<'a> {
     fn word_fault(&self, at: usize) -> Option<Diagnostic> {
         let tok = self.tok(at);
         let prev = at.checked_sub(1).and_then(|i| self.tok(i));
-        let here = self.span(at);
         // The address whose value is being read, if any.
         let address = match prev {
             Some(t) if t.is_letter() => Some(at - 1),
@@ -544,24 +543,7 @@ impl<'a> Fault<'a> {
             _ => None,
         };
         if let Some(a) = address {
-            let comma = a > 0 && self.tok(a - 1) == Some(Tok::Comma);
-            let start = if comma { a - 1 } else { a };
-            let name = self.text(self.span(start).to(self.span(a)));
-            let span = self.span(start).to(self.span(at - 1));
-            return Some(match tok {
-                Some(Tok::Plus | Tok::Minus) => Diagnostic::error(
-                    "E1007",
-                    span.to(here),
-                    "malformed number: more than one sign",
-                )
-                .with_label("one sign at most"),
-                _ if comma => {
-                    Diagnostic::error("E1007", span, format!("`{name}` needs a literal number"))
-                        .with_label("a comma word takes a number")
-                }
-                _ => Diagnostic::error("E1007", span, format!("`{name}` has no value"))
-                    .with_label("a word needs a number, `#n` or `[expr]`"),
-            });
+            return Some(self.value_fault(a, at));
         }
         // `X#814+.1`: an expression as a word value needs brackets.
         if let Some(
@@ -575,34 +557,70 @@ impl<'a> Fault<'a> {
             | Tok::Mod),
         ) = tok
         {
-            let mut k = at;
-            while k > 0 && matches!(self.tok(k - 1), Some(Tok::Num(_) | Tok::Hash)) {
-                k -= 1;
-            }
-            let signed = k > 0 && matches!(self.tok(k - 1), Some(Tok::Plus | Tok::Minus));
-            let letter = if signed {
-                k.checked_sub(2)
-            } else {
-                k.checked_sub(1)
-            };
-            if let Some(l) =
-                letter.filter(|&l| k < at && self.tok(l).is_some_and(|t| t.is_letter()))
-            {
-                let end = self.unbracketed_end(at);
-                let value = self.text(self.span(l + 1).to(self.span(end)));
-                let name = self.text(self.span(l));
-                return Some(
-                    Diagnostic::error(
-                        "E1014",
-                        here,
-                        format!("{} in a word value without brackets", t.describe()),
-                    )
-                    .with_label("a word takes `#n` or `[expr]`")
-                    .with_help(format!("write `{name}[{value}]`")),
-                );
+            if let Some(d) = self.unbracketed_value(at, t) {
+                return Some(d);
             }
         }
-        match tok {
+        self.without_address(at)
+    }
+
+    /// The value of the word at address token `a` is faulty at token `at`:
+    /// a second sign, or no value.
+    fn value_fault(&self, a: usize, at: usize) -> Diagnostic {
+        let here = self.span(at);
+        let comma = a > 0 && self.tok(a - 1) == Some(Tok::Comma);
+        let start = if comma { a - 1 } else { a };
+        let name = self.text(self.span(start).to(self.span(a)));
+        let span = self.span(start).to(self.span(at - 1));
+        match self.tok(at) {
+            Some(Tok::Plus | Tok::Minus) => Diagnostic::error(
+                "E1007",
+                span.to(here),
+                "malformed number: more than one sign",
+            )
+            .with_label("one sign at most"),
+            _ if comma => {
+                Diagnostic::error("E1007", span, format!("`{name}` needs a literal number"))
+                    .with_label("a comma word takes a number")
+            }
+            _ => Diagnostic::error("E1007", span, format!("`{name}` has no value"))
+                .with_label("a word needs a number, `#n` or `[expr]`"),
+        }
+    }
+
+    /// E1014 where operator `t` at token `at` continues a word's value
+    /// without brackets (`X#814+.1`).
+    fn unbracketed_value(&self, at: usize, t: Tok) -> Option<Diagnostic> {
+        let mut k = at;
+        while k > 0 && matches!(self.tok(k - 1), Some(Tok::Num(_) | Tok::Hash)) {
+            k -= 1;
+        }
+        let signed = k > 0 && matches!(self.tok(k - 1), Some(Tok::Plus | Tok::Minus));
+        let letter = if signed {
+            k.checked_sub(2)
+        } else {
+            k.checked_sub(1)
+        };
+        let l = letter.filter(|&l| k < at && self.tok(l).is_some_and(|t| t.is_letter()))?;
+        let end = self.unbracketed_end(at);
+        let value = self.text(self.span(l + 1).to(self.span(end)));
+        let name = self.text(self.span(l));
+        Some(
+            Diagnostic::error(
+                "E1014",
+                self.span(at),
+                format!("{} in a word value without brackets", t.describe()),
+            )
+            .with_label("a word takes `#n` or `[expr]`")
+            .with_help(format!("write `{name}[{value}]`")),
+        )
+    }
+
+    /// E1008: a number, `=`, sign, `#` or `[` where a word's address
+    /// should be.
+    fn without_address(&self, at: usize) -> Option<Diagnostic> {
+        let here = self.span(at);
+        match self.tok(at) {
             Some(Tok::Num(_)) => Some(
                 Diagnostic::error(
                     "E1008",
