@@ -232,21 +232,53 @@ impl RunAhead {
             block_end: false,
         };
         self.tr.skip_queued = false;
-        // A block held back for its run-out is printed at the start of
-        // this one: one leg when this block continues its chain, else two
-        // (up to P1 and the run-out). They belong to the held block.
-        let mut held = 0;
-        let mut held_tag = tag;
-        if let Some(t) = self.wait_tag {
-            if !self.events.is_empty() || status != Status::OutOfBudget {
-                held = if self.vm.nc.thread_chain_open() { 1 } else { 2 };
-                held_tag = Tag {
-                    block_end: false,
-                    ..t
-                };
-                self.wait_tag = None;
+        let held = self.held_legs(tag, status == Status::OutOfBudget);
+        self.stage_events(tag, held, tap);
+        match status {
+            Status::Event => self.block_done(tag),
+            Status::OutOfBudget => {}
+            Status::Sync => self.vm_state = VmState::Sync,
+            Status::Done => {
+                if !matches!(self.staged.back(), Some((Command::End, _))) {
+                    self.staged.push_back((Command::End, tag));
+                }
+                self.vm_state = VmState::Done;
+            }
+            Status::Alarm(a) => {
+                if !matches!(self.staged.back(), Some((Command::Alarm(_), _))) {
+                    self.staged.push_back((Command::Alarm(a.code), tag));
+                }
+                self.vm_alarm = Some(a);
+                self.vm_state = VmState::Alarm;
             }
         }
+    }
+
+    /// A block held back for its run-out is printed at the start of this
+    /// one: one leg when this block continues its chain, else two (up to
+    /// P1 and the run-out). They belong to the held block: how many legs,
+    /// and its tag (`tag` when none is held).
+    fn held_legs(&mut self, tag: Tag, out_of_budget: bool) -> (usize, Tag) {
+        let Some(t) = self.wait_tag else {
+            return (0, tag);
+        };
+        if self.events.is_empty() && out_of_budget {
+            return (0, tag);
+        }
+        self.wait_tag = None;
+        let legs = if self.vm.nc.thread_chain_open() { 1 } else { 2 };
+        let held_tag = Tag {
+            block_end: false,
+            ..t
+        };
+        (legs, held_tag)
+    }
+
+    /// The step's events, translated into commands for the queue (the
+    /// first `held.0` thread legs tagged as the held block's), and told to
+    /// `tap`.
+    fn stage_events(&mut self, tag: Tag, held: (usize, Tag), tap: &mut dyn Sink) {
+        let (held, held_tag) = held;
         let mut legs = 0;
         for e in self.events.drain(..) {
             self.scratch.clear();
@@ -264,45 +296,31 @@ impl RunAhead {
             }
             tap.emit(e);
         }
-        match status {
-            Status::Event => {
-                self.blocks += 1;
-                self.resync(tag);
-                if self.vm.nc.thread_waiting() {
-                    self.wait_tag = Some(tag);
-                }
-                if self.vm.nc.exact_stop() {
-                    self.staged.push_back((Command::ExactStop, tag));
-                }
-                if self.vm.nc.stroke_area() != self.stroke {
-                    self.stroke = self.vm.nc.stroke_area();
-                    self.staged.push_back((Command::Stroke(self.stroke), tag));
-                }
-                if let Some((_, t)) = self.staged.back_mut() {
-                    if t.block == self.block {
-                        t.block_end = true;
-                    }
-                }
-                self.block = self.block.wrapping_add(1);
-                if self.tr.skip_queued {
-                    self.vm_state = VmState::Skip;
-                }
+    }
+
+    /// A block has run: what its end means for the runtime (an exact stop,
+    /// a stroke area, the end of its commands, a skip move to wait for).
+    fn block_done(&mut self, tag: Tag) {
+        self.blocks += 1;
+        self.resync(tag);
+        if self.vm.nc.thread_waiting() {
+            self.wait_tag = Some(tag);
+        }
+        if self.vm.nc.exact_stop() {
+            self.staged.push_back((Command::ExactStop, tag));
+        }
+        if self.vm.nc.stroke_area() != self.stroke {
+            self.stroke = self.vm.nc.stroke_area();
+            self.staged.push_back((Command::Stroke(self.stroke), tag));
+        }
+        if let Some((_, t)) = self.staged.back_mut() {
+            if t.block == self.block {
+                t.block_end = true;
             }
-            Status::OutOfBudget => {}
-            Status::Sync => self.vm_state = VmState::Sync,
-            Status::Done => {
-                if !matches!(self.staged.back(), Some((Command::End, _))) {
-                    self.staged.push_back((Command::End, tag));
-                }
-                self.vm_state = VmState::Done;
-            }
-            Status::Alarm(a) => {
-                if !matches!(self.staged.back(), Some((Command::Alarm(_), _))) {
-                    self.staged.push_back((Command::Alarm(a.code), tag));
-                }
-                self.vm_alarm = Some(a);
-                self.vm_state = VmState::Alarm;
-            }
+        }
+        self.block = self.block.wrapping_add(1);
+        if self.tr.skip_queued {
+            self.vm_state = VmState::Skip;
         }
     }
 
