@@ -1137,6 +1137,20 @@ impl<P: Plc> Engine<P> {
             self.smoothed_path(v);
             return;
         }
+        if self.travel(v) {
+            return;
+        }
+        self.v = v;
+        if v == 0.0 {
+            self.standing();
+        }
+    }
+
+    /// Moves `v · dt` along the path, on into the queued moves where the
+    /// corner allows; whether it landed on an end point (and the move is
+    /// finished).
+    #[inline]
+    fn travel(&mut self, v: f64) -> bool {
         let mut ds = v * self.dt;
         loop {
             let rem = self.cur.len - self.s;
@@ -1145,7 +1159,7 @@ impl<P: Plc> Engine<P> {
                 self.lam = self.cur.curve.advance(self.lam, self.s, ds, self.cur.len);
                 self.pos = self.cur.curve.point(self.lam);
                 self.c = self.cur.c_at(self.lam);
-                break;
+                return false;
             }
             if v > 0.0 && self.may_cross() {
                 if v > self.cur.v_exit && !matches!(self.cur.kind, MoveKind::Thread(_)) {
@@ -1156,8 +1170,12 @@ impl<P: Plc> Engine<P> {
                 self.pos = self.cur.to;
                 self.c = self.cur.c1;
                 self.q.pop();
-                let Some(next) = self.q.get(0) else { break };
-                let ItemKind::Move(n) = &next.kind else { break };
+                let Some(next) = self.q.get(0) else {
+                    return false;
+                };
+                let ItemKind::Move(n) = &next.kind else {
+                    return false;
+                };
                 self.cur = *n;
                 self.tag = next.tag;
                 self.shift = n.shift;
@@ -1177,22 +1195,24 @@ impl<P: Plc> Engine<P> {
                 });
             }
             self.finish_item();
-            return;
+            return true;
         }
-        self.v = v;
-        if v == 0.0 {
-            if self.skip_hit.is_some() {
-                // The skip signal ended the move: the next block starts here.
-                self.skip_report = Some(SkipReport {
-                    hit: self.skip_hit,
-                    stop: self.pos,
-                    shift: self.cur.shift,
-                });
-                self.q.set_tail(self.pos);
-                self.finish_item();
-            } else if self.hold {
-                self.state = RunState::Held;
-            }
+    }
+
+    /// The path speed is 0: a skip move the signal ended finishes where
+    /// it stands; a feed hold holds.
+    fn standing(&mut self) {
+        if self.skip_hit.is_some() {
+            // The skip signal ended the move: the next block starts here.
+            self.skip_report = Some(SkipReport {
+                hit: self.skip_hit,
+                stop: self.pos,
+                shift: self.cur.shift,
+            });
+            self.q.set_tail(self.pos);
+            self.finish_item();
+        } else if self.hold {
+            self.state = RunState::Held;
         }
     }
 
