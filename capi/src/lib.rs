@@ -9,7 +9,7 @@
 //!
 //! - it returns a [`GbcStatus`]; results go through out-pointers, which
 //!   are written only on [`GbcStatus::Ok`];
-//! - handles are numbers looked up in a registry ([`handle`]): 0, a freed
+//! - handles are numbers looked up in a registry (module `handle`): 0, a freed
 //!   handle, a forged one ([`GbcStatus::InvalidHandle`]) or one of the
 //!   other kind ([`GbcStatus::WrongKind`]) is reported, never
 //!   dereferenced;

@@ -1,6 +1,6 @@
 //! The index that keeps the module's constant pool free of repeats.
 //!
-//! An exact table holds the first [`EXACT`] distinct values: all of a
+//! An exact table holds the first `EXACT` distinct values: all of a
 //! small program's. Once it is full, a small direct-mapped table of recent
 //! values takes over: the values a large program repeats (feeds, speeds,
 //! codes) come back often enough to stay in it, and so do coordinates that

@@ -53,7 +53,7 @@ const NAMES_ALARM: [&str; 5] = ["W115", "W116", "W119", "W121", "W123"];
 /// `opts`), if its run does not depend on #500–#999 it does not know:
 /// those of the blocks it ran, then W124 where it stops with an alarm
 /// within its budget. `diags` are the compilation's so far: an alarm a
-/// warning there already names at that line ([`NAMES_ALARM`]) is not
+/// warning there already names at that line (`NAMES_ALARM`) is not
 /// told again.
 pub fn run(
     module: &Module,

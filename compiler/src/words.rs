@@ -32,7 +32,7 @@ pub struct NcWord<'a> {
 
 #[derive(Debug, Clone)]
 pub enum Call<'a> {
-    /// M98 P [L].
+    /// M98 P \[L\].
     Sub {
         p: Option<WordValue<'a>>,
         l: Option<WordValue<'a>>,
@@ -40,9 +40,9 @@ pub enum Call<'a> {
     },
     /// M9000…M9999: O9000…O9999, no arguments.
     SubM { number: u32, span: Span },
-    /// M99 [P].
+    /// M99 \[P\].
     Ret { p: Option<WordValue<'a>> },
-    /// G65 / G66 P [L] arguments.
+    /// G65 / G66 P \[L\] arguments.
     Macro {
         modal: bool,
         p: Option<WordValue<'a>>,

@@ -18,7 +18,7 @@
 //! | `Programs` | count u32, then each: number, entry, end, seq count u32,  |
 //! |            | then `(number u32, pc u32)` per sequence entry            |
 //! | `Lines`    | instruction count u32, then the runs of the line table    |
-//! |            | (see [`LineTable`](crate::LineTable)), delta-encoded      |
+//! |            | (see [`LineTable`]), delta-encoded                        |
 //! | `Files`    | count u32, then each: length u32, UTF-8 name, hash u32    |
 //! | `Machine`  | UTF-8 text, the whole payload                             |
 //! | `Regs`     | num_regs u16                                              |

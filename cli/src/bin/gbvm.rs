@@ -1,5 +1,9 @@
 //! `gbvm`: runs, disassembles and verifies `.gbc` modules.
 
+// The arguments' doc comments are clap's help text, not rustdoc: `X<diameter>`
+// there is what the user types.
+#![allow(rustdoc::invalid_html_tags)]
+
 use clap::{Parser, Subcommand, ValueEnum};
 
 use nc::Machine;

@@ -160,7 +160,7 @@ pub enum Event {
         x: f64,
         c: f64,
     },
-    /// `CYLINDER MODE=ON R=` / `CYLINDER MODE=OFF`: G7.1 C<radius> / G7.1 C0.
+    /// `CYLINDER MODE=ON R=` / `CYLINDER MODE=OFF`: `G7.1 C<radius>` / `G7.1 C0`.
     Cylinder(Option<f64>),
     /// A move in the plane of polar or cylindrical interpolation, printed
     /// in its coordinates: polar `X=` (diameter) `C=` (mm), cylinder `Z=`

@@ -4,12 +4,12 @@
 //! programmed contour and the canon prints the imaginary tip of the
 //! compensated tool. Where an element ends depends on the next one, so
 //! compensated moves wait in the contour queue (`contour::queue`) exactly
-//! like moves with an L/D corner word: the queue asks [`classify`] what a
-//! new move is, then joins the waiting element with it ([`join`]) or ends
-//! it on its own normal ([`close`]), and prints it through [`printed`].
+//! like moves with an L/D corner word: the queue asks `classify` what a
+//! new move is, then joins the waiting element with it (`join`) or ends
+//! it on its own normal (`close`), and prints it through `printed`.
 //! Everything that only needs the modal state (errors, cancels, the count
 //! of blocks without a move) happens around each block, in
-//! [`before_block`] and [`end_of_block`].
+//! `before_block` and `end_of_block`.
 
 use alloc::format;
 
@@ -97,7 +97,7 @@ impl Leg {
     }
 }
 
-/// What the queue does with a new move (see [`classify`]).
+/// What the queue does with a new move (see `classify`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Step {
     /// No compensation is involved.
