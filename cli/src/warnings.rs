@@ -9,10 +9,11 @@ use grammar::{Diagnostic, Severity};
 /// (an arc of a program with macros that cannot be drawn), W120 (the
 /// dry run stopped, its budget of repeated blocks spent), W121 (calls
 /// that always nest too deep), W122 (a run longer than the block
-/// budget), W123 (an `M99 P n` whose caller has no block Nn) and W124
-/// (the alarm a run stops with, known at compile time).
+/// budget), W123 (an `M99 P n` whose caller has no block Nn), W124
+/// (the alarm a run stops with, known at compile time) and W125 (a feed
+/// per minute below 1: a feed per revolution in G98).
 pub const FIRST: u16 = 101;
-pub const LAST: u16 = 124;
+pub const LAST: u16 = 125;
 
 /// What becomes of a warning.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -166,7 +167,7 @@ mod tests {
     #[test]
     fn unknown_switches_are_refused() {
         let mut p = Policy::default();
-        for bad in ["foo", "no-W100", "W125", "error=E1001", "no-error=", "W"] {
+        for bad in ["foo", "no-W100", "W126", "error=E1001", "no-error=", "W"] {
             let e = p.apply(bad).unwrap_err();
             assert!(e.contains(&format!("'-W{bad}'")), "{e}");
         }

@@ -3,7 +3,8 @@
 //! length without a point), W107 (feed move at F = 0), W108 (arc or conic
 //! without motion), W110 (thread in G96), W111 (feed mode changed without
 //! a new F), W112 (corner word ignored), W114 (S above the spindle
-//! maximum). A program with macro statements or computed words is not
+//! maximum), W125 (a feed per minute below 1: a feed per revolution
+//! written for a control that starts in G99). A program with macro statements or computed words is not
 //! dry-run: where its run is known, the compile-time run in the VM
 //! (`predict`) hands its blocks to the same [`Warner`], all but W107.
 
@@ -17,6 +18,11 @@ use nc::{Event, Nc, Sink};
 
 use crate::words::{addr_code, value_of, WordValue};
 use std::collections::HashSet;
+
+/// W125's bound: a feed per minute below it is taken for a feed per
+/// revolution. No cut runs at less than 1 mm a minute, and turning feeds
+/// per revolution lie below it (the seeds' own example is `G99 F0.15`).
+const SLOW_FEED: f64 = 1.0;
 
 /// The sink of the dry run: what a block printed, for the warnings.
 #[derive(Default)]
@@ -60,6 +66,10 @@ pub struct Warner {
     zero_feed_told: bool,
     /// A G98/G99 block that kept the old F (W111 when a feed move uses it).
     mode_change: Option<(usize, Span)>,
+    /// Where the F in force was written: its word (W125 points there).
+    feed_word: Option<(usize, Span)>,
+    /// W125 is given once: the program's F words share the one mistake.
+    slow_feed_told: bool,
     /// A corner word waiting for the next move, with the count of applied
     /// corners when it was written (W112 when that count stays).
     corner: Option<(usize, Span, u32)>,
@@ -237,6 +247,7 @@ impl Warner {
         let seen = Seen::of(ws, lits);
         self.inch_lengths(unit, nc, ws, &seen);
         self.feed_mode(unit, nc, &seen, span, counts, &before);
+        self.slow_feed(unit, nc, (ws, span), counts);
         self.no_motion(unit, nc, &seen, span, &before);
         self.corners(unit, nc, ws, &seen, counts, &before);
         if counts.threads > 0 && nc.st.css_mode() {
@@ -321,6 +332,40 @@ impl Warner {
                 ),
             );
         }
+    }
+
+    /// W125: a feed move in G98 at an F below 1 (mm/min, or in/min in
+    /// G20): such an F is a feed per revolution, written for a control
+    /// that powers on in G99; here the move crawls. Said once, at the F
+    /// word of the first feed move that runs so (the block when no F word
+    /// is known).
+    fn slow_feed(
+        &mut self,
+        unit: usize,
+        nc: &Nc,
+        block: (&[grammar::ast::Word], Span),
+        counts: &Counts,
+    ) {
+        let (ws, span) = block;
+        // (On a thread F is the lead.)
+        if let (Some(f), 0) = (find(ws, b'F' - b'A'), counts.threads) {
+            self.feed_word = Some((unit, f.span));
+        }
+        let f = nc.st.feed;
+        if counts.feeds == 0 || nc.st.per_rev() || !(f > 0.0 && f < SLOW_FEED) {
+            return;
+        }
+        if std::mem::replace(&mut self.slow_feed_told, true) {
+            return;
+        }
+        let (u, at) = self.feed_word.unwrap_or((unit, span));
+        let unit_name = if nc.st.inch() { "in/min" } else { "mm/min" };
+        let msg = format!(
+            "F{f} here is {f} {unit_name} (G98, feed per minute): the feed moves at it crawl; is it a feed per revolution?",
+            f = nc::event::Num(f)
+        );
+        let help = "this control powers on in G98 (feed per minute), where many Fanuc lathes start in G99: if the F is per revolution, write G99 before it (at the program's start, with G21 and G40), or give the feed in per-minute units";
+        self.warn_help((u, at), "W125", msg, help.into());
     }
 
     /// W108: an arc with R, an ellipse or a parabola whose end is its

@@ -112,7 +112,7 @@ fn n_inside_g10_l52_is_no_sequence_number() {
 fn n_inside_g10_l52_is_no_profile_number() {
     // N22 stands once in the profile and once as parameter №022: the G71
     // finds one N22 and no W103.
-    let src = "G00 X40 Z2\nG71 U1 R0.5\nG71 P22 Q23 U0.2 W0.1 F0.2\nN22 G00 X30\nN23 G01 Z-10\nG10 L52\nN22 P2 R#1\nG11\nM30\n";
+    let src = "G99 G00 X40 Z2\nG71 U1 R0.5\nG71 P22 Q23 U0.2 W0.1 F0.2\nN22 G00 X30\nN23 G01 Z-10\nG10 L52\nN22 P2 R#1\nG11\nM30\n";
     assert_eq!(diags(src), []);
 }
 

@@ -52,14 +52,14 @@ fn an_arc_that_cannot_close_is_warned_of_and_still_compiles() {
 fn the_position_is_followed_through_a_block_with_two_motion_codes() {
     // `G00 G01`: G01 wins (W106), and the block is a plain line to X10
     // Z0; from there R1 cannot reach X20 Z-5 (half chord 7.07 mm).
-    let src = "#1=1\nG00 X20 Z2\nG00 G01 X10 Z0 F0.2\nG02 X20 Z-5 R1\nM30\n";
+    let src = "#1=1\nG00 X20 Z2\nG00 G01 X10 Z0 F100\nG02 X20 Z-5 R1\nM30\n";
     let (found, _) = diagnostics(src);
     let w = |c: &str, l| (c.to_string(), l);
     assert_eq!(found, [w("W106", 3), w("W119", 4)]);
     // Written the other way round, the last code is G02 itself: the arc
     // of line 3 goes from X20 Z2 to X10 Z0 with R10 and ends where line
     // 4's short arc starts.
-    let src = "#1=1\nG00 X20 Z2\nG01 G02 X10 Z0 R10 F0.2\nG02 X20 Z-5 R1\nM30\n";
+    let src = "#1=1\nG00 X20 Z2\nG01 G02 X10 Z0 R10 F100\nG02 X20 Z-5 R1\nM30\n";
     let (found, _) = diagnostics(src);
     assert_eq!(found, [w("W106", 3), w("W119", 4)]);
 }

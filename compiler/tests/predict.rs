@@ -142,7 +142,9 @@ fn every_suite_program_made_dynamic_keeps_its_dry_run_warnings() {
     // where they stop differently by design: a feed move at F = 0, W107,
     // which the dry run passes and the VM stops at; a dry run out of
     // steps, W120; a run past the block budget, W122.)
-    let ran = ["W105", "W108", "W110", "W111", "W112", "W114", "W118"];
+    let ran = [
+        "W105", "W108", "W110", "W111", "W112", "W114", "W118", "W125",
+    ];
     let of = |c: &compiler::Compiled| -> Vec<(&'static str, usize, usize)> {
         (c.diags.iter())
             .filter(|(_, d)| ran.contains(&d.code))
