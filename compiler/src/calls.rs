@@ -22,7 +22,9 @@ pub fn m98_target(p: f64, l: Option<f64>) -> (u32, u32) {
     }
 }
 
-pub fn build_call(g: &mut Builder<'_>, call: Call<'_>, span: Span) {
+/// Builds a block's call; `comment` is the block's first comment (the
+/// message of an alarm a G65 H block raises).
+pub fn build_call(g: &mut Builder<'_>, call: Call<'_>, span: Span, comment: Option<&str>) {
     match call {
         Call::Sub { p, l, span } => sub_call(g, p, l, span),
         Call::SubM { number, span } => {
@@ -55,7 +57,7 @@ pub fn build_call(g: &mut Builder<'_>, call: Call<'_>, span: Span) {
             q,
             r,
             span: s,
-        } => macro_a(g, h, p, q, r, s.to(span)),
+        } => macro_a(g, (h, p, q, r), s.to(span), comment),
         Call::ModalCancel => {
             g.push(Op::ModalCancel);
         }
@@ -212,7 +214,7 @@ fn destination(g: &mut Builder<'_>, p: Option<&Word>, span: Span) -> Option<u32>
 /// dialect.md §8). **Decision:** Q is a constant here, as the alarm
 /// numbers of a real program are; a variable Q is E2060 and a constant
 /// outside 0…99 is E1010, both at compile time.
-fn user_alarm(g: &mut Builder<'_>, q: Option<WordValue<'_>>, span: Span) {
+fn user_alarm(g: &mut Builder<'_>, q: Option<WordValue<'_>>, span: Span, comment: Option<&str>) {
     let n = match q {
         None => 0.0,
         Some(q) => match q.literal() {
@@ -231,11 +233,33 @@ fn user_alarm(g: &mut Builder<'_>, q: Option<WordValue<'_>>, span: Span) {
         );
         return;
     }
-    let msg = g.string("G65 H99 user alarm");
+    let msg = g.string(user_alarm_message(comment));
     g.push(Op::Alarm {
         code: 500 + n as u16,
         msg,
     });
+}
+
+/// The message of a `G65 H99` alarm: the block's comment, as a `#3000`
+/// alarm's (canon.md leaves it to the implementation); else ours.
+pub fn user_alarm_message(comment: Option<&str>) -> &str {
+    comment.unwrap_or("G65 H99 user alarm")
+}
+
+/// The alarm a `G65 H99 Q n` block raises, 500 + n, when its words are
+/// literal and valid (else the block is a compile error).
+pub fn user_alarm_code(call: &Call<'_>) -> Option<u32> {
+    let Call::MacroA { h, q, .. } = call else {
+        return None;
+    };
+    if h.literal().map(round_half_away) != Some(99.0) {
+        return None;
+    }
+    let n = match q {
+        None => 0.0,
+        Some(q) => round_half_away(q.literal()?),
+    };
+    (0.0..=99.0).contains(&n).then_some(500 + n as u32)
 }
 
 /// Q or R of a G65 H block: 0 when absent.
@@ -246,14 +270,16 @@ fn operand(g: &mut Builder<'_>, v: Option<WordValue<'_>>) -> ir::Handle<ir::Expr
     }
 }
 
-fn macro_a(
-    g: &mut Builder<'_>,
-    h: WordValue<'_>,
-    p: Option<&Word>,
-    q: Option<WordValue<'_>>,
-    r: Option<WordValue<'_>>,
-    span: Span,
-) {
+/// The words H, P, Q and R of a G65 H block.
+type MacroAWords<'a> = (
+    WordValue<'a>,
+    Option<&'a Word>,
+    Option<WordValue<'a>>,
+    Option<WordValue<'a>>,
+);
+
+fn macro_a(g: &mut Builder<'_>, words: MacroAWords<'_>, span: Span, comment: Option<&str>) {
+    let (h, p, q, r) = words;
     let Some(h) = h.literal().map(round_half_away) else {
         g.error(
             "E2060",
@@ -267,7 +293,7 @@ fn macro_a(
         return macro_a_jump(g, h, p, q, r, span);
     }
     if h == 99 {
-        return user_alarm(g, q, span);
+        return user_alarm(g, q, span, comment);
     }
     let Some(dst) = destination(g, p, span) else {
         return;
@@ -282,12 +308,15 @@ fn macro_a(
         return;
     };
     let value = op.value(dst, j, k, &mut |e| g.add_expr(e));
+    // (As `#3000 = n (TEXT)`: the block's comment is the message.)
+    let msg = matches!(dst, 3000 | 3006).then(|| g.string(comment.unwrap_or("")));
     g.push(Op::MacroA {
         op,
         dst,
         j,
         k,
         value,
+        msg,
     });
 }
 

@@ -360,7 +360,7 @@ impl DryRun<'_> {
                 Some(Call::Ret { p }) if index != 0 => {
                     return Ok(returned(p, (prog.unit, block.span)))
                 }
-                Some(call) => match self.called(&call, levels, (prog.unit, block.span))? {
+                Some(call) => match self.called(&call, levels, (prog.unit, block))? {
                     Flow::Go => {}
                     Flow::End => return Ok(Flow::End),
                     Flow::Back(back) => match self.block_numbered(index, back.seq) {
@@ -384,9 +384,17 @@ impl DryRun<'_> {
         &mut self,
         call: &Call<'_>,
         levels: Levels,
-        at: (usize, Span),
+        at: (usize, &grammar::ast::Block),
     ) -> Result<Flow, (usize, Diagnostic)> {
+        let (unit, block) = at;
+        let at = (unit, block.span);
         let Some(target) = target(call) else {
+            // W124 for a `G65 H99`: the run stops there.
+            if let Some(code) = crate::calls::user_alarm_code(call) {
+                let comment = block.comments.first().map(|c| c.text.as_str());
+                let msg = crate::calls::user_alarm_message(comment);
+                self.run.warner.user_alarm(at, code, msg);
+            }
             return Ok(Flow::End);
         };
         // E4035: M98 while nose-radius compensation is on.

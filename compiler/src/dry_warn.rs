@@ -233,6 +233,16 @@ impl Warner {
         }
     }
 
+    /// W124 for the user alarm `code` (`G65 H99`) the run stops with at
+    /// `at`.
+    pub fn user_alarm(&mut self, at: (usize, Span), code: u32, msg: &str) {
+        let (unit, span) = at;
+        if self.told.insert((unit, "W124", span)) {
+            let d = crate::predict::warning(code, msg, span);
+            self.diags.push((unit, d));
+        }
+    }
+
     /// The warnings of a block that ran without error.
     pub fn after(
         &mut self,

@@ -311,6 +311,7 @@ impl<'a> Emitter<'a> {
                 j,
                 k,
                 value,
+                msg,
             } => {
                 // R is read even where the operation ignores it, after Q,
                 // as the control reads every address of the block: a
@@ -321,6 +322,10 @@ impl<'a> Emitter<'a> {
                     self.expr(f, *k);
                 }
                 let src = self.expr(f, *value);
+                if let Some(m) = msg {
+                    let s = self.string(*m);
+                    self.emit(Instr::SetMsg { s });
+                }
                 self.emit(Instr::StoreVar { var: *dst, src });
             }
             Op::Alarm { code, msg } => {

@@ -109,6 +109,30 @@ fn macro_a_h_codes_compute_and_jump() {
 }
 
 #[test]
+fn a_g65_h_alarm_takes_the_blocks_comment_as_its_message() {
+    // As `#3000 = n (TEXT)` (dialect.md §7.3): H01 into #3006 is a message
+    // stop, H02 into #3000 the alarm 3000 + 2 + 3.
+    let src = "G65 H01 P#3006 Q1 (CHECK THE CHUCK)\nG65 H02 P#3000 Q2 R3 (NO FEED)\nM30\n";
+    let (canon, status) = run(src);
+    assert_eq!(
+        canon,
+        [
+            "MESSAGE TEXT=\"CHECK THE CHUCK\"",
+            "ALARM CODE=3005 MSG=\"NO FEED\""
+        ]
+    );
+    assert!(matches!(status, Status::Alarm(a) if a.code == 3005 && a.line == 2));
+    // Without a comment the message is empty, as for `#3000 = n`.
+    let (canon, _) = run("G65 H01 P#3000 Q1\nM30\n");
+    assert_eq!(canon, ["ALARM CODE=3001 MSG=\"\""]);
+    // G65 H99 Q7 is alarm 507: the comment, else a message of gbc's.
+    let (canon, _) = run("G65 H99 Q7 (SPINDLE NOT READY)\nM30\n");
+    assert_eq!(canon, ["ALARM CODE=507 MSG=\"SPINDLE NOT READY\""]);
+    let (canon, _) = run("G65 H99 Q7\nM30\n");
+    assert_eq!(canon, ["ALARM CODE=507 MSG=\"G65 H99 user alarm\""]);
+}
+
+#[test]
 fn h_after_p_is_argument_11_not_the_h_form() {
     // Seed 003, argument specification I: H → #11. The block is a macro
     // call because P (the program) comes first; the H form starts with H.

@@ -411,3 +411,25 @@ fn an_alarm_in_a_library_program_is_told_in_its_file() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_static_program_tells_the_user_alarm_its_run_stops_at() {
+    // `G65 H99` ends the dry run of a static program: the alarm it raises
+    // is told there (line 3), as the compile-time run of a program with
+    // macros tells it, with the message the run prints.
+    let src = "G00 X20 Z2\nG01 Z-5 F100\nG65 H99 Q7 (SPINDLE NOT READY)\nG00 X30\nM30\n";
+    for (src, line) in [(src.to_string(), 3), (format!("#1=1\n{src}"), 4)] {
+        let c = compile("p.nc", src.as_bytes(), &Options::default());
+        let found: Vec<_> = (c.diags.iter())
+            .map(|(f, d)| {
+                (
+                    d.code,
+                    c.files[*f].line_col(d.span.start).0,
+                    d.message.clone(),
+                )
+            })
+            .collect();
+        let msg = "the run stops here with alarm 507: SPINDLE NOT READY".to_string();
+        assert_eq!(found, [("W124", line, msg)], "{src}");
+    }
+}

@@ -700,7 +700,8 @@ impl<'a> Builder<'a> {
         }
         crate::profile::after_exec(self, after);
         if let Some(call) = &split.call {
-            crate::calls::build_call(self, call.clone(), block.span);
+            let comment = block.comments.first().map(|c| c.text.as_str());
+            crate::calls::build_call(self, call.clone(), block.span, comment);
         }
     }
 

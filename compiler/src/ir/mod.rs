@@ -122,13 +122,16 @@ pub enum Op {
     /// A macro-A operation `G65 Hm P#dst Q j R k` (H01–H34): `value`, the
     /// operation written out as an expression of `j` and `k`
     /// ([`MacroAOp::value`]), is stored into `#dst`. Emit computes it and
-    /// fold evaluates it as it does any expression.
+    /// fold evaluates it as it does any expression. A store into #3000
+    /// or #3006 carries its message (the block's comment), as an
+    /// assignment does.
     MacroA {
         op: MacroAOp,
         dst: u32,
         j: Handle<Expr>,
         k: Handle<Expr>,
         value: Handle<Expr>,
+        msg: Option<StrId>,
     },
     /// A user alarm (`G65 H99 Q n`: alarm 500 + n).
     Alarm { code: u16, msg: StrId },

@@ -141,8 +141,18 @@ impl Printer<'_> {
                 }
                 s
             }
-            Op::MacroA { op, dst, value, .. } => {
-                format!("g65 H{:02} #{dst} = {}", op.h(), self.expr(*value))
+            Op::MacroA {
+                op,
+                dst,
+                value,
+                msg,
+                ..
+            } => {
+                let mut s = format!("g65 H{:02} #{dst} = {}", op.h(), self.expr(*value));
+                if let Some(m) = msg {
+                    let _ = write!(s, " msg {:?}", self.string(m.0));
+                }
+                s
             }
             Op::Alarm { code, msg } => format!("alarm {code} {:?}", self.string(msg.0)),
             Op::ModalCancel => "g67".into(),
