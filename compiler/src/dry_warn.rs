@@ -4,9 +4,10 @@
 //! without motion), W110 (thread in G96), W111 (feed mode changed without
 //! a new F), W112 (corner word ignored), W114 (S above the spindle
 //! maximum), W125 (a feed per minute below 1: a feed per revolution
-//! written for a control that starts in G99). A program with macro statements or computed words is not
-//! dry-run: where its run is known, the compile-time run in the VM
-//! (`predict`) hands its blocks to the same [`Warner`], all but W107.
+//! written for a control that starts in G99). A program with macro
+//! statements or computed words is not dry-run: where its run is known,
+//! the compile-time run in the VM (`predict`) hands its blocks to the
+//! same [`Warner`], all but W107.
 
 use grammar::ast::Addr;
 use grammar::{Diagnostic, Span};
@@ -374,7 +375,7 @@ impl Warner {
             "F{f} here is {f} {unit_name} (G98, feed per minute): the feed moves at it crawl; is it a feed per revolution?",
             f = nc::event::Num(f)
         );
-        let help = "this control powers on in G98 (feed per minute), where many Fanuc lathes start in G99: if the F is per revolution, write G99 before it (at the program's start, with G21 and G40), or give the feed in per-minute units";
+        let help = "this control powers on in G98 (feed per minute), where many Fanuc lathes start in G99: if the F is per revolution, write G99 at the program's start; else give the feed in per-minute units";
         self.warn_help((u, at), "W125", msg, help.into());
     }
 
