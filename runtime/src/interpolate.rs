@@ -1188,11 +1188,7 @@ impl<P: Plc> Engine<P> {
             self.c = self.cur.c1;
             self.v = v;
             if let MoveKind::Skip(_) = self.cur.kind {
-                self.skip_report = Some(SkipReport {
-                    hit: self.skip_hit,
-                    stop: self.pos,
-                    shift: self.cur.shift,
-                });
+                self.report_skip();
             }
             self.finish_item();
             return true;
@@ -1204,16 +1200,22 @@ impl<P: Plc> Engine<P> {
     fn standing(&mut self) {
         if self.skip_hit.is_some() {
             // The skip signal ended the move: the next block starts here.
-            self.skip_report = Some(SkipReport {
-                hit: self.skip_hit,
-                stop: self.pos,
-                shift: self.cur.shift,
-            });
+            self.report_skip();
             self.q.set_tail(self.pos);
             self.finish_item();
         } else if self.hold {
             self.state = RunState::Held;
         }
+    }
+
+    /// A skip move ends where the axes stand: where the signal came (if
+    /// it came) and where they stopped, for the host.
+    fn report_skip(&mut self) {
+        self.skip_report = Some(SkipReport {
+            hit: self.skip_hit,
+            stop: self.pos,
+            shift: self.cur.shift,
+        });
     }
 
     /// One period of a feed with jerk limiting: the profile runs to the end
@@ -1238,19 +1240,11 @@ impl<P: Plc> Engine<P> {
             self.pos = self.cur.to;
             self.c = self.cur.c1;
             if let MoveKind::Skip(_) = self.cur.kind {
-                self.skip_report = Some(SkipReport {
-                    hit: self.skip_hit,
-                    stop: self.pos,
-                    shift: self.cur.shift,
-                });
+                self.report_skip();
             }
             self.finish_item();
         } else if still && self.skip_hit.is_some() {
-            self.skip_report = Some(SkipReport {
-                hit: self.skip_hit,
-                stop: self.pos,
-                shift: self.cur.shift,
-            });
+            self.report_skip();
             self.q.set_tail(self.pos);
             self.finish_item();
         } else if still && self.hold {
