@@ -115,6 +115,14 @@ fn compile_time(code: u16) -> bool {
     (1000..5000).contains(&code) || code == nc::error::Alarm::ToolNumber.code()
 }
 
+/// A block as the dry run runs it: the kernel's literal words, its call,
+/// and for a G71–G73 cycle the block after its profile (nf) to go on at.
+struct Split<'w> {
+    lits: SmallVec<[Word; 8]>,
+    call: Option<Call<'w>>,
+    resume: Option<usize>,
+}
+
 enum Flow {
     Go,
     End,
@@ -313,40 +321,18 @@ impl DryRun<'_> {
             let Some(block) = link::block(unit, line) else {
                 continue;
             };
-            if block.delete.is_some_and(|d| {
-                self.skip
-                    .get(d.switch.saturating_sub(1) as usize)
-                    .copied()
-                    .unwrap_or(false)
-            }) {
-                continue;
-            }
             let Body::Words(ws) = &block.body else {
                 continue;
             };
+            if self.skipped(block) {
+                continue;
+            }
             let again = self.passed(index, next - 1);
             if !self.run.step(again, prog.unit, block.span) {
                 return Ok(Flow::End);
             }
-            let (lits, call, resume) = if words::may_call(ws) || crate::profile::names_cycle(ws) {
-                let Ok(split) = words::classify(ws) else {
-                    return Ok(Flow::End);
-                };
-                // A G70–G73 cycle gets its profile; G71–G73 go on after nf.
-                let numbers = match self.numbers.get_mut(index) {
-                    Some(n) => n.get_or_insert_with(|| crate::profile::Numbers::of(unit, prog)),
-                    None => return Ok(Flow::End),
-                };
-                let resume = crate::profile::hand_over(
-                    &mut self.run.nc,
-                    (unit, prog, numbers),
-                    &split.nc,
-                    &self.skip,
-                );
-                (literal_words(&split.nc), split.call, resume)
-            } else {
-                // Most blocks: no call, no cycle, every word an NC word.
-                (plain_literals(ws), None, None)
+            let Some(Split { lits, call, resume }) = self.split(index, ws) else {
+                return Ok(Flow::End);
             };
             if !lits.is_empty() {
                 let at = (prog.unit, unit, block, ws.as_slice());
@@ -357,25 +343,84 @@ impl DryRun<'_> {
             next = resume.unwrap_or(next);
             match call {
                 None => {}
+                // M99 in a called program: back to the caller.
                 Some(Call::Ret { p }) if index != 0 => {
                     return Ok(returned(p, (prog.unit, block.span)))
                 }
-                Some(call) => match self.called(&call, levels, (prog.unit, block))? {
-                    Flow::Go => {}
-                    Flow::End => return Ok(Flow::End),
-                    Flow::Back(back) => match self.block_numbered(index, back.seq) {
-                        Some(at) => next = at,
-                        // The run stops with E6002 at the M99.
-                        None => {
-                            let caller = (index != 0).then_some(prog.number);
-                            (self.run.warner).return_missing(back.at, back.seq, caller);
-                            return Ok(Flow::End);
-                        }
-                    },
+                Some(call) => match self.follow(index, levels, (prog, block), &call)? {
+                    Some(at) => next = at.unwrap_or(next),
+                    None => return Ok(Flow::End),
                 },
             }
         }
         Ok(if index == 0 { Flow::End } else { Flow::Go })
+    }
+
+    /// Whether block delete skips the block: its switch is on.
+    fn skipped(&self, block: &grammar::ast::Block) -> bool {
+        block.delete.is_some_and(|d| {
+            self.skip
+                .get(d.switch.saturating_sub(1) as usize)
+                .copied()
+                .unwrap_or(false)
+        })
+    }
+
+    /// A block of program `index` as the dry run runs it; `None` where the
+    /// words do not split (the run ends there).
+    fn split<'w>(&mut self, index: usize, ws: &'w [grammar::ast::Word]) -> Option<Split<'w>> {
+        if !words::may_call(ws) && !crate::profile::names_cycle(ws) {
+            // Most blocks: no call, no cycle, every word an NC word.
+            return Some(Split {
+                lits: plain_literals(ws),
+                call: None,
+                resume: None,
+            });
+        }
+        let split = words::classify(ws).ok()?;
+        let prog = self.programs.get(index)?;
+        let unit = &self.units[prog.unit];
+        // A G70–G73 cycle gets its profile.
+        let numbers = self.numbers.get_mut(index)?;
+        let numbers = numbers.get_or_insert_with(|| crate::profile::Numbers::of(unit, prog));
+        let resume = crate::profile::hand_over(
+            &mut self.run.nc,
+            (unit, prog, numbers),
+            &split.nc,
+            &self.skip,
+        );
+        Some(Split {
+            lits: literal_words(&split.nc),
+            call: split.call,
+            resume,
+        })
+    }
+
+    /// Follows the call of a block of program `index` (not an M99 of a
+    /// called program): `None` ends the run, `Some(None)` goes on after the
+    /// block, `Some(Some(i))` at block i (an `M99 P n` back from the called
+    /// program).
+    fn follow(
+        &mut self,
+        index: usize,
+        levels: Levels,
+        at: (&Program, &grammar::ast::Block),
+        call: &Call<'_>,
+    ) -> Result<Option<Option<usize>>, (usize, Diagnostic)> {
+        let (prog, block) = at;
+        Ok(match self.called(call, levels, (prog.unit, block))? {
+            Flow::Go => Some(None),
+            Flow::End => None,
+            Flow::Back(back) => match self.block_numbered(index, back.seq) {
+                Some(at) => Some(Some(at)),
+                // The run stops with E6002 at the M99.
+                None => {
+                    let caller = (index != 0).then_some(prog.number);
+                    (self.run.warner).return_missing(back.at, back.seq, caller);
+                    None
+                }
+            },
+        })
     }
 
     /// Runs the program a block of a program at `levels` calls, when the

@@ -195,6 +195,15 @@ enum Entry {
     },
 }
 
+/// Where a lexed block stands: its line, whether a `;` ended the block
+/// before it on that line, and its span.
+#[derive(Clone, Copy)]
+struct Place {
+    line: usize,
+    after_semicolon: bool,
+    span: Span,
+}
+
 struct Driver<'src> {
     src: &'src [u8],
     compactor: Compactor,
@@ -453,59 +462,21 @@ impl Driver<'_> {
             return end;
         }
         let first = self.tokens.len();
-        match lexer::lex_block(
+        let lexed = lexer::lex_block(
             scanned.text,
             scanned.map,
             &scanned.comments,
             &mut self.tokens,
-        ) {
-            Ok(()) => {
-                let range = first..self.tokens.len();
-                // Nothing waits to be parsed before it (entries keep file
-                // order): a block of literal words goes straight into the
-                // tree. (Not in the tests' plain mode: the reference.)
-                if self.batched && self.entries.is_empty() {
-                    if let Some((seq, words)) = plain_block(&self.tokens[range.clone()]) {
-                        self.tokens.truncate(first);
-                        let parsed = Parsed::Words {
-                            delete: None,
-                            seq,
-                            words,
-                        };
-                        let comments = scanned.comments;
-                        self.finish(parsed, line, comments, span);
-                        return end;
-                    }
-                }
-                let batched = self.batch.len();
-                group_words(&self.tokens[range.clone()], &mut self.batch, &mut self.runs);
-                // (Not in the tests' plain mode: the reference to equal.)
-                let words = match self.batched {
-                    true => only_words(&mut self.batch, batched),
-                    false => None,
-                };
-                if let Some((seq, words)) = words {
-                    self.word_blocks += 1;
-                    self.entries.push(Entry::Words {
-                        line,
-                        seq,
-                        words,
-                        comments: scanned.comments,
-                        span,
-                    });
-                    return end;
-                }
-                self.batch
-                    .push((span.end as usize, Tok::Eob, span.end as usize));
-                self.blocks += 1;
-                self.entries.push(Entry::Block {
-                    line,
-                    after_semicolon,
-                    range,
-                    comments: scanned.comments,
-                    span,
-                });
-            }
+        );
+        // Taken out before `lexed`: `scanned` borrows the compactor.
+        let comments = scanned.comments;
+        let place = Place {
+            line,
+            after_semicolon,
+            span,
+        };
+        match lexed {
+            Ok(()) => self.lexed(first, place, comments),
             Err(diag) => self.entries.push(Entry::Faulty {
                 line,
                 after_semicolon,
@@ -513,6 +484,61 @@ impl Driver<'_> {
             }),
         }
         end
+    }
+
+    /// Files the block whose tokens start at `first`: straight into the
+    /// tree, as a block of words for the batch, or as a block the grammar
+    /// parses.
+    fn lexed(&mut self, first: usize, place: Place, comments: Vec<Comment>) {
+        let Place {
+            line,
+            after_semicolon,
+            span,
+        } = place;
+        let range = first..self.tokens.len();
+        // Nothing waits to be parsed before it (entries keep file order):
+        // a block of literal words goes straight into the tree. (Not in the
+        // tests' plain mode: the reference.)
+        if self.batched && self.entries.is_empty() {
+            if let Some((seq, words)) = plain_block(&self.tokens[range.clone()]) {
+                self.tokens.truncate(first);
+                let parsed = Parsed::Words {
+                    delete: None,
+                    seq,
+                    words,
+                };
+                self.finish(parsed, line, comments, span);
+                return;
+            }
+        }
+        let batched = self.batch.len();
+        group_words(&self.tokens[range.clone()], &mut self.batch, &mut self.runs);
+        // (Not in the tests' plain mode: the reference to equal.)
+        let words = match self.batched {
+            true => only_words(&mut self.batch, batched),
+            false => None,
+        };
+        if let Some((seq, words)) = words {
+            self.word_blocks += 1;
+            self.entries.push(Entry::Words {
+                line,
+                seq,
+                words,
+                comments,
+                span,
+            });
+            return;
+        }
+        self.batch
+            .push((span.end as usize, Tok::Eob, span.end as usize));
+        self.blocks += 1;
+        self.entries.push(Entry::Block {
+            line,
+            after_semicolon,
+            range,
+            comments,
+            span,
+        });
     }
 
     /// The usual block, literal words in place (`N10 G01 Z2`: blanks
