@@ -153,7 +153,8 @@ impl Expand {
                 self.plane_at = (self.at.0, 0.0);
                 "G12.1".into()
             }
-            Event::PolarOff { c, .. } => {
+            Event::PolarOff { x, c } => {
+                self.at.0 = *x;
                 self.c_now = *c;
                 "G13.1".into()
             }
@@ -169,6 +170,21 @@ impl Expand {
                 a,
                 b,
             } => self.plane_move(*plane, *motion, *a, *b),
+            Event::PlaneAxis {
+                plane, rapid, to, ..
+            } => {
+                let g = if *rapid { "G00" } else { "G01" };
+                match plane {
+                    Plane::Polar => {
+                        self.at.1 = *to;
+                        format!("{g} Z{}", self.w(*to))
+                    }
+                    Plane::Cylinder => {
+                        self.at.0 = *to;
+                        format!("{g} X{}", self.w(*to))
+                    }
+                }
+            }
             Event::Rapid { x, z, c } => {
                 format!("G00 X{} Z{}{}", self.w(*x), self.w(*z), self.c_word(*c))
             }
@@ -363,6 +379,8 @@ impl Expand {
         let first = if plane == Plane::Polar { 'X' } else { 'Z' };
         let from = std::mem::replace(&mut self.plane_at, (a, b));
         if plane == Plane::Cylinder {
+            // Z moves with the plane (polar X: from `POLAR MODE=OFF`).
+            self.at.1 = a;
             self.c_now = b;
         }
         let (g, centre) = match motion {

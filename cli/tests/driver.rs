@@ -372,7 +372,10 @@ fn polar_and_cylindrical_interpolation_expand_to_the_same_canon() {
     // A polar contour with a G16 line and both arc forms, then a groove
     // on a cylinder of radius 20 with an arc longer than a half circle
     // (R-20, which the expansion must write negative again).
-    let src = "G98 G00 X40 Z-2 C0\nG12.1\nG01 X20 C10 F300\nG03 X-20 C10 R10\nG16\nG01 X10 C180\nG15\nG03 X20 C0 I10 J0\nG13.1\nG00 C0\nG7.1 C20.\nG01 Z-10 C90 F200\nG03 Z-20 C0 R-20\nG7.1 C0\nM30\n";
+    // Z plunges and X feeds in alone inside the planes; after each plane
+    // an arc whose centre the expansion writes as I/K from where the
+    // plane left the tool.
+    let src = "G98 G00 X40 Z-2 C0\nG12.1\nG01 X20 C10 F300\nG01 Z-4 F50\nG03 X-20 C10 R10\nG16\nG01 X10 C180\nG15\nG03 X20 C0 I10 J0\nG00 W2\nG13.1\nG02 X30 Z-7 R5\nG00 C0\nG7.1 C20.\nG01 Z-10 C90 F200\nG01 U-4 F20\nG03 Z-20 C0 R-20\nG00 X40\nG7.1 C0\nG02 X40 Z-25 R5\nM30\n";
     std::fs::write(d.join("p.nc"), src).unwrap();
     let canon = |file: &str| {
         let out = gbcc(&[file, "--machine", "c.toml", "-o", "p.gbc"], &d);
@@ -383,6 +386,8 @@ fn polar_and_cylindrical_interpolation_expand_to_the_same_canon() {
     };
     let first = canon("p.nc");
     assert!(first.contains("POLAR MODE=OFF X=20 C=360\n"), "{first}");
+    assert!(first.contains("\nLINE Z=-4\n"), "{first}");
+    assert!(first.contains("\nLINE X=26\n"), "{first}");
     let e = gbcc(&["p.nc", "--machine", "c.toml", "-E"], &d);
     assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
     let expanded = text(&e.stdout);

@@ -12,6 +12,7 @@
 use grammar::ast::Addr;
 use grammar::{Diagnostic, Span};
 use nc::block::round_half_away;
+use nc::exec::plane::Kind as PlaneKind;
 use nc::gcode::{self, Motion, OneShot, Stroke};
 use nc::machine::{DecimalPoint, SpindleType};
 use nc::words::{Word, NO_POINT};
@@ -50,6 +51,7 @@ impl Sink for Counts {
 /// The state a block starts from, taken before it runs.
 pub struct Before {
     per_rev: bool,
+    /// The point on the programmed path (`path_point`).
     pos: nc::point::Pt,
     applied: u32,
 }
@@ -147,6 +149,13 @@ impl Seen {
 }
 
 /// The bit of address `a` (0..ADDR_COUNT, fewer than 32).
+/// The point on the programmed path: the plane's point during polar or
+/// cylindrical interpolation (an arc about the spindle centre leaves the
+/// joints' X where it was), the position otherwise.
+fn path_point(nc: &Nc) -> nc::point::Pt {
+    nc.st.plane.map_or(nc.st.pos, |plane| plane.pt)
+}
+
 fn bit(a: u8) -> u32 {
     1u32.checked_shl(u32::from(a)).unwrap_or(0)
 }
@@ -155,7 +164,7 @@ impl Warner {
     pub fn before(&self, nc: &Nc) -> Before {
         Before {
             per_rev: nc.st.per_rev(),
-            pos: nc.st.pos,
+            pos: path_point(nc),
             applied: nc.st.contour.applied,
         }
     }
@@ -270,6 +279,31 @@ impl Warner {
             );
         }
         self.spindle_max(unit, nc, ws, &seen);
+        self.outside_plane(unit, nc, ws, &seen);
+    }
+
+    /// W104: during polar (cylindrical) interpolation an arc ignores the
+    /// axis outside the plane, Z (X), as seed 000 says; G00/G01 move it.
+    fn outside_plane(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
+        let Some(plane) = nc.st.plane else {
+            return;
+        };
+        if seen.one_shot || !nc.st.modal.motion.is_arc() {
+            return;
+        }
+        let (letters, what) = match plane.kind {
+            PlaneKind::Polar => (*b"ZW", "polar interpolation (G12.1)"),
+            PlaneKind::Cylinder(_) => (*b"XU", "cylindrical interpolation (G7.1)"),
+        };
+        for letter in letters {
+            if let Some(w) = find(ws, letter - b'A') {
+                let msg = format!(
+                    "{} is ignored: an arc during {what} stays in the plane; move {} in a G00 or G01 block of its own",
+                    w.addr, letters[0] as char
+                );
+                self.warn(unit, "W104", w.span, msg);
+            }
+        }
     }
 
     /// W105: in calculator mode a G20 length written without a point and
@@ -393,7 +427,7 @@ impl Warner {
         };
         // (Both coordinates within 1e-9 first: the distance is only
         // computed for a block that may not have moved.)
-        let (now, was) = (nc.st.pos, before.pos);
+        let (now, was) = (path_point(nc), before.pos);
         let near = (now.r - was.r).abs() < 1e-9 && (now.z - was.z).abs() < 1e-9;
         if near && now.dist(was) < 1e-9 {
             self.warn(

@@ -288,3 +288,29 @@ fn w125_at_a_cycle_but_not_at_a_thread() {
     let after = "M03 S500\nG00 X20 Z2\nF0.2\nG32 Z-20 F1.5\nG00 X30\nG01 Z-30\nM30\n";
     assert_eq!(w125(after), [3]);
 }
+
+#[test]
+fn w104_and_w108_in_polar_and_cylindrical_interpolation() {
+    let mut opts = Options::default();
+    opts.machine.axes.c.enabled = true;
+    let found = |src: &str| {
+        let c = compile("w.nc", src.as_bytes(), &opts);
+        assert!(!c.has_errors(), "{}", c.render());
+        (c.diags.iter())
+            .filter(|(_, d)| d.code != "W101")
+            .map(|(f, d)| (d.code, c.files[*f].line_col(d.span.start).0))
+            .collect::<Vec<_>>()
+    };
+    // An arc ignores the axis outside the plane (seed 000): W104 at Z (W)
+    // in polar interpolation, at X (U) in cylindrical; G01 moves it and
+    // gets nothing. The arc from (10, 10) to (−10, 10) leaves the joints'
+    // X where it was (√200 from the centre at both ends) but moves on
+    // the path: no W108. G04 X in cylindrical interpolation is a dwell.
+    let src = "G98 G00 X40 Z2 C0\nG12.1\nG01 X20 C10 F300\nG01 Z-2\nG03 X-20 C10 R10 W1\nG13.1\nG00 C0\nG7.1 C20.\nG01 Z-10 C90\nG02 Z-20 R5 X30\nG04 X1\nG7.1 C0\nM30\n";
+    assert_eq!(found(src), [("W104", 5), ("W104", 10)]);
+    // The compile-time run of the program made dynamic finds them too.
+    assert_eq!(found(&format!("{src}#1=1\n")), [("W104", 5), ("W104", 10)]);
+    // An arc in the plane that ends where it starts moves nothing: W108.
+    let src = "G98 G00 X40 Z2 C0\nG12.1\nG01 X20 C10 F300\nG02 X20 C10 R5\nG13.1\nM30\n";
+    assert_eq!(found(src), [("W108", 4)]);
+}

@@ -12,9 +12,13 @@
 //!
 //! - polar: X = 2·√(x² + c²), C = the angle of (x, c) from +X, followed
 //!   continuously (a circle about the centre is a whole turn of C); Z
-//!   stays where it was at G12.1;
+//!   stays where the map says;
 //! - cylinder: Z = the plane's Z, C = s / r in degrees (s the developed
-//!   length, r the cylinder's radius); X stays where it was at G7.1.
+//!   length, r the cylinder's radius); X stays where the map says.
+//!
+//! The axis the map holds moves alone between two switches: the plane
+//! ends, the axis moves as an ordinary move, the plane starts again at the
+//! same plane point with the new Z or X (translate.rs, `PlaneAxis`).
 //!
 //! Joint speeds are not limited by the planner: near the centre C turns
 //! fast, and the program keeps F < L·R·π/180 (seed 000; docs/language.md).
@@ -28,7 +32,7 @@ use crate::math::V2;
 /// the joint that stays included).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PlaneMap {
-    /// G12.1: Z (work) stays here.
+    /// G12.1: Z (work) stays here while the plane is on.
     Polar {
         /// Z, work coordinates.
         z: f64,

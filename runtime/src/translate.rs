@@ -40,6 +40,8 @@ pub struct Translator {
     c_now: f64,
     /// Polar or cylindrical interpolation while it is on (polar.rs).
     plane: Option<crate::polar::PlaneMap>,
+    /// The plane point the last plane move ended at.
+    plane_at: V2,
 }
 
 impl Translator {
@@ -58,6 +60,7 @@ impl Translator {
             c: None,
             c_now: 0.0,
             plane: None,
+            plane_at: V2::ZERO,
         }
     }
 
@@ -239,6 +242,11 @@ impl Translator {
                     self.plane_move(map, *motion, *a, *b, out);
                 }
             }
+            Event::PlaneAxis { rapid, to, c, .. } => {
+                if let Some(map) = self.plane {
+                    self.plane_axis(map, *rapid, *to, *c, out);
+                }
+            }
             Event::Ellipse { dir, x, z, a, b, q } => {
                 let (a, b, q, ccw) = (*a, *b, q.to_radians(), *dir == Dir::Ccw);
                 let k = MoveKind::Feed(self.feed);
@@ -290,6 +298,7 @@ impl Translator {
     /// A plane starts at plane point `at`.
     fn plane_on(&mut self, map: PlaneMap, at: V2, out: &mut Vec<Command>) {
         self.plane = Some(map);
+        self.plane_at = at;
         out.push(Command::Plane(PlaneSwitch {
             map: Some(map),
             at,
@@ -335,6 +344,7 @@ impl Translator {
                 },
             ),
         };
+        self.plane_at = to;
         let (work, c) = map.joints(to);
         self.work = work;
         if let PlaneMap::Cylinder { .. } = map {
@@ -346,6 +356,32 @@ impl Translator {
             shift: V2::ZERO,
             c: None,
         }));
+    }
+}
+
+impl Translator {
+    /// The axis outside the plane moves to `to` (polar Z; cylinder X, a
+    /// diameter) with the joints of the plane standing at C `c`: the plane
+    /// ends there, the axis moves as an ordinary move, and the plane
+    /// starts again at the same plane point with the new Z (X).
+    fn plane_axis(&mut self, map: PlaneMap, rapid: bool, to: f64, c: f64, out: &mut Vec<Command>) {
+        let at = self.plane_at;
+        self.c_now = c;
+        self.plane_off(out);
+        let (work, map) = match map {
+            PlaneMap::Polar { .. } => (V2::new(self.work.r, to), PlaneMap::Polar { z: to }),
+            PlaneMap::Cylinder { radius, .. } => {
+                let r = to * 0.5;
+                (V2::new(r, self.work.z), PlaneMap::Cylinder { radius, r })
+            }
+        };
+        let kind = if rapid {
+            MoveKind::Rapid
+        } else {
+            MoveKind::Feed(self.feed)
+        };
+        out.push(self.mv(kind, work, |to, _| Path::Line { to }));
+        self.plane_on(map, at, out);
     }
 }
 

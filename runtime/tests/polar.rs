@@ -258,3 +258,90 @@ fn the_split_controller_follows_the_same_path() {
     let last = r.pts.last().expect("periods");
     assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6);
 }
+
+/// The polar contour of `POLAR` with Z plunging alone at (−10, 10), after
+/// the first arc, and rising at the end (seed 000: the axis outside the
+/// plane moves as commanded).
+const POLAR_PLUNGE: &str = "G98
+G00 X40 Z-2 C0
+G12.1
+G01 X20 C10 F300
+G03 X-20 C10 R10
+G01 Z-5 F50
+G01 C-10 F300
+G03 X20 C-10 R10
+G01 X40 C0
+G00 Z2
+G13.1
+M30
+";
+
+#[test]
+fn z_moves_alone_during_polar_interpolation() {
+    for jerk in [false, true] {
+        let r = run_c(POLAR_PLUNGE, jerk);
+        let path = polar_path();
+        check(&r, 4..=5, polar_plane, &path[..2], 300.0);
+        check(&r, 7..=9, polar_plane, &path[2..], 300.0);
+        // The plunge at (−10, 10): X = 2·√200 = 28.2843, C = 135°; Z from
+        // −2 down to −5 at F50, never past it.
+        let x = 2.0 * 200f64.sqrt();
+        let plunge: Vec<_> = r.pts.iter().filter(|p| p.line == 6).collect();
+        assert!(plunge.len() > 1000, "{}", plunge.len());
+        for p in &plunge {
+            let c = p.c.expect("a C column");
+            assert!((p.x - x).abs() < 1e-9 && (c - 135.0).abs() < 1e-6, "{p:?}");
+            assert!((-5.0 - 1e-9..=-2.0 + 1e-9).contains(&p.z), "{p:?}");
+        }
+        let mid = plunge[plunge.len() / 2];
+        assert!((mid.feed - 50.0).abs() <= 0.25, "{}", mid.feed);
+        // The rest of the contour runs at Z−5; G00 Z2 lifts alone at the
+        // end, where the contour closed once round the centre.
+        assert!(r
+            .pts
+            .iter()
+            .filter(|p| (7..=9).contains(&p.line))
+            .all(|p| (p.z + 5.0).abs() < 1e-9));
+        let last = r.pts.last().expect("periods");
+        assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6, "{last:?}");
+        assert!((last.x - 40.0).abs() < 1e-6 && (last.z - 2.0).abs() < 1e-9);
+        let canon: Vec<String> = r.canon.iter().map(|e| e.to_string()).collect();
+        assert!(canon.contains(&"LINE Z=-5".to_string()), "{canon:?}");
+        assert!(canon.contains(&"RAPID Z=2".to_string()), "{canon:?}");
+    }
+}
+
+/// The groove of `CYLINDER`, fed in along X alone first (X40 to X36 on
+/// the cylinder of radius 20), then cut at that depth and backed out.
+const CYLINDER_INFEED: &str = "G98
+G00 X40 Z0 C0
+G7.1 C20.
+G01 X36 F20
+G01 Z-10 C90 F200
+G00 U4
+G7.1 C0
+M30
+";
+
+#[test]
+fn x_moves_alone_during_cylindrical_interpolation() {
+    let r = run_c(CYLINDER_INFEED, false);
+    // The infeed: Z and C stand, X from 40 to 36 at F20.
+    let infeed: Vec<_> = r.pts.iter().filter(|p| p.line == 4).collect();
+    assert!(infeed.len() > 1000, "{}", infeed.len());
+    for p in &infeed {
+        assert!(p.z.abs() < 1e-9 && p.c.unwrap_or(1.0).abs() < 1e-9, "{p:?}");
+        assert!((36.0 - 1e-9..=40.0 + 1e-9).contains(&p.x), "{p:?}");
+    }
+    // The line at X36 on the developed surface (s = 20·C·π/180, Z), then
+    // X back to 40 with Z−10, C90 standing.
+    let s90 = 10.0 * PI;
+    for p in r.pts.iter().filter(|p| p.line == 5) {
+        let (s, z) = (20.0 * p.c.expect("a C column").to_radians(), p.z);
+        let off = Piece::Line((0.0, 0.0), (s90, -10.0)).distance((s, z));
+        assert!(off <= 0.005 && (p.x - 36.0).abs() < 1e-9, "{p:?}");
+    }
+    let last = r.pts.last().expect("periods");
+    assert!((last.x - 40.0).abs() < 1e-9 && (last.z + 10.0).abs() < 1e-9);
+    assert!((last.c.unwrap_or(0.0) - 90.0).abs() < 1e-9, "{last:?}");
+}

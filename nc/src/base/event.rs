@@ -171,6 +171,17 @@ pub enum Event {
         a: f64,
         b: f64,
     },
+    /// During polar (cylindrical) interpolation the axis outside the plane
+    /// moves alone and the plane point stands: `RAPID Z=` / `LINE Z=`
+    /// (polar), `RAPID X=` / `LINE X=` (cylinder, X a diameter). `c` is
+    /// the C angle the joints stand at (degrees): the runtime leaves the
+    /// plane there for the move and comes back; the line does not print it.
+    PlaneAxis {
+        plane: Plane,
+        rapid: bool,
+        to: f64,
+        c: f64,
+    },
     Alarm {
         code: u32,
         msg: String,
@@ -191,6 +202,7 @@ impl Event {
                     motion: PlaneMotion::Line | PlaneMotion::Arc { .. },
                     ..
                 }
+                | Event::PlaneAxis { rapid: false, .. }
         )
     }
 
@@ -207,6 +219,7 @@ impl Event {
                 | Event::ArcThread { .. }
                 | Event::Skip { .. }
                 | Event::PlaneMove { .. }
+                | Event::PlaneAxis { .. }
         )
     }
 }
@@ -443,6 +456,16 @@ impl Display for Event {
                 }
                 Ok(())
             }
+            Event::PlaneAxis {
+                plane, rapid, to, ..
+            } => {
+                let kind = if *rapid { "RAPID" } else { "LINE" };
+                let axis = match plane {
+                    Plane::Polar => 'Z',
+                    Plane::Cylinder => 'X',
+                };
+                write!(f, "{kind} {axis}={}", Num(*to))
+            }
         }
     }
 }
@@ -571,6 +594,22 @@ mod tests {
         };
         assert_eq!(rapid.to_string(), "RAPID Z=-3 C=90");
         assert!(!rapid.is_feed() && rapid.is_motion());
+        let plunge = Event::PlaneAxis {
+            plane: Plane::Polar,
+            rapid: false,
+            to: -2.5,
+            c: 135.0,
+        };
+        assert_eq!(plunge.to_string(), "LINE Z=-2.5");
+        assert!(plunge.is_feed() && plunge.is_motion());
+        let infeed = Event::PlaneAxis {
+            plane: Plane::Cylinder,
+            rapid: true,
+            to: 30.0,
+            c: 90.0,
+        };
+        assert_eq!(infeed.to_string(), "RAPID X=30");
+        assert!(!infeed.is_feed() && infeed.is_motion());
         assert_eq!(Event::PolarOn.to_string(), "POLAR MODE=ON");
         let off = Event::PolarOff { x: 20.0, c: -90.0 };
         assert_eq!(off.to_string(), "POLAR MODE=OFF X=20 C=-90");

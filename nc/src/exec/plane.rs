@@ -13,7 +13,9 @@
 //! surface. The canon prints the moves in the plane (`RAPID`, `LINE`,
 //! `ARC` with the plane's letters, event.rs); the runtime turns them into
 //! joint motion of X, C (polar) or Z, C (cylinder) at the programmed
-//! tangential feed (runtime/src/polar.rs).
+//! tangential feed (runtime/src/polar.rs). The axis outside the plane, Z
+//! (polar) or X (cylinder), moves in a G00/G01 block of its own, the plane
+//! point standing (seed 000); an arc ignores it.
 //!
 //! The kernel keeps the joint position current after every move: `pos`
 //! (X and Z) and `c`, which follows the path continuously (a circle about
@@ -130,21 +132,40 @@ fn check_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcErr
             ),
         );
     }
-    let other_axis = match st.kind {
-        Kind::Polar => p.has(b'Z') || p.has(b'W'),
-        Kind::Cylinder(_) => p.has(b'X') || p.has(b'U'),
-    };
-    if other_axis && p.one_shot().is_none_or(|c| c != OneShot::Dwell) {
-        let axis = if st.kind == Kind::Polar { 'Z' } else { 'X' };
-        return fail(
-            Alarm::NotSupportedYet,
-            format!(
-                "moving {axis}, the axis outside the plane, during {} is not supported yet: move it before or after",
-                st.what()
-            ),
-        );
+    if other_axis(st.kind, p) && p.one_shot().is_none_or(|c| c != OneShot::Dwell) {
+        let code = p.motion().unwrap_or(nc.st.modal.motion);
+        // In an arc the axis is ignored (seed 000: the compiler warns,
+        // W104); G00/G01 move it alone (`axis_move`).
+        if code.is_straight() && plane_words(st.kind, p) {
+            let axis = if st.kind == Kind::Polar { 'Z' } else { 'X' };
+            return fail(
+                Alarm::NotSupportedYet,
+                format!(
+                    "moving {axis}, the axis outside the plane, together with the plane during {} is not supported yet: move {axis} in a block of its own",
+                    st.what()
+                ),
+            );
+        }
     }
     Ok(())
+}
+
+/// Whether the block writes the axis outside the plane: Z (W) in polar
+/// interpolation, X (U) in cylindrical.
+pub fn other_axis(kind: Kind, p: &Parsed) -> bool {
+    match kind {
+        Kind::Polar => p.has(b'Z') || p.has(b'W'),
+        Kind::Cylinder(_) => p.has(b'X') || p.has(b'U'),
+    }
+}
+
+/// Whether the block writes a coordinate of the plane.
+fn plane_words(kind: Kind, p: &Parsed) -> bool {
+    let first = match kind {
+        Kind::Polar => p.has(b'X') || p.has(b'U'),
+        Kind::Cylinder(_) => p.has(b'Z') || p.has(b'W'),
+    };
+    first || p.has(b'C') || p.has(b'H')
 }
 
 /// The checks every start shares: compensation off, feed per minute, no
@@ -339,7 +360,13 @@ pub(crate) fn motion(
         }
     }
     let arc = code.is_arc();
-    let moves = p.has_axis() || p.has(b'C') || p.has(b'H');
+    if !arc && other_axis(st.kind, p) {
+        // (check_block: no plane word beside it.)
+        axis_move(nc, st, code == Motion::Rapid, p, sink);
+        out.moved = true;
+        return Ok(());
+    }
+    let moves = plane_words(st.kind, p);
     if !moves && !(arc && (p.has(b'I') || p.has(b'J') || p.has(b'R'))) {
         return Ok(());
     }
@@ -373,6 +400,26 @@ pub(crate) fn motion(
     });
     out.moved = true;
     Ok(())
+}
+
+/// Z (polar) or X (cylinder) moves alone, as the seed lets it: the plane
+/// point stands, and so do the joints of the plane.
+fn axis_move(nc: &mut Nc, st: PlaneState, rapid: bool, p: &Parsed, sink: &mut dyn Sink) {
+    if !rapid {
+        nc.feed_due(sink);
+    }
+    let to = nc.target(p);
+    nc.st.pos = to;
+    let (plane, to) = match st.kind {
+        Kind::Polar => (Plane::Polar, to.z),
+        Kind::Cylinder(_) => (Plane::Cylinder, to.x()),
+    };
+    sink.emit(Event::PlaneAxis {
+        plane,
+        rapid,
+        to,
+        c: nc.st.c,
+    });
 }
 
 /// The end point of a plane move from its words (module comment).

@@ -107,6 +107,73 @@ fn cylinder_lines_and_arcs() {
 }
 
 #[test]
+fn the_axis_outside_the_plane_moves_alone() {
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G98 G00 X40 Z2 C0",
+            "G12.1",
+            // To (x 10, c 10): joint radius √200, C 45°.
+            "G01 X20 C10 F300",
+            // Z plunges alone (seed 000: "moves as commanded"); the plane
+            // point and the joints stand.
+            "G01 Z-2 F50",
+            "G00 W4",
+            // In an arc Z is ignored: the arc of the first test, over the
+            // top from 45° to 135°.
+            "G03 X-20 C10 R10 Z7",
+            "G13.1",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "RAPID X=40 Z=2 C=0",
+            "POLAR MODE=ON",
+            "FEED F=300 MODE=MIN",
+            "LINE X=20 C=10",
+            "FEED F=50 MODE=MIN",
+            "LINE Z=-2",
+            "RAPID Z=2",
+            "ARC DIR=CCW X=-20 C=10 CX=0 CC=10",
+            // X = 2·√200 = 28.2843.
+            "POLAR MODE=OFF X=28.2843 C=135",
+        ]
+    );
+    assert_eq!(var(&m, 5042), Some(2.0));
+    // On the cylinder of radius 20, X moves alone (a diameter; U adds to
+    // it), Z and C stand.
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G98 G00 X40 Z0 C0",
+            "G7.1 C20.",
+            "G01 Z-10 C90 F200",
+            "G01 X36 F20",
+            "G00 U4",
+            "G7.1 C0",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "RAPID X=40 Z=0 C=0",
+            "CYLINDER MODE=ON R=20",
+            "FEED F=200 MODE=MIN",
+            "LINE Z=-10 C=90",
+            "FEED F=20 MODE=MIN",
+            "LINE X=36",
+            "RAPID X=40",
+            "CYLINDER MODE=OFF",
+        ]
+    );
+    assert_eq!(var(&m, 5041), Some(40.0));
+    assert_eq!(var(&m, 5043), Some(90.0));
+}
+
+#[test]
 fn the_alarms_of_polar_and_cylindrical_interpolation() {
     let e = |blocks: &[&str]| {
         let mut m = Lathe::with_c();
@@ -131,8 +198,11 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G12.1", "G28 U0"]), 2007);
     // E2099: what is not supported yet.
     assert_eq!(e(&["G7.1 C10 J5 L2 R1 K0.2"]), 2099);
+    // (The axis outside the plane moves in a block of its own.)
     assert_eq!(e(&["G12.1", "G01 X10 Z-5 F1"]), 2099);
+    assert_eq!(e(&["G12.1", "G00 C5 W1"]), 2099);
     assert_eq!(e(&["G7.1 C10", "G01 X10 Z-5 F1"]), 2099);
+    assert_eq!(e(&["G7.1 C10", "G01 U1 C30 F1"]), 2099);
     assert_eq!(e(&["G12.1", "G42 G01 X10 F1"]), 2099);
     assert_eq!(e(&["G12.1", "G6.2 X10 C5 A5 B3 F1"]), 2099);
     // E2006: G7.1 without its radius; E2003 without a C axis.
