@@ -95,6 +95,14 @@ fn turn(u: V2, a: f64) -> V2 {
     u * c + u.perp() * s
 }
 
+/// Whether turning from unit direction `u0` by `dth` (> 0: CCW) passes
+/// through unit direction `u`.
+fn sweeps_through(u0: V2, dth: f64, u: V2) -> bool {
+    let phi = libm::atan2(u0.z * u.r - u0.r * u.z, u0.dot(u));
+    let reach = crate::math::rem_euclid(phi * dth.signum(), 2.0 * core::f64::consts::PI);
+    reach <= dth.abs()
+}
+
 impl Curve {
     /// The interpolation form of a kernel element.
     pub fn of(e: nc::geom::Element) -> Curve {
@@ -340,6 +348,115 @@ impl Curve {
         }
     }
 
+    /// A lower bound of the distance from point `p` to the curve: exact
+    /// for a line and a circular arc (a slight spiral counts its smaller
+    /// radius), the nearer end or the sampled points' less one step for
+    /// the conics, which a plane of polar interpolation never holds.
+    pub fn min_distance_to(&self, p: V2) -> f64 {
+        let ends = self.point(0.0).dist(p).min(self.end().dist(p));
+        match *self {
+            Curve::Line { p0, d } => {
+                let len2 = d.dot(d);
+                if len2 == 0.0 {
+                    return ends;
+                }
+                let t = ((p - p0).dot(d) / len2).clamp(0.0, 1.0);
+                (p0 + d * t).dist(p)
+            }
+            Curve::Arc {
+                c, u0, r0, dr, dth, ..
+            } => {
+                let off = p - c;
+                let dist = off.norm();
+                let (near_r, far_r) = (r0.min(r0 + dr), r0.max(r0 + dr));
+                if dist == 0.0 {
+                    return near_r;
+                }
+                // The circle's nearest point lies towards `p` from the
+                // centre: on the arc when the sweep reaches its direction.
+                if !sweeps_through(u0, dth, off * (1.0 / dist)) {
+                    return ends;
+                }
+                if dist < near_r {
+                    near_r - dist
+                } else {
+                    (dist - far_r).max(0.0)
+                }
+            }
+            Curve::Ellipse { .. } | Curve::Parabola { .. } => {
+                let n = 64;
+                let mut best = ends;
+                let mut prev = self.point(0.0);
+                for k in 1..=n {
+                    let next = self.point(f64::from(k) / f64::from(n));
+                    // A chord's points lie within half its length of an end.
+                    best = best.min(next.dist(p) - 0.5 * prev.dist(next));
+                    prev = next;
+                }
+                best.max(0.0)
+            }
+        }
+    }
+
+    /// An upper bound of the lever of the curve's direction about point
+    /// `p`: |(q − p) × t| over its points q, t the unit tangent there. At
+    /// path speed v the direction from `p` turns at most v·lever/ρ², ρ the
+    /// distance from `p`. A line's is its distance from `p` extended; an
+    /// arc's the centre's distance plus its larger radius; a conic's its
+    /// farthest point's distance.
+    pub fn lever_about(&self, p: V2) -> f64 {
+        match *self {
+            Curve::Line { p0, d } => {
+                let len = d.norm();
+                if len == 0.0 {
+                    return 0.0;
+                }
+                let q = p0 - p;
+                (q.z * d.r - q.r * d.z).abs() / len
+            }
+            Curve::Arc {
+                c,
+                u0,
+                u1,
+                r0,
+                dr,
+                dth,
+            } => {
+                // At the point c + r·u the lever is |r + (c − p)·u|, at
+                // its largest at an end or where the arc turns through the
+                // direction of c − p (r + |c − p|) or the opposite one
+                // (|r − |c − p||); a spiral's r anywhere between its ends'.
+                let q = c - p;
+                let d = q.norm();
+                let (r1, mut lever) = (r0 + dr, 0.0f64);
+                for (r, u) in [(r0, u0), (r1, u1)] {
+                    lever = lever.max((r + q.dot(u)).abs() + dr.abs());
+                }
+                if d > 0.0 {
+                    let v = q * (1.0 / d);
+                    if sweeps_through(u0, dth, v) {
+                        lever = lever.max(r0.max(r1) + d);
+                    }
+                    if sweeps_through(u0, dth, -v) {
+                        lever = lever.max((r0 - d).abs().max((r1 - d).abs()));
+                    }
+                }
+                lever
+            }
+            Curve::Ellipse { .. } | Curve::Parabola { .. } => {
+                let n = 64;
+                let mut far: f64 = 0.0;
+                let mut prev = self.point(0.0);
+                for k in 0..=n {
+                    let next = self.point(f64::from(k) / f64::from(n));
+                    far = far.max(next.dist(p) + 0.5 * prev.dist(next));
+                    prev = next;
+                }
+                far
+            }
+        }
+    }
+
     /// The end point (exact for every kind).
     pub fn end(&self) -> V2 {
         self.point(1.0)
@@ -391,6 +508,129 @@ mod tests {
         assert!((b.length() - 30.0 * core::f64::consts::FRAC_PI_2).abs() < 1e-9);
         let full = Curve::arc(from, from, V2::ZERO, true);
         assert!((full.length() - 20.0 * core::f64::consts::PI).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_distance_to_a_point_is_the_nearest_of_the_curve() {
+        // Sampled densely, no point of the curve is nearer than the bound,
+        // and for lines and arcs the bound is reached within the sampling.
+        let o = V2::ZERO;
+        let curves = [
+            // A line passing 5 from the origin, and one ending before its
+            // foot (nearest: its end (r 3, z 4), 5 away).
+            (Curve::line(V2::new(5.0, -10.0), V2::new(5.0, 10.0)), 5.0),
+            (Curve::line(V2::new(3.0, 4.0), V2::new(3.0, 10.0)), 5.0),
+            // About (r 0, z 10), radius 10 (`arc`'s last argument: CCW,
+            // angles from +Z towards +R): from (r 0, z 20) CW through
+            // (r −10, z 10) to the origin itself: 0.
+            (
+                Curve::arc(
+                    V2::new(0.0, 20.0),
+                    V2::new(0.0, 0.0),
+                    V2::new(0.0, 10.0),
+                    false,
+                ),
+                0.0,
+            ),
+            // The same circle CW the short way from (r 10, z 10) to (r 0,
+            // z 20): its nearest point is the start, √200 away; CCW the
+            // long way it passes the origin.
+            (
+                Curve::arc(
+                    V2::new(10.0, 10.0),
+                    V2::new(0.0, 20.0),
+                    V2::new(0.0, 10.0),
+                    false,
+                ),
+                200f64.sqrt(),
+            ),
+            (
+                Curve::arc(
+                    V2::new(10.0, 10.0),
+                    V2::new(0.0, 20.0),
+                    V2::new(0.0, 10.0),
+                    true,
+                ),
+                0.0,
+            ),
+            // A circle about the origin: its radius.
+            (
+                Curve::arc(V2::new(7.0, 0.0), V2::new(7.0, 0.0), o, true),
+                7.0,
+            ),
+        ];
+        for (curve, want) in curves {
+            let bound = curve.min_distance_to(o);
+            let sampled = (0..=100_000)
+                .map(|k| curve.point(f64::from(k) / 1e5).dist(o))
+                .fold(f64::INFINITY, f64::min);
+            assert!(bound <= sampled + 1e-12, "{curve:?}: {bound} > {sampled}");
+            assert!(
+                (bound - want).abs() < 1e-9,
+                "{curve:?}: {bound}, not {want}"
+            );
+            assert!(
+                sampled - bound < 1e-3,
+                "{curve:?}: {bound} far below {sampled}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_lever_bounds_how_fast_the_direction_from_a_point_turns() {
+        // |(q − p) × t| sampled along each curve stays within the lever;
+        // a line's is reached everywhere (its distance extended: 5).
+        let o = V2::ZERO;
+        let curves = [
+            Curve::line(V2::new(5.0, -10.0), V2::new(5.0, 3.0)),
+            Curve::arc(
+                V2::new(10.0, 10.0),
+                V2::new(0.0, 20.0),
+                V2::new(0.0, 10.0),
+                true,
+            ),
+            Curve::arc(V2::new(7.0, 0.0), V2::new(7.0, 0.0), o, true),
+            // About (r 0, z 10), radius 2, from (r 2) CCW (from +Z to +R,
+            // so from 90° on to 180°) through (z 8), the point nearest the
+            // origin, where the lever is 10 − 2 = 8 (at the ends 2); CW
+            // through (z 12), where it is 12.
+            Curve::arc(
+                V2::new(2.0, 10.0),
+                V2::new(-2.0, 10.0),
+                V2::new(0.0, 10.0),
+                true,
+            ),
+            Curve::arc(
+                V2::new(2.0, 10.0),
+                V2::new(-2.0, 10.0),
+                V2::new(0.0, 10.0),
+                false,
+            ),
+        ];
+        for curve in curves {
+            let lever = curve.lever_about(o);
+            for k in 0..=1000 {
+                let lam = f64::from(k) / 1000.0;
+                let (q, t) = (curve.point(lam), curve.tangent(lam));
+                let arm = (q.z * t.r - q.r * t.z).abs();
+                assert!(arm <= lever + 1e-9, "{curve:?} at {lam}: {arm} > {lever}");
+            }
+        }
+        let line = Curve::line(V2::new(5.0, -10.0), V2::new(5.0, 3.0));
+        assert!((line.lever_about(o) - 5.0).abs() < 1e-12);
+        let arc = |ccw| {
+            Curve::arc(
+                V2::new(2.0, 10.0),
+                V2::new(-2.0, 10.0),
+                V2::new(0.0, 10.0),
+                ccw,
+            )
+        };
+        assert!((arc(true).lever_about(o) - 8.0).abs() < 1e-12);
+        assert!((arc(false).lever_about(o) - 12.0).abs() < 1e-12);
+        // The circle about the origin turns its direction at v/r: lever r.
+        let circle = Curve::arc(V2::new(7.0, 0.0), V2::new(7.0, 0.0), o, true);
+        assert!((circle.lever_about(o) - 7.0).abs() < 1e-12);
     }
 
     #[test]

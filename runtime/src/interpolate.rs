@@ -906,7 +906,7 @@ impl<P: Plc> Engine<P> {
             self.rapid_raw = self.pos;
             self.rapid_raw_c = self.c;
             if self.jerk {
-                let at = if matches!(self.cur.kind, MoveKind::Rapid | MoveKind::Offset) {
+                let at = if self.axis_rapid() {
                     self.pos
                 } else {
                     V2::ZERO
@@ -919,10 +919,18 @@ impl<P: Plc> Engine<P> {
             self.cur.a = s.a;
         }
         match self.cur.kind {
-            MoveKind::Rapid | MoveKind::Offset => self.step_rapid(),
-            MoveKind::Feed(_) | MoveKind::Skip(_) => self.step_path(),
+            _ if self.axis_rapid() => self.step_rapid(),
             MoveKind::Thread(_) => self.step_thread(),
+            _ => self.step_path(),
         }
+    }
+
+    /// The head move is a rapid of each axis on its own: a G00 (or an
+    /// offset's move) outside polar and cylindrical interpolation. In a
+    /// plane a G00 follows the straight line of the plane, as a feed at
+    /// the rapid rate does, within the joints' caps (planner.rs).
+    fn axis_rapid(&self) -> bool {
+        matches!(self.cur.kind, MoveKind::Rapid | MoveKind::Offset) && self.plane.is_none()
     }
 
     /// G00: each axis on its own, at its rapid rate and acceleration.
@@ -990,6 +998,12 @@ impl<P: Plc> Engine<P> {
                 } else {
                     self.thread.v_sync
                 }
+            }
+            // A G00 in a plane (`axis_rapid`): the slower axis's rapid
+            // rate along the path, under the rapid override.
+            MoveKind::Rapid if !self.hold && !self.reset_req => {
+                let rate = self.cfg.x.rapid.min(self.cfg.z.rapid);
+                return (rate * self.rapid_ovr.factor(self.cfg.rapid_f0)).min(self.cur.v_max);
             }
             _ => return 0.0,
         };
@@ -1116,6 +1130,7 @@ impl<P: Plc> Engine<P> {
     fn step_path(&mut self) {
         self.motion = match (self.cur.kind, self.cur.curve) {
             (MoveKind::Thread(_), _) => Motion::Thread,
+            (MoveKind::Rapid, _) => Motion::Rapid,
             (_, crate::geom::Curve::Line { .. }) => Motion::Feed,
             _ => Motion::Arc,
         };
@@ -1261,7 +1276,7 @@ impl<P: Plc> Engine<P> {
         if moving && self.started {
             if self.q.seg(0).is_some() {
                 match self.cur.kind {
-                    MoveKind::Rapid | MoveKind::Offset => self.step_rapid(),
+                    _ if self.axis_rapid() => self.step_rapid(),
                     MoveKind::Thread(_) => self.step_thread(),
                     _ => self.step_path(),
                 }

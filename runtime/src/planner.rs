@@ -34,6 +34,7 @@ use crate::config::Config;
 use crate::geom::Curve;
 use crate::math::{sqrt, PI, V2};
 use crate::plc::PlcFunction;
+use crate::polar::PlaneMap;
 use crate::profile::brake_limit_above;
 use alloc::vec::Vec;
 use nc::error::Alarm;
@@ -225,6 +226,8 @@ pub struct Planner {
     /// Dry run: feeds queued now may run up to the path limit, whatever
     /// their F (the interpolator sets their speed).
     dry_run: bool,
+    /// Polar or cylindrical interpolation for the moves queued now.
+    plane: Option<PlaneMap>,
 }
 
 const PLACEHOLDER: Item = Item {
@@ -294,6 +297,7 @@ impl Planner {
             queued_moves: 0,
             pending: 0,
             dry_run: cfg.dry_run,
+            plane: None,
         }
     }
 
@@ -379,6 +383,8 @@ impl Planner {
     pub fn clear(&mut self) {
         self.head = 0;
         self.len = 0;
+        // A reset ends a plane (interpolate.rs).
+        self.plane = None;
         self.queued_s = 0.0;
         self.queued_moves = 0;
     }
@@ -452,7 +458,9 @@ impl Planner {
             Command::Stroke(a) => ItemKind::Stroke(a),
             Command::Plane(sw) => {
                 // Moves from here on start in the new coordinates
-                // (plane points have no shift: polar.rs).
+                // (plane points have no shift: polar.rs) and follow the
+                // plane's caps.
+                self.plane = sw.map;
                 self.tail = sw.at;
                 self.tail_c = sw.c;
                 self.shift = if sw.map.is_some() { V2::ZERO } else { sw.shift };
@@ -567,6 +575,12 @@ impl Planner {
         };
         let lim = self.limits(&seg, dc);
         match m.kind {
+            // In a plane a G00 is a straight line of it at the rapid rate
+            // (interpolate.rs, `axis_rapid`).
+            MoveKind::Rapid if self.plane.is_some() => {
+                let f = self.vrapid[0].min(self.vrapid[1]);
+                self.feed_segment(&mut seg, &lim, Feed { f, per_rev: false })
+            }
             MoveKind::Rapid | MoveKind::Offset => self.rapid_segment(&mut seg, &lim, dc),
             MoveKind::Feed(f) | MoveKind::Skip(f) => self.feed_segment(&mut seg, &lim, f),
             MoveKind::Thread(t) => self.thread_segment(&mut seg, &lim, t),
@@ -616,13 +630,78 @@ impl Planner {
         if let Some(c) = &c {
             a_line = a_line.min(c.accel / uc);
         }
-        Limits {
+        let mut lim = Limits {
             cap,
             a_line,
             amin,
             rmin,
             is_line,
             c,
+        };
+        if let Some(map) = self.plane {
+            self.plane_limits(map, seg, &mut lim);
+        }
+        lim
+    }
+
+    /// The joints' caps while a plane is on: the queue holds plane points
+    /// (polar.rs), whose speed and acceleration the joints turn into
+    /// their own, which must stay within their limits.
+    fn plane_limits(&self, map: PlaneMap, seg: &Segment, lim: &mut Limits) {
+        let Some(c) = self.c_axis else {
+            return;
+        };
+        // A G00 in the plane moves the joints at up to their rapid rates.
+        let rapid = matches!(seg.kind, MoveKind::Rapid);
+        let (w, vfeed) = match rapid {
+            true => (c.rapid.to_radians(), self.vrapid),
+            false => (c.max_feed.to_radians(), self.vfeed),
+        };
+        let alpha = c.accel.to_radians();
+        // A curve sweeps its direction: each axis may take all of it.
+        let dir = |u: f64| if lim.is_line { u.abs() } else { 1.0 };
+        match map {
+            PlaneMap::Cylinder { radius, .. } => {
+                // The first axis (`z`) is C developed on the cylinder, the
+                // second (`r`) is Z.
+                let (us, uz) = (dir(seg.t0.z), dir(seg.t0.r));
+                let axes = [(w * radius, alpha * radius, us), (vfeed[1], self.ax[1], uz)];
+                for (v, a, u) in axes {
+                    if u > 0.0 {
+                        lim.cap = lim.cap.min(v / u);
+                        lim.a_line = lim.a_line.min(a / u);
+                    }
+                    lim.amin = lim.amin.min(a);
+                }
+            }
+            PlaneMap::Polar { .. } => {
+                // C is the angle of the plane point p (ρ = |p|): at path
+                // speed v it turns at |p × t|·v/ρ², and its acceleration
+                // is at most a·h/ρ² + v²(κ/ρ + 2h/ρ³) (t the direction,
+                // h the curve's lever about the centre, a along the path,
+                // κ the curvature): half of C's limit for each part, at
+                // the piece's least ρ (translate.rs cuts a move that
+                // passes near the centre). ρ at least the resolution: a
+                // path through the centre is an alarm (nc plane.rs). X
+                // is ρ: its speed at most v, its acceleration at most
+                // a + v²κ + v²h²/ρ³: a quarter of X's limit for the last
+                // part, the rest for the path's (and its curvature's).
+                let centre = V2::ZERO;
+                let rho = seg.curve.min_distance_to(centre).max(self.tolerance);
+                let h = seg.curve.lever_about(centre);
+                let k = 1.0 / lim.rmin;
+                let mut cap = vfeed[0];
+                let mut a = (0.75 * self.ax[0]).min(lim.amin);
+                if h > 0.0 {
+                    cap = cap.min(w * rho * rho / h);
+                    cap = cap.min(sqrt(0.25 * self.ax[0] * rho * rho * rho) / h);
+                    a = a.min(0.5 * alpha * rho * rho / h);
+                }
+                cap = cap.min(sqrt(0.5 * alpha / (k / rho + 2.0 * h / (rho * rho * rho))));
+                lim.cap = lim.cap.min(cap);
+                lim.a_line = lim.a_line.min(a);
+                lim.amin = lim.amin.min(a);
+            }
         }
     }
 
@@ -735,7 +814,22 @@ impl Planner {
         match (a.kind, b.kind) {
             // Consecutive thread blocks run on without a stop (§4.3).
             (MoveKind::Thread(_), MoveKind::Thread(_)) => true,
-            (MoveKind::Feed(_), MoveKind::Feed(_)) => !self.exact_stop && !self.jerk,
+            // (In a plane a corner's step would be the joints' to take,
+            // which the corner budget does not know: only the pieces of a
+            // move and tangent joints run on.)
+            (MoveKind::Feed(_), MoveKind::Feed(_)) => {
+                !self.exact_stop
+                    && !self.jerk
+                    && (self.plane.is_none() || (b.t0 - a.t1).norm() < 1e-9)
+            }
+            // The pieces of a G00 in a plane (polar.rs `cuts`) run on,
+            // straight through.
+            (MoveKind::Rapid, MoveKind::Rapid) => {
+                self.plane.is_some()
+                    && !self.exact_stop
+                    && !self.jerk
+                    && (b.t0 - a.t1).norm() < 1e-9
+            }
             _ => false,
         }
     }

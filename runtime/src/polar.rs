@@ -20,13 +20,17 @@
 //! ends, the axis moves as an ordinary move, the plane starts again at the
 //! same plane point with the new Z or X (translate.rs, `PlaneAxis`).
 //!
-//! Joint speeds are not limited by the planner: near the centre C turns
-//! fast, and the program keeps F < L·R·π/180 (seed 000; docs/language.md).
-//! A switch ([`PlaneSwitch`]) is a queue item: the move before it ends at
+//! The joints' limits hold: the planner caps each plane move for what
+//! the joints need of it (planner.rs, `plane_limits`), and a move that
+//! passes near the centre, where C turns fast, is queued in pieces
+//! ([`cuts`]) so that it slows there only. A G00 in the plane follows the
+//! plane's straight line (interpolate.rs, `axis_rapid`). A switch ([`PlaneSwitch`]) is a queue item: the move before it ends at
 //! rest, and the interpolator's point changes from machine axes to plane
 //! point (or back) there.
 
+use crate::geom::Curve;
 use crate::math::V2;
+use alloc::vec::Vec;
 
 /// How plane points map to joints while a plane is on (work coordinates,
 /// the joint that stays included).
@@ -151,6 +155,119 @@ impl PlaneRun {
     }
 }
 
+/// Where to cut a move of the polar plane that passes near the centre,
+/// as parameters λ in (0, 1), increasing: on each piece the distance ρ
+/// from the centre changes by at most a factor of 2 about the nearest
+/// point, so the planner's caps, taken at a piece's least ρ (planner.rs),
+/// slow the move near the centre only. Empty where ρ stays within a
+/// factor of 2 anyway (most moves).
+pub fn cuts(curve: &Curve) -> Vec<f64> {
+    let near = curve.min_distance_to(V2::ZERO);
+    let far = curve.point(0.0).norm().max(curve.end().norm());
+    let mut cuts = Vec::new();
+    let Some(nearest) = Nearest::of(curve) else {
+        return cuts;
+    };
+    if !crate::math::is_pos(near) || far <= 2.0 * near {
+        return cuts;
+    }
+    for at in nearest.at() {
+        // (At most 64 doublings: ρ from the resolution to beyond any
+        // machine's reach.)
+        let mut rho = 2.0 * near;
+        for _ in 0..64 {
+            let Some(d) = nearest.reach(rho).filter(|_| rho < 2.0 * far) else {
+                break;
+            };
+            cuts.extend(
+                [at - d, at + d]
+                    .into_iter()
+                    .filter(|l| (1e-6..1.0 - 1e-6).contains(l)),
+            );
+            rho *= 2.0;
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| *a - *b < 1e-6);
+    cuts
+}
+
+/// How a line or an arc of the polar plane draws away from the centre:
+/// where its nearest point is, and how far along ρ reaches a value.
+enum Nearest {
+    /// The foot of the perpendicular from the centre (λ, perhaps outside
+    /// 0…1), the line's distance from the centre, its length.
+    Line { foot: f64, lever: f64, len: f64 },
+    /// The arc's λ at the circle's point nearest the centre (the next one
+    /// a turn before too), the centre's distance, the radius, the sweep.
+    Arc {
+        at: f64,
+        dist: f64,
+        radius: f64,
+        span: f64,
+    },
+}
+
+impl Nearest {
+    fn of(curve: &Curve) -> Option<Nearest> {
+        match *curve {
+            Curve::Line { p0, d } => {
+                let len2 = d.dot(d);
+                (len2 > 0.0).then(|| Nearest::Line {
+                    foot: -p0.dot(d) / len2,
+                    lever: curve.lever_about(V2::ZERO),
+                    len: crate::math::sqrt(len2),
+                })
+            }
+            Curve::Arc { c, u0, r0, dth, .. } => {
+                let dist = c.norm();
+                if dist == 0.0 || dth == 0.0 {
+                    return None; // ρ stays the radius
+                }
+                // The direction from the centre towards the plane's centre,
+                // reached after turning `reach` the arc's way.
+                let u = c * (-1.0 / dist);
+                let phi = libm::atan2(u0.z * u.r - u0.r * u.z, u0.dot(u));
+                let tau = 2.0 * core::f64::consts::PI;
+                let reach = crate::math::rem_euclid(phi * dth.signum(), tau);
+                Some(Nearest::Arc {
+                    at: reach / dth.abs(),
+                    dist,
+                    radius: r0,
+                    span: dth.abs(),
+                })
+            }
+            Curve::Ellipse { .. } | Curve::Parabola { .. } => None,
+        }
+    }
+
+    /// The λ of the nearest points the move may come near.
+    fn at(&self) -> [f64; 2] {
+        match *self {
+            // (The same point twice: its cuts dedup.)
+            Nearest::Line { foot, .. } => [foot, foot],
+            Nearest::Arc { at, span, .. } => [at, at - 2.0 * core::f64::consts::PI / span],
+        }
+    }
+
+    /// The change of λ from a nearest point at which ρ reaches `rho`;
+    /// `None` where it never does.
+    fn reach(&self, rho: f64) -> Option<f64> {
+        match *self {
+            Nearest::Line { lever, len, .. } => {
+                Some(crate::math::sqrt((rho * rho - lever * lever).max(0.0)) / len)
+            }
+            Nearest::Arc {
+                dist, radius, span, ..
+            } => {
+                // ρ² = dist² + radius² − 2·dist·radius·cos(turn)
+                let cos = (dist * dist + radius * radius - rho * rho) / (2.0 * dist * radius);
+                (cos >= -1.0).then(|| libm::acos(cos.min(1.0)) / span)
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -180,6 +297,51 @@ mod tests {
         run.follow(V2::new(4.0, 3.0));
         assert!((run.work().r - 5.0).abs() < 1e-12);
         assert!((run.c() - 720.0 - 53.130_102_354).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_move_near_the_centre_is_cut_where_its_distance_doubles() {
+        // Sampled, each piece's farthest point is at most twice as far
+        // from the centre as its nearest: a line 0.5 from it, an arc
+        // passing 0.25 from it, and (no cut) a line that stays away.
+        let o = V2::ZERO;
+        let moves = [
+            Curve::line(V2::new(0.5, 10.0), V2::new(0.5, -10.0)),
+            Curve::line(V2::new(0.5, 10.0), V2::new(0.5, 0.0)),
+            // About (r 0, z 10.25), radius 10, counter-clockwise (from +Z
+            // towards +R) from (r 10) round through (r 0, z 0.25).
+            Curve::arc(
+                V2::new(10.0, 10.25),
+                V2::new(-10.0, 10.25),
+                V2::new(0.0, 10.25),
+                true,
+            ),
+            Curve::line(V2::new(10.0, 10.0), V2::new(10.0, -10.0)),
+        ];
+        let counts: Vec<usize> = moves.iter().map(|m| cuts(m).len()).collect();
+        for (m, k) in moves.iter().zip(&counts) {
+            let mut bounds = alloc::vec![0.0];
+            bounds.extend(cuts(m));
+            bounds.push(1.0);
+            for w in bounds.windows(2) {
+                assert!(w[0] < w[1], "{bounds:?}");
+                let d: Vec<f64> = (0..=1000)
+                    .map(|i| {
+                        m.point(w[0] + (w[1] - w[0]) * f64::from(i) / 1000.0)
+                            .dist(o)
+                    })
+                    .collect();
+                let (near, far) = d
+                    .iter()
+                    .fold((f64::MAX, 0f64), |(a, b), &x| (a.min(x), b.max(x)));
+                assert!(far <= 2.0 * near * (1.0 + 1e-6), "{m:?} {k}: {near}…{far}");
+            }
+        }
+        // The lines: from 0.5 the distance reaches 1, 2, 4 and 8 before
+        // the ends (10.01): 4 cuts each side. The arc: from 0.25 it
+        // reaches 0.5, 1, 2, 4 and 8 before its ends (√205 = 14.3): 5
+        // each side.
+        assert_eq!(counts, [8, 4, 10, 0]);
     }
 
     #[test]

@@ -331,19 +331,36 @@ impl Translator {
         b: f64,
         out: &mut Vec<Command>,
     ) {
-        let to = map.point(a, b);
-        let (kind, path) = match motion {
-            PlaneMotion::Rapid => (MoveKind::Rapid, Path::Line { to }),
-            PlaneMotion::Line => (MoveKind::Feed(self.feed), Path::Line { to }),
+        let (from, to) = (self.plane_at, map.point(a, b));
+        let (kind, arc) = match motion {
+            PlaneMotion::Rapid => (MoveKind::Rapid, None),
+            PlaneMotion::Line => (MoveKind::Feed(self.feed), None),
             PlaneMotion::Arc { dir, ca, cb } => (
                 MoveKind::Feed(self.feed),
-                Path::Arc {
-                    to,
-                    centre: map.point(ca, cb),
-                    ccw: dir == Dir::Ccw,
-                },
+                Some((map.point(ca, cb), dir == Dir::Ccw)),
             ),
         };
+        let path = |to| match arc {
+            None => Path::Line { to },
+            Some((centre, ccw)) => Path::Arc { to, centre, ccw },
+        };
+        if let PlaneMap::Polar { .. } = map {
+            // Near the centre in pieces, each capped for its own distance
+            // (polar.rs).
+            let curve = match arc {
+                None => crate::geom::Curve::line(from, to),
+                Some((centre, ccw)) => crate::geom::Curve::arc(from, to, centre, ccw),
+            };
+            for lam in crate::polar::cuts(&curve) {
+                out.push(Command::Move(Move {
+                    kind,
+                    path: path(curve.point(lam)),
+                    shift: V2::ZERO,
+                    c: None,
+                }));
+            }
+        }
+        let path = path(to);
         self.plane_at = to;
         let (work, c) = map.joints(to);
         self.work = work;

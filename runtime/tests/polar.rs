@@ -345,3 +345,24 @@ fn x_moves_alone_during_cylindrical_interpolation() {
     assert!((last.x - 40.0).abs() < 1e-9 && (last.z + 10.0).abs() < 1e-9);
     assert!((last.c.unwrap_or(0.0) - 90.0).abs() < 1e-9, "{last:?}");
 }
+
+#[test]
+fn a_rapid_in_the_polar_plane_follows_its_straight_line() {
+    // G00 from (x 10, c 10) to (x −10, c 0): along that line (each axis
+    // on its own, c would arrive first, a dog-leg), labelled a rapid, at
+    // no more than the slower axis's rapid rate (X: 100 mm/s).
+    let src = "G98\nG00 X40 Z-2 C0\nG12.1\nG01 X20 C10 F300\nG00 X-20 C0\nG13.1\nM30\n";
+    let r = run_c(src, false);
+    let line = [Piece::Line((10.0, 10.0), (-10.0, 0.0))];
+    let rapid: Vec<_> = r.pts.iter().filter(|p| p.line == 5).collect();
+    assert!(rapid.len() > 100, "{}", rapid.len());
+    for w in rapid.windows(2) {
+        let (p, q) = (polar_plane(w[0]), polar_plane(w[1]));
+        assert!(distance(&line, q) < 0.005, "{q:?} off the line");
+        assert_eq!(w[1].motion, runtime::Motion::Rapid);
+        let v = (q.0 - p.0).hypot(q.1 - p.1) / r.cfg.period_s;
+        assert!(v <= 100.0 + 1e-6, "{v} mm/s");
+    }
+    let end = polar_plane(rapid[rapid.len() - 1]);
+    assert!((end.0 + 10.0).abs() < 1e-6 && end.1.abs() < 1e-6, "{end:?}");
+}

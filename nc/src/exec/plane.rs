@@ -387,6 +387,14 @@ pub(crate) fn motion(
     } else {
         (PlaneMotion::Line, None)
     };
+    if st.kind == Kind::Polar
+        && nearest_to_centre(from, to, motion.1) < nc.machine.machine.resolution_mm
+    {
+        return fail(
+            Alarm::PolarInComp,
+            "this move of polar interpolation passes through the spindle centre, where C would turn half a turn at once: program the path round the centre",
+        );
+    }
     if !matches!(motion.0, PlaneMotion::Rapid) {
         nc.feed_due(sink);
     }
@@ -558,6 +566,43 @@ pub fn swept(from: Pt, to: Pt, arc: Option<(Pt, bool)>) -> f64 {
         prev = next;
     }
     total
+}
+
+/// The least distance from the spindle centre (the plane's origin) to a
+/// line from `from` to `to`, or to the arc about `arc`'s centre (`true`:
+/// clockwise) between them.
+fn nearest_to_centre(from: Pt, to: Pt, arc: Option<(Pt, bool)>) -> f64 {
+    let ends = from.norm().min(to.norm());
+    let Some((c, cw)) = arc else {
+        let d = to - from;
+        let len2 = d.dot(d);
+        if len2 == 0.0 {
+            return ends;
+        }
+        let t = (-from.dot(d) / len2).clamp(0.0, 1.0);
+        return (from + d * t).norm();
+    };
+    let (radius, dist) = (from.dist(c), c.norm());
+    if dist == 0.0 {
+        return radius;
+    }
+    // The circle's point nearest the origin lies in the origin's
+    // direction from the centre: the arc reaches it when its sweep does.
+    let tau = 2.0 * core::f64::consts::PI;
+    let sweep = |a: f64, b: f64| {
+        let s = if cw { a - b } else { b - a };
+        s - tau * libm::floor(s / tau)
+    };
+    let a0 = angle(c, from);
+    let mut span = sweep(a0, angle(c, to));
+    if span < 1e-12 {
+        span = tau; // end = start: a full circle
+    }
+    if sweep(a0, angle(c, Pt::new(0.0, 0.0))) <= span {
+        (dist - radius).abs()
+    } else {
+        ends
+    }
 }
 
 /// The angle of `p` about `c`, counter-clockwise from the first axis.

@@ -174,6 +174,35 @@ fn the_axis_outside_the_plane_moves_alone() {
 }
 
 #[test]
+fn the_distance_of_a_move_from_the_centre() {
+    use super::nearest_to_centre;
+    use crate::base::point::Pt;
+    // Plane points are (r: c, z: x). A line from (x 20, c 0) to
+    // (x −20, c 0) crosses the centre; one at c 3 passes 3 from it; one
+    // that stops short at x 5 is 5 away at its end.
+    let (a, b) = (Pt::new(0.0, 20.0), Pt::new(0.0, -20.0));
+    assert_eq!(nearest_to_centre(a, b, None), 0.0);
+    let up = Pt::new(3.0, 0.0);
+    assert_eq!(nearest_to_centre(a + up, b + up, None), 3.0);
+    assert_eq!(nearest_to_centre(a, Pt::new(0.0, 5.0), None), 5.0);
+    // The circle about (x 0, c 10) of radius 10 touches the centre at its
+    // bottom. From (x 10, c 10) to (x −10, c 10) counter-clockwise (over
+    // the top) the arc stays √200 away at its ends; clockwise it passes
+    // through the bottom, the centre itself.
+    let (from, to, c) = (
+        Pt::new(10.0, 10.0),
+        Pt::new(10.0, -10.0),
+        Pt::new(10.0, 0.0),
+    );
+    assert!((nearest_to_centre(from, to, Some((c, false))) - 200f64.sqrt()).abs() < 1e-12);
+    assert!(nearest_to_centre(from, to, Some((c, true))) < 1e-12);
+    // A full circle about (x 0, c 15) of radius 5: 10 away at its bottom.
+    let top = Pt::new(20.0, 0.0);
+    let d = nearest_to_centre(top, top, Some((Pt::new(15.0, 0.0), true)));
+    assert!((d - 10.0).abs() < 1e-12, "{d}");
+}
+
+#[test]
 fn the_alarms_of_polar_and_cylindrical_interpolation() {
     let e = |blocks: &[&str]| {
         let mut m = Lathe::with_c();
@@ -187,6 +216,14 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G12.1", "T0101"]), 4033);
     assert_eq!(e(&["G7.1 C10", "T0202"]), 4033);
     assert_eq!(e(&["G12.1", "G99 G01 X10 F1"]), 4033);
+    // A move through the spindle centre: a line, a rapid, an arc.
+    assert_eq!(e(&["G00 X40", "G12.1", "G01 X-40 F100"]), 4033);
+    assert_eq!(e(&["G00 X40", "G12.1", "G00 X-20"]), 4033);
+    // (About (x 5, c 5) from (x 10, c 0) to (x 0, c 10): clockwise through
+    // the centre, counter-clockwise through (x 10, c 10).)
+    assert_eq!(e(&["G00 X20", "G12.1", "G02 X0 C10 I-5 J5 F100"]), 4033);
+    assert_eq!(e(&["G00 X20", "G12.1", "G03 X0 C10 I-5 J5 F100"]), 0);
+    assert_eq!(e(&["G00 X20", "G12.1", "G01 X-20 C0.01 F100"]), 0);
     // E2007: G16 outside G12.1; words or modes that cannot stand there.
     assert_eq!(e(&["G16"]), 2007);
     assert_eq!(e(&["G12.1", "G13.1", "G16"]), 2007);
