@@ -289,9 +289,9 @@ fn the_trace_has_motion_words_and_the_tool() {
 /// a contour round the centre with a plunge, G00 in the plane, a line 0.5
 /// mm from the centre; a groove on a cylinder with an infeed and a G00.
 /// The line past the centre slows near it only: 20 mm at F300 take 4 s,
-/// and C turns half a turn at most 60°/s about the centre; the whole line
-/// at the speed the centre allows (60°/s · 0.5 mm, 0.52 mm/s) would take
-/// 38 s.
+/// and C turns about half a turn there at most at its maximum feed, 30°/s
+/// (1800°/min): 6 s; the whole line at the speed the centre allows
+/// (0.5236 rad/s · 0.5 mm, 0.26 mm/s) would take 76 s.
 #[test]
 fn polar_and_cylindrical_interpolation_are_certified() {
     let d = scratch("planes");
