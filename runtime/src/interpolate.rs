@@ -844,21 +844,8 @@ impl<P: Plc> Engine<P> {
                 return Some(Alarm::ZeroFeed.into());
             }
         }
-        let (x, z) = (&self.cfg.x, &self.cfg.z);
-        if x.soft_limits || z.soft_limits {
-            let n = if matches!(seg.kind, MoveKind::Rapid | MoveKind::Offset) {
-                1
-            } else {
-                16
-            };
-            for i in 0..=n {
-                let p = seg.curve.point(i as f64 / n as f64);
-                let bad_x = x.soft_limits && (p.r < x.min - 1e-9 || p.r > x.max + 1e-9);
-                let bad_z = z.soft_limits && (p.z < z.min - 1e-9 || p.z > z.max + 1e-9);
-                if bad_x || bad_z {
-                    return Some(Alarm::StrokeLimit.into());
-                }
-            }
+        if seg.outside {
+            return Some(Alarm::StrokeLimit.into());
         }
         None
     }

@@ -84,6 +84,10 @@ pub struct Segment {
     pub long_len: f64,
     /// Estimated duration at 100 % (for the look-ahead horizon).
     pub est_s: f64,
+    /// The move leaves the axes' travel (soft limits, E7002): the move
+    /// before it stops at its start, where the interpolator raises the
+    /// alarm.
+    pub outside: bool,
 }
 
 impl Segment {
@@ -128,6 +132,7 @@ impl Segment {
         long_z: true,
         long_len: 0.0,
         est_s: 0.0,
+        outside: false,
     };
 }
 
@@ -226,8 +231,12 @@ pub struct Planner {
     /// Dry run: feeds queued now may run up to the path limit, whatever
     /// their F (the interpolator sets their speed).
     dry_run: bool,
-    /// Polar or cylindrical interpolation for the moves queued now.
+    /// Polar or cylindrical interpolation for the moves queued now, and
+    /// the machine axes' shift from its joints.
     plane: Option<PlaneMap>,
+    plane_shift: V2,
+    /// The soft limits of X (a radius) and Z, machine coordinates.
+    travel: [Option<(f64, f64)>; 2],
 }
 
 const PLACEHOLDER: Item = Item {
@@ -298,6 +307,8 @@ impl Planner {
             pending: 0,
             dry_run: cfg.dry_run,
             plane: None,
+            plane_shift: V2::ZERO,
+            travel: [&cfg.x, &cfg.z].map(|a| a.soft_limits.then_some((a.min, a.max))),
         }
     }
 
@@ -461,6 +472,7 @@ impl Planner {
                 // (plane points have no shift: polar.rs) and follow the
                 // plane's caps.
                 self.plane = sw.map;
+                self.plane_shift = sw.shift;
                 self.tail = sw.at;
                 self.tail_c = sw.c;
                 self.shift = if sw.map.is_some() { V2::ZERO } else { sw.shift };
@@ -572,7 +584,9 @@ impl Planner {
             long_z: true,
             long_len: 0.0,
             est_s: 0.0,
+            outside: false,
         };
+        seg.outside = self.leaves_travel(&seg);
         let lim = self.limits(&seg, dc);
         match m.kind {
             // In a plane a G00 is a straight line of it at the rapid rate
@@ -590,6 +604,32 @@ impl Planner {
             seg.a = seg.a_scale * 0.25;
         }
         Some(seg)
+    }
+
+    /// Whether the move leaves the soft limits: its ends (a rapid of each
+    /// axis on its own), or 17 points along it; in a plane, the joints'
+    /// (polar.rs).
+    fn leaves_travel(&self, seg: &Segment) -> bool {
+        if self.travel == [None, None] {
+            return false;
+        }
+        let axis_rapid = matches!(seg.kind, MoveKind::Rapid | MoveKind::Offset);
+        let n = if axis_rapid && self.plane.is_none() {
+            1
+        } else {
+            16
+        };
+        let outside = |v: f64, lim: Option<(f64, f64)>| {
+            lim.is_some_and(|(lo, hi)| v < lo - 1e-9 || v > hi + 1e-9)
+        };
+        (0..=n).any(|i| {
+            let p = seg.curve.point(f64::from(i) / f64::from(n));
+            let p = match self.plane {
+                Some(map) => map.joints(p).0 + self.plane_shift,
+                None => p,
+            };
+            outside(p.r, self.travel[0]) || outside(p.z, self.travel[1])
+        })
     }
 
     /// The hard caps of a segment's path (`dc`: the C axis's turn).
@@ -808,7 +848,7 @@ impl Planner {
 
     /// Whether two moves may blend (G64) at their junction.
     fn joinable(&self, a: &Segment, b: &Segment) -> bool {
-        if a.turns_c() || b.turns_c() {
+        if a.turns_c() || b.turns_c() || b.outside {
             return false;
         }
         match (a.kind, b.kind) {

@@ -366,3 +366,28 @@ fn a_rapid_in_the_polar_plane_follows_its_straight_line() {
     let end = polar_plane(rapid[rapid.len() - 1]);
     assert!((end.0 + 10.0).abs() < 1e-6 && end.1.abs() < 1e-6, "{end:?}");
 }
+
+#[test]
+fn the_travel_is_the_joints_in_a_plane() {
+    // Soft limits X −1…60 (a diameter), Z −20…5, work = machine. The
+    // contour of `POLAR` keeps the joints within them (X 20…40 from the
+    // centre, Z −2), though its plane points reach c = −10 and x = −10,
+    // which as X would lie outside: it runs to its end. A line out to
+    // (x 35, c 0), X70, leaves the travel: E7002 at its line.
+    let mut m = c_machine();
+    m.axes.x.soft_limits = true;
+    (m.axes.x.min_mm, m.axes.x.max_mm) = (-1.0, 60.0);
+    m.axes.z.soft_limits = true;
+    (m.axes.z.min_mm, m.axes.z.max_mm) = (-20.0, 5.0);
+    let run = |src: &str| run_with(src, m.clone(), runtime::AutoAck, |_| {}, |_, _| {}, 120.0);
+    let r = run(POLAR);
+    assert!(
+        r.alarm.is_none() && r.state == runtime::RunState::Ended,
+        "{:?}",
+        r.alarm
+    );
+    let out = POLAR.replace("G01 X40 C0\n", "G01 X70 C0\n");
+    let r = run(&out);
+    let alarm = r.alarm.expect("an alarm");
+    assert_eq!((alarm.code, alarm.line), (7002, 8), "{alarm:?}");
+}

@@ -406,6 +406,28 @@ fn a_move_beyond_the_travel_is_e7002() {
     assert_eq!(r.alarm.unwrap().line, 3);
 }
 
+/// A feed that would blend into the next one (the same direction) stops
+/// at its end when the next one leaves the travel: the alarm comes at the
+/// start of that move, and no period leaves the travel. (The check once
+/// looked only at moves started from rest, and let this one run to Z−600.)
+#[test]
+fn a_blended_move_beyond_the_travel_is_e7002_before_it() {
+    let m = Machine::from_toml("[axes.z]\nsoft_limits = true\n").unwrap();
+    let r = run_with(
+        "O0016\nG98 G01 Z-100 F3000\nG01 Z-600\nM30\n",
+        m,
+        runtime::AutoAck,
+        |_| {},
+        |_, _| {},
+        60.0,
+    );
+    assert_eq!(r.state, RunState::Alarm(7002));
+    assert_eq!(r.alarm.unwrap().line, 3);
+    // Z's travel is −510…2 (machine.md); the tool stands at Z−100.
+    assert!(r.pts.iter().all(|p| p.axis_z >= -510.0 - 1e-9));
+    assert!((r.pts.last().unwrap().z + 100.0).abs() < 1e-9);
+}
+
 /// Ellipses and parabolas (pushed as commands: the kernel prints them only
 /// in newer builds) follow their exact curve within the resolution.
 #[test]
