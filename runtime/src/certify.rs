@@ -13,6 +13,8 @@
 //!   and jerk within its limit where the machine limits jerk (not in or
 //!   next to thread periods, which follow the spindle and are never
 //!   jerk-limited); all within [`LIMIT_TOL`] of the limit (rounding);
+//! - on a machine with soft limits, each axis within its travel, within
+//!   [`TRAVEL_MM`];
 //! - every end point of the canon's moves reached in order, within
 //!   [`END_POINT_MM`], in work coordinates as the canon gives them (at a
 //!   corner a thread chain turns at speed, within the period's
@@ -44,6 +46,9 @@ use nc::{Event, Sink};
 /// Velocity, acceleration, jerk and spindle limits hold within this share
 /// of the limit (1e-6: floating-point rounding, nothing more).
 pub const LIMIT_TOL: f64 = 1e-6;
+/// An axis stays within its travel (soft limits) within this distance
+/// (rounding), mm.
+pub const TRAVEL_MM: f64 = 1e-6;
 /// A canon end point is reached when the path passes within this distance
 /// (the 0.001 mm resolution), mm.
 pub const END_POINT_MM: f64 = 0.001;
@@ -64,6 +69,9 @@ pub enum Kind {
     Acceleration,
     /// Axis jerk.
     Jerk,
+    /// Axis position against its travel (soft limits): the distance
+    /// beyond the nearer limit (negative inside).
+    Travel,
     /// A canon end point not reached (distance of the nearest approach).
     EndPoint,
     /// Thread lead.
@@ -78,10 +86,11 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in the order of the summary.
-    pub const ALL: [Kind; 8] = [
+    pub const ALL: [Kind; 9] = [
         Kind::Velocity,
         Kind::Acceleration,
         Kind::Jerk,
+        Kind::Travel,
         Kind::EndPoint,
         Kind::Lead,
         Kind::SurfaceSpeed,
@@ -99,6 +108,7 @@ impl Kind {
             Kind::Velocity => "velocity",
             Kind::Acceleration => "acceleration",
             Kind::Jerk => "jerk",
+            Kind::Travel => "travel",
             Kind::EndPoint => "end point",
             Kind::Lead => "thread lead",
             Kind::SurfaceSpeed => "surface speed",
@@ -144,7 +154,7 @@ impl Subject {
             Kind::Velocity => "mm/s",
             Kind::Acceleration => "mm/s²",
             Kind::Jerk => "mm/s³",
-            Kind::EndPoint => "mm",
+            Kind::EndPoint | Kind::Travel => "mm",
             Kind::Lead => "mm/rev",
             Kind::SurfaceSpeed | Kind::SpindleSpeed => "rev/min",
             Kind::SpindleAccel => "rev/min/s",
@@ -181,6 +191,7 @@ impl Figure {
     pub fn violates(&self) -> bool {
         match self.kind {
             Kind::EndPoint => self.ratio > self.limit,
+            Kind::Travel => self.ratio > TRAVEL_MM,
             Kind::Lead => self.ratio > LEAD_TOL,
             Kind::SurfaceSpeed => self.ratio > CSS_TOL,
             _ => self.ratio > 1.0 + LIMIT_TOL,
@@ -213,6 +224,13 @@ impl fmt::Display for Figure {
                 self.value,
                 self.limit,
                 self.ratio * 100.0
+            ),
+            Kind::Travel => write!(
+                f,
+                "{} at {:.3} {unit} leaves its travel: the limit is {:.3} {unit}",
+                self.subject.name(),
+                self.value,
+                self.limit
             ),
             _ => write!(
                 f,
@@ -283,7 +301,7 @@ pub struct Certifier {
     reached: u64,
     lead_periods: u64,
     css_periods: u64,
-    worst: [Option<Figure>; 8],
+    worst: [Option<Figure>; 9],
     first: Option<Figure>,
 }
 
@@ -316,7 +334,7 @@ impl Certifier {
             reached: 0,
             lead_periods: 0,
             css_periods: 0,
-            worst: [None; 8],
+            worst: [None; 9],
             first: None,
         }
     }
@@ -401,6 +419,9 @@ impl Certifier {
             } else {
                 ax.max_feed
             };
+            if ax.soft_limits {
+                self.note(travel(at(Kind::Travel, p3[i], 0.0), ax, i == 0));
+            }
             self.note(at(Kind::Velocity, (p3[i] - p2[i]) / dt, vlim));
             let a = (p3[i] - 2.0 * p2[i] + p1[i]) / (dt * dt);
             self.note(at(Kind::Acceleration, a, ax.accel));
@@ -738,6 +759,21 @@ impl Sink for Certifier {
     }
 }
 
+/// A travel figure of `ax` at `fig.value` (machine coordinates; X a
+/// radius, given as a diameter as the machine file writes it): against
+/// the nearer limit.
+fn travel(mut fig: Figure, ax: Axis, diameter: bool) -> Figure {
+    let v = fig.value;
+    let (limit, beyond) = if v - ax.min < ax.max - v {
+        (ax.min, ax.min - v)
+    } else {
+        (ax.max, v - ax.max)
+    };
+    let k = if diameter { 2.0 } else { 1.0 };
+    (fig.value, fig.limit, fig.ratio) = (v * k, limit * k, beyond * k);
+    fig
+}
+
 /// The summary line (see [`Certifier::summary`]).
 pub struct Summary<'a>(&'a Certifier);
 
@@ -754,6 +790,17 @@ impl fmt::Display for Summary<'_> {
             let w = c.worst(kind);
             match (kind, w) {
                 (Kind::Jerk, None) if !c.jerk => write!(f, "; jerk: not limited")?,
+                (Kind::Travel, None) => write!(f, "; travel: not limited")?,
+                (Kind::Travel, Some(w)) => write!(
+                    f,
+                    "; travel: {} {:.3} mm {} its limit ({} at {:.3} mm, line {})",
+                    if w.ratio > 0.0 { "worst" } else { "nearest" },
+                    w.ratio.abs(),
+                    if w.ratio > 0.0 { "beyond" } else { "inside" },
+                    w.subject.name(),
+                    w.value,
+                    w.line
+                )?,
                 (Kind::EndPoint, _) => {
                     write!(f, "; end points: {} of {} reached", c.reached, c.end_points)?
                 }
@@ -1341,6 +1388,48 @@ mod tests {
         // Still speeding up at the spindle's 1 rev/min per period: exempt.
         let chasing = run([898.0, 899.0, 900.0]).unwrap();
         assert_eq!(chasing.time_s, 0.001, "only the first period counts");
+    }
+
+    #[test]
+    fn travel_is_checked_where_the_machine_has_soft_limits() {
+        // Z's travel −5…2: standing at Z−4.999 (0.001 mm inside), then a
+        // step of 0.002 mm to Z−5.001 (0.001 mm beyond: a violation).
+        // X at X4 (radius 2) against −260…2 as a diameter (the
+        // reference): 1 mm inside its upper limit, as a diameter.
+        let mut cfg = Config::default();
+        (cfg.x.soft_limits, cfg.x.min, cfg.x.max) = (true, -130.0, 1.0);
+        (cfg.z.soft_limits, cfg.z.min, cfg.z.max) = (true, -5.0, 2.0);
+        let mut c = Certifier::new(&cfg, 0.0, -4.999, 0.0);
+        for k in 1..=3 {
+            c.period(&at(k, (0.0, -4.999), (0.0, 0.0), Motion::None));
+        }
+        let w = *c.worst(Kind::Travel).unwrap();
+        assert!((w.ratio + 0.001).abs() < 1e-9 && w.limit == -5.0, "{w:?}");
+        assert!(c.violation().is_none());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("travel: nearest 0.001 mm inside its limit (Z at -4.999 mm, line 11)"));
+        c.period(&at(4, (0.0, -5.001), (0.0, 0.0), Motion::Feed));
+        let v = *c.violation().unwrap();
+        assert_eq!((v.kind, v.subject, v.line), (Kind::Travel, Subject::Z, 14));
+        assert!((v.ratio - 0.001).abs() < 1e-9, "{v:?}");
+        assert!(v
+            .to_string()
+            .ends_with("Z at -5.001 mm leaves its travel: the limit is -5.000 mm"));
+        // X as a diameter: radius 0.5 against the upper limit 1 (X2).
+        let mut c = Certifier::new(&cfg, 1.0, 0.0, 0.0);
+        c.period(&at(1, (1.0, 0.0), (0.0, 0.0), Motion::None));
+        let w = *c.worst(Kind::Travel).unwrap();
+        assert_eq!(
+            (w.subject, w.value, w.limit, w.ratio),
+            (Subject::X, 1.0, 2.0, -1.0)
+        );
+        // Without soft limits: not limited (standing at Z−900).
+        let mut c = Certifier::new(&Config::default(), 0.0, -900.0, 0.0);
+        c.period(&at(1, (0.0, -900.0), (0.0, 0.0), Motion::None));
+        assert!(c.worst(Kind::Travel).is_none() && c.violation().is_none());
+        assert!(c.summary().to_string().contains("travel: not limited"));
     }
 
     #[test]
