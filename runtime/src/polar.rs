@@ -24,7 +24,9 @@
 //! the joints need of it (planner.rs, `plane_limits`), and a move that
 //! passes near the centre, where C turns fast, is queued in pieces
 //! ([`cuts`]) so that it slows there only. A G00 in the plane follows the
-//! plane's straight line (interpolate.rs, `axis_rapid`). A switch ([`PlaneSwitch`]) is a queue item: the move before it ends at
+//! plane's straight line (interpolate.rs, `axis_rapid`).
+//!
+//! A switch ([`PlaneSwitch`]) is a queue item: the move before it ends at
 //! rest, and the interpolator's point changes from machine axes to plane
 //! point (or back) there.
 
