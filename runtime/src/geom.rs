@@ -95,12 +95,17 @@ fn turn(u: V2, a: f64) -> V2 {
     u * c + u.perp() * s
 }
 
-/// Whether turning from unit direction `u0` by `dth` (> 0: CCW) passes
-/// through unit direction `u`.
-fn sweeps_through(u0: V2, dth: f64, u: V2) -> bool {
+/// The angle in [0, 2π) from unit direction `u0` to unit direction `u`,
+/// turning the way `dth` does (> 0: CCW).
+pub(crate) fn turn_to(u0: V2, dth: f64, u: V2) -> f64 {
     let phi = libm::atan2(u0.z * u.r - u0.r * u.z, u0.dot(u));
-    let reach = crate::math::rem_euclid(phi * dth.signum(), 2.0 * core::f64::consts::PI);
-    reach <= dth.abs()
+    rem_euclid(phi * dth.signum(), TAU)
+}
+
+/// Whether turning from unit direction `u0` by `dth` passes through unit
+/// direction `u`.
+fn sweeps_through(u0: V2, dth: f64, u: V2) -> bool {
+    turn_to(u0, dth, u) <= dth.abs()
 }
 
 impl Curve {
@@ -402,8 +407,8 @@ impl Curve {
     /// `p`: |(q − p) × t| over its points q, t the unit tangent there. At
     /// path speed v the direction from `p` turns at most v·lever/ρ², ρ the
     /// distance from `p`. A line's is its distance from `p` extended; an
-    /// arc's the centre's distance plus its larger radius; a conic's its
-    /// farthest point's distance.
+    /// arc's the largest |r + (c − p)·u| over its points c + r·u; a
+    /// conic's its farthest point's distance.
     pub fn lever_about(&self, p: V2) -> f64 {
         match *self {
             Curve::Line { p0, d } => {

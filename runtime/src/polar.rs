@@ -228,10 +228,7 @@ impl Nearest {
                 }
                 // The direction from the centre towards the plane's centre,
                 // reached after turning `reach` the arc's way.
-                let u = c * (-1.0 / dist);
-                let phi = libm::atan2(u0.z * u.r - u0.r * u.z, u0.dot(u));
-                let tau = 2.0 * core::f64::consts::PI;
-                let reach = crate::math::rem_euclid(phi * dth.signum(), tau);
+                let reach = crate::geom::turn_to(u0, dth, c * (-1.0 / dist));
                 Some(Nearest::Arc {
                     at: reach / dth.abs(),
                     dist,

@@ -11,7 +11,7 @@
 //! ```
 
 use super::{
-    Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Loc, Module, NcKind, Op,
+    Block, Call, CallKind, Callee, Count, Expr, Function, Handle, Loc, Module, NcKind, Op, StrId,
     Terminator, VarTarget, WordValue,
 };
 use grammar::SourceFile;
@@ -124,22 +124,16 @@ impl Printer<'_> {
                         WordValue::Expr(e) => s.push_str(&self.bracketed(e)),
                     }
                 }
-                if let Some(m) = nc.msg {
-                    let _ = write!(s, " msg {:?}", self.string(m.0));
-                }
-                s
+                self.with_msg(s, nc.msg)
             }
             Op::Assign { target, value, msg } => {
-                let mut s = match target {
+                let s = match target {
                     VarTarget::Direct(v) => format!("#{v} = {}", self.expr(*value)),
                     VarTarget::Indirect(i) => {
                         format!("#[{}] = {}", self.expr(*i), self.expr(*value))
                     }
                 };
-                if let Some(m) = msg {
-                    let _ = write!(s, " msg {:?}", self.string(m.0));
-                }
-                s
+                self.with_msg(s, *msg)
             }
             Op::MacroA {
                 op,
@@ -148,11 +142,8 @@ impl Printer<'_> {
                 msg,
                 ..
             } => {
-                let mut s = format!("g65 H{:02} #{dst} = {}", op.h(), self.expr(*value));
-                if let Some(m) = msg {
-                    let _ = write!(s, " msg {:?}", self.string(m.0));
-                }
-                s
+                let s = format!("g65 H{:02} #{dst} = {}", op.h(), self.expr(*value));
+                self.with_msg(s, *msg)
             }
             Op::Alarm { code, msg } => format!("alarm {code} {:?}", self.string(msg.0)),
             Op::ModalCancel => "g67".into(),
@@ -234,6 +225,14 @@ impl Printer<'_> {
             Some(&p) if p != usize::MAX => format!("bb{p}"),
             _ => format!("(unplaced {b:?})"),
         }
+    }
+
+    /// `s` and the block's message (a #3000/#3006 comment), if it has one.
+    fn with_msg(&self, mut s: String, msg: Option<StrId>) -> String {
+        if let Some(m) = msg {
+            let _ = write!(s, " msg {:?}", self.string(m.0));
+        }
+        s
     }
 
     fn string(&self, i: u32) -> &str {

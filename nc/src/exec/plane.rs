@@ -152,7 +152,7 @@ fn check_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcErr
 
 /// Whether the block writes the axis outside the plane: Z (W) in polar
 /// interpolation, X (U) in cylindrical.
-pub fn other_axis(kind: Kind, p: &Parsed) -> bool {
+fn other_axis(kind: Kind, p: &Parsed) -> bool {
     match kind {
         Kind::Polar => p.has(b'Z') || p.has(b'W'),
         Kind::Cylinder(_) => p.has(b'X') || p.has(b'U'),
@@ -542,14 +542,8 @@ pub fn swept(from: Pt, to: Pt, arc: Option<(Pt, bool)>) -> f64 {
     let Some((c, cw)) = arc else {
         return turn(from, to);
     };
-    let (a0, a1) = (angle(c, from), angle(c, to));
-    let tau = 2.0 * core::f64::consts::PI;
-    let mut span = if cw { a0 - a1 } else { a1 - a0 };
-    span -= tau * libm::floor(span / tau);
-    if span < 1e-12 {
-        // End = start with a centre: a full circle.
-        span = tau;
-    }
+    let a0 = angle(c, from);
+    let span = sweep(a0, angle(c, to), cw);
     let span = if cw { -span } else { span };
     let n = libm::ceil(span.abs() / 5f64.to_radians()).max(1.0) as u32;
     let radius = from.dist(c);
@@ -588,20 +582,24 @@ fn nearest_to_centre(from: Pt, to: Pt, arc: Option<(Pt, bool)>) -> f64 {
     }
     // The circle's point nearest the origin lies in the origin's
     // direction from the centre: the arc reaches it when its sweep does.
-    let tau = 2.0 * core::f64::consts::PI;
-    let sweep = |a: f64, b: f64| {
-        let s = if cw { a - b } else { b - a };
-        s - tau * libm::floor(s / tau)
-    };
     let a0 = angle(c, from);
-    let mut span = sweep(a0, angle(c, to));
-    if span < 1e-12 {
-        span = tau; // end = start: a full circle
-    }
-    if sweep(a0, angle(c, Pt::new(0.0, 0.0))) <= span {
+    if sweep(a0, angle(c, Pt::new(0.0, 0.0)), cw) <= sweep(a0, angle(c, to), cw) {
         (dist - radius).abs()
     } else {
         ends
+    }
+}
+
+/// The angle an arc turns (`cw`: clockwise) from angle `a0` to angle `a`
+/// about its centre, in (0, 2π]: the same angle is a full circle.
+fn sweep(a0: f64, a: f64, cw: bool) -> f64 {
+    let tau = 2.0 * core::f64::consts::PI;
+    let s = if cw { a0 - a } else { a - a0 };
+    let s = s - tau * libm::floor(s / tau);
+    if s < 1e-12 {
+        tau
+    } else {
+        s
     }
 }
 
