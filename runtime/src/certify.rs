@@ -562,7 +562,9 @@ impl Certifier {
                 self.pending.pop_front();
                 continue;
             }
-            if d > m.nearest && m.nearest <= (b - a).norm() {
+            // The period's travel is the axes' step: where the frame
+            // jumped, b − a is the jump, not a way the tool went.
+            if d > m.nearest && m.nearest <= moved.norm() {
                 self.missed(&m);
                 self.done = Some(m);
                 self.pending.pop_front();
@@ -987,6 +989,50 @@ mod tests {
         for &z in &z {
             k += 1;
             c.period(&at(k, (0.0, -0.2 - z), (0.0, 100.0), Motion::Feed));
+        }
+        c.finish(true);
+        assert_eq!(c.violation(), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 2 of 2 reached"));
+    }
+
+    #[test]
+    fn a_shift_after_the_tool_settled_misses_no_end_point() {
+        // Jerk limiting: the canon runs ahead of the set points, so the
+        // next end point (work Z−0.1 after a shift of 0.3 mm, machine
+        // Z−0.4) is queued while the tool settles on Z−0.2: its last
+        // period, from Z−0.1995 (within the tolerance) to Z−0.2, goes
+        // away from the next point in the old frame (0.0995 → 0.1 mm).
+        // The shift then moves the tool's work point 0.3 mm without a
+        // step: the tool did not cut by the point, which it reaches
+        // 0.2 mm later.
+        let mut c = certifier();
+        c.emit(Event::Line {
+            x: 0.0,
+            z: -0.2,
+            c: None,
+        });
+        let z = z_profile(2000.0);
+        let mut k = 0;
+        for &z in &z {
+            k += 1;
+            c.period(&at(k, (0.0, z * 0.9975), (0.0, 0.0), Motion::Feed));
+        }
+        c.emit(Event::Origin { x: 0.0, z: 0.3 });
+        c.emit(Event::Line {
+            x: 0.0,
+            z: -0.1,
+            c: None,
+        });
+        for shift in [0.0, 0.3] {
+            k += 1;
+            c.period(&at(k, (0.0, -0.2), (0.0, shift), Motion::Feed));
+        }
+        for &z in &z {
+            k += 1;
+            c.period(&at(k, (0.0, -0.2 + z), (0.0, 0.3), Motion::Feed));
         }
         c.finish(true);
         assert_eq!(c.violation(), None, "{}", c.summary());

@@ -273,6 +273,7 @@ impl Config {
             lookahead_blocks: (m.machine.lookahead_blocks as usize).max(1024),
             queue_capacity: ((m.machine.lookahead_blocks as usize).max(1024) * 4).min(1 << 20),
             always_exact_stop: m.motion.always_exact_stop,
+            jerk_limited: m.motion.jerk_limiting,
             feed_override_pct: m.operator.feed_override_pct.clamp(0.0, 150.0),
             rapid_override: RapidOverride::from_pct(m.operator.rapid_override_pct),
             spindle_override_pct: m.operator.spindle_override_pct.clamp(0.0, 200.0),

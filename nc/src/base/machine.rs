@@ -161,7 +161,10 @@ section!(Cycles {
 });
 
 section!(Motion {
-    always_exact_stop: bool = false
+    always_exact_stop: bool = false,
+    // The runtime's S-curve (each axis within its jerk); off on the
+    // reference machine, as machine.md §3 makes it an option.
+    jerk_limiting: bool = false,
 });
 
 section!(Coords {
