@@ -157,12 +157,22 @@ impl PlaneRun {
     }
 }
 
+/// A move whose distance from the centre stays within this factor is
+/// planned whole (most moves).
+const SPAN: f64 = 2.0;
+
+/// How much the distance from the centre may grow along one piece of a
+/// move that is cut: C turns at v·h/ρ², so the speed C allows grows
+/// with ρ², and a piece capped at its least ρ gets at least 1/1.1² ≈
+/// 83 % of what C allows anywhere on it.
+const GROWTH: f64 = 1.1;
+
 /// Where to cut a move of the polar plane that passes near the centre,
 /// as parameters λ in (0, 1), increasing: on each piece the distance ρ
-/// from the centre changes by at most a factor of 2 about the nearest
-/// point, so the planner's caps, taken at a piece's least ρ (planner.rs),
-/// slow the move near the centre only. Empty where ρ stays within a
-/// factor of 2 anyway (most moves).
+/// from the centre changes by at most a factor of `GROWTH` about the
+/// nearest point, so the planner's caps, taken at a piece's least ρ
+/// (planner.rs), slow the move near the centre only. Empty where ρ stays
+/// within a factor of `SPAN`.
 pub fn cuts(curve: &Curve) -> Vec<f64> {
     let near = curve.min_distance_to(V2::ZERO);
     let far = curve.point(0.0).norm().max(curve.end().norm());
@@ -170,15 +180,16 @@ pub fn cuts(curve: &Curve) -> Vec<f64> {
     let Some(nearest) = Nearest::of(curve) else {
         return cuts;
     };
-    if !crate::math::is_pos(near) || far <= 2.0 * near {
+    if !crate::math::is_pos(near) || far <= SPAN * near {
         return cuts;
     }
     for at in nearest.at() {
-        // (At most 64 doublings: ρ from the resolution to beyond any
-        // machine's reach.)
-        let mut rho = 2.0 * near;
-        for _ in 0..64 {
-            let Some(d) = nearest.reach(rho).filter(|_| rho < 2.0 * far) else {
+        // (At most 256 steps: ρ from the resolution to beyond any
+        // machine's reach is about 220; were it more, the last piece would
+        // only be capped more than it needs.)
+        let mut rho = GROWTH * near;
+        for _ in 0..256 {
+            let Some(d) = nearest.reach(rho).filter(|_| rho < GROWTH * far) else {
                 break;
             };
             cuts.extend(
@@ -186,7 +197,7 @@ pub fn cuts(curve: &Curve) -> Vec<f64> {
                     .into_iter()
                     .filter(|l| (1e-6..1.0 - 1e-6).contains(l)),
             );
-            rho *= 2.0;
+            rho *= GROWTH;
         }
     }
     cuts.sort_by(f64::total_cmp);
@@ -299,10 +310,11 @@ mod tests {
     }
 
     #[test]
-    fn a_move_near_the_centre_is_cut_where_its_distance_doubles() {
-        // Sampled, each piece's farthest point is at most twice as far
+    fn a_move_near_the_centre_is_cut_where_its_distance_grows_by_a_tenth() {
+        // Sampled, each piece's farthest point is at most 1.1 times as far
         // from the centre as its nearest: a line 0.5 from it, an arc
-        // passing 0.25 from it, and (no cut) a line that stays away.
+        // passing 0.25 from it, and (no cut) a line that stays within
+        // twice its least distance.
         let o = V2::ZERO;
         let moves = [
             Curve::line(V2::new(0.5, 10.0), V2::new(0.5, -10.0)),
@@ -333,14 +345,19 @@ mod tests {
                 let (near, far) = d
                     .iter()
                     .fold((f64::MAX, 0f64), |(a, b), &x| (a.min(x), b.max(x)));
-                assert!(far <= 2.0 * near * (1.0 + 1e-6), "{m:?} {k}: {near}…{far}");
+                let growth = if *k == 0 { 2.0 } else { 1.1 };
+                assert!(
+                    far <= growth * near * (1.0 + 1e-6),
+                    "{m:?} {k}: {near}…{far}"
+                );
             }
         }
-        // The lines: from 0.5 the distance reaches 1, 2, 4 and 8 before
-        // the ends (10.01): 4 cuts each side. The arc: from 0.25 it
-        // reaches 0.5, 1, 2, 4 and 8 before its ends (√205 = 14.3): 5
-        // each side.
-        assert_eq!(counts, [8, 4, 10, 0]);
+        // The lines: from 0.5 the distance reaches 0.5·1.1^k for k = 1 …
+        // 31 before the ends (10.01; 1.1^31 = 19.19, 1.1^32 = 21.11 >
+        // 20.02): 31 cuts each side. The arc: from 0.25 it reaches
+        // 0.25·1.1^k for k = 1 … 42 before its ends (√205 = 14.32;
+        // 1.1^42 = 54.76, 1.1^43 = 60.24 > 57.27): 42 each side.
+        assert_eq!(counts, [62, 31, 84, 0]);
     }
 
     #[test]
