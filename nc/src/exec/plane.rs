@@ -79,6 +79,24 @@ impl PlaneState {
             Kind::Cylinder(radius) => (p.r, (p.z / radius).to_degrees()),
         }
     }
+
+    /// The plane point of the canon's two numbers (`printed` undone).
+    pub(crate) fn point(&self, a: f64, b: f64) -> Pt {
+        match self.kind {
+            Kind::Polar => Pt::new(b, a / 2.0),
+            Kind::Cylinder(radius) => Pt::new(a, radius * b.to_radians()),
+        }
+    }
+
+    /// The work point of the X/Z joints (the tool's X is its distance
+    /// from the centre in polar interpolation, Z the cylinder's second
+    /// axis) when the plane point is `p` and the joints were at `at`.
+    pub(crate) fn joints(&self, p: Pt, at: Pt) -> Pt {
+        match self.kind {
+            Kind::Polar => Pt::new(libm::hypot(p.z, p.r), at.z),
+            Kind::Cylinder(_) => Pt::new(at.r, p.r),
+        }
+    }
 }
 
 /// Whether the block starts polar or cylindrical interpolation.

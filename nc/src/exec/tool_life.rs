@@ -12,16 +12,19 @@
 //! diameter of the move, clamped as the kernel clamps CSS — and a move made
 //! with the spindle stopped counts no time (the runtime raises E7003 for
 //! it). Ellipses and parabolas count their chord. Rapids and dwells count
-//! nothing.
+//! nothing. A move of polar or cylindrical interpolation counts its length
+//! in the plane (the arc's along the arc) at the programmed feed; the axis
+//! outside the plane moving alone counts its own travel.
 
 use alloc::format;
 use alloc::vec::Vec;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::event::{Dir, Event, SpindleDir};
+use crate::base::event::{Dir, Event, Plane, PlaneMotion, SpindleDir};
 use crate::base::machine::Machine;
 use crate::base::point::Pt;
 use crate::base::words::Word;
+use crate::exec::plane::{Kind, PlaneState};
 use crate::exec::{Nc, Outcome, Sink};
 
 /// How a group measures life.
@@ -219,6 +222,7 @@ pub fn timed(
         clock: &mut clock,
         spindle_max: nc.machine.spindle.max_rpm,
         reference: reference_points(&nc.machine),
+        plane: nc.st.plane,
     };
     let result = exec(nc, words, &mut timer);
     let life = &mut nc.st.data.life;
@@ -313,6 +317,9 @@ struct Timer<'a> {
     clock: &'a mut Clock,
     spindle_max: f64,
     reference: [Pt; 4],
+    /// Polar or cylindrical interpolation, as the block found it and its
+    /// plane moves left it.
+    plane: Option<PlaneState>,
 }
 
 impl Timer<'_> {
@@ -414,8 +421,55 @@ impl Timer<'_> {
                 let len = arc_length(start, to, Pt::xz(cx, cz), dir == Dir::Cw);
                 self.cut(to, len, rate);
             }
+            Event::PolarOn => {
+                let pt = Pt::new(0.0, start.r);
+                self.plane = Some(PlaneState {
+                    kind: Kind::Polar,
+                    pt,
+                });
+            }
+            // C, where the cylinder's plane starts, is not in the canon:
+            // the next block takes the kernel's state (G7.1 stands alone).
+            Event::Cylinder(_) => self.plane = None,
+            Event::PolarOff { x, .. } => {
+                self.plane = None;
+                self.cut(Pt::new(x / 2.0, start.z), 0.0, 0.0);
+            }
+            Event::PlaneMove { motion, a, b, .. } => self.plane_move(motion, a, b),
+            Event::PlaneAxis {
+                plane, rapid, to, ..
+            } => {
+                let to = match plane {
+                    Plane::Polar => Pt::new(start.r, to),
+                    Plane::Cylinder => Pt::new(to / 2.0, start.z),
+                };
+                let rate = if rapid { 0.0 } else { self.feed_rate(to) };
+                self.cut(to, start.dist(to), rate);
+            }
             _ => {}
         }
+    }
+
+    /// A move in the plane: its length there, at the programmed feed; the
+    /// joints follow it.
+    fn plane_move(&mut self, motion: PlaneMotion, a: f64, b: f64) {
+        let start = self.start();
+        let Some(mut st) = self.plane else {
+            return;
+        };
+        let to = st.point(a, b);
+        let (length, rate) = match motion {
+            PlaneMotion::Rapid => (0.0, 0.0),
+            PlaneMotion::Line => (st.pt.dist(to), self.feed_rate(start)),
+            PlaneMotion::Arc { dir, ca, cb } => {
+                let centre = st.point(ca, cb);
+                let cw = dir == Dir::Cw;
+                (arc_length(st.pt, to, centre, cw), self.feed_rate(start))
+            }
+        };
+        st.pt = to;
+        self.plane = Some(st);
+        self.cut(st.joints(to, start), length, rate);
     }
 }
 
@@ -535,6 +589,57 @@ mod tests {
         // G99 with the spindle stopped: no time (the runtime's E7003).
         m.run("G99 G01 W-10 F0.2");
         assert!(close(&used(&m), &[0.1, 0.0]), "{:?}", used(&m));
+    }
+
+    /// A minutes group (tool 1: 1 min) on a lathe with a C axis.
+    fn c_axis_minutes() -> Lathe {
+        let mut m = lathe_with("[axes.c]\nenabled = true\n");
+        for b in ["G10 L3", "P1 L1 Q2", "T0101", "G11", "T0199", "G98"] {
+            m.run(b);
+        }
+        m
+    }
+
+    #[test]
+    fn polar_interpolation_counts_the_path_in_its_plane() {
+        let mut m = c_axis_minutes();
+        let pi = core::f64::consts::PI;
+        // From X20 (10 mm from the centre), C0: 10 mm along C at F100.
+        for b in ["G00 X20 Z0 C0", "G12.1", "G01 X20 C10 F100"] {
+            m.run(b);
+        }
+        assert!(close(&used(&m), &[0.1]), "{:?}", used(&m));
+        // A half circle of radius 10 about X0 C10: 10π mm.
+        m.run("G03 X-20 C10 R10");
+        assert!(close(&used(&m), &[0.1 + 0.1 * pi]), "{:?}", used(&m));
+        // Z alone: 5 mm; a rapid in the plane: nothing.
+        m.run("G01 Z-5");
+        m.run("G00 X20 C0");
+        assert!(close(&used(&m), &[0.15 + 0.1 * pi]), "{:?}", used(&m));
+        // After G13.1 the tool is at X20 (the plane's last point): a feed
+        // from there along Z counts its 10 mm.
+        m.run("G13.1");
+        m.run("G01 W-10");
+        assert!(close(&used(&m), &[0.25 + 0.1 * pi]), "{:?}", used(&m));
+    }
+
+    #[test]
+    fn cylindrical_interpolation_counts_the_developed_path() {
+        let mut m = c_axis_minutes();
+        // X40 → X36 alone: 2 mm at F20.
+        for b in ["G00 X40 Z0 C0", "G7.1 C20.", "G01 X36 F20"] {
+            m.run(b);
+        }
+        assert!(close(&used(&m), &[0.1]), "{:?}", used(&m));
+        // 10 mm along Z and 90° on the radius 20 (10π mm) at F200.
+        m.run("G01 Z-10 C90 F200");
+        let along = libm::hypot(10.0, 10.0 * core::f64::consts::PI);
+        assert!(close(&used(&m), &[0.1 + along / 200.0]), "{:?}", used(&m));
+        // The joints followed: Z is at −10, so W−5 after G7.1 C0 is 5 mm.
+        m.run("G7.1 C0");
+        m.run("G01 W-5");
+        let want = 0.1 + along / 200.0 + 5.0 / 200.0;
+        assert!(close(&used(&m), &[want]), "{:?}", used(&m));
     }
 
     #[test]
