@@ -15,7 +15,7 @@ use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::base::words::Word;
 use crate::block::{self, Parsed};
-use crate::plan::angle::{angle_of, end_at_r, end_at_z};
+use crate::plan::angle::{angle_of, end_at_r, end_at_z, intersection};
 use crate::plan::corner::{corner, Corner};
 use crate::plan::curve::Curve;
 use crate::plan::reader::Reader;
@@ -103,42 +103,186 @@ pub fn check_codes(r: &Reader, p: &Parsed, tag: u32) -> Result<(), NcError> {
 /// The profile of a roughing cycle (G71, G72, G73) from the tool position.
 /// Chamfers and roundings (L, D, ,C, ,R) join an element and the next
 /// moving block's one with the contour module's corner geometry, as in
-/// ordinary blocks (cycles.md §13 "the same rules apply inside profiles").
+/// ordinary blocks (cycles.md §13 "the same rules apply inside profiles");
+/// so does the two-block angle form (`Q_` then `X_ Z_ Q_`, dialect.md §5.2).
 pub fn build(r: &Reader, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
     first(blocks)?;
-    let mut pos = r.at;
-    let mut code = r.motion;
-    let mut segs: Vec<Seg> = Vec::with_capacity(blocks.len());
-    // The element waiting for its corner: its index and the corner.
-    let mut waiting: Option<(usize, Corner)> = None;
+    let mut b = Builder {
+        r,
+        pos: r.at,
+        code: r.motion,
+        chain: Chain {
+            segs: Vec::with_capacity(blocks.len()),
+            waiting: None,
+        },
+        pair: None,
+    };
     for (i, (words, tag)) in blocks.iter().enumerate() {
         let p = parse_at(r, words, *tag)?;
         check_codes(r, &p, *tag)?;
-        if let Some(c) = p.motion() {
-            code = c;
-        }
-        let corner = r.corner_word(code, &p).map_err(|e| e.at(*tag))?;
-        let Some(curve) = element(r, code, &p, pos).map_err(|e| e.at(*tag))? else {
-            continue;
-        };
-        pos = curve.end();
-        let seg = Seg {
-            curve,
-            rapid: code == Motion::Rapid,
-            ns: i == 0,
-            tag: *tag,
-        };
-        match waiting.take() {
-            // A G00 takes no corner (W112): the waiting one is dropped.
-            Some((at, c)) if code != Motion::Rapid => {
-                join(&mut segs, at, seg, c).map_err(|e| e.at(*tag))?
-            }
-            _ => segs.push(seg),
-        }
-        waiting = corner.map(|c| (segs.len() - 1, c));
+        b.block(i == 0, &p, *tag).map_err(|e| e.at(*tag))?;
+    }
+    if let Some(first) = b.pair {
+        let msg = "angle programming: the block after a Q_ block must be X_ Z_ Q_";
+        return Err(NcError::new(Alarm::BadAngle, msg).at(first.tag));
     }
     // A corner word on the nf block is ignored (W112).
-    Ok(segs)
+    Ok(b.chain.segs)
+}
+
+/// The profile read so far: where it stands, the motion code in force,
+/// its elements and an angle pair's first block waiting for its second.
+struct Builder<'a> {
+    r: &'a Reader<'a>,
+    pos: Pt,
+    code: Motion,
+    chain: Chain,
+    pair: Option<AnglePair>,
+}
+
+impl Builder<'_> {
+    /// Reads one block (`ns`: the first).
+    fn block(&mut self, ns: bool, p: &Parsed, tag: u32) -> Result<(), NcError> {
+        if let Some(c) = p.motion() {
+            self.code = c;
+        }
+        let corner = self.r.corner_word(self.code, p)?;
+        if let Some(first) = self.pair.take() {
+            return self.after_angle(first, p, corner, tag);
+        }
+        if let Some(angle) = angle_alone(self.code, p) {
+            self.pair = Some(AnglePair {
+                from: self.pos,
+                angle,
+                code: self.code,
+                corner,
+                ns,
+                tag,
+                between: 0,
+            });
+            return Ok(());
+        }
+        let Some(curve) = element(self.r, self.code, p, self.pos)? else {
+            return Ok(());
+        };
+        self.pos = curve.end();
+        let seg = Seg {
+            curve,
+            rapid: self.code == Motion::Rapid,
+            ns,
+            tag,
+        };
+        self.chain.add(seg, corner)
+    }
+
+    /// A block after an angle pair's first: one that moves nothing (G04,
+    /// M, S, T) may stand between, as outside a profile; else it is the
+    /// second, and both lines join the profile.
+    fn after_angle(
+        &mut self,
+        mut first: AnglePair,
+        p: &Parsed,
+        corner: Option<Corner>,
+        tag: u32,
+    ) -> Result<(), NcError> {
+        if !p.has_axis() && angle_of(p).is_none() {
+            first.between += 1;
+            if first.between > 1 {
+                return fail(
+                    Alarm::BadAngle,
+                    "angle programming: at most one block may stand between its two blocks",
+                );
+            }
+            self.pair = Some(first);
+            return Ok(());
+        }
+        let (meet, end) = first.second(self.r, self.code, p, &mut self.chain)?;
+        self.pos = end;
+        let seg = Seg::line(meet, end, self.code, false, tag);
+        self.chain.add(seg, corner)
+    }
+}
+
+/// The profile's elements so far, and the element waiting for its corner
+/// (its index and the corner).
+struct Chain {
+    segs: Vec<Seg>,
+    waiting: Option<(usize, Corner)>,
+}
+
+impl Chain {
+    /// Adds `seg`, joined to the waiting element by its corner; `corner`
+    /// (the block's own corner word) waits for the next.
+    fn add(&mut self, seg: Seg, corner: Option<Corner>) -> Result<(), NcError> {
+        match self.waiting.take() {
+            // A G00 takes no corner (W112): the waiting one is dropped.
+            Some((at, c)) if !seg.rapid => join(&mut self.segs, at, seg, c)?,
+            _ => self.segs.push(seg),
+        }
+        self.waiting = corner.map(|c| (self.segs.len() - 1, c));
+        Ok(())
+    }
+}
+
+impl Seg {
+    fn line(from: Pt, to: Pt, code: Motion, ns: bool, tag: u32) -> Seg {
+        Seg {
+            curve: Curve::new(Element::Line { from, to }),
+            rapid: code == Motion::Rapid,
+            ns,
+            tag,
+        }
+    }
+}
+
+/// The angle of a G00/G01 block that names it and no end point: the
+/// first block of the two-block form.
+fn angle_alone(code: Motion, p: &Parsed) -> Option<f64> {
+    let ends = [b'X', b'U', b'Z', b'W'].iter().any(|&l| p.has(l));
+    angle_of(p).filter(|_| code.is_straight() && !ends)
+}
+
+/// The first block of an angle pair, waiting for its second.
+struct AnglePair {
+    from: Pt,
+    angle: f64,
+    code: Motion,
+    corner: Option<Corner>,
+    ns: bool,
+    tag: u32,
+    /// Blocks that moved nothing since.
+    between: u32,
+}
+
+impl AnglePair {
+    /// The second block (`p`, G00/G01 with absolute X, Z and its angle):
+    /// adds the first block's line, to where the two lines meet; that
+    /// point and the second block's end.
+    fn second(
+        self,
+        r: &Reader,
+        code: Motion,
+        p: &Parsed,
+        chain: &mut Chain,
+    ) -> Result<(Pt, Pt), NcError> {
+        if !code.is_straight() {
+            return fail(
+                Alarm::BadAngle,
+                "the second block of angle programming must be a G01 (or G00) X_ Z_ Q_ block",
+            );
+        }
+        let (Some(q2), true, true) = (angle_of(p), p.has(b'X'), p.has(b'Z')) else {
+            return fail(
+                Alarm::BadAngle,
+                "the second block of angle programming needs absolute X, Z and an angle Q (or ,A)",
+            );
+        };
+        let end = r.target_from(p, self.from);
+        let meet = intersection(self.from, self.angle, end, q2)?;
+        let seg = Seg::line(self.from, meet, self.code, self.ns, self.tag);
+        chain.add(seg, self.corner)?;
+        Ok((meet, end))
+    }
 }
 
 /// Puts `next` after the element at `at`, joined by corner `c`.
@@ -193,12 +337,9 @@ fn element(r: &Reader, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curv
                 (false, true) => end_at_z(from, deg, to.z)?,
                 // X, Z and Q: an ordinary line, Q ignored (W104).
                 (true, true) => to,
-                (false, false) => {
-                    return fail(
-                        Alarm::NotSupportedYet,
-                        "the two-block angle form in a G71–G73 profile is not supported yet",
-                    )
-                }
+                // The first block of the two-block form: `build` reads
+                // the pair (AnglePair).
+                (false, false) => return Ok(None),
             };
             Ok(Some(Curve::new(Element::Line { from, to: end })))
         }
@@ -230,16 +371,21 @@ fn element(r: &Reader, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curv
 mod tests {
     use super::*;
     use crate::base::machine::Machine;
-    use crate::base::words::{addr, LITERAL};
+    use crate::base::words::{addr, LITERAL, NO_POINT};
 
-    /// A block of literal words with decimal points (no increment rule).
+    /// A block of literal words with decimal points (no increment rule),
+    /// but Q and M, written without.
     fn block(ws: &[(u8, f64)], tag: u32) -> (Vec<Word>, u32) {
         let words = ws
             .iter()
             .map(|&(l, value)| Word {
                 addr: addr(l),
                 value,
-                flags: LITERAL,
+                flags: if b"QM".contains(&l) {
+                    LITERAL | NO_POINT
+                } else {
+                    LITERAL
+                },
             })
             .collect();
         (words, tag)
@@ -303,5 +449,87 @@ mod tests {
         let e = ns_kind(&arc, &blocks, false).unwrap_err();
         assert_eq!((e.code, e.at), (Alarm::BadProfileStart.code(), Some(7)));
         assert!(build(&r, &[]).is_err());
+    }
+
+    fn angle_profile(second: &[(u8, f64)], between: usize) -> Result<Vec<Seg>, NcError> {
+        let machine = Machine::reference();
+        let r = Reader {
+            machine: &machine,
+            inch: false,
+            at: Pt::xz(60.0, 2.0),
+            motion: Motion::Line,
+        };
+        let mut blocks = alloc::vec![
+            block(&[(b'G', 0.0), (b'X', 20.0)], 10),
+            block(&[(b'G', 1.0), (b'Z', 0.0)], 11),
+            block(&[(b'Q', 135_000.0)], 12),
+        ];
+        for k in 0..between {
+            blocks.push(block(&[(b'M', 8.0)], 20 + k as u32));
+        }
+        blocks.push(block(second, 13));
+        blocks.push(block(&[(b'X', 60.0)], 14));
+        build(&r, &blocks)
+    }
+
+    #[test]
+    fn the_two_block_angle_form_meets_at_the_corner() {
+        // From X20 Z0 (radius 10) at 135°: r = 10 + t/√2, Z = −t/√2; the
+        // line through X40 Z−30 at 180° is r = 20: they meet at t/√2 = 10,
+        // X40 Z−10. One block (M08) may stand between the two.
+        for between in [0, 1] {
+            let segs =
+                angle_profile(&[(b'X', 40.0), (b'Z', -30.0), (b'Q', 180_000.0)], between).unwrap();
+            let got: Vec<_> = ends(&segs)
+                .iter()
+                .map(|&(x, z)| ((x * 1e9).round() / 1e9, (z * 1e9).round() / 1e9))
+                .collect();
+            assert_eq!(
+                got,
+                [
+                    (20.0, 2.0),
+                    (20.0, 0.0),
+                    (40.0, -10.0),
+                    (40.0, -30.0),
+                    (60.0, -30.0)
+                ]
+            );
+            let tags: Vec<_> = segs.iter().map(|s| s.tag).collect();
+            assert_eq!(tags, [10, 11, 12, 13, 14]);
+        }
+    }
+
+    #[test]
+    fn an_angle_pair_without_its_second_block_is_e4008() {
+        let e4008 = Alarm::BadAngle.code();
+        // U instead of X; an arc; two blocks between; no second block.
+        let u = angle_profile(&[(b'U', 20.0), (b'Z', -30.0), (b'Q', 180_000.0)], 0);
+        assert_eq!(
+            u.map_err(|e| (e.code, e.at)).unwrap_err(),
+            (e4008, Some(13))
+        );
+        let arc = angle_profile(&[(b'G', 2.0), (b'X', 40.0), (b'Z', -30.0), (b'R', 5.0)], 0);
+        assert_eq!(
+            arc.map_err(|e| (e.code, e.at)).unwrap_err(),
+            (e4008, Some(13))
+        );
+        let two = angle_profile(&[(b'X', 40.0), (b'Z', -30.0), (b'Q', 180_000.0)], 2);
+        assert_eq!(
+            two.map_err(|e| (e.code, e.at)).unwrap_err(),
+            (e4008, Some(21))
+        );
+        let machine = Machine::reference();
+        let r = Reader {
+            machine: &machine,
+            inch: false,
+            at: Pt::xz(60.0, 2.0),
+            motion: Motion::Line,
+        };
+        let blocks = [
+            block(&[(b'G', 0.0), (b'X', 20.0)], 10),
+            block(&[(b'G', 1.0), (b'Q', 135_000.0)], 11),
+        ];
+        let e = build(&r, &blocks).unwrap_err();
+        assert_eq!((e.code, e.at), (e4008, Some(11)));
     }
 }

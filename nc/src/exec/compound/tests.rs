@@ -456,6 +456,35 @@ fn g70_runs_the_profile_and_returns_to_a() {
 }
 
 #[test]
+fn the_two_block_angle_form_shapes_a_profile() {
+    // Q135000 from X20 Z0 (r 10) and X40 Z-30 Q180000 meet where
+    // r = 10 − z reaches r = 20: X40 Z-10. L2 on the first block is a
+    // type II chamfer 2 mm from that corner on each line: along 135°
+    // back, X(40 − 2√2) Z(−10 + √2); along 180° on, X40 Z-12.
+    let setup = ["G98 G00 X60 Z3", "G73 U0 W0 R1"];
+    let profile = [
+        "G00 X20 Z2",
+        "G01 Z0",
+        "Q135000 L2",
+        "X40 Z-30 Q180000",
+        "X60",
+    ];
+    let got = run(&setup, "G73 P1 Q5 F0.2", &profile).unwrap();
+    let r2 = core::f64::consts::SQRT_2;
+    let want = [
+        rapid(20.0, 2.0),
+        "FEED F=0.2 MODE=MIN".into(),
+        line(20.0, 0.0),
+        line(40.0 - 2.0 * r2, -10.0 + r2),
+        line(40.0, -12.0),
+        line(40.0, -30.0),
+        line(60.0, -30.0),
+        rapid(60.0, 3.0),
+    ];
+    assert_eq!(got, want);
+}
+
+#[test]
 fn a_chamfer_in_a_profile_is_cut_by_the_cycle() {
     // G01 Z-10 L2 then X40: a type II chamfer 2 mm from the corner r10
     // z-10 on each element: T1 = X20 Z-8, T2 = X24 Z-10.
