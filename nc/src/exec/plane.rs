@@ -350,33 +350,9 @@ pub(crate) fn motion(
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    if let Some(code) = p.one_shot() {
-        return match code {
-            OneShot::Dwell => nc.one_shot(code, p, sink, out),
-            // G7.1 acted in group 0.
-            OneShot::Cylindrical => Ok(()),
-            _ => fail(
-                Alarm::IncompatibleWords,
-                format!("{} cannot run during {}", code.name(), st.what()),
-            ),
-        };
-    }
-    let code = nc.st.modal.motion;
-    match code {
-        c if c.is_straight() || c.is_arc() => {}
-        c if c.is_conic() => {
-            return fail(
-                Alarm::NotSupportedYet,
-                format!("{} during {} is not supported yet", code.name(), st.what()),
-            )
-        }
-        _ => {
-            return fail(
-                Alarm::IncompatibleWords,
-                format!("{} cannot run during {}", code.name(), st.what()),
-            )
-        }
-    }
+    let Some(code) = plane_code(nc, &st, p, sink, out)? else {
+        return Ok(());
+    };
     let arc = code.is_arc();
     if !arc && other_axis(st.kind, p) {
         // (check_block: no plane word beside it.)
@@ -390,42 +366,89 @@ pub(crate) fn motion(
     }
     let to = target(nc, &st, p);
     let from = st.pt;
-    let motion = if arc {
-        let cw = code == Motion::ArcCw;
-        match centre(nc, &st, from, to, cw, p)? {
-            Some(c) => {
-                let (ca, cb) = st.printed(c);
-                let dir = if cw { Dir::Cw } else { Dir::Ccw };
-                (PlaneMotion::Arc { dir, ca, cb }, Some((c, cw)))
-            }
-            None => return Ok(()),
-        }
-    } else if code == Motion::Rapid {
-        (PlaneMotion::Rapid, None)
-    } else {
-        (PlaneMotion::Line, None)
+    let Some((motion, path)) = plane_motion(nc, &st, code, from, to, p)? else {
+        return Ok(());
     };
     if st.kind == Kind::Polar
-        && nearest_to_centre(from, to, motion.1) < nc.machine.machine.resolution_mm
+        && nearest_to_centre(from, to, path) < nc.machine.machine.resolution_mm
     {
         return fail(
             Alarm::PolarInComp,
             "this move of polar interpolation passes through the spindle centre, where C would turn half a turn at once: program the path round the centre",
         );
     }
-    if !matches!(motion.0, PlaneMotion::Rapid) {
+    if !matches!(motion, PlaneMotion::Rapid) {
         nc.feed_due(sink);
     }
-    follow(nc, st, to, motion.1);
+    follow(nc, st, to, path);
     let (a, b) = st.printed(to);
     sink.emit(Event::PlaneMove {
         plane: st.plane(),
-        motion: motion.0,
+        motion,
         a,
         b,
     });
     out.moved = true;
     Ok(())
+}
+
+/// The block's motion code in the plane (G00–G03); `None` when the block
+/// was a G04, run here, or the G7.1 that acted in group 0.
+fn plane_code(
+    nc: &mut Nc,
+    st: &PlaneState,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<Option<Motion>, NcError> {
+    if let Some(code) = p.one_shot() {
+        return match code {
+            OneShot::Dwell => nc.one_shot(code, p, sink, out).map(|()| None),
+            OneShot::Cylindrical => Ok(None),
+            _ => fail(
+                Alarm::IncompatibleWords,
+                format!("{} cannot run during {}", code.name(), st.what()),
+            ),
+        };
+    }
+    match nc.st.modal.motion {
+        c if c.is_straight() || c.is_arc() => Ok(Some(c)),
+        c if c.is_conic() => fail(
+            Alarm::NotSupportedYet,
+            format!("{} during {} is not supported yet", c.name(), st.what()),
+        ),
+        c => fail(
+            Alarm::IncompatibleWords,
+            format!("{} cannot run during {}", c.name(), st.what()),
+        ),
+    }
+}
+
+/// How a plane move from `from` to `to` runs, and its arc (centre,
+/// clockwise) if it is one; `None`: an R arc whose end is its start.
+fn plane_motion(
+    nc: &Nc,
+    st: &PlaneState,
+    code: Motion,
+    from: Pt,
+    to: Pt,
+    p: &Parsed,
+) -> Result<Option<(PlaneMotion, Option<(Pt, bool)>)>, NcError> {
+    if !code.is_arc() {
+        let motion = if code == Motion::Rapid {
+            PlaneMotion::Rapid
+        } else {
+            PlaneMotion::Line
+        };
+        return Ok(Some((motion, None)));
+    }
+    let cw = code == Motion::ArcCw;
+    let Some(c) = centre(nc, st, from, to, cw, p)? else {
+        return Ok(None);
+    };
+    let (ca, cb) = st.printed(c);
+    let dir = if cw { Dir::Cw } else { Dir::Ccw };
+    Ok(Some((PlaneMotion::Arc { dir, ca, cb }, Some((c, cw)))))
 }
 
 /// Z (polar) or X (cylinder) moves alone, as the seed lets it: the plane

@@ -357,7 +357,6 @@ impl Timer<'_> {
     }
 
     fn watch(&mut self, e: &Event) {
-        let start = self.start();
         match *e {
             Event::Feed { f, per_rev } => {
                 self.clock.feed = f;
@@ -385,6 +384,14 @@ impl Timer<'_> {
                     self.clock.at.z = rp.z;
                 }
             }
+            _ => self.watch_move(e),
+        }
+    }
+
+    /// A move of the ZX plane: its length at its rate.
+    fn watch_move(&mut self, e: &Event) {
+        let start = self.start();
+        match *e {
             Event::Rapid { x, z, .. } => self.cut(Pt::xz(x, z), 0.0, 0.0),
             Event::Line { x, z, .. }
             | Event::Skip { x, z }
@@ -421,6 +428,14 @@ impl Timer<'_> {
                 let len = arc_length(start, to, Pt::xz(cx, cz), dir == Dir::Cw);
                 self.cut(to, len, rate);
             }
+            _ => self.watch_plane(e),
+        }
+    }
+
+    /// Polar and cylindrical interpolation: the plane's state and moves.
+    fn watch_plane(&mut self, e: &Event) {
+        let start = self.start();
+        match *e {
             Event::PolarOn => {
                 let pt = Pt::new(0.0, start.r);
                 self.plane = Some(PlaneState {
