@@ -424,6 +424,10 @@ fn plane_code(
     }
 }
 
+/// The centre of a plane arc and whether it runs clockwise; `None` for a
+/// line.
+type ArcPath = Option<(Pt, bool)>;
+
 /// How a plane move from `from` to `to` runs, and its arc (centre,
 /// clockwise) if it is one; `None`: an R arc whose end is its start.
 fn plane_motion(
@@ -433,7 +437,7 @@ fn plane_motion(
     from: Pt,
     to: Pt,
     p: &Parsed,
-) -> Result<Option<(PlaneMotion, Option<(Pt, bool)>)>, NcError> {
+) -> Result<Option<(PlaneMotion, ArcPath)>, NcError> {
     if !code.is_arc() {
         let motion = if code == Motion::Rapid {
             PlaneMotion::Rapid
