@@ -433,53 +433,8 @@ impl Planner {
 
     /// Queues one command. Allocates nothing.
     pub fn push(&mut self, cmd: Command, tag: Tag) -> Result<Pushed, Full> {
-        let kind = match cmd {
-            Command::Shift(s) => {
-                self.shift = s;
-                return Ok(Pushed::Empty);
-            }
-            Command::Move(m) => match self.curve(&m) {
-                Ok(curve) => match self.segment(&m, curve) {
-                    Some(seg) => ItemKind::Move(seg),
-                    None => {
-                        self.tail = m.path.to();
-                        return Ok(Pushed::Empty);
-                    }
-                },
-                // A conic that cannot be drawn is an alarm at its line,
-                // never a chord in its place.
-                Err(code) => ItemKind::Alarm(code),
-            },
-            Command::Dwell(s) => ItemKind::Dwell(s),
-            // A zero dwell: the moves on both sides cannot join, so the
-            // one before ends at rest.
-            Command::ExactStop => ItemKind::Dwell(0.0),
-            Command::Plc(f) => {
-                if let PlcFunction::Speed { s, css, .. } = f {
-                    if css {
-                        self.css_hint = Some(s);
-                    } else {
-                        self.css_hint = None;
-                        self.rpm_hint = s;
-                    }
-                }
-                ItemKind::Plc(f)
-            }
-            Command::Pause(p) => ItemKind::Pause(p),
-            Command::Stroke(a) => ItemKind::Stroke(a),
-            Command::Plane(sw) => {
-                // Moves from here on start in the new coordinates
-                // (plane points have no shift: polar.rs) and follow the
-                // plane's caps.
-                self.plane = sw.map;
-                self.plane_shift = sw.shift;
-                self.tail = sw.at;
-                self.tail_c = sw.c;
-                self.shift = if sw.map.is_some() { V2::ZERO } else { sw.shift };
-                ItemKind::Plane(sw)
-            }
-            Command::End => ItemKind::End,
-            Command::Alarm(c) => ItemKind::Alarm(c),
+        let Some(kind) = self.item_of(cmd) else {
+            return Ok(Pushed::Empty);
         };
         if self.is_full() {
             return Err(Full);
@@ -506,6 +461,65 @@ impl Planner {
             self.replan();
         }
         Ok(Pushed::Queued)
+    }
+
+    /// The queue item of a command, taking what it sets (a shift, the
+    /// plane, the spindle hints); `None` when it queues nothing. A command
+    /// the full queue refuses is pushed again: what it sets is the same.
+    fn item_of(&mut self, cmd: Command) -> Option<ItemKind> {
+        Some(match cmd {
+            Command::Shift(s) => {
+                self.shift = s;
+                return None;
+            }
+            Command::Move(m) => match self.curve(&m) {
+                Ok(curve) => match self.segment(&m, curve) {
+                    Some(seg) => ItemKind::Move(seg),
+                    None => {
+                        self.tail = m.path.to();
+                        return None;
+                    }
+                },
+                // A conic that cannot be drawn is an alarm at its line,
+                // never a chord in its place.
+                Err(code) => ItemKind::Alarm(code),
+            },
+            Command::Dwell(s) => ItemKind::Dwell(s),
+            // A zero dwell: the moves on both sides cannot join, so the
+            // one before ends at rest.
+            Command::ExactStop => ItemKind::Dwell(0.0),
+            Command::Plc(f) => {
+                self.speed_hint(&f);
+                ItemKind::Plc(f)
+            }
+            Command::Pause(p) => ItemKind::Pause(p),
+            Command::Stroke(a) => ItemKind::Stroke(a),
+            Command::Plane(sw) => {
+                // Moves from here on start in the new coordinates
+                // (plane points have no shift: polar.rs) and follow the
+                // plane's caps.
+                self.plane = sw.map;
+                self.plane_shift = sw.shift;
+                self.tail = sw.at;
+                self.tail_c = sw.c;
+                self.shift = if sw.map.is_some() { V2::ZERO } else { sw.shift };
+                ItemKind::Plane(sw)
+            }
+            Command::End => ItemKind::End,
+            Command::Alarm(c) => ItemKind::Alarm(c),
+        })
+    }
+
+    /// The spindle speed the moves queued after an S word will see.
+    fn speed_hint(&mut self, f: &PlcFunction) {
+        if let PlcFunction::Speed { s, css, .. } = *f {
+            if css {
+                self.css_hint = Some(s);
+            } else {
+                self.css_hint = None;
+                self.rpm_hint = s;
+            }
+        }
     }
 
     /// The exact curve of a move from the current tail; the alarm code
