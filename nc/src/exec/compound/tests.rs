@@ -539,6 +539,13 @@ fn random_profiles_never_panic() {
             if code == "G02" || code == "G03" {
                 b.push_str(&format!(" R{}", next(30) as i64 - 5));
             }
+            // Angle programming: the first block of a pair, or an angle
+            // on a block with an end point (one form or the pair's second).
+            match next(6) {
+                0 => b = format!("{code} Q{}", next(360_000)),
+                1 => b.push_str(&format!(" Q{}", next(360_000))),
+                _ => {}
+            }
             profile.push(b);
         }
         let refs: Vec<&str> = profile.iter().map(String::as_str).collect();
