@@ -1164,7 +1164,15 @@ impl<P: Plc> Engine<P> {
                 return false;
             }
             if v > 0.0 && self.may_cross() {
-                if v > self.cur.v_exit && !matches!(self.cur.kind, MoveKind::Thread(_)) {
+                // Faster than the corner by more than a rounding residue:
+                // a period that braked onto the corner speed may land a
+                // hair above it, and charging the next period to this
+                // move's acceleration would leave a short move after it
+                // behind its braking, to stop at its end harder than the
+                // axes may.
+                if v > self.cur.v_exit * (1.0 + 1e-9)
+                    && !matches!(self.cur.kind, MoveKind::Thread(_))
+                {
                     self.cap_next = self.cap_next.min(self.cur.v_exit);
                     self.cap_accel = self.cur.a;
                 }
