@@ -387,3 +387,16 @@ fn a_short_move_after_an_arc_stops_within_the_axes_acceleration() {
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
     let _ = std::fs::remove_dir_all(d);
 }
+
+/// An arc of 0.6 µm radius, below the resolution (1 µm), turned the
+/// direction within one period and took X to 108 % of its acceleration
+/// (found by random contours); it runs as its chord, its turn taken at
+/// the corners at both ends.
+#[test]
+fn an_arc_below_the_resolution_runs_as_its_chord() {
+    let src = "G98 G00 X30.9245 Z4.9996\nG03 X33.3079 Z4.1573 R2.7155 F500\nG01 X33.2826 Z4.2165\nG01 X33.2806 Z4.2154\nG01 X33.1052 Z4.1107\nG02 X33.1059 Z4.11 R0.0006\nG01 X33.791 Z5.0\nM30\n";
+    let (d, gbc) = compiled("micro-arc", src);
+    let o = gbvm(&["check", gbc.to_str().unwrap()]);
+    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
+    let _ = std::fs::remove_dir_all(d);
+}

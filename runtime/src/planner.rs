@@ -535,6 +535,15 @@ impl Planner {
         Ok(match (m.kind, m.path) {
             (MoveKind::Rapid | MoveKind::Offset, _) => Curve::line(from, m.path.to()),
             (_, crate::command::Path::Line { to }) => Curve::of(Element::Line { from, to }),
+            // An arc whose radius is below the resolution strays less than
+            // two resolutions from its chord, and would turn the direction
+            // within a period: it runs as its chord, its turn taken at the
+            // corners at both ends.
+            (_, crate::command::Path::Arc { to, centre, .. })
+                if (from - centre).norm() < self.tolerance =>
+            {
+                Curve::line(from, to)
+            }
             (_, crate::command::Path::Arc { to, centre, ccw }) => Curve::of(Element::Arc {
                 from,
                 to,
