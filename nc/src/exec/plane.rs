@@ -564,16 +564,11 @@ fn centre(
 /// Moves the programmed point to `to` (along the arc about `centre`
 /// when given) and the joints with it.
 fn follow(nc: &mut Nc, mut st: PlaneState, to: Pt, arc: Option<(Pt, bool)>) {
-    match st.kind {
-        Kind::Polar => {
-            nc.st.c += swept(st.pt, to, arc).to_degrees();
-            nc.st.pos.r = libm::hypot(to.z, to.r);
-        }
-        Kind::Cylinder(radius) => {
-            nc.st.c = (to.z / radius).to_degrees();
-            nc.st.pos.z = to.r;
-        }
-    }
+    nc.st.c = match st.kind {
+        Kind::Polar => nc.st.c + swept(st.pt, to, arc).to_degrees(),
+        Kind::Cylinder(radius) => (to.z / radius).to_degrees(),
+    };
+    nc.st.pos = st.joints(to, nc.st.pos);
     st.pt = to;
     nc.st.plane = Some(st);
 }

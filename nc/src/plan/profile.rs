@@ -451,7 +451,8 @@ mod tests {
         assert!(build(&r, &[]).is_err());
     }
 
-    fn angle_profile(second: &[(u8, f64)], between: usize) -> Result<Vec<Seg>, NcError> {
+    /// The profile of `blocks` from X60 Z2 in G01 on the reference machine.
+    fn from_x60(blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcError> {
         let machine = Machine::reference();
         let r = Reader {
             machine: &machine,
@@ -459,6 +460,10 @@ mod tests {
             at: Pt::xz(60.0, 2.0),
             motion: Motion::Line,
         };
+        build(&r, blocks)
+    }
+
+    fn angle_profile(second: &[(u8, f64)], between: usize) -> Result<Vec<Seg>, NcError> {
         let mut blocks = alloc::vec![
             block(&[(b'G', 0.0), (b'X', 20.0)], 10),
             block(&[(b'G', 1.0), (b'Z', 0.0)], 11),
@@ -469,7 +474,7 @@ mod tests {
         }
         blocks.push(block(second, 13));
         blocks.push(block(&[(b'X', 60.0)], 14));
-        build(&r, &blocks)
+        from_x60(&blocks)
     }
 
     #[test]
@@ -518,18 +523,11 @@ mod tests {
             two.map_err(|e| (e.code, e.at)).unwrap_err(),
             (e4008, Some(21))
         );
-        let machine = Machine::reference();
-        let r = Reader {
-            machine: &machine,
-            inch: false,
-            at: Pt::xz(60.0, 2.0),
-            motion: Motion::Line,
-        };
         let blocks = [
             block(&[(b'G', 0.0), (b'X', 20.0)], 10),
             block(&[(b'G', 1.0), (b'Q', 135_000.0)], 11),
         ];
-        let e = build(&r, &blocks).unwrap_err();
+        let e = from_x60(&blocks).unwrap_err();
         assert_eq!((e.code, e.at), (e4008, Some(11)));
     }
 }
