@@ -547,20 +547,35 @@ impl Certifier {
         // old frame before the jump, or in the new one after it.
         let moved = V2::new((p.axis_x - prev.axis_x) * 0.5, p.axis_z - prev.axis_z);
         let joined = ((b - a) - moved).norm() <= 1e-9;
-        let dist = |e: V2| {
+        // Where the walk stands on the step: the next end point is reached
+        // after the last one (a short move back may end within the
+        // tolerance of where this step began).
+        let mut from = a;
+        let dist = |e: V2, from: V2| {
             if joined {
-                seg_dist(e, a, b)
+                seg_dist(e, from, b)
             } else {
                 seg_dist(e, a, a + moved).min(seg_dist(e, b - moved, b))
             }
         };
         while let Some(m) = self.pending.front().copied() {
-            let d = dist(m.end);
+            let d = dist(m.end, from);
             if d <= m.tol {
+                if joined {
+                    from = seg_nearest(m.end, from, b);
+                }
                 self.reached += 1;
                 self.done = Some(m);
                 self.pending.pop_front();
                 continue;
+            }
+            // Still closing on the end point reached last (it counted as
+            // reached within its tolerance, before the tool got there): the
+            // path is not on its way to this one yet, and going away from
+            // it now says nothing. A reversal of a few µm after a short
+            // move looked like a cut corner.
+            if self.done.is_some_and(|r| closing_on(r.end, b, moved)) {
+                break;
             }
             // The period's travel is the axes' step: where the frame
             // jumped, b − a is the jump, not a way the tool went.
@@ -718,8 +733,19 @@ pub fn long_is_z(d: V2) -> bool {
 /// chosen: far below the 0.001 mm resolution, far above rounding.
 pub const TIE_MM: f64 = 1e-9;
 
+/// Whether the period that ended at `b` after the axes' step `moved`
+/// brought the tool nearer to `e`.
+fn closing_on(e: V2, b: V2, moved: V2) -> bool {
+    (b - e).norm() < (b - moved - e).norm() - 1e-12
+}
+
 /// Distance from `p` to the segment `a`–`b`.
 fn seg_dist(p: V2, a: V2, b: V2) -> f64 {
+    (p - seg_nearest(p, a, b)).norm()
+}
+
+/// The point of the segment `a`–`b` nearest to `p`.
+fn seg_nearest(p: V2, a: V2, b: V2) -> V2 {
     let d = b - a;
     let len2 = d.r * d.r + d.z * d.z;
     let t = if len2 > 0.0 {
@@ -727,7 +753,7 @@ fn seg_dist(p: V2, a: V2, b: V2) -> f64 {
     } else {
         0.0
     };
-    (p - (a + V2::new(d.r * t, d.z * t))).norm()
+    a + V2::new(d.r * t, d.z * t)
 }
 
 impl Sink for Certifier {
@@ -1092,6 +1118,67 @@ mod tests {
         });
         c.finish(false);
         assert_eq!(c.violation(), None);
+    }
+
+    #[test]
+    fn a_reversal_after_an_end_point_reached_early_is_no_miss() {
+        // G01 X0.004 (radius 0.002) then back to X−0.003 (radius −0.0015),
+        // as a random contour ran them: the period to r 0.0015 counts the
+        // first end point reached (0.0005 mm off), the next one ends on
+        // it, the tool stands a period and comes back. Up to the stand the
+        // path nears r −0.0015 no more than 0.0015 mm and then leaves it,
+        // by as much as it moved: that is no cut corner, the tool was
+        // still going to the first end point. It reaches the second.
+        let mut c = certifier();
+        for x in [0.004, -0.003] {
+            c.emit(Event::Line { x, z: 0.0, c: None });
+        }
+        let radii = [0.0, 0.0015, 0.002, 0.002, 0.0005, -0.00125, -0.0015];
+        for (k, &r) in radii.iter().enumerate() {
+            c.period(&at(k as u32 + 1, (2.0 * r, 0.0), (0.0, 0.0), Motion::Feed));
+        }
+        c.finish(true);
+        assert_eq!(c.violation(), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 2 of 2 reached"));
+    }
+
+    #[test]
+    fn end_points_are_reached_in_order_within_a_step() {
+        // G01 W−0.003, back to Z0, then to (r 0.0015, Z −0.004), at 1–2 µm
+        // a period. The step from Z −0.001 to −0.0026 reaches the first
+        // end point (0.0004 mm off) and began 0.001 mm from the second:
+        // that one is only reached after the first, on the way back. Taken
+        // at once, the walk judged the third from Z −0.003, where it came
+        // 0.0018 mm near, and called the step that leaves Z0 for it, by
+        // 0.002 mm, a miss.
+        let mut c = certifier();
+        for (x, z) in [(0.0, -0.003), (0.0, 0.0), (0.003, -0.004)] {
+            c.emit(Event::Line { x, z, c: None });
+        }
+        let path = [
+            (0.0, -0.001),
+            (0.0, -0.0026),
+            (0.0, -0.003),
+            (0.0, -0.001),
+            (0.0, 0.0),
+            (0.000703, -0.001874),
+            (0.0014, -0.00375),
+            (0.0015, -0.004),
+        ];
+        for (k, &(r, z)) in path.iter().enumerate() {
+            c.period(&at(k as u32 + 1, (2.0 * r, z), (0.0, 0.0), Motion::Feed));
+        }
+        c.finish(true);
+        // (The made-up steps break the axes' acceleration: only the end
+        // points are judged here.)
+        assert_eq!(c.worst(Kind::EndPoint), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 3 of 3 reached"));
     }
 
     #[test]
