@@ -400,3 +400,49 @@ fn an_arc_below_the_resolution_runs_as_its_chord() {
     assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
     let _ = std::fs::remove_dir_all(d);
 }
+
+/// A corner next to an arc of a few µm (R 0.0016): the arc turns some 40°
+/// in the period that runs through the corner, so that period's chord
+/// leaves the arc's end tangent by half of it, and the line after took X
+/// to 104.6 % of its acceleration (found by random contours). The corner
+/// speed now keeps that error within the corner's share.
+#[test]
+fn a_corner_after_an_arc_of_a_few_microns_keeps_the_axes_acceleration() {
+    let src = "G98 G00 X86.091 Z-5.212\nG64 F800\nG02 X86.087 Z-5.211 R0.0027\nG02 X86.088 Z-5.210 R0.0015\nG03 X86.086 Z-5.208 R0.0016\nG01 X86.175 Z-5.178\nG01 X85.258 Z-5.178\nM30\n";
+    let (d, gbc) = compiled("micro-corner", src);
+    let o = gbvm(&["check", gbc.to_str().unwrap()]);
+    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
+    let _ = std::fs::remove_dir_all(d);
+}
+
+/// G61 moves of 2 µm out and 3.5 µm back (radius): the period that ends
+/// 0.5 µm before the first end point counts it reached, and the tool goes
+/// on to it before it turns. `gbvm check` took the turn for a corner cut
+/// past the second end point, which the tool reaches two periods later.
+#[test]
+fn a_reversal_of_a_few_microns_reaches_both_end_points() {
+    let src = "G98 G00 X56 Z9.174\nG61 F800\nG01 X55.118 Z9.174\nG01 X55.118 Z10.000\nG01 X55.122 Z10.000\nG01 X55.115 Z10.000\nG01 X55.141 Z9.982\nM30\n";
+    let (d, gbc) = compiled("micro-reversal", src);
+    let o = gbvm(&["check", gbc.to_str().unwrap()]);
+    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
+    assert!(
+        text(&o.stdout).contains("end points: 6 of 6 reached"),
+        "{}",
+        text(&o.stdout)
+    );
+    let _ = std::fs::remove_dir_all(d);
+}
+
+/// An arc of 14 µm, then one of 0.5 µm that runs as its chord, then a
+/// line on: the period through the arc's end corner ran on through the
+/// 0.5 µm move into the line, whose first period had not kept back the
+/// corner's step (X at 101 %). A period now runs through one corner at
+/// most.
+#[test]
+fn a_period_runs_through_one_corner_at_most() {
+    let src = "G98 G00 X56.855 Z10\nG64 F800\nG01 X56.839 Z10.000\nG01 X56.738 Z10.000\nG03 X56.717 Z10.000 R0.0144\nG02 X56.716 Z10.000 R0.0005\nG01 X56.593 Z10.000\nG01 X56.589 Z10.000\nM30\n";
+    let (d, gbc) = compiled("one-corner", src);
+    let o = gbvm(&["check", gbc.to_str().unwrap()]);
+    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
+    let _ = std::fs::remove_dir_all(d);
+}

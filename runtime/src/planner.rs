@@ -919,8 +919,25 @@ impl Planner {
                 // The velocity step of the corner within its share of
                 // each axis's acceleration ...
                 let share = (du.r.abs() * self.iax[0]).max(du.z.abs() * self.iax[1]);
+                // ... with, next to a curve, the chord of the period
+                // through the corner off the curve's end tangent by half
+                // the angle v·dt/R it turns in a period: a velocity error
+                // up to v²·dt/2R more (a curve of a few µm turns tens of
+                // degrees in a period). At a tangent joint the curve's own
+                // centripetal share covers it.
+                let bend = 0.5
+                    * self.dt
+                    * (1.0 / prev.curve.min_radius() + 1.0 / cur.curve.min_radius())
+                    * self.iax[0].max(self.iax[1]);
+                let bend = if share > 1e-18 { bend } else { 0.0 };
                 if share > 1e-18 {
-                    vj = vj.min(self.budget * self.dt / share);
+                    vj = vj.min(corner_speed(share, bend, self.budget * self.dt));
+                    // A period runs through one such corner at most: it
+                    // starts on the move before and ends on the move
+                    // after. (One that ran on through a move of a µm
+                    // would take the corner's step out of the share of a
+                    // move that did not keep it.)
+                    vj = vj.min(prev.len.min(cur.len) / self.dt);
                 }
                 // ... and the chord of the period that runs through the
                 // corner within the tolerance of it: (v·dt/2)·sin(θ/2),
@@ -930,7 +947,7 @@ impl Planner {
                     vj = vj.min(4.0 * self.tolerance / (self.dt * n));
                 }
                 vj = vj.max(0.0);
-                used = vj * share / self.dt;
+                used = (vj * share + vj * vj * bend) / self.dt;
             }
         }
         // Only ever raised: the interpolator may already run on them.
@@ -1004,6 +1021,18 @@ impl Planner {
             k -= 1;
             i = if i == 0 { cap - 1 } else { i - 1 };
         }
+    }
+}
+
+/// The highest corner speed v whose velocity step v·`share` + v²·`bend`
+/// (in units of the axes' acceleration) stays within `budget`.
+fn corner_speed(share: f64, bend: f64, budget: f64) -> f64 {
+    if bend > 0.0 {
+        // The root of bend·v² + share·v − budget, in the form that does
+        // not cancel.
+        2.0 * budget / (share + sqrt(share * share + 4.0 * bend * budget))
+    } else {
+        budget / share
     }
 }
 
