@@ -446,3 +446,17 @@ fn a_period_runs_through_one_corner_at_most() {
     assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
     let _ = std::fs::remove_dir_all(d);
 }
+
+/// A half circle of 21 µm radius runs tangentially into a 15 µm line:
+/// the period through the joint follows the arc's chord, which turns
+/// X's velocity away from the tangent by v²·dt/2R, and the line's first
+/// period, accelerating at X's full limit, took X to 100.9 %. The line
+/// now keeps that share back.
+#[test]
+fn a_line_after_a_tight_arc_keeps_back_the_arcs_share() {
+    let src = "G98 G00 X28.993 Z-0.872\nG64 F800\nG03 X28.900 Z-0.933 R0.0384\nG01 X28.897 Z-0.935\nG03 X28.897 Z-0.893 R0.0210\nG01 X28.928 Z-0.893\nM30\n";
+    let (d, gbc) = compiled("tight-arc", src);
+    let o = gbvm(&["check", gbc.to_str().unwrap()]);
+    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
+    let _ = std::fs::remove_dir_all(d);
+}

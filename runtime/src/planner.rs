@@ -910,7 +910,10 @@ impl Planner {
             // A non-move before: its own move (if any) ends in a stop.
             _ => return,
         };
-        let (mut vj, mut used) = (0.0, 0.0);
+        // The corner speed and the shares of acceleration the two moves
+        // keep back for it: the move before for the period through the
+        // corner, the move after for the period after it.
+        let (mut vj, mut out, mut into) = (0.0, 0.0, 0.0);
         if self.joinable(prev, cur) {
             let du = cur.t0 - prev.t1;
             let threads = matches!(cur.kind, MoveKind::Thread(_));
@@ -919,19 +922,18 @@ impl Planner {
                 // The velocity step of the corner within its share of
                 // each axis's acceleration ...
                 let share = (du.r.abs() * self.iax[0]).max(du.z.abs() * self.iax[1]);
-                // ... with, next to a curve, the chord of the period
-                // through the corner off the curve's end tangent by half
-                // the angle v·dt/R it turns in a period: a velocity error
-                // up to v²·dt/2R more (a curve of a few µm turns tens of
-                // degrees in a period). At a tangent joint the curve's own
-                // centripetal share covers it.
-                let bend = 0.5
-                    * self.dt
-                    * (1.0 / prev.curve.min_radius() + 1.0 / cur.curve.min_radius())
-                    * self.iax[0].max(self.iax[1]);
-                let bend = if share > 1e-18 { bend } else { 0.0 };
+                // ... and the chord of the period through the corner off
+                // a curve's tangent by half the angle v·dt/R the curve
+                // turns in it: a velocity error up to v²·dt/2R, which the
+                // other move's period takes (a curve of a few µm turns
+                // tens of degrees in a period; the curve's own
+                // centripetal share covers its own periods).
+                let bend =
+                    |c: &Curve| 0.5 * self.dt / c.min_radius() * self.iax[0].max(self.iax[1]);
+                let (bend_prev, bend_cur) = (bend(&prev.curve), bend(&cur.curve));
+                let b = self.budget * self.dt;
+                vj = vj.min(corner_speed(share, bend_prev.max(bend_cur), b));
                 if share > 1e-18 {
-                    vj = vj.min(corner_speed(share, bend, self.budget * self.dt));
                     // A period runs through one such corner at most: it
                     // starts on the move before and ends on the move
                     // after. (One that ran on through a move of a µm
@@ -947,7 +949,8 @@ impl Planner {
                     vj = vj.min(4.0 * self.tolerance / (self.dt * n));
                 }
                 vj = vj.max(0.0);
-                used = (vj * share + vj * vj * bend) / self.dt;
+                out = (vj * share + vj * vj * bend_cur) / self.dt;
+                into = (vj * share + vj * vj * bend_prev) / self.dt;
             }
         }
         // Only ever raised: the interpolator may already run on them.
@@ -959,11 +962,11 @@ impl Planner {
         };
         if let ItemKind::Move(p) = &mut self.items[ip].kind {
             p.v_junction = vj;
-            p.c_out = used;
+            p.c_out = out;
             raise(p);
         }
         if let ItemKind::Move(c) = &mut self.items[it].kind {
-            c.c_in = used;
+            c.c_in = into;
             raise(c);
         }
     }
@@ -1025,14 +1028,17 @@ impl Planner {
 }
 
 /// The highest corner speed v whose velocity step v·`share` + v²·`bend`
-/// (in units of the axes' acceleration) stays within `budget`.
+/// (in units of the axes' acceleration) stays within `budget`; ∞ for a
+/// tangent joint of lines.
 fn corner_speed(share: f64, bend: f64, budget: f64) -> f64 {
     if bend > 0.0 {
         // The root of bend·v² + share·v − budget, in the form that does
         // not cancel.
         2.0 * budget / (share + sqrt(share * share + 4.0 * bend * budget))
-    } else {
+    } else if share > 1e-18 {
         budget / share
+    } else {
+        f64::INFINITY
     }
 }
 
