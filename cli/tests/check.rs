@@ -460,3 +460,23 @@ fn a_line_after_a_tight_arc_keeps_back_the_arcs_share() {
     assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
     let _ = std::fs::remove_dir_all(d);
 }
+
+/// With jerk limiting, an arc of 2.45 mm radius at F3000: the moving
+/// average bounds the jerk along the path, but the turning adds v³/R²
+/// and 3·v·a/R on the axes, and X reached 105.8 % of its jerk. The arc's
+/// speed and acceleration now leave room for both.
+#[test]
+fn an_arc_under_jerk_limiting_keeps_the_axes_jerk() {
+    let d = scratch("jerk-arc");
+    let machine = d.join("jerk.toml");
+    std::fs::write(&machine, "[motion]\njerk_limiting = true\n").unwrap();
+    let nc = d.join("arc.nc");
+    let src = "G98 G00 X55.570 Z0.756\nG61 F3000\nG03 X61.994 Z-2.945 R2.4505\nG01 X61.504 Z-3.953\nM30\n";
+    std::fs::write(&nc, src).unwrap();
+    match check(&nc, Some(&machine), &d) {
+        Verdict::Certified(s) => assert!(!s.contains("jerk: not limited"), "{s}"),
+        Verdict::Violation(e) => panic!("{e}"),
+        Verdict::NotRun => panic!("did not run"),
+    }
+    let _ = std::fs::remove_dir_all(d);
+}

@@ -216,6 +216,9 @@ pub struct Planner {
     /// Jerk limiting is on: feeds stop between blocks (the moving average
     /// could otherwise run through a corner faster than its speed).
     jerk: bool,
+    /// With jerk limiting, what a curve's speed and acceleration must
+    /// leave room for (see [`CurveJerk`]).
+    curve_jerk: CurveJerk,
     /// End of the last queued move (machine axes, slide units), and its
     /// C angle.
     tail: V2,
@@ -260,6 +263,33 @@ pub const REPLAN_BATCH: usize = 32;
 /// Highest feed override: the envelope must allow it.
 const MAX_OVERRIDE: f64 = 1.5;
 
+/// Jerk on a curve (jerk limiting on). The moving average over T bounds
+/// the jerk along the path by 2·a/T, but an axis on a curve of radius R
+/// also sees the jerk of the turning: v³/R² along the path and 3·v·a/R
+/// across it. Each axis stays within the smaller jerk J when
+/// a·(2/T + 3·v/R) + v³/R² ≤ J: the curve's speed leaves half of J for
+/// v³/R², its acceleration the rest.
+#[derive(Debug, Clone, Copy)]
+struct CurveJerk {
+    /// J, the smaller of the X and Z jerks.
+    jerk: f64,
+    /// 1/T, T the averaging window.
+    per_accel: f64,
+}
+
+impl CurveJerk {
+    /// The speed cap on a curve of radius `r`: v³/R² ≤ J/2.
+    fn speed(&self, r: f64) -> f64 {
+        libm::cbrt(0.5 * self.jerk * r * r)
+    }
+
+    /// The acceleration cap at speed `v` on a curve of radius `r`.
+    fn accel(&self, v: f64, r: f64) -> f64 {
+        let turning = v * v * v / (r * r);
+        (self.jerk - turning).max(0.0) / (2.0 * self.per_accel + 3.0 * v / r)
+    }
+}
+
 /// What caps a segment's speed and acceleration, whatever its kind.
 struct Limits {
     /// The path speed cap, mm/s.
@@ -297,6 +327,10 @@ impl Planner {
             tolerance: cfg.resolution_mm.max(1e-6),
             exact_stop: cfg.always_exact_stop,
             jerk: cfg.jerk_taps() > 1,
+            curve_jerk: CurveJerk {
+                jerk: cfg.x.jerk.min(cfg.z.jerk),
+                per_accel: 1.0 / (cfg.jerk_taps() as f64 * cfg.period_s),
+            },
             tail: V2::ZERO,
             tail_c: 0.0,
             shift: V2::ZERO,
@@ -687,6 +721,9 @@ impl Planner {
             // curve (sagitta ℓ²/8R).
             cap = cap.min(sqrt(0.5 * amin * rmin));
             cap = cap.min(sqrt(8.0 * rmin * self.tolerance) / self.dt);
+            if self.smooths_curves() {
+                cap = cap.min(self.curve_jerk.speed(rmin));
+            }
         }
         // Line acceleration: the moving axes' limits along the direction.
         let mut a_line = 1.0 / (ur * self.iax[0]).max(uz * self.iax[1]);
@@ -801,6 +838,10 @@ impl Planner {
             seg.a_scale = lim.a_line;
         } else {
             seg.a_scale = lim.amin;
+            if self.smooths_curves() {
+                let a = self.curve_jerk.accel(seg.v_max, lim.rmin);
+                seg.a_scale = seg.a_scale.min(a);
+            }
             seg.f_n = (seg.v_max * seg.v_max / (lim.rmin * lim.amin)).min(0.5);
         }
         // Keep the corner share at the end until the next move is known;
@@ -828,6 +869,12 @@ impl Planner {
         seg.f_n = if lim.is_line { 0.0 } else { 0.5 };
         let rps = self.rpm_hint.max(1.0) / 60.0;
         seg.est_s = seg.long_len / (t.lead.max(1e-6) * rps);
+    }
+
+    /// Jerk limiting smooths the path parameter of the curves queued now
+    /// (a plane's joints have caps of their own: `plane_limits`).
+    fn smooths_curves(&self) -> bool {
+        self.jerk && self.plane.is_none()
     }
 
     /// The C angle a move ends at: lines and rapids may turn C, nothing
@@ -1045,6 +1092,22 @@ fn corner_speed(share: f64, bend: f64, budget: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     /// A batch pass gives the same envelope as a pass after every push.
+    #[test]
+    fn a_curve_under_jerk_limiting_leaves_room_for_the_turning() {
+        // J 20 000 mm/s³, T 0.15 s. R 2: v³/R² ≤ J/2 gives v ≤ ∛40 000
+        // = 34.1995 mm/s. At 10 mm/s the turning takes 1000/4 = 250, and
+        // a·(2/0.15 + 3·10/2) ≤ 19 750 gives a ≤ 697.06 mm/s².
+        let cj = CurveJerk {
+            jerk: 20_000.0,
+            per_accel: 1.0 / 0.15,
+        };
+        assert!((cj.speed(2.0) - 34.199_519).abs() < 1e-6);
+        assert!((cj.accel(10.0, 2.0) - 19_750.0 / (40.0 / 3.0 + 15.0)).abs() < 1e-9);
+        assert!((cj.accel(10.0, 2.0) - 697.06).abs() < 0.01);
+        // A straight line (R = ∞): the whole J·T/2.
+        assert!((cj.accel(10.0, f64::INFINITY) - 1500.0).abs() < 1e-9);
+    }
+
     #[test]
     fn batched_and_single_passes_agree() {
         let cfg = Config::default();
