@@ -6,30 +6,8 @@
 
 mod common;
 
+use common::{certify, Lcg};
 use nc::Machine;
-use runtime::certify::Certifier;
-use runtime::{AutoAck, Config, Controller, RunState};
-
-/// A small deterministic generator (64-bit LCG, Knuth's constants).
-struct Lcg(u64);
-
-impl Lcg {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        ((lo + (hi - lo) * self.unit()) * 1000.0).round() / 1000.0
-    }
-
-    fn pick<T: Copy>(&mut self, of: &[T]) -> T {
-        of[((self.unit() * of.len() as f64) as usize).min(of.len() - 1)]
-    }
-}
 
 /// A contour of G12.1: points in x −30…30, c −20…20 (radius values).
 fn polar(rng: &mut Lcg) -> String {
@@ -76,44 +54,11 @@ fn cylinder(rng: &mut Lcg) -> String {
     s + "G7.1 C0\nM30\n"
 }
 
-/// `Some(verdict)` of a run of `src` to its end: `Ok` certified, `Err`
-/// the violation; `None` where it does not compile or stops with an
-/// alarm (an arc that cannot be drawn, a path through the centre).
-fn certify(src: &str, jerk: bool) -> Option<Result<(), String>> {
+/// The reference machine with a C axis.
+fn c_machine() -> Machine {
     let mut machine = Machine::reference();
     machine.axes.c.enabled = true;
-    let opts = compiler::Options {
-        machine: machine.clone(),
-        ..compiler::Options::default()
-    };
-    let module = compiler::compile("plane.nc", src.as_bytes(), &opts).module?;
-    let mut cfg = Config::from_machine(&machine);
-    cfg.jerk_limited = jerk;
-    let mut ctl = Controller::with_config(module, machine, cfg, AutoAck).expect("loads");
-    let engine = ctl.engine();
-    let start = engine.position();
-    let mut cert = Certifier::new(engine.config(), start.x(), start.z, engine.c());
-    ctl.cycle_start();
-    // (600 s of simulated time at 1 ms periods.)
-    for _ in 0..600_000 {
-        ctl.run_ahead_tap(&mut cert);
-        cert.period(&ctl.tick());
-        match ctl.state() {
-            RunState::Ended => break,
-            RunState::Alarm(_) => return None,
-            _ => {}
-        }
-    }
-    assert_eq!(
-        ctl.state(),
-        RunState::Ended,
-        "{src}: the run did not end in 600 s"
-    );
-    cert.finish(true);
-    Some(match cert.violation() {
-        None => Ok(()),
-        Some(v) => Err(format!("line {}: {v}", v.line)),
-    })
+    machine
 }
 
 #[test]
@@ -127,7 +72,7 @@ fn random_plane_programs_are_certified() {
             cylinder(&mut rng)
         };
         for jerk in [false, true] {
-            match certify(&src, jerk) {
+            match certify(&src, &c_machine(), jerk) {
                 Some(Ok(())) => certified += 1,
                 Some(Err(v)) => panic!("jerk {jerk}: {v}\n{src}"),
                 None => {}

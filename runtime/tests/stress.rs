@@ -8,9 +8,9 @@ pub use common::*;
 use nc::Machine;
 use runtime::RunState;
 
-struct Lcg(u64);
+struct Seq(u64);
 
-impl Lcg {
+impl Seq {
     fn next(&mut self) -> u64 {
         self.0 = self
             .0
@@ -24,7 +24,7 @@ impl Lcg {
 }
 
 pub fn program(seed: u64, blocks: usize) -> String {
-    let mut g = Lcg(seed);
+    let mut g = Seq(seed);
     let mut s = String::from("O0100\nG97 S1200 M03\nG00 X40 Z0\nG98 F500\n");
     let (mut x, mut z) = (40.0f64, 0.0f64);
     for _ in 0..blocks {
@@ -66,7 +66,7 @@ pub fn program(seed: u64, blocks: usize) -> String {
 /// One generated program, run with the operator playing with the panel.
 pub fn run_seed(seed: u64, log: &mut dyn FnMut(f64, &str)) -> Run {
     let src = program(seed, 150);
-    let mut g = Lcg(seed * 77);
+    let mut g = Seq(seed * 77);
     let mut next_event = 0.2;
     let mut hold_until = None;
     run_with(

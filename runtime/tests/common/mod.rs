@@ -3,7 +3,8 @@
 #![allow(dead_code)]
 
 use nc::{Event, Machine};
-use runtime::{AlarmInfo, Config, Controller, Motion, Plc, Realtime, RunState, SetPoint};
+use runtime::certify::Certifier;
+use runtime::{AlarmInfo, AutoAck, Config, Controller, Motion, Plc, Realtime, RunState, SetPoint};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
@@ -313,4 +314,64 @@ pub fn hash(r: &Run) -> u64 {
         eat(p.tool as u64);
     }
     h
+}
+
+/// A small deterministic generator (64-bit LCG, Knuth's constants).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    pub fn unit(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        ((lo + (hi - lo) * self.unit()) * 1000.0).round() / 1000.0
+    }
+
+    pub fn pick<T: Copy>(&mut self, of: &[T]) -> T {
+        of[((self.unit() * of.len() as f64) as usize).min(of.len() - 1)]
+    }
+}
+
+/// `Some(verdict)` of a run of `src` to its end: `Ok` certified, `Err`
+/// the violation; `None` where it does not compile or stops with an
+/// alarm (an arc that cannot be drawn, a path through the centre), on
+/// `machine` with jerk limiting on or off.
+pub fn certify(src: &str, machine: &Machine, jerk: bool) -> Option<Result<(), String>> {
+    let opts = compiler::Options {
+        machine: machine.clone(),
+        ..compiler::Options::default()
+    };
+    let module = compiler::compile("random.nc", src.as_bytes(), &opts).module?;
+    let mut cfg = Config::from_machine(machine);
+    cfg.jerk_limited = jerk;
+    let mut ctl = Controller::with_config(module, machine.clone(), cfg, AutoAck).expect("loads");
+    let engine = ctl.engine();
+    let start = engine.position();
+    let mut cert = Certifier::new(engine.config(), start.x(), start.z, engine.c());
+    ctl.cycle_start();
+    // (600 s of simulated time at 1 ms periods.)
+    for _ in 0..600_000 {
+        ctl.run_ahead_tap(&mut cert);
+        cert.period(&ctl.tick());
+        match ctl.state() {
+            RunState::Ended => break,
+            RunState::Alarm(_) => return None,
+            _ => {}
+        }
+    }
+    assert_eq!(
+        ctl.state(),
+        RunState::Ended,
+        "{src}: the run did not end in 600 s"
+    );
+    cert.finish(true);
+    Some(match cert.violation() {
+        None => Ok(()),
+        Some(v) => Err(format!("line {}: {v}", v.line)),
+    })
 }
