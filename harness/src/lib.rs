@@ -4,6 +4,7 @@
 //! them under libFuzzer (nightly); `tests/bounded.rs` runs them a few
 //! seconds each on stable, from seeds and random mutations.
 
+pub mod contour;
 pub mod expr;
 pub mod jit_diff;
 

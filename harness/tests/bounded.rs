@@ -155,6 +155,35 @@ proptest! {
     fn jit_against_interpreter_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..256)) {
         harness::jit_diff::differential(&data);
     }
+
+    #[test]
+    fn contours_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..121)) {
+        harness::contour::certified(&data);
+    }
+}
+
+#[test]
+fn the_contour_decoder_reads_four_bytes_a_move() {
+    use harness::contour::decode;
+    // Traced by hand. Settings 0b1011: jerk limiting, G61, feed 2 (F3000).
+    // Move 1: 5 → G01 (5 mod 4 = 1) along an axis (bit 2), length
+    // 10^(−3.3 + 4.3·255/255) = 10 mm, 1 quarter turn: +Z, to Z10 (Z is
+    // held within 10). Move 2: 2 → G02, length 10^(−3.3 + 4.3·153/255)
+    // = 10^−0.72 = 0.190546 mm, direction 128/256 of a turn: −X by twice
+    // that on the diameter, X59.619 (rounded); R = half the chord (0.381
+    // on the diameter is 0.1905 on the radius: 0.09525) × RADII[1 mod 5]
+    // = 1.01: 0.0962. A last short chunk is ignored.
+    let (src, jerk) = decode(&[0b1011, 5, 255, 1, 0, 2, 153, 128, 1, 9, 9]);
+    assert!(jerk);
+    assert_eq!(
+        src,
+        "G00 X60 Z2\nM03 S1000\nG61\nG98 F3000\nG01 X60.000 Z10.000\nG02 X59.619 Z10.000 R0.0962\nG00 X80 Z5\nM30\n"
+    );
+    // No bytes: the settings 0 (G64, F100) and no move.
+    assert_eq!(
+        decode(&[]).0,
+        "G00 X60 Z2\nM03 S1000\nG64\nG98 F100\nG00 X80 Z5\nM30\n"
+    );
 }
 
 #[test]

@@ -30,6 +30,7 @@
 //! always plans its last queued move to a stop, so the wait cannot
 //! deadlock.
 
+use crate::certify::Certifier;
 use crate::config::{Config, RapidOverride};
 use crate::interpolate::{Engine, RunState, SetPoint};
 use crate::plc::{AutoAck, Plc};
@@ -345,6 +346,32 @@ impl<P: Plc> Controller<P> {
     pub fn run_ahead_tap(&mut self, tap: &mut dyn Sink) {
         self.ra.fill(&mut self.engine, tap);
         self.engine.replan();
+    }
+
+    /// Runs the program from cycle start with every period checked by a
+    /// [`Certifier`] (`gbvm check`), until it ends, an alarm stops it or
+    /// `max_ticks` periods pass; a stop that waits for the operator (M00,
+    /// M01, single block) is answered with cycle start. Gives the
+    /// certifier, finished, and the last set point; [`Controller::state`]
+    /// tells how the run ended (only a run that ended owes every end
+    /// point).
+    pub fn run_certified(&mut self, max_ticks: u64) -> (Certifier, SetPoint) {
+        let start = self.engine.position();
+        let mut cert = Certifier::new(self.engine.config(), start.x(), start.z, self.engine.c());
+        let mut last = SetPoint::default();
+        self.cycle_start();
+        for _ in 0..max_ticks {
+            self.run_ahead_tap(&mut cert);
+            last = self.tick();
+            cert.period(&last);
+            match self.state() {
+                RunState::Stopped(_) | RunState::Idle => self.cycle_start(),
+                RunState::Ended | RunState::Alarm(_) => break,
+                _ => {}
+            }
+        }
+        cert.finish(self.state() == RunState::Ended);
+        (cert, last)
     }
 }
 

@@ -3,7 +3,6 @@
 #![allow(dead_code)]
 
 use nc::{Event, Machine};
-use runtime::certify::Certifier;
 use runtime::{AlarmInfo, AutoAck, Config, Controller, Motion, Plc, Realtime, RunState, SetPoint};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -350,26 +349,16 @@ pub fn certify(src: &str, machine: &Machine, jerk: bool) -> Option<Result<(), St
     let mut cfg = Config::from_machine(machine);
     cfg.jerk_limited = jerk;
     let mut ctl = Controller::with_config(module, machine.clone(), cfg, AutoAck).expect("loads");
-    let engine = ctl.engine();
-    let start = engine.position();
-    let mut cert = Certifier::new(engine.config(), start.x(), start.z, engine.c());
-    ctl.cycle_start();
     // (600 s of simulated time at 1 ms periods.)
-    for _ in 0..600_000 {
-        ctl.run_ahead_tap(&mut cert);
-        cert.period(&ctl.tick());
-        match ctl.state() {
-            RunState::Ended => break,
-            RunState::Alarm(_) => return None,
-            _ => {}
-        }
+    let (cert, _) = ctl.run_certified(600_000);
+    if let RunState::Alarm(_) = ctl.state() {
+        return None;
     }
     assert_eq!(
         ctl.state(),
         RunState::Ended,
         "{src}: the run did not end in 600 s"
     );
-    cert.finish(true);
     Some(match cert.violation() {
         None => Ok(()),
         Some(v) => Err(format!("line {}: {v}", v.line)),

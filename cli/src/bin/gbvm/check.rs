@@ -5,7 +5,6 @@
 //! first violation on stderr, placed by its source line.
 
 use super::{fail, load, note, printable, E_TIME};
-use runtime::certify::Certifier;
 use runtime::RunState;
 use std::io::Write;
 use std::path::Path;
@@ -34,26 +33,11 @@ pub(super) fn check(file: &Path, machine: Option<&Path>, max_time: Option<f64>) 
         }
         Err(e) => return fail(&format!("{}: {e}", file.display())),
     };
-    let engine = ctl.engine();
-    let start = engine.position();
-    let mut cert = Certifier::new(engine.config(), start.x(), start.z, engine.c());
-    let period = engine.config().period_s;
+    let period = ctl.engine().config().period_s;
     let max_time = max_time.unwrap_or(ctl.machine().run.max_time_s);
     let max_ticks = (max_time / period).ceil() as u64;
-    let mut last = runtime::SetPoint::default();
-    ctl.cycle_start();
-    for _ in 0..max_ticks {
-        ctl.run_ahead_tap(&mut cert);
-        last = ctl.tick();
-        cert.period(&last);
-        match ctl.state() {
-            RunState::Stopped(_) | RunState::Idle => ctl.cycle_start(),
-            RunState::Ended | RunState::Alarm(_) => break,
-            _ => {}
-        }
-    }
+    let (cert, last) = ctl.run_certified(max_ticks);
     let ended = ctl.state() == RunState::Ended;
-    cert.finish(ended);
     let name = |i: u16| printable(files.get(usize::from(i)).map_or("", String::as_str));
     let verdict = match (ended, cert.violation()) {
         (true, None) => "certified",
