@@ -274,7 +274,7 @@ struct CurveJerk {
     /// J, the smaller of the X and Z jerks.
     jerk: f64,
     /// 1/T, T the averaging window.
-    per_accel: f64,
+    inv_window: f64,
 }
 
 impl CurveJerk {
@@ -286,7 +286,7 @@ impl CurveJerk {
     /// The acceleration cap at speed `v` on a curve of radius `r`.
     fn accel(&self, v: f64, r: f64) -> f64 {
         let turning = v * v * v / (r * r);
-        (self.jerk - turning).max(0.0) / (2.0 * self.per_accel + 3.0 * v / r)
+        (self.jerk - turning).max(0.0) / (2.0 * self.inv_window + 3.0 * v / r)
     }
 }
 
@@ -329,7 +329,7 @@ impl Planner {
             jerk: cfg.jerk_taps() > 1,
             curve_jerk: CurveJerk {
                 jerk: cfg.x.jerk.min(cfg.z.jerk),
-                per_accel: 1.0 / (cfg.jerk_taps() as f64 * cfg.period_s),
+                inv_window: 1.0 / (cfg.jerk_taps() as f64 * cfg.period_s),
             },
             tail: V2::ZERO,
             tail_c: 0.0,
@@ -1091,7 +1091,6 @@ fn corner_speed(share: f64, bend: f64, budget: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    /// A batch pass gives the same envelope as a pass after every push.
     #[test]
     fn a_curve_under_jerk_limiting_leaves_room_for_the_turning() {
         // J 20 000 mm/s³, T 0.15 s. R 2: v³/R² ≤ J/2 gives v ≤ ∛40 000
@@ -1099,7 +1098,7 @@ mod tests {
         // a·(2/0.15 + 3·10/2) ≤ 19 750 gives a ≤ 697.06 mm/s².
         let cj = CurveJerk {
             jerk: 20_000.0,
-            per_accel: 1.0 / 0.15,
+            inv_window: 1.0 / 0.15,
         };
         assert!((cj.speed(2.0) - 34.199_519).abs() < 1e-6);
         assert!((cj.accel(10.0, 2.0) - 19_750.0 / (40.0 / 3.0 + 15.0)).abs() < 1e-9);
@@ -1108,6 +1107,7 @@ mod tests {
         assert!((cj.accel(10.0, f64::INFINITY) - 1500.0).abs() < 1e-9);
     }
 
+    /// A batch pass gives the same envelope as a pass after every push.
     #[test]
     fn batched_and_single_passes_agree() {
         let cfg = Config::default();
