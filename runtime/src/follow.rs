@@ -8,15 +8,17 @@
 //! servo can. A real control lets that axis follow its command with its
 //! acceleration limit, so the corner is cut round and the pull-out ends a
 //! little later than programmed. [`Follower`] does the same: each axis
-//! tracks the chain's point with at most its acceleration per period,
-//! closing any lag with a braking law so that it lands on the point
-//! without overshoot when the point stands. While it follows exactly (the
+//! tracks the chain's point with at most its acceleration per period and
+//! at most its top speed, closing any lag with a braking law so that it
+//! lands on the point without overshoot when the point stands, and never
+//! runs faster than it could stop where the point would if the point
+//! braked at the axis's whole acceleration (the end of a chain). While it follows exactly (the
 //! ramp, the locked helix) the set point is the chain point, bit for bit.
 //!
 //! It touches only its own fields: nothing allocates, nothing locks.
 
 use crate::math::V2;
-use crate::profile::brake_limit;
+use crate::profile::{brake_limit, stopping_distance};
 
 /// The share of an axis's acceleration that closes a lag; the rest is left
 /// for the chain point's own speed changes. *Choice*: one half.
@@ -38,13 +40,35 @@ struct AxisFollow {
 }
 
 impl AxisFollow {
-    /// One period towards the point `t` with acceleration `a`.
-    fn step(&mut self, t: f64, a: f64, dt: f64) {
+    /// One period towards the point `t` with acceleration `a`, never
+    /// faster than `vmax`.
+    fn step(&mut self, t: f64, a: f64, vmax: f64, dt: f64) {
         let vt = (t - self.t) / dt;
         // The lag before this period; the relative speed that closes it.
         let e0 = self.t - self.p;
         let close = brake_limit(e0.abs(), 0.0, CLOSE_SHARE * a, dt).copysign(e0);
-        let v = (vt + close).clamp(self.v - a * dt, self.v + a * dt);
+        // Closing a lag must neither take the axis past its top speed nor
+        // past the point: the point may stop within the axis's
+        // acceleration (a chain's end), so the axis keeps a speed from
+        // which it stops where the point would (and a period's speed
+        // change more: a point running on at a constant speed is followed
+        // exactly). The speed clamp holds whatever the last period's speed
+        // was: that one kept it too.
+        let want = vt + close;
+        let ahead = (t - self.p) * want.signum();
+        // How far on the point may still run if it brakes from the next
+        // period on.
+        let runs_on = if vt * want > 0.0 {
+            stopping_distance(vt.abs(), a, dt) - vt.abs() * dt
+        } else {
+            0.0
+        };
+        // (A hair of rounding over, so that a point followed exactly stays so.)
+        let room = brake_limit(ahead + runs_on, 0.0, a, dt) * (1.0 + 1e-12) + 1e-12;
+        let v = want
+            .clamp(-room, room)
+            .clamp(self.v - a * dt, self.v + a * dt)
+            .clamp(-vmax, vmax);
         let mut p = self.p + v * dt;
         if (t - p).abs() <= SNAP_MM {
             p = t;
@@ -71,9 +95,10 @@ impl Follower {
 
     /// One period: the set point for the programmed point `target`
     /// (`thread`: the period belongs to a thread chain), with the axes'
-    /// accelerations `acc` (radial X, Z). Outside threads the set point is
-    /// the target and the follower only keeps pace.
-    pub fn step(&mut self, target: V2, thread: bool, acc: [f64; 2], dt: f64) -> V2 {
+    /// accelerations `acc` and top speeds `vmax` (radial X, Z). Outside
+    /// threads the set point is the target and the follower only keeps
+    /// pace.
+    pub fn step(&mut self, target: V2, thread: bool, acc: [f64; 2], vmax: [f64; 2], dt: f64) -> V2 {
         let ts = [target.r, target.z];
         if !self.engaged && !thread {
             for (ax, &t) in self.axes.iter_mut().zip(&ts) {
@@ -84,9 +109,9 @@ impl Follower {
             return target;
         }
         let mut exact = true;
-        for ((ax, &t), &a) in self.axes.iter_mut().zip(&ts).zip(&acc) {
+        for (((ax, &t), &a), &vm) in self.axes.iter_mut().zip(&ts).zip(&acc).zip(&vmax) {
             let before = ax.t;
-            ax.step(t, a, dt);
+            ax.step(t, a, vm, dt);
             exact &= ax.p == t && ax.v == (t - before) / dt;
         }
         self.engaged = thread || !exact;
@@ -124,7 +149,7 @@ mod tests {
             if k < 100 {
                 t += v * DT;
             }
-            f.step(t, a, DT);
+            f.step(t, a, f64::INFINITY, DT);
             assert!((f.v - prev_v).abs() <= a * DT * (1.0 + 1e-9), "period {k}");
             if reached.is_none() && f.v >= v - 1e-9 {
                 reached = Some(k + 1);
@@ -136,6 +161,45 @@ mod tests {
         assert_eq!(f.v, 0.0);
     }
 
+    /// A point that jumps to 50 mm/s (a 45° pull-out of lead 2 at 1500
+    /// rpm), runs 60 periods and brakes at the axis's whole acceleration
+    /// (the chain's end): the axis, 0.8 mm behind after its ramp, closes
+    /// the lag without passing its top speed (66.667 mm/s, 4000 mm/min)
+    /// and without running past the point where it stops (the law that
+    /// only closed the lag went past it by 0.1 mm).
+    #[test]
+    fn a_lag_closes_within_the_top_speed_and_never_past_a_braking_point() {
+        let (a, vmax) = (1500.0, 4000.0 / 60.0);
+        // The point: 60 periods at 50 mm/s, then 1.5 mm/s slower each
+        // period down to a stand (period 94 on).
+        let mut path = alloc::vec::Vec::new();
+        let (mut t, mut vt) = (0.0, 50.0);
+        for k in 0..400 {
+            if k >= 60 {
+                vt = f64::max(vt - a * DT, 0.0);
+            }
+            t += vt * DT;
+            path.push(t);
+        }
+        let end = t;
+        let mut f = AxisFollow::default();
+        let mut prev_v = 0.0;
+        for (k, &t) in path.iter().enumerate() {
+            f.step(t, a, vmax, DT);
+            assert!(
+                f.v.abs() <= vmax * (1.0 + 1e-12),
+                "period {k}: {} mm/s",
+                f.v
+            );
+            // (The snap onto the point may add SNAP_MM in a period.)
+            let step = (f.v - prev_v).abs();
+            assert!(step <= a * DT + SNAP_MM / DT, "period {k}: {step}");
+            assert!(f.p <= end + 1e-12, "period {k}: {} past {end}", f.p);
+            prev_v = f.v;
+        }
+        assert_eq!(f.p, end, "lands on the point");
+    }
+
     /// A point that moves within the limit is followed exactly.
     #[test]
     fn a_point_within_the_limit_is_followed_exactly() {
@@ -143,7 +207,7 @@ mod tests {
         for k in 0..50 {
             // 1000 mm/s², under the 1500 of the axis.
             let t = 0.5 * 1000.0 * ((k + 1) as f64 * DT).powi(2);
-            f.step(t, 1500.0, DT);
+            f.step(t, 1500.0, f64::INFINITY, DT);
             assert_eq!(f.p, t);
         }
     }

@@ -574,7 +574,8 @@ impl<P: Plc> Engine<P> {
         }
         let thread = self.motion == Motion::Thread;
         let acc = [self.cfg.x.accel, self.cfg.z.accel];
-        self.out = self.follow.step(self.pos, thread, acc, self.dt);
+        let vmax = [self.cfg.x.max_feed, self.cfg.z.max_feed];
+        self.out = self.follow.step(self.pos, thread, acc, vmax, self.dt);
         if !thread && self.follow.engaged() {
             self.motion = Motion::Thread;
         }
