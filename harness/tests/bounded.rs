@@ -279,3 +279,25 @@ fn cos_of_a_huge_quotient_agrees_with_the_reference() {
     // relative change of 10⁻¹⁶ in the argument moves its COS by 3·10⁻⁵.
     assert!((got - -0.4454203620174174).abs() < 1e-4, "{got}");
 }
+
+/// The first finding of the `contour` target: a half circle of 33.5 µm
+/// radius ends tangent to four collinear moves of 0.5 µm and a line of
+/// 0.26 mm. The line after the arc kept back the share of acceleration the
+/// arc's chord takes in the period through the joint, but that period ran
+/// through all four short moves into the long line, which had not, and X
+/// reached 1500.136 mm/s² of 1500. A move a period may run through hands
+/// its share on to the next.
+#[test]
+fn a_share_kept_for_a_joint_passes_on_through_moves_shorter_than_a_period() {
+    let data = [
+        0x08, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x10, 0x05, 0xff, 0x7e,
+        0x10, 0x05, 0xff, 0x7e, 0x09, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+        0x00, 0x00, 0x00, 0x00, 0x00, 0xf4, 0xeb, 0x40, 0xa1, 0x00, 0x09, 0x00, 0x2b, 0x00, 0x00,
+    ];
+    let (src, jerk) = harness::contour::decode(&data);
+    assert!(
+        !jerk && src.contains("G03 X60.137 Z2.067 R0.0335\nG01 X60.138 Z2.067\n"),
+        "{src}"
+    );
+    harness::contour::certified(&data);
+}

@@ -998,6 +998,12 @@ impl Planner {
                 vj = vj.max(0.0);
                 out = (vj * share + vj * vj * bend_cur) / self.dt;
                 into = (vj * share + vj * vj * bend_prev) / self.dt;
+                if prev.len < vj * self.dt {
+                    // A period may run through the whole move before (a
+                    // µm along a tangent): what that move kept back for
+                    // the corner before it, this one keeps too.
+                    into = into.max(prev.c_in);
+                }
             }
         }
         // Only ever raised: the interpolator may already run on them.
