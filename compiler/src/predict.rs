@@ -29,8 +29,8 @@ use nc::{Event, Machine, Sink};
 /// The warnings a prediction may give: W124 and those of the blocks it
 /// runs. (The compile-time run is made only when one of them is
 /// reported.)
-pub const CODES: [&str; 10] = [
-    "W104", "W105", "W108", "W110", "W111", "W112", "W114", "W118", "W124", "W125",
+pub const CODES: [&str; 11] = [
+    "W104", "W105", "W108", "W110", "W111", "W112", "W114", "W118", "W124", "W125", "W126",
 ];
 
 /// Instructions a prediction may run beyond one for each instruction of

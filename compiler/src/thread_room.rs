@@ -2,7 +2,9 @@
 //! long axis needs to reach thread speed, or whose last block is shorter
 //! than the distance it needs to stop (`nc::thread_room`). Over those
 //! lengths the lead is not the programmed one; where they run past a
-//! block, that block is not cut at its lead at all.
+//! block, that block is not cut at its lead at all. W126: a thread block
+//! whose lead × spindle speed asks an axis for more than its maximum
+//! cutting feed, where the run stops with E4010.
 //!
 //! The dry run of a static program feeds the canon events here as the
 //! kernel makes them: the spindle speed, the tool's position and the
@@ -30,6 +32,9 @@ struct Leg {
 pub struct RoomCheck {
     x_accel: f64,
     z_accel: f64,
+    /// The axes' maximum cutting feeds, mm/min (X radial).
+    x_max_feed: f64,
+    z_max_feed: f64,
     spindle_accel: f64,
     max_rpm: f64,
     min_rpm: f64,
@@ -59,6 +64,8 @@ impl RoomCheck {
         RoomCheck {
             x_accel: m.axes.x.accel_mm_s2,
             z_accel: m.axes.z.accel_mm_s2,
+            x_max_feed: m.axes.x.max_feed_mm_min,
+            z_max_feed: m.axes.z.max_feed_mm_min,
             spindle_accel: m.spindle.accel_rpm_s,
             max_rpm: m.spindle.max_rpm,
             min_rpm: m.spindle.min_rpm.max(0.0),
@@ -102,13 +109,17 @@ impl RoomCheck {
                     if self.chain.is_empty() {
                         self.rpm = self.rpm_at(x0).unwrap_or(0.0);
                     }
-                    self.chain.push(Leg {
+                    let leg = Leg {
                         d_r: (x - x0) / 2.0,
                         d_z: z - z0,
                         lead,
                         unit: self.unit,
                         span: self.span,
-                    });
+                    };
+                    if self.chain.is_empty() {
+                        self.check_speed(&leg);
+                    }
+                    self.chain.push(leg);
                 } else {
                     self.unmeasured = true;
                 }
@@ -138,6 +149,37 @@ impl RoomCheck {
                 }
             }
             _ => {}
+        }
+    }
+
+    /// W126: the first leg's lead at the chain's spindle speed against
+    /// the axes' maximum cutting feeds, as the runtime checks it where the
+    /// chain starts (E4010): the long axis runs at lead × rpm, the other
+    /// in proportion. (The axis that follows a later leg's corner, a
+    /// pull-out, does so within its own top speed.)
+    fn check_speed(&mut self, leg: &Leg) {
+        let (dr, dz) = (leg.d_r.abs(), leg.d_z.abs());
+        let long = dr.max(dz);
+        if !is_pos(self.rpm) || !is_pos(long) {
+            return;
+        }
+        let v_long = leg.lead * self.rpm;
+        let speeds = [
+            ("X", v_long * dr / long, self.x_max_feed),
+            ("Z", v_long * dz / long, self.z_max_feed),
+        ];
+        let Some(&(axis, v, max)) = speeds.iter().find(|(_, v, max)| *v > max * (1.0 + 1e-9))
+        else {
+            return;
+        };
+        let msg = format!(
+            "thread too fast for the axis: at {:.0} rpm lead {} asks {axis} for {v:.0} mm/min, above its maximum cutting feed of {max:.0} mm/min; the run stops here with E4010",
+            self.rpm, leg.lead
+        );
+        let kind = "W126".to_string();
+        if self.told.insert((leg.unit, leg.span, kind)) {
+            self.warnings
+                .push((leg.unit, Diagnostic::warning("W126", leg.span, msg)));
         }
     }
 

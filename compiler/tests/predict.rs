@@ -143,7 +143,7 @@ fn every_suite_program_made_dynamic_keeps_its_dry_run_warnings() {
     // which the dry run passes and the VM stops at; a dry run out of
     // steps, W120; a run past the block budget, W122.)
     let ran = [
-        "W105", "W108", "W110", "W111", "W112", "W114", "W118", "W125",
+        "W105", "W108", "W110", "W111", "W112", "W114", "W118", "W125", "W126",
     ];
     let of = |c: &compiler::Compiled| -> Vec<(&'static str, usize, usize)> {
         (c.diags.iter())

@@ -35,7 +35,7 @@ fn of(src: &str) -> Vec<(&'static str, usize)> {
 /// (not W107, which the VM's run tells as its E7001 alarm, W124).
 fn ran(found: &[(&'static str, usize)]) -> Vec<(&'static str, usize)> {
     let ran = [
-        "W105", "W108", "W110", "W111", "W112", "W114", "W118", "W125",
+        "W105", "W108", "W110", "W111", "W112", "W114", "W118", "W125", "W126",
     ];
     found
         .iter()
@@ -313,4 +313,47 @@ fn w104_and_w108_in_polar_and_cylindrical_interpolation() {
     // An arc in the plane that ends where it starts moves nothing: W108.
     let src = "G98 G00 X40 Z2 C0\nG12.1\nG01 X20 C10 F300\nG02 X20 C10 R5\nG13.1\nM30\n";
     assert_eq!(found(src), [("W108", 4)]);
+}
+
+/// W126 alone, with the messages (made dynamic too).
+fn w126(src: &str) -> Vec<(usize, String)> {
+    let c = compile("w.nc", src.as_bytes(), &Options::default());
+    let dynamic = of(&format!("{src}#1=1\n"));
+    assert_eq!(ran(&dynamic), ran(&of(src)), "made dynamic: {src}");
+    c.diags
+        .iter()
+        .filter(|(_, d)| d.code == "W126")
+        .map(|(f, d)| (c.files[*f].line_col(d.span.start).0, d.message.clone()))
+        .collect()
+}
+
+#[test]
+fn w126_a_thread_too_fast_for_the_axis() {
+    // Lead 4 at 1500 rpm: Z runs at 4 × 1500 = 6000 mm/min, above the
+    // reference machine's 5000 (the run stops with E4010). Lead 3 asks
+    // 4500: no warning.
+    let src = "G97 S1500 M03\nG00 X30 Z5\nG32 Z-20 F4\nG00 X40\nM30\n";
+    let w = w126(src);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].0, 3);
+    assert!(
+        w[0].1
+            .contains("asks Z for 6000 mm/min, above its maximum cutting feed of 5000"),
+        "{}",
+        w[0].1
+    );
+    assert_eq!(w126(&src.replace("F4", "F3")), []);
+    // A taper whose long axis is X (20 on the radius against 5 along Z):
+    // X at 3 × 1500 = 4500 mm/min, above its 4000; Z at 4500 × 5/20 =
+    // 1125. At 1000 rpm X needs 3000: no warning.
+    let taper = "G97 S1500 M03\nG00 X20 Z5\nG32 X60 Z0 F3\nG00 X80\nM30\n";
+    let w = w126(taper);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].1
+            .contains("asks X for 4500 mm/min, above its maximum cutting feed of 4000"),
+        "{}",
+        w[0].1
+    );
+    assert_eq!(w126(&taper.replace("S1500", "S1000")), []);
 }

@@ -10,15 +10,15 @@ use nc::Machine;
 use runtime::{AutoAck, Config, Controller, RunState};
 
 /// Moves a contour has at most (4 bytes each).
-const MAX_MOVES: usize = 40;
+pub const MAX_MOVES: usize = 40;
 /// Periods a run may take: 600 s, far more than 40 moves of 10 mm at the
 /// slowest feed need.
-const MAX_TICKS: u64 = 600_000;
+pub const MAX_TICKS: u64 = 600_000;
 
 /// The feeds the settings byte chooses from.
-const FEEDS: [&str; 4] = ["G98 F100", "G98 F800", "G98 F3000", "G99 F0.2"];
+pub const FEEDS: [&str; 4] = ["G98 F100", "G98 F800", "G98 F3000", "G99 F0.2"];
 /// Arc radii in halves of the chord.
-const RADII: [f64; 5] = [1.0001, 1.01, 1.5, 3.0, 20.0];
+pub const RADII: [f64; 5] = [1.0001, 1.01, 1.5, 3.0, 20.0];
 
 /// A contour read from bytes, and whether to run it with jerk limiting.
 ///
