@@ -1,9 +1,9 @@
 //! Contours of micro-moves through the runtime: bytes → a ZX program of
 //! lines and arcs from 0.5 µm to 10 mm → a run that `gbvm check` must
 //! certify (every axis within its limits, every end point reached), with
-//! jerk limiting off or on. Random contours like these found the runtime's
-//! corner and jerk faults of stop 42 (runtime/tests/contour_limits.rs runs
-//! a fixed set of them).
+//! jerk limiting off or on. Random contours like these found faults in
+//! the planner's corners and in jerk limiting on arcs
+//! (runtime/tests/contour_limits.rs runs a fixed set of them).
 
 use core::f64::consts::{FRAC_PI_2, TAU};
 use nc::Machine;
