@@ -232,6 +232,21 @@ fn compiled(tag: &str, src: &str) -> (PathBuf, PathBuf) {
     (d, gbc)
 }
 
+/// Compiles `src` and runs `gbvm check` on it, which must certify the
+/// run; its summary line.
+fn certified(tag: &str, src: &str) -> String {
+    let (d, gbc) = compiled(tag, src);
+    let o = gbvm(&["check", gbc.to_str().unwrap()]);
+    assert!(
+        o.status.success(),
+        "{src}{}{}",
+        text(&o.stdout),
+        text(&o.stderr)
+    );
+    let _ = std::fs::remove_dir_all(d);
+    text(&o.stdout)
+}
+
 /// G50 moves work zero by 100 mm in Z between two feeds: in work
 /// coordinates Z jumps by 100 mm in one period, the machine axes do not
 /// move, and the check (on machine coordinates) certifies the run.
@@ -395,10 +410,7 @@ fn a_short_move_after_an_arc_stops_within_the_axes_acceleration() {
 #[test]
 fn an_arc_below_the_resolution_runs_as_its_chord() {
     let src = "G98 G00 X30.9245 Z4.9996\nG03 X33.3079 Z4.1573 R2.7155 F500\nG01 X33.2826 Z4.2165\nG01 X33.2806 Z4.2154\nG01 X33.1052 Z4.1107\nG02 X33.1059 Z4.11 R0.0006\nG01 X33.791 Z5.0\nM30\n";
-    let (d, gbc) = compiled("micro-arc", src);
-    let o = gbvm(&["check", gbc.to_str().unwrap()]);
-    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
-    let _ = std::fs::remove_dir_all(d);
+    certified("micro-arc", src);
 }
 
 /// A corner next to an arc of a few µm (R 0.0016): the arc turns some 40°
@@ -409,10 +421,7 @@ fn an_arc_below_the_resolution_runs_as_its_chord() {
 #[test]
 fn a_corner_after_an_arc_of_a_few_microns_keeps_the_axes_acceleration() {
     let src = "G98 G00 X86.091 Z-5.212\nG64 F800\nG02 X86.087 Z-5.211 R0.0027\nG02 X86.088 Z-5.210 R0.0015\nG03 X86.086 Z-5.208 R0.0016\nG01 X86.175 Z-5.178\nG01 X85.258 Z-5.178\nM30\n";
-    let (d, gbc) = compiled("micro-corner", src);
-    let o = gbvm(&["check", gbc.to_str().unwrap()]);
-    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
-    let _ = std::fs::remove_dir_all(d);
+    certified("micro-corner", src);
 }
 
 /// G61 moves of 2 µm out and 3.5 µm back (radius): the period that ends
@@ -422,15 +431,8 @@ fn a_corner_after_an_arc_of_a_few_microns_keeps_the_axes_acceleration() {
 #[test]
 fn a_reversal_of_a_few_microns_reaches_both_end_points() {
     let src = "G98 G00 X56 Z9.174\nG61 F800\nG01 X55.118 Z9.174\nG01 X55.118 Z10.000\nG01 X55.122 Z10.000\nG01 X55.115 Z10.000\nG01 X55.141 Z9.982\nM30\n";
-    let (d, gbc) = compiled("micro-reversal", src);
-    let o = gbvm(&["check", gbc.to_str().unwrap()]);
-    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
-    assert!(
-        text(&o.stdout).contains("end points: 6 of 6 reached"),
-        "{}",
-        text(&o.stdout)
-    );
-    let _ = std::fs::remove_dir_all(d);
+    let summary = certified("micro-reversal", src);
+    assert!(summary.contains("end points: 6 of 6 reached"), "{summary}");
 }
 
 /// An arc of 14 µm, then one of 0.5 µm that runs as its chord, then a
@@ -441,10 +443,7 @@ fn a_reversal_of_a_few_microns_reaches_both_end_points() {
 #[test]
 fn a_period_runs_through_one_corner_at_most() {
     let src = "G98 G00 X56.855 Z10\nG64 F800\nG01 X56.839 Z10.000\nG01 X56.738 Z10.000\nG03 X56.717 Z10.000 R0.0144\nG02 X56.716 Z10.000 R0.0005\nG01 X56.593 Z10.000\nG01 X56.589 Z10.000\nM30\n";
-    let (d, gbc) = compiled("one-corner", src);
-    let o = gbvm(&["check", gbc.to_str().unwrap()]);
-    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
-    let _ = std::fs::remove_dir_all(d);
+    certified("one-corner", src);
 }
 
 /// A half circle of 21 µm radius runs tangentially into a 15 µm line:
@@ -455,10 +454,7 @@ fn a_period_runs_through_one_corner_at_most() {
 #[test]
 fn a_line_after_a_tight_arc_keeps_back_the_arcs_share() {
     let src = "G98 G00 X28.993 Z-0.872\nG64 F800\nG03 X28.900 Z-0.933 R0.0384\nG01 X28.897 Z-0.935\nG03 X28.897 Z-0.893 R0.0210\nG01 X28.928 Z-0.893\nM30\n";
-    let (d, gbc) = compiled("tight-arc", src);
-    let o = gbvm(&["check", gbc.to_str().unwrap()]);
-    assert!(o.status.success(), "{}{}", text(&o.stdout), text(&o.stderr));
-    let _ = std::fs::remove_dir_all(d);
+    certified("tight-arc", src);
 }
 
 /// With jerk limiting, an arc of 2.45 mm radius at F3000: the moving
@@ -493,14 +489,6 @@ fn a_thread_pull_out_is_followed_within_the_top_speed_and_not_past_its_end() {
         "G97 S2500 M03\nG99\nG00 X36.444 Z5\nG76 P021060 Q100 R0.02\nG76 X30.844 Z-24.389 P300 Q90 F0.5\nG00 X80 Z20\nM30\n",
     ];
     for (k, src) in programs.iter().enumerate() {
-        let (d, gbc) = compiled(&format!("pull-out-{k}"), src);
-        let o = gbvm(&["check", gbc.to_str().unwrap()]);
-        assert!(
-            o.status.success(),
-            "{src}{}{}",
-            text(&o.stdout),
-            text(&o.stderr)
-        );
-        let _ = std::fs::remove_dir_all(d);
+        certified(&format!("pull-out-{k}"), src);
     }
 }

@@ -583,14 +583,6 @@ impl Certifier {
                 self.pending.pop_front();
                 continue;
             }
-            // Still closing on the end point reached last (it counted as
-            // reached within its tolerance, before the tool got there): the
-            // path is not on its way to this one yet, and going away from
-            // it now says nothing. A reversal of a few µm after a short
-            // move looked like a cut corner.
-            if self.done.is_some_and(|r| closing_on(r.end, b, moved)) {
-                break;
-            }
             // The period's travel is the axes' step: where the frame
             // jumped, b − a is the jump, not a way the tool went.
             if d > m.nearest && m.nearest <= moved.norm() {
@@ -752,12 +744,6 @@ pub fn long_is_z(d: V2) -> bool {
 /// Two thread travels within this (mm) are equal when the long axis is
 /// chosen: far below the 0.001 mm resolution, far above rounding.
 pub const TIE_MM: f64 = 1e-9;
-
-/// Whether the period that ended at `b` after the axes' step `moved`
-/// brought the tool nearer to `e`.
-fn closing_on(e: V2, b: V2, moved: V2) -> bool {
-    (b - e).norm() < (b - moved - e).norm() - 1e-12
-}
 
 /// Distance from `p` to the segment `a`–`b`.
 fn seg_dist(p: V2, a: V2, b: V2) -> f64 {
@@ -1150,12 +1136,13 @@ mod tests {
     #[test]
     fn a_reversal_after_an_end_point_reached_early_is_no_miss() {
         // G01 X0.004 (radius 0.002) then back to X−0.003 (radius −0.0015),
-        // as a random contour ran them: the period to r 0.0015 counts the
-        // first end point reached (0.0005 mm off), the next one ends on
-        // it, the tool stands a period and comes back. Up to the stand the
-        // path nears r −0.0015 no more than 0.0015 mm and then leaves it,
-        // by as much as it moved: that is no cut corner, the tool was
-        // still going to the first end point. It reaches the second.
+        // as a random contour ran them: the period to r 0.0015 comes
+        // 0.0005 mm near the first end point and still closes on it, the
+        // next one ends on it, the tool stands a period and comes back.
+        // Had the first counted as reached at 0.0005 mm, the path would
+        // have neared r −0.0015 no more than 0.0015 mm and then left it,
+        // by as much as it moved: a cut corner to the walk, though the
+        // tool was still going to the first end point. It reaches both.
         let mut c = certifier();
         for x in [0.004, -0.003] {
             c.emit(Event::Line { x, z: 0.0, c: None });
@@ -1175,8 +1162,8 @@ mod tests {
     #[test]
     fn end_points_are_reached_in_order_within_a_step() {
         // G01 W−0.003, back to Z0, then to (r 0.0015, Z −0.004), at 1–2 µm
-        // a period. The step from Z −0.001 to −0.0026 reaches the first
-        // end point (0.0004 mm off) and began 0.001 mm from the second:
+        // a period. The step from Z −0.001 to −0.0026 ends 0.0004 mm short
+        // of the first end point and began 0.001 mm from the second:
         // that one is only reached after the first, on the way back. Taken
         // at once, the walk judged the third from Z −0.003, where it came
         // 0.0018 mm near, and called the step that leaves Z0 for it, by

@@ -68,7 +68,8 @@ impl AxisFollow {
         let v = want
             .clamp(-room, room)
             .clamp(self.v - a * dt, self.v + a * dt)
-            .clamp(-vmax, vmax);
+            .min(vmax)
+            .max(-vmax);
         let mut p = self.p + v * dt;
         if (t - p).abs() <= SNAP_MM {
             p = t;
