@@ -492,3 +492,61 @@ fn a_thread_pull_out_is_followed_within_the_top_speed_and_not_past_its_end() {
         certified(&format!("pull-out-{k}"), src);
     }
 }
+
+/// Thread chains whose pull-out or run-out the runtime braked out of
+/// step with the spindle (found by random thread cycles): a 45° G76
+/// pull-out at Z's thread speed of 66.667 mm/s, whose path (94.3 mm/s)
+/// is above the path limit of programmed feeds but within both axes'
+/// (2.83 mm a turn along Z where 4 is programmed); a G32 run-out and a
+/// G92 pull-out (J twice K) whose long axis is X, which must start from
+/// rest at the corner (27 % and 25 % off). Each lead is kept now, the
+/// run-out's and the pull-out's once X has closed its lag.
+#[test]
+fn a_thread_chain_keeps_its_lead_through_pull_outs_and_run_outs() {
+    let programs = [
+        "G97 S1000 M03\nG99\nG00 X20.078 Z5\nG76 P012060 Q50 R0.02\nG76 X10.278 Z-22.659 P2400 Q720 F4\nG00 X80 Z20\nM30\n",
+        "G97 S1000 M03\nG99\nG00 X64.161 Z5\nG32 Z-38.696 F0.5\nG32 X69.411 W-0.502\nG00 X71.161\nZ5\nG00 X80 Z20\nM30\n",
+        "G97 S200 M03\nG99\nG00 X28.556 Z5\nG92 X23.256 Z-16.185 F1.5 J2.702 K1.351\nX22.956\nX22.756\nG00 X80 Z20\nM30\n",
+    ];
+    for (k, src) in programs.iter().enumerate() {
+        let summary = certified(&format!("chain-{k}"), src);
+        assert!(
+            summary.contains("thread lead: worst 0.0000 % off"),
+            "{summary}"
+        );
+    }
+}
+
+/// A 45° G92 pull-out at lead 4.5 and 1000 rev/min asks X for 4500
+/// mm/min, above its 4000, though the thread itself (Z at 4500 of its
+/// 5000) does not: the run stops with E4010 before the thread starts,
+/// and `gbcc` says so (W126). The run went on before and braked the
+/// pull-out out of step with the spindle.
+#[test]
+fn a_pull_out_too_fast_for_x_stops_the_run_before_the_thread() {
+    let src = "G97 S1000 M03\nG00 X30 Z5\nG92 X20 Z-20 F4.5 J3 K3\nG00 X60 Z20\nM30\n";
+    let d = scratch("pull-out-e4010");
+    let nc = d.join("p.nc");
+    std::fs::write(&nc, src).unwrap();
+    let gbc = d.join("p.gbc");
+    let o = gbcc(&[nc.to_str().unwrap(), "-o", gbc.to_str().unwrap()]);
+    let err = text(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("warning[W126]") && err.contains("asks X for 4500 mm/min"),
+        "{err}"
+    );
+    let o = gbvm(&["run", gbc.to_str().unwrap(), "--emit", "trace"]);
+    let err = text(&o.stderr);
+    assert!(!o.status.success());
+    assert!(err.contains("p.nc:3:1: alarm[E4010]"), "{err}");
+    // The tool waited at the thread's start for the spindle, and never
+    // moved in the thread.
+    let trace = text(&o.stdout);
+    let threads: Vec<&str> = trace.lines().filter(|l| l.contains(",thread,")).collect();
+    assert!(!threads.is_empty());
+    for l in threads {
+        assert!(l.contains(",20.000000,5.000000,"), "{l}");
+    }
+    let _ = std::fs::remove_dir_all(d);
+}

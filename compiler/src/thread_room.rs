@@ -12,7 +12,7 @@
 //! moves, nothing between).
 
 use grammar::{Diagnostic, Span};
-use nc::thread_room::{entry_length, exit_length, long_axis_accel};
+use nc::thread_room::{entry_length, exit_length, long_axis_accel, z_is_long};
 use nc::{Event, Machine};
 use std::collections::HashSet;
 
@@ -116,9 +116,7 @@ impl RoomCheck {
                         unit: self.unit,
                         span: self.span,
                     };
-                    if self.chain.is_empty() {
-                        self.check_speed(&leg);
-                    }
+                    self.check_speed(&leg, self.chain.is_empty());
                     self.chain.push(leg);
                 } else {
                     self.unmeasured = true;
@@ -152,12 +150,11 @@ impl RoomCheck {
         }
     }
 
-    /// W126: the first leg's lead at the chain's spindle speed against
-    /// the axes' maximum cutting feeds, as the runtime checks it where the
+    /// W126: a leg's lead at the chain's spindle speed against the axes'
+    /// maximum cutting feeds, as the runtime checks every leg where the
     /// chain starts (E4010): the long axis runs at lead × rpm, the other
-    /// in proportion. (The axis that follows a later leg's corner, a
-    /// pull-out, does so within its own top speed.)
-    fn check_speed(&mut self, leg: &Leg) {
+    /// in proportion (`first`: the leg starts the chain).
+    fn check_speed(&mut self, leg: &Leg, first: bool) {
         let (dr, dz) = (leg.d_r.abs(), leg.d_z.abs());
         let long = dr.max(dz);
         if !is_pos(self.rpm) || !is_pos(long) {
@@ -172,8 +169,13 @@ impl RoomCheck {
         else {
             return;
         };
+        let stops = if first {
+            "here"
+        } else {
+            "at the start of its thread chain"
+        };
         let msg = format!(
-            "thread too fast for the axis: at {:.0} rpm lead {} asks {axis} for {v:.0} mm/min, above its maximum cutting feed of {max:.0} mm/min; the run stops here with E4010",
+            "thread too fast for the axis: at {:.0} rpm lead {} asks {axis} for {v:.0} mm/min, above its maximum cutting feed of {max:.0} mm/min; the run stops with E4010 {stops}",
             self.rpm, leg.lead
         );
         let kind = "W126".to_string();
@@ -200,7 +202,7 @@ impl RoomCheck {
         }
         let (ax, az) = (self.x_accel, self.z_accel);
         let long = |l: &Leg| l.d_r.abs().max(l.d_z.abs());
-        let axis = |l: &Leg| if l.d_z.abs() >= l.d_r.abs() { "Z" } else { "X" };
+        let axis = |l: &Leg| if z_is_long(l.d_r, l.d_z) { "Z" } else { "X" };
         let a_first = long_axis_accel(first.d_r, first.d_z, ax, az);
         let need = entry_length(first.lead, self.rpm, a_first, self.spindle_accel);
         if long(first) < need {

@@ -356,4 +356,28 @@ fn w126_a_thread_too_fast_for_the_axis() {
         w[0].1
     );
     assert_eq!(w126(&taper.replace("S1500", "S1000")), []);
+    // A later block of a chain counts too, where the run stops at the
+    // chain's start: a 45° G92 pull-out at lead 4.5 and 1000 rpm asks X
+    // for 4500 mm/min (Z's 4500 is within its 5000); lead 3.9 asks 3900.
+    let pull_out = "G97 S1000 M03\nG00 X30 Z5\nG92 X20 Z-20 F4.5 J3 K3\nG00 X60 Z20\nM30\n";
+    let w = w126(pull_out);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].0, 3);
+    assert!(
+        w[0].1.contains("asks X for 4500 mm/min")
+            && w[0]
+                .1
+                .ends_with("the run stops with E4010 at the start of its thread chain"),
+        "{}",
+        w[0].1
+    );
+    assert_eq!(w126(&pull_out.replace("F4.5", "F3.9")), []);
+    // A G32 run-out whose long axis is X (2 mm out on the radius, 0.5
+    // along Z) at lead 3 along X and 1500 rpm: X at 4500 mm/min, warned
+    // at the run-out's block; the Z thread before it (4500) is not.
+    let run_out = "G97 S1500 M03\nG00 X30 Z5\nG32 Z-20 F3\nG32 X34 W-0.5\nG00 X40\nM30\n";
+    let w = w126(run_out);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].0, 4);
+    assert!(w[0].1.contains("asks X for 4500 mm/min"), "{}", w[0].1);
 }

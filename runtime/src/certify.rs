@@ -21,11 +21,13 @@
 //!   discretisation bound of the axes that follow the turn if larger,
 //!   [`chain_corner_mm`]);
 //! - the lead of a thread (travel per spindle turn along the long axis as
-//!   the kernel names it, [`long_is_z`]) within
+//!   the kernel names it, [`z_is_long`]) within
 //!   [`LEAD_TOL`] of the programmed one (G34: of the lead at that point),
 //!   away from the incomplete leads at both ends: the distance the long
 //!   axis needs to reach thread speed at the acceleration both axes allow
-//!   ([`incomplete_lead`]);
+//!   ([`incomplete_lead`]), and where a chain's corner changes the speed
+//!   of the next leg's long axis, the travel in which that axis catches
+//!   up with the chain ([`catch_up_lead`]);
 //! - G96: while cutting, the spindle at the speed the surface speed asks
 //!   at the programmed diameter (clamped by G50 S, the spindle's range and
 //!   override), within [`CSS_TOL`], except while the spindle is still
@@ -36,11 +38,13 @@
 //! state is a few numbers and the queue of end points not reached yet.
 
 use crate::config::{Axis, Config};
+use crate::follow::CLOSE_SHARE;
 use crate::interpolate::{Motion, SetPoint};
 use crate::math::{PI, V2};
 use alloc::collections::VecDeque;
 use core::fmt;
 use nc::event::SpindleDir;
+use nc::thread_room::z_is_long;
 use nc::{Event, Sink};
 
 /// Velocity, acceleration, jerk and spindle limits hold within this share
@@ -267,6 +271,10 @@ struct Pending {
     /// or at a corner a thread chain turns at speed the bound of
     /// [`chain_corner_mm`].
     tol: f64,
+    /// A thread leg that continues its chain at speed: how much faster
+    /// (mm per turn, along the leg's long axis) that axis must run than
+    /// it did on the leg before; 0 otherwise.
+    step: f64,
     spindle: SpindleCmd,
     /// The nearest approach so far: distance and place.
     nearest: f64,
@@ -485,6 +493,11 @@ impl Certifier {
         if q0 < room || rest < room {
             return;
         }
+        let w0 = m.step * p.spindle_rpm.abs() / 60.0;
+        let catching_up = catch_up_lead(v, w0, la.accel, la.max_feed, LEAD_TOL);
+        if q0 < catching_up * (1.0 + ENTRY_MARGIN) + 2.0 * v * self.dt {
+            return;
+        }
         self.lead_periods += 1;
         let got = (long(b) - long(a)).abs() / turns;
         self.note(Figure {
@@ -635,6 +648,7 @@ impl Certifier {
     fn push_move(&mut self, x: f64, z: f64, thread: Option<(f64, f64)>) {
         let end = V2::from_xz(x, z);
         self.end_points += 1;
+        let mut step = 0.0;
         // A thread move that continues a chain: the corner where the
         // previous one ends is taken at thread speed.
         if let (true, Some(out), Some(start)) = (self.chain_open, thread, self.last_end) {
@@ -645,6 +659,7 @@ impl Certifier {
                 if let (Some(inc), Some(from)) = (prev.thread, prev.start) {
                     let legs = [(prev.end - from, inc), (end - start, out)];
                     prev.tol = END_POINT_MM.max(chain_corner_mm(legs, [ax, az], dt));
+                    step = long_axis_step(legs);
                 }
             }
         }
@@ -653,6 +668,7 @@ impl Certifier {
             start: self.last_end,
             thread,
             tol: END_POINT_MM,
+            step,
             spindle: self.cmd,
             nearest: f64::INFINITY,
             at: (0.0, 0, 0),
@@ -732,18 +748,67 @@ pub fn chain_corner_mm(legs: [(V2, (f64, f64)); 2], acc: [f64; 2], dt: f64) -> f
     libm::sqrt(a2) * dt * dt
 }
 
-/// Whether Z is the long axis of a thread move of travel `d` (radius, Z):
-/// as the kernel names it, Z when it moves at least as far as X (a
-/// radius), a 45° move included. The tie is judged within [`TIE_MM`], so
-/// that a 45° pull-out chamfer whose end points went through a work shift
-/// or a diameter halving (a rounding of 1e-15 mm either way) keeps Z.
-pub fn long_is_z(d: V2) -> bool {
-    d.z.abs() >= d.r.abs() - TIE_MM
+/// How much faster (mm per turn, along its direction) the long axis of
+/// leg `legs[1]` must run than it did on `legs[0]` when a chain turns
+/// from one into the other at speed (travel, (lead, lead change)): the
+/// step a pull-out or run-out whose long axis is X gives X, 0 where the
+/// long axis keeps its speed.
+pub fn long_axis_step(legs: [(V2, (f64, f64)); 2]) -> f64 {
+    let [(d0, (l0, dl0)), (d1, (l1, _))] = legs;
+    let l_end = libm::sqrt((l0 * l0 + 2.0 * dl0 * long_len(d0)).max(0.0));
+    let (u0, u1) = (per_turn(d0, l_end), per_turn(d1, l1));
+    let (was, now) = if long_is_z(d1) {
+        (u0.z, u1.z)
+    } else {
+        (u0.r, u1.r)
+    };
+    (now - was) * now.signum()
 }
 
-/// Two thread travels within this (mm) are equal when the long axis is
-/// chosen: far below the 0.001 mm resolution, far above rounding.
-pub const TIE_MM: f64 = 1e-9;
+/// The long-axis travel over which a thread leg that its chain enters at
+/// speed may miss its lead: the leg's long axis has to run `w0` mm/s
+/// faster than it did (negative: slower) and follows the chain's point
+/// within its acceleration `a` and top speed `vmax` (`runtime::follow`),
+/// so it falls behind and then closes the lag at [`CLOSE_SHARE`] of `a`.
+/// The lead is the chain's (`v` mm/s) again once the axis runs at `v`
+/// on the point, or within `tol` of `v` behind it (an axis whose top speed
+/// is the thread's own never closes the lag, but keeps the lead). 0 when
+/// the axis keeps its speed.
+///
+/// In the follower's relative speed c (the axis's speed less `v`) from
+/// c₀ = −w0: c reaches 0 at `a` (time |c₀|/a) while a lag c₀²/2a builds
+/// up, rises at `a` to a peak c_p and falls to 0 on the closing curve
+/// c = √(2·s·a·e) (s = CLOSE_SHARE); the two close the lag when
+/// c_p²·(1 + 1/s)/2a = c₀²/2a. A peak the top speed cuts to c_m runs at
+/// c_m until the lag left is the curve's.
+pub fn catch_up_lead(v: f64, w0: f64, a: f64, vmax: f64, tol: f64) -> f64 {
+    if w0 == 0.0 || a <= 0.0 {
+        return 0.0;
+    }
+    let s = CLOSE_SHARE;
+    let c0 = w0.abs();
+    let lag = c0 * c0 / (2.0 * a);
+    let peak = c0 / libm::sqrt(1.0 + 1.0 / s);
+    // (Slower: the axis may run backwards down to −vmax.)
+    let room = if w0 > 0.0 { vmax - v } else { vmax + v };
+    let mut t = c0 / a;
+    if peak <= room {
+        t += peak / a + peak / (s * a);
+    } else if room > tol * v {
+        let rise = room * room * (1.0 + 1.0 / s) / (2.0 * a);
+        t += room / a + (lag - rise) / room + room / (s * a);
+    } else {
+        // The peak is within the tolerance of the lead: only reaching it counts.
+        t += room.max(0.0) / a;
+    }
+    v * t
+}
+
+/// Whether Z is the long axis of a thread move of travel `d` (radius, Z):
+/// the kernel's rule, ties within rounding going to Z.
+fn long_is_z(d: V2) -> bool {
+    z_is_long(d.r, d.z)
+}
 
 /// Distance from `p` to the segment `a`–`b`.
 fn seg_dist(p: V2, a: V2, b: V2) -> f64 {
@@ -1287,6 +1352,97 @@ mod tests {
             c.period(&p);
         }
         c
+    }
+
+    #[test]
+    fn the_catch_up_of_a_long_axis_that_a_corner_turns() {
+        // A Z thread of lead 1.5 into a run-out 2 mm out on the radius and
+        // 1 along Z: X is long there, at lead 1.5 × 2 = 3 along X; X ran
+        // at 0 before, so it must run 3 mm per turn faster.
+        let z_thread = (V2::new(0.0, -20.0), (1.5, 0.0));
+        let run_out = (V2::new(2.0, -1.0), (3.0, 0.0));
+        assert_eq!(long_axis_step([z_thread, run_out]), 3.0);
+        // A 45° pull-out keeps Z long at Z's speed: no step.
+        let pull_out = (V2::new(2.0, -2.0), (1.5, 0.0));
+        assert_eq!(long_axis_step([z_thread, pull_out]), 0.0);
+        // From rest to 15 mm/s at 1500 mm/s²: 15/1500 s to reach it, then
+        // up 15/√3 at a and down at a/2: (0.01 + 0.0057735 + 0.011547) s
+        // × 15 mm/s = 0.40981 mm.
+        let d = catch_up_lead(15.0, 15.0, 1500.0, 66.667, LEAD_TOL);
+        assert!((d - 0.409808).abs() < 1e-6, "{d}");
+        // At 60 mm/s the peak (34.6 mm/s over the point) is cut to 6.667 by
+        // the top speed: 0.04 s to reach 60, a lag of 1.2 mm; 0.004444 s up,
+        // 0.008889 s down, which close 6.667²·3/3000 = 0.04444 mm, and
+        // (1.2 − 0.04444)/6.667 = 0.17333 s at the top speed between:
+        // 0.226667 s × 60 = 13.6 mm.
+        let d = catch_up_lead(60.0, 60.0, 1500.0, 200.0 / 3.0, LEAD_TOL);
+        assert!((d - 13.6).abs() < 1e-9, "{d}");
+        // A thread at the axis's top speed: the lag stays, the lead is
+        // kept once the axis runs at it (2/1500·... = 0.04444 s × 66.667).
+        let v = 200.0 / 3.0;
+        let d = catch_up_lead(v, v, 1500.0, v, LEAD_TOL);
+        assert!((d - v * v / 1500.0).abs() < 1e-9, "{d}");
+        assert_eq!(catch_up_lead(15.0, 0.0, 1500.0, 66.667, LEAD_TOL), 0.0);
+    }
+
+    /// A Z thread of lead 2 (X 20, Z 0 to −10, 500 periods at 0.02 mm)
+    /// into a run-out to X 36 Z −12 at lead 4 along X (X 0.04 mm and Z
+    /// 0.01 mm a period, 200 periods), the spindle at 600 rev/min, every
+    /// period on the programmed chain except one 0.0401 mm step of X at
+    /// `bad` periods into the run-out.
+    fn run_out(bad: u32) -> Certifier {
+        let mut c = certifier();
+        c.emit(Event::Spindle(SpindleDir::Cw));
+        c.emit(Event::Rapid {
+            x: 20.0,
+            z: 0.0,
+            c: None,
+        });
+        for (x, z, lead) in [(20.0, -10.0, 2.0), (36.0, -12.0, 4.0)] {
+            c.emit(Event::Thread {
+                x,
+                z,
+                c: None,
+                lead,
+                dlead: None,
+                q: None,
+            });
+        }
+        let (mut r, mut z, mut turns) = (10.0, 0.0, 0.0);
+        for k in 1..=700u32 {
+            if k <= 500 {
+                z -= 0.02;
+            } else {
+                r += if k - 500 == bad { 0.0401 } else { 0.04 };
+                z -= 0.01;
+            }
+            turns += 0.01;
+            let p = SetPoint {
+                spindle_rpm: 600.0,
+                spindle_turns: turns,
+                ..at(k, (2.0 * r, z), (0.0, 0.0), Motion::Thread)
+            };
+            c.period(&p);
+        }
+        c
+    }
+
+    #[test]
+    fn a_run_out_whose_long_axis_is_x_is_checked_after_the_catch_up() {
+        // X must start at 40 mm/s: 40/1500 × (1 + 3/√3) = 0.072855 s,
+        // 2.914 mm of X, + 10 % + 2 periods: 3.286 mm, 82 periods. A
+        // wrong step in period 60 (X 2.4 mm out) is left out, one in
+        // period 120 (4.8 mm) is caught: 0.25 % off. (Without the
+        // catch-up only the incomplete lead, 40²/3000 × 1.1 + 0.04 =
+        // 0.627 mm, would be left out.)
+        let c = run_out(60);
+        let w = c.worst(Kind::Lead).unwrap();
+        assert!(!w.violates(), "{w:?}");
+        let c = run_out(120);
+        let w = *c.worst(Kind::Lead).unwrap();
+        assert!(w.violates(), "{w:?}");
+        assert_eq!(w.line, 10 + 620);
+        assert!((w.value - 4.01).abs() < 1e-6 && w.limit == 4.0, "{w:?}");
     }
 
     #[test]

@@ -22,7 +22,7 @@ use crate::profile::{brake_limit, stopping_distance};
 
 /// The share of an axis's acceleration that closes a lag; the rest is left
 /// for the chain point's own speed changes. *Choice*: one half.
-const CLOSE_SHARE: f64 = 0.5;
+pub const CLOSE_SHARE: f64 = 0.5;
 
 /// A lag this small (mm) is closed in the period: below the trace's
 /// resolution (µm) by three orders of magnitude.
@@ -41,8 +41,9 @@ struct AxisFollow {
 
 impl AxisFollow {
     /// One period towards the point `t` with acceleration `a`, never
-    /// faster than `vmax`.
-    fn step(&mut self, t: f64, a: f64, vmax: f64, dt: f64) {
+    /// faster than `vmax`; `until`: how far on from `t` the point will
+    /// still run in the direction it moves (0 when not known).
+    fn step(&mut self, t: f64, a: f64, vmax: f64, until: f64, dt: f64) {
         let vt = (t - self.t) / dt;
         // The lag before this period; the relative speed that closes it.
         let e0 = self.t - self.p;
@@ -56,10 +57,12 @@ impl AxisFollow {
         // was: that one kept it too.
         let want = vt + close;
         let ahead = (t - self.p) * want.signum();
-        // How far on the point may still run if it brakes from the next
-        // period on.
+        // How far on the point may still run: at least as far as it would
+        // if it braked from the next period on, and as far as the chain
+        // says it will (a lag then closes at the closing share, not in
+        // an ever slower tail as the axis nears the point).
         let runs_on = if vt * want > 0.0 {
-            stopping_distance(vt.abs(), a, dt) - vt.abs() * dt
+            (stopping_distance(vt.abs(), a, dt) - vt.abs() * dt).max(until)
         } else {
             0.0
         };
@@ -80,6 +83,18 @@ impl AxisFollow {
     }
 }
 
+/// What the follower knows of each axis (radial X, Z) in a period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FollowAxes {
+    /// Acceleration, mm/s².
+    pub acc: [f64; 2],
+    /// Top speed, mm/s.
+    pub vmax: [f64; 2],
+    /// How far on the point will still run in the direction it moves on
+    /// that axis before the axis stops or turns there (0: not known).
+    pub until: [f64; 2],
+}
+
 /// X (radial) and Z following the chain point.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Follower {
@@ -96,10 +111,11 @@ impl Follower {
 
     /// One period: the set point for the programmed point `target`
     /// (`thread`: the period belongs to a thread chain), with the axes'
-    /// accelerations `acc` and top speeds `vmax` (radial X, Z). Outside
-    /// threads the set point is the target and the follower only keeps
-    /// pace.
-    pub fn step(&mut self, target: V2, thread: bool, acc: [f64; 2], vmax: [f64; 2], dt: f64) -> V2 {
+    /// accelerations `acc` and top speeds `vmax` and how far the point
+    /// will still run on each axis in the direction it moves there,
+    /// `until` (radial X, Z). Outside threads the set point is the target
+    /// and the follower only keeps pace.
+    pub fn step(&mut self, target: V2, thread: bool, axes: FollowAxes, dt: f64) -> V2 {
         let ts = [target.r, target.z];
         if !self.engaged && !thread {
             for (ax, &t) in self.axes.iter_mut().zip(&ts) {
@@ -110,9 +126,9 @@ impl Follower {
             return target;
         }
         let mut exact = true;
-        for (((ax, &t), &a), &vm) in self.axes.iter_mut().zip(&ts).zip(&acc).zip(&vmax) {
+        for (i, (ax, &t)) in self.axes.iter_mut().zip(&ts).enumerate() {
             let before = ax.t;
-            ax.step(t, a, vm, dt);
+            ax.step(t, axes.acc[i], axes.vmax[i], axes.until[i], dt);
             exact &= ax.p == t && ax.v == (t - before) / dt;
         }
         self.engaged = thread || !exact;
@@ -150,7 +166,7 @@ mod tests {
             if k < 100 {
                 t += v * DT;
             }
-            f.step(t, a, f64::INFINITY, DT);
+            f.step(t, a, f64::INFINITY, 0.0, DT);
             assert!((f.v - prev_v).abs() <= a * DT * (1.0 + 1e-9), "period {k}");
             if reached.is_none() && f.v >= v - 1e-9 {
                 reached = Some(k + 1);
@@ -186,7 +202,7 @@ mod tests {
         let mut f = AxisFollow::default();
         let mut prev_v = 0.0;
         for (k, &t) in path.iter().enumerate() {
-            f.step(t, a, vmax, DT);
+            f.step(t, a, vmax, 0.0, DT);
             assert!(
                 f.v.abs() <= vmax * (1.0 + 1e-12),
                 "period {k}: {} mm/s",
@@ -201,6 +217,44 @@ mod tests {
         assert_eq!(f.p, end, "lands on the point");
     }
 
+    /// A point that jumps from standing to 15 mm/s and runs on for 2 mm
+    /// (a run-out whose long axis is this one): the axis ramps in 10
+    /// periods, 0.0675 mm behind then (0.15 less 1.5·(1+…+10)·0.001), and
+    /// closes the lag at half its acceleration: up to c_p over the point
+    /// at a, down on the closing curve at a/2, with c_p²·3/2a = 0.0675,
+    /// c_p = 8.2 mm/s: 5.5 + 11 ms, on the point after about 26.5 periods.
+    /// Not told how far the point runs on, the axis keeps a speed from
+    /// which it could stop where the point would if it braked now, and
+    /// the lag closes ever slower (time constant 15/1500 = 10 ms): 10 µm
+    /// are still left at period 32.
+    #[test]
+    fn a_lag_closes_at_the_closing_share_when_the_point_runs_on() {
+        let (a, v) = (1500.0, 15.0);
+        let run = |until: f64| {
+            let mut f = AxisFollow::default();
+            let mut t = 0.0;
+            let mut on_point = None;
+            for k in 0..60 {
+                t += v * DT;
+                f.step(t, a, 4000.0 / 60.0, (2.0 - t).max(0.0) * until, DT);
+                if on_point.is_none() && f.p == t {
+                    on_point = Some(k + 1);
+                }
+                if k + 1 == 32 {
+                    return (on_point, t - f.p, f.v);
+                }
+            }
+            unreachable!()
+        };
+        let (told, lag, speed) = run(1.0);
+        assert!(told.is_some_and(|k| (26..=28).contains(&k)), "{told:?}");
+        assert_eq!(lag, 0.0);
+        assert!((speed - v).abs() < 1e-6, "{speed}");
+        let (untold, lag, _) = run(0.0);
+        assert_eq!(untold, None);
+        assert!(lag > 5e-3, "{lag}");
+    }
+
     /// A point that moves within the limit is followed exactly.
     #[test]
     fn a_point_within_the_limit_is_followed_exactly() {
@@ -208,7 +262,7 @@ mod tests {
         for k in 0..50 {
             // 1000 mm/s², under the 1500 of the axis.
             let t = 0.5 * 1000.0 * ((k + 1) as f64 * DT).powi(2);
-            f.step(t, 1500.0, f64::INFINITY, DT);
+            f.step(t, 1500.0, f64::INFINITY, 0.0, DT);
             assert_eq!(f.p, t);
         }
     }

@@ -14,11 +14,11 @@
 
 use crate::command::{MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
-use crate::follow::Follower;
+use crate::follow::{FollowAxes, Follower};
 use crate::math::V2;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
 use crate::plc::{Plc, PlcFunction};
-use crate::profile::{approach, brake_limit, brake_limit_above};
+use crate::profile::{approach, brake_limit, brake_limit_above, stopping_distance};
 use crate::smooth::Smoother;
 use crate::spindle::Spindle;
 use nc::error::Alarm;
@@ -575,7 +575,13 @@ impl<P: Plc> Engine<P> {
         let thread = self.motion == Motion::Thread;
         let acc = [self.cfg.x.accel, self.cfg.z.accel];
         let vmax = [self.cfg.x.max_feed, self.cfg.z.max_feed];
-        self.out = self.follow.step(self.pos, thread, acc, vmax, self.dt);
+        let until = if thread {
+            [0, 1].map(|i| self.chain_runs_on(i, stopping_distance(vmax[i], acc[i], self.dt)))
+        } else {
+            [0.0; 2]
+        };
+        let axes = FollowAxes { acc, vmax, until };
+        self.out = self.follow.step(self.pos, thread, axes, self.dt);
         if !thread && self.follow.engaged() {
             self.motion = Motion::Thread;
         }

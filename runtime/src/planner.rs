@@ -39,6 +39,7 @@ use crate::profile::brake_limit_above;
 use alloc::vec::Vec;
 use nc::error::Alarm;
 use nc::geom::Element;
+use nc::thread_room::z_is_long;
 
 /// A move ready for interpolation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -713,7 +714,13 @@ impl Planner {
         if let Some(c) = &c {
             cap = cap.min(c.max_feed / uc);
         }
-        cap = cap.min(self.path_max);
+        // The path limit clamps a programmed F. A thread's speed is the
+        // spindle's (lead × rpm), bound only by each axis's feed, as its
+        // start checks (E4010): clamping a 45° pull-out to the path limit
+        // would pull the chain out of step with the spindle.
+        if !matches!(seg.kind, MoveKind::Thread(_)) {
+            cap = cap.min(self.path_max);
+        }
         let rmin = curve.min_radius();
         if rmin.is_finite() {
             // Half of the smaller acceleration for the centripetal part,
@@ -858,7 +865,7 @@ impl Planner {
     /// A thread: its long axis (the one the lead is along) and the caps.
     fn thread_segment(&self, seg: &mut Segment, lim: &Limits, t: crate::command::Thread) {
         let d = seg.to - seg.from;
-        seg.long_z = d.z.abs() >= d.r.abs();
+        seg.long_z = z_is_long(d.r, d.z);
         let along = |p: V2| if seg.long_z { p.z.abs() } else { p.r.abs() };
         seg.long_len = match seg.curve {
             Curve::Arc { .. } => along(seg.curve.point(1.0) - seg.curve.point(0.0)),
@@ -964,7 +971,17 @@ impl Planner {
         if self.joinable(prev, cur) {
             let du = cur.t0 - prev.t1;
             let threads = matches!(cur.kind, MoveKind::Thread(_));
-            vj = prev.v_max.min(cur.v_max);
+            vj = if threads {
+                // A chain's speed along the path jumps at a corner (the
+                // lead stays along the long axis, the short axes follow:
+                // follow.rs): each leg's cap binds its own path speed,
+                // and the joint lets the faster leg's through. (Their
+                // smaller one turned a 45° pull-out after a Z thread at
+                // Z's top feed into a brake and broke the lead.)
+                prev.v_max.max(cur.v_max)
+            } else {
+                prev.v_max.min(cur.v_max)
+            };
             if !threads {
                 // The velocity step of the corner within its share of
                 // each axis's acceleration ...
@@ -1193,6 +1210,51 @@ mod tests {
         let s = p.seg(0).unwrap();
         // Z loses its whole speed in one period, so 0.25·2000·0.001 mm/s at most.
         assert!(s.v_exit <= 0.5 + 1e-12 && s.v_exit > 0.0, "{}", s.v_exit);
+    }
+
+    fn thread(to: V2, lead: f64) -> Command {
+        Command::Move(Move {
+            kind: MoveKind::Thread(crate::command::Thread {
+                lead,
+                dlead: 0.0,
+                q_deg: 0.0,
+            }),
+            path: Path::Line { to },
+            shift: V2::ZERO,
+            c: None,
+        })
+    }
+
+    /// A Z thread into a 45° pull-out (lead 4 at 1000 rev/min: Z at
+    /// 66.667 mm/s, X as fast in the pull-out). The pull-out's path runs
+    /// at 94.28 mm/s, which the axes allow (X 4000, Z 5000 mm/min: the
+    /// cap is 66.667·√2) but the path limit of programmed feeds (5000
+    /// mm/min, 83.333 mm/s) would not; and the joint lets the faster
+    /// leg's path speed through, where the Z thread's own cap is Z's
+    /// 83.333. (Capped at either, the chain braked out of step with the
+    /// spindle: 2.83 mm a turn along Z where 4 is programmed.)
+    #[test]
+    fn a_thread_chain_is_capped_by_the_axes_and_its_joint_by_the_faster_leg() {
+        let mut p = Planner::new(&Config::default());
+        p.push(thread(V2::new(0.0, -20.0), 4.0), Tag::default())
+            .unwrap();
+        p.push(thread(V2::new(8.0, -28.0), 4.0), Tag::default())
+            .unwrap();
+        p.replan();
+        let (z_leg, pull_out) = (p.seg(0).unwrap(), p.seg(1).unwrap());
+        let axes = 4000.0 / 60.0 * 2f64.sqrt();
+        assert!((pull_out.v_max - axes).abs() < 1e-9, "{}", pull_out.v_max);
+        assert!(
+            (z_leg.v_max - 5000.0 / 60.0).abs() < 1e-9,
+            "{}",
+            z_leg.v_max
+        );
+        assert!(
+            (z_leg.v_junction - axes).abs() < 1e-9,
+            "{}",
+            z_leg.v_junction
+        );
+        assert!(z_leg.long_z && pull_out.long_z);
     }
 
     #[test]

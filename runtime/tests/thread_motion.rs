@@ -9,7 +9,7 @@ mod common;
 use common::*;
 use nc::thread_room::{entry_length, exit_length};
 use nc::Machine;
-use runtime::{Motion, SetPoint};
+use runtime::{AutoAck, Controller, Motion, RunState, SetPoint};
 use std::path::{Path, PathBuf};
 
 /// Z of the thread periods (the set point moves and the motion is a
@@ -406,4 +406,105 @@ fn a_run_out_chain_is_cut_in_one_go() {
         };
         assert_eq!(p.line, want, "at Z{}", p.z);
     }
+}
+
+/// One random thread cycle from X`d`+5 Z5: a G92 pass pair with a J/K
+/// pull-out (45° or J ≠ K), a G76 with a 45° pull-out of 0–3 leads, a
+/// G32 into a run-out that turns the long axis to X, or a taper G92, at
+/// a lead and spindle speed that may ask an axis for more than its
+/// maximum cutting feed.
+fn thread_cycle(rng: &mut Lcg) -> String {
+    let s = rng.pick(&[200, 500, 1000, 1500, 2500]);
+    let lead = rng.pick(&[0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0]);
+    let (d, l) = (rng.range(10.0, 60.0), rng.range(8.0, 40.0));
+    let mut p = format!("G97 S{s} M03\nG99\nG00 X{:.3} Z5\n", d + 5.0);
+    match rng.pick(&[0, 1, 2, 3]) {
+        0 => {
+            let j = rng.range(0.2, 4.0);
+            let k = if rng.unit() < 0.5 {
+                j
+            } else {
+                rng.range(0.2, 4.0)
+            };
+            p += &format!(
+                "G92 X{:.3} Z-{l:.3} F{lead} J{j:.3} K{k:.3}\nX{:.3}\n",
+                d - 0.3,
+                d - 0.6
+            );
+        }
+        1 => {
+            let h = lead * 0.6;
+            p += &format!(
+                "G76 P01{:02}60 Q50 R0.02\nG76 X{:.3} Z-{l:.3} P{} Q{} F{lead}\n",
+                rng.pick(&[0, 5, 10, 20, 30]),
+                d - 2.0 * h,
+                (h * 1000.0).round(),
+                (h * 300.0).max(60.0).round()
+            );
+        }
+        2 => {
+            p += &format!(
+                "G32 Z-{l:.3} F{lead}\nG32 X{:.3} W-{:.3}\nG00 X{:.3}\nZ5\n",
+                d + 5.0 + rng.range(0.0, 6.0),
+                rng.range(0.5, 5.0),
+                d + 12.0
+            );
+        }
+        _ => {
+            let j = rng.range(0.2, 4.0);
+            p += &format!(
+                "G92 X{:.3} Z-{l:.3} R-{:.3} F{lead} J{j:.3} K{j:.3}\n",
+                d - 0.3,
+                rng.range(0.5, 3.0)
+            );
+        }
+    }
+    p + "G00 X80 Z20\nM30\n"
+}
+
+/// Random thread cycles (a fixed seed) are certified period by period,
+/// their leads kept through pull-outs and run-outs, or stop with E4010
+/// before the thread exactly where `gbcc` warned W126 (a block of the
+/// chain asks an axis for more than its maximum cutting feed). Programs
+/// like these found a pull-out braked out of step with the spindle
+/// (its path above the path limit of programmed feeds), run-outs whose
+/// long axis, X, closed its lag ever slower, and pull-outs too fast for
+/// X that ran with a spoilt lead instead of stopping.
+#[test]
+fn random_thread_cycles_are_certified_or_stop_where_warned() {
+    let mut rng = Lcg(43);
+    let machine = Machine::reference();
+    let (mut certified, mut stopped) = (0, 0);
+    for _ in 0..120 {
+        let src = thread_cycle(&mut rng);
+        let compiled = compiler::compile("t.nc", src.as_bytes(), &compiler::Options::default());
+        let warned = compiled.diags.iter().any(|(_, d)| d.code == "W126");
+        let Some(module) = compiled.module else {
+            continue;
+        };
+        let mut ctl = Controller::new(module, machine.clone(), AutoAck).expect("loads");
+        let (cert, _) = ctl.run_certified(600_000);
+        match ctl.state() {
+            RunState::Alarm(code) => {
+                assert!(
+                    code == 4010 && warned,
+                    "alarm {code}, W126 {warned}:\n{src}"
+                );
+                stopped += 1;
+            }
+            state => {
+                assert_eq!(state, RunState::Ended, "{src}");
+                assert!(!warned, "W126 but no alarm:\n{src}");
+                if let Some(v) = cert.violation() {
+                    panic!("line {}: {v}\n{src}", v.line);
+                }
+                certified += 1;
+            }
+        }
+    }
+    // Both kinds are there in numbers.
+    assert!(
+        certified >= 80 && stopped >= 20,
+        "{certified} certified, {stopped} stopped"
+    );
 }

@@ -8,6 +8,21 @@
 //! Units: mm, mm/s, mm/s², rev/min; accelerations are those of the long
 //! axis (slide units: a radial X for a face thread).
 
+/// Whether Z is the long axis of a thread block that travels `d_r`
+/// (radial X, slide units) and `d_z`: Z when it moves at least as far as
+/// X, a 45° move included. The tie is judged within [`TIE_MM`], so that a
+/// 45° pull-out whose end points went through a work shift or a diameter
+/// halving (a rounding of 1e-15 mm either way) keeps Z, as the listing
+/// that printed its lead along Z says. The kernel, the runtime and its
+/// check all choose the axis the lead is along with this.
+pub fn z_is_long(d_r: f64, d_z: f64) -> bool {
+    d_z.abs() >= d_r.abs() - TIE_MM
+}
+
+/// Two thread travels within this (mm) are equal when the long axis is
+/// chosen: far below the 0.001 mm resolution, far above rounding.
+pub const TIE_MM: f64 = 1e-9;
+
 /// The acceleration of the long axis along a straight thread block that
 /// travels `d_r` (radial X, slide units) and `d_z`, when the path may use `ax` on X and `az` on Z: the path acceleration
 /// that keeps both axes within their limits, times the long axis's share
@@ -66,6 +81,18 @@ pub fn exit_length(lead: f64, rpm: f64, a_long: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Z is long on a tie, also one rounded by 1.8e-15 mm (a 45°
+    /// pull-out whose end went through a diameter halving), not a
+    /// micrometre over it.
+    #[test]
+    fn z_is_long_on_a_tie_within_rounding() {
+        assert!(z_is_long(2.0, -2.0));
+        assert!(z_is_long(2.0000000000000018, -2.0));
+        assert!(!z_is_long(2.001, -2.0));
+        assert!(!z_is_long(-2.000001, 2.0));
+        assert!(z_is_long(0.0, 0.0));
+    }
 
     /// M24×1.5 at 600 rpm on the reference Z (2000 mm/s², spindle
     /// 1000 rpm/s): v = 1.5 × 10 = 15 mm/s; the ramp keeps back

@@ -7,6 +7,7 @@ use alloc::format;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::point::Pt;
+use crate::base::thread_room::z_is_long;
 use crate::plan::legs::{sign, Leg, EPS};
 use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
@@ -32,7 +33,7 @@ pub struct Runout {
 impl Move {
     /// Z is the long axis when it moves at least as far as X (a radius).
     pub fn z_long(&self) -> bool {
-        (self.to.z - self.from.z).abs() >= (self.to.r - self.from.r).abs()
+        z_is_long(self.to.r - self.from.r, self.to.z - self.from.z)
     }
 
     pub fn long_length(&self) -> f64 {

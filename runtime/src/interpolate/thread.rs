@@ -8,6 +8,8 @@
 
 use super::{Engine, Motion, RoomWarning};
 use crate::command::{MoveKind, Tag, Thread};
+use crate::geom::Curve;
+use crate::math::V2;
 use crate::planner::{ItemKind, Segment};
 use crate::plc::{Plc, PlcFunction, SpindleDir};
 use crate::profile::brake_limit;
@@ -169,27 +171,13 @@ impl<P: Plc> Engine<P> {
     fn plan_ramp(&mut self, t: &Thread, work_x: f64) {
         let seg = self.cur;
         let rps = self.spindle.rpm().abs() / 60.0;
-        let d = seg.to - seg.from;
-        let (dl, dsh) = if seg.long_z {
-            (d.z.abs(), d.r.abs())
-        } else {
-            (d.r.abs(), d.z.abs())
-        };
-        let (lax, sax) = if seg.long_z {
-            (&self.cfg.z, &self.cfg.x)
-        } else {
-            (&self.cfg.x, &self.cfg.z)
-        };
-        let vlong = t.lead * rps;
-        let vshort = if dl > 0.0 { vlong * dsh / dl } else { 0.0 };
-        if vlong > lax.max_feed * (1.0 + 1e-9)
-            || vshort > sax.max_feed * (1.0 + 1e-9)
-            || !crate::math::is_pos(t.lead)
-        {
+        if !crate::math::is_pos(t.lead) || self.chain_too_fast(rps) {
             let tag = self.tag;
             self.raise(Alarm::BadThread.into(), tag);
             return;
         }
+        let d = seg.to - seg.from;
+        let dl = if seg.long_z { d.z.abs() } else { d.r.abs() };
         let a_long = long_accel(&seg, dl);
         // The ramp is a function of the spindle angle: plan it for the
         // speed the spindle is settling to (at_speed allows 0.5 % below
@@ -216,6 +204,34 @@ impl<P: Plc> Engine<P> {
             theta_lag,
             ..ThreadRun::OFF
         };
+    }
+
+    /// Whether a queued leg of the chain asks an axis for more than its
+    /// feed at `rps` spindle turns a second: the long axis runs at lead ×
+    /// rps, the short one in proportion. Every leg counts, not only the
+    /// first: a pull-out whose axis cannot run at its speed would otherwise
+    /// brake the chain out of step with the spindle and spoil the lead.
+    fn chain_too_fast(&self, rps: f64) -> bool {
+        let mut k = 0;
+        while let Some(seg) = self.q.seg(k) {
+            let MoveKind::Thread(t) = seg.kind else { break };
+            let d = seg.to - seg.from;
+            let (dl, dsh, lax, sax) = if seg.long_z {
+                (d.z.abs(), d.r.abs(), &self.cfg.z, &self.cfg.x)
+            } else {
+                (d.r.abs(), d.z.abs(), &self.cfg.x, &self.cfg.z)
+            };
+            let vlong = t.lead * rps;
+            let vshort = if dl > 0.0 { vlong * dsh / dl } else { 0.0 };
+            if vlong > lax.max_feed * (1.0 + 1e-9) || vshort > sax.max_feed * (1.0 + 1e-9) {
+                return true;
+            }
+            if seg.v_exit <= 0.0 || !self.thread_next(k) {
+                break;
+            }
+            k += 1;
+        }
+        false
     }
 
     /// Whether the index pulse (+ Q) has passed since count `k`: the ramp
@@ -490,6 +506,37 @@ impl<P: Plc> Engine<P> {
     }
 
     /// Whether the chain goes on after the k-th queued move.
+    /// How far the chain's point will still run on `axis` (0: radial X,
+    /// 1: Z) in the direction it moves there, over the straight legs of
+    /// the chain, up to where that axis stops or turns; counted no
+    /// further than `enough` (what the follower could use at its top
+    /// speed). 0 off a thread chain or on an arc.
+    pub(super) fn chain_runs_on(&self, axis: usize, enough: f64) -> f64 {
+        let along = |p: V2| if axis == 0 { p.r } else { p.z };
+        let straight = |s: &Segment| matches!(s.curve, Curve::Line { .. });
+        let Some(head) = self.q.seg(0).filter(|s| straight(s)) else {
+            return 0.0;
+        };
+        let dir = along(head.to) - along(head.from);
+        let mut run = (along(head.to) - along(self.pos)) * dir.signum();
+        if dir == 0.0 || run < 0.0 {
+            return 0.0;
+        }
+        let mut k = 0;
+        while run < enough && self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(k) {
+            k += 1;
+            let Some(leg) = self.q.seg(k).filter(|s| straight(s)) else {
+                break;
+            };
+            let d = along(leg.to) - along(leg.from);
+            if d * dir <= 0.0 {
+                break;
+            }
+            run += d.abs();
+        }
+        run
+    }
+
     fn thread_next(&self, k: usize) -> bool {
         matches!(self.q.seg(k + 1).map(|s| s.kind), Some(MoveKind::Thread(_)))
     }
