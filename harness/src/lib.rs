@@ -7,6 +7,7 @@
 pub mod contour;
 pub mod expr;
 pub mod jit_diff;
+pub mod thread;
 
 use compiler::predict::CODES;
 use compiler::{compile, Options};

@@ -160,6 +160,38 @@ proptest! {
     fn contours_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..121)) {
         harness::contour::certified(&data);
     }
+
+    #[test]
+    fn thread_cycles_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..14)) {
+        harness::thread::certified_or_warned(&data);
+    }
+}
+
+#[test]
+fn the_thread_decoder_reads_a_cycle_and_its_legs() {
+    use harness::thread::decode;
+    // Traced by hand. Byte 0 = 0b0011_0010: speed 50 mod 5 = 0 (200
+    // rpm), lead (50 >> 3) mod 8 = 6 (4 mm). Byte 1 = 2: a G32 chain.
+    // Diameter 10 + 50·51/255 = 20 (the tool at 25), length 8 + 32·0/255
+    // = 8. Legs: 64/32 = 2 out from 25, 32/64 = 0.5 along −Z; then 0, 0
+    // (no move, left out); a last single byte is ignored.
+    assert_eq!(
+        decode(&[0b0011_0010, 2, 51, 0, 64, 32, 0, 0, 7]),
+        "G97 S200 M03\nG99\nG00 X25.000 Z5\nG32 Z-8.000 F4\nG32 X27.000 W-0.500\nG00 X34.000\nZ5\nG00 X80 Z20\nM30\n"
+    );
+    // No bytes: 200 rpm, lead 0.5, a G92 at X10 Z−8 with J = K = 0.2.
+    assert_eq!(
+        decode(&[]),
+        "G97 S200 M03\nG99\nG00 X15.000 Z5\nG92 X9.700 Z-8.000 F0.5 J0.200 K0.200\nX9.400\nG00 X80 Z20\nM30\n"
+    );
+    // A G76 (byte 1 = 1): pull-out PULL_OUTS[3] = 20 tenths, two
+    // finishing passes (byte 5 odd); byte 0 = 3 << 3 | 2 = 26: lead
+    // LEADS[3] = 1.5, speed SPEEDS[26 mod 5 = 1] = 500 rpm; depth 0.9,
+    // Q 270, diameter 60 − 1.8, length 40.
+    assert_eq!(
+        decode(&[3 << 3 | 2, 1, 255, 255, 3, 1]),
+        "G97 S500 M03\nG99\nG00 X65.000 Z5\nG76 P022060 Q50 R0.02\nG76 X58.200 Z-40.000 P900 Q270 F1.5\nG00 X80 Z20\nM30\n"
+    );
 }
 
 #[test]

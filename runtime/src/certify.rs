@@ -271,14 +271,39 @@ struct Pending {
     /// or at a corner a thread chain turns at speed the bound of
     /// [`chain_corner_mm`].
     tol: f64,
-    /// A thread leg that continues its chain at speed: how much faster
-    /// (mm per turn, along the leg's long axis) that axis must run than
-    /// it did on the leg before; 0 otherwise.
-    step: f64,
+    /// A thread leg that continues its chain at speed: how each axis's
+    /// speed (mm per turn, radial X and Z) changes at the corner where
+    /// it starts; 0 otherwise.
+    enter: V2,
+    /// Whether the end point is a corner a thread chain turns at speed.
+    corner: bool,
     spindle: SpindleCmd,
     /// The nearest approach so far: distance and place.
     nearest: f64,
     at: (f64, u16, u32),
+}
+
+/// An axis catching up with a thread chain after corners that changed
+/// its speed ([`catch_up_time`]), counted from the start of the leg the
+/// chain is on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct CatchUp {
+    /// Seconds until the axis keeps the lead again (within [`LEAD_TOL`]).
+    lead_s: f64,
+    /// Seconds until it is back on the chain's point (infinite for an
+    /// axis at its top speed, which keeps its lag).
+    lag_s: f64,
+    /// The steps in its speed not caught up with yet, mm/s: the lag is at
+    /// most c²/2a.
+    c: f64,
+}
+
+impl CatchUp {
+    const NONE: CatchUp = CatchUp {
+        lead_s: 0.0,
+        lag_s: 0.0,
+        c: 0.0,
+    };
 }
 
 /// The checker of one run (see the module's text).
@@ -298,6 +323,8 @@ pub struct Certifier {
     prev_rpm: f64,
     /// The move whose end point was reached last.
     done: Option<Pending>,
+    /// The axes' catch-ups still open in a thread chain (radial X, Z).
+    catch_up: [CatchUp; 2],
     pending: VecDeque<Pending>,
     last_end: Option<V2>,
     /// The last event was a thread move: a thread move now continues its
@@ -329,6 +356,7 @@ impl Certifier {
             prev: None,
             prev_rpm: 0.0,
             done: None,
+            catch_up: [CatchUp::NONE; 2],
             pending: VecDeque::new(),
             last_end: None,
             chain_open: false,
@@ -493,8 +521,7 @@ impl Certifier {
         if q0 < room || rest < room {
             return;
         }
-        let w0 = m.step * p.spindle_rpm.abs() / 60.0;
-        let catching_up = catch_up_lead(v, w0, la.accel, la.max_feed, LEAD_TOL);
+        let catching_up = v * self.catch_up[usize::from(long_z)].lead_s;
         if q0 < catching_up * (1.0 + ENTRY_MARGIN) + 2.0 * v * self.dt {
             return;
         }
@@ -571,7 +598,8 @@ impl Certifier {
                 seg_dist(e, a, a + moved).min(seg_dist(e, b - moved, b))
             }
         };
-        while let Some(m) = self.pending.front().copied() {
+        while let Some(mut m) = self.pending.front().copied() {
+            m.tol = self.tol_of(&m, p.spindle_rpm);
             let d = dist(m.end, from);
             // The step ends where it is nearest to the end point: the tool
             // may still get nearer, and the end points after it are not
@@ -594,6 +622,7 @@ impl Certifier {
                 self.reached += 1;
                 self.done = Some(m);
                 self.pending.pop_front();
+                self.turned(&m, p.spindle_rpm);
                 continue;
             }
             // The period's travel is the axes' step: where the frame
@@ -602,6 +631,7 @@ impl Certifier {
                 self.missed(&m);
                 self.done = Some(m);
                 self.pending.pop_front();
+                self.turned(&m, p.spindle_rpm);
                 continue;
             }
             if let Some(f) = self.pending.front_mut() {
@@ -611,6 +641,70 @@ impl Certifier {
                 }
             }
             break;
+        }
+    }
+
+    /// The distance within which the path reaches end point `m` with the
+    /// spindle at `rpm`: its own ([`END_POINT_MM`], [`chain_corner_mm`]),
+    /// and at a corner of a thread chain that the chain reaches before an
+    /// axis has caught up with the corners before it ([`CatchUp`]), that
+    /// axis's lag too: at most c²/2a for steps c in its speed (the lag it
+    /// builds while reaching its new speed).
+    fn tol_of(&self, m: &Pending, rpm: f64) -> f64 {
+        let Some(leg_s) = leg_time(m, rpm).filter(|_| m.corner) else {
+            return m.tol;
+        };
+        let mut lag2 = 0.0;
+        for (axis, up) in self.axes.iter().zip(&self.catch_up) {
+            // (The margin of the lead's check: the follower is discrete.)
+            let open = up.lag_s * (1.0 + ENTRY_MARGIN) + 2.0 * self.dt > leg_s;
+            if let (Some(ax), true) = (axis, open) {
+                let lag = up.c * up.c / (2.0 * ax.accel);
+                lag2 += lag * lag;
+            }
+        }
+        m.tol + libm::sqrt(lag2)
+    }
+
+    /// The chain turned from leg `m` into the next pending one (or `m`
+    /// ended a move off a chain): the catch-ups still open lose the leg's
+    /// time, and the corner adds its own steps in the axes' speeds.
+    fn turned(&mut self, m: &Pending, rpm: f64) {
+        let next = self.pending.front().copied();
+        let (Some(leg_s), Some(n)) = (leg_time(m, rpm).filter(|_| m.corner), next) else {
+            self.catch_up = [CatchUp::NONE; 2];
+            return;
+        };
+        let (Some((lead, _)), Some(start)) = (n.thread, n.start) else {
+            self.catch_up = [CatchUp::NONE; 2];
+            return;
+        };
+        let rps = rpm.abs() / 60.0;
+        let u = per_turn(n.end - start, lead);
+        let steps = [(n.enter.r, u.r), (n.enter.z, u.z)];
+        for ((up, axis), (du, ui)) in self.catch_up.iter_mut().zip(&self.axes).zip(steps) {
+            up.lead_s = (up.lead_s - leg_s).max(0.0);
+            up.lag_s = (up.lag_s - leg_s).max(0.0);
+            if up.lag_s == 0.0 {
+                up.c = 0.0;
+            }
+            let Some(ax) = axis.filter(|_| du != 0.0) else {
+                continue;
+            };
+            // Faster in the leg's direction on this axis, or slower.
+            let w0 = if ui != 0.0 {
+                du * ui.signum()
+            } else {
+                -du.abs()
+            } * rps;
+            let v = ui.abs() * rps;
+            up.lead_s += catch_up_time(v, w0, ax.accel, ax.max_feed, LEAD_TOL);
+            up.lag_s += if v < ax.max_feed {
+                catch_up_time(v, w0, ax.accel, ax.max_feed, 0.0)
+            } else {
+                f64::INFINITY
+            };
+            up.c += w0.abs();
         }
     }
 
@@ -634,7 +728,8 @@ impl Certifier {
         if !ended {
             return;
         }
-        if let Some(m) = self.pending.front().copied() {
+        if let Some(mut m) = self.pending.front().copied() {
+            m.tol = self.tol_of(&m, self.prev_rpm);
             if m.nearest <= m.tol {
                 // The tool stands where it came within the tolerance.
                 self.reached += 1;
@@ -648,7 +743,7 @@ impl Certifier {
     fn push_move(&mut self, x: f64, z: f64, thread: Option<(f64, f64)>) {
         let end = V2::from_xz(x, z);
         self.end_points += 1;
-        let mut step = 0.0;
+        let mut enter = V2::ZERO;
         // A thread move that continues a chain: the corner where the
         // previous one ends is taken at thread speed.
         if let (true, Some(out), Some(start)) = (self.chain_open, thread, self.last_end) {
@@ -659,7 +754,8 @@ impl Certifier {
                 if let (Some(inc), Some(from)) = (prev.thread, prev.start) {
                     let legs = [(prev.end - from, inc), (end - start, out)];
                     prev.tol = END_POINT_MM.max(chain_corner_mm(legs, [ax, az], dt));
-                    step = long_axis_step(legs);
+                    prev.corner = true;
+                    enter = axis_steps(legs);
                 }
             }
         }
@@ -668,7 +764,8 @@ impl Certifier {
             start: self.last_end,
             thread,
             tol: END_POINT_MM,
-            step,
+            enter,
+            corner: false,
             spindle: self.cmd,
             nearest: f64::INFINITY,
             at: (0.0, 0, 0),
@@ -748,23 +845,6 @@ pub fn chain_corner_mm(legs: [(V2, (f64, f64)); 2], acc: [f64; 2], dt: f64) -> f
     libm::sqrt(a2) * dt * dt
 }
 
-/// How much faster (mm per turn, along its direction) the long axis of
-/// leg `legs[1]` must run than it did on `legs[0]` when a chain turns
-/// from one into the other at speed (travel, (lead, lead change)): the
-/// step a pull-out or run-out whose long axis is X gives X, 0 where the
-/// long axis keeps its speed.
-pub fn long_axis_step(legs: [(V2, (f64, f64)); 2]) -> f64 {
-    let [(d0, (l0, dl0)), (d1, (l1, _))] = legs;
-    let l_end = libm::sqrt((l0 * l0 + 2.0 * dl0 * long_len(d0)).max(0.0));
-    let (u0, u1) = (per_turn(d0, l_end), per_turn(d1, l1));
-    let (was, now) = if long_is_z(d1) {
-        (u0.z, u1.z)
-    } else {
-        (u0.r, u1.r)
-    };
-    (now - was) * now.signum()
-}
-
 /// The long-axis travel over which a thread leg that its chain enters at
 /// speed may miss its lead: the leg's long axis has to run `w0` mm/s
 /// faster than it did (negative: slower) and follows the chain's point
@@ -782,6 +862,12 @@ pub fn long_axis_step(legs: [(V2, (f64, f64)); 2]) -> f64 {
 /// c_p²·(1 + 1/s)/2a = c₀²/2a. A peak the top speed cuts to c_m runs at
 /// c_m until the lag left is the curve's.
 pub fn catch_up_lead(v: f64, w0: f64, a: f64, vmax: f64, tol: f64) -> f64 {
+    v * catch_up_time(v, w0, a, vmax, tol)
+}
+
+/// The time [`catch_up_lead`] takes: until the axis runs on the point at
+/// `v`, or within `tol` of `v` behind it.
+pub fn catch_up_time(v: f64, w0: f64, a: f64, vmax: f64, tol: f64) -> f64 {
     if w0 == 0.0 || a <= 0.0 {
         return 0.0;
     }
@@ -801,7 +887,26 @@ pub fn catch_up_lead(v: f64, w0: f64, a: f64, vmax: f64, tol: f64) -> f64 {
         // The peak is within the tolerance of the lead: only reaching it counts.
         t += room.max(0.0) / a;
     }
-    v * t
+    t
+}
+
+/// The time a thread leg takes at `rpm` (its long-axis travel at lead
+/// × speed); `None` off a thread or with the spindle standing.
+fn leg_time(m: &Pending, rpm: f64) -> Option<f64> {
+    let (Some((lead, _)), Some(start)) = (m.thread, m.start) else {
+        return None;
+    };
+    let v = lead * rpm.abs() / 60.0;
+    (v > 0.0).then(|| long_len(m.end - start) / v)
+}
+
+/// How each axis's speed (mm per turn, radial X and Z) changes where a
+/// chain turns from leg `legs[0]` into `legs[1]` at speed (travel,
+/// (lead, lead change)).
+pub fn axis_steps(legs: [(V2, (f64, f64)); 2]) -> V2 {
+    let [(d0, (l0, dl0)), (d1, (l1, _))] = legs;
+    let l_end = libm::sqrt((l0 * l0 + 2.0 * dl0 * long_len(d0)).max(0.0));
+    per_turn(d1, l1) - per_turn(d0, l_end)
 }
 
 /// Whether Z is the long axis of a thread move of travel `d` (radius, Z):
@@ -1357,14 +1462,15 @@ mod tests {
     #[test]
     fn the_catch_up_of_a_long_axis_that_a_corner_turns() {
         // A Z thread of lead 1.5 into a run-out 2 mm out on the radius and
-        // 1 along Z: X is long there, at lead 1.5 × 2 = 3 along X; X ran
-        // at 0 before, so it must run 3 mm per turn faster.
+        // 1 along Z: X is long there, at lead 1.5 × 2 = 3 along X, 1.5 of
+        // Z a turn as before; X ran at 0 before, so it must run 3 mm per
+        // turn faster. A 45° pull-out keeps Z long at Z's speed, and X
+        // steps by 1.5.
         let z_thread = (V2::new(0.0, -20.0), (1.5, 0.0));
         let run_out = (V2::new(2.0, -1.0), (3.0, 0.0));
-        assert_eq!(long_axis_step([z_thread, run_out]), 3.0);
-        // A 45° pull-out keeps Z long at Z's speed: no step.
+        assert_eq!(axis_steps([z_thread, run_out]), V2::new(3.0, 0.0));
         let pull_out = (V2::new(2.0, -2.0), (1.5, 0.0));
-        assert_eq!(long_axis_step([z_thread, pull_out]), 0.0);
+        assert_eq!(axis_steps([z_thread, pull_out]), V2::new(1.5, 0.0));
         // From rest to 15 mm/s at 1500 mm/s²: 15/1500 s to reach it, then
         // up 15/√3 at a and down at a/2: (0.01 + 0.0057735 + 0.011547) s
         // × 15 mm/s = 0.40981 mm.
