@@ -550,3 +550,48 @@ fn a_pull_out_too_fast_for_x_stops_the_run_before_the_thread() {
     }
     let _ = std::fs::remove_dir_all(d);
 }
+
+/// Chamfers (L), roundings (D) and tool-nose compensation hold a move
+/// back until the next block, so the kernel's programmed point runs ahead
+/// of the printed moves. The runtime took that for a move it had missed
+/// and reached for the programmed point: it cut the sharp corner instead
+/// of the chamfer and the rounding, ran the compensated contour through
+/// the uncompensated corners, and ran the first compensated feed (its
+/// FEED held back too) at rapid speed. `gbvm check` now holds every feed
+/// period to its canon line or arc ("path").
+#[test]
+fn chamfers_roundings_and_compensation_are_cut_as_printed() {
+    let chamfer = "G99 G00 X0 Z2 M03 S800\nG01 Z0 F0.1\nX20 L1\nZ-20 D0.5\nX40\nG00 X60 Z10\nM30\n";
+    let summary = certified("chamfer", chamfer);
+    assert!(summary.contains("path: worst 0.0000 mm off"), "{summary}");
+    // The comp_od_profile case: G42 with a 0.8 nose radius, tip 3.
+    let comp = "G99 M03 S1000\nT0101\nG00 X60 Z5\nG42 G00 X20 Z2\nG01 Z-10 F0.2\nX30 Z-20\nZ-30\nG02 X40 Z-35 R5\nG01 X50\nZ-45\nX60\nG40 G00 X70 Z5\nM30\n";
+    let d = scratch("comp-path");
+    let (nc, gbc, toml) = (d.join("p.nc"), d.join("p.gbc"), d.join("m.toml"));
+    std::fs::write(&nc, comp).unwrap();
+    std::fs::write(
+        &toml,
+        "[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n",
+    )
+    .unwrap();
+    let (gbc, toml) = (gbc.to_str().unwrap(), toml.to_str().unwrap());
+    let o = gbcc(&[nc.to_str().unwrap(), "--machine", toml, "-o", gbc]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let o = gbvm(&["check", gbc, "--machine", toml]);
+    let summary = text(&o.stdout);
+    assert!(o.status.success(), "{summary}{}", text(&o.stderr));
+    assert!(summary.contains("path: worst 0.0000 mm off"), "{summary}");
+    // No rapid from the start-up (line 4) to the cancel (line 12) goes
+    // below the start-up's Z1.2 into the part (the first feed ran as a
+    // rapid to Z−10).
+    let o = gbvm(&["run", gbc, "--machine", toml, "--emit", "trace"]);
+    let trace = text(&o.stdout);
+    for l in trace.lines().skip(1) {
+        let f: Vec<&str> = l.split(',').collect();
+        let (z, line): (f64, u32) = (f[2].parse().unwrap(), f[5].parse().unwrap());
+        if (4..12).contains(&line) && f[6] == "rapid" {
+            assert!(z >= 1.2 - 1e-9, "{l}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(d);
+}

@@ -56,6 +56,10 @@ pub const TRAVEL_MM: f64 = 1e-6;
 /// A canon end point is reached when the path passes within this distance
 /// (the 0.001 mm resolution), mm.
 pub const END_POINT_MM: f64 = 0.001;
+/// A set point of a straight or circular feed lies within this distance of
+/// its canon move (the 0.001 mm resolution: set points lie on the path,
+/// only the chord between two of them cuts a corner or an arc), mm.
+pub const PATH_MM: f64 = 0.001;
 /// The measured lead may differ from the programmed one by this share.
 pub const LEAD_TOL: f64 = 1e-4;
 /// A G96 spindle speed may differ from its target by this share.
@@ -78,6 +82,8 @@ pub enum Kind {
     Travel,
     /// A canon end point not reached (distance of the nearest approach).
     EndPoint,
+    /// A set point of a feed off its canon line or arc (the distance).
+    Path,
     /// Thread lead.
     Lead,
     /// G96 surface speed (the spindle speed against its target).
@@ -90,12 +96,13 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in the order of the summary.
-    pub const ALL: [Kind; 9] = [
+    pub const ALL: [Kind; 10] = [
         Kind::Velocity,
         Kind::Acceleration,
         Kind::Jerk,
         Kind::Travel,
         Kind::EndPoint,
+        Kind::Path,
         Kind::Lead,
         Kind::SurfaceSpeed,
         Kind::SpindleSpeed,
@@ -114,6 +121,7 @@ impl Kind {
             Kind::Jerk => "jerk",
             Kind::Travel => "travel",
             Kind::EndPoint => "end point",
+            Kind::Path => "path",
             Kind::Lead => "thread lead",
             Kind::SurfaceSpeed => "surface speed",
             Kind::SpindleSpeed => "spindle speed",
@@ -158,7 +166,7 @@ impl Subject {
             Kind::Velocity => "mm/s",
             Kind::Acceleration => "mm/s²",
             Kind::Jerk => "mm/s³",
-            Kind::EndPoint | Kind::Travel => "mm",
+            Kind::EndPoint | Kind::Path | Kind::Travel => "mm",
             Kind::Lead => "mm/rev",
             Kind::SurfaceSpeed | Kind::SpindleSpeed => "rev/min",
             Kind::SpindleAccel => "rev/min/s",
@@ -194,7 +202,7 @@ impl Figure {
     /// Whether the figure breaks its bound.
     pub fn violates(&self) -> bool {
         match self.kind {
-            Kind::EndPoint => self.ratio > self.limit,
+            Kind::EndPoint | Kind::Path => self.ratio > self.limit,
             Kind::Travel => self.ratio > TRAVEL_MM,
             Kind::Lead => self.ratio > LEAD_TOL,
             Kind::SurfaceSpeed => self.ratio > CSS_TOL,
@@ -212,6 +220,11 @@ impl fmt::Display for Figure {
             Kind::EndPoint => write!(
                 f,
                 "a canon end point is not reached: the path passes {:.4} mm from it at the nearest (tolerance {} mm)",
+                self.value, self.limit
+            ),
+            Kind::Path => write!(
+                f,
+                "the tool leaves the programmed path by {:.4} mm (tolerance {} mm)",
                 self.value, self.limit
             ),
             Kind::Lead => write!(
@@ -277,10 +290,25 @@ struct Pending {
     enter: V2,
     /// Whether the end point is a corner a thread chain turns at speed.
     corner: bool,
+    /// The way to it the tool must keep.
+    shape: Shape,
     spindle: SpindleCmd,
     /// The nearest approach so far: distance and place.
     nearest: f64,
     at: (f64, u16, u32),
+}
+
+/// The way a canon move goes to its end point, as far as the path check
+/// holds the tool to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Shape {
+    /// A straight feed (G01, G31): the segment from the start.
+    Line,
+    /// A circular feed: the circle about `centre` through the end point.
+    Arc { centre: V2 },
+    /// Not checked: a rapid (each axis at its own rate), a thread (the
+    /// axes follow its corners), a conic.
+    Free,
 }
 
 /// An axis catching up with a thread chain after corners that changed
@@ -327,6 +355,8 @@ pub struct Certifier {
     catch_up: [CatchUp; 2],
     pending: VecDeque<Pending>,
     last_end: Option<V2>,
+    /// The work zero the canon printed last (machine coordinates).
+    origin: Option<V2>,
     /// The last event was a thread move: a thread move now continues its
     /// chain (the runtime runs them on without a stop).
     chain_open: bool,
@@ -335,8 +365,10 @@ pub struct Certifier {
     end_points: u64,
     reached: u64,
     lead_periods: u64,
+    /// Periods whose set point was held to its canon move.
+    path_periods: u64,
     css_periods: u64,
-    worst: [Option<Figure>; 9],
+    worst: [Option<Figure>; Kind::ALL.len()],
     first: Option<Figure>,
 }
 
@@ -359,6 +391,7 @@ impl Certifier {
             catch_up: [CatchUp::NONE; 2],
             pending: VecDeque::new(),
             last_end: None,
+            origin: None,
             chain_open: false,
             cmd: SpindleCmd {
                 on: false,
@@ -369,8 +402,9 @@ impl Certifier {
             end_points: 0,
             reached: 0,
             lead_periods: 0,
+            path_periods: 0,
             css_periods: 0,
-            worst: [None; 9],
+            worst: [None; Kind::ALL.len()],
             first: None,
         }
     }
@@ -429,6 +463,7 @@ impl Certifier {
             self.thread_lead(&prev, p, &m);
             self.surface_speed(&prev, p, &m);
         }
+        self.on_path(&prev, p);
         self.end_points(&prev, p);
         self.prev_rpm = p.spindle_rpm;
         self.prev = Some(*p);
@@ -573,6 +608,42 @@ impl Certifier {
             value: rpm,
             limit: target,
             ratio: (rpm - target).abs() / target,
+        });
+    }
+
+    /// A straight or circular feed's set point on its canon move: on the
+    /// move whose end point is next, or at a corner on the one before or
+    /// after it. (Set points lie on the path; only the chord between two
+    /// of them cuts a corner or an arc.) Not in a period whose work frame
+    /// changed, nor for a move not checked ([`Shape::Free`]).
+    fn on_path(&mut self, prev: &SetPoint, p: &SetPoint) {
+        if !matches!(p.motion, Motion::Feed | Motion::Arc) || !frame_kept(prev, p) {
+            return;
+        }
+        let here = V2::from_xz(p.x, p.z);
+        let near = [
+            self.done,
+            self.pending.front().copied(),
+            self.pending.get(1).copied(),
+        ];
+        let Some(d) = near
+            .iter()
+            .flatten()
+            .filter_map(|m| off_shape(m, here))
+            .reduce(f64::min)
+        else {
+            return;
+        };
+        self.path_periods += 1;
+        self.note(Figure {
+            kind: Kind::Path,
+            subject: Subject::Path,
+            time_s: p.time_s,
+            file: p.file,
+            line: p.line,
+            value: d,
+            limit: PATH_MM,
+            ratio: d,
         });
     }
 
@@ -740,7 +811,7 @@ impl Certifier {
         }
     }
 
-    fn push_move(&mut self, x: f64, z: f64, thread: Option<(f64, f64)>) {
+    fn push_move(&mut self, x: f64, z: f64, thread: Option<(f64, f64)>, shape: Shape) {
         let end = V2::from_xz(x, z);
         self.end_points += 1;
         let mut enter = V2::ZERO;
@@ -766,6 +837,7 @@ impl Certifier {
             tol: END_POINT_MM,
             enter,
             corner: false,
+            shape,
             spindle: self.cmd,
             nearest: f64::INFINITY,
             at: (0.0, 0, 0),
@@ -890,6 +962,26 @@ pub fn catch_up_time(v: f64, w0: f64, a: f64, vmax: f64, tol: f64) -> f64 {
     t
 }
 
+/// Whether the work frame stayed the same over the period from `prev` to
+/// `p`: the work point moved as the axes did.
+fn frame_kept(prev: &SetPoint, p: &SetPoint) -> bool {
+    let moved = V2::new((p.axis_x - prev.axis_x) * 0.5, p.axis_z - prev.axis_z);
+    let step = V2::from_xz(p.x, p.z) - V2::from_xz(prev.x, prev.z);
+    (step - moved).norm() <= 1e-9
+}
+
+/// How far `p` lies off the way of move `m` (`None`: not checked, or its
+/// start is unknown). An arc counts its whole circle (a set point on the
+/// circle but off the arc lies far from the moves before and after, whose
+/// end points the walk holds the tool to).
+fn off_shape(m: &Pending, p: V2) -> Option<f64> {
+    match m.shape {
+        Shape::Line => Some(seg_dist(p, m.start?, m.end)),
+        Shape::Arc { centre } => Some(((p - centre).norm() - (m.end - centre).norm()).abs()),
+        Shape::Free => None,
+    }
+}
+
 /// The time a thread leg takes at `rpm` (its long-axis travel at lead
 /// × speed); `None` off a thread or with the spindle standing.
 fn leg_time(m: &Pending, rpm: f64) -> Option<f64> {
@@ -944,16 +1036,20 @@ impl Sink for Certifier {
         // Consecutive thread moves form a chain; anything between ends it.
         let thread = matches!(e, Event::Thread { .. });
         match e {
+            Event::Line { x, z, .. } | Event::Skip { x, z } => {
+                self.push_move(x, z, None, Shape::Line)
+            }
+            Event::Arc { x, z, cx, cz, .. } => {
+                let centre = V2::from_xz(cx, cz);
+                self.push_move(x, z, None, Shape::Arc { centre })
+            }
             Event::Rapid { x, z, .. }
-            | Event::Line { x, z, .. }
-            | Event::Skip { x, z }
-            | Event::Arc { x, z, .. }
             | Event::Ellipse { x, z, .. }
             | Event::Parabola { x, z, .. }
-            | Event::ArcThread { x, z, .. } => self.push_move(x, z, None),
+            | Event::ArcThread { x, z, .. } => self.push_move(x, z, None, Shape::Free),
             Event::Thread {
                 x, z, lead, dlead, ..
-            } => self.push_move(x, z, Some((lead, dlead.unwrap_or(0.0)))),
+            } => self.push_move(x, z, Some((lead, dlead.unwrap_or(0.0))), Shape::Free),
             Event::Speed { s, css, max } => {
                 if let Some(m) = max {
                     self.cmd.clamp = if m > 0.0 { m } else { f64::INFINITY };
@@ -964,6 +1060,17 @@ impl Sink for Certifier {
             // The tool goes home by a way of its own: the next move's
             // start is not the last end point.
             Event::Home { .. } => self.last_end = None,
+            // A new work zero (machine coordinates, X a diameter): the last
+            // end point, where the next move starts, is the same place in
+            // the new frame (unknown when the old zero was never printed).
+            Event::Origin { x, z } => {
+                let origin = V2::from_xz(x, z);
+                self.last_end = match self.origin {
+                    Some(old) => self.last_end.map(|e| e - (origin - old)),
+                    None => None,
+                };
+                self.origin = Some(origin);
+            }
             _ => {}
         }
         self.chain_open = thread;
@@ -1015,6 +1122,11 @@ impl fmt::Display for Summary<'_> {
                 (Kind::EndPoint, _) => {
                     write!(f, "; end points: {} of {} reached", c.reached, c.end_points)?
                 }
+                (Kind::Path, Some(w)) => write!(
+                    f,
+                    "; path: worst {:.4} mm off ({} periods, line {})",
+                    w.value, c.path_periods, w.line
+                )?,
                 (Kind::Lead, Some(w)) => write!(
                     f,
                     "; thread lead: worst {:.4} % off ({} periods, line {})",
@@ -1457,6 +1569,76 @@ mod tests {
             c.period(&p);
         }
         c
+    }
+
+    /// A feed along Z from X20 Z0 to Z−10, then a quarter arc about X20
+    /// Z−12 to X24 Z−12, every 10 µm of Z a period; the period `off`
+    /// strays `by` mm out on the radius.
+    fn along(off: u32, by: f64) -> Certifier {
+        let mut c = certifier();
+        c.emit(Event::Rapid {
+            x: 20.0,
+            z: 0.0,
+            c: None,
+        });
+        c.emit(Event::Line {
+            x: 20.0,
+            z: -10.0,
+            c: None,
+        });
+        c.emit(Event::Arc {
+            dir: nc::event::Dir::Ccw,
+            x: 24.0,
+            z: -12.0,
+            cx: 20.0,
+            cz: -12.0,
+        });
+        let mut k = 0;
+        let mut step = |c: &mut Certifier, r: f64, z: f64, motion: Motion| {
+            k += 1;
+            let r = if k == off { r + by } else { r };
+            c.period(&at(k, (2.0 * r, z), (0.0, 0.0), motion));
+        };
+        step(&mut c, 10.0, 0.0, Motion::None);
+        for i in 1..=1000 {
+            step(&mut c, 10.0, -0.01 * f64::from(i), Motion::Feed);
+        }
+        // The arc: r = 10 + 2·sin θ, z = −12 + 2·cos θ, θ from 0 to 90°.
+        for i in 1..=300 {
+            let t = core::f64::consts::FRAC_PI_2 * f64::from(i) / 300.0;
+            step(
+                &mut c,
+                10.0 + 2.0 * t.sin(),
+                -12.0 + 2.0 * t.cos(),
+                Motion::Arc,
+            );
+        }
+        c.finish(true);
+        c
+    }
+
+    #[test]
+    fn the_tool_is_held_to_its_lines_and_arcs() {
+        let c = along(0, 0.0);
+        let w = c.worst(Kind::Path).unwrap();
+        assert!(w.value < 1e-12 && !w.violates(), "{w:?}");
+        // (The first period jumps from machine zero: only the path and
+        // the end points matter here.)
+        assert_eq!(c.worst(Kind::EndPoint), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("path: worst 0.0000 mm off (1300 periods"));
+        // 1.5 µm out on the radius in period 500 (Z −4.99), off the line
+        // by as much, or in period 1290 (86.7° round the arc), off the
+        // circle by √((2·sin 86.7° + 0.0015)² + (2·cos 86.7°)²) − 2 =
+        // 1.49751 µm: caught; 0.5 µm is within the resolution.
+        for (off, by) in [(500, 0.0015), (1290, 0.00149751)] {
+            let w = *along(off, 0.0015).worst(Kind::Path).unwrap();
+            assert!(w.violates() && (w.value - by).abs() < 1e-8, "{w:?}");
+            assert_eq!(w.line, 10 + off);
+            assert!(!along(off, 0.0005).worst(Kind::Path).unwrap().violates());
+        }
     }
 
     #[test]

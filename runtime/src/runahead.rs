@@ -331,8 +331,14 @@ impl RunAhead {
     /// G32/G34 block with run-out words waits for the next block (its
     /// point has moved, its legs come with the next block), and after a
     /// run-out the tool stands at the lifted end while the kernel's point
-    /// is the programmed end (§16.5). So only a block that moved the
-    /// kernel's point, with no thread block waiting, is resynchronised.
+    /// is the programmed end (§16.5); a move with an L/D corner word or
+    /// a compensated one waits in the contour queue, and tool-nose
+    /// compensation offsets the tool from the programmed contour
+    /// (`Nc::contour_held`: reaching for the kernel's point there cut the
+    /// programmed corner instead of the chamfer or the compensated path,
+    /// at a rapid where the feed was held back too). So only a block
+    /// that moved the kernel's point, with nothing waiting, is
+    /// resynchronised.
     fn resync(&mut self, tag: Tag) {
         if self.tr.in_plane() {
             // The kernel's point is the joints', the plane's moves are not.
@@ -344,7 +350,8 @@ impl RunAhead {
             .kernel_seen
             .is_none_or(|k| (kernel - k).max_abs() > 1e-9);
         self.kernel_seen = Some(kernel);
-        if moved && !self.vm.nc.thread_waiting() && (kernel - self.tr.work).max_abs() > 1e-6 {
+        let held = self.vm.nc.thread_waiting() || self.vm.nc.contour_held();
+        if moved && !held && (kernel - self.tr.work).max_abs() > 1e-6 {
             let kind = if self.tr.feed.f > 0.0 {
                 MoveKind::Feed(self.tr.feed)
             } else {

@@ -22,6 +22,17 @@ impl Nc {
         self.st.cycles.chain.pending.is_some()
     }
 
+    /// The printed moves are apart from the programmed point on purpose:
+    /// a move waits in the contour queue for the next block (an L/D
+    /// corner word, a move given by its angle, a compensated element whose
+    /// end depends on the next), or tool-nose compensation offsets every
+    /// printed point from the programmed one (G41/G42 in force, or a
+    /// cancel to come). A motion controller must then follow the printed
+    /// moves only, not reach for [`position`](Nc::position).
+    pub fn contour_held(&self) -> bool {
+        self.st.contour.is_holding() || crate::exec::comp::compensating(self)
+    }
+
     /// The last block was a G32/G34 move, so that the next one may
     /// continue its chain. Read after a block that found a block waiting
     /// ([`thread_waiting`](Nc::thread_waiting)): when it continues the

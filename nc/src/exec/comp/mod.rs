@@ -142,7 +142,7 @@ pub(crate) fn running(nc: &Nc) -> bool {
 
 /// "While compensating" (comp.md §7, §10): G41/G42 in force, or a cancel
 /// still to come.
-fn compensating(nc: &Nc) -> bool {
+pub(crate) fn compensating(nc: &Nc) -> bool {
     running(nc) || nc.st.modal.comp().side().is_some()
 }
 
