@@ -332,6 +332,35 @@ impl CatchUp {
         lag_s: 0.0,
         c: 0.0,
     };
+
+    /// A corner's step: the axis `ax` must run `w0` mm/s faster (negative:
+    /// slower) to keep to the chain at `v` mm/s, with `runs` mm of the
+    /// chain ahead on it in the direction it moves. The follower closes
+    /// the lag on its closing curve ([`catch_up_time`]) where the point
+    /// runs on far enough for the axis to stop behind it, (v + c_p)²/2a
+    /// beyond the catch-up's own travel; else at least on the slower tail
+    /// ([`tail_time`]).
+    fn add(&mut self, ax: &Axis, v: f64, w0: f64, runs: f64) {
+        let (a, vmax) = (ax.accel, ax.max_feed);
+        let curve = |tol| catch_up_time(v, w0, a, vmax, tol);
+        let peak = w0.abs() / libm::sqrt(1.0 + 1.0 / CLOSE_SHARE);
+        let free = runs >= v * curve(0.0) + (v + peak) * (v + peak) / (2.0 * a);
+        let time = |tol, eps| {
+            let t = curve(tol);
+            if free {
+                t
+            } else {
+                t.max(tail_time(v, w0, a, vmax, eps))
+            }
+        };
+        self.lead_s += time(LEAD_TOL, LEAD_TOL * v * v / a);
+        self.lag_s += if v < vmax {
+            time(0.0, 0.5 * PATH_MM)
+        } else {
+            f64::INFINITY
+        };
+        self.c += w0.abs();
+    }
 }
 
 /// The checker of one run (see the module's text).
@@ -753,13 +782,15 @@ impl Certifier {
         let rps = rpm.abs() / 60.0;
         let u = per_turn(n.end - start, lead);
         let steps = [(n.enter.r, u.r), (n.enter.z, u.z)];
-        for ((up, axis), (du, ui)) in self.catch_up.iter_mut().zip(&self.axes).zip(steps) {
+        let runs = [self.axis_run(0), self.axis_run(1)];
+        for (i, (du, ui)) in steps.into_iter().enumerate() {
+            let up = &mut self.catch_up[i];
             up.lead_s = (up.lead_s - leg_s).max(0.0);
             up.lag_s = (up.lag_s - leg_s).max(0.0);
             if up.lag_s == 0.0 {
                 up.c = 0.0;
             }
-            let Some(ax) = axis.filter(|_| du != 0.0) else {
+            let Some(ax) = self.axes[i].filter(|_| du != 0.0) else {
                 continue;
             };
             // Faster in the leg's direction on this axis, or slower.
@@ -768,15 +799,30 @@ impl Certifier {
             } else {
                 -du.abs()
             } * rps;
-            let v = ui.abs() * rps;
-            up.lead_s += catch_up_time(v, w0, ax.accel, ax.max_feed, LEAD_TOL);
-            up.lag_s += if v < ax.max_feed {
-                catch_up_time(v, w0, ax.accel, ax.max_feed, 0.0)
-            } else {
-                f64::INFINITY
-            };
-            up.c += w0.abs();
+            up.add(&ax, ui.abs() * rps, w0, runs[i]);
         }
+    }
+
+    /// How far the chain runs on axis `i` (0: radial X, 1: Z) from the
+    /// start of the next pending move in the direction it moves there, up
+    /// to where that axis stops or turns, or the chain queued so far ends.
+    fn axis_run(&self, i: usize) -> f64 {
+        let along = |d: V2| if i == 0 { d.r } else { d.z };
+        let (mut run, mut dir) = (0.0, 0.0);
+        for m in &self.pending {
+            let (Some(_), Some(start)) = (m.thread, m.start) else {
+                break;
+            };
+            let d = along(m.end - start);
+            if d == 0.0 || d * dir < 0.0 {
+                break;
+            }
+            (run, dir) = (run + d.abs(), d);
+            if !m.corner {
+                break;
+            }
+        }
+        run
     }
 
     fn missed(&mut self, m: &Pending) {
@@ -990,6 +1036,37 @@ fn leg_time(m: &Pending, rpm: f64) -> Option<f64> {
     };
     let v = lead * rpm.abs() / 60.0;
     (v > 0.0).then(|| long_len(m.end - start) / v)
+}
+
+/// The time an axis following a thread chain takes to close the lag a
+/// step `w0` in its speed gave it to within `eps` mm, when the chain point
+/// is about to stop or turn on that axis, so that the follower keeps a
+/// speed from which it could stop where the point would if the point
+/// braked at the axis's whole acceleration (`runtime::follow`): the axis
+/// reaches its new speed `v` in |w0|/a with a lag w0²/2a, gains at most
+/// vmax − v on the point while that binds, and then at least a·lag/v,
+/// so that the lag falls as e^(−a·t/v). (Slower than
+/// [`catch_up_time`]'s closing curve, which holds where the point runs
+/// on.)
+pub fn tail_time(v: f64, w0: f64, a: f64, vmax: f64, eps: f64) -> f64 {
+    if w0 == 0.0 || a <= 0.0 || v <= 0.0 {
+        return 0.0;
+    }
+    let c0 = w0.abs();
+    let lag = c0 * c0 / (2.0 * a);
+    let mut t = c0 / a;
+    // Where the top speed binds: a·lag/v above vmax − v.
+    let bound = (vmax - v).max(0.0) * v / a;
+    let exp_from = if lag > bound && vmax > v {
+        t += (lag - bound) / (vmax - v);
+        bound
+    } else {
+        lag
+    };
+    if exp_from > eps {
+        t += v / a * libm::log(exp_from / eps);
+    }
+    t
 }
 
 /// How each axis's speed (mm per turn, radial X and Z) changes where a

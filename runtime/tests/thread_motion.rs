@@ -508,3 +508,24 @@ fn random_thread_cycles_are_certified_or_stop_where_warned() {
         "{certified} certified, {stopped} stopped"
     );
 }
+
+/// Found by the `thread` fuzz target. A G32 chain whose second leg asks
+/// X for 4002 mm/min at the commanded 1500 rev/min (3 × 1500 × 3.5155 /
+/// 3.953): the chain was checked at the speed the spindle had reached
+/// when it counted as at speed (0.5 % below, 3983 mm/min) and ran with X
+/// beyond its feed; it is checked at the commanded speed now, as W126 is.
+/// And a chain whose corner comes while X, long on the leg before it,
+/// still closes the lag of the corner before that (it must slow from
+/// 50 mm/s almost to a stand there): certified, the corner counted within
+/// the lag X may still have.
+#[test]
+fn thread_chains_the_fuzz_target_found() {
+    let too_fast = "G97 S1500 M03\nG99\nG00 X50.490 Z5\nG32 Z-12.769 F3\nG32 X57.521 W-3.953\nG32 X58.084 W-3.203\nG00 X65.084\nZ5\nG00 X80 Z20\nM30\n";
+    let machine = Machine::reference();
+    let mut ctl =
+        Controller::new(module(too_fast, &machine), machine.clone(), AutoAck).expect("loads");
+    let _ = ctl.run_certified(600_000);
+    assert_eq!(ctl.state(), RunState::Alarm(4010));
+    let lagging = "G97 S1000 M03\nG99\nG00 X64.804 Z5\nG32 Z-39.373 F3\nG32 X67.491 W-2.969\nG32 X73.429 W-1.844\nG32 X73.523 W-3.375\nG00 X80.523\nZ5\nG00 X80 Z20\nM30\n";
+    assert_eq!(certify(lagging, &machine, false), Some(Ok(())));
+}

@@ -171,7 +171,10 @@ impl<P: Plc> Engine<P> {
     fn plan_ramp(&mut self, t: &Thread, work_x: f64) {
         let seg = self.cur;
         let rps = self.spindle.rpm().abs() / 60.0;
-        if !crate::math::is_pos(t.lead) || self.chain_too_fast(rps) {
+        // The speed the spindle is settling to (at_speed allows 0.5 %
+        // below it): the thread runs at that.
+        let rps_ref = rps.max(self.spindle.commanded(work_x) / 60.0);
+        if !crate::math::is_pos(t.lead) || self.chain_too_fast(rps_ref) {
             let tag = self.tag;
             self.raise(Alarm::BadThread.into(), tag);
             return;
@@ -182,7 +185,6 @@ impl<P: Plc> Engine<P> {
         // The ramp is a function of the spindle angle: plan it for the
         // speed the spindle is settling to (at_speed allows 0.5 % below
         // it), with the share `ramp_accel` leaves for ω̇.
-        let rps_ref = rps.max(self.spindle.commanded(work_x) / 60.0);
         let a_ramp = nc::thread_room::ramp_accel(a_long, t.lead, self.cfg.spindle.accel_rpm_s);
         let alpha = a_ramp / (rps_ref * rps_ref);
         self.check_room(a_ramp, rps_ref);
