@@ -306,8 +306,10 @@ enum Shape {
     Line,
     /// A circular feed: the circle about `centre` through the end point.
     Arc { centre: V2 },
-    /// Not checked: a rapid (each axis at its own rate), a thread (the
-    /// axes follow its corners), a conic.
+    /// A rapid: each axis runs at its own rate (a dog-leg), so the tool
+    /// stays within the rectangle of the start and the end.
+    Rapid,
+    /// Not checked: a thread (the axes follow its corners), a conic.
     Free,
 }
 
@@ -640,29 +642,36 @@ impl Certifier {
         });
     }
 
-    /// A straight or circular feed's set point on its canon move: on the
-    /// move whose end point is next, or at a corner on the one before or
-    /// after it. (Set points lie on the path; only the chord between two
-    /// of them cuts a corner or an arc.) Not in a period whose work frame
-    /// changed, nor for a move not checked ([`Shape::Free`]).
+    /// A straight or circular feed's set point on its canon move, a
+    /// rapid's within its rectangle: on the move whose end point is next,
+    /// or at a corner on the one before or after it. (Set points lie on
+    /// the path; only the chord between two of them cuts a corner or an
+    /// arc.) Not in a period whose work frame changed, nor for a move not
+    /// checked ([`Shape::Free`]).
     fn on_path(&mut self, prev: &SetPoint, p: &SetPoint) {
-        if !matches!(p.motion, Motion::Feed | Motion::Arc) || !frame_kept(prev, p) {
+        let rapid = match p.motion {
+            Motion::Feed | Motion::Arc => false,
+            Motion::Rapid => true,
+            _ => return,
+        };
+        if !frame_kept(prev, p) {
             return;
         }
         let here = V2::from_xz(p.x, p.z);
-        let near = [
-            self.done,
-            self.pending.front().copied(),
-            self.pending.get(1).copied(),
-        ];
-        let Some(d) = near
-            .iter()
-            .flatten()
-            .filter_map(|m| off_shape(m, here))
-            .reduce(f64::min)
-        else {
+        let kind = |m: &Pending| (m.shape == Shape::Rapid) == rapid;
+        // The move running must be one of the period's kind and known
+        // (not one that starts where the tool came home, say).
+        let front = self.pending.front().copied().filter(kind);
+        let Some(on_front) = front.and_then(|m| off_shape(&m, here)) else {
             return;
         };
+        let near = [self.done, self.pending.get(1).copied()];
+        let d = near
+            .iter()
+            .flatten()
+            .filter(|m| kind(m))
+            .filter_map(|m| off_shape(m, here))
+            .fold(on_front, f64::min);
         self.path_periods += 1;
         self.note(Figure {
             kind: Kind::Path,
@@ -1024,6 +1033,11 @@ fn off_shape(m: &Pending, p: V2) -> Option<f64> {
     match m.shape {
         Shape::Line => Some(seg_dist(p, m.start?, m.end)),
         Shape::Arc { centre } => Some(((p - centre).norm() - (m.end - centre).norm()).abs()),
+        Shape::Rapid => {
+            let a = m.start?;
+            let out = |v: f64, a: f64, b: f64| (a.min(b) - v).max(v - a.max(b)).max(0.0);
+            Some(libm::hypot(out(p.r, a.r, m.end.r), out(p.z, a.z, m.end.z)))
+        }
         Shape::Free => None,
     }
 }
@@ -1120,8 +1134,8 @@ impl Sink for Certifier {
                 let centre = V2::from_xz(cx, cz);
                 self.push_move(x, z, None, Shape::Arc { centre })
             }
-            Event::Rapid { x, z, .. }
-            | Event::Ellipse { x, z, .. }
+            Event::Rapid { x, z, .. } => self.push_move(x, z, None, Shape::Rapid),
+            Event::Ellipse { x, z, .. }
             | Event::Parabola { x, z, .. }
             | Event::ArcThread { x, z, .. } => self.push_move(x, z, None, Shape::Free),
             Event::Thread {
@@ -1716,6 +1730,36 @@ mod tests {
             assert_eq!(w.line, 10 + off);
             assert!(!along(off, 0.0005).worst(Kind::Path).unwrap().violates());
         }
+    }
+
+    /// A rapid from X20 Z0 to X40 Z−10 as a dog-leg: X (10 → 20 on the
+    /// radius) at 0.1 a period, Z at 0.05, so X arrives first; the period
+    /// `off` strays `by` mm beyond Z0.
+    fn dog_leg(off: u32, by: f64) -> Certifier {
+        let mut c = certifier();
+        for (x, z) in [(20.0, 0.0), (40.0, -10.0)] {
+            c.emit(Event::Rapid { x, z, c: None });
+        }
+        c.period(&at(1, (20.0, 0.0), (0.0, 0.0), Motion::None));
+        for k in 2..=201u32 {
+            let i = f64::from(k - 1);
+            let (r, mut z) = ((10.0 + 0.1 * i).min(20.0), -0.05 * i);
+            if k == off {
+                z = by;
+            }
+            c.period(&at(k, (2.0 * r, z), (0.0, 0.0), Motion::Rapid));
+        }
+        c
+    }
+
+    #[test]
+    fn a_rapid_is_held_to_the_rectangle_of_its_ends() {
+        let w = *dog_leg(0, 0.0).worst(Kind::Path).unwrap();
+        assert!(w.value == 0.0 && !w.violates(), "{w:?}");
+        // Z at +0.002 in period 50 (X at 14.9, inside): 0.002 mm out.
+        let w = *dog_leg(50, 0.002).worst(Kind::Path).unwrap();
+        assert!(w.violates() && (w.value - 0.002).abs() < 1e-12, "{w:?}");
+        assert_eq!(w.line, 60);
     }
 
     #[test]
