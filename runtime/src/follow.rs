@@ -42,8 +42,9 @@ struct AxisFollow {
 impl AxisFollow {
     /// One period towards the point `t` with acceleration `a`, never
     /// faster than `vmax`; `until`: how far on from `t` the point will
-    /// still run in the direction it moves (0 when not known).
-    fn step(&mut self, t: f64, a: f64, vmax: f64, until: f64, dt: f64) {
+    /// still run in the direction it moves (0 when not known), and
+    /// whether the chain leaves the axis there for good.
+    fn step(&mut self, t: f64, a: f64, vmax: f64, until: (f64, bool), dt: f64) {
         let vt = (t - self.t) / dt;
         // The lag before this period; the relative speed that closes it.
         let e0 = self.t - self.p;
@@ -57,14 +58,20 @@ impl AxisFollow {
         // was: that one kept it too.
         let want = vt + close;
         let ahead = (t - self.p) * want.signum();
-        // How far on the point may still run: at least as far as it would
-        // if it braked from the next period on, and as far as the chain
-        // says it will (a lag then closes at the closing share, not in
-        // an ever slower tail as the axis nears the point).
-        let runs_on = if vt * want > 0.0 {
-            (stopping_distance(vt.abs(), a, dt) - vt.abs() * dt).max(until)
-        } else {
+        // How far on the point may still run: where the chain leaves the
+        // axis for good, exactly as far as it says (the axis must not
+        // pass that: it brakes ahead of the point, and the lead there is
+        // incomplete, as at a chain's end); else at least as far as it
+        // would if it braked from the next period on, and as far as the
+        // chain says (a lag then closes at the closing share, not in an
+        // ever slower tail as the axis nears the point).
+        let (until, last) = until;
+        let runs_on = if vt * want <= 0.0 || (last && until == 0.0) {
             0.0
+        } else if last {
+            until
+        } else {
+            (stopping_distance(vt.abs(), a, dt) - vt.abs() * dt).max(until)
         };
         // (A hair of rounding over, so that a point followed exactly stays so.)
         let room = brake_limit(ahead + runs_on, 0.0, a, dt) * (1.0 + 1e-12) + 1e-12;
@@ -91,8 +98,9 @@ pub struct FollowAxes {
     /// Top speed, mm/s.
     pub vmax: [f64; 2],
     /// How far on the point will still run in the direction it moves on
-    /// that axis before the axis stops or turns there (0: not known).
-    pub until: [f64; 2],
+    /// that axis before the axis stops or turns there (0: not known), and
+    /// whether the chain leaves the axis there for good.
+    pub until: [(f64, bool); 2],
 }
 
 /// X (radial) and Z following the chain point.
@@ -166,7 +174,7 @@ mod tests {
             if k < 100 {
                 t += v * DT;
             }
-            f.step(t, a, f64::INFINITY, 0.0, DT);
+            f.step(t, a, f64::INFINITY, (0.0, false), DT);
             assert!((f.v - prev_v).abs() <= a * DT * (1.0 + 1e-9), "period {k}");
             if reached.is_none() && f.v >= v - 1e-9 {
                 reached = Some(k + 1);
@@ -202,7 +210,7 @@ mod tests {
         let mut f = AxisFollow::default();
         let mut prev_v = 0.0;
         for (k, &t) in path.iter().enumerate() {
-            f.step(t, a, vmax, 0.0, DT);
+            f.step(t, a, vmax, (0.0, false), DT);
             assert!(
                 f.v.abs() <= vmax * (1.0 + 1e-12),
                 "period {k}: {} mm/s",
@@ -236,7 +244,7 @@ mod tests {
             let mut on_point = None;
             for k in 0..60 {
                 t += v * DT;
-                f.step(t, a, 4000.0 / 60.0, (2.0 - t).max(0.0) * until, DT);
+                f.step(t, a, 4000.0 / 60.0, ((2.0 - t).max(0.0) * until, false), DT);
                 if on_point.is_none() && f.p == t {
                     on_point = Some(k + 1);
                 }
@@ -262,7 +270,7 @@ mod tests {
         for k in 0..50 {
             // 1000 mm/s², under the 1500 of the axis.
             let t = 0.5 * 1000.0 * ((k + 1) as f64 * DT).powi(2);
-            f.step(t, 1500.0, f64::INFINITY, 0.0, DT);
+            f.step(t, 1500.0, f64::INFINITY, (0.0, false), DT);
             assert_eq!(f.p, t);
         }
     }

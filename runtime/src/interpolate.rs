@@ -578,7 +578,7 @@ impl<P: Plc> Engine<P> {
         let until = if thread {
             [0, 1].map(|i| self.chain_runs_on(i, stopping_distance(vmax[i], acc[i], self.dt)))
         } else {
-            [0.0; 2]
+            [(0.0, false); 2]
         };
         let axes = FollowAxes { acc, vmax, until };
         self.out = self.follow.step(self.pos, thread, axes, self.dt);

@@ -529,3 +529,29 @@ fn thread_chains_the_fuzz_target_found() {
     let lagging = "G97 S1000 M03\nG99\nG00 X64.804 Z5\nG32 Z-39.373 F3\nG32 X67.491 W-2.969\nG32 X73.429 W-1.844\nG32 X73.523 W-3.375\nG00 X80.523\nZ5\nG00 X80 Z20\nM30\n";
     assert_eq!(certify(lagging, &machine, false), Some(Ok(())));
 }
+
+/// A straight thread chained to a radial exit (`G32 Z-20 F2`, then `G32
+/// X30`): Z, at 33.3 mm/s, stops for good at the corner. The follower
+/// tracked the chain up to the corner and ran Z on to −20.248 (its
+/// stopping distance past the thread's end, where a shoulder may be); it
+/// now brakes Z ahead of the corner and never passes Z−20, and the run
+/// is certified (the corner is cut by the lag that builds). And the fuzz
+/// target's chain of short legs whose X ran 0.047 mm past where the
+/// chain left it.
+#[test]
+fn an_axis_a_chain_stops_never_runs_past_the_corner() {
+    let src = "G97 S1000 M03\nG99\nG00 X20 Z5\nG32 Z-20 F2\nG32 X30\nG00 X40\nZ5\nM30\n";
+    let r = run(src);
+    assert_eq!(r.state, RunState::Ended);
+    let deepest = r
+        .pts
+        .iter()
+        .filter(|p| p.motion == Motion::Thread)
+        .map(|p| p.z)
+        .fold(f64::INFINITY, f64::min);
+    assert!(deepest >= -20.0 - 1e-9, "Z reached {deepest}");
+    let machine = Machine::reference();
+    assert_eq!(certify(src, &machine, false), Some(Ok(())));
+    let short_legs = "G97 S1000 M03\nG99\nG00 X33.235 Z5\nG32 Z-9.255 F3\nG32 X35.548 W-0.156\nG32 X35.860 W-3.984\nG32 X38.767 W-0.141\nG32 X38.892 W-0.000\nG32 X38.892 W-0.656\nG00 X45.892\nZ5\nG00 X80 Z20\nM30\n";
+    assert_eq!(certify(short_legs, &machine, false), Some(Ok(())));
+}

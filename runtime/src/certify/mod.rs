@@ -739,16 +739,40 @@ impl Certifier {
         let Some(leg_s) = leg_time(m, rpm).filter(|_| m.corner) else {
             return m.tol;
         };
+        let stops = self.stops_at(m, rpm);
         let mut lag2 = 0.0;
-        for (axis, up) in self.axes.iter().zip(&self.catch_up) {
+        for ((axis, up), stop) in self.axes.iter().zip(&self.catch_up).zip(stops) {
             // (The margin of the lead's check: the follower is discrete.)
             let open = up.lag_s * (1.0 + ENTRY_MARGIN) + 2.0 * self.dt > leg_s;
-            if let (Some(ax), true) = (axis, open) {
-                let lag = up.c * up.c / (2.0 * ax.accel);
+            if let (Some(ax), true) = (axis, open || stop > 0.0) {
+                let c = if open { up.c + stop } else { stop };
+                let lag = c * c / (2.0 * ax.accel);
                 lag2 += lag * lag;
             }
         }
         m.tol + libm::sqrt(lag2)
+    }
+
+    /// The speed (mm/s, radial X and Z) with which each axis runs into the
+    /// corner at the end of leg `m` where the chain stops or turns it: the
+    /// follower brakes it ahead of the point so as not to pass where the
+    /// chain leaves it, and the corner is cut by up to the lag that
+    /// builds, at most v²/2a.
+    fn stops_at(&self, m: &Pending, rpm: f64) -> [f64; 2] {
+        let next = self.pending.iter().skip_while(|p| p.end != m.end).nth(1);
+        let (Some((lead, _)), Some(start), Some(n)) = (m.thread, m.start, next) else {
+            return [0.0; 2];
+        };
+        let (Some((next_lead, _)), Some(from)) = (n.thread, n.start) else {
+            return [0.0; 2];
+        };
+        let rps = rpm.abs() / 60.0;
+        let (u, w) = (
+            per_turn(m.end - start, lead),
+            per_turn(n.end - from, next_lead),
+        );
+        let stop = |a: f64, b: f64| if a * b <= 0.0 { a.abs() * rps } else { 0.0 };
+        [stop(u.r, w.r), stop(u.z, w.z)]
     }
 
     /// The chain turned from leg `m` into the next pending one (or `m`

@@ -15,6 +15,10 @@ use crate::plc::{Plc, PlcFunction, SpindleDir};
 use crate::profile::brake_limit;
 use nc::error::Alarm;
 
+/// How many later legs of a chain [`Engine::chain_runs_on`] looks at to
+/// tell a stop for good from one the axis moves on from.
+const FINAL_SCAN: usize = 64;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Phase {
     /// Not in a thread.
@@ -512,31 +516,62 @@ impl<P: Plc> Engine<P> {
     /// 1: Z) in the direction it moves there, over the straight legs of
     /// the chain, up to where that axis stops or turns; counted no
     /// further than `enough` (what the follower could use at its top
-    /// speed). 0 off a thread chain or on an arc.
-    pub(super) fn chain_runs_on(&self, axis: usize, enough: f64) -> f64 {
+    /// speed). 0 off a thread chain or on an arc. And whether that is a
+    /// corner where the chain stops the axis at speed and leaves it for
+    /// good (no later queued leg of the chain moves it), which the axis
+    /// must not pass (docs/language.md: never past where the chain
+    /// stops; at the chain's end the point itself brakes).
+    pub(super) fn chain_runs_on(&self, axis: usize, enough: f64) -> (f64, bool) {
         let along = |p: V2| if axis == 0 { p.r } else { p.z };
         let straight = |s: &Segment| matches!(s.curve, Curve::Line { .. });
         let Some(head) = self.q.seg(0).filter(|s| straight(s)) else {
-            return 0.0;
+            return (0.0, false);
         };
         let dir = along(head.to) - along(head.from);
-        let mut run = (along(head.to) - along(self.pos)) * dir.signum();
-        if dir == 0.0 || run < 0.0 {
-            return 0.0;
+        if dir == 0.0 {
+            // The point stands on this axis: for good unless a later leg
+            // moves it.
+            return (0.0, !self.moves_later(axis, 0));
         }
+        let mut run = (along(head.to) - along(self.pos)) * dir.signum();
+        if run < 0.0 {
+            return (0.0, false);
+        }
+        let on = |k: usize| self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(k);
         let mut k = 0;
-        while run < enough && self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(k) {
+        while run < enough && on(k) {
             k += 1;
             let Some(leg) = self.q.seg(k).filter(|s| straight(s)) else {
-                break;
+                return (run, false);
             };
             let d = along(leg.to) - along(leg.from);
-            if d * dir <= 0.0 {
-                break;
+            if d * dir < 0.0 {
+                return (run, false);
+            }
+            if d == 0.0 {
+                return (run, !self.moves_later(axis, k));
             }
             run += d.abs();
         }
-        run
+        // (At the chain's end the point itself brakes along the path.)
+        (run, false)
+    }
+
+    /// Whether a queued leg of the chain after the `k`-th moves `axis`
+    /// (looked for over [`FINAL_SCAN`] legs at most; unknown counts as
+    /// moving).
+    fn moves_later(&self, axis: usize, k: usize) -> bool {
+        let along = |p: V2| if axis == 0 { p.r } else { p.z };
+        let on = |j: usize| self.q.seg(j).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(j);
+        let mut j = k;
+        while on(j) {
+            j += 1;
+            match self.q.seg(j) {
+                Some(s) if j < k + FINAL_SCAN && along(s.to) == along(s.from) => {}
+                _ => return true,
+            }
+        }
+        false
     }
 
     fn thread_next(&self, k: usize) -> bool {
