@@ -357,3 +357,24 @@ fn end_points_a_micrometre_apart_are_reached_one_by_one() {
     ];
     harness::contour::certified(&data);
 }
+
+/// The `contour` target's first finding against the path check (stop
+/// 43): thirteen collinear moves of 0.5 µm, run through at speed in one
+/// period, lay ahead of the moves the check looked at (the next three),
+/// so a set point on the line was called 2 µm off its path. The check
+/// now looks at every move ahead within the period's travel.
+#[test]
+fn the_contour_target_finding_of_the_path_check() {
+    let data = [
+        8, 9, 49, 0, 0, 153, 0, 0, 0, 0, 5, 9, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+        0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 180, 180, 180, 180,
+        180, 180, 180, 180, 180, 180, 180, 180, 180, 180, 180, 180, 180, 180, 180, 180, 180, 180,
+        180, 180, 180, 180, 124, 127, 246, 244, 254, 255, 254, 180, 180, 255, 180,
+    ];
+    let (src, _) = harness::contour::decode(&data);
+    assert!(
+        src.contains("G01 X60.007 Z2.000\nG01 X60.008 Z2.000\n"),
+        "{src}"
+    );
+    harness::contour::certified(&data);
+}

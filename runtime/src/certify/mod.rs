@@ -64,8 +64,11 @@ pub const END_POINT_MM: f64 = 0.001;
 /// its canon move (the 0.001 mm resolution: set points lie on the path,
 /// only the chord between two of them cuts a corner or an arc), mm.
 pub const PATH_MM: f64 = 0.001;
-/// How many moves before the one done last the path check looks at.
+/// How many moves before the one done last, and after the one running,
+/// the path check looks at.
 const PASSED: usize = 3;
+/// The most moves ahead within a period's travel it looks at.
+const MAX_AHEAD: usize = 256;
 /// An arc of a smaller radius (mm) may run within its chord: see
 /// [`Kind::Path`].
 pub const MICRO_ARC_MM: f64 = 0.005;
@@ -639,10 +642,20 @@ impl Certifier {
         let Some(on_front) = front.and_then(|m| off_shape(&m, here)) else {
             return;
         };
-        // (A period may pass several end points of µm moves before the
-        // walk counts them, or the walk count some ahead of the tool.)
-        let ahead = self.pending.iter().skip(1).take(PASSED).copied();
+        // (A period may pass the end points of many µm moves before the
+        // walk counts them: the moves ahead within the period's travel
+        // count, at least PASSED of them; and the walk may count some
+        // ahead of the tool.)
+        let travel = (here - V2::from_xz(prev.x, prev.z)).norm() + PATH_MM;
+        let mut run = 0.0;
+        let ahead = self.pending.iter().skip(1).take(MAX_AHEAD).take_while(|m| {
+            let counted = run <= travel;
+            run += m.start.map_or(f64::INFINITY, |a| (m.end - a).norm());
+            counted
+        });
         let d = ahead
+            .copied()
+            .chain(self.pending.iter().skip(1).take(PASSED).copied())
             .chain(self.done)
             .chain(self.passed.iter().flatten().copied())
             .filter(|m| kind(m))
