@@ -66,7 +66,7 @@ impl AxisFollow {
         // chain says (a lag then closes at the closing share, not in an
         // ever slower tail as the axis nears the point).
         let (until, last) = until;
-        let runs_on = if vt * want <= 0.0 || (last && until == 0.0) {
+        let runs_on = if vt * want <= 0.0 {
             0.0
         } else if last {
             until
