@@ -28,6 +28,35 @@ pub const CLOSE_SHARE: f64 = 0.5;
 /// resolution (µm) by three orders of magnitude.
 const SNAP_MM: f64 = 1e-9;
 
+/// How many of the corners ahead where the point slows on an axis the
+/// follower is told of ([`Ahead::slows`]).
+pub const SLOWS: usize = 4;
+
+/// What lies ahead of the followed point on one axis, in the direction it
+/// moves there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ahead {
+    /// How far on the point will still run before the axis stops or
+    /// turns there (0: not known).
+    pub run: f64,
+    /// Whether the point stops or turns there on this axis, which the axis
+    /// must then not pass (else the run ends where nothing more is known).
+    pub stops: bool,
+    /// Corners before that where the point runs on slower: how far on
+    /// each is (mm), and the point's speed after it (mm/s); the nearest
+    /// first, each slower than those before it, unused ones at infinity.
+    pub slows: [(f64, f64); SLOWS],
+}
+
+impl Ahead {
+    /// Nothing known ahead.
+    pub const UNKNOWN: Ahead = Ahead {
+        run: 0.0,
+        stops: false,
+        slows: [(f64::INFINITY, 0.0); SLOWS],
+    };
+}
+
 /// The set point of one axis following a moving point.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct AxisFollow {
@@ -37,14 +66,16 @@ struct AxisFollow {
     v: f64,
     /// The followed point in the last period.
     t: f64,
+    /// The nearest corner ahead where the point slows (where it is on the
+    /// axis, and the point's speed after it), kept after the point has
+    /// passed it until the axis has too.
+    corner: Option<(f64, f64)>,
 }
 
 impl AxisFollow {
     /// One period towards the point `t` with acceleration `a`, never
-    /// faster than `vmax`; `until`: how far on from `t` the point will
-    /// still run in the direction it moves (0 when not known), and
-    /// whether the chain leaves the axis there for good.
-    fn step(&mut self, t: f64, a: f64, vmax: f64, until: (f64, bool), dt: f64) {
+    /// faster than `vmax`, with what lies `ahead` of the point.
+    fn step(&mut self, t: f64, a: f64, vmax: f64, ahead_of: &Ahead, dt: f64) {
         let vt = (t - self.t) / dt;
         // The lag before this period; the relative speed that closes it.
         let e0 = self.t - self.p;
@@ -58,23 +89,53 @@ impl AxisFollow {
         // was: that one kept it too.
         let want = vt + close;
         let ahead = (t - self.p) * want.signum();
-        // How far on the point may still run: where the chain leaves the
-        // axis for good, exactly as far as it says (the axis must not
+        // How far on the point may still run: where the chain stops or
+        // turns the axis, exactly as far as it says (the axis must not
         // pass that: it brakes ahead of the point, and the lead there is
         // incomplete, as at a chain's end); else at least as far as it
         // would if it braked from the next period on, and as far as the
         // chain says (a lag then closes at the closing share, not in an
         // ever slower tail as the axis nears the point).
-        let (until, last) = until;
-        let runs_on = if vt * want <= 0.0 {
+        let (until, stops) = (ahead_of.run, ahead_of.stops);
+        let on = vt * want > 0.0;
+        let runs_on = if !on {
             0.0
-        } else if last {
+        } else if stops {
             until
         } else {
             (stopping_distance(vt.abs(), a, dt) - vt.abs() * dt).max(until)
         };
         // (A hair of rounding over, so that a point followed exactly stays so.)
-        let room = brake_limit(ahead + runs_on, 0.0, a, dt) * (1.0 + 1e-12) + 1e-12;
+        let over = |v: f64| v * (1.0 + 1e-12) + 1e-12;
+        let mut room = over(brake_limit(ahead + runs_on, 0.0, a, dt));
+        if on {
+            // A lagging axis closing its lag above the point's speed must
+            // not run past the point and come back: it can still slow to
+            // the point's speed before it reaches the point (which the
+            // closing share keeps to, unless the axis came in faster) ...
+            if ahead > 0.0 {
+                room = room.min(over(vt.abs() + brake_limit(ahead, 0.0, a, dt)));
+            }
+            // ... and it arrives where the point slows at a corner ahead no
+            // faster than the point runs on from there (a 45° leg into a
+            // steeper one), the point's last such corner too while the
+            // axis is still short of it.
+            for &(d, u) in ahead_of.slows.iter().filter(|s| s.0.is_finite()) {
+                room = room.min(over(brake_limit(ahead + d, u, a, dt)));
+            }
+            if let Some((c, u)) = self.corner {
+                let short = (c - self.p) * want.signum();
+                if short > 0.0 {
+                    room = room.min(over(brake_limit(short, u, a, dt)));
+                }
+            }
+        }
+        self.corner = match ahead_of.slows[0] {
+            (d, u) if on && d.is_finite() => Some((t + d.copysign(vt), u)),
+            _ => self
+                .corner
+                .filter(|&(c, _)| on && (c - self.p) * want.signum() > 0.0),
+        };
         let v = want
             .clamp(-room, room)
             .clamp(self.v - a * dt, self.v + a * dt)
@@ -97,10 +158,8 @@ pub struct FollowAxes {
     pub acc: [f64; 2],
     /// Top speed, mm/s.
     pub vmax: [f64; 2],
-    /// How far on the point will still run in the direction it moves on
-    /// that axis before the axis stops or turns there (0: not known), and
-    /// whether the chain leaves the axis there for good.
-    pub until: [(f64, bool); 2],
+    /// What lies ahead of the point on each axis.
+    pub ahead: [Ahead; 2],
 }
 
 /// X (radial) and Z following the chain point.
@@ -119,9 +178,8 @@ impl Follower {
 
     /// One period: the set point for the programmed point `target`
     /// (`thread`: the period belongs to a thread chain), with the axes'
-    /// accelerations `acc` and top speeds `vmax` and how far the point
-    /// will still run on each axis in the direction it moves there,
-    /// `until` (radial X, Z). Outside threads the set point is the target
+    /// accelerations `acc` and top speeds `vmax` and what lies ahead of
+    /// the point on each axis (radial X, Z). Outside threads the set point is the target
     /// and the follower only keeps pace.
     pub fn step(&mut self, target: V2, thread: bool, axes: FollowAxes, dt: f64) -> V2 {
         let ts = [target.r, target.z];
@@ -130,13 +188,14 @@ impl Follower {
                 ax.v = (t - ax.p) / dt;
                 ax.p = t;
                 ax.t = t;
+                ax.corner = None;
             }
             return target;
         }
         let mut exact = true;
         for (i, (ax, &t)) in self.axes.iter_mut().zip(&ts).enumerate() {
             let before = ax.t;
-            ax.step(t, axes.acc[i], axes.vmax[i], axes.until[i], dt);
+            ax.step(t, axes.acc[i], axes.vmax[i], &axes.ahead[i], dt);
             exact &= ax.p == t && ax.v == (t - before) / dt;
         }
         self.engaged = thread || !exact;
@@ -146,7 +205,12 @@ impl Follower {
     /// Drops any lag (a reset that re-seeds the machine position).
     pub fn snap(&mut self, at: V2) {
         for (ax, t) in self.axes.iter_mut().zip([at.r, at.z]) {
-            *ax = AxisFollow { p: t, v: 0.0, t };
+            *ax = AxisFollow {
+                p: t,
+                v: 0.0,
+                t,
+                corner: None,
+            };
         }
         self.engaged = false;
     }
@@ -174,7 +238,7 @@ mod tests {
             if k < 100 {
                 t += v * DT;
             }
-            f.step(t, a, f64::INFINITY, (0.0, false), DT);
+            f.step(t, a, f64::INFINITY, &Ahead::UNKNOWN, DT);
             assert!((f.v - prev_v).abs() <= a * DT * (1.0 + 1e-9), "period {k}");
             if reached.is_none() && f.v >= v - 1e-9 {
                 reached = Some(k + 1);
@@ -210,7 +274,7 @@ mod tests {
         let mut f = AxisFollow::default();
         let mut prev_v = 0.0;
         for (k, &t) in path.iter().enumerate() {
-            f.step(t, a, vmax, (0.0, false), DT);
+            f.step(t, a, vmax, &Ahead::UNKNOWN, DT);
             assert!(
                 f.v.abs() <= vmax * (1.0 + 1e-12),
                 "period {k}: {} mm/s",
@@ -244,7 +308,11 @@ mod tests {
             let mut on_point = None;
             for k in 0..60 {
                 t += v * DT;
-                f.step(t, a, 4000.0 / 60.0, ((2.0 - t).max(0.0) * until, false), DT);
+                let ahead = Ahead {
+                    run: (2.0 - t).max(0.0) * until,
+                    ..Ahead::UNKNOWN
+                };
+                f.step(t, a, 4000.0 / 60.0, &ahead, DT);
                 if on_point.is_none() && f.p == t {
                     on_point = Some(k + 1);
                 }
@@ -263,6 +331,52 @@ mod tests {
         assert!(lag > 5e-3, "{lag}");
     }
 
+    /// A point that jumps to 50 mm/s, runs 2 mm and slows to 5 mm/s at a
+    /// corner (a 45° leg of a chain into a steep one): the axis, 0.83 mm
+    /// behind after its ramp and closing the lag above 50 mm/s, has to
+    /// come down to 5 mm/s. Told of the corner while it lies ahead of the
+    /// point, it never passes the point and never turns back; told only
+    /// that the point runs on, it passes the point by more than 0.1 mm
+    /// and comes back.
+    #[test]
+    fn an_axis_told_of_a_slower_corner_never_passes_the_point() {
+        let (a, vmax, corner) = (1500.0, 4000.0 / 60.0, 2.0);
+        let run = |told: bool| {
+            let mut f = AxisFollow::default();
+            let (mut t, mut over, mut back) = (0.0, f64::NEG_INFINITY, 0.0f64);
+            for _ in 0..400 {
+                t = if t < corner {
+                    (t + 50.0 * DT).min(corner)
+                } else {
+                    t + 5.0 * DT
+                };
+                let ahead = Ahead {
+                    run: 10.0 - t,
+                    stops: false,
+                    slows: if told && t < corner {
+                        [
+                            (corner - t, 5.0),
+                            (f64::INFINITY, 0.0),
+                            (f64::INFINITY, 0.0),
+                            (f64::INFINITY, 0.0),
+                        ]
+                    } else {
+                        Ahead::UNKNOWN.slows
+                    },
+                };
+                f.step(t, a, vmax, &ahead, DT);
+                over = over.max(f.p - t);
+                back = back.min(f.v);
+            }
+            (over, back)
+        };
+        let (over, back) = run(true);
+        assert!(over <= 1e-12, "passed the point by {over} mm");
+        assert!(back >= 0.0, "turned back at {back} mm/s");
+        let (over, back) = run(false);
+        assert!(over > 0.1 && back < 0.0, "{over} {back}");
+    }
+
     /// A point that moves within the limit is followed exactly.
     #[test]
     fn a_point_within_the_limit_is_followed_exactly() {
@@ -270,7 +384,7 @@ mod tests {
         for k in 0..50 {
             // 1000 mm/s², under the 1500 of the axis.
             let t = 0.5 * 1000.0 * ((k + 1) as f64 * DT).powi(2);
-            f.step(t, 1500.0, f64::INFINITY, (0.0, false), DT);
+            f.step(t, 1500.0, f64::INFINITY, &Ahead::UNKNOWN, DT);
             assert_eq!(f.p, t);
         }
     }

@@ -14,7 +14,7 @@
 
 use crate::command::{MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
-use crate::follow::{FollowAxes, Follower};
+use crate::follow::{Ahead, FollowAxes, Follower};
 use crate::math::V2;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
 use crate::plc::{Plc, PlcFunction};
@@ -575,12 +575,12 @@ impl<P: Plc> Engine<P> {
         let thread = self.motion == Motion::Thread;
         let acc = [self.cfg.x.accel, self.cfg.z.accel];
         let vmax = [self.cfg.x.max_feed, self.cfg.z.max_feed];
-        let until = if thread {
+        let ahead = if thread {
             [0, 1].map(|i| self.chain_runs_on(i, stopping_distance(vmax[i], acc[i], self.dt)))
         } else {
-            [(0.0, false); 2]
+            [Ahead::UNKNOWN; 2]
         };
-        let axes = FollowAxes { acc, vmax, until };
+        let axes = FollowAxes { acc, vmax, ahead };
         self.out = self.follow.step(self.pos, thread, axes, self.dt);
         if !thread && self.follow.engaged() {
             self.motion = Motion::Thread;
@@ -1062,6 +1062,9 @@ impl<P: Plc> Engine<P> {
         let reach = top * dt;
         let mut dist = d;
         let mut k = 0;
+        // The later moves seen from the head (thread chains:
+        // `Segment::chain_scale`).
+        let mut scale = 1.0;
         while dist < reach && k < 8 {
             let (Some(sk), Some(n)) = (self.q.seg(k), self.q.seg(k + 1)) else {
                 break;
@@ -1069,8 +1072,10 @@ impl<P: Plc> Engine<P> {
             if sk.v_exit <= 0.0 {
                 break;
             }
-            dist += n.len;
-            lim = lim.min(brake_limit_above(dist, n.v_exit, a.min(n.a), dt, want));
+            scale *= sk.chain_scale(n);
+            dist += n.len * scale;
+            let (exit, an) = (n.v_exit * scale, n.a * scale);
+            lim = lim.min(brake_limit_above(dist, exit, a.min(an), dt, want));
             k += 1;
         }
         if self.single_block && !matches!(self.cur.kind, MoveKind::Thread(_)) {
@@ -1149,8 +1154,7 @@ impl<P: Plc> Engine<P> {
         if self.travel(v) {
             return;
         }
-        self.v = v;
-        if v == 0.0 {
+        if self.v == 0.0 {
             self.standing();
         }
     }
@@ -1158,8 +1162,10 @@ impl<P: Plc> Engine<P> {
     /// Moves `v · dt` along the path, on into the queued moves where the
     /// corner allows; whether it landed on an end point (and the move is
     /// finished).
+    /// Sets the path speed `v`, which a thread chain's corner scales
+    /// (`Segment::chain_scale`).
     #[inline]
-    fn travel(&mut self, v: f64) -> bool {
+    fn travel(&mut self, mut v: f64) -> bool {
         let mut ds = v * self.dt;
         loop {
             let rem = self.cur.len - self.s;
@@ -1168,6 +1174,7 @@ impl<P: Plc> Engine<P> {
                 self.lam = self.cur.curve.advance(self.lam, self.s, ds, self.cur.len);
                 self.pos = self.cur.curve.point(self.lam);
                 self.c = self.cur.c_at(self.lam);
+                self.v = v;
                 return false;
             }
             if v > 0.0 && self.may_cross() {
@@ -1188,11 +1195,19 @@ impl<P: Plc> Engine<P> {
                 self.c = self.cur.c1;
                 self.q.pop();
                 let Some(next) = self.q.get(0) else {
+                    self.v = v;
                     return false;
                 };
                 let ItemKind::Move(n) = &next.kind else {
+                    self.v = v;
                     return false;
                 };
+                let scale = self.cur.chain_scale(n);
+                if scale != 1.0 {
+                    // The same long-axis speed on the next leg.
+                    (v, ds) = (v / scale, ds / scale);
+                    self.thread.v_sync /= scale;
+                }
                 self.cur = *n;
                 self.tag = next.tag;
                 self.shift = n.shift;

@@ -107,6 +107,28 @@ impl Segment {
         }
     }
 
+    /// The path speed on this move that runs the long axis as fast as a
+    /// path speed of 1 on `next`, where both are legs of a thread chain
+    /// (1 elsewhere). A chain's long axis keeps its speed (lead × spindle
+    /// speed) through a corner while its path speed jumps: a 45° leg runs
+    /// √2 times as fast along its path as the Z leg after it. Speeds,
+    /// distances and accelerations of `next` times this are the same
+    /// motion of the long axis seen from this move, so braking is planned
+    /// along the chain as one move.
+    pub fn chain_scale(&self, next: &Segment) -> f64 {
+        let share = |s: &Segment| {
+            if s.len > 0.0 && s.long_len > 0.0 {
+                s.long_len / s.len
+            } else {
+                1.0
+            }
+        };
+        match (self.kind, next.kind) {
+            (MoveKind::Thread(_), MoveKind::Thread(_)) => share(next) / share(self),
+            _ => 1.0,
+        }
+    }
+
     /// A placeholder (no move).
     pub const IDLE: Segment = Segment {
         kind: MoveKind::Rapid,
@@ -975,10 +997,11 @@ impl Planner {
                 // A chain's speed along the path jumps at a corner (the
                 // lead stays along the long axis, the short axes follow:
                 // follow.rs): each leg's cap binds its own path speed,
-                // and the joint lets the faster leg's through. (Their
-                // smaller one turned a 45° pull-out after a Z thread at
-                // Z's top feed into a brake and broke the lead.)
-                prev.v_max.max(cur.v_max)
+                // and the joint lets the faster leg's through, seen from
+                // the move before. (Their smaller one turned a 45°
+                // pull-out after a Z thread at Z's top feed into a brake
+                // and broke the lead.)
+                prev.v_max.max(cur.v_max * prev.chain_scale(cur))
             } else {
                 prev.v_max.min(cur.v_max)
             };
@@ -1055,8 +1078,8 @@ impl Planner {
         let first_dirty = self.len.saturating_sub(dirty);
         let cap = self.items.len();
         let dt = self.dt;
-        // (length, exit, acceleration) of the move after the current one.
-        let mut carry: Option<(f64, f64, f64)> = None;
+        // The move after the current one.
+        let mut carry: Option<Segment> = None;
         let mut k = self.len - 1;
         let mut i = self.slot(k);
         loop {
@@ -1064,10 +1087,12 @@ impl Planner {
             match &mut self.items[i].kind {
                 ItemKind::Move(p) => {
                     let mut rose = false;
-                    if let Some((cl, ce, ca)) = carry {
+                    if let Some(n) = carry {
                         // At its corner speed already, nothing can rise.
                         if p.v_junction > 0.0 && p.v_exit < p.v_junction {
                             // (The exact limit only matters below it.)
+                            let k = p.chain_scale(&n);
+                            let (cl, ce, ca) = (n.len * k, n.v_exit * k, n.a * k);
                             let lim = brake_limit_above(cl, ce, ca, dt, p.v_junction);
                             let exit = p.v_junction.min(lim);
                             if exit > p.v_exit {
@@ -1079,7 +1104,7 @@ impl Planner {
                     if settled && !rose {
                         break;
                     }
-                    carry = Some((p.len, p.v_exit, p.a));
+                    carry = Some(*p);
                 }
                 _ => {
                     if settled {
@@ -1230,9 +1255,11 @@ mod tests {
     /// at 94.28 mm/s, which the axes allow (X 4000, Z 5000 mm/min: the
     /// cap is 66.667·√2) but the path limit of programmed feeds (5000
     /// mm/min, 83.333 mm/s) would not; and the joint lets the faster
-    /// leg's path speed through, where the Z thread's own cap is Z's
-    /// 83.333. (Capped at either, the chain braked out of step with the
-    /// spindle: 2.83 mm a turn along Z where 4 is programmed.)
+    /// leg's speed through: the Z thread's own cap, Z's 83.333, against
+    /// the pull-out's 94.28 seen from the Z leg (× 1/√2, the same Z
+    /// speed: 66.667). (Capped at the pull-out's path limit, the chain
+    /// braked out of step with the spindle: 2.83 mm a turn along Z where
+    /// 4 is programmed.)
     #[test]
     fn a_thread_chain_is_capped_by_the_axes_and_its_joint_by_the_faster_leg() {
         let mut p = Planner::new(&Config::default());
@@ -1249,12 +1276,43 @@ mod tests {
             "{}",
             z_leg.v_max
         );
+        assert!((z_leg.chain_scale(pull_out) - 0.5f64.sqrt()).abs() < 1e-12);
         assert!(
-            (z_leg.v_junction - axes).abs() < 1e-9,
+            (z_leg.v_junction - 5000.0 / 60.0).abs() < 1e-9,
             "{}",
             z_leg.v_junction
         );
         assert!(z_leg.long_z && pull_out.long_z);
+    }
+
+    /// A 45° leg, then a Z leg of 0.281 mm, at lead 4 and 1000 rev/min:
+    /// the long axis runs at 66.667 mm/s throughout, the 45° leg's path
+    /// at 94.28, the Z leg's at 66.667. Braking along the path, the Z leg
+    /// is too short to slow from 94.28 to 66.667 (it needs 0.8 mm at
+    /// 2000 mm/s²), and the 45° leg's exit was held to 90.18 (the fuzz
+    /// target's chain braked there, 8 mm before its end, and ran on at Z's
+    /// top feed: lead 5 where 4 is programmed). Seen from the 45° leg, the
+    /// Z leg's speeds are √2 times as fast: the 45° leg exits at the
+    /// faster cap, the Z leg's 83.333 seen from it, and so does the Z leg
+    /// (nothing slows it before the last leg).
+    #[test]
+    fn a_chain_leg_brakes_only_for_the_chain_s_end_not_for_a_slower_leg() {
+        let mut p = Planner::new(&Config::default());
+        for to in [(0.0, -20.0), (4.0, -24.0), (4.0, -24.281), (4.0, -40.0)] {
+            p.push(thread(V2::new(to.0, to.1), 4.0), Tag::default())
+                .unwrap();
+        }
+        p.replan();
+        let (diag, short) = (p.seg(1).unwrap(), p.seg(2).unwrap());
+        assert!((diag.chain_scale(short) - 2f64.sqrt()).abs() < 1e-12);
+        let z_cap = 5000.0 / 60.0;
+        assert!(
+            (diag.v_exit - z_cap * 2f64.sqrt()).abs() < 1e-9,
+            "{}",
+            diag.v_exit
+        );
+        assert!((short.v_exit - z_cap).abs() < 1e-9, "{}", short.v_exit);
+        assert_eq!(p.seg(3).unwrap().v_exit, 0.0);
     }
 
     #[test]

@@ -530,6 +530,66 @@ fn thread_chains_the_fuzz_target_found() {
     assert_eq!(certify(lagging, &machine, false), Some(Ok(())));
 }
 
+/// A chain whose 45° leg (lead 4 at 1000 rev/min: X long at 66.667
+/// mm/s, the path at 93.7) runs into a Z leg of 0.281 mm (its path at
+/// 66.667): braking along the path, that leg is too short to slow the
+/// path by 27 mm/s, so the planner held the 45° leg's exit down, the
+/// chain began to brake there, 8 mm before its end, and ran the legs
+/// after it at Z's top feed, lead 5 where 4 is programmed. The long axis
+/// keeps its speed through the corner; the chain now brakes only for its
+/// end, and is certified.
+#[test]
+fn a_short_slower_leg_does_not_brake_the_chain() {
+    let src = "G97 S1000 M03\nG99\nG00 X64.804 Z5\nG32 Z-40.000 F4\nG32 X72.773 W-3.938\nG32 X72.773 W-0.281\nG32 X73.866 W-3.828\nG32 X76.085 W-3.984\nG00 X83.085\nZ5\nG00 X80 Z20\nM30\n";
+    assert_eq!(certify(src, &Machine::reference(), false), Some(Ok(())));
+}
+
+/// Chains whose every leg runs out on X and along −Z (the thread fuzz
+/// target's shape) whose axes had to stop or slow at corners while they
+/// still closed the lag of a corner before: a square step at 2500
+/// rev/min (a radial leg of 4 mm at 62.5 mm/s, then a Z leg), where Z
+/// ran 0.94 mm past the step's corner and came back, and X ran 1.2 mm
+/// past the Z leg's and came back; and a 45° leg into an X leg of
+/// 0.047 mm over 3.4 mm of Z, where X, still catching up at 28.6 mm/s,
+/// ran 8 µm past the chain's end and came back. Such a chain never turns
+/// back on either axis, so neither may its set points: the follower
+/// brakes an axis ahead of a corner that stops or slows it, and keeps
+/// that corner's speed until the axis is past it. Both are certified.
+#[test]
+fn a_chain_that_never_turns_back_is_followed_without_turning_back() {
+    let step = "G97 S2500 M03\nG99\nG00 X16.765 Z5\nG32 Z-40.000 F1.5\nG32 X21.171 W-2.984\nG32 X29.140 W-0.000\nG32 X29.140 W-3.984\nG32 X37.108 W-3.984\nG32 X45.077 W-3.984\nG00 X52.077\nZ5\nG00 X80 Z20\nM30\n";
+    let slow_x = "G97 S1000 M03\nG99\nG00 X64.804 Z5\nG32 Z-39.373 F3\nG32 X67.491 W-2.969\nG32 X73.429 W-1.844\nG32 X73.523 W-3.375\nG00 X80.523\nZ5\nG00 X80 Z20\nM30\n";
+    for src in [step, slow_x] {
+        let r = run(src);
+        assert_eq!(r.state, RunState::Ended);
+        // From the index pulse (Z leaves 5) to the last thread period.
+        let th: Vec<&SetPoint> = r
+            .pts
+            .iter()
+            .filter(|p| p.motion == Motion::Thread && p.z < 5.0)
+            .collect();
+        assert!(th.len() > 500, "{} thread periods", th.len());
+        for w in th.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            assert!(
+                b.x >= a.x,
+                "X turns back at {} s: {} after {}",
+                b.time_s,
+                b.x,
+                a.x
+            );
+            assert!(
+                b.z <= a.z,
+                "Z turns back at {} s: {} after {}",
+                b.time_s,
+                b.z,
+                a.z
+            );
+        }
+        assert_eq!(certify(src, &Machine::reference(), false), Some(Ok(())));
+    }
+}
+
 /// A straight thread chained to a radial exit (`G32 Z-20 F2`, then `G32
 /// X30`): Z, at 33.3 mm/s, stops for good at the corner. The follower
 /// tracked the chain up to the corner and ran Z on to −20.248 (its

@@ -766,11 +766,11 @@ impl Certifier {
         m.tol + libm::sqrt(lag2)
     }
 
-    /// The speed (mm/s, radial X and Z) with which each axis runs into the
-    /// corner at the end of leg `m` where the chain stops or turns it: the
-    /// follower brakes it ahead of the point so as not to pass where the
-    /// chain leaves it, and the corner is cut by up to the lag that
-    /// builds, at most v²/2a.
+    /// The speed (mm/s, radial X and Z) each axis sheds running into the
+    /// corner at the end of leg `m` where the chain stops, turns or slows
+    /// it: the follower brakes it ahead of the point so as not to pass the
+    /// point after the corner, and the corner is cut by up to the lag
+    /// that builds, at most Δv²/2a.
     fn stops_at(&self, m: &Pending, rpm: f64) -> [f64; 2] {
         let next = self.pending.iter().skip_while(|p| p.end != m.end).nth(1);
         let (Some((lead, _)), Some(start), Some(n)) = (m.thread, m.start, next) else {
@@ -784,7 +784,13 @@ impl Certifier {
             per_turn(m.end - start, lead),
             per_turn(n.end - from, next_lead),
         );
-        let stop = |a: f64, b: f64| if a * b <= 0.0 { a.abs() * rps } else { 0.0 };
+        let stop = |a: f64, b: f64| {
+            if a * b <= 0.0 {
+                a.abs() * rps
+            } else {
+                (a.abs() - b.abs()).max(0.0) * rps
+            }
+        };
         [stop(u.r, w.r), stop(u.z, w.z)]
     }
 

@@ -8,16 +8,13 @@
 
 use super::{Engine, Motion, RoomWarning};
 use crate::command::{MoveKind, Tag, Thread};
+use crate::follow::{Ahead, SLOWS};
 use crate::geom::Curve;
 use crate::math::V2;
 use crate::planner::{ItemKind, Segment};
 use crate::plc::{Plc, PlcFunction, SpindleDir};
 use crate::profile::brake_limit;
 use nc::error::Alarm;
-
-/// How many later legs of a chain [`Engine::chain_runs_on`] looks at to
-/// tell a stop for good from one the axis moves on from.
-const FINAL_SCAN: usize = 64;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Phase {
@@ -91,6 +88,19 @@ fn revs_for(q: f64, l: f64, dl: f64) -> f64 {
         return f64::INFINITY;
     }
     (libm::sqrt(disc) - l) / dl
+}
+
+/// The speed of an axis a thread leg moves by `d` (mm) at `rps` spindle
+/// turns a second, where the leg's long axis runs at its lead × rps.
+fn axis_speed(leg: &Segment, d: f64, rps: f64) -> f64 {
+    let MoveKind::Thread(t) = leg.kind else {
+        return 0.0;
+    };
+    if leg.long_len > 0.0 {
+        t.lead * rps * d / leg.long_len
+    } else {
+        0.0
+    }
 }
 
 /// The long axis's share of a move's path acceleration, `long` being the
@@ -377,6 +387,8 @@ impl<P: Plc> Engine<P> {
         let d = seg.len - self.s;
         let mut lim = brake_limit(d, seg.v_exit, a, self.dt);
         let mut acc = d;
+        // The later legs seen from the head (`Segment::chain_scale`).
+        let mut scale = 1.0;
         for j in 0..k.max(1) {
             let (Some(sj), Some(n)) = (self.q.seg(j), self.q.seg(j + 1)) else {
                 break;
@@ -384,8 +396,14 @@ impl<P: Plc> Engine<P> {
             if sj.v_exit <= 0.0 {
                 break;
             }
-            acc += n.len;
-            lim = lim.min(brake_limit(acc, n.v_exit, a.min(n.a), self.dt));
+            scale *= sj.chain_scale(n);
+            acc += n.len * scale;
+            lim = lim.min(brake_limit(
+                acc,
+                n.v_exit * scale,
+                a.min(n.a * scale),
+                self.dt,
+            ));
         }
         lim
     }
@@ -511,67 +529,59 @@ impl<P: Plc> Engine<P> {
         }
     }
 
-    /// Whether the chain goes on after the k-th queued move.
-    /// How far the chain's point will still run on `axis` (0: radial X,
-    /// 1: Z) in the direction it moves there, over the straight legs of
-    /// the chain, up to where that axis stops or turns; counted no
-    /// further than `enough` (what the follower could use at its top
-    /// speed). 0 off a thread chain or on an arc. And whether that is a
-    /// corner where the chain stops the axis at speed and leaves it for
-    /// good (no later queued leg of the chain moves it), which the axis
-    /// must not pass (docs/language.md: never past where the chain
-    /// stops; at the chain's end the point itself brakes).
-    pub(super) fn chain_runs_on(&self, axis: usize, enough: f64) -> (f64, bool) {
+    /// What lies ahead of the chain's point on `axis` (0: radial X, 1: Z)
+    /// in the direction it moves there, over the straight legs of the
+    /// chain, up to where that axis stops or turns; counted no further
+    /// than `enough` (what the follower could use at its top speed).
+    /// Unknown off a thread chain or on an arc. Where the run ends at a
+    /// corner that stops or turns the axis, the axis must not pass it
+    /// (docs/language.md: never past where the chain stops; at the
+    /// chain's end the point itself brakes). The corners before it where
+    /// the point runs on slower on the axis are the slows, at the speed
+    /// the spindle turns now.
+    pub(super) fn chain_runs_on(&self, axis: usize, enough: f64) -> Ahead {
         let along = |p: V2| if axis == 0 { p.r } else { p.z };
         let straight = |s: &Segment| matches!(s.curve, Curve::Line { .. });
         let Some(head) = self.q.seg(0).filter(|s| straight(s)) else {
-            return (0.0, false);
+            return Ahead::UNKNOWN;
         };
         let dir = along(head.to) - along(head.from);
+        let mut ahead = Ahead::UNKNOWN;
         if dir == 0.0 {
-            // The point stands on this axis: for good unless a later leg
-            // moves it.
-            return (0.0, !self.moves_later(axis, 0));
+            // The point stands on this axis.
+            ahead.stops = true;
+            return ahead;
         }
         let mut run = (along(head.to) - along(self.pos)) * dir.signum();
         if run < 0.0 {
-            return (0.0, false);
+            return ahead;
         }
+        let rps = self.spindle.rpm().abs() / 60.0;
+        let mut slowest = axis_speed(head, dir.abs(), rps);
+        let mut n = 0;
         let on = |k: usize| self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(k);
         let mut k = 0;
         while run < enough && on(k) {
             k += 1;
             let Some(leg) = self.q.seg(k).filter(|s| straight(s)) else {
-                return (run, false);
+                break;
             };
             let d = along(leg.to) - along(leg.from);
-            if d * dir < 0.0 {
-                return (run, false);
+            if d * dir <= 0.0 {
+                ahead.stops = true;
+                break;
             }
-            if d == 0.0 {
-                return (run, !self.moves_later(axis, k));
+            let u = axis_speed(leg, d.abs(), rps);
+            if u < slowest && n < SLOWS {
+                ahead.slows[n] = (run, u);
+                n += 1;
+                slowest = u;
             }
             run += d.abs();
         }
         // (At the chain's end the point itself brakes along the path.)
-        (run, false)
-    }
-
-    /// Whether a queued leg of the chain after the `k`-th moves `axis`
-    /// (looked for over [`FINAL_SCAN`] legs at most; unknown counts as
-    /// moving).
-    fn moves_later(&self, axis: usize, k: usize) -> bool {
-        let along = |p: V2| if axis == 0 { p.r } else { p.z };
-        let on = |j: usize| self.q.seg(j).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(j);
-        let mut j = k;
-        while on(j) {
-            j += 1;
-            match self.q.seg(j) {
-                Some(s) if j < k + FINAL_SCAN && along(s.to) == along(s.from) => {}
-                _ => return true,
-            }
-        }
-        false
+        ahead.run = run;
+        ahead
     }
 
     fn thread_next(&self, k: usize) -> bool {
