@@ -95,8 +95,9 @@ pub enum Kind {
     /// A canon end point not reached (distance of the nearest approach).
     EndPoint,
     /// A set point of a feed off its canon line or arc (the distance; an
-    /// arc of a radius below [`MICRO_ARC_MM`] may run along its chord), or
-    /// of a rapid outside the rectangle of its ends.
+    /// arc of a radius below [`MICRO_ARC_MM`] may run along its chord), of
+    /// a rapid outside the rectangle of its ends, or of a thread outside
+    /// the box of the chain's legs around it.
     Path,
     /// Thread lead.
     Lead,
@@ -323,7 +324,11 @@ enum Shape {
     /// A rapid: each axis runs at its own rate (a dog-leg), so the tool
     /// stays within the rectangle of the start and the end.
     Rapid,
-    /// Not checked: a thread (the axes follow its corners), a conic.
+    /// A thread leg: its axes follow the chain's corners within their
+    /// acceleration, never past the chain's point, so the tool stays
+    /// within the box of the legs around it.
+    Thread,
+    /// Not checked: a conic, a circular thread.
     Free,
 }
 
@@ -626,14 +631,15 @@ impl Certifier {
     /// arc.) Not in a period whose work frame changed, nor for a move not
     /// checked ([`Shape::Free`]).
     fn on_path(&mut self, prev: &SetPoint, p: &SetPoint) {
-        let rapid = match p.motion {
-            Motion::Feed | Motion::Arc => false,
-            Motion::Rapid => true,
-            _ => return,
-        };
         if !frame_kept(prev, p) {
             return;
         }
+        let rapid = match p.motion {
+            Motion::Feed | Motion::Arc => false,
+            Motion::Rapid => true,
+            Motion::Thread => return self.in_chain(prev, p),
+            _ => return,
+        };
         let here = V2::from_xz(p.x, p.z);
         let kind = |m: &Pending| (m.shape == Shape::Rapid) == rapid;
         // The move running must be one of the period's kind and known
@@ -661,6 +667,67 @@ impl Certifier {
             .filter(|m| kind(m))
             .filter_map(|m| off_shape(&m, here))
             .fold(on_front, f64::min);
+        self.path_periods += 1;
+        self.note(Figure {
+            kind: Kind::Path,
+            subject: Subject::Path,
+            time_s: p.time_s,
+            file: p.file,
+            line: p.line,
+            value: d,
+            limit: PATH_MM,
+            ratio: d,
+        });
+    }
+
+    /// A thread period's set point within the box of the chain's legs
+    /// around it: the legs done before the one running ([`PASSED`] of
+    /// them), that one, and those ahead within the period's travel and
+    /// the farthest an axis may lag behind the chain's point (v²/2a at
+    /// its top speed). Each axis runs between where it was and the
+    /// chain's point, so a set point outside that box ran past the chain
+    /// (the root of a thread, a corner). Only while a thread leg of known
+    /// start runs.
+    fn in_chain(&mut self, prev: &SetPoint, p: &SetPoint) {
+        let thread = |m: &&Pending| m.shape == Shape::Thread;
+        let Some((front, start)) = self
+            .pending
+            .front()
+            .filter(thread)
+            .and_then(|m| Some((m, m.start?)))
+        else {
+            return;
+        };
+        let here = V2::from_xz(p.x, p.z);
+        let lag = |a: &Option<Axis>| a.map_or(0.0, |a| a.max_feed * a.max_feed / (2.0 * a.accel));
+        let reach = (here - V2::from_xz(prev.x, prev.z)).norm()
+            + lag(&self.axes[0]).max(lag(&self.axes[1]));
+        let (mut lo, mut hi) = (start, start);
+        let mut widen = |m: &Pending| {
+            for q in m.start.into_iter().chain([m.end]) {
+                lo = V2::new(lo.r.min(q.r), lo.z.min(q.z));
+                hi = V2::new(hi.r.max(q.r), hi.z.max(q.z));
+            }
+        };
+        widen(front);
+        let mut run = 0.0;
+        for m in self.pending.iter().skip(1).take(MAX_AHEAD).filter(thread) {
+            if run > reach {
+                break;
+            }
+            widen(m);
+            run += m.start.map_or(f64::INFINITY, |a| (m.end - a).norm());
+        }
+        for m in self
+            .done
+            .iter()
+            .chain(self.passed.iter().flatten())
+            .filter(thread)
+        {
+            widen(m);
+        }
+        let out = |v: f64, a: f64, b: f64| (a - v).max(v - b).max(0.0);
+        let d = libm::hypot(out(here.r, lo.r, hi.r), out(here.z, lo.z, hi.z));
         self.path_periods += 1;
         self.note(Figure {
             kind: Kind::Path,
@@ -767,31 +834,41 @@ impl Certifier {
     }
 
     /// The speed (mm/s, radial X and Z) each axis sheds running into the
-    /// corner at the end of leg `m` where the chain stops, turns or slows
-    /// it: the follower brakes it ahead of the point so as not to pass the
-    /// point after the corner, and the corner is cut by up to the lag
-    /// that builds, at most Δv²/2a.
+    /// corner at the end of leg `m`, where the chain stops, turns or slows
+    /// it there or within its stopping distance after: the follower
+    /// brakes it ahead of the point so as to arrive at each such corner
+    /// no faster than the chain runs on from it, and the corner is cut by
+    /// up to the lag that builds, at most Δv²/2a.
     fn stops_at(&self, m: &Pending, rpm: f64) -> [f64; 2] {
-        let next = self.pending.iter().skip_while(|p| p.end != m.end).nth(1);
-        let (Some((lead, _)), Some(start), Some(n)) = (m.thread, m.start, next) else {
-            return [0.0; 2];
-        };
-        let (Some((next_lead, _)), Some(from)) = (n.thread, n.start) else {
+        let (Some((lead, _)), Some(start)) = (m.thread, m.start) else {
             return [0.0; 2];
         };
         let rps = rpm.abs() / 60.0;
-        let (u, w) = (
-            per_turn(m.end - start, lead),
-            per_turn(n.end - from, next_lead),
-        );
-        let stop = |a: f64, b: f64| {
-            if a * b <= 0.0 {
-                a.abs() * rps
-            } else {
-                (a.abs() - b.abs()).max(0.0) * rps
+        let u = per_turn(m.end - start, lead);
+        let later = || self.pending.iter().skip_while(|p| p.end != m.end).skip(1);
+        [0, 1].map(|i| {
+            let along = |d: V2| if i == 0 { d.r } else { d.z };
+            let (Some(ax), dir) = (self.axes[i], along(u)) else {
+                return 0.0;
+            };
+            let (v, a) = (dir.abs() * rps, ax.accel);
+            // The fastest the axis may pass m's end, and how far on the
+            // axis the leg after it starts from there.
+            let (mut here, mut dist, mut on) = (v, 0.0, m.corner);
+            for n in later() {
+                let (Some((next_lead, _)), Some(from), true) = (n.thread, n.start, on) else {
+                    break;
+                };
+                let w = along(per_turn(n.end - from, next_lead));
+                let run_on = if w * dir > 0.0 { w.abs() * rps } else { 0.0 };
+                here = here.min(libm::sqrt(run_on * run_on + 2.0 * a * dist));
+                if run_on == 0.0 || 2.0 * a * dist > v * v {
+                    break;
+                }
+                (dist, on) = (dist + along(n.end - from).abs(), n.corner);
             }
-        };
-        [stop(u.r, w.r), stop(u.z, w.z)]
+            (v - here).max(0.0)
+        })
     }
 
     /// The chain turned from leg `m` into the next pending one (or `m`
@@ -957,7 +1034,8 @@ fn off_shape(m: &Pending, p: V2) -> Option<f64> {
             let out = |v: f64, a: f64, b: f64| (a.min(b) - v).max(v - a.max(b)).max(0.0);
             Some(libm::hypot(out(p.r, a.r, m.end.r), out(p.z, a.z, m.end.z)))
         }
-        Shape::Free => None,
+        // (Threads: `Certifier::in_chain`.)
+        Shape::Thread | Shape::Free => None,
     }
 }
 
@@ -1013,7 +1091,7 @@ impl Sink for Certifier {
             | Event::ArcThread { x, z, .. } => self.push_move(x, z, None, Shape::Free),
             Event::Thread {
                 x, z, lead, dlead, ..
-            } => self.push_move(x, z, Some((lead, dlead.unwrap_or(0.0))), Shape::Free),
+            } => self.push_move(x, z, Some((lead, dlead.unwrap_or(0.0))), Shape::Thread),
             Event::Speed { s, css, max } => {
                 if let Some(m) = max {
                     self.cmd.clamp = if m > 0.0 { m } else { f64::INFINITY };
@@ -1633,6 +1711,60 @@ mod tests {
         let w = *dog_leg(50, 0.002).worst(Kind::Path).unwrap();
         assert!(w.violates() && (w.value - 0.002).abs() < 1e-12, "{w:?}");
         assert_eq!(w.line, 60);
+    }
+
+    /// A G78 pass: a run-in from X25 Z5 to X23 Z4, the thread to Z−13, a
+    /// pull-out to X25 Z−15, 20 + 340 + 40 periods along the legs; in
+    /// period `off` of the thread X stands `by` mm (radius) below its
+    /// root, X23, as an axis that ran past the run-in's corner did.
+    fn g78_pass(off: u32, by: f64) -> Certifier {
+        let mut c = certifier();
+        c.emit(Event::Rapid {
+            x: 25.0,
+            z: 5.0,
+            c: None,
+        });
+        for (x, z) in [(23.0, 4.0), (23.0, -13.0), (25.0, -15.0)] {
+            c.emit(Event::Thread {
+                x,
+                z,
+                c: None,
+                lead: 2.0,
+                dlead: None,
+                q: None,
+            });
+        }
+        c.period(&at(1, (25.0, 5.0), (0.0, 0.0), Motion::None));
+        let legs = [
+            ((25.0, 5.0), (23.0, 4.0), 20),
+            ((23.0, 4.0), (23.0, -13.0), 340),
+        ];
+        let mut k = 1;
+        for ((x0, z0), (x1, z1), n) in legs.into_iter().chain([((23.0, -13.0), (25.0, -15.0), 40)])
+        {
+            for i in 1..=n {
+                let f = f64::from(i) / f64::from(n);
+                let mut x = x0 + (x1 - x0) * f;
+                k += 1;
+                if k == off {
+                    x -= 2.0 * by;
+                }
+                c.period(&at(k, (x, z0 + (z1 - z0) * f), (0.0, 0.0), Motion::Thread));
+            }
+        }
+        c
+    }
+
+    #[test]
+    fn a_thread_is_held_to_the_box_of_its_chain() {
+        let w = *g78_pass(0, 0.0).worst(Kind::Path).unwrap();
+        assert!(w.value == 0.0 && !w.violates(), "{w:?}");
+        // 0.05 mm below the root in the thread's 5th period (period 26).
+        let w = *g78_pass(26, 0.05).worst(Kind::Path).unwrap();
+        assert!(w.violates() && (w.value - 0.05).abs() < 1e-9, "{w:?}");
+        assert_eq!(w.line, 36);
+        // Half a resolution below is within it.
+        assert!(!g78_pass(26, 0.0005).worst(Kind::Path).unwrap().violates());
     }
 
     #[test]
