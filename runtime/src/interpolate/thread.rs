@@ -534,9 +534,9 @@ impl<P: Plc> Engine<P> {
     /// chain, up to where that axis stops or turns; counted no further
     /// than `enough` (what the follower could use at its top speed).
     /// Unknown off a thread chain or on an arc. Where the run ends at a
-    /// corner that stops or turns the axis, the axis must not pass it
-    /// (docs/language.md: never past where the chain stops; at the
-    /// chain's end the point itself brakes). The corners before it where
+    /// corner that stops or turns the axis, or at the chain's end, the
+    /// axis must not pass it (docs/language.md: never past where the
+    /// chain stops). The corners before it where
     /// the point runs on slower on the axis are the slows, at the speed
     /// the spindle turns now.
     pub(super) fn chain_runs_on(&self, axis: usize, enough: f64) -> Ahead {
@@ -561,7 +561,13 @@ impl<P: Plc> Engine<P> {
         let mut n = 0;
         let on = |k: usize| self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(k);
         let mut k = 0;
-        while run < enough && on(k) {
+        while run < enough {
+            if !on(k) {
+                // The chain ends: the point stops there, even where the
+                // last leg is too short for it to brake (W118).
+                ahead.stops = true;
+                break;
+            }
             k += 1;
             let Some(leg) = self.q.seg(k).filter(|s| straight(s)) else {
                 break;
@@ -579,7 +585,6 @@ impl<P: Plc> Engine<P> {
             }
             run += d.abs();
         }
-        // (At the chain's end the point itself brakes along the path.)
         ahead.run = run;
         ahead
     }
