@@ -66,9 +66,8 @@ struct AxisFollow {
     v: f64,
     /// The followed point in the last period.
     t: f64,
-    /// The nearest corner ahead where the point slows (where it is on the
-    /// axis, and the point's speed after it), kept after the point has
-    /// passed it until the axis has too.
+    /// The nearest corner ahead where the point slows, as of the last
+    /// period (where it is on the axis, and the point's speed after it).
     corner: Option<(f64, f64)>,
 }
 
@@ -109,32 +108,36 @@ impl AxisFollow {
         let over = |v: f64| v * (1.0 + 1e-12) + 1e-12;
         let mut room = over(brake_limit(ahead + runs_on, 0.0, a, dt));
         if on {
+            let s = vt.abs();
             // A lagging axis closing its lag above the point's speed must
             // not run past the point and come back: it can still slow to
             // the point's speed before it reaches the point (which the
             // closing share keeps to, unless the axis came in faster) ...
+            // (In the frame that runs with the point at s, the gap before
+            // this period is ahead − s·dt.)
             if ahead > 0.0 {
-                room = room.min(over(vt.abs() + brake_limit(ahead, 0.0, a, dt)));
+                room = room.min(over(s + brake_limit(ahead - s * dt, 0.0, a, dt)));
             }
-            // ... and it arrives where the point slows at a corner ahead no
-            // faster than the point runs on from there (a 45° leg into a
-            // steeper one), the point's last such corner too while the
-            // axis is still short of it.
-            for &(d, u) in ahead_of.slows.iter().filter(|s| s.0.is_finite()) {
-                room = room.min(over(brake_limit(ahead + d, u, a, dt)));
-            }
-            if let Some((c, u)) = self.corner {
-                let short = (c - self.p) * want.signum();
-                if short > 0.0 {
-                    room = room.min(over(brake_limit(short, u, a, dt)));
-                }
+            // ... nor after a corner ahead where the point slows to u: the
+            // axis, braking from now on at its whole acceleration, ends
+            // no farther on than the point once both run at u, (v − u)² ≤
+            // 2a·(ahead − u·dt + d·(1 − u/s)) (a 45° leg into a steeper
+            // one). The corner the point passed in this period counts so
+            // too: its speed over the period is still partly the faster
+            // one.
+            let passed = self
+                .corner
+                .filter(|&(c, _)| (t - c) * vt >= 0.0)
+                .map(|(_, u)| (0.0, u));
+            let slows = ahead_of.slows.iter().copied().filter(|c| c.0.is_finite());
+            for (d, u) in slows.chain(passed).filter(|&(_, u)| u < s) {
+                let gap = ahead - u * dt + d * (1.0 - u / s);
+                room = room.min(over(u + brake_limit(gap, 0.0, a, dt)));
             }
         }
         self.corner = match ahead_of.slows[0] {
             (d, u) if on && d.is_finite() => Some((t + d.copysign(vt), u)),
-            _ => self
-                .corner
-                .filter(|&(c, _)| on && (c - self.p) * want.signum() > 0.0),
+            _ => None,
         };
         let v = want
             .clamp(-room, room)

@@ -545,8 +545,14 @@ impl<P: Plc> Engine<P> {
         let Some(head) = self.q.seg(0).filter(|s| straight(s)) else {
             return Ahead::UNKNOWN;
         };
-        let dir = along(head.to) - along(head.from);
         let mut ahead = Ahead::UNKNOWN;
+        if !matches!(head.kind, MoveKind::Thread(_)) {
+            // The chain ended in this period: the move after it waits
+            // until the axes meet the point where the chain left it.
+            ahead.stops = true;
+            return ahead;
+        }
+        let dir = along(head.to) - along(head.from);
         if dir == 0.0 {
             // The point stands on this axis.
             ahead.stops = true;
@@ -578,7 +584,9 @@ impl<P: Plc> Engine<P> {
                 break;
             }
             let u = axis_speed(leg, d.abs(), rps);
-            if u < slowest && n < SLOWS {
+            // (Slower by more than rounding: legs of one speed are not
+            // corners that slow the axis.)
+            if u < slowest * (1.0 - 1e-9) && n < SLOWS {
                 ahead.slows[n] = (run, u);
                 n += 1;
                 slowest = u;
