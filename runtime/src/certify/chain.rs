@@ -41,23 +41,37 @@ impl CatchUp {
     /// ([`tail_time`]).
     pub(super) fn add(&mut self, ax: &Axis, v: f64, w0: f64, runs: f64) {
         let (a, vmax) = (ax.accel, ax.max_feed);
-        let curve = |tol| catch_up_time(v, w0, a, vmax, tol);
-        let peak = w0.abs() / libm::sqrt(1.0 + 1.0 / CLOSE_SHARE);
-        let free = runs >= v * curve(0.0) + (v + peak) * (v + peak) / (2.0 * a);
-        let time = |tol, eps| {
-            let t = curve(tol);
-            if free {
-                t
+        // The times to keep the lead and to close the lag after a step w.
+        let span = |w: f64| {
+            let curve = |tol| catch_up_time(v, w, a, vmax, tol);
+            let peak = w.abs() / libm::sqrt(1.0 + 1.0 / CLOSE_SHARE);
+            let free = runs >= v * curve(0.0) + (v + peak) * (v + peak) / (2.0 * a);
+            let time = |tol, eps| {
+                let t = curve(tol);
+                if free {
+                    t
+                } else {
+                    t.max(tail_time(v, w, a, vmax, eps))
+                }
+            };
+            let lag = if v < vmax {
+                time(0.0, 0.5 * PATH_MM)
             } else {
-                t.max(tail_time(v, w0, a, vmax, eps))
-            }
+                f64::INFINITY
+            };
+            (time(LEAD_TOL, LEAD_TOL * v * v / a), lag)
         };
-        self.lead_s += time(LEAD_TOL, LEAD_TOL * v * v / a);
-        self.lag_s += if v < vmax {
-            time(0.0, 0.5 * PATH_MM)
+        let (lead, lag) = span(w0);
+        // A lag still open from corners before closes at this leg's
+        // speed now, which may leave less room below the top speed: at
+        // most as slowly as one step of all of them.
+        let (lead_all, lag_all) = if self.c > 0.0 {
+            span((self.c + w0.abs()).copysign(w0))
         } else {
-            f64::INFINITY
+            (0.0, 0.0)
         };
+        self.lead_s = (self.lead_s + lead).max(lead_all);
+        self.lag_s = (self.lag_s + lag).max(lag_all);
         self.c += w0.abs();
     }
 }

@@ -291,7 +291,8 @@ impl<P: Plc> Engine<P> {
         let lam = target
             .curve
             .lam_at_long(target.long_z, at.q, target.long_len, guess);
-        let v = self.chain_distance(at.k, lam).max(0.0) / self.dt;
+        let (dist, scale) = self.chain_distance(at.k, lam);
+        let v = dist.max(0.0) / self.dt;
         let at_end = self
             .q
             .seg(at.k)
@@ -302,7 +303,8 @@ impl<P: Plc> Engine<P> {
             self.step_path();
             return;
         }
-        self.commit_chain_point(at, &target, lam, v);
+        // (The path speed on the move the point lies on.)
+        self.commit_chain_point(at, &target, lam, v / scale);
         if self.thread.rigid && at_end {
             // At the bottom with the spindle: what is left is standing.
             self.thread.phase = Phase::Brake;
@@ -362,21 +364,24 @@ impl<P: Plc> Engine<P> {
     }
 
     /// The path distance from where the head move stands to parameter
-    /// `lam` of the `k`-th queued move: this period's, to check against
-    /// the envelope.
-    fn chain_distance(&self, k: usize, lam: f64) -> f64 {
+    /// `lam` of the `k`-th queued move, the later moves seen from the
+    /// head (`Segment::chain_scale`): this period's, to check against the
+    /// envelope. And the scale of the `k`-th move seen from the head.
+    fn chain_distance(&self, k: usize, lam: f64) -> (f64, f64) {
         let seg = self.cur;
         let mut dist = if k == 0 {
             (lam - self.lam) * seg.len
         } else {
             (1.0 - self.lam) * seg.len
         };
+        let mut scale = 1.0;
         for j in 1..=k {
-            if let Some(sj) = self.q.seg(j) {
-                dist += if j == k { lam * sj.len } else { sj.len };
+            if let (Some(before), Some(sj)) = (self.q.seg(j - 1), self.q.seg(j)) {
+                scale *= before.chain_scale(sj);
+                dist += if j == k { lam * sj.len } else { sj.len } * scale;
             }
         }
-        dist
+        (dist, scale)
     }
 
     /// The fastest a period may go and still stop on the ends ahead, to
