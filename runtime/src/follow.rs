@@ -108,32 +108,7 @@ impl AxisFollow {
         let over = |v: f64| v * (1.0 + 1e-12) + 1e-12;
         let mut room = over(brake_limit(ahead + runs_on, 0.0, a, dt));
         if on {
-            let s = vt.abs();
-            // A lagging axis closing its lag above the point's speed must
-            // not run past the point and come back: it can still slow to
-            // the point's speed before it reaches the point (which the
-            // closing share keeps to, unless the axis came in faster) ...
-            // (In the frame that runs with the point at s, the gap before
-            // this period is ahead − s·dt.)
-            if ahead > 0.0 {
-                room = room.min(over(s + brake_limit(ahead - s * dt, 0.0, a, dt)));
-            }
-            // ... nor after a corner ahead where the point slows to u: the
-            // axis, braking from now on at its whole acceleration, ends
-            // no farther on than the point once both run at u, (v − u)² ≤
-            // 2a·(ahead − u·dt + d·(1 − u/s)) (a 45° leg into a steeper
-            // one). The corner the point passed in this period counts so
-            // too: its speed over the period is still partly the faster
-            // one.
-            let passed = self
-                .corner
-                .filter(|&(c, _)| (t - c) * vt >= 0.0)
-                .map(|(_, u)| (0.0, u));
-            let slows = ahead_of.slows.iter().copied().filter(|c| c.0.is_finite());
-            for (d, u) in slows.chain(passed).filter(|&(_, u)| u < s) {
-                let gap = ahead - u * dt + d * (1.0 - u / s);
-                room = room.min(over(u + brake_limit(gap, 0.0, a, dt)));
-            }
+            room = room.min(over(self.passing_limit(t, vt, ahead, ahead_of, a, dt)));
         }
         self.corner = match ahead_of.slows[0] {
             (d, u) if on && d.is_finite() => Some((t + d.copysign(vt), u)),
@@ -151,6 +126,36 @@ impl AxisFollow {
         self.v = (p - self.p) / dt;
         self.p = p;
         self.t = t;
+    }
+
+    /// The fastest the axis may run in this period, moving as the point
+    /// does, `ahead` mm behind where the point `t` now is, and never pass
+    /// the point: a lagging axis closing its lag above the point's speed
+    /// can still slow to that speed before it reaches the point (which
+    /// the closing share keeps to, unless the axis came in faster), and
+    /// after a corner ahead where the point slows to u, the axis, braking
+    /// from now on at its whole acceleration, ends no farther on than the
+    /// point once both run at u: (v − u)² ≤ 2a·(ahead − u·dt + d·(1 −
+    /// u/s)) (a 45° leg into a steeper one; in the frame that runs with
+    /// the point, the gap before this period is ahead − u·dt). The corner
+    /// the point passed in this period counts so too: its speed over the
+    /// period is still partly the faster one.
+    fn passing_limit(&self, t: f64, vt: f64, ahead: f64, ahead_of: &Ahead, a: f64, dt: f64) -> f64 {
+        let s = vt.abs();
+        let mut lim = f64::INFINITY;
+        if ahead > 0.0 {
+            lim = s + brake_limit(ahead - s * dt, 0.0, a, dt);
+        }
+        let passed = self
+            .corner
+            .filter(|&(c, _)| (t - c) * vt >= 0.0)
+            .map(|(_, u)| (0.0, u));
+        let slows = ahead_of.slows.iter().copied().filter(|c| c.0.is_finite());
+        for (d, u) in slows.chain(passed).filter(|&(_, u)| u < s) {
+            let gap = ahead - u * dt + d * (1.0 - u / s);
+            lim = lim.min(u + brake_limit(gap, 0.0, a, dt));
+        }
+        lim
     }
 }
 
