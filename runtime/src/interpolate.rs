@@ -1161,9 +1161,8 @@ impl<P: Plc> Engine<P> {
 
     /// Moves `v · dt` along the path, on into the queued moves where the
     /// corner allows; whether it landed on an end point (and the move is
-    /// finished).
-    /// Sets the path speed `v`, which a thread chain's corner scales
-    /// (`Segment::chain_scale`).
+    /// finished). Sets the path speed `v`, which a thread chain's corner
+    /// scales (`Segment::chain_scale`).
     #[inline]
     fn travel(&mut self, mut v: f64) -> bool {
         let mut ds = v * self.dt;

@@ -835,10 +835,11 @@ impl Certifier {
 
     /// The speed (mm/s, radial X and Z) each axis sheds running into the
     /// corner at the end of leg `m`, where the chain stops, turns or slows
-    /// it there or within its stopping distance after: the follower
-    /// brakes it ahead of the point so as to arrive at each such corner
-    /// no faster than the chain runs on from it, and the corner is cut by
-    /// up to the lag that builds, at most Δv²/2a.
+    /// it there or within its stopping distance after: the follower slows
+    /// it ahead so as never to pass the chain's point, at most down to
+    /// where it would pass each such corner no faster than the chain runs
+    /// on from there, and the corner is cut by up to the lag that builds,
+    /// at most Δv²/2a.
     fn stops_at(&self, m: &Pending, rpm: f64) -> [f64; 2] {
         let (Some((lead, _)), Some(start)) = (m.thread, m.start) else {
             return [0.0; 2];

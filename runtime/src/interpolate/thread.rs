@@ -541,9 +541,9 @@ impl<P: Plc> Engine<P> {
     /// Unknown off a thread chain or on an arc. Where the run ends at a
     /// corner that stops or turns the axis, or at the chain's end, the
     /// axis must not pass it (docs/language.md: never past where the
-    /// chain stops). The corners before it where
-    /// the point runs on slower on the axis are the slows, at the speed
-    /// the spindle turns now.
+    /// chain stops). The corners before it where the point runs on
+    /// slower on the axis are the slows, at the speed the spindle turns
+    /// now.
     pub(super) fn chain_runs_on(&self, axis: usize, enough: f64) -> Ahead {
         let along = |p: V2| if axis == 0 { p.r } else { p.z };
         let straight = |s: &Segment| matches!(s.curve, Curve::Line { .. });
