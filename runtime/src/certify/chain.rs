@@ -40,27 +40,7 @@ impl CatchUp {
     /// beyond the catch-up's own travel; else at least on the slower tail
     /// ([`tail_time`]).
     pub(super) fn add(&mut self, ax: &Axis, v: f64, w0: f64, runs: f64) {
-        let (a, vmax) = (ax.accel, ax.max_feed);
-        // The times to keep the lead and to close the lag after a step w.
-        let span = |w: f64| {
-            let curve = |tol| catch_up_time(v, w, a, vmax, tol);
-            let peak = w.abs() / libm::sqrt(1.0 + 1.0 / CLOSE_SHARE);
-            let free = runs >= v * curve(0.0) + (v + peak) * (v + peak) / (2.0 * a);
-            let time = |tol, eps| {
-                let t = curve(tol);
-                if free {
-                    t
-                } else {
-                    t.max(tail_time(v, w, a, vmax, eps))
-                }
-            };
-            let lag = if v < vmax {
-                time(0.0, 0.5 * PATH_MM)
-            } else {
-                f64::INFINITY
-            };
-            (time(LEAD_TOL, LEAD_TOL * v * v / a), lag)
-        };
+        let span = |w| catch_up_span(ax, v, w, runs);
         let (lead, lag) = span(w0);
         // A lag still open from corners before closes at this leg's
         // speed now, which may leave less room below the top speed: at
@@ -74,6 +54,30 @@ impl CatchUp {
         self.lag_s = (self.lag_s + lag).max(lag_all);
         self.c += w0.abs();
     }
+}
+
+/// The times (s) an axis `ax` takes to keep the lead again and to close
+/// its lag after a step `w` in its speed, keeping to the chain at `v`
+/// with `runs` mm of the chain ahead on it ([`CatchUp::add`]).
+fn catch_up_span(ax: &Axis, v: f64, w: f64, runs: f64) -> (f64, f64) {
+    let (a, vmax) = (ax.accel, ax.max_feed);
+    let curve = |tol| catch_up_time(v, w, a, vmax, tol);
+    let peak = w.abs() / libm::sqrt(1.0 + 1.0 / CLOSE_SHARE);
+    let free = runs >= v * curve(0.0) + (v + peak) * (v + peak) / (2.0 * a);
+    let time = |tol, eps| {
+        let t = curve(tol);
+        if free {
+            t
+        } else {
+            t.max(tail_time(v, w, a, vmax, eps))
+        }
+    };
+    let lag = if v < vmax {
+        time(0.0, 0.5 * PATH_MM)
+    } else {
+        f64::INFINITY
+    };
+    (time(LEAD_TOL, LEAD_TOL * v * v / a), lag)
 }
 
 /// The distance the long axis of a thread needs to reach speed `v` from
