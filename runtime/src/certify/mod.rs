@@ -756,6 +756,7 @@ impl Certifier {
         // after the last one (a short move back may end within the
         // tolerance of where this step began).
         let mut from = a;
+        let mut first = true;
         let dist = |e: V2, from: V2| {
             if joined {
                 seg_dist(e, from, b)
@@ -764,6 +765,16 @@ impl Certifier {
             }
         };
         while let Some(mut m) = self.pending.front().copied() {
+            // After an end point reached in this step, the next is due in
+            // it only where the rest of the step runs past it. One the
+            // step ends on or short of may be a µm move's the tool runs
+            // after the ones it still has to run (it stands within a µm
+            // of several): judged now, the tool going on to those would
+            // look like leaving it, a miss.
+            let t = seg_param(m.end, from, b);
+            if !first && joined && !(t > 0.0 && t < 1.0) {
+                break;
+            }
             m.tol = self.tol_of(&m, p.spindle_rpm);
             let d = dist(m.end, from);
             // The step ends where it is nearest to the end point: the tool
@@ -784,6 +795,7 @@ impl Certifier {
                 if joined {
                     from = seg_nearest(m.end, from, b);
                 }
+                first = false;
                 self.reached += 1;
                 self.reach(m);
                 self.pending.pop_front();
