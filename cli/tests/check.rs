@@ -457,10 +457,11 @@ fn a_line_after_a_tight_arc_keeps_back_the_arcs_share() {
     certified("tight-arc", src);
 }
 
-/// With jerk limiting, an arc of 2.45 mm radius at F3000: the moving
-/// average bounds the jerk along the path, but the turning adds v³/R²
-/// and 3·v·a/R on the axes, and X reached 105.8 % of its jerk. The arc's
-/// speed and acceleration now leave room for both.
+/// With jerk limiting, an arc of 2.45 mm radius at F3000: when the
+/// moving average ran along the path, it bounded the jerk along it but
+/// not the turning's (v³/R² and 3·v·a/R on the axes), and X reached
+/// 105.8 % of its jerk. Now each axis's set points are averaged, which
+/// bounds every axis's jerk whatever the path does.
 #[test]
 fn an_arc_under_jerk_limiting_keeps_the_axes_jerk() {
     let d = scratch("jerk-arc");

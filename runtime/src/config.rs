@@ -103,9 +103,9 @@ pub struct Config {
     /// №007.5: every block ends in an exact stop.
     pub always_exact_stop: bool,
     /// S-curve (jerk-limited) speed changes instead of linear
-    /// acceleration: a moving average of 2·a/j over the profile (see
-    /// `smooth`). Off on the reference machine; never for threads. In this
-    /// mode feeds stop exactly between blocks (no G64 blending yet).
+    /// acceleration: a moving average of the acceleration-limited motion
+    /// (see `smooth`): over 2·a/j for rapids, over [`Config::feed_taps`]
+    /// for feeds. Off on the reference machine; never for threads.
     pub jerk_limited: bool,
     /// The share of an axis's acceleration that a G64 corner may use as a
     /// one-period velocity step; the segments next to the corner keep the
@@ -223,6 +223,46 @@ impl Config {
         } else {
             1
         }
+    }
+
+    /// Periods of the moving average over each axis's set points of a
+    /// feed, with jerk limiting (1 without). The average of N periods
+    /// turns an axis acceleration `a` into jerk within 2·a/(N·dt), so
+    /// feeds accelerate at [`Config::feed_accel`], at most j·T/2 (T =
+    /// N·dt). It cuts a G64 corner, where the direction changes by Δu,
+    /// by up to (v·T/8 + a·T²/48)·|Δu| at speed v (planner.rs
+    /// `FeedSmoothing`): the window is the longest whose braking term,
+    /// J·T³/96 with J the smaller axis jerk, stays within a quarter of
+    /// the resolution at |Δu| = 1, T = ∛(24·tol/J) (11 ms on the
+    /// reference machine). A longer one would stop every corner of more
+    /// than a few degrees and slow every curve (the cut of a curve grows
+    /// with T²); a shorter one would slow every speed change. Never
+    /// longer than the rapids' window (`jerk_taps`).
+    pub fn feed_taps(&self) -> usize {
+        let most = self.jerk_taps();
+        if most <= 1 {
+            return 1;
+        }
+        let j = self.x.jerk.min(self.z.jerk);
+        let t = libm::cbrt(24.0 * self.resolution_mm.max(1e-6) / j);
+        let n = libm::round(t / self.period_s);
+        if n.is_nan() || n < 1.0 {
+            1
+        } else if n < most as f64 {
+            n as usize
+        } else {
+            most
+        }
+    }
+
+    /// An axis's acceleration for feeds: its own, and with jerk limiting
+    /// at most j·T/2 over the feeds' window T ([`Config::feed_taps`]).
+    pub fn feed_accel(&self, axis: &Axis) -> f64 {
+        if self.jerk_taps() <= 1 {
+            return axis.accel;
+        }
+        let t = self.feed_taps() as f64 * self.period_s;
+        axis.accel.min(0.5 * axis.jerk * t)
     }
 }
 

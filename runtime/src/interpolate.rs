@@ -242,7 +242,8 @@ pub struct Engine<P: Plc> {
     /// refreshed each period, since the planner may raise them.
     cur: Segment,
     /// Path parameter: `s` of the acceleration-limited profile, `s_out` of
-    /// the set points (the same unless jerk limiting smooths it).
+    /// the set points (the same unless jerk limiting averages it, in a
+    /// plane).
     s: f64,
     s_out: f64,
     /// Jerk limiting: the moving average, and the unfiltered rapid point.
@@ -252,6 +253,10 @@ pub struct Engine<P: Plc> {
     /// The unfiltered rapid C angle and C's own moving average (jerk).
     rapid_raw_c: f64,
     smooth_c: Smoother,
+    /// Jerk limiting: the moving averages of a feed's set points (X/Z,
+    /// and C), outside a plane (planner.rs `FeedSmoothing`).
+    feed_avg: Smoother,
+    feed_avg_c: Smoother,
     lam: f64,
     v: f64,
     /// Rapid speeds of X, Z and C.
@@ -323,6 +328,8 @@ impl<P: Plc> Engine<P> {
             rapid_raw: V2::ZERO,
             rapid_raw_c: 0.0,
             smooth_c: Smoother::new(if cfg.c.is_some() { cfg.jerk_taps() } else { 1 }),
+            feed_avg: Smoother::new(cfg.feed_taps()),
+            feed_avg_c: Smoother::new(if cfg.c.is_some() { cfg.feed_taps() } else { 1 }),
             lam: 0.0,
             v: 0.0,
             rapid_v: [0.0; 3],
@@ -907,6 +914,8 @@ impl<P: Plc> Engine<P> {
                 };
                 self.smooth.reset(at);
                 self.smooth_c.reset(V2::new(self.c, 0.0));
+                self.feed_avg.reset(self.pos);
+                self.feed_avg_c.reset(V2::new(self.c, 0.0));
             }
         } else if let Some(s) = self.q.seg(0) {
             self.cur.v_exit = s.v_exit;
@@ -1148,21 +1157,50 @@ impl<P: Plc> Engine<P> {
         // acceleration (and the next period belongs to the next move).
         let v = self.path_speed(vc);
         if self.jerk && !matches!(self.cur.kind, MoveKind::Thread(_)) {
-            self.smoothed_path(v);
+            match self.plane {
+                Some(_) => self.smoothed_path(v),
+                None => self.averaged_path(v),
+            }
             return;
         }
         if self.travel(v) {
-            return;
-        }
-        if self.v == 0.0 {
+            self.land();
+        } else if self.v == 0.0 {
             self.standing();
         }
     }
 
+    /// One period of a feed with jerk limiting outside a plane: the path
+    /// runs as without it (G64 corners blend), the set point is the
+    /// moving average of its points (planner.rs `FeedSmoothing`). The
+    /// move ends, holds or stops at a skip once the average has caught
+    /// up: on the very point the path stands on.
+    fn averaged_path(&mut self, v: f64) {
+        let landed = self.travel(v);
+        self.pos = self.feed_avg.push(self.pos);
+        self.c = self.feed_avg_c.push(V2::new(self.c, 0.0)).r;
+        if !(self.feed_avg.settled() && self.feed_avg_c.settled()) {
+            return;
+        }
+        if landed {
+            self.land();
+        } else if self.v == 0.0 {
+            self.standing();
+        }
+    }
+
+    /// The path stands on the head move's end point: the move is done.
+    fn land(&mut self) {
+        if let MoveKind::Skip(_) = self.cur.kind {
+            self.report_skip();
+        }
+        self.finish_item();
+    }
+
     /// Moves `v · dt` along the path, on into the queued moves where the
-    /// corner allows; whether it landed on an end point (and the move is
-    /// finished). Sets the path speed `v`, which a thread chain's corner
-    /// scales (`Segment::chain_scale`).
+    /// corner allows; whether it landed on the head move's end point
+    /// (where it stays: the caller ends the move). Sets the path speed
+    /// `v`, which a thread chain's corner scales (`Segment::chain_scale`).
     #[inline]
     fn travel(&mut self, mut v: f64) -> bool {
         let mut ds = v * self.dt;
@@ -1215,13 +1253,11 @@ impl<P: Plc> Engine<P> {
                 continue;
             }
             // Lands on the end point.
+            self.s = self.cur.len;
+            self.lam = 1.0;
             self.pos = self.cur.to;
             self.c = self.cur.c1;
             self.v = v;
-            if let MoveKind::Skip(_) = self.cur.kind {
-                self.report_skip();
-            }
-            self.finish_item();
             return true;
         }
     }
@@ -1249,9 +1285,9 @@ impl<P: Plc> Engine<P> {
         });
     }
 
-    /// One period of a feed with jerk limiting: the profile runs to the end
-    /// point (each feed ends in a stop in this mode), the set point follows
-    /// its moving average along the path.
+    /// One period of a feed with jerk limiting in a plane: the profile
+    /// runs to the end point (each feed ends in a stop there), the set
+    /// point follows its moving average along the path.
     fn smoothed_path(&mut self, v: f64) {
         let len = self.cur.len;
         let mut s = self.s + v * self.dt;
@@ -1283,12 +1319,17 @@ impl<P: Plc> Engine<P> {
         }
     }
 
+    /// Every moving average of jerk limiting stands on its last point.
+    fn averages_settled(&self) -> bool {
+        self.smooth.settled() && self.feed_avg.settled() && self.feed_avg_c.settled()
+    }
+
     /// A reset in progress: brake, then drop everything.
     fn reset_step(&mut self) {
         let moving = self.v > 0.0
             || self.rapid_v != [0.0; 3]
             || matches!(self.thread.phase, Phase::Ramp | Phase::Locked)
-            || (self.jerk && self.started && !self.smooth.settled());
+            || (self.jerk && self.started && !self.averages_settled());
         if moving && self.started {
             if self.q.seg(0).is_some() {
                 match self.cur.kind {
@@ -1298,7 +1339,7 @@ impl<P: Plc> Engine<P> {
                 }
             }
             let still =
-                self.v > 0.0 || self.rapid_v != [0.0; 3] || (self.jerk && !self.smooth.settled());
+                self.v > 0.0 || self.rapid_v != [0.0; 3] || (self.jerk && !self.averages_settled());
             if still && self.started {
                 return;
             }

@@ -236,12 +236,13 @@ pub struct Planner {
     /// G64 blends within this (machine.resolution_mm).
     tolerance: f64,
     exact_stop: bool,
-    /// Jerk limiting is on: feeds stop between blocks (the moving average
-    /// could otherwise run through a corner faster than its speed).
+    /// Jerk limiting is on. In a plane feeds stop between blocks there
+    /// (the joints' map is not linear: the interpolator averages the path
+    /// parameter of each move on its own).
     jerk: bool,
-    /// With jerk limiting, what a curve's speed and acceleration must
-    /// leave room for (see [`CurveJerk`]).
-    curve_jerk: CurveJerk,
+    /// With jerk limiting, feeds outside a plane are averaged after
+    /// interpolation: what that asks of them (see [`FeedSmoothing`]).
+    smoothing: Option<FeedSmoothing>,
     /// End of the last queued move (machine axes, slide units), and its
     /// C angle.
     tail: V2,
@@ -286,30 +287,62 @@ pub const REPLAN_BATCH: usize = 32;
 /// Highest feed override: the envelope must allow it.
 const MAX_OVERRIDE: f64 = 1.5;
 
-/// Jerk on a curve (jerk limiting on). The moving average over T bounds
-/// the jerk along the path by 2·a/T, but an axis on a curve of radius R
-/// also sees the jerk of the turning: v³/R² along the path and 3·v·a/R
-/// across it. Each axis stays within the smaller jerk J when
-/// a·(2/T + 3·v/R) + v³/R² ≤ J: the curve's speed leaves half of J for
-/// v³/R², its acceleration the rest.
+/// Feeds under jerk limiting (outside a plane): the interpolator runs
+/// them as without it, blending at G64 corners, and averages each axis's
+/// set points over the window T (config.rs `feed_taps`). The average
+/// keeps every axis within the speed and acceleration it is given and
+/// bounds its jerk by 2·a/T, so feeds plan with accelerations of at most
+/// j·T/2. What the average costs is the path: it cuts a corner and the
+/// inside of a curve, which the speed caps here keep within half the
+/// resolution.
 #[derive(Debug, Clone, Copy)]
-struct CurveJerk {
-    /// J, the smaller of the X and Z jerks.
-    jerk: f64,
-    /// 1/T, T the averaging window.
-    inv_window: f64,
+struct FeedSmoothing {
+    /// T, s.
+    window: f64,
+    /// The axes' feed accelerations and their inverses.
+    ax: [f64; 2],
+    iax: [f64; 2],
+    /// C's feed acceleration, deg/s².
+    c_accel: f64,
+    /// What the average may cut, mm: half the resolution.
+    tol: f64,
 }
 
-impl CurveJerk {
-    /// The speed cap on a curve of radius `r`: v³/R² ≤ J/2.
-    fn speed(&self, r: f64) -> f64 {
-        libm::cbrt(0.5 * self.jerk * r * r)
+impl FeedSmoothing {
+    fn new(cfg: &Config) -> Option<FeedSmoothing> {
+        if cfg.jerk_taps() <= 1 {
+            return None;
+        }
+        let ax = [cfg.feed_accel(&cfg.x), cfg.feed_accel(&cfg.z)];
+        Some(FeedSmoothing {
+            window: cfg.feed_taps() as f64 * cfg.period_s,
+            ax,
+            iax: ax.map(|a| 1.0 / a),
+            c_accel: cfg.c.map_or(0.0, |c| cfg.feed_accel(&c)),
+            tol: 0.5 * cfg.resolution_mm.max(1e-6),
+        })
     }
 
-    /// The acceleration cap at speed `v` on a curve of radius `r`.
-    fn accel(&self, v: f64, r: f64) -> f64 {
-        let turning = v * v * v / (r * r);
-        (self.jerk - turning).max(0.0) / (2.0 * self.inv_window + 3.0 * v / r)
+    /// The speed cap on a curve of radius `r`: the average of points a
+    /// path length v·T apart on a circle lies v²·T²/24R inside it.
+    fn curve_speed(&self, r: f64) -> f64 {
+        sqrt(24.0 * r * self.tol) / self.window
+    }
+
+    /// The corner speed where the direction changes by `du` (|Δu|)
+    /// between moves whose shorter one is `short` long. The average over
+    /// T of a path through a corner at speed v, braking into it and
+    /// accelerating out of it at a, passes (v·T/8 + a·T²/48)·|Δu| from
+    /// the corner at most; where the moves are shorter than the window,
+    /// their corners add up to a curve of radius `short`/|Δu|.
+    fn corner_speed(&self, du: f64, short: f64) -> f64 {
+        if du <= 1e-15 {
+            return f64::INFINITY;
+        }
+        let t = self.window;
+        let a = self.ax[0].max(self.ax[1]);
+        let corner = 8.0 / t * (self.tol / du - a * t * t / 48.0);
+        corner.max(0.0).min(self.curve_speed(short / du))
     }
 }
 
@@ -350,10 +383,7 @@ impl Planner {
             tolerance: cfg.resolution_mm.max(1e-6),
             exact_stop: cfg.always_exact_stop,
             jerk: cfg.jerk_taps() > 1,
-            curve_jerk: CurveJerk {
-                jerk: cfg.x.jerk.min(cfg.z.jerk),
-                inv_window: 1.0 / (cfg.jerk_taps() as f64 * cfg.period_s),
-            },
+            smoothing: FeedSmoothing::new(cfg),
             tail: V2::ZERO,
             tail_c: 0.0,
             shift: V2::ZERO,
@@ -715,7 +745,9 @@ impl Planner {
     /// The hard caps of a segment's path (`dc`: the C axis's turn).
     fn limits(&self, seg: &Segment, dc: f64) -> Limits {
         let (curve, len) = (seg.curve, seg.len);
-        let amin = self.ax[0].min(self.ax[1]);
+        let smoothing = self.smoothing_of(seg.kind);
+        let (ax, iax) = smoothing.map_or((self.ax, self.iax), |s| (s.ax, s.iax));
+        let amin = ax[0].min(ax[1]);
         // Per-axis feed limits (a curve sweeps its direction, so both
         // count fully), the path limit, curvature.
         let is_line = matches!(curve, Curve::Line { .. });
@@ -750,14 +782,15 @@ impl Planner {
             // curve (sagitta ℓ²/8R).
             cap = cap.min(sqrt(0.5 * amin * rmin));
             cap = cap.min(sqrt(8.0 * rmin * self.tolerance) / self.dt);
-            if self.smooths_curves() {
-                cap = cap.min(self.curve_jerk.speed(rmin));
+            if let Some(s) = smoothing {
+                cap = cap.min(s.curve_speed(rmin));
             }
         }
         // Line acceleration: the moving axes' limits along the direction.
-        let mut a_line = 1.0 / (ur * self.iax[0]).max(uz * self.iax[1]);
+        let mut a_line = 1.0 / (ur * iax[0]).max(uz * iax[1]);
         if let Some(c) = &c {
-            a_line = a_line.min(c.accel / uc);
+            let a = smoothing.map_or(c.accel, |s| s.c_accel);
+            a_line = a_line.min(a / uc);
         }
         let mut lim = Limits {
             cap,
@@ -867,15 +900,11 @@ impl Planner {
             seg.a_scale = lim.a_line;
         } else {
             seg.a_scale = lim.amin;
-            if self.smooths_curves() {
-                let a = self.curve_jerk.accel(seg.v_max, lim.rmin);
-                seg.a_scale = seg.a_scale.min(a);
-            }
             seg.f_n = (seg.v_max * seg.v_max / (lim.rmin * lim.amin)).min(0.5);
         }
         // Keep the corner share at the end until the next move is known;
         // the real corner can only need less.
-        let blends = lim.c.is_none() && !self.exact_stop && !self.jerk;
+        let blends = lim.c.is_none() && !self.exact_stop && !(self.jerk && self.plane.is_some());
         seg.c_out = if matches!(kind, MoveKind::Feed(_)) && blends {
             self.budget
         } else {
@@ -900,10 +929,15 @@ impl Planner {
         seg.est_s = seg.long_len / (t.lead.max(1e-6) * rps);
     }
 
-    /// Jerk limiting smooths the path parameter of the curves queued now
-    /// (a plane's joints have caps of their own: `plane_limits`).
-    fn smooths_curves(&self) -> bool {
-        self.jerk && self.plane.is_none()
+    /// What the average after interpolation asks of a move of this kind
+    /// queued now: feeds outside a plane, with jerk limiting.
+    fn smoothing_of(&self, kind: MoveKind) -> Option<&FeedSmoothing> {
+        match kind {
+            MoveKind::Feed(_) | MoveKind::Skip(_) if self.plane.is_none() => {
+                self.smoothing.as_ref()
+            }
+            _ => None,
+        }
     }
 
     /// The C angle a move ends at: lines and rapids may turn C, nothing
@@ -958,8 +992,10 @@ impl Planner {
             // move and tangent joints run on.)
             (MoveKind::Feed(_), MoveKind::Feed(_)) => {
                 !self.exact_stop
-                    && !self.jerk
-                    && (self.plane.is_none() || (b.t0 - a.t1).norm() < 1e-9)
+                    && match self.plane {
+                        None => true,
+                        Some(_) => !self.jerk && (b.t0 - a.t1).norm() < 1e-9,
+                    }
             }
             // The pieces of a G00 in a plane (polar.rs `cuts`) run on,
             // straight through.
@@ -1006,17 +1042,18 @@ impl Planner {
                 prev.v_max.min(cur.v_max)
             };
             if !threads {
+                let smoothing = self.smoothing_of(cur.kind);
+                let iax = smoothing.map_or(self.iax, |s| s.iax);
                 // The velocity step of the corner within its share of
                 // each axis's acceleration ...
-                let share = (du.r.abs() * self.iax[0]).max(du.z.abs() * self.iax[1]);
+                let share = (du.r.abs() * iax[0]).max(du.z.abs() * iax[1]);
                 // ... and the chord of the period through the corner off
                 // a curve's tangent by half the angle v·dt/R the curve
                 // turns in it: a velocity error up to v²·dt/2R, which the
                 // other move's period takes (a curve of a few µm turns
                 // tens of degrees in a period; the curve's own
                 // centripetal share covers its own periods).
-                let bend =
-                    |c: &Curve| 0.5 * self.dt / c.min_radius() * self.iax[0].max(self.iax[1]);
+                let bend = |c: &Curve| 0.5 * self.dt / c.min_radius() * iax[0].max(iax[1]);
                 let (bend_prev, bend_cur) = (bend(&prev.curve), bend(&cur.curve));
                 let b = self.budget * self.dt;
                 vj = vj.min(corner_speed(share, bend_prev.max(bend_cur), b));
@@ -1034,6 +1071,11 @@ impl Planner {
                 let n = du.norm();
                 if n > 1e-15 {
                     vj = vj.min(4.0 * self.tolerance / (self.dt * n));
+                }
+                // ... and the average after interpolation within its
+                // tolerance of the corner.
+                if let Some(s) = smoothing {
+                    vj = vj.min(s.corner_speed(n, prev.len.min(cur.len)));
                 }
                 vj = vj.max(0.0);
                 out = (vj * share + vj * vj * bend_cur) / self.dt;
@@ -1140,19 +1182,33 @@ fn corner_speed(share: f64, bend: f64, budget: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     #[test]
-    fn a_curve_under_jerk_limiting_leaves_room_for_the_turning() {
-        // J 20 000 mm/s³, T 0.15 s. R 2: v³/R² ≤ J/2 gives v ≤ ∛40 000
-        // = 34.1995 mm/s. At 10 mm/s the turning takes 1000/4 = 250, and
-        // a·(2/0.15 + 3·10/2) ≤ 19 750 gives a ≤ 697.06 mm/s².
-        let cj = CurveJerk {
-            jerk: 20_000.0,
-            inv_window: 1.0 / 0.15,
+    fn feeds_under_jerk_limiting_plan_for_the_average_after_interpolation() {
+        // The reference machine with jerk limiting: J = 20 000 mm/s³ (X),
+        // resolution 1 µm: T = ∛(24·0.001/20 000) = 10.63 ms, 11 periods;
+        // feed accelerations X min(1500, 20 000·0.0055) = 110, Z min(2000,
+        // 25 000·0.0055) = 137.5 mm/s².
+        let cfg = Config {
+            jerk_limited: true,
+            ..Config::default()
         };
-        assert!((cj.speed(2.0) - 34.199_519).abs() < 1e-6);
-        assert!((cj.accel(10.0, 2.0) - 19_750.0 / (40.0 / 3.0 + 15.0)).abs() < 1e-9);
-        assert!((cj.accel(10.0, 2.0) - 697.06).abs() < 0.01);
-        // A straight line (R = ∞): the whole J·T/2.
-        assert!((cj.accel(10.0, f64::INFINITY) - 1500.0).abs() < 1e-9);
+        assert_eq!(cfg.feed_taps(), 11);
+        let s = FeedSmoothing::new(&cfg).unwrap();
+        assert_eq!(s.ax, [110.0, 137.5]);
+        // A curve of R 1: √(24·1·0.0005) / 0.011 = 9.958 592 mm/s.
+        assert!((s.curve_speed(1.0) - 9.958_592).abs() < 1e-6);
+        // A corner of |Δu| 0.01 between long moves: 8/0.011 · (0.0005/0.01
+        // − 137.5·0.011²/48) = 727.2727 · (0.05 − 0.000 346 6)
+        // = 36.111 55 mm/s.
+        assert!((s.corner_speed(0.01, 10.0) - 36.111_55).abs() < 1e-4);
+        // ... between moves of 10 µm: the curve of R 1 they make.
+        assert!((s.corner_speed(0.01, 0.01) - 9.958_592).abs() < 1e-6);
+        // A corner whose braking term alone takes the tolerance (|Δu| >
+        // 0.0005/0.000 346 6 = 1.44, a turn of more than 92°): a stop.
+        assert_eq!(s.corner_speed(1.5, 10.0), 0.0);
+        assert!(s.corner_speed(1.4, 10.0) > 0.0);
+        // Without jerk limiting, no average.
+        assert!(FeedSmoothing::new(&Config::default()).is_none());
+        assert_eq!(Config::default().feed_taps(), 1);
     }
 
     /// A batch pass gives the same envelope as a pass after every push.

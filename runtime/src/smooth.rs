@@ -3,9 +3,12 @@
 //! changes by at most `a·dt` per period changes the acceleration by at
 //! most `2·a / (N·dt)` per second (the jerk), keeps every speed below the
 //! largest one averaged and every acceleration below `a`, and ends on the
-//! very point the unfiltered motion ends on, N periods later. Applied to
-//! the path parameter (not to the axes after interpolation), it leaves the
-//! tool on the programmed path.
+//! very point the unfiltered motion ends on, N periods later. The
+//! interpolator applies it to each axis of a rapid, to each axis of a feed
+//! after interpolation (where it cuts G64 corners and the inside of
+//! curves, which the planner's caps keep within the tolerance:
+//! planner.rs `FeedSmoothing`), and in a plane to the path parameter of
+//! each move on its own, which leaves the point on the path.
 
 use crate::math::V2;
 use alloc::vec::Vec;

@@ -1,0 +1,92 @@
+//! G64 under jerk limiting: feeds blend at their corners and the axes'
+//! set points are averaged after interpolation (planner.rs
+//! `FeedSmoothing`), so a polyline runs through its corners at speed
+//! instead of stopping at every block, within every axis's jerk and
+//! within half the resolution of the path.
+
+mod common;
+
+use common::{certify, run_with};
+use nc::Machine;
+use runtime::AutoAck;
+
+/// A quarter circle of R 20 as 180 G01 chords of 0.5° (0.1745 mm), F600
+/// (10 mm/s); `mode` is G61 or G64.
+fn polyline(mode: &str) -> String {
+    let mut s = format!("G00 X40 Z2\nM03 S1000\n{mode}\nG98 G01 X40 Z0 F600\n");
+    for i in 1..=180 {
+        let a = (f64::from(i) * 0.5).to_radians();
+        let (x, z) = (40.0 + 40.0 * (1.0 - a.cos()), -20.0 * a.sin());
+        s += &format!("G01 X{x:.4} Z{z:.4}\n");
+    }
+    s + "G00 X100 Z50\nM30\n"
+}
+
+/// The set points' path speeds (mm/s) of the periods on the chords
+/// (lines 5 to 184), in order.
+fn chord_speeds(jerk: bool, mode: &str) -> Vec<f64> {
+    let r = run_with(
+        &polyline(mode),
+        Machine::reference(),
+        AutoAck,
+        |c| c.jerk_limited = jerk,
+        |_, _| {},
+        120.0,
+    );
+    r.pts
+        .iter()
+        .filter(|p| (5..=184).contains(&p.line))
+        .map(|p| p.feed / 60.0)
+        .collect()
+}
+
+#[test]
+fn a_polyline_under_jerk_limiting_runs_through_its_corners() {
+    // The reference machine with jerk limiting averages feeds over
+    // T = 11 ms and plans them at 110 (X) and 137.5 mm/s² (Z). A 0.5°
+    // corner changes the direction by |Δu| = 2·sin 0.25° = 0.008 727,
+    // across the path; its velocity step v·|Δu| may take a quarter of
+    // the axis's acceleration in a period, 0.25·110·0.001 = 0.0275 mm/s
+    // on X where the path runs along Z (the first corners): 3.15 mm/s,
+    // up to 4.46 at 45°. The average's cut allows more, (8/T)·(0.0005 /
+    // |Δu| − 137.5·T²/48) = 41.4 mm/s. So the speed stays between
+    // 3.15 and 10 mm/s from the first chord's end to the last chord's
+    // start: no corner stops.
+    let v = chord_speeds(true, "G64");
+    let moving: Vec<usize> = (0..v.len()).filter(|&i| v[i] > 1.0).collect();
+    let (first, last) = (moving[0], moving[moving.len() - 1]);
+    // (The first and last chords take the speed up and down.)
+    let inner = &v[first + 100..last - 100];
+    let slowest = inner.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(
+        slowest > 3.1,
+        "the speed falls to {slowest} mm/s between corners"
+    );
+    assert!(inner.iter().all(|&s| s <= 10.0 + 1e-6));
+    // 31.4 mm at 3.15 mm/s or more: under 10 s.
+    let secs = v.len() as f64 * 0.001;
+    assert!(secs < 10.0, "the chords take {secs} s");
+}
+
+#[test]
+fn g61_under_jerk_limiting_still_stops_at_every_block() {
+    // Exact stop: each chord ends at rest, the average settled on its end
+    // point, before the next starts.
+    let v = chord_speeds(true, "G61");
+    let stops = v.windows(2).filter(|w| w[0] > 0.0 && w[1] == 0.0).count();
+    assert!(stops >= 180, "{stops} stops on 181 blocks");
+}
+
+#[test]
+fn polylines_under_jerk_limiting_are_certified() {
+    // Every axis within its speed, acceleration and jerk, every end
+    // point reached within 1 µm and every set point within 1 µm of the
+    // path, for G64 and G61, with jerk limiting on and off.
+    let machine = Machine::reference();
+    for mode in ["G64", "G61"] {
+        for jerk in [false, true] {
+            let r = certify(&polyline(mode), &machine, jerk);
+            assert_eq!(r, Some(Ok(())), "{mode}, jerk {jerk}");
+        }
+    }
+}
