@@ -90,3 +90,40 @@ fn polylines_under_jerk_limiting_are_certified() {
         }
     }
 }
+
+#[test]
+fn a_feed_hold_in_a_blended_polyline_stands_and_goes_on() {
+    // Feed hold at 2 s, in the middle of the chords: the path brakes, the
+    // average settles, the axes stand; cycle start at 3 s runs on. Every
+    // end point is still passed within 1 µm, in order.
+    let mut held_at = None;
+    let r = run_with(
+        &polyline("G64"),
+        Machine::reference(),
+        AutoAck,
+        |c| c.jerk_limited = true,
+        |ctl, p| {
+            if (p.time_s - 2.0).abs() < 1e-9 {
+                ctl.feed_hold();
+            }
+            if ctl.state() == runtime::RunState::Held && held_at.is_none() {
+                held_at = Some((p.time_s, p.x, p.z));
+            }
+            if (p.time_s - 3.0).abs() < 1e-9 {
+                ctl.cycle_start();
+            }
+        },
+        120.0,
+    );
+    let (t, x, z) = held_at.expect("the hold took");
+    assert!(t > 2.0 && t < 2.2, "held at {t} s");
+    // Standing from there until the cycle start.
+    let still = r
+        .pts
+        .iter()
+        .filter(|p| p.time_s > t && p.time_s < 3.0)
+        .all(|p| p.x == x && p.z == z);
+    assert!(still, "the axes moved while held");
+    common::check_end_points(&r);
+    assert_eq!(r.state, runtime::RunState::Ended);
+}
