@@ -1173,9 +1173,11 @@ impl<P: Plc> Engine<P> {
     /// One period of a feed with jerk limiting outside a plane: the path
     /// runs as without it (G64 corners blend), the set point is the
     /// moving average of its points (planner.rs `FeedSmoothing`). The
-    /// move ends, holds or stops at a skip once the average has caught
-    /// up: on the very point the path stands on.
+    /// move ends once the average has caught up, on the very point the
+    /// path stands on; it holds or stops at a skip in the period after
+    /// (as without jerk limiting, a standing period).
     fn averaged_path(&mut self, v: f64) {
+        let was_settled = self.feed_avg.settled() && self.feed_avg_c.settled();
         let landed = self.travel(v);
         self.pos = self.feed_avg.push(self.pos);
         self.c = self.feed_avg_c.push(V2::new(self.c, 0.0)).r;
@@ -1184,7 +1186,7 @@ impl<P: Plc> Engine<P> {
         }
         if landed {
             self.land();
-        } else if self.v == 0.0 {
+        } else if self.v == 0.0 && was_settled {
             self.standing();
         }
     }
@@ -1324,12 +1326,15 @@ impl<P: Plc> Engine<P> {
         self.smooth.settled() && self.feed_avg.settled() && self.feed_avg_c.settled()
     }
 
-    /// A reset in progress: brake, then drop everything.
+    /// A reset in progress: brake, then drop everything (in a period
+    /// where the axes stand: one whose step settled the averages of jerk
+    /// limiting still moved them).
     fn reset_step(&mut self) {
+        let averaging = self.jerk && self.started && !self.averages_settled();
         let moving = self.v > 0.0
             || self.rapid_v != [0.0; 3]
             || matches!(self.thread.phase, Phase::Ramp | Phase::Locked)
-            || (self.jerk && self.started && !self.averages_settled());
+            || averaging;
         if moving && self.started {
             if self.q.seg(0).is_some() {
                 match self.cur.kind {
@@ -1338,8 +1343,10 @@ impl<P: Plc> Engine<P> {
                     _ => self.step_path(),
                 }
             }
-            let still =
-                self.v > 0.0 || self.rapid_v != [0.0; 3] || (self.jerk && !self.averages_settled());
+            let still = self.v > 0.0
+                || self.rapid_v != [0.0; 3]
+                || averaging
+                || (self.jerk && !self.averages_settled());
             if still && self.started {
                 return;
             }

@@ -107,6 +107,7 @@ fn a_feed_hold_in_a_blended_polyline_stands_and_goes_on() {
                 ctl.feed_hold();
             }
             if ctl.state() == runtime::RunState::Held && held_at.is_none() {
+                assert_eq!(p.feed, 0.0, "held while moving");
                 held_at = Some((p.time_s, p.x, p.z));
             }
             if (p.time_s - 3.0).abs() < 1e-9 {
@@ -125,5 +126,62 @@ fn a_feed_hold_in_a_blended_polyline_stands_and_goes_on() {
         .all(|p| p.x == x && p.z == z);
     assert!(still, "the axes moved while held");
     common::check_end_points(&r);
+    assert_eq!(r.state, runtime::RunState::Ended);
+}
+
+#[test]
+fn single_block_stops_a_blended_chain_on_every_block_end() {
+    // Three collinear blocks blend in G64; single block stops each on its
+    // end point, in the period the average settles there.
+    let src = "O0013\nG98 G01 Z-1 F600\nZ-2\nZ-3\nM30\n";
+    let mut stops = Vec::new();
+    run_with(
+        src,
+        Machine::reference(),
+        AutoAck,
+        |c| {
+            c.jerk_limited = true;
+            c.single_block = true;
+        },
+        |ctl, p| {
+            if let runtime::RunState::Stopped(runtime::command::PauseKind::SingleBlock) =
+                ctl.state()
+            {
+                stops.push(p.z);
+            }
+        },
+        60.0,
+    );
+    assert_eq!(stops, vec![-1.0, -2.0, -3.0]);
+}
+
+#[test]
+fn a_reset_in_a_blended_chain_stops_on_the_path() {
+    // Reset at 2 s: the path brakes, the average settles, the engine is
+    // idle with the axes standing on the polyline; cycle start runs the
+    // program again to its end.
+    let mut idle_at = None;
+    let r = run_with(
+        &polyline("G64"),
+        Machine::reference(),
+        AutoAck,
+        |c| c.jerk_limited = true,
+        |ctl, p| {
+            if (p.time_s - 2.0).abs() < 1e-9 {
+                ctl.reset();
+            }
+            if ctl.state() == runtime::RunState::Idle && idle_at.is_none() {
+                assert_eq!(p.feed, 0.0, "reset left the axes moving");
+                idle_at = Some((p.x, p.z));
+                ctl.cycle_start();
+            }
+        },
+        120.0,
+    );
+    let (x, z) = idle_at.expect("the reset took");
+    // On the quarter circle of R 20 about (X80, Z0), within 1 µm of a chord
+    // (the sagitta of a 0.5° chord is 0.19 µm).
+    let off = ((x / 2.0 - 40.0).hypot(z) - 20.0).abs();
+    assert!(off < 0.001, "stopped {off} mm off the arc");
     assert_eq!(r.state, runtime::RunState::Ended);
 }
