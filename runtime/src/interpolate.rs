@@ -1177,11 +1177,11 @@ impl<P: Plc> Engine<P> {
     /// path stands on; it holds or stops at a skip in the period after
     /// (as without jerk limiting, a standing period).
     fn averaged_path(&mut self, v: f64) {
-        let was_settled = self.feed_avg.settled() && self.feed_avg_c.settled();
+        let was_settled = self.feed_avg_settled();
         let landed = self.travel(v);
         self.pos = self.feed_avg.push(self.pos);
         self.c = self.feed_avg_c.push(V2::new(self.c, 0.0)).r;
-        if !(self.feed_avg.settled() && self.feed_avg_c.settled()) {
+        if !self.feed_avg_settled() {
             return;
         }
         if landed {
@@ -1321,9 +1321,14 @@ impl<P: Plc> Engine<P> {
         }
     }
 
+    /// The averages of a feed's set points stand on their last point.
+    fn feed_avg_settled(&self) -> bool {
+        self.feed_avg.settled() && self.feed_avg_c.settled()
+    }
+
     /// Every moving average of jerk limiting stands on its last point.
     fn averages_settled(&self) -> bool {
-        self.smooth.settled() && self.feed_avg.settled() && self.feed_avg_c.settled()
+        self.smooth.settled() && self.feed_avg_settled()
     }
 
     /// A reset in progress: brake, then drop everything (in a period

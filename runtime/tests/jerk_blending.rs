@@ -6,9 +6,9 @@
 
 mod common;
 
-use common::{certify, run_with};
+use common::{certify, run_with, Run};
 use nc::Machine;
-use runtime::AutoAck;
+use runtime::{AutoAck, Controller, SetPoint};
 
 /// A quarter circle of R 20 as 180 G01 chords of 0.5° (0.1745 mm), F600
 /// (10 mm/s); `mode` is G61 or G64.
@@ -22,18 +22,28 @@ fn polyline(mode: &str) -> String {
     s + "G00 X100 Z50\nM30\n"
 }
 
-/// The set points' path speeds (mm/s) of the periods on the chords
-/// (lines 5 to 184), in order.
-fn chord_speeds(jerk: bool, mode: &str) -> Vec<f64> {
-    let r = run_with(
+/// Runs the polyline on the reference machine; `host` is called after
+/// every period.
+fn run_polyline(
+    mode: &str,
+    jerk: bool,
+    host: impl FnMut(&mut Controller<AutoAck>, &SetPoint),
+) -> Run {
+    run_with(
         &polyline(mode),
         Machine::reference(),
         AutoAck,
         |c| c.jerk_limited = jerk,
-        |_, _| {},
+        host,
         120.0,
-    );
-    r.pts
+    )
+}
+
+/// The set points' path speeds (mm/s) of the periods on the chords
+/// (lines 5 to 184), in order.
+fn chord_speeds(jerk: bool, mode: &str) -> Vec<f64> {
+    run_polyline(mode, jerk, |_, _| {})
+        .pts
         .iter()
         .filter(|p| (5..=184).contains(&p.line))
         .map(|p| p.feed / 60.0)
@@ -97,25 +107,18 @@ fn a_feed_hold_in_a_blended_polyline_stands_and_goes_on() {
     // average settles, the axes stand; cycle start at 3 s runs on. Every
     // end point is still passed within 1 µm, in order.
     let mut held_at = None;
-    let r = run_with(
-        &polyline("G64"),
-        Machine::reference(),
-        AutoAck,
-        |c| c.jerk_limited = true,
-        |ctl, p| {
-            if (p.time_s - 2.0).abs() < 1e-9 {
-                ctl.feed_hold();
-            }
-            if ctl.state() == runtime::RunState::Held && held_at.is_none() {
-                assert_eq!(p.feed, 0.0, "held while moving");
-                held_at = Some((p.time_s, p.x, p.z));
-            }
-            if (p.time_s - 3.0).abs() < 1e-9 {
-                ctl.cycle_start();
-            }
-        },
-        120.0,
-    );
+    let r = run_polyline("G64", true, |ctl, p| {
+        if (p.time_s - 2.0).abs() < 1e-9 {
+            ctl.feed_hold();
+        }
+        if ctl.state() == runtime::RunState::Held && held_at.is_none() {
+            assert_eq!(p.feed, 0.0, "held while moving");
+            held_at = Some((p.time_s, p.x, p.z));
+        }
+        if (p.time_s - 3.0).abs() < 1e-9 {
+            ctl.cycle_start();
+        }
+    });
     let (t, x, z) = held_at.expect("the hold took");
     assert!(t > 2.0 && t < 2.2, "held at {t} s");
     // Standing from there until the cycle start.
@@ -161,23 +164,16 @@ fn a_reset_in_a_blended_chain_stops_on_the_path() {
     // idle with the axes standing on the polyline; cycle start runs the
     // program again to its end.
     let mut idle_at = None;
-    let r = run_with(
-        &polyline("G64"),
-        Machine::reference(),
-        AutoAck,
-        |c| c.jerk_limited = true,
-        |ctl, p| {
-            if (p.time_s - 2.0).abs() < 1e-9 {
-                ctl.reset();
-            }
-            if ctl.state() == runtime::RunState::Idle && idle_at.is_none() {
-                assert_eq!(p.feed, 0.0, "reset left the axes moving");
-                idle_at = Some((p.x, p.z));
-                ctl.cycle_start();
-            }
-        },
-        120.0,
-    );
+    let r = run_polyline("G64", true, |ctl, p| {
+        if (p.time_s - 2.0).abs() < 1e-9 {
+            ctl.reset();
+        }
+        if ctl.state() == runtime::RunState::Idle && idle_at.is_none() {
+            assert_eq!(p.feed, 0.0, "reset left the axes moving");
+            idle_at = Some((p.x, p.z));
+            ctl.cycle_start();
+        }
+    });
     let (x, z) = idle_at.expect("the reset took");
     // On the quarter circle of R 20 about (X80, Z0), within 1 µm of a chord
     // (the sagitta of a 0.5° chord is 0.19 µm).

@@ -771,9 +771,11 @@ impl Certifier {
             // after the ones it still has to run (it stands within a µm
             // of several): judged now, the tool going on to those would
             // look like leaving it, a miss.
-            let t = seg_param(m.end, from, b);
-            if !first && joined && !(t > 0.0 && t < 1.0) {
-                break;
+            if !first && joined {
+                let t = seg_param(m.end, from, b);
+                if !(t > 0.0 && t < 1.0) {
+                    break;
+                }
             }
             m.tol = self.tol_of(&m, p.spindle_rpm);
             let d = dist(m.end, from);
