@@ -105,12 +105,14 @@ pub struct Config {
     /// S-curve (jerk-limited) speed changes instead of linear
     /// acceleration: a moving average of the acceleration-limited motion
     /// (see `smooth`): over 2·a/j for rapids, over [`Config::feed_taps`]
-    /// for feeds. Off on the reference machine; never for threads.
+    /// and then [`Config::feed_spread_taps`] for feeds. Off on the
+    /// reference machine; never for threads.
     pub jerk_limited: bool,
     /// The share of an axis's acceleration that a G64 corner may use as a
-    /// one-period velocity step; the segments next to the corner keep the
-    /// rest for their own speed changes, so the sum never exceeds the
-    /// limit. *Choice*: 0.25.
+    /// one-period velocity step (under jerk limiting: that the corners
+    /// within the second average's window share, as steps spread over
+    /// it); the segments next to the corner keep the rest for their own
+    /// speed changes, so the sum never exceeds the limit. *Choice*: 0.25.
     pub corner_budget: f64,
     /// Rapid rate at the F0 override position, as a share of each axis's
     /// rapid. *Choice*: 5 %.
@@ -225,12 +227,13 @@ impl Config {
         }
     }
 
-    /// Periods of the moving average over each axis's set points of a
-    /// feed, with jerk limiting (1 without). The average of N periods
-    /// turns an axis acceleration `a` into jerk within 2·a/(N·dt), so
-    /// feeds accelerate at [`Config::feed_accel`], at most j·T/2 (T =
-    /// N·dt). It cuts a G64 corner, where the direction changes by Δu,
-    /// by up to (v·T/8 + a·T²/48)·|Δu| at speed v (planner.rs
+    /// Periods of the first moving average over each axis's set points
+    /// of a feed, with jerk limiting (1 without; the second:
+    /// [`Config::feed_spread_taps`]). The average of N periods turns an
+    /// axis acceleration `a` into jerk within 2·a/(N·dt), so feeds
+    /// accelerate at [`Config::feed_accel`], at most j·T/2 (T = N·dt).
+    /// Alone, it would cut a G64 corner, where the direction changes by
+    /// Δu, by up to (v·T/8 + a·T²/48)·|Δu| at speed v (planner.rs
     /// `FeedSmoothing`): the window is the longest whose braking term,
     /// J·T³/96 with J the smaller axis jerk, stays within a quarter of
     /// the resolution at |Δu| = 1, T = ∛(24·tol/J) (11 ms on the
@@ -253,6 +256,19 @@ impl Config {
         } else {
             most
         }
+    }
+
+    /// Periods of the second moving average over a feed's set points,
+    /// after the first ([`Config::feed_taps`]; 1 without jerk limiting).
+    /// The pair bounds each axis's jerk by 2·W/(T·T₂), W the largest
+    /// change of the unaveraged axis speed over T₂ (smooth.rs `Cascade`):
+    /// a G64 corner's velocity step, which one average turns into a jump
+    /// of acceleration, becomes a ramp over T₂, so corners may step T₂/dt
+    /// times as much. The second window also cuts corners and curves a
+    /// little more (planner.rs `FeedSmoothing`): half the first is the
+    /// balance (6 periods on the reference machine).
+    pub fn feed_spread_taps(&self) -> usize {
+        self.feed_taps().div_ceil(2)
     }
 
     /// An axis's acceleration for feeds: its own, and with jerk limiting

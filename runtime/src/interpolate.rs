@@ -19,7 +19,7 @@ use crate::math::V2;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
 use crate::plc::{Plc, PlcFunction};
 use crate::profile::{approach, brake_limit, brake_limit_above, stopping_distance};
-use crate::smooth::Smoother;
+use crate::smooth::{Cascade, Smoother};
 use crate::spindle::Spindle;
 use nc::error::Alarm;
 use thread::{Phase, ThreadRun};
@@ -253,10 +253,10 @@ pub struct Engine<P: Plc> {
     /// The unfiltered rapid C angle and C's own moving average (jerk).
     rapid_raw_c: f64,
     smooth_c: Smoother,
-    /// Jerk limiting: the moving averages of a feed's set points (X/Z,
-    /// and C), outside a plane (planner.rs `FeedSmoothing`).
-    feed_avg: Smoother,
-    feed_avg_c: Smoother,
+    /// Jerk limiting: the pairs of moving averages of a feed's set points
+    /// (X/Z, and C), outside a plane (planner.rs `FeedSmoothing`).
+    feed_avg: Cascade,
+    feed_avg_c: Cascade,
     lam: f64,
     v: f64,
     /// Rapid speeds of X, Z and C.
@@ -328,8 +328,11 @@ impl<P: Plc> Engine<P> {
             rapid_raw: V2::ZERO,
             rapid_raw_c: 0.0,
             smooth_c: Smoother::new(if cfg.c.is_some() { cfg.jerk_taps() } else { 1 }),
-            feed_avg: Smoother::new(cfg.feed_taps()),
-            feed_avg_c: Smoother::new(if cfg.c.is_some() { cfg.feed_taps() } else { 1 }),
+            feed_avg: Cascade::new(cfg.feed_taps(), cfg.feed_spread_taps()),
+            feed_avg_c: match cfg.c {
+                Some(_) => Cascade::new(cfg.feed_taps(), cfg.feed_spread_taps()),
+                None => Cascade::new(1, 1),
+            },
             lam: 0.0,
             v: 0.0,
             rapid_v: [0.0; 3],
@@ -1172,10 +1175,11 @@ impl<P: Plc> Engine<P> {
 
     /// One period of a feed with jerk limiting outside a plane: the path
     /// runs as without it (G64 corners blend), the set point is the
-    /// moving average of its points (planner.rs `FeedSmoothing`). The
-    /// move ends once the average has caught up, on the very point the
-    /// path stands on; it holds or stops at a skip in the period after
-    /// (as without jerk limiting, a standing period).
+    /// average of its points: two moving averages in a row (smooth.rs
+    /// `Cascade`, planner.rs `FeedSmoothing`). The move ends once the
+    /// averages have caught up, on the very point the path stands on; it
+    /// holds or stops at a skip in the period after (as without jerk
+    /// limiting, a standing period).
     fn averaged_path(&mut self, v: f64) {
         let was_settled = self.feed_avg_settled();
         let landed = self.travel(v);

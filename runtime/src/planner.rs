@@ -71,6 +71,12 @@ pub struct Segment {
     f_n: f64,
     c_in: f64,
     c_out: f64,
+    /// Jerk limiting: the velocity step of the G64 corner the move starts
+    /// with (in seconds of its axes' accelerations, see `join`), and the
+    /// corner's speed cap (0: the move starts from a stop, where the
+    /// averages settle; `steps_before`).
+    step_in: f64,
+    v_in: f64,
     /// The speed at which the move may run into the next one; 0 = stop.
     pub v_junction: f64,
     /// Planned limit at the end of the move (≤ `v_junction`).
@@ -148,6 +154,8 @@ impl Segment {
         f_n: 0.0,
         c_in: 0.0,
         c_out: 0.0,
+        step_in: 0.0,
+        v_in: 0.0,
         v_junction: 0.0,
         v_exit: 0.0,
         t0: V2::ZERO,
@@ -284,27 +292,35 @@ const PLACEHOLDER: Item = Item {
 /// delays speed that the interpolator would not reach before the pass.
 pub const REPLAN_BATCH: usize = 32;
 
+/// Moves `Planner::steps_before` follows back at most.
+const STEP_WALK: usize = 256;
+
 /// Highest feed override: the envelope must allow it.
 const MAX_OVERRIDE: f64 = 1.5;
 
 /// Feeds under jerk limiting (outside a plane): the interpolator runs
 /// them as without it, blending at G64 corners, and averages each axis's
-/// set points over the window T (config.rs `feed_taps`). The average
-/// keeps every axis within the speed and acceleration it is given and
-/// bounds its jerk by 2·a/T, so feeds plan with accelerations of at most
-/// j·T/2. What the average costs is the path: it cuts a corner and the
-/// inside of a curve, which the speed caps here keep within half the
-/// resolution.
+/// set points twice in a row, over T and then T₂ (config.rs `feed_taps`
+/// and `feed_spread_taps`, smooth.rs `Cascade`). The pair keeps every
+/// axis within the speed it is given, and bounds its acceleration by
+/// W/T₂ and its jerk by 2·W/(T·T₂), W the largest change of the axis's
+/// unaveraged speed over T₂. Feeds plan with accelerations of at most
+/// a = j·T/2, which alone give W ≤ a·T₂; they keep a share of it back
+/// (`Config::corner_budget`) for the velocity steps of the G64 corners,
+/// which the corners within any T₂ share (`Planner::steps_before`). What
+/// the averages cost is the path: they cut a corner and the inside of a
+/// curve, which the speed caps here keep within half the resolution.
 #[derive(Debug, Clone, Copy)]
 struct FeedSmoothing {
-    /// T, s.
+    /// T and T₂, s.
     window: f64,
+    spread: f64,
     /// The axes' feed accelerations and their inverses.
     ax: [f64; 2],
     iax: [f64; 2],
     /// C's feed acceleration, deg/s².
     c_accel: f64,
-    /// What the average may cut, mm: half the resolution.
+    /// What the averages may cut, mm: half the resolution.
     tol: f64,
 }
 
@@ -316,6 +332,7 @@ impl FeedSmoothing {
         let ax = [cfg.feed_accel(&cfg.x), cfg.feed_accel(&cfg.z)];
         Some(FeedSmoothing {
             window: cfg.feed_taps() as f64 * cfg.period_s,
+            spread: cfg.feed_spread_taps() as f64 * cfg.period_s,
             ax,
             iax: ax.map(|a| 1.0 / a),
             c_accel: cfg.c.map_or(0.0, |c| cfg.feed_accel(&c)),
@@ -323,25 +340,36 @@ impl FeedSmoothing {
         })
     }
 
-    /// The speed cap on a curve of radius `r`: the average of points a
-    /// path length v·T apart on a circle lies v²·T²/24R inside it.
+    /// T² + T₂²: twelve times the variance of the averages' weights over
+    /// time (a box of T, then one of T₂).
+    fn spread2(&self) -> f64 {
+        self.window * self.window + self.spread * self.spread
+    }
+
+    /// The speed cap on a curve of radius `r`: the weighted mean of
+    /// points a path length v·t apart on a circle lies v²·σ²/2R inside
+    /// it, σ² the weights' variance: v²·(T² + T₂²)/24R.
     fn curve_speed(&self, r: f64) -> f64 {
-        sqrt(24.0 * r * self.tol) / self.window
+        sqrt(24.0 * r * self.tol / self.spread2())
     }
 
     /// The corner speed where the direction changes by `du` (|Δu|)
-    /// between moves whose shorter one is `short` long. The average over
-    /// T of a path through a corner at speed v, braking into it and
-    /// accelerating out of it at a, passes (v·T/8 + a·T²/48)·|Δu| from
-    /// the corner at most; where the moves are shorter than the window,
-    /// their corners add up to a curve of radius `short`/|Δu|.
+    /// between moves whose shorter one is `short` long. The averages of a
+    /// path through a corner at speed v pass v·m₁·|Δu| from it, m₁ the
+    /// weights' mean distance from their middle on one side, T/8 +
+    /// T₂²/24T (T/8 for one box of T); braking into the corner and
+    /// accelerating out of it at a adds a·m₂/2·|Δu|, m₂ = (T² + T₂²)/24
+    /// the weights' second moment on one side. Where the moves are
+    /// shorter than the window, their corners add up to a curve of
+    /// radius `short`/|Δu|.
     fn corner_speed(&self, du: f64, short: f64) -> f64 {
         if du <= 1e-15 {
             return f64::INFINITY;
         }
         let t = self.window;
         let a = self.ax[0].max(self.ax[1]);
-        let corner = 8.0 / t * (self.tol / du - a * t * t / 48.0);
+        let m1 = t / 8.0 + self.spread * self.spread / (24.0 * t);
+        let corner = (self.tol / du - a * self.spread2() / 48.0) / m1;
         corner.max(0.0).min(self.curve_speed(short / du))
     }
 }
@@ -687,6 +715,8 @@ impl Planner {
             f_n: 0.0,
             c_in: 0.0,
             c_out: 0.0,
+            step_in: 0.0,
+            v_in: 0.0,
             v_junction: 0.0,
             v_exit: 0.0,
             t0,
@@ -1025,7 +1055,8 @@ impl Planner {
         // The corner speed and the shares of acceleration the two moves
         // keep back for it: the move before for the period through the
         // corner, the move after for the period after it.
-        let (mut vj, mut out, mut into) = (0.0, 0.0, 0.0);
+        let (mut vj, mut out, mut into, mut step) = (0.0, 0.0, 0.0, 0.0);
+        let smoothing = self.smoothing_of(cur.kind).copied();
         if self.joinable(prev, cur) {
             let du = cur.t0 - prev.t1;
             let threads = matches!(cur.kind, MoveKind::Thread(_));
@@ -1042,7 +1073,6 @@ impl Planner {
                 prev.v_max.min(cur.v_max)
             };
             if !threads {
-                let smoothing = self.smoothing_of(cur.kind);
                 let iax = smoothing.map_or(self.iax, |s| s.iax);
                 // The velocity step of the corner within its share of
                 // each axis's acceleration ...
@@ -1055,8 +1085,13 @@ impl Planner {
                 // centripetal share covers its own periods).
                 let bend = |c: &Curve| 0.5 * self.dt / c.min_radius() * iax[0].max(iax[1]);
                 let (bend_prev, bend_cur) = (bend(&prev.curve), bend(&cur.curve));
-                let b = self.budget * self.dt;
-                vj = vj.min(corner_speed(share, bend_prev.max(bend_cur), b));
+                let bend = bend_prev.max(bend_cur);
+                vj = vj.min(match &smoothing {
+                    Some(s) => {
+                        self.spread_corner_speed(s, share, bend, prev.len.min(cur.len), n - 1)
+                    }
+                    None => corner_speed(share, bend, self.budget * self.dt),
+                });
                 if share > 1e-18 {
                     // A period runs through one such corner at most: it
                     // starts on the move before and ends on the move
@@ -1074,13 +1109,21 @@ impl Planner {
                 }
                 // ... and the average after interpolation within its
                 // tolerance of the corner.
-                if let Some(s) = smoothing {
+                if let Some(s) = &smoothing {
                     vj = vj.min(s.corner_speed(n, prev.len.min(cur.len)));
                 }
                 vj = vj.max(0.0);
+                step = vj * share + vj * vj * bend;
                 out = (vj * share + vj * vj * bend_cur) / self.dt;
                 into = (vj * share + vj * vj * bend_prev) / self.dt;
-                if prev.len < vj * self.dt {
+                if smoothing.is_some() && vj > 0.0 {
+                    // Under jerk limiting both moves keep the whole share
+                    // back: a window of T₂ may hold any of their periods
+                    // and the corners next to them (`spread_corner_speed`).
+                    // (The averages settle in a stop: a move that stops at
+                    // both ends keeps nothing back.)
+                    (out, into) = (self.budget, self.budget);
+                } else if prev.len < vj * self.dt {
                     // A period may run through the whole move before (a
                     // µm along a tangent): what that move kept back for
                     // the corner before it, this one keeps too.
@@ -1102,8 +1145,63 @@ impl Planner {
         }
         if let ItemKind::Move(c) = &mut self.items[it].kind {
             c.c_in = into;
+            c.step_in = step;
+            c.v_in = vj;
             raise(c);
         }
+    }
+
+    /// Under jerk limiting: the speed of the corner at the end of move
+    /// `k`, whose velocity step (`share`, `bend`: see `join`) the second
+    /// average spreads over T₂. The steps of the corners that one such
+    /// window may hold share what the moves keep back, `budget`·T₂. Those
+    /// before this one are known (`steps_before`); at speed v on moves of
+    /// `short`, up to v·T₂/`short` more may follow, so the corner takes no
+    /// more than its share as if its neighbours were like it (one that
+    /// took all that is left would stop the next).
+    fn spread_corner_speed(
+        &self,
+        s: &FeedSmoothing,
+        share: f64,
+        bend: f64,
+        short: f64,
+        k: usize,
+    ) -> f64 {
+        let window = self.budget * s.spread;
+        let left = (window - self.steps_before(k, s.spread)).max(0.0);
+        let neighbours = share * s.spread / short.max(1e-12);
+        corner_speed(share, bend, left).min(corner_speed(share, bend + neighbours, window))
+    }
+
+    /// The velocity steps of the G64 corners before the one at the end of
+    /// move `k` (`Segment::step_in`) that a window of `spread` (T₂) may
+    /// hold together with it, under jerk limiting. Two corners are in one
+    /// window only if the path between them takes at most T₂: it is then
+    /// at most T₂ times the fastest speed between them, which on a move
+    /// that starts at v₀ and accelerates at a is at most √(v₀² + 2·a·ℓ).
+    /// A move that starts from a stop ends the walk: the averages settle
+    /// in a stop. ∞ when the walk is too long to follow (the corner then
+    /// stops).
+    fn steps_before(&self, k: usize, spread: f64) -> f64 {
+        let (mut dist, mut fastest, mut sum) = (0.0_f64, 0.0_f64, 0.0);
+        let mut k = k;
+        for _ in 0..STEP_WALK {
+            let Some(ItemKind::Move(m)) = self.get(k).map(|item| &item.kind) else {
+                return sum;
+            };
+            dist += m.len;
+            let top = sqrt(m.v_in * m.v_in + 2.0 * m.a * m.len);
+            fastest = fastest.max(m.v_max.min(top));
+            if m.v_in <= 0.0 || dist > fastest * spread {
+                return sum;
+            }
+            sum += m.step_in;
+            let Some(before) = k.checked_sub(1) else {
+                return sum;
+            };
+            k = before;
+        }
+        f64::INFINITY
     }
 
     /// The backward pass over what was queued since the last one: each
@@ -1184,31 +1282,66 @@ mod tests {
     #[test]
     fn feeds_under_jerk_limiting_plan_for_the_average_after_interpolation() {
         // The reference machine with jerk limiting: J = 20 000 mm/s³ (X),
-        // resolution 1 µm: T = ∛(24·0.001/20 000) = 10.63 ms, 11 periods;
-        // feed accelerations X min(1500, 20 000·0.0055) = 110, Z min(2000,
-        // 25 000·0.0055) = 137.5 mm/s².
+        // resolution 1 µm: T = ∛(24·0.001/20 000) = 10.63 ms, 11 periods,
+        // then T₂ = 6 periods; feed accelerations X min(1500, 20 000 ·
+        // 0.0055) = 110, Z min(2000, 25 000·0.0055) = 137.5 mm/s².
         let cfg = Config {
             jerk_limited: true,
             ..Config::default()
         };
-        assert_eq!(cfg.feed_taps(), 11);
+        assert_eq!((cfg.feed_taps(), cfg.feed_spread_taps()), (11, 6));
         let s = FeedSmoothing::new(&cfg).unwrap();
         assert_eq!(s.ax, [110.0, 137.5]);
-        // A curve of R 1: √(24·1·0.0005) / 0.011 = 9.958 592 mm/s.
-        assert!((s.curve_speed(1.0) - 9.958_592).abs() < 1e-6);
-        // A corner of |Δu| 0.01 between long moves: 8/0.011 · (0.0005/0.01
-        // − 137.5·0.011²/48) = 727.2727 · (0.05 − 0.000 346 6)
-        // = 36.111 55 mm/s.
-        assert!((s.corner_speed(0.01, 10.0) - 36.111_55).abs() < 1e-4);
+        // T² + T₂² = 0.000 121 + 0.000 036 = 0.000 157 s².
+        // A curve of R 1: √(24·1·0.0005 / 0.000 157) = 8.742 60 mm/s.
+        assert!((s.curve_speed(1.0) - 8.742_60).abs() < 1e-5);
+        // A corner of |Δu| 0.01 between long moves: m₁ = 0.011/8 +
+        // 0.006²/(24·0.011) = 0.001 511 36 s, braking 137.5·0.000 157/48
+        // = 0.000 449 74 mm; (0.0005/0.01 − 0.000 449 74)/0.001 511 36
+        // = 32.785 mm/s.
+        assert!((s.corner_speed(0.01, 10.0) - 32.785).abs() < 1e-3);
         // ... between moves of 10 µm: the curve of R 1 they make.
-        assert!((s.corner_speed(0.01, 0.01) - 9.958_592).abs() < 1e-6);
+        assert!((s.corner_speed(0.01, 0.01) - 8.742_60).abs() < 1e-5);
         // A corner whose braking term alone takes the tolerance (|Δu| >
-        // 0.0005/0.000 346 6 = 1.44, a turn of more than 92°): a stop.
-        assert_eq!(s.corner_speed(1.5, 10.0), 0.0);
-        assert!(s.corner_speed(1.4, 10.0) > 0.0);
+        // 0.0005/0.000 449 74 = 1.112, a turn of more than 67°): a stop.
+        assert_eq!(s.corner_speed(1.2, 10.0), 0.0);
+        assert!(s.corner_speed(1.1, 10.0) > 0.0);
         // Without jerk limiting, no average.
         assert!(FeedSmoothing::new(&Config::default()).is_none());
         assert_eq!(Config::default().feed_taps(), 1);
+        assert_eq!(Config::default().feed_spread_taps(), 1);
+    }
+
+    #[test]
+    fn corners_within_the_second_window_share_it() {
+        // Jerk limiting on the reference machine: the corners within T₂ =
+        // 6 ms share 0.25·0.006 = 0.0015 s of their axes' acceleration.
+        // F3000 along −Z, a 0.5° turn towards +X, 0.05 mm on, a 5° turn.
+        let cfg = Config {
+            jerk_limited: true,
+            ..Config::default()
+        };
+        let mut p = Planner::new(&cfg);
+        let deg = |a: f64| V2::new(a.to_radians().sin(), -a.to_radians().cos());
+        let a = V2::new(0.0, -10.0);
+        let b = a + deg(0.5) * 0.05;
+        let c = b + deg(5.5) * 10.0;
+        for to in [a, b, c] {
+            p.push(feed(to, 50.0), Tag::default()).unwrap();
+        }
+        p.replan();
+        let (s0, s1, s2) = (p.seg(0).unwrap(), p.seg(1).unwrap(), p.seg(2).unwrap());
+        // The first corner's step, in seconds of X's 110 mm/s²: v·|Δu_x|
+        // /110 = v·7.9332e-5. Up to v·T₂/0.05 corners like it may follow
+        // in a window: v·7.9332e-5·(1 + 0.12·v) ≤ 0.0015, v = 9.0593 mm/s
+        // (the cut allows 20.9 mm/s there; the curve the moves make).
+        assert!((s0.v_junction - 9.0593).abs() < 1e-3, "{}", s0.v_junction);
+        // The second is within the window (0.05 mm at most √(9.06² +
+        // 2·103.13·0.05) = 9.61 mm/s takes 5.2 ms) and takes what is
+        // left: (0.0015 − 9.0593·7.9332e-5)/7.9199e-4 = 0.9865 mm/s (on
+        // its own 1.59 mm/s).
+        assert!((s1.v_junction - 0.9865).abs() < 1e-3, "{}", s1.v_junction);
+        assert!((s1.step_in + s2.step_in - 0.0015).abs() < 1e-9);
     }
 
     /// A batch pass gives the same envelope as a pass after every push.

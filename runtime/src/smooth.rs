@@ -4,11 +4,12 @@
 //! most `2·a / (N·dt)` per second (the jerk), keeps every speed below the
 //! largest one averaged and every acceleration below `a`, and ends on the
 //! very point the unfiltered motion ends on, N periods later. The
-//! interpolator applies it to each axis of a rapid, to each axis of a feed
-//! after interpolation (where it cuts G64 corners and the inside of
-//! curves, which the planner's caps keep within the tolerance:
-//! planner.rs `FeedSmoothing`), and in a plane to the path parameter of
-//! each move on its own, which leaves the point on the path.
+//! interpolator applies it to each axis of a rapid, twice in a row to
+//! each axis of a feed after interpolation ([`Cascade`]: where it cuts
+//! G64 corners and the inside of curves, which the planner's caps keep
+//! within the tolerance: planner.rs `FeedSmoothing`), and in a plane to
+//! the path parameter of each move on its own, which leaves the point on
+//! the path.
 
 use crate::math::V2;
 use alloc::vec::Vec;
@@ -81,6 +82,48 @@ impl Smoother {
     }
 }
 
+/// Two moving averages in a row (a feed's set points under jerk
+/// limiting): N taps, then M. With v the unaveraged speed per period, the
+/// pair's acceleration per period is the mean of v_k − v_(k−M) over N
+/// periods, divided by M·dt, and its jerk is
+/// ((v_k − v_(k−M)) − (v_(k−N) − v_(k−N−M))) / (N·M·dt²): both are
+/// bounded by W, the largest change of v over M periods (W/(M·dt) and
+/// 2·W/(N·M·dt²)). A velocity step inside a window of M periods counts
+/// once in W, where one average alone would turn it into a jump of
+/// acceleration within a period.
+#[derive(Debug, Clone)]
+pub struct Cascade {
+    first: Smoother,
+    second: Smoother,
+}
+
+impl Cascade {
+    /// `n` taps, then `m` (1 and 1: no filtering), allocated once.
+    pub fn new(n: usize, m: usize) -> Cascade {
+        Cascade {
+            first: Smoother::new(n),
+            second: Smoother::new(m),
+        }
+    }
+
+    /// At rest at `v`.
+    pub fn reset(&mut self, v: V2) {
+        self.first.reset(v);
+        self.second.reset(v);
+    }
+
+    /// Adds a sample; the average of the averages.
+    pub fn push(&mut self, v: V2) -> V2 {
+        let a = self.first.push(v);
+        self.second.push(a)
+    }
+
+    /// Both averages stand on the last sample.
+    pub fn settled(&self) -> bool {
+        self.first.settled() && self.second.settled()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -95,5 +138,32 @@ mod tests {
         }
         assert!(f.settled());
         assert_eq!(out, V2::new(0.0, 1.0));
+    }
+
+    #[test]
+    fn a_cascade_spreads_a_step_of_speed_over_its_second_window() {
+        // At rest at 0, then a speed of 1 per period (a velocity step of
+        // 1). One average of 4 taps turns it into an acceleration of 1/4
+        // per period at once (a jerk of 1/4); with a second average of 2
+        // taps the acceleration rises in two steps of 1/8. By hand: the
+        // first average's points are 0, 1/4, 3/4, 3/2, 5/2, 7/2; the
+        // second's the mean of two of them: 0, 1/8, 1/2, 9/8, 2, 3, 4.
+        let mut c = Cascade::new(4, 2);
+        c.reset(V2::ZERO);
+        let mut pos = alloc::vec![0.0];
+        for k in 0..8 {
+            pos.push(c.push(V2::new(k as f64, 0.0)).r);
+        }
+        let speed: Vec<f64> = pos.windows(2).map(|w| w[1] - w[0]).collect();
+        let accel: Vec<f64> = speed.windows(2).map(|w| w[1] - w[0]).collect();
+        let want = [0.125, 0.25, 0.25, 0.25, 0.125, 0.0, 0.0];
+        assert_eq!(accel.len(), want.len());
+        for (got, w) in accel.iter().zip(want) {
+            assert!((got - w).abs() < 1e-12, "{accel:?}");
+        }
+        assert!(!c.settled());
+        c.reset(V2::new(3.0, 0.0));
+        assert!(c.settled());
+        assert_eq!(c.push(V2::new(3.0, 0.0)), V2::new(3.0, 0.0));
     }
 }

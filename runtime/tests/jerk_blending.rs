@@ -1,5 +1,5 @@
 //! G64 under jerk limiting: feeds blend at their corners and the axes'
-//! set points are averaged after interpolation (planner.rs
+//! set points are averaged twice after interpolation (planner.rs
 //! `FeedSmoothing`), so a polyline runs through its corners at speed
 //! instead of stopping at every block, within every axis's jerk and
 //! within half the resolution of the path.
@@ -10,10 +10,10 @@ use common::{certify, run_with, Run};
 use nc::Machine;
 use runtime::{AutoAck, Controller, SetPoint};
 
-/// A quarter circle of R 20 as 180 G01 chords of 0.5° (0.1745 mm), F600
-/// (10 mm/s); `mode` is G61 or G64.
-fn polyline(mode: &str) -> String {
-    let mut s = format!("G00 X40 Z2\nM03 S1000\n{mode}\nG98 G01 X40 Z0 F600\n");
+/// A quarter circle of R 20 as 180 G01 chords of 0.5° (0.1745 mm) at
+/// `feed` mm/min; `mode` is G61 or G64.
+fn polyline(mode: &str, feed: u32) -> String {
+    let mut s = format!("G00 X40 Z2\nM03 S1000\n{mode}\nG98 G01 X40 Z0 F{feed}\n");
     for i in 1..=180 {
         let a = (f64::from(i) * 0.5).to_radians();
         let (x, z) = (40.0 + 40.0 * (1.0 - a.cos()), -20.0 * a.sin());
@@ -26,11 +26,12 @@ fn polyline(mode: &str) -> String {
 /// every period.
 fn run_polyline(
     mode: &str,
+    feed: u32,
     jerk: bool,
     host: impl FnMut(&mut Controller<AutoAck>, &SetPoint),
 ) -> Run {
     run_with(
-        &polyline(mode),
+        &polyline(mode, feed),
         Machine::reference(),
         AutoAck,
         |c| c.jerk_limited = jerk,
@@ -41,8 +42,8 @@ fn run_polyline(
 
 /// The set points' path speeds (mm/s) of the periods on the chords
 /// (lines 5 to 184), in order.
-fn chord_speeds(jerk: bool, mode: &str) -> Vec<f64> {
-    run_polyline(mode, jerk, |_, _| {})
+fn chord_speeds(jerk: bool, mode: &str, feed: u32) -> Vec<f64> {
+    run_polyline(mode, feed, jerk, |_, _| {})
         .pts
         .iter()
         .filter(|p| (5..=184).contains(&p.line))
@@ -50,39 +51,66 @@ fn chord_speeds(jerk: bool, mode: &str) -> Vec<f64> {
         .collect()
 }
 
+/// The speeds on the chords of lines 30 to 159 (the first and last 25
+/// chords, 4.4 mm, take the speed up and down), and the time on all of
+/// them, s.
+fn inner_speeds(feed: u32) -> (Vec<f64>, f64) {
+    let r = run_polyline("G64", feed, true, |_, _| {});
+    let on = |lines: core::ops::RangeInclusive<u32>| {
+        r.pts
+            .iter()
+            .filter(|p| lines.contains(&p.line))
+            .map(|p| p.feed / 60.0)
+            .collect::<Vec<f64>>()
+    };
+    let inner = on(30..=159);
+    // 22.7 mm, at 25 mm/s or less: 900 periods at least.
+    assert!(inner.len() > 900, "{} periods", inner.len());
+    (inner, on(5..=184).len() as f64 * 0.001)
+}
+
 #[test]
-fn a_polyline_under_jerk_limiting_runs_through_its_corners() {
+fn a_polyline_under_jerk_limiting_runs_through_its_corners_at_its_feed() {
     // The reference machine with jerk limiting averages feeds over
-    // T = 11 ms and plans them at 110 (X) and 137.5 mm/s² (Z). A 0.5°
-    // corner changes the direction by |Δu| = 2·sin 0.25° = 0.008 727,
-    // across the path; its velocity step v·|Δu| may take a quarter of
-    // the axis's acceleration in a period, 0.25·110·0.001 = 0.0275 mm/s
-    // on X where the path runs along Z (the first corners): 3.15 mm/s,
-    // up to 4.46 at 45°. The average's cut allows more, (8/T)·(0.0005 /
-    // |Δu| − 137.5·T²/48) = 41.4 mm/s. So the speed stays between
-    // 3.15 and 10 mm/s from the first chord's end to the last chord's
-    // start: no corner stops.
-    let v = chord_speeds(true, "G64");
-    let moving: Vec<usize> = (0..v.len()).filter(|&i| v[i] > 1.0).collect();
-    let (first, last) = (moving[0], moving[moving.len() - 1]);
-    // (The first and last chords take the speed up and down.)
-    let inner = &v[first + 100..last - 100];
+    // T = 11 ms, then T₂ = 6 ms, and plans them at 110 (X) and 137.5
+    // mm/s² (Z), a quarter of which the moves keep back for corners. A
+    // 0.5° corner changes the direction by |Δu| = 2·sin 0.25° = 0.008 727.
+    // Its velocity step, v·|Δu| on X where the path runs along Z (the
+    // first corners), may take that quarter of X's acceleration over T₂,
+    // 0.25·110·0.006 = 0.165 mm/s: v ≤ 18.9 mm/s. With the corners that
+    // may follow in a window, v·T₂/0.174 53 of them, v·|Δu|·(1 +
+    // v·0.006/0.174 53) ≤ 0.165: v ≤ 13.05 mm/s. The averages' cut
+    // allows (0.0005/|Δu| − 137.5·(T² + T₂²)/48)/(T/8 + T₂²/24T) = 37.6
+    // mm/s, the curve of R 20 the chords make √(24·20·0.0005/(T² + T₂²))
+    // = 39.1 mm/s. So F600 (10 mm/s) runs through every corner at its
+    // feed: 31.4 mm in 3.14 s and the first and last chords' ramps.
+    let (inner, secs) = inner_speeds(600);
     let slowest = inner.iter().copied().fold(f64::INFINITY, f64::min);
-    assert!(
-        slowest > 3.1,
-        "the speed falls to {slowest} mm/s between corners"
-    );
+    assert!(slowest > 9.99, "the speed falls to {slowest} mm/s");
     assert!(inner.iter().all(|&s| s <= 10.0 + 1e-6));
-    // 31.4 mm at 3.15 mm/s or more: under 10 s.
-    let secs = v.len() as f64 * 0.001;
-    assert!(secs < 10.0, "the chords take {secs} s");
+    assert!(secs < 3.3, "the chords take {secs} s");
+}
+
+#[test]
+fn a_faster_polyline_under_jerk_limiting_runs_at_its_corners_speed() {
+    // F1500 (25 mm/s): the corners' steps bind, at 13.05 mm/s where the
+    // path runs along Z and more where it turns to X (the step then falls
+    // on Z, which accelerates faster). The raw speed never falls below
+    // that, and neither does its average. (Taking all of the window's
+    // share would stop the corner after it.)
+    let (inner, secs) = inner_speeds(1500);
+    let slowest = inner.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(slowest > 13.0, "the speed falls to {slowest} mm/s");
+    assert!(inner.iter().all(|&s| s <= 25.0 + 1e-6));
+    // 31.4 mm at 13.05 mm/s or more: 2.41 s and the ramps.
+    assert!(secs < 2.6, "the chords take {secs} s");
 }
 
 #[test]
 fn g61_under_jerk_limiting_still_stops_at_every_block() {
     // Exact stop: each chord ends at rest, the average settled on its end
     // point, before the next starts.
-    let v = chord_speeds(true, "G61");
+    let v = chord_speeds(true, "G61", 600);
     let stops = v.windows(2).filter(|w| w[0] > 0.0 && w[1] == 0.0).count();
     assert!(stops >= 180, "{stops} stops on 181 blocks");
 }
@@ -93,10 +121,10 @@ fn polylines_under_jerk_limiting_are_certified() {
     // point reached within 1 µm and every set point within 1 µm of the
     // path, for G64 and G61, with jerk limiting on and off.
     let machine = Machine::reference();
-    for mode in ["G64", "G61"] {
+    for (mode, feed) in [("G64", 600), ("G64", 1500), ("G61", 600)] {
         for jerk in [false, true] {
-            let r = certify(&polyline(mode), &machine, jerk);
-            assert_eq!(r, Some(Ok(())), "{mode}, jerk {jerk}");
+            let r = certify(&polyline(mode, feed), &machine, jerk);
+            assert_eq!(r, Some(Ok(())), "{mode} F{feed}, jerk {jerk}");
         }
     }
 }
@@ -107,7 +135,7 @@ fn a_feed_hold_in_a_blended_polyline_stands_and_goes_on() {
     // average settles, the axes stand; cycle start at 3 s runs on. Every
     // end point is still passed within 1 µm, in order.
     let mut held_at = None;
-    let r = run_polyline("G64", true, |ctl, p| {
+    let r = run_polyline("G64", 600, true, |ctl, p| {
         if (p.time_s - 2.0).abs() < 1e-9 {
             ctl.feed_hold();
         }
@@ -164,7 +192,7 @@ fn a_reset_in_a_blended_chain_stops_on_the_path() {
     // idle with the axes standing on the polyline; cycle start runs the
     // program again to its end.
     let mut idle_at = None;
-    let r = run_polyline("G64", true, |ctl, p| {
+    let r = run_polyline("G64", 600, true, |ctl, p| {
         if (p.time_s - 2.0).abs() < 1e-9 {
             ctl.reset();
         }
