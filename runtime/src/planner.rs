@@ -1107,7 +1107,7 @@ impl Planner {
                 if n > 1e-15 {
                     vj = vj.min(4.0 * self.tolerance / (self.dt * n));
                 }
-                // ... and the average after interpolation within its
+                // ... and the averages after interpolation within their
                 // tolerance of the corner.
                 if let Some(s) = &smoothing {
                     vj = vj.min(s.corner_speed(n, prev.len.min(cur.len)));
@@ -1168,21 +1168,23 @@ impl Planner {
         k: usize,
     ) -> f64 {
         let window = self.budget * s.spread;
-        let left = (window - self.steps_before(k, s.spread)).max(0.0);
+        let left = (window - self.steps_before(k, s.spread + self.dt)).max(0.0);
         let neighbours = share * s.spread / short.max(1e-12);
         corner_speed(share, bend, left).min(corner_speed(share, bend + neighbours, window))
     }
 
     /// The velocity steps of the G64 corners before the one at the end of
-    /// move `k` (`Segment::step_in`) that a window of `spread` (T₂) may
-    /// hold together with it, under jerk limiting. Two corners are in one
-    /// window only if the path between them takes at most T₂: it is then
-    /// at most T₂ times the fastest speed between them, which on a move
-    /// that starts at v₀ and accelerates at a is at most √(v₀² + 2·a·ℓ).
-    /// A move that starts from a stop ends the walk: the averages settle
-    /// in a stop. ∞ when the walk is too long to follow (the corner then
-    /// stops).
-    fn steps_before(&self, k: usize, spread: f64) -> f64 {
+    /// move `k` (`Segment::step_in`) that one window of the second average
+    /// may hold together with it, under jerk limiting. A corner's step
+    /// falls on the speed changes of the period it is crossed in and the
+    /// one after, so two corners are in one window of T₂ only if the path
+    /// between them takes less than `horizon`, T₂ + dt: it is then shorter
+    /// than `horizon` times the fastest speed between them, which on a
+    /// move that starts at v₀ and accelerates at a is at most
+    /// √(v₀² + 2·a·ℓ). A move that starts from a stop ends the walk: the
+    /// averages settle in a stop. ∞ when the walk is too long to follow
+    /// (the corner then stops).
+    fn steps_before(&self, k: usize, horizon: f64) -> f64 {
         let (mut dist, mut fastest, mut sum) = (0.0_f64, 0.0_f64, 0.0);
         let mut k = k;
         for _ in 0..STEP_WALK {
@@ -1192,7 +1194,7 @@ impl Planner {
             dist += m.len;
             let top = sqrt(m.v_in * m.v_in + 2.0 * m.a * m.len);
             fastest = fastest.max(m.v_max.min(top));
-            if m.v_in <= 0.0 || dist > fastest * spread {
+            if m.v_in <= 0.0 || dist >= fastest * horizon {
                 return sum;
             }
             sum += m.step_in;
@@ -1337,9 +1339,9 @@ mod tests {
         // (the cut allows 20.9 mm/s there; the curve the moves make).
         assert!((s0.v_junction - 9.0593).abs() < 1e-3, "{}", s0.v_junction);
         // The second is within the window (0.05 mm at most √(9.06² +
-        // 2·103.13·0.05) = 9.61 mm/s takes 5.2 ms) and takes what is
-        // left: (0.0015 − 9.0593·7.9332e-5)/7.9199e-4 = 0.9865 mm/s (on
-        // its own 1.59 mm/s).
+        // 2·103.13·0.05) = 9.61 mm/s takes 5.2 ms, less than T₂ + dt) and
+        // takes what is left: (0.0015 − 9.0593·7.9332e-5)/7.9199e-4 =
+        // 0.9865 mm/s (on its own 1.59 mm/s).
         assert!((s1.v_junction - 0.9865).abs() < 1e-3, "{}", s1.v_junction);
         assert!((s1.step_in + s2.step_in - 0.0015).abs() < 1e-9);
     }
