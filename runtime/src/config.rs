@@ -104,9 +104,10 @@ pub struct Config {
     pub always_exact_stop: bool,
     /// S-curve (jerk-limited) speed changes instead of linear
     /// acceleration: a moving average of the acceleration-limited motion
-    /// (see `smooth`): over 2·a/j for rapids, over [`Config::feed_taps`]
-    /// and then [`Config::feed_spread_taps`] for feeds. Off on the
-    /// reference machine; never for threads.
+    /// (see `smooth`): over [`Config::rapid_taps`] for rapids, over
+    /// [`Config::feed_taps`] and then [`Config::feed_spread_taps`] for
+    /// feeds, over [`Config::jerk_taps`] for the path parameter in a
+    /// plane. Off on the reference machine; never for threads.
     pub jerk_limited: bool,
     /// The share of an axis's acceleration that a G64 corner may use as a
     /// one-period velocity step (under jerk limiting: that the corners
@@ -224,6 +225,21 @@ impl Config {
             (n as usize).min(1 << 16)
         } else {
             1
+        }
+    }
+
+    /// Periods of the moving average over a rapid's axes, with jerk
+    /// limiting (1 without): a/j, the largest over the axes. A rapid's
+    /// axis never turns from speeding up to slowing down, or back, within
+    /// that window (smooth.rs `Turns`), which halves what one average
+    /// needs for any profile (`jerk_taps`, 2·a/j): the end of a rapid is
+    /// about a/j later than without jerk limiting, as with an S-curve.
+    pub fn rapid_taps(&self) -> usize {
+        // Half a period over a/j at least: the jerk stays a little below
+        // the limit, whatever the averages' rounding.
+        match self.jerk_taps() {
+            n if n > 1 => n / 2 + 1,
+            _ => 1,
         }
     }
 

@@ -15,11 +15,11 @@
 use crate::command::{MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
 use crate::follow::{Ahead, FollowAxes, Follower};
-use crate::math::V2;
+use crate::math::{sqrt, V2};
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
 use crate::plc::{Plc, PlcFunction};
 use crate::profile::{approach, brake_limit, brake_limit_above, stopping_distance};
-use crate::smooth::{Cascade, Smoother};
+use crate::smooth::{Cascade, Smoother, Turns};
 use crate::spindle::Spindle;
 use nc::error::Alarm;
 use thread::{Phase, ThreadRun};
@@ -197,11 +197,36 @@ enum Flow {
 /// One period of one axis in a rapid: from `p` at speed `v0` towards `t`
 /// at the axis's rapid rate × `f` and acceleration, landing exactly on
 /// `t`. Returns the new speed and position.
-fn rapid_axis(v0: f64, p: f64, t: f64, ax: &crate::config::Axis, f: f64, dt: f64) -> (f64, f64) {
+///
+/// With jerk limiting, `guard` holds N (the rapid's window, periods) and
+/// the sign of the axis's speed change N periods before (smooth.rs
+/// `Turns`): the speed does not fall where it rose then, nor rise where it
+/// fell. It speeds up only where it can still run N more periods at the
+/// new speed before it must brake, so the landing never waits on the
+/// guard; a hold or a lower override may (up to N periods at speed).
+fn rapid_axis(
+    v0: f64,
+    p: f64,
+    t: f64,
+    ax: &crate::config::Axis,
+    f: f64,
+    dt: f64,
+    guard: Option<(usize, i8)>,
+) -> (f64, f64) {
     let dist = (t - p).abs();
     let top = ax.rapid * f;
     let lim = brake_limit_above(dist, 0.0, ax.accel, dt, (v0 + ax.accel * dt).min(top));
-    let v = approach(v0, top.min(lim), ax.accel, dt);
+    let mut v = approach(v0, top.min(lim), ax.accel, dt);
+    if let Some((n, before)) = guard {
+        if v > v0 {
+            v = match before < 0 {
+                true => v0,
+                false => v.min(cruise_limit(dist, n, ax.accel, dt)).max(v0),
+            };
+        } else if v < v0 && before > 0 {
+            v = v0;
+        }
+    }
     let step = v * dt;
     let np = if step >= dist - 1e-12 {
         t
@@ -209,6 +234,34 @@ fn rapid_axis(v0: f64, p: f64, t: f64, ax: &crate::config::Axis, f: f64, dt: f64
         p + step.copysign(t - p)
     };
     (v, np)
+}
+
+/// The highest speed at which an axis `dist` from its end may run `n` + 1
+/// periods before it brakes, and still land (`rapid_axis`'s guard): the
+/// root of v·(n + 3)·dt + v²/2a = `dist` (the stop itself takes v²/2a and
+/// at most a period more), checked against the landing limit.
+fn cruise_limit(dist: f64, n: usize, a: f64, dt: f64) -> f64 {
+    let hold = (n as f64 + 3.0) * dt;
+    let mut v = a * (sqrt(hold * hold + 2.0 * dist / a) - hold);
+    for _ in 0..4 {
+        let ahead = dist - v * (n as f64 + 1.0) * dt;
+        if ahead >= 0.0 && brake_limit_above(ahead, 0.0, a, dt, v) >= v {
+            return v;
+        }
+        v *= 0.5;
+    }
+    0.0
+}
+
+/// The sign of a speed change, for `Turns`.
+fn turn(v0: f64, v: f64) -> i8 {
+    if v > v0 {
+        1
+    } else if v < v0 {
+        -1
+    } else {
+        0
+    }
 }
 
 /// The runtime core: planner queue, interpolator, spindle and the
@@ -230,6 +283,8 @@ pub struct Engine<P: Plc> {
     /// The C angle (degrees) and its change over the last period.
     c: f64,
     last_step_c: f64,
+    /// Periods the axes have stood for, up to 2.
+    still: u8,
     shift: V2,
     fixed_work: Option<V2>,
     tag: Tag,
@@ -246,13 +301,18 @@ pub struct Engine<P: Plc> {
     /// plane).
     s: f64,
     s_out: f64,
-    /// Jerk limiting: the moving average, and the unfiltered rapid point.
+    /// Jerk limiting: the moving average of the path parameter in a
+    /// plane.
     smooth: Smoother,
     jerk: bool,
+    /// Jerk limiting: the unfiltered rapid point, its moving average and
+    /// the turns of its axes' speeds (smooth.rs `Turns`).
     rapid_raw: V2,
+    rapid_avg: Smoother,
+    turns: Turns,
     /// The unfiltered rapid C angle and C's own moving average (jerk).
     rapid_raw_c: f64,
-    smooth_c: Smoother,
+    rapid_avg_c: Smoother,
     /// Jerk limiting: the pairs of moving averages of a feed's set points
     /// (X/Z, and C), outside a plane (planner.rs `FeedSmoothing`).
     feed_avg: Cascade,
@@ -312,6 +372,7 @@ impl<P: Plc> Engine<P> {
             out: V2::ZERO,
             follow: Follower::default(),
             last_step: V2::ZERO,
+            still: 2,
             c: 0.0,
             last_step_c: 0.0,
             shift: V2::ZERO,
@@ -326,8 +387,10 @@ impl<P: Plc> Engine<P> {
             smooth: Smoother::new(cfg.jerk_taps()),
             jerk: cfg.jerk_taps() > 1,
             rapid_raw: V2::ZERO,
+            rapid_avg: Smoother::new(cfg.rapid_taps()),
+            turns: Turns::new(cfg.rapid_taps()),
             rapid_raw_c: 0.0,
-            smooth_c: Smoother::new(if cfg.c.is_some() { cfg.jerk_taps() } else { 1 }),
+            rapid_avg_c: Smoother::new(if cfg.c.is_some() { cfg.rapid_taps() } else { 1 }),
             feed_avg: Cascade::new(cfg.feed_taps(), cfg.feed_spread_taps()),
             feed_avg_c: match cfg.c {
                 Some(_) => Cascade::new(cfg.feed_taps(), cfg.feed_spread_taps()),
@@ -602,6 +665,10 @@ impl<P: Plc> Engine<P> {
             run.follow(self.pos);
             self.last_step_c = 0.0;
         }
+        self.still = match self.last_step == V2::ZERO && self.last_step_c == 0.0 {
+            true => (self.still + 1).min(2),
+            false => 0,
+        };
         self.check_stroke();
         self.setpoint()
     }
@@ -701,7 +768,8 @@ impl<P: Plc> Engine<P> {
         self.rapid_raw = sw.at;
         self.rapid_raw_c = sw.c;
         self.smooth.reset(sw.at);
-        self.smooth_c.reset(V2::new(sw.c, 0.0));
+        self.rapid_avg.reset(sw.at);
+        self.rapid_avg_c.reset(V2::new(sw.c, 0.0));
     }
 
     /// Done with the head item; `landed`: the motion stands at its end.
@@ -874,8 +942,12 @@ impl<P: Plc> Engine<P> {
                 return;
             };
             // Start from rest only: a landing period is followed by one
-            // standing period, so the velocity passes through zero.
-            if self.last_step != V2::ZERO || self.last_step_c != 0.0 || self.follow.engaged() {
+            // standing period, so the velocity passes through zero. With
+            // jerk limiting, two: the acceleration too, so the jerk of the
+            // start does not add to that of the last move's end (each
+            // may take the whole limit: a rapid's window is a/j).
+            let need = if self.jerk { 2 } else { 1 };
+            if self.still < need || self.follow.engaged() {
                 return;
             }
             if self.hold && !matches!(seg.kind, MoveKind::Thread(_)) {
@@ -916,7 +988,9 @@ impl<P: Plc> Engine<P> {
                     V2::ZERO
                 };
                 self.smooth.reset(at);
-                self.smooth_c.reset(V2::new(self.c, 0.0));
+                self.rapid_avg.reset(self.pos);
+                self.rapid_avg_c.reset(V2::new(self.c, 0.0));
+                self.turns.clear();
                 self.feed_avg.reset(self.pos);
                 self.feed_avg_c.reset(V2::new(self.c, 0.0));
             }
@@ -949,47 +1023,76 @@ impl<P: Plc> Engine<P> {
         };
         let to = self.cur.to;
         let mut raw = if self.jerk { self.rapid_raw } else { self.pos };
-        let (vx, rx) = rapid_axis(self.rapid_v[0], raw.r, to.r, &self.cfg.x, f, self.dt);
-        let (vz, rz) = rapid_axis(self.rapid_v[1], raw.z, to.z, &self.cfg.z, f, self.dt);
+        let (lag, n, jerk) = (self.turns.lagged(), self.turns_len(), self.jerk);
+        let guard = |k: usize| jerk.then_some((n, lag[k]));
+        let (vx, rx) = rapid_axis(
+            self.rapid_v[0],
+            raw.r,
+            to.r,
+            &self.cfg.x,
+            f,
+            self.dt,
+            guard(0),
+        );
+        let (vz, rz) = rapid_axis(
+            self.rapid_v[1],
+            raw.z,
+            to.z,
+            &self.cfg.z,
+            f,
+            self.dt,
+            guard(1),
+        );
+        let turn = [turn(self.rapid_v[0], vx), turn(self.rapid_v[1], vz)];
         self.rapid_v[0] = vx;
         self.rapid_v[1] = vz;
         let mut arrived = rx == to.r && rz == to.z;
         raw = V2::new(rx, rz);
         if self.jerk {
             self.rapid_raw = raw;
-            self.pos = self.smooth.push(raw);
-            arrived &= self.smooth.settled();
+            self.pos = self.rapid_avg.push(raw);
+            arrived &= self.rapid_avg.settled();
         } else {
             self.pos = raw;
         }
-        arrived &= self.rapid_c(f);
+        let (c_arrived, turn_c) = self.rapid_c(f, guard(2));
+        arrived &= c_arrived;
+        self.turns.push([turn[0], turn[1], turn_c]);
         if arrived {
             self.pos = to;
             self.c = self.cur.c1;
             self.finish_item();
-        } else if self.hold && self.rapid_v == [0.0; 3] && (!self.jerk || self.smooth.settled()) {
+        } else if self.hold && self.rapid_v == [0.0; 3] && (!self.jerk || self.rapid_avg.settled())
+        {
             self.state = RunState::Held;
         }
     }
 
     /// One period of C in a rapid, on its own like X and Z (a dog-leg);
-    /// whether C has arrived (settled, with jerk limiting).
-    fn rapid_c(&mut self, f: f64) -> bool {
+    /// whether C has arrived (settled, with jerk limiting), and the turn
+    /// of its speed (`rapid_axis`'s `guard`).
+    fn rapid_c(&mut self, f: f64, guard: Option<(usize, i8)>) -> (bool, i8) {
         let Some(ax) = self.cfg.c.filter(|_| self.cur.turns_c()) else {
-            return true;
+            return (true, 0);
         };
         let raw = if self.jerk { self.rapid_raw_c } else { self.c };
-        let (v, c) = rapid_axis(self.rapid_v[2], raw, self.cur.c1, &ax, f, self.dt);
+        let (v, c) = rapid_axis(self.rapid_v[2], raw, self.cur.c1, &ax, f, self.dt, guard);
+        let turned = turn(self.rapid_v[2], v);
         self.rapid_v[2] = v;
         let mut arrived = c == self.cur.c1;
         if self.jerk {
             self.rapid_raw_c = c;
-            self.c = self.smooth_c.push(V2::new(c, 0.0)).r;
-            arrived &= self.smooth_c.settled();
+            self.c = self.rapid_avg_c.push(V2::new(c, 0.0)).r;
+            arrived &= self.rapid_avg_c.settled();
         } else {
             self.c = c;
         }
-        arrived
+        (arrived, turned)
+    }
+
+    /// Periods a rapid's axis keeps the sign of a speed change for.
+    fn turns_len(&self) -> usize {
+        self.rapid_avg.taps()
     }
 
     /// The commanded path speed of the head feed, mm/s; 0 while held,
@@ -1332,7 +1435,10 @@ impl<P: Plc> Engine<P> {
 
     /// Every moving average of jerk limiting stands on its last point.
     fn averages_settled(&self) -> bool {
-        self.smooth.settled() && self.feed_avg_settled()
+        self.smooth.settled()
+            && self.rapid_avg.settled()
+            && self.rapid_avg_c.settled()
+            && self.feed_avg_settled()
     }
 
     /// A reset in progress: brake, then drop everything (in a period
@@ -1367,7 +1473,8 @@ impl<P: Plc> Engine<P> {
             self.pos = run.axes();
             self.c = run.c();
             self.smooth.reset(self.pos);
-            self.smooth_c.reset(V2::new(self.c, 0.0));
+            self.rapid_avg.reset(self.pos);
+            self.rapid_avg_c.reset(V2::new(self.c, 0.0));
         }
         self.q.set_tail(self.pos);
         self.q.set_tail_c(self.c);

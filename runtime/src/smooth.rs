@@ -4,12 +4,13 @@
 //! most `2·a / (N·dt)` per second (the jerk), keeps every speed below the
 //! largest one averaged and every acceleration below `a`, and ends on the
 //! very point the unfiltered motion ends on, N periods later. The
-//! interpolator applies it to each axis of a rapid, twice in a row to
-//! each axis of a feed after interpolation ([`Cascade`]: where it cuts
-//! G64 corners and the inside of curves, which the planner's caps keep
-//! within the tolerance: planner.rs `FeedSmoothing`), and in a plane to
-//! the path parameter of each move on its own, which leaves the point on
-//! the path.
+//! interpolator applies it to each axis of a rapid (whose speed does not
+//! turn within the window: [`Turns`], which halves the bound), twice in a
+//! row to each axis of a feed after interpolation ([`Cascade`]: where it
+//! cuts G64 corners and the inside of curves, which the planner's caps
+//! keep within the tolerance: planner.rs `FeedSmoothing`), and in a plane
+//! to the path parameter of each move on its own, which leaves the point
+//! on the path.
 
 use crate::math::V2;
 use alloc::vec::Vec;
@@ -17,7 +18,12 @@ use alloc::vec::Vec;
 #[derive(Debug, Clone)]
 /// The moving average of the last N values of a profile (jerk limiting).
 pub struct Smoother {
+    /// The samples less `origin`, the point the filter last stood on: the
+    /// running sum of a move's offsets from its start drifts by their
+    /// rounding, not by that of coordinates some metres out (whose drift,
+    /// snapped off where the filter settles, was a jerk of 0.1 mm/s³).
     buf: Vec<V2>,
+    origin: V2,
     sum: V2,
     next: usize,
     /// Consecutive pushes of the same value.
@@ -33,6 +39,7 @@ impl Smoother {
         buf.resize(n, V2::ZERO);
         Smoother {
             buf,
+            origin: V2::ZERO,
             sum: V2::ZERO,
             next: 0,
             same: n,
@@ -48,9 +55,10 @@ impl Smoother {
     /// At rest at `v`.
     pub fn reset(&mut self, v: V2) {
         for b in self.buf.iter_mut() {
-            *b = v;
+            *b = V2::ZERO;
         }
-        self.sum = v * self.buf.len() as f64;
+        self.origin = v;
+        self.sum = V2::ZERO;
         self.next = 0;
         self.same = self.buf.len();
         self.last = v;
@@ -59,7 +67,8 @@ impl Smoother {
     /// Adds a sample; the average of the last N.
     pub fn push(&mut self, v: V2) -> V2 {
         let n = self.buf.len();
-        let old = core::mem::replace(&mut self.buf[self.next], v);
+        let off = v - self.origin;
+        let old = core::mem::replace(&mut self.buf[self.next], off);
         self.next = if self.next + 1 == n { 0 } else { self.next + 1 };
         self.same = if v == self.last {
             (self.same + 1).min(n)
@@ -69,11 +78,11 @@ impl Smoother {
         self.last = v;
         if self.same == n {
             // Settled: exactly the value, whatever the running sum drifted.
-            self.sum = v * n as f64;
+            self.sum = off * n as f64;
             return v;
         }
-        self.sum = self.sum + v - old;
-        self.sum * (1.0 / n as f64)
+        self.sum = self.sum + off - old;
+        self.origin + self.sum * (1.0 / n as f64)
     }
 
     /// Every sample in the window equals the last one.
@@ -124,6 +133,49 @@ impl Cascade {
     }
 }
 
+/// The sign of each rapid axis's speed change (X, Z, C) in each of the
+/// last N periods, under jerk limiting. A rapid's axis may not turn from
+/// speeding up to slowing down, or back, within N periods: the speed
+/// changes of two periods N apart then differ by at most a·dt, and one
+/// average of N periods bounds the jerk by a/(N·dt), half of what any
+/// profile within `a` gets (`Smoother`). So a rapid's window is a/j, not
+/// 2·a/j (config.rs `rapid_taps`).
+#[derive(Debug, Clone)]
+pub struct Turns {
+    buf: Vec<[i8; 3]>,
+    next: usize,
+}
+
+impl Turns {
+    /// N periods of history (at least 1), allocated once.
+    pub fn new(n: usize) -> Turns {
+        let mut buf = Vec::with_capacity(n.max(1));
+        buf.resize(n.max(1), [0; 3]);
+        Turns { buf, next: 0 }
+    }
+
+    /// The axes have stood for N periods.
+    pub fn clear(&mut self) {
+        self.buf.iter_mut().for_each(|s| *s = [0; 3]);
+        self.next = 0;
+    }
+
+    /// The signs of the speed changes N periods before the one to come.
+    pub fn lagged(&self) -> [i8; 3] {
+        self.buf[self.next]
+    }
+
+    /// Records this period's signs.
+    pub fn push(&mut self, signs: [i8; 3]) {
+        self.buf[self.next] = signs;
+        self.next = if self.next + 1 == self.buf.len() {
+            0
+        } else {
+            self.next + 1
+        };
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -165,5 +217,20 @@ mod tests {
         c.reset(V2::new(3.0, 0.0));
         assert!(c.settled());
         assert_eq!(c.push(V2::new(3.0, 0.0)), V2::new(3.0, 0.0));
+    }
+
+    #[test]
+    fn turns_are_seen_n_periods_later() {
+        let mut t = Turns::new(3);
+        t.push([1, 0, 0]);
+        t.push([0, -1, 0]);
+        assert_eq!(t.lagged(), [0; 3]);
+        t.push([0, 0, 1]);
+        // Three periods after the first: its signs.
+        assert_eq!(t.lagged(), [1, 0, 0]);
+        t.push([0; 3]);
+        assert_eq!(t.lagged(), [0, -1, 0]);
+        t.clear();
+        assert_eq!(t.lagged(), [0; 3]);
     }
 }
