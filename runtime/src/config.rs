@@ -256,7 +256,7 @@ impl Config {
     /// reference machine). A longer one would stop every corner of more
     /// than a few degrees and slow every curve (the cut of a curve grows
     /// with T²); a shorter one would slow every speed change. Never
-    /// longer than the rapids' window (`jerk_taps`).
+    /// longer than 2·a/j (`jerk_taps`).
     pub fn feed_taps(&self) -> usize {
         let most = self.jerk_taps();
         if most <= 1 {
