@@ -1179,20 +1179,25 @@ impl Planner {
     /// falls on the speed changes of the period it is crossed in and the
     /// one after, so two corners are in one window of T₂ only if the path
     /// between them takes less than `horizon`, T₂ + dt: it is then shorter
-    /// than `horizon` times the fastest speed between them, which on a
-    /// move that starts at v₀ and accelerates at a is at most
-    /// √(v₀² + 2·a·ℓ). A move that starts from a stop ends the walk: the
-    /// averages settle in a stop. ∞ when the walk is too long to follow
-    /// (the corner then stops).
+    /// than `horizon` times the fastest speed between them. On a move of ℓ
+    /// that starts at v₀ at most and accelerates at a, that is at most
+    /// √(v₀² + 2·a·ℓ), and where it also ends at v₁ at most (the moves
+    /// before move `k`, whose corners are set and whose accelerations no
+    /// longer change), √((v₀² + v₁²)/2 + a·ℓ). A move that starts from a
+    /// stop ends the walk: the averages settle in a stop. ∞ when the walk
+    /// is too long to follow (the corner then stops).
     fn steps_before(&self, k: usize, horizon: f64) -> f64 {
         let (mut dist, mut fastest, mut sum) = (0.0_f64, 0.0_f64, 0.0);
-        let mut k = k;
+        let (first, mut k) = (k, k);
         for _ in 0..STEP_WALK {
             let Some(ItemKind::Move(m)) = self.get(k).map(|item| &item.kind) else {
                 return sum;
             };
             dist += m.len;
-            let top = sqrt(m.v_in * m.v_in + 2.0 * m.a * m.len);
+            let top = match k == first {
+                true => sqrt(m.v_in * m.v_in + 2.0 * m.a * m.len),
+                false => sqrt(0.5 * (m.v_in * m.v_in + m.v_junction * m.v_junction) + m.a * m.len),
+            };
             fastest = fastest.max(m.v_max.min(top));
             if m.v_in <= 0.0 || dist >= fastest * horizon {
                 return sum;
