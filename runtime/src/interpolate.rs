@@ -1458,11 +1458,11 @@ impl<P: Plc> Engine<P> {
                     _ => self.step_path(),
                 }
             }
-            let still = self.v > 0.0
+            let busy = self.v > 0.0
                 || self.rapid_v != [0.0; 3]
                 || averaging
                 || (self.jerk && !self.averages_settled());
-            if still && self.started {
+            if busy && self.started {
                 return;
             }
         }

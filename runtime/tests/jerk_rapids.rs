@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{check_end_points, run_with, Run};
+use common::{check_end_points, run_with, worst_jerk, Run};
 use nc::Machine;
 use runtime::{AutoAck, RunState};
 
@@ -28,23 +28,14 @@ fn run_rapids(
     )
 }
 
-/// The largest |jerk| / limit over X and Z, from the set points' third
-/// differences (rounded to 1e-6 of the limit, as `gbvm check` does). A
-/// rapid's window of 81 periods where a/j is 80 keeps it at 80/81.
-fn worst_jerk(r: &Run) -> f64 {
-    let dt = r.cfg.period_s;
-    let pos: Vec<[f64; 2]> = std::iter::once([0.0, 0.0])
-        .chain(r.pts.iter().map(|p| [p.axis_x / 2.0, p.axis_z]))
-        .collect();
-    let mut worst = 0.0f64;
-    for k in 1..pos.len().saturating_sub(2) {
-        for (a, ax) in [r.cfg.x, r.cfg.z].iter().enumerate() {
-            let j = (pos[k + 2][a] - 3.0 * pos[k + 1][a] + 3.0 * pos[k][a] - pos[k - 1][a])
-                / (dt * dt * dt);
-            worst = worst.max(j.abs() / ax.jerk);
-        }
-    }
-    worst
+/// The run ended on every end point, each axis's jerk within 80/81 of
+/// its limit (1e-6 for rounding, as `gbvm check` allows): a rapid's
+/// window of 81 periods where a/j is 80.
+fn check_ended_within_rapid_jerk(r: &Run) {
+    assert_eq!(r.state, RunState::Ended);
+    check_end_points(r);
+    let worst = worst_jerk(r);
+    assert!(worst <= 80.0 / 81.0 + 1e-6, "jerk {worst}");
 }
 
 /// Periods on line `line`.
@@ -68,11 +59,8 @@ fn a_long_rapid_ends_a_over_j_later() {
     assert_eq!(on.cfg.rapid_taps(), 81);
     assert_eq!(periods_on(&off, 2), 683);
     assert_eq!(periods_on(&on, 2), 683 + 80);
-    assert!(
-        worst_jerk(&on) <= 80.0 / 81.0 + 1e-6,
-        "jerk {}",
-        worst_jerk(&on)
-    );
+    let worst = worst_jerk(&on);
+    assert!(worst <= 80.0 / 81.0 + 1e-6, "jerk {worst}");
     check_end_points(&on);
 }
 
@@ -83,13 +71,7 @@ fn short_rapids_under_jerk_limiting_land() {
     // they can hold for a window before braking, and land exactly.
     let src = "G00 X0 Z0\nG00 Z-0.033\nG00 X0.05\nW0.001\nM30\n";
     let r = run_rapids(src, true, |_, _| {});
-    assert_eq!(r.state, RunState::Ended);
-    check_end_points(&r);
-    assert!(
-        worst_jerk(&r) <= 80.0 / 81.0 + 1e-6,
-        "jerk {}",
-        worst_jerk(&r)
-    );
+    check_ended_within_rapid_jerk(&r);
 }
 
 #[test]
@@ -122,11 +104,5 @@ fn a_hold_while_a_rapid_speeds_up_brakes_within_the_jerk_limit() {
         .all(|p| p.axis_z == z);
     assert!(still, "Z moved while held");
     assert!(z > -100.0 && z < -0.5, "held at Z{z}");
-    assert_eq!(r.state, RunState::Ended);
-    check_end_points(&r);
-    assert!(
-        worst_jerk(&r) <= 80.0 / 81.0 + 1e-6,
-        "jerk {}",
-        worst_jerk(&r)
-    );
+    check_ended_within_rapid_jerk(&r);
 }

@@ -344,18 +344,7 @@ fn jerk_limiting_bounds_the_jerk() {
     assert_eq!(r.state, RunState::Ended);
     check_end_points(&r);
     check_limits(&r, false);
-    let dt = r.cfg.period_s;
-    let pos: Vec<[f64; 2]> = std::iter::once([0.0, 0.0])
-        .chain(r.pts.iter().map(|p| [p.axis_x / 2.0, p.axis_z]))
-        .collect();
-    let mut worst = 0.0f64;
-    for k in 1..pos.len().saturating_sub(2) {
-        for (a, ax) in [r.cfg.x, r.cfg.z].iter().enumerate() {
-            let j = (pos[k + 2][a] - 3.0 * pos[k + 1][a] + 3.0 * pos[k][a] - pos[k - 1][a])
-                / (dt * dt * dt);
-            worst = worst.max(j.abs() / ax.jerk);
-        }
-    }
+    let worst = worst_jerk(&r);
     eprintln!("jerk: worst {worst:.4} of the limit");
     assert!(worst <= 1.0 + 1e-6, "jerk at {worst:.4} of the limit");
     // The S-curve costs time against linear acceleration, but not much.

@@ -284,6 +284,24 @@ pub fn check_limits(r: &Run, skip_threads: bool) {
     );
 }
 
+/// The largest |jerk| / limit over X and Z, from the axis set points'
+/// third differences (the machine starts at rest at zero).
+pub fn worst_jerk(r: &Run) -> f64 {
+    let dt = r.cfg.period_s;
+    let pos: Vec<[f64; 2]> = std::iter::once([0.0, 0.0])
+        .chain(r.pts.iter().map(|p| [p.axis_x / 2.0, p.axis_z]))
+        .collect();
+    let mut worst = 0.0f64;
+    for k in 1..pos.len().saturating_sub(2) {
+        for (a, ax) in [r.cfg.x, r.cfg.z].iter().enumerate() {
+            let j = (pos[k + 2][a] - 3.0 * pos[k + 1][a] + 3.0 * pos[k][a] - pos[k - 1][a])
+                / (dt * dt * dt);
+            worst = worst.max(j.abs() / ax.jerk);
+        }
+    }
+    worst
+}
+
 /// FNV-1a over every field of every set point.
 pub fn hash(r: &Run) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
