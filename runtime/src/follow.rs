@@ -45,7 +45,13 @@ pub struct Ahead {
     /// Corners before that where the point runs on slower: how far on
     /// each is (mm), and the point's speed after it (mm/s); the nearest
     /// first, each slower than those before it, unused ones at infinity.
+    /// The point runs no slower than that up to the next (where there are
+    /// more, the last one carries the slowest speed of those beyond).
     pub slows: [(f64, f64); SLOWS],
+    /// The point's speed on the axis on the leg it runs now (mm/s; 0:
+    /// not known): over a period that crossed a corner its step is partly
+    /// the speed before it.
+    pub speed: f64,
 }
 
 impl Ahead {
@@ -54,6 +60,7 @@ impl Ahead {
         run: 0.0,
         stops: false,
         slows: [(f64::INFINITY, 0.0); SLOWS],
+        speed: 0.0,
     };
 }
 
@@ -66,9 +73,10 @@ struct AxisFollow {
     v: f64,
     /// The followed point in the last period.
     t: f64,
-    /// The nearest corner ahead where the point slows, as of the last
-    /// period (where it is on the axis, and the point's speed after it).
-    corner: Option<(f64, f64)>,
+    /// The corners ahead where the point slows, as of the last period
+    /// (where each is on the axis, and the point's speed after it): the
+    /// point may pass more than one in a period.
+    corners: [Option<(f64, f64)>; SLOWS],
 }
 
 impl AxisFollow {
@@ -110,10 +118,9 @@ impl AxisFollow {
         if on {
             room = room.min(over(self.passing_limit(t, vt, ahead, ahead_of, a, dt)));
         }
-        self.corner = match ahead_of.slows[0] {
-            (d, u) if on && d.is_finite() => Some((t + d.copysign(vt), u)),
-            _ => None,
-        };
+        self.corners = ahead_of
+            .slows
+            .map(|(d, u)| (on && d.is_finite()).then(|| (t + d.copysign(vt), u)));
         let v = want
             .clamp(-room, room)
             .clamp(self.v - a * dt, self.v + a * dt)
@@ -135,25 +142,44 @@ impl AxisFollow {
     /// the closing share keeps to, unless the axis came in faster), and
     /// after a corner ahead where the point slows to u, the axis, braking
     /// from now on at its whole acceleration, ends no farther on than the
-    /// point once both run at u: (v − u)² ≤ 2a·(ahead − u·dt + d·(1 −
-    /// u/s)) (a 45° leg into a steeper one; in the frame that runs with
-    /// the point, the gap before this period is ahead − u·dt). The corner
-    /// the point passed in this period counts so too: its speed over the
-    /// period is still partly the faster one.
+    /// point once both run at u: (v − u)² ≤ 2a·(ahead − u·dt + d − u·τ),
+    /// τ being when the point reaches the corner (a 45° leg into a
+    /// steeper one; in the frame that runs with the point, the gap before
+    /// this period is ahead − u·dt). The point runs at s (or its leg's
+    /// speed, where that is lower), and after each corner at that
+    /// corner's speed, up to the next: it is no sooner there (in a ramp
+    /// it only runs faster), so each line d + u·(t − τ)
+    /// lies below the point from then on, and an axis behind them all is
+    /// behind the point. The corners the point passed in this period
+    /// count so too (d = 0): its speed over the period is still partly
+    /// the faster one.
     fn passing_limit(&self, t: f64, vt: f64, ahead: f64, ahead_of: &Ahead, a: f64, dt: f64) -> f64 {
         let s = vt.abs();
         let mut lim = f64::INFINITY;
         if ahead > 0.0 {
             lim = s + brake_limit(ahead - s * dt, 0.0, a, dt);
         }
-        let passed = self
-            .corner
-            .filter(|&(c, _)| (t - c) * vt >= 0.0)
-            .map(|(_, u)| (0.0, u));
-        let slows = ahead_of.slows.iter().copied().filter(|c| c.0.is_finite());
-        for (d, u) in slows.chain(passed).filter(|&(_, u)| u < s) {
-            let gap = ahead - u * dt + d * (1.0 - u / s);
-            lim = lim.min(u + brake_limit(gap, 0.0, a, dt));
+        for &(c, u) in self.corners.iter().flatten() {
+            if (t - c) * vt >= 0.0 && u < s {
+                lim = lim.min(u + brake_limit(ahead - u * dt, 0.0, a, dt));
+            }
+        }
+        // (Where the point is at each corner, and when, at the speeds
+        // before it.)
+        let leg = if ahead_of.speed > 0.0 {
+            s.min(ahead_of.speed)
+        } else {
+            s
+        };
+        let (mut at, mut tau, mut speed) = (0.0, 0.0, leg);
+        for &(d, u) in ahead_of.slows.iter().filter(|c| c.0.is_finite()) {
+            tau += (d - at) / speed;
+            at = d;
+            if u < speed {
+                speed = u;
+                let gap = ahead - u * dt + d - u * tau;
+                lim = lim.min(u + brake_limit(gap, 0.0, a, dt));
+            }
         }
         lim
     }
@@ -196,7 +222,7 @@ impl Follower {
                 ax.v = (t - ax.p) / dt;
                 ax.p = t;
                 ax.t = t;
-                ax.corner = None;
+                ax.corners = [None; SLOWS];
             }
             return target;
         }
@@ -217,7 +243,7 @@ impl Follower {
                 p: t,
                 v: 0.0,
                 t,
-                corner: None,
+                corners: [None; SLOWS],
             };
         }
         self.engaged = false;
@@ -371,6 +397,7 @@ mod tests {
                     } else {
                         Ahead::UNKNOWN.slows
                     },
+                    speed: 0.0,
                 };
                 f.step(t, a, vmax, &ahead, DT);
                 over = over.max(f.p - t);
@@ -383,6 +410,110 @@ mod tests {
         assert!(back >= 0.0, "turned back at {back} mm/s");
         let (over, back) = run(false);
         assert!(over > 0.1 && back < 0.0, "{over} {back}");
+    }
+
+    /// An axis following a point that runs `legs` (length mm, speed mm/s)
+    /// one after another from 0 and stops at their end, the axis running
+    /// with it at the first leg's speed from the start, told what lies
+    /// ahead as the runtime tells it (`chain_runs_on`: the corners where
+    /// the point runs slower than on every leg before, and where it
+    /// stops). How far the axis ever was past the point, and its most
+    /// negative speed.
+    fn follow_legs(legs: &[(f64, f64)], a: f64, vmax: f64) -> (f64, f64) {
+        let total: f64 = legs.iter().map(|l| l.0).sum();
+        let mut f = AxisFollow {
+            v: legs[0].1,
+            ..AxisFollow::default()
+        };
+        let (mut over, mut back) = (f64::NEG_INFINITY, 0.0f64);
+        let (mut k, mut into, mut t) = (0, 0.0, 0.0);
+        for _ in 0..20_000 {
+            // One period of the point: on along the legs at their speeds.
+            let mut left = DT;
+            while k < legs.len() && left > 0.0 {
+                let step = (legs[k].1 * left).min(legs[k].0 - into);
+                into += step;
+                t += step;
+                left -= step / legs[k].1;
+                if into >= legs[k].0 {
+                    (k, into) = (k + 1, 0.0);
+                }
+            }
+            let mut ahead = Ahead {
+                run: total - t,
+                stops: true,
+                ..Ahead::UNKNOWN
+            };
+            let (mut n, mut slowest, mut run) = (0, legs.get(k).map_or(0.0, |l| l.1), 0.0);
+            ahead.speed = slowest;
+            for (j, leg) in legs.iter().enumerate().skip(k) {
+                if j > k && leg.1 < slowest {
+                    if n < SLOWS {
+                        ahead.slows[n] = (run, leg.1);
+                        n += 1;
+                    } else {
+                        ahead.slows[SLOWS - 1].1 = leg.1;
+                    }
+                    slowest = leg.1;
+                }
+                run += if j == k { leg.0 - into } else { leg.0 };
+            }
+            f.step(t, a, vmax, &ahead, DT);
+            over = over.max(f.p - t);
+            back = back.min(f.v);
+        }
+        assert!((t - total).abs() < 1e-9 && f.p == t, "lands on the point");
+        (over, back)
+    }
+
+    /// A point that runs at 66.667 mm/s (lead 4 at 1000 rev/min), slows
+    /// to 22.7 mm/s for 16 µm and then to 0.27 mm/s for 16 µm (a chain of
+    /// short legs into a radial one: the thread target's finding), then
+    /// runs on at 66.667 mm/s: it passes both corners within one period.
+    /// The axis has to brake for the slower one over 1.11 mm and must
+    /// never pass the point. Remembering only the nearest corner of the
+    /// last period, it braked for the faster one alone in the period the
+    /// point passed both, and ran past the point (in the thread target's
+    /// chain it sped up by a·dt there and ran 0.06 mm past).
+    #[test]
+    fn an_axis_whose_point_passes_two_corners_in_a_period_never_passes_it() {
+        let legs = [
+            (3.0, 200.0 / 3.0),
+            (0.016, 22.7),
+            (0.016, 0.27),
+            (3.0, 200.0 / 3.0),
+        ];
+        let (over, back) = follow_legs(&legs, 2000.0, 4000.0 / 60.0);
+        assert!(over <= 1e-12, "passed the point by {over} mm");
+        assert!(back >= 0.0, "turned back at {back} mm/s");
+    }
+
+    /// Corners in a row where the point slows step by step: 60 mm/s,
+    /// then 0.3 mm at 20 mm/s, then 1 mm/s. The point reaches the second
+    /// corner 10 ms later than at 60 mm/s all the way, so an axis that
+    /// took it to come at d/60 s would brake too late for it (it ran
+    /// 0.01 mm past the point once the point had passed the first
+    /// corner, its step over that period still partly at 60). And six
+    /// such corners, more than the follower is told of one by one: the
+    /// slowest speed counts from the last one it is told of.
+    #[test]
+    fn corners_that_slow_the_point_step_by_step_are_never_passed() {
+        let steps = [(3.0, 60.0), (0.3, 20.0), (2.0, 1.0), (3.0, 60.0)];
+        let (over, back) = follow_legs(&steps, 1500.0, 4000.0 / 60.0);
+        assert!(over <= 1e-12, "passed the point by {over} mm");
+        assert!(back >= 0.0, "turned back at {back} mm/s");
+        let many = [
+            (3.0, 60.0),
+            (0.05, 50.0),
+            (0.05, 40.0),
+            (0.05, 30.0),
+            (0.05, 20.0),
+            (0.05, 10.0),
+            (2.0, 0.5),
+        ];
+        let (over, back) = follow_legs(&many, 1500.0, 4000.0 / 60.0);
+        assert!(over <= 1e-12, "passed the point by {over} mm");
+        assert!(back >= 0.0, "turned back at {back} mm/s");
     }
 
     /// A point that moves within the limit is followed exactly.

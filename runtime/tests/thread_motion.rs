@@ -554,7 +554,8 @@ fn a_short_slower_leg_does_not_brake_the_chain() {
 /// ran 8 µm past the chain's end and came back. Such a chain never turns
 /// back on either axis, so neither may its set points: the follower
 /// brakes an axis ahead of a corner that stops or slows it, and keeps
-/// that corner's speed until the axis is past it. Both are certified.
+/// that corner's speed until the axis is past it. Both are certified,
+/// with jerk limiting too.
 #[test]
 fn a_chain_that_never_turns_back_is_followed_without_turning_back() {
     let step = "G97 S2500 M03\nG99\nG00 X16.765 Z5\nG32 Z-40.000 F1.5\nG32 X21.171 W-2.984\nG32 X29.140 W-0.000\nG32 X29.140 W-3.984\nG32 X37.108 W-3.984\nG32 X45.077 W-3.984\nG00 X52.077\nZ5\nG00 X80 Z20\nM30\n";
@@ -586,7 +587,48 @@ fn a_chain_that_never_turns_back_is_followed_without_turning_back() {
                 a.z
             );
         }
-        assert_eq!(certify(src, &Machine::reference(), false), Some(Ok(())));
+        for jerk in [false, true] {
+            assert_eq!(certify(src, &Machine::reference(), jerk), Some(Ok(())));
+        }
+    }
+}
+
+/// Found by the `thread` fuzz target: lead 4 at 1000 rev/min into legs
+/// of 16 µm along Z. Z slows from 66.667 mm/s to 22.7 (0.047 mm of X
+/// over 0.016 of Z), then to 0.27 (3.98 mm of X), and runs on at 66.667
+/// after that. The chain's point passes both corners in one period; Z,
+/// told in that period only of the first, sped up by a·dt and ran 0.06 mm
+/// past the point (to Z−20.184, the corner being at Z−20.107 and the
+/// leg after it ending at Z−20.123) and came back. Z now never turns
+/// back, never passes Z−20.123 before the last leg, and the run is
+/// certified with and without jerk limiting.
+#[test]
+fn an_axis_whose_chain_point_passes_two_corners_in_a_period_never_passes_it() {
+    let src = "G97 S1000 M03\nG99\nG00 X21.471 Z5\nG32 Z-19.294 F4\nG32 X21.502 W-0.109\nG32 X22.533 W-0.688\nG32 X22.627 W-0.016\nG32 X30.596 W-0.016\nG32 X30.689 W-2.984\nG00 X37.689\nZ5\nG00 X80 Z20\nM30\n";
+    let r = run(src);
+    assert_eq!(r.state, RunState::Ended);
+    let th: Vec<&SetPoint> = r
+        .pts
+        .iter()
+        .filter(|p| p.motion == Motion::Thread && p.z < 5.0)
+        .collect();
+    for w in th.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        assert!(
+            b.z <= a.z,
+            "Z turns back at {} s: {} after {}",
+            b.time_s,
+            b.z,
+            a.z
+        );
+        // Until the point reaches the last leg (line 9), Z stays on or
+        // behind the leg that ends at Z−20.123.
+        if b.line < 9 {
+            assert!(b.z >= -20.123 - 1e-9, "Z at {} at {} s", b.z, b.time_s);
+        }
+    }
+    for jerk in [false, true] {
+        assert_eq!(certify(src, &Machine::reference(), jerk), Some(Ok(())));
     }
 }
 

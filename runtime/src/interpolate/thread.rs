@@ -569,6 +569,7 @@ impl<P: Plc> Engine<P> {
         }
         let rps = self.spindle.rpm().abs() / 60.0;
         let mut slowest = axis_speed(head, dir.abs(), rps);
+        ahead.speed = slowest;
         let mut n = 0;
         let on = |k: usize| self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(k);
         let mut k = 0;
@@ -590,10 +591,16 @@ impl<P: Plc> Engine<P> {
             }
             let u = axis_speed(leg, d.abs(), rps);
             // (Slower by more than rounding: legs of one speed are not
-            // corners that slow the axis.)
-            if u < slowest * (1.0 - 1e-9) && n < SLOWS {
-                ahead.slows[n] = (run, u);
-                n += 1;
+            // corners that slow the axis. Past SLOWS corners the last one
+            // takes the slower speed: the point is then taken to slow
+            // sooner than it does, which only holds the axis back more.)
+            if u < slowest * (1.0 - 1e-9) {
+                if n < SLOWS {
+                    ahead.slows[n] = (run, u);
+                    n += 1;
+                } else {
+                    ahead.slows[SLOWS - 1].1 = u;
+                }
                 slowest = u;
             }
             run += d.abs();
