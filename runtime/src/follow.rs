@@ -52,6 +52,21 @@ pub struct Ahead {
     /// not known): over a period that crossed a corner its step is partly
     /// the speed before it.
     pub speed: f64,
+    /// Where the run ends at the chain's end: how the point brakes for it.
+    pub end: Option<EndBrake>,
+}
+
+/// How the chain's point brakes on one axis for the chain's end: from
+/// `from` mm before the end (no sooner), at no more than `decel`. An
+/// axis closing a lag on the point must not catch it as it slows
+/// ([`closing_speed`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EndBrake {
+    /// The axis distance before the end where the point begins to brake
+    /// (mm).
+    pub from: f64,
+    /// The point's deceleration on the axis (mm/s²).
+    pub decel: f64,
 }
 
 impl Ahead {
@@ -61,6 +76,7 @@ impl Ahead {
         stops: false,
         slows: [(f64::INFINITY, 0.0); SLOWS],
         speed: 0.0,
+        end: None,
     };
 }
 
@@ -148,20 +164,34 @@ impl AxisFollow {
     /// this period is ahead − u·dt). The point runs at s (or its leg's
     /// speed, where that is lower), and after each corner at that
     /// corner's speed, up to the next: it is no sooner there (in a ramp
-    /// it only runs faster), so each line d + u·(t − τ)
-    /// lies below the point from then on, and an axis behind them all is
-    /// behind the point. The corners the point passed in this period
-    /// count so too (d = 0): its speed over the period is still partly
-    /// the faster one.
+    /// it only runs faster), so each line d + u·(t − τ) lies below the
+    /// point from then on, and an axis behind them all is behind the
+    /// point. The corners the point passed in this period count so too
+    /// (d = 0): its speed over the period is still partly the faster one.
+    /// Where the chain's end lies ahead, each line bends into the point's
+    /// braking where the line reaches the braking's start (no later than
+    /// the point does, which is then no slower), and the axis closes on
+    /// it no faster than [`closing_speed`] allows.
     fn passing_limit(&self, t: f64, vt: f64, ahead: f64, ahead_of: &Ahead, a: f64, dt: f64) -> f64 {
         let s = vt.abs();
+        // The limit behind the line of speed u through the corner d mm
+        // on, reached at τ.
+        let behind = |u: f64, d: f64, tau: f64| {
+            let gap = ahead - u * dt + d - u * tau;
+            let mut w = brake_limit(gap, 0.0, a, dt);
+            if let Some(end) = ahead_of.end {
+                let tb = (tau + (ahead_of.run - end.from - d) / u).max(0.0);
+                w = w.min(closing_speed(gap, a, end.decel, tb, u / end.decel, dt));
+            }
+            u + w
+        };
         let mut lim = f64::INFINITY;
         if ahead > 0.0 {
-            lim = s + brake_limit(ahead - s * dt, 0.0, a, dt);
+            lim = behind(s, 0.0, 0.0);
         }
         for &(c, u) in self.corners.iter().flatten() {
             if (t - c) * vt >= 0.0 && u < s {
-                lim = lim.min(u + brake_limit(ahead - u * dt, 0.0, a, dt));
+                lim = lim.min(behind(u, 0.0, 0.0));
             }
         }
         // (Where the point is at each corner, and when, at the speeds
@@ -177,11 +207,45 @@ impl AxisFollow {
             at = d;
             if u < speed {
                 speed = u;
-                let gap = ahead - u * dt + d - u * tau;
-                lim = lim.min(u + brake_limit(gap, 0.0, a, dt));
+                lim = lim.min(behind(u, d, tau));
             }
         }
         lim
+    }
+}
+
+/// How much faster than the point an axis `g` mm behind it (in the
+/// frame that runs with the point) may run and never pass it, where the
+/// point runs on for `tb` seconds, then slows at `decel` and stands
+/// after `ts` more. Braking at `a` from now on, the axis either matches
+/// the point's speed within `tb` (the relative speed w ≤ a·tb; that it
+/// stops within g is the plain limit), or it is x = w − a·tb faster when
+/// the point begins to brake, with G − x·tb left (G = g − a·tb²/2), and
+/// closes at r = a − decel from then on: the gap is least where x runs
+/// out (x ≤ r·ts: x² + 2·r·tb·x ≤ 2·r·G) or where the point stands (x ≥
+/// r·ts: G − x·(tb + ts) + r·ts²/2 ≥ 0); after that the axis only has to
+/// stop where the point stands, which the plain limit to the chain's end
+/// holds. One period's speed step off (the continuous bound is a little
+/// over the discrete one).
+fn closing_speed(g: f64, a: f64, decel: f64, tb: f64, ts: f64, dt: f64) -> f64 {
+    let before = a * tb;
+    let r = a - decel;
+    let big_g = g - 0.5 * a * tb * tb;
+    let at_stand = (big_g + 0.5 * r * ts * ts) / (tb + ts);
+    let x = if at_stand >= r * ts || r <= 0.0 {
+        at_stand
+    } else {
+        let disc = r * tb * r * tb + 2.0 * r * big_g;
+        if disc < 0.0 {
+            0.0
+        } else {
+            (libm::sqrt(disc) - r * tb).min(r * ts)
+        }
+    };
+    if x > 0.0 {
+        (before + x - a * dt).max(before)
+    } else {
+        before
     }
 }
 
@@ -398,6 +462,7 @@ mod tests {
                         Ahead::UNKNOWN.slows
                     },
                     speed: 0.0,
+                    end: None,
                 };
                 f.step(t, a, vmax, &ahead, DT);
                 over = over.max(f.p - t);
@@ -420,15 +485,34 @@ mod tests {
     /// stops). How far the axis ever was past the point, and its most
     /// negative speed.
     fn follow_legs(legs: &[(f64, f64)], a: f64, vmax: f64) -> (f64, f64) {
+        follow_braking_legs(legs, 0.0, legs[0].1, a, vmax)
+    }
+
+    /// The same, where the point brakes for the end at `decel` on its
+    /// last leg (0: it stops there at once) once the leg's rest is its
+    /// stopping distance, as a chain brakes for its end, and the axis
+    /// starts at speed `v0`.
+    fn follow_braking_legs(
+        legs: &[(f64, f64)],
+        decel: f64,
+        v0: f64,
+        a: f64,
+        vmax: f64,
+    ) -> (f64, f64) {
         let total: f64 = legs.iter().map(|l| l.0).sum();
+        let last = legs[legs.len() - 1];
+        let from = stopping_distance(last.1, decel, DT);
+        let end = (decel > 0.0 && from <= last.0).then_some(EndBrake { from, decel });
         let mut f = AxisFollow {
-            v: legs[0].1,
+            v: v0,
             ..AxisFollow::default()
         };
         let (mut over, mut back) = (f64::NEG_INFINITY, 0.0f64);
         let (mut k, mut into, mut t) = (0, 0.0, 0.0);
         for _ in 0..20_000 {
-            // One period of the point: on along the legs at their speeds.
+            // One period of the point: on along the legs at their speeds,
+            // no faster than it can still stop at the end.
+            let before = t;
             let mut left = DT;
             while k < legs.len() && left > 0.0 {
                 let step = (legs[k].1 * left).min(legs[k].0 - into);
@@ -439,9 +523,21 @@ mod tests {
                     (k, into) = (k + 1, 0.0);
                 }
             }
+            let rest = total - before;
+            if decel > 0.0 && rest <= last.0 && t - before > brake_limit(rest, 0.0, decel, DT) * DT
+            {
+                (t, into) = (before + brake_limit(rest, 0.0, decel, DT) * DT, 0.0);
+                k = 0;
+                while k < legs.len() && into + legs[k].0 <= t {
+                    into += legs[k].0;
+                    k += 1;
+                }
+                into = t - into;
+            }
             let mut ahead = Ahead {
                 run: total - t,
                 stops: true,
+                end,
                 ..Ahead::UNKNOWN
             };
             let (mut n, mut slowest, mut run) = (0, legs.get(k).map_or(0.0, |l| l.1), 0.0);
@@ -512,6 +608,24 @@ mod tests {
             (2.0, 0.5),
         ];
         let (over, back) = follow_legs(&many, 1500.0, 4000.0 / 60.0);
+        assert!(over <= 1e-12, "passed the point by {over} mm");
+        assert!(back >= 0.0, "turned back at {back} mm/s");
+    }
+
+    /// A point that runs at 66.667 mm/s (X long on a thread leg), then
+    /// slows to 1.04 mm/s for its last 0.0465 mm (a leg along Z of 2.984
+    /// mm at lead 4, 1000 rev/min), where it brakes for the chain's end at
+    /// 31.2 mm/s² (the path's 2000 mm/s² times X's share) over its last
+    /// 17.8 µm. The axis at 1500 mm/s² starts at 10 mm/s as the point
+    /// jumps to its speed, and closes the lag at up to 100 mm/s, braking
+    /// for the corner on the line of the slow leg. Taking the point to run
+    /// on at 1.04 mm/s, it caught the point as the point braked, passed it
+    /// by 1.1 µm and came back (in the thread target's chain by 0.85 µm).
+    /// Told how the point brakes, it never passes it and never turns back.
+    #[test]
+    fn an_axis_closing_on_a_point_that_brakes_for_the_end_never_passes_it() {
+        let legs = [(2.03, 200.0 / 3.0), (0.0465, 1.04)];
+        let (over, back) = follow_braking_legs(&legs, 31.2, 10.0, 1500.0, 100.0);
         assert!(over <= 1e-12, "passed the point by {over} mm");
         assert!(back >= 0.0, "turned back at {back} mm/s");
     }

@@ -8,12 +8,12 @@
 
 use super::{Engine, Motion, RoomWarning};
 use crate::command::{MoveKind, Tag, Thread};
-use crate::follow::{Ahead, SLOWS};
+use crate::follow::{Ahead, EndBrake, SLOWS};
 use crate::geom::Curve;
 use crate::math::V2;
 use crate::planner::{ItemKind, Segment};
 use crate::plc::{Plc, PlcFunction, SpindleDir};
-use crate::profile::brake_limit;
+use crate::profile::{brake_limit, stopping_distance};
 use nc::error::Alarm;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,6 +101,23 @@ fn axis_speed(leg: &Segment, d: f64, rps: f64) -> f64 {
     } else {
         0.0
     }
+}
+
+/// How the chain's point brakes on an axis for the chain's end, on the
+/// chain's last leg `leg` (which moves the axis by `d` mm). The chain
+/// brakes along that leg's path at its acceleration once the leg's rest
+/// is its stopping distance (`chain_brake_limit`), so on the axis the
+/// point slows at a·d/len from the stopping distance of its speed there
+/// at that rate. Not known where the leg is shorter than that (W118):
+/// the braking then begins on a leg before it, at other rates.
+fn end_brake(leg: &Segment, d: f64, rps: f64, dt: f64) -> Option<EndBrake> {
+    let decel = if leg.len > 0.0 {
+        leg.a * d / leg.len
+    } else {
+        0.0
+    };
+    let from = stopping_distance(axis_speed(leg, d, rps), decel, dt);
+    (decel > 0.0 && from <= d).then_some(EndBrake { from, decel })
 }
 
 /// The long axis's share of a move's path acceleration, `long` being the
@@ -570,6 +587,7 @@ impl<P: Plc> Engine<P> {
         let rps = self.spindle.rpm().abs() / 60.0;
         let mut slowest = axis_speed(head, dir.abs(), rps);
         ahead.speed = slowest;
+        let (mut leg_k, mut d_k) = (*head, dir.abs());
         let mut n = 0;
         let on = |k: usize| self.q.seg(k).is_some_and(|s| s.v_exit > 0.0) && self.thread_next(k);
         let mut k = 0;
@@ -578,6 +596,7 @@ impl<P: Plc> Engine<P> {
                 // The chain ends: the point stops there, even where the
                 // last leg is too short for it to brake (W118).
                 ahead.stops = true;
+                ahead.end = end_brake(&leg_k, d_k, rps, self.dt);
                 break;
             }
             k += 1;
@@ -590,6 +609,7 @@ impl<P: Plc> Engine<P> {
                 break;
             }
             let u = axis_speed(leg, d.abs(), rps);
+            (leg_k, d_k) = (*leg, d.abs());
             // (Slower by more than rounding: legs of one speed are not
             // corners that slow the axis. Past SLOWS corners the last one
             // takes the slower speed: the point is then taken to slow
