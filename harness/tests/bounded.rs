@@ -446,6 +446,13 @@ fn the_thread_target_findings_of_its_first_runs() {
         // one: its path speed, summed over both legs unscaled, looked too
         // fast to stop, and the chain left the spindle, 0.5 % slow.)
         "9afe09000601ffffffffffffffffffff000000000000008d",
+        // (Stop 46: legs of 16 µm whose corners the chain passed in one
+        // period; Z, told only of the first, ran 0.06 mm past the point.)
+        "f7de215a0107212c0301ff0103bfec000900040000002d00",
+        // (Stop 47: a leg of 16 µm and the corner after it passed in one
+        // period, the check's tolerance of the chord's bend only at the
+        // corner: the short leg's start was "missed" by 1 µm.)
+        "f7de010900000001fffffe",
     ];
     for hex in findings {
         let data: Vec<u8> = (0..hex.len())

@@ -702,6 +702,20 @@ fn random_outward_chains_never_turn_back() {
     assert!(ran > 900, "{ran} chains ran");
 }
 
+/// Found by the `thread` target (stop 47), a false alarm of `gbvm check`
+/// older than that stop: a Z thread at lead 4, 1000 rev/min, a leg of
+/// 16 µm along Z and then a 45° leg. The chain passes the short leg and
+/// the corner in one period; X starts in that period at a·dt, and the
+/// period's chord passes the short leg's start (Z−9.129) 1.0 µm off,
+/// where only the corner itself had the tolerance of the chord's bend
+/// (2.5 µm: `chain_corner_mm`). The end points less than a period's
+/// travel before a corner now share it, and the run is certified.
+#[test]
+fn an_end_point_a_period_before_a_corner_shares_its_tolerance() {
+    let src = "G97 S1000 M03\nG99\nG00 X15.196 Z5\nG32 Z-9.129 F4\nG32 X15.196 W-0.016\nG32 X23.165 W-3.984\nG00 X30.165\nZ5\nG00 X80 Z20\nM30\n";
+    assert_eq!(certify(src, &Machine::reference(), false), Some(Ok(())));
+}
+
 /// Chains that the first versions of the follower's end braking got
 /// wrong (the bounded `thread` run): a last leg of 16 µm along Z, too
 /// short to brake in (W118), taken to brake from the start so that Z

@@ -995,6 +995,7 @@ impl Certifier {
                     enter = axis_steps(legs);
                 }
             }
+            self.widen_before_corner();
         }
         self.pending.push_back(Pending {
             end,
@@ -1009,6 +1010,33 @@ impl Certifier {
             at: (0.0, 0, 0),
         });
         self.last_end = Some(end);
+    }
+
+    /// The end points of the thread legs that end less than a period's
+    /// travel before the corner the last pending leg ends at (legs of a
+    /// few µm): the chain may pass them and the corner in one period, so
+    /// that period's chord is bent by the corner as much as the corner's
+    /// own; they take its tolerance.
+    fn widen_before_corner(&mut self) {
+        let top = |a: &Option<Axis>| a.map_or(0.0, |a| a.max_feed);
+        let reach = libm::hypot(top(&self.axes[0]), top(&self.axes[1])) * self.dt;
+        let mut legs = self.pending.iter_mut().rev();
+        let Some(corner) = legs.next().filter(|m| m.corner) else {
+            return;
+        };
+        let (tol, mut run) = (
+            corner.tol,
+            corner
+                .start
+                .map_or(f64::INFINITY, |a| (corner.end - a).norm()),
+        );
+        for m in legs {
+            let Some(start) = m.start.filter(|_| m.thread.is_some() && run <= reach) else {
+                break;
+            };
+            m.tol = m.tol.max(tol);
+            run += (m.end - start).norm();
+        }
     }
 
     /// The one-line summary: the worst figure of each kind.
