@@ -59,7 +59,7 @@ pub struct Ahead {
 /// How the chain's point brakes on one axis for the chain's end: from
 /// `from` mm before the end (no sooner), at no more than `decel`. An
 /// axis closing a lag on the point must not catch it as it slows
-/// ([`closing_speed`]).
+/// (`closing_speed`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EndBrake {
     /// The axis distance before the end where the point begins to brake
