@@ -544,6 +544,37 @@ fn a_short_slower_leg_does_not_brake_the_chain() {
     assert_eq!(certify(src, &Machine::reference(), false), Some(Ok(())));
 }
 
+/// The thread periods of a run from the index pulse (Z leaves 5) to the
+/// last one.
+fn chain_periods(r: &Run) -> Vec<&SetPoint> {
+    r.pts
+        .iter()
+        .filter(|p| p.motion == Motion::Thread && p.z < 5.0)
+        .collect()
+}
+
+/// Asserts that set points of a chain that runs out on X and along −Z
+/// never turn back on either axis.
+fn assert_outward(th: &[&SetPoint], src: &str) {
+    for w in th.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        assert!(
+            b.x >= a.x,
+            "X turns back at {} s: {} after {}\n{src}",
+            b.time_s,
+            b.x,
+            a.x
+        );
+        assert!(
+            b.z <= a.z,
+            "Z turns back at {} s: {} after {}\n{src}",
+            b.time_s,
+            b.z,
+            a.z
+        );
+    }
+}
+
 /// Chains whose every leg runs out on X and along −Z (the thread fuzz
 /// target's shape) whose axes had to stop or slow at corners while they
 /// still closed the lag of a corner before: a square step at 2500
@@ -563,30 +594,9 @@ fn a_chain_that_never_turns_back_is_followed_without_turning_back() {
     for src in [step, slow_x] {
         let r = run(src);
         assert_eq!(r.state, RunState::Ended);
-        // From the index pulse (Z leaves 5) to the last thread period.
-        let th: Vec<&SetPoint> = r
-            .pts
-            .iter()
-            .filter(|p| p.motion == Motion::Thread && p.z < 5.0)
-            .collect();
+        let th = chain_periods(&r);
         assert!(th.len() > 500, "{} thread periods", th.len());
-        for w in th.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            assert!(
-                b.x >= a.x,
-                "X turns back at {} s: {} after {}",
-                b.time_s,
-                b.x,
-                a.x
-            );
-            assert!(
-                b.z <= a.z,
-                "Z turns back at {} s: {} after {}",
-                b.time_s,
-                b.z,
-                a.z
-            );
-        }
+        assert_outward(&th, src);
         for jerk in [false, true] {
             assert_eq!(certify(src, &Machine::reference(), jerk), Some(Ok(())));
         }
@@ -610,32 +620,12 @@ fn an_axis_whose_chain_point_passes_two_corners_in_a_period_never_passes_it() {
     let src = "G97 S1000 M03\nG99\nG00 X21.471 Z5\nG32 Z-19.294 F4\nG32 X21.502 W-0.109\nG32 X22.533 W-0.688\nG32 X22.627 W-0.016\nG32 X30.596 W-0.016\nG32 X30.689 W-2.984\nG00 X37.689\nZ5\nG00 X80 Z20\nM30\n";
     let r = run(src);
     assert_eq!(r.state, RunState::Ended);
-    let th: Vec<&SetPoint> = r
-        .pts
-        .iter()
-        .filter(|p| p.motion == Motion::Thread && p.z < 5.0)
-        .collect();
-    for w in th.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        assert!(
-            b.z <= a.z,
-            "Z turns back at {} s: {} after {}",
-            b.time_s,
-            b.z,
-            a.z
-        );
-        assert!(
-            b.x >= a.x,
-            "X turns back at {} s: {} after {}",
-            b.time_s,
-            b.x,
-            a.x
-        );
-        // Until the point reaches the last leg (line 9), Z stays on or
-        // behind the leg that ends at Z−20.123.
-        if b.line < 9 {
-            assert!(b.z >= -20.123 - 1e-9, "Z at {} at {} s", b.z, b.time_s);
-        }
+    let th = chain_periods(&r);
+    assert_outward(&th, src);
+    // Until the point reaches the last leg (line 9), Z stays on or behind
+    // the leg that ends at Z−20.123.
+    for p in th.iter().filter(|p| p.line < 9) {
+        assert!(p.z >= -20.123 - 1e-9, "Z at {} at {} s", p.z, p.time_s);
     }
     for jerk in [false, true] {
         assert_eq!(certify(src, &Machine::reference(), jerk), Some(Ok(())));
@@ -685,19 +675,7 @@ fn random_outward_chains_never_turn_back() {
         let r = run(&src);
         assert_eq!(r.state, RunState::Ended, "{src}");
         ran += 1;
-        let th: Vec<&SetPoint> = r
-            .pts
-            .iter()
-            .filter(|p| p.motion == Motion::Thread && p.z < 5.0)
-            .collect();
-        for w in th.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            assert!(
-                b.x >= a.x && b.z <= a.z,
-                "turns back at {} s\n{src}",
-                b.time_s
-            );
-        }
+        assert_outward(&chain_periods(&r), &src);
     }
     assert!(ran > 900, "{ran} chains ran");
 }
