@@ -178,37 +178,21 @@ fn lower_and_check(
     // A static program without G-code macros is dry-run.
     let table = &opts.machine.r#macro.g_code_macros;
     let dry = !uses_g_code_macros(units, programs, table) && check::is_static(units, programs);
-    if !dry {
-        let files = source_files(units);
-        let ir = build_ir(units, programs, opts, diags);
-        // (The prediction reads the trees: they go after it.)
-        if !opts.predict {
-            free_trees_in_background(units, programs);
-        }
-        let (module, ir) = lower_ir(ir, units, &files, opts, diags);
-        // Not dry-run, a program may still hold a geometry alarm the
-        // pass `modal` proves (W119).
-        let arcs = ir.as_ref().is_some_and(known_faults::wanted);
-        if let (Some(ir), false, true) = (&ir, has_errors(diags), arcs) {
-            let facts = modal::analyze(ir, &opts.machine);
-            diags.extend(known_faults::arcs(ir, &facts, &opts.machine));
-        }
-        // (Not kept, the IR goes before the prediction.)
-        let ir = ir.filter(|_| keep_ir);
-        let module = verified(module, Vec::new(), diags);
-        // Nor is its run's alarm an error; but where the run is known,
-        // the compiler makes it, says where it stops (W124) and gives the
-        // warnings of the blocks it ran, as a dry run would.
-        if let (Some(m), false, true) = (&module, has_errors(diags), opts.predict) {
-            let found = predict::run(m, units, &files, opts, diags);
-            diags.extend(found);
-        }
-        if opts.predict {
-            free_trees_in_background(units, programs);
-        }
-        return (files, module, ir);
+    match dry {
+        true => lower_static(units, programs, opts, keep_ir, diags),
+        false => lower_dynamic(units, programs, opts, keep_ir, diags),
     }
-    let units = &*units;
+}
+
+/// `lower_and_check` for a static program: dry-run beside the lowering
+/// when it is large.
+fn lower_static(
+    units: &[Unit],
+    programs: &[Program],
+    opts: &Options,
+    keep_ir: bool,
+    diags: &mut Vec<(usize, Diagnostic)>,
+) -> (Vec<SourceFile>, Option<isa::Module>, Option<ir::Module>) {
     let dry_run = || check::dry_run(units, programs, &opts.machine);
     let parallel = block_count(programs) >= PARALLEL_BLOCKS;
     std::thread::scope(|s| {
@@ -235,6 +219,45 @@ fn lower_and_check(
         };
         (files, verified(module, found, diags), ir)
     })
+}
+
+/// `lower_and_check` for a program with macros: no dry run, but the
+/// arcs pass `modal` proves faulty and the prediction's run.
+fn lower_dynamic(
+    units: &mut [Unit],
+    programs: &[Program],
+    opts: &Options,
+    keep_ir: bool,
+    diags: &mut Vec<(usize, Diagnostic)>,
+) -> (Vec<SourceFile>, Option<isa::Module>, Option<ir::Module>) {
+    let files = source_files(units);
+    let ir = build_ir(units, programs, opts, diags);
+    // (The prediction reads the trees: they go after it.)
+    if !opts.predict {
+        free_trees_in_background(units, programs);
+    }
+    let (module, ir) = lower_ir(ir, units, &files, opts, diags);
+    // Not dry-run, a program may still hold a geometry alarm the
+    // pass `modal` proves (W119).
+    let arcs = ir.as_ref().is_some_and(known_faults::wanted);
+    if let (Some(ir), false, true) = (&ir, has_errors(diags), arcs) {
+        let facts = modal::analyze(ir, &opts.machine);
+        diags.extend(known_faults::arcs(ir, &facts, &opts.machine));
+    }
+    // (Not kept, the IR goes before the prediction.)
+    let ir = ir.filter(|_| keep_ir);
+    let module = verified(module, Vec::new(), diags);
+    // Nor is its run's alarm an error; but where the run is known,
+    // the compiler makes it, says where it stops (W124) and gives the
+    // warnings of the blocks it ran, as a dry run would.
+    if let (Some(m), false, true) = (&module, has_errors(diags), opts.predict) {
+        let found = predict::run(m, units, &files, opts, diags);
+        diags.extend(found);
+    }
+    if opts.predict {
+        free_trees_in_background(units, programs);
+    }
+    (files, module, ir)
 }
 
 /// Verifies the module when the lowering found no error, adds the dry

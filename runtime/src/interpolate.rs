@@ -610,54 +610,9 @@ impl<P: Plc> Engine<P> {
         if self.reset_req {
             self.reset_step();
         } else {
-            match self.state {
-                RunState::Ended | RunState::Alarm(_) => self.cycle_start = false,
-                RunState::Idle => {
-                    if core::mem::take(&mut self.cycle_start) {
-                        self.state = RunState::Running;
-                        self.run();
-                    }
-                }
-                RunState::Stopped(kind) => {
-                    if core::mem::take(&mut self.cycle_start) {
-                        if !matches!(kind, PauseKind::SingleBlock) {
-                            if let Some(Item {
-                                kind: ItemKind::Pause(_),
-                                ..
-                            }) = self.q.get(0)
-                            {
-                                self.q.pop();
-                                self.started = false;
-                            }
-                        }
-                        self.state = RunState::Running;
-                        self.run();
-                    }
-                }
-                RunState::Held | RunState::Running | RunState::Starved => {
-                    if core::mem::take(&mut self.cycle_start) {
-                        self.hold = false;
-                    }
-                    if self.state == RunState::Held && !self.hold {
-                        self.state = RunState::Running;
-                    }
-                    self.run();
-                }
-            }
+            self.run_state();
         }
-        let thread = self.motion == Motion::Thread;
-        let acc = [self.cfg.x.accel, self.cfg.z.accel];
-        let vmax = [self.cfg.x.max_feed, self.cfg.z.max_feed];
-        let ahead = if thread {
-            [0, 1].map(|i| self.chain_runs_on(i, stopping_distance(vmax[i], acc[i], self.dt)))
-        } else {
-            [Ahead::UNKNOWN; 2]
-        };
-        let axes = FollowAxes { acc, vmax, ahead };
-        self.out = self.follow.step(self.pos, thread, axes, self.dt);
-        if !thread && self.follow.engaged() {
-            self.motion = Motion::Thread;
-        }
+        self.follow_point();
         self.last_step = self.out - before;
         self.last_step_c = self.c - before_c;
         if let Some(run) = &mut self.plane {
@@ -671,6 +626,67 @@ impl<P: Plc> Engine<P> {
         };
         self.check_stroke();
         self.setpoint()
+    }
+
+    /// Cycle start and feed hold against the run state, and this
+    /// period's motion if the program runs.
+    fn run_state(&mut self) {
+        match self.state {
+            RunState::Ended | RunState::Alarm(_) => self.cycle_start = false,
+            RunState::Idle => {
+                if core::mem::take(&mut self.cycle_start) {
+                    self.state = RunState::Running;
+                    self.run();
+                }
+            }
+            RunState::Stopped(kind) => {
+                if core::mem::take(&mut self.cycle_start) {
+                    // Cycle start passes the pause that stopped the run
+                    // (after a single block's stop, a pause at the head
+                    // is still to come).
+                    if !matches!(kind, PauseKind::SingleBlock) {
+                        if let Some(Item {
+                            kind: ItemKind::Pause(_),
+                            ..
+                        }) = self.q.get(0)
+                        {
+                            self.q.pop();
+                            self.started = false;
+                        }
+                    }
+                    self.state = RunState::Running;
+                    self.run();
+                }
+            }
+            RunState::Held | RunState::Running | RunState::Starved => {
+                if core::mem::take(&mut self.cycle_start) {
+                    self.hold = false;
+                }
+                if self.state == RunState::Held && !self.hold {
+                    self.state = RunState::Running;
+                }
+                self.run();
+            }
+        }
+    }
+
+    /// The axes follow the point: at once, or in a thread chain (and
+    /// until they have closed their lag after it) each within its
+    /// acceleration (follow.rs).
+    fn follow_point(&mut self) {
+        let thread = self.motion == Motion::Thread;
+        let acc = [self.cfg.x.accel, self.cfg.z.accel];
+        let vmax = [self.cfg.x.max_feed, self.cfg.z.max_feed];
+        let ahead = if thread {
+            [0, 1].map(|i| self.chain_runs_on(i, stopping_distance(vmax[i], acc[i], self.dt)))
+        } else {
+            [Ahead::UNKNOWN; 2]
+        };
+        let axes = FollowAxes { acc, vmax, ahead };
+        self.out = self.follow.step(self.pos, thread, axes, self.dt);
+        if !thread && self.follow.engaged() {
+            self.motion = Motion::Thread;
+        }
     }
 
     fn setpoint(&self) -> SetPoint {
@@ -937,62 +953,8 @@ impl<P: Plc> Engine<P> {
 
     fn step_move(&mut self) {
         if !self.started {
-            let Some(item) = self.q.get(0) else { return };
-            let ItemKind::Move(seg) = &item.kind else {
+            if !self.start_move() {
                 return;
-            };
-            // Start from rest only: a landing period is followed by one
-            // standing period, so the velocity passes through zero. With
-            // jerk limiting, two: the acceleration too, so the jerk of the
-            // start does not add to that of the last move's end (each
-            // may take the whole limit: a rapid's window is a/j).
-            let need = if self.jerk { 2 } else { 1 };
-            if self.still < need || self.follow.engaged() {
-                return;
-            }
-            if self.hold && !matches!(seg.kind, MoveKind::Thread(_)) {
-                self.state = RunState::Held;
-                return;
-            }
-            let tag = item.tag;
-            if let Some(code) = self.check_move(seg) {
-                self.raise(code, tag);
-                return;
-            }
-            self.cur = *seg;
-            self.started = true;
-            self.cap_next = f64::INFINITY;
-            self.s = 0.0;
-            self.lam = 0.0;
-            self.v = 0.0;
-            self.rapid_v = [0.0; 3];
-            self.stall_s = 0.0;
-            self.skip_hit = None;
-            self.tag = tag;
-            if let MoveKind::Offset = self.cur.kind {
-                self.fixed_work = Some(self.pos - self.shift);
-            } else {
-                self.shift = self.cur.shift;
-                self.fixed_work = None;
-            }
-            if let MoveKind::Thread(_) = self.cur.kind {
-                self.thread = ThreadRun::STARTING;
-            }
-            self.s_out = 0.0;
-            self.rapid_raw = self.pos;
-            self.rapid_raw_c = self.c;
-            if self.jerk {
-                let at = if self.axis_rapid() {
-                    self.pos
-                } else {
-                    V2::ZERO
-                };
-                self.smooth.reset(at);
-                self.rapid_avg.reset(self.pos);
-                self.rapid_avg_c.reset(V2::new(self.c, 0.0));
-                self.turns.clear();
-                self.feed_avg.reset(self.pos);
-                self.feed_avg_c.reset(V2::new(self.c, 0.0));
             }
         } else if let Some(s) = self.q.seg(0) {
             self.cur.v_exit = s.v_exit;
@@ -1002,6 +964,78 @@ impl<P: Plc> Engine<P> {
             _ if self.axis_rapid() => self.step_rapid(),
             MoveKind::Thread(_) => self.step_thread(),
             _ => self.step_path(),
+        }
+    }
+
+    /// Starts the head move if it may start in this period; false where
+    /// it waits (for the axes to stand, for cycle start after a hold) or
+    /// raised an alarm.
+    fn start_move(&mut self) -> bool {
+        let Some(item) = self.q.get(0) else {
+            return false;
+        };
+        let ItemKind::Move(seg) = &item.kind else {
+            return false;
+        };
+        // Start from rest only: a landing period is followed by one
+        // standing period, so the velocity passes through zero. With jerk
+        // limiting, two: the acceleration too, so the jerk of the start
+        // does not add to that of the last move's end (each may take the
+        // whole limit: a rapid's window is a/j).
+        let need = if self.jerk { 2 } else { 1 };
+        if self.still < need || self.follow.engaged() {
+            return false;
+        }
+        if self.hold && !matches!(seg.kind, MoveKind::Thread(_)) {
+            self.state = RunState::Held;
+            return false;
+        }
+        let (seg, tag) = (*seg, item.tag);
+        if let Some(code) = self.check_move(&seg) {
+            self.raise(code, tag);
+            return false;
+        }
+        self.begin_move(seg, tag);
+        true
+    }
+
+    /// The run's state for `seg`, which starts from rest where the axes
+    /// stand.
+    fn begin_move(&mut self, seg: Segment, tag: Tag) {
+        self.cur = seg;
+        self.started = true;
+        self.cap_next = f64::INFINITY;
+        self.s = 0.0;
+        self.lam = 0.0;
+        self.v = 0.0;
+        self.rapid_v = [0.0; 3];
+        self.stall_s = 0.0;
+        self.skip_hit = None;
+        self.tag = tag;
+        if let MoveKind::Offset = self.cur.kind {
+            self.fixed_work = Some(self.pos - self.shift);
+        } else {
+            self.shift = self.cur.shift;
+            self.fixed_work = None;
+        }
+        if let MoveKind::Thread(_) = self.cur.kind {
+            self.thread = ThreadRun::STARTING;
+        }
+        self.s_out = 0.0;
+        self.rapid_raw = self.pos;
+        self.rapid_raw_c = self.c;
+        if self.jerk {
+            let at = if self.axis_rapid() {
+                self.pos
+            } else {
+                V2::ZERO
+            };
+            self.smooth.reset(at);
+            self.rapid_avg.reset(self.pos);
+            self.rapid_avg_c.reset(V2::new(self.c, 0.0));
+            self.turns.clear();
+            self.feed_avg.reset(self.pos);
+            self.feed_avg_c.reset(V2::new(self.c, 0.0));
         }
     }
 

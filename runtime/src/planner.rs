@@ -1052,85 +1052,22 @@ impl Planner {
             // A non-move before: its own move (if any) ends in a stop.
             _ => return,
         };
-        // The corner speed and the shares of acceleration the two moves
-        // keep back for it: the move before for the period through the
-        // corner, the move after for the period after it.
-        let (mut vj, mut out, mut into, mut step) = (0.0, 0.0, 0.0, 0.0);
-        let smoothing = self.smoothing_of(cur.kind).copied();
-        if self.joinable(prev, cur) {
-            let du = cur.t0 - prev.t1;
-            let threads = matches!(cur.kind, MoveKind::Thread(_));
-            vj = if threads {
-                // A chain's speed along the path jumps at a corner (the
-                // lead stays along the long axis, the short axes follow:
-                // follow.rs): each leg's cap binds its own path speed,
-                // and the joint lets the faster leg's through, seen from
-                // the move before. (Their smaller one turned a 45°
-                // pull-out after a Z thread at Z's top feed into a brake
-                // and broke the lead.)
-                prev.v_max.max(cur.v_max * prev.chain_scale(cur))
-            } else {
-                prev.v_max.min(cur.v_max)
-            };
-            if !threads {
-                let iax = smoothing.map_or(self.iax, |s| s.iax);
-                // The velocity step of the corner within its share of
-                // each axis's acceleration ...
-                let share = (du.r.abs() * iax[0]).max(du.z.abs() * iax[1]);
-                // ... and the chord of the period through the corner off
-                // a curve's tangent by half the angle v·dt/R the curve
-                // turns in it: a velocity error up to v²·dt/2R, which the
-                // other move's period takes (a curve of a few µm turns
-                // tens of degrees in a period; the curve's own
-                // centripetal share covers its own periods).
-                let bend = |c: &Curve| 0.5 * self.dt / c.min_radius() * iax[0].max(iax[1]);
-                let (bend_prev, bend_cur) = (bend(&prev.curve), bend(&cur.curve));
-                let bend = bend_prev.max(bend_cur);
-                vj = vj.min(match &smoothing {
-                    Some(s) => {
-                        self.spread_corner_speed(s, share, bend, prev.len.min(cur.len), n - 1)
-                    }
-                    None => corner_speed(share, bend, self.budget * self.dt),
-                });
-                if share > 1e-18 {
-                    // A period runs through one such corner at most: it
-                    // starts on the move before and ends on the move
-                    // after. (One that ran on through a move of a µm
-                    // would take the corner's step out of the share of a
-                    // move that did not keep it.)
-                    vj = vj.min(prev.len.min(cur.len) / self.dt);
-                }
-                // ... and the chord of the period that runs through the
-                // corner within the tolerance of it: (v·dt/2)·sin(θ/2),
-                // |Δu| = 2·sin(θ/2).
-                let n = du.norm();
-                if n > 1e-15 {
-                    vj = vj.min(4.0 * self.tolerance / (self.dt * n));
-                }
-                // ... and the averages after interpolation within their
-                // tolerance of the corner.
-                if let Some(s) = &smoothing {
-                    vj = vj.min(s.corner_speed(n, prev.len.min(cur.len)));
-                }
-                vj = vj.max(0.0);
-                step = vj * share + vj * vj * bend;
-                out = (vj * share + vj * vj * bend_cur) / self.dt;
-                into = (vj * share + vj * vj * bend_prev) / self.dt;
-                if smoothing.is_some() && vj > 0.0 {
-                    // Under jerk limiting both moves keep the whole share
-                    // back: a window of T₂ may hold any of their periods
-                    // and the corners next to them (`spread_corner_speed`).
-                    // (The averages settle in a stop: a move that stops at
-                    // both ends keeps nothing back.)
-                    (out, into) = (self.budget, self.budget);
-                } else if prev.len < vj * self.dt {
-                    // A period may run through the whole move before (a
-                    // µm along a tangent): what that move kept back for
-                    // the corner before it, this one keeps too.
-                    into = into.max(prev.c_in);
-                }
+        let corner = if !self.joinable(prev, cur) {
+            Corner::default()
+        } else if matches!(cur.kind, MoveKind::Thread(_)) {
+            // A chain's speed along the path jumps at a corner (the lead
+            // stays along the long axis, the short axes follow:
+            // follow.rs): each leg's cap binds its own path speed, and
+            // the joint lets the faster leg's through, seen from the move
+            // before. (Their smaller one turned a 45° pull-out after a Z
+            // thread at Z's top feed into a brake and broke the lead.)
+            Corner {
+                v: prev.v_max.max(cur.v_max * prev.chain_scale(cur)),
+                ..Corner::default()
             }
-        }
+        } else {
+            self.feed_corner(prev, cur, n)
+        };
         // Only ever raised: the interpolator may already run on them.
         let raise = |s: &mut Segment| {
             if !matches!(s.kind, MoveKind::Rapid | MoveKind::Offset) {
@@ -1139,16 +1076,97 @@ impl Planner {
             }
         };
         if let ItemKind::Move(p) = &mut self.items[ip].kind {
-            p.v_junction = vj;
-            p.c_out = out;
+            p.v_junction = corner.v;
+            p.c_out = corner.out;
             raise(p);
         }
         if let ItemKind::Move(c) = &mut self.items[it].kind {
-            c.c_in = into;
-            c.step_in = step;
-            c.v_in = vj;
+            c.c_in = corner.into;
+            c.step_in = corner.step;
+            c.v_in = corner.v;
             raise(c);
         }
+    }
+
+    /// The corner where two feed moves blend, `prev` ending move `n` − 1
+    /// and `cur` move `n`.
+    fn feed_corner(&self, prev: &Segment, cur: &Segment, n: usize) -> Corner {
+        let du = cur.t0 - prev.t1;
+        let smoothing = self.smoothing_of(cur.kind);
+        let iax = smoothing.map_or(self.iax, |s| s.iax);
+        // The velocity step of the corner within its share of each axis's
+        // acceleration ...
+        let share = (du.r.abs() * iax[0]).max(du.z.abs() * iax[1]);
+        // ... and the chord of the period through the corner off a
+        // curve's tangent by half the angle v·dt/R the curve turns in it:
+        // a velocity error up to v²·dt/2R, which the other move's period
+        // takes (a curve of a few µm turns tens of degrees in a period;
+        // the curve's own centripetal share covers its own periods).
+        let bend = |c: &Curve| 0.5 * self.dt / c.min_radius() * iax[0].max(iax[1]);
+        let (bend_prev, bend_cur) = (bend(&prev.curve), bend(&cur.curve));
+        let turn = Turn {
+            du: du.norm(),
+            share,
+            bend: bend_prev.max(bend_cur),
+            short: prev.len.min(cur.len),
+        };
+        let vj = self
+            .feed_corner_speed(smoothing, &turn, n)
+            .min(prev.v_max.min(cur.v_max))
+            .max(0.0);
+        let mut corner = Corner {
+            v: vj,
+            out: (vj * share + vj * vj * bend_cur) / self.dt,
+            into: (vj * share + vj * vj * bend_prev) / self.dt,
+            step: vj * share + vj * vj * bend_prev.max(bend_cur),
+        };
+        if smoothing.is_some() && vj > 0.0 {
+            // Under jerk limiting both moves keep the whole share back: a
+            // window of T₂ may hold any of their periods and the corners
+            // next to them (`spread_corner_speed`). (The averages settle
+            // in a stop: a move that stops at both ends keeps nothing
+            // back.)
+            (corner.out, corner.into) = (self.budget, self.budget);
+        } else if prev.len < vj * self.dt {
+            // A period may run through the whole move before (a µm along
+            // a tangent): what that move kept back for the corner before
+            // it, this one keeps too.
+            corner.into = corner.into.max(prev.c_in);
+        }
+        corner
+    }
+
+    /// The speed of a feed corner (`feed_corner`) at the end of move
+    /// `n` − 1, not yet capped by the moves' own top speeds.
+    fn feed_corner_speed(&self, smoothing: Option<&FeedSmoothing>, t: &Turn, n: usize) -> f64 {
+        let Turn {
+            du,
+            share,
+            bend,
+            short,
+        } = *t;
+        let mut vj = match smoothing {
+            Some(s) => self.spread_corner_speed(s, share, bend, short, n - 1),
+            None => corner_speed(share, bend, self.budget * self.dt),
+        };
+        if share > 1e-18 {
+            // A period runs through one such corner at most: it starts on
+            // the move before and ends on the move after. (One that ran on
+            // through a move of a µm would take the corner's step out of
+            // the share of a move that did not keep it.)
+            vj = vj.min(short / self.dt);
+        }
+        // ... and the chord of the period that runs through the corner
+        // within the tolerance of it: (v·dt/2)·sin(θ/2), |Δu| = 2·sin(θ/2).
+        if du > 1e-15 {
+            vj = vj.min(4.0 * self.tolerance / (self.dt * du));
+        }
+        // ... and the averages after interpolation within their tolerance
+        // of the corner.
+        if let Some(s) = smoothing {
+            vj = vj.min(s.corner_speed(du, short));
+        }
+        vj
     }
 
     /// Under jerk limiting: the speed of the corner at the end of move
@@ -1267,6 +1285,30 @@ impl Planner {
             i = if i == 0 { cap - 1 } else { i - 1 };
         }
     }
+}
+
+/// A corner's speed, and the shares of acceleration the two moves keep
+/// back for it: the move before for the period through the corner
+/// (`out`), the move after for the period after it (`into`); `step` is
+/// its velocity step. All zero where the moves do not blend.
+#[derive(Default)]
+struct Corner {
+    v: f64,
+    out: f64,
+    into: f64,
+    step: f64,
+}
+
+/// How a feed corner turns (`Planner::feed_corner`): |Δu| between the
+/// moves' directions, the share of acceleration its velocity step takes
+/// at unit speed, the bend of the chords next to it (× v²), and the
+/// shorter of the two moves.
+#[derive(Clone, Copy)]
+struct Turn {
+    du: f64,
+    share: f64,
+    bend: f64,
+    short: f64,
 }
 
 /// The highest corner speed v whose velocity step v·`share` + v²·`bend`

@@ -689,46 +689,14 @@ impl Nc {
                 return self.motion(&q, sink, out);
             }
             OneShot::Home => self.home(p, 1, sink),
-            OneShot::HomeN => {
-                let n = p.get(b'P').map_or(2.0, round_half_away);
-                if !(2.0..=4.0).contains(&n) {
-                    return fail(
-                        Alarm::ValueOutOfRange,
-                        format!("G30 P{n}: reference points are 2…4"),
-                    );
-                }
-                self.home(p, n as u32, sink)
-            }
-            OneShot::Skip => {
-                let to = self.target(p);
-                self.feed_due(sink);
-                self.st.pos = to;
-                self.st.skip = Some(to);
-                out.skip = Some(to);
-                sink.emit(Event::Skip { x: to.x(), z: to.z });
-            }
+            OneShot::HomeN => self.home_n(p, sink)?,
+            OneShot::Skip => self.skip(p, sink, out),
             OneShot::MeasureX | OneShot::MeasureZ => {
                 crate::exec::measure::run(self, code == OneShot::MeasureX, p, sink)?
             }
             OneShot::SetCoordinates => self.set_coordinates(p, sink),
             OneShot::Local => self.set_local(p, sink),
-            OneShot::MachineCoords => {
-                if p.has(b'U') || p.has(b'W') {
-                    return fail(
-                        Alarm::IncompatibleWords,
-                        "G53 takes machine coordinates X/Z only, not U/W",
-                    );
-                }
-                let origin = self.st.origin();
-                let mut m = self.st.machine_pos();
-                if let Some(x) = self.len_of(p, b'X') {
-                    m.r = x / 2.0;
-                }
-                if let Some(z) = self.len_of(p, b'Z') {
-                    m.z = z;
-                }
-                self.rapid(m.sub(origin), sink);
-            }
+            OneShot::MachineCoords => self.machine_coords(p, sink)?,
             OneShot::Finish | OneShot::RoughTurn | OneShot::RoughFace | OneShot::Pattern => {
                 return crate::exec::compound::run(self, code, p, sink, out)
             }
@@ -756,6 +724,49 @@ impl Nc {
                 | OneShot::MeasureZ
                 | OneShot::MachineCoords
         );
+        Ok(())
+    }
+
+    /// G30 P2…P4: to the second, third or fourth reference point.
+    fn home_n(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+        let n = p.get(b'P').map_or(2.0, round_half_away);
+        if !(2.0..=4.0).contains(&n) {
+            return fail(
+                Alarm::ValueOutOfRange,
+                format!("G30 P{n}: reference points are 2…4"),
+            );
+        }
+        self.home(p, n as u32, sink);
+        Ok(())
+    }
+
+    /// G31: the skip move; the runtime stops it where the signal comes.
+    fn skip(&mut self, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) {
+        let to = self.target(p);
+        self.feed_due(sink);
+        self.st.pos = to;
+        self.st.skip = Some(to);
+        out.skip = Some(to);
+        sink.emit(Event::Skip { x: to.x(), z: to.z });
+    }
+
+    /// G53: a rapid to machine coordinates, X on the diameter.
+    fn machine_coords(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+        if p.has(b'U') || p.has(b'W') {
+            return fail(
+                Alarm::IncompatibleWords,
+                "G53 takes machine coordinates X/Z only, not U/W",
+            );
+        }
+        let origin = self.st.origin();
+        let mut m = self.st.machine_pos();
+        if let Some(x) = self.len_of(p, b'X') {
+            m.r = x / 2.0;
+        }
+        if let Some(z) = self.len_of(p, b'Z') {
+            m.z = z;
+        }
+        self.rapid(m.sub(origin), sink);
         Ok(())
     }
 

@@ -746,24 +746,12 @@ impl Certifier {
     /// moves away) is a violation at its nearest approach, and the walk
     /// goes on from the next, so that one miss does not hide the rest.
     fn end_points(&mut self, prev: &SetPoint, p: &SetPoint) {
-        let (a, b) = (V2::from_xz(prev.x, prev.z), V2::from_xz(p.x, p.z));
-        // Where the work shift changed (G50, G54…, a tool offset) the
-        // work point jumped: the period's path is the axes' step in the
-        // old frame before the jump, or in the new one after it.
-        let moved = V2::new((p.axis_x - prev.axis_x) * 0.5, p.axis_z - prev.axis_z);
-        let joined = ((b - a) - moved).norm() <= 1e-9;
+        let step = Step::new(prev, p);
         // Where the walk stands on the step: the next end point is reached
         // after the last one (a short move back may end within the
         // tolerance of where this step began).
-        let mut from = a;
+        let mut from = step.a;
         let mut first = true;
-        let dist = |e: V2, from: V2| {
-            if joined {
-                seg_dist(e, from, b)
-            } else {
-                seg_dist(e, a, a + moved).min(seg_dist(e, b - moved, b))
-            }
-        };
         while let Some(mut m) = self.pending.front().copied() {
             // After an end point reached in this step, the next is due in
             // it only where the rest of the step runs past it. One the
@@ -771,56 +759,60 @@ impl Certifier {
             // after the ones it still has to run (it stands within a µm
             // of several): judged now, the tool going on to those would
             // look like leaving it, a miss.
-            if !first && joined {
-                let t = seg_param(m.end, from, b);
+            if !first && step.joined {
+                let t = seg_param(m.end, from, step.b);
                 if !(t > 0.0 && t < 1.0) {
                     break;
                 }
             }
             m.tol = self.tol_of(&m, p.spindle_rpm);
-            let d = dist(m.end, from);
+            let d = step.dist(m.end, from);
             // The step ends where it is nearest to the end point: the tool
             // may still get nearer, and the end points after it are not
             // due yet (points a µm apart lie within the tolerance of one
             // step together).
-            let closing = joined && d > 0.0 && seg_param(m.end, from, b) >= 1.0;
+            let closing = step.joined && d > 0.0 && seg_param(m.end, from, step.b) >= 1.0;
             if closing {
-                if let Some(f) = self.pending.front_mut() {
-                    if d < f.nearest {
-                        f.nearest = d;
-                        f.at = (p.time_s, p.file, p.line);
-                    }
-                }
+                self.nearer(d, p);
                 break;
             }
             if d <= m.tol || m.nearest <= m.tol {
-                if joined {
-                    from = seg_nearest(m.end, from, b);
+                if step.joined {
+                    from = seg_nearest(m.end, from, step.b);
                 }
                 first = false;
                 self.reached += 1;
-                self.reach(m);
-                self.pending.pop_front();
-                self.turned(&m, p.spindle_rpm);
+                self.passed(m, p.spindle_rpm);
                 continue;
             }
             // The period's travel is the axes' step: where the frame
             // jumped, b − a is the jump, not a way the tool went.
-            if d > m.nearest && m.nearest <= moved.norm() {
+            if d > m.nearest && m.nearest <= step.moved.norm() {
                 self.missed(&m);
-                self.reach(m);
-                self.pending.pop_front();
-                self.turned(&m, p.spindle_rpm);
+                self.passed(m, p.spindle_rpm);
                 continue;
             }
-            if let Some(f) = self.pending.front_mut() {
-                if d < f.nearest {
-                    f.nearest = d;
-                    f.at = (p.time_s, p.file, p.line);
-                }
-            }
+            self.nearer(d, p);
             break;
         }
+    }
+
+    /// The next end point is `d` from this period's step: its nearest
+    /// approach so far?
+    fn nearer(&mut self, d: f64, p: &SetPoint) {
+        if let Some(f) = self.pending.front_mut() {
+            if d < f.nearest {
+                f.nearest = d;
+                f.at = (p.time_s, p.file, p.line);
+            }
+        }
+    }
+
+    /// The walk leaves end point `m`, the next pending, reached or missed.
+    fn passed(&mut self, m: Pending, rpm: f64) {
+        self.reach(m);
+        self.pending.pop_front();
+        self.turned(&m, rpm);
     }
 
     /// The distance within which the path reaches end point `m` with the
@@ -1090,6 +1082,42 @@ fn leg_time(m: &Pending, rpm: f64) -> Option<f64> {
     };
     let v = lead * rpm.abs() / 60.0;
     (v > 0.0).then(|| long_len(m.end - start) / v)
+}
+
+/// One period's step of the work point, for the end points' walk.
+struct Step {
+    a: V2,
+    b: V2,
+    /// The axes' own step (X on the diameter halved).
+    moved: V2,
+    /// The work point moved as the axes did: no work shift changed.
+    joined: bool,
+}
+
+impl Step {
+    fn new(prev: &SetPoint, p: &SetPoint) -> Step {
+        let (a, b) = (V2::from_xz(prev.x, prev.z), V2::from_xz(p.x, p.z));
+        let moved = V2::new((p.axis_x - prev.axis_x) * 0.5, p.axis_z - prev.axis_z);
+        let joined = ((b - a) - moved).norm() <= 1e-9;
+        Step {
+            a,
+            b,
+            moved,
+            joined,
+        }
+    }
+
+    /// How far `e` is from the step's path from `from` on. Where the work
+    /// shift changed (G50, G54…, a tool offset) the work point jumped:
+    /// the period's path is the axes' step in the old frame before the
+    /// jump, or in the new one after it.
+    fn dist(&self, e: V2, from: V2) -> f64 {
+        if self.joined {
+            seg_dist(e, from, self.b)
+        } else {
+            seg_dist(e, self.a, self.a + self.moved).min(seg_dist(e, self.b - self.moved, self.b))
+        }
+    }
 }
 
 /// Distance from `p` to the segment `a`–`b`.
