@@ -360,6 +360,20 @@ fn polar_and_cylindrical_interpolation_are_certified() {
             "{name} is not certified"
         );
     }
+    // Under nose-radius compensation (a tool of radius 2): the corner arcs
+    // about the square's corners, a plunge where the tool stands.
+    let tool = d.join("tool.toml");
+    std::fs::write(
+        &tool,
+        "[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = 2\n",
+    )
+    .unwrap();
+    let nc = d.join("polar_comp.nc");
+    std::fs::write(&nc, "G98 G00 X40 Z-2 C0 T0101\nG12.1\nG42 G01 X20 C-10 F300\nC10\nG01 Z-5 F50\nG01 X-20 F300\nC-10\nX20\nG40 X40 C0\nG00 Z2\nG13.1\nM30\n").unwrap();
+    assert!(
+        matches!(check(&nc, Some(&tool), &d), Verdict::Certified(_)),
+        "polar_comp.nc is not certified"
+    );
     let gbc = d.join("polar.nc.gbc");
     let (gbc, m) = (gbc.to_str().unwrap(), machine.to_str().unwrap());
     let o = gbvm(&["run", gbc, "--machine", m, "--emit", "trace"]);

@@ -391,3 +391,82 @@ fn the_travel_is_the_joints_in_a_plane() {
     let alarm = r.alarm.expect("an alarm");
     assert_eq!((alarm.code, alarm.line), (7002, 8), "{alarm:?}");
 }
+
+/// A square about the centre, counter-clockwise, milled from outside with
+/// G42 and a tool of radius 2 (offset 1; its tip 3 is not used in the
+/// plane), Z plunging where the tool stands after the first side.
+const POLAR_COMP: &str = "G98
+G00 X40 Z-2 C0 T0101
+G12.1
+G42 G01 X20 C-10 F300
+C10
+G01 Z-5 F50
+G01 X-20 F300
+C-10
+X20
+G40 X40 C0
+G00 Z2
+G13.1
+M30
+";
+
+/// The tool centre's path of `POLAR_COMP`, worked out by hand. The sides
+/// x = 10, c = 10, x = −10, c = −10 are offset outwards by 2; every
+/// corner turns left with the tool on the right, outside: an arc of
+/// radius 2 about the corner.
+fn polar_comp_path() -> Vec<Piece> {
+    vec![
+        // The start-up runs to the first side's start normal (12, −10).
+        Piece::Line((20.0, 0.0), (12.0, -10.0)),
+        Piece::Line((12.0, -10.0), (12.0, 10.0)),
+        Piece::Arc((10.0, 10.0), 2.0, 0.0, PI / 2.0),
+        Piece::Line((10.0, 12.0), (-10.0, 12.0)),
+        Piece::Arc((-10.0, 10.0), 2.0, PI / 2.0, PI / 2.0),
+        Piece::Line((-12.0, 10.0), (-12.0, -10.0)),
+        Piece::Arc((-10.0, -10.0), 2.0, PI, PI / 2.0),
+        Piece::Line((-10.0, -12.0), (10.0, -12.0)),
+        // The last side ends on its own normal (10, −12); the cancel runs
+        // from there to the programmed (20, 0).
+        Piece::Line((10.0, -12.0), (20.0, 0.0)),
+    ]
+}
+
+#[test]
+fn polar_compensation_runs_the_tool_centre_round_the_contour() {
+    let toml = "[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = 2\ntip = 3\n";
+    let machine = Machine::from_toml(toml).expect("a machine file");
+    for jerk in [false, true] {
+        let r = run_with(
+            POLAR_COMP,
+            machine.clone(),
+            runtime::AutoAck,
+            |cfg| cfg.jerk_limited = jerk,
+            |_, _| {},
+            120.0,
+        );
+        assert!(r.alarm.is_none(), "{:?}", r.alarm);
+        let path = polar_comp_path();
+        check(&r, 4..=5, polar_plane, &path, 300.0);
+        check(&r, 7..=10, polar_plane, &path, 300.0);
+        // The plunge waits for the corner after the first side (it runs
+        // with the next block's events, so its periods carry line 7): the
+        // tool stands at that side's end (12, 10), X = 2·√244, C =
+        // atan2(10, 12).
+        let (x, c) = (2.0 * 244f64.sqrt(), 10f64.atan2(12.0).to_degrees());
+        let plunge: Vec<_> = r
+            .pts
+            .iter()
+            .filter(|p| p.line <= 7 && p.z < -2.0 - 1e-9 && p.z > -5.0 + 1e-9)
+            .collect();
+        assert!(plunge.len() > 1000, "{}", plunge.len());
+        for p in &plunge {
+            let pc = p.c.expect("a C column");
+            assert!((p.x - x).abs() < 1e-9 && (pc - c).abs() < 1e-6, "{p:?}");
+            assert!((-5.0 - 1e-9..=-2.0 + 1e-9).contains(&p.z), "{p:?}");
+        }
+        // Once round the centre, back at X40 C0 (360°).
+        let last = r.pts.last().expect("periods");
+        assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6, "{last:?}");
+        assert!((last.x - 40.0).abs() < 1e-6 && (last.z - 2.0).abs() < 1e-9);
+    }
+}

@@ -33,7 +33,7 @@ use alloc::format;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, Plane, PlaneMotion};
 use crate::base::gcode::{Comp, FeedMode, Motion, OneShot, Polar, PolarCmd};
-use crate::base::geom;
+use crate::base::geom::{self, Element};
 use crate::base::point::Pt;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
@@ -54,6 +54,9 @@ pub struct PlaneState {
     /// axis (polar X as a radius, cylinder developed C), `r` the second
     /// (polar hypothetical C, cylinder Z).
     pub pt: Pt,
+    /// Where the tool's path was last printed to: the programmed point,
+    /// but under nose-radius compensation (`print_element`).
+    pub tool: Pt,
 }
 
 impl PlaneState {
@@ -139,15 +142,6 @@ fn check_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcErr
         return fail(
             Alarm::PolarInComp,
             "G99 during polar interpolation: its F is a tangential feed per minute",
-        );
-    }
-    if p.has_g(Comp::Left) || p.has_g(Comp::Right) {
-        return fail(
-            Alarm::NotSupportedYet,
-            format!(
-                "nose-radius compensation during {} is not supported yet",
-                st.what()
-            ),
         );
     }
     if other_axis(st.kind, p) && p.one_shot().is_none_or(|c| c != OneShot::Dwell) {
@@ -240,9 +234,11 @@ pub(crate) fn polar_on(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(
         );
     }
     nc.st.modal.polar = Polar::On;
+    let pt = Pt::new(0.0, nc.st.pos.r);
     nc.st.plane = Some(PlaneState {
         kind: Kind::Polar,
-        pt: Pt::new(0.0, nc.st.pos.r),
+        pt,
+        tool: pt,
     });
     sink.emit(Event::PolarOn);
     Ok(())
@@ -257,20 +253,36 @@ pub(crate) fn polar_off(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<
             "G13.1 stands alone in its block: move before it or after it",
         );
     }
-    nc.st.modal.polar = Polar::Off;
-    nc.st.modal.polar_cmd = PolarCmd::Off;
-    if matches!(
+    let on = matches!(
         nc.st.plane,
         Some(PlaneState {
             kind: Kind::Polar,
             ..
         })
-    ) {
+    );
+    if on {
+        ends_uncompensated(nc, "G13.1")?;
+    }
+    nc.st.modal.polar = Polar::Off;
+    nc.st.modal.polar_cmd = PolarCmd::Off;
+    if on {
         nc.st.plane = None;
         sink.emit(Event::PolarOff {
             x: nc.st.pos.x(),
             c: nc.st.c,
         });
+    }
+    Ok(())
+}
+
+/// E4033 where a mode ends (`what`) while nose-radius compensation is on:
+/// its last element would end off the path, in the plane's coordinates.
+fn ends_uncompensated(nc: &Nc, what: &str) -> Result<(), NcError> {
+    if crate::exec::comp::compensating(nc) {
+        return fail(
+            Alarm::PolarInComp,
+            format!("{what} while nose-radius compensation is on: cancel it first (G40 and a move in the plane)"),
+        );
     }
     Ok(())
 }
@@ -327,15 +339,18 @@ pub(crate) fn cylinder(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(
                 ..
             })
         ) {
+            ends_uncompensated(nc, "G7.1 C0")?;
             nc.st.plane = None;
             sink.emit(Event::Cylinder(None));
         }
         return Ok(());
     }
     check_start(nc, p, what)?;
+    let pt = Pt::new(nc.st.pos.z, radius * nc.st.c.to_radians());
     nc.st.plane = Some(PlaneState {
         kind: Kind::Cylinder(radius),
-        pt: Pt::new(nc.st.pos.z, radius * nc.st.c.to_radians()),
+        pt,
+        tool: pt,
     });
     sink.emit(Event::Cylinder(Some(radius)));
     Ok(())
@@ -356,7 +371,12 @@ pub(crate) fn motion(
     let arc = code.is_arc();
     if !arc && other_axis(st.kind, p) {
         // (check_block: no plane word beside it.)
-        axis_move(nc, st, code == Motion::Rapid, p, sink);
+        // (Held behind a compensated element that waits.)
+        crate::exec::comp::moved_off_plane(nc);
+        crate::exec::contour::in_order(nc, sink, |nc, s| {
+            axis_move(nc, st, code == Motion::Rapid, p, s);
+            Ok(())
+        })?;
         out.moved = true;
         return Ok(());
     }
@@ -377,6 +397,10 @@ pub(crate) fn motion(
             "this move of polar interpolation passes through the spindle centre, where C would turn half a turn at once: program the path round the centre",
         );
     }
+    out.moved = true;
+    if crate::exec::comp::compensating(nc) {
+        return compensated(nc, st, code == Motion::Rapid, to, path, sink);
+    }
     if !matches!(motion, PlaneMotion::Rapid) {
         nc.feed_due(sink);
     }
@@ -388,8 +412,92 @@ pub(crate) fn motion(
         a,
         b,
     });
-    out.moved = true;
     Ok(())
+}
+
+/// A plane move under nose-radius compensation: it joins the contour
+/// queue as any compensated move does (comp module), in the plane's
+/// coordinates, and prints through `print_element` once its neighbours
+/// are known. The programmed point moves now; the joints and C follow
+/// what is printed.
+fn compensated(
+    nc: &mut Nc,
+    mut st: PlaneState,
+    rapid: bool,
+    to: Pt,
+    path: ArcPath,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
+    let from = st.pt;
+    let elem = match path {
+        None => Element::Line { from, to },
+        Some((centre, cw)) => Element::Arc {
+            from,
+            to,
+            centre,
+            cw,
+        },
+    };
+    st.pt = to;
+    nc.st.plane = Some(st);
+    let m = crate::exec::contour::Move::new(nc, elem, rapid, None);
+    crate::exec::contour::advance(nc, m, sink)
+}
+
+/// E4033 for a compensated element of polar interpolation whose path,
+/// from where the tool stands, passes through the spindle centre (as
+/// `motion` checks the programmed path).
+pub(crate) fn check_element(nc: &Nc, st: &PlaneState, e: &Element) -> Result<(), NcError> {
+    let arc = match *e {
+        Element::Line { .. } => None,
+        Element::Arc { centre, cw, .. } => Some((centre, cw)),
+    };
+    if st.kind == Kind::Polar
+        && nearest_to_centre(st.tool, e.end(), arc) < nc.machine.machine.resolution_mm
+    {
+        return fail(
+            Alarm::PolarInComp,
+            "the compensated path of polar interpolation passes through the spindle centre, where C would turn half a turn at once: keep the tool's centre off it",
+        );
+    }
+    Ok(())
+}
+
+/// Prints an element of a plane move the contour queue hands on (a
+/// compensated one): the plane motion to its end, the joints and C moved
+/// along the path from where the tool stands (`follow` does so for a move
+/// printed at once). A cancel's element starts at the programmed point,
+/// the tool where the compensated path left it.
+pub(crate) fn print_element(
+    nc: &mut Nc,
+    mut st: PlaneState,
+    e: &Element,
+    rapid: bool,
+    sink: &mut dyn Sink,
+) {
+    let (to, arc) = match *e {
+        Element::Line { to, .. } => (to, None),
+        Element::Arc { to, centre, cw, .. } => (to, Some((centre, cw))),
+    };
+    let motion = match arc {
+        None if rapid => PlaneMotion::Rapid,
+        None => PlaneMotion::Line,
+        Some((centre, cw)) => {
+            let (ca, cb) = st.printed(centre);
+            let dir = if cw { Dir::Cw } else { Dir::Ccw };
+            PlaneMotion::Arc { dir, ca, cb }
+        }
+    };
+    move_joints(nc, &st, st.tool, to, arc);
+    st.tool = to;
+    nc.st.plane = Some(st);
+    let (a, b) = st.printed(to);
+    sink.emit(Event::PlaneMove {
+        plane: st.plane(),
+        motion,
+        a,
+        b,
+    });
 }
 
 /// The block's motion code in the plane (G00–G03); `None` when the block
@@ -403,7 +511,9 @@ fn plane_code(
 ) -> Result<Option<Motion>, NcError> {
     if let Some(code) = p.one_shot() {
         return match code {
-            OneShot::Dwell => nc.one_shot(code, p, sink, out).map(|()| None),
+            OneShot::Dwell => crate::exec::contour::in_order(nc, sink, |nc, s| {
+                nc.one_shot(code, p, s, out).map(|()| None)
+            }),
             OneShot::Cylindrical => Ok(None),
             _ => fail(
                 Alarm::IncompatibleWords,
@@ -564,13 +674,20 @@ fn centre(
 /// Moves the programmed point to `to` (along the arc about `centre`
 /// when given) and the joints with it.
 fn follow(nc: &mut Nc, mut st: PlaneState, to: Pt, arc: Option<(Pt, bool)>) {
+    move_joints(nc, &st, st.pt, to, arc);
+    st.pt = to;
+    st.tool = to;
+    nc.st.plane = Some(st);
+}
+
+/// The joints and C after a plane path from `from` to `to` (along the
+/// arc about `arc`'s centre when given).
+fn move_joints(nc: &mut Nc, st: &PlaneState, from: Pt, to: Pt, arc: ArcPath) {
     nc.st.c = match st.kind {
-        Kind::Polar => nc.st.c + swept(st.pt, to, arc).to_degrees(),
+        Kind::Polar => nc.st.c + swept(from, to, arc).to_degrees(),
         Kind::Cylinder(radius) => (to.z / radius).to_degrees(),
     };
     nc.st.pos = st.joints(to, nc.st.pos);
-    st.pt = to;
-    nc.st.plane = Some(st);
 }
 
 /// The angle (radians, counter-clockwise positive) a path from `from` to

@@ -441,6 +441,7 @@ impl Timer<'_> {
                 self.plane = Some(PlaneState {
                     kind: Kind::Polar,
                     pt,
+                    tool: pt,
                 });
             }
             // C, where the cylinder's plane starts, is not in the canon:

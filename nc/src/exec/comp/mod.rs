@@ -122,7 +122,8 @@ pub struct CompState {
     pub(crate) running: Option<Tool>,
     /// Consecutive blocks without a move while compensating (E4034).
     idle: u32,
-    /// The current block's move was a zero-length one (no move for E4034).
+    /// The current block's move was a zero-length one, or moved only the
+    /// axis outside a plane (no move for E4034).
     zero_move: bool,
     /// The last nose-centre point printed, for zero-length moves.
     pub(crate) stand: Pt,
@@ -138,6 +139,12 @@ impl CompState {
 /// Whether the compensation is running (an element may be waiting).
 pub(crate) fn running(nc: &Nc) -> bool {
     nc.st.comp.running.is_some()
+}
+
+/// The current block moves only the axis outside the plane of polar or
+/// cylindrical interpolation: no move in the plane, for E4034.
+pub(crate) fn moved_off_plane(nc: &mut Nc) {
+    nc.st.comp.zero_move = true;
 }
 
 /// "While compensating" (comp.md §7, §10): G41/G42 in force, or a cancel

@@ -16,7 +16,12 @@ pub fn read_tool(nc: &Nc, side: f64) -> Result<Tool, NcError> {
     let geom = i.and_then(|i| nc.st.geom.get(i));
     let wear = i.and_then(|i| nc.st.wear.get(i));
     let radius = geom.map_or(0.0, |g| g[2]) + wear.map_or(0.0, |w| w[2]);
-    let tip = wear.map_or(0.0, |w| w[3]);
+    // In polar and cylindrical interpolation the tool is taken at its
+    // centre: tip direction 0 (dialect.md §4.6).
+    let tip = match nc.st.plane {
+        Some(_) => 0.0,
+        None => wear.map_or(0.0, |w| w[3]),
+    };
     if radius.is_nan() || radius < 0.0 {
         return fail(
             Alarm::CompInterference,

@@ -30,7 +30,8 @@ use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::angle;
 pub(crate) use queue::in_order;
-use queue::{AngleFirst, Move};
+use queue::AngleFirst;
+pub(crate) use queue::{advance, Move};
 
 /// G6.2, G6.3, G7.2, G7.3 blocks.
 pub fn conic(

@@ -191,7 +191,12 @@ pub(crate) fn in_order<R>(
         return f(nc, sink);
     }
     let mut held: Vec<Event> = Vec::new();
+    // A held feed move prints its FEED whatever was printed last: the
+    // elements that wait print theirs before it, and `drain` drops it
+    // where the canon already has that feed.
+    let printed = nc.st.feed_printed.take();
     let r = f(nc, &mut held);
+    nc.st.feed_printed = printed;
     // Kept even on an error: a later flush prints them before the alarm.
     nc.st.contour.hold(held);
     r
@@ -268,13 +273,13 @@ pub(crate) fn advance(nc: &mut Nc, mut next: Move, sink: &mut dyn Sink) -> Resul
         return Ok(());
     }
     resolve(&mut nc.st.contour.items, &mut next, step)?;
-    drain(nc, sink);
+    drain(nc, sink)?;
     if next.waits() {
         nc.st.contour.items.push(Item::Move(next));
+        Ok(())
     } else {
-        emit_move(nc, &next, sink);
+        emit_move(nc, &next, sink)
     }
-    Ok(())
 }
 
 /// The second block of an angle pair ends at `end` on the line at `q2`:
@@ -345,8 +350,9 @@ pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
     // normal (comp.md §6, §8); printed even when that fails.
     let closed = chain(&mut nc.st.contour.items, None);
     nc.st.comp.stop();
-    drain(nc, sink);
+    let printed = drain(nc, sink);
     closed?;
+    printed?;
     if incomplete {
         return fail(
             Alarm::BadAngle,
@@ -356,27 +362,45 @@ pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
     Ok(())
 }
 
-/// Prints and forgets every item, in order.
-fn drain(nc: &mut Nc, sink: &mut dyn Sink) {
+/// Prints and forgets every item, in order, up to a plane element that
+/// cannot run (`plane::print_element`).
+fn drain(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
     for item in core::mem::take(&mut nc.st.contour.items) {
         match item {
-            Item::Event(e) => sink.emit(e),
-            Item::Move(m) => emit_move(nc, &m, sink),
+            Item::Event(Event::Feed { f, per_rev }) => {
+                // (A held FEED: `in_order`.)
+                if nc.st.feed_printed != Some((f, per_rev)) {
+                    nc.st.feed_printed = Some((f, per_rev));
+                    sink.emit(Event::Feed { f, per_rev });
+                }
+            }
+            Item::Event(mut e) => {
+                // A move of the axis outside a plane, held behind a
+                // compensated element (plane.rs), starts where the joints
+                // stand once that element is printed.
+                if let Event::PlaneAxis { c, .. } = &mut e {
+                    *c = nc.st.c;
+                }
+                sink.emit(e)
+            }
+            Item::Move(m) => emit_move(nc, &m, sink)?,
             Item::Angle(_) => {}
         }
     }
+    Ok(())
 }
 
 /// Prints one move: compensated, as its leg says (comp module).
-fn emit_move(nc: &mut Nc, m: &Move, sink: &mut dyn Sink) {
+fn emit_move(nc: &mut Nc, m: &Move, sink: &mut dyn Sink) -> Result<(), NcError> {
     if m.trimmed && elem::shorter_than(&m.elem, EPS_LEN) {
-        return;
+        return Ok(());
     }
     match &m.comp {
         Some(leg) => {
             for (e, rapid) in crate::exec::comp::printed(&mut nc.st.comp, &m.elem, leg, m.rapid) {
-                emit_element(nc, &e, rapid, m.feed, None, sink);
+                emit_element(nc, &e, rapid, m.feed, None, sink)?;
             }
+            Ok(())
         }
         None => emit_element(nc, &m.elem, m.rapid, m.feed, m.c, sink),
     }
@@ -391,13 +415,21 @@ fn emit_element(
     feed: (f64, bool),
     c: Option<f64>,
     sink: &mut dyn Sink,
-) {
+) -> Result<(), NcError> {
+    let plane = nc.st.plane;
+    if let Some(st) = &plane {
+        crate::exec::plane::check_element(nc, st, e)?;
+    }
     if !rapid && nc.st.feed_printed != Some(feed) {
         nc.st.feed_printed = Some(feed);
         sink.emit(Event::Feed {
             f: feed.0,
             per_rev: feed.1,
         });
+    }
+    if let Some(st) = plane {
+        crate::exec::plane::print_element(nc, st, e, rapid, sink);
+        return Ok(());
     }
     let to = e.end();
     sink.emit(match *e {
@@ -419,6 +451,7 @@ fn emit_element(
             cz: centre.z,
         },
     });
+    Ok(())
 }
 
 /// Asks the comp module what `m` is (start-up, element, cancel ...) and

@@ -240,8 +240,20 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G12.1", "G00 C5 W1"]), 2099);
     assert_eq!(e(&["G7.1 C10", "G01 X10 Z-5 F1"]), 2099);
     assert_eq!(e(&["G7.1 C10", "G01 U1 C30 F1"]), 2099);
-    assert_eq!(e(&["G12.1", "G42 G01 X10 F1"]), 2099);
     assert_eq!(e(&["G12.1", "G6.2 X10 C5 A5 B3 F1"]), 2099);
+    // Compensation runs inside, but not where the mode ends: G40 alone
+    // leaves its cancel to the next move.
+    assert_eq!(e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G13.1"]), 4033);
+    assert_eq!(
+        e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G40", "G13.1"]),
+        4033
+    );
+    assert_eq!(
+        e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G40 X20", "G13.1"]),
+        0
+    );
+    assert_eq!(e(&["G7.1 C10", "G41 G01 Z-5 F1", "G7.1 C0"]), 4033);
+    assert_eq!(e(&["G7.1 C10", "G41 G01 Z-5 F1", "G40 C5", "G7.1 C0"]), 0);
     // E2006: G7.1 without its radius; E2003 without a C axis.
     assert_eq!(e(&["G7.1"]), 2006);
     let bare = crate::exec::cycles::testing::run_err;
@@ -249,4 +261,168 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(bare(&["G7.1 C10"]), 2003);
     // A dwell runs inside; G13.1 and G7.1 C0 outside their modes do nothing.
     assert_eq!(e(&["G12.1", "G04 X1", "G13.1", "G13.1", "G7.1 C0"]), 0);
+}
+
+/// The reference machine with its C axis and offset 1: nose radius 2,
+/// tip 3 (which polar and cylindrical interpolation do not use).
+fn with_c_and_tool() -> Lathe {
+    let toml = "[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = 2\ntip = 3\n";
+    let m = crate::base::machine::Machine::from_toml(toml).expect("a machine file");
+    Lathe {
+        nc: crate::exec::Nc::new(m),
+    }
+}
+
+#[test]
+fn polar_compensation_offsets_the_tool_centre_in_the_plane() {
+    let mut m = with_c_and_tool();
+    let l = lines(
+        &mut m,
+        &[
+            "G00 X40 Z-2 C0 T0101",
+            // Plane points (x, c), x = X/2: the plane starts at (20, 0).
+            "G98 G12.1",
+            // Start-up to the start normal of the next element, which
+            // runs +c: the tool on its left is at x − 2, (8, 0).
+            "G41 G01 X20 F100",
+            // Up along x = 10, offset to x = 8, to (8, 20); the path then
+            // turns right (+x), the tool outside the corner: an arc about
+            // the corner (10, 20) from (8, 20) to (10, 22), clockwise.
+            "C20",
+            // Along c = 20 offset to c = 22; the turn up again (+c) is a
+            // left turn, the tool inside: the two offset lines c = 22 and
+            // x = 18 meet at (18, 22).
+            "X40",
+            // The cancel: up along x = 20 offset to x = 18, and ends on
+            // its own normal at (18, 30)? No: a cancel move runs from the
+            // last element's end normal to the programmed point (comp.md
+            // §6), so the element before ends at its end normal (20, 22)
+            // and the cancel runs from there to (20, 30).
+            "G40 C30",
+            "G13.1",
+        ],
+    );
+    // The joints at the end: radius √(20² + 30²) = 36.0555, X 72.1110;
+    // C atan2(30, 20) = 56.3099°, the path never turning about the centre.
+    assert_eq!(
+        l,
+        [
+            "TOOL T=1 D=1",
+            "RAPID X=40 Z=-2 C=0",
+            "POLAR MODE=ON",
+            "FEED F=100 MODE=MIN",
+            "LINE X=16 C=0",
+            "LINE X=16 C=20",
+            "ARC DIR=CW X=20 C=22 CX=20 CC=20",
+            "LINE X=40 C=22",
+            "LINE X=40 C=30",
+            "POLAR MODE=OFF X=72.111 C=56.3099",
+        ]
+    );
+}
+
+#[test]
+fn cylinder_compensation_offsets_the_tool_centre_on_the_surface() {
+    let mut m = with_c_and_tool();
+    let l = lines(
+        &mut m,
+        &[
+            "G00 X40 Z0 C0 T0101",
+            // Developed points (s, z), s = 20·C·π/180, seen with s to the
+            // right and Z up: the plane starts at (0, 0).
+            "G98 G7.1 C20.",
+            // Start-up to the next element's start normal: that element
+            // runs +s, the tool on its left is at z + 2: (0, −8).
+            "G41 G01 Z-10 F100",
+            // C90: s = 10π, along z = −10 offset to z = −8.
+            "C90",
+            // The cancel from that element's end normal (10π, −8) to the
+            // programmed (10π, 0).
+            "G40 Z0",
+            "G7.1 C0",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "TOOL T=1 D=1",
+            "RAPID X=40 Z=0 C=0",
+            "CYLINDER MODE=ON R=20",
+            "FEED F=100 MODE=MIN",
+            "LINE Z=-8 C=0",
+            "LINE Z=-8 C=90",
+            "LINE Z=0 C=90",
+            "CYLINDER MODE=OFF",
+        ]
+    );
+    assert_eq!(var(&m, 5043), Some(90.0));
+}
+
+#[test]
+fn a_move_of_the_axis_outside_the_plane_waits_behind_a_compensated_element() {
+    let mut m = with_c_and_tool();
+    let l = lines(
+        &mut m,
+        &[
+            "G00 X40 Z-2 C0 T0101",
+            "G98 G12.1",
+            // As in `polar_compensation_offsets_the_tool_centre_in_the_plane`:
+            // the start-up to (8, 0), then up along x = 8.
+            "G41 G01 X20 F100",
+            "C20",
+            // Z goes down where the tool stands once the corner after the
+            // side is known: (8, 20), C = atan2(20, 8) = 68.1986°. Its
+            // feed is printed before it; the side along c = 20 waits.
+            "Z-5 F50",
+            "G01 X40 F100",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "TOOL T=1 D=1",
+            "RAPID X=40 Z=-2 C=0",
+            "POLAR MODE=ON",
+            "FEED F=100 MODE=MIN",
+            "LINE X=16 C=0",
+            "LINE X=16 C=20",
+            "FEED F=50 MODE=MIN",
+            "LINE Z=-5",
+        ]
+    );
+    // The tool stands where the side along x = 8 ended; the programmed
+    // point is the last block's (20, 20).
+    let Some(crate::exec::plane::PlaneState { pt, tool, .. }) = m.nc.st.plane else {
+        panic!("polar interpolation is on");
+    };
+    assert_eq!([tool.z, tool.r, pt.z, pt.r], [8.0, 20.0, 20.0, 20.0]);
+    let c = var(&m, 5043).expect("C");
+    assert!((c - 20f64.atan2(8.0).to_degrees()).abs() < 1e-9, "{c}");
+    // Six more blocks that move only Z are allowed; a seventh is E4034.
+    for k in 0..6 {
+        m.run(&alloc::format!("Z-{}", 6 + k));
+    }
+    assert_eq!(m.try_run("Z-20"), Err(4034));
+}
+
+#[test]
+fn a_compensated_path_through_the_centre_is_e4033() {
+    let run = |side: &str| {
+        let mut m = with_c_and_tool();
+        let blocks = [
+            "G00 X40 Z-2 C0 T0101",
+            "G98 G12.1",
+            // The start-up to (10, 2), then along c = 2 to (−10, 2): 2 from
+            // the centre, the tool's radius.
+            &alloc::format!("{side} G01 X20 C2 F300"),
+            "X-20",
+            "G40 X-40 C0",
+        ];
+        blocks.iter().find_map(|b| m.try_run(b).err()).unwrap_or(0)
+    };
+    // G42 keeps the centre right of the −x move, at c = 4; G41 puts it at
+    // c = 0, through the centre, found when that element prints (with
+    // the cancel).
+    assert_eq!(run("G42"), 0);
+    assert_eq!(run("G41"), 4033);
 }
