@@ -61,11 +61,16 @@ fn c_machine() -> Machine {
     machine
 }
 
+/// PLANE_CASES=N runs N programs (a long run by hand); the count of
+/// certified runs is then only printed.
 #[test]
 fn random_plane_programs_are_certified() {
+    let cases: Option<usize> = std::env::var("PLANE_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok());
     let mut rng = Lcg(2026);
     let mut certified = 0;
-    for k in 0..48 {
+    for k in 0..cases.unwrap_or(48) {
         let src = if k % 2 == 0 {
             polar(&mut rng)
         } else {
@@ -79,6 +84,57 @@ fn random_plane_programs_are_certified() {
             }
         }
     }
+    if let Some(n) = cases {
+        eprintln!("{certified} of {} runs certified", 2 * n);
+        return;
+    }
     // Most of them run (a random arc may not fit its R).
     assert!(certified >= 80, "{certified} of 96 runs certified");
+}
+
+/// A contour of `polar` cut under G41 or G42 with a tool of radius 0.5…3:
+/// the start-up from (20, 0) to (20, 0.5), the contour, the cancel back to
+/// (20, 0).
+fn polar_compensated(rng: &mut Lcg) -> (String, Machine) {
+    let side = rng.pick(&["G41", "G42"]);
+    let radius = rng.pick(&[0.5, 1.0, 2.0, 3.0]);
+    let contour = polar(rng);
+    let body = contour
+        .trim_start_matches("G98 G00 X40 Z2 C0\nG12.1\n")
+        .trim_end_matches("G13.1\nM30\n");
+    let src = format!(
+        "G98 G00 X40 Z2 C0 T0101\nG12.1\n{side} G01 X40 C0.5 F300\n{body}G40 G01 X40 C0 F300\nG13.1\nM30\n"
+    );
+    let toml =
+        format!("[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = {radius}\n");
+    (src, Machine::from_toml(&toml).expect("a machine file"))
+}
+
+#[test]
+fn random_compensated_polar_contours_are_certified() {
+    // (PLANE_CASES: as above.)
+    let cases: Option<usize> = std::env::var("PLANE_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok());
+    let mut rng = Lcg(4812);
+    let mut certified = 0;
+    for _ in 0..cases.unwrap_or(40) {
+        let (src, machine) = polar_compensated(&mut rng);
+        for jerk in [false, true] {
+            // (A random contour may not fit the tool: an arc smaller than
+            // its radius on the centre side, E4036; a path through the
+            // centre, E4033.)
+            match certify(&src, &machine, jerk) {
+                Some(Ok(())) => certified += 1,
+                Some(Err(v)) => panic!("jerk {jerk}: {v}\n{src}"),
+                None => {}
+            }
+        }
+    }
+    if let Some(n) = cases {
+        eprintln!("{certified} of {} runs certified", 2 * n);
+        return;
+    }
+    // 64 of 80 at this seed.
+    assert!(certified >= 56, "{certified} of 80 runs certified");
 }

@@ -691,32 +691,28 @@ fn move_joints(nc: &mut Nc, st: &PlaneState, from: Pt, to: Pt, arc: ArcPath) {
 }
 
 /// The angle (radians, counter-clockwise positive) a path from `from` to
-/// `to` turns about the plane's origin: a line's by its end points, an
-/// arc's summed over chords of at most 5° of the arc, so that it counts
-/// whole turns.
+/// `to` turns about the plane's origin, whole turns counted. A line (the
+/// origin off it) turns by less than half a turn: the angle between its
+/// end points. So does an arc whose circle leaves the origin outside: the
+/// arc stays within the angle the circle subtends there, less than half a
+/// turn. About an origin inside its circle the angle runs one way all
+/// along the arc, up to a whole turn for a full circle. (Summing chords
+/// of the arc miscounted a turn where the origin lay between an arc and
+/// its chord, a few µm from a tool path.)
 pub fn swept(from: Pt, to: Pt, arc: Option<(Pt, bool)>) -> f64 {
     let turn = |a: Pt, b: Pt| libm::atan2(a.z * b.r - a.r * b.z, a.z * b.z + a.r * b.r);
-    let Some((c, cw)) = arc else {
-        return turn(from, to);
-    };
-    let a0 = angle(c, from);
-    let span = sweep(a0, angle(c, to), cw);
-    let span = if cw { -span } else { span };
-    let n = libm::ceil(span.abs() / 5f64.to_radians()).max(1.0) as u32;
-    let radius = from.dist(c);
-    let mut total = 0.0;
-    let mut prev = from;
-    for k in 1..=n {
-        let next = if k == n {
-            to
-        } else {
-            let a = a0 + span * f64::from(k) / f64::from(n);
-            Pt::new(c.r + radius * libm::sin(a), c.z + radius * libm::cos(a))
-        };
-        total += turn(prev, next);
-        prev = next;
+    let origin = Pt::new(0.0, 0.0);
+    match arc {
+        Some((c, cw)) if origin.dist(c) < from.dist(c) => {
+            let s = sweep(angle(origin, from), angle(origin, to), cw);
+            if cw {
+                -s
+            } else {
+                s
+            }
+        }
+        _ => turn(from, to),
     }
-    total
 }
 
 /// The least distance from the spindle centre (the plane's origin) to a

@@ -5,6 +5,9 @@
 use crate::exec::cycles::testing::Lathe;
 use alloc::vec::Vec;
 
+use super::swept;
+use crate::base::point::Pt;
+
 fn lines(m: &mut Lathe, blocks: &[&str]) -> Vec<alloc::string::String> {
     blocks.iter().flat_map(|b| m.run(b)).collect()
 }
@@ -425,4 +428,72 @@ fn a_compensated_path_through_the_centre_is_e4033() {
     // the cancel).
     assert_eq!(run("G42"), 0);
     assert_eq!(run("G41"), 4033);
+}
+
+/// The angle about the origin along an arc, summed over 100 000 steps of
+/// the arc (an independent count of `swept`).
+fn swept_by_steps(c: Pt, r: f64, a0: f64, span: f64) -> f64 {
+    let at = |a: f64| Pt::new(c.r + r * libm::sin(a), c.z + r * libm::cos(a));
+    let n = 100_000;
+    let mut total = 0.0;
+    let mut prev = at(a0);
+    for k in 1..=n {
+        let p = at(a0 + span * f64::from(k) / f64::from(n));
+        let d = libm::atan2(p.r, p.z) - libm::atan2(prev.r, prev.z);
+        total += d - core::f64::consts::TAU * libm::round(d / core::f64::consts::TAU);
+        prev = p;
+    }
+    total
+}
+
+#[test]
+fn swept_counts_the_turns_of_an_arc_that_passes_near_the_centre() {
+    use core::f64::consts::PI;
+    let deg = |d: f64| d.to_radians();
+    // (centre, radius, start angle about the centre, signed span)
+    let arcs = [
+        // (Pt::new takes the second axis first: the centres are on the
+        // second axis.) 5 µm below the origin, which lies between the arc
+        // and the chord of its 5° about the bottom (chords of 5°
+        // miscounted it by a turn): about +210°.
+        (Pt::new(20.0, 0.0), 20.005, deg(-122.5), deg(60.0)),
+        (Pt::new(20.0, 0.0), 20.005, deg(-57.5), deg(-60.0)),
+        // The origin 5 µm outside the circle.
+        (Pt::new(20.0, 0.0), 19.995, deg(-122.5), deg(60.0)),
+        // A full circle about an inner point off its centre, both ways.
+        (Pt::new(3.0, 4.0), 10.0, deg(30.0), 2.0 * PI),
+        (Pt::new(3.0, 4.0), 10.0, deg(30.0), -2.0 * PI),
+        // A full circle that leaves the origin outside.
+        (Pt::new(30.0, 0.0), 10.0, deg(30.0), 2.0 * PI),
+        // Most of a circle about an inner point.
+        (Pt::new(1.0, -2.0), 8.0, deg(100.0), deg(-300.0)),
+    ];
+    for (c, r, a0, span) in arcs {
+        let at = |a: f64| Pt::new(c.r + r * libm::sin(a), c.z + r * libm::cos(a));
+        let (from, to) = (
+            at(a0),
+            if span.abs() == 2.0 * PI {
+                at(a0)
+            } else {
+                at(a0 + span)
+            },
+        );
+        let got = swept(from, to, Some((c, span < 0.0)));
+        let want = swept_by_steps(c, r, a0, span);
+        assert!(
+            (got - want).abs() < 1e-6,
+            "{c:?} r{r}: {got} against {want}"
+        );
+    }
+    // The first passes below the origin from its left to its right,
+    // counter-clockwise: the long way round, the end's angle less the
+    // start's plus a whole turn.
+    let at = |a: f64| (20.005 * deg(a).cos(), 20.0 + 20.005 * deg(a).sin());
+    let ((zs, rs), (ze, re)) = (at(-122.5), at(-62.5));
+    let want = re.atan2(ze) - rs.atan2(zs) + 2.0 * PI;
+    let first = swept_by_steps(Pt::new(20.0, 0.0), 20.005, deg(-122.5), deg(60.0));
+    assert!(
+        (first - want).abs() < 1e-6 && want > deg(200.0),
+        "{first} {want}"
+    );
 }
