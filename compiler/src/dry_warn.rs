@@ -237,16 +237,29 @@ impl Warner {
     /// W124: the kernel faulted at `at`, where the run stops.
     pub fn run_stops(&mut self, at: (usize, Span), e: &nc::NcError) {
         let (unit, span) = at;
+        if self.stopped_before() {
+            return;
+        }
         if self.told.insert((unit, "W124", span)) {
             let d = crate::predict::warning(u32::from(e.code), &e.message, span);
             self.diags.push((unit, d));
         }
     }
 
+    /// Whether the run stops before this block: the dry run goes on past
+    /// a feed move at F = 0 (W107, for the errors after it), but a run
+    /// stops there with E7001 and meets no later alarm (W124).
+    fn stopped_before(&self) -> bool {
+        self.zero_feed_told
+    }
+
     /// W124 for the user alarm `code` (`G65 H99`) the run stops with at
     /// `at`.
     pub fn user_alarm(&mut self, at: (usize, Span), code: u32, msg: &str) {
         let (unit, span) = at;
+        if self.stopped_before() {
+            return;
+        }
         if self.told.insert((unit, "W124", span)) {
             let d = crate::predict::warning(code, msg, span);
             self.diags.push((unit, d));

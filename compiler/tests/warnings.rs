@@ -89,6 +89,11 @@ fn w107_a_roughing_cycle_at_f0_as_in_seed_004() {
     assert_eq!(warnings(&src.replace("W0.2\n", "W0.2 F0.3\n")), []);
     // Any feed move: G01 with no F since power-on.
     assert_eq!(warnings("G00 X20 Z2\nG01 X10\nM30\n"), [("W107", 2)]);
+    // The run stops there (E7001): a later alarm is never reached, and
+    // no W124 names it (the `compiler` fuzz target: T-16, E5010).
+    let later = "G00 X20 Z2\nG01 X10\nT-16\nM30\n";
+    assert_eq!(of(later), [("W107", 2)]);
+    assert_eq!(of(&later.replace("G01 X10", "G01 X10 F100")), [("W124", 3)]);
 }
 
 #[test]

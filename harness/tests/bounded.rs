@@ -411,6 +411,15 @@ fn the_contour_target_finding_of_the_path_check() {
     harness::contour::certified(&data);
 }
 
+/// The `compiler` target's finding of stop 48 (a machinist's program
+/// cut down): the dry run goes on past a feed move at F = 0 (W107) and
+/// told W124 for an alarm further on, where the run stops at the F = 0
+/// move with E7001.
+#[test]
+fn the_compiler_target_finding_of_w124_after_w107() {
+    harness::compiler(b"G00 X20 Z2\nG01 X10\nT-16\nM30\n");
+}
+
 /// The `thread` target's findings of its first runs (stop 43), each a
 /// chain of legs shorter than an axis needs to catch up with a corner:
 /// leads 3–99 % off and end points missed by 6 µm to 4 mm (a chain that
