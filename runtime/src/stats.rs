@@ -1,6 +1,6 @@
 //! Cycle statistics from the set points: time in total, per tool and per
-//! operation, distance cut (feeds and threads) and at rapid, blocks
-//! executed. An operation is a stretch of the run with one active tool:
+//! operation, distance cut (feeds and threads) and at rapid (the tool's
+//! path over the work, C's turn included), blocks executed. An operation is a stretch of the run with one active tool:
 //! it begins at the period the tool becomes active (the T block) and ends
 //! when another tool does, so a tool used twice has two operations.
 
@@ -46,7 +46,7 @@ pub struct Stats {
     pub c_deg: Option<f64>,
     /// NC blocks executed.
     pub blocks: u64,
-    last: Option<(f64, f64)>,
+    last: Option<Place>,
     last_c: Option<f64>,
     dt: f64,
 }
@@ -75,11 +75,8 @@ impl Stats {
                 ..Operation::default()
             });
         }
-        // Axis positions: the tool's real travel, X back to a radius.
-        let now = (p.axis_x * 0.5, p.axis_z);
-        let d = self
-            .last
-            .map_or(0.0, |(r, z)| libm::hypot(now.0 - r, now.1 - z));
+        let now = Place::of(p);
+        let d = self.last.map_or(0.0, |l| l.to(&now));
         self.last = Some(now);
         if let Some(op) = self.operations.last_mut() {
             op.time_s += self.dt;
@@ -103,6 +100,40 @@ impl Stats {
             self.c_deg = Some(self.c_deg.unwrap_or(0.0) + turned);
             self.last_c = Some(c);
         }
+    }
+}
+
+/// Where the tool stands over the work in a period, for its travel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Place {
+    /// The axes' positions (tool offsets included: the tool's real
+    /// travel), X back to a radius.
+    r: f64,
+    z: f64,
+    /// The tool's distance from the spindle centre (work X as a radius)
+    /// and the C angle (radians; 0 without a C axis).
+    radius: f64,
+    c: f64,
+}
+
+impl Place {
+    fn of(p: &SetPoint) -> Place {
+        Place {
+            r: p.axis_x * 0.5,
+            z: p.axis_z,
+            radius: libm::fabs(p.x) * 0.5,
+            c: p.c.unwrap_or(0.0).to_radians(),
+        }
+    }
+
+    /// The tool's travel over the work from here to `to`: the axes' step
+    /// and what C's turn carries the work under the tool, at the tool's
+    /// distance from the centre (exact along a helix; a period's step
+    /// elsewhere). In polar and cylindrical interpolation that is the
+    /// path in the plane.
+    fn to(&self, to: &Place) -> f64 {
+        let turn = 0.5 * (self.radius + to.radius) * (to.c - self.c);
+        libm::hypot(libm::hypot(to.r - self.r, to.z - self.z), turn)
     }
 }
 
@@ -187,14 +218,25 @@ mod tests {
     #[test]
     fn distances_and_c_rotation() {
         // Z 0 → −3 at feed, then back to −1 at rapid; C 0 → 90 → 45: it
-        // turned 135°.
+        // turned 135°. At X20 the work turns under the tool at radius 10:
+        // helices of √(3² + (10·π/2)²) and √(2² + (10·π/4)²).
         let mut s = Stats::new(0.001);
         s.add(&point(0.001, 0.0, Some(0.0), Motion::None));
         s.add(&point(0.002, -3.0, Some(90.0), Motion::Feed));
         s.add(&point(0.003, -1.0, Some(45.0), Motion::Rapid));
-        assert_eq!((s.cut_mm, s.rapid_mm), (3.0, 2.0));
+        let (quarter, eighth) = (
+            10.0 * core::f64::consts::FRAC_PI_2,
+            10.0 * core::f64::consts::FRAC_PI_4,
+        );
+        assert!((s.cut_mm - libm::sqrt(9.0 + quarter * quarter)).abs() < 1e-12);
+        assert!((s.rapid_mm - libm::sqrt(4.0 + eighth * eighth)).abs() < 1e-12);
         assert_eq!(s.c_deg, Some(135.0));
         assert!(s.to_string().contains("C axis turned: 135.000 deg"));
+        // C standing, the axes' travel alone.
+        let mut s = Stats::new(0.001);
+        s.add(&point(0.001, 0.0, Some(30.0), Motion::None));
+        s.add(&point(0.002, -3.0, Some(30.0), Motion::Feed));
+        assert_eq!(s.cut_mm, 3.0);
         // Without a C axis there is no C line.
         let mut s = Stats::new(0.001);
         s.add(&point(0.001, 0.0, None, Motion::None));

@@ -220,6 +220,24 @@ fn cylindrical_interpolation_follows_the_developed_path_at_f() {
 }
 
 #[test]
+fn the_distance_cut_is_the_path_in_the_plane() {
+    // `POLAR`'s contour: two lines of √200, two half circles of R10 and
+    // a line of 20: 2·14.1421 + 2·31.4159 + 20 = 111.1150 mm, where X and
+    // Z alone travel about 43 mm.
+    let r = run_c(POLAR, false);
+    let mut s = runtime::stats::Stats::new(r.cfg.period_s);
+    for p in &r.pts {
+        s.add(p);
+    }
+    let want = 2.0 * 200f64.sqrt() + 2.0 * 10.0 * PI + 20.0;
+    assert!(
+        (s.cut_mm - want).abs() < 0.01,
+        "{} against {want}",
+        s.cut_mm
+    );
+}
+
+#[test]
 fn the_run_agrees_with_the_canon() {
     let r = run_c(POLAR, false);
     let canon: Vec<String> = r.canon.iter().map(|e| e.to_string()).collect();
