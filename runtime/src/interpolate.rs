@@ -107,7 +107,8 @@ pub struct SetPoint {
     /// Path speed over the period, mm/min (with C counted as mm, the
     /// combined speed of planner.rs, while C turns).
     pub feed: f64,
-    /// Source line of the block being executed.
+    /// Source line of the block being executed (a move that waited in
+    /// the kernel for the next block keeps its own block's).
     pub line: u32,
     /// Its source file: an index into the module's file table
     /// (`isa::Module::files`; 0 is the main program's file).

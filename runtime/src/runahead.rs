@@ -82,6 +82,23 @@ enum VmState {
     Alarm,
 }
 
+/// The sink of a VM step: its events, and where those of an earlier
+/// block begin.
+struct StepSink<'a> {
+    events: &'a mut Vec<Event>,
+    origins: &'a mut Vec<(usize, u32)>,
+}
+
+impl Sink for StepSink<'_> {
+    fn emit(&mut self, e: Event) {
+        self.events.push(e);
+    }
+
+    fn origin(&mut self, block: u32) {
+        self.origins.push((self.events.len(), block));
+    }
+}
+
 /// The VM and what turns its events into queued commands.
 pub(crate) struct RunAhead {
     pub(crate) vm: Vm,
@@ -89,6 +106,9 @@ pub(crate) struct RunAhead {
     pub(crate) tr: Translator,
     staged: VecDeque<(Command, Tag)>,
     events: Vec<Event>,
+    /// Where in `events` the events of an earlier block begin, and its pc
+    /// (`Sink::origin`: what waited in the kernel's contour queue).
+    origins: Vec<(usize, u32)>,
     scratch: Vec<Command>,
     vm_state: VmState,
     vm_alarm: Option<vm::Alarm>,
@@ -117,6 +137,7 @@ impl RunAhead {
             machine,
             staged: VecDeque::new(),
             events: Vec::new(),
+            origins: Vec::new(),
             scratch: Vec::new(),
             vm_state: VmState::Running,
             vm_alarm: None,
@@ -222,7 +243,12 @@ impl RunAhead {
     /// Executes one block of the VM and stages its commands.
     fn step_vm(&mut self, tap: &mut dyn Sink) {
         self.events.clear();
-        let status = self.vm.step(1 << 16, &mut self.events);
+        self.origins.clear();
+        let mut sink = StepSink {
+            events: &mut self.events,
+            origins: &mut self.origins,
+        };
+        let status = self.vm.step(1 << 16, &mut sink);
         let loc = self.vm.last_loc();
         let tag = Tag {
             file: loc.file,
@@ -275,16 +301,32 @@ impl RunAhead {
     }
 
     /// The step's events, translated into commands for the queue (the
-    /// first `held.0` thread legs tagged as the held block's), and told to
-    /// `tap`.
+    /// first `held.0` thread legs tagged as the held block's, those of an
+    /// earlier block that waited in the kernel as that block's), and told
+    /// to `tap`.
     fn stage_events(&mut self, tag: Tag, held: (usize, Tag), tap: &mut dyn Sink) {
         let (held, held_tag) = held;
         let mut legs = 0;
-        for e in self.events.drain(..) {
+        let mut origins = 0;
+        let mut own = tag;
+        for (i, e) in self.events.drain(..).enumerate() {
+            while let Some(&(at, pc)) = self.origins.get(origins) {
+                if at > i {
+                    break;
+                }
+                let loc = self.vm.loc_at(pc);
+                own = Tag {
+                    file: loc.file,
+                    line: loc.line,
+                    col: loc.col,
+                    ..tag
+                };
+                origins += 1;
+            }
             self.scratch.clear();
             self.tr
                 .event(&e, &self.vm.nc, &self.machine, &mut self.scratch);
-            let mut t = tag;
+            let mut t = own;
             if legs < held && matches!(e, Event::Thread { .. }) {
                 legs += 1;
                 t = held_tag;

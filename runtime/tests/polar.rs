@@ -467,15 +467,11 @@ fn polar_compensation_runs_the_tool_centre_round_the_contour() {
         check(&r, 4..=5, polar_plane, &path, 300.0);
         check(&r, 7..=10, polar_plane, &path, 300.0);
         // The plunge waits for the corner after the first side (it runs
-        // with the next block's events, so its periods carry line 7): the
-        // tool stands at that side's end (12, 10), X = 2·√244, C =
-        // atan2(10, 12).
+        // with the next block's events, yet its periods carry its own
+        // line): the tool stands at that side's end (12, 10), X =
+        // 2·√244, C = atan2(10, 12).
         let (x, c) = (2.0 * 244f64.sqrt(), 10f64.atan2(12.0).to_degrees());
-        let plunge: Vec<_> = r
-            .pts
-            .iter()
-            .filter(|p| p.line <= 7 && p.z < -2.0 - 1e-9 && p.z > -5.0 + 1e-9)
-            .collect();
+        let plunge: Vec<_> = r.pts.iter().filter(|p| p.line == 6).collect();
         assert!(plunge.len() > 1000, "{}", plunge.len());
         for p in &plunge {
             let pc = p.c.expect("a C column");

@@ -655,3 +655,41 @@ fn a_zero_length_g31_does_not_hold_the_program() {
     let last = r.pts.last().unwrap();
     assert!((last.z - 0.0).abs() < 1e-9 && (last.x - 10.0).abs() < 1e-9);
 }
+
+/// A compensated contour with a chamfer: each element waits in the kernel
+/// for the next block and prints while that block runs, yet its periods
+/// carry its own block's line (they carried the next one's).
+#[test]
+fn a_waiting_element_runs_under_its_own_line() {
+    let machine = Machine::from_toml("[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n")
+        .expect("a machine file");
+    let src = "G98 G00 X20 Z2 T0101\nG42 G01 Z0 F300\nG01 Z-10\nX30 Z-15\nZ-25 L2\nX40\nG40 G00 X50 Z5\nM30\n";
+    let r = run_with(src, machine, runtime::AutoAck, |_| {}, |_, _| {}, 600.0);
+    assert_eq!(r.state, RunState::Ended);
+    let on = |line: u32| -> Vec<(f64, f64)> {
+        r.pts
+            .iter()
+            .filter(|p| p.line == line && p.motion != Motion::None)
+            .map(|p| (p.x, p.z))
+            .collect()
+    };
+    for line in 2..=7 {
+        assert!(
+            on(line).len() > 10,
+            "line {line}: {} periods",
+            on(line).len()
+        );
+    }
+    // Tip 3 prints the imaginary tip on the programmed OD: the start-up
+    // (line 2) ends where the next element starts, the nose centre 0.8
+    // above Z0, printed 0.8 lower and 0.8 towards −Z: X20 Z−0.8; line 3
+    // runs along X20 from there.
+    assert!(on(2).iter().all(|&(x, z)| x == 20.0 && z >= -0.8 - 1e-9));
+    assert!(on(3).iter().all(|&(x, z)| x == 20.0 && z <= -0.8 + 1e-9));
+    // Line 5 is Z−15 … Z−25 with its chamfer L2 to X34 at Z−25 (the
+    // tip printed 0.8 inside of it); line 6 runs out along Z−25.
+    assert!(on(5)
+        .iter()
+        .all(|&(x, z)| (29.5..=34.0).contains(&x) && z <= -15.0));
+    assert!(on(6).iter().all(|&(x, z)| z == -25.0 && x >= 33.0));
+}

@@ -67,7 +67,11 @@ impl BlockRun<'_> {
         words: &mut Words,
         blocks: &mut u64,
     ) -> Option<Result<Outcome, NcError>> {
-        Some(match *self.module.code.get(pc as usize)? {
+        let instr = *self.module.code.get(pc as usize)?;
+        // What the block leaves waiting in the kernel is told by this pc
+        // when it prints (`Sink::origin`, `Vm::loc_at`).
+        self.nc.origin = pc;
+        Some(match instr {
             Instr::Exec { flags } if flags & PROFILE == 0 => self.words(pc, words, blocks),
             Instr::ExecMove => self.plain_move(pc, words, blocks),
             Instr::Block { rec } => self.typed(pc, rec, words, blocks),

@@ -258,6 +258,12 @@ impl Vm {
         self.locs.get(&self.module.lines, self.last_exec)
     }
 
+    /// The source place of the block instruction at `pc`: events told to
+    /// a sink under `Sink::origin(pc)` belong to it.
+    pub fn loc_at(&self, pc: u32) -> isa::SourceLoc {
+        self.locs.get(&self.module.lines, pc)
+    }
+
     /// Whether block-skip switch `switch` (1–9; `/` is 1) is on: a `/n`
     /// block read from now on is skipped. It starts as the machine file's
     /// `operator.block_skip`; a number outside 1–9 names no switch (off).
@@ -766,6 +772,8 @@ impl Vm {
         run: impl FnOnce(&mut BlockRun<'_>, u32, &mut Words, &mut u64) -> Result<nc::Outcome, Fault>,
     ) -> Result<Next, Fault> {
         let pc = self.pc - 1;
+        // (As `BlockRun::instr` does for a tier's call.)
+        self.nc.origin = pc;
         let mut kernel = BlockRun {
             module: &self.module,
             nc: &mut self.nc,

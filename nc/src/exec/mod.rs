@@ -38,6 +38,14 @@ use crate::plan::reader::Reader;
 /// Where the events of a run go; the kernel does not know who listens.
 pub trait Sink {
     fn emit(&mut self, event: Event);
+
+    /// The events that follow belong to the block tagged `block` (the
+    /// VM's pc, [`Nc::origin`]), until the next call: an element that
+    /// waited in the contour queue for the next block (a corner word,
+    /// nose-radius compensation) is printed while that block runs, and
+    /// so are the events held behind it. Called only where the block
+    /// changes. A sink that does not place events by block ignores it.
+    fn origin(&mut self, _block: u32) {}
 }
 
 impl Sink for Vec<Event> {
@@ -87,6 +95,10 @@ pub struct Nc {
     /// Plain moves take their short path (`plain`); off, every block runs
     /// the general one, for tests that compare both.
     plain_path: bool,
+    /// The tag of the block running (the VM sets its pc; 0 unless set):
+    /// what waits in the contour queue keeps its block's, and is told to
+    /// the sink with it when printed ([`Sink::origin`]).
+    pub origin: u32,
 }
 
 impl Nc {
@@ -100,6 +112,7 @@ impl Nc {
             generated: 0,
             allowance: u64::MAX,
             plain_path: true,
+            origin: 0,
         }
     }
 

@@ -255,6 +255,10 @@ impl Sink for Guard<'_> {
         }
         self.inner.emit(e);
     }
+
+    fn origin(&mut self, block: u32) {
+        self.inner.origin(block);
+    }
 }
 
 #[cfg(test)]

@@ -494,6 +494,10 @@ impl Sink for Timer<'_> {
         self.watch(&e);
         self.inner.emit(e);
     }
+
+    fn origin(&mut self, block: u32) {
+        self.inner.origin(block);
+    }
 }
 
 /// The length of an arc in the ZX view (+Z right, +r up; G02 clockwise);

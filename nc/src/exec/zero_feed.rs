@@ -114,6 +114,10 @@ impl Sink for Watch<'_> {
             ));
         }
     }
+
+    fn origin(&mut self, block: u32) {
+        self.inner.origin(block);
+    }
 }
 
 impl Watch<'_> {

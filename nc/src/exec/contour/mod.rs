@@ -119,9 +119,9 @@ fn first_block(
         flush(nc, sink)?;
     }
     let feed = queue::feed_now(nc);
-    nc.st
-        .contour
-        .wait_angle(AngleFirst::new(nc.st.pos, q, rapid, feed, corner));
+    nc.st.contour.wait_angle(AngleFirst::new(
+        nc.st.pos, q, rapid, feed, corner, nc.origin,
+    ));
     Ok(())
 }
 
@@ -230,7 +230,7 @@ impl Nc {
     /// order: behind an element that waits for its corner, if one does.
     pub fn emit_in_order(&mut self, event: crate::base::event::Event, sink: &mut dyn Sink) {
         if self.st.contour.is_holding() {
-            self.st.contour.hold(vec![event]);
+            self.st.contour.hold(vec![event], self.origin);
         } else {
             sink.emit(event);
         }

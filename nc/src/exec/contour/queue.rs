@@ -28,6 +28,8 @@ pub(crate) struct Move {
     pub comp: Option<Leg>,
     /// The C angle its line prints (`C=`), when its block programs C/H.
     pub c: Option<f64>,
+    /// The tag of its block ([`Nc::origin`]).
+    pub origin: u32,
 }
 
 impl Move {
@@ -41,6 +43,7 @@ impl Move {
             trimmed: false,
             comp: None,
             c: None,
+            origin: nc.origin,
         }
     }
 
@@ -68,6 +71,8 @@ pub(crate) struct AngleFirst {
     /// Blocks run since, and whether the block that made it is still running.
     between: u32,
     fresh: bool,
+    /// The tag of its block ([`Nc::origin`]).
+    origin: u32,
 }
 
 impl AngleFirst {
@@ -77,6 +82,7 @@ impl AngleFirst {
         rapid: bool,
         feed: (f64, bool),
         corner: Option<Corner>,
+        origin: u32,
     ) -> AngleFirst {
         AngleFirst {
             from,
@@ -86,13 +92,15 @@ impl AngleFirst {
             corner,
             between: 0,
             fresh: true,
+            origin,
         }
     }
 }
 
 #[derive(Debug, Clone)]
 enum Item {
-    Event(Event),
+    /// An event held behind what waits, with its block's tag.
+    Event(Event, u32),
     Move(Move),
     Angle(AngleFirst),
 }
@@ -115,8 +123,10 @@ impl ContourState {
         !self.items.is_empty()
     }
 
-    pub(crate) fn hold(&mut self, events: Vec<Event>) {
-        self.items.extend(events.into_iter().map(Item::Event));
+    /// Events of the block tagged `origin`, held behind what waits.
+    pub(crate) fn hold(&mut self, events: Vec<Event>, origin: u32) {
+        self.items
+            .extend(events.into_iter().map(|e| Item::Event(e, origin)));
     }
 
     pub(crate) fn angle_waiting(&self) -> bool {
@@ -198,13 +208,13 @@ pub(crate) fn in_order<R>(
     let r = f(nc, &mut held);
     nc.st.feed_printed = printed;
     // Kept even on an error: a later flush prints them before the alarm.
-    nc.st.contour.hold(held);
+    nc.st.contour.hold(held, nc.origin);
     r
 }
 
 /// The last waiting element (move or angle pair) in `items`.
 fn last_waiting(items: &[Item]) -> Option<usize> {
-    items.iter().rposition(|i| !matches!(i, Item::Event(_)))
+    items.iter().rposition(|i| !matches!(i, Item::Event(..)))
 }
 
 /// Applies `prev`'s corner word to the join with `next`: both are
@@ -233,6 +243,7 @@ fn join(prev: &mut Move, next: &mut Move) -> Result<Option<Move>, NcError> {
         trimmed: false,
         comp: prev.comp.as_ref().map(Leg::inserted),
         c: None,
+        origin: prev.origin,
     }))
 }
 
@@ -317,6 +328,7 @@ pub(crate) fn finish_angle(
         trimmed: false,
         comp: None,
         c: None,
+        origin: a.origin,
     };
     let step = compensate(nc, &mut first)?;
     let items = &mut nc.st.contour.items;
@@ -363,18 +375,38 @@ pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
 }
 
 /// Prints and forgets every item, in order, up to a plane element that
-/// cannot run (`plane::print_element`).
+/// cannot run (`plane::print_element`); each told to the sink with its
+/// block's tag, and the running block's again after them.
 fn drain(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
+    let running = nc.origin;
+    let mut told = running;
+    let result = drain_items(nc, sink, &mut told);
+    if told != running {
+        sink.origin(running);
+    }
+    result
+}
+
+fn drain_items(nc: &mut Nc, sink: &mut dyn Sink, told: &mut u32) -> Result<(), NcError> {
     for item in core::mem::take(&mut nc.st.contour.items) {
+        let origin = match &item {
+            Item::Event(_, o) => *o,
+            Item::Move(m) => m.origin,
+            Item::Angle(_) => *told,
+        };
+        if origin != *told {
+            sink.origin(origin);
+            *told = origin;
+        }
         match item {
-            Item::Event(Event::Feed { f, per_rev }) => {
+            Item::Event(Event::Feed { f, per_rev }, _) => {
                 // (A held FEED: `in_order`.)
                 if nc.st.feed_printed != Some((f, per_rev)) {
                     nc.st.feed_printed = Some((f, per_rev));
                     sink.emit(Event::Feed { f, per_rev });
                 }
             }
-            Item::Event(mut e) => {
+            Item::Event(mut e, _) => {
                 // A move of the axis outside a plane, held behind a
                 // compensated element (plane.rs), starts where the joints
                 // stand once that element is printed.
