@@ -314,6 +314,44 @@ fn the_expanded_program_marks_the_blocks_computed_as_it_ran() {
 }
 
 #[test]
+fn a_move_that_waited_for_the_next_block_keeps_its_line() {
+    // Under G42 each element waits for the next block (where it ends
+    // depends on it), and line 5's chamfer for line 6: printed as the next
+    // block runs, each still names its own line (they named the next).
+    let d = dir("waited");
+    std::fs::write(
+        d.join("t.toml"),
+        "[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n",
+    )
+    .unwrap();
+    let src = "G98 G00 X20 Z2 T0101\nG42 G01 Z0 F300\nG01 Z-10\nX30 Z-15\nZ-25 L2\nX40\nG40 G00 X50 Z5\nM30\n";
+    std::fs::write(d.join("w.nc"), src).unwrap();
+    let e = gbcc(&["w.nc", "--machine", "t.toml", "-E"], &d);
+    assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
+    let lines: Vec<(String, String)> = text(&e.stdout)
+        .lines()
+        .filter_map(|l| l.split_once(" (LINE "))
+        .map(|(code, line)| (code.to_string(), line.trim_end_matches(')').to_string()))
+        .collect();
+    let starts: Vec<(&str, &str)> = lines.iter().map(|(c, l)| (&c[..3], l.as_str())).collect();
+    // (Each comment marks the first block of its line; the start-up to
+    // Z−0.8 is line 2's, the corner arc after the slope line 5's.)
+    assert_eq!(
+        starts,
+        [
+            ("T01", "1"),
+            ("G98", "2"),
+            ("G01", "3"),
+            ("G01", "4"),
+            ("G03", "5"),
+            ("G01", "6"),
+            ("G00", "7"),
+            ("M30", "8")
+        ]
+    );
+}
+
+#[test]
 fn a_machine_with_a_c_axis() {
     let d = dir("caxis");
     std::fs::write(d.join("c.toml"), "[axes.c]\nenabled = true\n").unwrap();

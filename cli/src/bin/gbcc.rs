@@ -600,18 +600,25 @@ fn expand(c: &Compiled, src: &[u8], opts: &Options) -> (String, Option<String>) 
     let zero = vm.nc.origin();
     let point = machine.machine.decimal_point == nc::machine::DecimalPoint::Increment;
     let mut out = cli::expand::Expand::new(seqs, (zero.x(), zero.z), point);
-    let mut events: Vec<nc::Event> = Vec::new();
+    let mut events = cli::expand::Placed::default();
     loop {
         let start = (vm.nc.position().x(), vm.nc.position().z);
         let status = vm.step(1 << 16, &mut events);
         // A block of words computed at run time (`exec`, `execmove`): its
         // values are this run's, not the program's.
-        let at = vm.last_block_pc() as usize;
-        let dynamic = matches!(
-            vm.module().code.get(at),
-            Some(isa::Instr::Exec { .. } | isa::Instr::ExecMove)
-        );
-        out.block_events(&events, vm.last_loc().line, dynamic, start);
+        let dynamic = |pc: u32| {
+            matches!(
+                vm.module().code.get(pc as usize),
+                Some(isa::Instr::Exec { .. } | isa::Instr::ExecMove)
+            )
+        };
+        for (run, pc) in events.runs() {
+            let (line, pc) = match pc {
+                Some(pc) => (vm.loc_at(pc).line, pc),
+                None => (vm.last_loc().line, vm.last_block_pc()),
+            };
+            out.block_events(run, line, dynamic(pc), start);
+        }
         events.clear();
         match status {
             vm::Status::Event | vm::Status::OutOfBudget | vm::Status::Sync => continue,
