@@ -387,6 +387,7 @@ fn drain(nc: &mut Nc, sink: &mut dyn Sink) -> Result<(), NcError> {
     result
 }
 
+/// `drain`'s items; `told`: the block tag last told to the sink.
 fn drain_items(nc: &mut Nc, sink: &mut dyn Sink, told: &mut u32) -> Result<(), NcError> {
     for item in core::mem::take(&mut nc.st.contour.items) {
         let origin = match &item {
