@@ -1093,7 +1093,11 @@ impl Planner {
     fn feed_corner(&self, prev: &Segment, cur: &Segment, n: usize) -> Corner {
         let du = cur.t0 - prev.t1;
         let smoothing = self.smoothing_of(cur.kind);
-        let iax = smoothing.map_or(self.iax, |s| s.iax);
+        let iax = match (smoothing, self.plane) {
+            (Some(s), _) => s.iax,
+            (None, Some(map)) => self.plane_iax(map, prev, cur),
+            (None, None) => self.iax,
+        };
         // The velocity step of the corner within its share of each axis's
         // acceleration ...
         let share = (du.r.abs() * iax[0]).max(du.z.abs() * iax[1]);
@@ -1134,6 +1138,31 @@ impl Planner {
             corner.into = corner.into.max(prev.c_in);
         }
         corner
+    }
+
+    /// `iax` for a joint of two moves in a plane (only tangent ones run
+    /// on there): the inverse accelerations the plane's two axes may
+    /// take, as `plane_limits` derives them from the joints. On the
+    /// cylinder, Z's and C's on its surface; in the polar plane, the
+    /// smaller of X's and C's at the moves' least distance from the
+    /// centre, in every direction. (X's and Z's own, which the joint took
+    /// before, let a period through a tangent joint onto a small arc take
+    /// C past its limit.)
+    fn plane_iax(&self, map: PlaneMap, prev: &Segment, cur: &Segment) -> [f64; 2] {
+        let Some(c) = self.c_axis else {
+            return self.iax;
+        };
+        let alpha = c.accel.to_radians();
+        match map {
+            // (`r` is Z, `z` is C developed.)
+            PlaneMap::Cylinder { radius, .. } => [self.iax[1], 1.0 / (alpha * radius)],
+            PlaneMap::Polar { .. } => {
+                let near = |s: &Segment| s.curve.min_distance_to(V2::ZERO);
+                let rho = near(prev).min(near(cur)).max(self.tolerance);
+                let a = self.ax[0].min(alpha * rho);
+                [1.0 / a, 1.0 / a]
+            }
+        }
     }
 
     /// The speed of a feed corner (`feed_corner`) at the end of move

@@ -92,18 +92,26 @@ fn random_plane_programs_are_certified() {
     assert!(certified >= 80, "{certified} of 96 runs certified");
 }
 
-/// A contour of `polar` cut under G41 or G42 with a tool of radius 0.5…3:
-/// the start-up from (20, 0) to (20, 0.5), the contour, the cancel back to
-/// (20, 0).
-fn polar_compensated(rng: &mut Lcg) -> (String, Machine) {
+/// A program of `polar` (or of `cylinder`) cut under G41 or G42 with a
+/// tool of radius 0.5…3: T0101 before the mode starts, a start-up of
+/// 0.5 mm (to X40 C0.5, or to Z0.5 C0), the moves, a cancel back to where
+/// the mode started.
+fn compensated(rng: &mut Lcg, in_polar: bool) -> (String, Machine) {
     let side = rng.pick(&["G41", "G42"]);
     let radius = rng.pick(&[0.5, 1.0, 2.0, 3.0]);
-    let contour = polar(rng);
-    let body = contour
-        .trim_start_matches("G98 G00 X40 Z2 C0\nG12.1\n")
-        .trim_end_matches("G13.1\nM30\n");
+    let program = if in_polar { polar(rng) } else { cylinder(rng) };
+    let lines: Vec<&str> = program.lines().collect();
+    // (Both generators write two lines before the moves, two after.)
+    let (head, body) = (&lines[..2], &lines[2..lines.len() - 2]);
+    let (start, cancel, end) = match in_polar {
+        true => ("G01 X40 C0.5", "G01 X40 C0", "G13.1"),
+        false => ("G01 Z0.5 C0", "G01 Z0 C0", "G7.1 C0"),
+    };
     let src = format!(
-        "G98 G00 X40 Z2 C0 T0101\nG12.1\n{side} G01 X40 C0.5 F300\n{body}G40 G01 X40 C0 F300\nG13.1\nM30\n"
+        "{} T0101\n{}\n{side} {start} F300\n{}\nG40 {cancel} F300\n{end}\nM30\n",
+        head[0],
+        head[1],
+        body.join("\n")
     );
     let toml =
         format!("[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = {radius}\n");
@@ -111,15 +119,15 @@ fn polar_compensated(rng: &mut Lcg) -> (String, Machine) {
 }
 
 #[test]
-fn random_compensated_polar_contours_are_certified() {
+fn random_compensated_plane_programs_are_certified() {
     // (PLANE_CASES: as above.)
     let cases: Option<usize> = std::env::var("PLANE_CASES")
         .ok()
         .and_then(|n| n.parse().ok());
     let mut rng = Lcg(4812);
     let mut certified = 0;
-    for _ in 0..cases.unwrap_or(40) {
-        let (src, machine) = polar_compensated(&mut rng);
+    for k in 0..cases.unwrap_or(40) {
+        let (src, machine) = compensated(&mut rng, k % 2 == 0);
         for jerk in [false, true] {
             // (A random contour may not fit the tool: an arc smaller than
             // its radius on the centre side, E4036; a path through the
@@ -135,6 +143,24 @@ fn random_compensated_polar_contours_are_certified() {
         eprintln!("{certified} of {} runs certified", 2 * n);
         return;
     }
-    // 64 of 80 at this seed.
-    assert!(certified >= 56, "{certified} of 80 runs certified");
+    // 50 of 80 at this seed (a random groove on a small cylinder often
+    // has an arc too small for the tool).
+    assert!(certified >= 44, "{certified} of 80 runs certified");
+}
+
+/// The random test's first finding on the cylinder: under G42 with a tool
+/// of radius 1, on a cylinder of radius 5, a line at F300 runs
+/// tangentially onto the 1 mm arc compensation puts round a corner. The
+/// period through that joint bends its chord onto the arc; the joint's
+/// share of acceleration for that bend was X's and Z's (1 500, 2 000
+/// mm/s²) where C allows 3 600°/s² · 5 mm = 314 mm/s² along the
+/// surface, and C ran 0.3 % past its acceleration.
+#[test]
+fn a_tangent_joint_onto_a_small_arc_on_the_cylinder_keeps_c_within_its_limit() {
+    let src = "G98 G00 X10 Z0 C0 T0101\nG7.1 C5.\nG42 G01 Z0.5 C0 F300\nG01 Z-12.925 C-38.209 F100\n\
+               G00 Z-24.853 C-88.89 F100\nG01 Z-1.021 C15.781 F300\nG01 Z-3.392 C-57.087 F1000\n\
+               G03 Z-12.142 C84.183 R133.379 F3000\nG01 X9.805 F1000\nG40 G01 Z0 C0 F300\nG7.1 C0\nM30\n";
+    let toml = "[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = 1\n";
+    let machine = Machine::from_toml(toml).expect("a machine file");
+    assert_eq!(certify(src, &machine, false), Some(Ok(())));
 }
