@@ -164,3 +164,19 @@ fn a_tangent_joint_onto_a_small_arc_on_the_cylinder_keeps_c_within_its_limit() {
     let machine = Machine::from_toml(toml).expect("a machine file");
     assert_eq!(certify(src, &machine, false), Some(Ok(())));
 }
+
+/// Its finding with jerk limiting: compensation's 0.5 mm corner arc (line
+/// 7, after the rapid) on a cylinder of radius 10 at about 5 mm/s. The
+/// average of the path parameter bounds the jerk along the path, not
+/// what the arc's curvature adds to C's: 100.4 % of its jerk, before the
+/// planner capped small plane arcs for it.
+#[test]
+fn a_half_millimetre_arc_under_jerk_limiting_keeps_c_within_its_jerk() {
+    let src = "G98 G00 X20 Z0 C0 T0101\nG7.1 C10.\nG41 G01 Z0.5 C0 F300\nG01 X19.11 F100\n\
+               G03 Z-21.741 C-195.656 R20.948 F3000\nG00 Z-4.359 C-148.84 F3000\n\
+               G02 Z-28.695 C-80.976 R151.318 F3000\nG03 Z-27.518 C-163.366 R38.671 F300\n\
+               G40 G01 Z0 C0 F300\nG7.1 C0\nM30\n";
+    let toml = "[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = 0.5\n";
+    let machine = Machine::from_toml(toml).expect("a machine file");
+    assert_eq!(certify(src, &machine, true), Some(Ok(())));
+}
