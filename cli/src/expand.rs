@@ -4,56 +4,13 @@
 
 use nc::event::Num;
 use nc::event::{Dir, Plane, PlaneMotion, SpindleDir, StopKind};
-use nc::{Event, Sink};
+use nc::Event;
 use std::collections::HashMap;
 use std::fmt::Write;
 
 /// The comment of a run-time alarm that no G-code raises.
 const NOT_WRITTEN: &str =
     "the run stops here; an alarm that is not a #3000 one is not written as G-code";
-
-/// The events of a VM step, and where those of an earlier block begin
-/// (`nc::Sink::origin`: what waited in the kernel for the next block), so
-/// that each run of them is printed under its own block's line.
-#[derive(Default)]
-pub struct Placed {
-    events: Vec<Event>,
-    origins: Vec<(usize, u32)>,
-}
-
-impl Sink for Placed {
-    fn emit(&mut self, e: Event) {
-        self.events.push(e);
-    }
-
-    fn origin(&mut self, block: u32) {
-        self.origins.push((self.events.len(), block));
-    }
-}
-
-impl Placed {
-    /// The step's events in runs of one block each: the events and the pc
-    /// of their block (`None`: the step's own).
-    pub fn runs(&self) -> Vec<(&[Event], Option<u32>)> {
-        let mut runs = Vec::new();
-        let (mut from, mut pc) = (0, None);
-        for &(at, block) in &self.origins {
-            if at > from {
-                runs.push((&self.events[from..at], pc));
-            }
-            (from, pc) = (at, Some(block));
-        }
-        if from < self.events.len() || runs.is_empty() {
-            runs.push((&self.events[from..], pc));
-        }
-        runs
-    }
-
-    pub fn clear(&mut self) {
-        self.events.clear();
-        self.origins.clear();
-    }
-}
 
 /// Turns canon events into G-code text.
 pub struct Expand {

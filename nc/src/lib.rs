@@ -58,5 +58,5 @@ pub use exec::{
 
 pub use error::NcError;
 pub use event::Event;
-pub use exec::{Discard, Nc, Outcome, Sink};
+pub use exec::{Discard, Nc, Outcome, Placed, Sink};
 pub use machine::Machine;

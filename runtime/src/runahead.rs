@@ -16,7 +16,7 @@ use crate::translate::Translator;
 use alloc::collections::VecDeque;
 use alloc::string::String;
 use alloc::vec::Vec;
-use nc::{Event, Machine, Sink};
+use nc::{Event, Machine, Placed, Sink};
 use vm::{Status, Vm};
 
 /// What the program side needs of the motion side.
@@ -82,33 +82,15 @@ enum VmState {
     Alarm,
 }
 
-/// The sink of a VM step: its events, and where those of an earlier
-/// block begin.
-struct StepSink<'a> {
-    events: &'a mut Vec<Event>,
-    origins: &'a mut Vec<(usize, u32)>,
-}
-
-impl Sink for StepSink<'_> {
-    fn emit(&mut self, e: Event) {
-        self.events.push(e);
-    }
-
-    fn origin(&mut self, block: u32) {
-        self.origins.push((self.events.len(), block));
-    }
-}
-
 /// The VM and what turns its events into queued commands.
 pub(crate) struct RunAhead {
     pub(crate) vm: Vm,
     pub(crate) machine: Machine,
     pub(crate) tr: Translator,
     staged: VecDeque<(Command, Tag)>,
-    events: Vec<Event>,
-    /// Where in `events` the events of an earlier block begin, and its pc
-    /// (`Sink::origin`: what waited in the kernel's contour queue).
-    origins: Vec<(usize, u32)>,
+    /// A step's events, and where an earlier block's begin (its pc:
+    /// what waited in the kernel's contour queue).
+    events: Placed,
     scratch: Vec<Command>,
     vm_state: VmState,
     vm_alarm: Option<vm::Alarm>,
@@ -136,8 +118,7 @@ impl RunAhead {
             vm,
             machine,
             staged: VecDeque::new(),
-            events: Vec::new(),
-            origins: Vec::new(),
+            events: Placed::default(),
             scratch: Vec::new(),
             vm_state: VmState::Running,
             vm_alarm: None,
@@ -243,12 +224,7 @@ impl RunAhead {
     /// Executes one block of the VM and stages its commands.
     fn step_vm(&mut self, tap: &mut dyn Sink) {
         self.events.clear();
-        self.origins.clear();
-        let mut sink = StepSink {
-            events: &mut self.events,
-            origins: &mut self.origins,
-        };
-        let status = self.vm.step(1 << 16, &mut sink);
+        let status = self.vm.step(1 << 16, &mut self.events);
         let loc = self.vm.last_loc();
         let tag = Tag {
             file: loc.file,
@@ -288,7 +264,7 @@ impl RunAhead {
         let Some(t) = self.wait_tag else {
             return (0, tag);
         };
-        if self.events.is_empty() && out_of_budget {
+        if self.events.events.is_empty() && out_of_budget {
             return (0, tag);
         }
         self.wait_tag = None;
@@ -309,8 +285,8 @@ impl RunAhead {
         let mut legs = 0;
         let mut origins = 0;
         let mut own = tag;
-        for (i, e) in self.events.drain(..).enumerate() {
-            while let Some(&(at, pc)) = self.origins.get(origins) {
+        for (i, e) in self.events.events.drain(..).enumerate() {
+            while let Some(&(at, pc)) = self.events.origins.get(origins) {
                 if at > i {
                     break;
                 }

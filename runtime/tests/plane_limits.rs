@@ -61,35 +61,50 @@ fn c_machine() -> Machine {
     machine
 }
 
-/// PLANE_CASES=N runs N programs (a long run by hand); the count of
-/// certified runs is then only printed.
-#[test]
-fn random_plane_programs_are_certified() {
+/// Runs `count` programs that `make` writes (with the index), each with
+/// jerk limiting off and on; panics at the first run that is not
+/// certified, and returns how many were (the rest stop with an alarm).
+/// PLANE_CASES=N runs N instead, a long run by hand: the count is then
+/// only printed, and `None` returned.
+fn certified_runs(count: usize, mut make: impl FnMut(usize) -> (String, Machine)) -> Option<usize> {
     let cases: Option<usize> = std::env::var("PLANE_CASES")
         .ok()
         .and_then(|n| n.parse().ok());
-    let mut rng = Lcg(2026);
     let mut certified = 0;
-    for k in 0..cases.unwrap_or(48) {
-        let src = if k % 2 == 0 {
-            polar(&mut rng)
-        } else {
-            cylinder(&mut rng)
-        };
+    for k in 0..cases.unwrap_or(count) {
+        let (src, machine) = make(k);
         for jerk in [false, true] {
-            match certify(&src, &c_machine(), jerk) {
+            match certify(&src, &machine, jerk) {
                 Some(Ok(())) => certified += 1,
                 Some(Err(v)) => panic!("jerk {jerk}: {v}\n{src}"),
                 None => {}
             }
         }
     }
-    if let Some(n) = cases {
-        eprintln!("{certified} of {} runs certified", 2 * n);
-        return;
+    match cases {
+        Some(n) => {
+            eprintln!("{certified} of {} runs certified", 2 * n);
+            None
+        }
+        None => Some(certified),
     }
+}
+
+#[test]
+fn random_plane_programs_are_certified() {
+    let mut rng = Lcg(2026);
+    let certified = certified_runs(48, |k| {
+        let src = if k % 2 == 0 {
+            polar(&mut rng)
+        } else {
+            cylinder(&mut rng)
+        };
+        (src, c_machine())
+    });
     // Most of them run (a random arc may not fit its R).
-    assert!(certified >= 80, "{certified} of 96 runs certified");
+    if let Some(certified) = certified {
+        assert!(certified >= 80, "{certified} of 96 runs certified");
+    }
 }
 
 /// A program of `polar` (or of `cylinder`) cut under G41 or G42 with a
@@ -120,32 +135,16 @@ fn compensated(rng: &mut Lcg, in_polar: bool) -> (String, Machine) {
 
 #[test]
 fn random_compensated_plane_programs_are_certified() {
-    // (PLANE_CASES: as above.)
-    let cases: Option<usize> = std::env::var("PLANE_CASES")
-        .ok()
-        .and_then(|n| n.parse().ok());
+    // (A random contour may not fit the tool: an arc smaller than its
+    // radius on the centre side, E4036; a path through the centre,
+    // E4033.)
     let mut rng = Lcg(4812);
-    let mut certified = 0;
-    for k in 0..cases.unwrap_or(40) {
-        let (src, machine) = compensated(&mut rng, k % 2 == 0);
-        for jerk in [false, true] {
-            // (A random contour may not fit the tool: an arc smaller than
-            // its radius on the centre side, E4036; a path through the
-            // centre, E4033.)
-            match certify(&src, &machine, jerk) {
-                Some(Ok(())) => certified += 1,
-                Some(Err(v)) => panic!("jerk {jerk}: {v}\n{src}"),
-                None => {}
-            }
-        }
-    }
-    if let Some(n) = cases {
-        eprintln!("{certified} of {} runs certified", 2 * n);
-        return;
-    }
+    let certified = certified_runs(40, |k| compensated(&mut rng, k % 2 == 0));
     // 50 of 80 at this seed (a random groove on a small cylinder often
     // has an arc too small for the tool).
-    assert!(certified >= 44, "{certified} of 80 runs certified");
+    if let Some(certified) = certified {
+        assert!(certified >= 44, "{certified} of 80 runs certified");
+    }
 }
 
 /// The random test's first finding on the cylinder: under G42 with a tool

@@ -600,7 +600,7 @@ fn expand(c: &Compiled, src: &[u8], opts: &Options) -> (String, Option<String>) 
     let zero = vm.nc.origin();
     let point = machine.machine.decimal_point == nc::machine::DecimalPoint::Increment;
     let mut out = cli::expand::Expand::new(seqs, (zero.x(), zero.z), point);
-    let mut events = cli::expand::Placed::default();
+    let mut events = nc::Placed::default();
     loop {
         let start = (vm.nc.position().x(), vm.nc.position().z);
         let status = vm.step(1 << 16, &mut events);
@@ -612,12 +612,19 @@ fn expand(c: &Compiled, src: &[u8], opts: &Options) -> (String, Option<String>) 
                 Some(isa::Instr::Exec { .. } | isa::Instr::ExecMove)
             )
         };
+        let mut ran = false;
         for (run, pc) in events.runs() {
             let (line, pc) = match pc {
                 Some(pc) => (vm.loc_at(pc).line, pc),
                 None => (vm.last_loc().line, vm.last_block_pc()),
             };
             out.block_events(run, line, dynamic(pc), start);
+            ran = true;
+        }
+        if !ran {
+            // (A step that printed nothing is told too: the listing takes
+            // the tool's start from the first step.)
+            out.block_events(&[], vm.last_loc().line, dynamic(vm.last_block_pc()), start);
         }
         events.clear();
         match status {

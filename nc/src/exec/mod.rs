@@ -61,6 +61,45 @@ impl Sink for Discard {
     fn emit(&mut self, _: Event) {}
 }
 
+/// A sink that keeps the events and where those of an earlier block
+/// begin ([`Sink::origin`]): a host that places events by block (the
+/// runtime's tags, `gbcc -E`'s comments) reads them from here.
+#[derive(Debug, Default)]
+pub struct Placed {
+    pub events: Vec<Event>,
+    /// (index in `events`, the block's tag), in order.
+    pub origins: Vec<(usize, u32)>,
+}
+
+impl Sink for Placed {
+    fn emit(&mut self, e: Event) {
+        self.events.push(e);
+    }
+
+    fn origin(&mut self, block: u32) {
+        self.origins.push((self.events.len(), block));
+    }
+}
+
+impl Placed {
+    pub fn clear(&mut self) {
+        self.events.clear();
+        self.origins.clear();
+    }
+
+    /// The events in runs of one block each, empty runs left out: the
+    /// events and their block's tag (`None`: the block that ran).
+    pub fn runs(&self) -> impl Iterator<Item = (&[Event], Option<u32>)> + '_ {
+        let starts = core::iter::once((0, None))
+            .chain(self.origins.iter().map(|&(at, block)| (at, Some(block))));
+        let ends =
+            (self.origins.iter().map(|&(at, _)| at)).chain(core::iter::once(self.events.len()));
+        starts.zip(ends).filter_map(|((from, block), to)| {
+            Some((self.events.get(from..to).filter(|r| !r.is_empty())?, block))
+        })
+    }
+}
+
 /// What a block did, for the caller's control flow.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Outcome {
