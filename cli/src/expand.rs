@@ -169,7 +169,8 @@ impl Expand {
                 motion,
                 a,
                 b,
-            } => self.plane_move(*plane, *motion, *a, *b),
+                off,
+            } => self.plane_move(*plane, *motion, (*a, *b), *off),
             Event::PlaneAxis {
                 plane, rapid, to, ..
             } => {
@@ -375,7 +376,13 @@ impl Expand {
     /// A move of polar (`X C`) or cylindrical (`Z C`) interpolation; a
     /// polar arc's centre as I/J from its start, a cylinder's as R
     /// (negative beyond a half circle), the only form G7.1 takes.
-    fn plane_move(&mut self, plane: Plane, motion: PlaneMotion, a: f64, b: f64) -> String {
+    fn plane_move(
+        &mut self,
+        plane: Plane,
+        motion: PlaneMotion,
+        (a, b): (f64, f64),
+        off: Option<f64>,
+    ) -> String {
         let first = if plane == Plane::Polar { 'X' } else { 'Z' };
         let from = std::mem::replace(&mut self.plane_at, (a, b));
         if plane == Plane::Cylinder {
@@ -403,6 +410,18 @@ impl Expand {
                 let u0 = ((from.1 - cb) * k, from.0 - ca);
                 let u1 = ((b - cb) * k, a - ca);
                 let _ = write!(s, " R{}", n(signed_radius(dir, u0, u1)));
+            }
+        }
+        // The axis outside the plane, moving along (a straight move only).
+        match (off, plane) {
+            (None, _) => {}
+            (Some(z), Plane::Polar) => {
+                self.at.1 = z;
+                let _ = write!(s, " Z{}", self.w(z));
+            }
+            (Some(x), Plane::Cylinder) => {
+                self.at.0 = x;
+                let _ = write!(s, " X{}", self.w(x));
             }
         }
         s

@@ -351,6 +351,11 @@ fn polar_and_cylindrical_interpolation_are_certified() {
     let programs = [
         ("polar.nc", "G98 G00 X40 Z-2 C0\nG12.1\nG01 X20 C10 F300\nG03 X-20 C10 R10\nG01 Z-4 F50\nG01 C-10 F300\nG03 X20 C-10 R10\nG00 X20 C0.5\nG01 X-20 C0.5\nG00 X40 C0\nG13.1\nM30\n"),
         ("cylinder.nc", "G98 G00 X40 Z0 C0\nG7.1 C20.\nG01 X36 F20\nG01 Z-10 C90 F200\nG02 Z-30 R10\nG00 Z-40 C0\nG00 X40\nG7.1 C0\nM30\n"),
+        // The axis outside the plane taken along: a ramp past the centre
+        // (planned in pieces), a rapid back up; on the cylinder an infeed
+        // along the groove.
+        ("ramps.nc", "G98 G00 X40 Z2 C0\nG12.1\nG01 X-20 C0.5 Z-3 F300\nG00 X40 C0 Z2\nG13.1\nM30\n"),
+        ("cylinder_ramps.nc", "G98 G00 X40 Z0 C0\nG7.1 C20.\nG01 Z-10 C90 X36 F200\nG00 Z0 C0 X40\nG7.1 C0\nM30\n"),
     ];
     for (name, src) in programs {
         let nc = d.join(name);

@@ -124,6 +124,10 @@ pub struct Move {
     pub shift: V2,
     /// The C axis angle at the end, degrees (`None`: C stays). Only lines
     /// and rapids turn C; the kernel never asks it of a curve or thread.
+    /// While a plane is on ([`Command::Plane`]), where C follows the plane
+    /// point, it is instead where a line or rapid takes the axis outside
+    /// the plane (polar Z, cylinder X as a radius; work coordinates, mm;
+    /// `None`: it stays), in proportion along the move.
     pub c: Option<f64>,
 }
 

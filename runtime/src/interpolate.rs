@@ -281,9 +281,13 @@ pub struct Engine<P: Plc> {
     out: V2,
     follow: Follower,
     last_step: V2,
-    /// The C angle (degrees) and its change over the last period.
+    /// The C angle (degrees) and its change over the last period; while
+    /// a plane is on (C following the plane point) the axis outside the
+    /// plane (the planner's third coordinate, `Segment::c0`).
     c: f64,
     last_step_c: f64,
+    /// A plane switched in this period (`switch_plane`).
+    switched: bool,
     /// Periods the axes have stood for, up to 2.
     still: u8,
     shift: V2,
@@ -376,6 +380,7 @@ impl<P: Plc> Engine<P> {
             still: 2,
             c: 0.0,
             last_step_c: 0.0,
+            switched: false,
             shift: V2::ZERO,
             fixed_work: None,
             tag: Tag::default(),
@@ -617,9 +622,13 @@ impl<P: Plc> Engine<P> {
         self.last_step = self.out - before;
         self.last_step_c = self.c - before_c;
         if let Some(run) = &mut self.plane {
-            // The path speed is the plane's: the tangential feed.
-            run.follow(self.pos);
-            self.last_step_c = 0.0;
+            // The path is the plane's (`c` is the third coordinate: the
+            // axis outside the plane, which a move may take along).
+            run.follow(self.pos, self.c);
+        }
+        if core::mem::take(&mut self.switched) {
+            // The point changed coordinates: no step of the path.
+            (self.last_step, self.last_step_c) = (V2::ZERO, 0.0);
         }
         self.still = match self.last_step == V2::ZERO && self.last_step_c == 0.0 {
             true => (self.still + 1).min(2),
@@ -717,7 +726,8 @@ impl<P: Plc> Engine<P> {
     }
 
     /// The distance the last period moved along the path: XZ, combined
-    /// with C (degrees as mm) while C turns.
+    /// with C (degrees as mm) while C turns; in a plane, along the plane
+    /// combined with the axis outside it.
     fn path_step(&self) -> f64 {
         if self.last_step_c == 0.0 {
             self.last_step.norm()
@@ -780,13 +790,14 @@ impl<P: Plc> Engine<P> {
     /// (the move before ended at rest); the point changes coordinates.
     fn switch_plane(&mut self, sw: &crate::polar::PlaneSwitch) {
         self.plane = sw.map.map(|m| crate::polar::PlaneRun::start(m, sw));
+        self.switched = true;
         self.pos = sw.at;
-        self.c = sw.c;
+        self.c = sw.third();
         self.rapid_raw = sw.at;
-        self.rapid_raw_c = sw.c;
+        self.rapid_raw_c = self.c;
         self.smooth.reset(sw.at);
         self.rapid_avg.reset(sw.at);
-        self.rapid_avg_c.reset(V2::new(sw.c, 0.0));
+        self.rapid_avg_c.reset(V2::new(self.c, 0.0));
     }
 
     /// Done with the head item; `landed`: the motion stands at its end.
@@ -1505,6 +1516,7 @@ impl<P: Plc> Engine<P> {
         if let Some(run) = self.plane.take() {
             // A reset ends polar and cylindrical interpolation: the point
             // is the axes' again.
+            self.switched = true;
             self.pos = run.axes();
             self.c = run.c();
             self.smooth.reset(self.pos);

@@ -52,7 +52,10 @@ pub struct Segment {
     pub from: V2,
     /// End.
     pub to: V2,
-    /// C angle at both ends, degrees (equal when C does not turn).
+    /// The third coordinate at both ends (equal when it stays): C's angle
+    /// in degrees; in a plane, where C follows the plane point, the axis
+    /// outside the plane that a straight move takes along (polar Z,
+    /// cylinder X as a radius, work coordinates, mm: `PlaneMap::held`).
     pub c0: f64,
     /// ... and at the end.
     pub c1: f64,
@@ -98,13 +101,19 @@ pub struct Segment {
 }
 
 impl Segment {
-    /// Whether the move turns the C axis.
+    /// Whether the move turns the C axis (in a plane: moves the axis
+    /// outside it).
     pub fn turns_c(&self) -> bool {
         self.c1 != self.c0
     }
 
-    /// The C angle at path parameter λ (0…1): in proportion, exactly
-    /// `c1` at the end.
+    /// How far the third coordinate moves a mm of the path.
+    fn c_rate(&self) -> f64 {
+        (self.c1 - self.c0) / self.len
+    }
+
+    /// The third coordinate at path parameter λ (0…1): in proportion,
+    /// exactly `c1` at the end.
     pub fn c_at(&self, lam: f64) -> f64 {
         if lam >= 1.0 {
             self.c1
@@ -239,6 +248,8 @@ pub struct Planner {
     vrapid: [f64; 2],
     /// The C axis, if the machine has one (deg/s, deg/s²).
     c_axis: Option<crate::config::Axis>,
+    /// X and Z (for the axis outside a plane).
+    axes: [crate::config::Axis; 2],
     path_max: f64,
     budget: f64,
     /// G64 blends within this (machine.resolution_mm).
@@ -389,7 +400,8 @@ struct Limits {
     /// The curve's smallest radius (infinite for a line).
     rmin: f64,
     is_line: bool,
-    /// The C axis, when the move turns it.
+    /// The axis of the third coordinate (C, or in a plane the axis
+    /// outside it), when the move moves it.
     c: Option<crate::config::Axis>,
 }
 
@@ -410,6 +422,7 @@ impl Planner {
             vfeed: [cfg.x.max_feed, cfg.z.max_feed],
             vrapid: [cfg.x.rapid, cfg.z.rapid],
             c_axis: cfg.c,
+            axes: [cfg.x, cfg.z],
             path_max: cfg.path_max_feed,
             budget: cfg.corner_budget.clamp(0.0, 0.5),
             tolerance: cfg.resolution_mm.max(1e-6),
@@ -622,7 +635,7 @@ impl Planner {
                 self.plane = sw.map;
                 self.plane_shift = sw.shift;
                 self.tail = sw.at;
-                self.tail_c = sw.c;
+                self.tail_c = sw.third();
                 self.shift = if sw.map.is_some() { V2::ZERO } else { sw.shift };
                 ItemKind::Plane(sw)
             }
@@ -769,16 +782,17 @@ impl Planner {
             lim.is_some_and(|(lo, hi)| v < lo - 1e-9 || v > hi + 1e-9)
         };
         (0..=n).any(|i| {
-            let p = seg.curve.point(f64::from(i) / f64::from(n));
+            let lam = f64::from(i) / f64::from(n);
+            let p = seg.curve.point(lam);
             let p = match self.plane {
-                Some(map) => map.joints(p).0 + self.plane_shift,
+                Some(map) => map.with_held(seg.c_at(lam)).joints(p).0 + self.plane_shift,
                 None => p,
             };
             outside(p.r, self.travel[0]) || outside(p.z, self.travel[1])
         })
     }
 
-    /// The hard caps of a segment's path (`dc`: the C axis's turn).
+    /// The hard caps of a segment's path (`dc`: the third coordinate's move).
     fn limits(&self, seg: &Segment, dc: f64) -> Limits {
         let (curve, len) = (seg.curve, seg.len);
         let smoothing = self.smoothing_of(seg.kind);
@@ -793,8 +807,14 @@ impl Planner {
             (seg.to - seg.from).unit()
         };
         let (ur, uz) = (dir.r.abs(), dir.z.abs());
-        // C's share of the direction (only lines turn C).
-        let c = self.c_axis.filter(|_| dc != 0.0);
+        // The third coordinate's share of the direction (only lines move
+        // it): C's, or in a plane the axis's outside it.
+        let third = match self.plane {
+            None => self.c_axis,
+            Some(PlaneMap::Polar { .. }) => Some(self.axes[1]),
+            Some(PlaneMap::Cylinder { .. }) => Some(self.axes[0]),
+        };
+        let c = third.filter(|_| dc != 0.0);
         let uc = dc.abs() / len;
         let mut cap = if is_line {
             1.0 / (ur * self.ivfeed[0]).max(uz * self.ivfeed[1])
@@ -1060,7 +1080,14 @@ impl Planner {
 
     /// Whether two moves may blend (G64) at their junction.
     fn joinable(&self, a: &Segment, b: &Segment) -> bool {
-        if a.turns_c() || b.turns_c() || b.outside {
+        // A move that turns C stops at both ends; in a plane the pieces
+        // of a move that takes the axis outside it along run on (the same
+        // rate along the path; the tangents are checked below).
+        let third = match self.plane {
+            None => a.turns_c() || b.turns_c(),
+            Some(_) => (a.c_rate() - b.c_rate()).abs() > 1e-9,
+        };
+        if third || b.outside {
             return false;
         }
         match (a.kind, b.kind) {

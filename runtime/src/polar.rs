@@ -16,9 +16,12 @@
 //! - cylinder: Z = the plane's Z, C = s / r in degrees (s the developed
 //!   length, r the cylinder's radius); X stays where the map says.
 //!
-//! The axis the map holds moves alone between two switches: the plane
-//! ends, the axis moves as an ordinary move, the plane starts again at the
-//! same plane point with the new Z or X (translate.rs, `PlaneAxis`).
+//! The axis the map holds (polar Z, cylinder X) moves with a straight
+//! move of the plane, in proportion along it (the planner's third
+//! coordinate, which is C's outside a plane: planner.rs); alone, it moves
+//! between two switches: the plane ends, the axis moves as an ordinary
+//! move, the plane starts again at the same plane point with the new Z or
+//! X (translate.rs, `PlaneAxis`).
 //!
 //! The joints' limits hold: the planner caps each plane move for what
 //! the joints need of it (planner.rs, `plane_limits`), and a move that
@@ -62,6 +65,24 @@ impl PlaneMap {
         }
     }
 
+    /// Where the map holds the axis outside the plane: polar Z, cylinder
+    /// X as a radius (work coordinates, mm). A straight move may take it
+    /// along (the planner's third coordinate, planner.rs).
+    pub fn held(&self) -> f64 {
+        match *self {
+            PlaneMap::Polar { z } => z,
+            PlaneMap::Cylinder { r, .. } => r,
+        }
+    }
+
+    /// The same map with the axis outside the plane at `v` (`held`).
+    pub fn with_held(self, v: f64) -> PlaneMap {
+        match self {
+            PlaneMap::Polar { .. } => PlaneMap::Polar { z: v },
+            PlaneMap::Cylinder { radius, .. } => PlaneMap::Cylinder { radius, r: v },
+        }
+    }
+
     /// The joints (work coordinates) at plane point `p`; C in degrees,
     /// for the polar plane its angle in (−180°, 180°].
     pub fn joints(&self, p: V2) -> (V2, f64) {
@@ -88,6 +109,15 @@ pub struct PlaneSwitch {
     /// Machine axes minus programmed joints while the plane is on (work
     /// zero + tool offset), and the queue's shift after it ends.
     pub shift: V2,
+}
+
+impl PlaneSwitch {
+    /// The planner's and the interpolator's third coordinate after the
+    /// switch: the axis the plane holds while a plane is on, C's angle
+    /// after it ends.
+    pub fn third(&self) -> f64 {
+        self.map.map_or(self.c, |m| m.held())
+    }
 }
 
 /// The interpolator's state while a plane is on.
@@ -120,8 +150,10 @@ impl PlaneRun {
         run
     }
 
-    /// Moves the joints to plane point `p`.
-    pub fn follow(&mut self, p: V2) {
+    /// Moves the joints to plane point `p`, the axis outside the plane to
+    /// `held` (`PlaneMap::held`).
+    pub fn follow(&mut self, p: V2, held: f64) {
+        self.map = self.map.with_held(held);
         let (work, angle) = self.map.joints(p);
         self.work = work;
         match self.map {
@@ -300,12 +332,14 @@ mod tests {
         // (c, x): 90°, 180°, −90° (= 270°), 0° (= 360°): C gains a whole
         // turn from where it started (360°).
         for (r, z) in [(10.0, 0.0), (0.0, -10.0), (-10.0, 0.0), (0.0, 10.0)] {
-            run.follow(V2::new(r, z));
+            run.follow(V2::new(r, z), -2.0);
         }
         assert!((run.c() - 720.0).abs() < 1e-9, "{}", run.c());
         // (x 3, c 4): radius 5, angle atan2(4, 3) = 53.1301°.
-        run.follow(V2::new(4.0, 3.0));
+        // Z taken along to −3: the machine's Z is 5 lower.
+        run.follow(V2::new(4.0, 3.0), -3.0);
         assert!((run.work().r - 5.0).abs() < 1e-12);
+        assert_eq!(run.axes().z, 2.0);
         assert!((run.c() - 720.0 - 53.130_102_354).abs() < 1e-6);
     }
 

@@ -237,9 +237,11 @@ impl Translator {
                 self.plane_off(out);
             }
             Event::Cylinder(None) => self.plane_off(out),
-            Event::PlaneMove { motion, a, b, .. } => {
+            Event::PlaneMove {
+                motion, a, b, off, ..
+            } => {
                 if let Some(map) = self.plane {
-                    self.plane_move(map, *motion, *a, *b, out);
+                    self.plane_move(map, *motion, map.point(*a, *b), *off, out);
                 }
             }
             Event::PlaneAxis { rapid, to, c, .. } => {
@@ -320,18 +322,26 @@ impl Translator {
         }));
     }
 
-    /// A move in the plane: plane points, no shift (polar.rs); the joints
-    /// follow in `work` and `c_now` (the polar C only at the end, from
-    /// `POLAR MODE=OFF`).
+    /// A move in the plane to plane point `to`: plane points, no shift
+    /// (polar.rs); the joints follow in `work` and `c_now` (the polar C
+    /// only at the end, from `POLAR MODE=OFF`). `off`: where a straight
+    /// move takes the axis outside the plane (polar Z, cylinder X as a
+    /// diameter), the move's third coordinate (planner.rs).
     fn plane_move(
         &mut self,
         map: PlaneMap,
         motion: PlaneMotion,
-        a: f64,
-        b: f64,
+        to: V2,
+        off: Option<f64>,
         out: &mut Vec<Command>,
     ) {
-        let (from, to) = (self.plane_at, map.point(a, b));
+        let from = self.plane_at;
+        let held = match map {
+            PlaneMap::Polar { .. } => off,
+            PlaneMap::Cylinder { .. } => off.map(|x| x * 0.5),
+        };
+        let (h0, map) = (map.held(), map.with_held(held.unwrap_or(map.held())));
+        self.plane = Some(map);
         let (kind, arc) = match motion {
             PlaneMotion::Rapid => (MoveKind::Rapid, None),
             PlaneMotion::Line => (MoveKind::Feed(self.feed), None),
@@ -356,7 +366,8 @@ impl Translator {
                     kind,
                     path: path(curve.point(lam)),
                     shift: V2::ZERO,
-                    c: None,
+                    // (A line's λ is in proportion to its length.)
+                    c: held.map(|h1| h0 + (h1 - h0) * lam),
                 }));
             }
         }
@@ -371,7 +382,7 @@ impl Translator {
             kind,
             path,
             shift: V2::ZERO,
-            c: None,
+            c: held,
         }));
     }
 }

@@ -1,6 +1,6 @@
 //! Polar and cylindrical interpolation keep every joint within its
 //! limits: random plane programs (lines, arcs, G00, the axis outside the
-//! plane moving alone; a fixed seed) are certified period by period
+//! plane moving alone or with a line; a fixed seed) are certified period by period
 //! (`runtime::certify`, as `gbvm check` does). Before the planner knew
 //! the joints, C ran at up to 50 times its speed near the centre.
 
@@ -9,17 +9,23 @@ mod common;
 use common::{certify, Lcg};
 use nc::Machine;
 
-/// A contour of G12.1: points in x −30…30, c −20…20 (radius values).
-fn polar(rng: &mut Lcg) -> String {
+/// A contour of G12.1: points in x −30…30, c −20…20 (radius values);
+/// `ramps`: some lines take Z along.
+fn polar(rng: &mut Lcg, ramps: bool) -> String {
     let mut s = String::from("G98 G00 X40 Z2 C0\nG12.1\n");
     let (mut x, mut c) = (20.0f64, 0.0f64);
     for _ in 0..3 + (rng.unit() * 6.0) as usize {
         let (nx, nc) = (rng.range(-30.0, 30.0), rng.range(-20.0, 20.0));
         let f = rng.pick(&[100, 300, 1000, 3000]);
-        match rng.pick(&["G01", "G00", "G02", "G03", "Z"]) {
+        let kinds = ["G01", "G00", "G02", "G03", "Z", "G01 Z", "G00 Z"];
+        match rng.pick(&kinds[..if ramps { 7 } else { 5 }]) {
             "Z" => {
                 s += &format!("G01 Z{} F{f}\n", rng.range(-5.0, 2.0));
                 continue;
+            }
+            g @ ("G01 Z" | "G00 Z") => {
+                let z = rng.range(-5.0, 2.0);
+                s += &format!("{} X{} C{nc} Z{z} F{f}\n", &g[..3], 2.0 * nx);
             }
             g @ ("G02" | "G03") => {
                 let half = (nx - x).hypot(nc - c) / 2.0;
@@ -36,15 +42,19 @@ fn polar(rng: &mut Lcg) -> String {
     s + "G13.1\nM30\n"
 }
 
-/// A groove of G7.1 on a cylinder of radius 5…40.
-fn cylinder(rng: &mut Lcg) -> String {
+/// A groove of G7.1 on a cylinder of radius 5…40; `ramps`: some lines
+/// take X along.
+fn cylinder(rng: &mut Lcg, ramps: bool) -> String {
     let r = rng.pick(&[5.0, 10.0, 20.0, 40.0]);
     let mut s = format!("G98 G00 X{} Z0 C0\nG7.1 C{r}.\n", 2.0 * r);
     for _ in 0..3 + (rng.unit() * 6.0) as usize {
         let (z, c) = (rng.range(-30.0, 0.0), rng.range(-200.0, 200.0));
         let f = rng.pick(&[100, 300, 1000, 3000]);
-        match rng.pick(&["G01", "G00", "G02", "G03", "X"]) {
-            "X" => s += &format!("G01 X{} F{f}\n", 2.0 * r - rng.range(0.0, 2.0)),
+        let x = 2.0 * r - rng.range(0.0, 2.0);
+        let kinds = ["G01", "G00", "G02", "G03", "X", "G01 X", "G00 X"];
+        match rng.pick(&kinds[..if ramps { 7 } else { 5 }]) {
+            "X" => s += &format!("G01 X{x} F{f}\n"),
+            g @ ("G01 X" | "G00 X") => s += &format!("{} Z{z} C{c} X{x} F{f}\n", &g[..3]),
             g @ ("G02" | "G03") => {
                 s += &format!("{g} Z{z} C{c} R{} F{f}\n", rng.range(20.0, 200.0))
             }
@@ -95,9 +105,9 @@ fn random_plane_programs_are_certified() {
     let mut rng = Lcg(2026);
     let certified = certified_runs(48, |k| {
         let src = if k % 2 == 0 {
-            polar(&mut rng)
+            polar(&mut rng, true)
         } else {
-            cylinder(&mut rng)
+            cylinder(&mut rng, true)
         };
         (src, c_machine())
     });
@@ -114,7 +124,12 @@ fn random_plane_programs_are_certified() {
 fn compensated(rng: &mut Lcg, in_polar: bool) -> (String, Machine) {
     let side = rng.pick(&["G41", "G42"]);
     let radius = rng.pick(&[0.5, 1.0, 2.0, 3.0]);
-    let program = if in_polar { polar(rng) } else { cylinder(rng) };
+    // (Under compensation the axis outside the plane moves alone.)
+    let program = if in_polar {
+        polar(rng, false)
+    } else {
+        cylinder(rng, false)
+    };
     let lines: Vec<&str> = program.lines().collect();
     // (Both generators write two lines before the moves, two after.)
     let (head, body) = (&lines[..2], &lines[2..lines.len() - 2]);

@@ -364,6 +364,83 @@ fn x_moves_alone_during_cylindrical_interpolation() {
     assert!((last.c.unwrap_or(0.0) - 90.0).abs() < 1e-9, "{last:?}");
 }
 
+/// A ramp of G12.1: from (x 20, c 0) at Z2 to (x 10, c 10) at Z−2 in one
+/// G01 (X and C from (20, 0) to (10, 10): 10√2 = 14.1421 in the plane, Z
+/// 4 down: 14.6969 in space), then on at Z−2 to (x −10, c 10).
+const POLAR_RAMP: &str = "G98
+G00 X40 Z2 C0
+G12.1
+G01 X20 C10 Z-2 F300
+G01 X-20 C10
+G13.1
+M30
+";
+
+#[test]
+fn z_moves_along_a_line_of_polar_interpolation() {
+    let len3 = (200.0f64 + 16.0).sqrt();
+    for jerk in [false, true] {
+        let r = run_c(POLAR_RAMP, jerk);
+        let ramp: Vec<_> = r.pts.iter().filter(|p| p.line == 4).collect();
+        assert!(ramp.len() > 2000, "{}", ramp.len());
+        for p in &ramp {
+            // On the line in space: the plane point's distance along it
+            // from (20, 0) gives Z in proportion.
+            let (x, c) = polar_plane(p);
+            let along = ((20.0 - x) + c) / 2f64.sqrt();
+            let off = Piece::Line((20.0, 0.0), (10.0, 10.0)).distance((x, c));
+            let z = 2.0 - 4.0 * along / 200f64.sqrt();
+            assert!(off <= 0.005 && (p.z - z).abs() <= 0.005, "{p:?} {z}");
+            assert!((-2.0 - 1e-9..=2.0 + 1e-9).contains(&p.z), "{p:?}");
+        }
+        // F is the speed along the line in space, the trace's feed too:
+        // Z runs at 300·4/14.6969 = 81.65 mm/min.
+        let mid = ramp[ramp.len() / 2];
+        assert!((mid.feed - 300.0).abs() <= 0.5, "{}", mid.feed);
+        let (a, b) = (ramp[ramp.len() / 2 - 50], ramp[ramp.len() / 2 + 50]);
+        let vz = (a.z - b.z) / (b.time_s - a.time_s) * 60.0;
+        assert!((vz - 300.0 * 4.0 / len3).abs() < 0.5, "{vz}");
+        // Then at Z−2 round to (−10, 10): X = 2·√200, C = 135°.
+        for p in r.pts.iter().filter(|p| p.line == 5) {
+            assert!((p.z + 2.0).abs() < 1e-9, "{p:?}");
+        }
+        let last = r.pts.last().expect("periods");
+        assert!((last.x - 2.0 * 200f64.sqrt()).abs() < 1e-6, "{last:?}");
+        assert!((last.c.unwrap_or(0.0) - 135.0).abs() < 1e-6, "{last:?}");
+        let canon: Vec<String> = r.canon.iter().map(|e| e.to_string()).collect();
+        assert!(
+            canon.contains(&"LINE X=20 C=10 Z=-2".to_string()),
+            "{canon:?}"
+        );
+    }
+}
+
+#[test]
+fn x_moves_along_a_line_of_cylindrical_interpolation() {
+    // On the cylinder of radius 20, from Z0 C0 at X40 to Z−10 C90 at X36:
+    // s from 0 to 10π, Z to −10 (18.6210 on the surface), X 2 down as a
+    // radius (18.7285 in all).
+    let src = "G98\nG00 X40 Z0 C0\nG7.1 C20.\nG01 Z-10 C90 X36 F200\nG7.1 C0\nM30\n";
+    let s90 = 10.0 * PI;
+    let surface = (s90 * s90 + 100.0f64).sqrt();
+    for jerk in [false, true] {
+        let r = run_c(src, jerk);
+        let ramp: Vec<_> = r.pts.iter().filter(|p| p.line == 4).collect();
+        assert!(ramp.len() > 2000, "{}", ramp.len());
+        for p in &ramp {
+            let (s, z) = (20.0 * p.c.expect("a C column").to_radians(), p.z);
+            let off = Piece::Line((0.0, 0.0), (s90, -10.0)).distance((s, z));
+            let x = 40.0 - 4.0 * s.hypot(z) / surface;
+            assert!(off <= 0.005 && (p.x - x).abs() <= 0.01, "{p:?} {x}");
+        }
+        let mid = ramp[ramp.len() / 2];
+        assert!((mid.feed - 200.0).abs() <= 0.5, "{}", mid.feed);
+        let last = r.pts.last().expect("periods");
+        assert!((last.x - 36.0).abs() < 1e-9 && (last.z + 10.0).abs() < 1e-9);
+        assert!((last.c.unwrap_or(0.0) - 90.0).abs() < 1e-9, "{last:?}");
+    }
+}
+
 #[test]
 fn a_rapid_in_the_polar_plane_follows_its_straight_line() {
     // G00 from (x 10, c 10) to (x −10, c 0): along that line (each axis

@@ -164,12 +164,15 @@ pub enum Event {
     Cylinder(Option<f64>),
     /// A move in the plane of polar or cylindrical interpolation, printed
     /// in its coordinates: polar `X=` (diameter) `C=` (mm), cylinder `Z=`
-    /// `C=` (degrees). The arc centre as `CX=`/`CZ=` and `CC=`.
+    /// `C=` (degrees). The arc centre as `CX=`/`CZ=` and `CC=`. `off`:
+    /// the end of the axis outside the plane where a straight move takes
+    /// it along (polar `Z=`, cylinder `X=`, a diameter), printed last.
     PlaneMove {
         plane: Plane,
         motion: PlaneMotion,
         a: f64,
         b: f64,
+        off: Option<f64>,
     },
     /// During polar (cylindrical) interpolation the axis outside the plane
     /// moves alone and the plane point stands: `RAPID Z=` / `LINE Z=`
@@ -440,10 +443,11 @@ impl Display for Event {
                 motion,
                 a,
                 b,
+                off,
             } => {
-                let first = match plane {
-                    Plane::Polar => 'X',
-                    Plane::Cylinder => 'Z',
+                let (first, other) = match plane {
+                    Plane::Polar => ('X', 'Z'),
+                    Plane::Cylinder => ('Z', 'X'),
                 };
                 match motion {
                     PlaneMotion::Rapid => f.write_str("RAPID ")?,
@@ -453,6 +457,9 @@ impl Display for Event {
                 write!(f, "{first}={} C={}", Num(*a), Num(*b))?;
                 if let PlaneMotion::Arc { ca, cb, .. } = motion {
                     write!(f, " C{first}={} CC={}", Num(*ca), Num(*cb))?;
+                }
+                if let Some(v) = off {
+                    write!(f, " {other}={}", Num(*v))?;
                 }
                 Ok(())
             }
@@ -569,6 +576,7 @@ mod tests {
             },
             a: 10.0,
             b: -5.0,
+            off: None,
         };
         assert_eq!(
             arc(Plane::Polar).to_string(),
@@ -583,16 +591,26 @@ mod tests {
             motion: PlaneMotion::Line,
             a: 40.0,
             b: 0.0,
+            off: None,
         };
         assert_eq!(line.to_string(), "LINE X=40 C=0");
+        let ramp = Event::PlaneMove {
+            plane: Plane::Polar,
+            motion: PlaneMotion::Line,
+            a: 40.0,
+            b: 0.0,
+            off: Some(-1.5),
+        };
+        assert_eq!(ramp.to_string(), "LINE X=40 C=0 Z=-1.5");
         assert!(line.is_feed() && line.is_motion());
         let rapid = Event::PlaneMove {
             plane: Plane::Cylinder,
             motion: PlaneMotion::Rapid,
             a: -3.0,
             b: 90.0,
+            off: Some(24.0),
         };
-        assert_eq!(rapid.to_string(), "RAPID Z=-3 C=90");
+        assert_eq!(rapid.to_string(), "RAPID Z=-3 C=90 X=24");
         assert!(!rapid.is_feed() && rapid.is_motion());
         let plunge = Event::PlaneAxis {
             plane: Plane::Polar,

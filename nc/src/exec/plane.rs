@@ -15,7 +15,9 @@
 //! joint motion of X, C (polar) or Z, C (cylinder) at the programmed
 //! tangential feed (runtime/src/polar.rs). The axis outside the plane, Z
 //! (polar) or X (cylinder), moves in a G00/G01 block of its own, the plane
-//! point standing (seed 000); an arc ignores it.
+//! point standing (seed 000), or along a G00/G01 of the plane, in
+//! proportion (`PlaneMove`'s `off`; not under compensation); an arc
+//! ignores it.
 //!
 //! The kernel keeps the joint position current after every move: `pos`
 //! (X and Z) and `c`, which follows the path continuously (a circle about
@@ -143,21 +145,6 @@ fn check_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcErr
             Alarm::PolarInComp,
             "G99 during polar interpolation: its F is a tangential feed per minute",
         );
-    }
-    if other_axis(st.kind, p) && p.one_shot().is_none_or(|c| c != OneShot::Dwell) {
-        let code = p.motion().unwrap_or(nc.st.modal.motion);
-        // In an arc the axis is ignored (seed 000: the compiler warns,
-        // W104); G00/G01 move it alone (`axis_move`).
-        if code.is_straight() && plane_words(st.kind, p) {
-            let axis = if st.kind == Kind::Polar { 'Z' } else { 'X' };
-            return fail(
-                Alarm::NotSupportedYet,
-                format!(
-                    "moving {axis}, the axis outside the plane, together with the plane during {} is not supported yet: move {axis} in a block of its own",
-                    st.what()
-                ),
-            );
-        }
     }
     Ok(())
 }
@@ -369,9 +356,13 @@ pub(crate) fn motion(
         return Ok(());
     };
     let arc = code.is_arc();
-    if !arc && other_axis(st.kind, p) {
-        // (check_block: no plane word beside it.)
-        // (Held behind a compensated element that waits.)
+    // In an arc the axis outside the plane is ignored (seed 000: the
+    // compiler warns, W104); a straight move takes it along.
+    let off = (!arc && other_axis(st.kind, p)).then(|| off_target(nc, st.kind, p));
+    let to = target(nc, &st, p);
+    if off.is_some() && (!plane_words(st.kind, p) || to == st.pt) {
+        // The axis alone, the plane point standing (held behind a
+        // compensated element that waits).
         crate::exec::comp::moved_off_plane(nc);
         crate::exec::contour::in_order(nc, sink, |nc, s| {
             axis_move(nc, st, code == Motion::Rapid, p, s);
@@ -384,7 +375,6 @@ pub(crate) fn motion(
     if !moves && !(arc && (p.has(b'I') || p.has(b'J') || p.has(b'R'))) {
         return Ok(());
     }
-    let to = target(nc, &st, p);
     let from = st.pt;
     let Some((motion, path)) = plane_motion(nc, &st, code, from, to, p)? else {
         return Ok(());
@@ -399,20 +389,53 @@ pub(crate) fn motion(
     }
     out.moved = true;
     if crate::exec::comp::compensating(nc) {
+        if off.is_some() {
+            let axis = if st.kind == Kind::Polar { 'Z' } else { 'X' };
+            return fail(
+                Alarm::NotSupportedYet,
+                format!(
+                    "moving {axis}, the axis outside the plane, together with a compensated move of {} is not supported yet: move {axis} in a block of its own",
+                    st.what()
+                ),
+            );
+        }
         return compensated(nc, st, code == Motion::Rapid, to, path, sink);
     }
     if !matches!(motion, PlaneMotion::Rapid) {
         nc.feed_due(sink);
     }
     follow(nc, st, to, path);
+    if let Some(v) = off {
+        set_off(nc, st.kind, v);
+    }
     let (a, b) = st.printed(to);
     sink.emit(Event::PlaneMove {
         plane: st.plane(),
         motion,
         a,
         b,
+        off,
     });
     Ok(())
+}
+
+/// Where the block's words take the axis outside the plane: polar Z,
+/// cylinder X (a diameter), work coordinates.
+fn off_target(nc: &Nc, kind: Kind, p: &Parsed) -> f64 {
+    let to = nc.target(p);
+    match kind {
+        Kind::Polar => to.z,
+        Kind::Cylinder(_) => to.x(),
+    }
+}
+
+/// The joint position after the axis outside the plane moved to `v`
+/// (`off_target`).
+fn set_off(nc: &mut Nc, kind: Kind, v: f64) {
+    match kind {
+        Kind::Polar => nc.st.pos.z = v,
+        Kind::Cylinder(_) => nc.st.pos.r = v / 2.0,
+    }
 }
 
 /// A plane move under nose-radius compensation: it joins the contour
@@ -497,6 +520,7 @@ pub(crate) fn print_element(
         motion,
         a,
         b,
+        off: None,
     });
 }
 
@@ -571,14 +595,10 @@ fn axis_move(nc: &mut Nc, st: PlaneState, rapid: bool, p: &Parsed, sink: &mut dy
     if !rapid {
         nc.feed_due(sink);
     }
-    let to = nc.target(p);
-    nc.st.pos = to;
-    let (plane, to) = match st.kind {
-        Kind::Polar => (Plane::Polar, to.z),
-        Kind::Cylinder(_) => (Plane::Cylinder, to.x()),
-    };
+    let to = off_target(nc, st.kind, p);
+    set_off(nc, st.kind, to);
     sink.emit(Event::PlaneAxis {
-        plane,
+        plane: st.plane(),
         rapid,
         to,
         c: nc.st.c,

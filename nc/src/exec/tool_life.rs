@@ -451,7 +451,9 @@ impl Timer<'_> {
                 self.plane = None;
                 self.cut(Pt::new(x / 2.0, start.z), 0.0, 0.0);
             }
-            Event::PlaneMove { motion, a, b, .. } => self.plane_move(motion, a, b),
+            Event::PlaneMove {
+                motion, a, b, off, ..
+            } => self.plane_move(motion, (a, b), off),
             Event::PlaneAxis {
                 plane, rapid, to, ..
             } => {
@@ -466,9 +468,10 @@ impl Timer<'_> {
         }
     }
 
-    /// A move in the plane: its length there, at the programmed feed; the
-    /// joints follow it.
-    fn plane_move(&mut self, motion: PlaneMotion, a: f64, b: f64) {
+    /// A move in the plane: its length there (with the axis outside the
+    /// plane moving along, `off`, the length of the line in space), at the
+    /// programmed feed; the joints follow it.
+    fn plane_move(&mut self, motion: PlaneMotion, (a, b): (f64, f64), off: Option<f64>) {
         let start = self.start();
         let Some(mut st) = self.plane else {
             return;
@@ -485,7 +488,16 @@ impl Timer<'_> {
         };
         st.pt = to;
         self.plane = Some(st);
-        self.cut(st.joints(to, start), length, rate);
+        let mut at = st.joints(to, start);
+        let mut length = length;
+        if let Some(v) = off {
+            let moved = match st.kind {
+                Kind::Polar => core::mem::replace(&mut at.z, v) - v,
+                Kind::Cylinder(_) => core::mem::replace(&mut at.r, v / 2.0) - v / 2.0,
+            };
+            length = libm::hypot(length, moved);
+        }
+        self.cut(at, length, rate);
     }
 }
 
@@ -641,6 +653,15 @@ mod tests {
         m.run("G13.1");
         m.run("G01 W-10");
         assert!(close(&used(&m), &[0.25 + 0.1 * pi]), "{:?}", used(&m));
+        // A line that takes Z along counts its length in space: from
+        // (x 10, c 0) at Z−15 to (x 10, c 12) at Z−10, 13 mm (5-12-13).
+        m.run("G12.1");
+        m.run("G01 C12 Z-10");
+        assert!(close(&used(&m), &[0.38 + 0.1 * pi]), "{:?}", used(&m));
+        m.run("G13.1");
+        // (Z−10 after it: W−10 from there to Z−20 is 10 mm more.)
+        m.run("G01 W-10");
+        assert!(close(&used(&m), &[0.48 + 0.1 * pi]), "{:?}", used(&m));
     }
 
     #[test]

@@ -177,6 +177,68 @@ fn the_axis_outside_the_plane_moves_alone() {
 }
 
 #[test]
+fn the_axis_outside_the_plane_moves_with_a_straight_move() {
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G98 G00 X40 Z2 C0",
+            "G12.1",
+            // A ramp: to (x 10, c 10) while Z goes to −2; the plane point
+            // and the joints as in the first test (radius √200, C 45°).
+            "G01 X20 C10 Z-2 F300",
+            // W with a plane word: up 4 to Z2 while C goes to 0 (the
+            // point (10, 0), C back to 0°).
+            "G00 C0 W4",
+            // A plane word that does not move the plane point: Z alone.
+            "G01 X20 Z-1",
+            "G13.1",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "RAPID X=40 Z=2 C=0",
+            "POLAR MODE=ON",
+            "FEED F=300 MODE=MIN",
+            "LINE X=20 C=10 Z=-2",
+            "RAPID X=20 C=0 Z=2",
+            "LINE Z=-1",
+            "POLAR MODE=OFF X=20 C=0",
+        ]
+    );
+    assert_eq!(var(&m, 5042), Some(-1.0));
+    // On the cylinder of radius 20, X (a diameter, U adding to it) moves
+    // with Z and C: to Z−10 at 90° while X goes to 36, then back by U4
+    // with H−90.
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G98 G00 X40 Z0 C0",
+            "G7.1 C20.",
+            "G01 Z-10 C90 X36 F200",
+            "G00 U4 H-90",
+            "G7.1 C0",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "RAPID X=40 Z=0 C=0",
+            "CYLINDER MODE=ON R=20",
+            "FEED F=200 MODE=MIN",
+            "LINE Z=-10 C=90 X=36",
+            "RAPID Z=-10 C=0 X=40",
+            "CYLINDER MODE=OFF",
+        ]
+    );
+    assert_eq!(var(&m, 5041), Some(40.0));
+    assert_eq!(var(&m, 5042), Some(-10.0));
+    assert_eq!(var(&m, 5043), Some(0.0));
+}
+
+#[test]
 fn the_distance_of_a_move_from_the_centre() {
     use super::nearest_to_centre;
     use crate::base::point::Pt;
@@ -238,11 +300,20 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G12.1", "G28 U0"]), 2007);
     // E2099: what is not supported yet.
     assert_eq!(e(&["G7.1 C10 J5 L2 R1 K0.2"]), 2099);
-    // (The axis outside the plane moves in a block of its own.)
-    assert_eq!(e(&["G12.1", "G01 X10 Z-5 F1"]), 2099);
-    assert_eq!(e(&["G12.1", "G00 C5 W1"]), 2099);
-    assert_eq!(e(&["G7.1 C10", "G01 X10 Z-5 F1"]), 2099);
-    assert_eq!(e(&["G7.1 C10", "G01 U1 C30 F1"]), 2099);
+    // The axis outside the plane moves with a compensated move only in a
+    // block of its own.
+    assert_eq!(e(&["G00 X40", "G12.1", "G42 G01 X10 Z-5 F1"]), 2099);
+    assert_eq!(
+        e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G40 X20 W1"]),
+        2099
+    );
+    assert_eq!(e(&["G7.1 C10", "G41 G01 X10 Z-5 F1"]), 2099);
+    assert_eq!(e(&["G7.1 C10", "G41 G01 Z-5 F1", "G01 U1 C30"]), 2099);
+    // (Uncompensated, they move together; a line from the centre that
+    // takes Z along is still E4033.)
+    assert_eq!(e(&["G00 X40", "G12.1", "G01 X10 Z-5 F1"]), 0);
+    assert_eq!(e(&["G12.1", "G01 X10 Z-5 F1"]), 4033);
+    assert_eq!(e(&["G7.1 C10", "G01 U1 C30 F1"]), 0);
     assert_eq!(e(&["G12.1", "G6.2 X10 C5 A5 B3 F1"]), 2099);
     // Compensation runs inside, but not where the mode ends: G40 alone
     // leaves its cancel to the next move.
