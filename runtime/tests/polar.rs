@@ -412,6 +412,11 @@ fn z_moves_along_a_line_of_polar_interpolation() {
             canon.contains(&"LINE X=20 C=10 Z=-2".to_string()),
             "{canon:?}"
         );
+        // No period runs faster than both rapids together (X 6 000, Z
+        // 10 000 mm/min: 11 662), the switches of the plane included,
+        // where the point changes coordinates (it read 10.7 million).
+        let top = r.pts.iter().map(|p| p.feed).fold(0.0, f64::max);
+        assert!(top <= 11_662.0, "{top}");
     }
 }
 
