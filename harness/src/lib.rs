@@ -7,6 +7,7 @@
 pub mod contour;
 pub mod expr;
 pub mod jit_diff;
+pub mod plane;
 pub mod thread;
 
 use compiler::predict::CODES;

@@ -165,6 +165,44 @@ proptest! {
     fn thread_cycles_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..14)) {
         harness::thread::certified_or_warned(&data);
     }
+
+    #[test]
+    fn plane_contours_on_random_bytes(data in prop::collection::vec(any::<u8>(), 0..42)) {
+        harness::plane::certified(&data);
+    }
+}
+
+#[test]
+fn the_plane_decoder_reads_four_bytes_a_move() {
+    use harness::plane::decode;
+    // Traced by hand. Byte 0 = 0b1010: polar (bit 0 clear), G41 (bits
+    // 1–2 = 1), jerk limiting (bit 3). Byte 1 = 0b0110: cylinder radius
+    // 5 (2 mod 4 … unused in polar), tool 1 (bits 2–3 = 1): radius 1.
+    // Move 1: 5 → G01 taking Z along, but under compensation the axis
+    // moves alone there: 5 mod 2 = 1, a G00 to x −30 + 60·255/255 = 30
+    // (X60), c −20 + 40·0/255 = −20. Move 2: 2 → G02 to x 0 (128: −30 +
+    // 60·128/255 = 0.118, X0.235), c 0.078 (−20 + 40·128/255); last byte
+    // 0b1111_1101: F300 (1), high 63/63 = 1: R = half the chord × 3.
+    let (src, machine, jerk) = decode(&[0b1010, 0b0110, 5, 255, 0, 0, 2, 128, 128, 0b1111_1101]);
+    assert!(jerk);
+    let (x, c) = (-30.0 + 60.0 * 128.0 / 255.0, -20.0 + 40.0 * 128.0 / 255.0);
+    let half = (x - 30.0f64).hypot(c + 20.0) / 2.0;
+    let want = format!(
+        "G98 G00 X40 Z2 C0 T0101\nG12.1\nG41 G01 X40 C0.5 F300\nG00 X60.000 C-20.000\n\
+         G02 X0.235 C0.078 R{:.3} F300\nG40 G01 X40 C0 F300\nG13.1\nM30\n",
+        half * 3.0
+    );
+    assert_eq!(src, want);
+    assert_eq!(machine.tools.offset[0].radius, 1.0);
+    // A cylinder without compensation: 6 → G00 taking X along, to Z −30·
+    // 51/255 = −6, C −200 + 400·255/255 = 200, X 2·(20 − 2·0) = 40 (high
+    // 0, feed 0b00: F100, unused by G00).
+    let (src, _, jerk) = decode(&[0b0001, 2, 6, 51, 255, 0]);
+    assert!(!jerk);
+    assert_eq!(
+        src,
+        "G98 G00 X40.000 Z0 C0\nG7.1 C20.\nG00 Z-6.000 C200.000 X40.000\nG7.1 C0\nM30\n"
+    );
 }
 
 #[test]
