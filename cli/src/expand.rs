@@ -201,6 +201,20 @@ impl Expand {
                     self.centre(*cx, *cz)
                 )
             }
+            Event::Ellipse { dir, x, z, a, b, q } => format!(
+                "{} X{} Z{}{}",
+                conic_code(true, *dir),
+                self.w(*x),
+                self.w(*z),
+                self.ellipse_words(*a, *b, *q)
+            ),
+            Event::Parabola { dir, x, z, p, q } => format!(
+                "{} X{} Z{}{}",
+                conic_code(false, *dir),
+                self.w(*x),
+                self.w(*z),
+                parabola_words(*p, *q)
+            ),
             // A thread's C= is the angle C holds (a G32 cannot turn C).
             Event::Thread {
                 x,
@@ -324,6 +338,11 @@ impl Expand {
         s
     }
 
+    /// An ellipse's A, B (lengths) and Q (0.001°, as the block reads it).
+    fn ellipse_words(&self, a: f64, b: f64, q: f64) -> String {
+        format!(" A{} B{}{}", self.w(a), self.w(b), q_word(Some(q)))
+    }
+
     /// A value of a dimension word, every digit of it (the shortest text
     /// that reads back as the same `f64`), with a decimal point on a
     /// machine that reads a number without one in increments.
@@ -397,8 +416,17 @@ impl Expand {
                 if dir == Dir::Cw { "G02" } else { "G03" },
                 Some((dir, ca, cb)),
             ),
+            PlaneMotion::Ellipse { dir, .. } => (conic_code(true, dir), None),
+            PlaneMotion::Parabola { dir, .. } => (conic_code(false, dir), None),
         };
         let mut s = format!("{g} {first}{} C{}", n(a), n(b));
+        match motion {
+            PlaneMotion::Ellipse {
+                a: sa, b: sb, q, ..
+            } => s.push_str(&self.ellipse_words(sa, sb, q)),
+            PlaneMotion::Parabola { p, q, .. } => s.push_str(&parabola_words(p, q)),
+            _ => {}
+        }
         match (centre, plane) {
             (None, _) => {}
             (Some((_, ca, cb)), Plane::Polar) => {
@@ -518,6 +546,22 @@ fn rigid_tap(events: &[Event], at: (f64, f64)) -> Option<Tap> {
 
 /// The Q word of a thread's start angle, in the integer 0.001° the
 /// dialect takes.
+/// The G code of an ellipse (G6.2/G6.3) or a parabola (G7.2/G7.3).
+fn conic_code(ellipse: bool, dir: Dir) -> &'static str {
+    match (ellipse, dir) {
+        (true, Dir::Cw) => "G6.2",
+        (true, Dir::Ccw) => "G6.3",
+        (false, Dir::Cw) => "G7.2",
+        (false, Dir::Ccw) => "G7.3",
+    }
+}
+
+/// A parabola's P (an integer of 0.001 mm, as the block reads it; `-E`
+/// writes mm) and Q (0.001°).
+fn parabola_words(p: f64, q: f64) -> String {
+    format!(" P{}{}", (p * 1000.0).round(), q_word(Some(q)))
+}
+
 fn q_word(q: Option<f64>) -> String {
     q.map_or(String::new(), |q| format!(" Q{}", (q * 1000.0).round()))
 }
@@ -543,6 +587,7 @@ fn end_point(e: &Event) -> Option<(f64, f64)> {
     match *e {
         Event::Rapid { x, z, .. } | Event::Line { x, z, .. } | Event::Skip { x, z } => Some((x, z)),
         Event::Arc { x, z, .. } | Event::Thread { x, z, .. } => Some((x, z)),
+        Event::Ellipse { x, z, .. } | Event::Parabola { x, z, .. } => Some((x, z)),
         _ => None,
     }
 }

@@ -432,6 +432,31 @@ fn polar_and_cylindrical_interpolation_expand_to_the_same_canon() {
     assert!(expanded.contains("G12.1"), "{expanded}");
     std::fs::write(d.join("e.nc"), &expanded).unwrap();
     assert_eq!(canon("e.nc"), first, "{expanded}");
+    // Ramps and conics: Z along a line of the polar plane, an ellipse and
+    // a parabola there, X along a line of the cylinder and a parabola on
+    // it; then an ellipse and a parabola in the ZX plane (which `-E` once
+    // wrote as comments), the arc after them taking I/K from their ends.
+    let src = "G98 G00 X40 Z2 C0\nG12.1\nG01 X20 C10 Z-2 F300\nG6.3 X-20 C10 A20 B10 Q0\n\
+               G7.2 X-40 C-10 P8000 Q90000\nG00 X40 C0 Z2\nG13.1\nG00 C0\nG7.1 C20.\n\
+               G01 Z-10 C90 X36 F200\nG7.3 Z-20 C0 P5000 Q0\nG00 X40\nG7.1 C0\n\
+               G01 X20 Z-30\nG6.2 X40 Z-40 A20 B10 Q0\nG7.3 X30 Z-50 P4000 Q0\nG02 X40 Z-55 R5\nM30\n";
+    std::fs::write(d.join("p.nc"), src).unwrap();
+    let first = canon("p.nc");
+    for line in [
+        "LINE X=20 C=10 Z=-2",
+        "ELLIPSE DIR=CCW X=-20 C=10 A=20 B=10 Q=0",
+        "PARABOLA DIR=CW X=-40 C=-10 P=8 Q=90",
+        "LINE Z=-10 C=90 X=36",
+        "ELLIPSE DIR=CW X=40 Z=-40 A=20 B=10 Q=0",
+    ] {
+        assert!(first.contains(&format!("{line}\n")), "{line}\n{first}");
+    }
+    let e = gbcc(&["p.nc", "--machine", "c.toml", "-E"], &d);
+    assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
+    let expanded = text(&e.stdout);
+    assert!(!expanded.contains("(ELLIPSE"), "{expanded}");
+    std::fs::write(d.join("e.nc"), &expanded).unwrap();
+    assert_eq!(canon("e.nc"), first, "{expanded}");
 }
 
 #[test]

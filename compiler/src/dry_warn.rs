@@ -295,13 +295,15 @@ impl Warner {
         self.outside_plane(unit, nc, ws, &seen);
     }
 
-    /// W104: during polar (cylindrical) interpolation an arc ignores the
-    /// axis outside the plane, Z (X), as seed 000 says; G00/G01 move it.
+    /// W104: during polar (cylindrical) interpolation an arc, an ellipse
+    /// or a parabola ignores the axis outside the plane, Z (X), as seed
+    /// 000 says; G00/G01 move it.
     fn outside_plane(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
         let Some(plane) = nc.st.plane else {
             return;
         };
-        if seen.one_shot || !nc.st.modal.motion.is_arc() {
+        let motion = nc.st.modal.motion;
+        if seen.one_shot || !(motion.is_arc() || motion.is_conic()) {
             return;
         }
         let (letters, what) = match plane.kind {
@@ -311,7 +313,7 @@ impl Warner {
         for letter in letters {
             if let Some(w) = find(ws, letter - b'A') {
                 let msg = format!(
-                    "{} is ignored: an arc during {what} stays in the plane; move {} in a G00 or G01 block of its own",
+                    "{} is ignored: a curve during {what} stays in the plane; move {} with a G00 or G01",
                     w.addr, letters[0] as char
                 );
                 self.warn(unit, "W104", w.span, msg);

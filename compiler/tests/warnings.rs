@@ -315,6 +315,12 @@ fn w104_and_w108_in_polar_and_cylindrical_interpolation() {
     assert_eq!(found(src), [("W104", 5), ("W104", 10)]);
     // The compile-time run of the program made dynamic finds them too.
     assert_eq!(found(&format!("{src}#1=1\n")), [("W104", 5), ("W104", 10)]);
+    // So does an ellipse, and a G01 taking Z along gets nothing: from
+    // (20, 0) about the centre to (−20, 0), then back up along a line to
+    // (−10, 10) with Z.
+    let src =
+        "G98 G00 X40 Z2 C0\nG12.1\nG6.3 X-40 C0 A20 B10 Z-3 F300\nG01 X-20 C10 Z2\nG13.1\nM30\n";
+    assert_eq!(found(src), [("W104", 3)]);
     // An arc in the plane that ends where it starts moves nothing: W108.
     let src = "G98 G00 X40 Z2 C0\nG12.1\nG01 X20 C10 F300\nG02 X20 C10 R5\nG13.1\nM30\n";
     assert_eq!(found(src), [("W108", 4)]);

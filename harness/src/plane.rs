@@ -1,7 +1,7 @@
 //! Polar (G12.1) and cylindrical (G7.1) interpolation through the
-//! runtime: bytes → a contour in the plane (lines, arcs, rapids, the axis
-//! outside the plane moving alone or with a line, nose-radius
-//! compensation) on a machine with a C axis → a run that stops with an
+//! runtime: bytes → a contour in the plane (lines, arcs, ellipses,
+//! parabolas, rapids, the axis outside the plane moving alone or with a
+//! line, nose-radius compensation) on a machine with a C axis → a run that stops with an
 //! alarm or that `gbvm check` certifies: every joint (X, Z, C) within its
 //! speed, acceleration and (with jerk limiting) jerk, every end point
 //! reached. runtime/tests/plane_limits.rs runs a fixed set of such
@@ -26,15 +26,19 @@ pub const MAX_TICKS: u64 = 600_000;
 /// Byte 0: bit 0 the plane (polar, cylinder), bits 1–2 compensation (0
 /// or 3 none, 1 G41, 2 G42), bit 3 jerk limiting. Byte 1: the cylinder's
 /// radius ([`CYLINDERS`], mod 4) and the tool's radius ([`TOOLS`], bits
-/// 2–3). Then 4 bytes a move: the kind (mod 7: G01, G00, G02, G03, the
-/// axis outside the plane alone, G01 or G00 taking it along), the
-/// plane's two coordinates (polar x −30…30 and c −20…20 as radius
-/// values; cylinder Z −30…0 and C −200…200°), and a last byte whose low
-/// 2 bits are the feed ([`FEEDS`]) and whose upper 6 the axis outside
-/// the plane (polar Z −5…2, cylinder X 0…2 mm below the surface as a
-/// radius) or an arc's R (1.01…3 times half the chord, polar; 20…200 mm,
-/// cylinder). Under compensation the axis moves alone (taken along it is
-/// E2099). Values are written to 3 decimals.
+/// 2–3). Then 4 bytes a move: the kind (mod 9: G01, G00, G02, G03, the
+/// axis outside the plane alone, G01 or G00 taking it along, an ellipse,
+/// a parabola), the plane's two coordinates (polar x −30…30 and c
+/// −20…20 as radius values; cylinder Z −30…0 and C −200…200°), and a
+/// last byte whose low 2 bits are the feed ([`FEEDS`]) and whose upper 6
+/// (h = 0…1) the axis outside the plane (polar Z −5…2, cylinder X 0…2 mm
+/// below the surface as a radius), an arc's R (1.01…3 times half the
+/// chord, polar; 20…200 mm, cylinder), an ellipse's B (A is 1.5 times
+/// half the chord, B 0.3…1.5 times A) or a parabola's P (0.5…4 times
+/// half the chord). A conic's sense is bit 0 of the kind byte divided by
+/// 9 (G6.2/G7.2 when clear), its Q 22.5° times the next 3 bits. Under
+/// compensation the axis moves alone (taken along it is E2099), and a
+/// conic is a G01 or G00 (E2099 too). Values are written to 3 decimals.
 pub fn decode(data: &[u8]) -> (String, Machine, bool) {
     let b = |i: usize| data.get(i).copied().unwrap_or(0);
     let polar = b(0) & 1 == 0;
@@ -79,21 +83,23 @@ pub fn decode(data: &[u8]) -> (String, Machine, bool) {
             true => format!("X{:.3} C{b:.3}", 2.0 * a),
             false => format!("Z{a:.3} C{b:.3}"),
         };
-        let kind = if comp.is_some() && m[0] % 7 >= 5 {
+        let kind = if comp.is_some() && m[0] % 9 >= 5 {
             m[0] % 2
         } else {
-            m[0] % 7
+            m[0] % 9
         };
+        let half = match polar {
+            true => (to.0 - at.0).hypot(to.1 - at.1) / 2.0,
+            false => (to.0 - at.0).hypot((to.1 - at.1).to_radians() * radius) / 2.0,
+        };
+        let (cw, q) = ((m[0] / 9) % 2 == 0, 22.5 * f64::from((m[0] / 18) % 8));
         match kind {
             0 => s += &format!("G01 {} F{f}\n", words(to)),
             1 => s += &format!("G00 {}\n", words(to)),
             2 | 3 => {
                 let g = if kind == 2 { "G02" } else { "G03" };
                 let r = match polar {
-                    true => {
-                        let half = (to.0 - at.0).hypot(to.1 - at.1) / 2.0;
-                        half * (1.01 + 1.99 * high)
-                    }
+                    true => half * (1.01 + 1.99 * high),
                     false => 20.0 + 180.0 * high,
                 };
                 s += &format!("{g} {} R{r:.3} F{f}\n", words(to));
@@ -103,7 +109,27 @@ pub fn decode(data: &[u8]) -> (String, Machine, bool) {
                 continue;
             }
             5 => s += &format!("G01 {} {off} F{f}\n", words(to)),
-            _ => s += &format!("G00 {} {off}\n", words(to)),
+            6 => s += &format!("G00 {} {off}\n", words(to)),
+            7 => {
+                let g = if cw { "G6.2" } else { "G6.3" };
+                let a = 1.5 * half;
+                let b = a * (0.3 + 1.2 * high);
+                s += &format!(
+                    "{g} {} A{a:.3} B{b:.3} Q{:.0} F{f}\n",
+                    words(to),
+                    q * 1000.0
+                );
+            }
+            _ => {
+                let g = if cw { "G7.2" } else { "G7.3" };
+                let p = half * (0.5 + 3.5 * high);
+                s += &format!(
+                    "{g} {} P{:.0} Q{:.0} F{f}\n",
+                    words(to),
+                    p * 1000.0,
+                    q * 1000.0
+                );
+            }
         }
         at = to;
     }

@@ -178,8 +178,8 @@ fn the_plane_decoder_reads_four_bytes_a_move() {
     // Traced by hand. Byte 0 = 0b1010: polar (bit 0 clear), G41 (bits
     // 1–2 = 1), jerk limiting (bit 3). Byte 1 = 0b0110: cylinder radius
     // 5 (2 mod 4 … unused in polar), tool 1 (bits 2–3 = 1): radius 1.
-    // Move 1: 5 → G01 taking Z along, but under compensation the axis
-    // moves alone there: 5 mod 2 = 1, a G00 to x −30 + 60·255/255 = 30
+    // Move 1: 5 → G01 taking Z along (5 mod 9), but under compensation
+    // the axis moves alone there: 5 mod 2 = 1, a G00 to x −30 + 60·255/255 = 30
     // (X60), c −20 + 40·0/255 = −20. Move 2: 2 → G02 to x 0 (128: −30 +
     // 60·128/255 = 0.118, X0.235), c 0.078 (−20 + 40·128/255); last byte
     // 0b1111_1101: F300 (1), high 63/63 = 1: R = half the chord × 3.
@@ -196,12 +196,22 @@ fn the_plane_decoder_reads_four_bytes_a_move() {
     assert_eq!(machine.tools.offset[0].radius, 1.0);
     // A cylinder without compensation: 6 → G00 taking X along, to Z −30·
     // 51/255 = −6, C −200 + 400·255/255 = 200, X 2·(20 − 2·0) = 40 (high
-    // 0, feed 0b00: F100, unused by G00).
-    let (src, _, jerk) = decode(&[0b0001, 2, 6, 51, 255, 0]);
+    // 0, feed 0b00: F100, unused by G00). Then 25 → 25 mod 9 = 7, an
+    // ellipse: 25 / 9 = 2, even: G6.2; 25 / 18 = 1: Q 22.5°; to Z
+    // −30·255/255 = −30, C −200 + 400·102/255 = −40; half the chord on
+    // the developed surface √(24² + (240° on radius 20)²)/2, A 1.5 times
+    // it, B = A·(0.3 + 1.2·32/63) (high 0b100000), F300 (0b01).
+    let (src, _, jerk) = decode(&[0b0001, 2, 6, 51, 255, 0, 25, 255, 102, 0b1000_0001]);
     assert!(!jerk);
+    let half = 24f64.hypot(240f64.to_radians() * 20.0) / 2.0;
+    let a = 1.5 * half;
+    let b = a * (0.3 + 1.2 * 32.0 / 63.0);
     assert_eq!(
         src,
-        "G98 G00 X40.000 Z0 C0\nG7.1 C20.\nG00 Z-6.000 C200.000 X40.000\nG7.1 C0\nM30\n"
+        format!(
+            "G98 G00 X40.000 Z0 C0\nG7.1 C20.\nG00 Z-6.000 C200.000 X40.000\n\
+             G6.2 Z-30.000 C-40.000 A{a:.3} B{b:.3} Q22500 F300\nG7.1 C0\nM30\n"
+        )
     );
 }
 

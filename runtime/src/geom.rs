@@ -302,7 +302,10 @@ impl Curve {
         matches!(self, Curve::Line { .. } | Curve::Arc { .. })
     }
 
-    /// λ after moving `ds` further from `lam` (conics: a midpoint step).
+    /// λ after moving `ds` further from `lam` (conics: a Runge–Kutta
+    /// step of dλ/ds = 1/|dP/dλ|, whose error over a curve stays far below
+    /// a nanometre; the midpoint step it replaced drifted by 15 nm along
+    /// a flat ellipse, which the end point then took in one period).
     pub fn advance(&self, lam: f64, s_after: f64, ds: f64, len: f64) -> f64 {
         if self.is_linear_in_length() || len <= 0.0 {
             return if len > 0.0 {
@@ -311,9 +314,12 @@ impl Curve {
                 1.0
             };
         }
-        let speed = |l: f64| self.deriv(l.clamp(0.0, 1.0)).norm().max(1e-12);
-        let half = lam + 0.5 * ds / speed(lam);
-        (lam + ds / speed(half)).clamp(0.0, 1.0)
+        let rate = |l: f64| 1.0 / self.deriv(l.clamp(0.0, 1.0)).norm().max(1e-12);
+        let k1 = rate(lam);
+        let k2 = rate(lam + 0.5 * ds * k1);
+        let k3 = rate(lam + 0.5 * ds * k2);
+        let k4 = rate(lam + ds * k3);
+        (lam + ds / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)).clamp(0.0, 1.0)
     }
 
     /// The unit tangent at λ.
@@ -353,10 +359,37 @@ impl Curve {
         }
     }
 
+    /// The largest rate |dκ/ds| at which the curvature changes along the
+    /// curve, 1/mm², over the whole ellipse or parabola it is a piece of
+    /// (0 for lines and arcs). Ellipse (x, y) = (a cos t, b sin t), a ≥ b,
+    /// c = a² − b²: dκ/ds = −(3/2)·a·b·c·sin 2t / D³ with D = a² sin² t +
+    /// b² cos² t; in s = sin² t its square is largest where 4c·s² −
+    /// (5c + 2b²)·s + b² = 0 (the root in 0…1). Parabola y² = 2px: dκ/ds
+    /// = −3u / (p²(1 + u²)³) with u = y/p, largest at u = 1/√5:
+    /// 3·5^(5/2)/(6³·p²) = 0.7765/p².
+    pub fn max_curvature_rate(&self) -> f64 {
+        match *self {
+            Curve::Line { .. } | Curve::Arc { .. } => 0.0,
+            Curve::Ellipse { a, b, .. } => {
+                let (a, b) = (a.max(b), a.min(b));
+                let c = a * a - b * b;
+                if !is_pos(c) {
+                    return 0.0;
+                }
+                let m = 5.0 * c + 2.0 * b * b;
+                let s = (m - sqrt((m * m - 16.0 * c * b * b).max(0.0))) / (8.0 * c);
+                let d = b * b + c * s;
+                1.5 * a * b * c * 2.0 * sqrt((s * (1.0 - s)).max(0.0)) / (d * d * d)
+            }
+            Curve::Parabola { p, .. } => 3.0 * libm::pow(5.0, 2.5) / (216.0 * p * p),
+        }
+    }
+
     /// A lower bound of the distance from point `p` to the curve: exact
     /// for a line and a circular arc (a slight spiral counts its smaller
     /// radius), the nearer end or the sampled points' less one step for
-    /// the conics, which a plane of polar interpolation never holds.
+    /// the conics (polar.rs bounds a conic of the polar plane point by
+    /// point).
     pub fn min_distance_to(&self, p: V2) -> f64 {
         let ends = self.point(0.0).dist(p).min(self.end().dist(p));
         match *self {
@@ -697,6 +730,53 @@ mod tests {
             let cross = t0.z * t1.r - t0.r * t1.z;
             assert_eq!(cross > 0.0, ccw, "{p:?}");
         }
+    }
+
+    #[test]
+    fn the_curvature_rate_is_the_largest_along_the_curve() {
+        // Against the curvature of 200 000 points of each, from the
+        // formula κ = |x′y″ − y′x″| / |(x′, y′)|³ and differences.
+        let ellipse = |t: f64| {
+            let (a, b) = (7.5f64, 2.25f64);
+            let (d1, d2) = ((-a * t.sin(), b * t.cos()), (-a * t.cos(), -b * t.sin()));
+            let speed = d1.0.hypot(d1.1);
+            ((d1.0 * d2.1 - d1.1 * d2.0).abs() / speed.powi(3), speed)
+        };
+        let parabola = |y: f64| {
+            let p = 1.5f64;
+            // x = y²/2p: x′ = y/p, x″ = 1/p.
+            let speed = (y / p).hypot(1.0);
+            ((1.0 / p) / speed.powi(3), speed)
+        };
+        let rate = |f: &dyn Fn(f64) -> (f64, f64), lo: f64, hi: f64| {
+            let n = 200_000;
+            let h = (hi - lo) / f64::from(n);
+            (0..n)
+                .map(|i| {
+                    let t = lo + h * f64::from(i);
+                    let ((k0, s0), (k1, s1)) = (f(t), f(t + h));
+                    (k1 - k0).abs() / (0.5 * (s0 + s1) * h)
+                })
+                .fold(0.0, f64::max)
+        };
+        let e = Curve::ellipse(V2::new(0.0, 7.5), V2::new(0.0, -7.5), 7.5, 2.25, 0.0, true)
+            .expect("an ellipse");
+        let want = rate(&ellipse, 0.0, core::f64::consts::PI);
+        assert!(
+            (e.max_curvature_rate() - want).abs() < 1e-3 * want,
+            "{want}"
+        );
+        let p = Curve::parabola(V2::new(-3.0, 3.0), V2::new(3.0, 3.0), 1.5, 0.0, true)
+            .expect("a parabola");
+        let want = rate(&parabola, -20.0, 20.0);
+        assert!(
+            (p.max_curvature_rate() - want).abs() < 1e-3 * want,
+            "{want}"
+        );
+        assert_eq!(
+            Curve::line(V2::ZERO, V2::new(1.0, 1.0)).max_curvature_rate(),
+            0.0
+        );
     }
 
     #[test]

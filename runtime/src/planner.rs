@@ -897,25 +897,23 @@ impl Planner {
                 // speed v it turns at |p × t|·v/ρ², and its acceleration
                 // is at most a·h/ρ² + v²(κ/ρ + 2h/ρ³) (t the direction,
                 // h the curve's lever about the centre, a along the path,
-                // κ the curvature): half of C's limit for each part, at
-                // the piece's least ρ (translate.rs cuts a move that
+                // κ the curvature): half of C's limit for each part, with
+                // h/ρ² and the rest bounded over the piece (polar.rs
+                // `CentreBounds`; translate.rs cuts a line or an arc that
                 // passes near the centre). ρ at least the resolution: a
                 // path through the centre is an alarm (nc plane.rs). X
                 // is ρ: its speed at most v, its acceleration at most
                 // a + v²κ + v²h²/ρ³: a quarter of X's limit for the last
                 // part, the rest for the path's (and its curvature's).
-                let centre = V2::ZERO;
-                let rho = seg.curve.min_distance_to(centre).max(self.tolerance);
-                let h = seg.curve.lever_about(centre);
-                let k = 1.0 / lim.rmin;
+                let b = crate::polar::CentreBounds::of(&seg.curve, self.tolerance);
                 let mut cap = vfeed[0];
                 let mut a = (0.75 * self.ax[0]).min(lim.amin);
-                if h > 0.0 {
-                    cap = cap.min(w * rho * rho / h);
-                    cap = cap.min(sqrt(0.25 * self.ax[0] * rho * rho * rho) / h);
-                    a = a.min(0.5 * alpha * rho * rho / h);
+                if b.turn > 0.0 {
+                    cap = cap.min(w / b.turn);
+                    cap = cap.min(sqrt(0.25 * self.ax[0] / b.bend));
+                    a = a.min(0.5 * alpha / b.turn);
                 }
-                cap = cap.min(sqrt(0.5 * alpha / (k / rho + 2.0 * h / (rho * rho * rho))));
+                cap = cap.min(sqrt(0.5 * alpha / b.spin));
                 lim.cap = lim.cap.min(cap);
                 lim.a_line = lim.a_line.min(a);
                 lim.amin = lim.amin.min(a);
@@ -952,14 +950,19 @@ impl Planner {
     /// arc, the less it takes (on a cylinder of radius 10 at 7.5 mm/s, an
     /// arc of 50 mm keeps 96 % of C's acceleration there, one of 5 mm 69
     /// %). (Without it a 0.5 mm arc there took C to 100.4 % of its jerk.)
+    /// An ellipse's or a parabola's curvature changes along it, by up to
+    /// κ′ a mm (geom.rs, `max_curvature_rate`), which adds κ′·v³: it
+    /// counts beside κ² (a flat ellipse at F3000 took X to 1.9 times its
+    /// jerk without it).
     fn curve_jerk_limits(&self, seg: &mut Segment, rho: f64, j: f64) {
         if !crate::math::is_pos(rho) {
             return;
         }
         let k = 1.0 / rho;
-        seg.v_max = seg.v_max.min(libm::cbrt(0.5 * j * rho * rho));
+        let bend = k * k + seg.curve.max_curvature_rate();
+        seg.v_max = seg.v_max.min(libm::cbrt(0.5 * j / bend));
         let v = seg.v_max;
-        let a = (j - k * k * v * v * v) / (2.0 / self.jerk_window + 3.0 * k * v);
+        let a = (j - bend * v * v * v) / (2.0 / self.jerk_window + 3.0 * k * v);
         seg.a_scale = seg.a_scale.min(a);
     }
 

@@ -189,6 +189,87 @@ impl PlaneRun {
     }
 }
 
+/// What the polar plane's caps need of a move's path about the centre
+/// (planner.rs, `plane_limits`): upper bounds, over the path's points q,
+/// of h/ρ² (C's turn per mm of path), h²/ρ³ (X's bend) and κ/ρ + 2h/ρ³
+/// (C's acceleration per (mm/s)²), where ρ = |q| (at least a floor), h =
+/// |q × t| the lever of the direction t about the centre and κ the
+/// curvature.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CentreBounds {
+    /// h/ρ².
+    pub turn: f64,
+    /// h²/ρ³.
+    pub bend: f64,
+    /// κ/ρ + 2h/ρ³.
+    pub spin: f64,
+}
+
+/// Samples of an ellipse or a parabola for its [`CentreBounds`].
+const CONIC_SAMPLES: u32 = 256;
+
+impl CentreBounds {
+    /// The bounds of `curve`, ρ at least `floor`. A line or an arc takes
+    /// them at its least distance and its largest lever (geom.rs, exact);
+    /// an ellipse or a parabola, whose nearest point and largest lever
+    /// lie far apart (a half ellipse about the centre ran at half its F
+    /// so), piece by piece between samples.
+    pub fn of(curve: &Curve, floor: f64) -> CentreBounds {
+        let k = 1.0 / curve.min_radius();
+        match curve {
+            Curve::Ellipse { .. } | Curve::Parabola { .. } => {
+                CentreBounds::sampled(curve, floor, k)
+            }
+            _ => {
+                let rho = curve.min_distance_to(V2::ZERO).max(floor);
+                CentreBounds::at(rho, curve.lever_about(V2::ZERO), k)
+            }
+        }
+    }
+
+    fn at(rho: f64, h: f64, k: f64) -> CentreBounds {
+        let rho3 = rho * rho * rho;
+        CentreBounds {
+            turn: h / (rho * rho),
+            bend: h * h / rho3,
+            spin: k / rho + 2.0 * h / rho3,
+        }
+    }
+
+    /// Between two samples the path runs at most L (the conic's top speed
+    /// dP/dλ over the step of λ), so ρ lies within L/2 of the nearer
+    /// sample's and h, which changes by κ·(q·n) ≤ κ·ρ a mm, within κ·ρ·L/2
+    /// of the larger one's.
+    fn sampled(curve: &Curve, floor: f64, k: f64) -> CentreBounds {
+        let n = f64::from(CONIC_SAMPLES);
+        let speed = match *curve {
+            Curve::Ellipse { a, b, dt, .. } => a.max(b) * dt.abs(),
+            _ => curve.deriv(0.0).norm().max(curve.deriv(1.0).norm()),
+        };
+        let half = 0.5 * speed / n;
+        let at = |i: u32| {
+            let lam = f64::from(i) / n;
+            let (q, t) = (curve.point(lam), curve.tangent(lam));
+            (q.norm(), (q.z * t.r - q.r * t.z).abs())
+        };
+        let mut prev = at(0);
+        let mut b = CentreBounds::at(f64::INFINITY, 0.0, 0.0);
+        for i in 1..=CONIC_SAMPLES {
+            let next = at(i);
+            let rho = (prev.0.min(next.0) - half).max(floor);
+            let far = prev.0.max(next.0) + half;
+            let piece = CentreBounds::at(rho, prev.1.max(next.1) + k * far * half, k);
+            b = CentreBounds {
+                turn: b.turn.max(piece.turn),
+                bend: b.bend.max(piece.bend),
+                spin: b.spin.max(piece.spin),
+            };
+            prev = next;
+        }
+        b
+    }
+}
+
 /// A move whose distance from the centre stays within this factor is
 /// planned whole (most moves).
 const SPAN: f64 = 2.0;
@@ -204,8 +285,12 @@ const GROWTH: f64 = 1.1;
 /// from the centre changes by at most a factor of `GROWTH` about the
 /// nearest point, so the planner's caps, taken at a piece's least ρ
 /// (planner.rs), slow the move near the centre only. Empty where ρ stays
-/// within a factor of `SPAN`.
+/// within a factor of `SPAN`. An ellipse or a parabola is halved instead
+/// where its samples' ρ grows by more than `GROWTH` (`conic_cuts`).
 pub fn cuts(curve: &Curve) -> Vec<f64> {
+    if let Curve::Ellipse { .. } | Curve::Parabola { .. } = curve {
+        return conic_cuts(curve);
+    }
     let near = curve.min_distance_to(V2::ZERO);
     let far = curve.point(0.0).norm().max(curve.end().norm());
     let mut cuts = Vec::new();
@@ -235,6 +320,48 @@ pub fn cuts(curve: &Curve) -> Vec<f64> {
     cuts.sort_by(f64::total_cmp);
     cuts.dedup_by(|a, b| *a - *b < 1e-6);
     cuts
+}
+
+/// Halvings of a conic at most (a piece of 2⁻²⁴ of it).
+const CONIC_DEPTH: u32 = 24;
+
+/// The cuts of an ellipse or a parabola whose distance from the centre
+/// more than doubles along it: halves, recursively, of each piece whose
+/// samples' distance grows by more than `GROWTH` (9 samples a piece:
+/// the cuts only have to make the pieces short near the centre, where
+/// ρ changes fast; [`CentreBounds`] bounds each piece exactly).
+fn conic_cuts(curve: &Curve) -> Vec<f64> {
+    let spread = |l0: f64, l1: f64, n: u32| {
+        (0..=n).fold((f64::INFINITY, 0.0f64), |(near, far), i| {
+            let rho = curve
+                .point(l0 + (l1 - l0) * f64::from(i) / f64::from(n))
+                .norm();
+            (near.min(rho), far.max(rho))
+        })
+    };
+    let (near, far) = spread(0.0, 1.0, 64);
+    let mut cuts = Vec::new();
+    if crate::math::is_pos(near) && far > SPAN * near {
+        halve(&spread, (0.0, 1.0), 0, &mut cuts);
+    }
+    cuts
+}
+
+/// Adds the cuts of the piece `(l0, l1)` in order (`conic_cuts`).
+fn halve(
+    spread: &impl Fn(f64, f64, u32) -> (f64, f64),
+    (l0, l1): (f64, f64),
+    depth: u32,
+    cuts: &mut Vec<f64>,
+) {
+    let (near, far) = spread(l0, l1, 8);
+    if far <= GROWTH * near || depth >= CONIC_DEPTH {
+        return;
+    }
+    let mid = (l0 + l1) / 2.0;
+    halve(spread, (l0, mid), depth + 1, cuts);
+    cuts.push(mid);
+    halve(spread, (mid, l1), depth + 1, cuts);
 }
 
 /// How a line or an arc of the polar plane draws away from the centre:
@@ -392,6 +519,72 @@ mod tests {
         // 0.25·1.1^k for k = 1 … 42 before its ends (√205 = 14.32;
         // 1.1^42 = 54.76, 1.1^43 = 60.24 > 57.27): 42 each side.
         assert_eq!(counts, [62, 31, 84, 0]);
+    }
+
+    #[test]
+    fn the_centre_bounds_of_an_ellipse_hold_its_points_closely() {
+        // The half ellipse (x, c) = (20 cos t, 10 sin t), t from 0 to π
+        // (plane points V2(c, x)): h/ρ² and h²/ρ³ over 100 000 of its
+        // points, h = |q × q′|/|q′|, from the formula, not the runtime's
+        // curve.
+        let curve = Curve::ellipse(
+            V2::new(0.0, 20.0),
+            V2::new(0.0, -20.0),
+            20.0,
+            10.0,
+            0.0,
+            true,
+        )
+        .expect("an ellipse");
+        let (mut turn, mut bend) = (0f64, 0f64);
+        for i in 0..=100_000 {
+            let t = core::f64::consts::PI * f64::from(i) / 100_000.0;
+            let (x, c) = (20.0 * t.cos(), 10.0 * t.sin());
+            let (dx, dc) = (-20.0 * t.sin(), 10.0 * t.cos());
+            let rho = x.hypot(c);
+            let h = (x * dc - c * dx).abs() / dx.hypot(dc);
+            turn = turn.max(h / (rho * rho));
+            bend = bend.max(h * h / (rho * rho * rho));
+        }
+        // (At (0, 10): h = ρ = 10, 0.1.) The bounds are within 6 and 10 % (256
+        // samples, the curvature taken at its largest, B²/A = 5 mm).
+        assert!((turn - 0.1).abs() < 1e-6, "{turn}");
+        let b = CentreBounds::of(&curve, 0.001);
+        assert!(b.turn >= turn && b.turn <= 1.06 * turn, "{} {turn}", b.turn);
+        assert!(b.bend >= bend && b.bend <= 1.1 * bend, "{} {bend}", b.bend);
+    }
+
+    #[test]
+    fn a_parabola_near_the_centre_is_cut_where_its_distance_grows() {
+        // x = u0 + c²/2.6 (P 1.3, its axis along x) through (10, ±5):
+        // u0 = 10 − 25/2.6 = 0.385, its vertex that far from the centre.
+        // Of the two senses the one opening towards +x holds it.
+        let (from, to) = (V2::new(-5.0, 10.0), V2::new(5.0, 10.0));
+        let curve = [true, false]
+            .into_iter()
+            .filter_map(|ccw| Curve::parabola(from, to, 1.3, 0.0, ccw))
+            .find(|c| c.point(0.5).norm() < 1.0)
+            .expect("the parabola opening towards +x");
+        assert!((curve.point(0.5).norm() - (10.0 - 25.0 / 2.6)).abs() < 1e-9);
+        let mut bounds = alloc::vec![0.0];
+        bounds.extend(cuts(&curve));
+        bounds.push(1.0);
+        // From 0.385 to 11.18 (√125) on each side: 1.1^k for k up to 35.
+        assert!((40..400).contains(&bounds.len()), "{}", bounds.len());
+        for w in bounds.windows(2) {
+            assert!(w[0] < w[1], "{bounds:?}");
+            let d: Vec<f64> = (0..=200)
+                .map(|i| {
+                    curve
+                        .point(w[0] + (w[1] - w[0]) * f64::from(i) / 200.0)
+                        .norm()
+                })
+                .collect();
+            let (near, far) = d
+                .iter()
+                .fold((f64::MAX, 0f64), |(a, b), &x| (a.min(x), b.max(x)));
+            assert!(far <= 1.2 * near, "{w:?}: {near}…{far}");
+        }
     }
 
     #[test]

@@ -349,19 +349,37 @@ impl Translator {
                 MoveKind::Feed(self.feed),
                 Some((map.point(ca, cb), dir == Dir::Ccw)),
             ),
+            PlaneMotion::Ellipse { .. } | PlaneMotion::Parabola { .. } => {
+                (MoveKind::Feed(self.feed), None)
+            }
         };
-        let path = |to| match arc {
-            None => Path::Line { to },
-            Some((centre, ccw)) => Path::Arc { to, centre, ccw },
+        let path = |to| match (motion, arc) {
+            (PlaneMotion::Ellipse { dir, a, b, q }, _) => Path::Ellipse {
+                to,
+                a,
+                b,
+                q: q.to_radians(),
+                ccw: dir == Dir::Ccw,
+            },
+            (PlaneMotion::Parabola { dir, p, q }, _) => Path::Parabola {
+                to,
+                p,
+                q: q.to_radians(),
+                ccw: dir == Dir::Ccw,
+            },
+            (_, None) => Path::Line { to },
+            (_, Some((centre, ccw))) => Path::Arc { to, centre, ccw },
         };
         if let PlaneMap::Polar { .. } = map {
             // Near the centre in pieces, each capped for its own distance
-            // (polar.rs).
-            let curve = match arc {
-                None => crate::geom::Curve::line(from, to),
-                Some((centre, ccw)) => crate::geom::Curve::arc(from, to, centre, ccw),
-            };
-            for lam in crate::polar::cuts(&curve) {
+            // (polar.rs). (A conic that cannot be drawn, which only a
+            // crafted module asks for, goes whole: the planner raises its
+            // alarm.)
+            let curve = plane_curve(motion, arc, from, to);
+            for (curve, lam) in curve
+                .iter()
+                .flat_map(|c| crate::polar::cuts(c).into_iter().map(move |l| (c, l)))
+            {
                 out.push(Command::Move(Move {
                     kind,
                     path: path(curve.point(lam)),
@@ -384,6 +402,27 @@ impl Translator {
             shift: V2::ZERO,
             c: held,
         }));
+    }
+}
+
+/// The exact curve of a plane move from `from` to `to` (`arc`: an arc's
+/// centre and sense); `None` for a conic that cannot be drawn.
+fn plane_curve(
+    motion: PlaneMotion,
+    arc: Option<(V2, bool)>,
+    from: V2,
+    to: V2,
+) -> Option<crate::geom::Curve> {
+    use crate::geom::Curve;
+    match (motion, arc) {
+        (PlaneMotion::Ellipse { dir, a, b, q }, _) => {
+            Curve::ellipse(from, to, a, b, q.to_radians(), dir == Dir::Ccw)
+        }
+        (PlaneMotion::Parabola { dir, p, q }, _) => {
+            Curve::parabola(from, to, p, q.to_radians(), dir == Dir::Ccw)
+        }
+        (_, None) => Some(Curve::line(from, to)),
+        (_, Some((centre, ccw))) => Some(Curve::arc(from, to, centre, ccw)),
     }
 }
 

@@ -1,6 +1,6 @@
 //! Polar and cylindrical interpolation keep every joint within its
-//! limits: random plane programs (lines, arcs, G00, the axis outside the
-//! plane moving alone or with a line; a fixed seed) are certified period by period
+//! limits: random plane programs (lines, arcs, ellipses, parabolas, G00,
+//! the axis outside the plane moving alone or with a line; a fixed seed) are certified period by period
 //! (`runtime::certify`, as `gbvm check` does). Before the planner knew
 //! the joints, C ran at up to 50 times its speed near the centre.
 
@@ -10,15 +10,42 @@ use common::{certify, Lcg};
 use nc::Machine;
 
 /// A contour of G12.1: points in x −30…30, c −20…20 (radius values);
-/// `ramps`: some lines take Z along.
-fn polar(rng: &mut Lcg, ramps: bool) -> String {
+/// `more`: some lines take Z along, and ellipses (A 1.01…3 times half the
+/// chord, B 0.3…1.5 times A, Q 0…180°; many cannot join their points,
+/// E4005) and parabolas (P 0.5…4 times half the chord) come in.
+fn polar(rng: &mut Lcg, more: bool) -> String {
     let mut s = String::from("G98 G00 X40 Z2 C0\nG12.1\n");
     let (mut x, mut c) = (20.0f64, 0.0f64);
     for _ in 0..3 + (rng.unit() * 6.0) as usize {
         let (nx, nc) = (rng.range(-30.0, 30.0), rng.range(-20.0, 20.0));
         let f = rng.pick(&[100, 300, 1000, 3000]);
-        let kinds = ["G01", "G00", "G02", "G03", "Z", "G01 Z", "G00 Z"];
-        match rng.pick(&kinds[..if ramps { 7 } else { 5 }]) {
+        let kinds = [
+            "G01", "G00", "G02", "G03", "Z", "G01 Z", "G00 Z", "G6", "G7",
+        ];
+        match rng.pick(&kinds[..if more { 9 } else { 5 }]) {
+            "G6" | "G7" if (nx - x).hypot(nc - c) < 0.1 => continue,
+            "G6" => {
+                let half = (nx - x).hypot(nc - c) / 2.0;
+                let a = half * rng.range(1.01, 3.0);
+                let b = a * rng.range(0.3, 1.5);
+                let (g, q) = (rng.pick(&["G6.2", "G6.3"]), rng.range(0.0, 180.0));
+                s += &format!(
+                    "{g} X{} C{nc} A{a:.3} B{b:.3} Q{:.0} F{f}\n",
+                    2.0 * nx,
+                    q * 1000.0
+                );
+            }
+            "G7" => {
+                let half = (nx - x).hypot(nc - c) / 2.0;
+                let (g, p) = (rng.pick(&["G7.2", "G7.3"]), half * rng.range(0.5, 4.0));
+                let q = rng.range(0.0, 180.0);
+                s += &format!(
+                    "{g} X{} C{nc} P{:.0} Q{:.0} F{f}\n",
+                    2.0 * nx,
+                    p * 1000.0,
+                    q * 1000.0
+                );
+            }
             "Z" => {
                 s += &format!("G01 Z{} F{f}\n", rng.range(-5.0, 2.0));
                 continue;
@@ -42,24 +69,37 @@ fn polar(rng: &mut Lcg, ramps: bool) -> String {
     s + "G13.1\nM30\n"
 }
 
-/// A groove of G7.1 on a cylinder of radius 5…40; `ramps`: some lines
-/// take X along.
-fn cylinder(rng: &mut Lcg, ramps: bool) -> String {
+/// A groove of G7.1 on a cylinder of radius 5…40; `more`: some lines
+/// take X along, and parabolas (P 0.5…4 times half the chord on the
+/// developed surface, Q 0…180°) come in.
+fn cylinder(rng: &mut Lcg, more: bool) -> String {
     let r = rng.pick(&[5.0, 10.0, 20.0, 40.0]);
     let mut s = format!("G98 G00 X{} Z0 C0\nG7.1 C{r}.\n", 2.0 * r);
+    // (Where the plane point stands: Z, C; an X move leaves it.)
+    let mut at = (0.0f64, 0.0f64);
     for _ in 0..3 + (rng.unit() * 6.0) as usize {
         let (z, c) = (rng.range(-30.0, 0.0), rng.range(-200.0, 200.0));
         let f = rng.pick(&[100, 300, 1000, 3000]);
         let x = 2.0 * r - rng.range(0.0, 2.0);
-        let kinds = ["G01", "G00", "G02", "G03", "X", "G01 X", "G00 X"];
-        match rng.pick(&kinds[..if ramps { 7 } else { 5 }]) {
-            "X" => s += &format!("G01 X{x} F{f}\n"),
+        let kinds = ["G01", "G00", "G02", "G03", "X", "G01 X", "G00 X", "G7"];
+        match rng.pick(&kinds[..if more { 8 } else { 5 }]) {
+            "G7" => {
+                let half = (z - at.0).hypot((c - at.1).to_radians() * r) / 2.0;
+                let (g, p) = (rng.pick(&["G7.2", "G7.3"]), half * rng.range(0.5, 4.0));
+                let q = rng.range(0.0, 180.0);
+                s += &format!("{g} Z{z} C{c} P{:.0} Q{:.0} F{f}\n", p * 1000.0, q * 1000.0);
+            }
+            "X" => {
+                s += &format!("G01 X{x} F{f}\n");
+                continue;
+            }
             g @ ("G01 X" | "G00 X") => s += &format!("{} Z{z} C{c} X{x} F{f}\n", &g[..3]),
             g @ ("G02" | "G03") => {
                 s += &format!("{g} Z{z} C{c} R{} F{f}\n", rng.range(20.0, 200.0))
             }
             g => s += &format!("{g} Z{z} C{c} F{f}\n"),
         }
+        at = (z, c);
     }
     s + "G7.1 C0\nM30\n"
 }

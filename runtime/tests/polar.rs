@@ -447,6 +447,72 @@ fn x_moves_along_a_line_of_cylindrical_interpolation() {
 }
 
 #[test]
+fn an_ellipse_of_polar_interpolation_runs_round_the_centre_at_f() {
+    // The ellipse x²/20² + c²/10² = 1 about the centre, counter-clockwise
+    // in two halves from (20, 0): C turns a whole turn. Where it passes
+    // nearest the centre, at (0, ±10), C turns at v/10 = 0.5 rad/s at F300
+    // (5 mm/s), within its 30°/s (0.5236 rad/s): F runs all along but
+    // where it starts and stops. (Capped at its least distance and its
+    // largest lever, 10 and 20, it ran at half of F.)
+    let src = "G98\nG00 X40 Z2 C0\nG12.1\nG6.3 X-40 C0 A20 B10 Q0 F300\nG6.3 X40 C0 A20 B10 Q0\nG13.1\nM30\n";
+    for jerk in [false, true] {
+        let r = run_c(src, jerk);
+        let on: Vec<_> = r.pts.iter().filter(|p| (4..=5).contains(&p.line)).collect();
+        // 2π·√((20² + 10²)/2) ≈ 99.3 mm (the ellipse's perimeter is 96.9)
+        // at 5 mm/s: some 19 000 periods.
+        assert!(on.len() > 19_000, "{}", on.len());
+        for p in &on {
+            let (x, c) = polar_plane(p);
+            let e = ((x / 20.0).powi(2) + (c / 10.0).powi(2)).sqrt();
+            assert!((e - 1.0).abs() * 10.0 <= 0.005, "{p:?}");
+            assert!(p.feed <= 300.5, "{p:?}");
+        }
+        let mut feeds: Vec<f64> = on.iter().map(|p| p.feed).collect();
+        feeds.sort_by(f64::total_cmp);
+        assert!(
+            feeds[feeds.len() / 10] >= 299.0,
+            "{}",
+            feeds[feeds.len() / 10]
+        );
+        let last = r.pts.last().expect("periods");
+        assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6, "{last:?}");
+        assert!((last.x - 40.0).abs() < 1e-6, "{last:?}");
+        let canon: Vec<String> = r.canon.iter().map(|e| e.to_string()).collect();
+        assert!(canon.contains(&"ELLIPSE DIR=CCW X=-40 C=0 A=20 B=10 Q=0".to_string()));
+    }
+}
+
+#[test]
+fn a_parabola_of_cylindrical_interpolation_runs_on_the_developed_surface() {
+    // On the cylinder of radius 20, the parabola G7.2 (P 5 mm, its axis
+    // along C: Q0) from s 0, Z0 to s 10π (C90), Z−10, clockwise with C
+    // to the right and Z up: Z falls, so it opens towards −s (σ = −1 in
+    // plan conic.rs), and σ(s − u0) = (Z − v0)²/2P through both ends
+    // gives v0 = −5 − 5π = −20.708 (Z), u0 = v0²/10 = 42.882 (s): every
+    // period's (s, Z) lies on s = u0 − (Z − v0)²/10. (Its direction
+    // turns from (4.14, −1) to (2.14, −1): clockwise.)
+    let src = "G98\nG00 X40 Z0 C0\nG7.1 C20.\nG7.2 Z-10 C90 P5000 Q0 F200\nG7.1 C0\nM30\n";
+    let v0 = -5.0 - 5.0 * PI;
+    let u0 = v0 * v0 / 10.0;
+    for jerk in [false, true] {
+        let r = run_c(src, jerk);
+        let on: Vec<_> = r.pts.iter().filter(|p| p.line == 4).collect();
+        assert!(on.len() > 1000, "{}", on.len());
+        for p in &on {
+            let (s, z) = (20.0 * p.c.expect("a C column").to_radians(), p.z);
+            let want = u0 - (z - v0).powi(2) / 10.0;
+            // (|ds/dZ| is at least 2·10.7/10 = 2.1 along it: 5 µm along s
+            // is within 5 µm of the curve.)
+            assert!((s - want).abs() <= 0.005, "{p:?} {want}");
+            assert!((p.x - 40.0).abs() < 1e-9, "{p:?}");
+        }
+        let last = r.pts.last().expect("periods");
+        assert!((last.z + 10.0).abs() < 1e-9, "{last:?}");
+        assert!((last.c.unwrap_or(0.0) - 90.0).abs() < 1e-9, "{last:?}");
+    }
+}
+
+#[test]
 fn a_rapid_in_the_polar_plane_follows_its_straight_line() {
     // G00 from (x 10, c 10) to (x −10, c 0): along that line (each axis
     // on its own, c would arrive first, a dog-leg), labelled a rapid, at

@@ -41,6 +41,21 @@ pub enum PlaneMotion {
         ca: f64,
         cb: f64,
     },
+    /// G6.2/G6.3 in the plane: semi-axes A, B (mm), the axis at Q
+    /// degrees counter-clockwise from the plane's first axis.
+    Ellipse {
+        dir: Dir,
+        a: f64,
+        b: f64,
+        q: f64,
+    },
+    /// G7.2/G7.3 in the plane: parameter P (mm), the symmetry axis at Q
+    /// degrees from the plane's first axis.
+    Parabola {
+        dir: Dir,
+        p: f64,
+        q: f64,
+    },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -202,7 +217,10 @@ impl Event {
                 | Event::Parabola { .. }
                 | Event::Skip { .. }
                 | Event::PlaneMove {
-                    motion: PlaneMotion::Line | PlaneMotion::Arc { .. },
+                    motion: PlaneMotion::Line
+                        | PlaneMotion::Arc { .. }
+                        | PlaneMotion::Ellipse { .. }
+                        | PlaneMotion::Parabola { .. },
                     ..
                 }
                 | Event::PlaneAxis { rapid: false, .. }
@@ -453,10 +471,21 @@ impl Display for Event {
                     PlaneMotion::Rapid => f.write_str("RAPID ")?,
                     PlaneMotion::Line => f.write_str("LINE ")?,
                     PlaneMotion::Arc { dir: d, .. } => write!(f, "ARC DIR={} ", dir(*d))?,
+                    PlaneMotion::Ellipse { dir: d, .. } => write!(f, "ELLIPSE DIR={} ", dir(*d))?,
+                    PlaneMotion::Parabola { dir: d, .. } => write!(f, "PARABOLA DIR={} ", dir(*d))?,
                 }
                 write!(f, "{first}={} C={}", Num(*a), Num(*b))?;
-                if let PlaneMotion::Arc { ca, cb, .. } = motion {
-                    write!(f, " C{first}={} CC={}", Num(*ca), Num(*cb))?;
+                match motion {
+                    PlaneMotion::Arc { ca, cb, .. } => {
+                        write!(f, " C{first}={} CC={}", Num(*ca), Num(*cb))?
+                    }
+                    PlaneMotion::Ellipse { a, b, q, .. } => {
+                        write!(f, " A={} B={} Q={}", Num(*a), Num(*b), Num(*q))?
+                    }
+                    PlaneMotion::Parabola { p, q, .. } => {
+                        write!(f, " P={} Q={}", Num(*p), Num(*q))?
+                    }
+                    PlaneMotion::Rapid | PlaneMotion::Line => {}
                 }
                 if let Some(v) = off {
                     write!(f, " {other}={}", Num(*v))?;
@@ -602,6 +631,35 @@ mod tests {
             off: Some(-1.5),
         };
         assert_eq!(ramp.to_string(), "LINE X=40 C=0 Z=-1.5");
+        let ellipse = Event::PlaneMove {
+            plane: Plane::Polar,
+            motion: PlaneMotion::Ellipse {
+                dir: Dir::Ccw,
+                a: 10.0,
+                b: 5.0,
+                q: 30.0,
+            },
+            a: 20.0,
+            b: 2.5,
+            off: None,
+        };
+        assert_eq!(
+            ellipse.to_string(),
+            "ELLIPSE DIR=CCW X=20 C=2.5 A=10 B=5 Q=30"
+        );
+        let parabola = Event::PlaneMove {
+            plane: Plane::Cylinder,
+            motion: PlaneMotion::Parabola {
+                dir: Dir::Cw,
+                p: 4.0,
+                q: 0.0,
+            },
+            a: -5.0,
+            b: 45.0,
+            off: None,
+        };
+        assert_eq!(parabola.to_string(), "PARABOLA DIR=CW Z=-5 C=45 P=4 Q=0");
+        assert!(ellipse.is_feed() && parabola.is_feed());
         assert!(line.is_feed() && line.is_motion());
         let rapid = Event::PlaneMove {
             plane: Plane::Cylinder,

@@ -40,6 +40,9 @@ use crate::base::point::Pt;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
 
+mod conic;
+pub(crate) use conic::printed_curve;
+
 /// Which interpolation is on, and the plane's own data.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Kind {
@@ -220,6 +223,17 @@ pub(crate) fn polar_on(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(
             ),
         );
     }
+    if nc.st.pos.r < 0.0 {
+        // (The plane's joints put a point of negative x at C 180°: the
+        // axes would have to jump there.)
+        return fail(
+            Alarm::PolarInComp,
+            format!(
+                "{what} starts with the tool at a positive X (C at 0 degrees is the plane's +X), X is {:.4}: move to a positive X first",
+                nc.st.pos.x()
+            ),
+        );
+    }
     nc.st.modal.polar = Polar::On;
     let pt = Pt::new(0.0, nc.st.pos.r);
     nc.st.plane = Some(PlaneState {
@@ -356,9 +370,11 @@ pub(crate) fn motion(
         return Ok(());
     };
     let arc = code.is_arc();
-    // In an arc the axis outside the plane is ignored (seed 000: the
-    // compiler warns, W104); a straight move takes it along.
-    let off = (!arc && other_axis(st.kind, p)).then(|| off_target(nc, st.kind, p));
+    // In an arc, an ellipse or a parabola the axis outside the plane is
+    // ignored (seed 000: the compiler warns, W104); a straight move takes
+    // it along.
+    let curved = arc || code.is_conic();
+    let off = (!curved && other_axis(st.kind, p)).then(|| off_target(nc, st.kind, p));
     let to = target(nc, &st, p);
     if off.is_some() && (!plane_words(st.kind, p) || to == st.pt) {
         // The axis alone, the plane point standing (held behind a
@@ -372,13 +388,49 @@ pub(crate) fn motion(
         return Ok(());
     }
     let moves = plane_words(st.kind, p);
+    if code.is_conic() && moves {
+        return conic::run(nc, st, code, to, p, sink, out);
+    }
     if !moves && !(arc && (p.has(b'I') || p.has(b'J') || p.has(b'R'))) {
         return Ok(());
     }
-    let from = st.pt;
-    let Some((motion, path)) = plane_motion(nc, &st, code, from, to, p)? else {
+    let Some((motion, path)) = plane_motion(nc, &st, code, st.pt, to, p)? else {
         return Ok(());
     };
+    let step = Step {
+        motion,
+        to,
+        path,
+        off,
+    };
+    run_move(nc, st, step, sink, out)
+}
+
+/// A line, arc or rapid of the plane: how it runs, its end, its arc and
+/// where it takes the axis outside the plane.
+struct Step {
+    motion: PlaneMotion,
+    to: Pt,
+    path: ArcPath,
+    off: Option<f64>,
+}
+
+/// A step of the plane: checked against the centre, then compensated, or
+/// moved and printed.
+fn run_move(
+    nc: &mut Nc,
+    st: PlaneState,
+    step: Step,
+    sink: &mut dyn Sink,
+    out: &mut Outcome,
+) -> Result<(), NcError> {
+    let Step {
+        motion,
+        to,
+        path,
+        off,
+    } = step;
+    let from = st.pt;
     if st.kind == Kind::Polar
         && nearest_to_centre(from, to, path) < nc.machine.machine.resolution_mm
     {
@@ -399,7 +451,8 @@ pub(crate) fn motion(
                 ),
             );
         }
-        return compensated(nc, st, code == Motion::Rapid, to, path, sink);
+        let rapid = motion == PlaneMotion::Rapid;
+        return compensated(nc, st, rapid, to, path, sink);
     }
     if !matches!(motion, PlaneMotion::Rapid) {
         nc.feed_due(sink);
@@ -546,11 +599,7 @@ fn plane_code(
         };
     }
     match nc.st.modal.motion {
-        c if c.is_straight() || c.is_arc() => Ok(Some(c)),
-        c if c.is_conic() => fail(
-            Alarm::NotSupportedYet,
-            format!("{} during {} is not supported yet", c.name(), st.what()),
-        ),
+        c if c.is_straight() || c.is_arc() || c.is_conic() => Ok(Some(c)),
         c => fail(
             Alarm::IncompatibleWords,
             format!("{} cannot run during {}", c.name(), st.what()),

@@ -485,6 +485,11 @@ impl Timer<'_> {
                 let cw = dir == Dir::Cw;
                 (arc_length(st.pt, to, centre, cw), self.feed_rate(start))
             }
+            PlaneMotion::Ellipse { .. } | PlaneMotion::Parabola { .. } => {
+                let curve = crate::exec::plane::printed_curve(st.pt, to, motion);
+                let length = curve.map_or(0.0, |c| c.length(0.0, 1.0));
+                (length, self.feed_rate(start))
+            }
         };
         st.pt = to;
         self.plane = Some(st);

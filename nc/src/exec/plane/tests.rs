@@ -239,6 +239,109 @@ fn the_axis_outside_the_plane_moves_with_a_straight_move() {
 }
 
 #[test]
+fn ellipses_and_parabolas_in_the_plane() {
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G98 G00 X40 Z2 C0",
+            "G12.1",
+            // A half ellipse about the centre, A 20 along X (Q0), B 10
+            // along C: from (x 20, c 0) counter-clockwise over (0, 10) to
+            // (−20, 0), C from 0° to 180°; the other half back under it
+            // to 360°. Z is ignored in it (W104 at compile time).
+            "G6.3 X-40 C0 A20 B10 Q0 F300",
+            "G6.3 X40 C0 A20 B10 Q0 Z5",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "RAPID X=40 Z=2 C=0",
+            "POLAR MODE=ON",
+            "FEED F=300 MODE=MIN",
+            "ELLIPSE DIR=CCW X=-40 C=0 A=20 B=10 Q=0",
+            "ELLIPSE DIR=CCW X=40 C=0 A=20 B=10 Q=0",
+        ]
+    );
+    assert_eq!(m.run("G13.1"), ["POLAR MODE=OFF X=40 C=360"]);
+    // An ellipse with A = B: from (20, 0) to (10, 10), A 10 along C
+    // (Q90000: 90°), B 10: the quarter circle clockwise (X to the right,
+    // C up) about (20, 10) prints as the arc it is; C turns to 45°.
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G98 G00 X40 Z2 C0",
+            "G12.1",
+            "G6.2 X20 C10 A10 B10 Q90000 F300",
+            "G13.1",
+        ],
+    );
+    assert_eq!(
+        l[3..],
+        [
+            "ARC DIR=CW X=20 C=10 CX=40 CC=10",
+            // X = 2·√200 = 28.2843.
+            "POLAR MODE=OFF X=28.2843 C=45",
+        ]
+    );
+    // On the cylinder of radius 20 a parabola (P 5 mm) from Z0 C0 to
+    // Z−10 C90: Z and C end there.
+    let mut m = Lathe::with_c();
+    let l = lines(
+        &mut m,
+        &[
+            "G98 G00 X40 Z0 C0",
+            "G7.1 C20.",
+            "G7.2 Z-10 C90 P5000 Q0 F200",
+            "G7.1 C0",
+        ],
+    );
+    assert_eq!(
+        l[2..],
+        [
+            "FEED F=200 MODE=MIN",
+            "PARABOLA DIR=CW Z=-10 C=90 P=5 Q=0",
+            "CYLINDER MODE=OFF",
+        ]
+    );
+    assert_eq!(var(&m, 5042), Some(-10.0));
+    assert_eq!(var(&m, 5043), Some(90.0));
+}
+
+#[test]
+fn the_turn_of_a_conic_about_the_centre() {
+    use super::conic::about_centre;
+    use crate::plan::curve::Curve;
+    // Plane points are (r: c, z: x). The half ellipse about the centre
+    // turns half a turn and comes 10 (B) near it; one about (x 30, c 0)
+    // from (x 50, c 0) to (x 10, c 0) over the top (A 20, B 5) turns
+    // from 0° back to 0° (the centre stays outside): 0, 10 from it at
+    // its end (x 10).
+    let (a, b) = (Pt::new(0.0, 20.0), Pt::new(0.0, -20.0));
+    let half = Curve::ellipse(a, b, Pt::new(0.0, 0.0), 20.0, 10.0, 0.0, false);
+    let (turn, near) = about_centre(&half);
+    assert!((turn - core::f64::consts::PI).abs() < 1e-12, "{turn}");
+    assert!((9.8..=10.0).contains(&near), "{near}");
+    let (a, b) = (Pt::new(0.0, 50.0), Pt::new(0.0, 10.0));
+    let away = Curve::ellipse(a, b, Pt::new(0.0, 30.0), 20.0, 5.0, 0.0, false);
+    let (turn, near) = about_centre(&away);
+    assert!(turn.abs() < 1e-12, "{turn}");
+    assert!((9.8..=10.0).contains(&near), "{near}");
+    // The other way round, under the centre's x axis: the same.
+    let under = Curve::ellipse(a, b, Pt::new(0.0, 30.0), 20.0, 5.0, 0.0, true);
+    assert!(about_centre(&under).0.abs() < 1e-12);
+    // A flat ellipse (B 1 µm) about the centre: half a turn, 1 µm from
+    // it (a bound by its radius of curvature, B²/A, halved it 2⁴⁰ times).
+    let (a, b) = (Pt::new(0.0, 20.0), Pt::new(0.0, -20.0));
+    let flat = Curve::ellipse(a, b, Pt::new(0.0, 0.0), 20.0, 0.001, 0.0, false);
+    let (turn, near) = about_centre(&flat);
+    assert!((turn - core::f64::consts::PI).abs() < 1e-12, "{turn}");
+    assert!((0.00098..=0.001).contains(&near), "{near}");
+}
+
+#[test]
 fn the_distance_of_a_move_from_the_centre() {
     use super::nearest_to_centre;
     use crate::base::point::Pt;
@@ -278,6 +381,10 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G99", "G12.1"]), 4033);
     assert_eq!(e(&["G99", "G7.1 C10"]), 4033);
     assert_eq!(e(&["G00 C30", "G12.1"]), 4033);
+    // (A negative X at C 0 is the plane's point (x < 0, 0), whose joints
+    // are X > 0 at C 180°; X0 starts at the centre.)
+    assert_eq!(e(&["G00 X-20 C0", "G12.1"]), 4033);
+    assert_eq!(e(&["G00 X0 C0", "G12.1"]), 0);
     assert_eq!(e(&["G12.1", "T0101"]), 4033);
     assert_eq!(e(&["G7.1 C10", "T0202"]), 4033);
     assert_eq!(e(&["G12.1", "G99 G01 X10 F1"]), 4033);
@@ -314,7 +421,21 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G00 X40", "G12.1", "G01 X10 Z-5 F1"]), 0);
     assert_eq!(e(&["G12.1", "G01 X10 Z-5 F1"]), 4033);
     assert_eq!(e(&["G7.1 C10", "G01 U1 C30 F1"]), 0);
-    assert_eq!(e(&["G12.1", "G6.2 X10 C5 A5 B3 F1"]), 2099);
+    // Ellipses and parabolas: one that cannot join its points (chord 40
+    // > 2A), one that passes 0.5 µm from the centre (B), one under
+    // compensation (not supported yet).
+    assert_eq!(e(&["G00 X40", "G12.1", "G6.2 X-40 C0 A5 B3 F1"]), 4005);
+    assert_eq!(
+        e(&["G00 X40", "G12.1", "G6.3 X-40 C0 A20 B0.0005 F1"]),
+        4033
+    );
+    assert_eq!(e(&["G00 X40", "G12.1", "G6.3 X-40 C0 A20 B1 F1"]), 0);
+    assert_eq!(
+        e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G6.3 X-10 C0 A5 B3"]),
+        2099
+    );
+    // (The chord along the axis, C: Q0 is along the first axis.)
+    assert_eq!(e(&["G7.1 C10", "G7.2 C30 P100 F1"]), 4006);
     // Compensation runs inside, but not where the mode ends: G40 alone
     // leaves its cancel to the next move.
     assert_eq!(e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G13.1"]), 4033);
