@@ -353,23 +353,7 @@ impl Translator {
                 (MoveKind::Feed(self.feed), None)
             }
         };
-        let path = |to| match (motion, arc) {
-            (PlaneMotion::Ellipse { dir, a, b, q }, _) => Path::Ellipse {
-                to,
-                a,
-                b,
-                q: q.to_radians(),
-                ccw: dir == Dir::Ccw,
-            },
-            (PlaneMotion::Parabola { dir, p, q }, _) => Path::Parabola {
-                to,
-                p,
-                q: q.to_radians(),
-                ccw: dir == Dir::Ccw,
-            },
-            (_, None) => Path::Line { to },
-            (_, Some((centre, ccw))) => Path::Arc { to, centre, ccw },
-        };
+        let path = |to| plane_path(motion, arc, to);
         if let PlaneMap::Polar { .. } = map {
             // Near the centre in pieces, each capped for its own distance
             // (polar.rs). (A conic that cannot be drawn, which only a
@@ -402,6 +386,28 @@ impl Translator {
             shift: V2::ZERO,
             c: held,
         }));
+    }
+}
+
+/// The path of a plane move (or of a piece of it) to `to` (`arc`: an
+/// arc's centre and sense).
+fn plane_path(motion: PlaneMotion, arc: Option<(V2, bool)>, to: V2) -> Path {
+    match (motion, arc) {
+        (PlaneMotion::Ellipse { dir, a, b, q }, _) => Path::Ellipse {
+            to,
+            a,
+            b,
+            q: q.to_radians(),
+            ccw: dir == Dir::Ccw,
+        },
+        (PlaneMotion::Parabola { dir, p, q }, _) => Path::Parabola {
+            to,
+            p,
+            q: q.to_radians(),
+            ccw: dir == Dir::Ccw,
+        },
+        (_, None) => Path::Line { to },
+        (_, Some((centre, ccw))) => Path::Arc { to, centre, ccw },
     }
 }
 
