@@ -544,8 +544,6 @@ fn rigid_tap(events: &[Event], at: (f64, f64)) -> Option<Tap> {
     })
 }
 
-/// The Q word of a thread's start angle, in the integer 0.001° the
-/// dialect takes.
 /// The G code of an ellipse (G6.2/G6.3) or a parabola (G7.2/G7.3).
 fn conic_code(ellipse: bool, dir: Dir) -> &'static str {
     match (ellipse, dir) {
@@ -562,6 +560,8 @@ fn parabola_words(p: f64, q: f64) -> String {
     format!(" P{}{}", (p * 1000.0).round(), q_word(Some(q)))
 }
 
+/// The Q word of a thread's start angle or a conic's axis angle, in the
+/// integer 0.001° the dialect takes.
 fn q_word(q: Option<f64>) -> String {
     q.map_or(String::new(), |q| format!(" Q{}", (q * 1000.0).round()))
 }

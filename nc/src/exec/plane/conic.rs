@@ -30,7 +30,7 @@ const MAX_DEPTH: u32 = 40;
 /// A conic block of the plane to plane point `to`.
 pub(super) fn run(
     nc: &mut Nc,
-    mut st: PlaneState,
+    st: PlaneState,
     code: Motion,
     to: Pt,
     p: &Parsed,
@@ -81,6 +81,23 @@ pub(super) fn run(
         Kind::Cylinder(_) => 0.0,
     };
     out.moved = true;
+    let motion = match kind {
+        ConicKind::Ellipse { a, b, q } => PlaneMotion::Ellipse { dir, a, b, q },
+        ConicKind::Parabola { p, q } => PlaneMotion::Parabola { dir, p, q },
+    };
+    print(nc, st, motion, (to, turn), sink);
+    Ok(())
+}
+
+/// Moves the plane point, the joints and C (by `turn` radians about the
+/// centre in the polar plane) to `to`, and prints the conic.
+fn print(
+    nc: &mut Nc,
+    mut st: PlaneState,
+    motion: PlaneMotion,
+    (to, turn): (Pt, f64),
+    sink: &mut dyn Sink,
+) {
     nc.feed_due(sink);
     nc.st.c = match st.kind {
         Kind::Polar => nc.st.c + turn.to_degrees(),
@@ -89,10 +106,6 @@ pub(super) fn run(
     nc.st.pos = st.joints(to, nc.st.pos);
     (st.pt, st.tool) = (to, to);
     nc.st.plane = Some(st);
-    let motion = match kind {
-        ConicKind::Ellipse { a, b, q } => PlaneMotion::Ellipse { dir, a, b, q },
-        ConicKind::Parabola { p, q } => PlaneMotion::Parabola { dir, p, q },
-    };
     let (a, b) = st.printed(to);
     sink.emit(Event::PlaneMove {
         plane: st.plane(),
@@ -101,7 +114,6 @@ pub(super) fn run(
         b,
         off: None,
     });
-    Ok(())
 }
 
 /// The curve of a conic the canon printed from `from` to `to` (plane
