@@ -37,8 +37,8 @@ pub const MAX_TICKS: u64 = 600_000;
 /// half the chord, B 0.3…1.5 times A) or a parabola's P (0.5…4 times
 /// half the chord). A conic's sense is bit 0 of the kind byte divided by
 /// 9 (G6.2/G7.2 when clear), its Q 22.5° times the next 3 bits. Under
-/// compensation the axis moves alone (taken along it is E2099), and a
-/// conic is a G01 or G00 (E2099 too). Values are written to 3 decimals.
+/// compensation the axis moves alone (taken along it is E2099). Values
+/// are written to 3 decimals.
 pub fn decode(data: &[u8]) -> (String, Machine, bool) {
     let b = |i: usize| data.get(i).copied().unwrap_or(0);
     let polar = b(0) & 1 == 0;
@@ -83,7 +83,7 @@ pub fn decode(data: &[u8]) -> (String, Machine, bool) {
             true => format!("X{:.3} C{b:.3}", 2.0 * a),
             false => format!("Z{a:.3} C{b:.3}"),
         };
-        let kind = if comp.is_some() && m[0] % 9 >= 5 {
+        let kind = if comp.is_some() && (5..=6).contains(&(m[0] % 9)) {
             m[0] % 2
         } else {
             m[0] % 9

@@ -112,7 +112,7 @@ fn compensated(nc: &mut Nc, curve: &Curve, sink: &mut dyn Sink) -> Result<(), Nc
 /// The parameters of the polyline's vertices after the start, evenly
 /// spaced in the curve's parameter: the count doubles until every chord's
 /// middle lies within the tolerance of the curve's middle point.
-fn chord_params(curve: &Curve) -> alloc::vec::Vec<f64> {
+pub(crate) fn chord_params(curve: &Curve) -> alloc::vec::Vec<f64> {
     let mut n = 4;
     while n < MAX_CHORDS {
         let fits = (0..n).all(|i| {

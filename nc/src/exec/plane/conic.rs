@@ -6,9 +6,8 @@
 //! plane's first axis, counter-clockwise as seen in the plane's view (X
 //! to the right and C up for G12.1, C to the right and Z up for G7.1), as
 //! arcs are oriented there (plane.rs). The curve is the kernel's own
-//! (`plan::conic`, `plan::curve`), in plane points.
-
-use alloc::format;
+//! (`plan::conic`, `plan::curve`), in plane points; under compensation
+//! its chords (`compensated`).
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, PlaneMotion};
@@ -16,6 +15,7 @@ use crate::base::gcode::Motion;
 use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::block::Parsed;
+use crate::exec::contour::conic::chord_params;
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::conic::{ellipse_centre, parabola_vertex};
 use crate::plan::curve::{ConicKind, Curve};
@@ -59,13 +59,8 @@ pub(super) fn run(
         return super::run_move(nc, st, step, sink, out);
     };
     if crate::exec::comp::compensating(nc) {
-        return fail(
-            Alarm::NotSupportedYet,
-            format!(
-                "an ellipse or parabola under nose-radius compensation during {} is not supported yet",
-                st.what()
-            ),
-        );
+        out.moved = true;
+        return compensated(nc, st, &curve, sink);
     }
     let turn = match st.kind {
         Kind::Polar => {
@@ -86,6 +81,29 @@ pub(super) fn run(
         ConicKind::Parabola { p, q } => PlaneMotion::Parabola { dir, p, q },
     };
     print(nc, st, motion, (to, turn), sink);
+    Ok(())
+}
+
+/// Under G41/G42 a conic of the plane runs as the chords of a polyline
+/// inscribed in it, each within 0.001 mm of the curve, through the
+/// compensation as lines of the plane, as in the ZX plane (contour
+/// conic.rs, seed 000 G6.2 note 9): the tool's centre runs R off the
+/// chords, round their outside corners. At an inside corner the chords
+/// start with the one that reaches the crossing of the offsets.
+fn compensated(
+    nc: &mut Nc,
+    mut st: PlaneState,
+    curve: &Curve,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
+    let first = match nc.st.contour.last_compensated() {
+        Some((prev, tool)) => crate::exec::comp::conic::start_param(&prev, &tool, curve)?,
+        None => 0.0,
+    };
+    for s in chord_params(curve).into_iter().filter(|&s| s > first) {
+        super::compensated(nc, st, false, curve.at(s), None, sink)?;
+        st = nc.st.plane.unwrap_or(st);
+    }
     Ok(())
 }
 

@@ -423,7 +423,7 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G7.1 C10", "G01 U1 C30 F1"]), 0);
     // Ellipses and parabolas: one that cannot join its points (chord 40
     // > 2A), one that passes 0.5 µm from the centre (B), one under
-    // compensation (not supported yet).
+    // compensation (its chords).
     assert_eq!(e(&["G00 X40", "G12.1", "G6.2 X-40 C0 A5 B3 F1"]), 4005);
     assert_eq!(
         e(&["G00 X40", "G12.1", "G6.3 X-40 C0 A20 B0.0005 F1"]),
@@ -432,7 +432,7 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G00 X40", "G12.1", "G6.3 X-40 C0 A20 B1 F1"]), 0);
     assert_eq!(
         e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G6.3 X-10 C0 A5 B3"]),
-        2099
+        0
     );
     // (The chord along the axis, C: Q0 is along the first axis.)
     assert_eq!(e(&["G7.1 C10", "G7.2 C30 P100 F1"]), 4006);
@@ -466,6 +466,58 @@ fn with_c_and_tool() -> Lathe {
     Lathe {
         nc: crate::exec::Nc::new(m),
     }
+}
+
+#[test]
+fn a_compensated_ellipse_runs_its_chords_offset_in_the_plane() {
+    let mut m = with_c_and_tool();
+    let l = lines(
+        &mut m,
+        &[
+            "G00 X40 Z-2 C0 T0101",
+            "G98 G12.1",
+            // From (20, 0) to (15, 0), then the half ellipse x²/15² +
+            // c²/8² = 1 counter-clockwise over (0, 8) to (−15, 0), the
+            // tool (radius 2) on its left: inside it, towards the centre;
+            // the cancel to (−20, 0).
+            "G41 G01 X30 F100",
+            "G6.3 X-30 C0 A15 B8 Q0",
+            "G40 G01 X-40",
+            "G13.1",
+        ],
+    );
+    // Every point the tool's centre is printed at along the ellipse lies
+    // 2 mm inside it, within the chords' 0.001 mm: its distance from 20
+    // 000 points of the curve.
+    let ellipse: Vec<Pt> = (0..=20_000)
+        .map(|i| {
+            let t = core::f64::consts::PI * f64::from(i) / 20_000.0;
+            Pt::new(8.0 * libm::sin(t), 15.0 * libm::cos(t))
+        })
+        .collect();
+    let points: Vec<Pt> = l
+        .iter()
+        .filter(|line| line.starts_with("LINE") || line.starts_with("ARC"))
+        .filter_map(|line| {
+            let mut w = line.split(' ').filter_map(|w| w.split_once('='));
+            let x: f64 = w.find(|(k, _)| *k == "X")?.1.parse().ok()?;
+            let c: f64 = w.find(|(k, _)| *k == "C")?.1.parse().ok()?;
+            Some(Pt::new(c, x / 2.0))
+        })
+        .collect();
+    // (The start-up's end and the outside-corner arc at (15, 0) before
+    // them; the cancel's end after.)
+    let along: Vec<&Pt> = points.iter().filter(|p| p.r > 0.5).collect();
+    assert!(along.len() > 100, "{}", along.len());
+    for p in along {
+        let d = ellipse.iter().map(|q| q.dist(*p)).fold(f64::MAX, f64::min);
+        assert!((d - 2.0).abs() < 0.002, "{p:?} {d}");
+        assert!((p.z / 15.0).powi(2) + (p.r / 8.0).powi(2) < 1.0, "{p:?}");
+    }
+    assert_eq!(
+        l.last().map(|s| s.as_str()),
+        Some("POLAR MODE=OFF X=40 C=180")
+    );
 }
 
 #[test]
