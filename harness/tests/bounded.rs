@@ -172,6 +172,24 @@ proptest! {
     }
 }
 
+/// The `plane` target's first finding with conics (stop 49): a
+/// parabola of P 52.758 mm across a chord of 44 mm, G7.3 C16.863
+/// P52758 Q22500 from (x 20, c 0). Its turn about the centre was counted
+/// by halving it against the triangle of its chord and end tangents,
+/// which rounding loses on pieces that are nearly straight: the halving
+/// ran for minutes (towards 2⁴⁰ pieces) on one block. Such pieces are
+/// now bounded by their chord, and the halving by a count.
+#[test]
+fn the_plane_target_finding_of_a_straight_parabola() {
+    let data = [0xf6, 0x27, 0x23, 0x27, 0xeb, 0x89];
+    let (src, _, _) = harness::plane::decode(&data);
+    assert!(
+        src.contains("G7.3 X-41.647 C16.863 P52758 Q22500 F300\n"),
+        "{src}"
+    );
+    harness::plane::certified(&data);
+}
+
 #[test]
 fn the_plane_decoder_reads_four_bytes_a_move() {
     use harness::plane::decode;

@@ -156,35 +156,60 @@ pub(crate) fn printed_curve(from: Pt, to: Pt, motion: PlaneMotion) -> Option<Cur
 /// The angle (radians, counter-clockwise positive) a conic turns about
 /// the plane's origin, and a lower bound of its distance from it, within
 /// 2 % (`CLOSE`). A convex piece that turns by less than half a turn lies
-/// in the triangle of its chord and its end tangents: where the origin
-/// lies outside that triangle the piece turns about it as its chord does
-/// (by less than half a turn), and is no nearer than the triangle. Pieces
-/// whose triangle holds the origin, or is much nearer than their ends,
-/// are halved.
+/// in the triangle of its chord and its end tangents (one that turns by
+/// less than `STRAIGHT`, whose tangents barely meet, within its turn
+/// times its chord of the chord): where the origin lies outside that
+/// the piece turns about it as its chord does (by less than half a
+/// turn), and is no nearer. Pieces that hold the origin, or are much
+/// nearer than their ends, are halved, at most `MAX_PIECES` of them (a
+/// piece left then that turns by half a turn is taken to hold it).
 pub(crate) fn about_centre(curve: &Curve) -> (f64, f64) {
-    piece(curve, (0.0, 1.0), 0)
+    let mut budget = MAX_PIECES;
+    piece(curve, (0.0, 1.0), 0, &mut budget)
 }
 
 /// A piece's lower bound of the distance is taken once it is at least
 /// this share of its ends' distance.
 const CLOSE: f64 = 0.98;
 
-fn piece(curve: &Curve, (s0, s1): (f64, f64), depth: u32) -> (f64, f64) {
+/// A piece turning by less than this (radians) is bounded by its chord.
+const STRAIGHT: f64 = 1e-4;
+
+/// Pieces looked at, at most (the `plane` fuzz target's flat ellipses,
+/// their sides straight to 10⁻¹² rad, were once halved towards 2⁴⁰
+/// pieces).
+const MAX_PIECES: u32 = 1 << 16;
+
+fn piece(curve: &Curve, (s0, s1): (f64, f64), depth: u32, budget: &mut u32) -> (f64, f64) {
+    *budget = budget.saturating_sub(1);
     let (p0, p1) = (curve.at(s0), curve.at(s1));
-    let corner = match (curve.direction(s0), curve.direction(s1)) {
-        (Some(d0), Some(d1)) => tangent_corner(p0, d0, p1, d1),
+    let near = match (curve.direction(s0), curve.direction(s1)) {
+        (Some(d0), Some(d1)) => piece_distance(p0, d0, p1, d1),
         _ => None,
     };
-    let near = corner.map(|t| triangle_distance([p0, t, p1]));
     let ends = p0.norm().min(p1.norm());
-    if near.is_some_and(|n| n >= CLOSE * ends) || depth >= MAX_DEPTH {
+    let done = near.is_some_and(|n| n >= CLOSE * ends);
+    if done || depth >= MAX_DEPTH || *budget == 0 {
         let turn = libm::atan2(cross(p0, p1), p0.dot(p1));
         return (turn, near.unwrap_or(0.0));
     }
     let mid = (s0 + s1) / 2.0;
-    let (t0, d0) = piece(curve, (s0, mid), depth + 1);
-    let (t1, d1) = piece(curve, (mid, s1), depth + 1);
+    let (t0, d0) = piece(curve, (s0, mid), depth + 1, budget);
+    let (t1, d1) = piece(curve, (mid, s1), depth + 1, budget);
     (t0 + t1, d0.min(d1))
+}
+
+/// A lower bound of the distance of the origin from a piece from `p0`
+/// (direction `d0`) to `p1` (direction `d1`) that turns by less than half
+/// a turn; 0 where the piece may hold it; `None` where the piece turns
+/// by half a turn or more.
+fn piece_distance(p0: Pt, d0: Pt, p1: Pt, d1: Pt) -> Option<f64> {
+    let turn = libm::atan2(cross(d0, d1).abs(), d0.dot(d1));
+    if turn < STRAIGHT {
+        let bulge = p0.dist(p1) * turn;
+        return Some((segment_distance(p0, p1) - bulge).max(0.0));
+    }
+    tangent_corner(p0, d0, p1, d1).map(|t| triangle_distance([p0, t, p1]))
 }
 
 /// The z·r cross product of two plane vectors (counter-clockwise from
@@ -196,7 +221,7 @@ fn cross(a: Pt, b: Pt) -> f64 {
 /// Where the tangent at `p0` (direction `d0`) meets the one at `p1`
 /// (direction `d1`), ahead of the first and behind the second: the
 /// triangle's third corner; `None` where the piece turns by half a turn
-/// or more (or not at all: a straight piece).
+/// or more.
 fn tangent_corner(p0: Pt, d0: Pt, p1: Pt, d1: Pt) -> Option<Pt> {
     let den = cross(d0, d1);
     if den.abs() < 1e-12 {

@@ -339,6 +339,15 @@ fn the_turn_of_a_conic_about_the_centre() {
     let (turn, near) = about_centre(&flat);
     assert!((turn - core::f64::consts::PI).abs() < 1e-12, "{turn}");
     assert!((0.00098..=0.001).contains(&near), "{near}");
+    // A flat half ellipse (A 5 along c, B 0.1 µm) beside the centre, from
+    // (x 20, c 0) to (x 20, c 10): its sides are straight to 10⁻⁸ rad,
+    // where the tangents' triangle is lost in rounding (halving them had
+    // no end); it turns as its chord, atan2(10, 20), and comes 20 near.
+    let (a, b) = (Pt::new(0.0, 20.0), Pt::new(10.0, 20.0));
+    let thin = Curve::ellipse(a, b, Pt::new(5.0, 20.0), 5.0, 1e-7, 90.0, false);
+    let (turn, near) = about_centre(&thin);
+    assert!((turn - libm::atan2(10.0, 20.0)).abs() < 1e-9, "{turn}");
+    assert!((19.6..=20.0).contains(&near), "{near}");
 }
 
 #[test]
