@@ -73,9 +73,18 @@ fn mm(v: f64) -> f64 {
 /// within [`MAX_TICKS`] and is certified.
 pub fn certified(data: &[u8]) {
     let (src, jerk) = decode(data);
-    let machine = Machine::reference();
-    let opts = compiler::Options::default();
-    let Some(module) = compiler::compile("contour.nc", src.as_bytes(), &opts).module else {
+    certified_on("contour.nc", &src, Machine::reference(), jerk);
+}
+
+/// A program that compiles on `machine` runs, jerk limiting on or off,
+/// to an alarm, or to its end within [`MAX_TICKS`] and is certified
+/// (this target's and the `plane` target's check).
+pub(crate) fn certified_on(name: &str, src: &str, machine: Machine, jerk: bool) {
+    let opts = compiler::Options {
+        machine: machine.clone(),
+        ..compiler::Options::default()
+    };
+    let Some(module) = compiler::compile(name, src.as_bytes(), &opts).module else {
         return;
     };
     let mut cfg = Config::from_machine(&machine);

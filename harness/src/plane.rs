@@ -8,7 +8,6 @@
 //! programs; this target lets the fuzzer look for the ones it misses.
 
 use nc::Machine;
-use runtime::{AutoAck, Config, Controller, RunState};
 
 /// Radii of the cylinder (mm) byte 1 chooses from (mod 4).
 pub const CYLINDERS: [f64; 4] = [5.0, 10.0, 20.0, 40.0];
@@ -18,8 +17,6 @@ pub const TOOLS: [f64; 4] = [0.5, 1.0, 2.0, 3.0];
 pub const FEEDS: [u32; 4] = [100, 300, 1000, 3000];
 /// Moves a program has at most (4 bytes each).
 pub const MAX_MOVES: usize = 10;
-/// Periods a run may take: 600 s.
-pub const MAX_TICKS: u64 = 600_000;
 
 /// A plane program read from bytes, and whether jerk limiting is on.
 ///
@@ -147,30 +144,8 @@ pub fn decode(data: &[u8]) -> (String, Machine, bool) {
 
 /// The target: a program that compiles either stops with an alarm (an
 /// arc that cannot be drawn, a path through the centre) or runs to its
-/// end within [`MAX_TICKS`] and is certified.
+/// end within [`crate::contour::MAX_TICKS`] and is certified.
 pub fn certified(data: &[u8]) {
     let (src, machine, jerk) = decode(data);
-    let opts = compiler::Options {
-        machine: machine.clone(),
-        ..compiler::Options::default()
-    };
-    let Some(module) = compiler::compile("plane.nc", src.as_bytes(), &opts).module else {
-        return;
-    };
-    let mut cfg = Config::from_machine(&machine);
-    cfg.jerk_limited = jerk;
-    let mut ctl = match Controller::with_config(module, machine, cfg, AutoAck) {
-        Ok(c) => c,
-        Err(e) => panic!("a compiled module does not load: {e}\n{src}"),
-    };
-    let (cert, _) = ctl.run_certified(MAX_TICKS);
-    match ctl.state() {
-        RunState::Alarm(_) => {}
-        RunState::Ended => {
-            if let Some(v) = cert.violation() {
-                panic!("jerk {jerk}, line {}: {v}\n{src}", v.line);
-            }
-        }
-        s => panic!("the run did not end in 600 s ({s:?})\n{src}"),
-    }
+    crate::contour::certified_on("plane.nc", &src, machine, jerk);
 }

@@ -207,6 +207,16 @@ impl Motion {
             Motion::EllipseCw | Motion::EllipseCcw | Motion::ParabolaCw | Motion::ParabolaCcw
         )
     }
+
+    /// G6.2, G6.3: ellipses.
+    pub fn is_ellipse(self) -> bool {
+        matches!(self, Motion::EllipseCw | Motion::EllipseCcw)
+    }
+
+    /// G6.2, G7.2: conics that run clockwise.
+    pub fn is_cw_conic(self) -> bool {
+        matches!(self, Motion::EllipseCw | Motion::ParabolaCw)
+    }
 }
 
 group_codes! {

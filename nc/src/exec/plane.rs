@@ -461,6 +461,13 @@ fn run_move(
     if let Some(v) = off {
         set_off(nc, st.kind, v);
     }
+    emit_move(&st, motion, to, off, sink);
+    Ok(())
+}
+
+/// Prints a move of the plane to plane point `to` (`off`: where it takes
+/// the axis outside the plane).
+fn emit_move(st: &PlaneState, motion: PlaneMotion, to: Pt, off: Option<f64>, sink: &mut dyn Sink) {
     let (a, b) = st.printed(to);
     sink.emit(Event::PlaneMove {
         plane: st.plane(),
@@ -469,7 +476,6 @@ fn run_move(
         b,
         off,
     });
-    Ok(())
 }
 
 /// Where the block's words take the axis outside the plane: polar Z,
@@ -567,14 +573,7 @@ pub(crate) fn print_element(
     move_joints(nc, &st, st.tool, to, arc);
     st.tool = to;
     nc.st.plane = Some(st);
-    let (a, b) = st.printed(to);
-    sink.emit(Event::PlaneMove {
-        plane: st.plane(),
-        motion,
-        a,
-        b,
-        off: None,
-    });
+    emit_move(&st, motion, to, None, sink);
 }
 
 /// The block's motion code in the plane (G00–G03); `None` when the block

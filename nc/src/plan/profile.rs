@@ -352,8 +352,8 @@ fn element(r: &Reader, code: Motion, p: &Parsed, from: Pt) -> Result<Option<Curv
         }
         // Seed 000, G6.2 note 8 and G7.2 note 7: conics may shape a profile.
         c if c.is_conic() && p.has_axis() => {
-            let ellipse = matches!(c, Motion::EllipseCw | Motion::EllipseCcw);
-            let cw = matches!(c, Motion::EllipseCw | Motion::ParabolaCw);
+            let ellipse = c.is_ellipse();
+            let cw = c.is_cw_conic();
             r.conic_curve(ellipse, cw, p, from, to)
         }
         c if c.is_conic() => Ok(None),

@@ -41,8 +41,8 @@ pub fn conic(
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let ellipse = matches!(code, Motion::EllipseCw | Motion::EllipseCcw);
-    let cw = matches!(code, Motion::EllipseCw | Motion::ParabolaCw);
+    let ellipse = code.is_ellipse();
+    let cw = code.is_cw_conic();
     if conic::run(nc, ellipse, cw, p, sink)? {
         out.moved = true;
     }

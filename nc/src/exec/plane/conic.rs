@@ -10,7 +10,7 @@
 //! its chords (`compensated`).
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::event::{Dir, Event, PlaneMotion};
+use crate::base::event::{Dir, PlaneMotion};
 use crate::base::gcode::Motion;
 use crate::base::geom::Element;
 use crate::base::point::Pt;
@@ -37,8 +37,8 @@ pub(super) fn run(
     sink: &mut dyn Sink,
     out: &mut Outcome,
 ) -> Result<(), NcError> {
-    let ellipse = matches!(code, Motion::EllipseCw | Motion::EllipseCcw);
-    let cw = matches!(code, Motion::EllipseCw | Motion::ParabolaCw);
+    let ellipse = code.is_ellipse();
+    let cw = code.is_cw_conic();
     let Some(curve) = nc.reader().conic_curve(ellipse, cw, p, st.pt, to)? else {
         return Ok(());
     };
@@ -124,14 +124,7 @@ fn print(
     nc.st.pos = st.joints(to, nc.st.pos);
     (st.pt, st.tool) = (to, to);
     nc.st.plane = Some(st);
-    let (a, b) = st.printed(to);
-    sink.emit(Event::PlaneMove {
-        plane: st.plane(),
-        motion,
-        a,
-        b,
-        off: None,
-    });
+    super::emit_move(&st, motion, to, None, sink);
 }
 
 /// The curve of a conic the canon printed from `from` to `to` (plane
