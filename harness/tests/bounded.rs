@@ -191,6 +191,23 @@ fn the_plane_target_finding_of_a_straight_parabola() {
 }
 
 #[test]
+fn the_plane_target_finding_of_a_far_flat_parabola() {
+    // Its vertex 10⁷ mm away: written from there, the point moved by
+    // nanometres from period to period, and 34 µm from the centre C
+    // went to 106 % of its jerk.
+    let data = [
+        0x08, 0x08, 0x08, 0x08, 0x7f, 0x7f, 0x7f, 0x7f, 0x7f, 0x6c, 0x3d,
+    ];
+    let (src, _, jerk) = harness::plane::decode(&data);
+    assert!(jerk);
+    assert!(
+        src.contains("G7.2 X-56.235 C-0.078 P53464 Q0 F3000\n"),
+        "{src}"
+    );
+    harness::plane::certified(&data);
+}
+
+#[test]
 fn the_plane_decoder_reads_four_bytes_a_move() {
     use harness::plane::decode;
     // Traced by hand. Byte 0 = 0b1010: polar (bit 0 clear), G41 (bits

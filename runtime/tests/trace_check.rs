@@ -493,18 +493,14 @@ fn ellipse_and_parabola_follow_the_exact_curve() {
             }
         }
         if let runtime::geom::Curve::Parabola {
-            o,
-            u,
-            p: pp,
-            x0,
-            y0,
-            ..
+            o, u, p: pp, y0, ..
         } = parabola
         {
             if sp.line == 3 && sp.motion == runtime::Motion::Arc {
                 let d = p - o;
                 let (x, y) = (d.dot(u), d.dot(u.perp()));
-                let err = x - (x0 + (y - y0).powi(2) / (2.0 * pp));
+                // The vertex at local (−y0²/2p, y0) from the start.
+                let err = x - ((y - y0).powi(2) - y0 * y0) / (2.0 * pp);
                 assert!(err.abs() < 1e-6, "off the parabola by {err}");
                 on_p += 1;
             }

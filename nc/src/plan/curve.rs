@@ -131,7 +131,8 @@ pub enum Curve {
     /// An ellipse or parabola as p(τ) = origin + e1·f1(τ) + e2·f2(τ), with
     /// (f1, f2) = (cos τ, sin τ) for an ellipse (origin its centre, e1 and
     /// e2 its semi-axes as vectors) and (τ², τ) for a parabola (origin its
-    /// vertex). τ runs linearly from `t0` to `t1` over s ∈ [0, 1]. This
+    /// vertex; its points are taken from `from`). τ runs linearly from
+    /// `t0` to `t1` over s ∈ [0, 1]. This
     /// form survives the moves and the mirror of the cycles unchanged.
     Conic {
         from: Pt,
@@ -386,6 +387,21 @@ impl Curve {
                     centre.r + radius * libm::sin(a),
                     centre.z + radius * libm::cos(a),
                 )
+            }
+            Curve::Conic {
+                from,
+                e1,
+                e2,
+                t0,
+                t1,
+                kind: ConicKind::Parabola { .. },
+                ..
+            } => {
+                // From the start, not the vertex: far out on a flat
+                // parabola the vertex lies 10⁷ mm away, and the point as
+                // the difference of two such numbers is off by 10 nm.
+                let dt = (t1 - t0) * s;
+                from.add(scale(e1, dt * (2.0 * t0 + dt))).add(scale(e2, dt))
             }
             Curve::Conic {
                 origin,
@@ -820,6 +836,27 @@ mod tests {
         let d = (c.length(0.0, 1.0) - (len(2.0) + len(4.0))).abs();
         // Simpson's rule over 64 intervals: within 1e-7 mm here.
         assert!(d < 1e-7, "{d}");
+    }
+
+    #[test]
+    fn a_far_flat_parabola_is_smooth_to_the_last_digits() {
+        // 48 mm along its axis across 0.078 mm, p 53.464: its vertex lies
+        // about 10⁷ mm away. τ is even in s and the curve quadratic in τ,
+        // so the third differences of its points vanish but for rounding
+        // at the size of the coordinates (10⁻¹⁴ mm).
+        let (from, to) = (Pt::new(0.0, 20.0), Pt::new(-0.039, -28.1175));
+        let vertex = crate::plan::conic::parabola_vertex(from, to, 53.464, 0.0, true).unwrap();
+        assert!(vertex.norm() > 1e6, "{vertex:?}");
+        let c = Curve::parabola(from, to, vertex, 53.464, 0.0, true);
+        assert!(c.at(0.999_999_999).dist(to) < 1e-6);
+        let at = |i: i32| c.at(f64::from(i) / 1000.0);
+        for i in 0..997 {
+            let d3 = at(i + 3)
+                .sub(scale(at(i + 2), 3.0))
+                .add(scale(at(i + 1), 3.0))
+                .sub(at(i));
+            assert!(d3.norm() < 1e-12, "{d3:?}");
+        }
     }
 
     #[test]
