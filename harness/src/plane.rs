@@ -33,8 +33,7 @@ pub const MAX_MOVES: usize = 10;
 /// chord, polar; 20…200 mm, cylinder), an ellipse's B (A is 1.5 times
 /// half the chord, B 0.3…1.5 times A) or a parabola's P (0.5…4 times
 /// half the chord). A conic's sense is bit 0 of the kind byte divided by
-/// 9 (G6.2/G7.2 when clear), its Q 22.5° times the next 3 bits. Under
-/// compensation the axis moves alone (taken along it is E2099). Values
+/// 9 (G6.2/G7.2 when clear), its Q 22.5° times the next 3 bits. Values
 /// are written to 3 decimals.
 pub fn decode(data: &[u8]) -> (String, Machine, bool) {
     let b = |i: usize| data.get(i).copied().unwrap_or(0);
@@ -80,11 +79,7 @@ pub fn decode(data: &[u8]) -> (String, Machine, bool) {
             true => format!("X{:.3} C{b:.3}", 2.0 * a),
             false => format!("Z{a:.3} C{b:.3}"),
         };
-        let kind = if comp.is_some() && (5..=6).contains(&(m[0] % 9)) {
-            m[0] % 2
-        } else {
-            m[0] % 9
-        };
+        let kind = m[0] % 9;
         let half = match polar {
             true => (to.0 - at.0).hypot(to.1 - at.1) / 2.0,
             false => (to.0 - at.0).hypot((to.1 - at.1).to_radians() * radius) / 2.0,

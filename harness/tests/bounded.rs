@@ -213,9 +213,9 @@ fn the_plane_decoder_reads_four_bytes_a_move() {
     // Traced by hand. Byte 0 = 0b1010: polar (bit 0 clear), G41 (bits
     // 1–2 = 1), jerk limiting (bit 3). Byte 1 = 0b0110: cylinder radius
     // 5 (2 mod 4 … unused in polar), tool 1 (bits 2–3 = 1): radius 1.
-    // Move 1: 5 → G01 taking Z along (5 mod 9), but under compensation
-    // the axis moves alone there: 5 mod 2 = 1, a G00 to x −30 + 60·255/255 = 30
-    // (X60), c −20 + 40·0/255 = −20. Move 2: 2 → G02 to x 0 (128: −30 +
+    // Move 1: 5 → G01 taking Z along (5 mod 9) to x −30 + 60·255/255 = 30
+    // (X60), c −20 + 40·0/255 = −20, Z −5 + 7·0 = −5 (last byte 0: F100,
+    // high 0). Move 2: 2 → G02 to x 0 (128: −30 +
     // 60·128/255 = 0.118, X0.235), c 0.078 (−20 + 40·128/255); last byte
     // 0b1111_1101: F300 (1), high 63/63 = 1: R = half the chord × 3.
     let (src, machine, jerk) = decode(&[0b1010, 0b0110, 5, 255, 0, 0, 2, 128, 128, 0b1111_1101]);
@@ -223,7 +223,7 @@ fn the_plane_decoder_reads_four_bytes_a_move() {
     let (x, c) = (-30.0 + 60.0 * 128.0 / 255.0, -20.0 + 40.0 * 128.0 / 255.0);
     let half = (x - 30.0f64).hypot(c + 20.0) / 2.0;
     let want = format!(
-        "G98 G00 X40 Z2 C0 T0101\nG12.1\nG41 G01 X40 C0.5 F300\nG00 X60.000 C-20.000\n\
+        "G98 G00 X40 Z2 C0 T0101\nG12.1\nG41 G01 X40 C0.5 F300\nG01 X60.000 C-20.000 Z-5.000 F100\n\
          G02 X0.235 C0.078 R{:.3} F300\nG40 G01 X40 C0 F300\nG13.1\nM30\n",
         half * 3.0
     );

@@ -10,22 +10,19 @@ use common::{certify, Lcg};
 use nc::Machine;
 
 /// A contour of G12.1: points in x −30…30, c −20…20 (radius values);
-/// `ramps`: some lines take Z along; ellipses (A 1.01…3 times half the
+/// some lines take Z along; ellipses (A 1.01…3 times half the
 /// chord, B 0.3…1.5 times A, Q 0…180°; many cannot join their points,
 /// E4005) and parabolas (P 0.5…4 times half the chord) come in.
-fn polar(rng: &mut Lcg, ramps: bool) -> String {
+fn polar(rng: &mut Lcg) -> String {
     let mut s = String::from("G98 G00 X40 Z2 C0\nG12.1\n");
     let (mut x, mut c) = (20.0f64, 0.0f64);
     for _ in 0..3 + (rng.unit() * 6.0) as usize {
         let (nx, nc) = (rng.range(-30.0, 30.0), rng.range(-20.0, 20.0));
         let f = rng.pick(&[100, 300, 1000, 3000]);
-        let kinds: &[&str] = match ramps {
-            true => &[
-                "G01", "G00", "G02", "G03", "Z", "G01 Z", "G00 Z", "G6", "G7",
-            ],
-            false => &["G01", "G00", "G02", "G03", "Z", "G6", "G7"],
-        };
-        match rng.pick(kinds) {
+        let kinds = [
+            "G01", "G00", "G02", "G03", "Z", "G01 Z", "G00 Z", "G6", "G7",
+        ];
+        match rng.pick(&kinds) {
             "G6" | "G7" if (nx - x).hypot(nc - c) < 0.1 => continue,
             "G6" => {
                 let half = (nx - x).hypot(nc - c) / 2.0;
@@ -72,10 +69,10 @@ fn polar(rng: &mut Lcg, ramps: bool) -> String {
     s + "G13.1\nM30\n"
 }
 
-/// A groove of G7.1 on a cylinder of radius 5…40; `ramps`: some lines
+/// A groove of G7.1 on a cylinder of radius 5…40; some lines
 /// take X along; parabolas (P 0.5…4 times half the chord on the
 /// developed surface, Q 0…180°) come in.
-fn cylinder(rng: &mut Lcg, ramps: bool) -> String {
+fn cylinder(rng: &mut Lcg) -> String {
     let r = rng.pick(&[5.0, 10.0, 20.0, 40.0]);
     let mut s = format!("G98 G00 X{} Z0 C0\nG7.1 C{r}.\n", 2.0 * r);
     // (Where the plane point stands: Z, C; an X move leaves it.)
@@ -84,11 +81,8 @@ fn cylinder(rng: &mut Lcg, ramps: bool) -> String {
         let (z, c) = (rng.range(-30.0, 0.0), rng.range(-200.0, 200.0));
         let f = rng.pick(&[100, 300, 1000, 3000]);
         let x = 2.0 * r - rng.range(0.0, 2.0);
-        let kinds: &[&str] = match ramps {
-            true => &["G01", "G00", "G02", "G03", "X", "G01 X", "G00 X", "G7"],
-            false => &["G01", "G00", "G02", "G03", "X", "G7"],
-        };
-        match rng.pick(kinds) {
+        let kinds = ["G01", "G00", "G02", "G03", "X", "G01 X", "G00 X", "G7"];
+        match rng.pick(&kinds) {
             "G7" => {
                 let half = (z - at.0).hypot((c - at.1).to_radians() * r) / 2.0;
                 let (g, p) = (rng.pick(&["G7.2", "G7.3"]), half * rng.range(0.5, 4.0));
@@ -151,9 +145,9 @@ fn random_plane_programs_are_certified() {
     let mut rng = Lcg(2026);
     let certified = certified_runs(48, |k| {
         let src = if k % 2 == 0 {
-            polar(&mut rng, true)
+            polar(&mut rng)
         } else {
-            cylinder(&mut rng, true)
+            cylinder(&mut rng)
         };
         (src, c_machine())
     });
@@ -170,13 +164,9 @@ fn random_plane_programs_are_certified() {
 fn compensated(rng: &mut Lcg, in_polar: bool) -> (String, Machine) {
     let side = rng.pick(&["G41", "G42"]);
     let radius = rng.pick(&[0.5, 1.0, 2.0, 3.0]);
-    // (Under compensation the axis outside the plane moves alone; conics
-    // run as their chords.)
-    let program = if in_polar {
-        polar(rng, false)
-    } else {
-        cylinder(rng, false)
-    };
+    // (Under compensation conics run as their chords; lines take the axis
+    // outside the plane along on their offset elements.)
+    let program = if in_polar { polar(rng) } else { cylinder(rng) };
     let lines: Vec<&str> = program.lines().collect();
     // (Both generators write two lines before the moves, two after.)
     let (head, body) = (&lines[..2], &lines[2..lines.len() - 2]);

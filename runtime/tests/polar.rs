@@ -632,3 +632,92 @@ fn polar_compensation_runs_the_tool_centre_round_the_contour() {
         assert!((last.x - 40.0).abs() < 1e-6 && (last.z - 2.0).abs() < 1e-9);
     }
 }
+
+/// `POLAR_COMP` with Z going down along the sides under compensation:
+/// −2 to −3 along the first, to −4 along the second, and back up to 2
+/// along the cancel.
+const POLAR_COMP_RAMPS: &str = "G98
+G00 X40 Z-2 C0 T0101
+G12.1
+G42 G01 X20 C-10 F300
+C10 Z-3
+G01 X-20 Z-4
+C-10
+X20
+G40 X40 C0 Z2
+G13.1
+M30
+";
+
+#[test]
+fn a_compensated_line_of_polar_interpolation_takes_z_along() {
+    let toml = "[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = 2\ntip = 3\n";
+    let machine = Machine::from_toml(toml).expect("a machine file");
+    let path = polar_comp_path();
+    for jerk in [false, true] {
+        let r = run_with(
+            POLAR_COMP_RAMPS,
+            machine.clone(),
+            runtime::AutoAck,
+            |cfg| cfg.jerk_limited = jerk,
+            |_, _| {},
+            120.0,
+        );
+        assert!(r.alarm.is_none(), "{:?}", r.alarm);
+        // In the plane the tool centre runs the path of `POLAR_COMP`, at
+        // F where Z stands.
+        check(&r, 4..=4, polar_plane, &path, 300.0);
+        check(&r, 7..=8, polar_plane, &path, 300.0);
+        let on = |line: u32| -> Vec<_> {
+            let pts: Vec<_> = r.pts.iter().filter(|p| p.line == line).collect();
+            assert!(pts.len() > 500, "line {line}: {}", pts.len());
+            for p in &pts {
+                assert!(distance(&path, polar_plane(p)) <= 0.005, "{p:?}");
+            }
+            pts
+        };
+        // The first side, (12, −10) to (12, 10): Z in proportion to c.
+        for p in on(5) {
+            let (_, c) = polar_plane(p);
+            assert!((p.z - (-2.0 - (c + 10.0) / 20.0)).abs() < 0.005, "{p:?}");
+        }
+        // Line 6: the corner's arc about (10, 10), x above 10, holds Z at
+        // −3; the side (10, 12) to (−10, 12) takes it to −4.
+        let mut on_arc = 0;
+        for p in on(6) {
+            let (x, _) = polar_plane(p);
+            if x > 10.0 {
+                assert!((p.z + 3.0).abs() < 1e-9, "{p:?}");
+                on_arc += 1;
+            } else {
+                assert!((p.z - (-3.0 - (10.0 - x) / 20.0)).abs() < 0.005, "{p:?}");
+            }
+        }
+        assert!(on_arc > 100, "{on_arc}");
+        // The rest of the square at −4; the cancel from (10, −12) to
+        // (20, 0) back up to 2, in proportion.
+        for p in on(7).into_iter().chain(on(8)) {
+            assert!((p.z + 4.0).abs() < 1e-9, "{p:?}");
+        }
+        let cancel = on(9);
+        for p in &cancel {
+            let (x, _) = polar_plane(p);
+            assert!(
+                (p.z - (-4.0 + 6.0 * (x - 10.0) / 10.0)).abs() < 0.005,
+                "{p:?}"
+            );
+        }
+        // F along the line in space: √244 = 15.6205 in the plane, √280 =
+        // 16.7332 with Z, the plane point at 300·15.6205/16.7332 = 280.05.
+        let (a, b) = (cancel[cancel.len() / 2], cancel[cancel.len() / 2 + 1]);
+        let (pa, pb) = (polar_plane(a), polar_plane(b));
+        let v = (pb.0 - pa.0).hypot(pb.1 - pa.1) / r.cfg.period_s * 60.0;
+        assert!(
+            (v - 280.05).abs() < 0.5 && (b.feed - 300.0).abs() < 0.5,
+            "{v} {b:?}"
+        );
+        let last = r.pts.last().expect("periods");
+        assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6, "{last:?}");
+        assert!((last.x - 40.0).abs() < 1e-6 && (last.z - 2.0).abs() < 1e-9);
+    }
+}

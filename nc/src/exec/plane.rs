@@ -441,18 +441,8 @@ fn run_move(
     }
     out.moved = true;
     if crate::exec::comp::compensating(nc) {
-        if off.is_some() {
-            let axis = if st.kind == Kind::Polar { 'Z' } else { 'X' };
-            return fail(
-                Alarm::NotSupportedYet,
-                format!(
-                    "moving {axis}, the axis outside the plane, together with a compensated move of {} is not supported yet: move {axis} in a block of its own",
-                    st.what()
-                ),
-            );
-        }
         let rapid = motion == PlaneMotion::Rapid;
-        return compensated(nc, st, rapid, to, path, sink);
+        return compensated(nc, st, (rapid, off), to, path, sink);
     }
     if !matches!(motion, PlaneMotion::Rapid) {
         nc.feed_due(sink);
@@ -500,12 +490,13 @@ fn set_off(nc: &mut Nc, kind: Kind, v: f64) {
 /// A plane move under nose-radius compensation: it joins the contour
 /// queue as any compensated move does (comp module), in the plane's
 /// coordinates, and prints through `print_element` once its neighbours
-/// are known. The programmed point moves now; the joints and C follow
-/// what is printed.
+/// are known. The programmed point moves now, and so does the axis
+/// outside the plane where a line takes it along (`off`, carried to the
+/// printed element); the joints and C follow what is printed.
 fn compensated(
     nc: &mut Nc,
     mut st: PlaneState,
-    rapid: bool,
+    (rapid, off): (bool, Option<f64>),
     to: Pt,
     path: ArcPath,
     sink: &mut dyn Sink,
@@ -522,7 +513,11 @@ fn compensated(
     };
     st.pt = to;
     nc.st.plane = Some(st);
-    let m = crate::exec::contour::Move::new(nc, elem, rapid, None);
+    if let Some(v) = off {
+        set_off(nc, st.kind, v);
+    }
+    let mut m = crate::exec::contour::Move::new(nc, elem, rapid, None);
+    m.off = off;
     crate::exec::contour::advance(nc, m, sink)
 }
 
@@ -548,13 +543,15 @@ pub(crate) fn check_element(nc: &Nc, st: &PlaneState, e: &Element) -> Result<(),
 /// Prints an element of a plane move the contour queue hands on (a
 /// compensated one): the plane motion to its end, the joints and C moved
 /// along the path from where the tool stands (`follow` does so for a move
-/// printed at once). A cancel's element starts at the programmed point,
-/// the tool where the compensated path left it.
+/// printed at once), and the axis outside the plane to `off` when the
+/// element takes it along. A cancel's element starts at the programmed
+/// point, the tool where the compensated path left it.
 pub(crate) fn print_element(
     nc: &mut Nc,
     mut st: PlaneState,
     e: &Element,
     rapid: bool,
+    off: Option<f64>,
     sink: &mut dyn Sink,
 ) {
     let (to, arc) = match *e {
@@ -573,7 +570,7 @@ pub(crate) fn print_element(
     move_joints(nc, &st, st.tool, to, arc);
     st.tool = to;
     nc.st.plane = Some(st);
-    emit_move(&st, motion, to, None, sink);
+    emit_move(&st, motion, to, off, sink);
 }
 
 /// The block's motion code in the plane (G00–G03); `None` when the block

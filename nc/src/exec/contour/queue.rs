@@ -28,6 +28,10 @@ pub(crate) struct Move {
     pub comp: Option<Leg>,
     /// The C angle its line prints (`C=`), when its block programs C/H.
     pub c: Option<f64>,
+    /// Where a line of polar (cylindrical) interpolation takes Z (X, a
+    /// diameter) along (plane.rs), printed on the block's own element:
+    /// a corner's arc before it holds the axis, as a corner block would.
+    pub off: Option<f64>,
     /// The tag of its block ([`Nc::origin`]).
     pub origin: u32,
 }
@@ -43,6 +47,7 @@ impl Move {
             trimmed: false,
             comp: None,
             c: None,
+            off: None,
             origin: nc.origin,
         }
     }
@@ -243,6 +248,7 @@ fn join(prev: &mut Move, next: &mut Move) -> Result<Option<Move>, NcError> {
         trimmed: false,
         comp: prev.comp.as_ref().map(Leg::inserted),
         c: None,
+        off: None,
         origin: prev.origin,
     }))
 }
@@ -328,6 +334,7 @@ pub(crate) fn finish_angle(
         trimmed: false,
         comp: None,
         c: None,
+        off: None,
         origin: a.origin,
     };
     let step = compensate(nc, &mut first)?;
@@ -428,15 +435,27 @@ fn emit_move(nc: &mut Nc, m: &Move, sink: &mut dyn Sink) -> Result<(), NcError> 
     if m.trimmed && elem::shorter_than(&m.elem, EPS_LEN) {
         return Ok(());
     }
+    let third = Third { c: m.c, off: m.off };
     match &m.comp {
         Some(leg) => {
-            for (e, rapid) in crate::exec::comp::printed(&mut nc.st.comp, &m.elem, leg, m.rapid) {
-                emit_element(nc, &e, rapid, m.feed, None, sink)?;
+            let printed = crate::exec::comp::printed(&mut nc.st.comp, &m.elem, leg, m.rapid);
+            let last = printed.len().saturating_sub(1);
+            for (i, (e, rapid)) in printed.into_iter().enumerate() {
+                let third = if i == last { third } else { Third::default() };
+                emit_element(nc, &e, rapid, m.feed, third, sink)?;
             }
             Ok(())
         }
-        None => emit_element(nc, &m.elem, m.rapid, m.feed, m.c, sink),
+        None => emit_element(nc, &m.elem, m.rapid, m.feed, third, sink),
     }
+}
+
+/// What a printed element takes along besides its path: C (ZX plane),
+/// the axis outside a plane (polar, cylindrical).
+#[derive(Clone, Copy, Default)]
+struct Third {
+    c: Option<f64>,
+    off: Option<f64>,
 }
 
 /// Prints one element, with `FEED` first when its feed differs from the
@@ -446,7 +465,7 @@ fn emit_element(
     e: &Element,
     rapid: bool,
     feed: (f64, bool),
-    c: Option<f64>,
+    third: Third,
     sink: &mut dyn Sink,
 ) -> Result<(), NcError> {
     let plane = nc.st.plane;
@@ -461,7 +480,7 @@ fn emit_element(
         });
     }
     if let Some(st) = plane {
-        crate::exec::plane::print_element(nc, st, e, rapid, sink);
+        crate::exec::plane::print_element(nc, st, e, rapid, third.off, sink);
         return Ok(());
     }
     let to = e.end();
@@ -469,12 +488,12 @@ fn emit_element(
         Element::Line { .. } if rapid => Event::Rapid {
             x: to.x(),
             z: to.z,
-            c,
+            c: third.c,
         },
         Element::Line { .. } => Event::Line {
             x: to.x(),
             z: to.z,
-            c,
+            c: third.c,
         },
         Element::Arc { centre, cw, .. } => Event::Arc {
             dir: if cw { Dir::Cw } else { Dir::Ccw },

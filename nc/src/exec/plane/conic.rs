@@ -101,7 +101,7 @@ fn compensated(
         None => 0.0,
     };
     for s in chord_params(curve).into_iter().filter(|&s| s > first) {
-        super::compensated(nc, st, false, curve.at(s), None, sink)?;
+        super::compensated(nc, st, (false, None), curve.at(s), None, sink)?;
         st = nc.st.plane.unwrap_or(st);
     }
     Ok(())

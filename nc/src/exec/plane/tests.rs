@@ -416,17 +416,12 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G12.1", "G28 U0"]), 2007);
     // E2099: what is not supported yet.
     assert_eq!(e(&["G7.1 C10 J5 L2 R1 K0.2"]), 2099);
-    // The axis outside the plane moves with a compensated move only in a
-    // block of its own.
-    assert_eq!(e(&["G00 X40", "G12.1", "G42 G01 X10 Z-5 F1"]), 2099);
-    assert_eq!(
-        e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G40 X20 W1"]),
-        2099
-    );
-    assert_eq!(e(&["G7.1 C10", "G41 G01 X10 Z-5 F1"]), 2099);
-    assert_eq!(e(&["G7.1 C10", "G41 G01 Z-5 F1", "G01 U1 C30"]), 2099);
-    // (Uncompensated, they move together; a line from the centre that
-    // takes Z along is still E4033.)
+    // The axis outside the plane moves with a line, compensated or not
+    // (a line from the centre that takes Z along is still E4033).
+    assert_eq!(e(&["G00 X40", "G12.1", "G42 G01 X10 Z-5 F1"]), 0);
+    assert_eq!(e(&["G00 X40", "G12.1", "G42 G01 X10 F1", "G40 X20 W1"]), 0);
+    assert_eq!(e(&["G7.1 C10", "G41 G01 X10 Z-5 F1"]), 0);
+    assert_eq!(e(&["G7.1 C10", "G41 G01 Z-5 F1", "G01 U1 C30"]), 0);
     assert_eq!(e(&["G00 X40", "G12.1", "G01 X10 Z-5 F1"]), 0);
     assert_eq!(e(&["G12.1", "G01 X10 Z-5 F1"]), 4033);
     assert_eq!(e(&["G7.1 C10", "G01 U1 C30 F1"]), 0);
@@ -573,6 +568,73 @@ fn polar_compensation_offsets_the_tool_centre_in_the_plane() {
             "LINE X=40 C=22",
             "LINE X=40 C=30",
             "POLAR MODE=OFF X=72.111 C=56.3099",
+        ]
+    );
+}
+
+#[test]
+fn a_compensated_line_takes_the_axis_outside_the_plane_along() {
+    let mut m = with_c_and_tool();
+    let l = lines(
+        &mut m,
+        &[
+            "G00 X40 Z-2 C0 T0101",
+            // The path of `polar_compensation_offsets_the_tool_centre_in_the_plane`,
+            // Z going down along each line.
+            "G98 G12.1",
+            "G41 G01 X20 Z-3 F100",
+            "C20 Z-4",
+            // W from the Z the last block programmed (−4), though that
+            // side still waits for this block's corner.
+            "X40 W-1",
+            "G40 C30 Z0",
+            "G13.1",
+        ],
+    );
+    // The start-up, the side and the cancel take Z to their blocks' ends;
+    // the arc round the outside corner, which comes before its block's
+    // own element, holds it at −4, as a corner block of its own would.
+    assert_eq!(
+        l,
+        [
+            "TOOL T=1 D=1",
+            "RAPID X=40 Z=-2 C=0",
+            "POLAR MODE=ON",
+            "FEED F=100 MODE=MIN",
+            "LINE X=16 C=0 Z=-3",
+            "LINE X=16 C=20 Z=-4",
+            "ARC DIR=CW X=20 C=22 CX=20 CC=20",
+            "LINE X=40 C=22 Z=-5",
+            "LINE X=40 C=30 Z=0",
+            "POLAR MODE=OFF X=72.111 C=56.3099",
+        ]
+    );
+    assert_eq!(m.nc.st.pos.z, 0.0);
+    // On the cylinder X (a diameter) goes along: the path of
+    // `cylinder_compensation_offsets_the_tool_centre_on_the_surface`.
+    let mut m = with_c_and_tool();
+    let l = lines(
+        &mut m,
+        &[
+            "G00 X40 Z0 C0 T0101",
+            "G98 G7.1 C20.",
+            "G41 G01 Z-10 X39 F100",
+            "C90 U-1",
+            "G40 Z0 X40",
+            "G7.1 C0",
+        ],
+    );
+    assert_eq!(
+        l,
+        [
+            "TOOL T=1 D=1",
+            "RAPID X=40 Z=0 C=0",
+            "CYLINDER MODE=ON R=20",
+            "FEED F=100 MODE=MIN",
+            "LINE Z=-8 C=0 X=39",
+            "LINE Z=-8 C=90 X=38",
+            "LINE Z=0 C=90 X=40",
+            "CYLINDER MODE=OFF",
         ]
     );
 }
