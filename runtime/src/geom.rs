@@ -729,11 +729,11 @@ mod tests {
     #[test]
     fn a_far_flat_parabola_is_smooth_to_the_last_digits() {
         // The plane fuzz target's parabola: 48 mm across 0.078 mm, P
-        // 53.464, its vertex about 10⁷ mm away (the plane's first axis
-        // in Z's place, C in X's). Points even in λ lie even
-        // in the local y, and the local x is quadratic in y, so the third
-        // differences of the points vanish but for rounding at the size
-        // of the coordinates (tens of mm: 10⁻¹⁴).
+        // 53.464, its vertex about 10⁷ mm away (the plane's first axis in
+        // Z's place, C in X's). Points even in λ lie even in the local y,
+        // and the local x is quadratic in y, so the third differences of
+        // the points vanish but for rounding at the size of the
+        // coordinates (tens of mm: 10⁻¹⁴).
         let from = V2::new(0.0, 20.0);
         let to = V2::new(-0.078, -28.1175);
         let p = Curve::parabola(from, to, 53.464, 0.0, false).unwrap();

@@ -132,8 +132,8 @@ pub enum Curve {
     /// (f1, f2) = (cos τ, sin τ) for an ellipse (origin its centre, e1 and
     /// e2 its semi-axes as vectors) and (τ², τ) for a parabola (origin its
     /// vertex; its points are taken from `from`). τ runs linearly from
-    /// `t0` to `t1` over s ∈ [0, 1]. This
-    /// form survives the moves and the mirror of the cycles unchanged.
+    /// `t0` to `t1` over s ∈ [0, 1]. This form survives the moves and the
+    /// mirror of the cycles unchanged.
     Conic {
         from: Pt,
         to: Pt,
