@@ -97,8 +97,13 @@ struct Seen {
     dwell: bool,
     set_coordinates: bool,
     stroke_on: bool,
-    /// M98 is among the literal words.
+    /// M98 (M99) is among the literal words.
     m98: bool,
+    m99: bool,
+    /// The letters may belong to something other than the motion: G66,
+    /// a G code not of the dialect (a G-code macro's arguments), a
+    /// computed G or M.
+    other_function: bool,
 }
 
 impl Seen {
@@ -111,6 +116,8 @@ impl Seen {
             set_coordinates: false,
             stroke_on: false,
             m98: false,
+            m99: false,
+            other_function: false,
         };
         for w in lits {
             seen.lits |= bit(w.addr);
@@ -123,12 +130,20 @@ impl Seen {
                         seen.set_coordinates |= o == OneShot::SetCoordinates;
                     }
                     Some(gcode::G::Stroke(Stroke::On)) => seen.stroke_on = true,
+                    Some(gcode::G::ModalCall(gcode::ModalCall::On)) | None => {
+                        seen.other_function = true
+                    }
                     _ => {}
                 }
             } else if w.addr == b'M' - b'A' {
                 seen.m98 |= round_half_away(w.value) == 98.0;
+                seen.m99 |= round_half_away(w.value) == 99.0;
             }
         }
+        let computed = |w: &grammar::ast::Word| {
+            matches!(w.addr, Addr::Letter('G' | 'M')) && matches!(value_of(w), WordValue::Expr(_))
+        };
+        seen.other_function |= ws.len() != lits.len() && ws.iter().any(computed);
         // The literal words are the written ones, or some of them (a call
         // takes its P and L): as many means the same words.
         seen.written = if ws.len() == lits.len() {
@@ -158,6 +173,48 @@ fn path_point(nc: &Nc) -> nc::point::Pt {
 
 fn bit(a: u8) -> u32 {
     1u32.checked_shl(u32::from(a)).unwrap_or(0)
+}
+
+/// The bits of the letters A–Z (not the comma words).
+const LETTERS: u32 = (1 << 26) - 1;
+
+/// The bits of `ls` (upper-case letters).
+const fn letters(ls: &[u8]) -> u32 {
+    let mut m = 0;
+    let mut i = 0;
+    while i < ls.len() {
+        m |= 1 << (ls[i] - b'A');
+        i += 1;
+    }
+    m
+}
+
+/// What any block may carry: feed, codes, sequence and program numbers,
+/// speed, tool, the axes (Y and V are E2005 on a lathe, C and H without
+/// a C axis).
+const ANY_BLOCK: u32 = letters(b"FGMNOSTXZUWCHYV");
+
+/// The letters a block of `motion` uses besides [`ANY_BLOCK`] (dialect.md
+/// §4.1, §4.3, §4.8): angles Q, corners L and D, centres, radii, leads
+/// and counts. An arc of polar interpolation takes its centre as I, J.
+fn motion_letters(motion: Motion, in_plane: bool) -> u32 {
+    letters(match motion {
+        Motion::Rapid => b"Q",
+        Motion::Line => b"LDQ",
+        Motion::ArcCw | Motion::ArcCcw if in_plane => b"RIJKLD",
+        Motion::ArcCw | Motion::ArcCcw => b"RIKLD",
+        Motion::ThreePoint | Motion::ThreePointAbs => b"IK",
+        Motion::EllipseCw | Motion::EllipseCcw => b"ABQ",
+        Motion::ParabolaCw | Motion::ParabolaCcw => b"PQ",
+        Motion::Thread => b"IJKQ",
+        Motion::RigidThread => b"IJK",
+        Motion::ArcThreadCw | Motion::ArcThreadCcw => b"RIKQ",
+        Motion::Tapping => b"IL",
+        Motion::VariableThread => b"IJKR",
+        Motion::TurningCycle | Motion::FacingCycle => b"R",
+        Motion::ThreadCycle => b"RIJKLP",
+        Motion::RigidThreadCycle => b"RILP",
+    })
 }
 
 impl Warner {
@@ -293,6 +350,57 @@ impl Warner {
         }
         self.spindle_max(unit, nc, ws, &seen);
         self.outside_plane(unit, nc, ws, &seen);
+        self.unused_words(unit, nc, ws, &seen);
+    }
+
+    /// W104: a letter that neither the block's motion (group 01) nor any
+    /// block uses (dialect.md §1.8): `G01 Z-20 R2` (a Fanuc corner R;
+    /// here D), `G00 X20 I1`. Blocks whose letters belong to another
+    /// function are left alone: a group-00 code (G04, G10, G50, the
+    /// cycles' first blocks…), G22's limits, a call's arguments (G66, a
+    /// G-code macro), a drilling cycle in force, the G10 modes, and a
+    /// block whose G or M is computed.
+    fn unused_words(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
+        let motion = nc.st.modal.motion;
+        let mut allowed = ANY_BLOCK | motion_letters(motion, nc.st.plane.is_some());
+        // An arc's R wins over I and K (§4.1 rule 1, G32.2/G32.3 too).
+        let by_radius =
+            motion.is_arc() || matches!(motion, Motion::ArcThreadCw | Motion::ArcThreadCcw);
+        if by_radius && seen.written(b'R' - b'A') {
+            allowed &= !letters(b"IJK");
+        }
+        if seen.m98 {
+            allowed |= letters(b"PL");
+        }
+        if seen.m99 {
+            allowed |= letters(b"P");
+        }
+        if seen.written & LETTERS & !allowed == 0
+            || seen.one_shot
+            || seen.stroke_on
+            || seen.other_function
+            || nc.st.modal.drill != gcode::Drill::Off
+            || nc.st.data.mode != nc::exec::data_setting::Mode::Off
+        {
+            return;
+        }
+        let code = gcode::name(motion.code());
+        for w in ws {
+            let a = addr_code(w.addr);
+            if LETTERS & !allowed & bit(a) == 0 {
+                continue;
+            }
+            let why = match (motion, w.addr) {
+                (Motion::Line, Addr::Letter('R')) => "does not use it: a rounding is D (or ,R)",
+                (Motion::Line, Addr::Letter('I' | 'K')) => {
+                    "does not use it: a chamfer is L (or ,C)"
+                }
+                (_, Addr::Letter('I' | 'J' | 'K')) if by_radius => "takes its radius from R",
+                _ => "does not use it",
+            };
+            let msg = format!("{} is ignored: {code} {why}", w.addr);
+            self.warn(unit, "W104", w.span, msg);
+        }
     }
 
     /// W104: during polar (cylindrical) interpolation an arc, an ellipse

@@ -392,3 +392,58 @@ fn w126_a_thread_too_fast_for_the_axis() {
     assert_eq!(w[0].0, 4);
     assert!(w[0].1.contains("asks X for 4500 mm/min"), "{}", w[0].1);
 }
+
+/// (line, message) of each W104 of `src`, which must be the same when a
+/// macro statement at its end makes the program dynamic (the
+/// compile-time run in the VM finds them then).
+fn w104(src: &str) -> Vec<(usize, String)> {
+    let of = |src: &str| -> Vec<(usize, String)> {
+        let c = compile("w.nc", src.as_bytes(), &Options::default());
+        assert!(!c.has_errors(), "{}", c.render());
+        (c.diags.iter())
+            .filter(|(_, d)| d.code == "W104")
+            .map(|(f, d)| (c.files[*f].line_col(d.span.start).0, d.message.clone()))
+            .collect()
+    };
+    let found = of(src);
+    assert_eq!(of(&format!("{src}#1=1\n")), found, "made dynamic: {src}");
+    found
+}
+
+#[test]
+fn w104_a_letter_the_motion_does_not_use() {
+    // §1.8: a Fanuc corner R and chamfer I on G01 (here D and L), R on
+    // a G00, I on an ellipse, A on a parabola, E anywhere.
+    let src = "G00 X20 Z2\nG01 Z-10 R2 F100\nG01 X30 I1\nG00 X40 R3\n\
+               G6.2 X30 Z-20 A10 B5 I3\nG7.2 X40 Z-30 P10 A3\nG01 X50 E1\nM30\n";
+    let w = w104(src);
+    let lines: Vec<usize> = w.iter().map(|(l, _)| *l).collect();
+    assert_eq!(lines, [2, 3, 4, 5, 6, 7], "{w:?}");
+    assert_eq!(
+        w[0].1,
+        "R is ignored: G01 does not use it: a rounding is D (or ,R)"
+    );
+    assert_eq!(
+        w[1].1,
+        "I is ignored: G01 does not use it: a chamfer is L (or ,C)"
+    );
+    assert_eq!(w[4].1, "A is ignored: G7.2 does not use it");
+    // The modal motion decides: X30 I1 after a G02 is an arc's centre.
+    assert_eq!(
+        w104("G00 X20 Z2\nG02 X30 Z-3 I5 K0 F100\nX40 Z-8 I5 K0\nM30\n"),
+        []
+    );
+    // §4.1 rule 1: with R, an arc's I and K are ignored.
+    let w = w104("G00 X20 Z2\nG02 X40 Z-20 R15 I3 F100\nM30\n");
+    assert_eq!(
+        w,
+        [(2, "I is ignored: G02 takes its radius from R".to_string())]
+    );
+    // Words each block's function uses: corners, angles, thread words,
+    // cycles, calls, G22's limits, G04, G50, M98's P and L, M99's P.
+    let used = "G00 X20 Z2\nG01 Z-10 L1 F100\nG01 X30 D1\nG01 X40 Q45000\n\
+                G02 X50 Z-10 I5 K0 L1\nG32 Z-30 F2 J1 K1 Q0\nG92 X38 Z-40 F2 J1 K1 L2\n\
+                G90 X36 Z-40 R-1 F100\nG22 X100 Z100 I-100 K-100\nG23\nG04 P100\nG50 X20 Z2\n\
+                M98 P1000 L2\nM30\nO1000\nG00 X30\nM99 P0\n";
+    assert_eq!(w104(used), []);
+}
