@@ -198,23 +198,25 @@ const ANY_BLOCK: u32 = letters(b"FGMNOSTXZUWCHYV");
 /// §4.1, §4.3, §4.8): angles Q, corners L and D, centres, radii, leads
 /// and counts. An arc of polar interpolation takes its centre as I, J.
 fn motion_letters(motion: Motion, in_plane: bool) -> u32 {
-    letters(match motion {
-        Motion::Rapid => b"Q",
-        Motion::Line => b"LDQ",
-        Motion::ArcCw | Motion::ArcCcw if in_plane => b"RIJKLD",
-        Motion::ArcCw | Motion::ArcCcw => b"RIKLD",
-        Motion::ThreePoint | Motion::ThreePointAbs => b"IK",
-        Motion::EllipseCw | Motion::EllipseCcw => b"ABQ",
-        Motion::ParabolaCw | Motion::ParabolaCcw => b"PQ",
-        Motion::Thread => b"IJKQ",
-        Motion::RigidThread => b"IJK",
-        Motion::ArcThreadCw | Motion::ArcThreadCcw => b"RIKQ",
-        Motion::Tapping => b"IL",
-        Motion::VariableThread => b"IJKR",
-        Motion::TurningCycle | Motion::FacingCycle => b"R",
-        Motion::ThreadCycle => b"RIJKLP",
-        Motion::RigidThreadCycle => b"RILP",
-    })
+    // (Each mask made when the compiler is built: this runs for every
+    // block of the dry run.)
+    match motion {
+        Motion::Rapid => const { letters(b"Q") },
+        Motion::Line => const { letters(b"LDQ") },
+        Motion::ArcCw | Motion::ArcCcw if in_plane => const { letters(b"RIJKLD") },
+        Motion::ArcCw | Motion::ArcCcw => const { letters(b"RIKLD") },
+        Motion::ThreePoint | Motion::ThreePointAbs => const { letters(b"IK") },
+        Motion::EllipseCw | Motion::EllipseCcw => const { letters(b"ABQ") },
+        Motion::ParabolaCw | Motion::ParabolaCcw => const { letters(b"PQ") },
+        Motion::Thread => const { letters(b"IJKQ") },
+        Motion::RigidThread => const { letters(b"IJK") },
+        Motion::ArcThreadCw | Motion::ArcThreadCcw => const { letters(b"RIKQ") },
+        Motion::Tapping => const { letters(b"IL") },
+        Motion::VariableThread => const { letters(b"IJKR") },
+        Motion::TurningCycle | Motion::FacingCycle => const { letters(b"R") },
+        Motion::ThreadCycle => const { letters(b"RIJKLP") },
+        Motion::RigidThreadCycle => const { letters(b"RILP") },
+    }
 }
 
 impl Warner {
@@ -367,13 +369,13 @@ impl Warner {
         let by_radius =
             motion.is_arc() || matches!(motion, Motion::ArcThreadCw | Motion::ArcThreadCcw);
         if by_radius && seen.written(b'R' - b'A') {
-            allowed &= !letters(b"IJK");
+            allowed &= !const { letters(b"IJK") };
         }
         if seen.m98 {
-            allowed |= letters(b"PL");
+            allowed |= const { letters(b"PL") };
         }
         if seen.m99 {
-            allowed |= letters(b"P");
+            allowed |= const { letters(b"P") };
         }
         if seen.written & LETTERS & !allowed == 0
             || seen.one_shot
