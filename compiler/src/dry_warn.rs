@@ -76,6 +76,9 @@ pub struct Warner {
     /// A corner word waiting for the next move, with the count of applied
     /// corners when it was written (W112 when that count stays).
     corner: Option<(usize, Span, u32)>,
+    /// The last block that moved an axis or wrote Q was angle
+    /// programming's first block, `Q_` alone (§5.2).
+    angle_first: bool,
 }
 
 /// The word of `letter` (an address code) in the block.
@@ -97,6 +100,8 @@ struct Seen {
     dwell: bool,
     set_coordinates: bool,
     stroke_on: bool,
+    /// G76 is among the literal words.
+    g76: bool,
     /// M98 (M99) is among the literal words.
     m98: bool,
     m99: bool,
@@ -115,6 +120,7 @@ impl Seen {
             dwell: false,
             set_coordinates: false,
             stroke_on: false,
+            g76: false,
             m98: false,
             m99: false,
             other_function: false,
@@ -128,6 +134,7 @@ impl Seen {
                         seen.one_shot = true;
                         seen.dwell |= o == OneShot::Dwell;
                         seen.set_coordinates |= o == OneShot::SetCoordinates;
+                        seen.g76 |= o == OneShot::MultiThread;
                     }
                     Some(gcode::G::Stroke(Stroke::On)) => seen.stroke_on = true,
                     Some(gcode::G::ModalCall(gcode::ModalCall::On)) | None => {
@@ -353,6 +360,48 @@ impl Warner {
         self.spindle_max(unit, nc, ws, &seen);
         self.outside_plane(unit, nc, ws, &seen);
         self.unused_words(unit, nc, ws, &seen);
+        self.ignored_forms(unit, nc, ws, &seen);
+    }
+
+    /// W104 for the words that a form of the block ignores (§4.3, §4.12,
+    /// §5.2): P of G92/G92.1 without thread repair (№174.4), P of the
+    /// one-block G76, Q of `X_ Z_ Q_` without a first block before it.
+    fn ignored_forms(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
+        if seen.other_function
+            || nc.st.modal.drill != gcode::Drill::Off
+            || nc.st.data.mode != nc::exec::data_setting::Mode::Off
+        {
+            return;
+        }
+        let axes = |ls: &[u8]| ls.iter().any(|&l| seen.written(l - b'A'));
+        let motion = nc.st.modal.motion;
+        let straight = !seen.one_shot && motion.is_straight();
+        let (q, x_and_z) = (seen.written(b'Q' - b'A'), axes(b"X") && axes(b"Z"));
+        let first = std::mem::replace(&mut self.angle_first, false);
+        if straight && q && !axes(b"XZUW") {
+            self.angle_first = true;
+        } else if !axes(b"XZUWQ") {
+            self.angle_first = first;
+        }
+        let (letter, why) = if straight && q && x_and_z && !first {
+            ('Q', "X, Z and Q end angle programming, but no Q_ block began it: the block is an ordinary line")
+        } else if seen.g76 && axes(b"XZUW") && axes(b"KD") {
+            (
+                'P',
+                "the one-block G76 takes its cutting method from the modal G76 state",
+            )
+        } else if matches!(motion, Motion::ThreadCycle | Motion::RigidThreadCycle)
+            && !seen.one_shot
+            && !nc.machine.threads.repair_enabled
+        {
+            ('P', "thread repair is off on this machine (№174.4)")
+        } else {
+            return;
+        };
+        if let Some(w) = find(ws, letter as u8 - b'A') {
+            let msg = format!("{letter} is ignored: {why}");
+            self.warn(unit, "W104", w.span, msg);
+        }
     }
 
     /// W104: a letter that neither the block's motion (group 01) nor any

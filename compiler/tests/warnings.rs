@@ -447,3 +447,39 @@ fn w104_a_letter_the_motion_does_not_use() {
                 M98 P1000 L2\nM30\nO1000\nG00 X30\nM99 P0\n";
     assert_eq!(w104(used), []);
 }
+
+#[test]
+fn w104_a_word_a_form_ignores() {
+    // §4.3: G92's P asks for thread repair, off on the reference machine
+    // (№174.4 = 0).
+    let w = w104("G97 S500 M3\nG00 X40 Z5\nG92 X30 Z-20 F1.5 P1\nM30\n");
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].0, 3);
+    assert!(
+        w[0].1.starts_with("P is ignored: thread repair is off"),
+        "{}",
+        w[0].1
+    );
+    // §4.12: the one-block G76 (K, D) takes no P; the two-block form's
+    // second block does (k).
+    let modal = "G97 S500 M3\nG00 X40 Z5\nG76 P020060 Q100 R0.05\n";
+    let w = w104(&format!("{modal}G76 X30 Z-20 K1 D0.3 F1.5 A60 P1\nM30\n"));
+    assert_eq!(w.iter().map(|w| w.0).collect::<Vec<_>>(), [4], "{w:?}");
+    assert_eq!(
+        w104(&format!("{modal}G76 X30 Z-20 P900 Q300 F1.5\nM30\n")),
+        []
+    );
+    // §5.2: X Z Q ends angle programming; without its first block (Q
+    // alone) the block is a plain line and Q is ignored. A block without
+    // axis words may stand between the two; X with Q alone is the line
+    // at an angle.
+    let w = w104("G00 X40 Z5\nG01 X30 Z-20 Q30000 F100\nM30\n");
+    assert_eq!(w.iter().map(|w| w.0).collect::<Vec<_>>(), [2], "{w:?}");
+    assert!(w[0].1.contains("no Q_ block began it"), "{}", w[0].1);
+    let pair = "G00 X40 Z5\nG01 Q150000 F100\nM08\nG01 X60 Z-20 Q180000\nM30\n";
+    assert_eq!(w104(pair), []);
+    assert_eq!(w104("G00 X40 Z5\nG01 X50 Q30000 F100\nM30\n"), []);
+    // A drilling cycle's Q is its peck (conformance g83_peck_j0).
+    let drill = "G99 M03 S800\nG00 X0 Z3\nG83 X0 Z-12 Q5000 R2 F0.08\nG80\nM30\n";
+    assert_eq!(w104(drill), []);
+}
