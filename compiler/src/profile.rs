@@ -330,6 +330,9 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
     {
         return None;
     }
+    if let Some(&ns) = lines.first() {
+        ignored_j(gen, unit, &cw, &split.nc, ns);
+    }
     build_profile(gen, unit, &lines);
     gen.set_loc(block.span);
     (cw.code != OneShot::Finish).then(|| After {
@@ -394,6 +397,33 @@ fn build_words(gen: &mut Gen<'_>, ws: &[NcWord<'_>]) {
         };
         gen.push_word(w.addr, value, w.span);
     }
+}
+
+/// W104 for the J of G71/G72 where the cycle ignores it (cycles.md
+/// §15.5): in type I (its ns block names one axis), and in type II any J
+/// but J1.
+fn ignored_j(gen: &mut Gen<'_>, unit: &Unit, cw: &CycleWords, ws: &[NcWord<'_>], ns: usize) {
+    if !matches!(cw.code, OneShot::RoughTurn | OneShot::RoughFace) {
+        return;
+    }
+    let Some(j) = ws.iter().find(|w| letter(w, b'J')) else {
+        return;
+    };
+    let Some(Body::Words(ns_words)) = link::block(unit, ns).map(|b| &b.body) else {
+        return;
+    };
+    let Ok(split) = words::classify(ns_words) else {
+        return;
+    };
+    let names = |a, b| split.nc.iter().any(|w| letter(w, a) || letter(w, b));
+    let why = match j.value {
+        _ if !(names(b'X', b'U') && names(b'Z', b'W')) => {
+            "the cycle is type I (its ns block names one axis), and only type II repeats its allowance pass (J1)"
+        }
+        WordValue::Literal(v, _) if v != 1.0 => "only J1 repeats the allowance pass of type II",
+        _ => return,
+    };
+    gen.warn("W104", j.span, format!("J is ignored: {why}"));
 }
 
 /// E1009 for a decimal point on the integer-only J/K flags of G71/G72 and

@@ -479,6 +479,19 @@ fn w104_a_word_a_form_ignores() {
     let pair = "G00 X40 Z5\nG01 Q150000 F100\nM08\nG01 X60 Z-20 Q180000\nM30\n";
     assert_eq!(w104(pair), []);
     assert_eq!(w104("G00 X40 Z5\nG01 X50 Q30000 F100\nM30\n"), []);
+    // cycles.md §15.5: G71's J1 repeats type II's allowance pass; type I
+    // (the ns block names X only) ignores J, type II any J but 1.
+    let g71 = |j: &str, ns: &str| {
+        w104(&format!(
+            "G00 X52 Z2\nG71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F100 {j}\nN10 G00 {ns}\nG01 Z-10\nN20 G01 X50\nM30\n"
+        ))
+    };
+    let w = g71("J1", "X20");
+    assert_eq!(w.iter().map(|w| w.0).collect::<Vec<_>>(), [3], "{w:?}");
+    assert!(w[0].1.contains("type I"), "{}", w[0].1);
+    assert_eq!(g71("J1", "X20 Z0"), []);
+    assert_eq!(g71("J2", "X20 Z0").len(), 1);
+    assert_eq!(g71("", "X20"), []);
     // A drilling cycle's Q is its peck (conformance g83_peck_j0).
     let drill = "G99 M03 S800\nG00 X0 Z3\nG83 X0 Z-12 Q5000 R2 F0.08\nG80\nM30\n";
     assert_eq!(w104(drill), []);
