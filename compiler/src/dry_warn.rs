@@ -1,5 +1,6 @@
 //! The warnings of dialect.md §8 that depend on the modal state, found by
-//! the dry run of a static program (check.rs) block by block: W105 (inch
+//! the dry run of a static program (check.rs) block by block: W104 (a
+//! word the block's motion or form does not use), W105 (inch
 //! length without a point), W107 (feed move at F = 0), W108 (arc or conic
 //! without motion), W110 (thread in G96), W111 (feed mode changed without
 //! a new F), W112 (corner word ignored), W114 (S above the spindle
