@@ -1,11 +1,11 @@
 //! The warnings of dialect.md §8 that depend on the modal state, found by
 //! the dry run of a static program (check.rs) block by block: W104 (a
-//! word the block's motion or form does not use), W105 (inch
-//! length without a point), W107 (feed move at F = 0), W108 (arc or conic
-//! without motion), W110 (thread in G96), W111 (feed mode changed without
-//! a new F), W112 (corner word ignored), W114 (S above the spindle
-//! maximum), W125 (a feed per minute below 1: a feed per revolution
-//! written for a control that starts in G99). A program with macro
+//! word the block's motion or form does not use), W105 (inch length
+//! without a point), W107 (feed move at F = 0), W108 (arc or conic without
+//! motion), W110 (thread in G96), W111 (feed mode changed without a new
+//! F), W112 (corner word ignored), W114 (S above the spindle maximum),
+//! W125 (a feed per minute below 1: a feed per revolution written for a
+//! control that starts in G99). A program with macro
 //! statements or computed words is not dry-run: where its run is known,
 //! the compile-time run in the VM (`predict`) hands its blocks to the
 //! same [`Warner`], all but W107.
