@@ -17,7 +17,7 @@ use grammar::ast::{Block, Body};
 use grammar::Span;
 use nc::block::round_half_away;
 use nc::gcode::{self, Drill, OneShot, G};
-use nc::words::{addr, COMMA_A, LITERAL, NO_POINT};
+use nc::words::{addr, COMMA_A, COMMA_C, COMMA_R, LITERAL, NO_POINT};
 use nc::Nc;
 use smallvec::SmallVec;
 use std::collections::{HashMap, HashSet};
@@ -51,6 +51,9 @@ pub struct Profiles {
     /// The sequence numbers of the program being lowered, where it names
     /// a cycle (`program_start`).
     numbers: Numbers,
+    /// Corner words before a conic already told (W112), as (unit, line):
+    /// a profile that G71 and G70 both read is told once.
+    corners_told: HashSet<(usize, usize)>,
 }
 
 /// What follows a cycle block's `Exec`.
@@ -333,6 +336,7 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
     if let Some(&ns) = lines.first() {
         ignored_j(gen, unit, &cw, &split.nc, ns);
     }
+    corners_before_conics(gen, unit, &lines);
     build_profile(gen, unit, &lines);
     gen.set_loc(block.span);
     (cw.code != OneShot::Finish).then(|| After {
@@ -396,6 +400,42 @@ fn build_words(gen: &mut Gen<'_>, ws: &[NcWord<'_>]) {
             WordValue::Expr(e) => ir::WordValue::Expr(gen.expr(e)),
         };
         gen.push_word(w.addr, value, w.span);
+    }
+}
+
+/// W112 for a corner word whose next profile block that moves is a conic
+/// (a literal G6.2/G6.3/G7.2/G7.3): a conic is not G01–G03, so the word
+/// is ignored (dialect.md §5.1), as outside a profile.
+fn corners_before_conics(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
+    let Some((unit_index, _)) = gen.profiles.current else {
+        return;
+    };
+    let is_corner = |w: &&NcWord<'_>| {
+        letter(w, b'L') || letter(w, b'D') || w.addr == COMMA_C || w.addr == COMMA_R
+    };
+    let mut waiting: Option<(usize, Span)> = None;
+    for &l in lines {
+        let Some(Body::Words(ws)) = link::block(unit, l).map(|b| &b.body) else {
+            continue;
+        };
+        let Ok(split) = words::classify(ws) else {
+            continue;
+        };
+        if !split
+            .nc
+            .iter()
+            .any(|w| b"XZUW".iter().any(|&a| letter(w, a)))
+        {
+            continue;
+        }
+        let conic = |w: &NcWord<'_>| matches!(literal_g(w), Some(G::Motion(m)) if m.is_conic());
+        if let Some((at, span)) = waiting.take() {
+            if split.nc.iter().any(conic) && gen.profiles.corners_told.insert((unit_index, at)) {
+                let msg = "this chamfer or rounding is ignored: the next move of the profile is an ellipse or parabola, not G01–G03";
+                gen.warn("W112", span, msg.to_string());
+            }
+        }
+        waiting = split.nc.iter().find(is_corner).map(|w| (l, w.span));
     }
 }
 

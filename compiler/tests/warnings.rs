@@ -496,3 +496,18 @@ fn w104_a_word_a_form_ignores() {
     let drill = "G99 M03 S800\nG00 X0 Z3\nG83 X0 Z-12 Q5000 R2 F0.08\nG80\nM30\n";
     assert_eq!(w104(drill), []);
 }
+
+#[test]
+fn w112_a_corner_word_before_a_conic_of_a_profile() {
+    // dialect.md §5.1: the next move must be G01–G03; a profile's conic is
+    // not. Told once, though G71 and G70 both read the profile.
+    let src = "G00 X42 Z2\nG71 U2 R0.5\nG71 P10 Q20 U0.4 W0.1 F100\nN10 G00 X0\nG01 Z0 L1\n\
+               G6.3 X30 Z-10 A15 B10 Q90000\nN20 G01 Z-20\nG70 P10 Q20\nM30\n";
+    assert_eq!(warnings(src), [("W112", 5)]);
+    assert_eq!(warnings(&src.replace(" L1", "")), []);
+    // Before a line the chamfer applies.
+    assert_eq!(
+        warnings(&src.replace("G01 Z0 L1", "G01 Z0 L1\nG01 X10 Z-1")),
+        []
+    );
+}

@@ -292,10 +292,10 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
         return Ok(());
     };
     let (Some(e1), Some(e2)) = (prev.curve.element(), next.curve.element()) else {
-        return fail(
-            Alarm::NotSupportedYet,
-            "a chamfer or rounding next to an ellipse or parabola in a G71–G73 profile is not supported yet",
-        );
+        // A conic is not G01–G03: the word is ignored (dialect.md §5.1;
+        // W112 from the compiler), as outside a profile.
+        segs.push(next);
+        return Ok(());
     };
     match corner(&e1, &e2, c)? {
         Some((e1, inserted, e2)) => {

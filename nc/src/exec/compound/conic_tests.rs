@@ -209,3 +209,34 @@ fn type_ii_roughs_a_pocket_shaped_by_a_half_ellipse() {
         }
     }
 }
+
+#[test]
+fn a_corner_word_next_to_a_conic_is_ignored() {
+    // dialect.md §5.1: a chamfer or rounding applies only when the next
+    // move is G01–G03; a conic is not, so the word is ignored (W112, from
+    // the compiler), and L or D on the conic itself is no corner word of
+    // it (W104): the cycle runs as the profile without them.
+    let profile = [
+        "G00 X0",
+        "G01 Z0",
+        "G6.3 X30 Z-10 A15 B10 Q90000",
+        "G01 Z-20",
+    ];
+    let run = |p: &[&str]| {
+        cycle(
+            &["G98 G00 X42 Z2", "G71 U2 R0.5 F100"],
+            "G71 P1 Q4 U0.4 W0.1",
+            p,
+        )
+    };
+    let plain = run(&profile);
+    let before = ["G00 X0", "G01 Z0 L1", profile[2], profile[3]];
+    assert_eq!(run(&before), plain);
+    let on = [
+        "G00 X0",
+        "G01 Z0",
+        "G6.3 X30 Z-10 A15 B10 Q90000 D1",
+        profile[3],
+    ];
+    assert_eq!(run(&on), plain);
+}
