@@ -97,6 +97,8 @@ struct Seen {
     written: u32,
     /// A group-00 code owns the block.
     one_shot: bool,
+    /// The last group-00 code of the block.
+    one_shot_code: Option<OneShot>,
     /// G04, G50, G22 are in the block.
     dwell: bool,
     set_coordinates: bool,
@@ -118,6 +120,7 @@ impl Seen {
             lits: 0,
             written: 0,
             one_shot: false,
+            one_shot_code: None,
             dwell: false,
             set_coordinates: false,
             stroke_on: false,
@@ -133,6 +136,7 @@ impl Seen {
                 match gcode::G::from_code(crate::words::round_g(w.value)) {
                     Some(gcode::G::OneShot(o)) => {
                         seen.one_shot = true;
+                        seen.one_shot_code = Some(o);
                         seen.dwell |= o == OneShot::Dwell;
                         seen.set_coordinates |= o == OneShot::SetCoordinates;
                         seen.g76 |= o == OneShot::MultiThread;
@@ -224,6 +228,37 @@ fn motion_letters(motion: Motion, in_plane: bool) -> u32 {
         Motion::TurningCycle | Motion::FacingCycle => const { letters(b"R") },
         Motion::ThreadCycle => const { letters(b"RIJKLP") },
         Motion::RigidThreadCycle => const { letters(b"RILP") },
+    }
+}
+
+/// The letters a block owned by group-00 code `o` uses (dialect.md §4.2,
+/// §4.4–§4.6, §4.8): its own words and the feed, codes, numbers, speed
+/// and tool any block may carry; all letters where the block is not
+/// checked (G09 with its move, G10/G11 (`data_setting`), G65's
+/// arguments).
+fn one_shot_letters(o: OneShot) -> u32 {
+    const BASE: u32 = letters(b"FGMNOSTYV");
+    BASE | match o {
+        OneShot::Dwell => const { letters(b"PXUQ") },
+        OneShot::Cylindrical => const { letters(b"CJLRK") },
+        OneShot::Home => const { letters(b"XZUWCH") },
+        OneShot::HomeN => const { letters(b"PXZUWCH") },
+        OneShot::Skip => const { letters(b"XZUWCHP") },
+        OneShot::MeasureX => const { letters(b"XU") },
+        OneShot::MeasureZ => const { letters(b"ZW") },
+        OneShot::SetCoordinates | OneShot::Local | OneShot::MachineCoords => {
+            const { letters(b"XZUWCH") }
+        }
+        OneShot::Finish => const { letters(b"PQ") },
+        OneShot::RoughTurn | OneShot::RoughFace => const { letters(b"URWPQKJD") },
+        OneShot::Pattern => const { letters(b"UWRPQ") },
+        OneShot::PeckFace | OneShot::PeckGroove => const { letters(b"RXZUWPQ") },
+        OneShot::MultiThread => const { letters(b"PQRJKXZUWIDA") },
+        OneShot::SpiralThread => const { letters(b"PQRJKDLEXZUWI") },
+        OneShot::ExactStop
+        | OneShot::DataSetting
+        | OneShot::DataSettingEnd
+        | OneShot::MacroCall => LETTERS,
     }
 }
 
@@ -405,21 +440,24 @@ impl Warner {
         }
     }
 
-    /// W104: a letter that neither the block's motion (group 01) nor any
-    /// block uses (dialect.md §1.8): `G01 Z-20 R2` (a Fanuc corner R;
-    /// here D), `G00 X20 I1`. Blocks whose letters belong to another
-    /// function are left alone: a group-00 code (G04, G10, G50, the
-    /// cycles' first blocks…), G22's limits, a call's arguments (G66, a
-    /// G-code macro), a drilling cycle in force, the G10 modes, and a
-    /// block whose G or M is computed.
+    /// W104: a letter that neither the block's function (its group-00
+    /// code, else its motion of group 01) nor any block uses (dialect.md
+    /// §1.8): `G01 Z-20 R2` (a Fanuc corner R; here D), `G00 X20 I1`,
+    /// `G04 X1 Z5`. Blocks whose letters belong to another function are
+    /// left alone: G22's limits, a call's arguments (G65, G66, a G-code
+    /// macro), a drilling cycle in force, the G10 modes, and a block whose
+    /// G or M is computed.
     fn unused_words(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
         let motion = nc.st.modal.motion;
         let mut allowed = ANY_BLOCK | motion_letters(motion, nc.st.plane.is_some());
         // An arc's R wins over I and K (§4.1 rule 1, G32.2/G32.3 too).
-        let by_radius =
-            motion.is_arc() || matches!(motion, Motion::ArcThreadCw | Motion::ArcThreadCcw);
+        let by_radius = !seen.one_shot
+            && (motion.is_arc() || matches!(motion, Motion::ArcThreadCw | Motion::ArcThreadCcw));
         if by_radius && seen.written(b'R' - b'A') {
             allowed &= !const { letters(b"IJK") };
+        }
+        if let Some(o) = seen.one_shot_code {
+            allowed = one_shot_letters(o);
         }
         if seen.m98 {
             allowed |= const { letters(b"PL") };
@@ -428,7 +466,6 @@ impl Warner {
             allowed |= const { letters(b"P") };
         }
         if seen.written & LETTERS & !allowed == 0
-            || seen.one_shot
             || seen.stroke_on
             || seen.other_function
             || nc.st.modal.drill != gcode::Drill::Off
@@ -436,7 +473,10 @@ impl Warner {
         {
             return;
         }
-        let code = gcode::name(motion.code());
+        let code = match seen.one_shot_code {
+            Some(o) => o.name(),
+            None => gcode::name(motion.code()),
+        };
         for w in ws {
             let a = addr_code(w.addr);
             if LETTERS & !allowed & bit(a) == 0 {

@@ -511,3 +511,22 @@ fn w112_a_corner_word_before_a_conic_of_a_profile() {
         []
     );
 }
+
+#[test]
+fn w104_a_letter_a_group_00_code_does_not_use() {
+    // The code owns its block (§3): its own words count, the axes only
+    // where it takes them.
+    let w = w104("G04 X1 Z5\nG00 X40 Z5\nG28 U0 W0 R5\nG50 X40 Z5 R3\nM30\n");
+    let found: Vec<(usize, &str)> = w.iter().map(|(l, m)| (*l, &m[..1])).collect();
+    assert_eq!(found, [(1, "Z"), (3, "R"), (4, "R")], "{w:?}");
+    assert_eq!(w[0].1, "Z is ignored: G04 does not use it");
+    let profile = "N10 G00 X20\nN20 G01 Z-5 F100\nM30\n";
+    let w = w104(&format!("G00 X40 Z5\nG70 P10 Q20 X3\n{profile}"));
+    assert_eq!(w.iter().map(|w| w.0).collect::<Vec<_>>(), [2], "{w:?}");
+    // The cycles' and the other codes' own words: none.
+    let used = format!(
+        "G00 X40 Z5\nG04 P100\nG04 U1\nG50 S2000\nG28 U0 W0\nG50 X40 Z5\n\
+         G71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F100 S500 T0101\nG74 R1\nG74 X0 Z-10 P1000 Q2000 F100\n{profile}"
+    );
+    assert_eq!(w104(&used), []);
+}
