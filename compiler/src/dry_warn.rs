@@ -409,19 +409,22 @@ impl Warner {
         {
             return;
         }
-        let axes = |ls: &[u8]| ls.iter().any(|&l| seen.written(l - b'A'));
+        // (Masks, not letter by letter: this runs for every block.)
+        let axes = |mask: u32| seen.written & mask != 0;
+        const AXES: u32 = letters(b"XZUW");
         let motion = nc.st.modal.motion;
         let straight = !seen.one_shot && motion.is_straight();
-        let (q, x_and_z) = (seen.written(b'Q' - b'A'), axes(b"X") && axes(b"Z"));
+        let q = axes(const { letters(b"Q") });
+        let x_and_z = axes(const { letters(b"X") }) && axes(const { letters(b"Z") });
         let first = std::mem::replace(&mut self.angle_first, false);
-        if straight && q && !axes(b"XZUW") {
+        if straight && q && !axes(AXES) {
             self.angle_first = true;
-        } else if !axes(b"XZUWQ") {
+        } else if !q && !axes(AXES) {
             self.angle_first = first;
         }
         let (letter, why) = if straight && q && x_and_z && !first {
             ('Q', "X, Z and Q end angle programming, but no Q_ block began it: the block is an ordinary line")
-        } else if seen.g76 && axes(b"XZUW") && axes(b"KD") {
+        } else if seen.g76 && axes(AXES) && axes(const { letters(b"KD") }) {
             (
                 'P',
                 "the one-block G76 takes its cutting method from the modal G76 state",
