@@ -597,20 +597,27 @@ fn polar_comp_path() -> Vec<Piece> {
     ]
 }
 
-#[test]
-fn polar_compensation_runs_the_tool_centre_round_the_contour() {
+/// Runs `src` on the C-axis machine with a tool of radius 2 (offset 1;
+/// its tip 3 is not used in the plane), jerk limiting as `jerk` says.
+fn run_comp(src: &str, jerk: bool) -> Run {
     let toml = "[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = 2\ntip = 3\n";
     let machine = Machine::from_toml(toml).expect("a machine file");
+    let r = run_with(
+        src,
+        machine,
+        runtime::AutoAck,
+        |cfg| cfg.jerk_limited = jerk,
+        |_, _| {},
+        120.0,
+    );
+    assert!(r.alarm.is_none(), "{:?}", r.alarm);
+    r
+}
+
+#[test]
+fn polar_compensation_runs_the_tool_centre_round_the_contour() {
     for jerk in [false, true] {
-        let r = run_with(
-            POLAR_COMP,
-            machine.clone(),
-            runtime::AutoAck,
-            |cfg| cfg.jerk_limited = jerk,
-            |_, _| {},
-            120.0,
-        );
-        assert!(r.alarm.is_none(), "{:?}", r.alarm);
+        let r = run_comp(POLAR_COMP, jerk);
         let path = polar_comp_path();
         check(&r, 4..=5, polar_plane, &path, 300.0);
         check(&r, 7..=10, polar_plane, &path, 300.0);
@@ -651,19 +658,9 @@ M30
 
 #[test]
 fn a_compensated_line_of_polar_interpolation_takes_z_along() {
-    let toml = "[axes.c]\nenabled = true\n[[tools.offset]]\nnumber = 1\nradius = 2\ntip = 3\n";
-    let machine = Machine::from_toml(toml).expect("a machine file");
     let path = polar_comp_path();
     for jerk in [false, true] {
-        let r = run_with(
-            POLAR_COMP_RAMPS,
-            machine.clone(),
-            runtime::AutoAck,
-            |cfg| cfg.jerk_limited = jerk,
-            |_, _| {},
-            120.0,
-        );
-        assert!(r.alarm.is_none(), "{:?}", r.alarm);
+        let r = run_comp(POLAR_COMP_RAMPS, jerk);
         // In the plane the tool centre runs the path of `POLAR_COMP`, at
         // F where Z stands.
         check(&r, 4..=4, polar_plane, &path, 300.0);
