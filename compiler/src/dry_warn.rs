@@ -236,7 +236,7 @@ fn motion_letters(motion: Motion, in_plane: bool) -> u32 {
 /// and tool any block may carry; all letters where the block is not
 /// checked (G09 with its move, G10/G11 (`data_setting`), G65's
 /// arguments).
-fn one_shot_letters(o: OneShot) -> u32 {
+fn one_shot_letters(o: OneShot, written: u32) -> u32 {
     const BASE: u32 = letters(b"FGMNOSTYV");
     BASE | match o {
         OneShot::Dwell => const { letters(b"PXUQ") },
@@ -250,16 +250,62 @@ fn one_shot_letters(o: OneShot) -> u32 {
             const { letters(b"XZUWCH") }
         }
         OneShot::Finish => const { letters(b"PQ") },
-        OneShot::RoughTurn | OneShot::RoughFace => const { letters(b"URWPQKJD") },
-        OneShot::Pattern => const { letters(b"UWRPQ") },
-        OneShot::PeckFace | OneShot::PeckGroove => const { letters(b"RXZUWPQ") },
-        OneShot::MultiThread => const { letters(b"PQRJKXZUWIDA") },
-        OneShot::SpiralThread => const { letters(b"PQRJKDLEXZUWI") },
+        OneShot::RoughTurn
+        | OneShot::RoughFace
+        | OneShot::Pattern
+        | OneShot::PeckFace
+        | OneShot::PeckGroove
+        | OneShot::MultiThread
+        | OneShot::SpiralThread => cycle_form(o, written).map_or(0, |(l, _)| l),
         OneShot::ExactStop
         | OneShot::DataSetting
         | OneShot::DataSettingEnd
         | OneShot::MacroCall => LETTERS,
     }
+}
+
+/// The letters a block of the two-block cycle `o` (G71–G76, G78) uses
+/// beside the base ones, by the block's form, and the form's name for
+/// messages. The form is told by the block's letters `written`, as the
+/// kernel tells it (cycles.md §0, "Which block is which"; dialect.md §4.8,
+/// §4.12): a G71–G73 block with P or Q is the cycle block (one with P
+/// alone is an error of its own), a G74–G78 block with an axis word the
+/// second block, G76's with K or D the one-block form (its P, ignored, is
+/// `ignored_forms`' to tell).
+fn cycle_form(o: OneShot, written: u32) -> Option<(u32, &'static str)> {
+    let cycle = written & const { letters(b"PQ") } != 0;
+    let second = written & const { letters(b"XZUW") } != 0;
+    let one_block = second && written & const { letters(b"KD") } != 0;
+    Some(match o {
+        OneShot::RoughTurn if !cycle => (const { letters(b"UR") }, "first block (U R)"),
+        OneShot::RoughFace if !cycle => (const { letters(b"WR") }, "first block (W R)"),
+        OneShot::Pattern if !cycle => (const { letters(b"UWR") }, "first block (U W R)"),
+        OneShot::RoughTurn | OneShot::RoughFace => {
+            (const { letters(b"PQUWDKJ") }, "cycle block (P Q U W D K J)")
+        }
+        OneShot::Pattern => (const { letters(b"PQUW") }, "cycle block (P Q U W)"),
+        OneShot::PeckFace | OneShot::PeckGroove if !second => {
+            (const { letters(b"R") }, "first block (R)")
+        }
+        OneShot::PeckFace | OneShot::PeckGroove => (
+            const { letters(b"XZUWPQR") },
+            "second block (X Z U W P Q R)",
+        ),
+        OneShot::MultiThread if !second => (const { letters(b"PQRJK") }, "first block (P Q R J K)"),
+        OneShot::MultiThread if one_block => (
+            const { letters(b"XZUWIKDAP") },
+            "one-block form (X Z U W I K D A)",
+        ),
+        OneShot::SpiralThread if !second => (
+            const { letters(b"PQRJKDLE") },
+            "first block (P Q R J K D L E)",
+        ),
+        OneShot::MultiThread | OneShot::SpiralThread => (
+            const { letters(b"XZUWRPQI") },
+            "second block (X Z U W R P Q I)",
+        ),
+        _ => return None,
+    })
 }
 
 impl Warner {
@@ -460,7 +506,7 @@ impl Warner {
             allowed &= !const { letters(b"IJK") };
         }
         if let Some(o) = seen.one_shot_code {
-            allowed = one_shot_letters(o);
+            allowed = one_shot_letters(o, seen.written);
         }
         if seen.m98 {
             allowed |= const { letters(b"PL") };
@@ -477,7 +523,10 @@ impl Warner {
             return;
         }
         let code = match seen.one_shot_code {
-            Some(o) => o.name(),
+            Some(o) => match cycle_form(o, seen.written) {
+                Some((_, form)) => format!("{}'s {form}", o.name()),
+                None => o.name(),
+            },
             None => gcode::name(motion.code()),
         };
         for w in ws {

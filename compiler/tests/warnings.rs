@@ -530,3 +530,62 @@ fn w104_a_letter_a_group_00_code_does_not_use() {
     );
     assert_eq!(w104(&used), []);
 }
+
+#[test]
+fn w104_a_letter_the_form_of_a_cycle_block_does_not_use() {
+    // cycles.md §0: a G71–G73 block with P and Q is the cycle block, a
+    // G74–G78 block with an axis word the second; each form has its own
+    // words (dialect.md §4.8, §4.12).
+    let profile = "N10 G00 X20\nN20 G01 Z-5 F100\n";
+    let lines = |w: &[(usize, String)]| w.iter().map(|w| w.0).collect::<Vec<_>>();
+    let w = w104(&format!(
+        "G00 X40 Z5\nG71 U1 R0.5 W0.3\nG71 P10 Q20 U0.2 W0.1 R1 F100\n{profile}\
+         G72 W1 R0.5 U0.3\nG73 U1 W1 R2 K3\nM30\n"
+    ));
+    assert_eq!(lines(&w), [2, 3, 6, 7], "{w:?}");
+    assert_eq!(
+        w[0].1,
+        "W is ignored: G71's first block (U R) does not use it"
+    );
+    assert_eq!(
+        w[1].1,
+        "R is ignored: G71's cycle block (P Q U W D K J) does not use it"
+    );
+    assert_eq!(
+        w[2].1,
+        "U is ignored: G72's first block (W R) does not use it"
+    );
+    // (A G73 block with Q alone is a cycle block without its P: E2020.)
+    let threads = "G97 S500 M3\nG00 X40 Z5\n\
+                   G76 P020060 Q100 R0.05 I4\n\
+                   G76 X30 Z-20 P900 Q300 F1.5 A29\n\
+                   G76 X30 Z-20 K0.9 D0.3 F1.5 R1 Q2\n\
+                   G74 R1 Q2000\nG74 X0 Z-10 P1000 Q2000 F100\nG00 X40 Z5\n\
+                   G78 P010060 Q100 R0.05 D1 L1 E1\nG78 X30 Z-20 P900 Q300 F1.5 E1\nM30\n";
+    let w = w104(threads);
+    let found: Vec<(usize, &str)> = w.iter().map(|(l, m)| (*l, &m[..1])).collect();
+    assert_eq!(
+        found,
+        [(3, "I"), (4, "A"), (5, "R"), (5, "Q"), (6, "Q"), (10, "E")],
+        "{w:?}"
+    );
+    assert_eq!(
+        w[2].1,
+        "R is ignored: G76's one-block form (X Z U W I K D A) does not use it"
+    );
+    assert_eq!(
+        w[4].1,
+        "Q is ignored: G74's first block (R) does not use it"
+    );
+    // Each form's own words: none.
+    let used = "G97 S500 M3\nG00 X40 Z5\nG76 P020060 Q100 R0.05 J1 K1\n\
+                G76 X30 Z-20 R-1 P900 Q300 F1.5\nG76 U-10 W-20 P900 Q300 I16\n\
+                G76 X30 Z-20 I-1 K0.9 D0.3 F1.5 A60\nG00 X40 Z5\n\
+                G75 R1\nG75 X20 Z-10 P1000 Q2000 R0.1 F100\nG00 X40 Z5\n\
+                G78 P010060 Q100 R0.05 J1 K1 D1 L1 E1\nG78 X30 Z-20 R0 P900 Q300 F1.5\n\
+                G73 U1 W1 R2\nG73 P10 Q20 U0.2 W0.1 F100\n\
+                G71 P10 Q20 U0.2 W0.1 D1 F100\nM30\n"
+        .to_string()
+        + profile;
+    assert_eq!(w104(&used), []);
+}
