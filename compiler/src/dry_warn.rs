@@ -308,6 +308,60 @@ fn cycle_form(o: OneShot, written: u32) -> Option<(u32, &'static str)> {
     })
 }
 
+/// What owns a block's letters: its group-00 code, else the drilling
+/// cycle in force (group 10, dialect.md §4.8), else its motion (group 01).
+#[derive(Clone, Copy)]
+enum Owner {
+    OneShot(OneShot),
+    Drill(gcode::Drill),
+    Motion(Motion),
+}
+
+impl Owner {
+    fn of(nc: &Nc, seen: &Seen) -> Owner {
+        match (seen.one_shot_code, nc.st.modal.drill) {
+            (Some(o), _) => Owner::OneShot(o),
+            (None, gcode::Drill::Off) => Owner::Motion(nc.st.modal.motion),
+            (None, drill) => Owner::Drill(drill),
+        }
+    }
+
+    /// The letters of a block it owns.
+    fn letters(self, nc: &Nc, seen: &Seen) -> u32 {
+        match self {
+            Owner::OneShot(o) => one_shot_letters(o, seen.written),
+            Owner::Drill(d) if d.taps() => ANY_BLOCK | const { letters(b"PIK") },
+            Owner::Drill(_) => ANY_BLOCK | const { letters(b"PQRJK") },
+            Owner::Motion(motion) => {
+                let own = motion_letters(motion, nc.st.plane.is_some());
+                // An arc's R wins over I and K (§4.1 rule 1, G32.2/G32.3 too).
+                match by_radius(self, seen) {
+                    true => ANY_BLOCK | own & !const { letters(b"IJK") },
+                    false => ANY_BLOCK | own,
+                }
+            }
+        }
+    }
+
+    /// Its name in messages.
+    fn name(self, seen: &Seen) -> String {
+        match self {
+            Owner::OneShot(o) => match cycle_form(o, seen.written) {
+                Some((_, form)) => format!("{}'s {form}", o.name()),
+                None => o.name(),
+            },
+            Owner::Drill(d) => d.name(),
+            Owner::Motion(motion) => gcode::name(motion.code()),
+        }
+    }
+}
+
+/// Whether the block is an arc (or arc thread) given by its radius R.
+fn by_radius(owner: Owner, seen: &Seen) -> bool {
+    let arc = |m: Motion| m.is_arc() || matches!(m, Motion::ArcThreadCw | Motion::ArcThreadCcw);
+    matches!(owner, Owner::Motion(m) if arc(m)) && seen.written(b'R' - b'A')
+}
+
 impl Warner {
     pub fn before(&self, nc: &Nc) -> Before {
         Before {
@@ -489,25 +543,16 @@ impl Warner {
         }
     }
 
-    /// W104: a letter that neither the block's function (its group-00
-    /// code, else its motion of group 01) nor any block uses (dialect.md
-    /// §1.8): `G01 Z-20 R2` (a Fanuc corner R; here D), `G00 X20 I1`,
-    /// `G04 X1 Z5`. Blocks whose letters belong to another function are
-    /// left alone: G22's limits, a call's arguments (G65, G66, a G-code
-    /// macro), a drilling cycle in force, the G10 modes, and a block whose
-    /// G or M is computed.
+    /// W104: a letter that neither the block's function ([`Owner`]: its
+    /// group-00 code, else the drilling cycle in force, else its motion)
+    /// nor any block uses (dialect.md §1.8): `G01 Z-20 R2` (a Fanuc corner
+    /// R; here D), `G00 X20 I1`, `G04 X1 Z5`, `G83 … L2` (a mill's
+    /// repeats; here K). Blocks whose letters belong to another function
+    /// are left alone: G22's limits, a call's arguments (G65, G66, a
+    /// G-code macro), the G10 modes, and a block whose G or M is computed.
     fn unused_words(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
-        let motion = nc.st.modal.motion;
-        let mut allowed = ANY_BLOCK | motion_letters(motion, nc.st.plane.is_some());
-        // An arc's R wins over I and K (§4.1 rule 1, G32.2/G32.3 too).
-        let by_radius = !seen.one_shot
-            && (motion.is_arc() || matches!(motion, Motion::ArcThreadCw | Motion::ArcThreadCcw));
-        if by_radius && seen.written(b'R' - b'A') {
-            allowed &= !const { letters(b"IJK") };
-        }
-        if let Some(o) = seen.one_shot_code {
-            allowed = one_shot_letters(o, seen.written);
-        }
+        let owner = Owner::of(nc, seen);
+        let mut allowed = owner.letters(nc, seen);
         if seen.m98 {
             allowed |= const { letters(b"PL") };
         }
@@ -517,29 +562,26 @@ impl Warner {
         if seen.written & LETTERS & !allowed == 0
             || seen.stroke_on
             || seen.other_function
-            || nc.st.modal.drill != gcode::Drill::Off
             || nc.st.data.mode != nc::exec::data_setting::Mode::Off
         {
             return;
         }
-        let code = match seen.one_shot_code {
-            Some(o) => match cycle_form(o, seen.written) {
-                Some((_, form)) => format!("{}'s {form}", o.name()),
-                None => o.name(),
-            },
-            None => gcode::name(motion.code()),
-        };
+        let code = owner.name(seen);
         for w in ws {
             let a = addr_code(w.addr);
             if LETTERS & !allowed & bit(a) == 0 {
                 continue;
             }
-            let why = match (motion, w.addr) {
-                (Motion::Line, Addr::Letter('R')) => "does not use it: a rounding is D (or ,R)",
-                (Motion::Line, Addr::Letter('I' | 'K')) => {
+            let why = match (owner, w.addr) {
+                (Owner::Motion(Motion::Line), Addr::Letter('R')) => {
+                    "does not use it: a rounding is D (or ,R)"
+                }
+                (Owner::Motion(Motion::Line), Addr::Letter('I' | 'K')) => {
                     "does not use it: a chamfer is L (or ,C)"
                 }
-                (_, Addr::Letter('I' | 'J' | 'K')) if by_radius => "takes its radius from R",
+                (Owner::Motion(_), Addr::Letter('I' | 'J' | 'K')) if by_radius(owner, seen) => {
+                    "takes its radius from R"
+                }
                 _ => "does not use it",
             };
             let msg = format!("{} is ignored: {code} {why}", w.addr);

@@ -498,6 +498,26 @@ fn w104_a_word_a_form_ignores() {
 }
 
 #[test]
+fn w104_a_letter_the_drilling_cycle_in_force_does_not_use() {
+    // dialect.md §4.8: the cycle in force owns the block. A mill's L
+    // (repeats; here K) on G83, and Q, R on a rigid tap (G84 takes P, F or
+    // I, K, M); in a later hole of the cycle too. Its own words: none.
+    let src = "G99 M03 S800\nG00 X0 Z3\nG83 X0 Z-12 Q5000 R2 P100 J1 K2 F0.08 L2\n\
+               X10 Z-8 L3\nG80\nG00 X0 Z3\nM29 S500\nG84 X0 Z-10 F1.25 Q1000 R1 P100 K1\n\
+               G80\nM30\n";
+    let w = w104(src);
+    let found: Vec<(usize, &str)> = w.iter().map(|(l, m)| (*l, &m[..1])).collect();
+    assert_eq!(found, [(3, "L"), (4, "L"), (8, "Q"), (8, "R")], "{w:?}");
+    assert_eq!(w[0].1, "L is ignored: G83 does not use it");
+    assert_eq!(w[2].1, "Q is ignored: G84 does not use it");
+    // After G80 the motion owns the block again: an R on G01 is told as
+    // the motion's.
+    let w = w104("G00 X0 Z3\nG83 X0 Z-12 F0.08\nG80\nG01 X10 R1\nM30\n");
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].1.ends_with("a rounding is D (or ,R)"), "{}", w[0].1);
+}
+
+#[test]
 fn w112_a_corner_word_before_a_conic_of_a_profile() {
     // dialect.md §5.1: the next move must be G01–G03; a profile's conic is
     // not. Told once, though G71 and G70 both read the profile.
@@ -520,6 +540,10 @@ fn w104_a_letter_a_group_00_code_does_not_use() {
     let found: Vec<(usize, &str)> = w.iter().map(|(l, m)| (*l, &m[..1])).collect();
     assert_eq!(found, [(1, "Z"), (3, "R"), (4, "R")], "{w:?}");
     assert_eq!(w[0].1, "Z is ignored: G04 does not use it");
+    // With G01 in force a G28's R is the G28's, not a G01 corner's.
+    let w = w104("G00 X40 Z5\nG01 X30 F100\nG28 U0 W0 R5\nM30\n");
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].1, "R is ignored: G28 does not use it");
     let profile = "N10 G00 X20\nN20 G01 Z-5 F100\nM30\n";
     let w = w104(&format!("G00 X40 Z5\nG70 P10 Q20 X3\n{profile}"));
     assert_eq!(w.iter().map(|w| w.0).collect::<Vec<_>>(), [2], "{w:?}");
