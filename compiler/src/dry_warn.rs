@@ -156,6 +156,16 @@ impl Seen {
             matches!(w.addr, Addr::Letter('G' | 'M')) && matches!(value_of(w), WordValue::Expr(_))
         };
         seen.other_function |= ws.len() != lits.len() && ws.iter().any(computed);
+        // A call's M98 (M99) goes with its P and L, so it is not among
+        // the literal words of a block that has others: it is written.
+        if ws.len() != lits.len() {
+            for w in ws.iter().filter(|w| w.addr == Addr::Letter('M')) {
+                if let WordValue::Literal(v, _) = value_of(w) {
+                    seen.m98 |= round_half_away(v) == 98.0;
+                    seen.m99 |= round_half_away(v) == 99.0;
+                }
+            }
+        }
         // The literal words are the written ones, or some of them (a call
         // takes its P and L): as many means the same words.
         seen.written = if ws.len() == lits.len() {

@@ -446,6 +446,11 @@ fn w104_a_letter_the_motion_does_not_use() {
                 G90 X36 Z-40 R-1 F100\nG22 X100 Z100 I-100 K-100\nG23\nG04 P100\nG50 X20 Z2\n\
                 M98 P1000 L2\nM30\nO1000\nG00 X30\nM99 P0\n";
     assert_eq!(w104(used), []);
+    // M98's P and L count beside another word of its block: only that
+    // word is told (they were too, as G00's).
+    let w = w104("G00 X20 Z2\nM98 P1000 L2 R5\nM30\nO1000\nG00 X30\nM99\n");
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].1, "R is ignored: G00 does not use it");
 }
 
 #[test]

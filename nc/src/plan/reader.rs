@@ -174,10 +174,17 @@ impl Reader<'_> {
             return Ok(None);
         }
         if code == Motion::Rapid {
-            return fail(
+            let e = NcError::new(
                 Alarm::BadCornerLength,
                 "a chamfer or corner rounding cannot be given on G00",
             );
+            // A mill's habit: `G41 D1`, `T0101 D1` (an offset number).
+            return Err(match p.word(b'D') {
+                Some(_) => e.with_help(
+                    "D is a corner rounding here, not an offset number: the T word selects the tool's offset, and G41/G42 take the nose radius from it",
+                ),
+                None => e,
+            });
         }
         if chamfer.is_some() && round.is_some() {
             return fail(

@@ -318,6 +318,15 @@ fn corner_word_errors() {
     assert_eq!(code_of(&["G01 X20 L1 ,R1 F0.1"]), 2040);
     assert_eq!(code_of(&["G01 X20 L0 F0.1"]), 2040);
     assert_eq!(code_of(&["G02 X20 Z-10 R10 D-1 F0.1"]), 2040);
+    // A mill's offset number (`G41 D1`) on G00 is told what D is here.
+    let help = |block| {
+        run_on(Machine::reference(), &[block])
+            .err()
+            .and_then(|e| e.help)
+    };
+    let told = help("G41 D1").unwrap_or_default();
+    assert!(told.starts_with("D is a corner rounding here"), "{told}");
+    assert_eq!(help("G00 X20 L1"), None);
     // The face is 10 mm (radius) long: L11 does not fit on it.
     assert_eq!(code_of(&["G01 X20 L11 F0.1", "Z-20"]), 4007);
     // E2 is 5 mm long: D10 needs 10 mm of it at a 90° corner.
