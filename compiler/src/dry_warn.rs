@@ -589,6 +589,10 @@ impl Warner {
                 (Owner::Motion(Motion::Line), Addr::Letter('I' | 'K')) => {
                     "does not use it: a chamfer is L (or ,C)"
                 }
+                (
+                    Owner::Motion(Motion::TurningCycle | Motion::FacingCycle),
+                    Addr::Letter('I' | 'K'),
+                ) => "does not use it: a taper is R (the Fanuc A system's word)",
                 (Owner::Motion(_), Addr::Letter('I' | 'J' | 'K')) if by_radius(owner, seen) => {
                     "takes its radius from R"
                 }

@@ -428,6 +428,16 @@ fn w104_a_letter_the_motion_does_not_use() {
         "I is ignored: G01 does not use it: a chamfer is L (or ,C)"
     );
     assert_eq!(w[4].1, "A is ignored: G7.2 does not use it");
+    // An older system's taper I on G90 (G94: K): here R.
+    let w = w104("G00 X40 Z2\nG90 X30 Z-20 I-1 F100\nG94 X20 Z-5 K-1\nM30\n");
+    let told: Vec<&str> = w.iter().map(|(_, m)| m.as_str()).collect();
+    assert_eq!(
+        told,
+        [
+            "I is ignored: G90 does not use it: a taper is R (the Fanuc A system's word)",
+            "K is ignored: G94 does not use it: a taper is R (the Fanuc A system's word)"
+        ]
+    );
     // The modal motion decides: X30 I1 after a G02 is an arc's centre.
     assert_eq!(
         w104("G00 X20 Z2\nG02 X30 Z-3 I5 K0 F100\nX40 Z-8 I5 K0\nM30\n"),
