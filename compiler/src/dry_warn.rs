@@ -105,7 +105,7 @@ struct Seen {
     stroke_on: bool,
     /// G76 is among the literal words.
     g76: bool,
-    /// M98 (M99) is among the literal words.
+    /// M98 (M99) is in the block, as a literal.
     m98: bool,
     m99: bool,
     /// The letters may belong to something other than the motion: G66,
@@ -278,8 +278,8 @@ fn one_shot_letters(o: OneShot, written: u32) -> u32 {
 /// beside the base ones, by the block's form, and the form's name for
 /// messages. The form is told by the block's letters `written`, as the
 /// kernel tells it (cycles.md §0, "Which block is which"; dialect.md §4.8,
-/// §4.12): a G71–G73 block with P or Q is the cycle block (one with P
-/// alone is an error of its own), a G74–G78 block with an axis word the
+/// §4.12): a G71–G73 block with P or Q is the cycle block (one without
+/// the other is an error of its own), a G74–G78 block with an axis word the
 /// second block, G76's with K or D the one-block form (its P, ignored, is
 /// `ignored_forms`' to tell).
 fn cycle_form(o: OneShot, written: u32) -> Option<(u32, &'static str)> {
