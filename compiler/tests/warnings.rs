@@ -572,7 +572,7 @@ fn w104_a_letter_a_group_00_code_does_not_use() {
 
 #[test]
 fn w104_a_letter_the_form_of_a_cycle_block_does_not_use() {
-    // cycles.md §0: a G71–G73 block with P and Q is the cycle block, a
+    // cycles.md §0: a G71–G73 block with P or Q is the cycle block, a
     // G74–G78 block with an axis word the second; each form has its own
     // words (dialect.md §4.8, §4.12).
     let profile = "N10 G00 X20\nN20 G01 Z-5 F100\n";
