@@ -95,16 +95,11 @@ struct Seen {
     lits: u32,
     /// Bit `a`: address `a` among the block's words as written.
     written: u32,
-    /// A group-00 code owns the block.
-    one_shot: bool,
-    /// The last group-00 code of the block.
+    /// The group-00 code that owns the block (one at most: two are
+    /// E2002).
     one_shot_code: Option<OneShot>,
-    /// G04, G50, G22 are in the block.
-    dwell: bool,
-    set_coordinates: bool,
+    /// G22 is in the block.
     stroke_on: bool,
-    /// G76 is among the literal words.
-    g76: bool,
     /// M98 (M99) is in the block, as a literal.
     m98: bool,
     m99: bool,
@@ -119,12 +114,8 @@ impl Seen {
         let mut seen = Seen {
             lits: 0,
             written: 0,
-            one_shot: false,
             one_shot_code: None,
-            dwell: false,
-            set_coordinates: false,
             stroke_on: false,
-            g76: false,
             m98: false,
             m99: false,
             other_function: false,
@@ -134,13 +125,7 @@ impl Seen {
             if w.addr == b'G' - b'A' {
                 // The kernel's code (tenths: G6.2 is 62), typed.
                 match gcode::G::from_code(crate::words::round_g(w.value)) {
-                    Some(gcode::G::OneShot(o)) => {
-                        seen.one_shot = true;
-                        seen.one_shot_code = Some(o);
-                        seen.dwell |= o == OneShot::Dwell;
-                        seen.set_coordinates |= o == OneShot::SetCoordinates;
-                        seen.g76 |= o == OneShot::MultiThread;
-                    }
+                    Some(gcode::G::OneShot(o)) => seen.one_shot_code = Some(o),
                     Some(gcode::G::Stroke(Stroke::On)) => seen.stroke_on = true,
                     Some(gcode::G::ModalCall(gcode::ModalCall::On)) | None => {
                         seen.other_function = true
@@ -174,6 +159,16 @@ impl Seen {
             ws.iter().fold(0, |m, w| m | bit(addr_code(w.addr)))
         };
         seen
+    }
+
+    /// A group-00 code owns the block.
+    fn one_shot(&self) -> bool {
+        self.one_shot_code.is_some()
+    }
+
+    /// `o` owns the block.
+    fn is(&self, o: OneShot) -> bool {
+        self.one_shot_code == Some(o)
     }
 
     fn has(&self, letter: u8) -> bool {
@@ -523,7 +518,7 @@ impl Warner {
         let axes = |mask: u32| seen.written & mask != 0;
         const AXES: u32 = letters(b"XZUW");
         let motion = nc.st.modal.motion;
-        let straight = !seen.one_shot && motion.is_straight();
+        let straight = !seen.one_shot() && motion.is_straight();
         let q = axes(const { letters(b"Q") });
         let x_and_z = axes(const { letters(b"X") }) && axes(const { letters(b"Z") });
         let first = std::mem::replace(&mut self.angle_first, false);
@@ -534,13 +529,13 @@ impl Warner {
         }
         let (letter, why) = if straight && q && x_and_z && !first {
             ('Q', "X, Z and Q end angle programming, but no Q_ block began it: the block is an ordinary line")
-        } else if seen.g76 && axes(AXES) && axes(const { letters(b"KD") }) {
+        } else if seen.is(OneShot::MultiThread) && axes(AXES) && axes(const { letters(b"KD") }) {
             (
                 'P',
                 "the one-block G76 takes its cutting method from the modal G76 state",
             )
         } else if matches!(motion, Motion::ThreadCycle | Motion::RigidThreadCycle)
-            && !seen.one_shot
+            && !seen.one_shot()
             && !nc.machine.threads.repair_enabled
         {
             ('P', "thread repair is off on this machine (№174.4)")
@@ -611,7 +606,7 @@ impl Warner {
             return;
         };
         let motion = nc.st.modal.motion;
-        if seen.one_shot || !(motion.is_arc() || motion.is_conic()) {
+        if seen.one_shot() || !(motion.is_arc() || motion.is_conic()) {
             return;
         }
         let (letters, what) = match plane.kind {
@@ -637,7 +632,7 @@ impl Warner {
         if !nc.st.inch() || nc.machine.machine.decimal_point != DecimalPoint::Calculator {
             return;
         }
-        let dwell = seen.dwell;
+        let dwell = seen.is(OneShot::Dwell);
         let motion = nc.st.modal.motion;
         let thread = motion.is_thread() && motion != Motion::RigidThreadCycle;
         for w in ws {
@@ -739,7 +734,7 @@ impl Warner {
     /// W108: an arc with R, an ellipse or a parabola whose end is its
     /// start: no move, nothing printed (§4.1).
     fn no_motion(&mut self, unit: usize, nc: &Nc, seen: &Seen, span: Span, before: &Before) {
-        if seen.one_shot || nc.st.modal.drill().is_some() || seen.stroke_on {
+        if seen.one_shot() || nc.st.modal.drill().is_some() || seen.stroke_on {
             return;
         }
         let what = match nc.st.modal.motion {
@@ -790,7 +785,7 @@ impl Warner {
         }
         let motion = nc.st.modal.motion;
         if !matches!(motion, Motion::Line | Motion::ArcCw | Motion::ArcCcw)
-            || seen.one_shot
+            || seen.one_shot()
             || nc.st.modal.drill().is_some()
         {
             return;
@@ -821,7 +816,7 @@ impl Warner {
         let m = &nc.machine.spindle;
         if m.r#type != SpindleType::Analog
             || nc.st.css_mode()
-            || seen.set_coordinates
+            || seen.is(OneShot::SetCoordinates)
             || !seen.written(b'S' - b'A')
         {
             return;
