@@ -190,6 +190,27 @@ fn max_blocks_and_repeat() {
     );
 }
 
+/// E4009 stands on the cycle block (dialect.md §8.3) at run time too, and
+/// its message names the profile block that turns back. #500 is vacant, so
+/// #1 = 35 is known only when the program runs: N40 (line 10) runs back
+/// along X from X40 to X35 under the cycle of line 6.
+#[test]
+fn a_profile_that_turns_back_alarms_at_the_cycle_block() {
+    let d = dir("turns_back");
+    let src = "O0100\nG99 M03 S500\nG00 X50 Z2\n#1=#500+35\nG71 U2 R1\n\
+               G71 P10 Q20 F0.2\nN10 G00 X30\nG01 Z-10\nX40 Z-15\nX#1 Z-20\n\
+               Z-30\nN20 X50\nM30\n";
+    std::fs::write(d.join("t.nc"), src).unwrap();
+    assert_eq!(gbcc(&["t.nc"], &d).status.code(), Some(0));
+    let run = gbvm(&["run", "t.gbc"], &d);
+    assert_eq!(run.status.code(), Some(2));
+    assert_eq!(
+        text(&run.stderr).lines().next().unwrap_or(""),
+        "t.nc:6:1: alarm[E4009]: the G71 profile is not monotonic: \
+         a profile block runs back along X from X40 to X35 (line 10)"
+    );
+}
+
 /// A canned cycle counts as the moves it generates (dialect.md §7.12, "all
 /// passes counted"). G90 from X50 Z2 to X40 Z-20 makes four: rapid in, cut,
 /// out, rapid back (cycles.md). Blocks: G00 is 1, G90 is 2, its three

@@ -28,7 +28,7 @@ pub fn build_call(g: &mut Builder<'_>, call: Call<'_>, span: Span, comment: Opti
     match call {
         Call::Sub { p, l, span } => sub_call(g, p, l, span),
         Call::SubM { number, span } => {
-            let Some(prog) = known(g, number, span, "M") else {
+            let Some(prog) = known(g, number, span, &format!("M{number}")) else {
                 return;
             };
             let count = konst(g, 1.0);
@@ -270,6 +270,16 @@ fn operand(g: &mut Builder<'_>, v: Option<WordValue<'_>>) -> ir::Handle<ir::Expr
     }
 }
 
+/// `e + 0`: the value of `e`, 0 where it is vacant.
+fn plus_zero(g: &mut Builder<'_>, e: ir::Handle<ir::Expr>) -> ir::Handle<ir::Expr> {
+    let zero = konst(g, 0.0);
+    g.add_expr(ir::Expr::Binary {
+        op: nc::value::Bin::Add,
+        a: e,
+        b: zero,
+    })
+}
+
 /// The words H, P, Q and R of a G65 H block.
 type MacroAWords<'a> = (
     WordValue<'a>,
@@ -342,7 +352,10 @@ fn macro_a_jump(
     match nc::value::Rel::from_code((h - 80).saturating_sub(1) as u8).filter(|_| h != 80) {
         None => g.terminate(Terminator::Goto { seq }),
         Some(op) => {
+            // A vacant operand counts as 0 (dialect.md §7.5), where EQ and
+            // NE would tell it from 0: `j + 0`, as H01 stores.
             let (j, k) = (operand(g, q), operand(g, r));
+            let (j, k) = (plus_zero(g, j), plus_zero(g, k));
             g.goto_if(seq, op, j, k);
         }
     }

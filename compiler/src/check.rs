@@ -622,6 +622,10 @@ impl Runner {
             Err(e) if compile_time(e.code) => {
                 let span = crate::profile::error_span(unit, e.at, block.span);
                 let mut d = error_at(&e, span);
+                if let Some(culprit) = e.culprit {
+                    let there = crate::profile::error_span(unit, Some(culprit), span);
+                    d = d.with_related(there, "this block");
+                }
                 if span != block.span {
                     // The error is about a profile block: say which cycle
                     // ran it.

@@ -51,7 +51,7 @@ pub struct Profiles {
     /// The sequence numbers of the program being lowered, where it names
     /// a cycle (`program_start`).
     numbers: Numbers,
-    /// Corner words before a conic already told (W112), as (unit, line):
+    /// Ignored corner words of profiles already told (W112), as (unit, line):
     /// a profile that G71 and G70 both read is told once.
     corners_told: HashSet<(usize, usize)>,
 }
@@ -336,7 +336,7 @@ pub fn before_exec(gen: &mut Gen<'_>, block: &Block, split: &words::Split<'_>) -
     if let Some(&ns) = lines.first() {
         ignored_j(gen, unit, &cw, &split.nc, ns);
     }
-    corners_before_conics(gen, unit, &lines);
+    ignored_corners(gen, unit, &lines);
     build_profile(gen, unit, &lines);
     gen.set_loc(block.span);
     (cw.code != OneShot::Finish).then(|| After {
@@ -403,10 +403,11 @@ fn build_words(gen: &mut Gen<'_>, ws: &[NcWord<'_>]) {
     }
 }
 
-/// W112 for a corner word whose next profile block that moves is a conic
-/// (a literal G6.2/G6.3/G7.2/G7.3): a conic is not G01–G03, so the word
-/// is ignored (dialect.md §5.1), as outside a profile.
-fn corners_before_conics(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
+/// W112 for a corner word of a profile that is ignored (dialect.md §5.1):
+/// its next profile block that moves is a conic (a literal G6.2/G6.3/
+/// G7.2/G7.3, not G01–G03, as outside a profile), or there is none (the
+/// word stands on the last block that moves, the nf block as a rule).
+fn ignored_corners(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
     let Some((unit_index, _)) = gen.profiles.current else {
         return;
     };
@@ -436,6 +437,12 @@ fn corners_before_conics(gen: &mut Gen<'_>, unit: &Unit, lines: &[usize]) {
             }
         }
         waiting = split.nc.iter().find(is_corner).map(|w| (l, w.span));
+    }
+    if let Some((at, span)) = waiting {
+        if gen.profiles.corners_told.insert((unit_index, at)) {
+            let msg = "this chamfer or rounding is ignored: it stands on the last move of the profile (its nf block), which has no next element";
+            gen.warn("W112", span, msg.to_string());
+        }
     }
 }
 

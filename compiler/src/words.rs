@@ -203,6 +203,7 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
         return Ok(Split { nc, call: None });
     };
     let m = literal_code(mw).map(round_half_away).unwrap_or(0.0) as u32;
+    check_m_call(words, mw, m)?;
     let find = |c: char| words.iter().find(|w| is(w, c)).map(value_of);
     let (call, consumed): (Call, &[char]) = match m {
         98 => (
@@ -232,6 +233,103 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
         nc,
         call: Some(call),
     })
+}
+
+/// The checks the kernel makes of a block's M codes and integer words
+/// (E1012, E1011, E1009, E1010), for the words of a call or return that
+/// it never sees: the calling M `mw` (code `m`), its P and L.
+fn check_m_call(words: &[Word], mw: &Word, m: u32) -> Result<(), Diagnostic> {
+    let ms = || words.iter().filter(|w| is(w, 'M'));
+    if let Some(fourth) = ms().nth(3) {
+        return Err(Diagnostic::error(
+            "E1012",
+            fourth.span,
+            "more than three M codes in one block",
+        ));
+    }
+    for w in ms().filter(|w| !std::ptr::eq(*w, mw)) {
+        let Some(other) = literal_code(w).map(round_half_away) else {
+            continue;
+        };
+        let clash = if calls_m(other) {
+            "at most one of M98, M99 and M9000…M9999 may stand in a block"
+        } else if matches!(other as u32, 0 | 1 | 2 | 30) {
+            "M00, M01, M02 and M30 cannot share a block with M98, M99 or M9000…M9999"
+        } else {
+            continue;
+        };
+        let other = other as u32;
+        return Err(Diagnostic::error(
+            "E1012",
+            w.span,
+            format!("M{m:02} and M{other:02}: {clash}"),
+        ));
+    }
+    let integers: &[(char, &str)] = match m {
+        98 => &[('P', "the program"), ('L', "a repeat count")],
+        99 => &[('P', "a sequence number")],
+        _ => &[],
+    };
+    for &(letter, what) in integers {
+        let mut found = words.iter().filter(|w| is(w, letter));
+        let Some(first) = found.next() else {
+            continue;
+        };
+        if let Some(again) = found.next() {
+            return Err(twice(again));
+        }
+        integer_word(first, what)?;
+    }
+    if m == 98 {
+        if let Some(l) = words.iter().find(|w| is(w, 'L')) {
+            repeat_count(l)?;
+        }
+    }
+    Ok(())
+}
+
+/// E1011 for a word whose address stood earlier in the block.
+fn twice(w: &Word) -> Diagnostic {
+    Diagnostic::error(
+        "E1011",
+        w.span,
+        format!("address {} written twice in the block", w.addr),
+    )
+}
+
+/// E1009: a decimal point on a word that takes an integer (§1.9), `what`
+/// it names.
+fn integer_word(w: &Word, what: &str) -> Result<(), Diagnostic> {
+    let Value::Number(n) = &w.value else {
+        return Ok(());
+    };
+    if !n.has_point {
+        return Ok(());
+    }
+    let d = Diagnostic::error(
+        "E1009",
+        w.span,
+        format!(
+            "{} is {what} here, an integer: a decimal point is not allowed",
+            w.addr
+        ),
+    );
+    Err(match n.value.fract() == 0.0 {
+        true => d.with_help(format!("write {}{}", w.addr, n.value)),
+        false => d,
+    })
+}
+
+/// E1010 for a literal repeat count L outside 1…9999 (§7.9, §7.11).
+fn repeat_count(l: &Word) -> Result<(), Diagnostic> {
+    match literal_code(l).map(round_half_away) {
+        Some(n) if !(1.0..=9999.0).contains(&n) => Err(Diagnostic::error(
+            "E1010",
+            l.span,
+            format!("L{n}: a repeat count is 1…9999"),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// A G code that calls a macro through parameters №086–№095
@@ -337,6 +435,16 @@ fn macro_a_call<'a>(words: &'a [Word], h: &'a Word, span: Span) -> Result<Split<
             ),
         ));
     }
+    for (i, w) in words.iter().enumerate().skip(1) {
+        if words[..i].iter().any(|earlier| earlier.addr == w.addr) {
+            return Err(twice(w));
+        }
+    }
+    integer_word(h, "the operation number")?;
+    let jump = literal_code(h).is_some_and(|h| (80.0..=86.0).contains(&round_half_away(h)));
+    if let (true, Some(p)) = (jump, find('P')) {
+        integer_word(p, "the sequence number to jump to")?;
+    }
     Ok(Split {
         nc: NcWords::new(),
         call: Some(Call::MacroA {
@@ -371,8 +479,20 @@ impl<'a> MacroArgs<'a> {
             ));
         };
         match c {
-            'P' => self.p = Some(value_of(w)),
-            'L' => self.l = Some(value_of(w)),
+            'P' | 'L' => {
+                let (slot, what) = match c {
+                    'P' => (&mut self.p, "the program"),
+                    _ => (&mut self.l, "a repeat count"),
+                };
+                if slot.is_some() {
+                    return Err(twice(w));
+                }
+                integer_word(w, what)?;
+                if c == 'L' {
+                    repeat_count(w)?;
+                }
+                *slot = Some(value_of(w));
+            }
             'G' | 'N' | 'O' => {
                 return Err(Diagnostic::error(
                     "E2061",

@@ -143,3 +143,88 @@ fn h_after_p_is_argument_11_not_the_h_form() {
     assert_eq!(status, Status::Done);
     assert_eq!(canon, ["RAPID X=5 Z=0", "RAPID X=5 Z=1", "STOP KIND=M30"]);
 }
+
+/// The code and line of the first error of a program that must not
+/// compile.
+fn first_error(src: &str) -> (&'static str, usize) {
+    let c = compile("m.nc", src.as_bytes(), &Options::default());
+    assert!(c.has_errors(), "expected an error:\n{src}");
+    let (unit, d) = c
+        .diags
+        .iter()
+        .find(|(_, d)| d.is_error())
+        .expect("an error");
+    let line = src[..d.span.start as usize].matches('\n').count() + 1;
+    assert_eq!(*unit, 0);
+    (d.code, line)
+}
+
+/// The words of a call the kernel never sees are checked as it checks a
+/// block's (dialect.md §1.7, §1.9, §6.1, §7.9): each program has the bad
+/// block on line 2 and O1000/O9001/O9002 to call.
+#[test]
+fn call_blocks_are_checked_like_any_block() {
+    let progs = "N10 M30\nO1000\nM99\nO9001\nM99\nO9002\nM99\n";
+    let cases = [
+        // Two calling M codes, or one with a program end: E1012.
+        ("M98 P1000 M9001", "E1012"),
+        ("M9001 M9002", "E1012"),
+        ("M98 P1000 M99", "E1012"),
+        ("M98 P1000 M30", "E1012"),
+        ("M99 M30", "E1012"),
+        ("M03 M08 M10 M98 P1000", "E1012"),
+        // An address twice: E1011 (a G65's P or L, the H form's words).
+        ("M98 P1000 P9001", "E1011"),
+        ("G65 P1000 A1 L2 L3", "E1011"),
+        ("G65 P1000 P9001", "E1011"),
+        ("G65 H02 P#1 Q5 R3 H03", "E1011"),
+        ("G65 H01 P#1 P#2 Q5", "E1011"),
+        // A point on a program number, a count or a sequence number: E1009.
+        ("G65 P1000 L2.5", "E1009"),
+        ("M98 P1000 L2.", "E1009"),
+        ("M98 P1000.", "E1009"),
+        ("G66 P1000 L1.", "E1009"),
+        ("M99 P10.", "E1009"),
+        ("GOTO 10.", "E1009"),
+        ("G65 H80 P10.", "E1009"),
+        // A written count outside 1…9999: E1010; GOTO 0: E2010.
+        ("G65 P1000 L0", "E1010"),
+        ("M98 P1000 L0", "E1010"),
+        ("G65 P1000 L10000", "E1010"),
+        ("GOTO 0", "E2010"),
+    ];
+    for (block, code) in cases {
+        let src = format!("G00 X1\n{block}\n{progs}");
+        assert_eq!(first_error(&src), (code, 2), "{block}");
+    }
+    // The same words, well formed, compile.
+    for block in [
+        "M98 P1000 L2",
+        "G65 P1000 L9999",
+        "M98 P1000 M08",
+        "G65 H80 P10",
+    ] {
+        let src = format!("G00 X1\n{block}\n{progs}");
+        let c = compile("m.nc", src.as_bytes(), &Options::default());
+        assert!(!c.has_errors(), "{block}: {}", c.render());
+    }
+}
+
+/// G65 H81/H82 count a vacant operand as 0 (dialect.md §7.5): #1 is
+/// vacant, so H81 (Q = R) jumps over X1 and H82 (Q ≠ R) does not jump.
+#[test]
+fn h81_and_h82_count_a_vacant_operand_as_zero() {
+    let src =
+        "G65 H81 P10 Q#1 R0\nG00 X1\nN10 G00 X2\nG65 H82 P20 Q#1 R0\nG00 X3\nN20 G00 X4\nM30\n";
+    let (canon, status) = run(src);
+    assert_eq!(status, Status::Done);
+    assert_eq!(
+        canon,
+        [
+            "RAPID X=2 Z=0",
+            "RAPID X=3 Z=0",
+            "RAPID X=4 Z=0",
+            "STOP KIND=M30"
+        ]
+    );
+}

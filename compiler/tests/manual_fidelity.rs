@@ -160,16 +160,17 @@ fn e4009_points_at_the_profile_block_that_turns_back() {
     // The bore of a real program (corpus icnc…Cesar-Rottava…O001, N420–N490):
     // N490 G03 X10 Z-30 R2 runs from r7 to r5 about r6 z(−30 + √3): the
     // arc bulges to z = −30 + √3 − 2 = −30.2679, 0.268 mm past its end Z-30,
-    // against the cut (−Z). The error stands on N490, names the cycle's
-    // line and says how to get out.
+    // against the cut (−Z). The error stands on the cycle block (line 3,
+    // dialect.md §8.3), points to N490 and says how to get out.
     let src = "G00 X9 Z2 G99 F0.1\nG71 U0.5 R0.3\nG71 P440 Q490 U0 W0 F0.1\nN440 G00 X30\nN450 G01 Z-10\nN460 G03 X26 Z-12 R2\nN470 G01 X14 Z-20\nN480 Z-30\nN490 G03 X10 Z-30 R2\nM30\n";
     let out = rendered(src);
     assert!(
-        out.contains("m.nc:9:1: error[E4009]: the G71 profile is not monotonic: this block reaches Z-30.2679, 0.268 mm past its end point Z-30"),
+        out.contains("m.nc:3:1: error[E4009]: the G71 profile is not monotonic: a profile block reaches Z-30.2679, 0.268 mm past its end point Z-30"),
         "{out}"
     );
+    // The snippet shows N490 (line 9) labelled under the cycle block.
     assert!(
-        out.contains("= in the profile of the cycle at line 3"),
+        out.contains("9 │ N490 G03 X10 Z-30 R2\n  │ -------------------- this block"),
         "{out}"
     );
     assert!(out.contains("help: G71 cuts along Z"), "{out}");
@@ -182,8 +183,9 @@ fn e4009_calls_a_pocket_of_type_i_by_its_name() {
     let src = "G00 X40 Z2\nG71 U3 R1\nG71 P1 Q7 K1 F0.2\nN1 G00 X20\nG01 Z-10\nX30\nZ-20\nX24\nZ-30\nN7 X40\nM30\n";
     let out = rendered(src);
     assert!(
-        out.contains("m.nc:8:1: error[E4009]: the G71 profile is not monotonic: this block runs back along X from X30 to X24"),
+        out.contains("m.nc:3:1: error[E4009]: the G71 profile is not monotonic: a profile block runs back along X from X30 to X24"),
         "{out}"
     );
+    assert!(out.contains("8 │ X24\n  │ --- this block"), "{out}");
     assert!(out.contains("type II"), "{out}");
 }

@@ -165,6 +165,14 @@ fn w112_a_corner_word_ignored() {
         warnings("G98 F100;G01 Z-10 ,C1\nG01 Z-20\nM30\n"),
         [("W112", 1)]
     );
+    // §5.1: a corner word on a profile's nf block (line 7) is ignored, for
+    // G71 and G70 alike (told once); one before the nf block is made.
+    let profile = |nf: &str| {
+        format!("G99 S500 M03\nG00 X50 Z2\nG71 U5 R0.5\nG71 P10 Q20 F0.2\nN10 G00 X30\nG01 Z-20 ,C1\nN20 X50{nf}\nG70 P10 Q20\nM30\n")
+    };
+    assert_eq!(warnings(&profile(" ,C1")), [("W112", 7)]);
+    assert_eq!(warnings(&profile(" L1")), [("W112", 7)]);
+    assert_eq!(warnings(&profile("")), []);
 }
 
 #[test]

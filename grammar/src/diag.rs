@@ -29,6 +29,9 @@ pub struct Diagnostic {
     pub notes: Vec<String>,
     /// A likely fix.
     pub help: Option<String>,
+    /// A second place the finding is about, and its label: the profile
+    /// block a cycle block's error points to.
+    pub related: Option<(Span, String)>,
 }
 
 impl Diagnostic {
@@ -41,6 +44,7 @@ impl Diagnostic {
             label: String::new(),
             notes: Vec::new(),
             help: None,
+            related: None,
         }
     }
 
@@ -58,6 +62,11 @@ impl Diagnostic {
 
     pub fn with_note(mut self, note: impl Into<String>) -> Diagnostic {
         self.notes.push(note.into());
+        self
+    }
+
+    pub fn with_related(mut self, span: Span, label: impl Into<String>) -> Diagnostic {
+        self.related = Some((span, label.into()));
         self
     }
 
@@ -199,8 +208,14 @@ impl SourceFile {
 
     fn snippet(&self, d: &Diagnostic, color: bool) -> String {
         let len = self.text().len();
-        let start = (d.span.start as usize).min(len);
-        let end = (d.span.end as usize).clamp(start, len);
+        let range = |s: Span| {
+            let start = (s.start as usize).min(len);
+            start..(s.end as usize).clamp(start, len)
+        };
+        let mut labels = vec![cs::Label::primary((), range(d.span)).with_message(d.label.clone())];
+        if let Some((span, label)) = &d.related {
+            labels.push(cs::Label::secondary((), range(*span)).with_message(label.clone()));
+        }
         let mut notes = d.notes.clone();
         if let Some(help) = &d.help {
             notes.push(format!("help: {help}"));
@@ -211,9 +226,7 @@ impl SourceFile {
         }
         .with_code(d.code)
         .with_message(d.message.clone())
-        .with_labels(vec![
-            cs::Label::primary((), start..end).with_message(d.label.clone())
-        ])
+        .with_labels(labels)
         .with_notes(notes);
         let config = term::Config {
             display_style: term::DisplayStyle::Rich,

@@ -426,8 +426,15 @@ impl Vm {
             .map_or_else(String::new, |f| f.name.clone());
         let msg = if NcError::is_program_alarm(e.code as u32) {
             self.msg_text()
+        } else if let Some(tag) = e.culprit {
+            // (The alarm stands on the cycle block: the message says which
+            // profile block it is about.)
+            let line = self.module.lines.get(tag as usize).unwrap_or_default().line;
+            nc::event::ascii(&format!("{} (line {line})", e.message))
         } else {
-            e.message.clone()
+            // The canon is ASCII (canon.md): our own messages are written
+            // so; a program's text prints as it is (other bytes as `?`).
+            nc::event::ascii(&e.message)
         };
         sink.emit(Event::Alarm {
             code: e.code as u32,
@@ -630,6 +637,12 @@ impl Vm {
             Instr::GotoSeq { seq } => {
                 self.count_block()?;
                 let n = target_number(self.reg(seq))?;
+                if n == 0 {
+                    return fault(
+                        AlarmCode::ValueOutOfRange,
+                        "GOTO 0: sequence numbers to jump to are 1…99999",
+                    );
+                }
                 match self.module.pc_of_seq(self.prog as usize, n) {
                     Some(pc) => self.pc = pc,
                     None => {

@@ -72,13 +72,13 @@ fn child(level: &str, message: &str) -> Diag {
     }
 }
 
-/// The primary span of a diagnostic.
-fn span(r: &Reported<'_>) -> Span {
+/// A span of a diagnostic: its place (`primary`) or a related one, with
+/// its label.
+fn span(r: &Reported<'_>, at: grammar::Span, label: &str, primary: bool) -> Span {
     let f = r.file;
-    let d = r.diag;
     let len = f.bytes().len() as u32;
-    let start = d.span.start.min(len);
-    let end = d.span.end.clamp(start, len);
+    let start = at.start.min(len);
+    let end = at.end.clamp(start, len);
     let (line_start, column_start) = f.line_col(start);
     let (line_end, column_end) = f.line_col(end);
     let text = f.text();
@@ -104,9 +104,9 @@ fn span(r: &Reported<'_>) -> Span {
         line_end,
         column_start,
         column_end,
-        is_primary: true,
+        is_primary: primary,
         text: lines,
-        label: (!d.label.is_empty()).then(|| d.label.clone()),
+        label: (!label.is_empty()).then(|| label.to_string()),
         suggested_replacement: None,
         suggestion_applicability: None,
         expansion: None,
@@ -118,6 +118,12 @@ pub fn build(r: &Reported<'_>) -> Diag {
     let d = r.diag;
     let mut children: Vec<Diag> = d.notes.iter().map(|n| child("note", n)).collect();
     children.extend(d.help.iter().map(|h| child("help", h)));
+    let mut spans = vec![span(r, d.span, &d.label, true)];
+    spans.extend(
+        d.related
+            .iter()
+            .map(|(at, label)| span(r, *at, label, false)),
+    );
     Diag {
         message_type: "diagnostic".into(),
         message: r.message(),
@@ -126,7 +132,7 @@ pub fn build(r: &Reported<'_>) -> Diag {
             explanation: crate::explain::find(d.code).map(|e| crate::explain::render(&e)),
         }),
         level: level(r.severity).into(),
-        spans: vec![span(r)],
+        spans,
         children,
         rendered: Some(r.rendered(false) + "\n"),
     }

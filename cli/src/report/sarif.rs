@@ -33,6 +33,33 @@ fn uri(name: &str) -> String {
     out
 }
 
+/// A place in the diagnostic's file as a SARIF location, with its label.
+fn location(r: &Reported<'_>, at: grammar::Span, label: &str) -> Value {
+    let f = r.file;
+    let len = f.bytes().len() as u32;
+    let start = at.start.min(len);
+    let end = at.end.clamp(start, len);
+    let (start_line, start_column) = f.line_col(start);
+    let (end_line, end_column) = f.line_col(end);
+    let mut location = json!({
+        "physicalLocation": {
+            "artifactLocation": { "uri": uri(&f.name) },
+            "region": {
+                "startLine": start_line,
+                "startColumn": start_column,
+                "endLine": end_line,
+                "endColumn": end_column,
+                "byteOffset": start,
+                "byteLength": end - start,
+            }
+        }
+    });
+    if !label.is_empty() {
+        location["message"] = json!({ "text": label });
+    }
+    location
+}
+
 impl Log {
     pub fn add(&mut self, r: &Reported<'_>) {
         let d = r.diag;
@@ -43,12 +70,6 @@ impl Log {
                 self.rules.len() - 1
             }
         };
-        let f = r.file;
-        let len = f.bytes().len() as u32;
-        let start = d.span.start.min(len);
-        let end = d.span.end.clamp(start, len);
-        let (start_line, start_column) = f.line_col(start);
-        let (end_line, end_column) = f.line_col(end);
         // The text form's notes and help follow the message, as there.
         let mut text = r.message();
         for n in &d.notes {
@@ -57,23 +78,7 @@ impl Log {
         if let Some(h) = &d.help {
             text.push_str(&format!("\nhelp: {h}"));
         }
-        let mut location = json!({
-            "physicalLocation": {
-                "artifactLocation": { "uri": uri(&f.name) },
-                "region": {
-                    "startLine": start_line,
-                    "startColumn": start_column,
-                    "endLine": end_line,
-                    "endColumn": end_column,
-                    "byteOffset": start,
-                    "byteLength": end - start,
-                }
-            }
-        });
-        if !d.label.is_empty() {
-            location["message"] = json!({ "text": d.label });
-        }
-        self.results.push(json!({
+        let mut result = json!({
             "ruleId": d.code,
             "ruleIndex": index,
             "level": match r.severity {
@@ -81,8 +86,14 @@ impl Log {
                 grammar::Severity::Warning => "warning",
             },
             "message": { "text": text },
-            "locations": [location],
-        }));
+            "locations": [location(r, d.span, &d.label)],
+        });
+        if let Some((at, label)) = &d.related {
+            let mut related = location(r, *at, label);
+            related["id"] = json!(0);
+            result["relatedLocations"] = json!([related]);
+        }
+        self.results.push(result);
     }
 
     pub fn notify(&mut self, msg: &str) {

@@ -553,10 +553,16 @@ impl<'a> Builder<'a> {
     /// `GOTO n` (conditional when `cond` is the test).
     fn goto(&mut self, target: &Expr, cond: Option<Handle<ir::Expr>>, st: &mut ProgState) {
         let skip = cond.map(|c| self.branch(c));
+        if let Expr::Num(n) = target {
+            if n.has_point {
+                let msg = "a GOTO's sequence number is an integer: a decimal point is not allowed";
+                self.error("E1009", target.span(), msg);
+            }
+        }
         match crate::expr::fold(target) {
             Some(Ok(n)) => {
                 let n = nc::block::round_half_away(n);
-                if !(0.0..=99999.0).contains(&n) {
+                if !(1.0..=99999.0).contains(&n) {
                     self.error(
                         "E2010",
                         target.span(),

@@ -715,12 +715,15 @@ impl<'a> Rewrite<'a> {
         }
     }
 
-    /// A computed GOTO whose target is known: W116 when no block of the
-    /// program has that number (the VM's E6001).
+    /// A computed GOTO whose target is known: W116 when it is 0 (the VM's
+    /// E5010) or no block of the program has that number (E6001).
     fn check_goto(&mut self, v: f64, span: Span) {
         let n = nc::block::round_half_away(v);
         let valid = !value::is_vacant(v) && (0.0..=99_999_999.0).contains(&n);
-        if valid && !self.seqs.contains(&(n as u32)) {
+        if valid && n == 0.0 {
+            let msg = "GOTO 0: sequence numbers to jump to are 1…99999";
+            self.warn(span, &NcError::new(Alarm::ValueOutOfRange, msg));
+        } else if valid && !self.seqs.contains(&(n as u32)) {
             let msg = format!("GOTO {n}: there is no block N{n} in this program");
             self.warn(span, &NcError::new(Alarm::JumpTargetMissing, msg));
         }

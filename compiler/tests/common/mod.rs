@@ -148,7 +148,7 @@ pub fn random_program(rng: &mut Rng) -> String {
                     rng.pick(SETTERS)
                 );
             }
-            2 => src += &format!("M98 P1000 L{}\n", rng.pick(&["1", "2", "0", "[#1+1]"])),
+            2 => src += &format!("M98 P1000 L{}\n", rng.pick(&["1", "2", "3", "[#1+1]"])),
             3 => {
                 src += &format!(
                     "G66 P1001\n{}\nG67\n",

@@ -20,6 +20,10 @@ pub struct NcError {
     /// The way out, when the alarm knows one (the compiler prints it as
     /// the diagnostic's help).
     pub help: Option<String>,
+    /// A profile block the error points to while it stands on the cycle
+    /// block (its tag, as `at`): the block where a G71/G72 profile turns
+    /// back, E4009 being the cycle block's (dialect.md §8.3).
+    pub culprit: Option<u32>,
 }
 
 impl NcError {
@@ -38,6 +42,7 @@ impl NcError {
             message: message.into(),
             at: None,
             help: None,
+            culprit: None,
         }
     }
 
@@ -55,6 +60,12 @@ impl NcError {
     /// The same error, about profile block `tag`.
     pub fn at(mut self, tag: u32) -> NcError {
         self.at = Some(tag);
+        self
+    }
+
+    /// The same error, pointing to profile block `tag` (see `culprit`).
+    pub fn pointing_to(mut self, tag: u32) -> NcError {
+        self.culprit = Some(tag);
         self
     }
 

@@ -295,6 +295,33 @@ fn dir(d: Dir) -> &'static str {
     }
 }
 
+/// A message of the implementation's in ASCII, for the canon: the signs
+/// its wording uses spelled out (`…` as `...`, `−` as `-`, `Δd` as `dd`,
+/// `°` as ` deg`); any other character outside ASCII stays, to print as
+/// `?`.
+pub fn ascii(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '…' => out.push_str("..."),
+            '−' | '–' | '—' => out.push('-'),
+            'Δ' => out.push('d'),
+            '°' => out.push_str(" deg"),
+            '≤' => out.push_str("<="),
+            '≥' => out.push_str(">="),
+            '×' => out.push('x'),
+            '÷' => out.push('/'),
+            '√' => out.push_str("sqrt"),
+            '²' => out.push_str("^2"),
+            '№' => out.push_str("No."),
+            'µ' => out.push('u'),
+            '≠' => out.push_str("!="),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 /// A string field: `"` and every byte outside printable ASCII as `?`.
 fn quoted(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 2);

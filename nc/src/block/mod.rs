@@ -6,6 +6,7 @@
 pub mod value;
 
 use alloc::format;
+use alloc::string::String;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{self, Code, Drill, Motion, OneShot, Plane, G};
@@ -345,6 +346,22 @@ fn integer_only(p: &Parsed, letter: u8) -> bool {
     }
 }
 
+/// What to write for an integer-only word given with a point: the same
+/// whole number without it (a fraction names none). A dwell's P is in ms:
+/// a point there most often means seconds (`P1.5` for 1.5 s: P1500, or
+/// G04's X).
+fn integer_hint(p: &Parsed, letter: u8, value: f64) -> String {
+    let (letter, n) = (letter as char, crate::base::event::Num(value));
+    if letter == 'P' && p.one_shot() == Some(OneShot::Dwell) {
+        let ms = crate::base::event::Num(value * 1000.0);
+        return format!("the dwell's P is in ms: for {n} s write P{ms}, or X{n}");
+    }
+    match value.fract() == 0.0 {
+        true => format!("write {letter}{n}"),
+        false => format!("write a whole number of {letter}'s unit"),
+    }
+}
+
 /// F < 0 is the left-hand lead of G32.1, G92.1, G84 and G88. A block that
 /// names another function (group 00, 01 or 10) cannot use it; a block that
 /// names none runs the modal function, which the kernel checks
@@ -379,10 +396,9 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
                 return fail(
                     Alarm::DecimalPointNotAllowed,
                     format!(
-                        "{} takes an integer here; a decimal point is not allowed (write {}{})",
+                        "{} takes an integer here; a decimal point is not allowed ({})",
                         letter as char,
-                        letter as char,
-                        crate::base::event::Num(w.value)
+                        integer_hint(p, letter, w.value)
                     ),
                 );
             }

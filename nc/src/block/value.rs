@@ -172,7 +172,13 @@ pub fn func(f: Func, a: f64) -> Result<f64, NcError> {
             if !(-1.0..=1.0).contains(&x) {
                 return fail(
                     Alarm::ArcFunctionRange,
-                    format!("{f:?} of {x}: the argument must lie in −1…1"),
+                    format!(
+                        "{} of {x}: the argument must lie in −1…1",
+                        match f {
+                            Func::Asin => "ASIN",
+                            _ => "ACOS",
+                        }
+                    ),
                 );
             }
             let r = if f == Func::Asin {

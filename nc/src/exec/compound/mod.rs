@@ -168,7 +168,14 @@ fn stock_removal(
         Some(d) => (d, nc.machine.cycles.g71_retract_mm),
         None => (first.depth, first.retract),
     };
-    if dd <= 0.0 || dd.is_nan() {
+    if dd < 0.0 {
+        let msg = format!(
+            "the depth of cut Δd is negative ({}): give a positive one (G71 U… R… / G72 W… R…)",
+            crate::base::event::Num(dd)
+        );
+        return fail(Alarm::BadRoughing, msg);
+    }
+    if dd == 0.0 || dd.is_nan() {
         return fail(
             Alarm::BadRoughing,
             "the depth of cut Δd is 0: give it in the first block (G71 U… R… / G72 W… R…)",

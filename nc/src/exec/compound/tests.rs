@@ -377,10 +377,11 @@ fn a_pocket_in_type_i_stops_the_roughing() {
         .unwrap_err();
     // The culprit is the X24 block (tag 4): it runs from X30 down to X24,
     // and the way out is type II.
-    assert_eq!((e.code, e.at), (4009, Some(4)));
+    // It stands on the cycle block and points to the culprit.
+    assert_eq!((e.code, e.at, e.culprit), (4009, None, Some(4)));
     assert!(
         e.message
-            .ends_with("this block runs back along X from X30 to X24"),
+            .ends_with("a profile block runs back along X from X30 to X24"),
         "{}",
         e.message
     );

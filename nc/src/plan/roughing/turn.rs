@@ -55,7 +55,7 @@ impl Frame {
     }
 }
 
-/// E4009 at `seg`'s block: over [s0, s1] it moves against `dir` on `axis`
+/// E4009 pointing to `seg`'s block: over [s0, s1] it moves against `dir` on `axis`
 /// (the cut direction when `axis` is Z, out of the material when it is R).
 pub fn turns_back(frame: &Frame, seg: &Seg, axis: Axis, dir: f64, s0: f64, s1: f64) -> NcError {
     let c = &seg.curve;
@@ -98,11 +98,11 @@ pub fn turns_back(frame: &Frame, seg: &Seg, axis: Axis, dir: f64, s0: f64, s1: f
         )
     };
     let message = format!(
-        "the {} profile is not monotonic: this block {where_}",
+        "the {} profile is not monotonic: a profile block {where_}",
         frame.cycle()
     );
     NcError::new(Alarm::BadRoughing, message)
-        .at(seg.tag)
+        .pointing_to(seg.tag)
         .with_help(fix(frame, axis))
 }
 
