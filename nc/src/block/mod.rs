@@ -356,7 +356,7 @@ fn integer_hint(p: &Parsed, letter: u8, value: f64) -> String {
         let ms = crate::base::event::Num(value * 1000.0);
         return format!("the dwell's P is in ms: for {n} s write P{ms}, or X{n}");
     }
-    match value.fract() == 0.0 {
+    match value == libm::trunc(value) {
         true => format!("write {letter}{n}"),
         false => format!("write a whole number of {letter}'s unit"),
     }
