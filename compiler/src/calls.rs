@@ -347,10 +347,25 @@ fn macro_a_jump(
         );
         return;
     };
-    let seq = g.value(&crate::words::value_of(p));
+    let value = crate::words::value_of(p);
+    if let Some(n) = value.literal() {
+        // A written target: into a loop from outside is E2015 (§7.7),
+        // checked when the program's numbers are all known.
+        let n = round_half_away(n).clamp(0.0, u32::MAX as f64) as u32;
+        g.literal_jumps.push(crate::build::LiteralJump {
+            h,
+            seq: n,
+            span: p.span,
+            inside: g.in_loop,
+        });
+    }
+    let seq = g.value(&value);
     // H81…H86: EQ, NE, GT, LT, GE, LE, the order of the ISA's codes.
     match nc::value::Rel::from_code((h - 80).saturating_sub(1) as u8).filter(|_| h != 80) {
-        None => g.terminate(Terminator::Goto { seq }),
+        None => {
+            let inside = g.in_loop;
+            g.terminate(Terminator::Goto { seq, inside })
+        }
         Some(op) => {
             // A vacant operand counts as 0 (dialect.md §7.5), where EQ and
             // NE would tell it from 0: `j + 0`, as H01 stores.

@@ -15,7 +15,7 @@ use crate::profile::PROFILE;
 use grammar::diag::LineHint;
 use grammar::{Diagnostic, SourceFile, Span};
 use isa::{Instr, SourceLoc};
-use nc::value::{Bin, Func as F};
+use nc::value::Bin;
 use std::collections::HashMap;
 
 /// Emits a validated module.
@@ -110,10 +110,12 @@ pub(crate) struct Room {
     pub records: usize,
 }
 
-/// A program being emitted: where it starts and its sequence numbers.
+/// A program being emitted: where it starts, its sequence numbers (each
+/// with its pc and DO loop) and its loops (`ir::Function::loops`).
 pub(crate) struct OpenProgram {
     entry: u32,
-    seqs: Vec<(u32, u32)>,
+    seqs: Vec<(u32, u32, u32)>,
+    loops: Vec<u32>,
 }
 
 /// A jump whose target block's pc is not known yet.
@@ -225,6 +227,7 @@ impl<'a> Emitter<'a> {
         OpenProgram {
             entry: self.pc(),
             seqs: Vec::new(),
+            loops: Vec::new(),
         }
     }
 
@@ -232,6 +235,7 @@ impl<'a> Emitter<'a> {
     /// stay within the part, and an open last block goes on in the code
     /// of the next part.
     pub(crate) fn part(&mut self, f: &Function, program: &mut OpenProgram) {
+        program.loops.clone_from(&f.loops);
         let seqs = &mut program.seqs;
         let mut starts = vec![0u32; f.blocks.len()];
         let mut fixups: Vec<Fixup> = Vec::new();
@@ -271,23 +275,33 @@ impl<'a> Emitter<'a> {
 
     /// The program ends here: into the program table.
     pub(crate) fn close_program(&mut self, number: u32, program: OpenProgram) {
-        let OpenProgram { entry, mut seqs } = program;
+        let OpenProgram {
+            entry,
+            mut seqs,
+            loops,
+        } = program;
         seqs.sort();
         // A number repeated on a block of no code of its own (`N5` alone,
         // then `N5 G00 X2`) names one pc twice: one entry says it.
-        seqs.dedup();
+        seqs.dedup_by_key(|&mut (n, pc, _)| (n, pc));
+        let mut seq_loops: Vec<u32> = seqs.iter().map(|s| s.2).collect();
+        if seq_loops.iter().all(|&l| l == 0) {
+            seq_loops.clear();
+        }
         let end = self.pc();
         self.module.programs.push(isa::Program {
             number,
             entry,
             end,
-            seqs,
+            seqs: seqs.iter().map(|&(n, pc, _)| (n, pc)).collect(),
+            loops,
+            seq_loops,
         });
     }
 
-    fn op(&mut self, f: &Function, op: &Op, seqs: &mut Vec<(u32, u32)>) {
+    fn op(&mut self, f: &Function, op: &Op, seqs: &mut Vec<(u32, u32, u32)>) {
         match op {
-            Op::Seq(n) => seqs.push((*n, self.pc())),
+            Op::Seq(n, in_loop) => seqs.push((*n, self.pc(), *in_loop)),
             Op::Nc(nc) => self.nc_block(f, nc),
             Op::Assign { target, value, msg } => {
                 let src = self.expr(f, *value);
@@ -414,6 +428,15 @@ impl<'a> Emitter<'a> {
         Some(rec)
     }
 
+    /// A computed GOTO to the number in `seq`, from inside DO loop
+    /// `inside` (0: none; the VM then needs no loop to check against).
+    fn goto_seq(&mut self, seq: u8, inside: u32) {
+        self.emit(match inside {
+            0 => Instr::GotoSeq { seq },
+            _ => Instr::GotoSeqIn { seq, inside },
+        });
+    }
+
     fn terminator(&mut self, f: &Function, t: &Terminator, fixups: &mut Vec<Fixup>) {
         let mut jump = |e: &mut Self, instr: Instr, target: Handle<ir::Block>| {
             let at = e.emit(instr);
@@ -436,11 +459,18 @@ impl<'a> Emitter<'a> {
                 },
                 *skip,
             ),
-            Terminator::Goto { seq } => {
+            Terminator::Goto { seq, inside } => {
                 let seq = self.expr(f, *seq);
-                self.emit(Instr::GotoSeq { seq });
+                self.goto_seq(seq, *inside);
             }
-            Terminator::GotoIf { seq, op, j, k, .. } => {
+            Terminator::GotoIf {
+                seq,
+                inside,
+                op,
+                j,
+                k,
+                ..
+            } => {
                 let seq = self.expr(f, *seq);
                 let (j, k) = (self.expr(f, *j), self.expr(f, *k));
                 let c = self.regs.alloc();
@@ -456,7 +486,7 @@ impl<'a> Emitter<'a> {
                     cond: c,
                     target: past,
                 });
-                self.emit(Instr::GotoSeq { seq });
+                self.goto_seq(seq, *inside);
             }
             Terminator::Call { call, .. } => self.call(f, call),
             Terminator::Return { seq: None } => {
@@ -475,16 +505,22 @@ impl<'a> Emitter<'a> {
     fn call(&mut self, f: &Function, call: &ir::Call) {
         match (call.kind, call.callee) {
             (CallKind::Sub, Callee::Program(prog)) => {
-                let count = self.count(f, call.count, 0);
+                let count = self.count(f, call.count);
                 self.emit(Instr::CallSub { prog, count });
+            }
+            // A computed `P<count:4><program:4>`: the VM splits it (a
+            // vacant P is E5009, which arithmetic here would turn into 0).
+            (CallKind::Sub, Callee::Dynamic(p)) if call.count == Count::Packed => {
+                let num = self.expr(f, p);
+                self.emit(Instr::CallSubPacked { num });
             }
             (CallKind::Sub, Callee::Dynamic(p)) => {
                 let num = self.expr(f, p);
-                let count = self.count(f, call.count, num);
+                let count = self.count(f, call.count);
                 self.emit(Instr::CallSubDyn { num, count });
             }
             (kind, callee) => {
-                let count = self.count(f, call.count, 0);
+                let count = self.count(f, call.count);
                 for &(var, v) in &call.args {
                     let src = self.expr(f, v);
                     self.emit(Instr::Arg { var, src });
@@ -505,39 +541,17 @@ impl<'a> Emitter<'a> {
         }
     }
 
-    /// The register of a call's count; `num` holds a computed M98 P, whose
-    /// `<count:4><program:4>` is split here: count = fix(P / 10000),
-    /// program = P − count × 10000.
-    fn count(&mut self, f: &Function, count: Count, num: u8) -> u8 {
+    /// The register of a call's count. (`Count::Packed` stands only on a
+    /// computed M98, whose `callsubpacked` takes none; the validator
+    /// checks: here it would count once.)
+    fn count(&mut self, f: &Function, count: Count) -> u8 {
         match count {
             Count::Expr(e) => self.expr(f, e),
             Count::Packed => {
-                let count = self.regs.alloc();
-                let k = self.konst(10_000.0);
-                let ten_k = self.regs.alloc();
-                self.emit(Instr::LoadK { dst: ten_k, k });
-                self.emit(Instr::Div {
-                    dst: count,
-                    a: num,
-                    b: ten_k,
-                });
-                self.emit(Instr::Func {
-                    dst: count,
-                    a: count,
-                    f: F::Fix as u8,
-                });
-                let tmp = self.regs.alloc();
-                self.emit(Instr::Mul {
-                    dst: tmp,
-                    a: count,
-                    b: ten_k,
-                });
-                self.emit(Instr::Sub {
-                    dst: num,
-                    a: num,
-                    b: tmp,
-                });
-                count
+                let one = self.regs.alloc();
+                let k = self.konst(1.0);
+                self.emit(Instr::LoadK { dst: one, k });
+                one
             }
         }
     }

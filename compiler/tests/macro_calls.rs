@@ -228,3 +228,50 @@ fn h81_and_h82_count_a_vacant_operand_as_zero() {
         ]
     );
 }
+
+/// The alarm a program's run stops with, if any.
+fn alarm_of(src: &str) -> Option<u32> {
+    let c = compile("m.nc", src.as_bytes(), &Options::default());
+    assert!(!c.has_errors(), "{}", c.render());
+    let mut vm = Vm::new(c.module.expect("module"), Machine::reference());
+    let mut events: Vec<Event> = Vec::new();
+    match vm.run(&mut events) {
+        Status::Alarm(a) => Some(a.code),
+        _ => None,
+    }
+}
+
+/// §7.7: a GOTO may leave loops, but not enter one from outside it:
+/// E2015 for a written target (G65 H80–H86 too), E6008 for a computed one.
+#[test]
+fn a_jump_into_a_loop_from_outside_it() {
+    let body = "WHILE [#1 LT 2] DO1\nN10 G00 X1\n#1=#1+1\nEND1\nM30\n";
+    // Computed (#1000 is 0 on the reference machine): E6008 when it runs.
+    assert_eq!(
+        alarm_of(&format!("#5=#1000+10\nGOTO #5\n{body}")),
+        Some(6008)
+    );
+    // From one loop into the next, which does not hold it.
+    let sibling = format!("WHILE [#2 LT 1] DO1\n#2=1\nGOTO [#1000+10]\nEND1\n{body}");
+    assert_eq!(alarm_of(&sibling), Some(6008));
+    // Written: compile errors at the target word.
+    assert_eq!(first_error(&format!("G65 H80 P10\n{body}")), ("E2015", 1));
+    assert_eq!(
+        first_error(&format!("G65 H81 P10 Q0 R0\n{body}")),
+        ("E2015", 1)
+    );
+    assert_eq!(first_error(&format!("GOTO 10\n{body}")), ("E2015", 1));
+}
+
+/// Out of an inner loop into the outer one's body, computed: allowed. By
+/// hand: #2 = 0 prints X0, then #1 = 1 jumps to N20 (leaving DO2 inside
+/// DO1); #2 = 1 prints X10 and jumps again; #2 = 2 ends the outer loop.
+#[test]
+fn a_jump_out_of_an_inner_loop_stays_in_the_outer() {
+    let src = "#2=0\nWHILE [#2 LT 2] DO1\n#1=0\nWHILE [#1 LT 2] DO2\n\
+               #5=20\nIF [#1 EQ 1] GOTO #5\nN10 G00 X[#1+#2*10]\n#1=#1+1\nEND2\n\
+               N20 #2=#2+1\nEND1\nN30 M30\n";
+    let (canon, status) = run(src);
+    assert_eq!(status, Status::Done);
+    assert_eq!(canon, ["RAPID X=0 Z=0", "RAPID X=10 Z=0", "STOP KIND=M30"]);
+}

@@ -217,4 +217,18 @@ pub enum TableError {
         /// The pc it names.
         pc: u32,
     },
+    /// A program's loop table names a loop that does not hold the one it
+    /// should (a parent not before its child, or a loop out of range), or
+    /// its sequence entries' loops do not match its sequence table.
+    #[error("the loop table of program {index} is inconsistent")]
+    BadLoops {
+        /// Index into the program table.
+        index: u32,
+    },
+    /// A `gotoseqin` names a loop its program does not have.
+    #[error("instruction {pc} names a loop its program does not have")]
+    LoopOutOfRange {
+        /// The instruction's pc.
+        pc: u32,
+    },
 }

@@ -16,7 +16,9 @@
 //! | `Consts`   | count u32, then each `f64` as its `u64` bits              |
 //! | `Strings`  | count u32, then each: length u32, UTF-8 bytes             |
 //! | `Programs` | count u32, then each: number, entry, end, seq count u32,  |
-//! |            | then `(number u32, pc u32)` per sequence entry            |
+//! |            | then `(number u32, pc u32)` per sequence entry, then the  |
+//! |            | loop count u32 and each loop's parent u32, then the count |
+//! |            | u32 and the loop u32 of each sequence entry (or none)     |
 //! | `Lines`    | instruction count u32, then the runs of the line table    |
 //! |            | (see [`LineTable`]), delta-encoded                        |
 //! | `Files`    | count u32, then each: length u32, UTF-8 name, hash u32    |
@@ -49,8 +51,11 @@ pub const MAGIC: [u8; 4] = *b"GBC\0";
 /// profile block as a typed record, shared with the block where it stands);
 /// version 5 `move` (a typed plain move); version 6 `execmove` (a plain
 /// move with computed words); version 7 `addk`, `subk`, `mulk`, `divk`
-/// and `cmpk` (arithmetic and comparisons with a constant operand).
-pub const VERSION: u16 = 7;
+/// and `cmpk` (arithmetic and comparisons with a constant operand);
+/// version 8 a program's DO loops and the loop of each sequence number,
+/// `gotoseqin` (a computed GOTO inside a loop: E6008 into another) and
+/// `callsubpacked` (a computed M98 P split by the VM).
+pub const VERSION: u16 = 8;
 
 /// Bytes before the first section: magic and version.
 pub const HEADER_LEN: usize = 6;
@@ -101,7 +106,7 @@ impl Section {
 // against the bytes present before allocating.
 const CONST_LEN: usize = 8;
 const STRING_MIN: usize = 4;
-const PROGRAM_MIN: usize = 16;
+const PROGRAM_MIN: usize = 24;
 const SEQ_LEN: usize = 8;
 const FILE_MIN: usize = 8;
 
@@ -304,11 +309,15 @@ fn read_program(s: &mut Reader<'_>) -> Result<Program, LoadError> {
     let entry = s.u32()?;
     let end = s.u32()?;
     let seqs = table(s, SEQ_LEN, |s| Ok((s.u32()?, s.u32()?)))?;
+    let loops = table(s, 4, |s| s.u32())?;
+    let seq_loops = table(s, 4, |s| s.u32())?;
     Ok(Program {
         number,
         entry,
         end,
         seqs,
+        loops,
+        seq_loops,
     })
 }
 
@@ -440,6 +449,12 @@ fn programs_out(o: &mut Vec<u8>, programs: &[Program]) {
             seq.put(o);
             pc.put(o);
         }
+        for table in [&p.loops, &p.seq_loops] {
+            len_to_u32(table.len()).put(o);
+            for &l in table {
+                l.put(o);
+            }
+        }
     }
 }
 
@@ -448,7 +463,9 @@ fn size_bound(m: &Module) -> usize {
     const SLACK: usize = 256;
     let code: usize = m.code.iter().map(|i| i.opcode().encoded_len()).sum();
     let strings: usize = m.strings.iter().map(|s| 4 + s.len()).sum();
-    let programs: usize = m.programs.iter().map(|p| 16 + 8 * p.seqs.len()).sum();
+    let programs: usize = (m.programs.iter())
+        .map(|p| 24 + 8 * p.seqs.len() + 4 * (p.loops.len() + p.seq_loops.len()))
+        .sum();
     let files: usize = m.files.iter().map(|f| 8 + f.name.len()).sum();
     let lines = m.lines.heap_bytes();
     let tables = 8 * m.consts.len() + strings + programs + files + lines;

@@ -23,7 +23,7 @@
 //!         Instr::Halt,
 //!     ],
 //!     consts: vec![12.5],
-//!     programs: vec![Program { number: 1, entry: 0, end: 3, seqs: vec![(10, 0)] }],
+//!     programs: vec![Program { number: 1, entry: 0, end: 3, seqs: vec![(10, 0)], ..Program::default() }],
 //!     lines: vec![SourceLoc { file: 0, line: 1, col: 1 }; 3].into(),
 //!     files: vec![SourceFileInfo { name: "part.nc".into(), hash: 0 }],
 //!     num_regs: 1,

@@ -48,6 +48,13 @@ pub struct Program {
     /// `(sequence number, pc)`, sorted by number then pc: the run-time
     /// `GOTO`/`M99 P` targets. A number may repeat; the first block wins.
     pub seqs: Vec<(u32, u32)>,
+    /// The program's DO loops, numbered from 1 in source order:
+    /// `loops[i]` is the number of the loop that holds loop i + 1, 0 for
+    /// none (so always less than i + 1). Empty in a program without loops.
+    pub loops: Vec<u32>,
+    /// The innermost loop that holds each entry of `seqs` (0: none), in
+    /// the same order; empty when no numbered block lies in a loop.
+    pub seq_loops: Vec<u32>,
 }
 
 /// Where an instruction came from.
@@ -131,12 +138,40 @@ impl Module {
     /// Relies on the sequence table being sorted (which `verify` checks);
     /// on an unverified module it may miss but never panics.
     pub fn pc_of_seq(&self, prog: usize, seq: u32) -> Option<u32> {
-        let seqs = &self.programs.get(prog)?.seqs;
-        let first = seqs.partition_point(|&(number, _)| number < seq);
-        match seqs.get(first) {
-            Some(&(number, pc)) if number == seq => Some(pc),
+        self.seq_target(prog, seq).map(|(pc, _)| pc)
+    }
+
+    /// The pc of the first block numbered `seq` in program `prog` and the
+    /// innermost DO loop that holds it (0: none), if there is one.
+    pub fn seq_target(&self, prog: usize, seq: u32) -> Option<(u32, u32)> {
+        let p = self.programs.get(prog)?;
+        let first = p.seqs.partition_point(|&(number, _)| number < seq);
+        match p.seqs.get(first) {
+            Some(&(number, pc)) if number == seq => {
+                Some((pc, p.seq_loops.get(first).copied().unwrap_or(0)))
+            }
             _ => None,
         }
+    }
+
+    /// Whether loop `outer` of program `prog` holds loop `inner` (a loop
+    /// holds itself; loop 0, outside every loop, holds all). Bounded on an
+    /// unverified module.
+    pub fn loop_holds(&self, prog: usize, outer: u32, inner: u32) -> bool {
+        let Some(p) = self.programs.get(prog) else {
+            return false;
+        };
+        let mut l = inner;
+        for _ in 0..=p.loops.len() {
+            if l == outer {
+                return true;
+            }
+            match l.checked_sub(1).and_then(|i| p.loops.get(i as usize)) {
+                Some(&parent) => l = parent,
+                None => return outer == 0,
+            }
+        }
+        false
     }
 }
 

@@ -77,6 +77,10 @@ macro_rules! for_each_instr {
             /// `GOTO [seq]`: the sequence number is computed, so the VM looks
             /// it up in the current program's sequence table at run time.
             GotoSeq = 0x22, "gotoseq" { seq: Reg };
+            /// `GOTO [seq]` inside DO loop `inside` of the program (its
+            /// loop table): a target in a loop that does not hold this one
+            /// is jumped into from outside (E6008).
+            GotoSeqIn = 0x24, "gotoseqin" { seq: Reg, inside: U32 };
             /// The guard of a `/n` block (block delete): continue at
             /// `target`, the code after the block, when block-skip switch
             /// `switch` is on as the block is read; else run the block.
@@ -121,6 +125,9 @@ macro_rules! for_each_instr {
             CallSub = 0x40, "callsub" { prog: Prog, count: Reg };
             /// `M98` with a computed program number.
             CallSubDyn = 0x41, "callsubdyn" { num: Reg, count: Reg };
+            /// `M98 P…` computed without L: `num` is `<count:4><program:4>`
+            /// (count 0: once), split when it runs; vacant is E5009.
+            CallSubPacked = 0x4A, "callsubpacked" { num: Reg };
             /// `G65 P… L count`: macro call, new local variable level, the
             /// arguments set by the preceding `Arg`s.
             CallMacro = 0x42, "callmacro" { prog: Prog, count: Reg };

@@ -42,6 +42,7 @@ impl Module {
         self.verify_lines()?;
         let bad_block = |(at, e): (usize, RecordError)| TableError::BadBlock { at, what: e.what() };
         let records = RecordStarts::of(&self.blocks).map_err(bad_block)?;
+        let spans = self.program_spans();
         for (pc, instr) in self.code.iter().enumerate() {
             let pc = len_to_u32(pc);
             instr.try_visit_operands(|op| self.check_operand(pc, op))?;
@@ -53,6 +54,12 @@ impl Module {
             if let Instr::Move { rec } = *instr {
                 if !records.is_move(rec) {
                     return Err(TableError::NotAMove { pc }.into());
+                }
+            }
+            if let Instr::GotoSeqIn { inside, .. } = *instr {
+                let loops = loops_at(&spans, pc);
+                if inside == 0 || usize::try_from(inside).map_or(true, |l| l > loops) {
+                    return Err(TableError::LoopOutOfRange { pc }.into());
                 }
             }
             if let Instr::SkipBlock { target, .. } = *instr {
@@ -96,6 +103,15 @@ impl Module {
             return too_large("blocks section");
         }
         Ok(())
+    }
+
+    /// Each program's code as `(entry, end, loop count)`, sorted.
+    fn program_spans(&self) -> Vec<(u32, u32, usize)> {
+        let mut spans: Vec<_> = (self.programs.iter())
+            .map(|p| (p.entry, p.end, p.loops.len()))
+            .collect();
+        spans.sort_unstable();
+        spans
     }
 
     #[inline]
@@ -176,6 +192,9 @@ impl Module {
             {
                 return Err(TableError::SeqOutOfRange { index, seq, pc }.into());
             }
+            if !loops_ok(p) {
+                return Err(TableError::BadLoops { index }.into());
+            }
         }
         let mut numbers: Vec<u32> = self.programs.iter().map(|p| p.number).collect();
         numbers.sort_unstable();
@@ -188,6 +207,27 @@ impl Module {
             None => Ok(()),
         }
     }
+}
+
+/// The loop count of the program whose code holds `pc` (0 for none):
+/// of those that start at or before it, the last, the longest of any
+/// that start together.
+fn loops_at(spans: &[(u32, u32, usize)], pc: u32) -> usize {
+    let i = spans.partition_point(|&(entry, _, _)| entry <= pc);
+    match i.checked_sub(1).and_then(|i| spans.get(i)) {
+        Some(&(_, end, loops)) if pc < end => loops,
+        _ => 0,
+    }
+}
+
+/// A program's loop tables: each loop's parent comes before it (so the
+/// loops nest, and a walk to the outermost ends), and each sequence entry
+/// (all or none) names a loop that exists.
+fn loops_ok(p: &crate::Program) -> bool {
+    let parents = (p.loops.iter().enumerate()).all(|(i, &parent)| (parent as usize) <= i);
+    let entries = p.seq_loops.is_empty() || p.seq_loops.len() == p.seqs.len();
+    let known = (p.seq_loops.iter()).all(|&l| (l as usize) <= p.loops.len());
+    parents && entries && known
 }
 
 /// The error of an operand that failed its check (kept out of the checking

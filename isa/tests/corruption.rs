@@ -582,7 +582,7 @@ fn bad_program_tables() {
             number: 2,
             entry: len,
             end: len,
-            seqs: vec![],
+            ..Program::default()
         });
     });
     assert_eq!(m.verify(), Ok(()));

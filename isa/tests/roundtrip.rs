@@ -5,19 +5,22 @@ mod common;
 
 use std::collections::BTreeSet;
 
-use common::{constant_operands_module, sample_module, typed_module};
+use common::{constant_operands_module, loops_module, sample_module, typed_module};
 use isa::{Instr, LoadError, Module, Opcode, Operand, OperandKind, OperandMut};
 use proptest::prelude::*;
 
 #[test]
 fn sample_uses_every_opcode() {
-    // The typed blocks and the constant operands have samples of their own.
+    // The typed blocks, the constant operands and the loops have samples
+    // of their own.
     let (sample, typed, k) = (sample_module(), typed_module(), constant_operands_module());
+    let loops = loops_module();
     let used: BTreeSet<Opcode> = sample
         .code
         .iter()
         .chain(&typed.code)
         .chain(&k.code)
+        .chain(&loops.code)
         .map(Instr::opcode)
         .collect();
     let all: BTreeSet<Opcode> = Opcode::ALL.iter().copied().collect();
@@ -31,6 +34,60 @@ fn sample_verifies() {
     let k = constant_operands_module();
     assert_eq!(k.verify(), Ok(()));
     assert_eq!(Module::from_bytes(&k.to_bytes()), Ok(k));
+    let loops = loops_module();
+    assert_eq!(loops.verify(), Ok(()));
+    assert_eq!(Module::from_bytes(&loops.to_bytes()), Ok(loops));
+}
+
+/// Which loop holds which, and where a sequence number stands, as the VM
+/// asks them at a computed GOTO (E6008).
+#[test]
+fn loop_tables_answer_the_vm() {
+    let m = loops_module();
+    assert_eq!(m.seq_target(0, 10), Some((2, 2)));
+    assert_eq!(m.seq_target(0, 30), Some((4, 0)));
+    assert_eq!(m.seq_target(0, 40), None);
+    // Loop 1 holds loop 2 and itself; loop 2 does not hold loop 1; no
+    // loop (0) holds everything, and no loop but 0 holds the outside.
+    assert!(m.loop_holds(0, 1, 2));
+    assert!(m.loop_holds(0, 2, 2));
+    assert!(!m.loop_holds(0, 2, 1));
+    assert!(m.loop_holds(0, 0, 2));
+    assert!(!m.loop_holds(0, 1, 0));
+    // Out of range: no answer but "no", and no panic.
+    assert!(!m.loop_holds(0, 1, 7));
+    assert!(!m.loop_holds(3, 0, 0));
+}
+
+/// The verifier's rules for the loop tables and `gotoseqin`.
+#[test]
+fn bad_loop_tables_are_rejected() {
+    use isa::TableError;
+    let bad_loops = |edit: fn(&mut Module)| {
+        let mut m = loops_module();
+        edit(&mut m);
+        m.verify()
+    };
+    let table = Err(TableError::BadLoops { index: 0 }.into());
+    // A parent not before its child (a cycle), a loop beyond the table,
+    // entries that do not match the sequence table.
+    assert_eq!(bad_loops(|m| m.programs[0].loops = vec![2, 1]), table);
+    assert_eq!(bad_loops(|m| m.programs[0].seq_loops[0] = 3), table);
+    assert_eq!(
+        bad_loops(|m| m.programs[0].seq_loops.pop().map_or((), drop)),
+        table
+    );
+    // A GOTO in loop 0 or 3 of a program of two loops.
+    let goto_in = |inside| {
+        let mut m = loops_module();
+        m.code[1] = Instr::GotoSeqIn { seq: 0, inside };
+        m.verify()
+    };
+    assert_eq!(goto_in(0), Err(TableError::LoopOutOfRange { pc: 1 }.into()));
+    assert_eq!(goto_in(3), Err(TableError::LoopOutOfRange { pc: 1 }.into()));
+    assert_eq!(goto_in(2), Ok(()));
+    // No loop table at all is a program without loops.
+    assert_eq!(bad_loops(|m| m.programs[0].seq_loops.clear()), Ok(()));
 }
 
 #[test]

@@ -465,7 +465,7 @@ fn the_line_table_answers_as_the_per_instruction_one_did() {
             number: 1,
             entry: 0,
             end: n as u32,
-            seqs: vec![],
+            ..Program::default()
         }],
         files: (0..files)
             .map(|i| SourceFileInfo {

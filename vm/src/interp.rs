@@ -634,25 +634,8 @@ impl Vm {
                     self.pc = target;
                 }
             }
-            Instr::GotoSeq { seq } => {
-                self.count_block()?;
-                let n = target_number(self.reg(seq))?;
-                if n == 0 {
-                    return fault(
-                        AlarmCode::ValueOutOfRange,
-                        "GOTO 0: sequence numbers to jump to are 1…99999",
-                    );
-                }
-                match self.module.pc_of_seq(self.prog as usize, n) {
-                    Some(pc) => self.pc = pc,
-                    None => {
-                        return fault(
-                            AlarmCode::JumpTargetMissing,
-                            format!("GOTO {n}: there is no block N{n} in this program"),
-                        )
-                    }
-                }
-            }
+            Instr::GotoSeq { seq } => self.goto_seq(seq, 0)?,
+            Instr::GotoSeqIn { seq, inside } => self.goto_seq(seq, inside)?,
             Instr::Word { addr, src } => {
                 let v = self.reg(src);
                 // A word whose value is vacant is left out (§7.5).
@@ -704,6 +687,14 @@ impl Vm {
                 let n = count_of(self.reg(count))?;
                 self.call(prog, n, false, false, Vec::new())?;
             }
+            Instr::CallSubPacked { num } => {
+                self.nc.check_call()?;
+                // P<count:4><program:4> (dialect.md §7.11): count 0 is once.
+                let packed = target_number(self.reg(num))?;
+                let prog = self.program_by_number(f64::from(packed % 10_000))?;
+                let n = (packed / 10_000).max(1);
+                self.call(prog, n, false, false, Vec::new())?;
+            }
             Instr::CallMacro { prog, count } => {
                 let n = count_of(self.reg(count))?;
                 let args = core::mem::take(&mut self.args);
@@ -753,6 +744,35 @@ impl Vm {
             }
         }
         Ok(Next::Go)
+    }
+
+    /// A computed GOTO to the number in register `seq`, from inside DO
+    /// loop `inside` of the program (0: outside every loop).
+    fn goto_seq(&mut self, seq: u8, inside: u32) -> Result<(), Fault> {
+        self.count_block()?;
+        let n = target_number(self.reg(seq))?;
+        if n == 0 {
+            return fault(
+                AlarmCode::ValueOutOfRange,
+                "GOTO 0: sequence numbers to jump to are 1…99999",
+            );
+        }
+        let prog = self.prog as usize;
+        let Some((pc, target_loop)) = self.module.seq_target(prog, n) else {
+            return fault(
+                AlarmCode::JumpTargetMissing,
+                format!("GOTO {n}: there is no block N{n} in this program"),
+            );
+        };
+        // Into a loop only from inside it (dialect.md §7.7).
+        if !self.module.loop_holds(prog, target_loop, inside) {
+            return fault(
+                AlarmCode::ComputedJumpIntoLoop,
+                format!("GOTO {n} jumps into a DO loop from outside it"),
+            );
+        }
+        self.pc = pc;
+        Ok(())
     }
 
     fn bin(&mut self, op: Bin, dst: u8, a: u8, b: u8) -> Result<(), Fault> {
@@ -1123,17 +1143,18 @@ fn target_number(v: f64) -> Result<u32, Fault> {
     Ok(n as u32)
 }
 
-/// A repeat count: vacant or 0 is once.
+/// A repeat count L: vacant is once (the word is left out, §7.5); 1…9999
+/// (§7.6: below 1 is E5010).
 fn count_of(v: f64) -> Result<u32, Fault> {
     if is_vacant(v) {
         return Ok(1);
     }
     let n = round_half_away(v);
-    if !(0.0..=9999.0).contains(&n) {
+    if !(1.0..=9999.0).contains(&n) {
         return fault(
             AlarmCode::ValueOutOfRange,
             format!("the repeat count {n} is outside 1…9999"),
         );
     }
-    Ok((n as u32).max(1))
+    Ok(n as u32)
 }

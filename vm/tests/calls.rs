@@ -43,7 +43,7 @@ fn m98_repeats_on_the_callers_local_level() {
 }
 
 #[test]
-fn a_repeat_count_of_zero_or_vacant_is_once_and_past_9999_an_alarm() {
+fn a_vacant_repeat_count_is_once_and_outside_1_to_9999_an_alarm() {
     let calls = |count: Option<f64>| {
         let mut a = Asm::new();
         match count {
@@ -66,13 +66,48 @@ fn a_repeat_count_of_zero_or_vacant_is_once_and_past_9999_an_alarm() {
             }
         }
     };
-    // §7.11: 0 or omitted is once; §7.6: a count out of range is E5010.
-    assert_eq!(calls(Some(0.0)), Ok(1.0));
+    // An L word left out (vacant, §7.5) is once; §7.6: a count below 1
+    // or past 9999 is E5010 (L is 1…9999, §7.9).
+    assert_eq!(calls(Some(0.0)), Err(5010));
     assert_eq!(calls(None), Ok(1.0));
     assert_eq!(calls(Some(2.4)), Ok(2.0), "rounded");
     assert_eq!(calls(Some(9999.0)), Ok(9999.0));
     assert_eq!(calls(Some(10000.0)), Err(5010));
     assert_eq!(calls(Some(-1.0)), Err(5010));
+}
+
+/// `callsubpacked`: a computed `M98 P<count:4><program:4>` (§7.11), split
+/// when it runs: count 0 is once, a vacant P is E5009 (§7.5), a program
+/// that does not exist E6003.
+#[test]
+fn a_computed_packed_m98_is_split_when_it_runs() {
+    let calls = |p: Option<f64>| {
+        let mut a = Asm::new();
+        match p {
+            Some(v) => a.load(0, v),
+            None => a.op(Instr::LoadNull { dst: 0 }),
+        };
+        a.line(3);
+        a.op(Instr::CallSubPacked { num: 0 });
+        a.op(Instr::Halt);
+        a.program(2);
+        bump(&mut a, 100);
+        a.op(Instr::Ret);
+        let (status, _, vm) = run(a.build());
+        match status {
+            Status::Done => Ok(var(&vm, 100)),
+            other => {
+                let alarm = alarm_of(other);
+                assert_eq!(alarm.line, 3);
+                Err(alarm.code)
+            }
+        }
+    };
+    assert_eq!(calls(Some(2.0)), Ok(1.0));
+    assert_eq!(calls(Some(30_002.0)), Ok(3.0));
+    assert_eq!(calls(Some(2.4)), Ok(1.0), "rounded");
+    assert_eq!(calls(None), Err(5009));
+    assert_eq!(calls(Some(40_003.0)), Err(6003));
 }
 
 #[test]

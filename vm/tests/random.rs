@@ -160,7 +160,7 @@ fn module(raw: Vec<(u8, u8, u8, u8, u32)>, cuts: (u32, u32), seqs: Vec<(u32, u32
             number,
             entry: w[0],
             end: w[1],
-            seqs: Vec::new(),
+            ..Program::default()
         })
         .collect();
     for (n, pc) in seqs {

@@ -187,8 +187,10 @@ impl Builder<'_> {
         k: Handle<ir::Expr>,
     ) {
         let next = self.new_block();
+        let inside = self.in_loop;
         self.terminate(Terminator::GotoIf {
             seq,
+            inside,
             op,
             j,
             k,

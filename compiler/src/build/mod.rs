@@ -56,6 +56,11 @@ pub struct Builder<'a> {
     span: Span,
     fresh: bool,
     tail: Tail,
+    /// The innermost DO loop open where the builder stands (0: none).
+    pub(crate) in_loop: u32,
+    /// G65 H80–H86 jumps to a written sequence number, checked against
+    /// their target's loop at the program's end (E2015).
+    pub(crate) literal_jumps: Vec<LiteralJump>,
 }
 
 /// An open DO loop of the program being built.
@@ -66,6 +71,15 @@ struct Loop {
     /// Blocks whose branch leaves the loop (WHILE's test).
     exits: Vec<Handle<ir::Block>>,
     span: Span,
+}
+
+/// A G65 H80–H86 to a written sequence number `seq` at `span`, inside DO
+/// loop `inside` (0: none).
+pub(crate) struct LiteralJump {
+    pub h: u32,
+    pub seq: u32,
+    pub span: Span,
+    pub inside: u32,
 }
 
 /// A literal jump waiting for its target: the block it ends.
@@ -95,7 +109,6 @@ pub(crate) struct ProgEnd {
 #[derive(Default)]
 struct ProgState {
     loops: Vec<Loop>,
-    next_loop: u32,
     gotos: Vec<Pending>,
     /// (sequence number, its block, loop ids open at that block).
     seqs: Vec<(u32, Handle<ir::Block>, Vec<u32>, Span)>,
@@ -141,6 +154,8 @@ impl<'a> Builder<'a> {
             span: Span::default(),
             fresh: false,
             tail: Tail::Nothing,
+            in_loop: 0,
+            literal_jumps: Vec::new(),
         }
     }
 
@@ -216,6 +231,8 @@ impl<'a> Builder<'a> {
             span: self.span,
             fresh: self.fresh,
             tail: self.tail,
+            in_loop: self.in_loop,
+            literal_jumps: self.literal_jumps,
         }
     }
 
@@ -315,6 +332,8 @@ impl<'a> Builder<'a> {
         };
         self.cur = None;
         self.tail = Tail::Nothing;
+        self.in_loop = 0;
+        self.literal_jumps.clear();
     }
 
     /// What comes before a program's first block is built.
@@ -339,7 +358,7 @@ impl<'a> Builder<'a> {
                 let at = self.here();
                 let loc = self.loc_peek();
                 self.push_at(
-                    Op::Seq(seq.number),
+                    Op::Seq(seq.number, self.in_loop),
                     Loc {
                         fresh: false,
                         ..loc
@@ -403,7 +422,29 @@ impl<'a> Builder<'a> {
                 format!("DO {} has no END {}", open.label, open.label),
             );
         }
+        self.check_literal_jumps(&st);
         self.resolve_gotos(&mut st);
+    }
+
+    /// E2015 for a G65 H80–H86 to a written number whose block lies in a
+    /// loop that does not hold the jump. A number no block has is the
+    /// run's E6001 (dialect.md §7.8), so is passed over here.
+    fn check_literal_jumps(&mut self, st: &ProgState) {
+        for j in std::mem::take(&mut self.literal_jumps) {
+            let Some((.., loops, _)) = st.seqs.iter().find(|s| s.0 == j.seq) else {
+                continue;
+            };
+            if !self
+                .f
+                .loop_holds(loops.last().copied().unwrap_or(0), j.inside)
+            {
+                let msg = format!(
+                    "G65 H{} P{} jumps into a DO loop from outside it",
+                    j.h, j.seq
+                );
+                self.error("E2015", j.span, msg);
+            }
+        }
     }
 
     fn resolve_gotos(&mut self, st: &mut ProgState) {
@@ -512,10 +553,12 @@ impl<'a> Builder<'a> {
             self.error("E2014", span, "loops nest at most three deep");
             return;
         }
-        st.next_loop += 1;
+        // Numbered as the IR numbers them, each with the loop around it.
+        self.f.loops.push(self.in_loop);
+        self.in_loop = self.f.loops.len() as u32;
         st.loops.push(Loop {
             label,
-            id: st.next_loop,
+            id: self.in_loop,
             start,
             exits,
             span,
@@ -535,6 +578,7 @@ impl<'a> Builder<'a> {
             self.error("E2014", span, format!("END {label} without a DO {label}"));
             return;
         };
+        self.in_loop = st.loops.last().map_or(0, |l| l.id);
         if open.label != label {
             self.error(
                 "E2014",
@@ -581,7 +625,8 @@ impl<'a> Builder<'a> {
             }
             _ => {
                 let seq = self.expr(target);
-                self.terminate(Terminator::Goto { seq });
+                let inside = self.in_loop;
+                self.terminate(Terminator::Goto { seq, inside });
             }
         }
         if let Some(at) = skip {

@@ -378,7 +378,7 @@ fn after_call(call: &Call, mut facts: Facts, scope: &Scope) -> Facts {
 /// number brings (`seq_in`).
 fn entering(o: &Op, facts: Facts, seq_in: Option<&Facts>) -> Facts {
     match (o, seq_in) {
-        (Op::Seq(_), Some(seq)) => facts.join(seq),
+        (Op::Seq(..), Some(seq)) => facts.join(seq),
         _ => facts,
     }
 }
@@ -399,7 +399,7 @@ fn transfer(f: &Function, op: &Op, facts: &mut Facts) {
         }
         Op::Nc(nc) => nc_block(f, nc, facts),
         Op::ModalCancel => facts.g66 = false,
-        Op::Seq(_) | Op::Alarm { .. } => {}
+        Op::Seq(..) | Op::Alarm { .. } => {}
     }
 }
 
@@ -492,7 +492,7 @@ impl<'a> Rewrite<'a> {
             .ops
             .iter()
             .filter_map(|(_, o)| match o {
-                Op::Seq(n) => Some(*n),
+                Op::Seq(n, _) => Some(*n),
                 _ => None,
             })
             .collect();
@@ -687,7 +687,7 @@ impl<'a> Rewrite<'a> {
             Terminator::Branch { cond, .. } => {
                 self.fold(*cond, facts, span);
             }
-            Terminator::Goto { seq } => {
+            Terminator::Goto { seq, .. } => {
                 if let Some(n) = self.fold(*seq, facts, span) {
                     self.check_goto(n, span);
                 }

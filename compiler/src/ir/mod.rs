@@ -95,6 +95,9 @@ pub struct Function {
     pub words: Vec<Word>,
     /// Where each word came from (by index into `words`).
     pub word_spans: Vec<Span>,
+    /// The DO loops, numbered from 1 in source order: `loops[i]` is the
+    /// loop that holds loop i + 1 (0: none).
+    pub loops: Vec<u32>,
 }
 
 /// A basic block: operations run in order, then the terminator.
@@ -108,8 +111,9 @@ pub struct Block {
 /// An operation.
 #[derive(Debug, Clone)]
 pub enum Op {
-    /// The start of a block numbered `N`: a target of GOTO and M99 P.
-    Seq(u32),
+    /// The start of a block numbered `N` (the first field), a target of
+    /// GOTO and M99 P, in DO loop `.1` of its function (0: none).
+    Seq(u32, u32),
     /// An NC block in word form, handed to the kernel.
     Nc(NcBlock),
     /// `#var = value`. An assignment to #3000 (alarm) or #3006 (stop with
@@ -453,12 +457,14 @@ pub enum Terminator {
         next: Handle<Block>,
     },
     /// A computed GOTO (and G65 H80): to the first block numbered `seq`
-    /// when it runs.
-    Goto { seq: Handle<Expr> },
+    /// when it runs, from inside DO loop `inside` (0: none), which must
+    /// hold the target's loop (E6008).
+    Goto { seq: Handle<Expr>, inside: u32 },
     /// G65 H81–H86: a computed GOTO to block `seq` when `j op k` holds,
     /// else on into `next` (the next block of the layout).
     GotoIf {
         seq: Handle<Expr>,
+        inside: u32,
         op: Rel,
         j: Handle<Expr>,
         k: Handle<Expr>,
@@ -507,7 +513,7 @@ pub enum Callee {
 }
 
 /// How many times the callee runs.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Count {
     Expr(Handle<Expr>),
     /// Packed in a computed M98 P as `P<count:4><program:4>`, split when
@@ -516,6 +522,22 @@ pub enum Count {
 }
 
 impl Function {
+    /// Whether DO loop `outer` holds loop `inner` (a loop holds itself;
+    /// 0, outside every loop, holds all).
+    pub fn loop_holds(&self, outer: u32, inner: u32) -> bool {
+        let mut l = inner;
+        for _ in 0..=self.loops.len() {
+            if l == outer {
+                return true;
+            }
+            match l.checked_sub(1).and_then(|i| self.loops.get(i as usize)) {
+                Some(&parent) => l = parent,
+                None => return outer == 0,
+            }
+        }
+        false
+    }
+
     /// The words of an NC block.
     pub fn words_of(&self, nc: &NcBlock) -> &[Word] {
         self.words.get(range(nc)).unwrap_or(&[])

@@ -109,7 +109,7 @@ impl Printer<'_> {
 
     fn op(&self, op: &Op) -> String {
         match op {
-            Op::Seq(n) => format!("seq N{n}"),
+            Op::Seq(n, _) => format!("seq N{n}"),
             Op::Nc(nc) => {
                 let mut s = String::from(match nc.kind {
                     NcKind::Run => "nc",
@@ -171,13 +171,14 @@ impl Printer<'_> {
                     self.name(*next)
                 )
             }
-            Terminator::Goto { seq } => format!("goto N{}", self.bracketed(*seq)),
+            Terminator::Goto { seq, .. } => format!("goto N{}", self.bracketed(*seq)),
             Terminator::GotoIf {
                 seq,
                 op,
                 j,
                 k,
                 next,
+                ..
             } => format!(
                 "goto N{} if {} {} {} else {}",
                 self.bracketed(*seq),

@@ -176,7 +176,7 @@ impl Checker<'_> {
 
     fn op(&mut self, op: &Op, loc: Loc) {
         match op {
-            Op::Seq(_) | Op::ModalCancel => {}
+            Op::Seq(..) | Op::ModalCancel => {}
             Op::Nc(nc) => self.nc(nc, loc),
             Op::Assign { target, value, msg } => {
                 self.expr(*value, loc);
@@ -260,7 +260,7 @@ impl Checker<'_> {
         }
         match t {
             Terminator::Branch { cond, .. } => self.expr(*cond, loc),
-            Terminator::Goto { seq } => self.expr(*seq, loc),
+            Terminator::Goto { seq, .. } => self.expr(*seq, loc),
             Terminator::GotoIf { seq, j, k, .. } => {
                 for e in [seq, j, k] {
                     self.expr(*e, loc);

@@ -552,7 +552,7 @@ impl<'a> Walk<'a> {
         let block = self.f.blocks.get(b)?;
         for &op in &block.ops {
             let o = self.f.ops.get(op);
-            if let (Some(Op::Seq(_)), Some(seq)) = (o, &self.seq_in) {
+            if let (Some(Op::Seq(..)), Some(seq)) = (o, &self.seq_in) {
                 s = Some(join(s, seq));
             }
             if let Some(before) = record.as_deref_mut().and_then(|r| r.get_mut(op.index())) {
@@ -633,7 +633,7 @@ impl<'a> Walk<'a> {
                 pos: [Fact::Unknown; 2],
                 ..s
             },
-            Op::Seq(_) | Op::Alarm { .. } => s,
+            Op::Seq(..) | Op::Alarm { .. } => s,
         }
     }
 

@@ -82,12 +82,14 @@ pub fn sample_module() -> Module {
                 entry: 0,
                 end: main_len,
                 seqs: vec![(10, 0), (20, 22), (20, 30)],
+                ..Program::default()
             },
             Program {
                 number: 9010,
                 entry: main_len,
                 end: code_len,
                 seqs: vec![(1, main_len)],
+                ..Program::default()
             },
         ],
         lines: lines.into(),
@@ -149,6 +151,7 @@ pub fn typed_module() -> Module {
             entry: 0,
             end: 6,
             seqs: vec![(10, 1)],
+            ..Program::default()
         }],
         files: vec![SourceFileInfo {
             name: "typed.nc".to_string(),
@@ -213,7 +216,7 @@ pub fn constant_operands_module() -> Module {
             number: 1,
             entry: 0,
             end: code.len() as u32,
-            seqs: Vec::new(),
+            ..Program::default()
         }],
         files: vec![SourceFileInfo {
             name: "k.nc".to_string(),
@@ -281,4 +284,47 @@ pub fn section(bytes: &[u8], which: Section) -> SectionAt {
 /// Overwrites a little-endian u32 at `at`.
 pub fn put_u32(bytes: &mut [u8], at: usize, value: u32) {
     bytes[at..at + 4].copy_from_slice(&value.to_le_bytes());
+}
+
+/// A main program with two DO loops, the second inside the first (format
+/// version 8): N10 stands in loop 2, N20 in loop 1, N30 in none; a
+/// computed GOTO (`gotoseqin`) stands in loop 1, and a computed packed
+/// M98 (`callsubpacked`) in it.
+pub fn loops_module() -> Module {
+    use Instr::*;
+    let code = vec![
+        LoadVar { dst: 0, var: 100 },    // 0
+        GotoSeqIn { seq: 0, inside: 1 }, // 1 (in loop 1)
+        LoadK { dst: 0, k: 0 },          // 2 N10 (loop 2)
+        CallSubPacked { num: 0 },        // 3 N20 (loop 1)
+        GotoSeq { seq: 0 },              // 4 N30 (no loop)
+        Halt,                            // 5
+    ];
+    let lines = (1..=code.len() as u32).map(|line| SourceLoc {
+        file: 0,
+        line,
+        col: 1,
+    });
+    let mut m = Module {
+        programs: vec![Program {
+            number: 1,
+            entry: 0,
+            end: code.len() as u32,
+            seqs: vec![(10, 2), (20, 3), (30, 4)],
+            loops: vec![0, 1],
+            seq_loops: vec![2, 1, 0],
+        }],
+        files: vec![SourceFileInfo {
+            name: "loops.nc".to_string(),
+            hash: 0,
+        }],
+        consts: vec![1.0],
+        num_regs: 1,
+        code,
+        ..Module::default()
+    };
+    for loc in lines {
+        m.lines.push(loc);
+    }
+    m
 }

@@ -159,6 +159,7 @@ impl Asm {
             entry: self.entry,
             end: self.here(),
             seqs,
+            ..Program::default()
         });
     }
 
