@@ -275,3 +275,33 @@ fn a_jump_out_of_an_inner_loop_stays_in_the_outer() {
     assert_eq!(status, Status::Done);
     assert_eq!(canon, ["RAPID X=0 Z=0", "RAPID X=10 Z=0", "STOP KIND=M30"]);
 }
+
+/// A call's M code computed (dialect.md §6.1, §7.10, §7.11): `M#1` calls
+/// or returns after its block, as the written code does. By hand: O9001
+/// prints X3; M98 P1000 L2 prints X1 twice (O1000 returns by a computed
+/// M99 before its X2); a packed P21000 is twice too; O9002 is missing.
+#[test]
+fn a_computed_m_code_calls_and_returns() {
+    let progs = "G00 X7\nM30\nO1000\nG00 X1\n#2=99\nM#2\nG00 X2\nM99\nO9001\nG00 X3\nM99\n";
+    let canon = |head: &str| run(&format!("{head}\n{progs}")).0;
+    assert_eq!(
+        canon("#1=9001\nM#1"),
+        ["RAPID X=3 Z=0", "RAPID X=7 Z=0", "STOP KIND=M30"]
+    );
+    let twice = [
+        "RAPID X=1 Z=0",
+        "RAPID X=1 Z=0",
+        "RAPID X=7 Z=0",
+        "STOP KIND=M30",
+    ];
+    assert_eq!(canon("#1=98\nM#1 P1000 L2"), twice);
+    assert_eq!(canon("#1=98\nM#1 P21000"), twice);
+    assert_eq!(alarm_of(&format!("#1=9002\nM#1\n{progs}")), Some(6003));
+    assert_eq!(alarm_of(&format!("#1=98\nM#1\n{progs}")), Some(2006));
+    // A computed L of 0, and a vacant packed P.
+    assert_eq!(
+        alarm_of(&format!("#2=0\nM98 P1000 L#2\n{progs}")),
+        Some(5010)
+    );
+    assert_eq!(alarm_of(&format!("M98 P#3\n{progs}")), Some(5009));
+}

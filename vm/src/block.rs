@@ -174,10 +174,14 @@ impl Kernel for TierCall<'_> {
             return Ran::Not;
         }
         match self.run.instr(pc, words, blocks) {
-            // No end, no G31 position, no G10 L52 variable: what
+            // No end, no G31 position, no G10 L52 variable, no call: what
             // `Vm::finish_block` would do is nothing.
             Some(Ok(out))
-                if self.go_on && out.end.is_none() && out.skip.is_none() && out.store.is_none() =>
+                if self.go_on
+                    && out.end.is_none()
+                    && out.skip.is_none()
+                    && out.store.is_none()
+                    && out.call.is_none() =>
             {
                 Ran::GoOn
             }

@@ -179,6 +179,7 @@ fn program_alarm<T>(code: u16, msg: impl Into<String>) -> Result<T, Fault> {
     Err(NcError::numbered(code, msg))
 }
 
+#[derive(PartialEq)]
 enum Next {
     Go,
     Event,
@@ -689,10 +690,7 @@ impl Vm {
             }
             Instr::CallSubPacked { num } => {
                 self.nc.check_call()?;
-                // P<count:4><program:4> (dialect.md §7.11): count 0 is once.
-                let packed = target_number(self.reg(num))?;
-                let prog = self.program_by_number(f64::from(packed % 10_000))?;
-                let n = (packed / 10_000).max(1);
+                let (prog, n) = self.packed(self.reg(num))?;
                 self.call(prog, n, false, false, Vec::new())?;
             }
             Instr::CallMacro { prog, count } => {
@@ -841,6 +839,9 @@ impl Vm {
         if out.end.is_some() {
             return Ok(Next::Done);
         }
+        if let Some(call) = out.call {
+            return self.word_call(call, sink);
+        }
         if out.moved && !self.frames.iter().any(|f| f.modal) {
             if let Some(m) = &self.modal {
                 let (prog, count, args) = (m.prog, m.count, m.args.clone());
@@ -848,6 +849,44 @@ impl Vm {
             }
         }
         Ok(Next::Event)
+    }
+
+    /// The call or return of a block's computed M code (`nc::WordCall`),
+    /// after the block, as a written one's `callsub…` or `ret`.
+    fn word_call(&mut self, call: nc::WordCall, sink: &mut dyn Sink) -> Result<Next, Fault> {
+        match call {
+            nc::WordCall::Sub { p: None, .. } => {
+                return fault(AlarmCode::MissingWord, "M98 needs P, the program to call");
+            }
+            nc::WordCall::Sub { p: Some(p), l } => {
+                self.nc.check_call()?;
+                let (prog, count) = match l {
+                    Some(l) => (self.program_by_number(p)?, count_of(l)?),
+                    None => self.packed(p)?,
+                };
+                self.call(prog, count, false, false, Vec::new())?;
+            }
+            nc::WordCall::Macro(n) => {
+                self.nc.check_call()?;
+                let prog = self.program_by_number(f64::from(n))?;
+                self.call(prog, 1, false, false, Vec::new())?;
+            }
+            nc::WordCall::Return { seq } => {
+                let seq = seq.map(target_number).transpose()?;
+                if self.ret(seq, sink)? == Next::Done {
+                    return Ok(Next::Done);
+                }
+            }
+        }
+        Ok(Next::Event)
+    }
+
+    /// The program and count of `M98 P<count:4><program:4>` (dialect.md
+    /// §7.11): count 0 is once; a vacant P is E5009.
+    fn packed(&self, p: f64) -> Result<(u32, u32), Fault> {
+        let packed = target_number(p)?;
+        let prog = self.program_by_number(f64::from(packed % 10_000))?;
+        Ok((prog, (packed / 10_000).max(1)))
     }
 
     fn program_by_number(&self, v: f64) -> Result<u32, Fault> {

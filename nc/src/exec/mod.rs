@@ -112,6 +112,22 @@ pub struct Outcome {
     /// A `G10 L52` read: the variable to set and the parameter's value
     /// (variables #1–#999 live in the VM, not in the kernel).
     pub store: Option<(u32, f64)>,
+    /// The call or return of a computed M code (`M#1` with #1 = 98, 99 or
+    /// 9000–9999): the VM makes it after the block, as a written one
+    /// (dialect.md §6.1, group 6), whose words the compiler takes.
+    pub call: Option<WordCall>,
+}
+
+/// A call or return that a block's computed M code asks for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WordCall {
+    /// M98 P \[L\]: with L, P is the program; without, P is
+    /// `<count:4><program:4>` (§7.11).
+    Sub { p: Option<f64>, l: Option<f64> },
+    /// M99 \[P\].
+    Return { seq: Option<f64> },
+    /// M9000–M9999: O9000–O9999, once (§7.10).
+    Macro(u16),
 }
 
 /// The NC kernel: a machine and its state.
@@ -350,6 +366,7 @@ impl Nc {
             nc.stops(p, s, &mut out);
             Ok(())
         })?;
+        out.call = word_call(p);
         contour::end_of_block(self)?;
         crate::exec::comp::end_of_block(self, p, out.moved)?;
         self.profile.clear();
@@ -935,6 +952,7 @@ impl Nc {
     }
 
     /// Group 4: program stops and ends.
+    // (Group 6, a call or return, is the VM's: `word_call`.)
     fn stops(&mut self, p: &Parsed, sink: &mut dyn Sink, out: &mut Outcome) {
         for &m in p.ms() {
             let kind = match m {
@@ -996,4 +1014,20 @@ pub fn check_tool(m: &Machine, tool: u32, offset: u32) -> Result<(), NcError> {
         );
     }
     Ok(())
+}
+
+/// The call or return a block's M code asks for (group 6), with its P and
+/// L. Only a computed M gets here: the compiler takes a written one's
+/// words, and E1012 lets a block hold one at most.
+fn word_call(p: &Parsed) -> Option<WordCall> {
+    let value = |letter: u8| p.word(letter).map(|w| w.value);
+    p.ms().iter().find_map(|&m| match m {
+        M::SubCall => Some(WordCall::Sub {
+            p: value(b'P'),
+            l: value(b'L'),
+        }),
+        M::Return => Some(WordCall::Return { seq: value(b'P') }),
+        M::MacroCall(n) => Some(WordCall::Macro(n)),
+        _ => None,
+    })
 }
