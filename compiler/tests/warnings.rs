@@ -636,3 +636,33 @@ fn w104_a_letter_the_form_of_a_cycle_block_does_not_use() {
         + profile;
     assert_eq!(w104(&used), []);
 }
+
+/// The lines of W101 (running off the last block) in a program.
+fn w101(src: &str) -> Vec<usize> {
+    let c = compile("w.nc", src.as_bytes(), &Options::default());
+    assert!(!c.has_errors(), "{}", c.render());
+    c.diags
+        .iter()
+        .filter(|(_, d)| d.code == "W101")
+        .map(|(f, d)| c.files[*f].line_col(d.span.start).0)
+        .collect()
+}
+
+/// W101 says a program runs past its last block (dialect.md §1.2): only
+/// when a path gets there.
+#[test]
+fn w101_only_when_the_run_can_get_past_the_last_block() {
+    // No end at all.
+    assert_eq!(w101("G00 X1\nG00 X2\n"), [2]);
+    // G70's profile after M30 is read, not run through (cycles.md §8).
+    let g70 = "G99 S500 M03\nG00 X50 Z2\nG70 P10 Q20 F0.2\nM30\nN10 G00 X30\nG01 Z-20\nN20 X50\n";
+    assert_eq!(w101(g70), Vec::<usize>::new());
+    // G71 goes on after nf (cycles.md §5): past the last block.
+    let g71 = "G99 S500 M03\nG00 X50 Z2\nG71 U2 R1\nG71 P10 Q20 F0.2\nM30\nN10 G00 X30\nG01 Z-20\nN20 X50\n";
+    assert_eq!(w101(g71), [8]);
+    // A block after M30 that nothing jumps to; then one a GOTO reaches,
+    // literal or computed.
+    assert_eq!(w101("G00 X1\nM30\nN10 G00 X2\n"), Vec::<usize>::new());
+    assert_eq!(w101("GOTO 10\nM30\nN10 G00 X2\n"), [3]);
+    assert_eq!(w101("#1=10\nGOTO #1\nM30\nN10 G00 X2\n"), [4]);
+}

@@ -385,30 +385,15 @@ impl<'a> Builder<'a> {
     /// off its last block), open loops, and the GOTOs' targets.
     fn end_program(&mut self, prog: &Program, main: bool, pb: ProgBuild, end: ProgEnd) {
         let mut st = pb.state;
-        // Running off the end: the main program halts, a subprogram
-        // returns as if M99 (W101).
         self.set_loc(end.span);
-        if !end.explicit {
-            let what = if main {
-                "the main program ends"
-            } else {
-                "the subprogram returns as if M99"
-            };
-            self.warn(
-                "W101",
-                end.span,
-                format!(
-                    "O{:04} runs off its last block without M02, M30 or M99: {what}",
-                    prog.number
-                ),
-            );
-        }
         crate::profile::program_end(self, prog);
         // A program that ends in M99 needs no end of its own, unless a jump
         // may land past it (a skipped last block goes on past its code).
         let ends = self.tail == Tail::Ret;
+        let mut off_the_end = None;
         if !ends || !st.gotos.is_empty() || !st.seqs.is_empty() || self.cur.is_some() {
             self.reset();
+            off_the_end = Some(self.open());
             self.terminate(if main {
                 Terminator::Halt
             } else {
@@ -424,6 +409,55 @@ impl<'a> Builder<'a> {
         }
         self.check_literal_jumps(&st);
         self.resolve_gotos(&mut st);
+        // Running off the end (W101): the main program halts, a
+        // subprogram returns as if M99. Not when no path gets there, such
+        // as G70's profile after M30 (a profile is not run through).
+        if !end.explicit && off_the_end.is_some_and(|b| self.reaches(b)) {
+            let what = if main {
+                "the main program ends"
+            } else {
+                "the subprogram returns as if M99"
+            };
+            self.warn(
+                "W101",
+                end.span,
+                format!(
+                    "O{:04} runs off its last block without M02, M30 or M99: {what}",
+                    prog.number
+                ),
+            );
+        }
+    }
+
+    /// Whether control may get to block `to` of the function being
+    /// built: from its entry along the edges, and from every numbered
+    /// block where a jump is computed (GOTO, G65 H80–H86) or a callee
+    /// may return to one (M99 P).
+    fn reaches(&self, to: Handle<ir::Block>) -> bool {
+        let f = &self.f;
+        let computed = (f.blocks.iter()).any(|(_, b)| {
+            matches!(
+                b.term,
+                Some(Terminator::Goto { .. } | Terminator::GotoIf { .. } | Terminator::Call { .. })
+            )
+        });
+        let numbered = |b: &ir::Block| (b.ops.iter()).any(|&op| matches!(f.ops[op], Op::Seq(..)));
+        let mut seen = vec![false; f.blocks.len()];
+        let mut stack: Vec<Handle<ir::Block>> = f.layout.first().copied().into_iter().collect();
+        if computed {
+            stack.extend(f.blocks.iter().filter(|(_, b)| numbered(b)).map(|(h, _)| h));
+        }
+        while let Some(b) = stack.pop() {
+            if std::mem::replace(&mut seen[b.index()], true) {
+                continue;
+            }
+            if b == to {
+                return true;
+            }
+            let term = f.blocks.get(b).and_then(|blk| blk.term.as_ref());
+            stack.extend(term.into_iter().flat_map(|t| t.successors()));
+        }
+        false
     }
 
     /// E2015 for a G65 H80–H86 to a written number whose block lies in a
@@ -646,15 +680,9 @@ impl<'a> Builder<'a> {
             None
         };
         match index {
+            // (`#0 = …` too: a value error is the run's, E5007 when it is
+            // reached, dialect.md §0; W116 tells it here.)
             Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
-                if n == 0.0 {
-                    self.error(
-                        "E5007",
-                        target.span,
-                        "#0 is always vacant and cannot be written",
-                    );
-                    return;
-                }
                 self.push(Op::Assign {
                     target: ir::VarTarget::Direct(n as u32),
                     value: src,
