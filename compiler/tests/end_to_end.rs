@@ -173,6 +173,25 @@ fn structure_errors_are_compile_errors_at_their_line() {
     }
 }
 
+/// A DO label open twice, or a fourth loop inside three: one error at
+/// that DO. Its END closes it, so the outer ENDs meet their own DOs and
+/// no error about crossed loops follows.
+#[test]
+fn a_loop_error_is_told_once() {
+    let open_twice = "WHILE[#1LT1]DO1\nWHILE[#1LT1]DO2\nWHILE[#1LT1]DO1\n\
+                      #1=1\nEND1\nEND2\nEND1\nM30\n";
+    let four_deep = "WHILE[#1LT1]DO1\nWHILE[#1LT1]DO2\nWHILE[#1LT1]DO3\n\
+                     WHILE[#1LT1]DO2\n#1=1\nEND2\nEND3\nEND2\nEND1\nM30\n";
+    for (src, line) in [(open_twice, 3), (four_deep, 4)] {
+        let c = compile("e.nc", src.as_bytes(), &Options::default());
+        let errors: Vec<_> = (c.diags.iter())
+            .filter(|(_, d)| d.is_error())
+            .map(|(f, d)| (d.code, c.files[*f].line_col(d.span.start).0))
+            .collect();
+        assert_eq!(errors, [("E2014", line)], "{}", c.render());
+    }
+}
+
 #[test]
 fn folding_off_and_on_run_the_same() {
     let src = "#1=[2+3]*SIN[30]\n#2=ATAN[1]/[-1]\nG01 X[#1*4] Z[-#2/10] F100\nM30\n";

@@ -575,17 +575,16 @@ impl<'a> Builder<'a> {
             );
             return;
         }
+        // (Opened even so: its END then closes it, not an outer loop,
+        // which would cascade into errors about crossed loops.)
         if st.loops.iter().any(|l| l.label == label) {
             self.error(
                 "E2014",
                 span,
                 format!("DO {label} is already open: nested loops need different labels"),
             );
-            return;
-        }
-        if st.loops.len() == 3 {
+        } else if st.loops.len() >= 3 {
             self.error("E2014", span, "loops nest at most three deep");
-            return;
         }
         // Numbered as the IR numbers them, each with the loop around it.
         self.f.loops.push(self.in_loop);
