@@ -145,9 +145,13 @@ struct Shape {
     /// A block with words has been seen: an O line after it would start
     /// a second program.
     any_block: bool,
-    /// The last block, and whether the last with words ends the program
-    /// (build's W101 rule).
+    /// The last block, and whether the run cannot get past it (build's
+    /// W101 rule): the last block with words ends the program, or an
+    /// earlier one did (a plain program has no jumps, so nothing after
+    /// an M02/M30 runs).
     end: Option<ProgEnd>,
+    /// An M02/M30 has been seen.
+    ended: bool,
 }
 
 /// A chunk on its way from the front end to the back end.
@@ -269,7 +273,10 @@ impl Front<'_> {
                     }
                     self.shape.any_block |= !ws.is_empty();
                     let explicit = match build::block_ends(b) {
-                        Some(ends) => ends,
+                        Some(ends) => {
+                            self.shape.ended |= ends;
+                            self.shape.ended
+                        }
                         None => self.shape.end.is_some_and(|e| e.explicit),
                     };
                     self.shape.end = Some(ProgEnd {

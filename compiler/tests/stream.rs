@@ -103,7 +103,8 @@ fn long_program(blocks: usize, last: &str) -> String {
 
 #[test]
 fn a_long_program_compiles_the_same_in_chunks() {
-    for last in ["M30\n%\n", "G00 X60\n"] {
+    // (The third: blocks after M30 never run, so no W101 either way.)
+    for last in ["M30\n%\n", "G00 X60\n", "M30\nN70 G00 X99 Z9\n"] {
         let src = long_program(3_000, last);
         assert!(same_both_ways("long.nc", src.as_bytes(), 4_096), "{last:?}");
     }
@@ -111,6 +112,9 @@ fn a_long_program_compiles_the_same_in_chunks() {
     let src = long_program(3_000, "G00 X60\n");
     let (_, text) = whole("long.nc", src.as_bytes());
     assert!(text.contains("W101"), "{text}");
+    let src = long_program(3_000, "M30\nN70 G00 X99 Z9\n");
+    let (_, text) = whole("long.nc", src.as_bytes());
+    assert!(!text.contains("W101"), "{text}");
 }
 
 #[test]

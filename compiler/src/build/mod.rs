@@ -680,7 +680,8 @@ impl<'a> Builder<'a> {
         };
         match index {
             // (`#0 = …` too: a value error is the run's, E5007 when it is
-            // reached, dialect.md §0; W116 tells it here.)
+            // reached, dialect.md §0; the compile-time run tells W124 when
+            // it always is.)
             Some(Ok(n)) if n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64 => {
                 self.push(Op::Assign {
                     target: ir::VarTarget::Direct(n as u32),
