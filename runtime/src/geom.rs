@@ -181,6 +181,15 @@ impl Curve {
         if !is_pos(chord - 1e-9) || chord > 2.0 * a + CHORD_SLACK {
             return None;
         }
+        // A chord up to the slack longer than 2a: the half ellipse grown
+        // by chord / 2a (its shape kept) so that it passes through both
+        // points. Centred on the chord's middle with the axes as written,
+        // it would start up to the slack away from the tool, a step in
+        // one period (47 nm of C on a cylinder broke C's jerk 15 times).
+        let (a, b) = match chord > 2.0 * a {
+            true => (0.5 * chord, b * (0.5 * chord / a)),
+            false => (a, b),
+        };
         let mid = ep * 0.5;
         let h = sqrt((a * a - chord * chord * 0.25).max(0.0));
         // The centre lies left of the chord for a CCW arc of ≤ 180°.
@@ -706,7 +715,11 @@ mod tests {
         // A half ellipse whose chord is 0.0015 mm longer than 2a, as the
         // kernel accepts it (half the chord within 0.001 of a), is drawn.
         let far = V2::new(5.0, -20.0015);
-        assert!(Curve::ellipse(from, far, 10.0, 6.0, 0.0, true).is_some());
+        let half = Curve::ellipse(from, far, 10.0, 6.0, 0.0, true).unwrap();
+        // It starts and ends on the points, to far less than a nanometre.
+        let gap = |p: V2, q: V2| (p - q).norm();
+        assert!(gap(half.point(0.0), from) < 1e-12, "{half:?}");
+        assert!(gap(half.point(1.0), far) < 1e-12, "{half:?}");
         assert!(Curve::ellipse(from, V2::new(5.0, -20.003), 10.0, 6.0, 0.0, true).is_none());
     }
 
