@@ -58,7 +58,7 @@ pub use block::BlockWord;
 pub use error::{LoadError, TableError};
 pub use instr::{Instr, Opcode};
 pub use lines::{LineTable, LineTableError};
-pub use module::{Module, Program, SourceFileInfo, SourceLoc};
+pub use module::{loop_holds, Module, Program, SourceFileInfo, SourceLoc};
 pub use operand::{
     addr, Addr, ArgVar, CmpCode, CmpOp, Const, FuncCode, MathFunc, Operand, OperandKind,
     OperandMut, Pc, Prog, Reg, Str, Switch, Var, SWITCHES, U16, U32, U8,

@@ -158,21 +158,27 @@ impl Module {
     /// holds itself; loop 0, outside every loop, holds all). Bounded on an
     /// unverified module.
     pub fn loop_holds(&self, prog: usize, outer: u32, inner: u32) -> bool {
-        let Some(p) = self.programs.get(prog) else {
-            return false;
-        };
-        let mut l = inner;
-        for _ in 0..=p.loops.len() {
-            if l == outer {
-                return true;
-            }
-            match l.checked_sub(1).and_then(|i| p.loops.get(i as usize)) {
-                Some(&parent) => l = parent,
-                None => return outer == 0,
-            }
-        }
-        false
+        (self.programs.get(prog)).is_some_and(|p| loop_holds(&p.loops, outer, inner))
     }
+}
+
+/// Whether loop `outer` holds loop `inner` in a table of loops numbered
+/// from 1, `parents[i]` the loop that holds loop i + 1 (0: none) — a
+/// program's `loops`, and the compiler's while it builds them. A loop
+/// holds itself; 0, outside every loop, holds all. The walk is bounded, so
+/// a crafted table cannot make it loop.
+pub fn loop_holds(parents: &[u32], outer: u32, inner: u32) -> bool {
+    let mut l = inner;
+    for _ in 0..=parents.len() {
+        if l == outer {
+            return true;
+        }
+        match l.checked_sub(1).and_then(|i| parents.get(i as usize)) {
+            Some(&parent) => l = parent,
+            None => return outer == 0,
+        }
+    }
+    false
 }
 
 /// Equality with constants compared bit for bit, so a module holding a NaN

@@ -26,6 +26,34 @@ fn var(vm: &Vm, n: u32) -> f64 {
     vm.variable(n).unwrap()
 }
 
+/// Runs `call` on line `line`, r0 holding `value` (vacant for `None`) and
+/// r1 vacant, with one program after the main one, number `callee`, that
+/// adds 1 to #100: #100 after the run, or the alarm's code (its line
+/// checked).
+fn call_once(value: Option<f64>, call: Instr, callee: u32, line: u32) -> Result<f64, u32> {
+    let mut a = Asm::new();
+    match value {
+        Some(v) => a.load(0, v),
+        None => a.op(Instr::LoadNull { dst: 0 }),
+    };
+    a.op(Instr::LoadNull { dst: 1 });
+    a.line(line);
+    a.op(call);
+    a.op(Instr::Halt);
+    a.program(callee);
+    bump(&mut a, 100);
+    a.op(Instr::Ret);
+    let (status, _, vm) = run(a.build());
+    match status {
+        Status::Done => Ok(var(&vm, 100)),
+        other => {
+            let alarm = alarm_of(other);
+            assert_eq!(alarm.line, line);
+            Err(alarm.code)
+        }
+    }
+}
+
 #[test]
 fn m98_repeats_on_the_callers_local_level() {
     // Main: #1 = 0, M98 P2 L3; O0002: #1 = #1 + 1, M99. The subprogram
@@ -44,28 +72,7 @@ fn m98_repeats_on_the_callers_local_level() {
 
 #[test]
 fn a_vacant_repeat_count_is_once_and_outside_1_to_9999_an_alarm() {
-    let calls = |count: Option<f64>| {
-        let mut a = Asm::new();
-        match count {
-            Some(c) => a.load(0, c),
-            None => a.op(Instr::LoadNull { dst: 0 }),
-        };
-        a.line(4);
-        a.op(Instr::CallSub { prog: 1, count: 0 });
-        a.op(Instr::Halt);
-        a.program(2);
-        bump(&mut a, 100);
-        a.op(Instr::Ret);
-        let (status, _, vm) = run(a.build());
-        match status {
-            Status::Done => Ok(var(&vm, 100)),
-            other => {
-                let alarm = alarm_of(other);
-                assert_eq!(alarm.line, 4);
-                Err(alarm.code)
-            }
-        }
-    };
+    let calls = |v: Option<f64>| call_once(v, Instr::CallSub { prog: 1, count: 0 }, 2, 4);
     // An L word left out (vacant, §7.5) is once; §7.6: a count below 1
     // or past 9999 is E5010 (L is 1…9999, §7.9).
     assert_eq!(calls(Some(0.0)), Err(5010));
@@ -81,28 +88,7 @@ fn a_vacant_repeat_count_is_once_and_outside_1_to_9999_an_alarm() {
 /// that does not exist E6003.
 #[test]
 fn a_computed_packed_m98_is_split_when_it_runs() {
-    let calls = |p: Option<f64>| {
-        let mut a = Asm::new();
-        match p {
-            Some(v) => a.load(0, v),
-            None => a.op(Instr::LoadNull { dst: 0 }),
-        };
-        a.line(3);
-        a.op(Instr::CallSubPacked { num: 0 });
-        a.op(Instr::Halt);
-        a.program(2);
-        bump(&mut a, 100);
-        a.op(Instr::Ret);
-        let (status, _, vm) = run(a.build());
-        match status {
-            Status::Done => Ok(var(&vm, 100)),
-            other => {
-                let alarm = alarm_of(other);
-                assert_eq!(alarm.line, 3);
-                Err(alarm.code)
-            }
-        }
-    };
+    let calls = |v: Option<f64>| call_once(v, Instr::CallSubPacked { num: 0 }, 2, 3);
     assert_eq!(calls(Some(2.0)), Ok(1.0));
     assert_eq!(calls(Some(30_002.0)), Ok(3.0));
     assert_eq!(calls(Some(2.4)), Ok(1.0), "rounded");
@@ -240,29 +226,7 @@ fn eight_calls_in_all_may_nest() {
 
 #[test]
 fn computed_call_targets() {
-    let dynamic = |num: Option<f64>| {
-        let mut a = Asm::new();
-        match num {
-            Some(n) => a.load(0, n),
-            None => a.op(Instr::LoadNull { dst: 0 }),
-        };
-        a.op(Instr::LoadNull { dst: 1 });
-        a.line(5);
-        a.op(Instr::CallSubDyn { num: 0, count: 1 });
-        a.op(Instr::Halt);
-        a.program(1234);
-        bump(&mut a, 100);
-        a.op(Instr::Ret);
-        let (status, _, vm) = run(a.build());
-        match status {
-            Status::Done => Ok(var(&vm, 100)),
-            other => {
-                let alarm = alarm_of(other);
-                assert_eq!(alarm.line, 5);
-                Err(alarm.code)
-            }
-        }
-    };
+    let dynamic = |v: Option<f64>| call_once(v, Instr::CallSubDyn { num: 0, count: 1 }, 1234, 5);
     // §7.11/§8.4: a computed number naming no program is E6003; null as
     // a call target E5009 (§7.5); the number is rounded.
     assert_eq!(dynamic(Some(1234.0)), Ok(1.0));

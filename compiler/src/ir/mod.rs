@@ -525,17 +525,7 @@ impl Function {
     /// Whether DO loop `outer` holds loop `inner` (a loop holds itself;
     /// 0, outside every loop, holds all).
     pub fn loop_holds(&self, outer: u32, inner: u32) -> bool {
-        let mut l = inner;
-        for _ in 0..=self.loops.len() {
-            if l == outer {
-                return true;
-            }
-            match l.checked_sub(1).and_then(|i| self.loops.get(i as usize)) {
-                Some(&parent) => l = parent,
-                None => return outer == 0,
-            }
-        }
-        false
+        isa::loop_holds(&self.loops, outer, inner)
     }
 
     /// The words of an NC block.
