@@ -46,16 +46,18 @@ use vm::Vm;
 pub enum LoadError {
     /// Not a valid `.gbc` (the verifier's message).
     Invalid(String),
-    /// Compiled for a machine whose compile-time keys differ.
-    Machine,
+    /// Compiled for a machine whose compile-time keys differ: the first
+    /// that does, with both values.
+    Machine(String),
 }
 
 impl core::fmt::Display for LoadError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             LoadError::Invalid(m) => write!(f, "not a valid .gbc module: {m}"),
-            LoadError::Machine => f.write_str(
-                "compiled for another machine configuration (its compile-time keys differ)",
+            LoadError::Machine(key) => write!(
+                f,
+                "compiled for another machine configuration (its compile-time keys differ: {key})"
             ),
         }
     }
@@ -161,8 +163,8 @@ impl<P: Plc> Controller<P> {
         cfg: Config,
         plc: P,
     ) -> Result<Controller<P>, LoadError> {
-        if module.machine != machine.compile_keys() {
-            return Err(LoadError::Machine);
+        if let Some(key) = Machine::compile_keys_differ(&module.machine, &machine.compile_keys()) {
+            return Err(LoadError::Machine(key));
         }
         let ra = RunAhead::new(module, machine);
         let mut engine = Engine::new(cfg, plc);

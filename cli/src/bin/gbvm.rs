@@ -361,9 +361,9 @@ fn run(args: &RunArgs, quiet: bool) -> ExitCode {
         Ok(m) => m,
         Err(e) => return fail(&e),
     };
-    if module.machine != machine.compile_keys() {
+    if let Some(key) = nc::Machine::compile_keys_differ(&module.machine, &machine.compile_keys()) {
         return fail(&format!(
-            "{} was compiled for another machine configuration (its compile-time keys differ); compile it again with this --machine",
+            "{} was compiled for another machine configuration ({key}); compile it again with this --machine",
             file.display()
         ));
     }

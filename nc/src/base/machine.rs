@@ -91,17 +91,37 @@ section!(LinearAxis {
     max_mm: f64 = 2.0,
 });
 
-fn z_axis() -> LinearAxis {
-    LinearAxis {
-        diameter: false,
-        rapid_mm_min: 10000.0,
-        max_feed_mm_min: 5000.0,
-        accel_mm_s2: 2000.0,
-        jerk_mm_s3: 25000.0,
-        soft_limits: false,
-        min_mm: -510.0,
-        max_mm: 2.0,
+section!(
+    /// `[axes.z]` as a file writes it: Z's own defaults (a partial table
+    /// keeps them), and no `diameter` (machine.md lists it for X only).
+    ZAxisFile {
+        rapid_mm_min: f64 = 10000.0,
+        max_feed_mm_min: f64 = 5000.0,
+        accel_mm_s2: f64 = 2000.0,
+        jerk_mm_s3: f64 = 25000.0,
+        soft_limits: bool = false,
+        min_mm: f64 = -510.0,
+        max_mm: f64 = 2.0,
     }
+);
+
+impl From<ZAxisFile> for LinearAxis {
+    fn from(z: ZAxisFile) -> LinearAxis {
+        LinearAxis {
+            diameter: false,
+            rapid_mm_min: z.rapid_mm_min,
+            max_feed_mm_min: z.max_feed_mm_min,
+            accel_mm_s2: z.accel_mm_s2,
+            jerk_mm_s3: z.jerk_mm_s3,
+            soft_limits: z.soft_limits,
+            min_mm: z.min_mm,
+            max_mm: z.max_mm,
+        }
+    }
+}
+
+fn z_from_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<LinearAxis, D::Error> {
+    ZAxisFile::deserialize(d).map(LinearAxis::from)
 }
 
 section!(RotaryAxis {
@@ -114,11 +134,25 @@ section!(RotaryAxis {
     jerk_deg_s3: f64 = 36000.0,
 });
 
-section!(Axes {
-    x: LinearAxis = LinearAxis::default(),
-    z: LinearAxis = z_axis(),
-    c: RotaryAxis = RotaryAxis::default(),
-});
+/// `[axes]`: by hand rather than by `section!`, for Z's own reader.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Axes {
+    pub x: LinearAxis,
+    #[serde(deserialize_with = "z_from_file")]
+    pub z: LinearAxis,
+    pub c: RotaryAxis,
+}
+
+impl Default for Axes {
+    fn default() -> Axes {
+        Axes {
+            x: LinearAxis::default(),
+            z: ZAxisFile::default().into(),
+            c: RotaryAxis::default(),
+        }
+    }
+}
 
 section!(Feed {
     max_mm_min: f64 = 5000.0
@@ -358,10 +392,13 @@ impl Machine {
     /// `.gbc` so a VM refuses to run it on a machine that would change its
     /// meaning.
     pub fn compile_keys(&self) -> String {
+        // Only an offset's nose (radius, wear radius, tip) is compiled in;
+        // its lengths are the runtime's, and an all-zero nose is as unlisted.
         let offsets: Vec<String> = self
             .tools
             .offset
             .iter()
+            .filter(|o| o.radius != 0.0 || o.wear_radius != 0.0 || o.tip != 0)
             .map(|o| format!("{}:{}:{}:{}", o.number, o.radius, o.wear_radius, o.tip))
             .collect();
         format!(
@@ -383,6 +420,24 @@ impl Machine {
             offsets.join(","),
             self.r#macro.g_code_macros,
         )
+    }
+
+    /// Where two lines of [`Machine::compile_keys`] differ, for a message:
+    /// the first differing key with both values; `None` when they agree.
+    pub fn compile_keys_differ(recorded: &str, here: &str) -> Option<String> {
+        let mut a = recorded.split(';');
+        let mut b = here.split(';');
+        loop {
+            match (a.next(), b.next()) {
+                (None, None) => return None,
+                (x, y) if x == y => continue,
+                (x, y) => {
+                    let (key, was) = x.unwrap_or("").split_once('=').unwrap_or(("?", ""));
+                    let now = y.and_then(|y| y.split_once('=')).map_or("", |(_, v)| v);
+                    return Some(format!("{key}: {was} in the module, {now} here"));
+                }
+            }
+        }
     }
 
     /// Work offset n (1 = G54 … 6 = G59) as configured.
@@ -419,6 +474,37 @@ mod tests {
             Machine::from_toml("[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n").unwrap();
         assert_eq!(m.tools.offset[0].radius, 0.8);
         assert_eq!(m.tools.count, 32);
+        // A partial [axes.z] keeps Z's values of machine.md §3 (10 000
+        // mm/min rapid, 5000 feed, 2000 mm/s², −510…+2), not X's.
+        let m = Machine::from_toml("[axes.z]\nsoft_limits = true\n").unwrap();
+        let z = &m.axes.z;
+        assert!(z.soft_limits && !z.diameter);
+        assert_eq!(
+            (z.rapid_mm_min, z.max_feed_mm_min, z.accel_mm_s2, z.min_mm),
+            (10000.0, 5000.0, 2000.0, -510.0)
+        );
+        assert!(Machine::from_toml("[axes.z]\nmax_mm = -400.0\n").is_ok());
+        // X alone is programmed on the diameter.
+        assert!(Machine::from_toml("[axes.z]\ndiameter = true\n").is_err());
+    }
+
+    #[test]
+    fn only_an_offsets_nose_is_a_compile_key() {
+        // machine.md §5: radius, wear_radius and tip are C; the lengths
+        // x, z, wear_x, wear_z are the runtime's.
+        let lengths = "[[tools.offset]]\nnumber = 2\nx = -6.0\nwear_z = 0.1\n";
+        let reference = Machine::reference().compile_keys();
+        assert_eq!(
+            Machine::from_toml(lengths).unwrap().compile_keys(),
+            reference
+        );
+        let nose = Machine::from_toml("[[tools.offset]]\nnumber = 2\nradius = 0.4\n").unwrap();
+        let differ = Machine::compile_keys_differ(&reference, &nose.compile_keys());
+        assert_eq!(
+            differ.as_deref(),
+            Some("offsets: [] in the module, [2:0.4:0:0] here")
+        );
+        assert_eq!(Machine::compile_keys_differ(&reference, &reference), None);
     }
 
     #[test]

@@ -25,9 +25,9 @@ pub(super) fn check(file: &Path, machine: Option<&Path>, max_time: Option<f64>) 
     };
     let mut ctl = match runtime::Controller::new(module, machine, runtime::AutoAck) {
         Ok(c) => c,
-        Err(runtime::LoadError::Machine) => {
+        Err(runtime::LoadError::Machine(key)) => {
             return fail(&format!(
-                "{} was compiled for another machine configuration (its compile-time keys differ); compile it again with this --machine",
+                "{} was compiled for another machine configuration ({key}); compile it again with this --machine",
                 file.display()
             ))
         }

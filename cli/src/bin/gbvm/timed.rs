@@ -179,8 +179,8 @@ fn open(args: &RunArgs) -> Result<(runtime::Controller<runtime::AutoAck>, Progra
     let machine = load_machine(args.machine)?;
     let mut ctl = match runtime::Controller::new(module, machine, runtime::AutoAck) {
         Ok(c) => c,
-        Err(runtime::LoadError::Machine) => return Err(format!(
-            "{} was compiled for another machine configuration (its compile-time keys differ); compile it again with this --machine",
+        Err(runtime::LoadError::Machine(key)) => return Err(format!(
+            "{} was compiled for another machine configuration ({key}); compile it again with this --machine",
             args.file.display()
         )),
         Err(e) => return Err(format!("{}: {e}", args.file.display())),
