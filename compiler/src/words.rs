@@ -180,9 +180,14 @@ pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
             call: None,
         });
     }
-    let first_g = words.iter().find(|w| is(w, 'G'));
-    let g65_like = first_g.and_then(literal_code).map(round_g);
-    if let Some(g) = g65_like.filter(|g| *g == 650 || *g == 660) {
+    // A G65/G66 anywhere in the block makes it a call, so that one not
+    // written first is E2002 (macro_call) rather than an NC code.
+    let g65_like = words
+        .iter()
+        .filter(|w| is(w, 'G'))
+        .filter_map(|w| literal_code(w).map(round_g))
+        .find(|g| *g == 650 || *g == 660);
+    if let Some(g) = g65_like {
         return macro_call(words, g == 660);
     }
     if words
@@ -400,8 +405,14 @@ fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
 /// E2002 unless the G65/G66 is the block's first word and its only G.
 fn check_call_g(words: &[Word], modal: bool, span: Span) -> Result<(), Diagnostic> {
     let name = if modal { "G66" } else { "G65" };
-    if !words.first().is_some_and(|w| is(w, 'G')) {
-        let at = words.iter().find(|w| is(w, 'G')).map_or(span, |w| w.span);
+    let code = if modal { 660 } else { 650 };
+    let is_call = |w: &&Word| is(w, 'G') && literal_code(w).map(round_g) == Some(code);
+    // (A G-code macro's own G is its call: that G stands first instead.)
+    let later = words.iter().skip(1).find(is_call);
+    if !words.first().is_some_and(|w| is(w, 'G')) || later.is_some() {
+        let at = later
+            .or_else(|| words.iter().find(|w| is(w, 'G')))
+            .map_or(span, |w| w.span);
         return Err(Diagnostic::error(
             "E2002",
             at,

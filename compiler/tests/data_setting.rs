@@ -142,12 +142,18 @@ fn g10_l52_writes_a_system_variable_too() {
 
 #[test]
 fn a_bad_write_value_is_a_run_time_alarm() {
-    // 12 has the digit 2: not a bit pattern (E5010, run time).
-    let (_, status, _) = run("G10 L52\nN172 W12\nG11\nM30\n");
+    // 12 has the digit 2: not a bit pattern. Computed: E5010 at run time.
+    let (_, status, _) = run("#1=12\nG10 L52\nN172 W#1\nG11\nM30\n");
     let Status::Alarm(a) = status else {
         panic!("{status:?}")
     };
     assert_eq!(a.code, 5010);
+    // Written: the literal's fault, E1010 before the run; so are an axis
+    // P4 and a tool-life group P33 or unit Q3.
+    assert_eq!(diags("G10 L52\nN172 W12\nG11\nM30\n"), [("E1010", 2)]);
+    assert_eq!(diags("G10 L52\nN22 P4 R100\nG11\nM30\n"), [("E1010", 2)]);
+    assert_eq!(diags("G10 L3\nP33 L10\nG11\nM30\n"), [("E1010", 2)]);
+    assert_eq!(diags("G10 L3\nP1 L10 Q3\nG11\nM30\n"), [("E1010", 2)]);
 }
 
 #[test]

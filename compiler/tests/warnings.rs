@@ -90,10 +90,27 @@ fn w107_a_roughing_cycle_at_f0_as_in_seed_004() {
     // Any feed move: G01 with no F since power-on.
     assert_eq!(warnings("G00 X20 Z2\nG01 X10\nM30\n"), [("W107", 2)]);
     // The run stops there (E7001): a later alarm is never reached, and
-    // no W124 names it (the `compiler` fuzz target: T-16, E5010).
-    let later = "G00 X20 Z2\nG01 X10\nT-16\nM30\n";
-    assert_eq!(of(later), [("W107", 2)]);
-    assert_eq!(of(&later.replace("G01 X10", "G01 X10 F100")), [("W124", 3)]);
+    // no W124 names it (the `compiler` fuzz target: T-16, E5010 when
+    // computed; written, it is E1010 wherever it stands).
+    let later = "#1=-16\nG00 X20 Z2\nG01 X10\nT#1\nM30\n";
+    // (With a macro the program is not static: the run's E7001 is W124.)
+    assert_eq!(of(later), [("W124", 3)]);
+    // Reached, the folded T-16 always fails there: W116 (which `of`
+    // leaves out) and no W124.
+    let reached = compile(
+        "w.nc",
+        later.replace("G01 X10", "G01 X10 F100").as_bytes(),
+        &Options::default(),
+    );
+    let codes: Vec<_> = reached.diags.iter().map(|(_, d)| d.code).collect();
+    assert_eq!(codes, ["W116"]);
+    let written = compile(
+        "w.nc",
+        later.replace("T#1", "T-16").as_bytes(),
+        &Options::default(),
+    );
+    let codes: Vec<_> = written.diags.iter().map(|(_, d)| d.code).collect();
+    assert_eq!(codes, ["E1010"]);
 }
 
 #[test]

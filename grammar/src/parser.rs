@@ -83,7 +83,7 @@ pub(crate) mod actions {
     pub fn program_start(n: Number) -> R<Parsed> {
         if n.has_point {
             return fail(
-                Diagnostic::error("E1004", n.span, "program number with a decimal point")
+                Diagnostic::error("E1009", n.span, "program number with a decimal point")
                     .with_label("an integer is needed here"),
             );
         }

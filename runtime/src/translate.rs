@@ -45,7 +45,8 @@ pub struct Translator {
 }
 
 impl Translator {
-    /// A translator whose work zero is `origin` (machine coordinates).
+    /// A translator whose work zero is `origin` (machine coordinates), the
+    /// tool at machine zero (homed at power-on, machine.md §1).
     pub fn new(origin: V2) -> Translator {
         Translator {
             origin,
@@ -54,7 +55,7 @@ impl Translator {
                 f: 0.0,
                 per_rev: false,
             },
-            work: V2::ZERO,
+            work: V2::ZERO - origin,
             messages: Vec::new(),
             skip_queued: false,
             c: None,

@@ -418,15 +418,27 @@ impl<'a> Builder<'a> {
             } else {
                 "the subprogram returns as if M99"
             };
-            self.warn(
-                "W101",
-                end.span,
-                format!(
-                    "O{:04} runs off its last block without M02, M30 or M99: {what}",
-                    prog.number
-                ),
+            let msg = format!(
+                "O{:04} runs off its last block without M02, M30 or M99: {what}",
+                prog.number
             );
+            let mut d = Diagnostic::warning("W101", end.span, msg);
+            if let Some(next) = self.leading_blocks_before(prog) {
+                d = d.with_help(format!(
+                    "the blocks before the first O line are a main program of their own, O0000, and O{next:04} after them is a subprogram that runs only when called: if they belong to O{next:04}, write them after its O line"
+                ));
+            }
+            self.diags.push((self.unit, d));
         }
+    }
+
+    /// The number of the file's first O program when `prog` is the main
+    /// program made of the blocks before it (docs/language.md §1).
+    fn leading_blocks_before(&self, prog: &Program) -> Option<u32> {
+        let no_o_line = prog.number == 0 && prog.span == Span::default();
+        let mut same_file = self.programs.iter().filter(|p| p.unit == prog.unit);
+        let next = same_file.nth(1)?;
+        no_o_line.then_some(next.number)
     }
 
     /// Whether control may get to block `to` of the function being

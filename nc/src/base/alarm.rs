@@ -126,6 +126,17 @@ impl Alarm {
     pub fn from_code(code: u16) -> Option<Alarm> {
         Alarm::ALL.iter().copied().find(|a| a.code() == code)
     }
+
+    /// A value outside its address's range, by the word's `flags`: a
+    /// written one is the literal's fault (E1010, which the compiler reports
+    /// for a static block), a computed one the computation's (E5010).
+    pub const fn out_of_range(flags: u8) -> Alarm {
+        if flags & crate::base::words::LITERAL != 0 {
+            Alarm::LiteralOutOfRange
+        } else {
+            Alarm::ValueOutOfRange
+        }
+    }
 }
 
 /// The canon's code of an alarm (`ALARM CODE=7002`), as the runtime keeps

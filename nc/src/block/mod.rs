@@ -9,8 +9,8 @@ use alloc::format;
 use alloc::string::String;
 
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::{self, Code, Drill, Motion, OneShot, Plane, G};
-use crate::base::machine::Machine;
+use crate::base::gcode::{self, Code, Drill, Motion, OneShot, Plane, SpeedMode, G};
+use crate::base::machine::{Machine, SpindleType};
 use crate::base::mcode::{Class, M};
 use crate::base::words::{addr, addr_name, Word, ADDR_COUNT, COMMA_A, COMMA_C, COMMA_R};
 
@@ -107,6 +107,12 @@ impl Parsed {
 
     pub fn has(&self, letter: u8) -> bool {
         self.has_at(addr(letter))
+    }
+
+    /// E1010 or E5010 for the letter's value out of range, as it was
+    /// written or computed (`Alarm::out_of_range`).
+    pub fn range_alarm(&self, letter: u8) -> Alarm {
+        Alarm::out_of_range(self.flags[addr(letter) as usize])
     }
 
     pub fn has_at(&self, a: u8) -> bool {
@@ -274,10 +280,12 @@ fn add_g(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
         );
     }
     let Some(g) = G::from_code(code) else {
-        return fail(
-            Alarm::UnknownGCode,
-            format!("unknown G code {}", gcode::name(code)),
-        );
+        // A computed G1.25 is named as it is, not as the G1.3 it rounds to.
+        let shown = match f64::from(code) / 10.0 == w.value {
+            true => gcode::name(code),
+            false => format!("G{}", crate::base::event::Num(w.value)),
+        };
+        return fail(Alarm::UnknownGCode, format!("unknown G code {shown}"));
     };
     if let (G::OneShot(_), Some(other)) = (g, p.one_shot()) {
         return fail(
@@ -303,10 +311,19 @@ fn add_g(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
 }
 
 fn add_m(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
+    if w.literal_with_point() {
+        return fail(
+            Alarm::DecimalPointNotAllowed,
+            format!(
+                "M{}: an M code is a whole number; a decimal point is not allowed",
+                crate::base::event::Num(w.value)
+            ),
+        );
+    }
     let code = round_half_away(w.value);
     if !(0.0..=9999.0).contains(&code) {
         return fail(
-            Alarm::LiteralOutOfRange,
+            Alarm::out_of_range(w.flags),
             format!(
                 "M{} is out of range (M0…M9999)",
                 crate::base::event::Num(w.value)
@@ -384,7 +401,7 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     // address at all (the rules below would all pass).
     const CHECKED: u32 = mask(b"TPLQHDKFSUWYVC") | 1 << COMMA_A | 1 << COMMA_C | 1 << COMMA_R;
     if !p.has_any(CHECKED) {
-        return check_m_codes(p).and_then(|()| check_foreign(p));
+        return check_m_codes(p).and_then(|()| check_codes(p, m));
     }
     for letter in [b'T', b'P', b'L', b'Q', b'H', b'D', b'K'] {
         // With a C axis, H is the incremental C angle (decimals allowed).
@@ -407,6 +424,7 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     for letter in [b'F', b'S'] {
         check_sign(p, letter)?;
     }
+    check_ranges(p)?;
     check_end_point(p)?;
     if p.has(b'Y') || p.has(b'V') {
         return fail(Alarm::AxisNotConfigured, "this machine has no Y axis");
@@ -445,7 +463,7 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
         );
     }
     check_m_codes(p)?;
-    check_foreign(p)
+    check_codes(p, m)
 }
 
 /// F and S are not negative (but F of a left-hand tap, or of a block
@@ -454,10 +472,37 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
 fn check_sign(p: &Parsed, letter: u8) -> Result<(), NcError> {
     match p.get(letter) {
         Some(v) if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) => fail(
-            Alarm::LiteralOutOfRange,
+            p.range_alarm(letter),
             format!("{} must not be negative", letter as char),
         ),
         _ => Ok(()),
+    }
+}
+
+/// Numbers that name one of a few things (§1.9, §4.2, §4.4, §4.5): a
+/// written one out of range is E1010 here, in every block the compiler
+/// sees, reached or not; a computed one E5010.
+fn check_ranges(p: &Parsed) -> Result<(), NcError> {
+    let out = |letter: u8, lo: f64, hi: f64| {
+        p.get(letter)
+            .map(round_half_away)
+            .filter(|v| !(lo..=hi).contains(v))
+    };
+    if let Some(t) = out(b'T', 0.0, 9999.0) {
+        return fail(
+            p.range_alarm(b'T'),
+            format!("T{t} is out of range (T0…T9999)"),
+        );
+    }
+    let (letter, lo, hi, what) = match p.one_shot() {
+        Some(OneShot::HomeN) => (b'P', 2.0, 4.0, "G30 P: the reference points are 2…4"),
+        Some(OneShot::Skip) => (b'P', 1.0, 4.0, "G31 P: the skip signals are 1…4"),
+        Some(OneShot::Dwell) => (b'Q', 1.0, 4.0, "G04 Q: the skip signals are 1…4"),
+        _ => return Ok(()),
+    };
+    match out(letter, lo, hi) {
+        Some(v) => fail(p.range_alarm(letter), format!("{what}, not {v}")),
+        None => Ok(()),
     }
 }
 
@@ -505,14 +550,17 @@ fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
     Ok(())
 }
 
-fn check_foreign(p: &Parsed) -> Result<(), NcError> {
+/// Codes of other dialects, and codes that need equipment the machine
+/// lacks (E2003).
+fn check_codes(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     // One pass over the G codes; the rules then apply in their order.
-    let (mut g92, mut peck, mut plane) = (false, false, false);
+    let (mut g92, mut peck, mut plane, mut css) = (false, false, false, false);
     for g in p.gs() {
         match g {
             G::Motion(Motion::ThreadCycle) => g92 = true,
             G::OneShot(OneShot::PeckFace | OneShot::PeckGroove) => peck = true,
             G::Plane(Plane::Xy | Plane::Yz) => plane = true,
+            G::SpeedMode(SpeedMode::SurfaceSpeed) => css = true,
             _ => {}
         }
     }
@@ -532,6 +580,12 @@ fn check_foreign(p: &Parsed) -> Result<(), NcError> {
         return fail(
             Alarm::MissingEquipment,
             "G17/G19 need a Y axis; this lathe works in the ZX plane (G18)",
+        );
+    }
+    if css && m.spindle.r#type == SpindleType::Gear {
+        return fail(
+            Alarm::MissingEquipment,
+            "G96 needs a spindle whose speed the control sets; this one has gears (S00…S04): turn at a gear with G97",
         );
     }
     Ok(())

@@ -11,7 +11,7 @@ use alloc::format;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::machine::Machine;
-use crate::base::words::{addr, Word};
+use crate::base::words::{addr, Word, LITERAL};
 use crate::block::{self, round_half_away, Parsed};
 use crate::exec::params;
 use crate::exec::tool_life::{LifeUnit, ToolLife};
@@ -107,7 +107,7 @@ fn tool_life_block(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
     if let Some(t) = p.get(b'T') {
         let t = round_half_away(t);
         if !(0.0..=9999.0).contains(&t) {
-            return fail(Alarm::ValueOutOfRange, format!("T{t} is out of range"));
+            return fail(p.range_alarm(b'T'), format!("T{t} is out of range"));
         }
         let t = t as u32;
         let (tool, offset) = (t / 100, t % 100);
@@ -129,7 +129,7 @@ fn group_words(group: f64, p: &Parsed) -> Result<(u32, f64, LifeUnit), NcError> 
     let number = round_half_away(group);
     if !(1.0..=32.0).contains(&number) {
         return fail(
-            Alarm::ValueOutOfRange,
+            p.range_alarm(b'P'),
             format!("P{number}: tool-life groups are 1…32"),
         );
     }
@@ -141,7 +141,7 @@ fn group_words(group: f64, p: &Parsed) -> Result<(u32, f64, LifeUnit), NcError> 
     };
     if life <= 0.0 || !life.is_finite() {
         return fail(
-            Alarm::ValueOutOfRange,
+            p.range_alarm(b'L'),
             format!("L{life}: a tool life must be above 0"),
         );
     }
@@ -150,7 +150,7 @@ fn group_words(group: f64, p: &Parsed) -> Result<(u32, f64, LifeUnit), NcError> 
         Some(2.0) => LifeUnit::Minutes,
         Some(q) => {
             return fail(
-                Alarm::ValueOutOfRange,
+                p.range_alarm(b'Q'),
                 format!("Q{q}: a tool life counts uses (Q1) or minutes (Q2)"),
             )
         }
@@ -181,10 +181,12 @@ fn parameter_block(nc: &mut Nc, p: &Parsed) -> Result<Outcome, NcError> {
             )
         }
         (Some(var), None) => {
-            let value = params::read(nc, n, axis)?;
+            let value = params::read(nc, n, axis).map_err(|e| written_fault(e, p, b"P"))?;
             out.store = Some((variable_number(var)?, value));
         }
-        (None, Some(value)) => params::write(nc, n, axis, value)?,
+        (None, Some(value)) => {
+            params::write(nc, n, axis, value).map_err(|e| written_fault(e, p, b"PW"))?
+        }
         (None, None) => {
             return fail(
                 Alarm::MissingWord,
@@ -193,6 +195,20 @@ fn parameter_block(nc: &mut Nc, p: &Parsed) -> Result<Outcome, NcError> {
         }
     }
     Ok(out)
+}
+
+/// A value out of range (E5010) that only written words gave is the
+/// literal's fault: E1010, which the compiler reports before the run.
+fn written_fault(e: NcError, p: &Parsed, letters: &[u8]) -> NcError {
+    let written = |&l: &u8| p.word(l).is_none_or(|w| w.flags & LITERAL != 0);
+    if e.code == Alarm::ValueOutOfRange.code() && letters.iter().all(written) {
+        NcError {
+            code: Alarm::LiteralOutOfRange.code(),
+            ..e
+        }
+    } else {
+        e
+    }
 }
 
 /// A parameter number that machine.md lists, else E7008 (the compiler
@@ -279,8 +295,9 @@ mod tests {
         let mut m = Lathe::new();
         m.run("G10 L3");
         assert_eq!(m.try_run("P1 Q1"), Err(2006));
-        assert_eq!(m.try_run("P1 L10 Q3"), Err(5010));
-        assert_eq!(m.try_run("P33 L10"), Err(5010));
+        // Written values out of range are the literal's fault (E1010).
+        assert_eq!(m.try_run("P1 L10 Q3"), Err(1010));
+        assert_eq!(m.try_run("P33 L10"), Err(1010));
         m.run("P1 L10");
         assert_eq!(m.try_run("T0199"), Err(7004));
         assert_eq!(m.try_run("T3301"), Err(7004));
@@ -329,8 +346,8 @@ mod tests {
         assert_eq!(m.try_run("N172 R100 W1"), Err(2007));
         assert_eq!(m.try_run("N172"), Err(2006));
         assert_eq!(m.try_run("K5 R100"), Err(2099));
-        assert_eq!(m.try_run("N172 W12"), Err(5010));
-        assert_eq!(m.try_run("N22 P4 R100"), Err(5010));
+        assert_eq!(m.try_run("N172 W12"), Err(1010));
+        assert_eq!(m.try_run("N22 P4 R100"), Err(1010));
         // A block without N reads and writes nothing.
         assert!(m.run("X10 Z5").is_empty());
     }

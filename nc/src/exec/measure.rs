@@ -103,9 +103,7 @@ fn with_axis(mut p: Pt, x_axis: bool, v: f64) -> Pt {
 
 /// `FEED` for the measuring feed (mm/min) when it is not the last printed.
 fn feed_at(nc: &mut Nc, f: f64, sink: &mut dyn Sink) {
-    let now = (f, false);
-    if nc.st.feed_printed != Some(now) {
-        nc.st.feed_printed = Some(now);
+    if nc.st.feed_due((f, false)) {
         sink.emit(Event::Feed { f, per_rev: false });
     }
 }

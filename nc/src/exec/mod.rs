@@ -29,7 +29,7 @@ use crate::base::geom::Element;
 use crate::base::machine::{DecimalPoint, Machine, SpindleType};
 use crate::base::mcode::{Timing, M};
 use crate::base::point::Pt;
-use crate::base::words::{addr, Word, LITERAL, NO_POINT};
+use crate::base::words::{addr, Word, NO_POINT};
 use crate::block::{self, round_half_away, Parsed};
 use crate::exec::state::State;
 use crate::modal::PathMode;
@@ -500,7 +500,7 @@ impl Nc {
     fn s_word(&mut self, w: &Word, g50: bool, sink: &mut dyn Sink) -> Result<(), NcError> {
         let s = w.value;
         if s < 0.0 {
-            return fail(Alarm::ValueOutOfRange, "S must not be negative");
+            return fail(Alarm::out_of_range(w.flags), "S must not be negative");
         }
         let css = self.st.css_mode();
         if g50 {
@@ -516,14 +516,10 @@ impl Nc {
         if self.machine.spindle.r#type == SpindleType::Gear {
             let n = round_half_away(s);
             if !(0.0..=4.0).contains(&n) {
-                // A written S05 is the literal's fault (E1010, which the dry
-                // run reports at compile time); a computed one is E5010.
-                let alarm = if w.flags & LITERAL != 0 {
-                    Alarm::LiteralOutOfRange
-                } else {
-                    Alarm::ValueOutOfRange
-                };
-                return fail(alarm, format!("gear code S{n} outside S00…S04"));
+                return fail(
+                    Alarm::out_of_range(w.flags),
+                    format!("gear code S{n} outside S00…S04"),
+                );
             }
             sink.emit(Event::Gear { n: n as u32 });
             return Ok(());
@@ -547,11 +543,9 @@ impl Nc {
         Ok(())
     }
 
+    /// A T word (the block layer checked its range).
     fn t_word(&mut self, t: f64, sink: &mut dyn Sink) -> Result<(), NcError> {
         let t = round_half_away(t);
-        if !(0.0..=9999.0).contains(&t) {
-            return fail(Alarm::ValueOutOfRange, format!("T{t} is out of range"));
-        }
         let (tool, offset) = (t as u32 / 100, t as u32 % 100);
         check_tool(&self.machine, tool, offset)?;
         // Txx99 / Txx88 are tool-life words (tool_life module).
@@ -692,10 +686,9 @@ impl Nc {
     /// last one printed.
     pub(crate) fn feed_due(&mut self, sink: &mut dyn Sink) {
         let f = self.st.feed * self.st.unit();
-        let now = (f, self.st.per_rev());
-        if self.st.feed_printed != Some(now) {
-            self.st.feed_printed = Some(now);
-            sink.emit(Event::Feed { f, per_rev: now.1 });
+        let per_rev = self.st.per_rev();
+        if self.st.feed_due((f, per_rev)) {
+            sink.emit(Event::Feed { f, per_rev });
         }
     }
 
@@ -758,7 +751,7 @@ impl Nc {
                 return self.motion(&q, sink, out);
             }
             OneShot::Home => self.home(p, 1, sink),
-            OneShot::HomeN => self.home_n(p, sink)?,
+            OneShot::HomeN => self.home_n(p, sink),
             OneShot::Skip => self.skip(p, sink, out),
             OneShot::MeasureX | OneShot::MeasureZ => {
                 crate::exec::measure::run(self, code == OneShot::MeasureX, p, sink)?
@@ -796,17 +789,11 @@ impl Nc {
         Ok(())
     }
 
-    /// G30 P2…P4: to the second, third or fourth reference point.
-    fn home_n(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
+    /// G30 P2…P4 (the block layer checked the range): to the second,
+    /// third or fourth reference point.
+    fn home_n(&mut self, p: &Parsed, sink: &mut dyn Sink) {
         let n = p.get(b'P').map_or(2.0, round_half_away);
-        if !(2.0..=4.0).contains(&n) {
-            return fail(
-                Alarm::ValueOutOfRange,
-                format!("G30 P{n}: reference points are 2…4"),
-            );
-        }
         self.home(p, n as u32, sink);
-        Ok(())
     }
 
     /// G31: the skip move; the runtime stops it where the signal comes.
@@ -841,7 +828,8 @@ impl Nc {
 
     fn dwell(&mut self, p: &Parsed, sink: &mut dyn Sink) {
         let secs = if let Some(ms) = p.get(b'P') {
-            ms / 1000.0
+            // Whole milliseconds (§1.9): a computed P is rounded.
+            round_half_away(ms) / 1000.0
         } else if let Some(w) = p.word(b'X').or(p.word(b'U')) {
             let mut s = w.value;
             if w.flags & NO_POINT != 0

@@ -1,6 +1,7 @@
 //! The state of the control between blocks: the position, offsets and
 //! spindle, the modal codes and the state of each feature.
 
+use crate::base::decimal::ten_thousandths;
 use crate::base::event::SpindleDir;
 use crate::base::machine::Machine;
 use crate::base::point::Pt;
@@ -79,7 +80,7 @@ impl State {
                 geom[i] = [o.x, o.z, o.radius];
             }
         }
-        State {
+        let mut st = State {
             pos: Pt::default(),
             c: 0.0,
             c_block: false,
@@ -112,7 +113,11 @@ impl State {
             comp: Default::default(),
             data: crate::exec::data_setting::DataState::power_on(m),
             plane: None,
-        }
+        };
+        // Homed at power-on: the tool stands at machine X0 Z0 (machine.md
+        // §1), which the machine file's work offsets put off work zero.
+        st.pos = Pt::default().sub(st.origin());
+        st
     }
 
     #[inline]
@@ -142,6 +147,25 @@ impl State {
             .add(self.work[self.work_index()])
             .add(self.shift)
             .add(self.local)
+    }
+
+    /// Whether a `FEED` of `now` (F, per rev) is due: its F or mode as
+    /// printed (four decimals, canon.md) differs from the last printed.
+    /// One that is not leaves the last printed feed in force, off by less
+    /// than half a digit of the fourth decimal.
+    pub fn feed_due(&mut self, now: (f64, bool)) -> bool {
+        let same = |(f, r): (f64, bool)| {
+            r == now.1
+                && match (ten_thousandths(f), ten_thousandths(now.0)) {
+                    (Some(a), Some(b)) => a == b,
+                    _ => f == now.0,
+                }
+        };
+        if self.feed_printed.is_some_and(same) {
+            return false;
+        }
+        self.feed_printed = Some(now);
+        true
     }
 
     /// The tool point in machine coordinates.

@@ -409,8 +409,7 @@ fn drain_items(nc: &mut Nc, sink: &mut dyn Sink, told: &mut u32) -> Result<(), N
         match item {
             Item::Event(Event::Feed { f, per_rev }, _) => {
                 // (A held FEED: `in_order`.)
-                if nc.st.feed_printed != Some((f, per_rev)) {
-                    nc.st.feed_printed = Some((f, per_rev));
+                if nc.st.feed_due((f, per_rev)) {
                     sink.emit(Event::Feed { f, per_rev });
                 }
             }
@@ -472,8 +471,7 @@ fn emit_element(
     if let Some(st) = &plane {
         crate::exec::plane::check_element(nc, st, e)?;
     }
-    if !rapid && nc.st.feed_printed != Some(feed) {
-        nc.st.feed_printed = Some(feed);
+    if !rapid && nc.st.feed_due(feed) {
         sink.emit(Event::Feed {
             f: feed.0,
             per_rev: feed.1,

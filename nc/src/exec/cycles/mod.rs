@@ -112,7 +112,7 @@ fn check_negative_f(p: &Parsed, f: Func) -> Result<(), NcError> {
     );
     match p.get(b'F') {
         Some(v) if v < 0.0 && !left_hand => fail(
-            Alarm::LiteralOutOfRange,
+            p.range_alarm(b'F'),
             "F must not be negative (only G32.1, G92.1, G84 and G88 take a left-hand lead F < 0)",
         ),
         _ => Ok(()),

@@ -1,0 +1,218 @@
+//! Rules of dialect.md §1–§6 that an audit against the spec found broken:
+//! each expected diagnostic or canon line is worked out by hand from the
+//! section named beside it.
+
+mod common;
+
+use common::{codes, messages};
+use compiler::{compile, Options};
+use nc::{Event, Machine};
+use vm::{Status, Vm};
+
+fn on(machine: &str) -> Options {
+    Options {
+        machine: Machine::from_toml(machine).expect("a valid machine file"),
+        ..Options::default()
+    }
+}
+
+fn errors(src: &str) -> Vec<(&'static str, usize)> {
+    codes(src, &Options::default())
+}
+
+/// The canon of a run on `opts`'s machine, and how it ended.
+fn run_on(src: &str, opts: &Options) -> (Vec<String>, Status) {
+    let c = compile("p.nc", src.as_bytes(), opts);
+    assert!(!c.has_errors(), "{}", c.render());
+    let mut vm = Vm::new(c.module.expect("module"), opts.machine.clone());
+    let mut events: Vec<Event> = Vec::new();
+    let status = vm.run(&mut events);
+    (events.iter().map(|e| e.to_string()).collect(), status)
+}
+
+fn alarm_of(src: &str) -> u32 {
+    match run_on(src, &Options::default()).1 {
+        Status::Alarm(a) => a.code,
+        other => panic!("{src}: {other:?}"),
+    }
+}
+
+#[test]
+fn a_decimal_point_on_an_m_code_is_e1009() {
+    // §1.9: M is among the "always integers"; M3.5 must not turn the
+    // spindle either way.
+    for m in ["M3.5", "M3.", "M8.0"] {
+        assert_eq!(errors(&format!("{m} S100\nM30\n")), [("E1009", 1)], "{m}");
+    }
+    // A computed M is rounded half away from zero: 3.5 is M04.
+    let (canon, _) = run_on("#1=3.5\nM#1 S100\nM30\n", &Options::default());
+    assert_eq!(canon[0], "SPINDLE DIR=CCW");
+}
+
+#[test]
+fn a_program_number_with_a_decimal_point_is_e1009() {
+    // §1.9 lists O among the integer-only addresses.
+    assert_eq!(errors("O1.0\nM30\n"), [("E1009", 1)]);
+}
+
+#[test]
+fn a_computed_dwell_p_is_whole_milliseconds() {
+    // §1.9: G04 P is ms, an integer; a computed value rounds half away
+    // from zero: 1.4 → 1 ms, 1000.6 → 1001 ms, -2.5 → -3 → 0 (§4.2).
+    let src = "#1=1.4\nG04 P#1\n#2=-2.5\nG04 P#2\nG04 P[1000.6]\nM30\n";
+    let (canon, status) = run_on(src, &Options::default());
+    assert_eq!(status, Status::Done);
+    assert_eq!(
+        canon,
+        [
+            "DWELL S=0.001",
+            "DWELL S=0",
+            "DWELL S=1.001",
+            "STOP KIND=M30"
+        ]
+    );
+}
+
+#[test]
+fn g96_on_a_gear_spindle_is_e2003() {
+    // §6.2 and §8.2: a gear spindle has no surface speed.
+    let gear = on("[spindle]\ntype = \"gear\"\n");
+    assert_eq!(codes("G96 S1\nM30\n", &gear), [("E2003", 1)]);
+    assert_eq!(codes("G97 S02\nM30\n", &gear), []);
+}
+
+#[test]
+fn written_numbers_out_of_their_range_are_e1010_even_where_never_reached() {
+    // §1.9 and §8.1: G30 P 2–4 (§4.4), G31 P and G04 Q 1–4 (§4.2, §4.5),
+    // T 0–9999.
+    for block in [
+        "G30 P5 U0",
+        "G30 P1 U0",
+        "G31 X10 F10 P5",
+        "G04 P100 Q5",
+        "G04 P100 Q0",
+        "T10000",
+        "T-1",
+    ] {
+        assert_eq!(
+            errors(&format!("{block}\nM30\n")),
+            [("E1010", 1)],
+            "{block}"
+        );
+        // Behind an IF that never holds: still the literal's fault.
+        let skipped = format!("#1=1\nIF[#1EQ2]GOTO10\nGOTO20\nN10 {block}\nN20 M30\n");
+        assert_eq!(errors(&skipped), [("E1010", 4)], "{block}");
+    }
+    assert_eq!(
+        errors("G30 P4 U0\nG31 X10 F10 P4\nG04 P100 Q1\nT0\nM30\n"),
+        []
+    );
+}
+
+#[test]
+fn computed_numbers_out_of_their_range_are_e5010() {
+    // §8.4: E5010 is the computed value's; E1010 is a compile-time code.
+    for src in [
+        "#1=10000\nM#1\nM30\n",
+        "#1=-5\nS#1\nM30\n",
+        "#1=-5\nG98 F#1\nM30\n",
+        "#1=5\nG30 P#1 U0\nM30\n",
+        "#1=0\nG04 P100 Q#1\nM30\n",
+        "#1=-16\nT#1\nM30\n",
+    ] {
+        assert_eq!(alarm_of(src), 5010, "{src}");
+    }
+}
+
+#[test]
+fn g65_or_g66_not_first_in_its_block_is_e2002() {
+    // §7.9: "G65/G66 must be the first word after N": E2002 at the call.
+    for block in ["G67 G66 P1", "G00 G65 P1", "G00 G66 P1", "X1 G65 P1"] {
+        let src = format!("{block}\nM30\nO1\nM99\n");
+        let m = messages(&src, &Options::default());
+        assert_eq!(m.len(), 1, "{block}: {m:?}");
+        assert_eq!((m[0].0, m[0].1), ("E2002", 1), "{block}");
+        assert!(m[0].2.contains("must be the first word"), "{block}: {m:?}");
+    }
+}
+
+#[test]
+fn a_computed_g_code_is_named_as_computed() {
+    // #1 = 1.25 is no G code; the message must not call it G1.3.
+    let src = "#1=1.25\nG#1 X10\nM30\n";
+    let c = compile("p.nc", src.as_bytes(), &Options::default());
+    let mut vm = Vm::new(c.module.expect("module"), Machine::reference());
+    let mut events: Vec<Event> = Vec::new();
+    let Status::Alarm(a) = vm.run(&mut events) else {
+        panic!("no alarm")
+    };
+    assert!(a.message.contains("G1.25"), "{}", a.message);
+}
+
+#[test]
+fn blocks_before_the_first_o_line_say_what_became_of_the_o_program() {
+    // docs/language.md §1: they are O0000, the main program, and O0001 a
+    // subprogram; W101's help says so, naming O0001.
+    let m = messages("G00 X10 Z5\nO1\nG00 X1\nM30\n", &Options::default());
+    assert_eq!((m[0].0, m[0].1), ("W101", 1));
+    let c = compile(
+        "p.nc",
+        b"G00 X10 Z5\nO1\nG00 X1\nM30\n",
+        &Options::default(),
+    );
+    let help = c.diags[0].1.help.clone().unwrap_or_default();
+    assert!(
+        help.contains("O0001") && help.contains("subprogram"),
+        "{help}"
+    );
+    // A file that is O programs only gets no such help.
+    let c = compile("p.nc", b"O5\nG00 X10 Z5\nO1\nM99\n", &Options::default());
+    assert!(
+        c.diags.iter().all(|(_, d)| d.help.is_none()),
+        "{}",
+        c.render()
+    );
+}
+
+#[test]
+fn the_tool_starts_at_machine_zero_whatever_the_work_offsets() {
+    // §2.5, machine.md §1: homed at power-on, the tool at machine X0 Z0.
+    // With G54 at machine X5 Z7 that is work X-5 Z-7, and G53 X0 Z0 goes
+    // nowhere.
+    let g54 = on("[coords]\ng54 = { x = 5.0, z = 7.0 }\n");
+    let (canon, _) = run_on("G00 U0 W0\nG53 X0 Z0\nG00 U0 W0\nM30\n", &g54);
+    assert_eq!(
+        canon,
+        [
+            "RAPID X=-5 Z=-7",
+            "RAPID X=-5 Z=-7",
+            "RAPID X=-5 Z=-7",
+            "STOP KIND=M30"
+        ]
+    );
+    // EXOFS (1, 1) and G55 (2, 3): work zero at machine (3, 4).
+    let both = on("[coords]\nexofs = { x = 1.0, z = 1.0 }\ng55 = { x = 2.0, z = 3.0 }\n");
+    let (canon, _) = run_on("G55 G00 U0 W0\nM30\n", &both);
+    assert_eq!(canon[..2], ["ORIGIN X=3 Z=4", "RAPID X=-3 Z=-4"]);
+}
+
+#[test]
+fn feed_is_printed_when_it_differs_as_printed() {
+    // canon.md, FEED: "when its F or MODE, as printed, differs from the
+    // last FEED printed". F0.20001 and F0.20004 print as 0.2; 0.2002 not.
+    let src = "G99 F0.2\nG00 X10 Z0\nG01 Z-12\nF0.20001 Z-13\nF0.20004 Z-14\nF0.2002 Z-15\nM30\n";
+    let (canon, _) = run_on(src, &Options::default());
+    assert_eq!(
+        canon,
+        [
+            "RAPID X=10 Z=0",
+            "FEED F=0.2 MODE=REV",
+            "LINE X=10 Z=-12",
+            "LINE X=10 Z=-13",
+            "LINE X=10 Z=-14",
+            "FEED F=0.2002 MODE=REV",
+            "LINE X=10 Z=-15",
+            "STOP KIND=M30"
+        ]
+    );
+}
