@@ -335,6 +335,9 @@ impl DryRun<'_> {
                 return Ok(Flow::End);
             };
             if !lits.is_empty() {
+                // The tag of the block's events and of errors about it
+                // (`NcError::at`, `profile::error_span`): its line.
+                self.run.nc.origin = line as u32;
                 let at = (prog.unit, unit, block, ws.as_slice());
                 if let Flow::End = self.run.exec(at, &lits)? {
                     return Ok(Flow::End);
@@ -670,10 +673,17 @@ impl ChunkedRun {
 
     /// Runs the blocks of one chunk (`prog`'s, in `unit`).
     pub fn chunk(&mut self, unit: &Unit, prog: &Program) {
-        for block in prog.blocks.iter().filter_map(|&l| link::block(unit, l)) {
+        // Blocks of the chunk before are no lines of this one: an error
+        // about an element of theirs stands on the running block.
+        self.run.nc.retag_waiting(u32::MAX);
+        for &line in &prog.blocks {
+            let Some(block) = link::block(unit, line) else {
+                continue;
+            };
             let Body::Words(ws) = &block.body else {
                 continue;
             };
+            self.run.nc.origin = line as u32;
             if self.ended {
                 return;
             }

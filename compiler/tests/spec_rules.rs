@@ -216,3 +216,59 @@ fn feed_is_printed_when_it_differs_as_printed() {
         ]
     );
 }
+
+/// Offset 1: a 0.8 mm nose, tip 3 (comp.md §11).
+const NOSE: &str = "[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n";
+
+#[test]
+fn an_interference_stands_on_the_block_of_its_element() {
+    // comp.md §5: "ρ − R ≤ 0: E4036 at the arc's block", and §7: a
+    // rounding is an element of the block that carries D. The D0.5 turns
+    // right from −Z to +X: clockwise, G42 on the centre's side, 0.5 < 0.8.
+    let head = "O1\nG99 T0101\nG00 X60 Z5\n";
+    let small = format!("{head}G42 G00 X20 Z2\nG01 Z-10 D0.5 F0.1\nX30\nG40 G00 X70 Z5\nM30\n");
+    assert_eq!(codes(&small, &on(NOSE)), [("E4036", 5)]);
+    // X19.8 after Z-10 under G42: past the outside corner its offset runs
+    // from r 10 to the inside point at r 10.7, backwards against −r. The
+    // block is line 6, whatever blocks without a move come after it.
+    let back =
+        format!("{head}G42 G01 X20 Z0 F0.1\nG01 Z-10\nG01 X19.8\nG01 Z-20\nG40 G00 X70\nM30\n");
+    assert_eq!(codes(&back, &on(NOSE)), [("E4036", 6)]);
+    let idle = back.replace("G01 X19.8\n", "G01 X19.8\nM08\nG04 X1\nM09\n");
+    assert_eq!(codes(&idle, &on(NOSE)), [("E4036", 6)]);
+}
+
+#[test]
+fn the_element_that_interferes_is_not_printed() {
+    // canon.md, ALARM: the faulty block's motion is not printed. X#1 =
+    // 19.8 is the element that runs backwards (line 7); Z-10 ends on its
+    // own normal at Z-10.8 (r 10 + 0.8 · (0, −1) turned by G42), and
+    // neither the corner's arc nor X19.8's leg is printed.
+    let src = "O1\nG99 T0101\n#1=19.8\nG00 X60 Z5\nG42 G01 X20 Z0 F0.1\nG01 Z-10\nG01 X#1\nG01 Z-20\nG40 G00 X70\nM30\n";
+    let (canon, status) = run_on(src, &on(NOSE));
+    let Status::Alarm(a) = status else {
+        panic!("{canon:?}")
+    };
+    assert_eq!((a.code, a.line), (4036, 7));
+    assert_eq!(
+        canon[..5],
+        [
+            "TOOL T=1 D=1",
+            "RAPID X=60 Z=5",
+            "FEED F=0.1 MODE=REV",
+            "LINE X=20 Z=-0.8",
+            "LINE X=20 Z=-10.8"
+        ]
+    );
+    assert!(canon[5].starts_with("ALARM CODE=4036"), "{canon:?}");
+    assert_eq!(canon.len(), 6);
+}
+
+#[test]
+fn radius_programming_is_refused_rather_than_read_as_diameters() {
+    // machine.md №001.2 = 0 is an option the kernel does not have yet.
+    assert!(Machine::from_toml("[axes.x]\ndiameter = false\n").is_err());
+    // Writing it by G10 L52 is E2099 (a written value: at compile time).
+    let src = "G10 L52\nN1 W00000000\nG11\nM30\n";
+    assert_eq!(errors(src), [("E2099", 2)]);
+}

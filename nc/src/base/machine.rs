@@ -484,8 +484,10 @@ mod tests {
             (10000.0, 5000.0, 2000.0, -510.0)
         );
         assert!(Machine::from_toml("[axes.z]\nmax_mm = -400.0\n").is_ok());
-        // X alone is programmed on the diameter.
+        // X alone is programmed on the diameter, and radius programming
+        // is refused rather than read as diameters.
         assert!(Machine::from_toml("[axes.z]\ndiameter = true\n").is_err());
+        assert!(Machine::from_toml("[axes.x]\ndiameter = false\n").is_err());
     }
 
     #[test]

@@ -6,7 +6,7 @@ use crate::base::error::NcError;
 use crate::base::geom::Element;
 use crate::plan::comp::{corner_points, startup_end};
 use crate::plan::elem::tangent_at;
-use crate::plan::offset::{check_arc, check_forward, over};
+use crate::plan::offset::{check_forward, over};
 
 /// Joins element `e1` (leg `l1`, a start-up or an element) with the next
 /// element `e2` (leg `l2`): sets where `l1` ends, where `l2` starts and
@@ -14,8 +14,6 @@ use crate::plan::offset::{check_arc, check_forward, over};
 /// inside corner do not meet, or `e1`'s compensated part runs backwards.
 pub fn join(e1: &Element, l1: &mut Leg, e2: &Element, l2: &mut Leg) -> Result<(), NcError> {
     let tool = l1.tool;
-    // Also a rounding that an L/D word inserted must fit the tool.
-    check_arc(e2, &tool)?;
     if l1.role != Role::Body {
         let c = startup_end(e1, tangent_at(e2, e2.start()), &tool);
         (l1.end, l2.start) = (Some(c), Some(c));

@@ -226,6 +226,13 @@ impl Nc {
         flush(self, sink)
     }
 
+    /// Gives what waits for a next move the block tag `tag` (for errors
+    /// about it and its events): for a host whose tags of earlier blocks
+    /// no longer name them, as the compiler's dry run between chunks.
+    pub fn retag_waiting(&mut self, tag: u32) {
+        queue::retag(self, tag);
+    }
+
     /// Prints an event of the caller's own (the VM's `MESSAGE`) in block
     /// order: behind an element that waits for its corner, if one does.
     pub fn emit_in_order(&mut self, event: crate::base::event::Event, sink: &mut dyn Sink) {

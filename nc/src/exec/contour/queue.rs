@@ -11,6 +11,7 @@ use crate::exec::{Nc, Sink};
 use crate::plan::angle;
 use crate::plan::corner::{corner, Corner};
 use crate::plan::elem::{self, EPS_LEN};
+use crate::plan::offset;
 
 /// One move of a block as it will be printed.
 #[derive(Debug, Clone)]
@@ -289,7 +290,10 @@ pub(crate) fn advance(nc: &mut Nc, mut next: Move, sink: &mut dyn Sink) -> Resul
         nc.st.contour.items.push(Item::Move(next));
         return Ok(());
     }
-    resolve(&mut nc.st.contour.items, &mut next, step)?;
+    if let Err(e) = resolve(&mut nc.st.contour.items, &mut next, step) {
+        forget_from(&mut nc.st.contour.items, e.at);
+        return Err(e);
+    }
     drain(nc, sink)?;
     if next.waits() {
         nc.st.contour.items.push(Item::Move(next));
@@ -358,6 +362,18 @@ pub(crate) fn finish_angle(
         ..template
     };
     advance(nc, second, sink)
+}
+
+/// Gives every element and event that waits the block tag `tag`: for a
+/// host whose tags of earlier blocks no longer name them.
+pub(crate) fn retag(nc: &mut Nc, tag: u32) {
+    for item in &mut nc.st.contour.items {
+        match item {
+            Item::Event(_, origin) => *origin = tag,
+            Item::Move(m) => m.origin = tag,
+            Item::Angle(a) => a.origin = tag,
+        }
+    }
 }
 
 /// Prints everything that waits, each element as it stands (corners not
@@ -515,6 +531,16 @@ fn compensate(nc: &mut Nc, m: &mut Move) -> Result<Step, NcError> {
     Ok(step)
 }
 
+/// After an error about the element of block `at`: that element and
+/// what waits behind it are not printed (canon.md, ALARM: the faulty
+/// block's motion is not printed); the earlier blocks' still are.
+fn forget_from(items: &mut Vec<Item>, at: Option<u32>) {
+    let faulty = |i: &Item| matches!(i, Item::Move(m) if Some(m.origin) == at);
+    if let Some(k) = items.iter().position(faulty) {
+        items.truncate(k);
+    }
+}
+
 /// Joins the waiting compensated elements in `items` with the new move
 /// `next` as `step` says.
 fn resolve(items: &mut [Item], next: &mut Move, step: Step) -> Result<(), NcError> {
@@ -538,17 +564,21 @@ fn chain(items: &mut [Item], next: Option<&mut Move>) -> Result<(), NcError> {
         .collect();
     let close = next.is_none();
     open.extend(next);
+    // An interference found here is about an element of an earlier block
+    // than the running one: the error names that block (`NcError::at`).
     for k in 1..open.len() {
         let (done, rest) = open.split_at_mut(k);
         if let (Some(a), Some(b)) = (done.last_mut(), rest.first_mut()) {
             if let (Some(la), Some(lb)) = (a.comp.as_mut(), b.comp.as_mut()) {
-                crate::exec::comp::join(&a.elem, la, &b.elem, lb)?;
+                // A rounding L/D inserted is its own block's element.
+                offset::check_arc(&b.elem, &la.tool).map_err(|e| e.at(b.origin))?;
+                crate::exec::comp::join(&a.elem, la, &b.elem, lb).map_err(|e| e.at(a.origin))?;
             }
         }
     }
     match open.last_mut() {
         Some(last) if close => match last.comp.as_mut() {
-            Some(leg) => crate::exec::comp::close(&last.elem, leg),
+            Some(leg) => crate::exec::comp::close(&last.elem, leg).map_err(|e| e.at(last.origin)),
             None => Ok(()),
         },
         _ => Ok(()),
