@@ -1,28 +1,41 @@
 //! The exit codes of `gbcc` and `gbvm`: one table for both, so that a
-//! script can tell a bad program from a bad command line or a full disk
-//! (README, "Exit codes").
+//! script can tell a bad program or command line from an alarm or a full
+//! disk (README, "Exit codes").
 
 use std::process::ExitCode;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Exit {
     /// Everything asked for was done.
-    Ok = 0,
+    Ok,
     /// The input is wrong: compile errors, an unreadable input, a module
     /// or machine file that is refused.
-    Input = 1,
+    Input,
     /// `gbvm run`: the program stopped on a run-time alarm.
-    Alarm = 2,
+    Alarm,
     /// An output could not be written (a full disk, a closed pipe).
-    Write = 3,
-    /// The command line is wrong (unknown option, missing argument);
-    /// sysexits' EX_USAGE.
-    Usage = 64,
+    Write,
+    /// The command line is wrong (unknown option, missing argument).
+    Usage,
+}
+
+impl Exit {
+    /// The process's code. A usage error is 1, as canon.md gives `gbvm
+    /// run` for "usage, load or verification error" (and as gcc exits),
+    /// not clap's 2, which is the alarm's.
+    pub const fn code(self) -> u8 {
+        match self {
+            Exit::Ok => 0,
+            Exit::Input | Exit::Usage => 1,
+            Exit::Alarm => 2,
+            Exit::Write => 3,
+        }
+    }
 }
 
 impl From<Exit> for ExitCode {
     fn from(e: Exit) -> ExitCode {
-        ExitCode::from(e as u8)
+        ExitCode::from(e.code())
     }
 }
 

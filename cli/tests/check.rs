@@ -326,7 +326,7 @@ fn the_trace_has_motion_words_and_the_tool() {
     let o = gbvm(&["run", gbc.to_str().unwrap(), "--frame", "machine"]);
     assert_eq!(
         o.status.code(),
-        Some(64),
+        Some(1),
         "--frame without a trace is a usage error"
     );
     let _ = std::fs::remove_dir_all(d);

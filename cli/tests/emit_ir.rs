@@ -48,7 +48,7 @@ fn an_error_writes_no_listing_and_other_values_are_usage_errors() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("E1011"));
     assert!(!d.join("bad.ir").exists());
     let out = gbcc(&["bad.nc", "--emit=asm"], &d);
-    assert_eq!(out.status.code(), Some(64));
+    assert_eq!(out.status.code(), Some(1));
 }
 
 /// The `modal` pass's notes: a block after a join of G98 and G99 says

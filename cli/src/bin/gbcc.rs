@@ -20,7 +20,7 @@ static ALLOCATOR: cli::allocator::Mimalloc = cli::allocator::Mimalloc;
     version,
     about = "Compile GSK980TDi lathe G-code into .gbc bytecode",
     after_help = "Also: -MD (write a make dependency file), -MF FILE (its name). \
-                  Exit codes: 0 ok, 1 errors, 3 an output could not be written, 64 usage."
+                  Exit codes: 0 ok, 1 errors or a usage error, 3 an output could not be written."
 )]
 struct Args {
     /// Program files (.nc); - reads standard input.
