@@ -76,7 +76,10 @@ impl Stats {
             });
         }
         let now = Place::of(p);
-        let d = self.last.map_or(0.0, |l| l.to(&now));
+        // Before the first period the axes stand at machine zero (the
+        // engine starts there): its travel counts too.
+        let before = self.last.unwrap_or(Place { r: 0.0, z: 0.0, ..now });
+        let d = before.to(&now);
         self.last = Some(now);
         if let Some(op) = self.operations.last_mut() {
             op.time_s += self.dt;
@@ -242,6 +245,19 @@ mod tests {
         s.add(&point(0.001, 0.0, None, Motion::None));
         assert_eq!(s.c_deg, None);
         assert!(!s.to_string().contains("C axis"));
+    }
+
+    #[test]
+    fn the_first_period_travels_from_machine_zero() {
+        // The engine starts at machine zero: a first period that has the
+        // axes at Z−0.002 at rapid has travelled 0.002 mm.
+        let mut s = Stats::new(0.001);
+        s.add(&SetPoint {
+            x: 0.0,
+            axis_x: 0.0,
+            ..point(0.001, -0.002, None, Motion::Rapid)
+        });
+        assert!((s.rapid_mm - 0.002).abs() < 1e-15, "{}", s.rapid_mm);
     }
 
     #[test]
