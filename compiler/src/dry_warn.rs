@@ -723,8 +723,10 @@ impl Warner {
         }
         let (u, at) = self.feed_word.unwrap_or((unit, span));
         let unit_name = if nc.st.inch() { "in/min" } else { "mm/min" };
+        // The F word may stand in a G99 block: the message names the
+        // mode of the moves, not of the word.
         let msg = format!(
-            "F{f} here is {f} {unit_name} (G98, feed per minute): the feed moves at it crawl; is it a feed per revolution?",
+            "F{f} is read as {f} {unit_name} where the feed moves run in G98 (feed per minute): they crawl; is it a feed per revolution?",
             f = nc::event::Num(f)
         );
         let help = "this control powers on in G98 (feed per minute), where many Fanuc lathes start in G99: if the F is per revolution, write G99 at the program's start; else give the feed in per-minute units";

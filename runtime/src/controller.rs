@@ -88,10 +88,12 @@ impl AlarmInfo {
         } else {
             format!("E{:04}", self.code)
         };
-        format!(
-            "{}:{}:{}: alarm[{}]: {}",
-            self.file, self.line, self.col, code, self.message
-        )
+        let head = format!("{}:{}:{}: alarm[{code}]:", self.file, self.line, self.col);
+        // (An alarm without a text, `#3000=7`, ends at the colon.)
+        match self.message.is_empty() {
+            true => head,
+            false => format!("{head} {}", self.message),
+        }
     }
 }
 

@@ -78,7 +78,11 @@ impl Stats {
         let now = Place::of(p);
         // Before the first period the axes stand at machine zero (the
         // engine starts there): its travel counts too.
-        let before = self.last.unwrap_or(Place { r: 0.0, z: 0.0, ..now });
+        let before = self.last.unwrap_or(Place {
+            r: 0.0,
+            z: 0.0,
+            ..now
+        });
         let d = before.to(&now);
         self.last = Some(now);
         if let Some(op) = self.operations.last_mut() {

@@ -231,8 +231,37 @@ section!(Measure {
 });
 
 section!(Skip {
-    inputs: [u32; 4] = [0, 1, 2, 3]
+    inputs: SkipInputs = SkipInputs([0, 1, 2, 3])
 });
+
+/// №148–151: the input of each skip signal 1–4. Exactly four: a list of
+/// another length is refused (serde's array would take a longer one).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SkipInputs(pub [u32; 4]);
+
+impl<'de> Deserialize<'de> for SkipInputs {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<SkipInputs, D::Error> {
+        let v = Vec::<u32>::deserialize(d)?;
+        let n = v.len();
+        let four: [u32; 4] = v.try_into().map_err(|_| {
+            serde::de::Error::invalid_length(n, &"4 inputs, one per skip signal 1–4")
+        })?;
+        Ok(SkipInputs(four))
+    }
+}
+
+impl core::ops::Deref for SkipInputs {
+    type Target = [u32; 4];
+    fn deref(&self) -> &[u32; 4] {
+        &self.0
+    }
+}
+
+impl core::ops::DerefMut for SkipInputs {
+    fn deref_mut(&mut self) -> &mut [u32; 4] {
+        &mut self.0
+    }
+}
 
 section!(StrokeCheck2 {
     enabled: bool = true,
@@ -484,6 +513,16 @@ mod tests {
             (10000.0, 5000.0, 2000.0, -510.0)
         );
         assert!(Machine::from_toml("[axes.z]\nmax_mm = -400.0\n").is_ok());
+        // Four skip inputs, no more and no fewer.
+        assert!(Machine::from_toml("[skip]\ninputs = [0, 1, 2, 3, 4]\n").is_err());
+        assert!(Machine::from_toml("[skip]\ninputs = [0, 1, 2]\n").is_err());
+        assert_eq!(
+            Machine::from_toml("[skip]\ninputs = [3, 2, 1, 0]\n")
+                .unwrap()
+                .skip
+                .inputs[0],
+            3
+        );
         // X alone is programmed on the diameter, and radius programming
         // is refused rather than read as diameters.
         assert!(Machine::from_toml("[axes.z]\ndiameter = true\n").is_err());

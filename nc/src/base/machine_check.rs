@@ -251,11 +251,21 @@ fn tools(m: &Machine) -> Check {
     Ok(())
 }
 
+/// The days of month `mo` (1–12) of year `y` (Gregorian).
+fn days_in(y: u32, mo: u32) -> u32 {
+    match mo {
+        2 if (y.is_multiple_of(4) && !y.is_multiple_of(100)) || y.is_multiple_of(400) => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    }
+}
+
 fn host(m: &Machine) -> Check {
     let h = &m.host;
     count("host.inputs", h.inputs.into(), 0, 0xffff)?;
     let (y, mo, d) = (h.date / 10000, h.date / 100 % 100, h.date % 100);
-    if !((1..=9999).contains(&y) && (1..=12).contains(&mo) && (1..=31).contains(&d)) {
+    if !((1..=9999).contains(&y) && (1..=12).contains(&mo) && (1..=days_in(y, mo)).contains(&d)) {
         return bad("host.date", format!("{} is not a date YYYYMMDD", h.date));
     }
     let (hh, mm, ss) = (h.time / 10000, h.time / 100 % 100, h.time % 100);
@@ -358,6 +368,13 @@ mod tests {
         // The bounds themselves are in range.
         assert_eq!(key_of(|m| m.machine.lookahead_blocks = 16384), Ok(()));
         assert_eq!(key_of(|m| m.operator.feed_override_pct = 0.0), Ok(()));
+        // No 30 February; 29 February in a leap year only (2000 is one,
+        // 1900 is not).
+        assert_eq!(key_of(|m| m.host.date = 20000230), Err("host.date".into()));
+        assert_eq!(key_of(|m| m.host.date = 19000229), Err("host.date".into()));
+        assert_eq!(key_of(|m| m.host.date = 20240431), Err("host.date".into()));
+        assert_eq!(key_of(|m| m.host.date = 20000229), Ok(()));
+        assert_eq!(key_of(|m| m.host.date = 20241231), Ok(()));
     }
 
     #[test]
