@@ -153,7 +153,12 @@ impl State {
     /// printed (four decimals, canon.md) differs from the last printed.
     /// One that is not leaves the last printed feed in force, off by less
     /// than half a digit of the fourth decimal.
+    #[inline]
     pub fn feed_due(&mut self, now: (f64, bool)) -> bool {
+        // (Most feed moves keep the feed: one comparison.)
+        if self.feed_printed == Some(now) {
+            return false;
+        }
         let same = |(f, r): (f64, bool)| {
             r == now.1
                 && match (ten_thousandths(f), ten_thousandths(now.0)) {
