@@ -148,6 +148,8 @@ struct DryRun<'a> {
     /// Each program's blocks the run has passed, a bit each (made when
     /// the program first runs).
     seen: Vec<Vec<u64>>,
+    /// The unit whose line indices tag the kernel's blocks (`Nc::origin`).
+    tagged_unit: usize,
 }
 
 /// The kernel a dry run drives, and what watches it.
@@ -240,6 +242,7 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
             run: Runner::new(m),
             numbers: programs.iter().map(|_| None).collect(),
             seen: programs.iter().map(|_| Vec::new()).collect(),
+            tagged_unit: programs.first().map_or(0, |p| p.unit),
         };
         let error = run.program(0, Levels::default()).err();
         if skip == first {
@@ -336,7 +339,13 @@ impl DryRun<'_> {
             };
             if !lits.is_empty() {
                 // The tag of the block's events and of errors about it
-                // (`NcError::at`, `profile::error_span`): its line.
+                // (`NcError::at`, `profile::error_span`): its line. What
+                // waits from a program of another file has no line here:
+                // an error about it stands on this block.
+                if self.tagged_unit != prog.unit {
+                    self.run.nc.retag_waiting(u32::MAX);
+                    self.tagged_unit = prog.unit;
+                }
                 self.run.nc.origin = line as u32;
                 let at = (prog.unit, unit, block, ws.as_slice());
                 if let Flow::End = self.run.exec(at, &lits)? {
@@ -614,7 +623,9 @@ impl Runner {
             // A feed move at F = 0 (E7001 when run): W107, and the run
             // goes on, the block done.
             Err(e) if e.code == nc::error::Alarm::ZeroFeed.code() => {
-                self.warner.zero_feed(index, block.span);
+                // (A corner's arc faults at the block it is printed with.)
+                let span = crate::profile::error_span(unit, e.at, block.span);
+                self.warner.zero_feed(index, span);
                 Ok(Flow::Go)
             }
             // A cycle with more legs than the budget has left.

@@ -272,3 +272,17 @@ fn radius_programming_is_refused_rather_than_read_as_diameters() {
     let src = "G10 L52\nN1 W00000000\nG11\nM30\n";
     assert_eq!(errors(src), [("E2099", 2)]);
 }
+
+#[test]
+fn a_corner_arc_at_f0_faults_at_the_block_it_is_printed_with() {
+    // comp.md §5: the outside corner's arc is a feed move at the modal F,
+    // printed with element 2 as the first leg of its block. Before Z-20
+    // (line 7) that arc runs at F0: W107 there, and E7001 when run.
+    let src = "O1\nT0101\nG00 X60 Z5\nG42 G00 X20 Z2\nG00 Z-10\nX30\nZ-20\nG40 G00 X70 Z5\nM30\n";
+    assert_eq!(codes(src, &on(NOSE)), [("W107", 7)]);
+    let (canon, status) = run_on(src, &on(NOSE));
+    let Status::Alarm(a) = status else {
+        panic!("{canon:?}")
+    };
+    assert_eq!((a.code, a.line), (7001, 7));
+}

@@ -59,6 +59,9 @@ pub struct Watch<'a> {
     zero: bool,
     /// The tool's position (work coordinates, X as a radius).
     at: Pt,
+    /// The block the events come from, when the kernel told one: a
+    /// corner's arc printed with an earlier block's element faults there.
+    told: Option<u32>,
     fault: Option<NcError>,
 }
 
@@ -70,6 +73,7 @@ impl<'a> Watch<'a> {
             inner,
             zero: printed.is_some_and(|(f, _)| f == 0.0),
             at,
+            told: None,
             fault: None,
         }
     }
@@ -108,14 +112,19 @@ impl Sink for Watch<'_> {
             self.at = p;
         }
         if zero_move {
-            self.fault = Some(NcError::new(
+            let e = NcError::new(
                 Alarm::ZeroFeed,
                 "a feed move with F = 0 cannot run: give the block or an earlier one an F",
-            ));
+            );
+            self.fault = Some(match self.told {
+                Some(block) => e.at(block),
+                None => e,
+            });
         }
     }
 
     fn origin(&mut self, block: u32) {
+        self.told = Some(block);
         self.inner.origin(block);
     }
 }
