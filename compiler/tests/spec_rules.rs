@@ -286,3 +286,23 @@ fn a_corner_arc_at_f0_faults_at_the_block_it_is_printed_with() {
     };
     assert_eq!((a.code, a.line), (7001, 7));
 }
+
+#[test]
+fn an_error_about_one_word_points_at_that_word() {
+    // dialect.md §0 asks for the line; the column of the offending word
+    // tells a reader which of a block's words it is.
+    for (block, col) in [
+        ("G00 X10 X20", 9),
+        ("S100 M3.5", 6),
+        ("G0 X10 H1.", 8),
+        ("G01 X10 F-0.2", 9),
+        ("G30 P5 U0", 5),
+        ("M03 M08 T10000", 9),
+    ] {
+        let src = format!("{block}\nM30\n");
+        let c = compile("p.nc", src.as_bytes(), &Options::default());
+        let (f, d) = &c.diags[0];
+        assert!(d.is_error(), "{block}: {}", c.render());
+        assert_eq!(c.files[*f].line_col(d.span.start), (1, col), "{block}");
+    }
+}

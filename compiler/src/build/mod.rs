@@ -749,7 +749,15 @@ impl<'a> Builder<'a> {
 
     fn build_split(&mut self, block: &Block, split: &words::Split<'_>) {
         if let Err(e) = crate::check::literal_block(self.machine, &split.nc, &mut self.parsed) {
-            self.error(code_name(e.code), block.span, e.message);
+            // The kernel names the word by its index among the literals
+            // it was given (`check::literal_words`).
+            let literals = split.nc.iter().filter(|w| w.value.literal().is_some());
+            let word = e.word.and_then(|i| literals.clone().nth(i.into()));
+            self.error(
+                code_name(e.code),
+                word.map_or(block.span, |w| w.span),
+                e.message,
+            );
             return;
         }
         let after = crate::profile::before_exec(self, block, split);

@@ -24,6 +24,13 @@ pub struct NcError {
     /// block (its tag, as `at`): the block where a G71/G72 profile turns
     /// back, E4009 being the cycle block's (dialect.md §8.3).
     pub culprit: Option<u32>,
+    /// The word of the block the error is about, as its index in the
+    /// block's word list (the compiler underlines that word); the block
+    /// layer sets it from `addr`.
+    pub word: Option<u16>,
+    /// The address (`base::words::addr`) of the word the error is about,
+    /// where the rule that found it knows no index.
+    pub addr: Option<u8>,
 }
 
 impl NcError {
@@ -43,6 +50,8 @@ impl NcError {
             at: None,
             help: None,
             culprit: None,
+            word: None,
+            addr: None,
         }
     }
 
@@ -55,6 +64,18 @@ impl NcError {
     /// The alarm of §8, `None` for one the program raised itself.
     pub fn alarm(&self) -> Option<Alarm> {
         Alarm::from_code(self.code)
+    }
+
+    /// The same error, about the word at `index` of the block.
+    pub fn on_word(mut self, index: usize) -> NcError {
+        self.word = u16::try_from(index).ok();
+        self
+    }
+
+    /// The same error, about the block's word of address `a`.
+    pub fn on_addr(mut self, a: u8) -> NcError {
+        self.addr = Some(a);
+        self
     }
 
     /// The same error, about profile block `tag`.

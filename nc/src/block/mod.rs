@@ -192,25 +192,31 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
     p.clear_gs();
     p.m_len = 0;
     p.present = 0;
-    for w in words {
-        match w.addr {
-            a if a == addr(b'G') => add_g(p, w)?,
-            a if a == addr(b'M') => add_m(p, w)?,
-            a if (a as usize) < ADDR_COUNT => {
-                if p.has_at(a) {
-                    return fail(
-                        Alarm::AddressRepeated,
-                        format!("address {} written twice in the block", addr_name(a)),
-                    );
-                }
-                p.present |= 1 << a;
-                p.value[a as usize] = w.value;
-                p.flags[a as usize] = w.flags;
-            }
-            a => return fail(Alarm::UnknownAddress, format!("unknown address number {a}")),
-        }
+    for (i, w) in words.iter().enumerate() {
+        add_word(p, w).map_err(|e| e.on_word(i))?;
     }
-    check_words(p, m)
+    check_words(p, m).map_err(|e| on_its_word(e, words))
+}
+
+/// One word of `parse_into`.
+fn add_word(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
+    match w.addr {
+        a if a == addr(b'G') => add_g(p, w),
+        a if a == addr(b'M') => add_m(p, w),
+        a if (a as usize) < ADDR_COUNT => {
+            if p.has_at(a) {
+                return fail(
+                    Alarm::AddressRepeated,
+                    format!("address {} written twice in the block", addr_name(a)),
+                );
+            }
+            p.present |= 1 << a;
+            p.value[a as usize] = w.value;
+            p.flags[a as usize] = w.flags;
+            Ok(())
+        }
+        a => fail(Alarm::UnknownAddress, format!("unknown address number {a}")),
+    }
 }
 
 /// The addresses a plain move may write besides its G code
@@ -261,8 +267,21 @@ pub fn parse_move(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
     }
     // `check_words` for these words: the integer-only rule and the C, H,
     // Y, comma-word, M-code and foreign rules have nothing to look at.
-    check_sign(p, b'F')?;
+    check_sign(p, b'F').map_err(|e| on_its_word(e, words))?;
     check_end_point(p)
+}
+
+/// An error of a rule about one address names that address's word by
+/// its index (the compiler points at it).
+fn on_its_word(e: NcError, words: &[Word]) -> NcError {
+    let index = match (e.addr, e.word) {
+        (Some(a), None) => words.iter().position(|w| w.addr == a),
+        _ => None,
+    };
+    match index {
+        Some(i) => e.on_word(i),
+        None => e,
+    }
 }
 
 fn add_g(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
@@ -410,14 +429,13 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
         }
         if let Some(w) = p.word(letter) {
             if w.literal_with_point() && integer_only(p, letter) {
-                return fail(
-                    Alarm::DecimalPointNotAllowed,
-                    format!(
-                        "{} takes an integer here; a decimal point is not allowed ({})",
-                        letter as char,
-                        integer_hint(p, letter, w.value)
-                    ),
+                let msg = format!(
+                    "{} takes an integer here; a decimal point is not allowed ({})",
+                    letter as char,
+                    integer_hint(p, letter, w.value)
                 );
+                let e = NcError::new(Alarm::DecimalPointNotAllowed, msg);
+                return Err(e.on_addr(addr(letter)));
             }
         }
     }
@@ -471,10 +489,10 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
 #[inline]
 fn check_sign(p: &Parsed, letter: u8) -> Result<(), NcError> {
     match p.get(letter) {
-        Some(v) if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) => fail(
-            p.range_alarm(letter),
-            format!("{} must not be negative", letter as char),
-        ),
+        Some(v) if v < 0.0 && !(letter == b'F' && negative_f_allowed(p)) => {
+            let msg = format!("{} must not be negative", letter as char);
+            Err(NcError::new(p.range_alarm(letter), msg).on_addr(addr(letter)))
+        }
         _ => Ok(()),
     }
 }
@@ -489,10 +507,8 @@ fn check_ranges(p: &Parsed) -> Result<(), NcError> {
             .filter(|v| !(lo..=hi).contains(v))
     };
     if let Some(t) = out(b'T', 0.0, 9999.0) {
-        return fail(
-            p.range_alarm(b'T'),
-            format!("T{t} is out of range (T0…T9999)"),
-        );
+        let msg = format!("T{t} is out of range (T0…T9999)");
+        return Err(NcError::new(p.range_alarm(b'T'), msg).on_addr(addr(b'T')));
     }
     let (letter, lo, hi, what) = match p.one_shot() {
         Some(OneShot::HomeN) => (b'P', 2.0, 4.0, "G30 P: the reference points are 2…4"),
@@ -501,7 +517,10 @@ fn check_ranges(p: &Parsed) -> Result<(), NcError> {
         _ => return Ok(()),
     };
     match out(letter, lo, hi) {
-        Some(v) => fail(p.range_alarm(letter), format!("{what}, not {v}")),
+        Some(v) => {
+            let msg = format!("{what}, not {v}");
+            Err(NcError::new(p.range_alarm(letter), msg).on_addr(addr(letter)))
+        }
         None => Ok(()),
     }
 }
