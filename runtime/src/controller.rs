@@ -83,17 +83,7 @@ pub struct AlarmInfo {
 impl AlarmInfo {
     /// `FILE:LINE:COL: alarm[E7003]: message` (canon.md).
     pub fn header(&self) -> String {
-        let code = if nc::NcError::is_program_alarm(self.code) {
-            format!("{}", self.code)
-        } else {
-            format!("E{:04}", self.code)
-        };
-        let head = format!("{}:{}:{}: alarm[{code}]:", self.file, self.line, self.col);
-        // (An alarm without a text, `#3000=7`, ends at the colon.)
-        match self.message.is_empty() {
-            true => head,
-            false => format!("{head} {}", self.message),
-        }
+        nc::NcError::header(self.code, &self.message, &self.file, self.line, self.col)
     }
 }
 

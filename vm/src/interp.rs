@@ -3,7 +3,6 @@
 use alloc::boxed::Box;
 use alloc::format;
 use alloc::string::String;
-use alloc::string::ToString;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -39,17 +38,7 @@ impl Alarm {
     /// `FILE:LINE:COL: alarm[E5001]: message` (`alarm[3005]` for user
     /// alarms, canon.md).
     pub fn header(&self) -> String {
-        let code = if NcError::is_program_alarm(self.code) {
-            self.code.to_string()
-        } else {
-            format!("E{:04}", self.code)
-        };
-        let head = format!("{}:{}:{}: alarm[{code}]:", self.file, self.line, self.col);
-        // (An alarm without a text, `#3000=7`, ends at the colon.)
-        match self.message.is_empty() {
-            true => head,
-            false => format!("{head} {}", self.message),
-        }
+        NcError::header(self.code, &self.message, &self.file, self.line, self.col)
     }
 }
 

@@ -751,8 +751,8 @@ impl<'a> Builder<'a> {
         if let Err(e) = crate::check::literal_block(self.machine, &split.nc, &mut self.parsed) {
             // The kernel names the word by its index among the literals
             // it was given (`check::literal_words`).
-            let literals = split.nc.iter().filter(|w| w.value.literal().is_some());
-            let word = e.word.and_then(|i| literals.clone().nth(i.into()));
+            let mut literals = split.nc.iter().filter(|w| w.value.literal().is_some());
+            let word = e.word.and_then(|i| literals.nth(i.into()));
             self.error(
                 code_name(e.code),
                 word.map_or(block.span, |w| w.span),

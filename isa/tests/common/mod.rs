@@ -206,31 +206,7 @@ pub fn constant_operands_module() -> Module {
         StoreVar { var: 101, src: 1 },
         Halt,
     ];
-    let lines = (1..=code.len() as u32).map(|line| SourceLoc {
-        file: 0,
-        line,
-        col: 1,
-    });
-    let mut m = Module {
-        programs: vec![Program {
-            number: 1,
-            entry: 0,
-            end: code.len() as u32,
-            ..Program::default()
-        }],
-        files: vec![SourceFileInfo {
-            name: "k.nc".to_string(),
-            hash: 0,
-        }],
-        consts: vec![1.5, 2.0],
-        num_regs: 2,
-        code,
-        ..Module::default()
-    };
-    for loc in lines.collect::<Vec<_>>() {
-        m.lines.push(loc);
-    }
-    m
+    one_program("k.nc", code, Program::default(), vec![1.5, 2.0], 2)
 }
 
 /// Recomputes the CRC trailer, so a forged change reaches the parser and the
@@ -300,31 +276,46 @@ pub fn loops_module() -> Module {
         GotoSeq { seq: 0 },              // 4 N30 (no loop)
         Halt,                            // 5
     ];
-    let lines = (1..=code.len() as u32).map(|line| SourceLoc {
-        file: 0,
-        line,
-        col: 1,
-    });
-    let mut m = Module {
+    let program = Program {
+        seqs: vec![(10, 2), (20, 3), (30, 4)],
+        loops: vec![0, 1],
+        seq_loops: vec![2, 1, 0],
+        ..Program::default()
+    };
+    one_program("loops.nc", code, program, vec![1.0], 1)
+}
+
+/// A module whose one program, O0001, is all of `code` (the rest of it
+/// from `program`), each instruction a line of its own in `file`.
+fn one_program(
+    file: &str,
+    code: Vec<Instr>,
+    program: Program,
+    consts: Vec<f64>,
+    num_regs: u16,
+) -> Module {
+    let lines = (1..=code.len() as u32)
+        .map(|line| SourceLoc {
+            file: 0,
+            line,
+            col: 1,
+        })
+        .collect();
+    Module {
         programs: vec![Program {
             number: 1,
             entry: 0,
             end: code.len() as u32,
-            seqs: vec![(10, 2), (20, 3), (30, 4)],
-            loops: vec![0, 1],
-            seq_loops: vec![2, 1, 0],
+            ..program
         }],
         files: vec![SourceFileInfo {
-            name: "loops.nc".to_string(),
+            name: file.to_string(),
             hash: 0,
         }],
-        consts: vec![1.0],
-        num_regs: 1,
+        consts,
+        num_regs,
         code,
+        lines,
         ..Module::default()
-    };
-    for loc in lines {
-        m.lines.push(loc);
     }
-    m
 }

@@ -61,6 +61,20 @@ impl NcError {
         (500..1000).contains(&code) || (3000..4000).contains(&code)
     }
 
+    /// `FILE:LINE:COL: alarm[E5001]: message` as `gbvm` prints an alarm
+    /// (`alarm[3005]` for one the program raised, canon.md); an alarm
+    /// without a text, `#3000=7`, ends at the colon.
+    pub fn header(code: u32, message: &str, file: &str, line: u32, col: u32) -> String {
+        let head = match NcError::is_program_alarm(code) {
+            true => format!("{file}:{line}:{col}: alarm[{code}]:"),
+            false => format!("{file}:{line}:{col}: alarm[E{code:04}]:"),
+        };
+        match message.is_empty() {
+            true => head,
+            false => format!("{head} {message}"),
+        }
+    }
+
     /// The alarm of §8, `None` for one the program raised itself.
     pub fn alarm(&self) -> Option<Alarm> {
         Alarm::from_code(self.code)

@@ -105,11 +105,8 @@ fn tool_life_block(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
         nc.st.data.life.open(number, life, unit);
     }
     if let Some(t) = p.get(b'T') {
-        let t = round_half_away(t);
-        if !(0.0..=9999.0).contains(&t) {
-            return fail(p.range_alarm(b'T'), format!("T{t} is out of range"));
-        }
-        let t = t as u32;
+        // (0…9999: the block layer's range, `block::check_ranges`.)
+        let t = round_half_away(t) as u32;
         let (tool, offset) = (t / 100, t % 100);
         if matches!(offset, 88 | 99) {
             return fail(
