@@ -66,3 +66,73 @@ fn the_example_machine_has_eight_stations() {
     assert_eq!(out.status.code(), Some(1));
     assert!(text(&out.stderr).contains("E7004"), "{}", text(&out.stderr));
 }
+
+/// Finishing a profile under nose-radius compensation near the − end of
+/// X's travel: G54 puts work X0 at machine X−320, T0202's offset (X−1.8)
+/// the slide 1.8 lower, so the travel (−330) ends at work X−8.2. The
+/// profile starts at X−1.6, inside; its corner arcs print a block late
+/// (compensation looks ahead) and inside G70, and are checked from where
+/// the tool was printed, not from the programmed point.
+const FINISH: &str = "G54 G99 T0202\nG96 S180 M03\nG00 X40 Z2\nG70 P10 Q20\nG00 X100 Z50\nM30\nN10 G00 G42 X-1.6 Z2\nG01 Z0 F0.1\nX20\nX21.6 Z-0.4\nZ-24\nG02 X24 Z-25.2 R1.2\nG01 X30\nG03 X33 Z-26.7 R1.5\nG01 Z-52\nX40\nN20 G00 G40 Z2\n";
+
+#[test]
+fn a_compensated_profile_inside_the_travel_passes_the_soft_limits() {
+    let d = std::env::temp_dir().join(format!("gbc-example-finish-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("finish.nc"), FINISH).unwrap();
+    let m = machine().to_string_lossy().into_owned();
+    let out = run(
+        env!("CARGO_BIN_EXE_gbcc"),
+        &["finish.nc", "--machine", &m],
+        &d,
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(!text(&out.stderr).contains("W124"), "{}", text(&out.stderr));
+    let out = run(
+        env!("CARGO_BIN_EXE_gbvm"),
+        &["run", "finish.gbc", "--machine", &m, "--stats"],
+        &d,
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+}
+
+#[test]
+fn a_move_past_the_travel_ends_the_canon_before_it() {
+    // Z−70 in G54 with T0101 (Z+1.2) puts the slide at machine
+    // Z −245 − 70 + 1.2 = −313.8, past Z's end at −310; X40 at
+    // −320 + 40 − 2.5 = −282.5.
+    let d = std::env::temp_dir().join(format!("gbc-example-travel-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let prog = "G54 G99 T0101\nG00 X40 Z2\nG01 Z-70 F0.2\nG00 X100\nM30\n";
+    std::fs::write(d.join("travel.nc"), prog).unwrap();
+    let m = machine().to_string_lossy().into_owned();
+    let out = run(
+        env!("CARGO_BIN_EXE_gbcc"),
+        &["travel.nc", "--machine", &m],
+        &d,
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("travel.nc:3:1: warning[W124]"),
+        "{}",
+        text(&out.stderr)
+    );
+    // A timed run prints the same canon as a plain one.
+    for timed in [false, true] {
+        let mut args = vec!["run", "travel.gbc", "--machine", &m, "--emit", "canon"];
+        if timed {
+            args.push("--stats");
+        }
+        let out = run(env!("CARGO_BIN_EXE_gbvm"), &args, &d);
+        assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+        let canon = text(&out.stdout);
+        let lines: Vec<&str> = canon.lines().collect();
+        assert_eq!(lines.len(), 3, "{canon}");
+        assert_eq!(lines[1], "RAPID X=40 Z=2");
+        assert_eq!(
+            lines[2],
+            "ALARM CODE=7002 MSG=\"the move takes the slide to machine X-282.5 Z-313.8, past Z's soft limit -310\""
+        );
+        assert!(text(&out.stderr).contains("travel.nc:3:1: alarm[E7002]"));
+    }
+}

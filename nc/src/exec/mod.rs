@@ -16,6 +16,7 @@ pub mod state;
 pub mod stroke;
 pub mod sysvar;
 pub mod tool_life;
+pub mod travel;
 pub mod zero_feed;
 
 use alloc::boxed::Box;
@@ -154,6 +155,9 @@ pub struct Nc {
     /// what waits in the contour queue keeps its block's, and is told to
     /// the sink with it when printed ([`Sink::origin`]).
     pub origin: u32,
+    /// A block's moves pass the guard (stroke.rs) now: the blocks it runs
+    /// inside it (G70's profile) take no guard of their own.
+    guarding: bool,
 }
 
 impl Nc {
@@ -168,6 +172,7 @@ impl Nc {
             allowance: u64::MAX,
             plain_path: true,
             origin: 0,
+            guarding: false,
         }
     }
 
@@ -246,10 +251,10 @@ impl Nc {
         crate::exec::tool_life::timed(self, words, sink, Nc::exec_guarded_move)
     }
 
-    /// A block with the G22 stroke check, when it is in force, and the
-    /// check for feed moves at F = 0 (zero_feed) when the block can print
-    /// one; of their alarms the one of the earlier event (neither passes
-    /// events on after its own).
+    /// A block behind the G22 stroke check and the soft limits, when in
+    /// force (stroke.rs), and the check for feed moves at F = 0
+    /// (zero_feed) when the block can print one; of their alarms the one
+    /// of the earlier event (neither passes events on after its own).
     fn exec_guarded(&mut self, words: &[Word], sink: &mut dyn Sink) -> Result<Outcome, NcError> {
         self.guarded(words, sink, block::parse_into)
     }
@@ -277,7 +282,7 @@ impl Nc {
             Err(e) => Err(e),
             // The usual block: nothing to check on its way out, and the
             // block's execution in line here (it runs for every block).
-            Ok(()) if self.st.stroke2.is_none() && !crate::exec::zero_feed::may_fault(self, &p) => {
+            Ok(()) if !self.guards_moves() && !crate::exec::zero_feed::may_fault(self, &p) => {
                 if plain::takes(self, &p) {
                     plain::run(self, &p, sink)
                 } else {
@@ -300,24 +305,36 @@ impl Nc {
     ) -> Result<Outcome, NcError> {
         let watched = crate::exec::zero_feed::may_fault(self, p);
         let (printed, at) = (self.st.feed_printed, self.st.pos);
-        let Some(area) = self.st.stroke2 else {
+        // A block run from inside a guarded one (G70's profile) passes
+        // that block's guard.
+        if !self.guards_moves() || self.guarding {
             let mut watch = crate::exec::zero_feed::Watch::new(sink, printed, at);
             let result = self.exec_behind(p, words, &mut watch);
             return watch.finish().map_or(result, Err);
-        };
-        // G22 in force: every move passes the stroke check.
-        let mut guard = crate::exec::stroke::Guard::new(sink, area, self.st.origin(), at);
-        if !watched {
-            let result = self.exec_behind(p, words, &mut guard);
-            return guard.finish().map_or(result, Err);
         }
-        let mut watch = crate::exec::zero_feed::Watch::new(&mut guard, printed, at);
-        let result = self.exec_behind(p, words, &mut watch);
-        let zero_feed = watch.finish();
-        match guard.finish().or(zero_feed) {
+        // G22 in force or soft limits: every move passes the guard.
+        let mut guard = crate::exec::stroke::Guard::new(sink, self);
+        self.guarding = true;
+        let (result, zero_feed) = if watched {
+            let mut watch = crate::exec::zero_feed::Watch::new(&mut guard, printed, at);
+            let result = self.exec_behind(p, words, &mut watch);
+            (result, watch.finish())
+        } else {
+            (self.exec_behind(p, words, &mut guard), None)
+        };
+        self.guarding = false;
+        match guard.finish(&mut self.st).or(zero_feed) {
             Some(e) => Err(e),
             None => result,
         }
+    }
+
+    /// Whether the block's moves pass the guard (stroke.rs): G22 is in
+    /// force, or the machine has soft limits.
+    #[inline]
+    fn guards_moves(&self) -> bool {
+        let axes = &self.machine.axes;
+        self.st.stroke2.is_some() || axes.x.soft_limits || axes.z.soft_limits
     }
 
     /// `exec_parsed` out of line, for the checked blocks.
@@ -884,7 +901,7 @@ impl Nc {
         });
     }
 
-    fn reference_point(&self, n: u32) -> Pt {
+    pub(crate) fn reference_point(&self, n: u32) -> Pt {
         let r = &self.machine.reference_points;
         match n {
             2 => Pt::xz(r.second.x, r.second.z),

@@ -75,6 +75,7 @@ impl Nc {
     /// next block starts there.
     pub fn set_position(&mut self, work: Pt) {
         self.st.pos = work;
+        self.st.printed = None;
     }
 
     /// A G31 move ended: the axes stopped at `stop` and the signal came at
@@ -82,6 +83,7 @@ impl Nc {
     /// #5061/#5062 read `hit`.
     pub fn skip_ended(&mut self, stop: Pt, hit: Pt) {
         self.st.pos = stop;
+        self.st.printed = None;
         self.st.skip = Some(hit);
     }
 }

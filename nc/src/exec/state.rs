@@ -52,6 +52,16 @@ pub struct State {
     pub exact_stop: bool,
     /// The area stored stroke check 2 forbids while G22 is in force.
     pub stroke2: Option<crate::exec::stroke::Area>,
+    /// The tool length offset the axes carry (geometry + wear of the last
+    /// `TOOL`, none after a `HOME`), as the soft limits see the slide;
+    /// kept only on a machine with soft limits (travel.rs).
+    pub slide_off: Pt,
+    /// Where the last motion event the guard passed ended (work
+    /// coordinates): the printed point, which lags the programmed one
+    /// while a corner or nose-radius compensation holds an element back.
+    /// `None` when not known (no guard ran the last block, or the axes
+    /// were set elsewhere): the next guard starts from `pos`.
+    pub printed: Option<Pt>,
     pub parts_required: f64,
     /// State of the single cycles and threads (cycles module).
     pub cycles: crate::exec::cycles::CycleState,
@@ -106,6 +116,8 @@ impl State {
             outputs: 0,
             exact_stop: false,
             stroke2: None,
+            slide_off: Pt::ZERO,
+            printed: None,
             parts_required: 0.0,
             cycles: Default::default(),
             compound: Default::default(),

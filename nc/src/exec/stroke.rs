@@ -14,14 +14,21 @@
 //! point plus the workpiece origin, X as a diameter), as #5021 reads them;
 //! tool offsets are the runtime's, which checks the slide path every
 //! period.
+//!
+//! The same guard checks the soft limits (travel.rs), where the slide
+//! point counts, tool offset included. It follows the tool as printed,
+//! from block to block: a corner or a compensated element prints a block
+//! late, so the programmed point is not where the next event starts.
 
 use crate::base::gcode::Stroke;
 use alloc::format;
 
 use crate::base::error::{Alarm, NcError};
-use crate::base::event::Event;
+use crate::base::event::{Event, Num};
 use crate::base::point::Pt;
 use crate::block::Parsed;
+use crate::exec::state::State;
+use crate::exec::travel::Slide;
 use crate::exec::{Nc, Sink};
 
 /// The forbidden area while G22 is in force.
@@ -96,6 +103,8 @@ fn ordered(a: f64, b: f64) -> (f64, f64) {
 /// no effect.
 pub fn select(nc: &mut Nc, code: Stroke, p: &Parsed) {
     let m = &nc.machine.stroke_check_2;
+    // Blocks ran unguarded before: where the tool was printed is not known.
+    nc.st.printed = None;
     if code != Stroke::On || !m.enabled {
         nc.st.stroke2 = None;
         return;
@@ -124,91 +133,220 @@ fn end_of(e: &Event) -> Option<(f64, f64)> {
     }
 }
 
-/// A sink that passes events on until one ends in the forbidden area;
-/// from then on it drops them and keeps the alarm. A `FEED` waits for the
-/// event after it, so the feed of a refused move is not printed either.
-pub struct Guard<'a> {
-    inner: &'a mut dyn Sink,
-    area: Area,
-    origin: Pt,
-    /// Where the tool stands (work coordinates): the start of the next
-    /// motion event.
-    at: Pt,
-    feed: Option<Event>,
-    fault: Option<NcError>,
+/// Points along the path of a motion event, its end last: an arc's every
+/// degree or finer (chords of the circle); any other move's end alone.
+struct PathPoints {
+    centre: Pt,
+    start: f64,
+    sweep: f64,
+    r0: f64,
+    r1: f64,
+    n: usize,
+    i: usize,
+    to: Pt,
 }
 
-impl<'a> Guard<'a> {
-    /// `at`: the tool's work position when the block begins.
-    pub fn new(inner: &'a mut dyn Sink, area: Area, origin: Pt, at: Pt) -> Guard<'a> {
-        Guard {
-            inner,
-            area,
-            origin,
-            at,
-            feed: None,
-            fault: None,
-        }
-    }
-
-    /// Whether the path of motion event `e` from the current point runs
-    /// into the forbidden area (its end point included).
-    fn refuses(&self, e: &Event, to: Pt) -> bool {
-        let machine = |p: Pt| (p.x() + self.origin.x(), p.z + self.origin.z);
-        let arc = match *e {
-            Event::Arc { dir, cx, cz, .. } | Event::ArcThread { dir, cx, cz, .. } => {
-                Some((Pt::new(cx / 2.0, cz), dir))
-            }
-            Event::Ellipse { .. } | Event::Parabola { .. } => {
-                let (x, z) = machine(to);
-                return self.area.forbids(x, z);
-            }
-            _ => None,
+impl PathPoints {
+    fn of(e: &Event, from: Pt, to: Pt) -> PathPoints {
+        let mut path = PathPoints {
+            centre: Pt::ZERO,
+            start: 0.0,
+            sweep: 0.0,
+            r0: 0.0,
+            r1: 0.0,
+            n: 1,
+            i: 0,
+            to,
         };
-        let Some((c, dir)) = arc else {
-            return self.area.crossed_by(machine(self.at), machine(to));
+        let (Event::Arc { dir, cx, cz, .. } | Event::ArcThread { dir, cx, cz, .. }) = *e else {
+            return path;
         };
-        // The arc every degree (or finer), as chords of the circle.
-        let (a0, a1) = (self.at.sub(c), to.sub(c));
+        let c = Pt::new(cx / 2.0, cz);
+        let (a0, a1) = (from.sub(c), to.sub(c));
         let start = libm::atan2(a0.r, a0.z);
         let mut sweep = libm::atan2(a1.r, a1.z) - start;
         let tau = 2.0 * core::f64::consts::PI;
-        let ccw = matches!(dir, crate::base::event::Dir::Ccw);
         // G03 turns from +Z towards +X (dialect.md §2.4).
+        let ccw = matches!(dir, crate::base::event::Dir::Ccw);
         if ccw && sweep <= 1e-12 {
             sweep += tau;
         } else if !ccw && sweep >= -1e-12 {
             sweep -= tau;
         }
         let radius = |p: Pt| libm::sqrt(p.r * p.r + p.z * p.z);
-        let (r0, r1) = (radius(a0), radius(a1));
-        let n = (libm::ceil(sweep.abs().to_degrees()) as usize).clamp(1, 360);
-        let mut prev = self.at;
-        for i in 1..=n {
-            let t = i as f64 / n as f64;
-            let (s, k) = libm::sincos(start + sweep * t);
-            let r = r0 + (r1 - r0) * t;
-            let p = if i == n {
-                to
-            } else {
-                Pt::new(c.r + r * s, c.z + r * k)
-            };
-            if self.area.crossed_by(machine(prev), machine(p)) {
-                return true;
-            }
-            prev = p;
+        path.centre = c;
+        (path.start, path.sweep) = (start, sweep);
+        (path.r0, path.r1) = (radius(a0), radius(a1));
+        path.n = (libm::ceil(sweep.abs().to_degrees()) as usize).clamp(1, 360);
+        path
+    }
+}
+
+impl Iterator for PathPoints {
+    type Item = Pt;
+
+    fn next(&mut self) -> Option<Pt> {
+        if self.i >= self.n {
+            return None;
         }
-        false
+        self.i += 1;
+        if self.i == self.n {
+            return Some(self.to);
+        }
+        let t = self.i as f64 / self.n as f64;
+        let (s, k) = libm::sincos(self.start + self.sweep * t);
+        let r = self.r0 + (self.r1 - self.r0) * t;
+        Some(Pt::new(self.centre.r + r * s, self.centre.z + r * k))
+    }
+}
+
+/// A sink that passes events on until one would take the tool where it
+/// may not go (the G22 area, or past the soft limits: travel.rs); from
+/// then on it drops them and keeps the alarm. A `FEED` waits for the
+/// event after it, so the feed of a refused move is not printed either.
+pub struct Guard<'a> {
+    inner: &'a mut dyn Sink,
+    /// The area G22 forbids, while it is in force.
+    area: Option<Area>,
+    /// The soft limits, on a machine with them.
+    slide: Option<Slide>,
+    origin: Pt,
+    /// Reference points 1–4, machine coordinates.
+    refs: [Pt; 4],
+    /// Where the tool stands (work coordinates): the start of the next
+    /// motion event; not known after leaving a cylinder plane.
+    at: Pt,
+    at_known: bool,
+    feed: Option<Event>,
+    fault: Option<NcError>,
+}
+
+impl<'a> Guard<'a> {
+    /// The checks in force as the block about to run finds them; the
+    /// tool where the last block left it.
+    pub fn new(inner: &'a mut dyn Sink, nc: &Nc) -> Guard<'a> {
+        Guard {
+            inner,
+            area: nc.st.stroke2,
+            slide: Slide::of(nc),
+            origin: nc.st.origin(),
+            refs: [1, 2, 3, 4].map(|n| nc.reference_point(n)),
+            at: nc.st.printed.unwrap_or(nc.st.pos),
+            at_known: true,
+            feed: None,
+            fault: None,
+        }
     }
 
     /// The end of the block: the alarm, or the events still held back.
-    pub fn finish(mut self) -> Option<NcError> {
+    /// What the next block's guard starts from goes back to the state.
+    pub fn finish(mut self, st: &mut State) -> Option<NcError> {
         if self.fault.is_none() {
             if let Some(f) = self.feed.take() {
                 self.inner.emit(f);
             }
         }
+        st.printed = self.at_known.then_some(self.at);
+        if let Some(s) = &self.slide {
+            st.slide_off = s.offset();
+        }
         self.fault
+    }
+
+    fn machine(&self, p: Pt) -> Pt {
+        p.add(self.origin)
+    }
+
+    /// E7002 if event `e` takes the tool where it may not go; else the
+    /// guard follows the tool (and the slide) to where it leaves them.
+    fn check(&mut self, e: &Event) -> Result<(), NcError> {
+        match *e {
+            Event::Tool { d, .. } => {
+                let m = self.machine(self.at);
+                if let Some(s) = &mut self.slide {
+                    s.tool(d);
+                    s.check(m, "the tool's offset")?;
+                }
+            }
+            Event::Home { n, x, z, .. } => self.home(n, x, z)?,
+            Event::Origin { x, z } => {
+                // The tool stays put; its work coordinates change.
+                let m = self.machine(self.at);
+                self.origin = Pt::xz(x, z);
+                self.at = m.sub(self.origin);
+            }
+            Event::PolarOff { x, .. } => self.at.r = x / 2.0,
+            // The plane's moves print no work point to follow.
+            Event::Cylinder(None) => self.at_known = false,
+            _ => {
+                if let Some((x, z)) = end_of(e) {
+                    let to = Pt::xz(x, z);
+                    self.check_move(e, to)?;
+                    self.at = to;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A motion event from the current point to `to`.
+    fn check_move(&self, e: &Event, to: Pt) -> Result<(), NcError> {
+        let end = self.machine(to);
+        if let Some(area) = &self.area {
+            let (x, z) = (Num(end.x()), Num(end.z));
+            if area.forbids(end.x(), end.z) {
+                let msg = format!("the move ends at machine X{x} Z{z}, in the area G22 forbids");
+                return Err(NcError::new(Alarm::StrokeLimit, msg));
+            }
+            if self.crosses(area, e, to) {
+                let msg =
+                    format!("the move to machine X{x} Z{z} runs through the area G22 forbids");
+                return Err(NcError::new(Alarm::StrokeLimit, msg));
+            }
+        }
+        if let Some(s) = &self.slide {
+            // The travel is a box: a straight move between two points
+            // inside it stays inside, an arc may bulge out.
+            for p in PathPoints::of(e, self.at, to) {
+                s.check(self.machine(p), "the move")?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether the path of motion event `e` from the current point runs
+    /// through the forbidden area. An ellipse or a parabola is checked at
+    /// its end point only.
+    fn crosses(&self, area: &Area, e: &Event, to: Pt) -> bool {
+        if matches!(e, Event::Ellipse { .. } | Event::Parabola { .. }) {
+            return false;
+        }
+        let xz = |p: Pt| {
+            let m = self.machine(p);
+            (m.x(), m.z)
+        };
+        let mut prev = self.at;
+        PathPoints::of(e, self.at, to).any(|p| {
+            let crossed = area.crossed_by(xz(prev), xz(p));
+            prev = p;
+            crossed
+        })
+    }
+
+    /// G28/G30: the named axes go to reference point `n` and the tool
+    /// offset is off (the kernel's position, as the runtime's).
+    fn home(&mut self, n: u32, x: bool, z: bool) -> Result<(), NcError> {
+        let rp = self.refs[(n as usize).clamp(1, 4) - 1];
+        let home = |p: Pt| Pt::new(if x { rp.r } else { p.r }, if z { rp.z } else { p.z });
+        let before = self.machine(self.at);
+        if let Some(s) = &mut self.slide {
+            // An axis that stays keeps its slide where it stood.
+            let slide = home(before.add(s.offset()));
+            s.home();
+            s.check(slide, "the return to the reference point")?;
+        }
+        self.at = home(before).sub(self.origin);
+        Ok(())
     }
 }
 
@@ -223,32 +361,9 @@ impl Sink for Guard<'_> {
             }
             return;
         }
-        if let Some((x, z)) = end_of(&e) {
-            let (mx, mz) = (x + self.origin.x(), z + self.origin.z);
-            let to = Pt::new(x / 2.0, z);
-            if self.area.forbids(mx, mz) {
-                self.fault = Some(NcError::new(
-                    Alarm::StrokeLimit,
-                    format!(
-                        "the move ends at machine X{} Z{}, in the area G22 forbids",
-                        crate::base::event::Num(mx),
-                        crate::base::event::Num(mz)
-                    ),
-                ));
-                return;
-            }
-            if self.refuses(&e, to) {
-                self.fault = Some(NcError::new(
-                    Alarm::StrokeLimit,
-                    format!(
-                        "the move to machine X{} Z{} runs through the area G22 forbids",
-                        crate::base::event::Num(mx),
-                        crate::base::event::Num(mz)
-                    ),
-                ));
-                return;
-            }
-            self.at = to;
+        if let Err(fault) = self.check(&e) {
+            self.fault = Some(fault);
+            return;
         }
         if let Some(f) = self.feed.take() {
             self.inner.emit(f);
@@ -439,5 +554,83 @@ mod tests {
             m.try_run("G00 X20 Z0"),
             Ok(alloc::vec!["RAPID X=20 Z=0".into()])
         );
+    }
+
+    /// The reference machine (travel X −260…+2 as a diameter, Z −510…+2;
+    /// work zero = machine zero) with soft limits, and offset 1 of
+    /// X−10 Z−10 (geometry −9.8/−10.3 plus wear −0.2/+0.3).
+    fn soft_limited() -> Lathe {
+        let mut machine = crate::base::machine::Machine::reference();
+        machine.axes.x.soft_limits = true;
+        machine.axes.z.soft_limits = true;
+        let mut nc = crate::exec::Nc::new(machine);
+        nc.st.geom[0] = [-9.8, -10.3, 0.0];
+        nc.st.wear[0] = [-0.2, 0.3, 0.0, 0.0];
+        Lathe { nc }
+    }
+
+    fn run_on(m: &mut Lathe, blocks: &[&str]) -> (Vec<alloc::string::String>, u16) {
+        let mut canon = Vec::new();
+        for b in blocks {
+            match m.try_run(b) {
+                Ok(lines) => canon.extend(lines),
+                Err(code) => return (canon, code),
+            }
+        }
+        (canon, 0)
+    }
+
+    #[test]
+    fn a_move_past_the_travel_stops_before_its_events() {
+        let mut m = soft_limited();
+        let (canon, code) = run_on(&mut m, &["G00 X-50 Z0", "G98 G01 Z-600 F100", "G00 X-100"]);
+        assert_eq!(code, 7002);
+        assert_eq!(canon, ["RAPID X=-50 Z=0"]);
+        // Up to the end of travel itself is allowed.
+        let mut m = soft_limited();
+        let (_, code) = run_on(&mut m, &["G00 X-260 Z2", "G98 G01 Z-510 F100"]);
+        assert_eq!(code, 0);
+    }
+
+    #[test]
+    fn an_arc_bulging_past_the_travel_stops_before_it() {
+        // From X0 Z-10 to X0 Z-30 with R10: the centre is r 0, Z−20. G03
+        // turns from +Z towards +X, so from Z−10 (angle 0) to Z−30 (180°)
+        // it passes r 10 (X20) at Z−20, past X's + end (2). G02 passes
+        // X−20 instead, inside the travel.
+        let mut m = soft_limited();
+        let (canon, code) = run_on(&mut m, &["G00 X0 Z-10", "G98 G03 X0 Z-30 R10 F100"]);
+        assert_eq!(code, 7002);
+        assert_eq!(canon, ["RAPID X=0 Z=-10"]);
+        let mut m = soft_limited();
+        let (_, code) = run_on(&mut m, &["G00 X0 Z-10", "G98 G02 X0 Z-30 R10 F100"]);
+        assert_eq!(code, 0);
+    }
+
+    #[test]
+    fn the_slide_carries_the_tool_offset_until_a_return() {
+        // With offset 1 (X−10 Z−10) the slide stands 10 below the
+        // programmed X (a diameter) and Z: X12 puts it at X2, the end of
+        // travel; Z12 at Z2.
+        let mut m = soft_limited();
+        let (canon, code) = run_on(&mut m, &["T0101", "G00 X12 Z12", "G28 U0 W0", "G00 X12"]);
+        // G28 cancels the offset: X12 is then the slide's X12, past +2.
+        assert_eq!(code, 7002);
+        assert_eq!(
+            canon,
+            ["TOOL T=1 D=1", "RAPID X=12 Z=12", "HOME N=1 AXES=XZ"]
+        );
+    }
+
+    #[test]
+    fn an_offset_that_takes_the_slide_past_the_travel_is_refused() {
+        // At machine zero, offset 1 moves the slide by −10 −10: inside.
+        // Standing at X−255 (diameter) it would take X to −265, past −260.
+        let mut m = soft_limited();
+        let (canon, code) = run_on(&mut m, &["T0101", "T0100"]);
+        assert_eq!((canon.len(), code), (2, 0));
+        let (canon, code) = run_on(&mut m, &["G00 X-255", "T0101"]);
+        assert_eq!(code, 7002);
+        assert_eq!(canon, ["RAPID X=-255 Z=0"]);
     }
 }
