@@ -357,7 +357,8 @@ impl DryRun<'_> {
                 None => {}
                 // M99 in a called program: back to the caller.
                 Some(Call::Ret { p }) if index != 0 => {
-                    return Ok(returned(p, (prog.unit, block.span)))
+                    self.run.nc.break_thread_chain();
+                    return Ok(returned(p, (prog.unit, block.span)));
                 }
                 Some(call) => match self.follow(index, levels, (prog, block), &call)? {
                     Some(at) => next = at.unwrap_or(next),
@@ -475,6 +476,7 @@ impl DryRun<'_> {
 
     /// Runs the called program `t.count` times from a program at `levels`.
     fn call(&mut self, t: Target, levels: Levels) -> Result<Flow, (usize, Diagnostic)> {
+        self.run.nc.break_thread_chain();
         let Some(sub) = self.programs.iter().position(|q| q.number == t.number) else {
             return Ok(Flow::End);
         };

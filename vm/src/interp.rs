@@ -904,6 +904,7 @@ impl Vm {
         args: Vec<(u8, f64)>,
     ) -> Result<(), Fault> {
         self.count_block()?;
+        self.nc.break_thread_chain();
         let macros = self.frames.iter().filter(|f| f.macro_level).count();
         let levels = Levels {
             macros,
@@ -941,6 +942,7 @@ impl Vm {
     /// M99 (with `seq`: M99 P n).
     fn ret(&mut self, seq: Option<u32>, sink: &mut dyn Sink) -> Result<Next, Fault> {
         self.count_block()?;
+        self.nc.break_thread_chain();
         let Some(frame) = self.frames.last_mut() else {
             return self.end_pass(seq, sink);
         };

@@ -382,16 +382,79 @@ fn integer_only(p: &Parsed, letter: u8) -> bool {
     }
 }
 
+/// Words given in increments (§1.9): the unit they count, and how many
+/// make a whole one (`Q3.` for 3 mm: Q3000). Depths and steps count
+/// 0.001 mm (0.0001 in under G20, which the block may not show), angles
+/// 0.001°. G76/G78's first block P is digits (`mmrraa`), their second
+/// block's (with X/U or Z/W) the thread height k.
+fn increments(p: &Parsed, letter: u8) -> Option<Increment> {
+    let shot = p.one_shot();
+    let second_block = || [b'X', b'U', b'Z', b'W'].iter().any(|&a| p.has(a));
+    let threading = matches!(shot, Some(OneShot::MultiThread | OneShot::SpiralThread));
+    let pecking = matches!(shot, Some(OneShot::PeckFace | OneShot::PeckGroove));
+    let drilling = p
+        .gs()
+        .any(|g| matches!(g, G::Drill(Drill::FaceDrill | Drill::SideDrill)));
+    let angled = p.gs().any(|g| {
+        matches!(
+            g,
+            G::Motion(
+                Motion::Rapid
+                    | Motion::Line
+                    | Motion::EllipseCw
+                    | Motion::EllipseCcw
+                    | Motion::ParabolaCw
+                    | Motion::ParabolaCcw
+                    | Motion::Thread
+                    | Motion::ArcThreadCw
+                    | Motion::ArcThreadCcw
+            )
+        )
+    });
+    let parabola = p
+        .gs()
+        .any(|g| matches!(g, G::Motion(Motion::ParabolaCw | Motion::ParabolaCcw)));
+    match letter {
+        b'Q' if threading || pecking || drilling => Some(Increment::Length),
+        b'Q' if angled => Some(Increment::Angle),
+        b'P' if pecking || parabola || (threading && second_block()) => Some(Increment::Length),
+        _ => None,
+    }
+}
+
+/// The least input increment a word counts (§0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Increment {
+    /// 0.001 mm (0.0001 in).
+    Length,
+    /// 0.001°.
+    Angle,
+}
+
 /// What to write for an integer-only word given with a point: the same
 /// whole number without it (a fraction names none). A dwell's P is in ms:
 /// a point there most often means seconds (`P1.5` for 1.5 s: P1500, or
 /// G04's X).
 fn integer_hint(p: &Parsed, letter: u8, value: f64) -> String {
-    let (letter, n) = (letter as char, crate::base::event::Num(value));
-    if letter == 'P' && p.one_shot() == Some(OneShot::Dwell) {
-        let ms = crate::base::event::Num(value * 1000.0);
+    use crate::base::event::Num;
+    let (l, n) = (letter as char, Num(value));
+    if l == 'P' && p.one_shot() == Some(OneShot::Dwell) {
+        let ms = Num(value * 1000.0);
         return format!("the dwell's P is in ms: for {n} s write P{ms}, or X{n}");
     }
+    // A point on a word in increments most often means the whole unit:
+    // `Q3.` for 3 mm is Q3000 (dialect.md §4.13).
+    let thousand = Num(value * 1000.0);
+    match increments(p, letter) {
+        Some(Increment::Length) => {
+            return format!("{l} counts 0.001 mm: for {n} mm write {l}{thousand}");
+        }
+        Some(Increment::Angle) => {
+            return format!("{l} counts 0.001°: for {n}° write {l}{thousand}");
+        }
+        None => {}
+    }
+    let letter = l;
     match value == libm::trunc(value) {
         true => format!("write {letter}{n}"),
         false => format!("write a whole number of {letter}'s unit"),
@@ -514,6 +577,7 @@ fn check_ranges(p: &Parsed) -> Result<(), NcError> {
         Some(OneShot::HomeN) => (b'P', 2.0, 4.0, "G30 P: the reference points are 2…4"),
         Some(OneShot::Skip) => (b'P', 1.0, 4.0, "G31 P: the skip signals are 1…4"),
         Some(OneShot::Dwell) => (b'Q', 1.0, 4.0, "G04 Q: the skip signals are 1…4"),
+        Some(OneShot::MultiThread) => return check_g76_passes(p),
         _ => return Ok(()),
     };
     match out(letter, lo, hi) {
@@ -523,6 +587,26 @@ fn check_ranges(p: &Parsed) -> Result<(), NcError> {
         }
         None => Ok(()),
     }
+}
+
+/// G76's first block (no end point): m of P mmrraa, the finishing
+/// passes, is 01…99 (§4.8); with m = 00 the thread would stay d short of
+/// its depth.
+fn check_g76_passes(p: &Parsed) -> Result<(), NcError> {
+    let end_point = [b'X', b'U', b'Z', b'W'].iter().any(|&a| p.has(a));
+    let Some(digits) = p.get(b'P').map(round_half_away).filter(|_| !end_point) else {
+        return Ok(());
+    };
+    let m = libm::trunc(digits / 10000.0);
+    if (1.0..=99.0).contains(&m) {
+        return Ok(());
+    }
+    let msg = format!(
+        "G76 P: m, the finishing passes (mm of the digits mmrraa), is 01…99; P{} gives {}",
+        crate::base::event::Num(digits),
+        crate::base::event::Num(m)
+    );
+    Err(NcError::new(p.range_alarm(b'P'), msg).on_addr(addr(b'P')))
 }
 
 /// An end point is written absolute or incremental, not both.

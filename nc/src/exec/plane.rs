@@ -34,7 +34,7 @@ use alloc::format;
 
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::{Dir, Event, Plane, PlaneMotion};
-use crate::base::gcode::{Comp, FeedMode, Motion, OneShot, Polar, PolarCmd};
+use crate::base::gcode::{self, Comp, Drill, FeedMode, Motion, OneShot, Polar, PolarCmd, G};
 use crate::base::geom::{self, Element};
 use crate::base::point::Pt;
 use crate::block::Parsed;
@@ -107,6 +107,11 @@ impl PlaneState {
     }
 }
 
+/// The mode in force, by name: polar or cylindrical interpolation.
+pub(crate) fn mode_name(nc: &Nc) -> Option<&'static str> {
+    nc.st.plane.map(|st| st.what())
+}
+
 /// Whether the block starts polar or cylindrical interpolation.
 fn starts(nc: &Nc, p: &Parsed) -> bool {
     p.has_g(Polar::On)
@@ -128,25 +133,42 @@ pub(crate) fn before_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Resu
 }
 
 fn check_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
-    if starts(nc, p) {
+    let starting = starts(nc, p);
+    if starting {
         crate::exec::contour::flush(nc, sink)?;
     }
-    let Some(st) = nc.st.plane else {
-        return Ok(());
+    // A block that starts a mode runs the rest of its words inside it
+    // (group 0 comes before T and the motion, canon.md).
+    let (what, polar) = match (nc.st.plane, starting) {
+        (Some(st), _) => (st.what(), st.kind == Kind::Polar),
+        (None, true) if p.has_g(Polar::On) => ("polar interpolation (G12.1)", true),
+        (None, true) => ("cylindrical interpolation (G7.1)", false),
+        (None, false) => return Ok(()),
     };
     if p.has(b'T') {
         return fail(
             Alarm::PolarInComp,
-            format!(
-                "no tool or offset change during {}: change the tool before it starts",
-                st.what()
-            ),
+            format!("no tool or offset change during {what}: change the tool before it starts"),
         );
     }
-    if p.has_g(FeedMode::PerRev) && st.kind == Kind::Polar {
+    if p.has_g(FeedMode::PerRev) && polar {
         return fail(
             Alarm::PolarInComp,
             "G99 during polar interpolation: its F is a tangential feed per minute",
+        );
+    }
+    // Drilling cycles and work systems have no meaning in the plane: a
+    // cycle would run as one rapid to its bottom, a new zero move the
+    // plane under the tool.
+    let refused = p.gs().find(|g| match g {
+        G::Drill(d) => *d != Drill::Off,
+        G::Work(_) => true,
+        _ => false,
+    });
+    if let Some(g) = refused {
+        return fail(
+            Alarm::IncompatibleWords,
+            format!("{} cannot run during {what}", gcode::name(g.code())),
         );
     }
     Ok(())
@@ -189,6 +211,15 @@ fn check_start(nc: &Nc, p: &Parsed, what: &str) -> Result<(), NcError> {
         return fail(
             Alarm::IncompatibleWords,
             format!("{what} cannot start during {}", other.what()),
+        );
+    }
+    if let Some(drill) = nc.st.modal.drill() {
+        return fail(
+            Alarm::IncompatibleWords,
+            format!(
+                "{what} cannot start while {} is in force: cancel it with G80 first",
+                gcode::name(G::Drill(drill).code())
+            ),
         );
     }
     if p.has_axis() {

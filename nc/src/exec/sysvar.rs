@@ -168,6 +168,14 @@ impl Nc {
         // change with the zero.
         let after = self.st.origin();
         if after != before {
+            if let Some(what) = crate::exec::plane::mode_name(self) {
+                // (The plane would move under the tool: G54–G59 are
+                // refused there too.)
+                return fail(
+                    Alarm::PolarInComp,
+                    format!("#{n} moves the work zero during {what}: change it before the mode starts"),
+                );
+            }
             // A running compensation is suspended first (comp.md §8).
             crate::exec::comp::suspend(self, sink)?;
             let machine = self.st.pos.add(before);

@@ -145,6 +145,16 @@ pub fn flush(nc: &mut Nc, sink: &mut dyn Sink) {
     thread::flush(nc, sink);
 }
 
+impl Nc {
+    /// A call or a return (M98, M99, G65, G66's call) between two thread
+    /// blocks: an NC block that is not a G32/G34 move, so it ends the
+    /// chain (cycles.md §16.2). The block that waits for its run-out gets
+    /// it when the next block runs.
+    pub fn break_thread_chain(&mut self) {
+        self.st.cycles.chain.open = false;
+    }
+}
+
 /// A block whose group-01 code is one of this module's.
 pub fn motion(
     nc: &mut Nc,

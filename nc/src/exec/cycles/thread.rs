@@ -30,8 +30,9 @@ pub(crate) struct Chain {
 /// this block does not continue the chain, and a block that is not a
 /// G32/G34 move ends the chain.
 pub(crate) fn next_block(nc: &mut Nc, f: Func, p: &Parsed, sink: &mut dyn Sink) {
-    let continues =
-        matches!(f, Func::Motion(Motion::Thread | Motion::VariableThread)) && p.has_axis();
+    let continues = nc.st.cycles.chain.open
+        && matches!(f, Func::Motion(Motion::Thread | Motion::VariableThread))
+        && p.has_axis();
     if !continues {
         return flush(nc, sink);
     }

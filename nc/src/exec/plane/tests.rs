@@ -397,6 +397,11 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G12.1", "T0101"]), 4033);
     assert_eq!(e(&["G7.1 C10", "T0202"]), 4033);
     assert_eq!(e(&["G12.1", "G99 G01 X10 F1"]), 4033);
+    // In the block that starts the mode, whatever the words' order: its
+    // T and G99 act inside it (group 0 comes first).
+    assert_eq!(e(&["G12.1 G99"]), 4033);
+    assert_eq!(e(&["G12.1 T0202"]), 4033);
+    assert_eq!(e(&["T0202 G7.1 C10"]), 4033);
     // A move through the spindle centre: a line, a rapid, an arc.
     assert_eq!(e(&["G00 X40", "G12.1", "G01 X-40 F100"]), 4033);
     assert_eq!(e(&["G00 X40", "G12.1", "G00 X-20"]), 4033);
@@ -414,6 +419,14 @@ fn the_alarms_of_polar_and_cylindrical_interpolation() {
     assert_eq!(e(&["G7.1 C10", "G02 Z-5 C30 I5 F1"]), 2007);
     assert_eq!(e(&["G12.1", "G71 U1 R1"]), 2007);
     assert_eq!(e(&["G12.1", "G28 U0"]), 2007);
+    // Drilling cycles (they would shrink to one rapid to the bottom) and
+    // work systems: inside, in the starting block, or in force at G12.1.
+    assert_eq!(e(&["G12.1", "G83 Z-5 Q1000 F50"]), 2007);
+    assert_eq!(e(&["G7.1 C10", "G87 X10 Q1000 F50"]), 2007);
+    assert_eq!(e(&["G83 Z-5 Q1000 F50", "G12.1"]), 2007);
+    assert_eq!(e(&["G83 Z-5 Q1000 F50", "G80", "G12.1"]), 0);
+    assert_eq!(e(&["G12.1", "G55"]), 2007);
+    assert_eq!(e(&["G12.1 G55"]), 2007);
     // E2099: what is not supported yet.
     assert_eq!(e(&["G7.1 C10 J5 L2 R1 K0.2"]), 2099);
     // The axis outside the plane moves with a line, compensated or not
