@@ -333,7 +333,9 @@ fn a_decimal_point_on_a_word_in_increments_hints_the_increments() {
 fn g76_without_finishing_passes_is_out_of_range() {
     // §4.8 G76: "m 01–99". P000060 is m = 00 (the thread would stay d
     // short of its depth), P1000060 m = 100; P010060 is m = 01.
-    let prog = |p: &str| format!("G97 S500 M03\nG00 X30 Z5\nG76 {p} Q100 R0.2\nG76 X26 Z-20 P1000 Q400 F2\nM30\n");
+    let prog = |p: &str| {
+        format!("G97 S500 M03\nG00 X30 Z5\nG76 {p} Q100 R0.2\nG76 X26 Z-20 P1000 Q400 F2\nM30\n")
+    };
     assert_eq!(errors(&prog("P000060")), [("E1010", 3)]);
     assert_eq!(errors(&prog("P1000060")), [("E1010", 3)]);
     assert_eq!(errors(&prog("P010060")), []);
@@ -350,7 +352,11 @@ fn a_call_or_a_return_ends_a_thread_chain() {
     let src = "G97 S300 M03\nG00 X30 Z5\nM98 P1000\nG32 Z-30\nG00 X40\nM30\nO1000\nG32 Z-10 F2 J1 K2\nM99\n";
     let (canon, status) = run_on(src, &Options::default());
     assert_eq!(status, Status::Done);
-    let threads: Vec<&str> = canon.iter().map(String::as_str).filter(|l| l.starts_with("THREAD")).collect();
+    let threads: Vec<&str> = canon
+        .iter()
+        .map(String::as_str)
+        .filter(|l| l.starts_with("THREAD"))
+        .collect();
     assert_eq!(
         threads,
         [
@@ -388,4 +394,50 @@ fn a_work_zero_written_inside_the_plane_stops_the_run() {
             other => panic!("{write}: {other:?}"),
         }
     }
+}
+
+#[test]
+fn group_12_reads_g66_while_a_modal_call_is_in_force() {
+    // §7.2: #4012 is the G code in force in group 12 (§3: G66 G67, G67 at
+    // power-on), in the macro G66 calls too.
+    let src = "#500=#4012\nG66 P9001 A1\n#501=#4012\nG00 X1\n#502=#4012\nG67\n#503=#4012\nM30\nO9001\n#510=#4012\nM99\n";
+    let c = compile("p.nc", src.as_bytes(), &Options::default());
+    assert!(!c.has_errors(), "{}", c.render());
+    let mut vm = Vm::new(c.module.expect("module"), Machine::reference());
+    let mut events: Vec<Event> = Vec::new();
+    assert_eq!(vm.run(&mut events), Status::Done);
+    let read = |n: u32| vm.variable(n).ok();
+    assert_eq!(
+        [500, 501, 502, 510, 503].map(read),
+        [Some(67.0), Some(66.0), Some(66.0), Some(66.0), Some(67.0)]
+    );
+}
+
+#[test]
+fn a_computed_g_that_rounds_to_minus_zero_is_g00() {
+    // §7.6: G values are rounded to one decimal, and −0 is 0.
+    for src in ["#1=-0.04\nG#1 X1\nM30\n", "G[-0.04] X1\nM30\n"] {
+        let (canon, status) = run_on(src, &Options::default());
+        assert_eq!(status, Status::Done, "{src}");
+        assert_eq!(canon[0], "RAPID X=1 Z=0", "{src}");
+    }
+    // −0.05 rounds away from zero to G−0.1: no G code.
+    assert_eq!(alarm_of("#1=-0.05\nG#1 X1\nM30\n"), 2001);
+}
+
+#[test]
+fn g66_calls_follow_group_01_moves_only() {
+    // §7.9 Decision: "every group-01 move counts (also G6.x, G7.x,
+    // threads, G90/G92/G94)"; a group-00 function that moves (G28, G31,
+    // G53, G30) or cycle (G71) is not one. The macro records #4114, the
+    // sequence number of the block it follows: N5 (G00) and N11 (G90).
+    let src = "G00 X50 Z2\nG66 P9001\nN1 G28 U0\nN2 G31 X10 Z-1 F100\nN3 G50 X60 Z5\nN4 G04 X1\nN5 G00 X50 Z2\nN6 G71 U1 R0.5\nN7 G71 P10 Q20 U0 W0 F100\nN10 G00 X40\nN20 G01 Z-10\nN8 G30 P2 U0\nN9 G53 X0 Z0\nN11 G90 X40 Z-5 F100\nG67\nM30\nO9001\n#100=#100+1\n#[600+#100]=#4114\nM99\n";
+    let c = compile("p.nc", src.as_bytes(), &Options::default());
+    assert!(!c.has_errors(), "{}", c.render());
+    let mut vm = Vm::new(c.module.expect("module"), Machine::reference());
+    let mut events: Vec<Event> = Vec::new();
+    assert_eq!(vm.run(&mut events), Status::Done);
+    assert_eq!(vm.variable(100).ok(), Some(2.0));
+    assert_eq!(vm.variable(601).ok(), Some(5.0));
+    assert_eq!(vm.variable(602).ok(), Some(11.0));
 }

@@ -833,7 +833,7 @@ impl Vm {
         if let Some(call) = out.call {
             return self.word_call(call, sink);
         }
-        if out.moved && !self.frames.iter().any(|f| f.modal) {
+        if out.modal_call && !self.frames.iter().any(|f| f.modal) {
             if let Some(m) = &self.modal {
                 let (prog, count, args) = (m.prog, m.count, m.args.clone());
                 self.call(prog, count, true, true, args)?;
@@ -1033,6 +1033,9 @@ impl Vm {
         match n {
             4114 => return Ok(self.last_sequence().map_or(VACANT, f64::from)),
             4115 => return Ok(self.program_number().map_or(VACANT, f64::from)),
+            // Group 12 is the VM's: G66 in force (also inside the macro
+            // it calls) or G67 (dialect.md §7.2).
+            4012 => return Ok(if self.modal.is_some() { 66.0 } else { 67.0 }),
             _ => {}
         }
         if nc::sysvar::is_system(n) {

@@ -285,13 +285,15 @@ fn on_its_word(e: NcError, words: &[Word]) -> NcError {
 }
 
 fn add_g(p: &mut Parsed, w: &Word) -> Result<(), NcError> {
-    if w.value < 0.0 || w.value > 9999.0 {
+    // Rounded to one decimal first (§7.6): −0.04 is G−0.0, G00.
+    let tenths = round_half_away(w.value * 10.0);
+    if !(0.0..=99990.0).contains(&tenths) {
         return fail(
             Alarm::UnknownGCode,
             format!("G{} is not a G code", crate::base::event::Num(w.value)),
         );
     }
-    let code = round_half_away(w.value * 10.0) as Code;
+    let code = tenths as Code;
     if let Some((err, hint)) = gcode::foreign(code) {
         return fail(
             err,

@@ -104,8 +104,12 @@ impl Placed {
 /// What a block did, for the caller's control flow.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Outcome {
-    /// The block moved the tool (G66 calls follow such blocks).
+    /// The block moved the tool.
     pub moved: bool,
+    /// It moved by a group-01 code (threads and G90/G92/G94 included), not
+    /// a group-00 function or cycle nor a drilling cycle: a G66 call
+    /// follows it (dialect.md §7.9).
+    pub modal_call: bool,
     /// M02/M30 ended the program.
     pub end: Option<StopKind>,
     /// A G31 skip position to store in #995/#996.
@@ -384,6 +388,7 @@ impl Nc {
             Ok(())
         })?;
         out.call = word_call(p);
+        out.modal_call = out.moved && p.one_shot().is_none() && self.st.modal.drill().is_none();
         contour::end_of_block(self)?;
         crate::exec::comp::end_of_block(self, p, out.moved)?;
         self.profile.clear();

@@ -68,6 +68,7 @@ pub(crate) fn run(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<Outcom
     crate::exec::comp::end_of_block(nc, p, true)?;
     Ok(Outcome {
         moved: true,
+        modal_call: true,
         ..Outcome::default()
     })
 }

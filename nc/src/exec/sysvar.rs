@@ -173,7 +173,9 @@ impl Nc {
                 // refused there too.)
                 return fail(
                     Alarm::PolarInComp,
-                    format!("#{n} moves the work zero during {what}: change it before the mode starts"),
+                    format!(
+                        "#{n} moves the work zero during {what}: change it before the mode starts"
+                    ),
                 );
             }
             // A running compensation is suspended first (comp.md §8).
