@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{run_split_with, run_with, Run};
+use common::{certify, run_split_with, run_with, Run};
 use nc::Machine;
 use std::f64::consts::PI;
 
@@ -716,5 +716,66 @@ fn a_compensated_line_of_polar_interpolation_takes_z_along() {
         let last = r.pts.last().expect("periods");
         assert!((last.c.unwrap_or(0.0) - 360.0).abs() < 1e-6, "{last:?}");
         assert!((last.x - 40.0).abs() < 1e-6 && (last.z - 2.0).abs() < 1e-9);
+    }
+}
+
+/// The moves after a plane start where its last move left the joints, not
+/// where the plane started: `gbvm check` certifies them (it held the move
+/// after G13.1 to a start at the X of G12.1, and the plane's own periods
+/// to that move), and the trace runs them from there. Each case: the
+/// program, the line of the move after the plane, where the joints stand
+/// for it (X a diameter, Z; C) as worked out from the program, and
+/// whether it runs along X (else along Z).
+#[test]
+fn the_move_after_a_plane_starts_where_the_plane_ended() {
+    let cases = [
+        // G01 X10 C0 from X20: the plane point (C 0, X radius 5), so the
+        // joints stand at X10 C0, Z5 as at G12.1; G00 X30 runs along X
+        // from there, then G01 Z−5.
+        (
+            "G98 G00 X20 Z5 C0\nG12.1\nG01 X10 C0 F100\nG13.1\nG00 X30\nG01 Z-5 F200\nM30\n",
+            5,
+            (10.0, 5.0, 0.0),
+            true,
+        ),
+        // G01 X10 C5: the plane point (5, 5) is √50 = 7.0711 from the
+        // centre at 45°, so the joints stand at X 2·√50 = 14.1421, C45;
+        // G01 Z−5 runs along Z there (the plane's periods, at Z5 and X
+        // from 20 down to 14.14, are on no part of it), then G00 X30.
+        (
+            "G98 G00 X20 Z5 C0\nG12.1\nG01 X10 C5 F100\nG13.1\nG01 Z-5 F200\nG00 X30\nM30\n",
+            5,
+            (2.0 * 50f64.sqrt(), 5.0, 45.0),
+            false,
+        ),
+        // G7.1 on a cylinder of radius 10: G01 Z−10 C90, then X alone to
+        // 18; the joints stand at X18 Z−10 C90 after G7.1 C0, and G01 X30
+        // runs along X from there (not from X20 Z0, where G7.1 began).
+        (
+            "G98 G00 X20 Z0 C0\nG7.1 C10.\nG01 Z-10 C90 F200\nG01 X18 F200\nG7.1 C0\n\
+             G01 X30 F200\nG00 Z5\nM30\n",
+            6,
+            (18.0, -10.0, 90.0),
+            true,
+        ),
+    ];
+    for (src, line, (x, z, c), along_x) in cases {
+        for jerk in [false, true] {
+            assert_eq!(certify(src, &c_machine(), jerk), Some(Ok(())), "{src}");
+            let r = run_c(src, jerk);
+            let after: Vec<_> = r.pts.iter().filter(|p| p.line == line).collect();
+            assert!(after.len() > 10, "{src}: {}", after.len());
+            for p in &after {
+                let held = if along_x { p.z - z } else { p.x - x };
+                assert!(held.abs() < 1e-6, "{src}: {p:?}");
+                assert!((p.c.expect("a C column") - c).abs() < 1e-6, "{src}: {p:?}");
+            }
+            // Its first period a step of a few µm from the plane's end.
+            let first = after[0];
+            assert!(
+                (first.x - x).abs() < 0.01 && (first.z - z).abs() < 0.01,
+                "{src}: {first:?}"
+            );
+        }
     }
 }

@@ -19,7 +19,10 @@
 //!   [`END_POINT_MM`], in work coordinates as the canon gives them (at a
 //!   corner a thread chain turns at speed, within the period's
 //!   discretisation bound of the axes that follow the turn if larger,
-//!   [`chain_corner_mm`]);
+//!   [`chain_corner_mm`]); in the plane of polar or cylindrical
+//!   interpolation, where the joints the plane's moves leave, with C, in
+//!   space (the tool about the spindle's axis, [`PlaneEnd`]); the move
+//!   after the plane starts where its last move left X and Z;
 //! - the lead of a thread (travel per spindle turn along the long axis as
 //!   the kernel names it, [`nc::thread_room::z_is_long`]) within
 //!   [`LEAD_TOL`] of the programmed one (G34: of the lead at that point),
@@ -42,6 +45,7 @@ mod chain;
 use crate::config::{Axis, Config};
 use crate::interpolate::{Motion, SetPoint};
 use crate::math::{PI, V2};
+use crate::polar::PlaneMap;
 use alloc::collections::VecDeque;
 pub use chain::{
     axis_steps, catch_up_lead, catch_up_time, chain_corner_mm, incomplete_lead, tail_time,
@@ -311,6 +315,37 @@ struct Pending {
     /// The nearest approach so far: distance and place.
     nearest: f64,
     at: (f64, u16, u32),
+    /// A move of polar or cylindrical interpolation (`end` its joints X
+    /// and Z): the walk holds the tool to its end in space.
+    plane: Option<PlaneEnd>,
+}
+
+/// Where a move in the plane of polar or cylindrical interpolation leaves
+/// the joints, beyond X and Z: as the tool about the spindle's axis,
+/// (r cos C, r sin C, Z) in space, the end of each of the plane's moves is
+/// a point of its own (in X and Z alone a polar contour passes its end
+/// radius many times, a cylinder's C moves none), and the walk holds the
+/// tool to them in order; the set points of the plane are held to no move
+/// after it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PlaneEnd {
+    /// C at the end, degrees.
+    c: f64,
+    /// X (Z) at the end is not known: the plane started where the tool
+    /// came by a way of its own (home) and its moves did not set it; the
+    /// walk takes the tool's own.
+    free_r: bool,
+    free_z: bool,
+}
+
+/// Polar or cylindrical interpolation while it is on, as the translator
+/// follows it (translate.rs): the map, and where its moves leave the
+/// joints X (a radius) and Z, work coordinates (`None`: not known).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PlaneTrack {
+    map: PlaneMap,
+    r: Option<f64>,
+    z: Option<f64>,
 }
 
 /// The way a canon move goes to its end point, as far as the path check
@@ -360,6 +395,8 @@ pub struct Certifier {
     last_end: Option<V2>,
     /// The work zero the canon printed last (machine coordinates).
     origin: Option<V2>,
+    /// Polar or cylindrical interpolation while it is on.
+    plane: Option<PlaneTrack>,
     /// The last event was a thread move: a thread move now continues its
     /// chain (the runtime runs them on without a stop).
     chain_open: bool,
@@ -396,6 +433,7 @@ impl Certifier {
             pending: VecDeque::new(),
             last_end: None,
             origin: None,
+            plane: None,
             chain_open: false,
             cmd: SpindleCmd {
                 on: false,
@@ -747,38 +785,40 @@ impl Certifier {
     /// goes on from the next, so that one miss does not hide the rest.
     fn end_points(&mut self, prev: &SetPoint, p: &SetPoint) {
         let step = Step::new(prev, p);
-        // Where the walk stands on the step: the next end point is reached
-        // after the last one (a short move back may end within the
-        // tolerance of where this step began).
-        let mut from = step.a;
+        // Where the walk stands on the step (a share of it, 0 at its
+        // start): the next end point is reached after the last one (a
+        // short move back may end within the tolerance of where this step
+        // began).
+        let mut from = 0.0;
         let mut first = true;
         while let Some(mut m) = self.pending.front().copied() {
+            let way = step.way(&m);
             // After an end point reached in this step, the next is due in
             // it only where the rest of the step runs past it. One the
             // step ends on or short of may be a µm move's the tool runs
             // after the ones it still has to run (it stands within a µm
             // of several): judged now, the tool going on to those would
             // look like leaving it, a miss.
-            if !first && step.joined {
-                let t = seg_param(m.end, from, step.b);
+            if !first && way.joined() {
+                let t = way.param(from);
                 if !(t > 0.0 && t < 1.0) {
                     break;
                 }
             }
             m.tol = self.tol_of(&m, p.spindle_rpm);
-            let d = step.dist(m.end, from);
+            let d = way.dist(from);
             // The step ends where it is nearest to the end point: the tool
             // may still get nearer, and the end points after it are not
             // due yet (points a µm apart lie within the tolerance of one
             // step together).
-            let closing = step.joined && d > 0.0 && seg_param(m.end, from, step.b) >= 1.0;
+            let closing = way.joined() && d > 0.0 && way.param(from) >= 1.0;
             if closing {
                 self.nearer(d, p);
                 break;
             }
             if d <= m.tol || m.nearest <= m.tol {
-                if step.joined {
-                    from = seg_nearest(m.end, from, step.b);
+                if way.joined() {
+                    from += (1.0 - from) * way.param(from).clamp(0.0, 1.0);
                 }
                 first = false;
                 self.reached += 1;
@@ -787,7 +827,7 @@ impl Certifier {
             }
             // The period's travel is the axes' step: where the frame
             // jumped, b − a is the jump, not a way the tool went.
-            if d > m.nearest && m.nearest <= step.moved.norm() {
+            if d > m.nearest && m.nearest <= way.travel {
                 self.missed(&m);
                 self.passed(m, p.spindle_rpm);
                 continue;
@@ -1000,8 +1040,96 @@ impl Certifier {
             spindle: self.cmd,
             nearest: f64::INFINITY,
             at: (0.0, 0, 0),
+            plane: None,
         });
         self.last_end = Some(end);
+    }
+
+    /// A move of the plane ends with the joints at X (a radius) `r`, Z
+    /// `z` (`None`: not known) and C `c`: not held to a way (as
+    /// [`Shape::Free`]), its end held in space ([`PlaneEnd`]). The next
+    /// move starts there where X and Z are known.
+    fn push_plane(&mut self, r: Option<f64>, z: Option<f64>, c: f64) {
+        self.end_points += 1;
+        self.pending.push_back(Pending {
+            end: V2::new(r.unwrap_or(0.0), z.unwrap_or(0.0)),
+            start: self.last_end,
+            thread: None,
+            tol: END_POINT_MM,
+            enter: V2::ZERO,
+            corner: false,
+            shape: Shape::Free,
+            spindle: self.cmd,
+            nearest: f64::INFINITY,
+            at: (0.0, 0, 0),
+            plane: Some(PlaneEnd {
+                c,
+                free_r: r.is_none(),
+                free_z: z.is_none(),
+            }),
+        });
+        self.last_end = r.zip(z).map(|(r, z)| V2::new(r, z));
+    }
+
+    /// Polar or cylindrical interpolation starts with `map` where the last
+    /// move ended (the plane's start moves no joint).
+    fn plane_on(&mut self, map: PlaneMap) {
+        self.plane = Some(PlaneTrack {
+            map,
+            r: self.last_end.map(|e| e.r),
+            z: self.last_end.map(|e| e.z),
+        });
+    }
+
+    /// A move in the plane to its point (`a`, `b`) as the canon prints it
+    /// (polar X a diameter and C mm, cylinder Z and C degrees); `off`:
+    /// where it takes the axis outside the plane along (polar Z, cylinder
+    /// X a diameter). The joints as the translator turns the plane point
+    /// into them ([`PlaneMap::joints`]).
+    fn plane_move(&mut self, a: f64, b: f64, off: Option<f64>) {
+        let Some(mut t) = self.plane else {
+            return;
+        };
+        let (w, c) = t.map.joints(t.map.point(a, b));
+        match t.map {
+            PlaneMap::Polar { .. } => {
+                t.r = Some(w.r);
+                t.z = off.or(t.z);
+            }
+            PlaneMap::Cylinder { .. } => {
+                t.r = off.map(|x| x * 0.5).or(t.r);
+                t.z = Some(w.z);
+            }
+        }
+        self.plane = Some(t);
+        self.push_plane(t.r, t.z, c);
+    }
+
+    /// The axis outside the plane moves alone to `to` (polar Z, cylinder
+    /// X a diameter), the joints of the plane standing at C `c`.
+    fn plane_axis(&mut self, to: f64, c: f64) {
+        let Some(mut t) = self.plane else {
+            return;
+        };
+        match t.map {
+            PlaneMap::Polar { .. } => t.z = Some(to),
+            PlaneMap::Cylinder { .. } => t.r = Some(to * 0.5),
+        }
+        self.plane = Some(t);
+        self.push_plane(t.r, t.z, c);
+    }
+
+    /// The plane ends (`POLAR MODE=OFF` gives X, a diameter, as the
+    /// joints stand): the next move starts where its moves left X and Z,
+    /// not where the plane started.
+    fn plane_off(&mut self, x: Option<f64>) {
+        let Some(mut t) = self.plane.take() else {
+            return;
+        };
+        if let Some(x) = x {
+            t.r = Some(x * 0.5);
+        }
+        self.last_end = t.r.zip(t.z).map(|(r, z)| V2::new(r, z));
     }
 
     /// The end points of the thread legs that end less than a period's
@@ -1092,6 +1220,9 @@ struct Step {
     moved: V2,
     /// The work point moved as the axes did: no work shift changed.
     joined: bool,
+    /// The step's ends in space ([`space`]), for the moves of a plane.
+    a3: P3,
+    b3: P3,
 }
 
 impl Step {
@@ -1104,19 +1235,115 @@ impl Step {
             b,
             moved,
             joined,
+            a3: space(a.r, a.z, prev.c.unwrap_or(0.0)),
+            b3: space(b.r, b.z, p.c.unwrap_or(0.0)),
         }
     }
 
-    /// How far `e` is from the step's path from `from` on. Where the work
-    /// shift changed (G50, G54…, a tool offset) the work point jumped:
-    /// the period's path is the axes' step in the old frame before the
-    /// jump, or in the new one after it.
-    fn dist(&self, e: V2, from: V2) -> f64 {
-        if self.joined {
-            seg_dist(e, from, self.b)
-        } else {
-            seg_dist(e, self.a, self.a + self.moved).min(seg_dist(e, self.b - self.moved, self.b))
+    /// The step as the walk holds it to the end point of `m`: in work X
+    /// (a radius) and Z, or for a move of a plane in space. Where the
+    /// work shift changed (G50, G54…, a tool offset) the work point
+    /// jumped: the period's path is the axes' step in the old frame
+    /// before the jump, or in the new one after it (no shift changes in a
+    /// plane).
+    fn way(&self, m: &Pending) -> Way {
+        let flat = |v: V2| [v.r, v.z, 0.0];
+        let Some(pe) = m.plane else {
+            let (a, b, e, moved) = (self.a, self.b, m.end, self.moved);
+            return Way {
+                a: flat(a),
+                b: flat(b),
+                e: flat(e),
+                travel: moved.norm(),
+                split: (!self.joined)
+                    .then(|| seg_dist(e, a, a + moved).min(seg_dist(e, b - moved, b))),
+            };
+        };
+        // (Where the plane's end is not known in X or Z: the tool's own.)
+        let r = if pe.free_r { self.b.r } else { m.end.r };
+        let z = if pe.free_z { self.b.z } else { m.end.z };
+        Way {
+            a: self.a3,
+            b: self.b3,
+            e: space(r, z, pe.c),
+            travel: norm3(sub3(self.b3, self.a3)),
+            split: None,
         }
+    }
+}
+
+/// A point in the walk's space: work X (a radius), Z and 0 off a plane,
+/// (r cos C, r sin C, Z) in one ([`space`]).
+type P3 = [f64; 3];
+
+/// The tool at work X radius `r`, Z `z` and C `c` (degrees) as a point in
+/// space about the spindle's axis.
+fn space(r: f64, z: f64, c: f64) -> P3 {
+    let (sin, cos) = crate::math::sin_cos(c.to_radians());
+    [r * cos, r * sin, z]
+}
+
+fn sub3(a: P3, b: P3) -> P3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot3(a: P3, b: P3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm3(a: P3) -> f64 {
+    libm::sqrt(dot3(a, a))
+}
+
+/// One period's step and one end point `e`, in the walk's space for it
+/// ([`Step::way`]).
+struct Way {
+    a: P3,
+    b: P3,
+    e: P3,
+    /// The axes' travel in the period.
+    travel: f64,
+    /// Where the work frame jumped: the distance of the end point from
+    /// the step's two pieces.
+    split: Option<f64>,
+}
+
+impl Way {
+    fn joined(&self) -> bool {
+        self.split.is_none()
+    }
+
+    /// The point at share `s` of the step.
+    fn at(&self, s: f64) -> P3 {
+        let d = sub3(self.b, self.a);
+        [
+            self.a[0] + d[0] * s,
+            self.a[1] + d[1] * s,
+            self.a[2] + d[2] * s,
+        ]
+    }
+
+    /// Where the end point projects on the rest of the step from share
+    /// `from` on: 0 there, 1 at the step's end (0 when it is empty).
+    fn param(&self, from: f64) -> f64 {
+        let a = self.at(from);
+        let d = sub3(self.b, a);
+        let len2 = dot3(d, d);
+        if len2 > 0.0 {
+            dot3(sub3(self.e, a), d) / len2
+        } else {
+            0.0
+        }
+    }
+
+    /// How far the end point is from the step's path from share `from`
+    /// on.
+    fn dist(&self, from: f64) -> f64 {
+        if let Some(d) = self.split {
+            return d;
+        }
+        let s = from + (1.0 - from) * self.param(from).clamp(0.0, 1.0);
+        norm3(sub3(self.e, self.at(s)))
     }
 }
 
@@ -1173,15 +1400,26 @@ impl Sink for Certifier {
             // The tool goes home by a way of its own: the next move's
             // start is not the last end point.
             Event::Home { .. } => self.last_end = None,
+            // The plane's moves: where they leave the joints (the runtime's
+            // translator, translate.rs), so that the move after the plane
+            // starts there.
+            Event::PolarOn => self.plane_on(PlaneMap::Polar { z: 0.0 }),
+            Event::Cylinder(Some(radius)) => self.plane_on(PlaneMap::Cylinder { radius, r: 0.0 }),
+            Event::PlaneMove { a, b, off, .. } => self.plane_move(a, b, off),
+            Event::PlaneAxis { to, c, .. } => self.plane_axis(to, c),
+            Event::PolarOff { x, .. } => self.plane_off(Some(x)),
+            Event::Cylinder(None) => self.plane_off(None),
             // A new work zero (machine coordinates, X a diameter): the last
             // end point, where the next move starts, is the same place in
             // the new frame (unknown when the old zero was never printed).
             Event::Origin { x, z } => {
                 let origin = V2::from_xz(x, z);
-                self.last_end = match self.origin {
-                    Some(old) => self.last_end.map(|e| e - (origin - old)),
-                    None => None,
-                };
+                let shift = self.origin.map(|old| origin - old);
+                self.last_end = self.last_end.zip(shift).map(|(e, s)| e - s);
+                if let Some(t) = &mut self.plane {
+                    t.r = t.r.zip(shift).map(|(r, s)| r - s.r);
+                    t.z = t.z.zip(shift).map(|(z, s)| z - s.z);
+                }
                 self.origin = Some(origin);
             }
             _ => {}
@@ -1782,6 +2020,137 @@ mod tests {
         let w = *dog_leg(50, 0.002).worst(Kind::Path).unwrap();
         assert!(w.violates() && (w.value - 0.002).abs() < 1e-12, "{w:?}");
         assert_eq!(w.line, 60);
+    }
+
+    /// `G00 X20 Z5 C0 / G12.1 / G01 X10 C0 / G13.1 / G01 Z−5` by hand:
+    /// the plane's line in 50 periods from the radius 10 to `to` at Z5
+    /// and C0 (the canon's end: 5), the line after it in 100 periods from
+    /// Z5 to Z−5 at the radius `to`, `by` mm beyond in period `off`.
+    fn after_polar(to: f64, off: u32, by: f64) -> Certifier {
+        let mut c = certifier();
+        c.emit(Event::Rapid {
+            x: 20.0,
+            z: 5.0,
+            c: Some(0.0),
+        });
+        c.emit(Event::PolarOn);
+        c.emit(Event::PlaneMove {
+            plane: nc::event::Plane::Polar,
+            motion: nc::event::PlaneMotion::Line,
+            a: 10.0,
+            b: 0.0,
+            off: None,
+        });
+        c.emit(Event::PolarOff { x: 10.0, c: 0.0 });
+        c.emit(Event::Line {
+            x: 10.0,
+            z: -5.0,
+            c: None,
+        });
+        c.period(&at(1, (20.0, 5.0), (0.0, 0.0), Motion::None));
+        let mut k = 1;
+        for i in 1..=50 {
+            k += 1;
+            let r = 10.0 + (to - 10.0) * f64::from(i) / 50.0;
+            c.period(&at(k, (2.0 * r, 5.0), (0.0, 0.0), Motion::Feed));
+        }
+        for i in 1..=100 {
+            k += 1;
+            let r = if k == off { to + by } else { to };
+            let z = 5.0 - 10.0 * f64::from(i) / 100.0;
+            c.period(&at(k, (2.0 * r, z), (0.0, 0.0), Motion::Feed));
+        }
+        c.finish(true);
+        c
+    }
+
+    #[test]
+    fn the_move_after_polar_interpolation_starts_where_the_plane_ended() {
+        // The line after G13.1 runs from X10 (the radius 5), where the
+        // plane's line ended, not from X20, where the plane began (the
+        // plane's periods at Z5, X 20 → 10, lie 1.4 mm and more off the
+        // line from X20 Z5 to X10 Z−5 but are held to no line).
+        let c = after_polar(5.0, 0, 0.0);
+        let w = c.worst(Kind::Path).unwrap();
+        assert!(w.value < 1e-12 && !w.violates(), "{w:?}");
+        assert_eq!(c.worst(Kind::EndPoint), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 3 of 3 reached"));
+        // 2 µm out on the radius in period 100 of the run (Z0.1): caught.
+        let w = *after_polar(5.0, 100, 0.002).worst(Kind::Path).unwrap();
+        assert!(w.violates() && (w.value - 0.002).abs() < 1e-9, "{w:?}");
+        assert_eq!(w.line, 110);
+        // A plane that stops at X12: its end point, X10, is missed by 1 mm
+        // on the radius (where the tool stood at the nearest), and the
+        // walk waits there (the line after it is not the move running).
+        let c = after_polar(6.0, 0, 0.0);
+        let e = c.worst(Kind::EndPoint).unwrap();
+        assert!(e.violates() && (e.value - 1.0).abs() < 1e-9, "{e:?}");
+        assert_eq!(e.line, 61);
+    }
+
+    /// `G00 X20 Z0 C0 / G7.1 C10. / G01 Z−10 C90 / G7.1 C0 / G01 X30` by
+    /// hand: the plane's line in 100 periods from Z0 C0 to Z−10 and C
+    /// `to` (the canon's end: 90°) at X20, then the line along X to X30
+    /// at Z−10 in 50 periods.
+    fn after_cylinder(to: f64) -> Certifier {
+        let mut c = certifier();
+        c.emit(Event::Rapid {
+            x: 20.0,
+            z: 0.0,
+            c: Some(0.0),
+        });
+        c.emit(Event::Cylinder(Some(10.0)));
+        c.emit(Event::PlaneMove {
+            plane: nc::event::Plane::Cylinder,
+            motion: nc::event::PlaneMotion::Line,
+            a: -10.0,
+            b: 90.0,
+            off: None,
+        });
+        c.emit(Event::Cylinder(None));
+        c.emit(Event::Line {
+            x: 30.0,
+            z: -10.0,
+            c: None,
+        });
+        let with_c = |p: SetPoint, deg: f64| SetPoint { c: Some(deg), ..p };
+        c.period(&with_c(at(1, (20.0, 0.0), (0.0, 0.0), Motion::None), 0.0));
+        let mut k = 1;
+        for i in 1..=100 {
+            k += 1;
+            let f = f64::from(i) / 100.0;
+            let p = at(k, (20.0, -10.0 * f), (0.0, 0.0), Motion::Feed);
+            c.period(&with_c(p, to * f));
+        }
+        for i in 1..=50 {
+            k += 1;
+            let x = 20.0 + 10.0 * f64::from(i) / 50.0;
+            c.period(&with_c(at(k, (x, -10.0), (0.0, 0.0), Motion::Feed), to));
+        }
+        c.finish(true);
+        c
+    }
+
+    #[test]
+    fn the_move_after_cylindrical_interpolation_starts_where_the_plane_ended() {
+        // From X20 Z−10 (not Z0, where G7.1 began).
+        let c = after_cylinder(90.0);
+        let w = c.worst(Kind::Path).unwrap();
+        assert!(w.value < 1e-12 && !w.violates(), "{w:?}");
+        assert_eq!(c.worst(Kind::EndPoint), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 3 of 3 reached"));
+        // The plane ends at C80, not C90: X and Z as programmed, but the
+        // tool stands 2 · 10 · sin 5° = 1.74311 mm from the plane's end
+        // about the spindle's axis.
+        let e = *after_cylinder(80.0).worst(Kind::EndPoint).unwrap();
+        let chord = 20.0 * 5f64.to_radians().sin();
+        assert!(e.violates() && (e.value - chord).abs() < 1e-9, "{e:?}");
     }
 
     /// A G78 pass: a run-in from X25 Z5 to X23 Z4, the thread to Z−13, a
