@@ -3,7 +3,9 @@
 //! out by looking it up in a fixed table — without touching the memory
 //! of an object that may be gone.
 //!
-//! A handle is `generation << 32 | kind << 16 | slot + 1`. A slot's
+//! A handle is `generation << 32 | kind << 16 | slot + 1`, bits 24–31
+//! zero. Only that exact number is accepted: decoding checks every bit,
+//! so no other value names the same object. A slot's
 //! generation is odd while it holds an object and even while it is free;
 //! freeing bumps it, so every handle to the old object stops matching.
 //! The table is a static array of atomics: a look-up takes no lock and
@@ -13,8 +15,8 @@ use core::sync::atomic::{AtomicPtr, AtomicU32, AtomicU8, Ordering};
 
 use crate::types::GbcStatus;
 
-/// Objects alive at once, all kinds together.
-pub(crate) const CAPACITY: usize = 256;
+/// Objects alive at once, all kinds together (`GBC_HANDLE_CAPACITY`).
+pub(crate) const CAPACITY: usize = crate::types::GBC_HANDLE_CAPACITY;
 
 /// What a handle names.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,13 +50,22 @@ fn encode(generation: u32, kind: Kind, slot: usize) -> u64 {
     (u64::from(generation) << 32) | ((kind as u64) << 16) | (slot as u64 + 1)
 }
 
-/// The slot, generation and kind a handle claims (not yet checked).
-fn decode(h: u64) -> Option<(usize, u32, u8)> {
-    let slot = (h & 0xffff) as usize;
-    if slot == 0 || slot > CAPACITY {
+/// The slot, generation and kind a handle claims (not yet checked
+/// against the table). `None` unless `h` is exactly what [`encode`]
+/// makes of them: a slot in the table, a known kind and the unused bits
+/// zero — a changed bit anywhere must not name the same object.
+fn decode(h: u64) -> Option<(usize, u32, Kind)> {
+    let slot = usize::try_from(h & 0xffff).ok()?.checked_sub(1)?;
+    if slot >= CAPACITY {
         return None;
     }
-    Some((slot - 1, (h >> 32) as u32, ((h >> 16) & 0xff) as u8))
+    let kind = match (h >> 16) & 0xff {
+        1 => Kind::Machine,
+        2 => Kind::Controller,
+        _ => return None,
+    };
+    let generation = (h >> 32) as u32;
+    (encode(generation, kind, slot) == h).then_some((slot, generation, kind))
 }
 
 /// Puts `obj` in a free slot; `Err(Limit)` when all are taken.
@@ -81,14 +92,14 @@ pub fn insert<T: Object>(obj: T) -> Result<u64, GbcStatus> {
 }
 
 /// The live slot a handle names and the kind of its object.
-fn find(h: u64) -> Result<(&'static Slot, u8, *mut ()), GbcStatus> {
+fn find(h: u64) -> Result<(&'static Slot, Kind, *mut ()), GbcStatus> {
     let (i, generation, kind) = decode(h).ok_or(GbcStatus::InvalidHandle)?;
-    let s = &TABLE[i];
+    let s = TABLE.get(i).ok_or(GbcStatus::InvalidHandle)?;
     if generation % 2 == 0 || s.generation.load(Ordering::Acquire) != generation {
         return Err(GbcStatus::InvalidHandle);
     }
     let ptr = s.ptr.load(Ordering::Acquire);
-    if ptr.is_null() || s.kind.load(Ordering::Acquire) != kind {
+    if ptr.is_null() || s.kind.load(Ordering::Acquire) != kind as u8 {
         return Err(GbcStatus::InvalidHandle);
     }
     Ok((s, kind, ptr))
@@ -101,7 +112,7 @@ fn find(h: u64) -> Result<(&'static Slot, u8, *mut ()), GbcStatus> {
 /// contract: one call on a handle at a time, and no free during a call).
 pub unsafe fn get<'a, T: Object>(h: u64) -> Result<&'a mut T, GbcStatus> {
     let (_, kind, ptr) = find(h)?;
-    if kind != T::KIND as u8 {
+    if kind != T::KIND {
         return Err(GbcStatus::WrongKind);
     }
     // SAFETY: the slot is live with kind `T`, so `ptr` is the `Box<T>`
@@ -113,7 +124,7 @@ pub unsafe fn get<'a, T: Object>(h: u64) -> Result<&'a mut T, GbcStatus> {
 /// copy of it stop working.
 pub fn remove<T: Object>(h: u64) -> Result<(), GbcStatus> {
     let (s, kind, ptr) = find(h)?;
-    if kind != T::KIND as u8 {
+    if kind != T::KIND {
         return Err(GbcStatus::WrongKind);
     }
     let generation = (h >> 32) as u32;
@@ -164,6 +175,46 @@ mod tests {
                 unsafe { get::<A>(bad) }.err(),
                 Some(GbcStatus::InvalidHandle)
             );
+        }
+    }
+
+    #[test]
+    fn a_handle_with_any_bit_changed_is_refused() {
+        let h = insert(A(9)).unwrap();
+        let ours: *mut A = unsafe { get::<A>(h) }.unwrap();
+        for bit in 0..64 {
+            let forged = h ^ (1 << bit);
+            // A changed slot may name another test's live object, which is
+            // right; it must never name this one.
+            if let Ok(other) = unsafe { get::<A>(forged) } {
+                assert_ne!(other as *mut A, ours, "bit {bit}: {forged:#x}");
+            }
+        }
+        for high in [0x01, 0x5a, 0xff] {
+            assert_eq!(
+                unsafe { get::<A>(h | (high << 24)) }.err(),
+                Some(GbcStatus::InvalidHandle)
+            );
+        }
+        assert!(unsafe { get::<A>(h) }.is_ok());
+        remove::<A>(h).unwrap();
+    }
+
+    #[test]
+    fn decode_takes_only_what_encode_makes() {
+        for (g, kind, slot) in [
+            (1, Kind::Machine, 0),
+            (u32::MAX, Kind::Controller, CAPACITY - 1),
+        ] {
+            assert_eq!(decode(encode(g, kind, slot)), Some((slot, g, kind)));
+        }
+        for bad in [
+            encode(1, Kind::Machine, 0) | (1 << 24),
+            (1 << 32) | (3 << 16) | 1,
+            (1 << 32) | (1 << 16) | (CAPACITY as u64 + 1),
+            (1 << 32) | (1 << 16),
+        ] {
+            assert_eq!(decode(bad), None, "{bad:#x}");
         }
     }
 }

@@ -7,7 +7,20 @@ use runtime::command::PauseKind;
 use runtime::plc::SpindleDir;
 use runtime::{Motion, PlcFunction, RunState, SetPoint};
 
-/// What every entry point returns.
+/// The version of the interface this header describes; `gbc_abi_version`
+/// gives the library's. It changes with every change a host built
+/// against an older header would get wrong (a function's parameters, a
+/// struct's fields, a status's meaning), so a host checks at start-up
+/// that `gbc_abi_version() == GBC_ABI_VERSION` and refuses to run
+/// otherwise.
+pub const GBC_ABI_VERSION: u32 = 1;
+
+/// Handles alive at once in a process, machines and controllers
+/// together; making one more is [`GbcStatus::Limit`] until one is freed.
+pub const GBC_HANDLE_CAPACITY: usize = 256;
+
+/// What every entry point but `gbc_abi_version` returns. On any status
+/// but `GBC_STATUS_OK`, `gbc_last_error` gives a text about that failure.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum GbcStatus {
@@ -20,8 +33,8 @@ pub enum GbcStatus {
     /// The handle is live but names another kind of object (a machine
     /// where a controller is expected, or the reverse).
     WrongKind = 3,
-    /// An argument is out of its range (a NaN override or encoder
-    /// reading, machine file text that is not UTF-8 …).
+    /// An argument is out of its range (a NaN override, a NaN or
+    /// infinite encoder reading, machine file text that is not UTF-8 …).
     InvalidArgument = 4,
     /// The bytes are not a valid `.gbc` module (`gbc_last_error` says why).
     InvalidModule = 5,
@@ -41,8 +54,38 @@ pub enum GbcStatus {
     /// The library caught an internal panic; the controller is unusable
     /// from now on (free it).
     Panic = 12,
-    /// All handle slots are in use.
+    /// All [`GBC_HANDLE_CAPACITY`] handle slots are in use.
     Limit = 13,
+}
+
+impl GbcStatus {
+    /// The last-error text of a failure that has none more precise.
+    pub(crate) fn text(self) -> &'static str {
+        match self {
+            GbcStatus::Ok => "no error",
+            GbcStatus::NullPointer => "a required pointer argument is null",
+            GbcStatus::InvalidHandle => "the handle is 0, freed, or was not made by this library",
+            GbcStatus::WrongKind => {
+                "the handle names the other kind of object \
+                 (a machine where a controller belongs, or the reverse)"
+            }
+            GbcStatus::InvalidArgument => "an argument is out of its range",
+            GbcStatus::InvalidModule => "not a valid .gbc module",
+            GbcStatus::MachineMismatch => "the module was compiled for another machine",
+            GbcStatus::InvalidMachine => "the machine file is not valid",
+            GbcStatus::AlreadyLoaded => "a program is already loaded in this controller",
+            GbcStatus::NoProgram => "no program is loaded in this controller",
+            GbcStatus::Alarm => "the controller stands in an alarm; reset it first",
+            GbcStatus::HostFailure => "a host callback reported a failure",
+            GbcStatus::Panic => {
+                "internal error (panic) in the gbc library: the controller is unusable, free it"
+            }
+            GbcStatus::Limit => {
+                "all GBC_HANDLE_CAPACITY handle slots are in use \
+                 (machines and controllers together): free one first"
+            }
+        }
+    }
 }
 
 /// A machine configuration (from a machine file or the reference machine).
@@ -192,8 +235,12 @@ pub struct GbcStateInfo {
     pub state: GbcRunState,
     /// Why it stopped, when `state` is [`GbcRunState::Stopped`].
     pub stop: GbcStopKind,
-    /// The `#3006` message number of a message stop (its text: the
-    /// program's), else 0.
+    /// At a message stop (`stop` is [`GbcStopKind::Message`]): which one,
+    /// the key for `gbc_message` — the run's message stops counted from
+    /// 0 in the order the motion reached them (a reset does not restart
+    /// the count). It is not the value assigned to `#3006`, which the
+    /// library does not receive. [`GBC_NO_MESSAGE`] when not at a message
+    /// stop.
     pub message: u32,
     /// The alarm code when `state` is [`GbcRunState::Alarm`], else 0.
     pub alarm_code: u32,
@@ -201,12 +248,16 @@ pub struct GbcStateInfo {
     pub blocks: u64,
 }
 
+/// [`GbcStateInfo::message`] when the controller is not at a message stop
+/// (0 names the first message stop).
+pub const GBC_NO_MESSAGE: u32 = u32::MAX;
+
 impl GbcStateInfo {
     /// The state of a controller with no program.
     pub(crate) const EMPTY: GbcStateInfo = GbcStateInfo {
         state: GbcRunState::Idle,
         stop: GbcStopKind::None,
-        message: 0,
+        message: GBC_NO_MESSAGE,
         alarm_code: 0,
         blocks: 0,
     };
@@ -247,7 +298,9 @@ impl GbcStateInfo {
 pub const GBC_TEXT_CAPACITY: usize = 256;
 
 /// An alarm with its place, from `gbc_alarm`. Texts are UTF-8, NUL
-/// terminated, cut at a character boundary when longer than the buffer.
+/// terminated, cut at a character boundary when longer than the buffer:
+/// `message_len`/`file_len` give the full lengths, so a length of
+/// [`GBC_TEXT_CAPACITY`] or more tells of a cut.
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct GbcAlarm {
@@ -262,6 +315,10 @@ pub struct GbcAlarm {
     pub message: [u8; GBC_TEXT_CAPACITY],
     /// The source file's name as compiled.
     pub file: [u8; GBC_TEXT_CAPACITY],
+    /// The full length of the alarm text in bytes (without the NUL).
+    pub message_len: usize,
+    /// The full length of the file name in bytes (without the NUL).
+    pub file_len: usize,
 }
 
 /// Copies `s` into `buf` as a NUL-terminated string, cut at a character
@@ -358,16 +415,22 @@ impl From<PlcFunction> for GbcPlcFunction {
 /// once, null `vars_load`/`vars_store` keep #500–#999 in memory only.
 /// The callbacks are called from `gbc_tick` (PLC; they must return at
 /// once) and `gbc_run_ahead`/`gbc_controller_load` (variables), on the
-/// thread that makes those calls.
+/// thread that makes those calls. The `GbcHost` itself is copied by
+/// `gbc_controller_new`; the functions and `user` must stay valid until
+/// the controller is freed.
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct GbcHost {
     /// Passed back to every callback.
     pub user: *mut c_void,
-    /// A function starts (strobe on).
+    /// A function starts (strobe on). `f` points to a copy that lives
+    /// only during the call: copy what you keep. Each call gets a fresh
+    /// copy, so match a request to its `plc_done` polls by content (one
+    /// function is pending at a time), never by address.
     pub plc_request: Option<unsafe extern "C" fn(user: *mut c_void, f: *const GbcPlcFunction)>,
     /// Polled once a period after the request until it returns true: the
-    /// function is complete (FIN).
+    /// function is complete (FIN). `f` (the pending function) lives only
+    /// during the call, as for `plc_request`.
     pub plc_done: Option<unsafe extern "C" fn(user: *mut c_void, f: *const GbcPlcFunction) -> bool>,
     /// Fills `vars[0..500]` with #500–#999 when a program is loaded (NaN:
     /// vacant; the array holds NaN on entry). Returns 0, or non-zero to

@@ -165,3 +165,60 @@ fn block_skip_turned_off_from_c_decides_for_the_blocks_read_after_it() {
     let moved: Vec<u32> = lines.into_iter().filter(|&l| l != 7).collect();
     assert_eq!(moved, [2, 5, 6], "{text}");
 }
+
+/// The first C code block of `capi/README.md`.
+fn readme_loop() -> String {
+    let readme = std::fs::read_to_string(repo().join("capi/README.md")).expect("capi/README.md");
+    let start = readme.find("```c\n").expect("a C block in the README") + "```c\n".len();
+    let len = readme[start..].find("```").expect("the block's end");
+    readme[start..start + len].to_string()
+}
+
+/// A `main` around the README's `run()`: reads the `.gbc` named by its
+/// argument and returns what `run` returns.
+const README_MAIN: &str = r#"
+#include <stdio.h>
+
+int main(int argc, char **argv) {
+    static unsigned char program[1 << 20];
+    FILE *f = argc == 2 ? fopen(argv[1], "rb") : NULL;
+    if (!f)
+        return 2;
+    size_t len = fread(program, 1, sizeof program, f);
+    fclose(f);
+    return run(program, len);
+}
+"#;
+
+/// The README's minimal loop, compiled as it stands with the warnings
+/// the project uses, runs examples/c/part.nc — which stops at its M01 on
+/// the reference machine — to its end.
+#[test]
+fn the_readme_loop_runs_the_example_part_to_its_end() {
+    let profile = profile_dir();
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_readme");
+    std::fs::create_dir_all(&out).expect("a scratch directory");
+    let src = out.join("readme_loop.c");
+    std::fs::write(&src, readme_loop() + README_MAIN).expect("write readme_loop.c");
+    let exe = build_c(&profile, &src, &out);
+    let gbc = compile(&repo().join("examples/c/part.nc"), &out);
+
+    // A loop that misses the stop never ends: give it a deadline.
+    let mut child = Command::new(&exe)
+        .arg(&gbc)
+        .spawn()
+        .expect("the README loop runs");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    let status = loop {
+        if let Some(st) = child.try_wait().expect("wait for the README loop") {
+            break st;
+        }
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("the README loop did not end within 120 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    assert_eq!(status.code(), Some(0), "run() did not reach the end");
+}

@@ -33,6 +33,8 @@ fn alarm() -> GbcAlarm {
         column: 0,
         message: [0; GBC_TEXT_CAPACITY],
         file: [0; GBC_TEXT_CAPACITY],
+        message_len: 0,
+        file_len: 0,
     }
 }
 
@@ -96,14 +98,14 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             "gbc_message",
             Box::new(|h| {
                 let mut buf = [0 as core::ffi::c_char; 64];
-                unsafe { gbc_message(h, 1, buf.as_mut_ptr(), buf.len()) }
+                unsafe { gbc_message(h, 1, buf.as_mut_ptr(), buf.len(), null_mut()) }
             }),
         ),
         (
             "gbc_file_name",
             Box::new(|h| {
                 let mut buf = [0 as core::ffi::c_char; 64];
-                unsafe { gbc_file_name(h, 0, buf.as_mut_ptr(), buf.len()) }
+                unsafe { gbc_file_name(h, 0, buf.as_mut_ptr(), buf.len(), null_mut()) }
             }),
         ),
         (
@@ -157,8 +159,18 @@ fn bad_handles_are_reported_by_every_entry_point() {
     assert_eq!(gbc_controller_free(dead), GbcStatus::Ok);
     let live = controller(m);
     // Made-up numbers: slot 0, a slot past the table, a live slot with
-    // another generation or another kind in the handle.
-    let forged = [1, 0xffff, live ^ (1 << 33), live ^ (3 << 16), u64::MAX];
+    // another generation or another kind in the handle, the live handle
+    // with bits set that the library never sets (24–31).
+    let forged = [
+        1,
+        0xffff,
+        live ^ (1 << 33),
+        live ^ (3 << 16),
+        live | (1 << 24),
+        live | (0x5a << 24),
+        live | (0xff << 24),
+        u64::MAX,
+    ];
     for (name, call) in controller_calls() {
         assert_eq!(call(0), GbcStatus::InvalidHandle, "{name}(0)");
         assert_eq!(call(dead), GbcStatus::InvalidHandle, "{name}(freed)");
@@ -241,12 +253,19 @@ fn null_pointers_and_bad_arguments_are_refused() {
         );
         // Before a program: the switches are kept, the motion calls refused.
         assert_eq!(gbc_set_feed_override(c, 80.0), GbcStatus::Ok);
+        for set in [
+            gbc_set_feed_override,
+            gbc_set_rapid_override,
+            gbc_set_spindle_override,
+        ] {
+            assert_eq!(set(c, f64::NAN), GbcStatus::InvalidArgument);
+            // Out of range, infinity too: clamped (host.rs checks to what).
+            for pct in [f64::INFINITY, f64::NEG_INFINITY, 1e300, -5.0] {
+                assert_eq!(set(c, pct), GbcStatus::Ok, "{pct}");
+            }
+        }
         assert_eq!(
-            gbc_set_feed_override(c, f64::NAN),
-            GbcStatus::InvalidArgument
-        );
-        assert_eq!(
-            gbc_set_rapid_override(c, f64::INFINITY),
+            gbc_spindle_feedback(c, 0.0, f64::INFINITY),
             GbcStatus::InvalidArgument
         );
         assert_eq!(
@@ -281,8 +300,20 @@ fn null_pointers_and_bad_arguments_are_refused() {
         assert_eq!(gbc_tick(c, null_mut()), GbcStatus::NullPointer);
         assert_eq!(gbc_state(c, null_mut()), GbcStatus::NullPointer);
         assert_eq!(gbc_alarm(c, null_mut()), GbcStatus::NullPointer);
-        assert_eq!(gbc_message(c, 1, null_mut(), 5), GbcStatus::NullPointer);
-        assert_eq!(gbc_file_name(c, 0, null_mut(), 5), GbcStatus::NullPointer);
+        assert_eq!(
+            gbc_message(c, 1, null_mut(), 5, null_mut()),
+            GbcStatus::NullPointer
+        );
+        assert_eq!(
+            gbc_file_name(c, 0, null_mut(), 5, null_mut()),
+            GbcStatus::NullPointer
+        );
+        // cap 0 without len has nothing to give.
+        let mut buf = [0 as core::ffi::c_char; 4];
+        assert_eq!(
+            gbc_file_name(c, 0, buf.as_mut_ptr(), 0, null_mut()),
+            GbcStatus::NullPointer
+        );
     }
     assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);

@@ -231,3 +231,179 @@ fn a_compiled_macro_loop_gives_the_same_set_points() {
     assert!(runs[0].0.len() > 100, "{} periods", runs[0].0.len());
     assert!(runs[0] == runs[1], "the set points differ");
 }
+
+/// The first `ticks` periods of `prog` with `setup` applied after the
+/// load: the Z set point, the feed and the spindle speed, bit for bit.
+fn periods(prog: &[u8], ticks: usize, setup: impl Fn(GbcController)) -> Vec<[u64; 3]> {
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, prog);
+    setup(c);
+    assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
+    let mut out = Vec::new();
+    for _ in 0..ticks {
+        let mut sp = blank();
+        assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
+        assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
+        out.push([sp.z.to_bits(), sp.feed.to_bits(), sp.spindle_rpm.to_bits()]);
+    }
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+    out
+}
+
+/// ±infinity is out of range like any other value: clamped to the
+/// override's end, as the header says (only NaN is refused).
+#[test]
+fn an_infinite_override_is_clamped() {
+    let prog = module("O1\nM03 S1000\nG98 G01 W-20 F500\nM30\n");
+    let run = |feed: f64, spindle: f64| {
+        periods(&prog, 400, |c| {
+            assert_eq!(gbc_set_feed_override(c, feed), GbcStatus::Ok);
+            assert_eq!(gbc_set_spindle_override(c, spindle), GbcStatus::Ok);
+        })
+    };
+    let top = run(150.0, 200.0);
+    assert_eq!(run(f64::INFINITY, f64::INFINITY), top);
+    assert_eq!(run(f64::NEG_INFINITY, f64::NEG_INFINITY), run(0.0, 0.0));
+    // The overrides took effect: 150 % of F500, 200 % of S1000.
+    let last = top.last().expect("periods");
+    assert!(
+        (f64::from_bits(last[1]) - 750.0).abs() < 1e-6,
+        "{}",
+        f64::from_bits(last[1])
+    );
+    assert_ne!(top, run(100.0, 100.0));
+}
+
+/// `GbcStateInfo::message` counts the run's message stops from 0 (the
+/// key for `gbc_message`), whatever value `#3006` was given, and is
+/// GBC_NO_MESSAGE everywhere else; the text's full length tells of a cut.
+#[test]
+fn message_stops_are_counted_and_none_is_told_apart() {
+    let prog = module("O1\nG00 X40 Z2\n#3006=7(SEVEN)\nG00 X30\n#3006=1(ONE)\nM30\n");
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    let mut st = GbcStateInfo {
+        state: GbcRunState::Idle,
+        stop: GbcStopKind::None,
+        message: 0,
+        alarm_code: 0,
+        blocks: 0,
+    };
+    assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
+    assert_eq!(st.message, GBC_NO_MESSAGE, "before the start");
+    assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
+    let mut stops = Vec::new();
+    for _ in 0..200_000 {
+        let mut sp = blank();
+        assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
+        assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
+        assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
+        if st.stop != GbcStopKind::Message {
+            assert_eq!(st.message, GBC_NO_MESSAGE, "{:?}", st.state);
+        }
+        match st.state {
+            GbcRunState::Ended => break,
+            GbcRunState::Stopped => {
+                assert_eq!(st.stop, GbcStopKind::Message);
+                let mut buf = [0 as core::ffi::c_char; 32];
+                let mut len = 0;
+                let s = unsafe { gbc_message(c, st.message, buf.as_mut_ptr(), 32, &mut len) };
+                assert_eq!(s, GbcStatus::Ok);
+                let text = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
+                assert_eq!(len, text.to_bytes().len());
+                stops.push((st.message, text.to_string_lossy().into_owned()));
+                assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(st.state, GbcRunState::Ended);
+    assert_eq!(stops, [(0, "SEVEN".to_string()), (1, "ONE".to_string())]);
+    // A cut: three bytes of room, the full length 5; a length query.
+    let mut small = [0x55 as core::ffi::c_char; 4];
+    let mut len = 0;
+    assert_eq!(
+        unsafe { gbc_message(c, 0, small.as_mut_ptr(), 3, &mut len) },
+        GbcStatus::Ok
+    );
+    assert_eq!(len, 5);
+    assert_eq!(
+        unsafe { std::ffi::CStr::from_ptr(small.as_ptr()) }.to_bytes(),
+        b"SE"
+    );
+    assert_eq!(small[3], 0x55, "nothing past cap");
+    len = 0;
+    assert_eq!(
+        unsafe { gbc_message(c, 1, std::ptr::null_mut(), 0, &mut len) },
+        GbcStatus::Ok
+    );
+    assert_eq!(len, 3);
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}
+
+/// A file name longer than any buffer: `gbc_file_name` and `gbc_alarm`
+/// cut it at a character boundary and give its full length.
+#[test]
+fn cut_names_and_alarm_texts_give_their_full_length() {
+    let name = "é".repeat(150); // 300 bytes
+    let src = "O1\nG00 W-1\n#3000 = 5 (TOOL BROKEN)\nM30\n";
+    let out = compiler::compile(&name, src.as_bytes(), &compiler::Options::default());
+    let prog = out.module.expect("compiles").to_bytes();
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+
+    let mut buf = [0x55 as core::ffi::c_char; 17];
+    let mut len = 0;
+    assert_eq!(
+        unsafe { gbc_file_name(c, 0, buf.as_mut_ptr(), 16, &mut len) },
+        GbcStatus::Ok
+    );
+    assert_eq!(len, 300);
+    // 15 bytes of room hold 7 two-byte characters.
+    let cut = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
+    assert_eq!(cut.to_str().expect("UTF-8"), "é".repeat(7));
+    assert_eq!(buf[16], 0x55);
+
+    assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
+    let mut st = GbcStateInfo {
+        state: GbcRunState::Idle,
+        stop: GbcStopKind::None,
+        message: 0,
+        alarm_code: 0,
+        blocks: 0,
+    };
+    for _ in 0..100_000 {
+        let mut sp = blank();
+        assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
+        assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
+        assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
+        if st.state == GbcRunState::Alarm {
+            break;
+        }
+    }
+    assert_eq!(st.alarm_code, 3005);
+    let mut a = GbcAlarm {
+        code: 0,
+        line: 0,
+        column: 0,
+        message: [0; GBC_TEXT_CAPACITY],
+        file: [0; GBC_TEXT_CAPACITY],
+        message_len: 0,
+        file_len: 0,
+    };
+    assert_eq!(unsafe { gbc_alarm(c, &mut a) }, GbcStatus::Ok);
+    let text = std::ffi::CStr::from_bytes_until_nul(&a.message).expect("NUL");
+    assert_eq!(text.to_bytes(), b"TOOL BROKEN");
+    assert_eq!(a.message_len, 11, "not cut");
+    let file = std::ffi::CStr::from_bytes_until_nul(&a.file).expect("NUL");
+    assert_eq!(file.to_str().expect("UTF-8"), "é".repeat(127));
+    assert_eq!(a.file_len, 300, "cut: the full length");
+    assert!(a.file_len >= GBC_TEXT_CAPACITY);
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

@@ -140,6 +140,12 @@ int main(int argc, char **argv) {
         fprintf(stderr, "usage: controller PROGRAM.gbc [MACHINE.toml]\n");
         return 1;
     }
+    /* The library loaded must be the one this header describes. */
+    if (gbc_abi_version() != GBC_ABI_VERSION) {
+        fprintf(stderr, "controller: libgbc has ABI %u, gbc.h %u\n", gbc_abi_version(),
+                (unsigned)GBC_ABI_VERSION);
+        return 1;
+    }
     size_t len = 0;
     unsigned char *program = read_file(argv[1], &len);
     if (!program) {
@@ -225,11 +231,30 @@ int main(int argc, char **argv) {
         put_fixed(sp.feed, 3);
         printf(",%u,%s,%u,", sp.line, motion_word(sp.motion), sp.tool);
         char file[256];
-        if ((s = gbc_file_name(ctl, sp.file, file, sizeof file)) != GBC_STATUS_OK) {
+        size_t file_len = 0;
+        if ((s = gbc_file_name(ctl, sp.file, file, sizeof file, &file_len)) != GBC_STATUS_OK) {
             status = fail("file name", s);
             break;
         }
-        put_csv_field(file);
+        if (file_len < sizeof file) {
+            put_csv_field(file);
+        } else {
+            /* Cut: ask again with room for the whole name. */
+            char *whole = malloc(file_len + 1);
+            if (!whole) {
+                fprintf(stderr, "controller: out of memory\n");
+                status = 1;
+                break;
+            }
+            s = gbc_file_name(ctl, sp.file, whole, file_len + 1, NULL);
+            if (s == GBC_STATUS_OK)
+                put_csv_field(whole);
+            free(whole);
+            if (s != GBC_STATUS_OK) {
+                status = fail("file name", s);
+                break;
+            }
+        }
         putchar('\n');
 
         GbcStateInfo st;

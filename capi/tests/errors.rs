@@ -1,0 +1,204 @@
+//! `gbc_last_error` after every kind of failure: each failing call
+//! replaces the text with one about itself (never a stale one from an
+//! earlier call), a successful call leaves it, and it is per thread. The
+//! text is given as `snprintf` would: the full length, a cut detectable.
+
+use core::ffi::c_char;
+use gbc::*;
+use std::ptr::null_mut;
+
+/// The text `gbc_last_error` gives now, read with a length query first.
+fn last_error() -> String {
+    let mut len = usize::MAX;
+    assert_eq!(
+        unsafe { gbc_last_error(null_mut(), 0, &mut len) },
+        GbcStatus::Ok
+    );
+    let mut buf = vec![0 as c_char; len + 1];
+    let mut again = 0;
+    assert_eq!(
+        unsafe { gbc_last_error(buf.as_mut_ptr(), buf.len(), &mut again) },
+        GbcStatus::Ok
+    );
+    assert_eq!(again, len);
+    let bytes: Vec<u8> = buf[..len].iter().map(|&c| c as u8).collect();
+    String::from_utf8(bytes).expect("UTF-8")
+}
+
+/// A failure whose text names a machine key, so a stale text is seen.
+const STALE: &str = "interpolation_period_ms";
+
+fn plant_stale_error() {
+    let text = b"[machine]\ninterpolation_period_ms = -1\n";
+    let mut m = 0;
+    assert_eq!(
+        unsafe { gbc_machine_from_toml(text.as_ptr().cast(), text.len(), &mut m) },
+        GbcStatus::InvalidMachine
+    );
+    assert!(last_error().contains(STALE));
+}
+
+/// `call` fails with `status` and leaves a text that mentions `about`.
+fn fails_with(what: &str, status: GbcStatus, about: &str, call: impl FnOnce() -> GbcStatus) {
+    plant_stale_error();
+    assert_eq!(call(), status, "{what}");
+    let text = last_error();
+    assert!(!text.contains(STALE), "{what}: stale text {text:?}");
+    assert!(text.contains(about), "{what}: {text:?} lacks {about:?}");
+}
+
+fn module(src: &str) -> Vec<u8> {
+    let out = compiler::compile("t.nc", src.as_bytes(), &compiler::Options::default());
+    out.module.expect("compiles").to_bytes()
+}
+
+fn set_point() -> GbcSetPoint {
+    GbcSetPoint {
+        time_s: 0.0,
+        x: 0.0,
+        z: 0.0,
+        axis_x: 0.0,
+        axis_z: 0.0,
+        c: 0.0,
+        has_c: false,
+        spindle_rpm: 0.0,
+        spindle_turns: 0.0,
+        feed: 0.0,
+        line: 0,
+        file: 0,
+        tool: 0,
+        motion: GbcMotion::None,
+    }
+}
+
+#[test]
+fn every_failure_sets_a_text_about_itself() {
+    let (mut m, mut c) = (0, 0);
+    unsafe {
+        assert_eq!(gbc_machine_reference(&mut m), GbcStatus::Ok);
+        assert_eq!(
+            gbc_controller_new(m, std::ptr::null(), &mut c),
+            GbcStatus::Ok
+        );
+    }
+    let mut sp = set_point();
+    let null = GbcStatus::NullPointer;
+    fails_with("tick, null out", null, "null", || unsafe {
+        gbc_tick(c, null_mut())
+    });
+    fails_with("machine, null out", null, "null", || unsafe {
+        gbc_machine_reference(null_mut())
+    });
+    fails_with("load, null bytes", null, "null", || unsafe {
+        gbc_controller_load(c, std::ptr::null(), 10)
+    });
+    let invalid = GbcStatus::InvalidHandle;
+    fails_with("tick(0)", invalid, "handle", || unsafe {
+        gbc_tick(0, &mut sp)
+    });
+    fails_with("forged", invalid, "handle", || unsafe {
+        gbc_tick(c | (0x5a << 24), &mut sp)
+    });
+    fails_with("machine_free(0)", invalid, "handle", || gbc_machine_free(0));
+    fails_with("wrong kind", GbcStatus::WrongKind, "kind", || unsafe {
+        gbc_tick(m, &mut sp)
+    });
+    fails_with("no program", GbcStatus::NoProgram, "no program", || {
+        gbc_run_ahead(c)
+    });
+    let arg = GbcStatus::InvalidArgument;
+    fails_with("jit 3", arg, "JIT", || gbc_set_jit(c, 3));
+    fails_with("block skip 0", arg, "block-skip", || {
+        gbc_set_block_skip(c, 0, true)
+    });
+    fails_with("block skip 10", arg, "block-skip", || {
+        gbc_set_block_skip(c, 10, true)
+    });
+    fails_with("NaN override", arg, "NaN", || {
+        gbc_set_feed_override(c, f64::NAN)
+    });
+    fails_with("infinite encoder", arg, "infinite", || {
+        gbc_spindle_feedback(c, f64::INFINITY, 0.0)
+    });
+    // A bad handle and a bad argument: the status and the text both tell
+    // of the handle.
+    fails_with("NaN, bad handle", invalid, "handle", || {
+        gbc_set_feed_override(0, f64::NAN)
+    });
+    fails_with("jit 3, bad handle", invalid, "handle", || gbc_set_jit(0, 3));
+    let prog = module("O1\nM30\n");
+    assert_eq!(
+        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+        GbcStatus::Ok
+    );
+    fails_with(
+        "second load",
+        GbcStatus::AlreadyLoaded,
+        "already",
+        || unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+    );
+    let mut buf = [0 as c_char; 8];
+    fails_with("message, cap 0, no len", null, "nothing", || unsafe {
+        gbc_message(c, 0, buf.as_mut_ptr(), 0, null_mut())
+    });
+    // gbc_last_error's own failure replaces the text too.
+    fails_with("last_error, null buf", null, "buf is null", || unsafe {
+        gbc_last_error(null_mut(), 10, null_mut())
+    });
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+}
+
+#[test]
+fn success_leaves_the_text_and_each_thread_has_its_own() {
+    plant_stale_error();
+    let mut m = 0;
+    assert_eq!(unsafe { gbc_machine_reference(&mut m) }, GbcStatus::Ok);
+    assert!(last_error().contains(STALE), "a success cleared it");
+    std::thread::spawn(|| {
+        assert_eq!(last_error(), "", "a new thread starts empty");
+        assert_eq!(gbc_run_ahead(0), GbcStatus::InvalidHandle);
+        assert!(last_error().contains("handle"));
+    })
+    .join()
+    .expect("the other thread");
+    assert!(last_error().contains(STALE), "another thread's failure");
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+}
+
+#[test]
+fn a_cut_text_is_told_by_its_full_length() {
+    plant_stale_error();
+    let full = last_error();
+    assert!(full.len() > 16, "{full}");
+    let mut buf = [0x55 as c_char; 17];
+    let mut len = 0;
+    assert_eq!(
+        unsafe { gbc_last_error(buf.as_mut_ptr(), 16, &mut len) },
+        GbcStatus::Ok
+    );
+    assert_eq!(len, full.len(), "the full length, not the cut one");
+    let cut = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
+    assert_eq!(cut.to_bytes(), &full.as_bytes()[..15]);
+    assert_eq!(buf[16], 0x55, "nothing written past cap");
+    // A `cap` beyond the buffer is read as "enough room": only the text
+    // and its NUL are written.
+    let mut roomy = [0x55 as c_char; 512];
+    assert_eq!(
+        unsafe { gbc_last_error(roomy.as_mut_ptr(), usize::MAX, &mut len) },
+        GbcStatus::Ok
+    );
+    let whole = unsafe { std::ffi::CStr::from_ptr(roomy.as_ptr()) };
+    assert_eq!(whole.to_bytes(), full.as_bytes());
+    assert_eq!(roomy[full.len() + 1], 0x55);
+    // A length query writes no text; without `len` it has nothing to give.
+    assert_eq!(
+        unsafe { gbc_last_error(null_mut(), 0, null_mut()) },
+        GbcStatus::NullPointer
+    );
+}
+
+#[test]
+fn the_library_is_the_headers_version() {
+    assert_eq!(gbc_abi_version(), GBC_ABI_VERSION);
+}
