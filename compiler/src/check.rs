@@ -266,12 +266,20 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
 struct Watchers<'a> {
     counts: &'a mut crate::dry_warn::Counts,
     room: &'a mut RoomCheck,
+    /// The running block's unit and span: the events of a block that
+    /// waited (a thread block before its run-out) name their own line.
+    unit: &'a Unit,
+    block: Span,
 }
 
 impl nc::Sink for Watchers<'_> {
     fn emit(&mut self, e: nc::Event) {
         self.room.event(&e);
         self.counts.emit(e);
+    }
+
+    fn origin(&mut self, tag: u32) {
+        self.room.span = crate::profile::error_span(self.unit, Some(tag), self.block);
     }
 }
 
@@ -604,6 +612,8 @@ impl Runner {
         let mut sink = Watchers {
             counts: &mut counts,
             room: &mut self.room,
+            unit,
+            block: block.span,
         };
         // A cycle's legs after its first count against the extra steps,
         // as they count as blocks in the VM's budget: a cycle with a tiny

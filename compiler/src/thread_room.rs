@@ -116,8 +116,12 @@ impl RoomCheck {
                         unit: self.unit,
                         span: self.span,
                     };
-                    self.check_speed(&leg, self.chain.is_empty());
-                    self.chain.push(leg);
+                    // A block that does not move has no speed to reach:
+                    // the chain's first leg is the next one.
+                    if leg.d_r != 0.0 || leg.d_z != 0.0 {
+                        self.check_speed(&leg, self.chain.is_empty());
+                        self.chain.push(leg);
+                    }
                 } else {
                     self.unmeasured = true;
                 }
@@ -350,5 +354,38 @@ mod tests {
         assert_eq!(w.iter().map(|(l, _)| *l).collect::<Vec<_>>(), [5, 5]);
         assert_eq!(w118(src), w);
         assert!(w118(&src.replace("#1=1500", "#1=#500")).is_empty());
+    }
+
+    /// A G32 with run-out words waits for the next block to know whether
+    /// it ends its chain; its warnings still name its own line (3), not
+    /// the M30 it is printed with. Lead 4 at 1500 rpm is 6000 mm/min, over
+    /// Z's 5000 (W126); 100 mm/s stops in 100² / (2 × 2000) = 2.5 mm, more
+    /// than the run-out's K2 (W118).
+    #[test]
+    fn a_waiting_thread_block_is_named_by_its_own_line() {
+        let src = "G97 S1500 M03\nG00 X30 Z5\nG32 Z-20 F4 J1 K2\nM30\n";
+        let out = compile("t.nc", src.as_bytes(), &Options::default());
+        let found: Vec<(&str, usize)> = out
+            .diags
+            .iter()
+            .map(|(_, d)| {
+                (
+                    d.code,
+                    src[..d.span.start as usize].matches('\n').count() + 1,
+                )
+            })
+            .collect();
+        assert_eq!(found, [("W126", 3), ("W118", 3)]);
+        let w = w118(src);
+        assert!(w[0].1.contains("needs 2.500 mm to stop"), "{}", w[0].1);
+    }
+
+    /// A thread block that does not move (Z5 from Z5) is no leg: the
+    /// next block (25 mm) starts the chain. Lead 6 at 100 rpm is 10 mm/s,
+    /// which Z reaches within about 10² / (2 × 2000) = 0.025 mm.
+    #[test]
+    fn a_thread_block_that_does_not_move_is_no_leg() {
+        let src = "G97 S100 M03\nG00 X30 Z5\nG32 Z5 F6\nG32 Z-20\nG00 X40\nM30\n";
+        assert!(w118(src).is_empty(), "{:?}", w118(src));
     }
 }

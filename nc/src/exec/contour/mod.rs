@@ -226,11 +226,15 @@ impl Nc {
         flush(self, sink)
     }
 
-    /// Gives what waits for a next move the block tag `tag` (for errors
+    /// Gives what waits for a next move (a corner, a thread block before
+    /// its run-out) the block tag `tag` (for errors
     /// about it and its events): for a host whose tags of earlier blocks
     /// no longer name them, as the compiler's dry run between chunks.
     pub fn retag_waiting(&mut self, tag: u32) {
         queue::retag(self, tag);
+        if let Some((_, _, waiting)) = &mut self.st.cycles.chain.pending {
+            *waiting = tag;
+        }
     }
 
     /// Prints an event of the caller's own (the VM's `MESSAGE`) in block

@@ -45,11 +45,17 @@ pub(crate) fn resolve(nc: &Nc, written: Option<f64>) -> Result<f64, NcError> {
 pub(crate) fn check(nc: &Nc, lead: f64) -> Result<(), NcError> {
     let max = nc.machine.threads.max_lead_mm;
     if lead > 0.0 && lead <= max {
-        Ok(())
-    } else {
-        fail(
-            Alarm::BadThread,
-            format!("thread lead {lead:.4} mm is outside 0 < lead ≤ {max} mm"),
-        )
+        return Ok(());
     }
+    if lead.is_infinite() {
+        // (25.4 / I with I0.)
+        return fail(
+            Alarm::BadThread,
+            "I0 threads per inch gives no lead: I must be above 0",
+        );
+    }
+    fail(
+        Alarm::BadThread,
+        format!("thread lead {lead:.4} mm is outside 0 < lead ≤ {max} mm"),
+    )
 }

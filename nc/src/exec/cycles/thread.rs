@@ -22,8 +22,8 @@ pub(crate) struct Chain {
     /// The run-out words (J, K in mm) in force, the missing one derived.
     pub runout: Option<(f64, f64)>,
     /// The block that ends the chain if the next block does not continue
-    /// it, with the run-out it then gets.
-    pub pending: Option<(Move, Runout)>,
+    /// it, with the run-out it then gets, and its block's tag.
+    pub pending: Option<(Move, Runout, u32)>,
 }
 
 /// Before every block: a waiting block is printed, with its run-out when
@@ -36,17 +36,29 @@ pub(crate) fn next_block(nc: &mut Nc, f: Func, p: &Parsed, sink: &mut dyn Sink) 
     if !continues {
         return flush(nc, sink);
     }
-    if let Some((mv, _)) = nc.st.cycles.chain.pending.take() {
-        print(&[mv.plain()], sink);
+    if let Some((mv, _, tag)) = nc.st.cycles.chain.pending.take() {
+        print_as(nc.origin, tag, &[mv.plain()], sink);
     }
 }
 
 /// The end of a run: a waiting block is the last of its chain.
 pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) {
-    if let Some((mv, ro)) = nc.st.cycles.chain.pending.take() {
-        print(&mv.with_runout(ro), sink);
+    if let Some((mv, ro, tag)) = nc.st.cycles.chain.pending.take() {
+        print_as(nc.origin, tag, &mv.with_runout(ro), sink);
     }
     nc.st.cycles.chain.open = false;
+}
+
+/// Prints the legs of a block that waited (tagged `tag`) while block
+/// `running` runs: the sink is told whose they are ([`Sink::origin`]), so
+/// that what is said of them names their own block.
+fn print_as(running: u32, tag: u32, legs: &[Leg], sink: &mut dyn Sink) {
+    if tag == running {
+        return print(legs, sink);
+    }
+    sink.origin(tag);
+    print(legs, sink);
+    sink.origin(running);
 }
 
 /// Prints thread legs without moving the programmed point: a thread ends
@@ -99,7 +111,7 @@ pub(crate) fn run(
     match runout {
         // G32.1 does not chain: it is its own last block.
         Some(ro) if rigid => print(&mv.with_runout(ro), sink),
-        Some(ro) => nc.st.cycles.chain.pending = Some((mv, ro)),
+        Some(ro) => nc.st.cycles.chain.pending = Some((mv, ro, nc.origin)),
         None => print(&[mv.plain()], sink),
     }
     nc.st.cycles.chain.open = !rigid;
