@@ -21,7 +21,7 @@
 //!   discretisation bound of the axes that follow the turn if larger,
 //!   [`chain_corner_mm`]); in the plane of polar or cylindrical
 //!   interpolation, where the joints the plane's moves leave, with C, in
-//!   space (the tool about the spindle's axis, [`PlaneEnd`]); the move
+//!   space (the tool about the spindle's axis, `PlaneEnd`); the move
 //!   after the plane starts where its last move left X and Z;
 //! - the lead of a thread (travel per spindle turn along the long axis as
 //!   the kernel names it, [`nc::thread_room::z_is_long`]) within
