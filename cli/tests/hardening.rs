@@ -85,7 +85,7 @@ fn defines_must_name_a_user_variable_and_a_finite_value() {
 }
 
 #[test]
-fn g65_h99_takes_q_0_to_99_only() {
+fn g65_h99_takes_q_0_to_99_only_and_a_variable_q() {
     let d = dir("h99");
     std::fs::write(d.join("ok.nc"), "G65 H99 Q7\nM30\n").unwrap();
     assert_eq!(gbcc(&["ok.nc"], &d).status.code(), Some(0));
@@ -97,7 +97,6 @@ fn g65_h99_takes_q_0_to_99_only() {
         ("Q500", "E1010"),
         ("Q99999999", "E1010"),
         ("Q-1", "E1010"),
-        ("Q#1", "E2060"),
     ] {
         std::fs::write(d.join("bad.nc"), format!("#1=3\nG65 H99 {q}\nM30\n")).unwrap();
         let out = gbcc(&["bad.nc"], &d);
@@ -108,6 +107,11 @@ fn g65_h99_takes_q_0_to_99_only() {
             "{q}: {err}"
         );
     }
+    // A variable Q (§7.8) is read when the block runs: 500 + 3.
+    std::fs::write(d.join("var.nc"), "#1=3\nG65 H99 Q#1\nM30\n").unwrap();
+    assert_eq!(gbcc(&["var.nc"], &d).status.code(), Some(0));
+    let run = gbvm(&["run", "var.gbc"], &d);
+    assert!(stdout(&run).contains("ALARM CODE=503"), "{}", stdout(&run));
     std::fs::remove_dir_all(&d).unwrap();
 }
 

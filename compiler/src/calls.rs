@@ -211,16 +211,18 @@ fn destination(g: &mut Builder<'_>, p: Option<&Word>, span: Span) -> Option<u32>
 }
 
 /// `G65 H99 Q n`: alarm 500 + n, n = 0…99 (the 500–599 band of
-/// dialect.md §8). **Decision:** Q is a constant here, as the alarm
-/// numbers of a real program are; a variable Q is E2060 and a constant
-/// outside 0…99 is E1010, both at compile time.
+/// dialect.md §8). Q is a variable or a constant (§7.8): a constant
+/// outside 0…99 is E1010 at compile time, a computed one E5010 when the
+/// block runs.
 fn user_alarm(g: &mut Builder<'_>, q: Option<WordValue<'_>>, span: Span, comment: Option<&str>) {
     let n = match q {
         None => 0.0,
         Some(q) => match q.literal() {
             Some(v) => round_half_away(v),
             None => {
-                g.error("E2060", span, "G65 H99: Q must be a constant 0…99");
+                let q = operand(g, Some(q));
+                let msg = g.string(user_alarm_message(comment));
+                g.push(Op::UserAlarm { q, msg });
                 return;
             }
         },

@@ -346,6 +346,11 @@ impl<'a> Emitter<'a> {
                 let msg = self.string(*msg);
                 self.emit(Instr::Alarm { code: *code, msg });
             }
+            Op::UserAlarm { q, msg } => {
+                let q = self.expr(f, *q);
+                let msg = self.string(*msg);
+                self.emit(Instr::UserAlarm { q, msg });
+            }
             Op::ModalCancel => {
                 self.emit(Instr::ModalCancel);
             }

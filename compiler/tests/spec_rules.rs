@@ -441,3 +441,24 @@ fn g66_calls_follow_group_01_moves_only() {
     assert_eq!(vm.variable(601).ok(), Some(5.0));
     assert_eq!(vm.variable(602).ok(), Some(11.0));
 }
+
+#[test]
+fn g65_h99_takes_a_variable_q() {
+    // §7.8: "Q and R are variables or constants"; H99 is alarm 500 + n,
+    // n = Q (§8.4: 500–599). A vacant Q is no Q (§7.5), so 0; a computed
+    // Q outside 0…99 is a value out of range (E5010).
+    let run = |q: &str| {
+        alarm_of(&format!(
+            "#1=1\n#2=100\nG65 H99 P#500 Q{q} (OVERHEAT)\nM30\n"
+        ))
+    };
+    assert_eq!(run("#1"), 501);
+    assert_eq!(run("[#1+98]"), 599);
+    assert_eq!(run("#3"), 500);
+    assert_eq!(run("#2"), 5010);
+    let (canon, _) = run_on(
+        "#1=7\nG65 H99 P#500 Q#1 (OVERHEAT)\nM30\n",
+        &Options::default(),
+    );
+    assert_eq!(canon, ["ALARM CODE=507 MSG=\"OVERHEAT\""]);
+}

@@ -150,6 +150,9 @@ macro_rules! for_each_instr {
             // --- stopping ---
             /// An alarm the compiler proved will happen (`E5001` → 5001).
             Alarm = 0x50, "alarm" { code: U16, msg: Str };
+            /// `G65 H99 Q…` with a computed Q: alarm 500 + Q (Q rounded,
+            /// vacant as 0; outside 0…99 a value out of range, E5010).
+            UserAlarm = 0x52, "useralarm" { q: Reg, msg: Str };
             /// End of the main program.
             Halt = 0x51, "halt";
         }

@@ -163,6 +163,7 @@ fn instruction_text() {
         (Instr::Arg { var: 24, src: 0 }, "arg #24, r0"),
         (Instr::CallMacro { prog: 2, count: 1 }, "callmacro p2, r1"),
         (Instr::Alarm { code: 5001, msg: 0 }, "alarm 5001, s0"),
+        (Instr::UserAlarm { q: 1, msg: 0 }, "useralarm r1, s0"),
         (Instr::Halt, "halt"),
         (Instr::Halt {}, "halt"),
         (

@@ -725,6 +725,24 @@ impl Vm {
                 self.msg = Some(msg);
                 return program_alarm(code, self.msg_text());
             }
+            Instr::UserAlarm { q, msg } => {
+                // A vacant Q is no Q: 0 (dialect.md §7.5).
+                let q = self.reg(q);
+                let n = if is_vacant(q) {
+                    0.0
+                } else {
+                    nc::block::round_half_away(q)
+                };
+                if !(0.0..=99.0).contains(&n) {
+                    let msg = format!(
+                        "G65 H99: Q{} is outside 0…99 (alarms 500…599)",
+                        nc::event::Num(n)
+                    );
+                    return fault(AlarmCode::ValueOutOfRange, msg);
+                }
+                self.msg = Some(msg);
+                return program_alarm(500 + n as u16, self.msg_text());
+            }
             Instr::Halt => {
                 // Running past the last block: a waiting corner element is
                 // printed whole.

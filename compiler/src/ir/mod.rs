@@ -139,6 +139,8 @@ pub enum Op {
     },
     /// A user alarm (`G65 H99 Q n`: alarm 500 + n).
     Alarm { code: u16, msg: StrId },
+    /// `G65 H99 Q…` with a computed Q: alarm 500 + Q when it runs.
+    UserAlarm { q: Handle<Expr>, msg: StrId },
     /// G67: the modal call ends.
     ModalCancel,
 }

@@ -146,6 +146,9 @@ impl Printer<'_> {
                 self.with_msg(s, *msg)
             }
             Op::Alarm { code, msg } => format!("alarm {code} {:?}", self.string(msg.0)),
+            Op::UserAlarm { q, msg } => {
+                format!("alarm 500+[{}] {:?}", self.expr(*q), self.string(msg.0))
+            }
             Op::ModalCancel => "g67".into(),
         }
     }

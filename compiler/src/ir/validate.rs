@@ -193,6 +193,10 @@ impl Checker<'_> {
                 self.expr(*value, loc);
             }
             Op::Alarm { msg, .. } => self.string(msg.0, loc),
+            Op::UserAlarm { q, msg } => {
+                self.expr(*q, loc);
+                self.string(msg.0, loc);
+            }
         }
     }
 

@@ -633,7 +633,7 @@ impl<'a> Walk<'a> {
                 pos: [Fact::Unknown; 2],
                 ..s
             },
-            Op::Seq(..) | Op::Alarm { .. } => s,
+            Op::Seq(..) | Op::Alarm { .. } | Op::UserAlarm { .. } => s,
         }
     }
 

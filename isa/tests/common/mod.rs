@@ -204,9 +204,12 @@ pub fn constant_operands_module() -> Module {
             op: 3,
         },
         StoreVar { var: 101, src: 1 },
+        UserAlarm { q: 1, msg: 0 },
         Halt,
     ];
-    one_program("k.nc", code, Program::default(), vec![1.5, 2.0], 2)
+    let mut m = one_program("k.nc", code, Program::default(), vec![1.5, 2.0], 2);
+    m.strings = vec!["OVERHEAT".to_string()];
+    m
 }
 
 /// Recomputes the CRC trailer, so a forged change reaches the parser and the
