@@ -93,11 +93,7 @@ fn g65_h99_takes_q_0_to_99_only_and_a_variable_q() {
     assert_eq!(run.status.code(), Some(2));
     // 500 + Q (dialect.md §8).
     assert!(stdout(&run).contains("ALARM CODE=507"), "{}", stdout(&run));
-    for (q, code) in [
-        ("Q500", "E1010"),
-        ("Q99999999", "E1010"),
-        ("Q-1", "E1010"),
-    ] {
+    for (q, code) in [("Q500", "E1010"), ("Q99999999", "E1010"), ("Q-1", "E1010")] {
         std::fs::write(d.join("bad.nc"), format!("#1=3\nG65 H99 {q}\nM30\n")).unwrap();
         let out = gbcc(&["bad.nc"], &d);
         assert_eq!(out.status.code(), Some(1), "{q}");

@@ -346,6 +346,25 @@ struct PlaneTrack {
     map: PlaneMap,
     r: Option<f64>,
     z: Option<f64>,
+    /// C where the plane's last end point stands (`None` before one).
+    c: Option<f64>,
+}
+
+impl PlaneTrack {
+    /// Whether joints at `r`, `z`, `c` are where the last end point left
+    /// them: a move that goes nowhere (a `LINE Z=` to the Z the tool
+    /// stands at) runs no period, so its end point is not waited for.
+    fn stands_at(&self, r: Option<f64>, z: Option<f64>, c: f64) -> bool {
+        let same = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => (a - b).abs() <= 1e-9,
+            (None, None) => true,
+            _ => false,
+        };
+        // (C counts in whole turns where the kernel unwinds it, the
+        // joints' map does not: the same place.)
+        let turn = |d: f64| libm::fabs(d - 360.0 * libm::round(d / 360.0)) <= 1e-9;
+        same(self.r, r) && same(self.z, z) && self.c.is_some_and(|p| turn(p - c))
+    }
 }
 
 /// The way a canon move goes to its end point, as far as the path check
@@ -1078,6 +1097,7 @@ impl Certifier {
             map,
             r: self.last_end.map(|e| e.r),
             z: self.last_end.map(|e| e.z),
+            c: None,
         });
     }
 
@@ -1101,8 +1121,20 @@ impl Certifier {
                 t.z = Some(w.z);
             }
         }
+        self.plane_end(t, c);
+    }
+
+    /// The plane's joints after a move, with C at `c`: an end point to
+    /// reach, unless the move went nowhere.
+    fn plane_end(&mut self, mut t: PlaneTrack, c: f64) {
+        let moved = self
+            .plane
+            .is_none_or(|before| !before.stands_at(t.r, t.z, c));
+        t.c = Some(c);
         self.plane = Some(t);
-        self.push_plane(t.r, t.z, c);
+        if moved {
+            self.push_plane(t.r, t.z, c);
+        }
     }
 
     /// The axis outside the plane moves alone to `to` (polar Z, cylinder
@@ -1115,8 +1147,7 @@ impl Certifier {
             PlaneMap::Polar { .. } => t.z = Some(to),
             PlaneMap::Cylinder { .. } => t.r = Some(to * 0.5),
         }
-        self.plane = Some(t);
-        self.push_plane(t.r, t.z, c);
+        self.plane_end(t, c);
     }
 
     /// The plane ends (`POLAR MODE=OFF` gives X, a diameter, as the
