@@ -430,16 +430,18 @@ fn g66_calls_follow_group_01_moves_only() {
     // §7.9 Decision: "every group-01 move counts (also G6.x, G7.x,
     // threads, G90/G92/G94)"; a group-00 function that moves (G28, G31,
     // G53, G30) or cycle (G71) is not one. The macro records #4114, the
-    // sequence number of the block it follows: N5 (G00) and N11 (G90).
-    let src = "G00 X50 Z2\nG66 P9001\nN1 G28 U0\nN2 G31 X10 Z-1 F100\nN3 G50 X60 Z5\nN4 G04 X1\nN5 G00 X50 Z2\nN6 G71 U1 R0.5\nN7 G71 P10 Q20 U0 W0 F100\nN10 G00 X40\nN20 G01 Z-10\nN8 G30 P2 U0\nN9 G53 X0 Z0\nN11 G90 X40 Z-5 F100\nG67\nM30\nO9001\n#100=#100+1\n#[600+#100]=#4114\nM99\n";
+    // sequence number of the block it follows: N5 (G00), N11 (G90) and
+    // N12 (a G01 with G09, the exact stop that rides on it).
+    let src = "G00 X50 Z2\nG66 P9001\nN1 G28 U0\nN2 G31 X10 Z-1 F100\nN3 G50 X60 Z5\nN4 G04 X1\nN5 G00 X50 Z2\nN6 G71 U1 R0.5\nN7 G71 P10 Q20 U0 W0 F100\nN10 G00 X40\nN20 G01 Z-10\nN8 G30 P2 U0\nN9 G53 X0 Z0\nN11 G90 X40 Z-5 F100\nN12 G09 G01 X30\nG67\nM30\nO9001\n#100=#100+1\n#[600+#100]=#4114\nM99\n";
     let c = compile("p.nc", src.as_bytes(), &Options::default());
     assert!(!c.has_errors(), "{}", c.render());
     let mut vm = Vm::new(c.module.expect("module"), Machine::reference());
     let mut events: Vec<Event> = Vec::new();
     assert_eq!(vm.run(&mut events), Status::Done);
-    assert_eq!(vm.variable(100).ok(), Some(2.0));
+    assert_eq!(vm.variable(100).ok(), Some(3.0));
     assert_eq!(vm.variable(601).ok(), Some(5.0));
     assert_eq!(vm.variable(602).ok(), Some(11.0));
+    assert_eq!(vm.variable(603).ok(), Some(12.0));
 }
 
 #[test]

@@ -388,7 +388,9 @@ impl Nc {
             Ok(())
         })?;
         out.call = word_call(p);
-        out.modal_call = out.moved && p.one_shot().is_none() && self.st.modal.drill().is_none();
+        // (G09 is the one group-00 code that rides on a group-01 move.)
+        let group_00 = p.one_shot().is_some_and(|o| o != OneShot::ExactStop);
+        out.modal_call = out.moved && !group_00 && self.st.modal.drill().is_none();
         contour::end_of_block(self)?;
         crate::exec::comp::end_of_block(self, p, out.moved)?;
         self.profile.clear();
