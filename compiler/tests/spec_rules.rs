@@ -20,13 +20,20 @@ fn errors(src: &str) -> Vec<(&'static str, usize)> {
     codes(src, &Options::default())
 }
 
-/// The canon of a run on `opts`'s machine, and how it ended.
-fn run_on(src: &str, opts: &Options) -> (Vec<String>, Status) {
+/// The VM after a run on `opts`'s machine, the run's events and how it
+/// ended.
+fn vm_run(src: &str, opts: &Options) -> (Vm, Vec<Event>, Status) {
     let c = compile("p.nc", src.as_bytes(), opts);
     assert!(!c.has_errors(), "{}", c.render());
     let mut vm = Vm::new(c.module.expect("module"), opts.machine.clone());
     let mut events: Vec<Event> = Vec::new();
     let status = vm.run(&mut events);
+    (vm, events, status)
+}
+
+/// The canon of a run on `opts`'s machine, and how it ended.
+fn run_on(src: &str, opts: &Options) -> (Vec<String>, Status) {
+    let (_, events, status) = vm_run(src, opts);
     (events.iter().map(|e| e.to_string()).collect(), status)
 }
 
@@ -386,10 +393,7 @@ fn a_work_zero_written_inside_the_plane_stops_the_run() {
     ] {
         let src = format!("G98 G00 X20 Z5 C0\n{start}\nG01 X10 C5 F100\n{write}\n{end}\nM30\n");
         assert_eq!(codes(&src, &opts), [("W124", 4)], "{write}");
-        let c = compile("p.nc", src.as_bytes(), &opts);
-        let mut vm = Vm::new(c.module.expect("module"), opts.machine.clone());
-        let mut events: Vec<Event> = Vec::new();
-        match vm.run(&mut events) {
+        match run_on(&src, &opts).1 {
             Status::Alarm(a) => assert_eq!(a.code, 4033, "{write}"),
             other => panic!("{write}: {other:?}"),
         }
@@ -401,11 +405,8 @@ fn group_12_reads_g66_while_a_modal_call_is_in_force() {
     // §7.2: #4012 is the G code in force in group 12 (§3: G66 G67, G67 at
     // power-on), in the macro G66 calls too.
     let src = "#500=#4012\nG66 P9001 A1\n#501=#4012\nG00 X1\n#502=#4012\nG67\n#503=#4012\nM30\nO9001\n#510=#4012\nM99\n";
-    let c = compile("p.nc", src.as_bytes(), &Options::default());
-    assert!(!c.has_errors(), "{}", c.render());
-    let mut vm = Vm::new(c.module.expect("module"), Machine::reference());
-    let mut events: Vec<Event> = Vec::new();
-    assert_eq!(vm.run(&mut events), Status::Done);
+    let (vm, _, status) = vm_run(src, &Options::default());
+    assert_eq!(status, Status::Done);
     let read = |n: u32| vm.variable(n).ok();
     assert_eq!(
         [500, 501, 502, 510, 503].map(read),
@@ -433,11 +434,8 @@ fn g66_calls_follow_group_01_moves_only() {
     // sequence number of the block it follows: N5 (G00), N11 (G90) and
     // N12 (a G01 with G09, the exact stop that rides on it).
     let src = "G00 X50 Z2\nG66 P9001\nN1 G28 U0\nN2 G31 X10 Z-1 F100\nN3 G50 X60 Z5\nN4 G04 X1\nN5 G00 X50 Z2\nN6 G71 U1 R0.5\nN7 G71 P10 Q20 U0 W0 F100\nN10 G00 X40\nN20 G01 Z-10\nN8 G30 P2 U0\nN9 G53 X0 Z0\nN11 G90 X40 Z-5 F100\nN12 G09 G01 X30\nG67\nM30\nO9001\n#100=#100+1\n#[600+#100]=#4114\nM99\n";
-    let c = compile("p.nc", src.as_bytes(), &Options::default());
-    assert!(!c.has_errors(), "{}", c.render());
-    let mut vm = Vm::new(c.module.expect("module"), Machine::reference());
-    let mut events: Vec<Event> = Vec::new();
-    assert_eq!(vm.run(&mut events), Status::Done);
+    let (vm, _, status) = vm_run(src, &Options::default());
+    assert_eq!(status, Status::Done);
     assert_eq!(vm.variable(100).ok(), Some(3.0));
     assert_eq!(vm.variable(601).ok(), Some(5.0));
     assert_eq!(vm.variable(602).ok(), Some(11.0));

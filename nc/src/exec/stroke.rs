@@ -424,15 +424,7 @@ mod tests {
 
     /// Runs blocks until one stops; the canon so far and the alarm code.
     fn run(blocks: &[&str]) -> (Vec<alloc::string::String>, u16) {
-        let mut m = Lathe::new();
-        let mut canon = Vec::new();
-        for b in blocks {
-            match m.try_run(b) {
-                Ok(lines) => canon.extend(lines),
-                Err(code) => return (canon, code),
-            }
-        }
-        (canon, 0)
+        run_on(&mut Lathe::new(), blocks)
     }
 
     #[test]
@@ -569,6 +561,7 @@ mod tests {
         Lathe { nc }
     }
 
+    /// `run` on lathe `m`.
     fn run_on(m: &mut Lathe, blocks: &[&str]) -> (Vec<alloc::string::String>, u16) {
         let mut canon = Vec::new();
         for b in blocks {
