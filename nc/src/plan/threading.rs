@@ -152,8 +152,9 @@ pub fn g76_path(t: &Thread, passes: &Passes) -> Result<Vec<Leg>, NcError> {
     let depths = passes.depths(t)?;
     let tan = passes.tan();
     let mut path = Vec::new();
-    for depth in depths {
+    for (i, depth) in depths.into_iter().enumerate() {
         let z = t.a.z + t.sz() * depth * tan;
+        check_start("G76", t, i + 1, depth, z)?;
         g76_pass(t, depth, z, passes.pull, &mut path)?;
     }
     Ok(path)
@@ -175,6 +176,7 @@ pub fn g78_path(t: &Thread, passes: &Passes, infeed: &Infeed) -> Result<Vec<Leg>
     let mut path = Vec::new();
     for (i, &depth) in depths.iter().enumerate() {
         let z = t.a.z + cut_in_shift(infeed.cut_in, i + 1, depth * tan);
+        check_start("G78", t, i + 1, depth, z)?;
         for j in 0..infeed.starts {
             if path.len() > MAX_LEGS {
                 return fail(
@@ -187,6 +189,30 @@ pub fn g78_path(t: &Thread, passes: &Passes, infeed: &Infeed) -> Result<Vec<Leg>
         }
     }
     Ok(path)
+}
+
+/// Pass `n` at `depth` must start short of the thread's end: a flank
+/// infeed shifts the start along Z by δ·tan(a/2), and on a thread shorter
+/// than that shift the pass would run backwards along the helix (E4010:
+/// a thread that cannot be cut, dialect.md §8.3).
+fn check_start(cycle: &str, t: &Thread, n: usize, depth: f64, z: f64) -> Result<(), NcError> {
+    if (t.end.z - z) * t.sz() > EPS {
+        return Ok(());
+    }
+    if t.sz() == 0.0 {
+        let msg = format!(
+            "{cycle}: the thread has no length along Z (it starts and ends at Z{:.4})",
+            t.a.z
+        );
+        return fail(Alarm::BadThread, msg);
+    }
+    fail(
+        Alarm::BadThread,
+        format!(
+            "{cycle}: the flank infeed starts pass {n} (depth {depth:.4}) at Z{z:.4}, at or past the thread's end Z{:.4}; lengthen the thread or lower the angle",
+            t.end.z
+        ),
+    )
 }
 
 /// One G76 pass at `depth`, starting at `z` (§11 "One pass").
@@ -313,6 +339,38 @@ mod tests {
         let tan30 = 1.0 / libm::sqrt(3.0);
         assert!((start.z - (5.0 - 0.5 * tan30)).abs() < 1e-12);
         assert!((start.r - 14.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_thread_shorter_than_the_flank_shift_is_e4010() {
+        // A 1 mm thread (Z5 to Z4), k = 2, Δd = 1.5, a = 60°: pass 1 at
+        // δ 1.5 starts at 5 − 1.5·tan 30° = 4.1340, short of Z4; pass 2 at
+        // δ = k = 2 (1.5·√2 > 2) would start at 5 − 2·tan 30° = 3.8453,
+        // past the end, and cut back towards +Z.
+        let t = Thread {
+            a: Pt::new(15.0, 5.0),
+            end: Pt::new(13.0, 4.0),
+            height: 2.0,
+            first: 1.5,
+            lead: 1.0,
+            ..outside()
+        };
+        let err = g76_path(&t, &passes(60.0)).unwrap_err();
+        assert_eq!(err.code, Alarm::BadThread as u16);
+        assert!(
+            err.message.contains("pass 2 (depth 2.0000) at Z3.8453"),
+            "{}",
+            err.message
+        );
+        // Radial infeed (a = 0) cuts the same thread.
+        assert!(g76_path(&t, &passes(0.0)).is_ok());
+        // A thread with no length is refused at any angle.
+        let flat = Thread {
+            end: Pt::new(13.0, 5.0),
+            ..t
+        };
+        let err = g76_path(&flat, &passes(0.0)).unwrap_err();
+        assert!(err.message.contains("no length along Z"), "{}", err.message);
     }
 
     #[test]
