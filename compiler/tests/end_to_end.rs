@@ -175,14 +175,18 @@ fn structure_errors_are_compile_errors_at_their_line() {
 
 /// A DO label open twice, or a fourth loop inside three: one error at
 /// that DO. Its END closes it, so the outer ENDs meet their own DOs and
-/// no error about crossed loops follows.
+/// no error about crossed loops follows. Crossed loops: one error at the
+/// END that crosses, none at the crossed loop's own END; a stray END
+/// leaves the loop around it open for its own END.
 #[test]
 fn a_loop_error_is_told_once() {
     let open_twice = "WHILE[#1LT1]DO1\nWHILE[#1LT1]DO2\nWHILE[#1LT1]DO1\n\
                       #1=1\nEND1\nEND2\nEND1\nM30\n";
     let four_deep = "WHILE[#1LT1]DO1\nWHILE[#1LT1]DO2\nWHILE[#1LT1]DO3\n\
                      WHILE[#1LT1]DO2\n#1=1\nEND2\nEND3\nEND2\nEND1\nM30\n";
-    for (src, line) in [(open_twice, 3), (four_deep, 4)] {
+    let crossed = "#1=0\nWHILE[#1LT1]DO1\nWHILE[#1LT1]DO2\n#1=1\nEND1\nEND2\nM30\n";
+    let stray = "#1=0\nWHILE[#1LT1]DO1\n#1=1\nEND2\nEND1\nM30\n";
+    for (src, line) in [(open_twice, 3), (four_deep, 4), (crossed, 5), (stray, 4)] {
         let c = compile("e.nc", src.as_bytes(), &Options::default());
         let errors: Vec<_> = (c.diags.iter())
             .filter(|(_, d)| d.is_error())

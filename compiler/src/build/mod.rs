@@ -109,6 +109,8 @@ pub(crate) struct ProgEnd {
 #[derive(Default)]
 struct ProgState {
     loops: Vec<Loop>,
+    /// Labels of loops a crossing END closed (see `close_loop`).
+    crossed: Vec<u32>,
     gotos: Vec<Pending>,
     /// (sequence number, its block, loop ids open at that block).
     seqs: Vec<(u32, Handle<ir::Block>, Vec<u32>, Span)>,
@@ -619,19 +621,27 @@ impl<'a> Builder<'a> {
             );
             return;
         }
+        let Some(depth) = st.loops.iter().rposition(|l| l.label == label) else {
+            // The END of a loop an earlier END crossed was reported there.
+            if let Some(i) = st.crossed.iter().position(|&l| l == label) {
+                st.crossed.swap_remove(i);
+            } else {
+                self.error("E2014", span, format!("END {label} without a DO {label}"));
+            }
+            return;
+        };
+        // Loops opened inside this one and still open are crossed by it:
+        // reported once, here, and their own ENDs later are let pass.
+        if let Some(inner) = st.loops.last().filter(|l| l.label != label) {
+            let msg = format!("END {label} closes DO {}: loops are crossed", inner.label);
+            self.error("E2014", span, msg);
+            st.crossed
+                .extend(st.loops.drain(depth + 1..).map(|l| l.label));
+        }
         let Some(open) = st.loops.pop() else {
-            self.error("E2014", span, format!("END {label} without a DO {label}"));
             return;
         };
         self.in_loop = st.loops.last().map_or(0, |l| l.id);
-        if open.label != label {
-            self.error(
-                "E2014",
-                span,
-                format!("END {label} closes DO {}: loops are crossed", open.label),
-            );
-            return;
-        }
         self.terminate(Terminator::Jump(open.start));
         let here = self.here();
         for at in open.exits {
