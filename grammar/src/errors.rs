@@ -248,6 +248,26 @@ impl<'a> Fault<'a> {
             return self.program_fault();
         }
 
+        // `/#1 G00…` or `/[1] G00…`: a switch number that is not a literal
+        // (dialect.md §7.6). (`/#1=5` is an optional assignment.)
+        let words_follow = tok.is_some_and(|t| t.is_letter() || matches!(t, Tok::Word(_)));
+        let variable_switch = self.tok(1) == Some(Tok::Hash) && words_follow;
+        if self.tok(0) == Some(Tok::Slash)
+            && (variable_switch || (at == 1 && tok == Some(Tok::LBrack)))
+        {
+            let last = if variable_switch { at - 1 } else { at };
+            let span = self.span(0).to(self.span(last));
+            return Diagnostic::error(
+                "E1015",
+                span,
+                "the block-delete switch cannot be a variable or an expression",
+            )
+            .with_label("`/` takes no number or a literal 1 … 9")
+            .with_help(
+                "write `/` or `/n` with n a digit; to skip blocks by a variable, use `IF[…]GOTOn`",
+            );
+        }
+
         if let Some(t) = tok {
             if t.is_letter() || matches!(t, Tok::Word(_) | Tok::Seq(_)) {
                 if let Some(d) = self.letter_fault(at) {
@@ -349,6 +369,14 @@ impl<'a> Fault<'a> {
         }
 
         let body = self.tok(self.body_start());
+        let after_then = (self.body_start()..at).any(|i| self.tok(i) == Some(Tok::Then));
+        if body == Some(Tok::If) && after_then && tok == Some(Tok::Hash) && self.depth(at) == 0 {
+            return Diagnostic::error("E1013", here, "only one assignment may follow THEN")
+                .with_label("a second statement after THEN's assignment")
+                .with_help(
+                    "put it in a block of its own, or skip a group of blocks with `IF[…]GOTOn`",
+                );
+        }
         if body == Some(Tok::If) && (self.expects("GOTO") || self.expects("THEN")) {
             let help = match tok {
                 Some(Tok::Hash) => "write THEN before the assignment: `IF[…]THEN#i=…`",
