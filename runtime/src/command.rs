@@ -17,8 +17,11 @@ pub struct Tag {
     pub col: u32,
     /// Running number of the NC block.
     pub block: u32,
-    /// The last command of its NC block (single block stops after it).
+    /// The last command of its NC block (single block stops after it;
+    /// never set under `#3003` bit 0).
     pub block_end: bool,
+    /// Its block ran under `#3004` bit 0: feed hold does not stop it.
+    pub no_hold: bool,
 }
 
 /// The shape of a move; its start is where the previous move ended.
@@ -83,6 +86,8 @@ pub struct Feed {
     pub f: f64,
     /// F is per spindle revolution (G99), else per minute (G98).
     pub per_rev: bool,
+    /// `#3004` bit 1 was set: the feed override does not apply.
+    pub fixed: bool,
 }
 
 /// A spindle-synchronised move (dialect.md §4.3).

@@ -536,6 +536,12 @@ impl<P: Plc> Engine<P> {
         self.hold = true;
     }
 
+    /// A feed hold requested holds the head item, unless the program set
+    /// `#3004` bit 0 for its block: then it waits for a block without.
+    fn holding(&self) -> bool {
+        self.hold && !self.tag.no_hold
+    }
+
     /// Cycle start: starts the program, resumes after feed hold or a stop.
     pub fn cycle_start(&mut self) {
         self.cycle_start = true;
@@ -908,7 +914,7 @@ impl<P: Plc> Engine<P> {
         if self.dwell_left == 0 {
             return self.finish_item_now();
         }
-        if self.hold {
+        if self.holding() {
             self.state = RunState::Held;
         } else {
             self.motion = Motion::Dwell;
@@ -998,7 +1004,7 @@ impl<P: Plc> Engine<P> {
         if self.still < need || self.follow.engaged() {
             return false;
         }
-        if self.hold && !matches!(seg.kind, MoveKind::Thread(_)) {
+        if self.hold && !item.tag.no_hold && !matches!(seg.kind, MoveKind::Thread(_)) {
             self.state = RunState::Held;
             return false;
         }
@@ -1062,7 +1068,7 @@ impl<P: Plc> Engine<P> {
     /// G00: each axis on its own, at its rapid rate and acceleration.
     fn step_rapid(&mut self) {
         self.motion = Motion::Rapid;
-        let f = if self.hold || self.reset_req {
+        let f = if self.holding() || self.reset_req {
             0.0
         } else {
             self.rapid_ovr.factor(self.cfg.rapid_f0)
@@ -1108,7 +1114,9 @@ impl<P: Plc> Engine<P> {
             self.pos = to;
             self.c = self.cur.c1;
             self.finish_item();
-        } else if self.hold && self.rapid_v == [0.0; 3] && (!self.jerk || self.rapid_avg.settled())
+        } else if self.holding()
+            && self.rapid_v == [0.0; 3]
+            && (!self.jerk || self.rapid_avg.settled())
         {
             self.state = RunState::Held;
         }
@@ -1156,7 +1164,7 @@ impl<P: Plc> Engine<P> {
             }
             // A G00 in a plane (`axis_rapid`): the slower axis's rapid
             // rate along the path, under the rapid override.
-            MoveKind::Rapid if !self.hold && !self.reset_req => {
+            MoveKind::Rapid if !self.holding() && !self.reset_req => {
                 let rate = self.cfg.x.rapid.min(self.cfg.z.rapid);
                 return (rate * self.rapid_ovr.factor(self.cfg.rapid_f0)).min(self.cur.v_max);
             }
@@ -1180,10 +1188,10 @@ impl<P: Plc> Engine<P> {
             }
             v *= self.spindle.rpm().abs() / 60.0;
         }
-        if self.hold || self.reset_req || self.skip_hit.is_some() {
+        if self.holding() || self.reset_req || self.skip_hit.is_some() {
             return 0.0;
         }
-        let ovr = if skip { 1.0 } else { self.feed_ovr };
+        let ovr = if skip || f.fixed { 1.0 } else { self.feed_ovr };
         (v * ovr).min(self.cur.v_max)
     }
 
@@ -1194,9 +1202,14 @@ impl<P: Plc> Engine<P> {
             MoveKind::Feed(_) if self.dry_run => {
                 Some((self.cfg.dry_run_feed * self.feed_ovr).min(n.v_max))
             }
-            MoveKind::Feed(f) if !f.per_rev => Some((f.f * self.feed_ovr).min(n.v_max)),
             MoveKind::Feed(f) => {
-                Some((f.f * self.spindle.rpm().abs() / 60.0 * self.feed_ovr).min(n.v_max))
+                let ovr = if f.fixed { 1.0 } else { self.feed_ovr };
+                let rate = if f.per_rev {
+                    self.spindle.rpm().abs() / 60.0
+                } else {
+                    1.0
+                };
+                Some((f.f * rate * ovr).min(n.v_max))
             }
             _ => None,
         }
@@ -1425,7 +1438,7 @@ impl<P: Plc> Engine<P> {
             self.report_skip();
             self.q.set_tail(self.pos);
             self.finish_item();
-        } else if self.hold {
+        } else if self.holding() {
             self.state = RunState::Held;
         }
     }
@@ -1469,7 +1482,7 @@ impl<P: Plc> Engine<P> {
             self.report_skip();
             self.q.set_tail(self.pos);
             self.finish_item();
-        } else if still && self.hold {
+        } else if still && self.holding() {
             self.state = RunState::Held;
         }
     }

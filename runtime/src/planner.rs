@@ -297,6 +297,7 @@ const PLACEHOLDER: Item = Item {
         col: 0,
         block: 0,
         block_end: false,
+        no_hold: false,
     },
     shift: V2::ZERO,
 };
@@ -752,7 +753,15 @@ impl Planner {
             // (interpolate.rs, `axis_rapid`).
             MoveKind::Rapid if self.plane.is_some() => {
                 let f = self.vrapid[0].min(self.vrapid[1]);
-                self.feed_segment(&mut seg, &lim, Feed { f, per_rev: false })
+                self.feed_segment(
+                    &mut seg,
+                    &lim,
+                    Feed {
+                        f,
+                        per_rev: false,
+                        fixed: false,
+                    },
+                )
             }
             MoveKind::Rapid | MoveKind::Offset => self.rapid_segment(&mut seg, &lim, dc),
             MoveKind::Feed(f) | MoveKind::Skip(f) => self.feed_segment(&mut seg, &lim, f),
@@ -1548,7 +1557,11 @@ mod tests {
 
     fn feed(to: V2, f: f64) -> Command {
         Command::Move(Move {
-            kind: MoveKind::Feed(Feed { f, per_rev: false }),
+            kind: MoveKind::Feed(Feed {
+                f,
+                per_rev: false,
+                fixed: false,
+            }),
             path: Path::Line { to },
             shift: V2::ZERO,
             c: None,

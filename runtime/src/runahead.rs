@@ -16,6 +16,7 @@ use crate::translate::Translator;
 use alloc::collections::VecDeque;
 use alloc::string::String;
 use alloc::vec::Vec;
+use nc::exec::switches::Switch;
 use nc::{Event, Machine, Placed, Sink};
 use vm::{Status, Vm};
 
@@ -232,6 +233,7 @@ impl RunAhead {
             col: loc.col,
             block: self.block,
             block_end: false,
+            no_hold: self.vm.nc.switch(Switch::NoFeedHold),
         };
         self.tr.skip_queued = false;
         let held = self.held_legs(tag, status == Status::OutOfBudget);
@@ -331,8 +333,10 @@ impl RunAhead {
             self.stroke = self.vm.nc.stroke_area();
             self.staged.push_back((Command::Stroke(self.stroke), tag));
         }
+        // Under #3003 bit 0 single block runs on to a block without it.
+        let stops = !self.vm.nc.switch(Switch::NoSingleBlock);
         if let Some((_, t)) = self.staged.back_mut() {
-            if t.block == self.block {
+            if t.block == self.block && stops {
                 t.block_end = true;
             }
         }
@@ -443,6 +447,7 @@ impl RunAhead {
         self.tr.feed = Feed {
             f: 0.0,
             per_rev: false,
+            fixed: false,
         };
         link.reseed(origin);
         self.staged.clear();

@@ -15,6 +15,7 @@ use crate::polar::{PlaneMap, PlaneSwitch};
 use alloc::string::String;
 use alloc::vec::Vec;
 use nc::event::{Dir, PlaneMotion, SpindleDir as NcDir, StopKind};
+use nc::exec::switches::Switch;
 use nc::{Event, Machine};
 
 #[derive(Debug, Clone)]
@@ -54,6 +55,7 @@ impl Translator {
             feed: Feed {
                 f: 0.0,
                 per_rev: false,
+                fixed: false,
             },
             work: V2::ZERO - origin,
             messages: Vec::new(),
@@ -93,6 +95,7 @@ impl Translator {
     /// (for tool offset tables), `m` the machine (reference points).
     pub fn event(&mut self, e: &Event, nc: &nc::Nc, m: &Machine, out: &mut Vec<Command>) {
         let line = |to: V2, _| Path::Line { to };
+        self.feed.fixed = nc.switch(Switch::NoFeedOverride);
         if let Event::Rapid { c: Some(c), .. } | Event::Line { c: Some(c), .. } = e {
             self.c_now = *c;
         }
@@ -142,6 +145,7 @@ impl Translator {
                 self.feed = Feed {
                     f: if *per_rev { *f } else { *f / 60.0 },
                     per_rev: *per_rev,
+                    fixed: self.feed.fixed,
                 };
             }
             Event::Speed { s, css, max } => out.push(Command::Plc(PlcFunction::Speed {

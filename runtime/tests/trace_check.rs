@@ -427,6 +427,7 @@ fn ellipse_and_parabola_follow_the_exact_curve() {
     let feed = MoveKind::Feed(Feed {
         f: 20.0,
         per_rev: false,
+        fixed: false,
     });
     let mv = |path| {
         Command::Move(Move {

@@ -14,6 +14,7 @@ mod plain;
 pub mod plane;
 pub mod state;
 pub mod stroke;
+pub mod switches;
 pub mod sysvar;
 pub mod tool_life;
 pub mod travel;

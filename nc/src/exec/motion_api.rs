@@ -6,6 +6,7 @@
 
 use crate::base::point::Pt;
 use crate::exec::stroke::Area;
+use crate::exec::switches::Switch;
 use crate::exec::Nc;
 
 impl Nc {
@@ -49,8 +50,14 @@ impl Nc {
 
     /// The last block ends in an exact stop (G09 in it, or G61 in force):
     /// the motion must not blend it into the next one.
+    /// `#3004` bit 2 turns it off.
     pub fn exact_stop(&self) -> bool {
-        self.st.exact_stop
+        self.st.exact_stop && !self.switch(Switch::NoExactStop)
+    }
+
+    /// Whether the program has set `s` (`#3003`, `#3004`).
+    pub fn switch(&self, s: Switch) -> bool {
+        self.st.switches.is_on(s)
     }
 
     /// The area stored stroke check 2 forbids while G22 is in force.

@@ -50,6 +50,8 @@ pub struct State {
     /// The last block ends in an exact stop (G09 in it, or G61 in force):
     /// the runtime must not blend it into the next one.
     pub exact_stop: bool,
+    /// `#3003` and `#3004` as the program wrote them.
+    pub switches: crate::exec::switches::Switches,
     /// The area stored stroke check 2 forbids while G22 is in force.
     pub stroke2: Option<crate::exec::stroke::Area>,
     /// The tool length offset the axes carry (geometry + wear of the last
@@ -115,6 +117,7 @@ impl State {
             parts: 0.0,
             outputs: 0,
             exact_stop: false,
+            switches: Default::default(),
             stroke2: None,
             slide_off: Pt::ZERO,
             printed: None,

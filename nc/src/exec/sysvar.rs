@@ -53,7 +53,7 @@ impl Nc {
             2901..=2932 => Some(st.geom[(n - 2901) as usize][2]),
             3001 => Some(st.clock_ms),
             3002 => Some(st.clock_ms / 3_600_000.0),
-            3003 | 3004 => Some(0.0),
+            3003 | 3004 => Some(st.switches.read(n)),
             3011 => Some(self.machine.host.date as f64),
             3012 => Some(self.machine.host.time as f64),
             3901 => Some(st.parts),
@@ -141,7 +141,7 @@ impl Nc {
             2901..=2932 => st.geom[(n - 2901) as usize][2] = x,
             3001 => st.clock_ms = x,
             3002 => st.clock_ms = x * 3_600_000.0,
-            3003 | 3004 => {}
+            3003 | 3004 => st.switches.write(n, x)?,
             3901 => st.parts = x,
             3902 => st.parts_required = x,
             5201 => st.exofs.r = x / 2.0,
