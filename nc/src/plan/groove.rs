@@ -2,6 +2,7 @@
 //! (cycles.md §9, §10) as paths: pecks along one axis, steps along the
 //! other. The executor (`exec::cycles`) reads the words and prints.
 
+use alloc::format;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -88,7 +89,8 @@ fn path(g: &Groove, ax: Axes, zero_step: &str) -> Result<Vec<Leg>, NcError> {
     let mut out = Vec::new();
     for (n, &line) in lines.iter().enumerate() {
         if out.len() > MAX_LEGS {
-            return fail(Alarm::ZeroStep, "the steps are too small for this cycle");
+            let msg = format!("the cycle would make more than {MAX_LEGS} moves, the most a cycle may make: take larger steps");
+            return fail(Alarm::ZeroStep, msg);
         }
         for (j, &t) in pecks.iter().enumerate() {
             out.push(Leg::Line(ax.pt(t, line)));

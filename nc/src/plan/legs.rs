@@ -47,9 +47,10 @@ pub fn stops(from: f64, to: f64, step: f64, code: Alarm) -> Result<Vec<f64>, NcE
                 break;
             }
             if j > MAX_LEGS {
+                let length = (to - from).abs();
                 return fail(
                     code,
-                    format!("the step {step} mm is too small for this cycle"),
+                    format!("the step {step} mm over {length} mm makes more than {MAX_LEGS} stops, the most a cycle may make: take a larger step"),
                 );
             }
             out.push(t);
@@ -262,5 +263,10 @@ mod tests {
     fn a_step_lost_in_rounding_is_an_alarm_not_a_hang() {
         let e = stops(1e20, 0.0, 1e-3, Alarm::ZeroStep).unwrap_err();
         assert_eq!(e.code, 4011);
+        assert!(
+            e.message.contains("more than 1000000 stops"),
+            "{}",
+            e.message
+        );
     }
 }
