@@ -38,12 +38,22 @@ pub struct Counts {
     pub threads: u32,
     /// Any event at all.
     pub events: u32,
+    /// The F of the block's first feed move when a `FEED` came before it
+    /// in the block (`None`: the F in force when the block started).
+    pub first_f: Option<f64>,
+    last_f: Option<f64>,
 }
 
 impl Sink for Counts {
     fn emit(&mut self, e: Event) {
         self.events += 1;
         self.motions += u32::from(e.is_motion());
+        if let Event::Feed { f, .. } = e {
+            self.last_f = Some(f);
+        }
+        if e.is_feed() && self.feeds == 0 {
+            self.first_f = self.last_f;
+        }
         self.feeds += u32::from(e.is_feed());
         self.threads += u32::from(matches!(e, Event::Thread { .. } | Event::ArcThread { .. }));
     }
@@ -52,6 +62,8 @@ impl Sink for Counts {
 /// The state a block starts from, taken before it runs.
 pub struct Before {
     per_rev: bool,
+    /// The modal F (a G70's profile may leave another).
+    feed: f64,
     /// The point on the programmed path (`path_point`).
     pos: nc::point::Pt,
     applied: u32,
@@ -69,7 +81,7 @@ pub struct Warner {
     /// W107 is given once: the run stops at the first such move.
     zero_feed_told: bool,
     /// A G98/G99 block that kept the old F (W111 when a feed move uses it).
-    mode_change: Option<(usize, Span)>,
+    mode_change: Option<(usize, Span, f64)>,
     /// Where the F in force was written: its word (W125 points there).
     feed_word: Option<(usize, Span)>,
     /// W125 is given once: the program's F words share the one mistake.
@@ -371,6 +383,7 @@ impl Warner {
     pub fn before(&self, nc: &Nc) -> Before {
         Before {
             per_rev: nc.st.per_rev(),
+            feed: nc.st.feed,
             pos: path_point(nc),
             applied: nc.st.contour.applied,
         }
@@ -662,7 +675,8 @@ impl Warner {
 
     /// W111: G98/G99 changed the feed mode and the block gave no F, so the
     /// old number is read in the new unit; said at the mode change when a
-    /// feed move uses it.
+    /// feed move uses it; not when that move runs at an F of its own (a
+    /// G70 profile block's: its F stays in force after the cycle).
     fn feed_mode(
         &mut self,
         unit: usize,
@@ -674,13 +688,17 @@ impl Warner {
     ) {
         if seen.has(b'F') {
             self.mode_change = None;
-        } else if nc.st.per_rev() != before.per_rev && nc.st.feed != 0.0 {
-            self.mode_change = Some((unit, span));
+        } else if nc.st.per_rev() != before.per_rev && before.feed != 0.0 {
+            self.mode_change = Some((unit, span, before.feed));
         }
         if counts.feeds == 0 {
             return;
         }
-        if let Some((u, at)) = self.mode_change.take() {
+        if let Some((u, at, f)) = self.mode_change.take() {
+            // (A G70 profile block that brings an F of its own: no.)
+            if counts.first_f.is_some_and(|used| used != f) {
+                return;
+            }
             let (now, was) = match nc.st.per_rev() {
                 true => ("mm/rev (G99)", "mm/min"),
                 false => ("mm/min (G98)", "mm/rev"),
@@ -691,7 +709,7 @@ impl Warner {
                 at,
                 format!(
                     "the feed mode changes to {now} without a new F: the F{} given in {was} is now read in {now}",
-                    nc::event::Num(nc.st.feed)
+                    nc::event::Num(f)
                 ),
             );
         }

@@ -154,6 +154,14 @@ fn w111_a_feed_mode_change_without_f_at_the_change() {
     assert_eq!(warnings("G98 G01 X20 F200\nG99\nG01 Z-10 F0.2\nM30\n"), []);
     // Only rapids follow: the old F is never used.
     assert_eq!(warnings("G98 G01 X20 F200\nG99\nG00 Z10\nM30\n"), []);
+    // G70 under the new G99: its profile's first feed (N2) brings F0.1,
+    // so F200 is never read in mm/rev.
+    let g70 = "G98 G00 X50 Z2 F200\nG99 G70 P1 Q2\nM30\nN1 G00 X40\nN2 G01 Z-10 F0.1\n";
+    assert_eq!(warnings(g70), []);
+    // The message names the F in force at the change.
+    let src = "G98 G01 X20 F200\nG99\nM03 S500\nG01 Z-10\nM30\n";
+    let w = compile("w.nc", src.as_bytes(), &Options::default()).render();
+    assert!(w.contains("the F200 given in mm/min"), "{w}");
 }
 
 #[test]
