@@ -264,6 +264,7 @@ impl<'a> Emitter<'a> {
             let pc = starts.get(target.index()).copied().unwrap_or(0);
             if let Some(
                 Instr::Jump { target: t }
+                | Instr::Goto { target: t }
                 | Instr::JumpIfNot { target: t, .. }
                 | Instr::SkipBlock { target: t, .. },
             ) = self.module.code.get_mut(at)
@@ -353,6 +354,9 @@ impl<'a> Emitter<'a> {
             }
             Op::ModalCancel => {
                 self.emit(Instr::ModalCancel);
+            }
+            Op::Charge => {
+                self.emit(Instr::Charge);
             }
         }
     }
@@ -450,6 +454,7 @@ impl<'a> Emitter<'a> {
         match t {
             Terminator::Follow(_) | Terminator::Ended => {}
             Terminator::Jump(b) => jump(self, Instr::Jump { target: 0 }, *b),
+            Terminator::GotoKnown(b) => jump(self, Instr::Goto { target: 0 }, *b),
             Terminator::Branch {
                 cond, otherwise, ..
             } => {
@@ -485,13 +490,15 @@ impl<'a> Emitter<'a> {
                     b: k,
                     op: *op as u8,
                 });
-                // Past the GOTO: the next block.
+                // Past the GOTO, the block charged (the GOTO charges itself
+                // when it jumps), then the next block.
                 let past = self.pc() + 2;
                 self.emit(Instr::JumpIfNot {
                     cond: c,
                     target: past,
                 });
                 self.goto_seq(seq, *inside);
+                self.emit(Instr::Charge);
             }
             Terminator::Call { call, .. } => self.call(f, call),
             Terminator::Return { seq: None } => {

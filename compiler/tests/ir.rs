@@ -25,8 +25,9 @@ fn printed(opts: &Options) -> String {
 
 /// The expected IR, with the NC block of line 2 as `nc2`.
 fn expected(nc2: &str) -> String {
-    // Line 3's test branches to a block that only jumps to N10 (the GOTO),
-    // or else goes on at N10 too (the block after the IF); N10's call
+    // Line 3's test branches to a block that only jumps to N10 (the GOTO,
+    // a block of its own), or else to one that charges the IF block to
+    // the budget and goes on at N10 (the block after the IF); N10's call
     // goes on into the M30 block, which M30 ends; the main program's own
     // end (halt) stands after it, unreached. O9000 is its M99 alone: a
     // program ending in M99 needs no end.
@@ -36,14 +37,17 @@ fn expected(nc2: &str) -> String {
         line(nc2, "2:1"),
         line("branch #2 GT 0 then bb1 else bb2", "3:1"),
         "bb1:\n".into(),
-        line("jump bb2", "3:1"),
+        line("goto bb3", "3:1"),
         "bb2:\n".into(),
-        line("seq N10", "4:1"),
-        line("call m98 O9000 count 1 then bb3", "4:1"),
+        line("charge", "3:1"),
+        line("follow bb3", "3:1"),
         "bb3:\n".into(),
+        line("seq N10", "4:1"),
+        line("call m98 O9000 count 1 then bb4", "4:1"),
+        "bb4:\n".into(),
         line("nc M30", "5:1"),
         line("ended", "5:1"),
-        "bb4:\n".into(),
+        "bb5:\n".into(),
         line("halt", "5:1"),
         "function O0000\n".replace("0000", "9000") + "bb0:\n",
         line("return", "7:1"),
@@ -75,11 +79,14 @@ fn guards_loops_and_macro_a_jumps_are_blocks_and_terminators() {
     let ir = ir.expect("IR");
     let text = ir::print::print(&ir, &c.files);
     // The guard jumps past the guarded block to the loop head, which the
-    // END jumps back to; the test leaves the loop for the G65 block.
+    // END jumps back to; the head charges the WHILE block, then the test
+    // leaves the loop for the G65 block.
     for want in [
         line("skip /1 to bb2 else bb1", "1:1"),
         "bb1:\n".to_string() + &line("move G1 X1", "1:1"),
-        "bb2:\n".to_string() + &line("branch #1 LT 3 then bb3 else bb4", "2:1"),
+        "bb2:\n".to_string()
+            + &line("charge", "2:1")
+            + &line("branch #1 LT 3 then bb3 else bb4", "2:1"),
         "bb3:\n".to_string() + &line("#1 = #1 + 1", "3:1") + &line("jump bb2", "4:1"),
         // (`#1 + 0`: a vacant #1 counts as 0 in the H form, §7.5.)
         "bb4:\n".to_string() + &line("goto N7 if #1 + 0 EQ 3 else bb5", "5:1"),

@@ -54,8 +54,10 @@ pub const MAGIC: [u8; 4] = *b"GBC\0";
 /// and `cmpk` (arithmetic and comparisons with a constant operand);
 /// version 8 a program's DO loops and the loop of each sequence number,
 /// `gotoseqin` (a computed GOTO inside a loop: E6008 into another) and
-/// `callsubpacked` (a computed M98 P split by the VM).
-pub const VERSION: u16 = 8;
+/// `callsubpacked` (a computed M98 P split by the VM); version 9 `charge`
+/// and `goto`, so that every macro statement counts against the block
+/// budget, and `useralarm` (G65 H99 with a computed number).
+pub const VERSION: u16 = 9;
 
 /// Bytes before the first section: magic and version.
 pub const HEADER_LEN: usize = 6;

@@ -81,6 +81,15 @@ macro_rules! for_each_instr {
             /// loop table): a target in a loop that does not hold this one
             /// is jumped into from outside (E6008).
             GotoSeqIn = 0x24, "gotoseqin" { seq: Reg, inside: U32 };
+            /// A macro statement block that no other instruction charges
+            /// to the block budget: a WHILE's test, an IF whose THEN does
+            /// not run, an IF whose GOTO is not taken.
+            Charge = 0x25, "charge";
+            /// `GOTO n` to a number known at compile time: a jump that is
+            /// a block of its own, charged once whichever way it goes (a
+            /// backward `jump` is charged as closing a loop, a forward one
+            /// not at all).
+            Goto = 0x26, "goto" { target: Pc };
             /// The guard of a `/n` block (block delete): continue at
             /// `target`, the code after the block, when block-skip switch
             /// `switch` is on as the block is read; else run the block.

@@ -283,7 +283,9 @@ pub fn loops(module: &Module) -> Vec<(u32, u32)> {
     let mut loops: Vec<(u32, u32)> = (0..)
         .zip(&module.code)
         .filter_map(|(pc, instr)| match *instr {
-            isa::Instr::Jump { target } if target <= pc => Some((target, pc)),
+            isa::Instr::Jump { target } | isa::Instr::Goto { target } if target <= pc => {
+                Some((target, pc))
+            }
             _ => None,
         })
         .collect();

@@ -407,6 +407,16 @@ impl<'a, 'f> Lower<'a, 'f> {
                 self.jump(pc, target);
                 return false;
             }
+            Goto { target } => {
+                // The GOTO block; a backward one is charged as the loop's
+                // round, one that leaves the loop by the interpreter.
+                if target > pc && self.region.contains(target) {
+                    self.charge(pc);
+                }
+                self.jump(pc, target);
+                return false;
+            }
+            Charge => self.charge(pc),
             _ => {
                 self.exit_at(pc);
                 return false;

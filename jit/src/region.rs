@@ -61,6 +61,7 @@ pub fn is_native(instr: &Instr) -> bool {
         BitAnd { .. } | BitOr { .. } | BitXor { .. } | Func { .. } | Atan2 { .. } => true,
         AddK { .. } | SubK { .. } | MulK { .. } | DivK { .. } => true,
         Cmp { .. } | CmpK { .. } | Jump { .. } | JumpIfNot { .. } => true,
+        Goto { .. } | Charge => true,
         Word { .. } | WordK { .. } => true,
         LoadVar { var, .. } => Place::of(var) != Place::Other,
         StoreVar { var, .. } => Place::of(var).is_cached(),
@@ -85,6 +86,7 @@ pub fn is_pure(instr: &Instr) -> bool {
     use Instr::*;
     match *instr {
         Jump { .. } | JumpIfNot { .. } | Word { .. } | WordK { .. } | StoreVar { .. } => false,
+        Goto { .. } | Charge => false,
         _ => is_native(instr),
     }
 }
@@ -183,7 +185,7 @@ impl Region {
     fn note(&mut self, pc: u32, instr: &Instr) {
         let next = pc + 1;
         match *instr {
-            Instr::Jump { target } | Instr::JumpIfNot { target, .. } => {
+            Instr::Jump { target } | Instr::Goto { target } | Instr::JumpIfNot { target, .. } => {
                 if self.contains(target) {
                     self.leaders.insert(target);
                 }
@@ -231,6 +233,11 @@ fn registers(instr: &Instr) -> Vec<u8> {
 /// from there.
 pub fn dead_at(code: &[Instr], pc: u32, r: u8) -> bool {
     for instr in code.iter().skip(pc as usize) {
+        // (A charge touches no register; code that leaves there for the
+        // budget's alarm reads none again.)
+        if *instr == Instr::Charge {
+            continue;
+        }
         if !is_pure(instr) {
             return false;
         }

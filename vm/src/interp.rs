@@ -461,14 +461,20 @@ impl Vm {
     /// A tier may take over at a backward jump; if its code runs a block,
     /// the jump ends as that block's instruction would.
     fn jump(&mut self, target: u32, sink: &mut dyn Sink) -> Result<Next, Fault> {
+        if target < self.pc {
+            self.count_block()?;
+        }
+        self.transfer(target, sink)
+    }
+
+    /// Continues at `target`, already charged: a tier may take over at a
+    /// backward transfer.
+    fn transfer(&mut self, target: u32, sink: &mut dyn Sink) -> Result<Next, Fault> {
         let from = self.pc - 1;
         self.pc = target;
-        if target <= from {
-            self.count_block()?;
-            if self.tier.is_some() {
-                if let Some(ran) = self.enter_tier(Entry::BackEdge { from }, sink) {
-                    return ran;
-                }
+        if target <= from && self.tier.is_some() {
+            if let Some(ran) = self.enter_tier(Entry::BackEdge { from }, sink) {
+                return ran;
             }
         }
         Ok(Next::Go)
@@ -612,6 +618,13 @@ impl Vm {
             Instr::DivK { dst, a, k } => self.bin_k(Bin::Div, dst, a, k)?,
             Instr::CmpK { dst, a, k, op } => self.compare(op, dst, self.reg(a), self.konst(k))?,
             Instr::Jump { target } => return self.jump(target, sink),
+            Instr::Goto { target } => {
+                // Charged here as the GOTO block, so a backward one is not
+                // charged again as closing a loop.
+                self.count_block()?;
+                return self.transfer(target, sink);
+            }
+            Instr::Charge => self.count_block()?,
             Instr::JumpIfNot { cond, target } => {
                 if value::compare(Rel::Eq, self.reg(cond), 0.0) == 1.0 || is_vacant(self.reg(cond))
                 {

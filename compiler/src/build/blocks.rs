@@ -109,9 +109,26 @@ impl Builder<'_> {
         at
     }
 
+    /// As [`Builder::jump_later`], for a `GOTO n` (charged as a block).
+    pub(super) fn goto_later(&mut self) -> Handle<ir::Block> {
+        let at = self.open();
+        self.terminate(Terminator::GotoKnown(at));
+        at
+    }
+
+    /// The other way of an IF: a block that charges the IF to the budget
+    /// (`at`'s branch goes there), alone, so that a jump to the code after
+    /// it is not charged.
+    pub(super) fn charge_otherwise(&mut self, at: Handle<ir::Block>) {
+        let other = self.here();
+        self.patch_branch(at, other);
+        self.push(Op::Charge);
+        self.here();
+    }
+
     pub(crate) fn patch_jump(&mut self, at: Handle<ir::Block>, target: Handle<ir::Block>) {
         if let Some(ir::Block {
-            term: Some(Terminator::Jump(t)),
+            term: Some(Terminator::Jump(t) | Terminator::GotoKnown(t)),
             ..
         }) = self.block_mut(at)
         {

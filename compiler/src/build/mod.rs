@@ -553,17 +553,21 @@ impl<'a> Builder<'a> {
                 let c = self.cond(cond);
                 let at = self.branch(c);
                 self.build_stmt(then, block, st);
+                let over = self.jump_later();
+                self.charge_otherwise(at);
                 let here = self.here();
-                self.patch_branch(at, here);
+                self.patch_jump(over, here);
             }
             Stmt::While { cond, label, span } => {
                 let start = self.here();
+                self.push(Op::Charge);
                 let c = self.cond(cond);
                 let exit = self.branch(c);
                 self.open_loop(label.value, start, vec![exit], *span, label.span, st);
             }
             Stmt::Do { label, span } => {
                 let start = self.here();
+                self.push(Op::Charge);
                 self.open_loop(label.value, start, Vec::new(), *span, label.span, st);
             }
             Stmt::End { label, span } => {
@@ -668,7 +672,7 @@ impl<'a> Builder<'a> {
                         format!("GOTO {n}: sequence numbers are 1…99999"),
                     );
                 } else {
-                    let at = self.jump_later();
+                    let at = self.goto_later();
                     let loops = st.loops.iter().map(|l| l.id).collect();
                     st.gotos.push(Pending {
                         at,
@@ -685,8 +689,7 @@ impl<'a> Builder<'a> {
             }
         }
         if let Some(at) = skip {
-            let here = self.here();
-            self.patch_branch(at, here);
+            self.charge_otherwise(at);
         }
     }
 

@@ -399,7 +399,7 @@ fn transfer(f: &Function, op: &Op, facts: &mut Facts) {
         }
         Op::Nc(nc) => nc_block(f, nc, facts),
         Op::ModalCancel => facts.g66 = false,
-        Op::Seq(..) | Op::Alarm { .. } | Op::UserAlarm { .. } => {}
+        Op::Seq(..) | Op::Alarm { .. } | Op::UserAlarm { .. } | Op::Charge => {}
     }
 }
 

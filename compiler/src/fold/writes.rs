@@ -101,7 +101,11 @@ fn own_writes(f: &Function) -> Writes {
                 Some(vars) => w.vars.extend(vars),
                 None => w.any = true,
             },
-            Op::Seq(..) | Op::Alarm { .. } | Op::UserAlarm { .. } | Op::ModalCancel => {}
+            Op::Seq(..)
+            | Op::Alarm { .. }
+            | Op::UserAlarm { .. }
+            | Op::ModalCancel
+            | Op::Charge => {}
         }
     }
     w

@@ -143,6 +143,10 @@ pub enum Op {
     UserAlarm { q: Handle<Expr>, msg: StrId },
     /// G67: the modal call ends.
     ModalCancel,
+    /// A macro statement block that nothing else it runs charges to the
+    /// block budget (machine.md §4: every executed block counts): a WHILE
+    /// or DO, an IF whose THEN or GOTO does not run.
+    Charge,
 }
 
 /// Which variable an assignment writes.
@@ -443,6 +447,9 @@ pub enum Terminator {
     Follow(Handle<Block>),
     /// An unconditional jump.
     Jump(Handle<Block>),
+    /// `GOTO n` to a block known at compile time: a jump that is a block
+    /// of its own, charged to the budget once whichever way it goes.
+    GotoKnown(Handle<Block>),
     /// Goes on into `then` (the next block of the layout) when `cond` is
     /// non-zero, else jumps to `otherwise`.
     Branch {
@@ -550,7 +557,9 @@ impl Terminator {
     /// go to blocks found at run time), the fall-through edge first.
     pub fn successors(&self) -> impl Iterator<Item = Handle<Block>> {
         let (a, b) = match self {
-            Terminator::Follow(b) | Terminator::Jump(b) => (Some(*b), None),
+            Terminator::Follow(b) | Terminator::Jump(b) | Terminator::GotoKnown(b) => {
+                (Some(*b), None)
+            }
             Terminator::Branch {
                 then, otherwise, ..
             } => (Some(*then), Some(*otherwise)),

@@ -150,6 +150,7 @@ impl Printer<'_> {
                 format!("alarm 500+[{}] {:?}", self.expr(*q), self.string(msg.0))
             }
             Op::ModalCancel => "g67".into(),
+            Op::Charge => "charge".into(),
         }
     }
 
@@ -157,6 +158,7 @@ impl Printer<'_> {
         match t {
             Terminator::Follow(b) => format!("follow {}", self.name(*b)),
             Terminator::Jump(b) => format!("jump {}", self.name(*b)),
+            Terminator::GotoKnown(b) => format!("goto {}", self.name(*b)),
             Terminator::Branch {
                 cond,
                 then,

@@ -176,7 +176,7 @@ impl Checker<'_> {
 
     fn op(&mut self, op: &Op, loc: Loc) {
         match op {
-            Op::Seq(..) | Op::ModalCancel => {}
+            Op::Seq(..) | Op::ModalCancel | Op::Charge => {}
             Op::Nc(nc) => self.nc(nc, loc),
             Op::Assign { target, value, msg } => {
                 self.expr(*value, loc);
@@ -274,6 +274,7 @@ impl Checker<'_> {
             Terminator::Call { call, .. } => self.call(call, loc),
             Terminator::Follow(_)
             | Terminator::Jump(_)
+            | Terminator::GotoKnown(_)
             | Terminator::Skip { .. }
             | Terminator::Return { seq: None }
             | Terminator::Halt

@@ -633,7 +633,7 @@ impl<'a> Walk<'a> {
                 pos: [Fact::Unknown; 2],
                 ..s
             },
-            Op::Seq(..) | Op::Alarm { .. } | Op::UserAlarm { .. } => s,
+            Op::Seq(..) | Op::Alarm { .. } | Op::UserAlarm { .. } | Op::Charge => s,
         }
     }
 

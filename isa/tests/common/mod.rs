@@ -188,7 +188,8 @@ pub fn typed_module() -> Module {
 }
 
 /// A main program of arithmetic and a comparison with constant operands
-/// (`addk`, `subk`, `mulk`, `divk`, `cmpk`, format version 7), on `#100`.
+/// (`addk`, `subk`, `mulk`, `divk`, `cmpk`, format version 7), on `#100`;
+/// `charge` and `goto` (version 9).
 pub fn constant_operands_module() -> Module {
     use Instr::*;
     let code = vec![
@@ -204,6 +205,8 @@ pub fn constant_operands_module() -> Module {
             op: 3,
         },
         StoreVar { var: 101, src: 1 },
+        Charge,
+        Goto { target: 10 },
         UserAlarm { q: 1, msg: 0 },
         Halt,
     ];
