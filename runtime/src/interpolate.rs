@@ -600,9 +600,13 @@ impl<P: Plc> Engine<P> {
         core::mem::take(&mut self.reset_done)
     }
 
-    /// Display shift and tail after a reset (the host re-seeds them).
+    /// Display shift and tail at power-on and after a reset (the host
+    /// re-seeds them). The queue takes the shift too: an item that is no
+    /// move (a dwell, an M code, a T) carries the queue's shift, which the
+    /// work frame is shown in while it runs.
     pub fn reseed(&mut self, shift: V2) {
         self.shift = shift;
+        self.q.set_shift(shift);
         self.q.set_tail(self.pos);
     }
 

@@ -555,6 +555,13 @@ impl Planner {
         self.shift
     }
 
+    /// Sets the shift items queued from now on get: the power-on work
+    /// zero, or the one a restarted run begins with (until a move or an
+    /// origin change sets another).
+    pub fn set_shift(&mut self, shift: V2) {
+        self.shift = shift;
+    }
+
     /// Marks the last queued item as the end of an NC block.
     pub fn mark_block_end(&mut self, block: u32) {
         if let Some(k) = self.len.checked_sub(1) {
