@@ -107,6 +107,9 @@ pub struct Plot {
     runs: Vec<(Motion, Vec<(f64, f64)>)>,
     /// The last set point, kept even when dropped, to end each run on it.
     last: Option<(Motion, (f64, f64))>,
+    /// Machine minus work of the last set point, (Z, radius): where it
+    /// changes the work frame moved (`reframe`).
+    shift: Option<(f64, f64)>,
     marks: Vec<(Mark, (f64, f64))>,
     tool: Option<u32>,
     stock: Option<Stock>,
@@ -126,6 +129,7 @@ impl Plot {
     /// Accounts one period (work coordinates: what the program wrote).
     pub fn add(&mut self, p: &SetPoint) {
         let pt = (p.z, p.x * 0.5);
+        self.reframe(pt, (p.axis_z - p.z, 0.5 * (p.axis_x - p.x)));
         if self.last.is_none() {
             self.marks.push((Mark::Start, pt));
         }
@@ -147,7 +151,7 @@ impl Plot {
             return;
         }
         let open = matches!(self.runs.last(), Some((k, _)) if *k == kind)
-            && !matches!(self.last, Some((Motion::None, _)));
+            && matches!(self.last, Some((k, _)) if k != Motion::None);
         if !open {
             self.close();
             let start = self.last.map_or(pt, |(_, q)| q);
@@ -164,13 +168,37 @@ impl Plot {
         self.last = Some((kind, pt));
     }
 
-    /// Ends the open run on the last point seen.
+    /// Ends the open run on the last point seen. A run is open while the
+    /// last point moved: a standing one (or a frame change) closed it
+    /// already, and its point may lie in another frame than the run.
     fn close(&mut self) {
-        if let (Some((_, pts)), Some((_, q))) = (self.runs.last_mut(), self.last) {
+        let Some((kind, q)) = self.last else { return };
+        if kind == Motion::None {
+            return;
+        }
+        if let Some((_, pts)) = self.runs.last_mut() {
             if pts.last() != Some(&q) {
                 pts.push(q);
             }
         }
+    }
+
+    /// An origin change (G50, G52, G54–G59, a tool offset a G28 cancels)
+    /// moves the work point without motion: the open run ends, and the
+    /// next one starts where the axes stood, in the new frame, so no
+    /// segment joins the two frames. A tool offset taking effect changes
+    /// the shift while the work point stands: nothing to do.
+    fn reframe(&mut self, pt: (f64, f64), shift: (f64, f64)) {
+        let Some(old) = self.shift.replace(shift) else {
+            return;
+        };
+        let Some((_, q)) = self.last else { return };
+        if !differ(old, shift) || !differ(q, pt) {
+            return;
+        }
+        self.close();
+        let at = (q.0 + old.0 - shift.0, q.1 + old.1 - shift.1);
+        self.last = Some((Motion::None, at));
     }
 
     /// The leftmost Z of the cutting moves, if anything was cut.
@@ -323,6 +351,13 @@ impl Plot {
             );
         }
     }
+}
+
+/// Two points (or shifts) further apart than rounding: machine − work
+/// is computed afresh each period, and a tool offset's last period puts
+/// the work point back within rounding of where it stood.
+fn differ(a: (f64, f64), b: (f64, f64)) -> bool {
+    (a.0 - b.0).abs() > 1e-9 || (a.1 - b.1).abs() > 1e-9
 }
 
 /// The mapping from mm to pixels and the fixed parts of the picture.
@@ -591,15 +626,117 @@ fn escape(t: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use alloc::vec;
 
+    /// A period at work X`x` Z`z`, the axes there too (no work offset).
     fn at(x: f64, z: f64, motion: Motion, tool: u32) -> SetPoint {
         SetPoint {
             x,
             z,
+            axis_x: x,
+            axis_z: z,
             motion,
             tool,
             ..SetPoint::default()
         }
+    }
+
+    /// A period at work X`x` Z`z` (X a diameter) whose axes stand at
+    /// work + `shift` (X diameter, Z).
+    fn shifted(x: f64, z: f64, shift: (f64, f64), motion: Motion) -> SetPoint {
+        SetPoint {
+            axis_x: x + shift.0,
+            axis_z: z + shift.1,
+            ..at(x, z, motion, 1)
+        }
+    }
+
+    /// The runs of a plot of one kind, (Z, radius) points.
+    fn runs_of(p: &Plot, kind: Motion) -> Vec<Vec<(f64, f64)>> {
+        let runs = p.runs.iter().filter(|(k, _)| *k == kind);
+        runs.map(|(_, pts)| pts.clone()).collect()
+    }
+
+    /// `G00 X20 Z5; G01 Z-10; G50 X60 Z20; G01 Z0; G00 X80 Z30` from
+    /// machine zero, no work offset: G50 makes machine X20 Z−10 work X60
+    /// Z20, a shift (machine − work) of X−40 Z−30. The cuts are Z5 → Z−10
+    /// at radius 10 and Z20 → Z0 at radius 30, two runs; the last rapid
+    /// starts at the second cut's end, (Z0, r30).
+    #[test]
+    fn an_origin_change_draws_no_segment() {
+        let (old, new) = ((0.0, 0.0), (-40.0, -30.0));
+        let mut p = Plot::new();
+        p.add(&shifted(0.0, 0.0, old, Motion::None));
+        p.add(&shifted(10.0, 2.5, old, Motion::Rapid));
+        p.add(&shifted(20.0, 5.0, old, Motion::Rapid));
+        p.add(&shifted(20.0, 5.0, old, Motion::None));
+        p.add(&shifted(20.0, -2.0, old, Motion::Feed));
+        p.add(&shifted(20.0, -10.0, old, Motion::Feed));
+        p.add(&shifted(20.0, -10.0, old, Motion::None));
+        // The first period after G50 moves from rest: 0.001 mm.
+        p.add(&shifted(60.0, 19.999, new, Motion::Feed));
+        p.add(&shifted(60.0, 0.0, new, Motion::Feed));
+        p.add(&shifted(60.0, 0.0, new, Motion::None));
+        p.add(&shifted(80.0, 30.0, new, Motion::Rapid));
+        p.close();
+        let feeds = runs_of(&p, Motion::Feed);
+        assert_eq!(
+            feeds,
+            [
+                vec![(5.0, 10.0), (-2.0, 10.0), (-10.0, 10.0)],
+                // (19.999 is within KEEP_MM of the start: dropped.)
+                vec![(20.0, 30.0), (0.0, 30.0)]
+            ]
+        );
+        let rapids = runs_of(&p, Motion::Rapid);
+        assert_eq!(
+            rapids,
+            [
+                vec![(0.0, 0.0), (2.5, 5.0), (5.0, 10.0)],
+                vec![(0.0, 30.0), (30.0, 40.0)]
+            ]
+        );
+    }
+
+    /// G52 between two rapids, the frame changing while the axes stand (a
+    /// standing period in the new frame): the first rapid ends where it
+    /// went, the second starts where the axes stood, in the new frame.
+    /// G52 X5 Z5 at work X10 Z0 makes it X5 Z−5 (shift X+5 Z+5).
+    #[test]
+    fn a_standing_origin_change_leaves_the_run_before_alone() {
+        let (old, new) = ((0.0, 0.0), (5.0, 5.0));
+        let mut p = Plot::new();
+        p.add(&shifted(0.0, 10.0, old, Motion::None));
+        p.add(&shifted(10.0, 0.0, old, Motion::Rapid));
+        p.add(&shifted(10.0, 0.0, old, Motion::None));
+        p.add(&shifted(5.0, -5.0, new, Motion::None));
+        p.add(&shifted(5.0, -5.0, new, Motion::Dwell));
+        p.add(&shifted(0.0, 0.0, new, Motion::Rapid));
+        p.close();
+        let rapids = runs_of(&p, Motion::Rapid);
+        assert_eq!(
+            rapids,
+            [vec![(10.0, 0.0), (0.0, 5.0)], vec![(-5.0, 2.5), (0.0, 0.0)]]
+        );
+    }
+
+    /// A tool offset taking effect moves the axes while the work point
+    /// stands: no frame change for the plot, and the rapid after it
+    /// starts from the work point.
+    #[test]
+    fn a_tool_offset_is_no_frame_change() {
+        let mut p = Plot::new();
+        p.add(&shifted(100.0, 50.0, (-100.0, -50.0), Motion::None));
+        p.add(&shifted(100.0, 50.0, (-101.0, -49.5), Motion::Rapid));
+        p.add(&shifted(100.0, 50.0, (-102.5, -48.8), Motion::Rapid));
+        p.add(&shifted(100.0, 50.0, (-102.5, -48.8), Motion::None));
+        p.add(&shifted(20.0, 5.0, (-102.5, -48.8), Motion::Rapid));
+        p.close();
+        let rapids = runs_of(&p, Motion::Rapid);
+        assert_eq!(
+            rapids,
+            [vec![(50.0, 50.0)], vec![(50.0, 50.0), (5.0, 10.0)]]
+        );
     }
 
     /// A part cut between Z0 and Z−50 at diameters 20 to 40, with a
