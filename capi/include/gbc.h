@@ -462,7 +462,8 @@ typedef struct GbcStateInfo {
    */
   uint32_t alarm_code;
   /**
-   * NC blocks the VM has executed (it runs ahead of the motion).
+   * Blocks the VM has executed, as the block budget counts them (it
+   * runs ahead of the motion).
    */
   uint64_t blocks;
 } GbcStateInfo;

@@ -244,7 +244,8 @@ pub struct GbcStateInfo {
     pub message: u32,
     /// The alarm code when `state` is [`GbcRunState::Alarm`], else 0.
     pub alarm_code: u32,
-    /// NC blocks the VM has executed (it runs ahead of the motion).
+    /// Blocks the VM has executed, as the block budget counts them (it
+    /// runs ahead of the motion).
     pub blocks: u64,
 }
 

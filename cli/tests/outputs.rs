@@ -88,6 +88,39 @@ fn stats_alone_go_to_stdout_and_beside_the_canon_to_stderr() {
     assert!(text(&out.stderr).starts_with("cycle time: "));
 }
 
+/// `blocks` counts as the block budget does, the final M30 included: the
+/// assignment 1, the G00 1, the G90 from outside the stock its 4 moves,
+/// the M98 1, O1001's two blocks (its M99 too) 2, M30 1: 10 blocks. The
+/// run fits `--max-blocks 10` and not 9.
+#[test]
+fn stats_count_the_blocks_the_budget_counts() {
+    let src =
+        "O0043\n#1=2\nG98 G00 X50 Z2\nG90 X40 Z-20 F600\nM98 P1001\nM30\nO1001\nG00 X60\nM99\n";
+    let d = compiled("blocks", src);
+    let out = gbvm(&["run", "part.gbc", "--stats"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let s = text(&out.stdout);
+    assert!(s.ends_with("blocks: 10\n"), "{s}");
+    let out = gbvm(&["run", "part.gbc", "--stats=json"], &d);
+    let r: Report = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r.blocks, 10);
+    let out = gbvm(&["run", "part.gbc", "--max-blocks", "10"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let out = gbvm(&["run", "part.gbc", "--max-blocks", "9", "--stats"], &d);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    // At the M30 (line 6), the tenth block: it did not run, 9 did.
+    assert!(
+        text(&out.stderr).contains("part.nc:6:1: alarm[E6005]"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert!(
+        text(&out.stdout).ends_with("blocks: 9\n"),
+        "{}",
+        text(&out.stdout)
+    );
+}
+
 #[test]
 fn stats_as_json_read_back() {
     let d = compiled("json", TWO_TOOLS);

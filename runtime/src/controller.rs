@@ -206,7 +206,10 @@ impl<P: Plc> Controller<P> {
         &self.ra.machine
     }
 
-    /// NC blocks the VM has executed.
+    /// Blocks the VM has executed, as the block budget counts them
+    /// ([`Controller::set_max_blocks`]): each block each time it runs,
+    /// macro statements, calls, M99 and the final M30 included, a canned
+    /// cycle as the moves it makes.
     pub fn blocks(&self) -> u64 {
         self.ra.blocks
     }

@@ -95,6 +95,8 @@ pub(crate) struct RunAhead {
     scratch: Vec<Command>,
     vm_state: VmState,
     vm_alarm: Option<vm::Alarm>,
+    /// Blocks executed, as the block budget (E6005) counts them, over
+    /// all runs since the load (a reset starts a new VM).
     pub(crate) blocks: u64,
     block: u32,
     max_blocks: u64,
@@ -222,10 +224,20 @@ impl RunAhead {
         }
     }
 
+    /// The blocks the VM has executed, as the block budget counts them;
+    /// the block that passed the budget (E6005) did not run.
+    fn charged(&self) -> u64 {
+        self.vm.blocks_charged().min(self.vm.max_blocks)
+    }
+
     /// Executes one block of the VM and stages its commands.
     fn step_vm(&mut self, tap: &mut dyn Sink) {
         self.events.clear();
+        let charged = self.charged();
         let status = self.vm.step(1 << 16, &mut self.events);
+        // Counted as the budget counts: a step that ends the run (M30,
+        // M02) or stops it may have run a block too.
+        self.blocks += self.charged().saturating_sub(charged);
         let loc = self.vm.last_loc();
         let tag = Tag {
             file: loc.file,
@@ -321,7 +333,6 @@ impl RunAhead {
     /// A block has run: what its end means for the runtime (an exact stop,
     /// a stroke area, the end of its commands, a skip move to wait for).
     fn block_done(&mut self, tag: Tag) {
-        self.blocks += 1;
         self.resync(tag);
         if self.vm.nc.thread_waiting() {
             self.wait_tag = Some(tag);

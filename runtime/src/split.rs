@@ -272,7 +272,8 @@ impl Interpreter {
         self.ra.message(n)
     }
 
-    /// NC blocks the VM has executed.
+    /// Blocks the VM has executed, as the block budget counts them
+    /// ([`crate::Controller::blocks`]).
     pub fn blocks(&self) -> u64 {
         self.ra.blocks
     }

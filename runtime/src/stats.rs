@@ -44,7 +44,8 @@ pub struct Stats {
     pub rapid_mm: f64,
     /// How far the C axis turned, degrees; `None` without a C axis.
     pub c_deg: Option<f64>,
-    /// NC blocks executed.
+    /// Blocks executed, as the block budget counts them
+    /// ([`crate::Controller::blocks`]).
     pub blocks: u64,
     last: Option<Place>,
     last_c: Option<f64>,
