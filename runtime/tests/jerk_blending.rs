@@ -129,6 +129,30 @@ fn polylines_under_jerk_limiting_are_certified() {
     }
 }
 
+/// A full circle after a blended line: the averaged path passes the
+/// line's end (the circle's start and end) within 0.0002 mm on the way
+/// in and again on the way round, and the certificate holds both to it
+/// in order (the circle's at its end, not where it begins). Also a
+/// full circle closing a chain of arcs, and one at the program's end.
+#[test]
+fn full_circles_after_blended_moves_are_certified() {
+    let machine = Machine::reference();
+    let programs = [
+        "O0030\nG98 G00 X-20 Z0\nG01 Z-10 F2000\nG02 X-20 Z-10 I10 K0\nG01 Z-20\nM30\n",
+        "O0031\nG98 G00 X-20 Z0\nG01 Z-10 F2000\nG02 X-20 Z-10 I10 K0\nM30\n",
+        "O0006\nG98 G00 X-20 Z0\nG01 Z-10 F3000\nG02 X-60 Z-30 R20\nG03 X-100 Z-50 R20\n\
+         G02 X-100 Z-50.002 R0.5\nG01 Z-60\nG02 X-104 Z-62 I-2 K0 F4000\nG03 X-104 Z-62 I0 K-3\nM30\n",
+        "O0007\nG98 G00 X-10 Z-2\nG01 Z-5 F5000\nG03 X-14 Z-7 R2\nG01 X-60 F5000\nG02 X-100 Z-27 R20\n\
+         G01 Z-60 F5000\nG02 X-100 Z-60 I20 K0 F5000\nM30\n",
+    ];
+    for src in programs {
+        for jerk in [false, true] {
+            let r = certify(src, &machine, jerk);
+            assert_eq!(r, Some(Ok(())), "jerk {jerk}:\n{src}");
+        }
+    }
+}
+
 #[test]
 fn a_feed_hold_in_a_blended_polyline_stands_and_goes_on() {
     // Feed hold at 2 s, in the middle of the chords: the path brakes, the

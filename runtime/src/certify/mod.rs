@@ -236,6 +236,11 @@ impl fmt::Display for Figure {
         let unit = self.subject.unit(self.kind);
         write!(f, "at {:.6} s: ", self.time_s)?;
         match self.kind {
+            // (A full circle's end point the tool never came back to.)
+            Kind::EndPoint if self.value.is_infinite() => write!(
+                f,
+                "a canon end point is not reached: the path does not come back to it (the end of a full circle, where it began)"
+            ),
             Kind::EndPoint => write!(
                 f,
                 "a canon end point is not reached: the path passes {:.4} mm from it at the nearest (tolerance {} mm)",
@@ -315,6 +320,9 @@ struct Pending {
     /// The nearest approach so far: distance and place.
     nearest: f64,
     at: (f64, u16, u32),
+    /// A full circle ([`comes_back`]) whose end point the tool has not
+    /// come back to yet: it starts on it, so there it is not due.
+    away: bool,
     /// A move of polar or cylindrical interpolation (`end` its joints X
     /// and Z): the walk holds the tool to its end in space.
     plane: Option<PlaneEnd>,
@@ -373,8 +381,9 @@ impl PlaneTrack {
 enum Shape {
     /// A straight feed (G01, G31): the segment from the start.
     Line,
-    /// A circular feed: the circle about `centre` through the end point.
-    Arc { centre: V2 },
+    /// A circular feed: the circle about `centre` through the end point,
+    /// counter-clockwise (G03) or not.
+    Arc { centre: V2, ccw: bool },
     /// A rapid: each axis runs at its own rate (a dog-leg), so the tool
     /// stays within the rectangle of the start and the end.
     Rapid,
@@ -812,6 +821,16 @@ impl Certifier {
         let mut first = true;
         while let Some(mut m) = self.pending.front().copied() {
             let way = step.way(&m);
+            if m.away {
+                if !way.returns(from, m.tol) {
+                    self.waiting(p);
+                    break;
+                }
+                m.away = false;
+                if let Some(f) = self.pending.front_mut() {
+                    f.away = false;
+                }
+            }
             // After an end point reached in this step, the next is due in
             // it only where the rest of the step runs past it. One the
             // step ends on or short of may be a µm move's the tool runs
@@ -853,6 +872,17 @@ impl Certifier {
             }
             self.nearer(d, p);
             break;
+        }
+    }
+
+    /// The next end point is a full circle's, and the tool has not come
+    /// back to it: where the walk began to wait, the place a miss is
+    /// reported at if it never comes back.
+    fn waiting(&mut self, p: &SetPoint) {
+        if let Some(f) = self.pending.front_mut() {
+            if f.at.0 == 0.0 {
+                f.at = (p.time_s, p.file, p.line);
+            }
         }
     }
 
@@ -1060,6 +1090,7 @@ impl Certifier {
             nearest: f64::INFINITY,
             at: (0.0, 0, 0),
             plane: None,
+            away: comes_back(self.last_end, end, shape),
         });
         self.last_end = Some(end);
     }
@@ -1086,6 +1117,7 @@ impl Certifier {
                 free_r: r.is_none(),
                 free_z: z.is_none(),
             }),
+            away: false,
         });
         self.last_end = r.zip(z).map(|(r, z)| V2::new(r, z));
     }
@@ -1211,7 +1243,7 @@ fn frame_kept(prev: &SetPoint, p: &SetPoint) -> bool {
 fn off_shape(m: &Pending, p: V2) -> Option<f64> {
     match m.shape {
         Shape::Line => Some(seg_dist(p, m.start?, m.end)),
-        Shape::Arc { centre } => {
+        Shape::Arc { centre, .. } => {
             let r = (m.end - centre).norm();
             let off = ((p - centre).norm() - r).abs();
             // An arc of a radius below the resolution runs as its chord
@@ -1231,6 +1263,27 @@ fn off_shape(m: &Pending, p: V2) -> Option<f64> {
         // (Threads: `Certifier::in_chain`.)
         Shape::Thread | Shape::Free => None,
     }
+}
+
+/// Whether a move from `start` to `end` of `shape` leaves its end point
+/// and comes back to it: a full circle, whose end is its start (as the
+/// runtime takes an arc whose ends are within 1e-9 mm, geom.rs), or an
+/// arc that ends within the tolerance of its start the long way round.
+/// The walk must not count its end point where the circle begins. Only
+/// from a radius of [`MICRO_ARC_MM`]: a smaller arc may run as its chord
+/// (and jerk limiting's averaging shrinks it), so the tool need not leave.
+fn comes_back(start: Option<V2>, end: V2, shape: Shape) -> bool {
+    let (Some(a), Shape::Arc { centre, ccw }) = (start, shape) else {
+        return false;
+    };
+    let (u, v) = (a - centre, end - centre);
+    if (end - a).norm() > END_POINT_MM || u.norm() < MICRO_ARC_MM {
+        return false;
+    }
+    // The turn from u to v the arc's way, in [0, 2π) (geom.rs `arc`).
+    let ang = libm::atan2(u.z * v.r - u.r * v.z, u.dot(v));
+    let sweep = crate::math::rem_euclid(if ccw { ang } else { -ang }, 2.0 * PI);
+    (end - a).norm() < 1e-9 || sweep > PI
 }
 
 /// The time a thread leg takes at `rpm` (its long-axis travel at lead
@@ -1367,6 +1420,16 @@ impl Way {
         }
     }
 
+    /// Whether the rest of the step from share `from` comes back to the
+    /// end point from away: it ends more than `tol` from it and nearer to
+    /// it than it began (a full circle's distance from its end grows
+    /// until the far side, then shrinks). Not across a frame jump.
+    fn returns(&self, from: f64, tol: f64) -> bool {
+        let began = norm3(sub3(self.e, self.at(from)));
+        let ends = norm3(sub3(self.e, self.b));
+        self.joined() && ends > tol && ends < began
+    }
+
     /// How far the end point is from the step's path from share `from`
     /// on.
     fn dist(&self, from: f64) -> f64 {
@@ -1410,9 +1473,10 @@ impl Sink for Certifier {
             Event::Line { x, z, .. } | Event::Skip { x, z } => {
                 self.push_move(x, z, None, Shape::Line)
             }
-            Event::Arc { x, z, cx, cz, .. } => {
+            Event::Arc { dir, x, z, cx, cz } => {
                 let centre = V2::from_xz(cx, cz);
-                self.push_move(x, z, None, Shape::Arc { centre })
+                let ccw = dir == nc::event::Dir::Ccw;
+                self.push_move(x, z, None, Shape::Arc { centre, ccw })
             }
             Event::Rapid { x, z, .. } => self.push_move(x, z, None, Shape::Rapid),
             Event::Ellipse { x, z, .. }
@@ -1821,6 +1885,125 @@ mod tests {
             .summary()
             .to_string()
             .contains("end points: 2 of 2 reached"));
+    }
+
+    /// How the trace of `full_circle` runs the circle.
+    #[derive(Clone, Copy)]
+    enum Round {
+        /// All the way round, back on its end point.
+        Whole,
+        /// Its last quarter spirals out to 0.002 mm beyond the end point
+        /// on the radius; the last line then runs back to its own end.
+        Wide,
+        /// Not at all: the tool goes straight on.
+        Skipped,
+    }
+
+    /// `G01 Z−10` from X20 Z0 (line 2), a full G03 circle about X16 Z−10
+    /// (radius 2, tangent to the line, line 3), `G01 Z−20` (line 4), at
+    /// 0.01 mm a period; the circle in 1257 periods (2π·2/1257 = 0.009997
+    /// mm of arc), run as `round` says.
+    fn full_circle(round: Round) -> Certifier {
+        let mut c = Certifier::new(&Config::default(), 20.0, 0.0, 0.0);
+        c.emit(Event::Line {
+            x: 20.0,
+            z: -10.0,
+            c: None,
+        });
+        c.emit(Event::Arc {
+            dir: nc::event::Dir::Ccw,
+            x: 20.0,
+            z: -10.0,
+            cx: 16.0,
+            cz: -10.0,
+        });
+        c.emit(Event::Line {
+            x: 20.0,
+            z: -20.0,
+            c: None,
+        });
+        let mut k = 0;
+        let mut step = |c: &mut Certifier, r: f64, z: f64, line: u32, motion: Motion| {
+            k += 1;
+            c.period(&SetPoint {
+                line,
+                ..at(k, (2.0 * r, z), (0.0, 0.0), motion)
+            });
+        };
+        step(&mut c, 10.0, 0.0, 2, Motion::None);
+        for i in 1..=1000 {
+            step(&mut c, 10.0, -0.01 * f64::from(i), 2, Motion::Feed);
+        }
+        let n = 1257;
+        let mut back = 0.0;
+        for i in 1..=n {
+            if let Round::Skipped = round {
+                break;
+            }
+            let phi = 2.0 * PI * f64::from(i) / f64::from(n);
+            // (Wide: the radius grows by 0.002 over the last quarter.)
+            if let Round::Wide = round {
+                back = (0.002 * (phi - 1.5 * PI) / (0.5 * PI)).max(0.0);
+            }
+            let rad = 2.0 + back;
+            step(
+                &mut c,
+                8.0 + rad * phi.cos(),
+                -10.0 - rad * phi.sin(),
+                3,
+                Motion::Arc,
+            );
+        }
+        for i in 1..=1000 {
+            let t = f64::from(i) / 1000.0;
+            step(
+                &mut c,
+                10.0 + back * (1.0 - t),
+                -10.0 - 10.0 * t,
+                4,
+                Motion::Feed,
+            );
+        }
+        c.finish(true);
+        c
+    }
+
+    /// A full circle starts on its end point, but that end point is due
+    /// when the tool comes back to it, not where it leaves it.
+    #[test]
+    fn a_full_circle_ends_where_it_comes_back() {
+        let c = full_circle(Round::Whole);
+        assert_eq!(c.worst(Kind::EndPoint), None, "{}", c.summary());
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 3 of 3 reached"));
+        // Coming back 0.002 mm wide of it is a miss, at the circle's last
+        // period (line 3): its chord ends 0.002 mm out on the radius and
+        // passes the end point at 0.002·cos(δ/2) ≈ 0.002 − 6e-9 mm (δ the
+        // 0.005 rad a period turns).
+        let c = full_circle(Round::Wide);
+        let f = *c.worst(Kind::EndPoint).expect("the circle's end is missed");
+        assert!(f.violates() && (f.value - 0.002).abs() < 1e-8, "{f:?}");
+        assert_eq!(f.line, 3);
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 2 of 3 reached"));
+        // A circle the tool never ran: its end point is not reached at its
+        // start. The miss is placed where the walk began to wait for it:
+        // the period that reached the circle's start (line 2's last).
+        let c = full_circle(Round::Skipped);
+        let f = *c
+            .worst(Kind::EndPoint)
+            .expect("the skipped circle is caught");
+        let at_1001 = (f.time_s - 1.001).abs() < 1e-9;
+        assert!(f.violates() && f.line == 2 && at_1001, "{f:?}");
+        assert!(f.to_string().contains("does not come back to it"), "{f}");
+        assert!(c
+            .summary()
+            .to_string()
+            .contains("end points: 1 of 3 reached"));
     }
 
     #[test]
