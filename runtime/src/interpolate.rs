@@ -107,8 +107,9 @@ pub struct SetPoint {
     /// Path speed over the period, mm/min (with C counted as mm, the
     /// combined speed of planner.rs, while C turns).
     pub feed: f64,
-    /// Source line of the block being executed (a move that waited in
-    /// the kernel for the next block keeps its own block's).
+    /// Source line of the block whose motion the period ran (a move that
+    /// waited in the kernel for the next block keeps its own block's; a
+    /// period that ends exactly on a corner, the block before it).
     pub line: u32,
     /// Its source file: an index into the module's file table
     /// (`isa::Module::files`; 0 is the main program's file).
@@ -292,7 +293,12 @@ pub struct Engine<P: Plc> {
     still: u8,
     shift: V2,
     fixed_work: Option<V2>,
+    /// The head item's block.
     tag: Tag,
+    /// The block this period's motion ran where it is not the head's: a
+    /// period that ends exactly on a corner ran the move before it, and
+    /// the trace names that one (formats.md, `line`).
+    ran: Option<Tag>,
     tool: u32,
     state: RunState,
     /// The head item has begun.
@@ -384,6 +390,7 @@ impl<P: Plc> Engine<P> {
             shift: V2::ZERO,
             fixed_work: None,
             tag: Tag::default(),
+            ran: None,
             tool: 1,
             state: RunState::Idle,
             started: false,
@@ -623,6 +630,7 @@ impl<P: Plc> Engine<P> {
         };
         self.spindle.update(self.dt, x);
         self.motion = Motion::None;
+        self.ran = None;
         if self.reset_req {
             self.reset_step();
         } else {
@@ -728,8 +736,8 @@ impl<P: Plc> Engine<P> {
             spindle_turns: self.spindle.turns(),
             c: self.cfg.c.map(|_| c),
             feed: self.path_step() / self.dt * 60.0,
-            line: self.tag.line,
-            file: self.tag.file,
+            line: self.ran.unwrap_or(self.tag).line,
+            file: self.ran.unwrap_or(self.tag).file,
             motion: self.motion,
             tool: self.tool,
         }
@@ -1400,6 +1408,7 @@ impl<P: Plc> Engine<P> {
                     self.cap_accel = self.cur.a;
                 }
                 ds -= rem;
+                self.ran_to_corner(ds);
                 self.pos = self.cur.to;
                 self.c = self.cur.c1;
                 self.q.pop();
@@ -1431,6 +1440,18 @@ impl<P: Plc> Engine<P> {
             self.c = self.cur.c1;
             self.v = v;
             return true;
+        }
+    }
+
+    /// The period crosses the head move's end with `ds` mm of its travel
+    /// left: with none (but a rounding residue), its motion ends on the
+    /// corner and it ran the head move, whatever zero-length moves it
+    /// crosses after it; with some, it runs on into the next.
+    fn ran_to_corner(&mut self, ds: f64) {
+        if ds > 1e-12 {
+            self.ran = None;
+        } else if self.ran.is_none() {
+            self.ran = Some(self.tag);
         }
     }
 

@@ -2,8 +2,8 @@
 //! [`CSV_HEADER`] or as JSON lines with the same fields. X is a diameter,
 //! in work coordinates as in the canon ([`Frame::Work`]) or in machine
 //! coordinates as the drives get it ([`Frame::Machine`]); `feed` is the
-//! actual path speed in mm/min; `line` the source line of the block being
-//! executed; `motion` the kind of motion of the period as a word
+//! actual path speed in mm/min; `line` the source line of the block whose
+//! motion the period runs; `motion` the kind of motion of the period as a word
 //! ([`crate::Motion::word`]); `tool` the active tool number; `file` the
 //! source file of the line (the name given to the compiler: a library
 //! program found with `-I` names its own file). Positions carry 6

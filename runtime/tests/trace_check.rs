@@ -690,3 +690,74 @@ fn a_waiting_element_runs_under_its_own_line() {
         .all(|&(x, z)| (29.5..=34.0).contains(&x) && z <= -15.0));
     assert!(on(6).iter().all(|&(x, z)| z == -25.0 && x >= 33.0));
 }
+
+/// Periods whose set point is exactly the end point `(x, z)` (X a
+/// diameter) of the move of line `line`, and the line each names.
+fn labels_at_end_points(r: &Run, ends: &[(f64, f64, u32)]) -> Vec<(u32, u32)> {
+    let at =
+        |p: &runtime::SetPoint, x: f64, z: f64| (p.x - x).abs() < 1e-9 && (p.z - z).abs() < 1e-9;
+    let mut out = Vec::new();
+    for p in r.pts.iter().filter(|p| p.motion == Motion::Feed) {
+        for &(x, z, line) in ends {
+            if at(p, x, z) {
+                out.push((line, p.line));
+            }
+        }
+    }
+    out
+}
+
+/// G64 corners: a period whose motion ends exactly on a corner ran the
+/// move before it, and the trace's `line` names that move's block; the
+/// period after it runs the next move and names the next block.
+#[test]
+fn a_period_ending_on_a_g64_corner_names_the_block_it_ran() {
+    let r = run("O0003\nG98 G64 G01 X-20 F2000\nZ-20\nX-40 Z-30\nZ-50\nX-30 Z-55\nM30\n");
+    assert_eq!(r.state, RunState::Ended);
+    let ends = [
+        (-20.0, 0.0, 2),
+        (-20.0, -20.0, 3),
+        (-40.0, -30.0, 4),
+        (-40.0, -50.0, 5),
+    ];
+    let seen = labels_at_end_points(&r, &ends);
+    // Each corner is the end of exactly one period (the motion runs on).
+    assert_eq!(seen.len(), 4, "{seen:?}");
+    for (own, named) in seen {
+        assert_eq!(
+            named, own,
+            "the period ending on line {own}'s end names {named}"
+        );
+    }
+    // The period after the first corner runs Z−20 (line 3).
+    let corner = |p: &runtime::SetPoint| (p.x + 20.0).abs() < 1e-9 && p.z.abs() < 1e-9;
+    let k = r.pts.iter().position(corner);
+    let next = k.and_then(|k| r.pts.get(k + 1));
+    assert!(next.is_some_and(|p| p.line == 3 && p.z < 0.0), "{next:?}");
+}
+
+/// µm moves blended at their corners (a zero-length one among them): each
+/// period that ends exactly on a move's end names that move's block, not
+/// the next one (and never the zero-length line 4, which has no motion).
+#[test]
+fn a_period_ending_on_a_short_move_names_its_block() {
+    let r = run(
+        "O0024\nG98 G00 X-20 Z0\nG01 X-20.0004 F1000\nG01 X-20.0004\nG01 Z-0.0003\n\
+                 G01 Z-0.0006\nG01 X-20.001 Z-0.001\nG01 X-20 Z-0.002\nG01 Z-0.052 F5000\nM30\n",
+    );
+    assert_eq!(r.state, RunState::Ended);
+    let ends = [
+        (-20.0004, 0.0, 3),
+        (-20.0004, -0.0003, 5),
+        (-20.0004, -0.0006, 6),
+        (-20.001, -0.001, 7),
+    ];
+    let seen = labels_at_end_points(&r, &ends);
+    assert!(seen.len() >= 3, "{seen:?}");
+    for (own, named) in seen {
+        assert_eq!(
+            named, own,
+            "the period ending on line {own}'s end names {named}"
+        );
+    }
+}

@@ -433,6 +433,11 @@ impl<P: Plc> Engine<P> {
     /// Moves to the chain's point: the moves before the `k`-th leave the
     /// queue, and the head is the one the point lies on.
     fn commit_chain_point(&mut self, at: ChainPoint, target: &Segment, lam: f64, v: f64) {
+        // A point on the k-th move's start ends the period on the corner:
+        // it ran the move before (`Engine::ran`).
+        if at.k > 0 && lam * target.len <= 1e-12 {
+            self.ran = self.q.get(at.k - 1).map(|it| it.tag);
+        }
         for _ in 0..at.k {
             self.q.pop();
         }
