@@ -98,6 +98,43 @@ pub fn same_file(a: &Path, b: &Path) -> bool {
     }
 }
 
+/// Where writing `path` would land: the file it names with every link
+/// resolved (a dangling link too: the file writing through it creates),
+/// or, for a name not there yet, its folder's real path and the name.
+/// `None` when that cannot be told (a missing folder, a link loop).
+pub fn landing(path: &Path) -> Option<PathBuf> {
+    let mut p = path.to_path_buf();
+    // (Past 40 links the system gives up too: a loop.)
+    for _ in 0..40 {
+        if let Ok(real) = p.canonicalize() {
+            return Some(real);
+        }
+        match std::fs::read_link(&p) {
+            // A relative target is relative to the link's folder.
+            Ok(target) => p = p.parent().map_or(target.clone(), |d| d.join(&target)),
+            Err(_) => {
+                let dir = match p.parent().filter(|d| !d.as_os_str().is_empty()) {
+                    Some(d) => d.canonicalize().ok()?,
+                    None => std::env::current_dir().ok()?,
+                };
+                return Some(dir.join(p.file_name()?));
+            }
+        }
+    }
+    None
+}
+
+/// Whether writing `out` would replace `other`: the same file (by any
+/// name, link or hard link), or the same place when neither is there yet
+/// (an output and the dependency file named alike). Writing to a device
+/// or a pipe (`/dev/null`) replaces nothing.
+pub fn replaces(out: &Path, other: &Path) -> bool {
+    if std::fs::metadata(out).is_ok_and(|m| !m.is_file()) {
+        return false;
+    }
+    same_file(out, other) || matches!((landing(out), landing(other)), (Some(a), Some(b)) if a == b)
+}
+
 /// Whether `bytes` are a compiled module rather than a source program.
 pub fn is_module(bytes: &[u8]) -> bool {
     bytes.starts_with(&isa::format::MAGIC)

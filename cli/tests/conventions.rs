@@ -178,6 +178,100 @@ fn make_dependencies_name_the_library_programs() {
     assert_eq!(rule, "out.gbc: main.nc lib/O1234.nc\n");
 }
 
+/// `-MF`, the default dependency name and `-o` never replace a file the
+/// compile read (by any name, link or hard link), nor the dependency file
+/// the output; a refused compile writes nothing and exits 1.
+#[test]
+fn a_dependency_file_replaces_nothing_the_compile_read() {
+    let d = dir("depguard");
+    std::fs::create_dir_all(d.join("lib")).unwrap();
+    let lib = "O1234\nG00 U1\nM99\n";
+    std::fs::write(d.join("lib/O1234.nc"), lib).unwrap();
+    let main = "M98 P1234\nM30\n";
+    for name in ["main.nc", "part.d"] {
+        std::fs::write(d.join(name), main).unwrap();
+    }
+    std::fs::write(d.join("lathe.toml"), "").unwrap();
+    std::os::unix::fs::symlink("main.nc", d.join("link.d")).unwrap();
+    std::fs::hard_link(d.join("main.nc"), d.join("hard.d")).unwrap();
+    // A link to the output, which is not there yet.
+    std::os::unix::fs::symlink("out.gbc", d.join("ahead.d")).unwrap();
+    let with_lib = |extra: &[&str]| {
+        let mut args = vec!["main.nc", "-I", "lib", "-o", "out.gbc"];
+        args.extend_from_slice(extra);
+        gbcc(&args, &d)
+    };
+    let cases: [(Output, &str); 9] = [
+        (with_lib(&["-MF", "main.nc"]), "is the input main.nc"),
+        (
+            with_lib(&["-MF", "./lib/../main.nc"]),
+            "is the input main.nc",
+        ),
+        (with_lib(&["-MF", "link.d"]), "is the input main.nc"),
+        (with_lib(&["-MF", "hard.d"]), "is the input main.nc"),
+        (with_lib(&["-MFlib/O1234.nc"]), "is the library program"),
+        (
+            with_lib(&["-MD", "-MF", "out.gbc"]),
+            "is the output out.gbc",
+        ),
+        (with_lib(&["-MF", "ahead.d"]), "is the output out.gbc"),
+        (
+            with_lib(&["--machine", "lathe.toml", "-MF", "lathe.toml"]),
+            "is the machine file lathe.toml",
+        ),
+        // The default name, the output's stem with `.d`, is the source.
+        (
+            gbcc(&["part.d", "-I", "lib", "-o", "part.gbc", "-MD"], &d),
+            "is the input part.d",
+        ),
+    ];
+    for (out, why) in cases {
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(
+            err.contains(why) && err.contains("refusing to overwrite"),
+            "{why}: {err}"
+        );
+        assert!(
+            !d.join("out.gbc").exists() && !d.join("part.gbc").exists(),
+            "{err}"
+        );
+    }
+    for name in ["main.nc", "part.d", "link.d", "hard.d"] {
+        assert_eq!(
+            std::fs::read_to_string(d.join(name)).unwrap(),
+            main,
+            "{name}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_to_string(d.join("lib/O1234.nc")).unwrap(),
+        lib
+    );
+    assert_eq!(std::fs::read_to_string(d.join("lathe.toml")).unwrap(), "");
+    // `-o` may not replace a library program either.
+    let out = gbcc(&["main.nc", "-I", "lib", "-o", "lib/O1234.nc"], &d);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert_eq!(
+        std::fs::read_to_string(d.join("lib/O1234.nc")).unwrap(),
+        lib
+    );
+    // A device replaces nothing: both may go to /dev/null.
+    let out = gbcc(
+        &[
+            "main.nc",
+            "-I",
+            "lib",
+            "-o",
+            "/dev/null",
+            "-MF",
+            "/dev/null",
+        ],
+        &d,
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+}
+
 #[test]
 fn the_error_cap_and_the_summary() {
     let d = dir("cap");

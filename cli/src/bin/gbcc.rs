@@ -458,16 +458,10 @@ fn write_output<W: std::io::Write>(
     let args = &job.args;
     let kind = Output::of(args);
     let dest = output_name(file, args.output.as_deref(), kind);
-    // `-o` was checked up front; a default name can meet the source too
-    // (a source named `part.gbc`).
-    if let Dest::File(out) = &dest {
-        if cli::io::same_file(file, out) {
-            reporter.driver_error(&format!(
-                "the output {} is the input: refusing to overwrite the source",
-                out.display()
-            ));
-            return Err(Exit::Usage);
-        }
+    let deps = dep_file(job, file, &dest);
+    if let Err(e) = check_overwrites(job, compiled, &dest, deps.as_ref()) {
+        reporter.driver_error(&e);
+        return Err(Exit::Usage);
     }
     let Some(module) = &compiled.module else {
         reporter.driver_error("no module was produced");
@@ -488,7 +482,10 @@ fn write_output<W: std::io::Write>(
         // Straight to the file: a large module is not copied whole first.
         (Output::Module, _) => dest.write_with(|sink| module.write_to(sink)),
     };
-    let written = written.and_then(|()| write_deps(job, file, &dest, compiled));
+    let written = match &deps {
+        Some(d) => written.and_then(|()| write_deps(job, d, compiled)),
+        None => written,
+    };
     written.map_err(|e| {
         reporter.driver_error(&e);
         Exit::Write
@@ -534,11 +531,17 @@ fn output_name(input: &Path, output: Option<&Path>, kind: Output) -> Dest {
     Dest::File(name.with_extension(ext))
 }
 
-/// `-MD`: the rule naming the source, the library programs and the
-/// machine file, in `-MF FILE` or beside the output as `NAME.d`.
-fn write_deps(job: &Job, input: &Path, dest: &Dest, c: &Compiled) -> Result<(), String> {
+/// `-MD`/`-MF`: the make rule's target (the output, or the name it would
+/// have had when it goes to standard output) and the file the rule goes
+/// in: `-MF FILE`, or beside the output as `NAME.d`.
+struct DepFile {
+    target: PathBuf,
+    path: PathBuf,
+}
+
+fn dep_file(job: &Job, input: &Path, dest: &Dest) -> Option<DepFile> {
     if !job.deps.md && job.deps.mf.is_none() {
-        return Ok(());
+        return None;
     }
     let target = match dest {
         Dest::File(p) => p.clone(),
@@ -547,18 +550,80 @@ fn write_deps(job: &Job, input: &Path, dest: &Dest, c: &Compiled) -> Result<(), 
             Dest::Stdout => PathBuf::from("a.gbc"),
         },
     };
-    let mut deps: Vec<String> = c.files.iter().map(|f| f.name.clone()).collect();
-    deps.retain(|d| d != STDIN_NAME);
-    if let Some(m) = &job.args.machine {
-        deps.push(m.display().to_string());
-    }
     let path = job
         .deps
         .mf
         .clone()
         .unwrap_or_else(|| target.with_extension("d"));
-    let rule = cli::depfile::rule(&target.display().to_string(), &deps);
-    Dest::new(&path).write(rule.as_bytes())
+    Some(DepFile { target, path })
+}
+
+/// Refuses, before anything is written, an output or dependency file
+/// that would replace a file the compile read, and a dependency file that
+/// would replace the output: `-o` and `-MF` name any file, and a default
+/// name can meet one too (a source named `part.gbc` or `part.d`).
+fn check_overwrites(
+    job: &Job,
+    c: &Compiled,
+    dest: &Dest,
+    deps: Option<&DepFile>,
+) -> Result<(), String> {
+    let read = files_read(job, c);
+    if let Dest::File(out) = dest {
+        refuse_replacing("output", out, &read)?;
+    }
+    // (`-MF -` writes the rule to standard output.)
+    let Some(Dest::File(path)) = deps.map(|d| Dest::new(&d.path)) else {
+        return Ok(());
+    };
+    refuse_replacing("dependency file", &path, &read)?;
+    match dest {
+        Dest::File(out) if cli::io::replaces(&path, out) => Err(format!(
+            "the dependency file {} is the output {}: refusing to overwrite it",
+            path.display(),
+            out.display()
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The files a compile read, each with what messages call it: the
+/// inputs of the command line (all of them: a later one is read after
+/// this output is written), the library programs linked, the machine
+/// and `--vars` files.
+fn files_read<'a>(job: &'a Job, c: &'a Compiled) -> Vec<(&'static str, &'a Path)> {
+    let args = &job.args;
+    let inputs = args.files.iter().filter(|f| f.as_os_str() != "-");
+    let mut read: Vec<(&str, &Path)> = inputs.map(|f| ("the input", f.as_path())).collect();
+    // The first file is the program itself, named as its input.
+    let linked = c.files.iter().skip(1).map(|f| Path::new(&f.name));
+    read.extend(linked.map(|f| ("the library program", f)));
+    read.extend(args.machine.as_deref().map(|m| ("the machine file", m)));
+    read.extend(args.vars.as_deref().map(|v| ("the --vars file", v)));
+    read
+}
+
+fn refuse_replacing(what: &str, out: &Path, read: &[(&str, &Path)]) -> Result<(), String> {
+    match read.iter().find(|(_, f)| cli::io::replaces(out, f)) {
+        Some((kind, f)) => Err(format!(
+            "the {what} {} is {kind} {}: refusing to overwrite it",
+            out.display(),
+            f.display()
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Writes the make rule naming the source, the library programs and the
+/// machine file.
+fn write_deps(job: &Job, deps: &DepFile, c: &Compiled) -> Result<(), String> {
+    let mut names: Vec<String> = c.files.iter().map(|f| f.name.clone()).collect();
+    names.retain(|d| d != STDIN_NAME);
+    if let Some(m) = &job.args.machine {
+        names.push(m.display().to_string());
+    }
+    let rule = cli::depfile::rule(&deps.target.display().to_string(), &names);
+    Dest::new(&deps.path).write(rule.as_bytes())
 }
 
 /// `--explain CODE`.
