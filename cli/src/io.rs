@@ -67,18 +67,92 @@ impl Dest {
 /// The name diagnostics give standard input.
 pub const STDIN_NAME: &str = "<stdin>";
 
+/// The most read from a stream (standard input, a pipe): its length is not
+/// known ahead, and an endless one (`cat /dev/zero |`) must end. A GiB is
+/// some forty million blocks, far more than any program or module.
+pub const MAX_STREAM: u64 = 1 << 30;
+
 /// Reads an input: `-` is standard input. Returns the name for messages.
 pub fn read_input(path: &Path) -> Result<(String, Vec<u8>), String> {
     if path.as_os_str() == "-" {
-        let mut bytes = Vec::new();
-        std::io::stdin()
-            .lock()
-            .read_to_end(&mut bytes)
+        let bytes = read_stream(std::io::stdin().lock(), MAX_STREAM)
             .map_err(|e| format!("{STDIN_NAME}: {e}"))?;
         return Ok((STDIN_NAME.into(), bytes));
     }
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok((path.display().to_string(), bytes))
+    let name = path.display().to_string();
+    let bytes = read_file(path).map_err(|e| format!("{name}: {e}"))?;
+    Ok((name, bytes))
+}
+
+/// A file given as text (a machine file, a `--vars` file), as
+/// [`read_file`] reads it; the message names the file.
+pub fn read_text(path: &Path) -> Result<String, String> {
+    let bytes = read_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    String::from_utf8(bytes).map_err(|_| format!("{}: not UTF-8 text", path.display()))
+}
+
+/// A file's bytes: a regular file whole, a pipe (`<(…)`) or socket up to
+/// [`MAX_STREAM`]. A device or a folder is refused, before it is opened
+/// (an endless device such as /dev/zero was read until memory ran out,
+/// and opening some devices does something); what was opened is looked
+/// at again, in case the name changed in between.
+pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    refuse_kind(std::fs::metadata(path)?.file_type())?;
+    let mut file = std::fs::File::open(path)?;
+    let kind = file.metadata()?.file_type();
+    refuse_kind(kind)?;
+    if !kind.is_file() {
+        return read_stream(file, MAX_STREAM);
+    }
+    let mut bytes = Vec::new();
+    file.read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
+/// Only a regular file or a stream is read.
+fn refuse_kind(kind: std::fs::FileType) -> std::io::Result<()> {
+    if kind.is_file() || is_stream(kind) {
+        return Ok(());
+    }
+    let what = if kind.is_dir() {
+        "a folder"
+    } else {
+        "a device"
+    };
+    Err(std::io::Error::other(format!(
+        "not a regular file ({what})"
+    )))
+}
+
+/// A pipe or a socket: read as standard input is.
+fn is_stream(kind: std::fs::FileType) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        kind.is_fifo() || kind.is_socket()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = kind;
+        false
+    }
+}
+
+/// Reads `from` to its end, failing past `cap` bytes (the bytes read so
+/// far are dropped: memory stays bounded whatever the stream).
+pub fn read_stream(from: impl Read, cap: u64) -> std::io::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    from.take(cap.saturating_add(1)).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > cap {
+        let most = match cap % (1 << 20) {
+            0 => format!("{} MiB", cap >> 20),
+            _ => format!("{cap} bytes"),
+        };
+        return Err(std::io::Error::other(format!(
+            "longer than {most}, the most read from standard input or a pipe"
+        )));
+    }
+    Ok(bytes)
 }
 
 /// Whether `a` and `b` name the same existing file (through links too).
@@ -138,4 +212,18 @@ pub fn replaces(out: &Path, other: &Path) -> bool {
 /// Whether `bytes` are a compiled module rather than a source program.
 pub fn is_module(bytes: &[u8]) -> bool {
     bytes.starts_with(&isa::format::MAGIC)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::read_stream;
+
+    /// An endless stream ends at the cap; one within it is read whole.
+    #[test]
+    fn streams_are_read_up_to_the_cap() {
+        let err = read_stream(std::io::repeat(b'X'), 1000).unwrap_err();
+        assert!(err.to_string().contains("longer than 1000 bytes"), "{err}");
+        assert_eq!(read_stream(&b"G00 X1\n"[..], 7).unwrap(), b"G00 X1\n");
+        assert!(read_stream(&b"G00 X1\n"[..], 6).is_err());
+    }
 }

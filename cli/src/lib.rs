@@ -23,7 +23,7 @@ pub fn load_machine(path: Option<&Path>) -> Result<Machine, String> {
     let Some(path) = path else {
         return Ok(Machine::reference());
     };
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = io::read_text(path)?;
     Machine::from_toml(&text).map_err(|e| match e {
         // A value out of range: gcc-style, at the key.
         nc::machine::MachineError::Range {

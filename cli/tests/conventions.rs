@@ -327,6 +327,44 @@ fn wrong_kinds_of_file_are_refused() {
     assert_eq!(std::fs::read_to_string(d.join("prog.gbc")).unwrap(), PART);
 }
 
+/// An input that is no regular file: a device (an endless /dev/zero was
+/// read until memory ran out) or a folder is refused at once, by both
+/// tools and for the machine and `--vars` files too; a pipe is read.
+#[test]
+fn devices_are_refused_and_pipes_read() {
+    let d = dir("devices");
+    std::fs::write(d.join("part.nc"), PART).unwrap();
+    let refused = |out: Output, what: &str| {
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(
+            err.contains(&format!("not a regular file ({what})")),
+            "{err}"
+        );
+    };
+    for dev in ["/dev/zero", "/dev/urandom"] {
+        refused(gbcc(&[dev, "-o", "z.gbc"], &d), "a device");
+        for sub in ["verify", "run", "check", "disasm"] {
+            refused(gbvm(&[sub, dev], &d), "a device");
+        }
+        refused(gbcc(&["part.nc", "--machine", dev], &d), "a device");
+        refused(gbcc(&["part.nc", "--vars", dev], &d), "a device");
+    }
+    refused(gbcc(&["."], &d), "a folder");
+    assert!(!d.join("z.gbc").exists());
+    // A named pipe, as `gbcc <(…)` gives one, is read as standard input.
+    let fifo = d.join("pipe.nc");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        return;
+    }
+    let writer = std::thread::spawn(move || std::fs::write(fifo, PART));
+    let out = gbcc(&["pipe.nc", "-o", "pipe.gbc"], &d);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(writer.join().unwrap().is_ok());
+    assert_eq!(text(&gbvm(&["run", "pipe.gbc"], &d).stdout), CANON);
+}
+
 #[test]
 fn colour_on_request_only() {
     let d = dir("colour");

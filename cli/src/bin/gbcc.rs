@@ -208,7 +208,7 @@ fn parse_define(d: &str) -> Result<(u32, f64), String> {
 
 /// `--vars FILE`: its #500–#999, read once (the file stays `gbvm run`'s).
 fn read_vars(path: &Path) -> Result<Box<[f64; 500]>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = cli::io::read_text(path)?;
     cli::vars::parse(&text, path).map(Box::new)
 }
 
