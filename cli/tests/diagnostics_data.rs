@@ -29,6 +29,52 @@ fn text(b: &[u8]) -> String {
 /// (line 2 starts at 8; "G01 X" is 5 bytes), columns 6..11.
 const BAD: &str = "G00 X10\nG01 X1.2.3\n";
 
+/// A diagnostic on a line of 10 MB (a binary file with no line end) shows
+/// a window of the line around the fault, marked `...` where it is cut,
+/// in the text form and in JSON alike: not the line and a caret run as
+/// long (30 MB on stderr). Its place is the file's.
+#[test]
+fn a_huge_line_is_clipped_around_the_fault() {
+    let d = dir("huge");
+    let mut src = vec![b'X'; 10_000_000];
+    // A malformed number in the middle: "X1.2.3" at byte 5 000 000.
+    src.splice(5_000_000..5_000_006, *b"X1.2.3");
+    std::fs::write(d.join("huge.nc"), &src).unwrap();
+    let out = gbcc(&["huge.nc"], &d);
+    assert_eq!(out.status.code(), Some(1));
+    let err = text(&out.stderr);
+    assert!(err.len() < 4000, "{} bytes of stderr", err.len());
+    let json = gbcc(&["huge.nc", "-fdiagnostics-format=json"], &d);
+    let all: Vec<Diag> = text(&json.stderr)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(json.stderr.len() < 40_000, "{} bytes", json.stderr.len());
+    let number = all
+        .iter()
+        .flat_map(|d| &d.spans)
+        .find(|s| s.byte_start == 5_000_001)
+        .expect("a diagnostic at the malformed number");
+    assert_eq!((number.line_start, number.column_start), (1, 5_000_002));
+    let line = &number.text[0];
+    assert!(line.text.starts_with("...X") && line.text.ends_with("X..."));
+    let (from, to) = (line.highlight_start - 1, line.highlight_end - 1);
+    assert_eq!(&line.text[from..to], "1.2.3", "{}", line.text);
+    // The text form shows the same window.
+    assert!(err.contains(&line.text), "{err}");
+    assert!(err.contains("┌─ huge.nc:1:5000002"), "{err}");
+    // The alarm message W124 quotes is the program's text: clipped too.
+    let message = "A".repeat(1_000_000);
+    std::fs::write(d.join("alarm.nc"), format!("#3000=1 ({message})\nM30\n")).unwrap();
+    let err = text(&gbcc(&["alarm.nc"], &d).stderr);
+    assert!(
+        err.contains("W124") && err.len() < 4000,
+        "{} bytes",
+        err.len()
+    );
+    assert!(err.contains(&format!("{}...", &message[..60])), "{err}");
+}
+
 #[test]
 fn json_has_rustc_shape_and_loses_nothing() {
     let d = dir("json");

@@ -264,6 +264,9 @@ fn stops_with(code: u32, message: &str, span: Span) -> Diagnostic {
         true => format!("alarm {code}"),
         false => format!("E{code:04}"),
     };
+    // (The message is the program's text: a long one is clipped, as
+    // source text in any message is.)
+    let message = grammar::diag::quote(message.chars());
     let msg = format!("the run stops here with {code}: {message}");
     Diagnostic::warning("W124", span, msg)
 }

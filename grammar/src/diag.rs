@@ -8,6 +8,10 @@ use codespan_reporting::term;
 use std::ops::Range;
 use std::sync::{Arc, OnceLock};
 
+mod clip;
+
+pub use clip::{quote, LineWindow, CLIPPED, LONG_LINE, QUOTED};
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
     Warning,
@@ -206,50 +210,25 @@ impl SourceFile {
         )
     }
 
+    /// The snippet under the header: the file's lines as they are, or,
+    /// when one is long, a view of them clipped around the fault.
     fn snippet(&self, d: &Diagnostic, color: bool) -> String {
         let len = self.text().len();
         let range = |s: Span| {
             let start = (s.start as usize).min(len);
             start..(s.end as usize).clamp(start, len)
         };
-        let mut labels = vec![cs::Label::primary((), range(d.span)).with_message(d.label.clone())];
-        if let Some((span, label)) = &d.related {
-            labels.push(cs::Label::secondary((), range(*span)).with_message(label.clone()));
-        }
-        let mut notes = d.notes.clone();
-        if let Some(help) = &d.help {
-            notes.push(format!("help: {help}"));
-        }
-        let diag = match d.severity {
-            Severity::Error => cs::Diagnostic::error(),
-            Severity::Warning => cs::Diagnostic::warning(),
-        }
-        .with_code(d.code)
-        .with_message(d.message.clone())
-        .with_labels(labels)
-        .with_notes(notes);
-        let config = term::Config {
-            display_style: term::DisplayStyle::Rich,
-            ..term::Config::default()
-        };
-        // Rendering into memory cannot fail for in-range spans; report the
-        // header alone if it ever does. The file itself is the codespan
-        // file database: its line starts are made once, not per message
-        // (a `SimpleFile` per message made rendering quadratic), and they
-        // are the ones the header counts with (lone CR included).
-        let buffer = if color {
-            let mut ansi = term::termcolor::Ansi::new(Vec::new());
-            let _ = term::emit_to_write_style(&mut ansi, &config, self, &diag);
-            String::from_utf8_lossy(&ansi.into_inner()).into_owned()
-        } else {
-            let mut s = String::new();
-            let _ = term::emit_to_string(&mut s, &config, self, &diag);
-            s
-        };
-        // Drop codespan's own first line: our header replaces it.
-        match buffer.split_once('\n') {
-            Some((_, rest)) => rest.to_string(),
-            None => String::new(),
+        let mut spans = vec![range(d.span)];
+        spans.extend(d.related.iter().map(|(span, _)| range(*span)));
+        match clip::Clipped::new(self, &spans) {
+            None => emit(self, &labelled(d, &spans), color),
+            Some(view) => {
+                let spans: Vec<Range<usize>> = spans
+                    .iter()
+                    .map(|r| view.offset(r.start)..view.offset(r.end))
+                    .collect();
+                emit(&view, &labelled(d, &spans), color)
+            }
         }
     }
 
@@ -295,6 +274,61 @@ impl<'a> Files<'a> for SourceFile {
                 max,
             }),
         }
+    }
+}
+
+/// The codespan diagnostic of `d`, its label on `spans[0]` and the related
+/// one's on `spans[1]`, with the notes and the help.
+fn labelled(d: &Diagnostic, spans: &[Range<usize>]) -> cs::Diagnostic<()> {
+    let mut labels = Vec::new();
+    if let Some(r) = spans.first() {
+        labels.push(cs::Label::primary((), r.clone()).with_message(d.label.clone()));
+    }
+    if let (Some((_, label)), Some(r)) = (&d.related, spans.get(1)) {
+        labels.push(cs::Label::secondary((), r.clone()).with_message(label.clone()));
+    }
+    let mut notes = d.notes.clone();
+    if let Some(help) = &d.help {
+        notes.push(format!("help: {help}"));
+    }
+    match d.severity {
+        Severity::Error => cs::Diagnostic::error(),
+        Severity::Warning => cs::Diagnostic::warning(),
+    }
+    .with_code(d.code)
+    .with_message(d.message.clone())
+    .with_labels(labels)
+    .with_notes(notes)
+}
+
+/// Renders the snippet of `diag` from the file database `files`, without
+/// codespan's own first line (the header replaces it). Rendering into
+/// memory cannot fail for in-range spans; the header stands alone if it
+/// ever does. (The database is the file itself, or its clipped view: its
+/// line starts are made once, not per message, as a `SimpleFile` per
+/// message made rendering quadratic, and they are the ones the header
+/// counts with, lone CR included.)
+fn emit<'f, F: Files<'f, FileId = ()>>(
+    files: &'f F,
+    diag: &cs::Diagnostic<()>,
+    color: bool,
+) -> String {
+    let config = term::Config {
+        display_style: term::DisplayStyle::Rich,
+        ..term::Config::default()
+    };
+    let buffer = if color {
+        let mut ansi = term::termcolor::Ansi::new(Vec::new());
+        let _ = term::emit_to_write_style(&mut ansi, &config, files, diag);
+        String::from_utf8_lossy(&ansi.into_inner()).into_owned()
+    } else {
+        let mut s = String::new();
+        let _ = term::emit_to_string(&mut s, &config, files, diag);
+        s
+    };
+    match buffer.split_once('\n') {
+        Some((_, rest)) => rest.to_string(),
+        None => String::new(),
     }
 }
 

@@ -743,11 +743,12 @@ impl Driver<'_> {
         // `G00 3.7347` is `G003.7347`: say so when blanks made the number.
         let spelled = self.src.get(d.span.range()).unwrap_or_default();
         if d.code == "E1010" && d.help.is_none() && spelled.iter().any(|&b| is_blank(b)) {
-            let joined: String = spelled
-                .iter()
-                .filter(|&&b| !is_blank(b))
-                .map(|&b| (b as char).to_ascii_uppercase())
-                .collect();
+            let joined = crate::diag::quote(
+                spelled
+                    .iter()
+                    .filter(|&&b| !is_blank(b))
+                    .map(|&b| (b as char).to_ascii_uppercase()),
+            );
             d.help = Some(format!(
                 "blanks are ignored, even inside numbers: this reads `{joined}`; is an address letter missing?"
             ));

@@ -101,13 +101,16 @@ impl<'a> Fault<'a> {
         }
     }
 
+    /// The source text of `span` as a message quotes it: without blanks,
+    /// in upper case, clipped when long.
     fn text(&self, span: Span) -> String {
         let bytes = self.src.get(span.range()).unwrap_or_default();
-        bytes
-            .iter()
-            .filter(|b| !b.is_ascii_whitespace())
-            .map(|&b| (b as char).to_ascii_uppercase())
-            .collect()
+        crate::diag::quote(
+            bytes
+                .iter()
+                .filter(|b| !b.is_ascii_whitespace())
+                .map(|&b| (b as char).to_ascii_uppercase()),
+        )
     }
 
     fn expects(&self, name: &str) -> bool {

@@ -503,7 +503,7 @@ fn malformed_number(
         _ => slice,
     };
     let span = Span::new(value_start(text, &range, map), end);
-    let spelled: String = value.iter().map(|&b| b as char).collect();
+    let spelled = crate::diag::quote(value.iter().map(|&b| b as char));
     let d = if value.iter().any(u8::is_ascii_digit) {
         Diagnostic::error("E1007", span, format!("malformed number `{spelled}`"))
             .with_label("a number has at most one decimal point")

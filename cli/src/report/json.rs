@@ -81,16 +81,16 @@ fn span(r: &Reported<'_>, at: grammar::Span, label: &str, primary: bool) -> Span
     let end = at.end.clamp(start, len);
     let (line_start, column_start) = f.line_col(start);
     let (line_end, column_end) = f.line_col(end);
-    let text = f.text();
     let lines = (line_start - 1..line_end)
         .filter_map(|i| {
-            let range = f.line_range(i)?;
-            let first = range.start;
-            let line = text.get(range)?.trim_end_matches(['\r', '\n']);
-            let from = (start as usize).max(first) - first + 1;
-            let to = (end as usize).min(first + line.len()) - first + 1;
+            let from = (start as usize).max(f.line_range(i)?.start);
+            // A long line is clipped around the span as the text form
+            // clips it; the highlight counts in the text given.
+            let window = f.line_window(i, from)?;
+            let to = window.offset(end as usize) + 1;
+            let from = window.offset(from) + 1;
             Some(SpanLine {
-                text: line.to_string(),
+                text: f.window_text(&window),
                 highlight_start: from,
                 highlight_end: to.max(from),
             })
