@@ -64,6 +64,43 @@ impl Dest {
     }
 }
 
+/// Standard error for diagnostics, or, when it was closed as the tool
+/// started (`2>&-`), a sink whose every write fails: what could not be
+/// told is then told by the exit code (3), as when standard error is full.
+pub enum ErrStream {
+    Open(std::io::BufWriter<std::io::Stderr>),
+    Closed,
+}
+
+impl ErrStream {
+    pub fn new(closed: bool) -> ErrStream {
+        match closed {
+            true => ErrStream::Closed,
+            false => ErrStream::Open(std::io::BufWriter::new(std::io::stderr())),
+        }
+    }
+}
+
+impl Write for ErrStream {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            ErrStream::Open(w) => w.write(buf),
+            ErrStream::Closed => Err(closed_stderr()),
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            ErrStream::Open(w) => w.flush(),
+            ErrStream::Closed => Ok(()),
+        }
+    }
+}
+
+fn closed_stderr() -> std::io::Error {
+    std::io::Error::other("standard error is closed")
+}
+
 /// The name diagnostics give standard input.
 pub const STDIN_NAME: &str = "<stdin>";
 

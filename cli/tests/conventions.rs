@@ -458,6 +458,35 @@ fn outputs_that_cannot_be_written() {
     }
 }
 
+/// Standard error closed (`2>&-`): a diagnostic that cannot be shown is
+/// lost, and the exit code says so (3), as with a full one; a compile
+/// with nothing to say still succeeds.
+#[test]
+fn a_closed_standard_error_is_a_lost_one() {
+    let d = dir("closed");
+    std::fs::write(d.join("part.nc"), PART).unwrap();
+    std::fs::write(d.join("warn.nc"), "G00 X10 Z2\nM444\nM30\n").unwrap();
+    std::fs::write(d.join("bad.nc"), "G01 X1.2.3\n").unwrap();
+    let closed = |file: &str| {
+        let script = "exec \"$0\" \"$1\" -o out.gbc 2>&-";
+        cmd("sh", &["-c", script, env!("CARGO_BIN_EXE_gbcc"), file], &d)
+            .output()
+            .unwrap()
+            .status
+            .code()
+    };
+    assert_eq!(closed("warn.nc"), Some(3));
+    assert_eq!(closed("bad.nc"), Some(3));
+    assert_eq!(closed("part.nc"), Some(0));
+    // Discarded on purpose is not lost.
+    let mut c = cmd(
+        env!("CARGO_BIN_EXE_gbcc"),
+        &["warn.nc", "-o", "out.gbc"],
+        &d,
+    );
+    assert_eq!(c.stderr(Stdio::null()).status().unwrap().code(), Some(0));
+}
+
 /// Lone-CR line ends: the header and the snippet name the same line.
 #[test]
 fn lone_cr_files_agree_in_header_and_snippet() {

@@ -9,10 +9,38 @@ use std::ffi::OsString;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// mimalloc (cli::allocator says why).
 #[global_allocator]
 static ALLOCATOR: cli::allocator::Mimalloc = cli::allocator::Mimalloc;
+
+/// Whether standard error was closed when gbcc started (`2>&-`). Rust's
+/// start-up code opens /dev/null in its place before `main`, where every
+/// write succeeds: a diagnostic would be lost without a trace, and the
+/// exit code would not say so (diagnostics.md: 3). So it is looked at
+/// before that, from the ELF start-up list, which runs first.
+static STDERR_CLOSED: AtomicBool = AtomicBool::new(false);
+
+#[cfg(target_os = "linux")]
+mod start_up {
+    use std::ffi::{c_char, c_int};
+    use std::sync::atomic::Ordering;
+
+    type StartUp = extern "C" fn(c_int, *const *const c_char, *const *const c_char);
+
+    #[used]
+    #[link_section = ".init_array"]
+    static LOOK_AT_STDERR: StartUp = look_at_stderr;
+
+    /// (Called by the C library with main's arguments, not needed here.)
+    extern "C" fn look_at_stderr(_: c_int, _: *const *const c_char, _: *const *const c_char) {
+        // SAFETY: F_GETFD only asks whether descriptor 2 is open; it
+        // touches no memory.
+        let closed = unsafe { libc::fcntl(2, libc::F_GETFD) } == -1;
+        super::STDERR_CLOSED.store(closed, Ordering::Relaxed);
+    }
+}
 
 #[derive(Parser)]
 #[command(
@@ -20,7 +48,8 @@ static ALLOCATOR: cli::allocator::Mimalloc = cli::allocator::Mimalloc;
     version,
     about = "Compile GSK980TDi lathe G-code into .gbc bytecode",
     after_help = "Also: -MD (write a make dependency file), -MF FILE (its name). \
-                  Exit codes: 0 ok, 1 errors or a usage error, 3 an output could not be written."
+                  Exit codes: 0 ok, 1 errors or a usage error, 3 an output or a diagnostic \
+                  could not be written."
 )]
 struct Args {
     /// Program files (.nc); - reads standard input.
@@ -226,7 +255,7 @@ struct Job {
     opts: Options,
 }
 
-fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit> {
+fn setup() -> Result<(Job, Reporter<cli::io::ErrStream>), Exit> {
     let (argv, deps) = take_dep_options(std::env::args_os().collect()).map_err(|e| usage(&e))?;
     let args: Args = cli::exit::parse_args(argv)?;
     if let Some(code) = &args.explain {
@@ -258,7 +287,7 @@ fn setup() -> Result<(Job, Reporter<std::io::BufWriter<std::io::Stderr>>), Exit>
         .transpose()
         .map_err(input_error)?;
     let mut reporter = Reporter::new(
-        std::io::BufWriter::new(std::io::stderr()),
+        cli::io::ErrStream::new(STDERR_CLOSED.load(Ordering::Relaxed)),
         flags.format,
         flags.color,
         policy,
