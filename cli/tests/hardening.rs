@@ -428,11 +428,18 @@ fn timed_runs_that_cannot_end_stop_with_e6006() {
     // A run that ends in time is not touched by the bound.
     let out = gbvm(&["run", "a.gbc", "--stats", "--max-time", "10"], &d);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
-    for bad in ["0", "-1", "nan", "inf"] {
+    for bad in ["0", "-1", "nan", "inf", "1e300"] {
         let arg = format!("--max-time={bad}");
         let out = gbvm(&["run", "a.gbc", "--stats", &arg], &d);
         // A usage error (README, exit codes).
         assert_eq!(out.status.code(), Some(1), "--max-time {bad}");
     }
+    // The value as given, not written out in 301 digits.
+    let out = gbvm(&["run", "a.gbc", "--stats", "--max-time", "1e300"], &d);
+    let err = stderr(&out);
+    assert!(
+        err.starts_with("gbvm: error: --max-time 1e300: ") && err.len() < 100,
+        "{err}"
+    );
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -82,6 +82,37 @@ fn a_full_device_is_an_error_for_every_command() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
+/// `check`'s line and `run`'s plot are outputs too: exit 3 when they
+/// cannot be written.
+#[test]
+fn the_check_line_and_the_plot_on_a_full_device() {
+    let d = dir("fullplot");
+    std::fs::write(d.join("p.nc"), "G98 G00 X20 Z2\nG01 Z-10 F100\nM30\n").unwrap();
+    let st = Command::new(env!("CARGO_BIN_EXE_gbcc"))
+        .args(["p.nc", "-o", "p.gbc"])
+        .current_dir(&d)
+        .status()
+        .unwrap();
+    assert!(st.success());
+    let Some(out) = gbvm_to_full(&["check"], &d.join("p.gbc")) else {
+        return;
+    };
+    assert_eq!(out.status.code(), Some(EXIT_OUTPUT), "{}", stderr(&out));
+    assert!(stderr(&out).contains("gbvm: error: standard output:"));
+    let out = Command::new(env!("CARGO_BIN_EXE_gbvm"))
+        .args(["run", "p.gbc", "--plot", "/dev/full"])
+        .current_dir(&d)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(EXIT_OUTPUT), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("gbvm: error: /dev/full:"),
+        "{}",
+        stderr(&out)
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
 #[test]
 fn a_full_stderr_does_not_panic() {
     let d = dir("fullerr");

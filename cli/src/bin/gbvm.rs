@@ -94,7 +94,8 @@ enum Command {
     /// velocity, acceleration (and jerk where limited) within the
     /// machine's limits, every canon end point reached, thread leads,
     /// G96 and the spindle. Prints one summary line; exit 0 when all
-    /// hold, 1 with the first violation, 2 when the run does not end.
+    /// hold, 1 with the first violation, 2 when the run does not end, 3
+    /// when the line could not be written.
     Check {
         file: PathBuf,
         #[arg(long, value_name = "FILE")]
@@ -330,8 +331,9 @@ fn check_run_options(cmd: &RunCmd, emit: Option<Emit>) -> Result<(), ExitCode> {
 /// `--max-time` must be a number of seconds in (0, 10^6].
 fn check_max_time(max_time: Option<f64>) -> Result<(), ExitCode> {
     if let Some(t) = max_time.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 1.0e6)) {
+        // (`{t:?}`: 1e300 as such; Display writes out its 301 digits.)
         note(format_args!(
-            "gbvm: error: --max-time {t}: give seconds above 0, at most 1000000"
+            "gbvm: error: --max-time {t:?}: give seconds above 0, at most 1000000"
         ));
         return Err(cli::exit::Exit::Usage.into());
     }

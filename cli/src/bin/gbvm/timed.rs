@@ -143,8 +143,10 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         cycle_start: rec.cycle_start,
         info: rec.info,
     };
+    // The plot is an output: one that could not be written is exit 3.
     if let Err(e) = write_plot(plot, out, args, &program) {
-        return fail(&e);
+        note(format_args!("gbvm: error: {e}"));
+        return cli::exit::Exit::Write.into();
     }
     if let Some((format, StatsTo::Stderr)) = out.stats {
         let _ = write!(std::io::stderr().lock(), "{}", stats(format));
