@@ -198,7 +198,9 @@ fn open(args: &RunArgs) -> Result<(runtime::Controller<runtime::AutoAck>, Progra
 /// The source, if it can still be read, for the plot's title and stock.
 fn source_info(out: &Outputs, files: &[String]) -> cli::program_info::ProgramInfo {
     match (&out.plot, files.first()) {
-        (Some(_), Some(name)) => std::fs::read(name)
+        // (Read as every input is: a crafted module naming a device must
+        // not hang the run.)
+        (Some(_), Some(name)) => cli::io::read_file(std::path::Path::new(name))
             .map(|b| cli::program_info::ProgramInfo::read(&String::from_utf8_lossy(&b)))
             .unwrap_or_default(),
         _ => Default::default(),
