@@ -76,7 +76,7 @@ impl SourceFile {
 
     /// The part of line index `i` a snippet shows so that byte `focus` is
     /// seen: the whole line up to [`LONG_LINE`] bytes, else a window of
-    /// [`WINDOW`] bytes that starts a little before it.
+    /// `WINDOW` bytes that starts a little before it.
     pub fn line_window(&self, i: usize, focus: usize) -> Option<LineWindow> {
         let line = self.content(i)?;
         if line.len() <= LONG_LINE {
