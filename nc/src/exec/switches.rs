@@ -59,7 +59,7 @@ impl Switches {
     /// (0…3, 0…7), else E5010. Null writes 0, as for any system variable.
     pub fn write(&mut self, n: u32, x: f64) -> Result<(), NcError> {
         let max = if n == 3003 { 3.0 } else { 7.0 };
-        if x.fract() != 0.0 || !(0.0..=max).contains(&x) {
+        if libm::trunc(x) != x || !(0.0..=max).contains(&x) {
             return fail(
                 Alarm::ValueOutOfRange,
                 format!("#{n} = {x}: its bits make an integer 0…{max}"),
