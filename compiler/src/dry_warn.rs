@@ -519,7 +519,8 @@ impl Warner {
 
     /// W104 for the words that a form of the block ignores (§4.3, §4.12,
     /// §5.2): P of G92/G92.1 without thread repair (№174.4), P of the
-    /// one-block G76, Q of `X_ Z_ Q_` without a first block before it.
+    /// one-block G76, Q of `X_ Z_ Q_` without a first block before it, R
+    /// in a G90/G92/G94 run's block without an axis word.
     fn ignored_forms(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
         if seen.other_function
             || nc.st.modal.drill != gcode::Drill::Off
@@ -552,6 +553,17 @@ impl Warner {
             && !nc.machine.threads.repair_enabled
         {
             ('P', "thread repair is off on this machine (№174.4)")
+        } else if matches!(
+            motion,
+            Motion::TurningCycle | Motion::FacingCycle | Motion::ThreadCycle
+        ) && !seen.one_shot()
+            && !axes(AXES)
+            && axes(const { letters(b"R") })
+        {
+            (
+                'R',
+                "a block without X, U, Z or W does not run the cycle, and its R is not kept for the next block",
+            )
         } else {
             return;
         };

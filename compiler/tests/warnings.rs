@@ -512,6 +512,18 @@ fn w104_a_word_a_form_ignores() {
         w104(&format!("{modal}G76 X30 Z-20 P900 Q300 F1.5\nM30\n")),
         []
     );
+    // cycles.md §4: in a G90 run, `R-1` alone runs nothing and is not
+    // kept (X44 then runs with the run's R, 0); the R of a block that runs
+    // the cycle is taken.
+    let run = "G00 X50 Z5\nG90 X40 Z-20 F0.2\nR-1\nX44\nM30\n";
+    let w = w104(run);
+    assert_eq!(w.iter().map(|w| w.0).collect::<Vec<_>>(), [3], "{w:?}");
+    assert!(
+        w[0].1.starts_with("R is ignored: a block without X"),
+        "{}",
+        w[0].1
+    );
+    assert_eq!(w104("G00 X50 Z5\nG90 X40 Z-20 F0.2\nX44 R-1\nM30\n"), []);
     // §5.2: X Z Q ends angle programming; without its first block (Q
     // alone) the block is a plain line and Q is ignored. A block without
     // axis words may stand between the two; X with Q alone is the line
