@@ -22,6 +22,9 @@ pub struct Tag {
     pub block_end: bool,
     /// Its block ran under `#3004` bit 0: feed hold does not stop it.
     pub no_hold: bool,
+    /// Its block ran under `#3003` bit 1: its M, S or T function is
+    /// requested and the program goes on without waiting for FIN.
+    pub no_fin: bool,
 }
 
 /// The shape of a move; its start is where the previous move ended.

@@ -938,14 +938,15 @@ impl<P: Plc> Engine<P> {
         Flow::Done
     }
 
-    /// A PLC function is requested once, then waited for.
+    /// A PLC function is requested once, then waited for (not under
+    /// `#3003` bit 1: the host is not polled for its FIN).
     fn step_plc(&mut self, f: PlcFunction) -> Flow {
         if !self.started {
             self.started = true;
             self.apply_plc(f);
             self.plc.request(f);
         }
-        if !self.plc.done(f) {
+        if !self.tag.no_fin && !self.plc.done(f) {
             return Flow::Done;
         }
         self.finish_item_now()

@@ -298,6 +298,7 @@ const PLACEHOLDER: Item = Item {
         block: 0,
         block_end: false,
         no_hold: false,
+        no_fin: false,
     },
     shift: V2::ZERO,
 };

@@ -246,6 +246,7 @@ impl RunAhead {
             block: self.block,
             block_end: false,
             no_hold: self.vm.nc.switch(Switch::NoFeedHold),
+            no_fin: self.vm.nc.switch(Switch::NoFinWait),
         };
         self.tr.skip_queued = false;
         let held = self.held_legs(tag, status == Status::OutOfBudget);

@@ -148,3 +148,43 @@ fn bit_0_of_3003_runs_single_block_through_its_blocks() {
     assert_eq!(r.state, RunState::Ended);
     assert_eq!(stops, [6, 7]);
 }
+
+/// A host whose coolant (M08) never reports its completion (FIN).
+struct CoolantNeverDone;
+
+impl runtime::Plc for CoolantNeverDone {
+    fn request(&mut self, _: runtime::plc::PlcFunction) {}
+    fn done(&mut self, f: runtime::plc::PlcFunction) -> bool {
+        f != runtime::plc::PlcFunction::M(8)
+    }
+}
+
+/// The run state after `periods` periods of `src` on that host.
+fn state_after(src: &str, periods: usize) -> RunState {
+    let machine = Machine::reference();
+    let m = common::module(src, &machine);
+    let mut ctl = runtime::Controller::new(m, machine, CoolantNeverDone).expect("loads");
+    ctl.cycle_start();
+    for _ in 0..periods {
+        ctl.run_ahead();
+        ctl.tick();
+        if ctl.state() == RunState::Ended {
+            break;
+        }
+    }
+    ctl.state()
+}
+
+#[test]
+fn bit_1_of_3003_goes_on_without_the_fin() {
+    // G00 W-1 takes well under a second (100 mm/s rapid on Z): with
+    // #3003 = 2 the M08 is requested and the run ends within 10 s; without
+    // it the run waits at the M08 for a FIN that never comes.
+    let src = "M08\nG00 W-1\nM30\n";
+    let ended = state_after(&format!("O0001\n#3003=2\n{src}"), 10_000);
+    assert_eq!(ended, RunState::Ended);
+    assert_ne!(
+        state_after(&format!("O0001\n{src}"), 10_000),
+        RunState::Ended
+    );
+}
