@@ -71,14 +71,9 @@ fn bit_2_of_3004_lets_g61_blend_the_corner() {
     assert_eq!(run(&format!("O0001\n#3004=4\n{corner}")), 0);
 }
 
-#[test]
-fn bit_0_of_3004_lets_the_block_finish_through_a_feed_hold() {
-    // Feed hold is pressed 0.1 s into line 3, which runs under #3004 = 1:
-    // it runs to its end (W-20 from Z0: Z-20) and the motion brakes as
-    // line 5 starts, the first block without the bit: from 1000 mm/min
-    // (16.67 mm/s) at Z's 2000 mm/s², v²/2a = 0.069 mm past Z-20. Cycle
-    // start resumes it.
-    let src = "O0001\n#3004=1\nG98 G01 W-20 F1000\n#3004=0\nG01 W-20\nM30\n";
+/// Runs `src` pressing feed hold once 0.1 s in, then cycle start when the
+/// motion holds: the end state, and the Z where it held.
+fn held_at(src: &str) -> (RunState, f64) {
     let mut held_at = None;
     let mut pressed = false;
     let r = run_with(
@@ -98,32 +93,23 @@ fn bit_0_of_3004_lets_the_block_finish_through_a_feed_hold() {
         },
         60.0,
     );
-    assert_eq!(r.state, RunState::Ended);
-    let z = held_at.expect("the hold took effect");
+    (r.state, held_at.expect("the hold took effect"))
+}
+
+#[test]
+fn bit_0_of_3004_lets_the_block_finish_through_a_feed_hold() {
+    // Feed hold is pressed 0.1 s into line 3, which runs under #3004 = 1:
+    // it runs to its end (W-20 from Z0: Z-20) and the motion brakes as
+    // line 5 starts, the first block without the bit: from 1000 mm/min
+    // (16.67 mm/s) at Z's 2000 mm/s², v²/2a = 0.069 mm past Z-20. Cycle
+    // start resumes it.
+    let src = "O0001\n#3004=1\nG98 G01 W-20 F1000\n#3004=0\nG01 W-20\nM30\n";
+    let (state, z) = held_at(src);
+    assert_eq!(state, RunState::Ended);
     assert!(z <= -20.0 && z > -20.07, "held at Z{z}");
     // Without the bit the same press stops line 3 on its way: at 0.1 s
     // the tool is about 1.6 mm along (1000 mm/min = 16.7 mm/s).
-    let plain = src.replace("#3004=1", "#3004=0");
-    let mut held_at = None;
-    let mut pressed = false;
-    run_with(
-        &plain,
-        Machine::reference(),
-        runtime::AutoAck,
-        |_| {},
-        |c, sp| {
-            if !pressed && sp.time_s >= 0.1 {
-                c.feed_hold();
-                pressed = true;
-            }
-            if c.state() == RunState::Held && held_at.is_none() {
-                held_at = Some(sp.z);
-                c.cycle_start();
-            }
-        },
-        60.0,
-    );
-    let z = held_at.expect("the hold took effect");
+    let (_, z) = held_at(&src.replace("#3004=1", "#3004=0"));
     assert!(z > -5.0 && z < -1.0, "held at Z{z}");
 }
 
