@@ -266,10 +266,17 @@ impl<'a> Builder<'a> {
     /// The function built so far; the next part starts empty, with no
     /// open block.
     fn take_part(&mut self) -> ir::Function {
+        // The next chunk is about as large as this one: its tables start
+        // at this one's sizes rather than grow (and copy) from empty.
+        let f = &self.f;
         let next = ir::Function {
-            number: self.f.number,
-            file: self.f.file,
-            span: self.f.span,
+            number: f.number,
+            file: f.file,
+            span: f.span,
+            ops: ir::Arena::with_capacity(f.ops.len()),
+            op_locs: Vec::with_capacity(f.op_locs.len()),
+            words: Vec::with_capacity(f.words.len()),
+            word_spans: Vec::with_capacity(f.word_spans.len()),
             ..Default::default()
         };
         self.cur = None;
