@@ -399,13 +399,11 @@ fn read_program<W: std::io::Write>(
     file: &Path,
     reporter: &mut Reporter<W>,
 ) -> Result<(String, std::sync::Arc<[u8]>), Exit> {
-    let (name, bytes) = cli::io::read_input(file).map_err(|e| {
+    // (The compiler keeps the source shared with its diagnostics.)
+    let (name, bytes) = cli::io::read_input_shared(file).map_err(|e| {
         reporter.driver_error(&e);
         Exit::Input
     })?;
-    // The compiler keeps the source shared with its diagnostics: one copy,
-    // made here, and the buffer read goes.
-    let bytes: std::sync::Arc<[u8]> = bytes.into();
     if cli::io::is_module(&bytes) {
         reporter.driver_error(&format!(
             "{name} is a compiled .gbc module, not a program: run it with `gbvm run {name}`"
