@@ -79,6 +79,11 @@ impl<W: Write> Sink for Canon<W> {
 /// that the batches in flight stay small (a few hundred kilobytes).
 const BATCH: usize = 2048;
 
+/// The canon's output buffer: a write call per 64 KiB rather than per
+/// 8 KiB (the standard buffer); 66 calls instead of 506 for 200 000
+/// lines.
+const OUT_BUFFER: usize = 1 << 16;
+
 /// Batches sent and not yet written, at most: the machine waits for the
 /// writer beyond that, so memory stays bounded whatever the run's length.
 const IN_FLIGHT: usize = 2;
@@ -124,7 +129,7 @@ pub fn on_writer_thread<R>(run: impl FnOnce(&mut dyn Sink) -> R) -> (R, Option<s
             .name("gbvm-canon".into())
             .spawn_scoped(s, move || write_batches(batches, spent));
         let Ok(writer) = writer else {
-            let mut canon = Canon::new(BufWriter::new(std::io::stdout().lock()));
+            let mut canon = Canon::new(stdout_buffered());
             let result = run(&mut canon);
             return (result, canon.finish());
         };
@@ -144,13 +149,18 @@ pub fn on_writer_thread<R>(run: impl FnOnce(&mut dyn Sink) -> R) -> (R, Option<s
     })
 }
 
+/// Standard output through a buffer of [`OUT_BUFFER`] bytes.
+fn stdout_buffered() -> BufWriter<std::io::StdoutLock<'static>> {
+    BufWriter::with_capacity(OUT_BUFFER, std::io::stdout().lock())
+}
+
 /// The writer thread: every batch in turn into the canon, each vector
 /// handed back empty.
 fn write_batches(
     batches: Receiver<Vec<Event>>,
     spent: Sender<Vec<Event>>,
 ) -> Option<std::io::Error> {
-    let mut canon = Canon::new(BufWriter::new(std::io::stdout().lock()));
+    let mut canon = Canon::new(stdout_buffered());
     for mut batch in batches {
         batch.drain(..).for_each(|e| canon.emit(e));
         let _ = spent.send(batch);
