@@ -6,7 +6,9 @@
  *
  * - Version: at start-up check gbc_abi_version() == GBC_ABI_VERSION, i.e.
  *   that the library loaded is the one this header describes; refuse to
- *   run on a mismatch.
+ *   run on a mismatch. The number goes up with every change a host built
+ *   against an older header would get wrong; on Linux the shared
+ *   library's SONAME is libgbc.so.<GBC_ABI_VERSION>.
  * - Status: every function but gbc_abi_version returns a GbcStatus.
  *   Results go through out-pointers, written only on GBC_STATUS_OK. On any
  *   other status, gbc_last_error gives a text about that failure (one per
@@ -53,7 +55,8 @@
  * against an older header would get wrong (a function's parameters, a
  * struct's fields, a status's meaning), so a host checks at start-up
  * that `gbc_abi_version() == GBC_ABI_VERSION` and refuses to run
- * otherwise.
+ * otherwise. On Linux it is also the N of the shared library's SONAME,
+ * `libgbc.so.N` (build.rs reads it here: keep it a literal).
  */
 #define GBC_ABI_VERSION 1
 

@@ -12,7 +12,8 @@ use runtime::{Motion, PlcFunction, RunState, SetPoint};
 /// against an older header would get wrong (a function's parameters, a
 /// struct's fields, a status's meaning), so a host checks at start-up
 /// that `gbc_abi_version() == GBC_ABI_VERSION` and refuses to run
-/// otherwise.
+/// otherwise. On Linux it is also the N of the shared library's SONAME,
+/// `libgbc.so.N` (build.rs reads it here: keep it a literal).
 pub const GBC_ABI_VERSION: u32 = 1;
 
 /// Handles alive at once in a process, machines and controllers

@@ -3,24 +3,12 @@
 //! compiled program to its end; its set points (printed in the trace
 //! format) are the same, line for line, as `gbvm run --emit trace`.
 
+mod support;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// `target/<profile>`: the test binary is `target/<profile>/deps/<name>`.
-fn profile_dir() -> PathBuf {
-    let exe = std::env::current_exe().expect("the test's path");
-    exe.parent()
-        .and_then(Path::parent)
-        .expect("target/<profile>/deps/<test>")
-        .to_path_buf()
-}
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("the workspace")
-        .to_path_buf()
-}
+use support::{build_libraries, cargo_build, profile_dir, repo};
 
 /// `gbvm` of the same profile, built now if need be (a no-op when the
 /// workspace's tests already built it).
@@ -29,31 +17,10 @@ fn gbvm(profile: &Path) -> PathBuf {
     profile.join("gbvm")
 }
 
-/// `libgbc.a` of the same profile: `cargo test` builds the library only
-/// as the tests' rlib, so the static library is built here.
+/// `libgbc.a` of the same profile.
 fn static_lib(profile: &Path) -> PathBuf {
-    cargo_build(profile, &["-p", "capi", "--lib"]);
+    build_libraries(profile);
     profile.join("libgbc.a")
-}
-
-/// `cargo build` of `what` in the profile and target directory this test
-/// runs in, wherever they are.
-fn cargo_build(profile: &Path, what: &[&str]) {
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let mut cmd = Command::new(cargo);
-    cmd.current_dir(repo())
-        .args(["build", "--quiet"])
-        .args(what);
-    let name = profile.file_name().and_then(|n| n.to_str()).unwrap_or("");
-    if name != "debug" {
-        cmd.args(["--profile", name]);
-    }
-    // The target directory this test runs in, wherever it is.
-    if let Some(target) = profile.parent() {
-        cmd.arg("--target-dir").arg(target);
-    }
-    let st = cmd.status().expect("cargo runs");
-    assert!(st.success(), "cargo build {what:?} failed");
 }
 
 /// Compiles the C example against `libgbc.a`; returns the executable.
