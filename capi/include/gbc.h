@@ -58,7 +58,7 @@
  * otherwise. On Linux it is also the N of the shared library's SONAME,
  * `libgbc.so.N` (build.rs reads it here: keep it a literal).
  */
-#define GBC_ABI_VERSION 1
+#define GBC_ABI_VERSION 2
 
 /**
  * Handles alive at once in a process, machines and controllers
@@ -87,12 +87,6 @@
  * `gbc_set_jit`: every macro loop compiled at its first round.
  */
 #define GBC_JIT_ALWAYS 2
-
-/**
- * [`GbcStateInfo::message`] when the controller is not at a message stop
- * (0 names the first message stop).
- */
-#define GBC_NO_MESSAGE UINT32_MAX
 
 /**
  * Bytes of the text fields of [`GbcAlarm`], the terminating NUL included.
@@ -452,12 +446,13 @@ typedef struct GbcStateInfo {
    */
   enum GbcStopKind stop;
   /**
-   * At a message stop (`stop` is [`GbcStopKind::Message`]): which one,
-   * the key for `gbc_message` — the run's message stops counted from
-   * 0 in the order the motion reached them (a reset does not restart
-   * the count). It is not the value assigned to `#3006`, which the
-   * library does not receive. [`GBC_NO_MESSAGE`] when not at a message
-   * stop.
+   * At a message stop (`stop` is [`GbcStopKind::Message`]): the value
+   * the program wrote to `#3006` (`#3006 = 7 (TEXT)` gives 7), made a
+   * whole number as `#3000` makes its alarm number — rounded half away
+   * from zero, vacant 0 — and held in 32 bits: below 0 gives 0, above
+   * `UINT32_MAX` gives `UINT32_MAX`. Its text is `gbc_message`'s.
+   * 0 at any other time; as `#3006 = 0` gives 0 too, `stop` tells a
+   * message stop from none.
    */
   uint32_t message;
   /**
@@ -621,21 +616,18 @@ enum GbcStatus gbc_state(GbcController controller, struct GbcStateInfo *out);
 enum GbcStatus gbc_alarm(GbcController controller, struct GbcAlarm *out);
 
 /**
- * The text of message stop `n` (a [`GbcStateInfo::message`]: the
- * run's message stops counted from 0) into `buf` (`cap` bytes,
- * NUL-terminated, cut at a character boundary) and its full length in
- * bytes to `*len` (may be null): `*len >= cap` means the text was cut.
- * `buf` null with `cap` 0 asks for the length only. An empty text when
- * the run has reached no message stop `n` yet.
+ * The text of the message stop the controller stands at (`#3006 = n
+ * (TEXT)`: TEXT; its n is [`GbcStateInfo::message`]) into `buf` (`cap`
+ * bytes, NUL-terminated, cut at a character boundary) and its full
+ * length in bytes to `*len` (may be null): `*len >= cap` means the text
+ * was cut. `buf` null with `cap` 0 asks for the length only. An empty
+ * text when the controller stands at no message stop: read it before
+ * the cycle start that goes on.
  *
  * # Safety
  * `buf` is null or writable for `cap` bytes; `len` null or writable.
  */
-enum GbcStatus gbc_message(GbcController controller,
-                           uint32_t n,
-                           char *buf,
-                           size_t cap,
-                           size_t *len);
+enum GbcStatus gbc_message(GbcController controller, char *buf, size_t cap, size_t *len);
 
 /**
  * The name of source file `index` (a [`GbcSetPoint::file`]), as it was

@@ -37,6 +37,7 @@ use core::ffi::c_char;
 use std::borrow::Cow;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
+use runtime::command::PauseKind;
 use runtime::{Config, Controller, RapidOverride, RunState};
 
 use handle::{Kind, Object};
@@ -552,26 +553,32 @@ pub unsafe extern "C" fn gbc_alarm(controller: GbcController, out: *mut GbcAlarm
     })
 }
 
-/// The text of message stop `n` (a [`GbcStateInfo::message`]: the
-/// run's message stops counted from 0) into `buf` (`cap` bytes,
-/// NUL-terminated, cut at a character boundary) and its full length in
-/// bytes to `*len` (may be null): `*len >= cap` means the text was cut.
-/// `buf` null with `cap` 0 asks for the length only. An empty text when
-/// the run has reached no message stop `n` yet.
+/// The text of the message stop the controller stands at (`#3006 = n
+/// (TEXT)`: TEXT; its n is [`GbcStateInfo::message`]) into `buf` (`cap`
+/// bytes, NUL-terminated, cut at a character boundary) and its full
+/// length in bytes to `*len` (may be null): `*len >= cap` means the text
+/// was cut. `buf` null with `cap` 0 asks for the length only. An empty
+/// text when the controller stands at no message stop: read it before
+/// the cycle start that goes on.
 ///
 /// # Safety
 /// `buf` is null or writable for `cap` bytes; `len` null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn gbc_message(
     controller: GbcController,
-    n: u32,
     buf: *mut c_char,
     cap: usize,
     len: *mut usize,
 ) -> GbcStatus {
     with_run(controller, |r| {
+        // The number a host sees is the program's, not a key: the stop it
+        // stands at names its text.
+        let text = match r.state() {
+            RunState::Stopped(PauseKind::Message { index, .. }) => r.message(index),
+            _ => None,
+        };
         // SAFETY: the caller's promise.
-        unsafe { give_text(r.message(n).unwrap_or(""), buf, cap, len) }
+        unsafe { give_text(text.unwrap_or(""), buf, cap, len) }
     })
 }
 

@@ -14,7 +14,7 @@ use runtime::{Motion, PlcFunction, RunState, SetPoint};
 /// that `gbc_abi_version() == GBC_ABI_VERSION` and refuses to run
 /// otherwise. On Linux it is also the N of the shared library's SONAME,
 /// `libgbc.so.N` (build.rs reads it here: keep it a literal).
-pub const GBC_ABI_VERSION: u32 = 1;
+pub const GBC_ABI_VERSION: u32 = 2;
 
 /// Handles alive at once in a process, machines and controllers
 /// together; making one more is [`GbcStatus::Limit`] until one is freed.
@@ -236,12 +236,13 @@ pub struct GbcStateInfo {
     pub state: GbcRunState,
     /// Why it stopped, when `state` is [`GbcRunState::Stopped`].
     pub stop: GbcStopKind,
-    /// At a message stop (`stop` is [`GbcStopKind::Message`]): which one,
-    /// the key for `gbc_message` — the run's message stops counted from
-    /// 0 in the order the motion reached them (a reset does not restart
-    /// the count). It is not the value assigned to `#3006`, which the
-    /// library does not receive. [`GBC_NO_MESSAGE`] when not at a message
-    /// stop.
+    /// At a message stop (`stop` is [`GbcStopKind::Message`]): the value
+    /// the program wrote to `#3006` (`#3006 = 7 (TEXT)` gives 7), made a
+    /// whole number as `#3000` makes its alarm number — rounded half away
+    /// from zero, vacant 0 — and held in 32 bits: below 0 gives 0, above
+    /// `UINT32_MAX` gives `UINT32_MAX`. Its text is `gbc_message`'s.
+    /// 0 at any other time; as `#3006 = 0` gives 0 too, `stop` tells a
+    /// message stop from none.
     pub message: u32,
     /// The alarm code when `state` is [`GbcRunState::Alarm`], else 0.
     pub alarm_code: u32,
@@ -250,16 +251,12 @@ pub struct GbcStateInfo {
     pub blocks: u64,
 }
 
-/// [`GbcStateInfo::message`] when the controller is not at a message stop
-/// (0 names the first message stop).
-pub const GBC_NO_MESSAGE: u32 = u32::MAX;
-
 impl GbcStateInfo {
     /// The state of a controller with no program.
     pub(crate) const EMPTY: GbcStateInfo = GbcStateInfo {
         state: GbcRunState::Idle,
         stop: GbcStopKind::None,
-        message: GBC_NO_MESSAGE,
+        message: 0,
         alarm_code: 0,
         blocks: 0,
     };
@@ -283,8 +280,8 @@ impl GbcStateInfo {
                 info.stop = match k {
                     PauseKind::M00 => GbcStopKind::M00,
                     PauseKind::M01 => GbcStopKind::M01,
-                    PauseKind::Message(n) => {
-                        info.message = n;
+                    PauseKind::Message { number, .. } => {
+                        info.message = number;
                         GbcStopKind::Message
                     }
                     PauseKind::SingleBlock => GbcStopKind::SingleBlock,

@@ -139,7 +139,7 @@ fn every_failure_sets_a_text_about_itself() {
     );
     let mut buf = [0 as c_char; 8];
     fails_with("message, cap 0, no len", null, "nothing", || unsafe {
-        gbc_message(c, 0, buf.as_mut_ptr(), 0, null_mut())
+        gbc_message(c, buf.as_mut_ptr(), 0, null_mut())
     });
     // gbc_last_error's own failure replaces the text too.
     fails_with("last_error, null buf", null, "buf is null", || unsafe {

@@ -98,7 +98,7 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             "gbc_message",
             Box::new(|h| {
                 let mut buf = [0 as core::ffi::c_char; 64];
-                unsafe { gbc_message(h, 1, buf.as_mut_ptr(), buf.len(), null_mut()) }
+                unsafe { gbc_message(h, buf.as_mut_ptr(), buf.len(), null_mut()) }
             }),
         ),
         (
@@ -301,7 +301,7 @@ fn null_pointers_and_bad_arguments_are_refused() {
         assert_eq!(gbc_state(c, null_mut()), GbcStatus::NullPointer);
         assert_eq!(gbc_alarm(c, null_mut()), GbcStatus::NullPointer);
         assert_eq!(
-            gbc_message(c, 1, null_mut(), 5, null_mut()),
+            gbc_message(c, null_mut(), 5, null_mut()),
             GbcStatus::NullPointer
         );
         assert_eq!(

@@ -276,73 +276,130 @@ fn an_infinite_override_is_clamped() {
     assert_ne!(top, run(100.0, 100.0));
 }
 
-/// `GbcStateInfo::message` counts the run's message stops from 0 (the
-/// key for `gbc_message`), whatever value `#3006` was given, and is
-/// GBC_NO_MESSAGE everywhere else; the text's full length tells of a cut.
-#[test]
-fn message_stops_are_counted_and_none_is_told_apart() {
-    let prog = module("O1\nG00 X40 Z2\n#3006=7(SEVEN)\nG00 X30\n#3006=1(ONE)\nM30\n");
-    let host = new_host(Host::default());
-    let (m, c) = new_controller(host, &prog);
+/// The text of the message stop the controller stands at, and its
+/// full length in bytes.
+fn message_text(c: GbcController) -> (String, usize) {
+    let mut buf = [0 as core::ffi::c_char; 32];
+    let mut len = usize::MAX;
+    let s = unsafe { gbc_message(c, buf.as_mut_ptr(), buf.len(), &mut len) };
+    assert_eq!(s, GbcStatus::Ok);
+    let text = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
+    (text.to_string_lossy().into_owned(), len)
+}
+
+fn state(c: GbcController) -> GbcStateInfo {
     let mut st = GbcStateInfo {
         state: GbcRunState::Idle,
         stop: GbcStopKind::None,
-        message: 0,
+        message: u32::MAX,
         alarm_code: 0,
         blocks: 0,
     };
     assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
-    assert_eq!(st.message, GBC_NO_MESSAGE, "before the start");
+    st
+}
+
+/// Runs `prog` to its end, pressing cycle start at every stop; `at_stop`
+/// sees the controller at each message stop. Returns each message stop's
+/// `GbcStateInfo::message` and text.
+fn message_stops(prog: &[u8], mut at_stop: impl FnMut(GbcController)) -> Vec<(u32, String)> {
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, prog);
+    let st = state(c);
+    assert_eq!(
+        (st.stop, st.message),
+        (GbcStopKind::None, 0),
+        "before the start"
+    );
+    assert_eq!(message_text(c), (String::new(), 0));
     assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
     let mut stops = Vec::new();
+    let mut st = state(c);
     for _ in 0..200_000 {
         let mut sp = blank();
         assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
         assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
-        assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
+        st = state(c);
         if st.stop != GbcStopKind::Message {
-            assert_eq!(st.message, GBC_NO_MESSAGE, "{:?}", st.state);
+            assert_eq!(st.message, 0, "{:?}", st.state);
+            assert_eq!(message_text(c), (String::new(), 0), "{:?}", st.state);
         }
         match st.state {
             GbcRunState::Ended => break,
             GbcRunState::Stopped => {
                 assert_eq!(st.stop, GbcStopKind::Message);
-                let mut buf = [0 as core::ffi::c_char; 32];
-                let mut len = 0;
-                let s = unsafe { gbc_message(c, st.message, buf.as_mut_ptr(), 32, &mut len) };
-                assert_eq!(s, GbcStatus::Ok);
-                let text = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
-                assert_eq!(len, text.to_bytes().len());
-                stops.push((st.message, text.to_string_lossy().into_owned()));
+                let (text, len) = message_text(c);
+                assert_eq!(len, text.len());
+                stops.push((st.message, text));
+                at_stop(c);
                 assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
             }
             _ => {}
         }
     }
     assert_eq!(st.state, GbcRunState::Ended);
-    assert_eq!(stops, [(0, "SEVEN".to_string()), (1, "ONE".to_string())]);
-    // A cut: three bytes of room, the full length 5; a length query.
-    let mut small = [0x55 as core::ffi::c_char; 4];
-    let mut len = 0;
-    assert_eq!(
-        unsafe { gbc_message(c, 0, small.as_mut_ptr(), 3, &mut len) },
-        GbcStatus::Ok
-    );
-    assert_eq!(len, 5);
-    assert_eq!(
-        unsafe { std::ffi::CStr::from_ptr(small.as_ptr()) }.to_bytes(),
-        b"SE"
-    );
-    assert_eq!(small[3], 0x55, "nothing past cap");
-    len = 0;
-    assert_eq!(
-        unsafe { gbc_message(c, 1, std::ptr::null_mut(), 0, &mut len) },
-        GbcStatus::Ok
-    );
-    assert_eq!(len, 3);
     assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
+    stops
+}
+
+/// `GbcStateInfo::message` is the value the program wrote to `#3006`,
+/// and `gbc_message` the text of the stop the controller stands at.
+#[test]
+fn a_message_stop_gives_the_number_written_to_3006() {
+    let prog = module("O1\nG00 X40 Z2\n#3006=7(SEVEN)\nG00 X30\n#3006=1(ONE)\nM30\n");
+    let stops = message_stops(&prog, |_| {});
+    assert_eq!(stops, [(7, "SEVEN".into()), (1, "ONE".into())]);
+}
+
+/// `#3006 = 0` and a vacant value give 0, as outside a message stop: the
+/// stop kind tells them apart. A fraction is rounded half away from zero,
+/// a negative value is 0, one beyond 32 bits UINT32_MAX.
+#[test]
+fn a_message_number_is_made_whole_and_0_is_told_apart_by_the_stop() {
+    let prog = module(concat!(
+        "O1\n#3006=0(ZERO)\n#3006=#0(VACANT)\n#3006=2.5(HALF)\n",
+        "#3006=-4(NEGATIVE)\n#3006=5000000000(BIG)\nM30\n"
+    ));
+    let stops = message_stops(&prog, |_| {});
+    let want = [
+        (0, "ZERO"),
+        (0, "VACANT"),
+        (3, "HALF"),
+        (0, "NEGATIVE"),
+        (u32::MAX, "BIG"),
+    ];
+    assert_eq!(stops, want.map(|(n, t)| (n, t.to_string())));
+}
+
+/// At a stop the text is cut as `snprintf` cuts, with its full length;
+/// a null buffer with cap 0 asks for the length alone.
+#[test]
+fn a_cut_message_gives_its_full_length() {
+    let prog = module("O1\nG00 X40 Z2\n#3006=7(SEVEN)\nM30\n");
+    let mut checked = false;
+    message_stops(&prog, |c| {
+        // Three bytes of room: "SE" and the NUL; the full length 5.
+        let mut small = [0x55 as core::ffi::c_char; 4];
+        let mut len = 0;
+        assert_eq!(
+            unsafe { gbc_message(c, small.as_mut_ptr(), 3, &mut len) },
+            GbcStatus::Ok
+        );
+        assert_eq!(len, 5);
+        let cut = unsafe { std::ffi::CStr::from_ptr(small.as_ptr()) };
+        assert_eq!(cut.to_bytes(), b"SE");
+        assert_eq!(small[3], 0x55, "nothing past cap");
+        len = 0;
+        assert_eq!(
+            unsafe { gbc_message(c, std::ptr::null_mut(), 0, &mut len) },
+            GbcStatus::Ok
+        );
+        assert_eq!(len, 5);
+        checked = true;
+    });
+    assert!(checked, "no message stop");
 }
 
 /// A file name longer than any buffer: `gbc_file_name` and `gbc_alarm`

@@ -307,7 +307,7 @@ impl Expand {
                 StopKind::M99 => "M99".into(),
             },
             Event::Skip { x, z } => format!("G31 X{} Z{}", n(*x), n(*z)),
-            Event::Message(t) => format!("#3006=1 ({})", comment(t)),
+            Event::Message { number, text } => format!("#3006={number} ({})", comment(text)),
             Event::Alarm { code, msg } => alarm(*code, msg),
             other => format!("({})", comment(&other.to_string())),
         };

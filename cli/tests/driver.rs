@@ -336,6 +336,20 @@ fn the_expanded_program_marks_the_blocks_computed_as_it_ran() {
 }
 
 #[test]
+fn the_expanded_program_keeps_the_number_of_a_message() {
+    // The canon prints a message's text only; -E writes the number the
+    // program gave #3006 (made whole), which a host sees.
+    let d = dir("message");
+    let src = "G00 X50 Z2\n#3006=7 (SEVEN)\n#3006=2.5 (HALF)\nM30\n";
+    std::fs::write(d.join("m.nc"), src).unwrap();
+    let e = gbcc(&["m.nc", "-E"], &d);
+    assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
+    let out = text(&e.stdout);
+    let messages: Vec<&str> = out.lines().filter(|l| l.starts_with('#')).collect();
+    assert_eq!(messages, ["#3006=7 (SEVEN)", "#3006=3 (HALF)"], "{out}");
+}
+
+#[test]
 fn a_move_that_waited_for_the_next_block_keeps_its_line() {
     // Under G42 each element waits for the next block (where it ends
     // depends on it), and line 5's chamfer for line 6: printed as the next

@@ -146,8 +146,15 @@ pub enum PauseKind {
     M00,
     /// M01: optional stop (stops only with the switch on).
     M01,
-    /// `#3006` message (the host shows the text).
-    Message(u32),
+    /// `#3006 = number` message: the host shows the text,
+    /// `Controller::message(index)`.
+    Message {
+        /// The value written to #3006, made whole (nc `Event::Message`).
+        number: u32,
+        /// Which message stop of the run it is, counted from 0: the key of
+        /// its text.
+        index: u32,
+    },
     /// Single block: the end of a block.
     SingleBlock,
 }

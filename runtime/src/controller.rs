@@ -219,9 +219,10 @@ impl<P: Plc> Controller<P> {
         self.engine.state()
     }
 
-    /// The text of a `MESSAGE` stop.
-    pub fn message(&self, n: u32) -> Option<&str> {
-        self.ra.message(n)
+    /// The text of a `MESSAGE` stop: `index` is its
+    /// [`PauseKind::Message`](crate::command::PauseKind::Message)'s.
+    pub fn message(&self, index: u32) -> Option<&str> {
+        self.ra.message(index)
     }
 
     /// The name of source file `index` of the loaded module (the index of

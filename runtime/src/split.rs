@@ -267,9 +267,10 @@ impl Interpreter {
         self.ra.vm_alarm(code)
     }
 
-    /// The text of a `MESSAGE` stop ([`RunState::Stopped`]).
-    pub fn message(&self, n: u32) -> Option<&str> {
-        self.ra.message(n)
+    /// The text of a `MESSAGE` stop ([`RunState::Stopped`]): `index` is
+    /// its [`PauseKind::Message`](crate::command::PauseKind::Message)'s.
+    pub fn message(&self, index: u32) -> Option<&str> {
+        self.ra.message(index)
     }
 
     /// Blocks the VM has executed, as the block budget counts them

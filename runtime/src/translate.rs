@@ -218,11 +218,12 @@ impl Translator {
                 StopKind::M01 => Command::Pause(PauseKind::M01),
                 StopKind::M02 | StopKind::M30 | StopKind::M99 => Command::End,
             }),
-            Event::Message(text) => {
+            Event::Message { number, text } => {
                 self.messages.push(text.clone());
-                out.push(Command::Pause(PauseKind::Message(
-                    self.messages.len() as u32 - 1,
-                )));
+                out.push(Command::Pause(PauseKind::Message {
+                    number: *number,
+                    index: self.messages.len() as u32 - 1,
+                }));
             }
             Event::Alarm { code, .. } => out.push(Command::Alarm(*code)),
             Event::PolarOn => {

@@ -1140,7 +1140,8 @@ impl Vm {
             }
             3006 => {
                 let text = self.msg_text();
-                self.nc.emit_in_order(Event::Message(text), sink);
+                let number = message_number(v);
+                self.nc.emit_in_order(Event::Message { number, text }, sink);
                 self.msg = None;
                 Ok(())
             }
@@ -1166,6 +1167,18 @@ impl Vm {
     /// (changes made here are not handed to the storage).
     pub fn persistent_mut(&mut self) -> &mut [f64; 500] {
         &mut self.vars.persistent
+    }
+}
+
+/// The number of a `#3006 = n` message stop, for the host: any value is
+/// allowed (dialect.md §7.3), so it is made whole as `#3000` makes its
+/// alarm number (rounded half away, vacant 0) and held in `u32` (`as`
+/// saturates: below 0 is 0, beyond the range `u32::MAX`).
+fn message_number(v: f64) -> u32 {
+    if is_vacant(v) {
+        0
+    } else {
+        round_half_away(v) as u32
     }
 }
 

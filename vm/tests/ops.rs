@@ -455,6 +455,53 @@ fn user_alarms_and_messages_of_section_7_3() {
     );
 }
 
+/// The (number, text) of each message stop, in order.
+#[derive(Default)]
+struct Messages(Vec<(u32, String)>);
+
+impl vm::Sink for Messages {
+    fn emit(&mut self, e: vm::Event) {
+        if let vm::Event::Message { number, text } = e {
+            self.0.push((number, text));
+        }
+    }
+}
+
+/// `#3006 = n`: the event carries n made whole, as `#3000` makes its
+/// alarm number — rounded half away from zero, vacant 0 — and held in a
+/// u32 (below 0: 0; beyond: u32::MAX); the canon line stays the text alone.
+#[test]
+fn a_message_carries_the_value_written_to_3006() {
+    let values = [
+        v(7.0),
+        v(1.0),
+        v(0.0),
+        N,
+        v(2.5),
+        v(-2.5),
+        v(-7.0),
+        v(4294967294.6),
+        v(1e12),
+    ];
+    let mut a = Asm::new();
+    let text = a.s("SEE");
+    for x in values {
+        a.op(Instr::SetMsg { s: text });
+        put(&mut a, 0, x);
+        a.op(Instr::StoreVar { var: 3006, src: 0 });
+    }
+    a.op(Instr::Halt);
+    let m = a.build();
+    let mut vm = common::vm(m.clone());
+    let mut got = Messages::default();
+    assert_eq!(vm.run(&mut got), Status::Done);
+    let numbers: Vec<u32> = got.0.iter().map(|(n, _)| *n).collect();
+    // 2.5 → 3, -2.5 → -3 → 0, 4294967294.6 → 4294967295.
+    assert_eq!(numbers, [7, 1, 0, 0, 3, 0, 0, u32::MAX, u32::MAX]);
+    assert!(got.0.iter().all(|(_, t)| t == "SEE"));
+    assert_eq!(common::canon_of(m), vec!["MESSAGE TEXT=\"SEE\""; 9]);
+}
+
 #[test]
 fn a_compiled_alarm_names_its_line_and_message() {
     let mut a = Asm::new();

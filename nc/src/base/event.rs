@@ -165,7 +165,16 @@ pub enum Event {
     Gear {
         n: u32,
     },
-    Message(String),
+    /// `#3006 = n (TEXT)`: a message stop. The canon prints the text
+    /// only; the number is for a host that tells messages apart by it.
+    Message {
+        /// The value written to #3006 as a whole number: rounded half away
+        /// from zero, vacant as 0, below 0 as 0, beyond `u32::MAX` as
+        /// `u32::MAX`.
+        number: u32,
+        /// The block's comment.
+        text: String,
+    },
     /// `POLAR MODE=ON`: G12.1.
     PolarOn,
     /// `POLAR MODE=OFF X= C=`: G13.1, with the joint position polar
@@ -477,7 +486,7 @@ impl Display for Event {
             Event::Stop(k) => write!(f, "STOP KIND={k:?}"),
             Event::Skip { x, z } => write!(f, "SKIP X={} Z={}", Num(*x), Num(*z)),
             Event::Gear { n } => write!(f, "GEAR N={n}"),
-            Event::Message(t) => write!(f, "MESSAGE TEXT={}", quoted(t)),
+            Event::Message { text, .. } => write!(f, "MESSAGE TEXT={}", quoted(text)),
             Event::Alarm { code, msg } => write!(f, "ALARM CODE={code} MSG={}", quoted(msg)),
             Event::PolarOn => f.write_str("POLAR MODE=ON"),
             Event::PolarOff { x, c } => write!(f, "POLAR MODE=OFF X={} C={}", Num(*x), Num(*c)),
@@ -551,7 +560,10 @@ mod tests {
 
     #[test]
     fn strings_replace_quotes_and_non_ascii() {
-        let e = Event::Message("CHECK \"INSERT\" \u{e9}".into());
+        let e = Event::Message {
+            number: 7,
+            text: "CHECK \"INSERT\" \u{e9}".into(),
+        };
         assert_eq!(e.to_string(), "MESSAGE TEXT=\"CHECK ?INSERT? ?\"");
     }
 
