@@ -487,7 +487,9 @@ typedef struct GbcAlarm {
    */
   uint32_t column;
   /**
-   * The alarm text.
+   * The alarm text: for an alarm the program raised (`#3000 = n
+   * (TEXT)`, `G65 H99`) its comment as `gbc_message` gives a message's,
+   * else the library's wording.
    */
   uint8_t message[GBC_TEXT_CAPACITY];
   /**
@@ -622,7 +624,11 @@ enum GbcStatus gbc_alarm(GbcController controller, struct GbcAlarm *out);
  * length in bytes to `*len` (may be null): `*len >= cap` means the text
  * was cut. `buf` null with `cap` 0 asks for the length only. An empty
  * text when the controller stands at no message stop: read it before
- * the cycle start that goes on.
+ * the cycle start that goes on. The text is the comment as the program
+ * wrote it, in UTF-8 (the canon prints `?` for each byte outside
+ * printable ASCII; this does not); a comment that is not UTF-8
+ * (Latin-1, GBK: which, the library cannot tell) comes as the canon
+ * prints it, printable ASCII with `?` for every other byte and `"`.
  *
  * # Safety
  * `buf` is null or writable for `cap` bytes; `len` null or writable.

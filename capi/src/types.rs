@@ -310,7 +310,9 @@ pub struct GbcAlarm {
     pub line: u32,
     /// Source column.
     pub column: u32,
-    /// The alarm text.
+    /// The alarm text: for an alarm the program raised (`#3000 = n
+    /// (TEXT)`, `G65 H99`) its comment as `gbc_message` gives a message's,
+    /// else the library's wording.
     pub message: [u8; GBC_TEXT_CAPACITY],
     /// The source file's name as compiled.
     pub file: [u8; GBC_TEXT_CAPACITY],

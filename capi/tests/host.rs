@@ -373,6 +373,20 @@ fn a_message_number_is_made_whole_and_0_is_told_apart_by_the_stop() {
     assert_eq!(stops, want.map(|(n, t)| (n, t.to_string())));
 }
 
+/// Texts come as the program wrote them, UTF-8 (the canon prints
+/// `CHECK ?INSERT? ??`); a comment that is not UTF-8 (Latin-1 here)
+/// comes as the canon prints it, `?` for each byte outside printable
+/// ASCII, `"` included.
+#[test]
+fn a_message_is_the_programs_utf8_text() {
+    let src = b"O1\n#3006=1(CHECK \"INSERT\" \xc3\xa9)\n#3006=2(CAF\xc9 \"1\")\nM30\n";
+    let out = compiler::compile("t.nc", src, &compiler::Options::default());
+    let prog = out.module.expect("compiles").to_bytes();
+    let stops = message_stops(&prog, |_| {});
+    let want = [(1, "CHECK \"INSERT\" \u{e9}"), (2, "CAF? ?1?")];
+    assert_eq!(stops, want.map(|(n, t)| (n, t.to_string())));
+}
+
 /// At a stop the text is cut as `snprintf` cuts, with its full length;
 /// a null buffer with cap 0 asks for the length alone.
 #[test]
@@ -407,7 +421,7 @@ fn a_cut_message_gives_its_full_length() {
 #[test]
 fn cut_names_and_alarm_texts_give_their_full_length() {
     let name = "é".repeat(150); // 300 bytes
-    let src = "O1\nG00 W-1\n#3000 = 5 (TOOL BROKEN)\nM30\n";
+    let src = "O1\nG00 W-1\n#3000 = 5 (TOOL BROKEN \u{e9})\nM30\n";
     let out = compiler::compile(&name, src.as_bytes(), &compiler::Options::default());
     let prog = out.module.expect("compiles").to_bytes();
     let host = new_host(Host::default());
@@ -454,8 +468,9 @@ fn cut_names_and_alarm_texts_give_their_full_length() {
     };
     assert_eq!(unsafe { gbc_alarm(c, &mut a) }, GbcStatus::Ok);
     let text = std::ffi::CStr::from_bytes_until_nul(&a.message).expect("NUL");
-    assert_eq!(text.to_bytes(), b"TOOL BROKEN");
-    assert_eq!(a.message_len, 11, "not cut");
+    // The program's text, UTF-8 (the canon's MSG is `TOOL BROKEN ??`).
+    assert_eq!(text.to_str(), Ok("TOOL BROKEN \u{e9}"));
+    assert_eq!(a.message_len, 14, "not cut");
     let file = std::ffi::CStr::from_bytes_until_nul(&a.file).expect("NUL");
     assert_eq!(file.to_str().expect("UTF-8"), "é".repeat(127));
     assert_eq!(a.file_len, 300, "cut: the full length");

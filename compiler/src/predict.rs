@@ -260,12 +260,13 @@ pub fn warning(code: u32, message: &str, span: Span) -> Diagnostic {
 
 /// W124's text, without its note.
 fn stops_with(code: u32, message: &str, span: Span) -> Diagnostic {
-    let code = match nc::error::NcError::is_program_alarm(code) {
-        true => format!("alarm {code}"),
-        false => format!("E{code:04}"),
+    let (code, message) = match nc::error::NcError::is_program_alarm(code) {
+        // The program's text as the canon prints it: no byte of a comment
+        // outside printable ASCII reaches the terminal.
+        true => (format!("alarm {code}"), nc::event::canon_text(message)),
+        false => (format!("E{code:04}"), message.to_string()),
     };
-    // (The message is the program's text: a long one is clipped, as
-    // source text in any message is.)
+    // (A long message is clipped, as source text in any message is.)
     let message = grammar::diag::quote(message.chars());
     let msg = format!("the run stops here with {code}: {message}");
     Diagnostic::warning("W124", span, msg)

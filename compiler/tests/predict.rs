@@ -205,6 +205,21 @@ fn a_program_alarm_is_told_with_its_number_and_text() {
 }
 
 #[test]
+fn a_program_alarms_text_is_told_as_the_canon_prints_it() {
+    // The module keeps the comment as written (UTF-8, an escape byte
+    // included); the warning shows it as the canon does, a `?` for each
+    // byte outside printable ASCII: é is two.
+    let src = "#3000=5(TOO BIG \u{e9} \x1b[31m)\nM30\n";
+    assert_eq!(
+        w124(src, &Options::default()),
+        [(
+            1,
+            "the run stops here with alarm 3005: TOO BIG ?? ?[31m".to_string()
+        )]
+    );
+}
+
+#[test]
 fn a_program_that_reads_persistent_variables_is_not_run() {
     // Without --vars #500 is vacant and 60/#500 divides by zero on line
     // 2; with #500 = 2 kept from an earlier run it does not. The compiler

@@ -70,8 +70,9 @@ pub struct Seq {
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Comment {
-    /// The text between `(` and `)`, every byte outside printable ASCII
-    /// replaced by `?` (the canon prints it that way).
+    /// The text between `(` and `)` as written when it is UTF-8; else
+    /// (Latin-1, GBK) every byte outside printable ASCII, and `"`,
+    /// replaced by `?`, as the canon prints it (`compact::comment_text`).
     pub text: String,
     pub span: Span,
 }

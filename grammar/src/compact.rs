@@ -336,9 +336,16 @@ fn bad_byte(b: u8, at: usize) -> Diagnostic {
         .with_label("only printable ASCII, space and tab may stand outside ( )")
 }
 
-/// The comment text as the canon prints it: printable ASCII kept, every
-/// other byte (and `"`) replaced by `?`.
+/// The comment's text as the program wrote it, when its bytes are UTF-8:
+/// a host shows it (a message, an alarm's text), and the canon prints
+/// `?` for each byte outside printable ASCII itself. A comment that is
+/// not UTF-8 (Latin-1 or GBK, dialect.md §1.1: which, cannot be told)
+/// comes as the canon prints it, printable ASCII kept and every other
+/// byte (and `"`) a `?`: text the canon prints as it did the bytes.
 pub fn comment_text(bytes: &[u8]) -> String {
+    if let Ok(text) = core::str::from_utf8(bytes) {
+        return text.to_string();
+    }
     bytes
         .iter()
         .map(|&b| {
@@ -402,6 +409,16 @@ mod tests {
         assert_eq!(text, b"N30G01X45");
         assert_eq!(offsets[6], 15);
         assert_eq!(comments, vec!["CUT; ?".to_string()]);
+    }
+
+    #[test]
+    fn a_utf8_comment_keeps_its_text() {
+        let (_, _, comments, _) = scan("#3006=1(CHECK \"INSERT\" \u{e9}\t.)");
+        assert_eq!(comments, ["CHECK \"INSERT\" \u{e9}\t."]);
+        // One byte that is no UTF-8 makes the comment Latin-1 or GBK:
+        // the canon's form, byte by byte.
+        let (_, _, comments, _) = scan(b"(\xc3\xa9 \"\xe9\")");
+        assert_eq!(comments, ["?? ???"]);
     }
 
     #[test]

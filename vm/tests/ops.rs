@@ -455,6 +455,25 @@ fn user_alarms_and_messages_of_section_7_3() {
     );
 }
 
+/// A program's alarm keeps its text as written (UTF-8) for the host; its
+/// canon MSG and its header print a `?` for each byte outside printable
+/// ASCII (é is two), the implementation's wording as before.
+#[test]
+fn a_program_alarm_keeps_its_utf8_text() {
+    let mut a = Asm::new();
+    a.load(0, 5.0);
+    let text = a.s("TOOL \"WORN\" \u{e9}");
+    a.line(LINE);
+    a.op(Instr::SetMsg { s: text });
+    a.op(Instr::StoreVar { var: 3000, src: 0 });
+    a.op(Instr::Halt);
+    let (status, canon, _) = run(a.build());
+    let alarm = alarm_of(status);
+    assert_eq!(alarm.message, "TOOL \"WORN\" \u{e9}");
+    assert_eq!(alarm.header(), "test.nc:7:1: alarm[3005]: TOOL ?WORN? ??");
+    assert_eq!(canon, ["ALARM CODE=3005 MSG=\"TOOL ?WORN? ??\""]);
+}
+
 /// The (number, text) of each message stop, in order.
 #[derive(Default)]
 struct Messages(Vec<(u32, String)>);

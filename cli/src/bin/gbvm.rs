@@ -198,7 +198,8 @@ fn load(path: &Path) -> Result<isa::Module, String> {
 /// canon prints strings (canon.md): `"` and every character outside
 /// printable ASCII become `?`. A crafted module then cannot put escape
 /// sequences or extra, fake diagnostic lines on the terminal, and an
-/// alarm's message reads as in the canon's `MSG`.
+/// alarm's message reads as in the canon's `MSG` (a program's text, one
+/// `?` per byte, comes so from `NcError::header` already).
 fn printable(text: &str) -> String {
     text.chars()
         .map(|c| match c {

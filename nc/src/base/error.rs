@@ -63,11 +63,20 @@ impl NcError {
 
     /// `FILE:LINE:COL: alarm[E5001]: message` as `gbvm` prints an alarm
     /// (`alarm[3005]` for one the program raised, canon.md); an alarm
-    /// without a text, `#3000=7`, ends at the colon.
+    /// without a text, `#3000=7`, ends at the colon. The program's text
+    /// of its own alarm reads as the canon's `MSG` (a terminal line gets
+    /// no byte of the program outside printable ASCII); the message
+    /// itself keeps it as written.
     pub fn header(code: u32, message: &str, file: &str, line: u32, col: u32) -> String {
-        let head = match NcError::is_program_alarm(code) {
-            true => format!("{file}:{line}:{col}: alarm[{code}]:"),
-            false => format!("{file}:{line}:{col}: alarm[E{code:04}]:"),
+        let (head, message) = match NcError::is_program_alarm(code) {
+            true => (
+                format!("{file}:{line}:{col}: alarm[{code}]:"),
+                super::event::canon_text(message),
+            ),
+            false => (
+                format!("{file}:{line}:{col}: alarm[E{code:04}]:"),
+                message.into(),
+            ),
         };
         match message.is_empty() {
             true => head,

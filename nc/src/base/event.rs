@@ -6,6 +6,7 @@ use alloc::string::String;
 use core::fmt::{self, Display, Write};
 
 use super::decimal;
+use super::error::NcError;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dir {
@@ -331,19 +332,39 @@ pub fn ascii(s: &str) -> String {
     out
 }
 
-/// A string field: `"` and every byte outside printable ASCII as `?`.
-fn quoted(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + 2);
-    out.push('"');
+/// A program's text (a comment: the `MESSAGE`, a `#3000` or `G65 H99`
+/// alarm) as the canon prints it, without its quotes: `"` and every
+/// byte outside printable ASCII as `?` (canon.md). The text is kept as
+/// the program wrote it for hosts, so `é`, two bytes of UTF-8, is `??`,
+/// as the bytes of the file.
+pub fn canon_text(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
     for c in s.chars() {
-        if c == '"' || !(' '..='~').contains(&c) {
-            out.push('?');
-        } else {
+        if is_plain(c) {
             out.push(c);
+        } else {
+            out.extend(core::iter::repeat_n('?', c.len_utf8()));
         }
     }
-    out.push('"');
     out
+}
+
+/// Printable ASCII but `"`: what a canon string prints as it is.
+fn is_plain(c: char) -> bool {
+    c != '"' && (' '..='~').contains(&c)
+}
+
+/// An alarm's `MSG` between its quotes: a program's alarm has the
+/// program's text ([`canon_text`]); the implementation's wording is
+/// ASCII but for the few signs [`ascii`] leaves, each one `?`.
+fn alarm_text(code: u32, msg: &str) -> String {
+    if NcError::is_program_alarm(code) {
+        canon_text(msg)
+    } else {
+        msg.chars()
+            .map(|c| if is_plain(c) { c } else { '?' })
+            .collect()
+    }
 }
 
 impl Display for Event {
@@ -486,8 +507,10 @@ impl Display for Event {
             Event::Stop(k) => write!(f, "STOP KIND={k:?}"),
             Event::Skip { x, z } => write!(f, "SKIP X={} Z={}", Num(*x), Num(*z)),
             Event::Gear { n } => write!(f, "GEAR N={n}"),
-            Event::Message { text, .. } => write!(f, "MESSAGE TEXT={}", quoted(text)),
-            Event::Alarm { code, msg } => write!(f, "ALARM CODE={code} MSG={}", quoted(msg)),
+            Event::Message { text, .. } => write!(f, "MESSAGE TEXT=\"{}\"", canon_text(text)),
+            Event::Alarm { code, msg } => {
+                write!(f, "ALARM CODE={code} MSG=\"{}\"", alarm_text(*code, msg))
+            }
             Event::PolarOn => f.write_str("POLAR MODE=ON"),
             Event::PolarOff { x, c } => write!(f, "POLAR MODE=OFF X={} C={}", Num(*x), Num(*c)),
             Event::Cylinder(Some(r)) => write!(f, "CYLINDER MODE=ON R={}", Num(*r)),
@@ -560,11 +583,24 @@ mod tests {
 
     #[test]
     fn strings_replace_quotes_and_non_ascii() {
+        // A program's text: one `?` for each byte, as canon.md words it
+        // (é is two in UTF-8, the tab one, € three).
         let e = Event::Message {
             number: 7,
-            text: "CHECK \"INSERT\" \u{e9}".into(),
+            text: "CHECK \"INSERT\" \u{e9}\t\u{20ac}".into(),
         };
-        assert_eq!(e.to_string(), "MESSAGE TEXT=\"CHECK ?INSERT? ?\"");
+        assert_eq!(e.to_string(), "MESSAGE TEXT=\"CHECK ?INSERT? ??????\"");
+        let e = Event::Alarm {
+            code: 3005,
+            msg: "\"\u{e9}\"".into(),
+        };
+        assert_eq!(e.to_string(), "ALARM CODE=3005 MSG=\"????\"");
+        // The implementation's wording: a sign `ascii` leaves is one `?`.
+        let e = Event::Alarm {
+            code: 7002,
+            msg: "within \u{3b5} of \"X\"".into(),
+        };
+        assert_eq!(e.to_string(), "ALARM CODE=7002 MSG=\"within ? of ?X?\"");
     }
 
     #[test]
