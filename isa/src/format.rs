@@ -56,8 +56,10 @@ pub const MAGIC: [u8; 4] = *b"GBC\0";
 /// `gotoseqin` (a computed GOTO inside a loop: E6008 into another) and
 /// `callsubpacked` (a computed M98 P split by the VM); version 9 `charge`
 /// and `goto`, so that every macro statement counts against the block
-/// budget, and `useralarm` (G65 H99 with a computed number).
-pub const VERSION: u16 = 9;
+/// budget, and `useralarm` (G65 H99 with a computed number); version 10
+/// strings that hold a message's UTF-8 text as written (escaped only where
+/// it is printed: an older VM would print each character's bytes).
+pub const VERSION: u16 = 10;
 
 /// Bytes before the first section: magic and version.
 pub const HEADER_LEN: usize = 6;
