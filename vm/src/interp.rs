@@ -1182,7 +1182,6 @@ fn message_number(v: f64) -> u32 {
     }
 }
 
-/// A variable number from a value: rounded; vacant E5009, negative E5008.
 /// A fault of the block at `pc` that a tier's code ran: the alarm names
 /// that block (unless it names a profile block already).
 fn about_block(mut e: Fault, pc: u32) -> Fault {
@@ -1190,6 +1189,7 @@ fn about_block(mut e: Fault, pc: u32) -> Fault {
     e
 }
 
+/// A variable number from a value: rounded; vacant E5009, negative E5008.
 fn var_number(v: f64) -> Result<u32, Fault> {
     if is_vacant(v) {
         return fault(
