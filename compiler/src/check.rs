@@ -49,6 +49,39 @@ pub(crate) fn literal_words(ws: &[NcWord<'_>]) -> SmallVec<[Word; 8]> {
         .collect()
 }
 
+/// The span of the word among `ws` (a block's NC words) that a kernel
+/// error names (`NcError::word_among`): the kernel was given their
+/// literal words, in this order.
+pub fn named_word(e: &NcError, ws: &[NcWord<'_>]) -> Option<Span> {
+    let literals = || ws.iter().filter(|w| w.value.literal().is_some());
+    let i = e.word_among(literals().map(|w| w.addr))?;
+    literals().nth(i).map(|w| w.span)
+}
+
+/// [`named_word`] for the words of a block as written: the NC words it
+/// splits into (found again on an error only).
+fn named_in_block(e: &NcError, ws: &[grammar::ast::Word]) -> Option<Span> {
+    if e.word.is_none() && e.addr.is_none() {
+        return None;
+    }
+    named_word(e, &words::classify(ws).ok()?.nc)
+}
+
+/// The span an error of the dry run stands on: the word it names, in the
+/// block it is about (the tagged one, `NcError::at`, else the running
+/// block `ws`), else that block's span (`block`).
+fn error_word_span(unit: &Unit, e: &NcError, ws: &[grammar::ast::Word], block: Span) -> Span {
+    let tagged = e.at.and_then(|l| link::block(unit, l as usize));
+    let (ws, span) = match tagged {
+        Some(b) => match &b.body {
+            Body::Words(ws) => (ws.as_slice(), b.span),
+            Body::Stmt(_) => (&[][..], b.span),
+        },
+        None => (ws, block),
+    };
+    named_in_block(e, ws).unwrap_or(span)
+}
+
 /// The literal words of a block that calls nothing: what
 /// `literal_words(&classify(ws).nc)` gives then, without sorting first.
 fn plain_literals(ws: &[grammar::ast::Word]) -> SmallVec<[Word; 8]> {
@@ -647,7 +680,7 @@ impl Runner {
             }
             Err(e) if compile_time(e.code) => {
                 let span = crate::profile::error_span(unit, e.at, block.span);
-                let mut d = error_at(&e, span);
+                let mut d = error_at(&e, error_word_span(unit, &e, ws, block.span));
                 if let Some(culprit) = e.culprit {
                     let there = crate::profile::error_span(unit, Some(culprit), span);
                     d = d.with_related(there, "this block");

@@ -462,3 +462,137 @@ fn g65_h99_takes_a_variable_q() {
     );
     assert_eq!(canon, ["ALARM CODE=507 MSG=\"OVERHEAT\""]);
 }
+
+/// The first diagnostic of `src` on `opts`'s machine: its code, line,
+/// column, message and the text it underlines.
+fn first_diag(src: &str, opts: &Options) -> (&'static str, usize, usize, String, String) {
+    let c = compile("p.nc", src.as_bytes(), opts);
+    let Some((f, d)) = c.diags.first() else {
+        panic!("no diagnostic for\n{src}");
+    };
+    let (line, col) = c.files[*f].line_col(d.span.start);
+    let text = src
+        .get(d.span.start as usize..d.span.end as usize)
+        .unwrap_or_default();
+    (d.code, line, col, d.message.clone(), text.to_string())
+}
+
+#[test]
+fn words_that_cannot_stand_there_are_named_at_the_word() {
+    // §2.1 (no Y, no C on the reference lathe: E2005) and §4 (E2007):
+    // the diagnostic underlines the word at fault; of two words that
+    // cannot stand together (X and U), the one written later.
+    let y = "this machine has no Y axis";
+    let h = "this machine has no C axis (H is the incremental C angle)";
+    let xu = "X and U in one block: write the X end point either absolute or incremental";
+    let zw = "Z and W in one block: write the Z end point either absolute or incremental";
+    let cases: [(&str, &str, usize, usize, &str, &str); 11] = [
+        ("G00 Z10 Y5\nM30\n", "E2005", 1, 9, y, "Y5"),
+        ("G00 Z10 V5\nM30\n", "E2005", 1, 9, y, "V5"),
+        ("G00 Z10 H5\nM30\n", "E2005", 1, 9, h, "H5"),
+        (
+            "G00 Z10 C5\nM30\n",
+            "E2005",
+            1,
+            9,
+            "this machine has no C axis",
+            "C5",
+        ),
+        ("G00 X10 U5\nM30\n", "E2007", 1, 9, xu, "U5"),
+        ("G00 U5 X10\nM30\n", "E2007", 1, 8, xu, "X10"),
+        ("G00 X10 Z10 W5\nM30\n", "E2007", 1, 13, zw, "W5"),
+        (
+            "G01 X20 Z-10 Q30000 ,A30 F1\nM30\n",
+            "E2007",
+            1,
+            21,
+            "Q and ,A both give the angle: write one of them",
+            ",A30",
+        ),
+        // Rules of the run (the dry run of a static program).
+        (
+            "G33 Z-10 U2 F1\nM30\n",
+            "E2007",
+            1,
+            10,
+            "G33 taps along Z at the current X: X/U cannot stand in a G33 block",
+            "U2",
+        ),
+        (
+            "G36 U-2.\nM30\n",
+            "E2007",
+            1,
+            5,
+            "G36 takes the absolute measuring position X, not U",
+            "U-2.",
+        ),
+        (
+            "G53 U2\nM30\n",
+            "E2007",
+            1,
+            5,
+            "G53 takes machine coordinates X/Z only, not U/W",
+            "U2",
+        ),
+    ];
+    for (src, code, line, col, msg, text) in cases {
+        let want = (code, line, col, msg.to_string(), text.to_string());
+        assert_eq!(first_diag(src, &Options::default()), want, "{src}");
+    }
+}
+
+#[test]
+fn a_word_the_run_refuses_is_named_at_the_word() {
+    // §1.9: a count with a decimal point (E1009) found by the cycle, not
+    // by the block's rules: G92's L in a block of the run that does not
+    // name G92. In a G71 profile block (§4.8) X and U (E2007) stand on
+    // the profile block's U. Under a C axis, C with H, a chamfer beside
+    // a C move, and C under compensation (§2.1, E2007).
+    let count = "L is a count here; a decimal point is not allowed";
+    let profile =
+        "G00 X30 Z5\nG71 U1 R1\nG71 P10 Q20 U0.2 W0.1 F1\nN10 G00 X10 U1\nN20 G01 Z-10\nM30\n";
+    let xu = "X and U in one block: write the X end point either absolute or incremental";
+    let reference = Options::default();
+    assert_eq!(
+        first_diag("G00 X30 Z5\nG92 X20 Z-10 F1\nX19 L2.\nM30\n", &reference),
+        ("E1009", 3, 5, count.to_string(), "L2.".to_string())
+    );
+    assert_eq!(
+        first_diag(profile, &reference),
+        ("E2007", 4, 13, xu.to_string(), "U1".to_string())
+    );
+    let c_axis = on("[axes.c]\nenabled = true\n");
+    let cases = [
+        (
+            "G00 X10 C5 H2\nM30\n",
+            12,
+            "C and H in one block: write the C angle either absolute or incremental",
+            "H2",
+        ),
+        (
+            "G01 X10 C10 L1 F1\nM30\n",
+            13,
+            "a block that turns C takes no chamfer, corner rounding or angle (L, D, Q, ,C, ,R, ,A)",
+            "L1",
+        ),
+        (
+            "G42 G01 X10 C10 F1\nM30\n",
+            13,
+            "C cannot move under nose-radius compensation: cancel it with G40 first",
+            "C10",
+        ),
+    ];
+    for (src, col, msg, text) in cases {
+        let want = ("E2007", 1, col, msg.to_string(), text.to_string());
+        assert_eq!(first_diag(src, &c_axis), want, "{src}");
+    }
+}
+
+#[test]
+fn a_word_rule_proven_by_folding_warns_at_the_word() {
+    // §0: a fault proven for a computed block is W116 at that line; the
+    // word the rule names is the repeated X (E1011 when it runs).
+    let (code, line, col, msg, text) = first_diag("#1=5\nG00 X10 X#1\nM30\n", &Options::default());
+    assert_eq!((code, line, col, text.as_str()), ("W116", 2, 9, "X#1"));
+    assert!(msg.contains("E1011"), "{msg}");
+}

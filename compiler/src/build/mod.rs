@@ -769,15 +769,10 @@ impl<'a> Builder<'a> {
 
     fn build_split(&mut self, block: &Block, split: &words::Split<'_>) {
         if let Err(e) = crate::check::literal_block(self.machine, &split.nc, &mut self.parsed) {
-            // The kernel names the word by its index among the literals
-            // it was given (`check::literal_words`).
-            let mut literals = split.nc.iter().filter(|w| w.value.literal().is_some());
-            let word = e.word.and_then(|i| literals.nth(i.into()));
-            self.error(
-                code_name(e.code),
-                word.map_or(block.span, |w| w.span),
-                e.message,
-            );
+            // The kernel names the word among the literals it was given
+            // (`check::literal_words`).
+            let word = crate::check::named_word(&e, &split.nc);
+            self.error(code_name(e.code), word.unwrap_or(block.span), e.message);
             return;
         }
         let after = crate::profile::before_exec(self, block, split);

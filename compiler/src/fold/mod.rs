@@ -676,7 +676,13 @@ impl<'a> Rewrite<'a> {
             .collect();
         let Some(lits) = lits else { return };
         if let Err(e) = crate::check::word_rules(self.machine, &lits, &mut self.parsed) {
-            self.warn(span, &e);
+            // At the word the kernel names, when it names one (every word
+            // is one of `lits` here, in order).
+            let addrs = lits.iter().map(|w| w.addr);
+            let word = e
+                .word_among(addrs)
+                .and_then(|i| self.f.word_spans_of(nc).get(i));
+            self.warn(word.copied().unwrap_or(span), &e);
         }
     }
 

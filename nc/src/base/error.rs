@@ -31,6 +31,10 @@ pub struct NcError {
     /// The address (`base::words::addr`) of the word the error is about,
     /// where the rule that found it knows no index.
     pub addr: Option<u8>,
+    /// With `addr`, the other address of a pair of words that cannot
+    /// stand together (X and U): the one written later is named, as the
+    /// repeat is for E1011 (the block was fine up to it).
+    pub pair: Option<u8>,
 }
 
 impl NcError {
@@ -52,6 +56,7 @@ impl NcError {
             culprit: None,
             word: None,
             addr: None,
+            pair: None,
         }
     }
 
@@ -101,6 +106,36 @@ impl NcError {
         self
     }
 
+    /// The same error, about the later written of the block's words of
+    /// addresses `a` and `b` (whichever of them it holds).
+    pub fn on_pair(mut self, a: u8, b: u8) -> NcError {
+        self.addr = Some(a);
+        self.pair = Some(b);
+        self
+    }
+
+    /// The index of the word the error names among a block's words, given
+    /// their addresses in written order: `word`, else the first word of
+    /// `addr` (of `addr` and `pair`, the later one); `None` when it names
+    /// none or the block holds no such word.
+    pub fn word_among(&self, addrs: impl IntoIterator<Item = u8>) -> Option<usize> {
+        if let Some(i) = self.word {
+            return Some(usize::from(i));
+        }
+        let a = self.addr?;
+        let (mut first, mut second) = (None, None);
+        for (i, x) in addrs.into_iter().enumerate() {
+            if x == a && first.is_none() {
+                first = Some(i);
+            }
+            if Some(x) == self.pair && second.is_none() {
+                second = Some(i);
+            }
+        }
+        // (`None` orders before any `Some`: the later of those found.)
+        first.max(second)
+    }
+
     /// The same error, about profile block `tag`.
     pub fn at(mut self, tag: u32) -> NcError {
         self.at = Some(tag);
@@ -136,4 +171,24 @@ impl core::error::Error for NcError {}
 /// Shorthand for `Err(NcError::new(..))`.
 pub fn fail<T>(alarm: Alarm, message: impl Into<String>) -> Result<T, NcError> {
     Err(NcError::new(alarm, message))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Alarm, NcError};
+
+    /// The word an error names among a block's addresses: its index, else
+    /// its address's first word, of a pair the later one.
+    #[test]
+    fn the_named_word_of_a_pair_is_the_later() {
+        let e = || NcError::new(Alarm::IncompatibleWords, "");
+        let block = [6u8, 23, 20, 25];
+        assert_eq!(e().on_pair(23, 20).word_among(block), Some(2));
+        assert_eq!(e().on_pair(20, 23).word_among(block), Some(2));
+        assert_eq!(e().on_pair(23, 9).word_among(block), Some(1));
+        assert_eq!(e().on_pair(9, 25).word_among(block), Some(3));
+        assert_eq!(e().on_addr(9).word_among(block), None);
+        assert_eq!(e().on_word(0).on_addr(25).word_among(block), Some(0));
+        assert_eq!(e().word_among(block), None);
+    }
 }

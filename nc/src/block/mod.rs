@@ -195,7 +195,7 @@ pub fn parse_into(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
     for (i, w) in words.iter().enumerate() {
         add_word(p, w).map_err(|e| e.on_word(i))?;
     }
-    check_words(p, m).map_err(|e| on_its_word(e, words))
+    check_words(p, m, words).map_err(|e| on_its_word(e, words))
 }
 
 /// One word of `parse_into`.
@@ -267,18 +267,15 @@ pub fn parse_move(words: &[Word], m: &Machine, p: &mut Parsed) -> Result<(), NcE
     }
     // `check_words` for these words: the integer-only rule and the C, H,
     // Y, comma-word, M-code and foreign rules have nothing to look at.
-    check_sign(p, b'F').map_err(|e| on_its_word(e, words))?;
-    check_end_point(p)
+    check_sign(p, b'F')
+        .and_then(|()| check_end_point(p))
+        .map_err(|e| on_its_word(e, words))
 }
 
-/// An error of a rule about one address names that address's word by
-/// its index (the compiler points at it).
+/// An error of a rule about one address (or a pair) names that
+/// address's word by its index (the compiler points at it).
 fn on_its_word(e: NcError, words: &[Word]) -> NcError {
-    let index = match (e.addr, e.word) {
-        (Some(a), None) => words.iter().position(|w| w.addr == a),
-        _ => None,
-    };
-    match index {
+    match e.word_among(words.iter().map(|w| w.addr)) {
         Some(i) => e.on_word(i),
         None => e,
     }
@@ -480,12 +477,12 @@ fn negative_f_allowed(p: &Parsed) -> bool {
         .any(|g| matches!(g, G::OneShot(_) | G::Motion(_) | G::Drill(_)))
 }
 
-fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
+fn check_words(p: &Parsed, m: &Machine, words: &[Word]) -> Result<(), NcError> {
     // Most blocks are moves: no integer-only, sign-checked or exclusive
     // address at all (the rules below would all pass).
     const CHECKED: u32 = mask(b"TPLQHDKFSUWYVC") | 1 << COMMA_A | 1 << COMMA_C | 1 << COMMA_R;
     if !p.has_any(CHECKED) {
-        return check_m_codes(p).and_then(|()| check_codes(p, m));
+        return check_m_codes(p, words).and_then(|()| check_codes(p, m));
     }
     for letter in [b'T', b'P', b'L', b'Q', b'H', b'D', b'K'] {
         // With a C axis, H is the incremental C angle (decimals allowed).
@@ -509,44 +506,63 @@ fn check_words(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     }
     check_ranges(p)?;
     check_end_point(p)?;
+    check_axes(p, m)?;
+    check_pairs(p)?;
+    check_m_codes(p, words)?;
+    check_codes(p, m)
+}
+
+/// E2005 for a word of an axis the machine lacks, naming that word (Y
+/// when the block holds both Y and V).
+fn check_axes(p: &Parsed, m: &Machine) -> Result<(), NcError> {
     if p.has(b'Y') || p.has(b'V') {
-        return fail(Alarm::AxisNotConfigured, "this machine has no Y axis");
+        let y = if p.has(b'Y') { b'Y' } else { b'V' };
+        let e = NcError::new(Alarm::AxisNotConfigured, "this machine has no Y axis");
+        return Err(e.on_addr(addr(y)));
     }
     if !m.axes.c.enabled
         && p.has(b'C')
         && p.one_shot().is_none()
         && p.motion() != Some(Motion::RigidThread)
     {
-        return fail(Alarm::AxisNotConfigured, "this machine has no C axis");
+        let e = NcError::new(Alarm::AxisNotConfigured, "this machine has no C axis");
+        return Err(e.on_addr(addr(b'C')));
     }
     // Outside G65 (which never reaches the kernel) H is the incremental C
     // angle, in a move as in a drilling cycle.
     if !m.axes.c.enabled && p.has(b'H') {
-        return fail(
-            Alarm::AxisNotConfigured,
-            "this machine has no C axis (H is the incremental C angle)",
-        );
+        let msg = "this machine has no C axis (H is the incremental C angle)";
+        return Err(NcError::new(Alarm::AxisNotConfigured, msg).on_addr(addr(b'H')));
     }
-    if p.has_at(COMMA_A) && p.has(b'Q') {
-        return fail(
-            Alarm::IncompatibleWords,
+    Ok(())
+}
+
+/// E2007 for two words that give the same thing, naming the later one.
+fn check_pairs(p: &Parsed) -> Result<(), NcError> {
+    let pairs = [
+        (
+            COMMA_A,
+            b'Q',
             "Q and ,A both give the angle: write one of them",
-        );
-    }
-    if p.has_at(COMMA_C) && p.has(b'L') {
-        return fail(
-            Alarm::IncompatibleWords,
+        ),
+        (
+            COMMA_C,
+            b'L',
             "L and ,C both give the chamfer: write one of them",
-        );
-    }
-    if p.has_at(COMMA_R) && p.has(b'D') {
-        return fail(
-            Alarm::IncompatibleWords,
+        ),
+        (
+            COMMA_R,
+            b'D',
             "D and ,R both give the corner radius: write one of them",
-        );
+        ),
+    ];
+    for (comma, letter, msg) in pairs {
+        if p.has_at(comma) && p.has(letter) {
+            let e = NcError::new(Alarm::IncompatibleWords, msg);
+            return Err(e.on_pair(comma, addr(letter)));
+        }
     }
-    check_m_codes(p)?;
-    check_codes(p, m)
+    Ok(())
 }
 
 /// F and S are not negative (but F of a left-hand tap, or of a block
@@ -617,34 +633,42 @@ fn check_end_point(p: &Parsed) -> Result<(), NcError> {
     // In G04 X and U are both the dwell in seconds and X wins (seed G04
     // note 3), so only moves forbid the pair.
     if p.has(b'X') && p.has(b'U') && p.one_shot() != Some(OneShot::Dwell) {
-        return fail(
-            Alarm::IncompatibleWords,
-            "X and U in one block: write the X end point either absolute or incremental",
-        );
+        let msg = "X and U in one block: write the X end point either absolute or incremental";
+        let e = NcError::new(Alarm::IncompatibleWords, msg);
+        return Err(e.on_pair(addr(b'X'), addr(b'U')));
     }
     if p.has(b'Z') && p.has(b'W') {
-        return fail(
-            Alarm::IncompatibleWords,
-            "Z and W in one block: write the Z end point either absolute or incremental",
-        );
+        let msg = "Z and W in one block: write the Z end point either absolute or incremental";
+        let e = NcError::new(Alarm::IncompatibleWords, msg);
+        return Err(e.on_pair(addr(b'Z'), addr(b'W')));
     }
     Ok(())
 }
 
-fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
-    let calls = p.ms().iter().filter(|m| m.class() == Class::Call).count();
-    let ends = p.ms().iter().any(|m| m.class() == Class::ProgramStop);
-    if calls > 1 {
-        return fail(
-            Alarm::TooManyMCodes,
-            "at most one of M98, M99 and M9000…M9999 in a block",
-        );
+/// E1012 names the M word that makes the block wrong: the second call,
+/// or the later of a call and a stop.
+fn check_m_codes(p: &Parsed, words: &[Word]) -> Result<(), NcError> {
+    let nth = |class: Class, n: usize| {
+        let mut of_class = p
+            .ms()
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.class() == class);
+        of_class.nth(n).map(|(k, _)| k)
+    };
+    let too_many = |msg: &str, k: usize| {
+        let e = NcError::new(Alarm::TooManyMCodes, msg);
+        match m_word(words, k) {
+            Some(i) => Err(e.on_word(i)),
+            None => Err(e),
+        }
+    };
+    if let Some(k) = nth(Class::Call, 1) {
+        return too_many("at most one of M98, M99 and M9000…M9999 in a block", k);
     }
-    if calls == 1 && ends {
-        return fail(
-            Alarm::TooManyMCodes,
-            "M98/M99 cannot share a block with M00, M01, M02 or M30",
-        );
+    if let (Some(call), Some(stop)) = (nth(Class::Call, 0), nth(Class::ProgramStop, 0)) {
+        let msg = "M98/M99 cannot share a block with M00, M01, M02 or M30";
+        return too_many(msg, call.max(stop));
     }
     if p.has_m(M::ForeignLocalCall) {
         return fail(
@@ -653,6 +677,16 @@ fn check_m_codes(p: &Parsed) -> Result<(), NcError> {
         );
     }
     Ok(())
+}
+
+/// The index among `words` of the block's M word number `k` (0 the
+/// first): the block's M codes are kept in written order.
+fn m_word(words: &[Word], k: usize) -> Option<usize> {
+    let mut ms = words
+        .iter()
+        .enumerate()
+        .filter(|(_, w)| w.addr == addr(b'M'));
+    ms.nth(k).map(|(i, _)| i)
 }
 
 /// Codes of other dialects, and codes that need equipment the machine
@@ -828,6 +862,24 @@ mod tests {
             }
         }
         assert!(parsed > 1000, "only {parsed} blocks parsed");
+    }
+
+    /// E1012 names the M word that makes the block wrong (dialect.md
+    /// §6.1): the second call, or the later of a call and a stop.
+    #[test]
+    fn an_m_code_rule_names_the_m_word_at_fault() {
+        let m = Machine::reference();
+        let w = |letter: u8, value: f64| Word {
+            addr: addr(letter),
+            value,
+            flags: LITERAL | NO_POINT,
+        };
+        let named = |words: &[Word]| parse(words, &m).err().map(|e| (e.code, e.word));
+        let (m98, m99, m30, m02) = (w(b'M', 98.0), w(b'M', 99.0), w(b'M', 30.0), w(b'M', 2.0));
+        let (p, x) = (w(b'P', 1.0), w(b'X', 1.0));
+        assert_eq!(named(&[m98, p, m99]), Some((1012, Some(2))));
+        assert_eq!(named(&[m30, x, m98]), Some((1012, Some(2))));
+        assert_eq!(named(&[m98, m02, x]), Some((1012, Some(1))));
     }
 
     /// The cast-based rounding agrees with `libm::floor` everywhere,

@@ -35,7 +35,7 @@ use alloc::format;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{self, Motion, OneShot};
 use crate::base::machine::DecimalPoint;
-use crate::base::words::{Word, NO_POINT};
+use crate::base::words::{addr, Word, NO_POINT};
 use crate::block::Parsed;
 use crate::exec::cycles::{func, Func};
 use crate::exec::Nc;
@@ -65,11 +65,18 @@ pub(crate) fn check(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
     if !programs_c(nc, p) {
         return Ok(());
     }
+    // (An error names the C or H word, of both the later, unless it
+    // names another.)
+    let on_c = |e: NcError| match e.addr {
+        Some(_) => e,
+        None => e.on_pair(addr(b'C'), addr(b'H')),
+    };
     if p.has(b'C') && p.has(b'H') {
         return fail(
             Alarm::IncompatibleWords,
             "C and H in one block: write the C angle either absolute or incremental",
-        );
+        )
+        .map_err(on_c);
     }
     match func(nc, p) {
         Func::OneShot(OneShot::Home | OneShot::HomeN) | Func::Drill(_) => Ok(()),
@@ -88,6 +95,7 @@ pub(crate) fn check(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
         Func::Motion(code) => not_here(code.code()),
         Func::OneShot(code) => not_here(code.code()),
     }
+    .map_err(on_c)
 }
 
 fn not_here(code: gcode::Code) -> Result<(), NcError> {
@@ -99,15 +107,18 @@ fn not_here(code: gcode::Code) -> Result<(), NcError> {
 
 fn check_line(nc: &Nc, p: &Parsed) -> Result<(), NcError> {
     use crate::base::words::{COMMA_A, COMMA_C, COMMA_R};
-    let corner = [COMMA_A, COMMA_C, COMMA_R].iter().any(|&a| p.has_at(a))
-        || p.has(b'L')
-        || p.has(b'D')
-        || p.has(b'Q');
-    if corner {
-        return fail(
-            Alarm::IncompatibleWords,
-            "a block that turns C takes no chamfer, corner rounding or angle (L, D, Q, ,C, ,R, ,A)",
-        );
+    let corner = [
+        addr(b'L'),
+        addr(b'D'),
+        addr(b'Q'),
+        COMMA_C,
+        COMMA_R,
+        COMMA_A,
+    ];
+    if let Some(&a) = corner.iter().find(|&&a| p.has_at(a)) {
+        let msg =
+            "a block that turns C takes no chamfer, corner rounding or angle (L, D, Q, ,C, ,R, ,A)";
+        return Err(NcError::new(Alarm::IncompatibleWords, msg).on_addr(a));
     }
     if nc.st.modal.comp() != Comp::Off || crate::exec::comp::running(nc) {
         return fail(

@@ -172,10 +172,9 @@ fn parameter_block(nc: &mut Nc, p: &Parsed) -> Result<Outcome, NcError> {
     let mut out = Outcome::default();
     match (p.get(b'R'), p.get(b'W')) {
         (Some(_), Some(_)) => {
-            return fail(
-                Alarm::IncompatibleWords,
-                format!("N{n}: R reads and W writes; write one of them"),
-            )
+            let msg = format!("N{n}: R reads and W writes; write one of them");
+            let e = NcError::new(Alarm::IncompatibleWords, msg);
+            return Err(e.on_pair(addr(b'R'), addr(b'W')));
         }
         (Some(var), None) => {
             let value = params::read(nc, n, axis).map_err(|e| written_fault(e, p, b"P"))?;

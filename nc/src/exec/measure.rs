@@ -17,6 +17,7 @@ use alloc::format;
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::Event;
 use crate::base::point::Pt;
+use crate::base::words::addr;
 use crate::block::Parsed;
 use crate::exec::{Nc, Sink};
 
@@ -28,13 +29,11 @@ pub fn run(nc: &mut Nc, x_axis: bool, p: &Parsed, sink: &mut dyn Sink) -> Result
         ("G37", b'Z', b'W')
     };
     if p.has(inc) {
-        return fail(
-            Alarm::IncompatibleWords,
-            format!(
-                "{name} takes the absolute measuring position {}, not {}",
-                word as char, inc as char
-            ),
+        let msg = format!(
+            "{name} takes the absolute measuring position {}, not {}",
+            word as char, inc as char
         );
+        return Err(NcError::new(Alarm::IncompatibleWords, msg).on_addr(addr(inc)));
     }
     let Some(at) = nc.len_of(p, word) else {
         return fail(

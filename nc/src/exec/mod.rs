@@ -834,10 +834,9 @@ impl Nc {
     /// G53: a rapid to machine coordinates, X on the diameter.
     fn machine_coords(&mut self, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcError> {
         if p.has(b'U') || p.has(b'W') {
-            return fail(
-                Alarm::IncompatibleWords,
-                "G53 takes machine coordinates X/Z only, not U/W",
-            );
+            let msg = "G53 takes machine coordinates X/Z only, not U/W";
+            let e = NcError::new(Alarm::IncompatibleWords, msg);
+            return Err(e.on_pair(addr(b'U'), addr(b'W')));
         }
         let origin = self.st.origin();
         let mut m = self.st.machine_pos();

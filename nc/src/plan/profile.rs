@@ -13,6 +13,7 @@ use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::{Drill, Motion, G};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
+use crate::base::words::addr;
 use crate::base::words::Word;
 use crate::block::{self, Parsed};
 use crate::plan::angle::{angle_of, end_at_r, end_at_z, intersection};
@@ -79,7 +80,8 @@ pub fn ns_kind(r: &Reader, blocks: &[(Vec<Word>, u32)], facing: bool) -> Result<
 pub fn check_codes(r: &Reader, p: &Parsed, tag: u32) -> Result<(), NcError> {
     if r.machine.axes.c.enabled && (p.has(b'C') || p.has(b'H')) {
         let msg = "C/H may not stand in a G70–G73 profile: the cycles move X and Z only";
-        return Err(NcError::new(Alarm::IncompatibleWords, msg).at(tag));
+        let e = NcError::new(Alarm::IncompatibleWords, msg);
+        return Err(e.on_pair(addr(b'C'), addr(b'H')).at(tag));
     }
     if let Some(code) = p.one_shot() {
         let msg = format!(

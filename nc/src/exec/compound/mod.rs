@@ -129,13 +129,11 @@ fn count(p: &Parsed, letter: u8) -> Result<Option<f64>, NcError> {
         return Ok(None);
     };
     if w.literal_with_point() {
-        return fail(
-            Alarm::DecimalPointNotAllowed,
-            format!(
-                "{} takes an integer here; a decimal point is not allowed",
-                letter as char
-            ),
+        let msg = format!(
+            "{} takes an integer here; a decimal point is not allowed",
+            letter as char
         );
+        return Err(NcError::new(Alarm::DecimalPointNotAllowed, msg).on_addr(w.addr));
     }
     Ok(Some(round_half_away(w.value)))
 }

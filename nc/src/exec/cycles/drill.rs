@@ -10,6 +10,7 @@ use super::{lead, Func};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::gcode::Drill;
 use crate::base::mcode::M;
+use crate::base::words::addr;
 use crate::block::{round_half_away, Parsed};
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::drill::{drill_path, tap_holes, Holes, Pecks};
@@ -103,10 +104,8 @@ pub(crate) fn run(
 ) -> Result<(), NcError> {
     // block.rs sees H only in a block that names the cycle.
     if !nc.machine.axes.c.enabled && p.has(b'H') {
-        return fail(
-            Alarm::AxisNotConfigured,
-            "this machine has no C axis (H is the incremental hole angle)",
-        );
+        let msg = "this machine has no C axis (H is the incremental hole angle)";
+        return Err(NcError::new(Alarm::AxisNotConfigured, msg).on_addr(addr(b'H')));
     }
     take_data(nc, code, p)?;
     // A block with only C/H drills the same hole at another angle.

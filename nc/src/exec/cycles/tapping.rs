@@ -8,6 +8,7 @@ use super::{lead, words};
 use crate::base::error::{fail, Alarm, NcError};
 use crate::base::event::SpindleDir;
 use crate::base::point::Pt;
+use crate::base::words::addr;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::drill::g33_path;
@@ -20,10 +21,9 @@ pub(crate) fn g33(
     out: &mut Outcome,
 ) -> Result<(), NcError> {
     if p.has(b'X') || p.has(b'U') {
-        return fail(
-            Alarm::IncompatibleWords,
-            "G33 taps along Z at the current X: X/U cannot stand in a G33 block",
-        );
+        let msg = "G33 taps along Z at the current X: X/U cannot stand in a G33 block";
+        let e = NcError::new(Alarm::IncompatibleWords, msg);
+        return Err(e.on_pair(addr(b'X'), addr(b'U')));
     }
     let written = lead::written(nc, p, true);
     lead::remember(nc, written);

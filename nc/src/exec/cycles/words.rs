@@ -2,7 +2,7 @@
 
 use alloc::format;
 
-use crate::base::error::{fail, Alarm, NcError};
+use crate::base::error::{Alarm, NcError};
 use crate::block::{round_half_away, Parsed};
 use crate::exec::Nc;
 
@@ -31,13 +31,11 @@ pub(crate) fn count(p: &Parsed, letter: u8) -> Result<Option<i64>, NcError> {
         return Ok(None);
     };
     if w.literal_with_point() {
-        return fail(
-            Alarm::DecimalPointNotAllowed,
-            format!(
-                "{} is a count here; a decimal point is not allowed",
-                letter as char
-            ),
+        let msg = format!(
+            "{} is a count here; a decimal point is not allowed",
+            letter as char
         );
+        return Err(NcError::new(Alarm::DecimalPointNotAllowed, msg).on_addr(w.addr));
     }
     // `as` saturates: an absurd count stays an absurd (checked) count.
     Ok(Some(round_half_away(w.value) as i64))
