@@ -678,23 +678,7 @@ impl Runner {
                 self.warner.budget_spent(index, block.span, EXTRA_STEPS);
                 Ok(Flow::End)
             }
-            Err(e) if compile_time(e.code) => {
-                let span = crate::profile::error_span(unit, e.at, block.span);
-                let mut d = error_at(&e, error_word_span(unit, &e, ws, block.span));
-                if let Some(culprit) = e.culprit {
-                    let there = crate::profile::error_span(unit, Some(culprit), span);
-                    d = d.with_related(there, "this block");
-                }
-                if span != block.span {
-                    // The error is about a profile block: say which cycle
-                    // ran it.
-                    d = d.with_note(format!(
-                        "in the profile of the cycle at line {}",
-                        line_of(unit, block.span)
-                    ));
-                }
-                Err((index, d))
-            }
+            Err(e) if compile_time(e.code) => Err((index, compile_error(unit, &e, ws, block.span))),
             // A run-time fault: every run of this static program stops
             // there (W124).
             Err(e) => {
@@ -703,6 +687,29 @@ impl Runner {
                 Ok(Flow::End)
             }
         }
+    }
+}
+
+/// The diagnostic of a compile-time error of the dry run, found when the
+/// block `ws` at `block` ran: at the word it names, in the block it is
+/// about. That may be a profile block of the running cycle (a note says
+/// which cycle), or an earlier block whose element waited for this one's
+/// (a chamfer too large for the next move): this block is then labelled.
+fn compile_error(unit: &Unit, e: &NcError, ws: &[grammar::ast::Word], block: Span) -> Diagnostic {
+    let span = crate::profile::error_span(unit, e.at, block);
+    let mut d = error_at(e, error_word_span(unit, e, ws, block));
+    if let Some(culprit) = e.culprit {
+        let there = crate::profile::error_span(unit, Some(culprit), span);
+        d = d.with_related(there, "this block");
+    }
+    if span == block {
+        return d;
+    }
+    if crate::profile::names_cycle(ws) {
+        let line = line_of(unit, block);
+        d.with_note(format!("in the profile of the cycle at line {line}"))
+    } else {
+        d.with_related(block, "the next move")
     }
 }
 

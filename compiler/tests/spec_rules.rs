@@ -596,3 +596,59 @@ fn a_word_rule_proven_by_folding_warns_at_the_word() {
     assert_eq!((code, line, col, text.as_str()), ("W116", 2, 9, "X#1"));
     assert!(msg.contains("E1011"), "{msg}");
 }
+
+#[test]
+fn a_corner_too_large_stands_on_its_word_with_the_next_move_labelled() {
+    // §5.1: the chamfer belongs to the block that carries L; it is found
+    // too large only when the next move is known. From X50 Z5 the L15 line
+    // runs 15 mm along Z; X40 then runs 5 mm (radius) down: the chamfer's
+    // second point, 15 mm along it (type II, №181.0 = 1), is off it.
+    let src = "G00 X50 Z5\nG01 Z-10 L15 F1\nX40\nM30\n";
+    let msg = "chamfer 15.0000 is too large: the corner point would fall outside an element";
+    let want = ("E4007", 2, 10, msg.to_string(), "L15".to_string());
+    assert_eq!(first_diag(src, &Options::default()), want);
+    let c = compile("p.nc", src.as_bytes(), &Options::default());
+    let related = c.diags.first().and_then(|(f, d)| {
+        let (span, label) = d.related.clone()?;
+        Some((c.files[*f].line_col(span.start), label))
+    });
+    assert_eq!(related, Some(((3, 1), "the next move".to_string())));
+    // In a G71 profile the corner word's block (line 5) stands, and the
+    // note names the cycle (line 3) that ran it.
+    let profile = "G00 X50 Z2\nG71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F0.2\nN10 G00 X20\nG01 Z-10 L15\nN20 X40\nM30\n";
+    let want = ("E4007", 5, 10, msg.to_string(), "L15".to_string());
+    assert_eq!(first_diag(profile, &Options::default()), want);
+    let c = compile("p.nc", profile.as_bytes(), &Options::default());
+    let notes = c.diags.first().map(|(_, d)| d.notes.clone());
+    assert_eq!(
+        notes,
+        Some(vec!["in the profile of the cycle at line 3".to_string()])
+    );
+    // An interference about an earlier element (comp.md §5, E4036 at
+    // line 6) is no profile's: the block that ran is labelled, no note.
+    let comp = "O1\nG99 T0101\nG00 X60 Z5\nG42 G01 X20 Z0 F0.1\nG01 Z-10\nG01 X19.8\nM08\nG01 Z-20\nG40 G00 X70\nM30\n";
+    let c = compile("p.nc", comp.as_bytes(), &on(NOSE));
+    let found = c.diags.first().map(|(f, d)| {
+        let related = d
+            .related
+            .as_ref()
+            .map(|(s, l)| (c.files[*f].line_col(s.start), l.clone()));
+        (
+            d.code,
+            c.files[*f].line_col(d.span.start),
+            related,
+            d.notes.len(),
+        )
+    });
+    let next = Some(((8, 1), "the next move".to_string()));
+    assert_eq!(found, Some(("E4036", (6, 1), next, 0)));
+    // A run (the L computed): the alarm names the L block, line 3.
+    let (_, _, status) = vm_run(
+        "#1=15\nG00 X50 Z5\nG01 Z-10 L#1 F1\nX40\nM30\n",
+        &Options::default(),
+    );
+    let Status::Alarm(a) = status else {
+        panic!("{status:?}")
+    };
+    assert_eq!((a.code, a.line), (4007, 3));
+}

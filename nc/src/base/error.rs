@@ -142,6 +142,12 @@ impl NcError {
         self
     }
 
+    /// [`at`](NcError::at) unless the error names a block already.
+    pub fn or_at(mut self, tag: u32) -> NcError {
+        self.at.get_or_insert(tag);
+        self
+    }
+
     /// The same error, pointing to profile block `tag` (see `culprit`).
     pub fn pointing_to(mut self, tag: u32) -> NcError {
         self.culprit = Some(tag);

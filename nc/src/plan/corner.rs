@@ -11,7 +11,9 @@ use crate::base::geom::Element;
 use crate::base::machine::ChamferType;
 use crate::base::point::Pt;
 
-/// What a corner word asks for at the end of its element.
+/// What a corner word asks for at the end of its element. `word` is the
+/// word's address (`base::words::addr`: L, D, ,C or ,R): an error about
+/// the corner names it, on the block that carries it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Corner {
     /// `L` or `,C`: a straight chamfer. `ChamferType::II` (№181.0 = 1, the
@@ -19,10 +21,23 @@ pub enum Corner {
     /// the corner to each chamfer point. `ChamferType::I`: `size` is the
     /// length of the chamfer line, the two chamfer points being equally far
     /// from the corner.
-    Chamfer { size: f64, kind: ChamferType },
+    Chamfer {
+        size: f64,
+        kind: ChamferType,
+        word: u8,
+    },
     /// `D` or `,R`: an arc of this radius tangent to both elements on the
     /// inside of the turn.
-    Round { radius: f64 },
+    Round { radius: f64, word: u8 },
+}
+
+impl Corner {
+    /// The address of the word that asked for it.
+    pub fn word(&self) -> u8 {
+        match *self {
+            Corner::Chamfer { word, .. } | Corner::Round { word, .. } => word,
+        }
+    }
 }
 
 /// Tangents closer than this (cross product of unit vectors) are parallel.
@@ -52,12 +67,17 @@ const PARALLEL: f64 = 1e-7;
 ///
 /// Errors: E4007 when T1 or T2 would not lie on its element (chamfer or
 /// radius too large) or when the path reverses at P (no inside of the turn,
-/// no chamfer line).
+/// no chamfer line), about the corner's word.
 pub fn corner(
     e1: &Element,
     e2: &Element,
     c: Corner,
 ) -> Result<Option<(Element, Element, Element)>, NcError> {
+    joined(e1, e2, c).map_err(|e| e.on_addr(c.word()))
+}
+
+/// [`corner`] without naming the word.
+fn joined(e1: &Element, e2: &Element, c: Corner) -> Result<Option<Joined>, NcError> {
     let p = e1.end();
     if elem::shorter_than(e1, EPS_LEN) || elem::shorter_than(e2, EPS_LEN) {
         return Ok(None);
@@ -75,8 +95,8 @@ pub fn corner(
         );
     }
     match c {
-        Corner::Chamfer { size, kind } => chamfer(e1, e2, size, kind).map(Some),
-        Corner::Round { radius } => round(e1, e2, radius, cross(t1, t2) > 0.0).map(Some),
+        Corner::Chamfer { size, kind, .. } => chamfer(e1, e2, size, kind).map(Some),
+        Corner::Round { radius, .. } => round(e1, e2, radius, cross(t1, t2) > 0.0).map(Some),
     }
 }
 

@@ -122,7 +122,7 @@ pub fn build(r: &Reader, blocks: &[(Vec<Word>, u32)]) -> Result<Vec<Seg>, NcErro
     for (i, (words, tag)) in blocks.iter().enumerate() {
         let p = parse_at(r, words, *tag)?;
         check_codes(r, &p, *tag)?;
-        b.block(i == 0, &p, *tag).map_err(|e| e.at(*tag))?;
+        b.block(i == 0, &p, *tag).map_err(|e| e.or_at(*tag))?;
     }
     if let Some(first) = b.pair {
         let msg = "angle programming: the block after a Q_ block must be X_ Z_ Q_";
@@ -299,7 +299,8 @@ fn join(segs: &mut Vec<Seg>, at: usize, next: Seg, c: Corner) -> Result<(), NcEr
         segs.push(next);
         return Ok(());
     };
-    match corner(&e1, &e2, c)? {
+    // (An error is about the corner word of the earlier block.)
+    match corner(&e1, &e2, c).map_err(|e| e.at(prev.tag))? {
         Some((e1, inserted, e2)) => {
             prev.curve = Curve::new(e1);
             // The corner word stands on the earlier block.

@@ -205,12 +205,17 @@ impl Reader<'_> {
             Some(_) if comma_c.is_some() => Corner::Chamfer {
                 size,
                 kind: ChamferType::II,
+                word: word.addr,
             },
             Some(_) => Corner::Chamfer {
                 size,
                 kind: self.machine.cycles.chamfer_type,
+                word: word.addr,
             },
-            None => Corner::Round { radius: size },
+            None => Corner::Round {
+                radius: size,
+                word: word.addr,
+            },
         }))
     }
 

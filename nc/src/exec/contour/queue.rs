@@ -234,7 +234,10 @@ fn join(prev: &mut Move, next: &mut Move) -> Result<Option<Move>, NcError> {
     if next.rapid {
         return Ok(None);
     }
-    let Some((a, inserted, b)) = corner(&prev.elem, &next.elem, c)? else {
+    // The error is about the earlier block's corner word: it names that
+    // block (`NcError::at`), the word the corner's.
+    let joined = corner(&prev.elem, &next.elem, c).map_err(|e| e.at(prev.origin))?;
+    let Some((a, inserted, b)) = joined else {
         return Ok(None);
     };
     prev.elem = a;

@@ -519,9 +519,16 @@ fn the_public_corner_function() {
         from: Pt::new(10.0, -15.0),
         to: Pt::new(15.0, -15.0),
     };
-    let (a, ins, b) = corner(&e1, &e2, Corner::Round { radius: 2.0 })
-        .unwrap()
-        .unwrap();
+    let (a, ins, b) = corner(
+        &e1,
+        &e2,
+        Corner::Round {
+            radius: 2.0,
+            word: addr(b'D'),
+        },
+    )
+    .unwrap()
+    .unwrap();
     assert!(a.end().dist(Pt::new(10.0, -13.0)) < 1e-9);
     assert!(b.start().dist(Pt::new(12.0, -15.0)) < 1e-9);
     let Element::Arc { centre, cw, .. } = ins else {
@@ -529,7 +536,15 @@ fn the_public_corner_function() {
     };
     assert!(centre.dist(Pt::new(12.0, -13.0)) < 1e-9 && cw);
     assert_eq!(
-        corner(&e1, &e1_after(&e1), Corner::Round { radius: 1.0 }).unwrap(),
+        corner(
+            &e1,
+            &e1_after(&e1),
+            Corner::Round {
+                radius: 1.0,
+                word: addr(b'D'),
+            }
+        )
+        .unwrap(),
         None
     );
 }
@@ -563,6 +578,7 @@ fn type_one_chamfer_onto_an_arc() {
     let c = Corner::Chamfer {
         size: 2.0,
         kind: ChamferType::I,
+        word: addr(b'L'),
     };
     let (a, ins, b) = corner(&e1, &e2, c).unwrap().unwrap();
     let (t1, t2) = (a.end(), b.start());
@@ -574,8 +590,10 @@ fn type_one_chamfer_onto_an_arc() {
     let c = Corner::Chamfer {
         size: 30.0,
         kind: ChamferType::I,
+        word: addr(b'L'),
     };
-    assert_eq!(corner(&e1, &e2, c).unwrap_err().code, 4007);
+    let e = corner(&e1, &e2, c).unwrap_err();
+    assert_eq!((e.code, e.addr), (4007, Some(addr(b'L'))));
 }
 
 /// `shorter_than` answers as `length(e) < eps` does: a quarter circle of
