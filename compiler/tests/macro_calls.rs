@@ -305,3 +305,32 @@ fn a_computed_m_code_calls_and_returns() {
     );
     assert_eq!(alarm_of(&format!("M98 P#3\n{progs}")), Some(5009));
 }
+
+/// §1.6: a jump target that occurs more than once is W103 and the first
+/// block is used, for G65 H80–H86 (§7.8) as for GOTO. By hand: H80 P5
+/// jumps to the first N5 (line 2, X1), which runs on into the second
+/// (X2); H81 jumps when #1 = 1 = R, to the same first N5.
+#[test]
+fn a_macro_jump_to_a_repeated_number_is_w103() {
+    let w103 = |src: &str| {
+        let c = compile("m.nc", src.as_bytes(), &Options::default());
+        c.diags
+            .iter()
+            .filter(|(_, d)| d.code == "W103")
+            .map(|(f, d)| {
+                let (line, col) = c.files[*f].line_col(d.span.start);
+                (line, col, d.message.clone())
+            })
+            .collect::<Vec<_>>()
+    };
+    let msg = "N5 occurs more than once: the first block is used".to_string();
+    let tail = "N5 G00 X1\nN5 G00 X2\nM30\n";
+    let h80 = format!("G65 H80 P5\n{tail}");
+    assert_eq!(w103(&h80), [(1, 9, msg.clone())]);
+    let h81 = format!("#1=1\nG65 H81 P5 Q#1 R1\n{tail}");
+    assert_eq!(w103(&h81), [(2, 9, msg.clone())]);
+    assert_eq!(w103(&format!("GOTO 5\n{tail}")), [(1, 6, msg)]);
+    let (canon, status) = run(&h80);
+    assert_eq!(status, Status::Done);
+    assert_eq!(canon, ["RAPID X=1 Z=0", "RAPID X=2 Z=0", "STOP KIND=M30"]);
+}

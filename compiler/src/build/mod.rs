@@ -82,6 +82,28 @@ pub(crate) struct LiteralJump {
     pub inside: u32,
 }
 
+/// Each N number of a program: the index in `ProgState::seqs` of its
+/// first block, and whether another block carries it too.
+type FirstNumbers = crate::hash::IntMap<u32, (usize, bool)>;
+
+/// [`FirstNumbers`] of a program, found in one pass: a search of all
+/// blocks per jump was quadratic in a long chain of GOTOs.
+fn first_numbers(st: &ProgState) -> FirstNumbers {
+    let mut first = FirstNumbers::default();
+    for (i, (n, ..)) in st.seqs.iter().enumerate() {
+        first
+            .entry(*n)
+            .and_modify(|(_, again)| *again = true)
+            .or_insert((i, false));
+    }
+    first
+}
+
+/// W103's message for a jump to `N{seq}` (dialect.md §1.6).
+fn recurs(seq: u32) -> String {
+    format!("N{seq} occurs more than once: the first block is used")
+}
+
 /// A literal jump waiting for its target: the block it ends.
 struct Pending {
     at: Handle<ir::Block>,
@@ -416,8 +438,9 @@ impl<'a> Builder<'a> {
                 format!("DO {} has no END {}", open.label, open.label),
             );
         }
-        self.check_literal_jumps(&st);
-        self.resolve_gotos(&mut st);
+        let first = first_numbers(&st);
+        self.check_literal_jumps(&st, &first);
+        self.resolve_gotos(&mut st, &first);
         // Running off the end (W101): the main program halts, a
         // subprogram returns as if M99. Not when no path gets there, such
         // as G70's profile after M30 (a profile is not run through).
@@ -484,9 +507,18 @@ impl<'a> Builder<'a> {
     /// E2015 for a G65 H80–H86 to a written number whose block lies in a
     /// loop that does not hold the jump. A number no block has is the
     /// run's E6001 (dialect.md §7.8), so is passed over here.
-    fn check_literal_jumps(&mut self, st: &ProgState) {
+    /// The written targets of G65 H80–H86: W103 where the number recurs
+    /// (the first block is used, as for GOTO), E2015 into a loop. (One
+    /// that names no block is E6001 when the jump runs, dialect.md §7.8.)
+    fn check_literal_jumps(&mut self, st: &ProgState, first: &FirstNumbers) {
         for j in std::mem::take(&mut self.literal_jumps) {
-            let Some((.., loops, _)) = st.seqs.iter().find(|s| s.0 == j.seq) else {
+            let Some(&(i, again)) = first.get(&j.seq) else {
+                continue;
+            };
+            if again {
+                self.warn("W103", j.span, recurs(j.seq));
+            }
+            let Some((.., loops, _)) = st.seqs.get(i) else {
                 continue;
             };
             if !self
@@ -502,17 +534,7 @@ impl<'a> Builder<'a> {
         }
     }
 
-    fn resolve_gotos(&mut self, st: &mut ProgState) {
-        // Each N number's first block and whether it recurs, found in one
-        // pass: a search of all blocks per GOTO was quadratic in a long
-        // chain of GOTOs.
-        let mut first: crate::hash::IntMap<u32, (usize, bool)> = Default::default();
-        for (i, (n, ..)) in st.seqs.iter().enumerate() {
-            first
-                .entry(*n)
-                .and_modify(|(_, again)| *again = true)
-                .or_insert((i, false));
-        }
+    fn resolve_gotos(&mut self, st: &mut ProgState, first: &FirstNumbers) {
         for g in std::mem::take(&mut st.gotos) {
             let found = first.get(&g.seq).map(|&(i, again)| (&st.seqs[i], again));
             let Some(((_, target, loops, _), again)) = found else {
@@ -527,11 +549,7 @@ impl<'a> Builder<'a> {
                 continue;
             };
             if again {
-                self.warn(
-                    "W103",
-                    g.span,
-                    format!("N{} occurs more than once: the first block is used", g.seq),
-                );
+                self.warn("W103", g.span, recurs(g.seq));
             }
             if !loops.iter().all(|id| g.loops.contains(id)) {
                 self.error(
