@@ -652,3 +652,22 @@ fn a_corner_too_large_stands_on_its_word_with_the_next_move_labelled() {
     };
     assert_eq!((a.code, a.line), (4007, 3));
 }
+
+#[test]
+fn a_pull_out_lead_above_the_maximum_is_e4010() {
+    // cycles.md §12: a pull-out that lifts J10 (radius) over K1 along Z
+    // has X as its long axis and cuts at lead·J/K = 100·10/1 = 1000 mm,
+    // above threads.max_lead_mm (500 on the reference machine, §4.3
+    // "lead ≤ the maximum"). The block names no one word: it stands on
+    // the block.
+    let msg = "the pull-out leg's lead 1000 mm (100 × J10 / K1: it lifts more than it advances) is above the maximum lead of 500 mm";
+    let src = "G00 X30 Z5\nG92 X28 Z-20 F100 J10 K1\nM30\n";
+    let (code, line, col, message, _) = first_diag(src, &Options::default());
+    assert_eq!((code, line, col, message.as_str()), ("E4010", 2, 1, msg));
+    // G76's pull-out of its first block (line 2), cut by the second.
+    let g76 = "G00 X30 Z5\nG76 P010060 Q100 R0.1 J10 K1\nG76 X28 Z-20 P1000 Q300 F100\nM30\n";
+    let (code, line, _, message, _) = first_diag(g76, &Options::default());
+    assert_eq!((code, line, message.as_str()), ("E4010", 3, msg));
+    // At F50 the leg's lead is 500 mm, the most allowed: it runs.
+    assert!(messages(&src.replace("F100", "F50"), &Options::default()).is_empty());
+}

@@ -50,6 +50,11 @@ impl Move {
         libm::sqrt((self.lead * self.lead + 2.0 * r * s).max(0.0))
     }
 
+    /// The lead where the run-out `ro` begins, k before the end.
+    pub fn lead_at_runout(&self, ro: Runout) -> f64 {
+        self.lead_at(self.long_length() - ro.k)
+    }
+
     /// The move as one leg.
     pub fn plain(&self) -> Leg {
         Leg::Thread {
@@ -83,7 +88,7 @@ impl Move {
         };
         let second = Leg::Thread {
             to: lifted,
-            lead: self.lead_at(self.long_length() - ro.k) * f,
+            lead: self.lead_at_runout(ro) * f,
             dlead: self.dlead.map(|d| d * f),
             q: None,
         };

@@ -4,8 +4,10 @@
 use alloc::format;
 
 use crate::base::error::{fail, Alarm, NcError};
+use crate::base::event::Num;
 use crate::block::Parsed;
 use crate::exec::Nc;
+use crate::plan::legs::PullOut;
 
 /// The lead a block writes, in mm: F (a length per revolution in the
 /// program unit) or, with `tpi`, I in threads per inch (25.4/I). F wins
@@ -40,6 +42,39 @@ pub(crate) fn resolve(nc: &Nc, written: Option<f64>) -> Result<f64, NcError> {
     };
     check(nc, lead)?;
     Ok(lead)
+}
+
+/// A pull-out or run-out leg (`leg`) that lifts |j| over k, cut at `lead`
+/// before it: when it lifts more than it advances its lead is measured
+/// along the lift, lead·|j|/k (cycles.md §12, §16.5), and that lead too
+/// must stay ≤ `threads.max_lead_mm` (E4010), or the axis would be asked
+/// for a lead the machine cannot cut.
+pub(crate) fn check_lift(nc: &Nc, leg: &str, lead: f64, (j, k): (f64, f64)) -> Result<(), NcError> {
+    let (j, k) = (j.abs(), k.abs());
+    let derived = PullOut { x: j, z: k }.lead(lead);
+    let max = nc.machine.threads.max_lead_mm;
+    if derived <= max {
+        return Ok(());
+    }
+    fail(
+        Alarm::BadThread,
+        format!(
+            "the {leg} leg's lead {} mm ({} × J{} / K{}: it lifts more than it advances) is above the maximum lead of {} mm",
+            Num(derived),
+            Num(lead),
+            Num(j),
+            Num(k),
+            Num(max)
+        ),
+    )
+}
+
+/// [`check_lift`] for a cycle's pull-out, if it has one.
+pub(crate) fn check_pull_out(nc: &Nc, lead: f64, pull: Option<PullOut>) -> Result<(), NcError> {
+    match pull {
+        Some(p) => check_lift(nc, "pull-out", lead, (p.x, p.z)),
+        None => Ok(()),
+    }
 }
 
 pub(crate) fn check(nc: &Nc, lead: f64) -> Result<(), NcError> {

@@ -130,6 +130,7 @@ pub(crate) fn g76(
             PullOut::from_pair((g, g))
         }
     };
+    lead::check_pull_out(nc, lead, pull)?;
     let passes = Passes {
         dmin: first.dmin,
         allowance: first.allowance,
@@ -187,6 +188,7 @@ pub(crate) fn g78(
         lead: lead::resolve(nc, lead::written(nc, p, true))?,
     };
     let pull = f.pull.and_then(PullOut::from_pair);
+    lead::check_pull_out(nc, t.lead, pull)?;
     let passes = Passes {
         dmin: f.dmin,
         allowance: f.allowance,
@@ -256,6 +258,7 @@ fn g78_first(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
 #[cfg(test)]
 mod tests {
     use crate::exec::cycles::testing::{assert_line, nums, run_err, Lathe};
+    use alloc::format;
     use alloc::string::String;
     use alloc::vec::Vec;
 
@@ -412,5 +415,12 @@ mod tests {
             4010
         );
         assert_eq!(run_err(&["G00 X30 Z5", "G76 X22 Z-15 P1000 Q0 F2"]), 4010);
+        // A pull-out of J10 over K1 at lead 100 cuts at 1000 mm (§12),
+        // above the 500 mm maximum: G76 and G78 alike.
+        for code in ["G76", "G78"] {
+            let first = format!("{code} P010060 Q100 R0.1 J10 K1");
+            let second = format!("{code} X28 Z-20 P1000 Q300 F100");
+            assert_eq!(run_err(&["G00 X30 Z5", &first, &second]), 4010, "{code}");
+        }
     }
 }

@@ -106,6 +106,9 @@ pub(crate) fn run(
         check_variable_lead(nc, &mv)?;
     }
     let runout = runout(nc.st.cycles.chain.runout, &mv)?;
+    if let Some(ro) = runout {
+        lead::check_lift(nc, "run-out", mv.lead_at_runout(ro), (ro.j, ro.k))?;
+    }
     nc.st.pos = mv.to;
     out.moved = true;
     match runout {
@@ -243,6 +246,8 @@ mod tests {
         // A run-out as long as the move.
         assert_eq!(run_err(&["G00 X20 Z0", "G32 Z-3 F1 K3"]), 4010);
         assert_eq!(run_err(&["G00 X20 Z0", "G32 Z-30 F1 K-3"]), 4010);
+        // A run-out of J10 over K1 cuts at lead × 10 (§16.5): 1000 mm.
+        assert_eq!(run_err(&["G00 X20 Z0", "G32 Z-30 F100 J10 K1"]), 4010);
         // No lead yet.
         assert_eq!(run_err(&["G00 X20 Z0", "G32 Z-3"]), 2006);
         // A programmed zero-length thread is printed.

@@ -32,6 +32,7 @@ pub(crate) fn run(
     let cycle = turning::next_cycle(nc, code, p)?;
     check_repair(nc, p)?;
     let pull = if rigid { None } else { pull_out(nc, lead) };
+    lead::check_pull_out(nc, lead, pull)?;
     let path = g92_path(&cycle, lead, pull)?;
     legs::emit(nc, &path, true, sink)?;
     out.moved = true;
@@ -145,6 +146,11 @@ mod tests {
         assert_eq!(run_err(&["G00 X30 Z5", "G92 X27 Z-10 F0"]), 4010);
         assert_eq!(run_err(&["G00 X30 Z5", "G92 X27 Z-10 F1 L0"]), 4010);
         assert_eq!(run_err(&["G00 X30 Z5", "G92 X27 Z-10 F1 K15"]), 4010);
+        // A pull-out that lifts J10 over K1 cuts at lead × 10 (§12): F100
+        // asks 1000 mm, above the 500 mm maximum; F50 is 500, the most.
+        assert_eq!(run_err(&["G00 X30 Z5", "G92 X28 Z-20 F100 J10 K1"]), 4010);
+        let l = run(&["G00 X30 Z5", "G92 X28 Z-20 F50 J10 K1"]);
+        assert_eq!(l[3], "THREAD X=48 Z=-20 LEAD=500");
         // A negative F is a right-hand G92's E1010.
         assert_eq!(run_err(&["G00 X30 Z5", "G92 X27 Z-10 F-1"]), 1010);
         // Threads per inch: I8 is 3.175 mm.
