@@ -520,7 +520,9 @@ impl Warner {
     /// W104 for the words that a form of the block ignores (§4.3, §4.12,
     /// §5.2): P of G92/G92.1 without thread repair (№174.4), P of the
     /// one-block G76, Q of `X_ Z_ Q_` without a first block before it, R
-    /// in a G90/G92/G94 run's block without an axis word.
+    /// (and G92's L) in a G90/G92/G94 run's block without an axis word, I
+    /// beside F in a thread block (F gives the lead). Each such word is
+    /// told, a block may hold several.
     fn ignored_forms(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
         if seen.other_function
             || nc.st.modal.drill != gcode::Drill::Off
@@ -528,45 +530,72 @@ impl Warner {
         {
             return;
         }
+        if let Some((letter, why)) = self.angle_or_g76(nc, seen) {
+            self.ignored(unit, ws, letter, why);
+        }
+        if seen.one_shot() {
+            return;
+        }
         // (Masks, not letter by letter: this runs for every block.)
-        let axes = |mask: u32| seen.written & mask != 0;
-        const AXES: u32 = letters(b"XZUW");
+        let written = |mask: u32| seen.written & mask != 0;
         let motion = nc.st.modal.motion;
-        let straight = !seen.one_shot() && motion.is_straight();
-        let q = axes(const { letters(b"Q") });
-        let x_and_z = axes(const { letters(b"X") }) && axes(const { letters(b"Z") });
+        let g92 = matches!(motion, Motion::ThreadCycle | Motion::RigidThreadCycle);
+        if g92 && !nc.machine.threads.repair_enabled {
+            self.ignored(
+                unit,
+                ws,
+                'P',
+                "thread repair is off on this machine (№174.4)",
+            );
+        }
+        let run = g92 || matches!(motion, Motion::TurningCycle | Motion::FacingCycle);
+        if run && !written(const { letters(b"XZUW") }) {
+            // R (and G92's L) are values of the run (cycles.md §4).
+            let kept = if g92 { "RL" } else { "R" };
+            for letter in kept.chars() {
+                let why = format!("a block without X, U, Z or W does not run the cycle, and its {letter} is not kept for the next block");
+                self.ignored(unit, ws, letter, &why);
+            }
+        }
+        // F or I (threads per inch) is the lead, F when both are written
+        // (`exec::cycles::lead::written`); the arc threads' I is a centre.
+        let by_lead =
+            motion.is_thread() && !matches!(motion, Motion::ArcThreadCw | Motion::ArcThreadCcw);
+        if by_lead && written(const { letters(b"F") }) {
+            let why = "F gives the lead; I (threads per inch) counts only in a block without F";
+            self.ignored(unit, ws, 'I', why);
+        }
+    }
+
+    /// The word a form of angle programming or of G76 ignores: Q of
+    /// `X_ Z_ Q_` without the `Q_` block before it (and the state of that
+    /// pair, kept block by block), P of the one-block G76.
+    fn angle_or_g76(&mut self, nc: &Nc, seen: &Seen) -> Option<(char, &'static str)> {
+        let written = |mask: u32| seen.written & mask != 0;
+        const AXES: u32 = letters(b"XZUW");
+        let straight = !seen.one_shot() && nc.st.modal.motion.is_straight();
+        let q = written(const { letters(b"Q") });
+        let x_and_z = written(const { letters(b"X") }) && written(const { letters(b"Z") });
         let first = std::mem::replace(&mut self.angle_first, false);
-        if straight && q && !axes(AXES) {
+        if straight && q && !written(AXES) {
             self.angle_first = true;
-        } else if !q && !axes(AXES) {
+        } else if !q && !written(AXES) {
             self.angle_first = first;
         }
-        let (letter, why) = if straight && q && x_and_z && !first {
-            ('Q', "X, Z and Q end angle programming, but no Q_ block began it: the block is an ordinary line")
-        } else if seen.is(OneShot::MultiThread) && axes(AXES) && axes(const { letters(b"KD") }) {
-            (
-                'P',
-                "the one-block G76 takes its cutting method from the modal G76 state",
-            )
-        } else if matches!(motion, Motion::ThreadCycle | Motion::RigidThreadCycle)
-            && !seen.one_shot()
-            && !nc.machine.threads.repair_enabled
-        {
-            ('P', "thread repair is off on this machine (№174.4)")
-        } else if matches!(
-            motion,
-            Motion::TurningCycle | Motion::FacingCycle | Motion::ThreadCycle
-        ) && !seen.one_shot()
-            && !axes(AXES)
-            && axes(const { letters(b"R") })
-        {
-            (
-                'R',
-                "a block without X, U, Z or W does not run the cycle, and its R is not kept for the next block",
-            )
-        } else {
-            return;
-        };
+        if straight && q && x_and_z && !first {
+            let why = "X, Z and Q end angle programming, but no Q_ block began it: the block is an ordinary line";
+            return Some(('Q', why));
+        }
+        let g76 =
+            seen.is(OneShot::MultiThread) && written(AXES) && written(const { letters(b"KD") });
+        g76.then_some((
+            'P',
+            "the one-block G76 takes its cutting method from the modal G76 state",
+        ))
+    }
+
+    /// W104 at the block's word of `letter`, if it has one.
+    fn ignored(&mut self, unit: usize, ws: &[grammar::ast::Word], letter: char, why: &str) {
         if let Some(w) = find(ws, letter as u8 - b'A') {
             let msg = format!("{letter} is ignored: {why}");
             self.warn(unit, "W104", w.span, msg);

@@ -553,6 +553,47 @@ fn w104_a_word_a_form_ignores() {
 }
 
 #[test]
+fn w104_a_word_a_cycle_run_drops_in_silence() {
+    // The lead is F or I (threads per inch), F when both are written
+    // (cycles.md §0, "thread lead and feed"): I beside F is ignored, in a
+    // G92 block and in a later block of its run (line 4) alike. An I
+    // without F is the lead (25.4/2 = 12.7 mm): no warning.
+    let i = "I is ignored: F gives the lead; I (threads per inch) counts only in a block without F";
+    let head = "G97 S500 M3\nG00 X40 Z5\n";
+    let w = w104(&format!("{head}G92 X30 Z-20 F1.5 I2\nX29 F1.5 I2\nM30\n"));
+    assert_eq!(w, [(3, i.to_string()), (4, i.to_string())]);
+    assert_eq!(w104(&format!("{head}G92 X30 Z-20 I2\nM30\n")), []);
+    assert_eq!(
+        w104(&format!("{head}G32 Z-20 F1.5 I2\nM30\n")),
+        [(3, i.to_string())]
+    );
+    // cycles.md §4: L, like R, is a value of the G92 run; a block without
+    // an axis word runs nothing and keeps neither (line 4, both words),
+    // also where thread repair makes its P ignored (line 5, three words:
+    // the P rule no longer hides the others).
+    let dropped = |l: char| {
+        format!("{l} is ignored: a block without X, U, Z or W does not run the cycle, and its {l} is not kept for the next block")
+    };
+    let repair = "P is ignored: thread repair is off on this machine (№174.4)".to_string();
+    let run = format!("{head}G92 X30 Z-20 F1.5\nR-1 L2\nR-1 L2 P1\nX29\nM30\n");
+    let mut want = vec![
+        (4, dropped('R')),
+        (4, dropped('L')),
+        (5, dropped('R')),
+        (5, dropped('L')),
+        (5, repair),
+    ];
+    // (In any order within a block: the text form sorts them by column.)
+    let mut found = w104(&run);
+    found.sort();
+    want.sort();
+    assert_eq!(found, want);
+    // G92.1 drops R alone as G92 does.
+    let rigid = format!("{head}G92.1 X30 Z-20 F1.5\nR-1\nX29\nM30\n");
+    assert_eq!(w104(&rigid), [(4, dropped('R'))]);
+}
+
+#[test]
 fn w104_a_letter_the_drilling_cycle_in_force_does_not_use() {
     // dialect.md §4.8: the cycle in force owns the block. A mill's L
     // (repeats; here K) on G83, and Q, R on a rigid tap (G84 takes P, F or
