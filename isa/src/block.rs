@@ -445,7 +445,7 @@ const fn letter(c: u8) -> u32 {
 /// stands share one record), so the verifier looks them up here; a
 /// quarter of the section's size, against a table of `u32` starts that
 /// would be half of it for the short records of a straight-line program.
-#[derive(Debug, PartialEq)]
+#[derive(Debug)]
 pub(crate) struct RecordStarts {
     starts: Vec<u64>,
     moves: Vec<u64>,
@@ -455,45 +455,10 @@ impl RecordStarts {
     /// Decodes every record of `bytes`; the first bad one is an error
     /// with its place.
     pub(crate) fn of(bytes: &[u8]) -> Result<RecordStarts, (usize, RecordError)> {
-        RecordStarts::walk(bytes, 0, bytes.len()).map(|(records, _)| records)
-    }
-
-    /// [`of`](RecordStarts::of), the two halves of `bytes` on a thread
-    /// each, the second from `mid`, where an instruction says a record
-    /// starts. The answer is the one walk's: the second half counts only
-    /// if the first walk ends exactly at `mid`; else the first walk goes
-    /// on past it alone.
-    #[cfg(feature = "std")]
-    pub(crate) fn of_halves(
-        bytes: &[u8],
-        mid: usize,
-    ) -> Result<RecordStarts, (usize, RecordError)> {
-        let (first, second) = std::thread::scope(|s| {
-            let second = std::thread::Builder::new()
-                .spawn_scoped(s, || RecordStarts::walk(bytes, mid, bytes.len()));
-            let first = RecordStarts::walk(bytes, 0, mid);
-            (first, second.ok().map(|h| h.join()))
-        });
-        let (mut records, stop) = first?;
-        let (rest, _) = match second {
-            Some(Ok(rest)) if stop == mid => rest,
-            _ => RecordStarts::walk(bytes, stop, bytes.len()),
-        }?;
-        records.add(&rest);
-        Ok(records)
-    }
-
-    /// The records of `bytes` from `from` until one starts at or past
-    /// `to`, and where that one starts.
-    fn walk(
-        bytes: &[u8],
-        from: usize,
-        to: usize,
-    ) -> Result<(RecordStarts, usize), (usize, RecordError)> {
         let mut starts = alloc::vec![0u64; bytes.len().div_ceil(64)];
         let mut moves = starts.clone();
-        let mut next = from;
-        while next < to {
+        let mut next = 0;
+        while next < bytes.len() {
             let start = next;
             let mut shape = MoveShape::new();
             next = walk_record(bytes, start, |addr, _, value| shape.word(addr, value))
@@ -503,16 +468,7 @@ impl RecordStarts {
                 moves[start / 64] |= 1 << (start % 64);
             }
         }
-        Ok((RecordStarts { starts, moves }, next))
-    }
-
-    /// Adds the records of `other` (of the same bytes).
-    #[cfg(feature = "std")]
-    fn add(&mut self, other: &RecordStarts) {
-        let pairs = self.starts.iter_mut().zip(&other.starts);
-        pairs.for_each(|(a, b)| *a |= b);
-        let pairs = self.moves.iter_mut().zip(&other.moves);
-        pairs.for_each(|(a, b)| *a |= b);
+        Ok(RecordStarts { starts, moves })
     }
 
     /// Whether a record starts at byte `at`.
@@ -537,43 +493,6 @@ fn bit(bits: &[u64], at: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// `n` records `X<i> Z-<i>` back to back, and where each starts.
-    fn moves(n: usize) -> (Vec<u8>, Vec<usize>) {
-        let (mut bytes, mut starts) = (Vec::new(), Vec::new());
-        for i in 0..n {
-            starts.push(bytes.len());
-            let word = |addr, value| BlockWord {
-                addr,
-                value,
-                flags: 0,
-            };
-            let words = [word(23, i as f64 * 0.5), word(25, -(i as f64))];
-            assert!(encode_record(&words, &mut bytes));
-        }
-        (bytes, starts)
-    }
-
-    #[cfg(feature = "std")]
-    #[test]
-    fn two_halves_walk_as_one() {
-        let (bytes, at) = moves(300);
-        let whole = RecordStarts::of(&bytes);
-        assert!(whole.as_ref().is_ok_and(|r| r.is_move(at[150] as u32)));
-        // A record's start; a byte inside a record, which the first half
-        // walks past; the last record.
-        for mid in [at[150], at[150] + 1, at[299]] {
-            assert_eq!(RecordStarts::of_halves(&bytes, mid), whole, "{mid}");
-        }
-        // A record without words (count 0) in either half: the fault the
-        // one walk finds, at its place.
-        let mut bad = bytes.clone();
-        bad[at[200]] = 0;
-        for mid in [at[150], at[250], at[200], at[200] + 2] {
-            let found = RecordStarts::of_halves(&bad, mid);
-            assert_eq!(found, Err((at[200], RecordError::Empty)), "{mid}");
-        }
-    }
 
     #[test]
     fn literals_take_few_bytes() {

@@ -8,12 +8,6 @@ use crate::block::{RecordError, RecordStarts};
 use crate::encoding::len_to_u32;
 use crate::{addr, CmpOp, Instr, LoadError, MathFunc, Module, Operand, TableError, SWITCHES};
 
-/// From this size a blocks section is walked in two halves at once: a
-/// thread costs tens of microseconds, a quarter megabyte of records about
-/// a millisecond.
-#[cfg(feature = "std")]
-const PARALLEL_WALK: usize = 1 << 18;
-
 /// Registers are addressed by a `u8`.
 const MAX_REGS: u16 = 256;
 
@@ -47,7 +41,7 @@ impl Module {
         self.verify_programs()?;
         self.verify_lines()?;
         let bad_block = |(at, e): (usize, RecordError)| TableError::BadBlock { at, what: e.what() };
-        let records = self.record_starts().map_err(bad_block)?;
+        let records = RecordStarts::of(&self.blocks).map_err(bad_block)?;
         let spans = self.program_spans();
         for (pc, instr) in self.code.iter().enumerate() {
             let pc = len_to_u32(pc);
@@ -77,35 +71,6 @@ impl Module {
             }
         }
         Ok(())
-    }
-
-    /// The records of the blocks section. With `std`, a large section is
-    /// walked in two halves at once (most of a long program's load time
-    /// is this walk), split where an instruction names a record near its
-    /// middle.
-    fn record_starts(&self) -> Result<RecordStarts, (usize, RecordError)> {
-        #[cfg(feature = "std")]
-        if self.blocks.len() >= PARALLEL_WALK {
-            if let Some(mid) = self.record_near(self.blocks.len() / 2) {
-                return RecordStarts::of_halves(&self.blocks, mid);
-            }
-        }
-        RecordStarts::of(&self.blocks)
-    }
-
-    /// The record an instruction names nearest to byte `at` of the blocks
-    /// section, inside it and past its first byte.
-    #[cfg(feature = "std")]
-    fn record_near(&self, at: usize) -> Option<usize> {
-        let named = self.code.iter().filter_map(|instr| match *instr {
-            Instr::Block { rec } | Instr::Profile { rec } | Instr::Move { rec } => {
-                usize::try_from(rec).ok()
-            }
-            _ => None,
-        });
-        named
-            .filter(|&rec| rec > 0 && rec < self.blocks.len())
-            .min_by_key(|&rec| rec.abs_diff(at))
     }
 
     /// Every count must fit the format's `u32` fields (only reachable by an
