@@ -521,8 +521,8 @@ impl Warner {
     /// §5.2): P of G92/G92.1 without thread repair (№174.4), P of the
     /// one-block G76, Q of `X_ Z_ Q_` without a first block before it, R
     /// (and G92's L) in a G90/G92/G94 run's block without an axis word, I
-    /// beside F in a thread block (F gives the lead). Each such word is
-    /// told, a block may hold several.
+    /// beside F in a thread block or G76's second block (F gives the
+    /// lead). Each such word is told, a block may hold several.
     fn ignored_forms(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
         if seen.other_function
             || nc.st.modal.drill != gcode::Drill::Off
@@ -533,11 +533,16 @@ impl Warner {
         if let Some((letter, why)) = self.angle_or_g76(nc, seen) {
             self.ignored(unit, ws, letter, why);
         }
+        // (Masks, not letter by letter: this runs for every block.)
+        let written = |mask: u32| seen.written & mask != 0;
+        let f = written(const { letters(b"F") });
+        if f && g76_second_block(seen) {
+            let why = "F gives the lead; I (threads per inch) counts only in a block without F";
+            self.ignored(unit, ws, 'I', why);
+        }
         if seen.one_shot() {
             return;
         }
-        // (Masks, not letter by letter: this runs for every block.)
-        let written = |mask: u32| seen.written & mask != 0;
         let motion = nc.st.modal.motion;
         let g92 = matches!(motion, Motion::ThreadCycle | Motion::RigidThreadCycle);
         if g92 && !nc.machine.threads.repair_enabled {
@@ -561,7 +566,7 @@ impl Warner {
         // (`exec::cycles::lead::written`); the arc threads' I is a centre.
         let by_lead =
             motion.is_thread() && !matches!(motion, Motion::ArcThreadCw | Motion::ArcThreadCcw);
-        if by_lead && written(const { letters(b"F") }) {
+        if by_lead && f {
             let why = "F gives the lead; I (threads per inch) counts only in a block without F";
             self.ignored(unit, ws, 'I', why);
         }
@@ -901,6 +906,16 @@ impl Warner {
             }
         }
     }
+}
+
+/// Whether the block is the second block of the two-block G76 (axis words,
+/// no K or D): its I is threads per inch, where the one-block K/D form's I
+/// is the taper (`exec::cycles::multi::g76`).
+fn g76_second_block(seen: &Seen) -> bool {
+    let written = |mask: u32| seen.written & mask != 0;
+    seen.is(OneShot::MultiThread)
+        && written(const { letters(b"XZUW") })
+        && !written(const { letters(b"KD") })
 }
 
 #[cfg(test)]

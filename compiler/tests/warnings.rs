@@ -591,6 +591,12 @@ fn w104_a_word_a_cycle_run_drops_in_silence() {
     // G92.1 drops R alone as G92 does.
     let rigid = format!("{head}G92.1 X30 Z-20 F1.5\nR-1\nX29\nM30\n");
     assert_eq!(w104(&rigid), [(4, dropped('R'))]);
+    // G76's second block reads I as threads per inch, and F wins (line
+    // 4); in the one-block K/D form (line 5) I is the taper: used.
+    let g76 = format!(
+        "{head}G76 P010060 Q100 R0.1\nG76 X28 Z-20 P1000 Q300 F1.5 I2\nG76 X28 Z-20 I-1 K1 D300 F1.5\nM30\n"
+    );
+    assert_eq!(w104(&g76), [(4, i.to_string())]);
 }
 
 #[test]
