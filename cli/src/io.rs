@@ -135,9 +135,10 @@ pub fn read_input_shared(path: &Path) -> Result<(String, Arc<[u8]>), String> {
 }
 
 /// [`read_file`] into a shared buffer. A regular file is read straight
-/// into it: read into a vector first, a 5 MB source was copied once more
-/// into fresh pages, a few milliseconds of a 90 ms compile. A file whose
-/// length changes while it is read is read again the usual way.
+/// into it: read into a vector first, a source was copied once more into
+/// fresh pages (`gbcc` on a 4.5 MB program: 5 007 page faults then, 4 021
+/// now). A file whose length changes while it is read is read again the
+/// usual way.
 pub fn read_file_shared(path: &Path) -> std::io::Result<Arc<[u8]>> {
     let (mut file, kind) = open_readable(path)?;
     let len = usize::try_from(file.metadata()?.len()).unwrap_or(usize::MAX);

@@ -537,8 +537,7 @@ impl Warner {
         let written = |mask: u32| seen.written & mask != 0;
         let f = written(const { letters(b"F") });
         if f && g76_second_block(seen) {
-            let why = "F gives the lead; I (threads per inch) counts only in a block without F";
-            self.ignored(unit, ws, 'I', why);
+            self.ignored(unit, ws, 'I', I_BESIDE_F);
         }
         if seen.one_shot() {
             return;
@@ -567,8 +566,7 @@ impl Warner {
         let by_lead =
             motion.is_thread() && !matches!(motion, Motion::ArcThreadCw | Motion::ArcThreadCcw);
         if by_lead && f {
-            let why = "F gives the lead; I (threads per inch) counts only in a block without F";
-            self.ignored(unit, ws, 'I', why);
+            self.ignored(unit, ws, 'I', I_BESIDE_F);
         }
     }
 
@@ -907,6 +905,9 @@ impl Warner {
         }
     }
 }
+
+/// Why I is ignored beside F (`exec::cycles::lead::written`).
+const I_BESIDE_F: &str = "F gives the lead; I (threads per inch) counts only in a block without F";
 
 /// Whether the block is the second block of the two-block G76 (axis words,
 /// no K or D): its I is threads per inch, where the one-block K/D form's I
