@@ -165,12 +165,12 @@ fn on_arc(code: Alarm, what: &str) -> NcError {
 /// E4031 for a start-up or cancel on an arc, E4036 for a negative radius
 /// or an arc too small for the tool on its centre side.
 pub(crate) fn classify(nc: &mut Nc, e: &Element) -> Result<(Step, Option<Leg>), NcError> {
-    let mode = nc.st.modal.comp().side();
-    if nc.st.comp.running.is_none() && mode.is_none() {
+    if !compensating(nc) {
         // Nothing compensates: no role needs the move's length (and the
         // block cannot end compensating, so E4034 does not count it).
         return Ok((Step::Plain, None));
     }
+    let mode = nc.st.modal.comp().side();
     let zero = shorter_than(e, EPS_LEN);
     if zero {
         nc.st.comp.zero_move = true;

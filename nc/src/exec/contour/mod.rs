@@ -27,6 +27,7 @@ use crate::base::gcode::{Motion, OneShot};
 use crate::base::geom::Element;
 use crate::base::point::Pt;
 use crate::block::Parsed;
+use crate::exec::comp::compensating;
 use crate::exec::{Nc, Outcome, Sink};
 use crate::plan::angle;
 pub(crate) use queue::in_order;
@@ -73,6 +74,16 @@ pub(crate) fn straight(
         return turn_c(nc, rapid, p, sink);
     }
     let from = nc.st.pos;
+    // The usual line: no corner or angle word, nothing waits (so no angle
+    // pair either) and nothing compensates, so `queue::advance` would
+    // print it at once; printed here without the queue. (A short path,
+    // off with the plain path: compiler/tests/plain_path.rs compares.)
+    let usual = corner.is_none() && !nc.st.contour.is_holding() && !compensating(nc);
+    if nc.plain_path && usual && !has_angle(p) {
+        let to = nc.target(p);
+        nc.st.pos = to;
+        return queue::print_line(nc, from, to, rapid, sink);
+    }
     let q = angle::angle_of(p);
     let x = p.has(b'X') || p.has(b'U');
     let z = p.has(b'Z') || p.has(b'W');

@@ -306,6 +306,19 @@ pub(crate) fn advance(nc: &mut Nc, mut next: Move, sink: &mut dyn Sink) -> Resul
     }
 }
 
+/// What [`advance`] does with a line from `from` to `to` when nothing
+/// waits, nothing compensates and the line has no corner word: prints it.
+pub(crate) fn print_line(
+    nc: &mut Nc,
+    from: Pt,
+    to: Pt,
+    rapid: bool,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
+    let line = Element::Line { from, to };
+    emit_element(nc, &line, rapid, feed_now(nc), Third::default(), sink)
+}
+
 /// The second block of an angle pair ends at `end` on the line at `q2`:
 /// the first block's line ends at the intersection, then the second
 /// block's line (`template` gives its kind, feed and corner) runs to `end`.
