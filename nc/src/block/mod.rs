@@ -145,6 +145,12 @@ impl Parsed {
         self.has_any(mask(b"XZUW"))
     }
 
+    /// Whether a corner word (L, D, `,C`, `,R`) is written: most blocks
+    /// have none, and this is one test.
+    pub fn has_corner_word(&self) -> bool {
+        self.has_any(mask(b"LD") | 1 << COMMA_C | 1 << COMMA_R)
+    }
+
     /// A plain move: axis words, perhaps F, N and an arc's R or I/K, and
     /// at most a G00–G03 (the usual block of CAM output).
     pub fn is_plain_move(&self) -> bool {

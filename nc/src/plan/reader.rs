@@ -162,6 +162,9 @@ impl Reader<'_> {
     /// on G00, or not greater than 0. Other motions give L and D other
     /// meanings.
     pub fn corner_word(&self, code: Motion, p: &Parsed) -> Result<Option<Corner>, NcError> {
+        if !p.has_corner_word() {
+            return Ok(None);
+        }
         // With M98 the L is the repeat count.
         let l = p.word(b'L').filter(|_| !p.has_m(M::SubCall));
         let comma_c = p.word_at(COMMA_C);
