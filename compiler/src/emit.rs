@@ -14,6 +14,7 @@ use crate::ir::{self, CallKind, Callee, Count, Expr, Function, Handle, Loc, Op, 
 use crate::profile::PROFILE;
 use grammar::diag::LineHint;
 use grammar::{Diagnostic, SourceFile, Span};
+use isa::block::Records;
 use isa::{Instr, SourceLoc};
 use nc::value::Bin;
 use std::collections::HashMap;
@@ -83,6 +84,9 @@ pub(crate) struct Emitter<'a> {
     ir_strings: Vec<String>,
     files: &'a [SourceFile],
     module: isa::Module,
+    /// The module's `blocks`, apart from it until it is finished: a chunk
+    /// at a time, the stream walks them as they come (`walk_records`).
+    records: Records,
     consts: ConstIndex,
     /// IR string → module string.
     strings: HashMap<u32, u32>,
@@ -133,9 +137,9 @@ impl<'a> Emitter<'a> {
                 machine: machine.compile_keys(),
                 code: Vec::with_capacity(room.instrs),
                 consts: Vec::with_capacity(room.constants),
-                blocks: Vec::with_capacity(room.records),
                 ..isa::Module::default()
             },
+            records: Records::with_capacity(room.records),
             consts: ConstIndex::default(),
             strings: HashMap::new(),
             profile_recs: HashMap::new(),
@@ -155,9 +159,24 @@ impl<'a> Emitter<'a> {
     }
 
     /// The module, and the diagnostics found on the way.
-    pub(crate) fn finish(mut self) -> (isa::Module, Vec<FileDiag>) {
+    pub(crate) fn finish(self) -> (isa::Module, Vec<FileDiag>) {
+        let (mut module, records, diags) = self.finish_walked();
+        module.blocks = records.into_bytes();
+        (module, diags)
+    }
+
+    /// The module without its `blocks`, which are in the records, with
+    /// the walk of them done so far (for `isa::Module::verify_with`), and
+    /// the diagnostics found on the way.
+    pub(crate) fn finish_walked(mut self) -> (isa::Module, Records, Vec<FileDiag>) {
         self.module.num_regs = self.regs.max.max(1);
-        (self.module, self.diags)
+        (self.module, self.records, self.diags)
+    }
+
+    /// Checks the records emitted since the last call, as the verifier
+    /// would; `None` on a bad one (the compiler's own fault).
+    pub(crate) fn walk_records(&mut self) -> Option<()> {
+        self.records.walk().ok()
     }
 
     fn emit(&mut self, instr: Instr) -> usize {
@@ -421,7 +440,7 @@ impl<'a> Emitter<'a> {
             });
         }
         if kind.runs_here() && self.profile_recs.is_empty() {
-            return self.module.push_block(&known);
+            return self.records.push(&known);
         }
         let key: Vec<RecordKey> = known
             .iter()
@@ -430,7 +449,7 @@ impl<'a> Emitter<'a> {
         if let Some(&rec) = self.profile_recs.get(&key) {
             return Some(rec);
         }
-        let rec = self.module.push_block(&known)?;
+        let rec = self.records.push(&known)?;
         if kind == ir::NcKind::Profile {
             self.profile_recs.insert(key, rec);
         }

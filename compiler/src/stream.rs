@@ -23,6 +23,7 @@ use crate::link::{self, Program, Unit};
 use crate::{words, Compiled, Options};
 use grammar::ast::{Ast, Body, Line, Value};
 use grammar::{SourceFile, Span};
+use isa::block::Records;
 use std::sync::mpsc::{Receiver, Sender, SyncSender};
 use std::sync::Arc;
 
@@ -69,7 +70,7 @@ pub fn compile(name: &str, bytes: &Arc<[u8]>, opts: &Options) -> Option<Compiled
             .unwrap_or_else(|p| std::panic::resume_unwind(p));
         Some((front?, back?, files))
     })?;
-    let (mut module, build, emit) = back;
+    let (mut module, records, build, emit) = back;
     module.files = vec![isa::SourceFileInfo {
         name: name.to_string(),
         hash: front.hash,
@@ -82,8 +83,9 @@ pub fn compile(name: &str, bytes: &Arc<[u8]>, opts: &Options) -> Option<Compiled
         dry_run: front.dry_run.finish(),
     };
     // (An error, or a module that does not verify: the whole-file path
-    // reports it.)
-    if found.any_error() || module.verify().is_err() {
+    // reports it. The back end walked the records as it emitted them:
+    // the verifier does not walk them again.)
+    if found.any_error() || module.verify_with(records).is_err() {
         return None;
     }
     Some(Compiled {
@@ -330,6 +332,10 @@ struct Back<'a> {
 /// A chunk's tree and block list, built and emitted.
 type Spent = ([Unit; 1], [Program; 1]);
 
+/// What the back end made: the module without its `blocks`, the records
+/// that are, and the diagnostics of build and emit.
+type BackEnd = (isa::Module, Records, Vec<FileDiag>, Vec<FileDiag>);
+
 impl<'a> Back<'a> {
     fn new(files: &'a [SourceFile], opts: &'a Options, spent: Sender<Spent>) -> Self {
         let bytes = files.first().map_or(0, |f| f.bytes().len());
@@ -345,13 +351,10 @@ impl<'a> Back<'a> {
         }
     }
 
-    /// Takes the chunks until the last: the module, and the diagnostics
-    /// of build and emit; `None` on an error, or when the front end
-    /// stopped before the last chunk.
-    fn run(
-        mut self,
-        chunks: Receiver<Chunk>,
-    ) -> Option<(isa::Module, Vec<FileDiag>, Vec<FileDiag>)> {
+    /// Takes the chunks until the last: the module (its `blocks` in the
+    /// records, walked), and the diagnostics of build and emit; `None` on
+    /// an error, or when the front end stopped before the last chunk.
+    fn run(mut self, chunks: Receiver<Chunk>) -> Option<BackEnd> {
         let number = loop {
             let chunk = chunks.recv().ok()?;
             let number = chunk.prog.number;
@@ -362,8 +365,8 @@ impl<'a> Back<'a> {
             }
         };
         self.emitter.close_program(number, self.program);
-        let (module, emit) = self.emitter.finish();
-        Some((module, self.build, emit))
+        let (module, records, emit) = self.emitter.finish_walked();
+        Some((module, records, self.build, emit))
     }
 
     /// One chunk, built, validated and emitted (with the program's end
@@ -397,6 +400,9 @@ impl<'a> Back<'a> {
             crate::ir::validate::validate_part(b.module(), part).ok()?;
             self.emitter.part(part, &mut self.program);
         }
+        // The records walked here, while the front end works on: the
+        // verifier, which runs once both are done, need not walk them.
+        self.emitter.walk_records()?;
         self.builder = b.rebind(&[], &[], machine);
         // (A front end that has stopped frees nothing more: dropped here.)
         let _ = self.spent.send((units, programs));

@@ -445,30 +445,81 @@ const fn letter(c: u8) -> u32 {
 /// stands share one record), so the verifier looks them up here; a
 /// quarter of the section's size, against a table of `u32` starts that
 /// would be half of it for the short records of a straight-line program.
-#[derive(Debug)]
+///
+/// The walk may be done a piece at a time as the section grows
+/// ([`Records`]): a record is checked from its own bytes alone, so the
+/// walk of a prefix, carried on over the rest, is the walk of the whole.
+#[derive(Debug, Default)]
+#[cfg_attr(test, derive(PartialEq))]
 pub(crate) struct RecordStarts {
     starts: Vec<u64>,
     moves: Vec<u64>,
+    /// The end of the last record checked: where the walk goes on.
+    walked: usize,
 }
 
 impl RecordStarts {
+    /// Room for the walk of `bytes` bytes (reserved, not written).
+    fn with_capacity(bytes: usize) -> RecordStarts {
+        let words = bytes.div_ceil(64);
+        RecordStarts {
+            starts: Vec::with_capacity(words),
+            moves: Vec::with_capacity(words),
+            walked: 0,
+        }
+    }
+
     /// Decodes every record of `bytes`; the first bad one is an error
     /// with its place.
+    #[cfg(test)]
     pub(crate) fn of(bytes: &[u8]) -> Result<RecordStarts, (usize, RecordError)> {
-        let mut starts = alloc::vec![0u64; bytes.len().div_ceil(64)];
-        let mut moves = starts.clone();
-        let mut next = 0;
-        while next < bytes.len() {
+        let mut walk = RecordStarts::default();
+        walk.extend(bytes)?;
+        Ok(walk)
+    }
+
+    /// Walks on from where the walk stopped to the end of `bytes`, which
+    /// must begin with the bytes walked so far. The first bad record is an
+    /// error with its place, and the walk stops before it (a later walk
+    /// finds it again).
+    pub(crate) fn extend(&mut self, bytes: &[u8]) -> Result<(), (usize, RecordError)> {
+        let words = bytes.len().div_ceil(64);
+        if self.starts.len() < words {
+            self.starts.resize(words, 0);
+            self.moves.resize(words, 0);
+        }
+        // (In a local, not in `self`, through the loop: the bit stores
+        // need not be read back for it.)
+        let mut next = self.walked;
+        let walked = loop {
+            if next >= bytes.len() {
+                break Ok(());
+            }
             let start = next;
             let mut shape = MoveShape::new();
-            next = walk_record(bytes, start, |addr, _, value| shape.word(addr, value))
-                .map_err(|e| (start, e))?;
-            starts[start / 64] |= 1 << (start % 64);
-            if shape.plain {
-                moves[start / 64] |= 1 << (start % 64);
+            match walk_record(bytes, start, |addr, _, value| shape.word(addr, value)) {
+                Ok(end) => next = end,
+                Err(e) => break Err((start, e)),
             }
+            // (`start` < `bytes.len()`: within the words sized above.)
+            self.starts[start / 64] |= 1 << (start % 64);
+            if shape.plain {
+                self.moves[start / 64] |= 1 << (start % 64);
+            }
+        };
+        self.walked = next;
+        walked
+    }
+
+    /// The walk of all of `bytes`, this one carried on: `bytes` must begin
+    /// with the bytes it walked. A walk that went past their end was of
+    /// other bytes, and is done again from the start.
+    pub(crate) fn complete(mut self, bytes: &[u8]) -> Result<RecordStarts, (usize, RecordError)> {
+        if self.walked > bytes.len() {
+            self = RecordStarts::default();
         }
-        Ok(RecordStarts { starts, moves })
+        self.extend(bytes)?;
+        Ok(self)
     }
 
     /// Whether a record starts at byte `at`.
@@ -480,6 +531,92 @@ impl RecordStarts {
     pub(crate) fn is_move(&self, at: u32) -> bool {
         bit(&self.moves, at)
     }
+}
+
+/// A `Blocks` section as it is built, and the walk of its records done as
+/// it grows: [`Module::verify_with`](crate::Module::verify_with) takes both,
+/// and walks only what was added since the last [`Records::walk`]. The
+/// bytes can only be appended to, so what the walk checked stays as it
+/// was when it was checked (the walk is sound for these bytes alone,
+/// which is why it is not handed over apart from them).
+#[derive(Debug, Default)]
+pub struct Records {
+    bytes: Vec<u8>,
+    walk: RecordStarts,
+}
+
+impl Records {
+    /// Room for `bytes` bytes of records, reserved, not written.
+    pub fn with_capacity(bytes: usize) -> Records {
+        Records {
+            bytes: Vec::with_capacity(bytes),
+            walk: RecordStarts::with_capacity(bytes),
+        }
+    }
+
+    /// Appends the record of `words`, as [`Module::push_block`](crate::Module::push_block) does.
+    pub fn push(&mut self, words: &[BlockWord]) -> Option<u32> {
+        push_record(words, &mut self.bytes)
+    }
+
+    /// Checks the records appended since the last walk. The first bad one
+    /// is an error with its place, as the verifier would report it; the
+    /// walk stops before it, and `verify_with` finds it again.
+    pub fn walk(&mut self) -> Result<(), (usize, RecordError)> {
+        self.walk.extend(&self.bytes)
+    }
+
+    /// The section's bytes.
+    pub fn bytes(&self) -> &[u8] {
+        &self.bytes
+    }
+
+    /// The section's bytes, the walk dropped.
+    pub fn into_bytes(self) -> Vec<u8> {
+        self.bytes
+    }
+
+    pub(crate) fn into_parts(self) -> (Vec<u8>, RecordStarts) {
+        (self.bytes, self.walk)
+    }
+}
+
+/// What the verifier's tests look into.
+#[cfg(test)]
+impl Records {
+    /// Appends bytes as they are (a bad record, for the walk to find).
+    pub(crate) fn append_raw(&mut self, bytes: &[u8]) {
+        self.bytes.extend_from_slice(bytes);
+    }
+
+    pub(crate) fn walked(&self) -> &RecordStarts {
+        &self.walk
+    }
+}
+
+#[cfg(test)]
+impl RecordStarts {
+    pub(crate) fn walked(&self) -> usize {
+        self.walked
+    }
+}
+
+/// A section of records not walked yet.
+impl From<Vec<u8>> for Records {
+    fn from(bytes: Vec<u8>) -> Records {
+        Records {
+            bytes,
+            walk: RecordStarts::default(),
+        }
+    }
+}
+
+/// Appends the record of `words` to a section; its offset, or `None`
+/// (nothing appended) when the words do not fit a record or the offset
+/// does not fit an operand.
+pub(crate) fn push_record(words: &[BlockWord], bytes: &mut Vec<u8>) -> Option<u32> {
+    let at = u32::try_from(bytes.len()).ok()?;
+    encode_record(words, bytes).then_some(at)
 }
 
 fn bit(bits: &[u64], at: u32) -> bool {

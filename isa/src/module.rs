@@ -3,7 +3,7 @@
 use alloc::string::String;
 use alloc::vec::Vec;
 
-use crate::block::{encode_record, BlockWord};
+use crate::block::{push_record, BlockWord};
 use crate::{Instr, LineTable, LoadError};
 
 /// A compiled module: what `gbcc` writes and the VM runs.
@@ -119,8 +119,7 @@ impl Module {
     /// `block` instruction, or `None` (nothing added) when the words do
     /// not fit a record (see [`block::encode_record`](crate::block::encode_record)).
     pub fn push_block(&mut self, words: &[BlockWord]) -> Option<u32> {
-        let at = u32::try_from(self.blocks.len()).ok()?;
-        encode_record(words, &mut self.blocks).then_some(at)
+        push_record(words, &mut self.blocks)
     }
 
     /// The words of the typed block at `rec`, in order, each handed to
