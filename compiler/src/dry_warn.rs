@@ -16,7 +16,7 @@ use nc::block::round_half_away;
 use nc::exec::plane::Kind as PlaneKind;
 use nc::gcode::{self, Motion, OneShot, Stroke};
 use nc::machine::{DecimalPoint, SpindleType};
-use nc::words::{Word, NO_POINT};
+use nc::words::{Word, ADDR_COUNT, COMMA_C, COMMA_R, NO_POINT};
 use nc::{Event, Nc, Sink};
 
 use crate::words::{addr_code, value_of, WordValue};
@@ -99,6 +99,37 @@ fn find(ws: &[grammar::ast::Word], letter: u8) -> Option<&grammar::ast::Word> {
     ws.iter().find(|w| addr_code(w.addr) == letter)
 }
 
+/// The block's F word, as [`find`] gives it: the one at its index among
+/// the literal words when that is the block's F (no search: a plain
+/// move's F is asked for every block).
+fn f_word<'w>(ws: &'w [grammar::ast::Word], seen: &Seen) -> Option<&'w grammar::ast::Word> {
+    const F: u8 = b'F' - b'A';
+    let at_index = seen.f_at.and_then(|i| ws.get(i));
+    match at_index.filter(|w| addr_code(w.addr) == F) {
+        Some(w) => Some(w),
+        None if seen.written(F) => find(ws, F),
+        None => None,
+    }
+}
+
+/// The values of G00–G03 written as whole numbers: motions (group 01),
+/// of which [`Seen`] notes nothing.
+const PLAIN_MOTIONS: [f64; 4] = [0.0, 1.0, 2.0, 3.0];
+
+/// The G code of `value` as the kernel codes it (tenths: G6.2 is 62),
+/// typed. (Out of line, as [`m_of`]: the constants of their rounding
+/// would otherwise be loaded for every block, whatever its codes.)
+#[inline(never)]
+fn g_of(value: f64) -> Option<gcode::G> {
+    gcode::G::from_code(crate::words::round_g(value))
+}
+
+/// The M code of `value`.
+#[inline(never)]
+fn m_of(value: f64) -> f64 {
+    round_half_away(value)
+}
+
 /// What the warnings ask about a block's words, found in one pass over
 /// them: the checks below run for every block of the dry run, and asking
 /// each question of the words anew cost more than the block's execution.
@@ -119,6 +150,9 @@ struct Seen {
     /// a G code not of the dialect (a G-code macro's arguments), a
     /// computed G or M.
     other_function: bool,
+    /// The index of the block's first F word, where the literal words
+    /// are all the block's ([`f_word`]).
+    f_at: Option<usize>,
 }
 
 impl Seen {
@@ -131,22 +165,14 @@ impl Seen {
             m98: false,
             m99: false,
             other_function: false,
+            f_at: None,
         };
-        for w in lits {
-            seen.lits |= bit(w.addr);
-            if w.addr == b'G' - b'A' {
-                // The kernel's code (tenths: G6.2 is 62), typed.
-                match gcode::G::from_code(crate::words::round_g(w.value)) {
-                    Some(gcode::G::OneShot(o)) => seen.one_shot_code = Some(o),
-                    Some(gcode::G::Stroke(Stroke::On)) => seen.stroke_on = true,
-                    Some(gcode::G::ModalCall(gcode::ModalCall::On)) | None => {
-                        seen.other_function = true
-                    }
-                    _ => {}
-                }
-            } else if w.addr == b'M' - b'A' {
-                seen.m98 |= round_half_away(w.value) == 98.0;
-                seen.m99 |= round_half_away(w.value) == 99.0;
+        for (i, w) in lits.iter().enumerate() {
+            let b = bit(w.addr);
+            seen.lits |= b;
+            // (One test passes the words nothing more is asked of.)
+            if b & const { letters(b"FGM") } != 0 {
+                seen.note(i, w);
             }
         }
         let computed = |w: &grammar::ast::Word| {
@@ -158,19 +184,48 @@ impl Seen {
         if ws.len() != lits.len() {
             for w in ws.iter().filter(|w| w.addr == Addr::Letter('M')) {
                 if let WordValue::Literal(v, _) = value_of(w) {
-                    seen.m98 |= round_half_away(v) == 98.0;
-                    seen.m99 |= round_half_away(v) == 99.0;
+                    let m = m_of(v);
+                    seen.m98 |= m == 98.0;
+                    seen.m99 |= m == 99.0;
                 }
             }
         }
-        // The literal words are the written ones, or some of them (a call
-        // takes its P and L): as many means the same words.
-        seen.written = if ws.len() == lits.len() {
-            seen.lits
-        } else {
-            ws.iter().fold(0, |m, w| m | bit(addr_code(w.addr)))
-        };
+        // The literal words are the written ones, or some of them in the
+        // same order (a call takes its P and L): as many means the same
+        // words, and an F's index among them its index in the block.
+        seen.written = seen.lits;
+        if ws.len() != lits.len() {
+            seen.written = ws.iter().fold(0, |m, w| m | bit(addr_code(w.addr)));
+            seen.f_at = None;
+        }
         seen
+    }
+
+    /// What the literal word `w`, F, G or M, the `i`th, tells.
+    fn note(&mut self, i: usize, w: &Word) {
+        match w.addr + b'A' {
+            // (The first, as `find` gives it.)
+            b'F' => {
+                self.f_at.get_or_insert(i);
+            }
+            // (G00–G03 written whole, the G of most blocks, are motions:
+            // nothing to note, and no code to round.)
+            b'G' if PLAIN_MOTIONS.contains(&w.value) => {}
+            b'G' => match g_of(w.value) {
+                Some(gcode::G::OneShot(o)) => self.one_shot_code = Some(o),
+                Some(gcode::G::Stroke(Stroke::On)) => self.stroke_on = true,
+                Some(gcode::G::ModalCall(gcode::ModalCall::On)) | None => {
+                    self.other_function = true
+                }
+                _ => {}
+            },
+            b'M' => {
+                let m = m_of(w.value);
+                self.m98 |= m == 98.0;
+                self.m99 |= m == 99.0;
+            }
+            _ => {}
+        }
     }
 
     /// A group-00 code owns the block.
@@ -192,7 +247,6 @@ impl Seen {
     }
 }
 
-/// The bit of address `a` (0..ADDR_COUNT, fewer than 32).
 /// The point on the programmed path: the plane's point during polar or
 /// cylindrical interpolation (an arc about the spindle centre leaves the
 /// joints' X where it was), the position otherwise.
@@ -200,8 +254,12 @@ fn path_point(nc: &Nc) -> nc::point::Pt {
     nc.st.plane.map_or(nc.st.pos, |plane| plane.pt)
 }
 
+/// The bit of address `a` (0..ADDR_COUNT: the words' addresses, and
+/// [`addr_code`]'s, are below it).
 fn bit(a: u8) -> u32 {
-    1u32.checked_shl(u32::from(a)).unwrap_or(0)
+    const { assert!(ADDR_COUNT <= 32) };
+    // (Not a checked shift: this runs for every word of the dry run.)
+    1 << (a % 32)
 }
 
 /// The bits of the letters A–Z (not the comma words).
@@ -389,6 +447,11 @@ impl Warner {
         }
     }
 
+    /// Tells `msg` at `span`, once. (Cold and out of line, as
+    /// `warn_help` and `ignored`: a warning is rare, and the checks that
+    /// call them run for every block.)
+    #[cold]
+    #[inline(never)]
     fn warn(&mut self, unit: usize, code: &'static str, span: Span, msg: String) {
         if self.told.insert((unit, code, span)) {
             self.diags
@@ -397,6 +460,8 @@ impl Warner {
     }
 
     /// [`warn`](Self::warn) with a help line.
+    #[cold]
+    #[inline(never)]
     fn warn_help(&mut self, at: (usize, Span), code: &'static str, msg: String, help: String) {
         let (unit, span) = at;
         if self.told.insert((unit, code, span)) {
@@ -500,7 +565,7 @@ impl Warner {
         let seen = Seen::of(ws, lits);
         self.inch_lengths(unit, nc, ws, &seen);
         self.feed_mode(unit, nc, &seen, span, counts, &before);
-        self.slow_feed(unit, nc, (ws, span), counts);
+        self.slow_feed(unit, nc, (ws, &seen, span), counts);
         self.no_motion(unit, nc, &seen, span, &before);
         self.corners(unit, nc, ws, &seen, counts, &before);
         if counts.threads > 0 && nc.st.css_mode() {
@@ -598,6 +663,8 @@ impl Warner {
     }
 
     /// W104 at the block's word of `letter`, if it has one.
+    #[cold]
+    #[inline(never)]
     fn ignored(&mut self, unit: usize, ws: &[grammar::ast::Word], letter: char, why: &str) {
         if let Some(w) = find(ws, letter as u8 - b'A') {
             let msg = format!("{letter} is ignored: {why}");
@@ -613,6 +680,12 @@ impl Warner {
     /// are left alone: G22's limits, a call's arguments (G65, G66, a
     /// G-code macro), the G10 modes, and a block whose G or M is computed.
     fn unused_words(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
+        // Every owner but a group-00 code uses the letters any block may
+        // carry ([`Owner::letters`]): a block of those alone, as most
+        // moves are, has none unused.
+        if !seen.one_shot() && seen.written & LETTERS & !ANY_BLOCK == 0 {
+            return;
+        }
         let owner = Owner::of(nc, seen);
         let mut allowed = owner.letters(nc, seen);
         if seen.m98 {
@@ -731,8 +804,11 @@ impl Warner {
         before: &Before,
     ) {
         if seen.has(b'F') {
+            // A new F: no old number is read in the new mode.
             self.mode_change = None;
-        } else if nc.st.per_rev() != before.per_rev && before.feed != 0.0 {
+            return;
+        }
+        if nc.st.per_rev() != before.per_rev && before.feed != 0.0 {
             self.mode_change = Some((unit, span, before.feed));
         }
         if counts.feeds == 0 {
@@ -768,12 +844,12 @@ impl Warner {
         &mut self,
         unit: usize,
         nc: &Nc,
-        block: (&[grammar::ast::Word], Span),
+        block: (&[grammar::ast::Word], &Seen, Span),
         counts: &Counts,
     ) {
-        let (ws, span) = block;
+        let (ws, seen, span) = block;
         // (On a thread F is the lead.)
-        if let (Some(f), 0) = (find(ws, b'F' - b'A'), counts.threads) {
+        if let (Some(f), 0) = (f_word(ws, seen), counts.threads) {
             self.feed_word = Some((unit, f.span));
         }
         let f = nc.st.feed;
@@ -854,13 +930,8 @@ impl Warner {
         {
             return;
         }
-        let corner_words = [
-            b'L' - b'A',
-            nc::words::COMMA_C,
-            b'D' - b'A',
-            nc::words::COMMA_R,
-        ];
-        if !corner_words.iter().any(|&a| seen.written(a)) {
+        const CORNER_WORDS: u32 = letters(b"LD") | 1 << COMMA_C | 1 << COMMA_R;
+        if seen.written & CORNER_WORDS == 0 {
             return;
         }
         let l = find(ws, b'L' - b'A').filter(|_| !seen.m98);
@@ -878,10 +949,10 @@ impl Warner {
     /// a gear code.
     fn spindle_max(&mut self, unit: usize, nc: &Nc, ws: &[grammar::ast::Word], seen: &Seen) {
         let m = &nc.machine.spindle;
-        if m.r#type != SpindleType::Analog
+        if !seen.written(b'S' - b'A')
+            || m.r#type != SpindleType::Analog
             || nc.st.css_mode()
             || seen.is(OneShot::SetCoordinates)
-            || !seen.written(b'S' - b'A')
         {
             return;
         }
@@ -938,5 +1009,16 @@ mod tests {
         });
         c.emit(Event::M(8));
         assert_eq!((c.events, c.motions, c.feeds, c.threads), (3, 2, 1, 0));
+    }
+
+    /// [`Seen::note`] passes these values by without decoding them: each
+    /// must be a motion, of which it notes nothing (not a group-00 code,
+    /// G22, G66 or a code outside the dialect).
+    #[test]
+    fn plain_motions_are_motions() {
+        for v in PLAIN_MOTIONS {
+            let g = gcode::G::from_code(crate::words::round_g(v));
+            assert!(matches!(g, Some(gcode::G::Motion(_))), "G{v}: {g:?}");
+        }
     }
 }

@@ -323,6 +323,18 @@ fn w125_at_a_cycle_but_not_at_a_thread() {
 }
 
 #[test]
+fn w125_at_the_f_word_of_a_block_that_calls() {
+    // M98's P is the call's, not an NC word, so the F stands at another
+    // place among the block's words than among its NC words: W125 names
+    // the F word itself.
+    let src = "G00 X20 Z2\nM98 P1000 F0.2\nG01 Z-5\nM30\nO1000\nG00 X20\nM99\n";
+    assert_eq!(w125(src), [2]);
+    let c = compile("w.nc", src.as_bytes(), &Options::default());
+    let (_, d) = (c.diags.iter()).find(|(_, d)| d.code == "W125").unwrap();
+    assert_eq!(&src[d.span.start as usize..d.span.end as usize], "F0.2");
+}
+
+#[test]
 fn w104_and_w108_in_polar_and_cylindrical_interpolation() {
     let mut opts = Options::default();
     opts.machine.axes.c.enabled = true;
