@@ -103,27 +103,59 @@ pub fn encode_record(words: &[BlockWord], out: &mut Vec<u8>) -> bool {
     let Ok(count) = u8::try_from(words.len()) else {
         return false;
     };
-    let fits = |w: &BlockWord| {
-        w.addr <= crate::addr::MAX && w.flags & !FLAG_MASK == 0 && w.value.is_finite()
-    };
-    if count == 0 || !words.iter().all(fits) {
+    if count == 0 {
         return false;
     }
+    // The words are put together on the stack and appended a chunk at a
+    // time (one chunk for nearly every block): a push per byte, with its
+    // capacity check, was most of the encoder's cost. Each word is checked
+    // as it is encoded; one that does not fit takes the record back.
+    let start = out.len();
+    out.reserve(1 + words.len() * WORD_MAX);
     out.push(count);
-    for w in words {
-        let head = w.addr | w.flags << FLAG_SHIFT;
-        match decimal_of(w.value).filter(|&c| shorter_than_raw(c)) {
-            Some(v) => {
-                out.push(head);
-                put_varint(v, out);
-            }
-            None => {
-                out.push(head | RAW);
-                out.extend_from_slice(&w.value.to_bits().to_le_bytes());
-            }
+    let mut buf = [0u8; CHUNK_WORDS * WORD_MAX];
+    for chunk in words.chunks(CHUNK_WORDS) {
+        let mut len = 0;
+        for w in chunk {
+            let Some(n) = put_word(w, &mut buf[len..len + WORD_MAX]) else {
+                out.truncate(start);
+                return false;
+            };
+            len += n;
         }
+        out.extend_from_slice(&buf[..len]);
     }
     true
+}
+
+/// The most bytes one word takes: its head, then a varint of a code below
+/// 2^56 (`shorter_than_raw`) or the eight raw bytes.
+const WORD_MAX: usize = 9;
+/// Words put together on the stack before they are appended.
+const CHUNK_WORDS: usize = 8;
+
+/// Writes the word `w` at the start of `out`, [`WORD_MAX`] bytes long;
+/// how many bytes it took, or `None` for a word that does not fit a
+/// record (a bad address, flags outside [`FLAG_MASK`], a value that is not
+/// finite).
+fn put_word(w: &BlockWord, out: &mut [u8]) -> Option<usize> {
+    if w.addr > crate::addr::MAX || w.flags & !FLAG_MASK != 0 {
+        return None;
+    }
+    let head = w.addr | w.flags << FLAG_SHIFT;
+    match decimal_of(w.value).filter(|&c| shorter_than_raw(c)) {
+        Some(code) => {
+            out[0] = head;
+            Some(1 + write_varint(code, &mut out[1..]))
+        }
+        // (`decimal_of` found the value finite before anything else.)
+        None if w.value.is_finite() => {
+            out[0] = head | RAW;
+            out[1..WORD_MAX].copy_from_slice(&w.value.to_bits().to_le_bytes());
+            Some(WORD_MAX)
+        }
+        None => None,
+    }
 }
 
 /// Decodes the record starting at `bytes[at]`, calling `f` with each word
@@ -262,18 +294,33 @@ fn four_places(v: f64) -> Option<u64> {
     if a >= FOUR_PLACES_BELOW {
         return None;
     }
-    let sign = u64::from(v.is_sign_negative());
     // (Nearest or next: a wrong guess fails the check below. Below 10¹³,
-    // through i64, which converts in one instruction.)
-    let scaled = (a * 1e4 + 0.5) as i64 as u64;
-    let code = match scaled {
-        m if m % 10_000 == 0 => strip_zeros(m / 10_000, sign),
-        m if m % 1_000 == 0 => pack(m / 1_000, sign, -1),
-        m if m % 100 == 0 => pack(m / 100, sign, -2),
-        m if m % 10 == 0 => pack(m / 10, sign, -3),
-        m => pack(m, sign, -4),
+    // through i64, which converts either way in one instruction.)
+    let scaled = (a * 1e4 + 0.5) as i64;
+    // The code decodes to the double nearest scaled × 10⁻⁴ whatever the places
+    // its trailing zeros leave (both operands of the decoding's one
+    // operation are exact): one division checks it, before it is packed.
+    if (scaled as f64 / 1e4).to_bits() != a.to_bits() {
+        return None;
+    }
+    let m = scaled as u64;
+    let sign = u64::from(v.is_sign_negative());
+    // The places are read off the last four digits: one division of the
+    // mantissa, then tests of a small number.
+    let places = match (m % 10_000) as u32 {
+        0 => return Some(strip_zeros(m / 10_000, sign)),
+        r if r % 1_000 == 0 => 1,
+        r if r % 100 == 0 => 2,
+        r if r % 10 == 0 => 3,
+        _ => 4,
     };
-    (decimal_value(code).map(f64::to_bits) == Some(v.to_bits())).then_some(code)
+    let mantissa = match places {
+        1 => m / 1_000,
+        2 => m / 100,
+        3 => m / 10,
+        _ => m,
+    };
+    Some(pack(mantissa, sign, -places))
 }
 
 /// An integer mantissa with its trailing zeros moved into the exponent
@@ -352,23 +399,37 @@ pub(crate) fn put_varint(mut v: u64, out: &mut Vec<u8>) {
     out.push(v as u8);
 }
 
+/// [`put_varint`] at the start of `out`, which must have room for it (ten
+/// bytes hold any u64); how many bytes it took.
+fn write_varint(mut v: u64, out: &mut [u8]) -> usize {
+    let mut len = 0;
+    while v >= 0x80 {
+        out[len] = (v as u8 & 0x7f) | 0x80;
+        v >>= 7;
+        len += 1;
+    }
+    out[len] = v as u8;
+    len + 1
+}
+
 /// Reads a LEB128 varint; refuses one longer than a u64 or with a
 /// needless zero last byte (so every value has one encoding).
-#[inline]
+// (Always inlined: the walk of a section reads a varint for nearly every
+// word, and a call returns its `Result` through memory.)
+#[inline(always)]
 pub(crate) fn get_varint(bytes: &[u8], at: usize) -> Result<(u64, usize), RecordError> {
-    // Most values take one or two bytes (a literal as written): read
-    // without the loop. (A second byte of 0 is overlong: the loop says so.)
-    if let Some(&b0) = bytes.get(at) {
-        if b0 < 0x80 {
-            return Ok((u64::from(b0), at + 1));
+    // Most values take one to three bytes (a literal as written): read
+    // without the loop. (A last byte of 0 after the first is overlong, and
+    // a short slice may be truncated: the loop says which.)
+    let low = |b: u8| u64::from(b & 0x7f);
+    match *bytes.get(at..).unwrap_or_default() {
+        [b0, ..] if b0 < 0x80 => Ok((u64::from(b0), at + 1)),
+        [b0, b1, ..] if (1..0x80).contains(&b1) => Ok((low(b0) | u64::from(b1) << 7, at + 2)),
+        [b0, b1, b2, ..] if b1 >= 0x80 && (1..0x80).contains(&b2) => {
+            Ok((low(b0) | low(b1) << 7 | u64::from(b2) << 14, at + 3))
         }
-        if let Some(&b1) = bytes.get(at + 1) {
-            if b1 < 0x80 && b1 != 0 {
-                return Ok((u64::from(b0 & 0x7f) | u64::from(b1) << 7, at + 2));
-            }
-        }
+        _ => varint_loop(bytes, at),
     }
-    varint_loop(bytes, at)
 }
 
 /// `get_varint` byte by byte.
@@ -630,6 +691,7 @@ fn bit(bits: &[u64], at: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use alloc::vec;
 
     #[test]
     fn literals_take_few_bytes() {
@@ -716,6 +778,81 @@ mod tests {
             };
             if v.is_finite() {
                 assert_eq!(decimal_of(v), decimal_by_search(v), "{v:e}");
+            }
+        }
+    }
+
+    /// `encode_record` as the format reads, a byte at a time: the
+    /// reference for the encoder's chunks and its checks as it goes.
+    fn record_by_bytes(words: &[BlockWord]) -> Option<Vec<u8>> {
+        let fits = |w: &BlockWord| {
+            w.addr <= crate::addr::MAX && w.flags & !FLAG_MASK == 0 && w.value.is_finite()
+        };
+        let count = u8::try_from(words.len()).ok().filter(|&n| n > 0)?;
+        if !words.iter().all(fits) {
+            return None;
+        }
+        let mut out = vec![count];
+        for w in words {
+            let head = w.addr | w.flags << FLAG_SHIFT;
+            match decimal_by_search(w.value).filter(|&c| shorter_than_raw(c)) {
+                Some(code) => {
+                    out.push(head);
+                    put_varint(code, &mut out);
+                }
+                None => {
+                    out.push(head | RAW);
+                    out.extend_from_slice(&w.value.to_bits().to_le_bytes());
+                }
+            }
+        }
+        Some(out)
+    }
+
+    #[test]
+    fn records_are_the_bytes_the_format_gives() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..20_000 {
+            let r = next();
+            // Up to 20 words (past one chunk), now and then none.
+            let n = (r % 21) as usize;
+            let words: Vec<BlockWord> = (0..n)
+                .map(|_| {
+                    let r = next();
+                    let value = match r % 5 {
+                        0 => f64::from_bits(next()),
+                        1 => (r >> 20) as f64 / 1e3,
+                        2 => -((r >> 40) as f64) / POW10[(r >> 8) as usize % 23],
+                        3 => (r >> 12) as f64,
+                        _ => ((r >> 16) % 100_000) as f64 / 100.0,
+                    };
+                    // Now and then an address or flags that do not fit.
+                    let addr = if r >> 60 == 0 {
+                        29
+                    } else {
+                        (r >> 3) as u8 % 29
+                    };
+                    let flags = if r >> 59 == 1 { 4 } else { (r >> 1) as u8 & 3 };
+                    BlockWord { addr, value, flags }
+                })
+                .collect();
+            let mut out = vec![0xaa];
+            let fits = encode_record(&words, &mut out);
+            match record_by_bytes(&words) {
+                Some(want) => {
+                    assert!(fits, "{words:?}");
+                    assert_eq!(out[1..], want[..], "{words:?}");
+                }
+                None => {
+                    assert!(!fits, "{words:?}");
+                    assert_eq!(out, [0xaa], "{words:?}");
+                }
             }
         }
     }
