@@ -66,7 +66,7 @@ impl Role {
 }
 
 fn role(ws: &[Word], mode: Mode) -> Role {
-    if let Some(g) = ws.iter().find(|w| matches!(literal_g(w), Some(100 | 110))) {
+    if let Some(g) = ws.iter().find(|w| opens_or_closes(w)) {
         if literal_g(g) == Some(110) {
             return Role::Close(mode != Mode::Off);
         }
@@ -109,6 +109,18 @@ pub fn prepare(ast: &mut Ast) {
             }
         }
         mode = r.mode_after(mode);
+    }
+}
+
+/// Whether a word is a literal G10 or G11.
+fn opens_or_closes(w: &Word) -> bool {
+    match &w.value {
+        // (Only a value between 9 and 12 rounds to either: the rest, most
+        // G words, are told without the rounding.)
+        Value::Number(n) if (9.0..=12.0).contains(&n.value) => {
+            matches!(literal_g(w), Some(100 | 110))
+        }
+        _ => false,
     }
 }
 

@@ -163,12 +163,40 @@ fn calls_m(m: f64) -> bool {
 /// finds none, and the NC words are all the block's words. (G-code macros
 /// are [`g_code_macro`]'s.)
 pub fn may_call(words: &[Word]) -> bool {
+    words.iter().any(word_may_call)
+}
+
+/// Whether a word may make its block call or return: a literal G65, G66,
+/// G67 or calling M code ([`may_call`]).
+fn word_may_call(w: &Word) -> bool {
     // (The letter first: most words are neither G nor M.)
-    words.iter().any(|w| match w.addr {
-        Addr::Letter('G') => literal_code(w).is_some_and(|g| matches!(round_g(g), 650 | 660 | 670)),
+    match w.addr {
+        // (Only a G between 64 and 68 rounds to one of them: the rest,
+        // most G words, are told without the rounding.)
+        Addr::Letter('G') => literal_code(w)
+            .is_some_and(|g| (64.0..=68.0).contains(&g) && matches!(round_g(g), 650 | 660 | 670)),
         Addr::Letter('M') => literal_code(w).is_some_and(calls_m),
         _ => false,
-    })
+    }
+}
+
+/// The split of a block that cannot call ([`may_call`] false): all its
+/// words are NC words, written into `split` where it stands (most blocks;
+/// a `Split` returned by value is a few hundred bytes copied, twice). `false`,
+/// and `split` left with no call and some of the words, for a block that
+/// may call, which [`classify`] must sort.
+pub fn classify_plain<'a>(words: &'a [Word], split: &mut Split<'a>) -> bool {
+    split.call = None;
+    split.nc.clear();
+    split.nc.reserve(words.len());
+    // (One scan both looks for a call and copies the words.)
+    for w in words {
+        if word_may_call(w) {
+            return false;
+        }
+        split.nc.push(nc_word(w));
+    }
+    true
 }
 
 /// Splits a block's words.

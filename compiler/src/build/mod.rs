@@ -38,6 +38,9 @@ pub struct Builder<'a> {
     pub units: &'a [Unit],
     pub programs: &'a [Program],
     pub machine: &'a Machine,
+    /// Whether the machine gives any G code a macro (parameters
+    /// №086–№095): most give none, and their blocks need no look for one.
+    g_code_macros: bool,
     pub optimize: bool,
     pub diags: Vec<FileDiag>,
     pub unit: usize,
@@ -165,6 +168,7 @@ impl<'a> Builder<'a> {
             units,
             programs,
             machine,
+            g_code_macros: gives_g_code_macros(machine),
             optimize,
             diags: Vec::new(),
             unit: 0,
@@ -242,6 +246,7 @@ impl<'a> Builder<'a> {
             units,
             programs,
             machine,
+            g_code_macros: gives_g_code_macros(machine),
             optimize: self.optimize,
             diags: self.diags,
             unit: self.unit,
@@ -771,12 +776,24 @@ impl<'a> Builder<'a> {
 
     fn build_words(&mut self, block: &Block) {
         let Body::Words(ws) = &block.body else { return };
-        let table = self.machine.r#macro.g_code_macros;
-        if let Some(call) = words::g_code_macro(ws, &table, self.program_number) {
+        let table = &self.machine.r#macro.g_code_macros;
+        let macro_call = match self.g_code_macros {
+            true => words::g_code_macro(ws, table, self.program_number),
+            false => None,
+        };
+        if let Some(call) = macro_call {
             match call {
                 Ok(split) => self.build_split(block, &split),
                 Err(d) => self.diags.push((self.unit, d)),
             }
+            return;
+        }
+        let mut plain = words::Split {
+            nc: words::NcWords::new(),
+            call: None,
+        };
+        if words::classify_plain(ws, &mut plain) {
+            self.build_split(block, &plain);
             return;
         }
         match words::classify(ws) {
@@ -797,7 +814,8 @@ impl<'a> Builder<'a> {
         let start = self.words_len();
         let last_motion = split.nc.iter().rposition(written_motion);
         for (i, w) in split.nc.iter().enumerate() {
-            if written_motion(w) && Some(i) != last_motion {
+            // (Only a word before the last motion can be one to skip.)
+            if last_motion.is_some_and(|last| i < last) && written_motion(w) {
                 // (W106: a later G00–G03 replaces it. Without it the
                 // block can be a plain move, and pass `modal` follows
                 // the position through it.)
@@ -861,6 +879,11 @@ impl<'a> Builder<'a> {
             }
         }
     }
+}
+
+/// Whether `machine` gives any G code a macro ([`words::g_code_macro`]).
+fn gives_g_code_macros(machine: &Machine) -> bool {
+    machine.r#macro.g_code_macros.iter().any(|&n| n != 0)
 }
 
 /// A program's blocks and words: room for the IR (a count costs little
