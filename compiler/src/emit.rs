@@ -428,19 +428,30 @@ impl<'a> Emitter<'a> {
     /// block's record is remembered, and a block with the same words
     /// (the profile block where it stands) names it again.
     fn typed_block(&mut self, words: &[ir::Word], kind: ir::NcKind) -> Option<u32> {
-        let mut known: smallvec::SmallVec<[isa::BlockWord; 8]> = smallvec::SmallVec::new();
-        for w in words {
+        // (A block of up to eight words, nearly every one, has its words on
+        // the stack, written in place: no capacity check a word.)
+        let mut inline = [UNSET_WORD; 8];
+        let mut spilled = Vec::new();
+        let known = match inline.get_mut(..words.len()) {
+            Some(known) => known,
+            None => {
+                spilled.resize(words.len(), UNSET_WORD);
+                &mut spilled[..]
+            }
+        };
+        for (k, w) in known.iter_mut().zip(words) {
             let ir::WordValue::Const(value, flags) = w.value() else {
                 return None;
             };
-            known.push(isa::BlockWord {
+            *k = isa::BlockWord {
                 addr: w.addr,
                 value,
                 flags,
-            });
+            };
         }
+        let known = &*known;
         if kind.runs_here() && self.profile_recs.is_empty() {
-            return self.records.push(&known);
+            return self.records.push(known);
         }
         let key: Vec<RecordKey> = known
             .iter()
@@ -449,7 +460,7 @@ impl<'a> Emitter<'a> {
         if let Some(&rec) = self.profile_recs.get(&key) {
             return Some(rec);
         }
-        let rec = self.records.push(&known)?;
+        let rec = self.records.push(known)?;
         if kind == ir::NcKind::Profile {
             self.profile_recs.insert(key, rec);
         }
@@ -709,3 +720,10 @@ impl<'a> Emitter<'a> {
         Some(a)
     }
 }
+
+/// A place for a word of a typed block not written yet (`typed_block`).
+const UNSET_WORD: isa::BlockWord = isa::BlockWord {
+    addr: 0,
+    value: 0.0,
+    flags: 0,
+};

@@ -396,7 +396,12 @@ pub fn g_code_macro<'a>(
 
 /// A G value as the kernel codes it: tenths (`G6.2` → 62).
 pub(crate) fn round_g(v: f64) -> u16 {
-    round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16
+    // `round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16` in one
+    // conversion: for tenths of 0 or more, `+ 0.5` truncated is the
+    // rounding half away, and the conversion saturates as the clamp did
+    // (a negative value or NaN to 0, a large one to 65535). It rounds
+    // every G word of a program, several times.
+    (v * 10.0 + 0.5) as u16
 }
 
 fn macro_call(words: &[Word], modal: bool) -> Result<Split<'_>, Diagnostic> {
@@ -588,5 +593,42 @@ impl<'a> MacroArgs<'a> {
             });
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_g_is_the_clamped_rounding_half_away() {
+        let reference = |v: f64| round_half_away(v * 10.0).clamp(0.0, 65535.0) as u16;
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.05,
+            -0.05,
+            0.049_999_999_999_999_996,
+            6.55,
+            6553.45,
+            6553.55,
+            1e300,
+            -1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push(f64::from_bits(x));
+            // Tenths and their halves, as G codes are written.
+            values.push((x % 140_000) as f64 / 20.0 - 500.0);
+        }
+        for v in values {
+            assert_eq!(round_g(v), reference(v), "{v:e}");
+        }
     }
 }

@@ -908,10 +908,9 @@ fn sizes(units: &[Unit], prog: &Program) -> (usize, usize) {
 /// (the kernel ends the run when it executes them).
 /// Whether `w` is a G00–G03 written as a literal 0–3.
 fn written_motion(w: &words::NcWord<'_>) -> bool {
-    let WordValue::Literal(v, _) = w.value else {
-        return false;
-    };
-    w.addr == b'G' - b'A' && nc::block::written_motion(v).is_some()
+    // (The address first: most words are not G.)
+    w.addr == b'G' - b'A'
+        && matches!(w.value, WordValue::Literal(v, _) if nc::block::written_motion(v).is_some())
 }
 
 fn ends_program(split: &words::Split<'_>) -> bool {
