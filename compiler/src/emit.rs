@@ -389,8 +389,12 @@ impl<'a> Emitter<'a> {
     fn nc_block(&mut self, f: &Function, nc: &ir::NcBlock) {
         let (file, span) = (self.loc.file, self.span);
         let typed = self.typed_block(f.words_of(nc), nc.kind);
-        let words = f.words_of(nc).iter().filter(|_| typed.is_none());
-        for (w, &at) in words.zip(f.word_spans_of(nc)) {
+        // (A typed block's words are in its record: none is emitted.)
+        let words = match typed {
+            None => f.words_of(nc),
+            Some(_) => &[],
+        };
+        for (w, &at) in words.iter().zip(f.word_spans_of(nc)) {
             self.set_loc(file, at);
             match w.value() {
                 ir::WordValue::Const(v, flags) => {
