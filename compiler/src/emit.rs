@@ -432,28 +432,18 @@ impl<'a> Emitter<'a> {
     /// block's record is remembered, and a block with the same words
     /// (the profile block where it stands) names it again.
     fn typed_block(&mut self, words: &[ir::Word], kind: ir::NcKind) -> Option<u32> {
-        // (A block of up to eight words, nearly every one, has its words on
-        // the stack, written in place: no capacity check a word.)
-        let mut inline = [UNSET_WORD; 8];
-        let mut spilled = Vec::new();
-        let known = match inline.get_mut(..words.len()) {
-            Some(known) => known,
-            None => {
-                spilled.resize(words.len(), UNSET_WORD);
-                &mut spilled[..]
-            }
-        };
-        for (k, w) in known.iter_mut().zip(words) {
-            let ir::WordValue::Const(value, flags) = w.value() else {
-                return None;
-            };
-            *k = isa::BlockWord {
-                addr: w.addr,
-                value,
-                flags,
-            };
-        }
-        let known = &*known;
+        let known = words
+            .iter()
+            .map(|w| match w.value() {
+                ir::WordValue::Const(value, flags) => Some(isa::BlockWord {
+                    addr: w.addr,
+                    value,
+                    flags,
+                }),
+                _ => None,
+            })
+            .collect::<Option<smallvec::SmallVec<[isa::BlockWord; 8]>>>()?;
+        let known = &known[..];
         if kind.runs_here() && self.profile_recs.is_empty() {
             return self.records.push(known);
         }
@@ -724,10 +714,3 @@ impl<'a> Emitter<'a> {
         Some(a)
     }
 }
-
-/// A place for a word of a typed block not written yet (`typed_block`).
-const UNSET_WORD: isa::BlockWord = isa::BlockWord {
-    addr: 0,
-    value: 0.0,
-    flags: 0,
-};

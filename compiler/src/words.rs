@@ -201,12 +201,13 @@ pub fn classify_plain<'a>(words: &'a [Word], split: &mut Split<'a>) -> bool {
 
 /// Splits a block's words.
 pub fn classify(words: &[Word]) -> Result<Split<'_>, Diagnostic> {
-    if !may_call(words) {
-        // Most blocks: one scan tells there is no call.
-        return Ok(Split {
-            nc: words.iter().map(nc_word).collect(),
-            call: None,
-        });
+    // Most blocks: one scan tells there is no call.
+    let mut plain = Split {
+        nc: NcWords::new(),
+        call: None,
+    };
+    if classify_plain(words, &mut plain) {
+        return Ok(plain);
     }
     // A G65/G66 anywhere in the block makes it a call, so that one not
     // written first is E2002 (macro_call) rather than an NC code.

@@ -389,18 +389,16 @@ fn raw_value(bytes: &[u8], at: usize) -> Result<(f64, usize), RecordError> {
     Ok((value, end))
 }
 
-/// Appends `v` as LEB128: seven bits a byte, low bits first, the high bit
-/// set on every byte but the last.
-pub(crate) fn put_varint(mut v: u64, out: &mut Vec<u8>) {
-    while v >= 0x80 {
-        out.push((v as u8 & 0x7f) | 0x80);
-        v >>= 7;
-    }
-    out.push(v as u8);
+/// Appends `v` as LEB128 ([`write_varint`]).
+pub(crate) fn put_varint(v: u64, out: &mut Vec<u8>) {
+    let mut buf = [0u8; VARINT_MAX];
+    let len = write_varint(v, &mut buf);
+    out.extend_from_slice(&buf[..len]);
 }
 
-/// [`put_varint`] at the start of `out`, which must have room for it (ten
-/// bytes hold any u64); how many bytes it took.
+/// Writes `v` as LEB128 at the start of `out`, which must have room for it
+/// ([`VARINT_MAX`] bytes hold any u64): seven bits a byte, low bits first,
+/// the high bit set on every byte but the last. How many bytes it took.
 fn write_varint(mut v: u64, out: &mut [u8]) -> usize {
     let mut len = 0;
     while v >= 0x80 {
@@ -737,15 +735,19 @@ mod tests {
         None
     }
 
-    #[test]
-    fn shortcuts_change_no_answer() {
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
+    /// A xorshift generator from `seed`: the random cases' source.
+    fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
+        move || {
             x ^= x << 13;
             x ^= x >> 7;
             x ^= x << 17;
             x
-        };
+        }
+    }
+
+    #[test]
+    fn shortcuts_change_no_answer() {
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         for i in 0..200_000 {
             let r = next();
             let v = match i % 4 {
@@ -811,13 +813,7 @@ mod tests {
 
     #[test]
     fn records_are_the_bytes_the_format_gives() {
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         for _ in 0..20_000 {
             let r = next();
             // Up to 20 words (past one chunk), now and then none.

@@ -1125,11 +1125,7 @@ impl Vm {
                 "#0 is always vacant and cannot be written",
             ),
             3000 => {
-                let code = if is_vacant(v) {
-                    0.0
-                } else {
-                    round_half_away(v)
-                };
+                let code = whole_number(v);
                 if !(0.0..=999.0).contains(&code) {
                     return fault(
                         AlarmCode::ValueOutOfRange,
@@ -1172,13 +1168,19 @@ impl Vm {
 
 /// The number of a `#3006 = n` message stop, for the host: any value is
 /// allowed (dialect.md §7.3), so it is made whole as `#3000` makes its
-/// alarm number (rounded half away, vacant 0) and held in `u32` (`as`
-/// saturates: below 0 is 0, beyond the range `u32::MAX`).
+/// alarm number and held in `u32` (`as` saturates: below 0 is 0, beyond
+/// the range `u32::MAX`).
 fn message_number(v: f64) -> u32 {
+    whole_number(v) as u32
+}
+
+/// The number `#3000` and `#3006` take from a value: rounded half away
+/// from zero, vacant 0.
+fn whole_number(v: f64) -> f64 {
     if is_vacant(v) {
-        0
+        0.0
     } else {
-        round_half_away(v) as u32
+        round_half_away(v)
     }
 }
 

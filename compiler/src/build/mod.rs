@@ -38,9 +38,6 @@ pub struct Builder<'a> {
     pub units: &'a [Unit],
     pub programs: &'a [Program],
     pub machine: &'a Machine,
-    /// Whether the machine gives any G code a macro (parameters
-    /// №086–№095): most give none, and their blocks need no look for one.
-    g_code_macros: bool,
     pub optimize: bool,
     pub diags: Vec<FileDiag>,
     pub unit: usize,
@@ -168,7 +165,6 @@ impl<'a> Builder<'a> {
             units,
             programs,
             machine,
-            g_code_macros: gives_g_code_macros(machine),
             optimize,
             diags: Vec::new(),
             unit: 0,
@@ -246,7 +242,6 @@ impl<'a> Builder<'a> {
             units,
             programs,
             machine,
-            g_code_macros: gives_g_code_macros(machine),
             optimize: self.optimize,
             diags: self.diags,
             unit: self.unit,
@@ -777,11 +772,7 @@ impl<'a> Builder<'a> {
     fn build_words(&mut self, block: &Block) {
         let Body::Words(ws) = &block.body else { return };
         let table = &self.machine.r#macro.g_code_macros;
-        let macro_call = match self.g_code_macros {
-            true => words::g_code_macro(ws, table, self.program_number),
-            false => None,
-        };
-        if let Some(call) = macro_call {
+        if let Some(call) = words::g_code_macro(ws, table, self.program_number) {
             match call {
                 Ok(split) => self.build_split(block, &split),
                 Err(d) => self.diags.push((self.unit, d)),
@@ -879,11 +870,6 @@ impl<'a> Builder<'a> {
             }
         }
     }
-}
-
-/// Whether `machine` gives any G code a macro ([`words::g_code_macro`]).
-fn gives_g_code_macros(machine: &Machine) -> bool {
-    machine.r#macro.g_code_macros.iter().any(|&n| n != 0)
 }
 
 /// A program's blocks and words: room for the IR (a count costs little
