@@ -13,7 +13,8 @@
 //!   a drilling cycle or another motion code.
 //!
 //! The steps it keeps are the same functions `exec_parsed` calls, in the
-//! same order, outside `contour::in_order`: so it is not taken while an
+//! same order (the cycle rules through `cycles::before_plain_block`, those
+//! of them that can act on a plain move), outside `contour::in_order`: so it is not taken while an
 //! element waits (the one step here that can print, the end of a thread
 //! chain, would then have to be held). `compiler/tests/plain_path.rs`
 //! runs every suite program and random macro programs both ways
@@ -50,8 +51,7 @@ pub(crate) fn run(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<Outcom
         nc.st.modal.motion = code;
         nc.st.modal.drill = Drill::Off;
     }
-    // Its M is no clamp code: the block has none.
-    crate::exec::cycles::before_block(nc, p, sink)?;
+    crate::exec::cycles::before_plain_block(nc, p, sink)?;
     nc.remember(p);
     nc.st.exact_stop = nc.st.modal.path_mode() == PathMode::ExactStop;
     let code = nc.st.modal.motion;
@@ -135,6 +135,30 @@ mod tests {
             "G00 X60",
         ];
         both_ways(&mut Lathe::new(), &blocks);
+    }
+
+    /// The cycle rules a plain move meets, both ways: it ends a thread
+    /// chain (the waiting block gets its run-out) and a G90 run, F < 0 is
+    /// refused, and so is a move between M29 and its tapping block.
+    #[test]
+    fn a_plain_move_meets_the_cycle_rules() {
+        let mut a = Lathe::new();
+        let blocks = [
+            "G99 M03 S500",
+            "G00 X30 Z5",
+            "G32 Z-10 F1.5",
+            "G01 X40 F0.2",
+            "G90 X20 Z-20 F0.2",
+            "G00 X50",
+            "X30 Z2",
+            "G01 X20 F-1",
+            "M29 S300",
+            "G00 X20",
+        ];
+        both_ways(&mut a, &blocks);
+        // (The alarms, which `both_ways` only compares.)
+        assert!(a.try_run("G01 X20 F-1").is_err());
+        assert_eq!(a.try_run("G00 X20"), Err(2007));
     }
 
     /// Runs every block of `blocks` through `Nc::exec_move` on one kernel

@@ -94,6 +94,24 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<M>
     Ok(st.clamp)
 }
 
+/// [`before_block`] for a plain move (`cycles::before_plain_block`): it
+/// moves, has no M word and is no drilling block. Its group-1 code ends a
+/// rigid run; a move after M29 is an alarm.
+pub(crate) fn before_plain_block(nc: &mut Nc, p: &Parsed) -> Result<(), NcError> {
+    let st = &mut nc.st.cycles.drill;
+    if p.motion().is_some() {
+        st.rigid = false;
+    }
+    if st.m29 {
+        return fail(
+            Alarm::IncompatibleWords,
+            "no move may come between M29 and its G84/G88 tapping block",
+        );
+    }
+    st.clamp = None;
+    Ok(())
+}
+
 /// A block while G83, G84, G87 or G88 is in force.
 pub(crate) fn run(
     nc: &mut Nc,

@@ -101,6 +101,31 @@ pub fn before_block(
     drill::before_block(nc, f, p)
 }
 
+/// [`before_block`] for a block the plain path takes (`plain::takes`,
+/// its group-1 code already in force): at most a G00–G03, an axis word,
+/// no M word, no drilling cycle in force. The same rules in the same
+/// order, those alone that can act on such a block: the general one asks
+/// of it what only other blocks have (140 of the 1 730 instructions
+/// `gbvm` spends on a plain G01; 95 fewer so). `compiler/tests/plain_path.rs`
+/// and `plain.rs`'s tests compare the two.
+pub(crate) fn before_plain_block(
+    nc: &mut Nc,
+    p: &Parsed,
+    sink: &mut dyn Sink,
+) -> Result<(), NcError> {
+    // (Not a thread nor a tapping code: F is never a left-hand lead.)
+    check_negative_f(p, Func::Motion(nc.st.modal.motion))?;
+    // A code that is not a thread ends a G32/G34 chain.
+    thread::flush(nc, sink);
+    if p.motion().is_some() {
+        let st = &mut nc.st.cycles;
+        st.g92_pull = None;
+        st.chain.runout = None;
+        st.run = None;
+    }
+    drill::before_plain_block(nc, p)
+}
+
 /// F < 0 is a left-hand lead, which only the rigid threads and tapping
 /// cycles have (dialect.md §4.3, cycles.md §22); block.rs lets a negative
 /// F through when the block's function depends on the modal state.
