@@ -304,6 +304,16 @@ pub fn is_module(bytes: &[u8]) -> bool {
     bytes.starts_with(&isa::format::MAGIC)
 }
 
+/// Whether `path` is a regular file (not a link to one) that begins as a
+/// compiled module does.
+pub fn is_module_file(path: &Path) -> bool {
+    if !std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+        return false;
+    }
+    let mut head = [0u8; isa::format::MAGIC.len()];
+    std::fs::File::open(path).is_ok_and(|mut f| f.read_exact(&mut head).is_ok()) && is_module(&head)
+}
+
 #[cfg(test)]
 mod tests {
     use super::read_stream;

@@ -47,6 +47,49 @@ fn compile_and_run_with_the_default_output_name() {
     assert!(text(&gbvm(&["disasm", "part.gbc"], &d).stdout).contains("move b0 (G0 X10 Z2)"));
 }
 
+/// A failed compile leaves no module where it would have written one (as
+/// gcc removes a failed output): the old program is not run by mistake.
+/// What is not a module at that name stays.
+#[test]
+fn a_failed_compile_leaves_no_stale_module() {
+    let d = dir("stale");
+    std::fs::write(d.join("part.nc"), "G00 X10 Z2\nM30\n").unwrap();
+    assert_eq!(gbcc(&["part.nc"], &d).status.code(), Some(0));
+    assert!(d.join("part.gbc").exists());
+    std::fs::write(d.join("part.nc"), "G00 X10 Z2\nG01 X\nM30\n").unwrap();
+    assert_eq!(gbcc(&["part.nc"], &d).status.code(), Some(1));
+    assert!(!d.join("part.gbc").exists(), "the old module stayed");
+    // A compile that succeeds writes its module where the old one was.
+    std::fs::write(d.join("good.nc"), "G00 X20 Z2\nM30\n").unwrap();
+    assert_eq!(gbcc(&["part.nc", "-o", "x.gbc"], &d).status.code(), Some(1));
+    assert_eq!(gbcc(&["good.nc", "-o", "x.gbc"], &d).status.code(), Some(0));
+    assert_eq!(gbcc(&["good.nc", "-o", "x.gbc"], &d).status.code(), Some(0));
+    let run = gbvm(&["run", "x.gbc", "--emit", "canon"], &d);
+    assert_eq!(text(&run.stdout), "RAPID X=20 Z=2\nSTOP KIND=M30\n");
+    // Text at the output's name is not a module: a failed compile keeps it.
+    std::fs::write(d.join("notes.gbc"), "not a module\n").unwrap();
+    assert_eq!(
+        gbcc(&["part.nc", "-o", "notes.gbc"], &d).status.code(),
+        Some(1)
+    );
+    assert_eq!(
+        std::fs::read(d.join("notes.gbc")).unwrap(),
+        b"not a module\n"
+    );
+    // Nor does a syntax check or a listing remove a module.
+    assert_eq!(
+        gbcc(&["part.nc", "-fsyntax-only", "-o", "x.gbc"], &d)
+            .status
+            .code(),
+        Some(1)
+    );
+    assert_eq!(
+        gbcc(&["part.nc", "-S", "-o", "x.gbc"], &d).status.code(),
+        Some(1)
+    );
+    assert!(d.join("x.gbc").exists());
+}
+
 #[test]
 fn errors_exit_1_with_gcc_style_headers_and_json_on_request() {
     let d = dir("err");
