@@ -147,6 +147,7 @@ fn run_sized(
         entries: Vec::new(),
         blocks: 0,
         word_blocks: 0,
+        words: Vec::new(),
         line_no: 0,
         line: LineState::default(),
         parser: BatchParser::new(),
@@ -222,6 +223,8 @@ struct Driver<'src> {
     blocks: usize,
     /// ... and of `Entry::Words`.
     word_blocks: usize,
+    /// The words of the block being lexed in place (kept for their room).
+    words: Vec<Word>,
     /// The physical line being scanned.
     line_no: usize,
     /// The line rules' state for the line of the last entry handed out.
@@ -341,6 +344,50 @@ fn plain_block(toks: &[Spanned]) -> Option<(Option<Seq>, Vec<Word>)> {
         i += used;
     }
     Some((seq, words))
+}
+
+/// The block at `src[start..]` if it is literal words only, after a
+/// sequence number or not, written plainly (blanks only between words, no
+/// comment): its sequence number, its words (appended to `words`), its
+/// span and where it ends; `None` for any other block, and for a faulty
+/// sequence number, which the parser reports. The tree is the one the
+/// other way (compactor, lexer, [`plain_block`]) gives: after a word's
+/// digits a blank can only lead to the next word's letter (before a digit,
+/// point or sign it would join the two, which the compactor does), and
+/// `lexer::word_at` lexes as logos does. Each word is built as it is
+/// lexed, with no token in between.
+fn words_in_place(
+    src: &[u8],
+    start: usize,
+    words: &mut Vec<Word>,
+) -> Option<(Option<Seq>, Span, usize)> {
+    let mut seq = None;
+    let mut i = start;
+    while i < src.len() {
+        match src[i] {
+            b' ' | b'\t' => i += 1,
+            b'\n' | b'\r' | b';' => break,
+            _ => {
+                let (tok, end) = lexer::word_at(src, i, &OffsetMap::InPlace(0))?;
+                let span = Span::new(i, end);
+                match tok {
+                    Tok::Word(w) => {
+                        words.push(actions::word(Addr::Letter(w.letter as char), w, span));
+                    }
+                    // (A sequence number only heads a block.)
+                    Tok::Seq(w) if seq.is_none() && words.is_empty() => {
+                        seq = Some(actions::seq(w, span).ok()?);
+                    }
+                    _ => return None,
+                }
+                i = end;
+            }
+        }
+    }
+    // (A sequence number alone is the parser's, as in `plain_block`.)
+    let (first, last) = (words.first()?.span, words.last()?.span);
+    let head = seq.map_or(first, |s: Seq| s.span);
+    Some((seq, head.to(last), i))
 }
 
 fn end_run(run: &mut Option<(usize, usize)>, batch: &mut Vec<Spanned>, runs: &[Word]) {
@@ -545,45 +592,21 @@ impl Driver<'_> {
     /// only between words, no comment), lexed and put into the tree in one
     /// pass over its bytes, where compacting it first and lexing the result
     /// took two; where it ends, or `None` (nothing done) for any other
-    /// block. The tree is the one the other way gives: after a word's
-    /// digits a blank can only lead to the next word's letter (before a
-    /// digit, point or sign it would join the two, which the compactor
-    /// does), and `lexer::word_at` lexes as logos does.
+    /// block ([`words_in_place`]). The words go to a buffer kept from block
+    /// to block, then to a vector of their exact length: a block of the
+    /// tree keeps no spare room.
     fn words_in_place(&mut self, start: usize, limit: usize) -> Option<(usize, Terminator)> {
-        let src = &self.src[..limit];
-        let first = self.tokens.len();
-        let mut i = start;
-        while i < limit {
-            match src[i] {
-                b' ' | b'\t' => i += 1,
-                b'\n' | b'\r' | b';' => break,
-                _ => match lexer::word_at(src, i, &OffsetMap::InPlace(0)) {
-                    Some((tok, end)) => {
-                        self.tokens.push((i, tok, end));
-                        i = end;
-                    }
-                    None => break,
-                },
-            }
-        }
-        let stopped = i < limit && !matches!(src[i], b'\n' | b'\r' | b';');
-        let words = match stopped {
-            true => None,
-            false => plain_block(&self.tokens[first..]),
-        };
-        let span = match (self.tokens.get(first), self.tokens.last()) {
-            (Some(a), Some(z)) => Span::new(a.0, z.2),
-            _ => Span::default(),
-        };
-        self.tokens.truncate(first);
-        let (seq, words) = words?;
+        self.words.clear();
+        let (seq, span, end) = words_in_place(&self.src[..limit], start, &mut self.words)?;
+        let mut words = Vec::with_capacity(self.words.len());
+        words.append(&mut self.words);
         let parsed = Parsed::Words {
             delete: None,
             seq,
             words,
         };
         self.finish(parsed, self.line_no, Vec::new(), span);
-        Some((i, compact::terminator_at(self.src, i, limit)))
+        Some((end, compact::terminator_at(self.src, end, limit)))
     }
 
     /// A line of the tree that needs no parsing: straight in when nothing
