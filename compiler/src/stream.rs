@@ -234,12 +234,15 @@ impl Front<'_> {
             found.extend(also);
             next = after;
         }
-        crate::data_setting::prepare(&mut ast);
         // (Only the chunk's own diagnostics are looked at: the earlier
         // ones had no error, or the path was left.)
         if found.iter().any(|d| d.is_error()) || !self.plain(&ast, first) {
             return None;
         }
+        // No `data_setting::prepare`, which the whole-file path runs: it
+        // rewrites only blocks after a G10, and a plain chunk has none (a
+        // G word that rounds to G10 is G10 itself, the lexer allowing a G
+        // one decimal, and `plain_word` refuses it).
         self.parse.extend(found.into_iter().map(|d| (0, d)));
         let unit = Unit {
             name: self.name.to_string(),
