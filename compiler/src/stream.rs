@@ -21,7 +21,7 @@ use crate::check::ChunkedRun;
 use crate::emit::{Emitter, OpenProgram, Room};
 use crate::link::{self, Program, Unit};
 use crate::{words, Compiled, Options};
-use grammar::ast::{Ast, Body, Line, Value};
+use grammar::ast::{Addr, Ast, Body, Line, Value};
 use grammar::{SourceFile, Span};
 use isa::block::Records;
 use std::sync::mpsc::{Receiver, Sender, SyncSender};
@@ -270,10 +270,7 @@ impl Front<'_> {
                     let Body::Words(ws) = &b.body else {
                         return false;
                     };
-                    if b.delete.is_some() || !ws.iter().all(plain_word) {
-                        return false;
-                    }
-                    if words::may_call(ws) || crate::profile::names_cycle(ws) {
+                    if b.delete.is_some() || !plain_words(ws) {
                         return false;
                     }
                     self.shape.any_block |= !ws.is_empty();
@@ -413,13 +410,31 @@ impl<'a> Back<'a> {
     }
 }
 
+/// Whether a block's words keep the program plain: literal words
+/// ([`plain_word`]), none that may call or return ([`words::may_call`]),
+/// no G70–G73 cycle ([`crate::profile::names_cycle`]). One pass over the
+/// words, where each test took one: only a G or an M word can call, and
+/// only a G word names a cycle.
+fn plain_words(ws: &[grammar::ast::Word]) -> bool {
+    ws.iter().all(|w| {
+        let one = std::slice::from_ref(w);
+        match w.addr {
+            Addr::Letter('G') => {
+                plain_word(w) && !words::may_call(one) && !crate::profile::names_cycle(one)
+            }
+            Addr::Letter('M') => plain_word(w) && !words::may_call(one),
+            _ => plain_word(w),
+        }
+    })
+}
+
 /// A literal word that is not G10/G11 (data setting spans blocks; its
 /// programs take the whole-file path).
 fn plain_word(w: &grammar::ast::Word) -> bool {
     match &w.value {
         Value::Number(n) => {
             let data_setting = (10.0..12.0).contains(&n.value);
-            !(w.addr == grammar::ast::Addr::Letter('G') && data_setting)
+            !(w.addr == Addr::Letter('G') && data_setting)
         }
         Value::Expr(_) => false,
     }
