@@ -600,12 +600,15 @@ impl Driver<'_> {
         let (seq, span, end) = words_in_place(&self.src[..limit], start, &mut self.words)?;
         let mut words = Vec::with_capacity(self.words.len());
         words.append(&mut self.words);
-        let parsed = Parsed::Words {
+        // (Straight to the tree: a block of words is no program number.)
+        let block = Block {
             delete: None,
             seq,
-            words,
+            body: Body::Words(words),
+            comments: Vec::new(),
+            span,
         };
-        self.finish(parsed, self.line_no, Vec::new(), span);
+        self.push_block(block, self.line_no);
         Some((end, compact::terminator_at(self.src, end, limit)))
     }
 
@@ -708,9 +711,9 @@ impl Driver<'_> {
     /// Adds a parsed block to the tree, after the O-line rules: a program
     /// number stands on its own line, with only comments beside it.
     fn finish(&mut self, parsed: Parsed, line: usize, comments: Vec<Comment>, span: Span) {
-        let state = self.line_state(line);
         let (delete, seq, body) = match parsed {
             Parsed::Program { number } => {
+                let state = self.line_state(line);
                 if state.other {
                     self.diags.push(
                         Diagnostic::error(
@@ -734,12 +737,26 @@ impl Driver<'_> {
             Parsed::Words { delete, seq, words } => (delete, seq, Body::Words(words)),
             Parsed::Stmt { delete, seq, stmt } => (delete, seq, Body::Stmt(stmt)),
         };
+        let block = Block {
+            delete,
+            seq,
+            body,
+            comments,
+            span,
+        };
+        self.push_block(block, line);
+    }
+
+    /// Adds a block of `line` to the tree, unless a program number stands
+    /// before it on that line.
+    fn push_block(&mut self, block: Block, line: usize) {
+        let state = self.line_state(line);
         state.other = true;
         if state.program {
             self.diags.push(
                 Diagnostic::error(
                     "E1004",
-                    span,
+                    block.span,
                     "the O line holds only the program number and comments",
                 )
                 .with_label("a block after the program number")
@@ -747,13 +764,7 @@ impl Driver<'_> {
             );
             return;
         }
-        self.ast.lines.push(Line::Block(Block {
-            delete,
-            seq,
-            body,
-            comments,
-            span,
-        }));
+        self.ast.lines.push(Line::Block(block));
     }
 
     fn report(&mut self, mut d: Diagnostic, after_semicolon: bool) {
