@@ -270,11 +270,20 @@ impl Front<'_> {
                     let Body::Words(ws) = &b.body else {
                         return false;
                     };
-                    if b.delete.is_some() || !plain_words(ws) {
+                    if b.delete.is_some() {
                         return false;
                     }
+                    let Some(any_m) = plain_words(ws) else {
+                        return false;
+                    };
                     self.shape.any_block |= !ws.is_empty();
-                    let explicit = match build::block_ends(b) {
+                    // (Only an M word ends the program: a block without
+                    // one is not looked at again.)
+                    let ends = match any_m {
+                        true => build::block_ends(b),
+                        false => (!ws.is_empty()).then_some(false),
+                    };
+                    let explicit = match ends {
                         Some(ends) => {
                             self.shape.ended |= ends;
                             self.shape.ended
@@ -412,20 +421,28 @@ impl<'a> Back<'a> {
 
 /// Whether a block's words keep the program plain: literal words
 /// ([`plain_word`]), none that may call or return ([`words::may_call`]),
-/// no G70–G73 cycle ([`crate::profile::names_cycle`]). One pass over the
-/// words, where each test took one: only a G or an M word can call, and
-/// only a G word names a cycle.
-fn plain_words(ws: &[grammar::ast::Word]) -> bool {
-    ws.iter().all(|w| {
+/// no G70–G73 cycle ([`crate::profile::names_cycle`]); and if so, whether
+/// one is an M word. One pass over the words, where each test took one:
+/// only a G or an M word can call, and only a G word names a cycle.
+fn plain_words(ws: &[grammar::ast::Word]) -> Option<bool> {
+    let mut any_m = false;
+    for w in ws {
         let one = std::slice::from_ref(w);
-        match w.addr {
+        let plain = match w.addr {
             Addr::Letter('G') => {
                 plain_word(w) && !words::may_call(one) && !crate::profile::names_cycle(one)
             }
-            Addr::Letter('M') => plain_word(w) && !words::may_call(one),
+            Addr::Letter('M') => {
+                any_m = true;
+                plain_word(w) && !words::may_call(one)
+            }
             _ => plain_word(w),
+        };
+        if !plain {
+            return None;
         }
-    })
+    }
+    Some(any_m)
 }
 
 /// A literal word that is not G10/G11 (data setting spans blocks; its
