@@ -201,6 +201,8 @@ struct Runner {
     room: RoomCheck,
     /// W105–W112, W114 on what each block did.
     warner: crate::dry_warn::Warner,
+    /// The last block ran without a fault (its words parsed).
+    ran_clean: bool,
 }
 
 impl Runner {
@@ -212,6 +214,7 @@ impl Runner {
             over: None,
             room: RoomCheck::new(m),
             warner: Default::default(),
+            ran_clean: false,
         }
     }
 
@@ -656,6 +659,7 @@ impl Runner {
         // other block goes the general way): most blocks of a long
         // program are plain moves.
         let result = self.nc.exec_move(lits, &mut sink);
+        self.ran_clean = result.is_ok();
         let legs = self.nc.take_generated();
         self.extra = self.extra.saturating_add(legs);
         self.count_executed(legs, index, block.span);
@@ -734,40 +738,60 @@ impl ChunkedRun {
         }
     }
 
-    /// Runs the blocks of one chunk (`prog`'s, in `unit`).
-    pub fn chunk(&mut self, unit: &Unit, prog: &Program) {
+    /// Runs the blocks of one chunk (`prog`'s, in `unit`); how many of
+    /// its leading blocks ran without a fault, so that the kernel parsed
+    /// their words (with `literal_block`'s result: a block that calls
+    /// nothing has its words in order, as `plain_literals` takes them).
+    pub fn chunk(&mut self, unit: &Unit, prog: &Program) -> usize {
         // Blocks of the chunk before are no lines of this one: an error
         // about an element of theirs stands on the running block.
         self.run.nc.retag_waiting(u32::MAX);
-        for &line in &prog.blocks {
-            let Some(block) = link::block(unit, line) else {
-                continue;
-            };
-            let Body::Words(ws) = &block.body else {
-                continue;
-            };
-            self.run.nc.origin = line as u32;
-            if self.ended {
-                return;
-            }
-            // (A plain program runs each block once.)
-            if !self.run.step(false, prog.unit, block.span) {
-                self.ended = true;
-                return;
-            }
-            let lits = plain_literals(ws);
-            if lits.is_empty() {
-                continue;
-            }
-            match self.run.exec((prog.unit, unit, block, ws), &lits) {
-                Ok(Flow::Go) => {}
-                Ok(_) => self.ended = true,
-                Err(found) => {
-                    self.error = Some(found);
-                    self.ended = true;
+        let mut ran = 0;
+        for (i, &line) in prog.blocks.iter().enumerate() {
+            let words = link::block(unit, line).and_then(|b| match &b.body {
+                Body::Words(ws) => Some((b, ws)),
+                Body::Stmt(_) => None,
+            });
+            // (A line without words has none to parse.)
+            let parsed = match words {
+                Some((block, ws)) => {
+                    self.run.nc.origin = line as u32;
+                    if self.ended {
+                        break;
+                    }
+                    self.block((prog.unit, unit, block, ws))
                 }
+                None => true,
+            };
+            if parsed && ran == i {
+                ran = i + 1;
             }
         }
+        ran
+    }
+
+    /// Runs one block of a chunk: whether the kernel ran it without a
+    /// fault.
+    fn block(&mut self, at: At<'_>) -> bool {
+        let (index, _, block, ws) = at;
+        // (A plain program runs each block once.)
+        if !self.run.step(false, index, block.span) {
+            self.ended = true;
+            return false;
+        }
+        let lits = plain_literals(ws);
+        if lits.is_empty() {
+            return false;
+        }
+        match self.run.exec(at, &lits) {
+            Ok(Flow::Go) => {}
+            Ok(_) => self.ended = true,
+            Err(found) => {
+                self.error = Some(found);
+                self.ended = true;
+            }
+        }
+        self.run.ran_clean
     }
 
     /// Whether it has found a compile-time error.

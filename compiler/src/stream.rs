@@ -163,6 +163,8 @@ struct Chunk {
     first: bool,
     /// How the program ends, with its last chunk.
     end: Option<ProgEnd>,
+    /// How many leading blocks the dry run ran ([`ChunkedRun::chunk`]).
+    ran_ahead: usize,
 }
 
 /// Parses the chunks, checks that they are plain and dry-runs them.
@@ -195,7 +197,7 @@ impl Front<'_> {
                 return None;
             }
             let prog = self.program(&unit, first)?;
-            self.dry_run.chunk(&unit, &prog);
+            let ran_ahead = self.dry_run.chunk(&unit, &prog);
             if self.dry_run.failed() {
                 return None;
             }
@@ -209,6 +211,7 @@ impl Front<'_> {
                 prog,
                 first,
                 end,
+                ran_ahead,
             };
             to_back.send(chunk).ok()?;
             start = next;
@@ -389,7 +392,7 @@ impl<'a> Back<'a> {
         if chunk.first {
             b.start_chunks(&programs[0]);
         }
-        let mut parts = vec![b.build_chunk(&programs[0], &mut self.prog_build)];
+        let mut parts = vec![b.build_chunk(&programs[0], &mut self.prog_build, chunk.ran_ahead)];
         if let Some(end) = chunk.end {
             let pb = std::mem::take(&mut self.prog_build);
             parts.push(b.end_chunks(&programs[0], pb, end));

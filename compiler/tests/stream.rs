@@ -169,3 +169,27 @@ fn an_error_in_a_late_chunk_is_reported_as_the_whole_file_path_reports_it() {
         assert_eq!(c.files[*f].line_col(d.span.start).0, last_line, "{tail:?}");
     }
 }
+
+/// The chunked path parses a block's words once, in the dry run, and the
+/// builder checks only those of the blocks the run did not reach: a block
+/// after M30 is still checked, a T word's numbers too.
+#[test]
+fn a_block_the_dry_run_does_not_reach_is_checked_all_the_same() {
+    for (tail, code) in [
+        ("M30\nG01 X10 X20\n", "E1011"),
+        ("M30\nG00 X10 Z5\nG01 X10 X20\nG00 X1\n", "E1011"),
+        ("T9999\nM30\n", "E"),
+    ] {
+        let src = long_program(2_000, tail);
+        let c = compile("a.nc", src.as_bytes(), &chunked(4_096));
+        let (_, reference) = whole("a.nc", src.as_bytes());
+        assert_eq!(c.render(), reference, "{tail:?}");
+        assert!(c.module.is_none(), "{tail:?}");
+        let (_, d) = c
+            .diags
+            .iter()
+            .find(|(_, d)| d.is_error())
+            .expect("an error");
+        assert!(d.code.starts_with(code), "{tail:?}: {}", d.code);
+    }
+}

@@ -47,6 +47,12 @@ pub struct Builder<'a> {
     pub(crate) profiles: crate::profile::Profiles,
     /// Scratch for the literal check of each block (filled in place).
     parsed: nc::block::Parsed,
+    /// How many leading blocks of the chunk being built the dry run has
+    /// run (`crate::stream`): the kernel parsed their words there, the
+    /// same words with the same machine, so they are not parsed twice.
+    ran_ahead: usize,
+    /// The block being built is one of them.
+    words_parsed: bool,
     module: ir::Module,
     strings: HashMap<String, u32>,
     /// The function being built and its open block.
@@ -171,6 +177,8 @@ impl<'a> Builder<'a> {
             program_number: 0,
             profiles: Default::default(),
             parsed: Default::default(),
+            ran_ahead: 0,
+            words_parsed: false,
             module: ir::Module::default(),
             strings: HashMap::new(),
             f: ir::Function::default(),
@@ -248,6 +256,8 @@ impl<'a> Builder<'a> {
             program_number: self.program_number,
             profiles: self.profiles,
             parsed: self.parsed,
+            ran_ahead: 0,
+            words_parsed: false,
             module: self.module,
             strings: self.strings,
             f: self.f,
@@ -269,8 +279,17 @@ impl<'a> Builder<'a> {
 
     /// Builds one chunk's blocks and hands them over as a part of the
     /// function: its last block stays open and goes on in the next part.
-    pub(crate) fn build_chunk(&mut self, prog: &Program, pb: &mut ProgBuild) -> ir::Function {
+    /// Builds a chunk's blocks, the first `ran_ahead` of which the dry run
+    /// has run; its part.
+    pub(crate) fn build_chunk(
+        &mut self,
+        prog: &Program,
+        pb: &mut ProgBuild,
+        ran_ahead: usize,
+    ) -> ir::Function {
+        self.ran_ahead = ran_ahead;
         self.build_blocks(prog, pb);
+        (self.ran_ahead, self.words_parsed) = (0, false);
         self.take_part()
     }
 
@@ -377,7 +396,8 @@ impl<'a> Builder<'a> {
         let units: &'a [Unit] = self.units;
         let unit = &units[prog.unit];
         let st = &mut pb.state;
-        for &line in &prog.blocks {
+        for (i, &line) in prog.blocks.iter().enumerate() {
+            self.words_parsed = i < self.ran_ahead;
             crate::profile::block_start(self, line);
             let Some(block) = link::block(unit, line) else {
                 continue;
@@ -794,11 +814,7 @@ impl<'a> Builder<'a> {
     }
 
     fn build_split(&mut self, block: &Block, split: &words::Split<'_>) {
-        if let Err(e) = crate::check::literal_block(self.machine, &split.nc, &mut self.parsed) {
-            // The kernel names the word among the literals it was given
-            // (`check::literal_words`).
-            let word = crate::check::named_word(&e, &split.nc);
-            self.error(code_name(e.code), word.unwrap_or(block.span), e.message);
+        if !self.literals_hold(block, split) {
             return;
         }
         let after = crate::profile::before_exec(self, block, split);
@@ -844,6 +860,25 @@ impl<'a> Builder<'a> {
             let comment = block.comments.first().map(|c| c.text.as_str());
             crate::calls::build_call(self, call.clone(), block.span, comment);
         }
+    }
+
+    /// Whether the literal words of a block pass the kernel's rules (an
+    /// error where they do not). A block the dry run ran has passed its
+    /// parse there; a T word's tool and offset numbers are checked here
+    /// all the same.
+    fn literals_hold(&mut self, block: &Block, split: &words::Split<'_>) -> bool {
+        const T: u8 = b'T' - b'A';
+        if self.words_parsed && split.nc.iter().all(|w| w.addr != T) {
+            return true;
+        }
+        let Err(e) = crate::check::literal_block(self.machine, &split.nc, &mut self.parsed) else {
+            return true;
+        };
+        // The kernel names the word among the literals it was given
+        // (`check::literal_words`).
+        let word = crate::check::named_word(&e, &split.nc);
+        self.error(code_name(e.code), word.unwrap_or(block.span), e.message);
+        false
     }
 
     /// W113: an M code that neither the reference PLC table nor the
