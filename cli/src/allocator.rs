@@ -23,7 +23,7 @@
 //! cleared: a fifth of a short `gbcc` run's time, and 1–2 ms and 8 MB of
 //! resident memory of each benchmark run of the README, for no gain
 //! measured on the long ones. The system allocator's blocks of 2 MiB and
-//! more do get huge pages ([`huge`]): they are read or written whole.
+//! more do get huge pages (`huge`): they are read or written whole.
 //!
 //! The libraries leave the choice of allocator to whoever links them.
 
