@@ -277,10 +277,9 @@ impl<'a> Builder<'a> {
         self.start_blocks(prog);
     }
 
-    /// Builds one chunk's blocks and hands them over as a part of the
-    /// function: its last block stays open and goes on in the next part.
-    /// Builds a chunk's blocks, the first `ran_ahead` of which the dry run
-    /// has run; its part.
+    /// Builds one chunk's blocks, the first `ran_ahead` of which the dry
+    /// run has run, and hands them over as a part of the function: its
+    /// last block stays open and goes on in the next part.
     pub(crate) fn build_chunk(
         &mut self,
         prog: &Program,
