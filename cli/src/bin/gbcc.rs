@@ -420,12 +420,18 @@ fn remove_stale_module(job: &Job, input: &Path) -> Option<std::thread::JoinHandl
     if !cli::io::is_module_file(&path) {
         return None;
     }
-    let remove = move || {
-        // (Not removed: the new module is written over it as before.)
-        let _ = std::fs::remove_file(&path);
-    };
+    // (Not removed: the new module is written over it as before.)
+    let remove = |path: &Path| drop(std::fs::remove_file(path));
     let thread = std::thread::Builder::new().name("gbcc-remove".into());
-    thread.spawn(remove).ok()
+    let on_thread = path.clone();
+    match thread.spawn(move || remove(&on_thread)) {
+        Ok(handle) => Some(handle),
+        // (No thread to be had: removed here.)
+        Err(_) => {
+            remove(&path);
+            None
+        }
+    }
 }
 
 /// The program's name and bytes; a `.gbc` module given as a program is an
