@@ -155,19 +155,25 @@ fn an_error_in_a_late_chunk_is_reported_as_the_whole_file_path_reports_it() {
             in_chunks("e.nc", src.as_bytes(), 4_096).is_none(),
             "{tail:?}"
         );
-        let c = compile("e.nc", src.as_bytes(), &chunked(4_096));
-        let (_, reference) = whole("e.nc", src.as_bytes());
-        assert!(c.module.is_none(), "{tail:?}");
-        assert_eq!(c.render(), reference, "{tail:?}");
         let last_line = src.lines().count() - 1;
-        let (f, d) = c
-            .diags
-            .iter()
-            .find(|(_, d)| d.is_error())
-            .expect("an error");
-        assert!(d.code.starts_with(code), "{tail:?}: {}", d.code);
-        assert_eq!(c.files[*f].line_col(d.span.start).0, last_line, "{tail:?}");
+        assert_eq!(first_error_line(&src, code), last_line, "{tail:?}");
     }
+}
+
+/// Compiles `src` (chunks allowed): no module, the whole-file path's
+/// diagnostics, a first error whose code starts with `code`; its line.
+fn first_error_line(src: &str, code: &str) -> usize {
+    let c = compile("e.nc", src.as_bytes(), &chunked(4_096));
+    let (_, reference) = whole("e.nc", src.as_bytes());
+    assert!(c.module.is_none());
+    assert_eq!(c.render(), reference);
+    let (f, d) = c
+        .diags
+        .iter()
+        .find(|(_, d)| d.is_error())
+        .expect("an error");
+    assert!(d.code.starts_with(code), "{}", d.code);
+    c.files[*f].line_col(d.span.start).0
 }
 
 /// The chunked path parses a block's words once, in the dry run, and the
@@ -180,16 +186,6 @@ fn a_block_the_dry_run_does_not_reach_is_checked_all_the_same() {
         ("M30\nG00 X10 Z5\nG01 X10 X20\nG00 X1\n", "E1011"),
         ("T9999\nM30\n", "E"),
     ] {
-        let src = long_program(2_000, tail);
-        let c = compile("a.nc", src.as_bytes(), &chunked(4_096));
-        let (_, reference) = whole("a.nc", src.as_bytes());
-        assert_eq!(c.render(), reference, "{tail:?}");
-        assert!(c.module.is_none(), "{tail:?}");
-        let (_, d) = c
-            .diags
-            .iter()
-            .find(|(_, d)| d.is_error())
-            .expect("an error");
-        assert!(d.code.starts_with(code), "{tail:?}: {}", d.code);
+        first_error_line(&long_program(2_000, tail), code);
     }
 }

@@ -47,11 +47,9 @@ pub struct Builder<'a> {
     pub(crate) profiles: crate::profile::Profiles,
     /// Scratch for the literal check of each block (filled in place).
     parsed: nc::block::Parsed,
-    /// How many leading blocks of the chunk being built the dry run has
-    /// run (`crate::stream`): the kernel parsed their words there, the
-    /// same words with the same machine, so they are not parsed twice.
-    ran_ahead: usize,
-    /// The block being built is one of them.
+    /// The block being built is one the dry run has run (`crate::stream`):
+    /// the kernel parsed its words there, the same words with the same
+    /// machine, so they are not parsed twice.
     words_parsed: bool,
     module: ir::Module,
     strings: HashMap<String, u32>,
@@ -177,7 +175,6 @@ impl<'a> Builder<'a> {
             program_number: 0,
             profiles: Default::default(),
             parsed: Default::default(),
-            ran_ahead: 0,
             words_parsed: false,
             module: ir::Module::default(),
             strings: HashMap::new(),
@@ -256,7 +253,6 @@ impl<'a> Builder<'a> {
             program_number: self.program_number,
             profiles: self.profiles,
             parsed: self.parsed,
-            ran_ahead: 0,
             words_parsed: false,
             module: self.module,
             strings: self.strings,
@@ -286,9 +282,7 @@ impl<'a> Builder<'a> {
         pb: &mut ProgBuild,
         ran_ahead: usize,
     ) -> ir::Function {
-        self.ran_ahead = ran_ahead;
-        self.build_blocks(prog, pb);
-        (self.ran_ahead, self.words_parsed) = (0, false);
+        self.build_blocks(prog, pb, ran_ahead);
         self.take_part()
     }
 
@@ -350,7 +344,7 @@ impl<'a> Builder<'a> {
         }
         let mut pb = ProgBuild::default();
         self.start_blocks(prog);
-        self.build_blocks(prog, &mut pb);
+        self.build_blocks(prog, &mut pb, 0);
         let unit = &self.units[prog.unit];
         let end = ProgEnd {
             span: (prog.blocks.last())
@@ -391,12 +385,14 @@ impl<'a> Builder<'a> {
     }
 
     /// Builds the blocks of `prog` (all of them, or those of one chunk).
-    fn build_blocks(&mut self, prog: &Program, pb: &mut ProgBuild) {
+    /// Builds `prog`'s blocks, the first `ran_ahead` of which the dry run
+    /// has run.
+    fn build_blocks(&mut self, prog: &Program, pb: &mut ProgBuild, ran_ahead: usize) {
         let units: &'a [Unit] = self.units;
         let unit = &units[prog.unit];
         let st = &mut pb.state;
         for (i, &line) in prog.blocks.iter().enumerate() {
-            self.words_parsed = i < self.ran_ahead;
+            self.words_parsed = i < ran_ahead;
             crate::profile::block_start(self, line);
             let Some(block) = link::block(unit, line) else {
                 continue;
@@ -429,6 +425,7 @@ impl<'a> Builder<'a> {
                 self.end_guard(at);
             }
         }
+        self.words_parsed = false;
     }
 
     /// After the last block: the end of the program (W101 when it runs

@@ -43,16 +43,15 @@ pub(crate) fn next_block(nc: &mut Nc, f: Func, p: &Parsed, sink: &mut dyn Sink) 
 
 /// The end of a run: a waiting block is the last of its chain.
 pub(crate) fn flush(nc: &mut Nc, sink: &mut dyn Sink) {
+    nc.st.cycles.chain.open = false;
     // (Most blocks end no chain: asked first, as taking the waiting block
     // copies its room whether it holds one or not.)
     if nc.st.cycles.chain.pending.is_none() {
-        nc.st.cycles.chain.open = false;
         return;
     }
     if let Some((mv, ro, tag)) = nc.st.cycles.chain.pending.take() {
         print_as(nc.origin, tag, &mv.with_runout(ro), sink);
     }
-    nc.st.cycles.chain.open = false;
 }
 
 /// Prints the legs of a block that waited (tagged `tag`) while block
