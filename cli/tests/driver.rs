@@ -393,6 +393,31 @@ fn the_expanded_program_keeps_the_number_of_a_message() {
 }
 
 #[test]
+fn a_message_and_a_work_offset_write_are_listed_under_their_own_lines() {
+    // A statement between blocks prints under its line, not the next
+    // block's: line 3's message waits behind line 2's chamfer, line 5's
+    // #5221 moves the work zero (a G50 in the listing).
+    let d = dir("statement");
+    let src =
+        "G00 X50 Z2\nG01 X40 Z0 F100 ,C1\n#3006=1 (CHECK)\nG01 Z-20\n#5221=10\nG00 X60\nM30\n";
+    std::fs::write(d.join("s.nc"), src).unwrap();
+    let e = gbcc(&["s.nc", "-E"], &d);
+    assert_eq!(e.status.code(), Some(0), "{}", text(&e.stderr));
+    let out = text(&e.stdout);
+    let after = |line: &str| {
+        let at = out.lines().position(|l| l == line);
+        at.and_then(|i| out.lines().nth(i + 1)).unwrap_or_default()
+    };
+    assert_eq!(after("(LINE 3)"), "#3006=1 (CHECK)", "{out}");
+    assert_eq!(
+        after("G01 X40 Z-20 (LINE 4)"),
+        "G50 X30 Z-20 (LINE 5)",
+        "{out}"
+    );
+    assert!(out.contains("\nG00 X60 Z-20 (LINE 6)\n"), "{out}");
+}
+
+#[test]
 fn a_move_that_waited_for_the_next_block_keeps_its_line() {
     // Under G42 each element waits for the next block (where it ends
     // depends on it), and line 5's chamfer for line 6: printed as the next

@@ -58,5 +58,5 @@ pub use exec::{
 
 pub use error::NcError;
 pub use event::Event;
-pub use exec::{Discard, Nc, Outcome, Placed, Sink, WordCall};
+pub use exec::{Discard, Nc, Outcome, Placed, Sink, WordCall, RUNNING};
 pub use machine::Machine;

@@ -305,12 +305,17 @@ impl RunAhead {
                 if at > i {
                     break;
                 }
-                let loc = self.vm.loc_at(pc);
-                own = Tag {
-                    file: loc.file,
-                    line: loc.line,
-                    col: loc.col,
-                    ..tag
+                own = match pc {
+                    nc::RUNNING => tag,
+                    pc => {
+                        let loc = self.vm.loc_at(pc);
+                        Tag {
+                            file: loc.file,
+                            line: loc.line,
+                            col: loc.col,
+                            ..tag
+                        }
+                    }
                 };
                 origins += 1;
             }

@@ -248,3 +248,37 @@ fn the_machine_file_sets_block_skip_at_load_and_a_reset_keeps_it() {
     ];
     assert_eq!(runs, [want, want]);
 }
+
+/// A `#3006` message stop is the statement's own: the set points while
+/// it stands name its line, not the next block's, and so does the
+/// listing's tag, with a move waiting for its corner before it or not.
+#[test]
+fn a_message_stop_names_its_own_line() {
+    for (src, line) in [
+        ("O0001\nG00 W-1\n#3006=1 (CHECK)\nG00 W-1\nM30\n", 3),
+        (
+            "O0001\nG01 U-2 W-1 F100 ,C0.5\n#3006=2 (CHECK)\nG01 W-3\nM30\n",
+            3,
+        ),
+    ] {
+        let machine = Machine::reference();
+        let m = module(src, &machine);
+        let mut ctl = Controller::new(m, machine, runtime::AutoAck).expect("loads");
+        ctl.cycle_start();
+        let mut stood = None;
+        for _ in 0..100_000 {
+            ctl.run_ahead();
+            let p = ctl.tick();
+            match ctl.state() {
+                RunState::Stopped(PauseKind::Message { .. }) => {
+                    stood = Some(p.line);
+                    ctl.cycle_start();
+                }
+                RunState::Stopped(_) => ctl.cycle_start(),
+                RunState::Ended => break,
+                s => assert!(!matches!(s, RunState::Alarm(_)), "{s:?}"),
+            }
+        }
+        assert_eq!(stood, Some(line), "{src}");
+    }
+}

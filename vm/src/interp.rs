@@ -1137,15 +1137,41 @@ impl Vm {
             3006 => {
                 let text = self.msg_text();
                 let number = message_number(v);
-                self.nc.emit_in_order(Event::Message { number, text }, sink);
+                let message = Event::Message { number, text };
+                self.between(sink, |nc, sink| nc.emit_in_order(message, sink));
                 self.msg = None;
                 Ok(())
             }
             n if nc::sysvar::is_system(n) => {
-                self.nc.write_var(n, (!is_vacant(v)).then_some(v), sink)
+                let value = (!is_vacant(v)).then_some(v);
+                self.between(sink, |nc, sink| nc.write_var(n, value, sink))
             }
             _ => fault(AlarmCode::NoSuchVariable, format!("#{n} names no variable")),
         }
+    }
+
+    /// Runs `f`: a statement between blocks that may print (`#3006 = n`,
+    /// a work offset's write). What it prints is the statement's own,
+    /// tagged with its pc ([`Sink::origin`]), not the next block's, which
+    /// ends the step: so `gbcc -E` and the runtime name its line.
+    fn between<R>(
+        &mut self,
+        sink: &mut dyn Sink,
+        f: impl FnOnce(&mut Nc, &mut dyn Sink) -> R,
+    ) -> R {
+        let at = self.pc.wrapping_sub(1);
+        // (What waits for a corner holds it with this tag too.)
+        self.nc.origin = at;
+        let mut own = Statement {
+            sink: &mut *sink,
+            at,
+            told: false,
+        };
+        let result = f(&mut self.nc, &mut own);
+        if own.told {
+            sink.origin(nc::RUNNING);
+        }
+        result
     }
 
     /// The value of variable `n` as the program would read it (vacant as
@@ -1163,6 +1189,30 @@ impl Vm {
     /// (changes made here are not handed to the storage).
     pub fn persistent_mut(&mut self) -> &mut [f64; 500] {
         &mut self.vars.persistent
+    }
+}
+
+/// The sink of a statement between blocks ([`Vm::between`]): told its
+/// tag before the first event it prints.
+struct Statement<'a> {
+    sink: &'a mut dyn Sink,
+    at: u32,
+    /// Whether the sink was told a tag.
+    told: bool,
+}
+
+impl Sink for Statement<'_> {
+    fn emit(&mut self, event: Event) {
+        if !self.told {
+            self.sink.origin(self.at);
+            self.told = true;
+        }
+        self.sink.emit(event);
+    }
+
+    fn origin(&mut self, block: u32) {
+        self.sink.origin(block);
+        self.told = true;
     }
 }
 

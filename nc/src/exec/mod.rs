@@ -47,8 +47,15 @@ pub trait Sink {
     /// nose-radius compensation) is printed while that block runs, and
     /// so are the events held behind it. Called only where the block
     /// changes. A sink that does not place events by block ignores it.
+    /// [`RUNNING`] gives the events that follow back to the block running.
     fn origin(&mut self, _block: u32) {}
 }
+
+/// The tag [`Sink::origin`] takes for "the block running": what follows
+/// belongs to the block the host is running, as before any tag was told.
+/// (The VM tags what a statement between blocks prints, a `#3006`
+/// message, with the statement's own pc, then gives this.)
+pub const RUNNING: u32 = u32::MAX;
 
 impl Sink for Vec<Event> {
     fn emit(&mut self, event: Event) {
@@ -92,8 +99,12 @@ impl Placed {
     /// The events in runs of one block each, empty runs left out: the
     /// events and their block's tag (`None`: the block that ran).
     pub fn runs(&self) -> impl Iterator<Item = (&[Event], Option<u32>)> + '_ {
-        let starts = core::iter::once((0, None))
-            .chain(self.origins.iter().map(|&(at, block)| (at, Some(block))));
+        let tag = |block| Some(block).filter(|&b| b != RUNNING);
+        let starts = core::iter::once((0, None)).chain(
+            self.origins
+                .iter()
+                .map(move |&(at, block)| (at, tag(block))),
+        );
         let ends =
             (self.origins.iter().map(|&(at, _)| at)).chain(core::iter::once(self.events.len()));
         starts.zip(ends).filter_map(|((from, block), to)| {
