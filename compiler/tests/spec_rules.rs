@@ -305,6 +305,8 @@ fn an_error_about_one_word_points_at_that_word() {
         ("G01 X10 F-0.2", 9),
         ("G30 P5 U0", 5),
         ("M03 M08 T10000", 9),
+        // A drilling block's second M word (its one M is the clamp code).
+        ("G83 X0 Z-10 Q2000 F0.1 M08 M09", 28),
     ] {
         let src = format!("{block}\nM30\n");
         let c = compile("p.nc", src.as_bytes(), &Options::default());

@@ -107,7 +107,8 @@ impl NcError {
     }
 
     /// The same error, about the later written of the block's words of
-    /// addresses `a` and `b` (whichever of them it holds).
+    /// addresses `a` and `b` (whichever of them it holds); with `a` = `b`,
+    /// about the second word of that address (one too many).
     pub fn on_pair(mut self, a: u8, b: u8) -> NcError {
         self.addr = Some(a);
         self.pair = Some(b);
@@ -127,6 +128,8 @@ impl NcError {
         for (i, x) in addrs.into_iter().enumerate() {
             if x == a && first.is_none() {
                 first = Some(i);
+                // (A pair of one address: its next word is the second.)
+                continue;
             }
             if Some(x) == self.pair && second.is_none() {
                 second = Some(i);
@@ -196,5 +199,11 @@ mod tests {
         assert_eq!(e().on_addr(9).word_among(block), None);
         assert_eq!(e().on_word(0).on_addr(25).word_among(block), Some(0));
         assert_eq!(e().word_among(block), None);
+        // A pair of one address names its second word (M8 M9: the M9),
+        // and the first when the block holds only one.
+        let ms = [6u8, 12, 23, 12, 12];
+        assert_eq!(e().on_pair(12, 12).word_among(ms), Some(3));
+        assert_eq!(e().on_pair(12, 12).word_among([6u8, 23]), None);
+        assert_eq!(e().on_pair(12, 12).word_among([12u8, 23]), Some(0));
     }
 }

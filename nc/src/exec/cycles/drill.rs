@@ -84,10 +84,9 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<M>
     st.clamp = None;
     if drills {
         if p.ms().len() > 1 {
-            return fail(
-                Alarm::IncompatibleWords,
-                "a drilling block takes one M word (the clamp code)",
-            );
+            let msg = "a drilling block takes one M word (the clamp code)";
+            let m = addr(b'M');
+            return Err(NcError::new(Alarm::IncompatibleWords, msg).on_pair(m, m));
         }
         st.clamp = p.ms().first().copied().filter(|m| m.can_clamp());
     }
