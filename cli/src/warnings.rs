@@ -11,10 +11,11 @@ use grammar::{Diagnostic, Severity};
 /// that always nest too deep), W122 (a run longer than the block
 /// budget), W123 (an `M99 P n` whose caller has no block Nn), W124
 /// (the alarm a run stops with, known at compile time), W125 (a feed
-/// per minute below 1: a feed per revolution in G98) and W126 (a thread
-/// too fast for an axis's maximum cutting feed).
+/// per minute below 1: a feed per revolution in G98), W126 (a thread
+/// too fast for an axis's maximum cutting feed) and W127 (a loop that
+/// never ends once it goes round).
 pub const FIRST: u16 = 101;
-pub const LAST: u16 = 126;
+pub const LAST: u16 = 127;
 
 /// What becomes of a warning.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -168,7 +169,7 @@ mod tests {
     #[test]
     fn unknown_switches_are_refused() {
         let mut p = Policy::default();
-        for bad in ["foo", "no-W100", "W127", "error=E1001", "no-error=", "W"] {
+        for bad in ["foo", "no-W100", "W128", "error=E1001", "no-error=", "W"] {
             let e = p.apply(bad).unwrap_err();
             assert!(e.contains(&format!("'-W{bad}'")), "{e}");
         }

@@ -15,6 +15,7 @@ pub mod consts;
 pub mod data_setting;
 pub mod dry_warn;
 pub mod emit;
+pub mod endless;
 pub mod expr;
 pub mod fold;
 pub mod hash;
@@ -232,6 +233,11 @@ fn lower_dynamic(
 ) -> (Vec<SourceFile>, Option<isa::Module>, Option<ir::Module>) {
     let files = source_files(units);
     let ir = build_ir(units, programs, opts, diags);
+    // Loops that never end (a static program's dry run finds its own,
+    // W120). Before fold, which makes a test that is always true a jump.
+    if let Ok(ir) = &ir {
+        diags.extend(endless::module(ir));
+    }
     // (The prediction reads the trees: they go after it.)
     if !opts.predict {
         free_trees_in_background(units, programs);

@@ -757,3 +757,51 @@ fn w101_only_when_the_run_can_get_past_the_last_block() {
     assert_eq!(w101("GOTO 10\nM30\nN10 G00 X2\n"), [3]);
     assert_eq!(w101("#1=10\nGOTO #1\nM30\nN10 G00 X2\n"), [4]);
 }
+
+/// W127 alone: the lines it stands on, and its first message.
+fn w127(src: &str) -> (Vec<usize>, String) {
+    let c = compile("w.nc", src.as_bytes(), &Options::default());
+    assert!(!c.has_errors(), "{}", c.render());
+    let found: Vec<_> = c.diags.iter().filter(|(_, d)| d.code == "W127").collect();
+    let lines = found
+        .iter()
+        .map(|(f, d)| c.files[*f].line_col(d.span.start).0);
+    let message = found.first().map(|(_, d)| d.message.clone());
+    (lines.collect(), message.unwrap_or_default())
+}
+
+#[test]
+fn w127_a_loop_that_never_ends_once_it_goes_round() {
+    // The counter is never stepped: the test on line 2 reads #1 alone.
+    let forgot = "#1=0\nWHILE[#1LT3]DO1\nG00 U-1\nEND1\nM30\n";
+    let (lines, message) = w127(forgot);
+    assert_eq!(lines, [2]);
+    assert!(
+        message.contains("reads only #1, which nothing"),
+        "{message}"
+    );
+    // Stepped, it ends.
+    assert_eq!(w127(&forgot.replace("END1", "#1=#1+1\nEND1")).0, []);
+    // No way out at all: on the DO.
+    let (lines, message) = w127("G00 X50 Z2\nDO1\nG00 U-1\nEND1\nM30\n");
+    assert_eq!(lines, [2]);
+    assert!(message.contains("nothing leaves it"), "{message}");
+    // A backward GOTO whose test never changes; an inner loop that steps
+    // the outer loop's counter, not its own (line 4).
+    assert_eq!(w127("#1=0\nN5 G00 U-1\nIF[#1LT5]GOTO5\nM30\n").0, [3]);
+    let inner = "#1=0\nWHILE[#1LT10]DO1\n#2=0\nWHILE[#2LT3]DO2\n#1=#1+1\nEND2\nEND1\nM30\n";
+    assert_eq!(w127(inner).0, [4]);
+    // Silent where the loop may change its test in a way not followed, or
+    // does leave: an input; a call; a `/` block; a write to a computed
+    // number; a computed M code; a GOTO out (the END is then dead code).
+    for quiet in [
+        "WHILE[#1000EQ0]DO1\nEND1\nM30\n",
+        "#1=1\nWHILE[#1LT3]DO1\nM98 P100\nEND1\nM30\nO100\nM99\n",
+        "#1=1\nWHILE[#1LT3]DO1\n/#1=5\nEND1\nM30\n",
+        "#1=1\nWHILE[#1LT3]DO1\n#[#2]=5\nEND1\nM30\n",
+        "#1=1\n#2=8\nWHILE[#1LT3]DO1\nM#2\nEND1\nM30\n",
+        "#1=1\nWHILE[#1LT3]DO1\nGOTO5\nEND1\nN5 M30\n",
+    ] {
+        assert_eq!(w127(quiet).0, [], "{quiet}");
+    }
+}

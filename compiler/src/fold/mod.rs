@@ -432,7 +432,7 @@ fn nc_block(f: &Function, nc: &NcBlock, facts: &mut Facts) {
 /// The variables an NC block itself writes: #995–#999 (G31's skip
 /// position) and, for a G10 L52 read (N and R words), the one R names;
 /// `None`: any (a computed R).
-fn nc_writes(f: &Function, nc: &NcBlock) -> Option<impl Iterator<Item = u32>> {
+pub(crate) fn nc_writes(f: &Function, nc: &NcBlock) -> Option<impl Iterator<Item = u32>> {
     let words = f.words_of(nc);
     let has = |c: u8| words.iter().find(|w| w.addr == addr(c));
     let read = match (has(b'N'), has(b'R')) {

@@ -1,0 +1,281 @@
+//! W127: a loop that never ends once it goes round. gbc's own warning,
+//! for a program with macros (a static one's dry run finds its endless
+//! loops, W120), on the IR before fold (which makes a test that is always
+//! true a jump, and the message would lose it):
+//!
+//! - a loop with no way out (`DO 1` … `END 1` with no GOTO out of it);
+//! - a loop whose every way out is a test of variables that nothing in
+//!   the loop writes (`WHILE [#1 LT 10] DO 1` with no `#1 = …` inside):
+//!   the test gives the same answer every time, so a loop that goes
+//!   round once goes round for ever.
+//!
+//! Either way the run stops with E6005 when the block budget is used up.
+//! The analysis stays silent wherever it cannot be sure: a test that
+//! reads a system variable (an input, a position) or a variable by a
+//! computed number, a loop with a call, an alarm, a block-skip switch or
+//! a write to a computed number inside, a program with a computed GOTO,
+//! a module with G66 (every move may call a macro).
+
+use crate::build::FileDiag;
+use crate::fold::nc_writes;
+use crate::ir::{Block, CallKind, Expr, Function, Handle, Module, Op, Terminator, VarTarget, Word};
+use grammar::{Diagnostic, Span};
+use std::collections::{BTreeSet, HashSet};
+
+/// The warnings of every program of `m`.
+pub fn module(m: &Module) -> Vec<FileDiag> {
+    let g66 = m.functions.iter().any(|f| {
+        f.blocks.iter().any(|(_, b)| {
+            matches!(&b.term, Some(Terminator::Call { call, .. }) if call.kind == CallKind::Modal)
+        })
+    });
+    if g66 {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for f in &m.functions {
+        let file = usize::from(f.file);
+        out.extend(function(f).into_iter().map(|d| (file, d)));
+    }
+    out
+}
+
+/// Why a loop never ends.
+enum Endless {
+    /// No edge leaves it.
+    NoWayOut,
+    /// Every edge out is a test of these variables, which it never writes.
+    Unchanged(BTreeSet<u32>),
+}
+
+/// The warnings of one program: one per loop head at most.
+fn function(f: &Function) -> Vec<Diagnostic> {
+    if f.blocks.iter().any(|(_, b)| jumps_at_run_time(b)) {
+        return Vec::new();
+    }
+    let order: Vec<usize> = layout_order(f);
+    let preds = predecessors(f);
+    let mut told = HashSet::new();
+    let mut out = Vec::new();
+    for &from in &f.layout {
+        for head in successors(f, from) {
+            // A back edge of the layout: a loop's last block to its head.
+            let place = |b: Handle<Block>| order.get(b.index()).copied();
+            if place(head) > place(from) || told.contains(&head) {
+                continue;
+            }
+            let Some(body) = natural_loop(f, head, from, &preds) else {
+                continue;
+            };
+            if let Some((why, span)) = endless(f, &body, head) {
+                told.insert(head);
+                out.push(warning(why, span));
+            }
+        }
+    }
+    out
+}
+
+/// Whether the block jumps to a block found at run time (a computed
+/// GOTO, M99 P): a loop can then be left where the IR shows no edge.
+fn jumps_at_run_time(b: &Block) -> bool {
+    matches!(
+        b.term,
+        Some(Terminator::Goto { .. } | Terminator::GotoIf { .. })
+            | Some(Terminator::Return { seq: Some(_) })
+    )
+}
+
+/// Each block's place in the layout (blocks off the layout last).
+fn layout_order(f: &Function) -> Vec<usize> {
+    let mut order = vec![usize::MAX; f.blocks.len()];
+    for (i, b) in f.layout.iter().enumerate() {
+        if let Some(slot) = order.get_mut(b.index()) {
+            *slot = i;
+        }
+    }
+    order
+}
+
+fn successors(f: &Function, b: Handle<Block>) -> Vec<Handle<Block>> {
+    let term = f.blocks.get(b).and_then(|b| b.term.as_ref());
+    term.map(|t| t.successors().collect()).unwrap_or_default()
+}
+
+fn predecessors(f: &Function) -> Vec<Vec<Handle<Block>>> {
+    let mut preds = vec![Vec::new(); f.blocks.len()];
+    for (b, _) in f.blocks.iter() {
+        for s in successors(f, b) {
+            if let Some(p) = preds.get_mut(s.index()) {
+                p.push(b);
+            }
+        }
+    }
+    preds
+}
+
+/// The loop of back edge `tail` → `head`: the blocks on a path from the
+/// head to the tail (that reach the tail without passing the head, and
+/// that the head reaches); `None` when the head does not reach the tail
+/// (the tail is dead code: an END after a GOTO out of its loop).
+fn natural_loop(
+    f: &Function,
+    head: Handle<Block>,
+    tail: Handle<Block>,
+    preds: &[Vec<Handle<Block>>],
+) -> Option<BTreeSet<Handle<Block>>> {
+    let mut reach_tail = BTreeSet::from([head]);
+    let mut work = vec![tail];
+    while let Some(b) = work.pop() {
+        if reach_tail.insert(b) {
+            work.extend(preds.get(b.index()).into_iter().flatten().copied());
+        }
+    }
+    let mut body = BTreeSet::from([head]);
+    let mut work = successors(f, head);
+    while let Some(b) = work.pop() {
+        if reach_tail.contains(&b) && body.insert(b) {
+            work.extend(successors(f, b));
+        }
+    }
+    body.contains(&tail).then_some(body)
+}
+
+/// Whether the loop `body` never ends once it goes round, and where to
+/// say so: the test that never changes, or the loop's head.
+fn endless(
+    f: &Function,
+    body: &BTreeSet<Handle<Block>>,
+    head: Handle<Block>,
+) -> Option<(Endless, Span)> {
+    let mut written = BTreeSet::new();
+    let mut tests = Vec::new();
+    for &h in body {
+        let b = f.blocks.get(h)?;
+        for &op in &b.ops {
+            writes(f, f.ops.get(op)?, &mut written)?;
+        }
+        match b.term.as_ref()? {
+            Terminator::Follow(_) | Terminator::Jump(_) | Terminator::GotoKnown(_) => {}
+            Terminator::Branch {
+                cond,
+                then,
+                otherwise,
+            } => {
+                if !(body.contains(then) && body.contains(otherwise)) {
+                    tests.push((*cond, f.term_locs.get(h.index())?.span));
+                }
+            }
+            Terminator::Skip { skip, next, .. } => {
+                // (The operator may turn the switch at any time.)
+                if !(body.contains(skip) && body.contains(next)) {
+                    return None;
+                }
+            }
+            _ => return None,
+        }
+    }
+    let Some(&(_, span)) = tests.first() else {
+        return Some((Endless::NoWayOut, head_span(f, head)?));
+    };
+    let mut read = BTreeSet::new();
+    for &(cond, _) in &tests {
+        reads(f, cond, &mut read)?;
+    }
+    match read.is_disjoint(&written) {
+        true => Some((Endless::Unchanged(read), span)),
+        false => None,
+    }
+}
+
+/// Adds what `op` writes to `written`; `None` where it may end the run
+/// (an alarm) or write any variable.
+fn writes(f: &Function, op: &Op, written: &mut BTreeSet<u32>) -> Option<()> {
+    match op {
+        Op::Assign {
+            target: VarTarget::Direct(n),
+            ..
+        }
+        | Op::MacroA { dst: n, .. } => {
+            // (#3000 raises an alarm.)
+            if *n == 3000 {
+                return None;
+            }
+            written.insert(*n);
+        }
+        Op::Assign { .. } | Op::Alarm { .. } | Op::UserAlarm { .. } => return None,
+        Op::Nc(nc) => {
+            // A computed G, M or T code may call a macro, return or end
+            // the program.
+            let calls = |w: &Word| CODES.contains(&w.addr) && w.constant().is_none();
+            if f.words_of(nc).iter().any(calls) {
+                return None;
+            }
+            written.extend(nc_writes(f, nc)?);
+        }
+        Op::Seq(..) | Op::ModalCancel | Op::Charge => {}
+    }
+    Some(())
+}
+
+/// The addresses of the codes that may call: G, M, T.
+const CODES: [u8; 3] = [b'G' - b'A', b'M' - b'A', b'T' - b'A'];
+
+/// Adds the variables `e` reads to `read`; `None` where it reads one that
+/// changes by itself (a system variable) or by a computed number.
+fn reads(f: &Function, e: Handle<Expr>, read: &mut BTreeSet<u32>) -> Option<()> {
+    match *f.exprs.get(e)? {
+        Expr::Const(_) => {}
+        Expr::Var(n) if (1..=999).contains(&n) => {
+            read.insert(n);
+        }
+        Expr::Var(_) | Expr::VarInd(_) => return None,
+        Expr::Neg(a) | Expr::Func { a, .. } => reads(f, a, read)?,
+        Expr::Binary { a, b, .. } | Expr::Compare { a, b, .. } => {
+            reads(f, a, read)?;
+            reads(f, b, read)?;
+        }
+        Expr::Atan2 { y, x } => {
+            reads(f, y, read)?;
+            reads(f, x, read)?;
+        }
+    }
+    Some(())
+}
+
+/// Where a loop starts: its head's first statement (the DO).
+fn head_span(f: &Function, head: Handle<Block>) -> Option<Span> {
+    let b = f.blocks.get(head)?;
+    match b.ops.first() {
+        Some(op) => Some(f.op_locs.get(op.index())?.span),
+        None => Some(f.term_locs.get(head.index())?.span),
+    }
+}
+
+fn warning(why: Endless, span: Span) -> Diagnostic {
+    const BUDGET: &str = "the run stops only when the block budget is used up (E6005)";
+    match why {
+        Endless::NoWayOut => Diagnostic::warning(
+            "W127",
+            span,
+            format!("this loop never ends: nothing leaves it, so {BUDGET}"),
+        )
+        .with_help("leave it with IF [...] GOTO n, or make it a WHILE [...] DO loop"),
+        Endless::Unchanged(vars) => {
+            let names: Vec<String> = vars.iter().map(|n| format!("#{n}")).collect();
+            let test = match names.is_empty() {
+                true => "its test gives the same answer every time".to_string(),
+                false => format!(
+                    "its test reads only {}, which nothing in the loop changes",
+                    names.join(", ")
+                ),
+            };
+            Diagnostic::warning(
+                "W127",
+                span,
+                format!("this loop never ends once it goes round: {test}, so {BUDGET}"),
+            )
+            .with_help("change a variable of the test inside the loop (as #1 = #1 + 1)")
+        }
+    }
+}
