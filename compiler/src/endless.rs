@@ -9,7 +9,8 @@
 //!   the test gives the same answer every time, so a loop that goes
 //!   round once goes round for ever.
 //!
-//! Either way the run stops with E6005 when the block budget is used up.
+//! Either way only an alarm stops the run: E6005 when the block budget is
+//! used up, at the latest.
 //! The analysis stays silent wherever it cannot be sure: a test that
 //! reads a system variable (an input, a position) or a variable by a
 //! computed number, a loop with a call, an alarm, a block-skip switch or
@@ -253,7 +254,7 @@ fn head_span(f: &Function, head: Handle<Block>) -> Option<Span> {
 }
 
 fn warning(why: Endless, span: Span) -> Diagnostic {
-    const BUDGET: &str = "the run stops only when the block budget is used up (E6005)";
+    const BUDGET: &str = "only an alarm stops the run: the block budget's (E6005) at the latest";
     match why {
         Endless::NoWayOut => Diagnostic::warning(
             "W127",
