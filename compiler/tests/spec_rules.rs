@@ -317,6 +317,26 @@ fn an_error_about_one_word_points_at_that_word() {
 }
 
 #[test]
+fn an_error_about_one_of_a_planes_words_points_at_that_word() {
+    // §4.6: in G12.1 a T word, a G99 and a G54..G59 or drilling code are
+    // refused: the error stands on the word (the G among the block's G
+    // codes), where it underlined the whole block.
+    let opts = on("[axes.c]\nenabled = true\n");
+    for (block, col) in [
+        ("G01 X10 C5 T0101", 12),
+        ("G98 G99 G01 X10 C5", 5),
+        ("G01 G55 X10 C5", 5),
+        ("G98 G83 X10 C5", 5),
+    ] {
+        let src = format!("G98 G00 X20 Z5 C0\nG12.1\n{block}\nG13.1\nM30\n");
+        let c = compile("p.nc", src.as_bytes(), &opts);
+        let (f, d) = (c.diags.iter().find(|(_, d)| d.is_error()))
+            .unwrap_or_else(|| panic!("{block}: {}", c.render()));
+        assert_eq!(c.files[*f].line_col(d.span.start), (3, col), "{block}");
+    }
+}
+
+#[test]
 fn a_decimal_point_on_a_word_in_increments_hints_the_increments() {
     // §4.13: "`Q3.` on G83/G74/G75/G76 | E1009 | these take integer
     // 0.001-mm units: `Q3000`"; §1.9: angles in 0.001°.

@@ -35,6 +35,9 @@ pub struct NcError {
     /// stand together (X and U): the one written later is named, as the
     /// repeat is for E1011 (the block was fine up to it).
     pub pair: Option<u8>,
+    /// Without `pair`, which word of `addr` (0: the first): the G code
+    /// refused among several, the M word one too many.
+    pub nth: u8,
 }
 
 impl NcError {
@@ -57,6 +60,7 @@ impl NcError {
             word: None,
             addr: None,
             pair: None,
+            nth: 0,
         }
     }
 
@@ -106,9 +110,15 @@ impl NcError {
         self
     }
 
+    /// The same error, about the block's word `n` (from 0) of address `a`.
+    pub fn on_nth(mut self, a: u8, n: usize) -> NcError {
+        self.addr = Some(a);
+        self.nth = u8::try_from(n).unwrap_or(u8::MAX);
+        self
+    }
+
     /// The same error, about the later written of the block's words of
-    /// addresses `a` and `b` (whichever of them it holds); with `a` = `b`,
-    /// about the second word of that address (one too many).
+    /// addresses `a` and `b` (whichever of them it holds).
     pub fn on_pair(mut self, a: u8, b: u8) -> NcError {
         self.addr = Some(a);
         self.pair = Some(b);
@@ -116,20 +126,22 @@ impl NcError {
     }
 
     /// The index of the word the error names among a block's words, given
-    /// their addresses in written order: `word`, else the first word of
-    /// `addr` (of `addr` and `pair`, the later one); `None` when it names
-    /// none or the block holds no such word.
+    /// their addresses in written order: `word`, else word `nth` of
+    /// `addr` (of `addr` and `pair`, the later of their first words);
+    /// `None` when it names none or the block holds no such word.
     pub fn word_among(&self, addrs: impl IntoIterator<Item = u8>) -> Option<usize> {
         if let Some(i) = self.word {
             return Some(usize::from(i));
         }
         let a = self.addr?;
         let (mut first, mut second) = (None, None);
+        let mut skip = self.nth;
         for (i, x) in addrs.into_iter().enumerate() {
             if x == a && first.is_none() {
-                first = Some(i);
-                // (A pair of one address: its next word is the second.)
-                continue;
+                match skip {
+                    0 => first = Some(i),
+                    _ => skip -= 1,
+                }
             }
             if Some(x) == self.pair && second.is_none() {
                 second = Some(i);
@@ -199,11 +211,11 @@ mod tests {
         assert_eq!(e().on_addr(9).word_among(block), None);
         assert_eq!(e().on_word(0).on_addr(25).word_among(block), Some(0));
         assert_eq!(e().word_among(block), None);
-        // A pair of one address names its second word (M8 M9: the M9),
-        // and the first when the block holds only one.
-        let ms = [6u8, 12, 23, 12, 12];
-        assert_eq!(e().on_pair(12, 12).word_among(ms), Some(3));
-        assert_eq!(e().on_pair(12, 12).word_among([6u8, 23]), None);
-        assert_eq!(e().on_pair(12, 12).word_among([12u8, 23]), Some(0));
+        // Word n of an address: the M9 of M8 M9, the third G.
+        let ms = [6u8, 12, 23, 12, 12, 6, 6];
+        assert_eq!(e().on_nth(12, 1).word_among(ms), Some(3));
+        assert_eq!(e().on_nth(6, 2).word_among(ms), Some(6));
+        assert_eq!(e().on_nth(12, 3).word_among(ms), None);
+        assert_eq!(e().on_nth(12, 0).word_among(ms), Some(1));
     }
 }

@@ -37,6 +37,7 @@ use crate::base::event::{Dir, Event, Plane, PlaneMotion};
 use crate::base::gcode::{self, Comp, Drill, FeedMode, Motion, OneShot, Polar, PolarCmd, G};
 use crate::base::geom::{self, Element};
 use crate::base::point::Pt;
+use crate::base::words::addr;
 use crate::block::Parsed;
 use crate::exec::{Nc, Outcome, Sink};
 
@@ -146,30 +147,29 @@ fn check_block(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(), NcErr
         (None, false) => return Ok(()),
     };
     if p.has(b'T') {
-        return fail(
-            Alarm::PolarInComp,
-            format!("no tool or offset change during {what}: change the tool before it starts"),
-        );
+        let msg =
+            format!("no tool or offset change during {what}: change the tool before it starts");
+        return Err(NcError::new(Alarm::PolarInComp, msg).on_addr(addr(b'T')));
     }
-    if p.has_g(FeedMode::PerRev) && polar {
-        return fail(
-            Alarm::PolarInComp,
-            "G99 during polar interpolation: its F is a tangential feed per minute",
-        );
+    if let Some(n) = p
+        .gs()
+        .position(|g| g == G::FeedMode(FeedMode::PerRev))
+        .filter(|_| polar)
+    {
+        let msg = "G99 during polar interpolation: its F is a tangential feed per minute";
+        return Err(NcError::new(Alarm::PolarInComp, msg).on_nth(addr(b'G'), n));
     }
     // Drilling cycles and work systems have no meaning in the plane: a
     // cycle would run as one rapid to its bottom, a new zero move the
     // plane under the tool.
-    let refused = p.gs().find(|g| match g {
+    let refused = p.gs().enumerate().find(|(_, g)| match g {
         G::Drill(d) => *d != Drill::Off,
         G::Work(_) => true,
         _ => false,
     });
-    if let Some(g) = refused {
-        return fail(
-            Alarm::IncompatibleWords,
-            format!("{} cannot run during {what}", gcode::name(g.code())),
-        );
+    if let Some((n, g)) = refused {
+        let msg = format!("{} cannot run during {what}", gcode::name(g.code()));
+        return Err(NcError::new(Alarm::IncompatibleWords, msg).on_nth(addr(b'G'), n));
     }
     Ok(())
 }

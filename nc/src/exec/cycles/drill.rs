@@ -85,8 +85,7 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<M>
     if drills {
         if p.ms().len() > 1 {
             let msg = "a drilling block takes one M word (the clamp code)";
-            let m = addr(b'M');
-            return Err(NcError::new(Alarm::IncompatibleWords, msg).on_pair(m, m));
+            return Err(NcError::new(Alarm::IncompatibleWords, msg).on_nth(addr(b'M'), 1));
         }
         st.clamp = p.ms().first().copied().filter(|m| m.can_clamp());
     }
