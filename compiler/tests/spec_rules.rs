@@ -307,6 +307,8 @@ fn an_error_about_one_word_points_at_that_word() {
         ("M03 M08 T10000", 9),
         // A drilling block's second M word (its one M is the clamp code).
         ("G83 X0 Z-10 Q2000 F0.1 M08 M09", 28),
+        // Rigid tapping without its M29: the G84.
+        ("G98 G84 Z-10 F1", 5),
     ] {
         let src = format!("{block}\nM30\n");
         let c = compile("p.nc", src.as_bytes(), &Options::default());

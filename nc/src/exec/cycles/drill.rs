@@ -8,7 +8,7 @@ use super::legs::{self, Leg};
 use super::words;
 use super::{lead, Func};
 use crate::base::error::{fail, Alarm, NcError};
-use crate::base::gcode::Drill;
+use crate::base::gcode::{Drill, G};
 use crate::base::mcode::M;
 use crate::base::words::addr;
 use crate::block::{round_half_away, Parsed};
@@ -131,7 +131,7 @@ pub(crate) fn run(
     let repeats = words::count(p, b'K')?.unwrap_or(1);
     let holes = holes_of_block(nc, code, p)?;
     let path = if code.taps() {
-        tap_path(nc, &holes, repeats)?
+        tap_path(nc, &holes, repeats).map_err(|e| on_the_code(e, p))?
     } else {
         let d = nc.st.cycles.drill.data;
         let pecks = Pecks {
@@ -144,6 +144,16 @@ pub(crate) fn run(
     legs::emit(nc, &path, true, sink)?;
     out.moved = true;
     Ok(())
+}
+
+/// E2007 of a tapping block (no M29 before it) stands on its G84/G88
+/// where it names one, else on the block (a repeat).
+fn on_the_code(e: NcError, p: &Parsed) -> NcError {
+    let code = p.gs().position(|g| matches!(g, G::Drill(d) if d.taps()));
+    match code {
+        Some(n) if e.alarm() == Some(Alarm::IncompatibleWords) => e.on_nth(addr(b'G'), n),
+        _ => e,
+    }
 }
 
 /// A block naming the code starts new data; every block may change it.
