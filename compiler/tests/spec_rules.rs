@@ -309,12 +309,15 @@ fn an_error_about_one_word_points_at_that_word() {
         ("G83 X0 Z-10 Q2000 F0.1 M08 M09", 28),
         // Rigid tapping without its M29: the G84.
         ("G98 G84 Z-10 F1", 5),
+        // A second M29 (the first in the block before).
+        ("M29 S100\nM05 M29 S100", 5),
     ] {
         let src = format!("{block}\nM30\n");
         let c = compile("p.nc", src.as_bytes(), &Options::default());
         let (f, d) = &c.diags[0];
         assert!(d.is_error(), "{block}: {}", c.render());
-        assert_eq!(c.files[*f].line_col(d.span.start), (1, col), "{block}");
+        let line = block.lines().count();
+        assert_eq!(c.files[*f].line_col(d.span.start), (line, col), "{block}");
     }
 }
 

@@ -66,12 +66,10 @@ pub(crate) fn before_block(nc: &mut Nc, f: Func, p: &Parsed) -> Result<Option<M>
     }
     let drills = matches!(f, Func::Drill(_)) && moves;
     let taps = drills && matches!(f, Func::Drill(d) if d.taps());
-    if p.has_m(M::RigidTapping) {
+    if let Some(n) = p.ms().iter().position(|&m| m == M::RigidTapping) {
         if st.m29 {
-            return fail(
-                Alarm::IncompatibleWords,
-                "a second M29 before the G84/G88 block",
-            );
+            let msg = "a second M29 before the G84/G88 block";
+            return Err(NcError::new(Alarm::IncompatibleWords, msg).on_nth(addr(b'M'), n));
         }
         st.m29 = true;
     }
