@@ -54,24 +54,30 @@ fn function(f: &Function) -> Vec<Diagnostic> {
     if f.blocks.iter().any(|(_, b)| jumps_at_run_time(b)) {
         return Vec::new();
     }
-    let order: Vec<usize> = layout_order(f);
-    let preds = predecessors(f);
+    let order = layout_order(f);
+    let place = |b: Handle<Block>| order.get(b.index()).copied();
+    // A back edge of the layout: a loop's last block to its head. (Most
+    // programs have none, and need no more than this.)
+    let back_edges: Vec<_> = (f.layout.iter())
+        .flat_map(|&from| successors(f, from).map(move |head| (head, from)))
+        .filter(|&(head, from)| place(head) <= place(from))
+        .collect();
+    if back_edges.is_empty() {
+        return Vec::new();
+    }
+    let preds = Preds::of(f);
     let mut told = HashSet::new();
     let mut out = Vec::new();
-    for &from in &f.layout {
-        for head in successors(f, from) {
-            // A back edge of the layout: a loop's last block to its head.
-            let place = |b: Handle<Block>| order.get(b.index()).copied();
-            if place(head) > place(from) || told.contains(&head) {
-                continue;
-            }
-            let Some(body) = natural_loop(f, head, from, &preds) else {
-                continue;
-            };
-            if let Some((why, span)) = endless(f, &body, head) {
-                told.insert(head);
-                out.push(warning(why, span));
-            }
+    for (head, from) in back_edges {
+        if told.contains(&head) {
+            continue;
+        }
+        let Some(body) = natural_loop(f, head, from, &preds) else {
+            continue;
+        };
+        if let Some((why, span)) = endless(f, &body, head) {
+            told.insert(head);
+            out.push(warning(why, span));
         }
     }
     out
@@ -98,21 +104,35 @@ fn layout_order(f: &Function) -> Vec<usize> {
     order
 }
 
-fn successors(f: &Function, b: Handle<Block>) -> Vec<Handle<Block>> {
+fn successors(f: &Function, b: Handle<Block>) -> impl Iterator<Item = Handle<Block>> + '_ {
     let term = f.blocks.get(b).and_then(|b| b.term.as_ref());
-    term.map(|t| t.successors().collect()).unwrap_or_default()
+    term.into_iter().flat_map(|t| t.successors())
 }
 
-fn predecessors(f: &Function) -> Vec<Vec<Handle<Block>>> {
-    let mut preds = vec![Vec::new(); f.blocks.len()];
-    for (b, _) in f.blocks.iter() {
-        for s in successors(f, b) {
-            if let Some(p) = preds.get_mut(s.index()) {
-                p.push(b);
-            }
-        }
+/// Every edge, to its block's index and from its block, sorted: each
+/// block's predecessors in one list (a program may have a block per
+/// numbered line: no list of its own for each).
+struct Preds(Vec<(usize, Handle<Block>)>);
+
+impl Preds {
+    fn of(f: &Function) -> Preds {
+        let edges = f
+            .blocks
+            .iter()
+            .flat_map(|(b, _)| successors(f, b).map(move |s| (s.index(), b)));
+        let mut edges: Vec<_> = edges.collect();
+        edges.sort_unstable();
+        Preds(edges)
     }
-    preds
+
+    fn of_block(&self, b: Handle<Block>) -> impl Iterator<Item = Handle<Block>> + '_ {
+        let from = self.0.partition_point(|e| e.0 < b.index());
+        let edges = self.0.get(from..).unwrap_or(&[]);
+        edges
+            .iter()
+            .take_while(move |e| e.0 == b.index())
+            .map(|e| e.1)
+    }
 }
 
 /// The loop of back edge `tail` → `head`: the blocks on a path from the
@@ -123,17 +143,17 @@ fn natural_loop(
     f: &Function,
     head: Handle<Block>,
     tail: Handle<Block>,
-    preds: &[Vec<Handle<Block>>],
+    preds: &Preds,
 ) -> Option<BTreeSet<Handle<Block>>> {
     let mut reach_tail = BTreeSet::from([head]);
     let mut work = vec![tail];
     while let Some(b) = work.pop() {
         if reach_tail.insert(b) {
-            work.extend(preds.get(b.index()).into_iter().flatten().copied());
+            work.extend(preds.of_block(b));
         }
     }
     let mut body = BTreeSet::from([head]);
-    let mut work = successors(f, head);
+    let mut work: Vec<_> = successors(f, head).collect();
     while let Some(b) = work.pop() {
         if reach_tail.contains(&b) && body.insert(b) {
             work.extend(successors(f, b));
