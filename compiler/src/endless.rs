@@ -4,16 +4,16 @@
 //! true a jump, and the message would lose it):
 //!
 //! - a loop with no way out (`DO 1` … `END 1` with no GOTO out of it);
-//! - a loop whose every way out is a test of variables that nothing in
-//!   the loop writes (`WHILE [#1 LT 10] DO 1` with no `#1 = …` inside):
-//!   the test gives the same answer every time, so a loop that goes
-//!   round once goes round for ever.
+//! - a loop whose one way out is a test, met on every round, of
+//!   variables that nothing in the loop writes (`WHILE [#1 LT 10] DO 1`
+//!   with no `#1 = …` inside): the test gives the same answer every
+//!   time, so a loop that goes round once goes round for ever.
 //!
 //! Either way only an alarm stops the run: E6005 when the block budget is
 //! used up, at the latest.
 //! The analysis stays silent wherever it cannot be sure: a test that
 //! reads a system variable (an input, a position) or a variable by a
-//! computed number, a loop with a call, an alarm, a block-skip switch or
+//! computed number, a second way out, a loop with a call, an alarm, a block-skip switch or
 //! a write to a computed number inside, a program with a computed GOTO,
 //! a module with G66 (every move may call a macro).
 
@@ -21,7 +21,7 @@ use crate::build::FileDiag;
 use crate::fold::nc_writes;
 use crate::ir::{Block, CallKind, Expr, Function, Handle, Module, Op, Terminator, VarTarget, Word};
 use grammar::{Diagnostic, Span};
-use std::collections::{BTreeSet, HashSet};
+use std::collections::BTreeSet;
 
 /// The warnings of every program of `m`.
 pub fn module(m: &Module) -> Vec<FileDiag> {
@@ -66,21 +66,66 @@ fn function(f: &Function) -> Vec<Diagnostic> {
         return Vec::new();
     }
     let preds = Preds::of(f);
-    let mut told = HashSet::new();
+    let heads: BTreeSet<_> = back_edges.iter().map(|&(head, _)| head).collect();
     let mut out = Vec::new();
-    for (head, from) in back_edges {
-        if told.contains(&head) {
+    for head in heads {
+        // The loop at `head`: every cycle through it (a DO's END, and a
+        // GOTO back to it from a branch of its body).
+        let tails: Vec<_> = (back_edges.iter())
+            .filter(|&&(h, _)| h == head)
+            .map(|&(_, tail)| tail)
+            .collect();
+        let loops = tails
+            .iter()
+            .filter_map(|&t| natural_loop(f, head, t, &preds));
+        let body: BTreeSet<_> = loops.flatten().collect();
+        if body.is_empty() {
             continue;
         }
-        let Some(body) = natural_loop(f, head, from, &preds) else {
-            continue;
+        let round = Round {
+            head,
+            tails: &tails,
+            body: &body,
         };
-        if let Some((why, span)) = endless(f, &body, head) {
-            told.insert(head);
+        if let Some((why, span)) = endless(f, &round) {
             out.push(warning(why, span));
         }
     }
     out
+}
+
+/// A loop: its head, the blocks that jump back to it, and its blocks.
+struct Round<'a> {
+    head: Handle<Block>,
+    tails: &'a [Handle<Block>],
+    body: &'a BTreeSet<Handle<Block>>,
+}
+
+impl Round<'_> {
+    /// Whether every round passes block `b`: without it, the head
+    /// reaches none of the blocks that jump back.
+    fn passes(&self, f: &Function, b: Handle<Block>) -> bool {
+        if b == self.head {
+            return true;
+        }
+        // (A head that jumps back to itself goes round alone.)
+        if self.tails.contains(&self.head) {
+            return false;
+        }
+        let mut seen = BTreeSet::from([self.head, b]);
+        let mut work = vec![self.head];
+        while let Some(at) = work.pop() {
+            if self.tails.contains(&at) {
+                return false;
+            }
+            for next in successors(f, at) {
+                if self.body.contains(&next) && seen.insert(next) {
+                    work.push(next);
+                }
+            }
+        }
+        true
+    }
 }
 
 /// Whether the block jumps to a block found at run time (a computed
@@ -162,13 +207,12 @@ fn natural_loop(
     body.contains(&tail).then_some(body)
 }
 
-/// Whether the loop `body` never ends once it goes round, and where to
-/// say so: the test that never changes, or the loop's head.
-fn endless(
-    f: &Function,
-    body: &BTreeSet<Handle<Block>>,
-    head: Handle<Block>,
-) -> Option<(Endless, Span)> {
+/// Whether the loop never ends once it goes round, and where to say so:
+/// its test that never changes, or its head. Its one way out must be
+/// met on every round: a test met only on some (behind a branch of the
+/// body) may be met for the first time late, and leave.
+fn endless(f: &Function, round: &Round<'_>) -> Option<(Endless, Span)> {
+    let body = round.body;
     let mut written = BTreeSet::new();
     let mut tests = Vec::new();
     for &h in body {
@@ -184,6 +228,9 @@ fn endless(
                 otherwise,
             } => {
                 if !(body.contains(then) && body.contains(otherwise)) {
+                    if !round.passes(f, h) {
+                        return None;
+                    }
                     tests.push((*cond, f.term_locs.get(h.index())?.span));
                 }
             }
@@ -196,13 +243,15 @@ fn endless(
             _ => return None,
         }
     }
-    let Some(&(_, span)) = tests.first() else {
-        return Some((Endless::NoWayOut, head_span(f, head)?));
+    let (cond, span) = match tests[..] {
+        [] => return Some((Endless::NoWayOut, head_span(f, round.head)?)),
+        [test] => test,
+        // (Several ways out: one that holds at once leaves the loop on
+        // every pass, and the others' variables may change around it.)
+        _ => return None,
     };
     let mut read = BTreeSet::new();
-    for &(cond, _) in &tests {
-        reads(f, cond, &mut read)?;
-    }
+    reads(f, cond, &mut read)?;
     match read.is_disjoint(&written) {
         true => Some((Endless::Unchanged(read), span)),
         false => None,

@@ -792,8 +792,11 @@ fn w127_a_loop_that_never_ends_once_it_goes_round() {
     let inner = "#1=0\nWHILE[#1LT10]DO1\n#2=0\nWHILE[#2LT3]DO2\n#1=#1+1\nEND2\nEND1\nM30\n";
     assert_eq!(w127(inner).0, [4]);
     // Silent where the loop may change its test in a way not followed, or
-    // does leave: an input; a call; a `/` block; a write to a computed
-    // number; a computed M code; a GOTO out (the END is then dead code).
+    // leave by another way: an input; a call; a `/` block; a write to a
+    // computed number; a computed M code; a GOTO out (the END is then dead
+    // code); a second way out, which leaves at once on every pass (to a
+    // block that steps #1 and goes back before the WHILE); a way out
+    // behind a branch, first met on the tenth round.
     for quiet in [
         "WHILE[#1000EQ0]DO1\nEND1\nM30\n",
         "#1=1\nWHILE[#1LT3]DO1\nM98 P100\nEND1\nM30\nO100\nM99\n",
@@ -801,6 +804,8 @@ fn w127_a_loop_that_never_ends_once_it_goes_round() {
         "#1=1\nWHILE[#1LT3]DO1\n#[#2]=5\nEND1\nM30\n",
         "#1=1\n#2=8\nWHILE[#1LT3]DO1\nM#2\nEND1\nM30\n",
         "#1=1\nWHILE[#1LT3]DO1\nGOTO5\nEND1\nN5 M30\n",
+        "#1=0\n#2=1\nN1 WHILE[#1LT3]DO1\nIF[#2EQ1]GOTO50\nEND1\nM30\nN50 #1=#1+1\nGOTO1\n",
+        "#2=0\nWHILE[#1LT3]DO1\n#2=#2+1\nIF[#2LT10]GOTO7\nIF[#3EQ0]GOTO9\nN7 G00 U-1\nEND1\nN9 M30\n",
     ] {
         assert_eq!(w127(quiet).0, [], "{quiet}");
     }
