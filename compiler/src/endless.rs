@@ -10,12 +10,12 @@
 //!   time, so a loop that goes round once goes round for ever.
 //!
 //! Either way only an alarm stops the run: E6005 when the block budget is
-//! used up, at the latest.
-//! The analysis stays silent wherever it cannot be sure: a test that
-//! reads a system variable (an input, a position) or a variable by a
-//! computed number, a second way out, a loop with a call, an alarm, a block-skip switch or
-//! a write to a computed number inside, a program with a computed GOTO,
-//! a module with G66 (every move may call a macro).
+//! used up, at the latest. The analysis stays silent wherever it cannot
+//! be sure: a test that reads a system variable (an input, a position) or
+//! a variable by a computed number, a second way out, a loop with a call,
+//! an alarm, a block-skip switch or a write to a computed number inside,
+//! a program with a computed GOTO, a module with G66 (every move may call
+//! a macro).
 
 use crate::build::FileDiag;
 use crate::fold::nc_writes;
@@ -45,7 +45,8 @@ pub fn module(m: &Module) -> Vec<FileDiag> {
 enum Endless {
     /// No edge leaves it.
     NoWayOut,
-    /// Every edge out is a test of these variables, which it never writes.
+    /// Its one way out is a test of these variables, which it never
+    /// writes.
     Unchanged(BTreeSet<u32>),
 }
 
