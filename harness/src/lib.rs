@@ -5,6 +5,7 @@
 //! seconds each on stable, from seeds and random mutations.
 
 pub mod contour;
+pub mod endless;
 pub mod expr;
 pub mod jit_diff;
 pub mod plane;
