@@ -18,19 +18,15 @@
 //! a macro).
 
 use crate::build::FileDiag;
-use crate::fold::nc_writes;
-use crate::ir::{Block, CallKind, Expr, Function, Handle, Module, Op, Terminator, VarTarget, Word};
+use crate::fold::{has_modal_call, nc_writes};
+use crate::ir::{Block, Expr, Function, Handle, Module, Op, Terminator, VarTarget, Word};
 use grammar::{Diagnostic, Span};
+use nc::words::addr;
 use std::collections::BTreeSet;
 
 /// The warnings of every program of `m`.
 pub fn module(m: &Module) -> Vec<FileDiag> {
-    let g66 = m.functions.iter().any(|f| {
-        f.blocks.iter().any(|(_, b)| {
-            matches!(&b.term, Some(Terminator::Call { call, .. }) if call.kind == CallKind::Modal)
-        })
-    });
-    if g66 {
+    if m.functions.iter().any(has_modal_call) {
         return Vec::new();
     }
     let mut out = Vec::new();
@@ -290,7 +286,7 @@ fn writes(f: &Function, op: &Op, written: &mut BTreeSet<u32>) -> Option<()> {
 }
 
 /// The addresses of the codes that may call: G, M, T.
-const CODES: [u8; 3] = [b'G' - b'A', b'M' - b'A', b'T' - b'A'];
+const CODES: [u8; 3] = [addr(b'G'), addr(b'M'), addr(b'T')];
 
 /// Adds the variables `e` reads to `read`; `None` where it reads one that
 /// changes by itself (a system variable) or by a computed number.

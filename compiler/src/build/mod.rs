@@ -384,9 +384,8 @@ impl<'a> Builder<'a> {
         crate::profile::program_start(self, prog);
     }
 
-    /// Builds the blocks of `prog` (all of them, or those of one chunk).
-    /// Builds `prog`'s blocks, the first `ran_ahead` of which the dry run
-    /// has run.
+    /// Builds the blocks of `prog` (all of them, or those of one chunk),
+    /// the first `ran_ahead` of which the dry run has run.
     fn build_blocks(&mut self, prog: &Program, pb: &mut ProgBuild, ran_ahead: usize) {
         let units: &'a [Unit] = self.units;
         let unit = &units[prog.unit];

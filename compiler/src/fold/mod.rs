@@ -211,7 +211,8 @@ impl Scope {
     }
 }
 
-fn has_modal_call(f: &Function) -> bool {
+/// Whether `f` sets a G66 modal call.
+pub(crate) fn has_modal_call(f: &Function) -> bool {
     writes::calls(f).any(|(_, kind)| kind == CallKind::Modal)
 }
 
