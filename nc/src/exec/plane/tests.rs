@@ -825,3 +825,22 @@ fn swept_counts_the_turns_of_an_arc_that_passes_near_the_centre() {
         "{first} {want}"
     );
 }
+
+/// Inside G12.1 the position variables read the joints, as the control's
+/// position display shows them (language.md, "position variables in a
+/// plane"): after the line to the plane point (x 10, c 10) X is the joint
+/// diameter 2·√200 = 28.2843 and C the angle 45°, not the plane's X20 C10.
+#[test]
+fn position_variables_read_the_joints_inside_a_plane() {
+    let mut m = Lathe::with_c();
+    lines(&mut m, &["G98 G00 X40 Z-2 C0", "G12.1", "G01 X20 C10 F100"]);
+    for n in [5001, 5021, 5041] {
+        let x = var(&m, n).unwrap();
+        assert!((x - 2.0 * libm::sqrt(200.0)).abs() < 1e-9, "#{n} = {x}");
+    }
+    for n in [5003, 5023, 5043] {
+        let c = var(&m, n).unwrap();
+        assert!((c - 45.0).abs() < 1e-9, "#{n} = {c}");
+    }
+    assert_eq!(var(&m, 5002), Some(-2.0));
+}
