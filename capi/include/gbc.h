@@ -58,7 +58,7 @@
  * otherwise. On Linux it is also the N of the shared library's SONAME,
  * `libgbc.so.N` (build.rs reads it here: keep it a literal).
  */
-#define GBC_ABI_VERSION 2
+#define GBC_ABI_VERSION 3
 
 /**
  * Handles alive at once in a process, machines and controllers
@@ -394,6 +394,21 @@ typedef struct GbcSetPoint {
    * The Z axis set point in machine coordinates.
    */
   double axis_z;
+  /**
+   * `axis_x` in whole steps of the machine's resolution (a diameter:
+   * one count moves the slide half a step), rounded to the nearest,
+   * halves away from zero: what a position-command or pulse interface
+   * sends. Each period is rounded on its own, so the counts never drift.
+   */
+  int64_t count_x;
+  /**
+   * `axis_z` in whole steps of the resolution.
+   */
+  int64_t count_z;
+  /**
+   * `c` in steps of 0.001° (0 without a C axis).
+   */
+  int64_t count_c;
   /**
    * The C axis angle, degrees (0 without a C axis; see `has_c`).
    */

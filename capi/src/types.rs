@@ -14,7 +14,7 @@ use runtime::{Motion, PlcFunction, RunState, SetPoint};
 /// that `gbc_abi_version() == GBC_ABI_VERSION` and refuses to run
 /// otherwise. On Linux it is also the N of the shared library's SONAME,
 /// `libgbc.so.N` (build.rs reads it here: keep it a literal).
-pub const GBC_ABI_VERSION: u32 = 2;
+pub const GBC_ABI_VERSION: u32 = 3;
 
 /// Handles alive at once in a process, machines and controllers
 /// together; making one more is [`GbcStatus::Limit`] until one is freed.
@@ -179,6 +179,15 @@ pub struct GbcSetPoint {
     pub axis_x: f64,
     /// The Z axis set point in machine coordinates.
     pub axis_z: f64,
+    /// `axis_x` in whole steps of the machine's resolution (a diameter:
+    /// one count moves the slide half a step), rounded to the nearest,
+    /// halves away from zero: what a position-command or pulse interface
+    /// sends. Each period is rounded on its own, so the counts never drift.
+    pub count_x: i64,
+    /// `axis_z` in whole steps of the resolution.
+    pub count_z: i64,
+    /// `c` in steps of 0.001° (0 without a C axis).
+    pub count_c: i64,
     /// The C axis angle, degrees (0 without a C axis; see `has_c`).
     pub c: f64,
     /// Whether the machine has a C axis.
@@ -208,6 +217,9 @@ impl From<&SetPoint> for GbcSetPoint {
             z: p.z,
             axis_x: p.axis_x,
             axis_z: p.axis_z,
+            count_x: p.counts.x,
+            count_z: p.counts.z,
+            count_c: p.counts.c,
             c: p.c.unwrap_or(0.0),
             has_c: p.c.is_some(),
             spindle_rpm: p.spindle_rpm,

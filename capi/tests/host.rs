@@ -84,6 +84,9 @@ fn blank() -> GbcSetPoint {
         z: 0.0,
         axis_x: 0.0,
         axis_z: 0.0,
+        count_x: 0,
+        count_z: 0,
+        count_c: 0,
         c: 0.0,
         has_c: false,
         spindle_rpm: 0.0,
@@ -197,6 +200,27 @@ fn the_skip_signal_ends_a_g31_move() {
     assert!((-0.9..-0.7).contains(&end), "stopped at {end}");
     let hit = unsafe { &(*host).stores }.last().expect("#510 stored")[10];
     assert!((hit - end).abs() < 0.01, "hit {hit}, stop {end}");
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}
+
+/// The counts are the axis set points in whole 0.001 mm steps: within
+/// half a step every period, and the end X20.0004 Z-5.0006 (machine zero
+/// is work zero on the reference machine) as 20 000.4 and −5 000.6 steps
+/// rounded to 20 000 and −5 001; no C axis, no C count.
+#[test]
+fn the_set_points_come_in_counts_too() {
+    let prog = module("O1\nG98 G01 X20.0004 Z-5.0006 F600\nM30\n");
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    let pts = run(c, |sp| {
+        assert!((sp.count_x as f64 * 0.001 - sp.axis_x).abs() <= 0.0005 + 1e-12);
+        assert!((sp.count_z as f64 * 0.001 - sp.axis_z).abs() <= 0.0005 + 1e-12);
+        assert_eq!(sp.count_c, 0);
+    });
+    let end = pts.last().unwrap();
+    assert_eq!((end.count_x, end.count_z), (20_000, -5_001));
     assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });

@@ -3,7 +3,8 @@
 //! (../shared/corpus/public) that runs to its end is certified, except the
 //! ones listed in [`FAILS_TODAY`], which exit 1 naming the place of the
 //! violation; an origin change is no jump; `--frame machine` traces the
-//! axes; the trace names the motion and the tool.
+//! axes, `--frame counts` them in steps of the resolution; the trace names
+//! the motion and the tool.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -284,6 +285,40 @@ fn an_origin_change_is_certified_and_the_machine_frame_shows_no_jump() {
     // travel at 600 mm/min (0.01 mm).
     assert!((jump(&zs("work")) - 100.0).abs() < 0.02);
     assert!(jump(&zs("machine")) <= 0.01 + 1e-9);
+    let _ = std::fs::remove_dir_all(d);
+}
+
+/// `--frame counts` gives the machine set points in whole steps of the
+/// resolution: each within half a step of the machine frame's set point,
+/// and the end point X20.0004 Z-5.0006 as 20 000 and −5 001 µm steps
+/// (20 000.4 and −5 000.6 rounded to the nearest).
+#[test]
+fn the_counts_frame_quantizes_the_machine_set_points() {
+    let src = "O0001\nG98 G01 X20.0004 Z-5.0006 F600\nM30\n";
+    let (d, gbc) = compiled("counts", src);
+    let gbc = gbc.to_str().unwrap();
+    let trace = |frame: &str| -> Vec<(f64, f64)> {
+        let o = gbvm(&["run", gbc, "--emit", "trace", "--frame", frame]);
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        let t = text(&o.stdout);
+        t.lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                (f[1].parse().unwrap(), f[2].parse().unwrap())
+            })
+            .collect()
+    };
+    let (mm, counts) = (trace("machine"), trace("counts"));
+    assert_eq!(mm.len(), counts.len());
+    assert!(mm.len() > 100, "{} periods", mm.len());
+    for (m, n) in mm.iter().zip(&counts) {
+        assert_eq!(n.0.fract(), 0.0, "{n:?} is not a whole count");
+        // Half a step, and the machine frame's own 6-decimal rounding.
+        assert!((n.0 * 0.001 - m.0).abs() <= 0.0005 + 1e-6, "{m:?} {n:?}");
+        assert!((n.1 * 0.001 - m.1).abs() <= 0.0005 + 1e-6, "{m:?} {n:?}");
+    }
+    assert_eq!(counts.last(), Some(&(20_000.0, -5_001.0)));
     let _ = std::fs::remove_dir_all(d);
 }
 

@@ -139,8 +139,8 @@ pub struct Config {
     pub dry_run_feed: f64,
     /// The skip signal is active at 0 (№185.7).
     pub skip_active_low: bool,
-    /// Positions are commanded in these steps (machine.resolution_mm);
-    /// reported for hosts that quantize, the runtime itself does not.
+    /// Positions are commanded in these steps (machine.resolution_mm):
+    /// each set point's [`crate::Counts`].
     pub resolution_mm: f64,
 }
 

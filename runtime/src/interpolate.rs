@@ -14,6 +14,7 @@
 
 use crate::command::{MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
+use crate::counts::Counts;
 use crate::follow::{Ahead, FollowAxes, Follower};
 use crate::math::{sqrt, V2};
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
@@ -98,6 +99,9 @@ pub struct SetPoint {
     pub axis_x: f64,
     /// The Z axis set point in machine coordinates.
     pub axis_z: f64,
+    /// The machine set points in whole steps of the resolution (C in
+    /// 0.001°): what a position-command or pulse interface sends.
+    pub counts: Counts,
     /// Signed actual spindle speed (+ for M03), rev/min.
     pub spindle_rpm: f64,
     /// Spindle turns since power-on.
@@ -732,6 +736,7 @@ impl<P: Plc> Engine<P> {
             z: work.z,
             axis_x: axes.x(),
             axis_z: axes.z,
+            counts: Counts::of(axes.x(), axes.z, c, self.cfg.resolution_mm),
             spindle_rpm: self.spindle.rpm(),
             spindle_turns: self.spindle.turns(),
             c: self.cfg.c.map(|_| c),

@@ -26,7 +26,8 @@
 //! [`geom`] (exact lines, arcs, ellipses, parabolas), [`interpolate`] (the
 //! period loop), [`follow`] (axes following thread chains), [`spindle`],
 //! [`smooth`] (optional jerk limiting),
-//! [`plc`], [`command`], [`config`], and the outputs [`trace`], [`plot`]
+//! [`plc`], [`command`], [`config`], [`counts`] (set points in whole
+//! steps of the resolution), and the outputs [`trace`], [`plot`]
 //! (with [`simplify`]), [`stats`], and the motion certificate of
 //! `gbvm check`, [`certify`].
 //!
@@ -44,6 +45,7 @@ extern crate std;
 pub mod certify;
 pub mod command;
 pub mod config;
+pub mod counts;
 pub mod follow;
 pub mod geom;
 pub mod interpolate;
@@ -66,6 +68,7 @@ pub mod translate;
 
 pub use command::{Command, Tag};
 pub use config::{Config, RapidOverride};
+pub use counts::Counts;
 pub use interpolate::{Engine, Motion, RoomWarning, RunState, SetPoint};
 pub use plc::{AutoAck, Plc, PlcFunction};
 

@@ -212,6 +212,7 @@ mod tests {
             z,
             axis_x: 20.0,
             axis_z: z,
+            counts: crate::Counts::default(),
             spindle_rpm: 0.0,
             spindle_turns: 0.0,
             c,

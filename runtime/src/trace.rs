@@ -1,7 +1,8 @@
 //! The per-period trace: one line per interpolation period, as CSV under
 //! [`CSV_HEADER`] or as JSON lines with the same fields. X is a diameter,
 //! in work coordinates as in the canon ([`Frame::Work`]) or in machine
-//! coordinates as the drives get it ([`Frame::Machine`]); `feed` is the
+//! coordinates as the drives get it ([`Frame::Machine`]), or in whole steps
+//! of the resolution ([`Frame::Counts`]); `feed` is the
 //! actual path speed in mm/min; `line` the source line of the block whose
 //! motion the period runs; `motion` the kind of motion of the period as a word
 //! ([`crate::Motion::word`]); `tool` the active tool number; `file` the
@@ -21,7 +22,7 @@ pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line,motion,tool,file"
 /// The CSV header of a machine with a C axis.
 pub const CSV_HEADER_C: &str = "time_s,x,z,c,spindle_rpm,feed,line,motion,tool,file";
 
-/// The coordinates a trace gives X and Z in.
+/// The coordinates a trace gives X and Z (and C) in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Frame {
     /// The programmed point in work coordinates, as the canon prints it:
@@ -32,14 +33,40 @@ pub enum Frame {
     /// work zero and tool offset applied): continuous across an origin
     /// change, what the drives follow.
     Machine,
+    /// The machine set points in whole steps of the resolution (C in
+    /// 0.001°), as integers: what a position-command or pulse interface
+    /// sends ([`crate::counts`]).
+    Counts,
 }
 
 impl Frame {
-    /// X (a diameter) and Z of a set point in this frame.
-    pub fn xz(self, p: &SetPoint) -> (f64, f64) {
+    /// X (a diameter), Z and C (where the machine has one) of a set point
+    /// in this frame.
+    fn coords(self, p: &SetPoint) -> [Option<Coord>; 3] {
+        let mm = |v: f64| Some(Coord::Mm(v));
         match self {
-            Frame::Work => (p.x, p.z),
-            Frame::Machine => (p.axis_x, p.axis_z),
+            Frame::Work => [mm(p.x), mm(p.z), p.c.and_then(mm)],
+            Frame::Machine => [mm(p.axis_x), mm(p.axis_z), p.c.and_then(mm)],
+            Frame::Counts => {
+                let n = |v: i64| Some(Coord::Count(v));
+                [n(p.counts.x), n(p.counts.z), p.c.and(n(p.counts.c))]
+            }
+        }
+    }
+}
+
+/// A position field: mm (or degrees) to 6 decimals, or a whole count.
+#[derive(Clone, Copy)]
+enum Coord {
+    Mm(f64),
+    Count(i64),
+}
+
+impl fmt::Display for Coord {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Coord::Mm(v) => Fixed(v, 6).fmt(f),
+            Coord::Count(n) => n.fmt(f),
         }
     }
 }
@@ -112,10 +139,9 @@ impl fmt::Display for JsonStr<'_> {
 
 /// One CSV line (with its `\n`) in `frame`; `file` is the name of `p.file`.
 pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint, frame: Frame, file: &str) -> fmt::Result {
-    let (x, z) = frame.xz(p);
-    write!(w, "{},{},{},", Fixed(p.time_s, 6), Fixed(x, 6), Fixed(z, 6))?;
-    if let Some(c) = p.c {
-        write!(w, "{},", Fixed(c, 6))?;
+    write!(w, "{},", Fixed(p.time_s, 6))?;
+    for v in frame.coords(p).into_iter().flatten() {
+        write!(w, "{v},")?;
     }
     writeln!(
         w,
@@ -131,16 +157,11 @@ pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint, frame: Frame, file: &str) ->
 
 /// One JSON line (with its `\n`) in `frame`; `file` is the name of `p.file`.
 pub fn write_json<W: Write>(w: &mut W, p: &SetPoint, frame: Frame, file: &str) -> fmt::Result {
-    let (x, z) = frame.xz(p);
-    write!(
-        w,
-        "{{\"time_s\":{},\"x\":{},\"z\":{},",
-        Fixed(p.time_s, 6),
-        Fixed(x, 6),
-        Fixed(z, 6)
-    )?;
-    if let Some(c) = p.c {
-        write!(w, "\"c\":{},", Fixed(c, 6))?;
+    write!(w, "{{\"time_s\":{},", Fixed(p.time_s, 6))?;
+    for (name, v) in ["x", "z", "c"].into_iter().zip(frame.coords(p)) {
+        if let Some(v) = v {
+            write!(w, "\"{name}\":{v},")?;
+        }
     }
     writeln!(
         w,
@@ -250,6 +271,30 @@ mod tests {
         write_json(&mut s, &p, Frame::Machine, "a.nc").unwrap();
         assert!(
             s.starts_with("{\"time_s\":1.000000,\"x\":-60.500000,\"z\":-299.750000,"),
+            "{s}"
+        );
+        // Counts: the same machine point in whole steps, C too.
+        let p = SetPoint {
+            c: Some(90.0),
+            counts: crate::Counts {
+                x: -60_500,
+                z: -299_750,
+                c: 90_000,
+            },
+            ..p
+        };
+        s.clear();
+        write_csv(&mut s, &p, Frame::Counts, "a.nc").unwrap();
+        assert_eq!(
+            s,
+            "1.000000,-60500,-299750,90000,0.000,0.000,0,dwell,12,a.nc\n"
+        );
+        s.clear();
+        write_json(&mut s, &p, Frame::Counts, "a.nc").unwrap();
+        assert!(
+            s.starts_with(
+                "{\"time_s\":1.000000,\"x\":-60500,\"z\":-299750,\"c\":90000,\"spindle_rpm\""
+            ),
             "{s}"
         );
         // The header names every column of a line.

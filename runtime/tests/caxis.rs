@@ -178,3 +178,26 @@ fn the_trace_has_a_c_column_only_with_a_c_axis() {
 fn c_runs_are_bit_identical() {
     assert_eq!(common::hash(&run_c(false)), common::hash(&run_c(false)));
 }
+
+/// C's counts are 0.001° steps: within half a step of the angle every
+/// period, and a rapid to C12.3456 ends at 12 346 (12 345.6 rounded).
+#[test]
+fn c_counts_are_thousandths_of_a_degree() {
+    let r = run_with(
+        "G00 X20.0004 C12.3456\nM30\n",
+        c_machine(),
+        runtime::AutoAck,
+        |_| {},
+        |_, _| {},
+        60.0,
+    );
+    for p in &r.pts {
+        let c = p.c.expect("a C column");
+        assert!(
+            (p.counts.c as f64 * 0.001 - c).abs() <= 0.0005 + 1e-12,
+            "{p:?}"
+        );
+    }
+    let end = r.pts.last().unwrap().counts;
+    assert_eq!((end.x, end.c), (20_000, 12_346));
+}

@@ -75,6 +75,7 @@ enum Format {
 enum FrameArg {
     Work,
     Machine,
+    Counts,
 }
 
 impl From<FrameArg> for runtime::trace::Frame {
@@ -82,6 +83,7 @@ impl From<FrameArg> for runtime::trace::Frame {
         match f {
             FrameArg::Work => runtime::trace::Frame::Work,
             FrameArg::Machine => runtime::trace::Frame::Machine,
+            FrameArg::Counts => runtime::trace::Frame::Counts,
         }
     }
 }
@@ -125,10 +127,12 @@ struct RunCmd {
     /// Format of the trace: CSV with a header, or JSON lines.
     #[arg(long, value_enum, default_value = "csv")]
     format: Format,
-    /// Coordinates of the trace's x and z: work (the programmed point,
-    /// as the canon) or machine (the axis set points from machine
-    /// zero, work zero and tool offset applied). Default: work.
-    #[arg(long, value_enum, value_name = "work|machine")]
+    /// Coordinates of the trace's x and z (and c): work (the programmed
+    /// point, as the canon), machine (the axis set points from machine
+    /// zero, work zero and tool offset applied) or counts (the machine
+    /// set points as whole steps of the resolution, C in 0.001°: what a
+    /// position-command or pulse interface sends). Default: work.
+    #[arg(long, value_enum, value_name = "work|machine|counts")]
     frame: Option<FrameArg>,
     /// Draw the XZ toolpath into an SVG file, framed on the cutting
     /// moves (rapids dashed, feeds solid, threads in their own colour;
