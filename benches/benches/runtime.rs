@@ -5,7 +5,8 @@
 //! on the other), and the cost of one
 //! interpolation period (`period`), on generated short-segment and
 //! arc-heavy programs, and for the period a thread-heavy one (G92
-//! passes: spindle-synchronised periods, run-outs, rapids back).
+//! passes: spindle-synchronised periods, run-outs, rapids back); and the
+//! trace's CSV lines (`trace_csv`, in work coordinates and in counts).
 //!
 //! Targets: plan ≥ 5 M blocks/s, end to end ≥ 1 M blocks/s, one period
 //! ≤ 100 ns mean. The distribution of single periods (worst included)
@@ -134,7 +135,38 @@ fn runtime_benches(c: &mut Criterion) {
             t.e.state()
         );
     }
+    trace_lines(&mut group, &short_cmds);
     group.finish();
+}
+
+/// Formatting the trace (`gbvm run --emit trace`): 20 000 periods of the
+/// short segments as CSV lines, in work coordinates and in counts.
+fn trace_lines(
+    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    cmds: &[runtime::Command],
+) {
+    use runtime::trace::{write_csv, Frame};
+    let mut t = Ticker::new(cmds.to_vec());
+    let mut points = Vec::with_capacity(20_000);
+    while points.len() < 20_000 {
+        points.push(t.e.tick());
+        if t.low() {
+            t.refill();
+        }
+    }
+    group.throughput(Throughput::Elements(points.len() as u64));
+    for (name, frame) in [("work", Frame::Work), ("counts", Frame::Counts)] {
+        let mut out = String::with_capacity(points.len() * 80);
+        group.bench_function(BenchmarkId::new("trace_csv", name), |b| {
+            b.iter(|| {
+                out.clear();
+                for p in &points {
+                    let _ = write_csv(&mut out, black_box(p), frame, "part.nc");
+                }
+                out.len()
+            })
+        });
+    }
 }
 
 criterion_group!(benches, runtime_benches);

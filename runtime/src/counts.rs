@@ -10,9 +10,9 @@
 //!
 //! X is a diameter, so one X count is `resolution_mm` of diameter, half of
 //! it on the slide: the least command increment of a diameter-programmed
-//! X (0.0005 mm of radius on the reference machine, as on a GSK980TDi or a
-//! Fanuc control of increment system B). C counts are
-//! [`C_STEP_DEG`], the dialect's angular increment.
+//! X, as a Fanuc control of increment system B has it (0.0005 mm of radius
+//! on the reference machine). C counts are [`C_STEP_DEG`], the dialect's
+//! angular increment.
 
 /// One C count, degrees.
 pub const C_STEP_DEG: f64 = 0.001;

@@ -80,19 +80,29 @@ pub fn csv_header(c_axis: bool) -> &'static str {
     }
 }
 
-/// A number with `d` decimals and no `-0`.
+/// A number with `d` decimals (at most 6) and no `-0`.
 struct Fixed(f64, usize);
+
+/// Half of the last decimal's unit for 0 to 6 decimals: values below it
+/// print as 0. These are the values `0.5·libm::pow(10, -d)` gave before
+/// the table spared a `pow` per field, bit for bit (a test checks): 5·10⁻⁶
+/// is one unit in the last place below the nearest double.
+const HALF_UNIT: [f64; 7] = [0.5, 0.05, 0.005, 0.0005, 5e-5, 4.9999999999999996e-6, 5e-7];
 
 impl fmt::Display for Fixed {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let Fixed(v, d) = *self;
-        let half = 0.5 * libm::pow(10.0, -(d as f64));
+        let half = HALF_UNIT.get(d).copied().unwrap_or(0.0);
         let v = if v.abs() < half || !v.is_finite() {
             0.0
         } else {
             v
         };
-        write!(f, "{v:.d$}")
+        // As `{v:.d$}` prints it, in integers (nc::decimal).
+        match nc::base::decimal::scaled(v, d) {
+            Some(n) => nc::base::decimal::write_fixed(f, n, v.is_sign_negative(), d),
+            None => write!(f, "{v:.d$}"),
+        }
     }
 }
 
@@ -220,6 +230,16 @@ mod tests {
             s.contains("\"z\":0.000000,\"c\":-90.500000,\"spindle_rpm\""),
             "{s}"
         );
+    }
+
+    #[test]
+    fn the_half_units_are_those_pow_gives() {
+        for (d, half) in HALF_UNIT.iter().enumerate() {
+            assert_eq!(
+                half.to_bits(),
+                (0.5 * libm::pow(10.0, -(d as f64))).to_bits()
+            );
+        }
     }
 
     #[test]

@@ -1,23 +1,45 @@
-//! Canon numbers without the float formatter.
+//! Canon and trace numbers without the float formatter.
 //!
 //! `format!("{:.4}", v)` rounds the exact binary value of `v` half to even,
 //! which is what the canon wants (canon.md), but the standard library gets
 //! there through its general exact algorithm, and printing the canon of a
-//! long program spent about half its time in it. A double is `m·2^e`
-//! exactly, so `v·10⁴` is the integer `m·10⁴` shifted by `e`: the rounding
-//! is done in integers, exactly as the formatter does it, and the digits
-//! are printed as integers.
+//! long program spent about half its time in it (the trace's 6 decimals
+//! too). A double is `m·2^e` exactly, so `v·10^d` is the integer `m·10^d`
+//! shifted by `e`: the rounding is done in integers, exactly as the
+//! formatter does it, and the digits are printed as integers.
 
 use core::fmt::{self, Write};
+
+/// 10^d for the decimals this module prints (at most 9: 10⁹·2⁵³ < 2⁸³).
+const POW10: [u64; 10] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+];
 
 /// `v·10⁴` rounded half to even on the exact value; `None` when `v` is not
 /// finite or the result does not fit an `i64` (|v| above about 9·10¹⁴).
 pub fn ten_thousandths(v: f64) -> Option<i64> {
+    scaled(v, 4)
+}
+
+/// `v·10^digits` rounded half to even on the exact value; `None` when `v`
+/// is not finite, `digits` is above 9, or the result does not fit an
+/// `i64`.
+pub fn scaled(v: f64, digits: usize) -> Option<i64> {
+    let pow = *POW10.get(digits)?;
     // Most values without the 128-bit arithmetic: below 2⁴⁰ the product
-    // v·10⁴ computed in f64 is within 2⁻¹⁴ of the exact one, so when it
+    // v·10^d computed in f64 is within 2⁻¹³ of the exact one, so when it
     // lies more than a quarter from a half, the exact product rounds to
     // the same integer (and no tie is near).
-    let y = v * 10_000.0;
+    let y = v * pow as f64;
     if y.abs() < FAST_BELOW {
         // An integer within about a half of y (the sum's rounding is far
         // below that at this size; which one a tie gives does not matter,
@@ -40,10 +62,11 @@ pub fn ten_thousandths(v: f64) -> Option<i64> {
     } else {
         (fraction | 1 << 52, biased - 1075)
     };
-    // Below 2^67: 53 bits of mantissa times 10⁴ (14 bits).
-    let scaled = u128::from(mantissa) * 10_000;
+    // Below 2^83: 53 bits of mantissa times at most 10⁹ (30 bits).
+    let scaled = u128::from(mantissa) * u128::from(pow);
     if exp >= 0 {
-        // v ≥ 2^52: v·10⁴ is past the i64 range.
+        // v ≥ 2^52: v·10^d is past the i64 range for d ≥ 3, and the few
+        // whole numbers that fit with fewer decimals go the slow way.
         return None;
     }
     let magnitude = i64::try_from(round_shift(scaled, exp.unsigned_abs())).ok()?;
@@ -60,7 +83,7 @@ const FAST_BELOW: f64 = 1_099_511_627_776.0;
 /// `x / 2^shift`, rounded half to even.
 fn round_shift(x: u128, shift: u32) -> u128 {
     if shift >= 128 {
-        // x < 2^67, so the quotient is below 2^-61: rounds to 0.
+        // x < 2^83, so the quotient is below 2^-45: rounds to 0.
         return 0;
     }
     let quotient = x >> shift;
@@ -71,6 +94,23 @@ fn round_shift(x: u128, shift: u32) -> u128 {
     } else {
         quotient
     }
+}
+
+/// Writes `n / 10^digits` (from [`scaled`]) with exactly `digits`
+/// decimals, as `format!("{:.digits$}")` writes the value: with a `-` when
+/// the value was negative, also where it rounds to 0 (`negative`: its
+/// sign bit, as the standard formatter prints `-0.000`).
+pub fn write_fixed(f: &mut impl Write, n: i64, negative: bool, digits: usize) -> fmt::Result {
+    let pow = POW10.get(digits).copied().ok_or(fmt::Error)?;
+    let abs = n.unsigned_abs();
+    if negative {
+        f.write_char('-')?;
+    }
+    write!(f, "{}", abs / pow)?;
+    if digits == 0 {
+        return Ok(());
+    }
+    write!(f, ".{:0digits$}", abs % pow)
 }
 
 /// Writes `n / 10⁴` with at most 4 decimals, no trailing zeros, no
@@ -178,6 +218,54 @@ mod tests {
                 check(f64::from_bits(v.to_bits() + 1));
             }
         }
+    }
+
+    /// `write_fixed` against `format!("{v:.d$}")` for the trace's 3 and 6
+    /// decimals (and 0 and 9): random bit patterns, decimal-looking values,
+    /// exact ties (k/1024 and k/128 end in 5 past 3 and 6 decimals) and
+    /// their neighbours, negative values that round to 0.
+    #[test]
+    fn fixed_decimals_agree_with_the_exact_formatter() {
+        let fixed = |v: f64, d: usize| -> Option<String> {
+            let n = scaled(v, d)?;
+            let mut s = String::new();
+            write_fixed(&mut s, n, v.is_sign_negative(), d).ok()?;
+            Some(s)
+        };
+        let check = |v: f64| {
+            for d in [0, 3, 6, 9] {
+                match fixed(v, d) {
+                    Some(s) => {
+                        assert_eq!(s, format!("{v:.d$}"), "{v:e} ({:#x}) to {d}", v.to_bits())
+                    }
+                    // Not finite, past the i64 range, or v ≥ 2⁵².
+                    None => assert!(
+                        !v.is_finite() || v.abs() * POW10[d] as f64 > 9.2e18 || v.abs() >= 4.5e15
+                    ),
+                }
+            }
+        };
+        for k in -30_000..30_000 {
+            for v in [f64::from(k) / 1024.0, f64::from(k) / 128.0] {
+                check(v);
+                check(f64::from_bits(v.to_bits() + 1));
+                check(f64::from_bits(v.to_bits().saturating_sub(1)));
+            }
+        }
+        for v in [
+            -4e-7, -5e-7, -6e-7, -0.0, 0.0, -1e-300, 5e-324, 0.0005, -0.0005,
+        ] {
+            check(v);
+        }
+        let mut x: u64 = 0x0123_4567_89ab_cdef;
+        for i in 0..200_000 {
+            let x = xorshift(&mut x);
+            check(f64::from_bits(x));
+            let decimal = (x % 2_000_000_001) as f64 / 10f64.powi(i % 10) - 1000.0;
+            check(decimal);
+            check(-decimal);
+        }
+        assert_eq!(scaled(1.0, 10), None);
     }
 
     #[test]
