@@ -103,14 +103,35 @@ fn round_shift(x: u128, shift: u32) -> u128 {
 pub fn write_fixed(f: &mut impl Write, n: i64, negative: bool, digits: usize) -> fmt::Result {
     let pow = POW10.get(digits).copied().ok_or(fmt::Error)?;
     let abs = n.unsigned_abs();
+    // Built back to front in one buffer and written at once: the
+    // formatter's padding logic per integer cost more than the digits.
+    // A sign, 20 digits, the point and 9 decimals fit.
+    let mut buf = [0u8; 32];
+    let mut at = buf.len();
+    let mut put = |d: u8| {
+        at -= 1;
+        buf[at] = d;
+    };
+    let mut frac = abs % pow;
+    for _ in 0..digits {
+        put(b'0' + (frac % 10) as u8);
+        frac /= 10;
+    }
+    if digits > 0 {
+        put(b'.');
+    }
+    let mut whole = abs / pow;
+    loop {
+        put(b'0' + (whole % 10) as u8);
+        whole /= 10;
+        if whole == 0 {
+            break;
+        }
+    }
     if negative {
-        f.write_char('-')?;
+        put(b'-');
     }
-    write!(f, "{}", abs / pow)?;
-    if digits == 0 {
-        return Ok(());
-    }
-    write!(f, ".{:0digits$}", abs % pow)
+    f.write_str(core::str::from_utf8(&buf[at..]).map_err(|_| fmt::Error)?)
 }
 
 /// Writes `n / 10⁴` with at most 4 decimals, no trailing zeros, no
