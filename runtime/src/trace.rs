@@ -16,6 +16,7 @@
 
 use crate::interpolate::SetPoint;
 use core::fmt::{self, Write};
+use nc::base::decimal;
 
 /// The CSV header of a machine without a C axis.
 pub const CSV_HEADER: &str = "time_s,x,z,spindle_rpm,feed,line,motion,tool,file";
@@ -81,6 +82,7 @@ pub fn csv_header(c_axis: bool) -> &'static str {
 }
 
 /// A number with `d` decimals (at most 6) and no `-0`.
+#[derive(Clone, Copy)]
 struct Fixed(f64, usize);
 
 /// Half of the last decimal's unit for 0 to 6 decimals: values below it
@@ -89,20 +91,92 @@ struct Fixed(f64, usize);
 /// is one unit in the last place below the nearest double.
 const HALF_UNIT: [f64; 7] = [0.5, 0.05, 0.005, 0.0005, 5e-5, 4.9999999999999996e-6, 5e-7];
 
-impl fmt::Display for Fixed {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let Fixed(v, d) = *self;
+impl Fixed {
+    /// The value printed: 0 below half the last decimal's unit (no `-0`)
+    /// and for what is not finite.
+    fn shown(self) -> f64 {
+        let Fixed(v, d) = self;
         let half = HALF_UNIT.get(d).copied().unwrap_or(0.0);
-        let v = if v.abs() < half || !v.is_finite() {
+        if v.abs() < half || !v.is_finite() {
             0.0
         } else {
             v
-        };
-        // As `{v:.d$}` prints it, in integers (nc::decimal).
-        match nc::base::decimal::scaled(v, d) {
-            Some(n) => nc::base::decimal::write_fixed(f, n, v.is_sign_negative(), d),
+        }
+    }
+}
+
+impl fmt::Display for Fixed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (v, d) = (self.shown(), self.1);
+        // As `{v:.d$}` prints it, in integers (nc::base::decimal).
+        match decimal::scaled(v, d) {
+            Some(n) => decimal::write_fixed(f, n, v.is_sign_negative(), d),
             None => write!(f, "{v:.d$}"),
         }
+    }
+}
+
+/// A CSV line's fields before the file name, as bytes: the `Display`s of
+/// [`write_csv_fmt`] cost more than the digits (a trace has one line per
+/// period), so the common line is put together here and written at once.
+struct CsvLine {
+    bytes: [u8; CSV_LINE_CAPACITY],
+    len: usize,
+}
+
+/// Room for nine fields of at most [`decimal::FIXED_CAPACITY`] bytes with
+/// their commas.
+const CSV_LINE_CAPACITY: usize = 9 * (decimal::FIXED_CAPACITY + 1);
+
+impl CsvLine {
+    /// The fields of `p` in `frame`, each followed by a comma; `None` for a
+    /// number past the integer path (left to [`write_csv_fmt`]).
+    fn of(p: &SetPoint, frame: Frame) -> Option<CsvLine> {
+        let mut l = CsvLine {
+            bytes: [0; CSV_LINE_CAPACITY],
+            len: 0,
+        };
+        l.fixed(Fixed(p.time_s, 6))?;
+        for v in frame.coords(p).into_iter().flatten() {
+            match v {
+                Coord::Mm(v) => l.fixed(Fixed(v, 6))?,
+                Coord::Count(n) => l.whole(n)?,
+            }
+        }
+        l.fixed(Fixed(p.spindle_rpm, 3))?;
+        l.fixed(Fixed(p.feed, 3))?;
+        l.whole(i64::from(p.line))?;
+        l.text(p.motion.word().as_bytes())?;
+        l.whole(i64::from(p.tool))?;
+        Some(l)
+    }
+
+    /// `s` and a comma.
+    fn text(&mut self, s: &[u8]) -> Option<()> {
+        let end = self.len.checked_add(s.len() + 1)?;
+        let slot = self.bytes.get_mut(self.len..end)?;
+        slot[..s.len()].copy_from_slice(s);
+        slot[s.len()] = b',';
+        self.len = end;
+        Some(())
+    }
+
+    /// A number as [`Fixed`] prints it.
+    fn fixed(&mut self, x: Fixed) -> Option<()> {
+        let (v, d) = (x.shown(), x.1);
+        let mut buf = [0; decimal::FIXED_CAPACITY];
+        self.text(decimal::fixed_digits(
+            decimal::scaled(v, d)?,
+            v.is_sign_negative(),
+            d,
+            &mut buf,
+        )?)
+    }
+
+    /// An integer.
+    fn whole(&mut self, n: i64) -> Option<()> {
+        let mut buf = [0; decimal::FIXED_CAPACITY];
+        self.text(decimal::fixed_digits(n, n < 0, 0, &mut buf)?)
     }
 }
 
@@ -149,19 +223,29 @@ impl fmt::Display for JsonStr<'_> {
 
 /// One CSV line (with its `\n`) in `frame`; `file` is the name of `p.file`.
 pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint, frame: Frame, file: &str) -> fmt::Result {
+    match CsvLine::of(p, frame) {
+        Some(l) => w.write_str(core::str::from_utf8(&l.bytes[..l.len]).map_err(|_| fmt::Error)?)?,
+        None => write_csv_fmt(w, p, frame)?,
+    }
+    writeln!(w, "{}", CsvField(file))
+}
+
+/// The fields of a CSV line before the file name, each with its comma,
+/// through `core::fmt`: the reference of [`CsvLine`], and what a number
+/// past its integer path takes.
+fn write_csv_fmt<W: Write>(w: &mut W, p: &SetPoint, frame: Frame) -> fmt::Result {
     write!(w, "{},", Fixed(p.time_s, 6))?;
     for v in frame.coords(p).into_iter().flatten() {
         write!(w, "{v},")?;
     }
-    writeln!(
+    write!(
         w,
-        "{},{},{},{},{},{}",
+        "{},{},{},{},{},",
         Fixed(p.spindle_rpm, 3),
         Fixed(p.feed, 3),
         p.line,
         p.motion.word(),
         p.tool,
-        CsvField(file)
     )
 }
 
@@ -230,6 +314,73 @@ mod tests {
             s.contains("\"z\":0.000000,\"c\":-90.500000,\"spindle_rpm\""),
             "{s}"
         );
+    }
+
+    /// The byte-built line against the `core::fmt` one, field for field,
+    /// on random set points in the three frames: values of every size and
+    /// sign, tiny ones that print as 0, huge ones past the integer path.
+    #[test]
+    fn csv_lines_built_as_bytes_are_those_fmt_writes() {
+        let mut x: u64 = 0x5151_7e57_dead_beef;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let mut value = |r: u64| -> f64 {
+            let k = next();
+            match r % 5 {
+                0 => f64::from_bits(k),
+                1 => (k % 2_000_000_001) as f64 / 1e6 - 1000.0,
+                2 => (k % 2001) as f64 * 1e-9 - 1e-6,
+                3 => f64::from(k as u32) / 128.0 - 1e7,
+                _ => (k % 100_000) as f64 * 0.001,
+            }
+        };
+        let motions = [
+            Motion::None,
+            Motion::Rapid,
+            Motion::Feed,
+            Motion::Thread,
+            Motion::Arc,
+            Motion::Dwell,
+        ];
+        let (mut fast, mut slow) = (0, 0);
+        for i in 0..30_000u64 {
+            let p = SetPoint {
+                time_s: value(i),
+                x: value(i / 2),
+                z: value(i / 3),
+                axis_x: value(i / 5),
+                axis_z: value(i / 7),
+                counts: crate::Counts {
+                    x: (value(i / 19) * 1000.0) as i64,
+                    z: (value(i) * 1000.0) as i64,
+                    c: i as i64 - 15_000,
+                },
+                c: (i % 3 == 0).then(|| value(i / 11)),
+                spindle_rpm: value(i / 13),
+                feed: value(i / 17),
+                line: i as u32 * 7919,
+                tool: (i % 40) as u32,
+                motion: motions[i as usize % motions.len()],
+                ..Default::default()
+            };
+            for frame in [Frame::Work, Frame::Machine, Frame::Counts] {
+                let mut reference = String::new();
+                write_csv_fmt(&mut reference, &p, frame).unwrap();
+                match CsvLine::of(&p, frame) {
+                    Some(l) => {
+                        fast += 1;
+                        assert_eq!(core::str::from_utf8(&l.bytes[..l.len]).unwrap(), reference);
+                    }
+                    None => slow += 1,
+                }
+            }
+        }
+        // Most lines take the byte path; some numbers are past it.
+        assert!(fast > 10_000 && slow > 1_000, "{fast} fast, {slow} slow");
     }
 
     #[test]

@@ -101,12 +101,26 @@ fn round_shift(x: u128, shift: u32) -> u128 {
 /// the value was negative, also where it rounds to 0 (`negative`: its
 /// sign bit, as the standard formatter prints `-0.000`).
 pub fn write_fixed(f: &mut impl Write, n: i64, negative: bool, digits: usize) -> fmt::Result {
-    let pow = POW10.get(digits).copied().ok_or(fmt::Error)?;
+    let mut buf = [0u8; FIXED_CAPACITY];
+    let text = fixed_digits(n, negative, digits, &mut buf).ok_or(fmt::Error)?;
+    f.write_str(core::str::from_utf8(text).map_err(|_| fmt::Error)?)
+}
+
+/// The longest text of [`fixed_digits`]: a sign, 20 digits, the point and
+/// 9 decimals.
+pub const FIXED_CAPACITY: usize = 32;
+
+/// The ASCII text [`write_fixed`] writes, built back to front at the end
+/// of `buf` (the formatter's padding logic per integer cost more than the
+/// digits); `None` when `digits` is above 9.
+pub fn fixed_digits(
+    n: i64,
+    negative: bool,
+    digits: usize,
+    buf: &mut [u8; FIXED_CAPACITY],
+) -> Option<&[u8]> {
+    let pow = POW10.get(digits).copied()?;
     let abs = n.unsigned_abs();
-    // Built back to front in one buffer and written at once: the
-    // formatter's padding logic per integer cost more than the digits.
-    // A sign, 20 digits, the point and 9 decimals fit.
-    let mut buf = [0u8; 32];
     let mut at = buf.len();
     let mut put = |d: u8| {
         at -= 1;
@@ -131,7 +145,7 @@ pub fn write_fixed(f: &mut impl Write, n: i64, negative: bool, digits: usize) ->
     if negative {
         put(b'-');
     }
-    f.write_str(core::str::from_utf8(&buf[at..]).map_err(|_| fmt::Error)?)
+    Some(&buf[at..])
 }
 
 /// Writes `n / 10⁴` with at most 4 decimals, no trailing zeros, no
