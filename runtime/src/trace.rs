@@ -116,67 +116,95 @@ impl fmt::Display for Fixed {
     }
 }
 
-/// A CSV line's fields before the file name, as bytes: the `Display`s of
-/// [`write_csv_fmt`] cost more than the digits (a trace has one line per
-/// period), so the common line is put together here and written at once.
-struct CsvLine {
-    bytes: [u8; CSV_LINE_CAPACITY],
+/// A trace line's fields before the file name, as bytes: the `Display`s
+/// of [`write_csv_fmt`] and [`write_json_fmt`] cost more than the digits
+/// (a trace has one line per period), so the common line is put together
+/// here and written at once.
+struct LineBytes {
+    bytes: [u8; LINE_CAPACITY],
     len: usize,
+    json: bool,
 }
 
-/// Room for nine fields of at most [`decimal::FIXED_CAPACITY`] bytes with
-/// their commas.
-const CSV_LINE_CAPACITY: usize = 9 * (decimal::FIXED_CAPACITY + 1);
+/// Room for nine fields of at most [`decimal::FIXED_CAPACITY`] bytes, each
+/// with its JSON name (at most `"spindle_rpm":`), quotes and comma, and
+/// the JSON line's `{`.
+const LINE_CAPACITY: usize = 1 + 9 * (decimal::FIXED_CAPACITY + 17);
 
-impl CsvLine {
-    /// The fields of `p` in `frame`, each followed by a comma; `None` for a
-    /// number past the integer path (left to [`write_csv_fmt`]).
-    fn of(p: &SetPoint, frame: Frame) -> Option<CsvLine> {
-        let mut l = CsvLine {
-            bytes: [0; CSV_LINE_CAPACITY],
+impl LineBytes {
+    /// The fields of `p` in `frame`, each followed by a comma: CSV values,
+    /// or after `{` JSON members; `None` for a number past the integer
+    /// path (left to the `core::fmt` writers).
+    fn of(p: &SetPoint, frame: Frame, json: bool) -> Option<LineBytes> {
+        let mut l = LineBytes {
+            bytes: [0; LINE_CAPACITY],
             len: 0,
+            json,
         };
-        l.fixed(Fixed(p.time_s, 6))?;
-        for v in frame.coords(p).into_iter().flatten() {
+        if json {
+            l.push(b"{")?;
+        }
+        l.fixed(b"time_s", Fixed(p.time_s, 6))?;
+        for (name, v) in [b"x", b"z", b"c"].into_iter().zip(frame.coords(p)) {
             match v {
-                Coord::Mm(v) => l.fixed(Fixed(v, 6))?,
-                Coord::Count(n) => l.whole(n)?,
+                Some(Coord::Mm(v)) => l.fixed(name, Fixed(v, 6))?,
+                Some(Coord::Count(n)) => l.whole(name, n)?,
+                None => {}
             }
         }
-        l.fixed(Fixed(p.spindle_rpm, 3))?;
-        l.fixed(Fixed(p.feed, 3))?;
-        l.whole(i64::from(p.line))?;
-        l.text(p.motion.word().as_bytes())?;
-        l.whole(i64::from(p.tool))?;
+        l.fixed(b"spindle_rpm", Fixed(p.spindle_rpm, 3))?;
+        l.fixed(b"feed", Fixed(p.feed, 3))?;
+        l.whole(b"line", i64::from(p.line))?;
+        l.field(b"motion", p.motion.word().as_bytes(), json)?;
+        l.whole(b"tool", i64::from(p.tool))?;
         Some(l)
     }
 
-    /// `s` and a comma.
-    fn text(&mut self, s: &[u8]) -> Option<()> {
-        let end = self.len.checked_add(s.len() + 1)?;
-        let slot = self.bytes.get_mut(self.len..end)?;
-        slot[..s.len()].copy_from_slice(s);
-        slot[s.len()] = b',';
+    fn push(&mut self, s: &[u8]) -> Option<()> {
+        let end = self.len.checked_add(s.len())?;
+        self.bytes.get_mut(self.len..end)?.copy_from_slice(s);
         self.len = end;
         Some(())
     }
 
+    /// One field and its comma: `value,` in CSV, `"name":value,` in JSON
+    /// (the value in quotes where `quoted`).
+    fn field(&mut self, name: &[u8], value: &[u8], quoted: bool) -> Option<()> {
+        if self.json {
+            self.push(b"\"")?;
+            self.push(name)?;
+            self.push(b"\":")?;
+        }
+        if quoted {
+            self.push(b"\"")?;
+        }
+        self.push(value)?;
+        if quoted {
+            self.push(b"\"")?;
+        }
+        self.push(b",")
+    }
+
     /// A number as [`Fixed`] prints it.
-    fn fixed(&mut self, x: Fixed) -> Option<()> {
+    fn fixed(&mut self, name: &[u8], x: Fixed) -> Option<()> {
         let (v, d) = (x.shown(), x.1);
         let mut buf = [0; decimal::FIXED_CAPACITY];
-        self.text(decimal::fixed_digits(
-            decimal::scaled(v, d)?,
-            v.is_sign_negative(),
-            d,
-            &mut buf,
-        )?)
+        let n = decimal::scaled(v, d)?;
+        self.field(
+            name,
+            decimal::fixed_digits(n, v.is_sign_negative(), d, &mut buf)?,
+            false,
+        )
     }
 
     /// An integer.
-    fn whole(&mut self, n: i64) -> Option<()> {
+    fn whole(&mut self, name: &[u8], n: i64) -> Option<()> {
         let mut buf = [0; decimal::FIXED_CAPACITY];
-        self.text(decimal::fixed_digits(n, n < 0, 0, &mut buf)?)
+        self.field(name, decimal::fixed_digits(n, n < 0, 0, &mut buf)?, false)
+    }
+
+    fn as_str(&self) -> Result<&str, fmt::Error> {
+        core::str::from_utf8(&self.bytes[..self.len]).map_err(|_| fmt::Error)
     }
 }
 
@@ -223,15 +251,15 @@ impl fmt::Display for JsonStr<'_> {
 
 /// One CSV line (with its `\n`) in `frame`; `file` is the name of `p.file`.
 pub fn write_csv<W: Write>(w: &mut W, p: &SetPoint, frame: Frame, file: &str) -> fmt::Result {
-    match CsvLine::of(p, frame) {
-        Some(l) => w.write_str(core::str::from_utf8(&l.bytes[..l.len]).map_err(|_| fmt::Error)?)?,
+    match LineBytes::of(p, frame, false) {
+        Some(l) => w.write_str(l.as_str()?)?,
         None => write_csv_fmt(w, p, frame)?,
     }
     writeln!(w, "{}", CsvField(file))
 }
 
 /// The fields of a CSV line before the file name, each with its comma,
-/// through `core::fmt`: the reference of [`CsvLine`], and what a number
+/// through `core::fmt`: the reference of [`LineBytes`], and what a number
 /// past its integer path takes.
 fn write_csv_fmt<W: Write>(w: &mut W, p: &SetPoint, frame: Frame) -> fmt::Result {
     write!(w, "{},", Fixed(p.time_s, 6))?;
@@ -251,21 +279,31 @@ fn write_csv_fmt<W: Write>(w: &mut W, p: &SetPoint, frame: Frame) -> fmt::Result
 
 /// One JSON line (with its `\n`) in `frame`; `file` is the name of `p.file`.
 pub fn write_json<W: Write>(w: &mut W, p: &SetPoint, frame: Frame, file: &str) -> fmt::Result {
+    match LineBytes::of(p, frame, true) {
+        Some(l) => w.write_str(l.as_str()?)?,
+        None => write_json_fmt(w, p, frame)?,
+    }
+    writeln!(w, "\"file\":{}}}", JsonStr(file))
+}
+
+/// The members of a JSON line before the file name, after its `{`, each
+/// with its comma, through `core::fmt`: the reference of [`LineBytes`],
+/// and what a number past its integer path takes.
+fn write_json_fmt<W: Write>(w: &mut W, p: &SetPoint, frame: Frame) -> fmt::Result {
     write!(w, "{{\"time_s\":{},", Fixed(p.time_s, 6))?;
     for (name, v) in ["x", "z", "c"].into_iter().zip(frame.coords(p)) {
         if let Some(v) = v {
             write!(w, "\"{name}\":{v},")?;
         }
     }
-    writeln!(
+    write!(
         w,
-        "\"spindle_rpm\":{},\"feed\":{},\"line\":{},\"motion\":\"{}\",\"tool\":{},\"file\":{}}}",
+        "\"spindle_rpm\":{},\"feed\":{},\"line\":{},\"motion\":\"{}\",\"tool\":{},",
         Fixed(p.spindle_rpm, 3),
         Fixed(p.feed, 3),
         p.line,
         p.motion.word(),
         p.tool,
-        JsonStr(file)
     )
 }
 
@@ -316,11 +354,12 @@ mod tests {
         );
     }
 
-    /// The byte-built line against the `core::fmt` one, field for field,
-    /// on random set points in the three frames: values of every size and
-    /// sign, tiny ones that print as 0, huge ones past the integer path.
+    /// The byte-built lines against the `core::fmt` ones, CSV and JSON,
+    /// field for field, on random set points in the three frames: values
+    /// of every size and sign, tiny ones that print as 0, huge ones past
+    /// the integer path.
     #[test]
-    fn csv_lines_built_as_bytes_are_those_fmt_writes() {
+    fn lines_built_as_bytes_are_those_fmt_writes() {
         let mut x: u64 = 0x5151_7e57_dead_beef;
         let mut next = || {
             x ^= x << 13;
@@ -368,19 +407,25 @@ mod tests {
                 ..Default::default()
             };
             for frame in [Frame::Work, Frame::Machine, Frame::Counts] {
-                let mut reference = String::new();
-                write_csv_fmt(&mut reference, &p, frame).unwrap();
-                match CsvLine::of(&p, frame) {
-                    Some(l) => {
-                        fast += 1;
-                        assert_eq!(core::str::from_utf8(&l.bytes[..l.len]).unwrap(), reference);
+                for json in [false, true] {
+                    let mut reference = String::new();
+                    if json {
+                        write_json_fmt(&mut reference, &p, frame).unwrap();
+                    } else {
+                        write_csv_fmt(&mut reference, &p, frame).unwrap();
                     }
-                    None => slow += 1,
+                    match LineBytes::of(&p, frame, json) {
+                        Some(l) => {
+                            fast += 1;
+                            assert_eq!(l.as_str().unwrap(), reference);
+                        }
+                        None => slow += 1,
+                    }
                 }
             }
         }
         // Most lines take the byte path; some numbers are past it.
-        assert!(fast > 10_000 && slow > 1_000, "{fast} fast, {slow} slow");
+        assert!(fast > 20_000 && slow > 2_000, "{fast} fast, {slow} slow");
     }
 
     #[test]
