@@ -177,12 +177,18 @@ impl LineBytes {
         }
         if quoted {
             self.push(b"\"")?;
+            self.push(value)?;
+            return self.push(b"\",");
         }
-        self.push(value)?;
-        if quoted {
-            self.push(b"\"")?;
-        }
-        self.push(b",")
+        // The value and its comma in one piece: a CSV line is nearly all
+        // numbers.
+        let end = self.len.checked_add(value.len() + 1)?;
+        let slot = self.bytes.get_mut(self.len..end)?;
+        let (digits, comma) = slot.split_at_mut(value.len());
+        digits.copy_from_slice(value);
+        comma.fill(b',');
+        self.len = end;
+        Some(())
     }
 
     /// A number as [`Fixed`] prints it.
@@ -212,9 +218,16 @@ impl LineBytes {
 /// comma, a quote or a line end.
 struct CsvField<'a>(&'a str);
 
+/// Whether a CSV field holds a comma, a quote or a line end. Bytes, not
+/// chars: the four are ASCII, and a byte scan spares decoding the file
+/// name on every line.
+fn needs_quotes(s: &str) -> bool {
+    s.bytes().any(|b| matches!(b, b',' | b'"' | b'\n' | b'\r'))
+}
+
 impl fmt::Display for CsvField<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if !self.0.contains([',', '"', '\n', '\r']) {
+        if !needs_quotes(self.0) {
             return f.write_str(self.0);
         }
         f.write_char('"')?;
@@ -234,6 +247,12 @@ struct JsonStr<'a>(&'a str);
 impl fmt::Display for JsonStr<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_char('"')?;
+        // A name with nothing to escape (every file name in practice) in
+        // one piece: it is written on every line.
+        if !self.0.bytes().any(|b| b == b'"' || b == b'\\' || b < 0x20) {
+            f.write_str(self.0)?;
+            return f.write_char('"');
+        }
         for c in self.0.chars() {
             match c {
                 '"' => f.write_str("\\\"")?,
