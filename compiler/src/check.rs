@@ -5,7 +5,7 @@
 use crate::link::{self, Program, Unit};
 use crate::thread_room::RoomCheck;
 use crate::words::{self, Call, NcWord, WordValue};
-use grammar::ast::{Body, Value};
+use grammar::ast::{Block, Body, Value};
 use grammar::{Diagnostic, Span};
 use nc::base::nesting::Levels;
 use nc::words::Word;
@@ -67,11 +67,40 @@ fn named_in_block(e: &NcError, ws: &[grammar::ast::Word]) -> Option<Span> {
     named_word(e, &words::classify(ws).ok()?.nc)
 }
 
+/// Tags from [`CARRIED`] on name a block of an earlier chunk of a chunked
+/// run, kept in [`Lines::carried`]: an element of it still waits in the
+/// kernel, and an error about it stands on that block, as it does when the
+/// program is run whole.
+const CARRIED: u32 = u32::MAX / 2;
+
+/// Where the kernel's line tags point: lines of the running block's unit,
+/// and the blocks an earlier chunk left waiting.
+#[derive(Clone, Copy)]
+struct Lines<'a> {
+    unit: &'a Unit,
+    carried: &'a [Block],
+}
+
+impl Lines<'_> {
+    /// The block tagged `tag`.
+    fn block(&self, tag: u32) -> Option<&Block> {
+        match tag.checked_sub(CARRIED) {
+            Some(k) => self.carried.get(k as usize),
+            None => link::block(self.unit, tag as usize),
+        }
+    }
+
+    /// The span of the block tagged `at`, else `block`.
+    fn span(&self, at: Option<u32>, block: Span) -> Span {
+        at.and_then(|l| self.block(l)).map_or(block, |b| b.span)
+    }
+}
+
 /// The span an error of the dry run stands on: the word it names, in the
 /// block it is about (the tagged one, `NcError::at`, else the running
 /// block `ws`), else that block's span (`block`).
-fn error_word_span(unit: &Unit, e: &NcError, ws: &[grammar::ast::Word], block: Span) -> Span {
-    let tagged = e.at.and_then(|l| link::block(unit, l as usize));
+fn error_word_span(lines: Lines<'_>, e: &NcError, ws: &[grammar::ast::Word], block: Span) -> Span {
+    let tagged = e.at.and_then(|l| lines.block(l));
     let (ws, span) = match tagged {
         Some(b) => match &b.body {
             Body::Words(ws) => (ws.as_slice(), b.span),
@@ -203,6 +232,9 @@ struct Runner {
     warner: crate::dry_warn::Warner,
     /// The last block ran without a fault (its words parsed).
     ran_clean: bool,
+    /// The blocks of earlier chunks whose elements wait (tags from
+    /// [`CARRIED`] on); none when the program runs whole.
+    carried: Vec<Block>,
 }
 
 impl Runner {
@@ -215,6 +247,7 @@ impl Runner {
             room: RoomCheck::new(m),
             warner: Default::default(),
             ran_clean: false,
+            carried: Vec::new(),
         }
     }
 
@@ -302,9 +335,9 @@ pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize,
 struct Watchers<'a> {
     counts: &'a mut crate::dry_warn::Counts,
     room: &'a mut RoomCheck,
-    /// The running block's unit and span: the events of a block that
+    /// The running block's lines and span: the events of a block that
     /// waited (a thread block before its run-out) name their own line.
-    unit: &'a Unit,
+    lines: Lines<'a>,
     block: Span,
 }
 
@@ -315,7 +348,7 @@ impl nc::Sink for Watchers<'_> {
     }
 
     fn origin(&mut self, tag: u32) {
-        self.room.span = crate::profile::error_span(self.unit, Some(tag), self.block);
+        self.room.span = self.lines.span(Some(tag), self.block);
     }
 }
 
@@ -648,7 +681,10 @@ impl Runner {
         let mut sink = Watchers {
             counts: &mut counts,
             room: &mut self.room,
-            unit,
+            lines: Lines {
+                unit,
+                carried: &self.carried,
+            },
             block: block.span,
         };
         // A cycle's legs after its first count against the extra steps,
@@ -666,6 +702,10 @@ impl Runner {
         if result.is_ok() {
             (self.warner).after(index, &self.nc, (ws, block.span), lits, &counts, before);
         }
+        let lines = Lines {
+            unit,
+            carried: &self.carried,
+        };
         match result {
             Ok(out) if out.end.is_some() => Ok(Flow::End),
             Ok(_) => Ok(Flow::Go),
@@ -673,7 +713,7 @@ impl Runner {
             // goes on, the block done.
             Err(e) if e.code == nc::error::Alarm::ZeroFeed.code() => {
                 // (A corner's arc faults at the block it is printed with.)
-                let span = crate::profile::error_span(unit, e.at, block.span);
+                let span = lines.span(e.at, block.span);
                 self.warner.zero_feed(index, span);
                 Ok(Flow::Go)
             }
@@ -682,11 +722,13 @@ impl Runner {
                 self.warner.budget_spent(index, block.span, EXTRA_STEPS);
                 Ok(Flow::End)
             }
-            Err(e) if compile_time(e.code) => Err((index, compile_error(unit, &e, ws, block.span))),
+            Err(e) if compile_time(e.code) => {
+                Err((index, compile_error(lines, &e, ws, block.span)))
+            }
             // A run-time fault: every run of this static program stops
             // there (W124).
             Err(e) => {
-                let span = crate::profile::error_span(unit, e.at, block.span);
+                let span = lines.span(e.at, block.span);
                 self.warner.run_stops((index, span), &e);
                 Ok(Flow::End)
             }
@@ -699,11 +741,16 @@ impl Runner {
 /// about. That may be a profile block of the running cycle (a note says
 /// which cycle), or an earlier block whose element waited for this one's
 /// (a chamfer too large for the next move): this block is then labelled.
-fn compile_error(unit: &Unit, e: &NcError, ws: &[grammar::ast::Word], block: Span) -> Diagnostic {
-    let span = crate::profile::error_span(unit, e.at, block);
-    let mut d = error_at(e, error_word_span(unit, e, ws, block));
+fn compile_error(
+    lines: Lines<'_>,
+    e: &NcError,
+    ws: &[grammar::ast::Word],
+    block: Span,
+) -> Diagnostic {
+    let (unit, span) = (lines.unit, lines.span(e.at, block));
+    let mut d = error_at(e, error_word_span(lines, e, ws, block));
     if let Some(culprit) = e.culprit {
-        let there = crate::profile::error_span(unit, Some(culprit), span);
+        let there = lines.span(Some(culprit), span);
         d = d.with_related(there, "this block");
     }
     if span == block {
@@ -743,9 +790,43 @@ impl ChunkedRun {
     /// their words (with `literal_block`'s result: a block that calls
     /// nothing has its words in order, as `plain_literals` takes them).
     pub fn chunk(&mut self, unit: &Unit, prog: &Program) -> usize {
-        // Blocks of the chunk before are no lines of this one: an error
-        // about an element of theirs stands on the running block.
-        self.run.nc.retag_waiting(u32::MAX);
+        let ran = self.run_blocks(unit, prog);
+        self.carry(unit);
+        ran
+    }
+
+    /// Keeps the blocks whose elements still wait in the kernel, under
+    /// tags from [`CARRIED`] on: the next chunk's lines are not theirs,
+    /// and an error about such an element stands on its own block, as when
+    /// the program runs whole. A tag no block answers to (`u32::MAX`)
+    /// stands on the running block.
+    fn carry(&mut self, unit: &Unit) {
+        let earlier = std::mem::take(&mut self.run.carried);
+        let mut kept: Vec<Block> = Vec::new();
+        let lines = Lines {
+            unit,
+            carried: &earlier,
+        };
+        self.run.nc.map_waiting_tags(&mut |tag| {
+            let Some(block) = lines.block(tag) else {
+                return u32::MAX;
+            };
+            // Elements of one block share its entry.
+            let k = match kept.iter().position(|b| b.span == block.span) {
+                Some(k) => k,
+                None => {
+                    kept.push(block.clone());
+                    kept.len() - 1
+                }
+            };
+            CARRIED.saturating_add(k as u32)
+        });
+        self.run.carried = kept;
+    }
+
+    /// Runs the blocks of one chunk: how many of its leading blocks ran
+    /// without a fault.
+    fn run_blocks(&mut self, unit: &Unit, prog: &Program) -> usize {
         let mut ran = 0;
         for (i, &line) in prog.blocks.iter().enumerate() {
             let words = link::block(unit, line).and_then(|b| match &b.body {

@@ -189,3 +189,21 @@ fn a_block_the_dry_run_does_not_reach_is_checked_all_the_same() {
         first_error_line(&long_program(2_000, tail), code);
     }
 }
+
+/// Under nose-radius compensation an element waits for the next block,
+/// across a chunk boundary where chunks are small (one or two lines of
+/// 16 bytes): a warning about it names its own block in chunks as whole.
+/// With `F0` no feed is in force; whole, W107 names the arc's line 9.
+#[test]
+fn a_warning_about_an_element_of_an_earlier_chunk_names_its_own_block() {
+    let src = "O0091\nG99 M03 S1000\nT0101\nG00 X60 Z5\nG42 G00 X20 Z2\nG01 Z-10 F0\n\
+               X30 Z-20\nZ-30\nG02 X40 Z-35 R5\nG01 X50\nZ-45\nX60\nG40 G00 X70 Z5\nM30\n";
+    let (_, reference) = whole("c.nc", src.as_bytes());
+    assert!(reference.contains("c.nc:9:1: warning[W107]"), "{reference}");
+    for chunk in [16, 24, 40] {
+        assert!(
+            same_both_ways("c.nc", src.as_bytes(), chunk),
+            "chunks of {chunk} bytes: not the chunked path"
+        );
+    }
+}

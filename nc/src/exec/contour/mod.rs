@@ -242,9 +242,16 @@ impl Nc {
     /// about it and its events): for a host whose tags of earlier blocks
     /// no longer name them, as the compiler's dry run between chunks.
     pub fn retag_waiting(&mut self, tag: u32) {
-        queue::retag(self, tag);
+        self.map_waiting_tags(&mut |_| tag);
+    }
+
+    /// Gives what waits for a next move the tag `f` makes of its own: for
+    /// a host that keeps the blocks it still names under new tags (the
+    /// compiler's dry run of a program in chunks).
+    pub fn map_waiting_tags(&mut self, f: &mut dyn FnMut(u32) -> u32) {
+        queue::retag(self, f);
         if let Some((_, _, waiting)) = &mut self.st.cycles.chain.pending {
-            *waiting = tag;
+            *waiting = f(*waiting);
         }
     }
 

@@ -380,15 +380,16 @@ pub(crate) fn finish_angle(
     advance(nc, second, sink)
 }
 
-/// Gives every element and event that waits the block tag `tag`: for a
-/// host whose tags of earlier blocks no longer name them.
-pub(crate) fn retag(nc: &mut Nc, tag: u32) {
+/// Gives every element and event that waits the block tag `f` makes of
+/// its own: for a host whose tags of earlier blocks no longer name them.
+pub(crate) fn retag(nc: &mut Nc, f: &mut dyn FnMut(u32) -> u32) {
     for item in &mut nc.st.contour.items {
-        match item {
-            Item::Event(_, origin) => *origin = tag,
-            Item::Move(m) => m.origin = tag,
-            Item::Angle(a) => a.origin = tag,
-        }
+        let origin = match item {
+            Item::Event(_, origin) => origin,
+            Item::Move(m) => &mut m.origin,
+            Item::Angle(a) => &mut a.origin,
+        };
+        *origin = f(*origin);
     }
 }
 
