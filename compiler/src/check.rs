@@ -416,7 +416,7 @@ impl DryRun<'_> {
             };
             if !lits.is_empty() {
                 // The tag of the block's events and of errors about it
-                // (`NcError::at`, `profile::error_span`): its line. What
+                // (`NcError::at`, `Lines::span`): its line. What
                 // waits from a program of another file has no line here:
                 // an error about it stands on this block.
                 if self.tagged_unit != prog.unit {

@@ -702,13 +702,6 @@ pub fn hand_over(
     (cw.code != OneShot::Finish).then_some(j + 1)
 }
 
-/// The span of the block an error is about: the tagged profile block, else
-/// the block that ran.
-pub fn error_span(unit: &Unit, at: Option<u32>, block: Span) -> Span {
-    at.and_then(|l| link::block(unit, l as usize))
-        .map_or(block, |b| b.span)
-}
-
 #[cfg(test)]
 mod tests {
     use crate::{compile, Options};

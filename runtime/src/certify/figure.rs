@@ -2,6 +2,7 @@
 //! how it reads in a message.
 
 use super::{CSS_TOL, LEAD_TOL, LIMIT_TOL, TRAVEL_MM};
+use crate::interpolate::SetPoint;
 use core::fmt;
 
 /// What a figure measures.
@@ -142,6 +143,28 @@ pub struct Figure {
 }
 
 impl Figure {
+    /// A figure of `kind` about `subject`, measured at the period of `p`
+    /// (its time and the block running).
+    pub(super) fn at(
+        kind: Kind,
+        subject: Subject,
+        p: &SetPoint,
+        value: f64,
+        limit: f64,
+        ratio: f64,
+    ) -> Figure {
+        Figure {
+            kind,
+            subject,
+            time_s: p.time_s,
+            file: p.file,
+            line: p.line,
+            value,
+            limit,
+            ratio,
+        }
+    }
+
     /// Whether the figure breaks its bound.
     pub fn violates(&self) -> bool {
         match self.kind {

@@ -13,15 +13,8 @@ impl Certifier {
         let subjects = [Subject::X, Subject::Z, Subject::C];
         for (i, ax) in self.axes.into_iter().enumerate() {
             let Some(ax) = ax else { continue };
-            let at = |kind, value: f64, limit: f64| Figure {
-                kind,
-                subject: subjects[i],
-                time_s: p.time_s,
-                file: p.file,
-                line: p.line,
-                value,
-                limit,
-                ratio: value.abs() / limit,
+            let at = |kind, value: f64, limit: f64| {
+                Figure::at(kind, subjects[i], p, value, limit, value.abs() / limit)
             };
             let vlim = if p.motion == Motion::Rapid {
                 ax.rapid
@@ -44,15 +37,8 @@ impl Certifier {
 
     /// The spindle's speed and acceleration.
     pub(super) fn spindle_limits(&mut self, p: &SetPoint) {
-        let at = |kind, value: f64, limit: f64| Figure {
-            kind,
-            subject: Subject::Spindle,
-            time_s: p.time_s,
-            file: p.file,
-            line: p.line,
-            value,
-            limit,
-            ratio: value.abs() / limit,
+        let at = |kind, value: f64, limit: f64| {
+            Figure::at(kind, Subject::Spindle, p, value, limit, value.abs() / limit)
         };
         let top = self.spindle.max_rpm;
         let accel = self.spindle.accel_rpm_s;

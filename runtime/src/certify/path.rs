@@ -54,16 +54,7 @@ impl Certifier {
             .filter_map(|m| off_shape(&m, here))
             .fold(on_front, f64::min);
         self.path_periods += 1;
-        self.note(Figure {
-            kind: Kind::Path,
-            subject: Subject::Path,
-            time_s: p.time_s,
-            file: p.file,
-            line: p.line,
-            value: d,
-            limit: PATH_MM,
-            ratio: d,
-        });
+        self.note(Figure::at(Kind::Path, Subject::Path, p, d, PATH_MM, d));
     }
 
     /// A thread period's set point within the box of the chain's legs
@@ -115,15 +106,6 @@ impl Certifier {
         let out = |v: f64, a: f64, b: f64| (a - v).max(v - b).max(0.0);
         let d = libm::hypot(out(here.r, lo.r, hi.r), out(here.z, lo.z, hi.z));
         self.path_periods += 1;
-        self.note(Figure {
-            kind: Kind::Path,
-            subject: Subject::Path,
-            time_s: p.time_s,
-            file: p.file,
-            line: p.line,
-            value: d,
-            limit: PATH_MM,
-            ratio: d,
-        });
+        self.note(Figure::at(Kind::Path, Subject::Path, p, d, PATH_MM, d));
     }
 }

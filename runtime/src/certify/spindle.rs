@@ -48,16 +48,14 @@ impl Certifier {
         }
         self.lead_periods += 1;
         let got = (long(b) - long(a)).abs() / turns;
-        self.note(Figure {
-            kind: Kind::Lead,
-            subject: Subject::Path,
-            time_s: p.time_s,
-            file: p.file,
-            line: p.line,
-            value: got,
-            limit: want,
-            ratio: (got - want).abs() / want,
-        });
+        self.note(Figure::at(
+            Kind::Lead,
+            Subject::Path,
+            p,
+            got,
+            want,
+            (got - want).abs() / want,
+        ));
     }
 
     /// G96 while cutting: the spindle at the surface speed's target.
@@ -85,15 +83,13 @@ impl Certifier {
             return; // still changing speed at full acceleration
         }
         self.css_periods += 1;
-        self.note(Figure {
-            kind: Kind::SurfaceSpeed,
-            subject: Subject::Spindle,
-            time_s: p.time_s,
-            file: p.file,
-            line: p.line,
-            value: rpm,
-            limit: target,
-            ratio: (rpm - target).abs() / target,
-        });
+        self.note(Figure::at(
+            Kind::SurfaceSpeed,
+            Subject::Spindle,
+            p,
+            rpm,
+            target,
+            (rpm - target).abs() / target,
+        ));
     }
 }

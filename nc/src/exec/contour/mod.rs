@@ -238,9 +238,9 @@ impl Nc {
     }
 
     /// Gives what waits for a next move (a corner, a thread block before
-    /// its run-out) the block tag `tag` (for errors
-    /// about it and its events): for a host whose tags of earlier blocks
-    /// no longer name them, as the compiler's dry run between chunks.
+    /// its run-out) the block tag `tag` (for errors about it and its
+    /// events): for a host whose tags of earlier blocks no longer name
+    /// them, as the compiler's dry run when it enters another file.
     pub fn retag_waiting(&mut self, tag: u32) {
         self.map_waiting_tags(&mut |_| tag);
     }
