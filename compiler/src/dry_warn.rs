@@ -46,9 +46,16 @@ pub struct Counts {
 
 impl Sink for Counts {
     fn emit(&mut self, e: Event) {
+        self.count(&e);
+    }
+}
+
+impl Counts {
+    /// Counts `e`, one event the block printed.
+    pub fn count(&mut self, e: &Event) {
         self.events += 1;
         self.motions += u32::from(e.is_motion());
-        if let Event::Feed { f, .. } = e {
+        if let Event::Feed { f, .. } = *e {
             self.last_f = Some(f);
         }
         if e.is_feed() && self.feeds == 0 {

@@ -24,7 +24,7 @@ use crate::thread_room::RoomCheck;
 use grammar::ast::{Block, Body, Line};
 use grammar::{Diagnostic, SourceFile, Span};
 use isa::{Instr, Module};
-use nc::{Event, Machine, Sink};
+use nc::{Machine, Placed};
 
 /// The warnings a prediction may give: W124 and those of the blocks it
 /// runs. (The compile-time run is made only when one of them is
@@ -160,8 +160,9 @@ struct Watch<'a> {
     files: &'a [SourceFile],
     warner: Warner,
     room: RoomCheck,
-    /// The events of the block being run (its place is known once it ran).
-    events: Vec<Event>,
+    /// The events of the block being run (its place is known once it
+    /// ran), with the tags of those an earlier block left waiting.
+    events: Placed,
     /// The index in its tree of the block found last: the next is most
     /// often a few lines on.
     near: usize,
@@ -174,7 +175,7 @@ impl<'a> Watch<'a> {
             files,
             warner: Warner::default(),
             room: RoomCheck::new(m),
-            events: Vec::new(),
+            events: Placed::default(),
             near: 0,
         }
     }
@@ -212,16 +213,33 @@ impl<'a> Watch<'a> {
         let Body::Words(ws) = &block.body else {
             return;
         };
-        self.room.unit = unit;
-        self.room.span = block.span;
         let mut counts = Counts::default();
-        for e in self.events.drain(..) {
-            self.room.event(&e);
-            counts.emit(e);
+        let events = core::mem::take(&mut self.events);
+        for (run, tag) in events.runs() {
+            // The thread-room check names the block an event belongs to,
+            // as the dry run's `Watchers::origin` does: a thread block's
+            // moves wait for the next block and print while it runs.
+            let own = tag.and_then(|pc| self.place_of(vm.loc_at(pc)));
+            (self.room.unit, self.room.span) = own.unwrap_or((unit, block.span));
+            for e in run {
+                self.room.event(e);
+                counts.count(e);
+            }
         }
+        self.events = events;
+        self.events.clear();
         let lits = crate::check::watched_words(ws);
         let at = (ws.as_slice(), block.span);
         (self.warner).after(unit, &vm.nc, at, &lits, &counts, before);
+    }
+
+    /// The unit and span of the block at `loc`, an earlier one: the next
+    /// block is still looked for near the last one run.
+    fn place_of(&mut self, loc: isa::SourceLoc) -> Option<(usize, Span)> {
+        let near = self.near;
+        let span = self.block_at(loc).map(|b| b.span);
+        self.near = near;
+        Some((loc.file as usize, span?))
     }
 
     /// The block of the syntax tree that starts at `loc`.

@@ -179,6 +179,27 @@ fn every_suite_program_made_dynamic_keeps_its_dry_run_warnings() {
 }
 
 #[test]
+fn a_thread_warning_names_the_thread_block_when_the_program_has_macros() {
+    // A thread block's moves wait for the next block and print while it
+    // runs; W126 and W118 still name the thread block, in the VM's run as
+    // in the dry run. At 3000 rpm (S30003, clamped) a lead of 2 asks Z for
+    // 6000 mm/min, above its 5000 (W126); K3 is short of the run-out Z
+    // needs to stop (W118). The G34 blocks are lines 5 and 9.
+    let src = "O0084\nG97 S30003 M3\nG00 X40 Z5\nX29\nG34 Z-30 F2 R0.1 J1 K3\n\
+               G00 X40\nZ5\nX29\nG34 Z-20 F4 R-0.2 J1 K3\nG00 X40\nZ5\nM30\n";
+    let at = |src: &str| -> Vec<(&'static str, usize)> {
+        let c = compile("p.nc", src.as_bytes(), &Options::default());
+        (c.diags.iter())
+            .filter(|(_, d)| ["W118", "W126"].contains(&d.code))
+            .map(|(f, d)| (d.code, c.files[*f].line_col(d.span.start).0))
+            .collect()
+    };
+    let expected = [("W126", 5), ("W118", 5), ("W126", 9), ("W118", 9)];
+    assert_eq!(at(src), expected);
+    assert_eq!(at(&made_dynamic(src)), expected);
+}
+
+#[test]
 fn an_arc_too_small_for_its_chord_in_a_loop_is_told() {
     // Each round draws an arc from r10 Z0 to r20 Z-10 (U20 is 10 mm of
     // radius): its chord is √(10² + 10²) = 14.14 mm. R12 and R8 span it
