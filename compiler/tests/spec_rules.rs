@@ -272,15 +272,6 @@ fn the_element_that_interferes_is_not_printed() {
 }
 
 #[test]
-fn radius_programming_is_refused_rather_than_read_as_diameters() {
-    // machine.md №001.2 = 0 is an option the kernel does not have yet.
-    assert!(Machine::from_toml("[axes.x]\ndiameter = false\n").is_err());
-    // Writing it by G10 L52 is E2099 (a written value: at compile time).
-    let src = "G10 L52\nN1 W00000000\nG11\nM30\n";
-    assert_eq!(errors(src), [("E2099", 2)]);
-}
-
-#[test]
 fn a_corner_arc_at_f0_faults_at_the_block_it_is_printed_with() {
     // comp.md §5: the outside corner's arc is a feed move at the modal F,
     // printed with element 2 as the first leg of its block. Before Z-20

@@ -327,11 +327,12 @@ impl Config {
                 max: a.max_mm * k,
             }
         };
-        let radial = m.axes.x.diameter;
         let d = Config::default();
         Config {
             period_s: m.machine.interpolation_period_ms / 1000.0,
-            x: axis(&m.axes.x, radial),
+            // (The machine file writes X's travel on the diameter, in
+            // radius programming too: machine.md.)
+            x: axis(&m.axes.x, true),
             z: axis(&m.axes.z, false),
             c: m.axes.c.enabled.then(|| rotary(&m.axes.c)),
             path_max_feed: per_s(m.feed.max_mm_min),

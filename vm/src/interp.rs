@@ -848,7 +848,8 @@ impl Vm {
         if let Some(p) = out.skip {
             // #995–#999 are persistent: set as a store would, so that
             // the storage gets them.
-            let values = [p.x(), p.z, VACANT, VACANT, VACANT];
+            let x = self.nc.machine.programmed_x(p.r);
+            let values = [x, p.z, VACANT, VACANT, VACANT];
             for (i, v) in (495..).zip(values) {
                 self.vars.set(&Slot::Persistent(i), v);
             }

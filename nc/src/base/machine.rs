@@ -363,6 +363,53 @@ impl Machine {
         Machine::default()
     }
 
+    /// The radial distance (mm) of an X value as the program writes it:
+    /// half of it where X is programmed on the diameter, the reference,
+    /// the value itself in radius programming (`axes.x.diameter = false`,
+    /// №001.2 = 0).
+    #[inline]
+    pub fn radial(&self, programmed: f64) -> f64 {
+        if self.axes.x.diameter {
+            programmed / 2.0
+        } else {
+            programmed
+        }
+    }
+
+    /// The X value the program reads for the radial coordinate `r`
+    /// ([`radial`](Machine::radial) undone).
+    #[inline]
+    pub fn programmed_x(&self, r: f64) -> f64 {
+        if self.axes.x.diameter {
+            r * 2.0
+        } else {
+            r
+        }
+    }
+
+    /// The diameter of an X value as the program writes it: what the
+    /// kernel keeps where it keeps X as the canon prints it and the
+    /// machine file writes it (tool offsets, G22's area).
+    #[inline]
+    pub fn diameter(&self, programmed: f64) -> f64 {
+        if self.axes.x.diameter {
+            programmed
+        } else {
+            programmed * 2.0
+        }
+    }
+
+    /// The X value the program reads for the diameter `d`
+    /// ([`diameter`](Machine::diameter) undone).
+    #[inline]
+    pub fn from_diameter(&self, d: f64) -> f64 {
+        if self.axes.x.diameter {
+            d
+        } else {
+            d / 2.0
+        }
+    }
+
     /// Reads a machine file: what it leaves out keeps the reference value.
     /// Without `std`, a host builds the `Machine` itself (or deserializes
     /// it with any serde format) and calls [`Machine::validate`].
@@ -523,10 +570,10 @@ mod tests {
                 .inputs[0],
             3
         );
-        // X alone is programmed on the diameter, and radius programming
-        // is refused rather than read as diameters.
+        // Z has no diameter key; X may be programmed on the radius.
         assert!(Machine::from_toml("[axes.z]\ndiameter = true\n").is_err());
-        assert!(Machine::from_toml("[axes.x]\ndiameter = false\n").is_err());
+        let radius = Machine::from_toml("[axes.x]\ndiameter = false\n").unwrap();
+        assert!(!radius.axes.x.diameter);
     }
 
     #[test]

@@ -115,15 +115,6 @@ pub fn check(m: &Machine) -> Check {
         MAX_LOOKAHEAD,
     )?;
     linear_axis("x", &m.axes.x)?;
-    if !m.axes.x.diameter {
-        // The kernel reads X words as diameters throughout; a radius
-        // machine would get every X halved, so it is refused instead.
-        return bad(
-            "axes.x.diameter",
-            "radius programming (№001.2 = 0) is not supported yet: X is programmed on the diameter"
-                .into(),
-        );
-    }
     linear_axis("z", &m.axes.z)?;
     let c = &m.axes.c;
     count("axes.c.attribute", c.attribute.into(), 0, 255)?;

@@ -50,7 +50,7 @@ pub fn run(nc: &mut Nc, x_axis: bool, p: &Parsed, sink: &mut dyn Sink) -> Result
     let m = &nc.machine.measure;
     // Along the measured axis, in the kernel's radial coordinate for X.
     let (target, gamma, eps) = if x_axis {
-        (at / 2.0, m.gamma_x_mm, m.epsilon_x_mm)
+        (nc.machine.radial(at), m.gamma_x_mm, m.epsilon_x_mm)
     } else {
         (at, m.gamma_z_mm, m.epsilon_z_mm)
     };

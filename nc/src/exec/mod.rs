@@ -683,6 +683,12 @@ impl Nc {
         self.reader().len_of(p, letter)
     }
 
+    /// An X-axis word as a radial distance in mm (plan::reader).
+    #[inline]
+    pub(crate) fn radial_of(&self, p: &Parsed, letter: u8) -> Option<f64> {
+        self.reader().radial_of(p, letter)
+    }
+
     /// The end point of a move: X/Z absolute, U/W incremental, axes left
     /// out keep their coordinate.
     #[inline(always)]
@@ -851,8 +857,8 @@ impl Nc {
         }
         let origin = self.st.origin();
         let mut m = self.st.machine_pos();
-        if let Some(x) = self.len_of(p, b'X') {
-            m.r = x / 2.0;
+        if let Some(r) = self.radial_of(p, b'X') {
+            m.r = r;
         }
         if let Some(z) = self.len_of(p, b'Z') {
             m.z = z;
@@ -953,8 +959,8 @@ impl Nc {
     fn set_local(&mut self, p: &Parsed, sink: &mut dyn Sink) {
         let before = self.st.origin();
         let machine = self.st.machine_pos();
-        if let Some(x) = self.len_of(p, b'X').or(self.len_of(p, b'U')) {
-            self.st.local.r = x / 2.0;
+        if let Some(r) = self.radial_of(p, b'X').or(self.radial_of(p, b'U')) {
+            self.st.local.r = r;
         }
         if let Some(z) = self.len_of(p, b'Z').or(self.len_of(p, b'W')) {
             self.st.local.z = z;

@@ -105,12 +105,6 @@ pub fn write(nc: &mut Nc, n: u32, axis: Option<f64>, v: f64) -> Result<(), NcErr
     }
     if is_bits(n) {
         let byte = number_to_bits(n, v)?;
-        if n == 1 && byte & 1 << 2 == 0 {
-            return fail(
-                Alarm::NotSupportedYet,
-                "№001.2 = 0 (radius programming) is not supported yet: X is programmed on the diameter",
-            );
-        }
         write_bits(nc, n, byte);
         return Ok(());
     }
@@ -292,7 +286,9 @@ fn write_bits(nc: &mut Nc, n: u32, byte: u8) {
             } else {
                 gcode::Units::Metric
             };
-            // (Bit 2, diameter programming, stays on: `write`.)
+            // Bit 2 off: radius programming, for the X words read from
+            // now on (the kernel keeps X as a radius either way).
+            m.axes.x.diameter = on(2);
         }
         5 => m.coords.ppd = on(1),
         7 => m.motion.always_exact_stop = on(5),
@@ -409,8 +405,11 @@ mod tests {
         // №001.0 = 1 selects inch, like G20.
         write(&mut nc, 1, None, 101.0).unwrap();
         assert!(nc.st.inch());
-        // №001.2 = 0 would be radius programming, which is refused.
-        assert_eq!(write(&mut nc, 1, None, 1.0).unwrap_err().code, 2099);
+        // №001.2 = 0 is radius programming; 1 is the diameter again.
+        write(&mut nc, 1, None, 1.0).unwrap();
+        assert!(!nc.machine.axes.x.diameter);
+        assert_eq!(read(&nc, 1, None), Ok(1.0));
+        write(&mut nc, 1, None, 100.0).unwrap();
         assert!(nc.machine.axes.x.diameter);
     }
 }

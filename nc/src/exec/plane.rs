@@ -261,7 +261,7 @@ pub(crate) fn polar_on(nc: &mut Nc, p: &Parsed, sink: &mut dyn Sink) -> Result<(
             Alarm::PolarInComp,
             format!(
                 "{what} starts with the tool at a positive X (C at 0 degrees is the plane's +X), X is {:.4}: move to a positive X first",
-                nc.st.pos.x()
+                nc.machine.programmed_x(nc.st.pos.r)
             ),
         );
     }
@@ -702,10 +702,10 @@ fn target(nc: &Nc, st: &PlaneState, p: &Parsed) -> Pt {
             t = Pt::new(rho * libm::sin(th), rho * libm::cos(th));
         }
         Kind::Polar => {
-            if let Some(x) = nc.len_of(p, b'X') {
-                t.z = x / 2.0;
-            } else if let Some(u) = nc.len_of(p, b'U') {
-                t.z += u / 2.0;
+            if let Some(r) = nc.radial_of(p, b'X') {
+                t.z = r;
+            } else if let Some(u) = nc.radial_of(p, b'U') {
+                t.z += u;
             }
             if let Some(c) = nc.len_of(p, b'C') {
                 t.r = c;

@@ -110,9 +110,14 @@ pub fn select(nc: &mut Nc, code: Stroke, p: &Parsed) {
         return;
     }
     let word = |letter: u8, default: f64| nc.len_of(p, letter).unwrap_or(default);
+    // (X and I are X values, kept as diameters as the machine file's.)
+    let x_word = |letter: u8, default: f64| {
+        nc.len_of(p, letter)
+            .map_or(default, |v| nc.machine.diameter(v))
+    };
     let area = Area {
-        plus: (word(b'X', m.plus.x), word(b'Z', m.plus.z)),
-        minus: (word(b'I', m.minus.x), word(b'K', m.minus.z)),
+        plus: (x_word(b'X', m.plus.x), word(b'Z', m.plus.z)),
+        minus: (x_word(b'I', m.minus.x), word(b'K', m.minus.z)),
         forbid_outside: m.forbid_outside,
     };
     nc.st.stroke2 = Some(area);

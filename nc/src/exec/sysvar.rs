@@ -38,17 +38,17 @@ type Value = Option<f64>;
 impl Nc {
     /// Reads system variable `n`.
     pub fn read_var(&self, n: u32) -> Result<Value, NcError> {
-        let st = &self.st;
+        let (st, m) = (&self.st, &self.machine);
         let v = match n {
             1000..=1015 => Some(((self.machine.host.inputs >> (n - 1000)) & 1) as f64),
             1032 => Some((self.machine.host.inputs & 0xffff) as f64),
             1100..=1115 => Some(((st.outputs >> (n - 1100)) & 1) as f64),
             1132 => Some(st.outputs as f64),
-            2001..=2032 => Some(st.wear[(n - 2001) as usize][0]),
+            2001..=2032 => Some(m.from_diameter(st.wear[(n - 2001) as usize][0])),
             2101..=2132 => Some(st.wear[(n - 2101) as usize][1]),
             2201..=2232 => Some(st.wear[(n - 2201) as usize][2]),
             2301..=2332 => Some(st.wear[(n - 2301) as usize][3]),
-            2701..=2732 => Some(st.geom[(n - 2701) as usize][0]),
+            2701..=2732 => Some(m.from_diameter(st.geom[(n - 2701) as usize][0])),
             2801..=2832 => Some(st.geom[(n - 2801) as usize][1]),
             2901..=2932 => Some(st.geom[(n - 2901) as usize][2]),
             3001 => Some(st.clock_ms),
@@ -84,21 +84,22 @@ impl Nc {
             // C: block end and current angle alike (the C axis has no
             // offsets, so machine and local C are the same).
             5003 | 5023 | 5043 if self.machine.axes.c.enabled => Some(st.c),
-            5001 => Some(st.pos.x()),
+            5001 => Some(m.programmed_x(st.pos.r)),
             5002 => Some(st.pos.z),
-            5021 => Some(st.machine_pos().x()),
+            5021 => Some(m.programmed_x(st.machine_pos().r)),
             5022 => Some(st.machine_pos().z),
-            5041 => Some(st.pos.x()),
+            5041 => Some(m.programmed_x(st.pos.r)),
             5042 => Some(st.pos.z),
-            5061 => st.skip.map(|p| p.x()),
+            5061 => st.skip.map(|p| m.programmed_x(p.r)),
             5062 => st.skip.map(|p| p.z),
-            5081 | 5082 => Some(self.active_offset(n == 5081)),
-            5201 => Some(st.exofs.x()),
+            5081 => Some(m.from_diameter(self.active_offset(true))),
+            5082 => Some(self.active_offset(false)),
+            5201 => Some(m.programmed_x(st.exofs.r)),
             5202 => Some(st.exofs.z),
             5221..=5322 => {
                 let (sys, axis) = ((n - 5221) / 20, (n - 5221) % 20);
                 match axis {
-                    0 => Some(st.work[sys as usize].x()),
+                    0 => Some(m.programmed_x(st.work[sys as usize].r)),
                     1 => Some(st.work[sys as usize].z),
                     _ => return Err(not_readable(n)),
                 }
@@ -121,7 +122,7 @@ impl Nc {
     pub fn write_var(&mut self, n: u32, v: Value, sink: &mut dyn Sink) -> Result<(), NcError> {
         let x = v.unwrap_or(0.0);
         let before = self.st.origin();
-        let st = &mut self.st;
+        let (st, m) = (&mut self.st, &self.machine);
         match n {
             1100..=1115 => {
                 let bit = 1u32 << (n - 1100);
@@ -132,11 +133,11 @@ impl Nc {
                 };
             }
             1132 => st.outputs = (x.max(0.0) as u32) & 0xffff,
-            2001..=2032 => st.wear[(n - 2001) as usize][0] = x,
+            2001..=2032 => st.wear[(n - 2001) as usize][0] = m.diameter(x),
             2101..=2132 => st.wear[(n - 2101) as usize][1] = x,
             2201..=2232 => st.wear[(n - 2201) as usize][2] = x,
             2301..=2332 => st.wear[(n - 2301) as usize][3] = x,
-            2701..=2732 => st.geom[(n - 2701) as usize][0] = x,
+            2701..=2732 => st.geom[(n - 2701) as usize][0] = m.diameter(x),
             2801..=2832 => st.geom[(n - 2801) as usize][1] = x,
             2901..=2932 => st.geom[(n - 2901) as usize][2] = x,
             3001 => st.clock_ms = x,
@@ -144,12 +145,12 @@ impl Nc {
             3003 | 3004 => st.switches.write(n, x)?,
             3901 => st.parts = x,
             3902 => st.parts_required = x,
-            5201 => st.exofs.r = x / 2.0,
+            5201 => st.exofs.r = m.radial(x),
             5202 => st.exofs.z = x,
             5221..=5322 => {
                 let (sys, axis) = (((n - 5221) / 20) as usize, (n - 5221) % 20);
                 match axis {
-                    0 => st.work[sys].r = x / 2.0,
+                    0 => st.work[sys].r = m.radial(x),
                     1 => st.work[sys].z = x,
                     _ => return Err(read_only(n)),
                 }

@@ -68,14 +68,22 @@ impl Reader<'_> {
         p.word(letter).map(|w| self.length(w))
     }
 
+    /// An X-axis word (X, U, a diameter allowance) as a radial distance
+    /// in mm: on the diameter or in radius programming as the machine has
+    /// it ([`Machine::radial`]).
+    #[inline]
+    pub fn radial_of(&self, p: &Parsed, letter: u8) -> Option<f64> {
+        self.len_of(p, letter).map(|v| self.machine.radial(v))
+    }
+
     /// The end point of a move that starts at `from`: X/Z absolute, U/W
     /// incremental, axes left out keep their coordinate.
     pub fn target_from(&self, p: &Parsed, from: Pt) -> Pt {
         let mut t = from;
-        if let Some(x) = self.len_of(p, b'X') {
-            t.r = x / 2.0;
-        } else if let Some(u) = self.len_of(p, b'U') {
-            t.r += u / 2.0;
+        if let Some(r) = self.radial_of(p, b'X') {
+            t.r = r;
+        } else if let Some(u) = self.radial_of(p, b'U') {
+            t.r += u;
         }
         if let Some(z) = self.len_of(p, b'Z') {
             t.z = z;

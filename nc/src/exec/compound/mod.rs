@@ -138,10 +138,11 @@ fn count(p: &Parsed, letter: u8) -> Result<Option<f64>, NcError> {
     Ok(Some(round_half_away(w.value)))
 }
 
-/// The finishing allowance of a cycle block: U is a diameter.
+/// The finishing allowance of a cycle block: U is an X value (a
+/// diameter, unless in radius programming).
 fn allowance(nc: &Nc, p: &Parsed) -> Pt {
     Pt::new(
-        nc.len_of(p, b'U').unwrap_or(0.0) / 2.0,
+        nc.radial_of(p, b'U').unwrap_or(0.0),
         nc.len_of(p, b'W').unwrap_or(0.0),
     )
 }

@@ -145,13 +145,13 @@ fn second_block(
     corner: Option<Corner>,
     sink: &mut dyn Sink,
 ) -> Result<(), NcError> {
-    let (Some(q2), Some(x), Some(z)) = (q, nc.len_of(p, b'X'), nc.len_of(p, b'Z')) else {
+    let (Some(q2), Some(r), Some(z)) = (q, nc.radial_of(p, b'X'), nc.len_of(p, b'Z')) else {
         return fail(
             Alarm::BadAngle,
             "the second block of angle programming needs absolute X, Z and an angle Q (or ,A)",
         );
     };
-    let end = Pt::xz(x, z);
+    let end = Pt::new(r, z);
     let template = Move::new(nc, Element::Line { from: end, to: end }, rapid, corner);
     nc.st.pos = end;
     queue::finish_angle(nc, end, q2, template, sink)

@@ -189,34 +189,27 @@ fn take_data(nc: &mut Nc, code: Drill, p: &Parsed) -> Result<(), NcError> {
 fn holes_of_block(nc: &mut Nc, code: Drill, p: &Parsed) -> Result<Holes, NcError> {
     let along_z = code.along_z();
     let here = nc.st.pos;
-    let r_of = |v: f64| v / 2.0;
     let (abs_pos, inc_pos, abs_s, inc_s) = if along_z {
         (b'X', b'U', b'Z', b'W')
     } else {
         (b'Z', b'W', b'X', b'U')
     };
-    // X and U are diameters; the drilling coordinate of G87 is r.
-    let scale = |letter: u8, v: f64| {
-        if matches!(letter, b'X' | b'U') {
-            r_of(v)
-        } else {
-            v
-        }
+    // X and U are X values; the drilling coordinate of G87 is r.
+    let word = |letter: u8| match letter {
+        b'X' | b'U' => nc.radial_of(p, letter),
+        _ => nc.len_of(p, letter),
     };
     let (at_pos, at_s) = if along_z {
         (here.r, here.z)
     } else {
         (here.z, here.r)
     };
-    let step = nc.len_of(p, inc_pos).map_or(0.0, |v| scale(inc_pos, v));
-    let pos = match nc.len_of(p, abs_pos) {
-        Some(v) => scale(abs_pos, v),
-        None => at_pos + step,
-    };
-    let s1 = if let Some(v) = nc.len_of(p, abs_s) {
-        scale(abs_s, v)
-    } else if let Some(v) = nc.len_of(p, inc_s) {
-        at_s + scale(inc_s, v)
+    let step = word(inc_pos).unwrap_or(0.0);
+    let pos = word(abs_pos).unwrap_or(at_pos + step);
+    let s1 = if let Some(v) = word(abs_s) {
+        v
+    } else if let Some(v) = word(inc_s) {
+        at_s + v
     } else {
         match nc.st.cycles.drill.data.bottom {
             Some(b) => b,

@@ -46,10 +46,10 @@ pub(crate) fn next_cycle(nc: &mut Nc, code: Motion, p: &Parsed) -> Result<Cycle,
         Some(run) if run.code == code => run,
         _ => Run::new(code),
     };
-    let r = if let Some(x) = nc.len_of(p, b'X') {
-        x / 2.0
-    } else if let Some(u) = nc.len_of(p, b'U') {
-        a.r + u / 2.0
+    let r = if let Some(r) = nc.radial_of(p, b'X') {
+        r
+    } else if let Some(u) = nc.radial_of(p, b'U') {
+        a.r + u
     } else {
         run.r.unwrap_or(a.r)
     };
