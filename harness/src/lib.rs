@@ -52,8 +52,10 @@ pub fn front_end(data: &[u8]) {
 /// makes it dynamic (`predict`); a plain
 /// program compiled a few lines at a time
 /// (`compiler::stream`) gives the same module and diagnostics as compiled
-/// whole.
+/// whole; compiled for radius programming, it compiles or is refused as
+/// cleanly, and runs within its budget.
 pub fn compiler(data: &[u8]) {
+    on_the_radius(data);
     let c = compile("fuzz.nc", data, &Options::default());
     let text = c.render();
     let small_chunks = Options {
@@ -106,6 +108,20 @@ pub fn compiler(data: &[u8]) {
                 }
             }
         }
+    }
+}
+
+/// The program compiled and run for radius programming (machine.md
+/// `axes.x.diameter = false`), where the kernel reads X words otherwise.
+fn on_the_radius(data: &[u8]) {
+    let mut machine = Machine::reference();
+    machine.axes.x.diameter = false;
+    let opts = Options {
+        machine: machine.clone(),
+        ..Options::default()
+    };
+    if let Some(module) = compile("fuzz.nc", data, &opts).module {
+        run_bounded_on(module, machine, true, jit::Mode::Off);
     }
 }
 
@@ -236,8 +252,13 @@ struct Run {
 /// compiled by the JIT or not (`tier`); it must end
 /// (done, alarm or budget) within `MAX_STEPS`.
 fn run_bounded(module: isa::Module, plain: bool, tier: jit::Mode) -> Run {
+    run_bounded_on(module, Machine::reference(), plain, tier)
+}
+
+/// [`run_bounded`] on `machine`.
+fn run_bounded_on(module: isa::Module, machine: Machine, plain: bool, tier: jit::Mode) -> Run {
     use std::hash::{Hash, Hasher};
-    let mut vm = Vm::new(module, Machine::reference());
+    let mut vm = Vm::new(module, machine);
     vm.max_blocks = MAX_BLOCKS;
     vm.nc.set_plain_path(plain);
     if let Some(t) = jit::Jit::new(tier) {

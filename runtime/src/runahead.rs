@@ -421,8 +421,10 @@ impl RunAhead {
             nc::point::Pt::new(stop_work.r, stop_work.z),
             nc::point::Pt::new(hit_work.r, hit_work.z),
         );
+        // (#995 as the program reads X: radius programming reads radii.)
+        let x = self.vm.nc.machine.programmed_x(hit_work.r);
         let vars = self.vm.persistent_mut();
-        vars[495] = hit_work.x();
+        vars[495] = x;
         vars[496] = hit_work.z;
     }
 

@@ -300,6 +300,41 @@ fn the_skip_signal_ends_a_g31_move() {
     check_limits(&r, false);
 }
 
+/// G31 along X in radius programming: #995 reads the skip point as a
+/// radius, as the program writes X (docs/language.md).
+#[test]
+fn the_skip_point_is_a_radius_in_radius_programming() {
+    let src = "O0015\nG98 G00 X30 Z0\nG31 X0 F600\n#100 = #995\nG01 X[#100 + 2]\nM30\n";
+    let mut m = Machine::reference();
+    m.axes.x.diameter = false;
+    // (The signal comes on the way in from X60, the G00's end.)
+    let (mut out, mut hit_x) = (false, None);
+    let r = run_with(
+        src,
+        m,
+        runtime::AutoAck,
+        |_| {},
+        |ctl, sp| {
+            out |= sp.x >= 60.0;
+            if out && sp.x <= 40.0 && hit_x.is_none() {
+                hit_x = Some(sp.x);
+                ctl.set_skip_input(true);
+            }
+        },
+        60.0,
+    );
+    assert_eq!(r.state, RunState::Ended);
+    // The trace's X is a diameter: the hit at diameter d is the radius
+    // d/2, and X[d/2 + 2] ends 4 mm of diameter further out.
+    let hit = hit_x.unwrap();
+    let last = r.pts.last().unwrap();
+    assert!(
+        (last.x - (hit + 4.0)).abs() < 1e-9,
+        "ended at {} (skip at {hit})",
+        last.x
+    );
+}
+
 #[test]
 fn single_block_stops_at_every_block() {
     let src = "O0013\nG98 G01 Z-1 F600\nZ-2\nZ-3\nM30\n";
