@@ -136,3 +136,48 @@ fn a_move_past_the_travel_ends_the_canon_before_it() {
         assert!(text(&out.stderr).contains("travel.nc:3:1: alarm[E7002]"));
     }
 }
+
+/// `PART` on a lathe programmed on the radius: every X value halved (the
+/// G71 allowance U0.4 too; U1.5 is a depth of cut, a radius already).
+const PART_ON_RADIUS: &str = "O0100 (SPIGOT)\nG54 G99 T0101\nG50 S3000\nG96 S180 M03\nG00 X21 Z2\nG71 U1.5 R0.5\nG71 P10 Q20 U0.2 W0.1 F0.25\nN10 G00 X10\nG01 Z0 F0.1\nX12 Z-2\nZ-30\nX20 Z-40\nN20 X21\nG00 X50 Z50 T0202\nG70 P10 Q20\nG00 X50 Z50\nM30\n";
+
+#[test]
+fn a_lathe_programmed_on_the_radius_cuts_the_same_part() {
+    let d = std::env::temp_dir().join(format!("gbc-radius-machine-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("part.nc"), PART).unwrap();
+    std::fs::write(d.join("radius.nc"), PART_ON_RADIUS).unwrap();
+    std::fs::write(d.join("radius.toml"), "[axes.x]\ndiameter = false\n").unwrap();
+    let canon = |args: &[&str]| {
+        let out = run(env!("CARGO_BIN_EXE_gbvm"), args, &d);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        text(&out.stdout)
+    };
+    for (src, machine) in [("part.nc", None), ("radius.nc", Some("radius.toml"))] {
+        let mut args = vec![src];
+        args.extend(machine.iter().flat_map(|m| ["--machine", m]));
+        let out = run(env!("CARGO_BIN_EXE_gbcc"), &args, &d);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    }
+    // The canon prints diameters either way: the same moves.
+    let diameter = canon(&["run", "part.gbc", "--emit", "canon"]);
+    let radius = canon(&[
+        "run",
+        "radius.gbc",
+        "--emit",
+        "canon",
+        "--machine",
+        "radius.toml",
+    ]);
+    assert!(diameter.contains("LINE X=24 Z=-30"), "{diameter}");
+    assert_eq!(radius, diameter);
+    // Compiled for the radius, the module runs on no diameter machine.
+    let out = run(env!("CARGO_BIN_EXE_gbvm"), &["run", "radius.gbc"], &d);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("x_diameter"),
+        "{}",
+        text(&out.stderr)
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
