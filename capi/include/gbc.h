@@ -50,6 +50,16 @@
 #include <stdint.h>
 
 /**
+ * `axis` of a manual move: the cross slide.
+ */
+#define GBC_AXIS_X 0
+
+/**
+ * `axis` of a manual move: the carriage.
+ */
+#define GBC_AXIS_Z 1
+
+/**
  * The version of the interface this header describes; `gbc_abi_version`
  * gives the library's. It changes with every change a host built
  * against an older header would get wrong (a function's parameters, a
@@ -58,7 +68,7 @@
  * otherwise. On Linux it is also the N of the shared library's SONAME,
  * `libgbc.so.N` (build.rs reads it here: keep it a literal).
  */
-#define GBC_ABI_VERSION 3
+#define GBC_ABI_VERSION 4
 
 /**
  * Handles alive at once in a process, machines and controllers
@@ -158,6 +168,16 @@ typedef enum GbcStatus {
    * All [`GBC_HANDLE_CAPACITY`] handle slots are in use.
    */
   GBC_STATUS_LIMIT = 13,
+  /**
+   * A manual move while a program runs, stands stopped, ended or in an
+   * alarm: `gbc_reset` first.
+   */
+  GBC_STATUS_NOT_IDLE = 14,
+  /**
+   * The motion queue is full: a manual step given faster than the axes
+   * follow.
+   */
+  GBC_STATUS_QUEUE_FULL = 15,
 } GbcStatus;
 
 /**
@@ -258,6 +278,10 @@ typedef enum GbcRunState {
    * A run-time alarm; `gbc_alarm` tells which, `gbc_reset` clears it.
    */
   GBC_RUN_STATE_ALARM = 6,
+  /**
+   * A manual move runs (`gbc_jog`, `gbc_jog_step`, `gbc_home`).
+   */
+  GBC_RUN_STATE_MANUAL = 7,
 } GbcRunState;
 
 /**
@@ -764,6 +788,39 @@ enum GbcStatus gbc_spindle_feedback(GbcController controller, double position_tu
  * speed and angle).
  */
 enum GbcStatus gbc_spindle_simulated(GbcController controller);
+
+/**
+ * A continuous jog of `axis` ([`GBC_AXIS_X`], [`GBC_AXIS_Z`]) toward +
+ * (`plus`) or −, at `feed_mm_min` (0: the axis's rapid rate; X's feed is
+ * its radial speed), until `gbc_manual_stop` or the axis's soft limit.
+ * Taken only while no program runs ([`GbcStatus::NotIdle`] otherwise:
+ * `gbc_reset` first); when the move has stopped, the program starts
+ * again from its beginning where the axes stand.
+ */
+enum GbcStatus gbc_jog(GbcController controller, uint8_t axis, bool plus, double feed_mm_min);
+
+/**
+ * An incremental jog of `axis` by `distance_mm` (signed; X on the
+ * diameter), at `feed_mm_min` (0: rapid); a handwheel's pulses times
+ * its increment. Steps given while one runs follow it; a step beyond a
+ * soft limit ends at the limit. Otherwise as `gbc_jog`.
+ */
+enum GbcStatus gbc_jog_step(GbcController controller,
+                            uint8_t axis,
+                            double distance_mm,
+                            double feed_mm_min);
+
+/**
+ * A reference return of `axis`: to machine zero at the machine's
+ * reference-return feed (№113). Otherwise as `gbc_jog`.
+ */
+enum GbcStatus gbc_home(GbcController controller, uint8_t axis);
+
+/**
+ * Stops a manual move: the axes decelerate and stand (nothing without
+ * one).
+ */
+enum GbcStatus gbc_manual_stop(GbcController controller);
 
 #ifdef __cplusplus
 }  // extern "C"

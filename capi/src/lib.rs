@@ -30,6 +30,7 @@
 
 mod handle;
 mod host;
+mod manual;
 mod types;
 
 use core::cell::RefCell;
@@ -42,6 +43,7 @@ use runtime::{Config, Controller, RapidOverride, RunState};
 
 use handle::{Kind, Object};
 use host::{HostPlc, HostStorage};
+pub use manual::*;
 pub use types::*;
 
 /// A machine handle's object.

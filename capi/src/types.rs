@@ -14,7 +14,7 @@ use runtime::{Motion, PlcFunction, RunState, SetPoint};
 /// that `gbc_abi_version() == GBC_ABI_VERSION` and refuses to run
 /// otherwise. On Linux it is also the N of the shared library's SONAME,
 /// `libgbc.so.N` (build.rs reads it here: keep it a literal).
-pub const GBC_ABI_VERSION: u32 = 3;
+pub const GBC_ABI_VERSION: u32 = 4;
 
 /// Handles alive at once in a process, machines and controllers
 /// together; making one more is [`GbcStatus::Limit`] until one is freed.
@@ -57,6 +57,12 @@ pub enum GbcStatus {
     Panic = 12,
     /// All [`GBC_HANDLE_CAPACITY`] handle slots are in use.
     Limit = 13,
+    /// A manual move while a program runs, stands stopped, ended or in an
+    /// alarm: `gbc_reset` first.
+    NotIdle = 14,
+    /// The motion queue is full: a manual step given faster than the axes
+    /// follow.
+    QueueFull = 15,
 }
 
 impl GbcStatus {
@@ -85,6 +91,8 @@ impl GbcStatus {
                 "all GBC_HANDLE_CAPACITY handle slots are in use \
                  (machines and controllers together): free one first"
             }
+            GbcStatus::NotIdle => "manual moves are made while no program runs",
+            GbcStatus::QueueFull => "the motion queue is full",
         }
     }
 }
@@ -128,6 +136,8 @@ pub enum GbcRunState {
     Ended = 5,
     /// A run-time alarm; `gbc_alarm` tells which, `gbc_reset` clears it.
     Alarm = 6,
+    /// A manual move runs (`gbc_jog`, `gbc_jog_step`, `gbc_home`).
+    Manual = 7,
 }
 
 /// Why a [`GbcRunState::Stopped`] controller stopped.
@@ -284,6 +294,7 @@ impl GbcStateInfo {
             RunState::Held => GbcRunState::Held,
             RunState::Starved => GbcRunState::Starved,
             RunState::Ended => GbcRunState::Ended,
+            RunState::Manual => GbcRunState::Manual,
             RunState::Alarm(code) => {
                 info.alarm_code = code;
                 GbcRunState::Alarm

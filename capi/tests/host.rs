@@ -503,3 +503,60 @@ fn cut_names_and_alarm_texts_give_their_full_length() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
 }
+
+/// Manual moves through the C ABI: a step of X+20 (diameter) at rapid, a
+/// reference return of Z after a jog stopped, the state `Manual` while
+/// they run; then the program's G01 W-1 starts from where Z stands.
+/// Refused while the program runs, and for an axis or feed out of range.
+#[test]
+fn manual_moves_go_through_the_c_abi() {
+    let prog = module("O1\nG98 G01 W-1 F600\nM30\n");
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
+    let mut st = GbcStateInfo {
+        state: GbcRunState::Idle,
+        stop: GbcStopKind::None,
+        message: 0,
+        alarm_code: 0,
+        blocks: 0,
+    };
+    let mut tick = |n: usize| {
+        let mut sp = blank();
+        for _ in 0..n {
+            assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
+            assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
+        }
+        assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
+        (sp, st.state)
+    };
+    assert_eq!(gbc_jog_step(c, GBC_AXIS_X, 20.0, 0.0), GbcStatus::Ok);
+    assert_eq!(tick(1).1, GbcRunState::Manual);
+    let (sp, state) = tick(5_000);
+    assert_eq!(
+        (state, sp.axis_x, sp.axis_z),
+        (GbcRunState::Idle, 20.0, 0.0)
+    );
+    // A jog of Z toward − at 600 mm/min, stopped after 1 s: about 10 mm.
+    assert_eq!(gbc_jog(c, GBC_AXIS_Z, false, 600.0), GbcStatus::Ok);
+    tick(1_000);
+    assert_eq!(gbc_manual_stop(c), GbcStatus::Ok);
+    let (sp, state) = tick(1_000);
+    assert_eq!(state, GbcRunState::Idle);
+    assert!((-10.1..-9.8).contains(&sp.axis_z), "Z at {}", sp.axis_z);
+    assert_eq!(gbc_home(c, GBC_AXIS_Z), GbcStatus::Ok);
+    let (sp, _) = tick(5_000);
+    assert_eq!((sp.axis_x, sp.axis_z), (20.0, 0.0));
+    assert_eq!(gbc_jog(c, 2, true, 0.0), GbcStatus::InvalidArgument);
+    assert_eq!(
+        gbc_jog(c, GBC_AXIS_X, true, -1.0),
+        GbcStatus::InvalidArgument
+    );
+    let pts = run(c, |_| {});
+    assert_eq!(gbc_jog_step(c, GBC_AXIS_X, 1.0, 0.0), GbcStatus::NotIdle);
+    let end = pts.last().unwrap();
+    assert_eq!((end.axis_x, end.axis_z), (20.0, -1.0));
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

@@ -142,6 +142,21 @@ pub struct Config {
     /// Positions are commanded in these steps (machine.resolution_mm):
     /// each set point's [`crate::Counts`].
     pub resolution_mm: f64,
+    /// The feed of a manual reference return, mm/s (№113,
+    /// `reference_points.return_feed_mm_min`).
+    pub home_feed: f64,
+}
+
+impl Axis {
+    /// The upper soft limit, where soft limits are on.
+    pub fn soft_max(&self) -> Option<f64> {
+        self.soft_limits.then_some(self.max)
+    }
+
+    /// The lower soft limit, where soft limits are on.
+    pub fn soft_min(&self) -> Option<f64> {
+        self.soft_limits.then_some(self.min)
+    }
 }
 
 impl Default for Config {
@@ -193,6 +208,7 @@ impl Default for Config {
             dry_run_feed: min(5000.0),
             skip_active_low: false,
             resolution_mm: 0.001,
+            home_feed: min(4000.0),
         }
     }
 }
@@ -356,6 +372,7 @@ impl Config {
             dry_run_feed: per_s(m.feed.max_mm_min),
             skip_active_low: m.measure.signal_active_low,
             resolution_mm: m.machine.resolution_mm,
+            home_feed: per_s(m.reference_points.return_feed_mm_min),
             ..d
         }
     }

@@ -32,7 +32,7 @@
 
 use crate::certify::Certifier;
 use crate::config::{Config, RapidOverride};
-use crate::interpolate::{Engine, RunState, SetPoint};
+use crate::interpolate::{Engine, Manual, ManualRefused, RunState, SetPoint};
 use crate::plc::{AutoAck, Plc};
 use crate::runahead::RunAhead;
 use crate::split::{Interpreter, Realtime};
@@ -255,6 +255,18 @@ impl<P: Plc> Controller<P> {
     /// Reset: the motion stops, the spindle stops, an alarm clears and the program goes back to its start.
     pub fn reset(&mut self) {
         self.engine.reset();
+    }
+
+    /// A manual move (jog, step, handwheel, reference return) while no
+    /// program runs; when it has run, the program starts again from where
+    /// the axes stand ([`Engine::manual`]).
+    pub fn manual(&mut self, m: Manual) -> Result<(), ManualRefused> {
+        self.engine.manual(m)
+    }
+
+    /// Stops a manual move: the axes decelerate and stand.
+    pub fn manual_stop(&mut self) {
+        self.engine.manual_stop();
     }
 
     /// Single block: stop at the end of every block.

@@ -25,13 +25,19 @@ use crate::spindle::Spindle;
 use nc::error::Alarm;
 use thread::{Phase, ThreadRun};
 
+mod manual;
 mod thread;
+
+pub use manual::{JogRate, Manual, ManualAxis, ManualRefused, JOG_REACH_MM};
 
 /// What the machine is doing, as a controller's status line shows it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RunState {
     /// Waiting for the first cycle start.
     Idle,
+    /// A manual move (jog, step, handwheel, reference return) runs
+    /// between programs (`Engine::manual`).
+    Manual,
     /// Moving or executing.
     Running,
     /// Feed hold: stopped on the path, cycle start resumes.
@@ -347,6 +353,8 @@ pub struct Engine<P: Plc> {
     optional_stop: bool,
     dry_run: bool,
     cycle_start: bool,
+    /// A manual session: its moves are queued or running (manual.rs).
+    manual: bool,
     reset_req: bool,
     reset_done: bool,
     skip_active: bool,
@@ -427,6 +435,7 @@ impl<P: Plc> Engine<P> {
             optional_stop: cfg.optional_stop,
             dry_run: cfg.dry_run,
             cycle_start: false,
+            manual: false,
             reset_req: false,
             reset_done: false,
             skip_active: false,
@@ -462,6 +471,11 @@ impl<P: Plc> Engine<P> {
 
     /// Queues a command (the non-real-time side; allocates nothing).
     pub fn push(&mut self, cmd: crate::command::Command, tag: Tag) -> Result<Pushed, Full> {
+        if self.manual {
+            // The program side waits, as at a full queue: the reset that
+            // ends a manual session restarts it anyway.
+            return Err(Full);
+        }
         self.q.push(cmd, tag)
     }
 
@@ -493,7 +507,10 @@ impl<P: Plc> Engine<P> {
 
     /// What the machine is doing.
     pub fn state(&self) -> RunState {
-        self.state
+        match self.manual {
+            true => RunState::Manual,
+            false => self.state,
+        }
     }
 
     /// The code and place of the alarm that stopped the run.
@@ -637,6 +654,8 @@ impl<P: Plc> Engine<P> {
         self.ran = None;
         if self.reset_req {
             self.reset_step();
+        } else if self.manual {
+            self.manual_period();
         } else {
             self.run_state();
         }
@@ -664,7 +683,9 @@ impl<P: Plc> Engine<P> {
     /// period's motion if the program runs.
     fn run_state(&mut self) {
         match self.state {
-            RunState::Ended | RunState::Alarm(_) => self.cycle_start = false,
+            // (Manual is only reported, `state`: a manual move runs as
+            // Running, `manual_period`.)
+            RunState::Ended | RunState::Alarm(_) | RunState::Manual => self.cycle_start = false,
             RunState::Idle => {
                 if core::mem::take(&mut self.cycle_start) {
                     self.state = RunState::Running;
@@ -1581,6 +1602,7 @@ impl<P: Plc> Engine<P> {
         // Reset is power-on for group 09: G23.
         self.stroke = None;
         self.state = RunState::Idle;
+        self.manual = false;
         self.reset_req = false;
         self.reset_done = true;
     }

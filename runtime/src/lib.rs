@@ -69,7 +69,9 @@ pub mod translate;
 pub use command::{Command, Tag};
 pub use config::{Config, RapidOverride};
 pub use counts::Counts;
-pub use interpolate::{Engine, Motion, RoomWarning, RunState, SetPoint};
+pub use interpolate::{
+    Engine, JogRate, Manual, ManualAxis, ManualRefused, Motion, RoomWarning, RunState, SetPoint,
+};
 pub use plc::{AutoAck, Plc, PlcFunction};
 
 pub use controller::{AlarmInfo, Controller, LoadError};

@@ -26,7 +26,7 @@
 use crate::command::{Command, Tag};
 use crate::config::RapidOverride;
 use crate::controller::{engine_alarm, AlarmInfo};
-use crate::interpolate::{Engine, RunState, SetPoint, SkipReport};
+use crate::interpolate::{Engine, Manual, ManualRefused, RunState, SetPoint, SkipReport};
 use crate::math::V2;
 use crate::planner::{Full, Pushed};
 use crate::plc::Plc;
@@ -462,6 +462,16 @@ impl<P: Plc> Realtime<P> {
     /// Reset.
     pub fn reset(&mut self) {
         self.engine.reset();
+    }
+
+    /// A manual move ([`Engine::manual`]).
+    pub fn manual(&mut self, m: Manual) -> Result<(), ManualRefused> {
+        self.engine.manual(m)
+    }
+
+    /// Stops a manual move ([`Engine::manual_stop`]).
+    pub fn manual_stop(&mut self) {
+        self.engine.manual_stop();
     }
 
     /// Single block.
