@@ -214,19 +214,22 @@ impl<'a> Watch<'a> {
             return;
         };
         let mut counts = Counts::default();
-        let events = core::mem::take(&mut self.events);
-        for (run, tag) in events.runs() {
+        (self.room.unit, self.room.span) = (unit, block.span);
+        let mut from = 0;
+        for k in 0..self.events.origins.len() {
+            let (at, tag) = self.events.origins[k];
+            let run = self.events.events.get(from..at).unwrap_or_default();
+            watch(&mut self.room, &mut counts, run);
+            from = at;
             // The thread-room check names the block an event belongs to,
             // as the dry run's `Watchers::origin` does: a thread block's
             // moves wait for the next block and print while it runs.
-            let own = tag.and_then(|pc| self.place_of(vm.loc_at(pc)));
+            let own = Some(tag).filter(|&t| t != nc::RUNNING);
+            let own = own.and_then(|pc| self.place_of(vm.loc_at(pc)));
             (self.room.unit, self.room.span) = own.unwrap_or((unit, block.span));
-            for e in run {
-                self.room.event(e);
-                counts.count(e);
-            }
         }
-        self.events = events;
+        let rest = self.events.events.get(from..).unwrap_or_default();
+        watch(&mut self.room, &mut counts, rest);
         self.events.clear();
         let lits = crate::check::watched_words(ws);
         let at = (ws.as_slice(), block.span);
@@ -267,6 +270,15 @@ impl<'a> Watch<'a> {
         let mut found = self.warner.diags;
         found.append(&mut self.room.warnings);
         found
+    }
+}
+
+/// Feeds `events`, printed under one block, to the thread-room check and
+/// the block's counts.
+fn watch(room: &mut RoomCheck, counts: &mut Counts, events: &[nc::Event]) {
+    for e in events {
+        room.event(e);
+        counts.count(e);
     }
 }
 
