@@ -152,7 +152,11 @@ impl Reader<'_> {
         let i = self.len_of(p, b'I');
         let k = self.len_of(p, b'K');
         let mid = if absolute {
-            Pt::new(i.map_or(from.r, |x| x / 2.0), k.unwrap_or(from.z))
+            // (I is then an X value: a diameter, unless in radius programming.)
+            Pt::new(
+                i.map_or(from.r, |x| self.machine.radial(x)),
+                k.unwrap_or(from.z),
+            )
         } else {
             Pt::new(from.r + i.unwrap_or(0.0), from.z + k.unwrap_or(0.0))
         };
