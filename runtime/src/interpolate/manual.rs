@@ -3,8 +3,8 @@
 //!
 //! A manual command is a move like a program's, queued and run by the
 //! same planner and interpolator, so it keeps every axis within its rate,
-//! acceleration (and jerk) limits and its soft limits, and a trace or a
-//! certificate sees it as any move. It is taken only while no program
+//! acceleration (and jerk) limits and its soft limits, and its set
+//! points are those of any move. It is taken only while no program
 //! runs (`RunState::Idle`: before the first cycle start, or after a
 //! reset). Its moves replace what the interpreter had queued ahead, and
 //! when they have run (or `manual_stop` stopped them) the engine resets:
@@ -120,11 +120,6 @@ impl<P: Plc> Engine<P> {
         if self.manual {
             self.reset_req = true;
         }
-    }
-
-    /// Whether a manual move is queued or running.
-    pub fn manual_active(&self) -> bool {
-        self.manual
     }
 
     /// The axis, its end coordinate (machine, X a radius) and the kind of
