@@ -20,6 +20,14 @@ use nc::exec::switches::Switch;
 use nc::{Event, Machine, Placed, Sink};
 use vm::{Status, Vm};
 
+/// Where the axes stand after a reset: X and Z in machine coordinates
+/// (the power-on work system, no tool offset) and C, degrees.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Standing {
+    pub at: V2,
+    pub c: f64,
+}
+
 /// What the program side needs of the motion side.
 pub(crate) trait Link {
     /// Queues a command for the motion; `Err(Full)` to try again later.
@@ -31,7 +39,7 @@ pub(crate) trait Link {
     /// Every command pushed so far has been executed.
     fn idle(&self) -> bool;
     /// Once, after a reset has finished: where the axes stand.
-    fn take_reset(&mut self) -> Option<V2>;
+    fn take_reset(&mut self) -> Option<Standing>;
     /// Once, after a G31 move has ended: how it ended.
     fn take_skip(&mut self) -> Option<SkipReport>;
     /// Sets the display shift and the queue's tail for a restarted run.
@@ -59,8 +67,11 @@ impl<P: Plc> Link for Engine<P> {
         self.planner().is_empty()
     }
 
-    fn take_reset(&mut self) -> Option<V2> {
-        self.take_reset_done().then(|| self.position())
+    fn take_reset(&mut self) -> Option<Standing> {
+        self.take_reset_done().then(|| Standing {
+            at: self.position(),
+            c: self.c(),
+        })
     }
 
     fn take_skip(&mut self) -> Option<SkipReport> {
@@ -436,9 +447,9 @@ impl RunAhead {
     }
 
     /// After a reset: a fresh VM at the start of the program, its
-    /// programmed point where the axes now stand (`at`, in machine
-    /// coordinates: power-on work system, no tool offset).
-    fn restart<L: Link>(&mut self, at: V2, link: &mut L) {
+    /// programmed point and C where the axes now stand.
+    fn restart<L: Link>(&mut self, stand: Standing, link: &mut L) {
+        let Standing { at, c } = stand;
         let module = self.vm.module().clone();
         let mut vm = Vm::new(module, self.machine.clone());
         // #500–#999 and where they are kept survive the reset.
@@ -457,12 +468,14 @@ impl RunAhead {
         let origin = origin_of(&self.vm);
         let work = at - origin;
         self.vm.nc.set_position(nc::point::Pt::new(work.r, work.z));
+        self.vm.nc.set_c(c);
         self.kernel_seen = None;
         self.wait_tag = None;
         let messages = core::mem::take(&mut self.tr.messages);
         self.tr = Translator::new(origin);
         self.tr.messages = messages;
         self.tr.work = work;
+        self.tr.set_c(c);
         self.tr.feed = Feed {
             f: 0.0,
             per_rev: false,

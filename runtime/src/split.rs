@@ -30,7 +30,7 @@ use crate::interpolate::{Engine, Manual, ManualRefused, RunState, SetPoint, Skip
 use crate::math::V2;
 use crate::planner::{Full, Pushed};
 use crate::plc::Plc;
-use crate::runahead::{is_skip, Link, RunAhead};
+use crate::runahead::{is_skip, Link, RunAhead, Standing};
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicU32, Ordering};
@@ -58,7 +58,7 @@ struct Msg {
 enum Report {
     /// A reset finished with the axes at `at`; commands from now on carry
     /// `epoch`.
-    Reset { epoch: u8, at: V2 },
+    Reset { epoch: u8, at: Standing },
     /// A G31 move sent in `epoch` ended.
     Skip { epoch: u8, report: SkipReport },
 }
@@ -149,7 +149,7 @@ struct RingLink {
     seen: (usize, f64),
     since: usize,
     lookahead: (usize, f64),
-    reset: Option<V2>,
+    reset: Option<Standing>,
     skip: Option<SkipReport>,
 }
 
@@ -222,7 +222,7 @@ impl Link for RingLink {
         self.shared.idle.load(Ordering::Acquire) == mark(self.epoch, self.sent)
     }
 
-    fn take_reset(&mut self) -> Option<V2> {
+    fn take_reset(&mut self) -> Option<Standing> {
         self.poll();
         self.reset.take()
     }
@@ -311,7 +311,7 @@ pub struct Realtime<P: Plc> {
     /// The program's power-on work zero (for the engine after a reset).
     origin: V2,
     /// Reports the ring had no room for yet.
-    reset: Option<V2>,
+    reset: Option<Standing>,
     skip: Option<SkipReport>,
     files: Vec<isa::SourceFileInfo>,
     /// What `shared` holds: (moves, seconds' bits) and the idle mark.
@@ -370,7 +370,10 @@ impl<P: Plc> Realtime<P> {
             self.epoch = self.epoch.wrapping_add(1);
             self.taken = 0;
             self.engine.reseed(self.origin);
-            self.reset = Some(self.engine.position());
+            self.reset = Some(Standing {
+                at: self.engine.position(),
+                c: self.engine.c(),
+            });
             self.skip = None;
         }
         self.publish();

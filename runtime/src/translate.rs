@@ -67,6 +67,11 @@ impl Translator {
         }
     }
 
+    /// The axes stand at C angle `c` (a restart after a reset).
+    pub fn set_c(&mut self, c: f64) {
+        self.c_now = c;
+    }
+
     /// Polar or cylindrical interpolation is on.
     pub fn in_plane(&self) -> bool {
         self.plane.is_some()

@@ -201,3 +201,64 @@ fn c_counts_are_thousandths_of_a_degree() {
     let end = r.pts.last().unwrap().counts;
     assert_eq!((end.x, end.c), (20_000, 12_346));
 }
+
+/// After a reset the program starts where the axes stand, C included: an
+/// incremental `H30` run again from C30 ends at C60 (the kernel's C is the
+/// axis's, not power-on's 0°), and #5003 reads 30 before it.
+#[test]
+fn a_reset_hands_the_c_angle_to_the_restarted_program() {
+    let src = "O1\n#100=#5003\nG00 H30\nM30\n";
+    let m = c_machine();
+    let module = common::module(src, &m);
+    let mut ctl = runtime::Controller::new(module, m, runtime::AutoAck).expect("loads");
+    let mut last = None;
+    for round in 0..2 {
+        ctl.cycle_start();
+        for _ in 0..100_000 {
+            ctl.run_ahead();
+            last = Some(ctl.tick());
+            if ctl.state() == runtime::RunState::Ended {
+                break;
+            }
+        }
+        assert_eq!(ctl.state(), runtime::RunState::Ended);
+        let read = ctl.vm().variable(100).expect("#100");
+        assert_eq!(read, 30.0 * f64::from(round), "round {round}");
+        ctl.reset();
+        for _ in 0..10 {
+            ctl.run_ahead();
+            ctl.tick();
+        }
+    }
+    assert_eq!(last.and_then(|p| p.c), Some(60.0));
+}
+
+/// The same through a split controller: the reset's report carries C.
+#[test]
+fn a_reset_hands_the_c_angle_across_the_split() {
+    let src = "O1\n#100=#5003\nG00 H30\nM30\n";
+    let m = c_machine();
+    let module = common::module(src, &m);
+    let ctl = runtime::Controller::new(module, m, runtime::AutoAck).expect("loads");
+    let (mut interp, mut rt) = ctl.split();
+    let mut last = None;
+    for round in 0..2 {
+        rt.cycle_start();
+        for _ in 0..100_000 {
+            interp.run_ahead();
+            last = Some(rt.tick());
+            if rt.state() == runtime::RunState::Ended {
+                break;
+            }
+        }
+        assert_eq!(rt.state(), runtime::RunState::Ended);
+        let read = interp.vm().variable(100).ok();
+        assert_eq!(read, Some(30.0 * f64::from(round)), "round {round}");
+        rt.reset();
+        for _ in 0..10 {
+            interp.run_ahead();
+            rt.tick();
+        }
+    }
+    assert_eq!(last.and_then(|p| p.c), Some(60.0));
+}

@@ -85,6 +85,12 @@ impl Nc {
         self.st.printed = None;
     }
 
+    /// The C axis stands at `c` degrees, as after a reset: the next block
+    /// turns it from there (an `H` word, #5003).
+    pub fn set_c(&mut self, c: f64) {
+        self.st.c = c;
+    }
+
     /// A G31 move ended: the axes stopped at `stop` and the signal came at
     /// `hit` (both work coordinates). The next block starts at `stop`;
     /// #5061/#5062 read `hit`.
