@@ -60,6 +60,12 @@
 #define GBC_AXIS_Z 1
 
 /**
+ * `axis` of a manual move: the C axis (degrees, feeds in degrees per
+ * minute), on a machine with one.
+ */
+#define GBC_AXIS_C 2
+
+/**
  * The version of the interface this header describes; `gbc_abi_version`
  * gives the library's. It changes with every change a host built
  * against an older header would get wrong (a function's parameters, a
@@ -790,7 +796,8 @@ enum GbcStatus gbc_spindle_feedback(GbcController controller, double position_tu
 enum GbcStatus gbc_spindle_simulated(GbcController controller);
 
 /**
- * A continuous jog of `axis` ([`GBC_AXIS_X`], [`GBC_AXIS_Z`]) toward +
+ * A continuous jog of `axis` ([`GBC_AXIS_X`], [`GBC_AXIS_Z`],
+ * [`GBC_AXIS_C`]) toward +
  * (`plus`) or −, at `feed_mm_min` (0: the axis's rapid rate; X's feed is
  * its radial speed), until `gbc_manual_stop` or the axis's soft limit.
  * Taken only while no program runs ([`GbcStatus::NotIdle`] otherwise:

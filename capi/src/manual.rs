@@ -8,8 +8,12 @@ use runtime::{JogRate, Manual, ManualAxis, ManualRefused};
 pub const GBC_AXIS_X: u8 = 0;
 /// `axis` of a manual move: the carriage.
 pub const GBC_AXIS_Z: u8 = 1;
+/// `axis` of a manual move: the C axis (degrees, feeds in degrees per
+/// minute), on a machine with one.
+pub const GBC_AXIS_C: u8 = 2;
 
-/// A continuous jog of `axis` ([`GBC_AXIS_X`], [`GBC_AXIS_Z`]) toward +
+/// A continuous jog of `axis` ([`GBC_AXIS_X`], [`GBC_AXIS_Z`],
+/// [`GBC_AXIS_C`]) toward +
 /// (`plus`) or −, at `feed_mm_min` (0: the axis's rapid rate; X's feed is
 /// its radial speed), until `gbc_manual_stop` or the axis's soft limit.
 /// Taken only while no program runs ([`GbcStatus::NotIdle`] otherwise:
@@ -76,7 +80,8 @@ fn manual(
         let axis = match axis {
             GBC_AXIS_X => ManualAxis::X,
             GBC_AXIS_Z => ManualAxis::Z,
-            _ => return Err(bad("the axis is not GBC_AXIS_X or GBC_AXIS_Z")),
+            GBC_AXIS_C => ManualAxis::C,
+            _ => return Err(bad("the axis is not GBC_AXIS_X, GBC_AXIS_Z or GBC_AXIS_C")),
         };
         let rate = match feed_mm_min {
             0.0 => JogRate::Rapid,
@@ -96,6 +101,7 @@ fn refused(r: Result<(), ManualRefused>) -> Outcome {
         ManualRefused::BadValue => {
             bad("the distance or feed is not a finite number, or the feed is negative")
         }
+        ManualRefused::NoSuchAxis => bad("this machine has no C axis"),
         ManualRefused::Full => fail(
             GbcStatus::QueueFull,
             "the motion queue is full: give the next step once the axes have caught up",

@@ -28,7 +28,7 @@ use thread::{Phase, ThreadRun};
 mod manual;
 mod thread;
 
-pub use manual::{JogRate, Manual, ManualAxis, ManualRefused, JOG_REACH_MM};
+pub use manual::{JogRate, Manual, ManualAxis, ManualRefused, JOG_REACH};
 
 /// What the machine is doing, as a controller's status line shows it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -546,6 +546,11 @@ impl Planner {
         self.tail = p;
     }
 
+    /// Where the last queued move leaves C, degrees.
+    pub fn tail_c(&self) -> f64 {
+        self.tail_c
+    }
+
     /// After a reset C stands somewhere else than planned.
     pub fn set_tail_c(&mut self, c: f64) {
         self.tail_c = c;

@@ -261,3 +261,44 @@ fn under_jerk_limiting_manual_moves_keep_the_jerk_too() {
     let worst = common::worst_jerk(&run);
     assert!(worst <= 1.0 + 1e-6, "jerk {worst} of the limit");
 }
+
+#[test]
+fn c_turns_by_hand_and_the_program_starts_from_its_angle() {
+    // A step of C+90 at rapid, then a jog asked at 3600°/min, held to C's
+    // maximum cutting feed of 1800°/min (30°/s), stopped after 0.5 s:
+    // about 15° more (the start's 8 ms at 3600°/s² lose what the braking
+    // adds). The program then reads the angle (#5003) and turns C by H30
+    // from there.
+    let mut machine = Machine::reference();
+    machine.axes.c.enabled = true;
+    let src = "O0001\n#100=#5003\nG00 H30\nM30\n";
+    let mut ctl = controller(src, machine.clone());
+    let mut pts = Vec::new();
+    let step = Manual::Step {
+        axis: ManualAxis::C,
+        distance: 90.0,
+        rate: JogRate::Rapid,
+    };
+    assert_eq!(ctl.manual(step), Ok(()));
+    tick_until(&mut ctl, &mut pts, |c, _| c.state() == RunState::Idle);
+    assert_eq!(pts.last().unwrap().c, Some(90.0));
+    let jog = Manual::Jog {
+        axis: ManualAxis::C,
+        plus: true,
+        rate: JogRate::Feed(3600.0),
+    };
+    assert_eq!(ctl.manual(jog), Ok(()));
+    let t0 = pts.last().unwrap().time_s;
+    tick_until(&mut ctl, &mut pts, |_, sp| sp.time_s >= t0 + 0.5);
+    ctl.manual_stop();
+    tick_until(&mut ctl, &mut pts, |c, _| c.state() == RunState::Idle);
+    let stood = pts.last().unwrap().c.unwrap();
+    assert!((104.5..105.5).contains(&stood), "C stood at {stood}");
+    ctl.cycle_start();
+    tick_until(&mut ctl, &mut pts, |c, _| c.state() == RunState::Ended);
+    assert_eq!(ctl.vm().variable(100).ok(), Some(stood));
+    assert_eq!(pts.last().unwrap().c, Some(stood + 30.0));
+    // Without a C axis: refused.
+    let mut ctl = controller(PROGRAM, Machine::reference());
+    assert_eq!(ctl.manual(step), Err(ManualRefused::NoSuchAxis));
+}

@@ -18,9 +18,10 @@ use crate::config::Axis;
 use crate::planner::Full;
 use crate::plc::Plc;
 
-/// How far a continuous jog runs on an axis without soft limits, mm: it
-/// runs until `manual_stop`, as on a machine whose limit switches stop it.
-pub const JOG_REACH_MM: f64 = 10_000.0;
+/// How far a continuous jog runs on an axis without soft limits, mm (C:
+/// degrees): it runs until `manual_stop`, as on a machine whose limit
+/// switches stop it.
+pub const JOG_REACH: f64 = 10_000.0;
 
 /// The axis a manual command moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,6 +30,9 @@ pub enum ManualAxis {
     X,
     /// The carriage.
     Z,
+    /// The C axis, on a machine with one: degrees, rates in degrees per
+    /// minute, no soft limits.
+    C,
 }
 
 /// How fast a manual move runs.
@@ -37,8 +41,8 @@ pub enum JogRate {
     /// The axis's rapid rate, under the rapid override.
     Rapid,
     /// A feed, mm/min (on X the radial speed, as the machine file's
-    /// rates), under the feed override and within the axis's maximum
-    /// cutting feed.
+    /// rates; on C degrees per minute), under the feed override and
+    /// within the axis's maximum cutting feed.
     Feed(f64),
 }
 
@@ -47,7 +51,7 @@ pub enum JogRate {
 pub enum Manual {
     /// A continuous jog toward + (`plus`) or −, until
     /// [`Engine::manual_stop`] or the axis's soft limit (without soft
-    /// limits, [`JOG_REACH_MM`]).
+    /// limits, [`JOG_REACH`]).
     Jog {
         /// The axis.
         axis: ManualAxis,
@@ -83,6 +87,8 @@ pub enum ManualRefused {
     NotIdle,
     /// A distance or feed that is not a finite number, or a feed ≤ 0.
     BadValue,
+    /// C on a machine without a C axis.
+    NoSuchAxis,
     /// The queue is full (steps given faster than the axes follow).
     Full,
 }
@@ -99,15 +105,17 @@ impl<P: Plc> Engine<P> {
             self.begin_manual();
         }
         let mut end = self.q.tail();
+        let mut c = None;
         match axis {
             ManualAxis::X => end.r = to,
             ManualAxis::Z => end.z = to,
+            ManualAxis::C => c = Some(to),
         }
         let mv = Move {
             kind,
             path: Path::Line { to: end },
             shift: self.shift,
-            c: None,
+            c,
         };
         let pushed = self.q.push(Command::Move(mv), Tag::default());
         self.q.replan();
@@ -129,12 +137,12 @@ impl<P: Plc> Engine<P> {
             Manual::Jog { axis, rate, .. } | Manual::Step { axis, rate, .. } => (axis, rate),
             Manual::Home { axis } => (axis, JogRate::Feed(self.cfg.home_feed * 60.0)),
         };
-        let (a, from) = self.manual_axis(axis);
+        let (a, from) = self.manual_axis(axis).ok_or(ManualRefused::NoSuchAxis)?;
         // The machine file's X is a diameter; the queue's X a radius.
         let k = if axis == ManualAxis::X { 0.5 } else { 1.0 };
         let to = match m {
-            Manual::Jog { plus: true, .. } => a.soft_max().unwrap_or(from + JOG_REACH_MM),
-            Manual::Jog { plus: false, .. } => a.soft_min().unwrap_or(from - JOG_REACH_MM),
+            Manual::Jog { plus: true, .. } => a.soft_max().unwrap_or(from + JOG_REACH),
+            Manual::Jog { plus: false, .. } => a.soft_min().unwrap_or(from - JOG_REACH),
             Manual::Step { distance, .. } if distance.is_finite() => {
                 let to = from + distance * k;
                 a.soft_min()
@@ -156,15 +164,17 @@ impl<P: Plc> Engine<P> {
         Ok((axis, to, kind))
     }
 
-    /// The settings of `axis` and its coordinate where the queue ends.
-    fn manual_axis(&self, axis: ManualAxis) -> (&Axis, f64) {
-        let at = match self.manual {
-            true => self.q.tail(),
-            false => self.pos,
+    /// The settings of `axis` and its coordinate where the queue ends
+    /// (`None`: C on a machine without it).
+    fn manual_axis(&self, axis: ManualAxis) -> Option<(&Axis, f64)> {
+        let (at, c) = match self.manual {
+            true => (self.q.tail(), self.q.tail_c()),
+            false => (self.pos, self.c),
         };
         match axis {
-            ManualAxis::X => (&self.cfg.x, at.r),
-            ManualAxis::Z => (&self.cfg.z, at.z),
+            ManualAxis::X => Some((&self.cfg.x, at.r)),
+            ManualAxis::Z => Some((&self.cfg.z, at.z)),
+            ManualAxis::C => Some((self.cfg.c.as_ref()?, c)),
         }
     }
 
