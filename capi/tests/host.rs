@@ -514,21 +514,13 @@ fn manual_moves_go_through_the_c_abi() {
     let host = new_host(Host::default());
     let (m, c) = new_controller(host, &prog);
     assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
-    let mut st = GbcStateInfo {
-        state: GbcRunState::Idle,
-        stop: GbcStopKind::None,
-        message: 0,
-        alarm_code: 0,
-        blocks: 0,
-    };
-    let mut tick = |n: usize| {
+    let tick = |n: usize| {
         let mut sp = blank();
         for _ in 0..n {
             assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
             assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
         }
-        assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
-        (sp, st.state)
+        (sp, state(c).state)
     };
     assert_eq!(gbc_jog_step(c, GBC_AXIS_X, 20.0, 0.0), GbcStatus::Ok);
     assert_eq!(tick(1).1, GbcRunState::Manual);

@@ -148,14 +148,9 @@ pub struct Config {
 }
 
 impl Axis {
-    /// The upper soft limit, where soft limits are on.
-    pub fn soft_max(&self) -> Option<f64> {
-        self.soft_limits.then_some(self.max)
-    }
-
-    /// The lower soft limit, where soft limits are on.
-    pub fn soft_min(&self) -> Option<f64> {
-        self.soft_limits.then_some(self.min)
+    /// The travel (min, max) the soft limits allow, where they are on.
+    pub fn travel(&self) -> Option<(f64, f64)> {
+        self.soft_limits.then_some((self.min, self.max))
     }
 }
 

@@ -444,7 +444,7 @@ impl Planner {
             dry_run: cfg.dry_run,
             plane: None,
             plane_shift: V2::ZERO,
-            travel: [&cfg.x, &cfg.z].map(|a| a.soft_limits.then_some((a.min, a.max))),
+            travel: [&cfg.x, &cfg.z].map(|a| a.travel()),
         }
     }
 

@@ -141,13 +141,11 @@ impl<P: Plc> Engine<P> {
         // The machine file's X is a diameter; the queue's X a radius.
         let k = if axis == ManualAxis::X { 0.5 } else { 1.0 };
         let to = match m {
-            Manual::Jog { plus: true, .. } => a.soft_max().unwrap_or(from + JOG_REACH),
-            Manual::Jog { plus: false, .. } => a.soft_min().unwrap_or(from - JOG_REACH),
+            Manual::Jog { plus: true, .. } => a.travel().map_or(from + JOG_REACH, |(_, max)| max),
+            Manual::Jog { plus: false, .. } => a.travel().map_or(from - JOG_REACH, |(min, _)| min),
             Manual::Step { distance, .. } if distance.is_finite() => {
                 let to = from + distance * k;
-                a.soft_min()
-                    .map_or(to, |min| to.max(min))
-                    .min(a.soft_max().unwrap_or(to))
+                a.travel().map_or(to, |(min, max)| to.max(min).min(max))
             }
             Manual::Step { .. } => return Err(ManualRefused::BadValue),
             Manual::Home { .. } => 0.0,
