@@ -23,6 +23,7 @@ extern crate alloc;
 mod block;
 mod interp;
 mod loc_cache;
+pub mod restart;
 mod tier;
 mod vars;
 

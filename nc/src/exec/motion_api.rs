@@ -85,6 +85,12 @@ impl Nc {
         self.st.printed = None;
     }
 
+    /// The C axis angle after the last block, degrees (0 without a C
+    /// axis).
+    pub fn c(&self) -> f64 {
+        self.st.c
+    }
+
     /// The C axis stands at `c` degrees, as after a reset: the next block
     /// turns it from there (an `H` word, #5003).
     pub fn set_c(&mut self, c: f64) {

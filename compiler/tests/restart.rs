@@ -1,0 +1,305 @@
+//! Program restart (`vm::restart`, docs/manual.md "Program restart"):
+//! a run restarted at a block prints what the whole run prints from that
+//! block on, after the state the blocks before it left and an approach.
+
+mod common;
+
+use compiler::{compile, Options};
+use nc::{Event, Machine};
+use std::collections::HashMap;
+use vm::restart::{search, RestartAt, RestartError, Target};
+use vm::{Status, Vm};
+
+fn module(src: &str, machine: &Machine) -> isa::Module {
+    let opts = Options {
+        machine: machine.clone(),
+        ..Options::default()
+    };
+    let c = compile("p.nc", src.as_bytes(), &opts);
+    assert!(!c.has_errors(), "{}", c.render());
+    c.module.expect("a module")
+}
+
+/// The whole run, one instruction at a time: its events, and for each pc
+/// the number of events printed before the run first came to it and the
+/// programmed point there (X a diameter, Z).
+type Arrivals = HashMap<u32, (usize, (f64, f64))>;
+
+fn whole_run(m: &isa::Module, machine: &Machine) -> (Vec<Event>, Arrivals) {
+    let mut vm = Vm::new(m.clone(), machine.clone());
+    let mut events = Vec::new();
+    let mut first = HashMap::new();
+    loop {
+        let at = vm.nc.position();
+        first
+            .entry(vm.pc())
+            .or_insert((events.len(), (at.x(), at.z)));
+        match vm.step(1, &mut events) {
+            Status::Done | Status::Alarm(_) => return (events, first),
+            _ => {}
+        }
+    }
+}
+
+/// A restarted run: what the search printed, and the run after it.
+fn restarted(
+    m: &isa::Module,
+    machine: &Machine,
+    at: RestartAt,
+) -> Result<(Vec<Event>, Vec<Event>, u32), RestartError> {
+    let mut vm = Vm::new(m.clone(), machine.clone());
+    let mut prefix = Vec::new();
+    search(&mut vm, at, &mut prefix)?;
+    let entry = vm.pc();
+    let mut rest = Vec::new();
+    vm.run(&mut rest);
+    Ok((prefix, rest, entry))
+}
+
+/// What a restart must give again: the last event of each kind that sets
+/// a state, in the order origin, tool, gear, speed, spindle, coolant, feed.
+fn state_before(events: &[Event]) -> Vec<Event> {
+    let kind = |e: &Event| match e {
+        Event::Origin { .. } => Some(0),
+        Event::Tool { .. } => Some(1),
+        Event::Gear { .. } => Some(2),
+        Event::Speed { .. } => Some(3),
+        Event::Spindle(_) => Some(4),
+        Event::M(7..=9) => Some(5),
+        Event::Feed { .. } => Some(6),
+        _ => None,
+    };
+    let mut last: [Option<&Event>; 7] = [None; 7];
+    for e in events {
+        if let Some(k) = kind(e) {
+            last[k] = Some(e);
+        }
+    }
+    last.into_iter().flatten().cloned().collect()
+}
+
+/// Checks a restart at `line` against the whole run; whether it began.
+fn check_line(name: &str, m: &isa::Module, machine: &Machine, line: u32) -> bool {
+    let at = RestartAt {
+        target: Target::Line(line),
+        pass: 1,
+    };
+    let (events, first) = whole_run(m, machine);
+    let Ok((prefix, rest, entry)) = restarted(m, machine, at) else {
+        return false;
+    };
+    let (mark, (x, z)) = first[&entry];
+    assert_eq!(
+        rest,
+        events[mark..],
+        "{name}: line {line}: the run after the restart"
+    );
+    let (rapids, state): (Vec<Event>, Vec<Event>) = prefix
+        .into_iter()
+        .partition(|e| matches!(e, Event::Rapid { .. }));
+    assert_eq!(
+        state,
+        state_before(&events[..mark]),
+        "{name}: line {line}: the restored state"
+    );
+    assert!(rapids.len() <= 2, "{name}: line {line}: {rapids:?}");
+    if let Some(Event::Rapid { x: rx, z: rz, .. }) = rapids.last() {
+        assert_eq!(
+            (*rx, *rz),
+            (x, z),
+            "{name}: line {line}: the approach's end"
+        );
+    }
+    true
+}
+
+/// Every block of every suite program (up to a size that keeps the test
+/// short): the restarted run prints exactly what the whole run prints
+/// from the first arrival at that block, and the state it restores is the
+/// last of each kind the whole run printed before it.
+#[test]
+fn a_restart_at_any_block_prints_the_rest_of_the_whole_run() {
+    let mut restarts = 0;
+    for (name, src, machine) in common::suite() {
+        let opts = Options {
+            machine: machine.clone(),
+            ..Options::default()
+        };
+        let c = compile(&name, &src, &opts);
+        if c.has_errors() {
+            continue;
+        }
+        let Some(m) = c.module else {
+            continue;
+        };
+        let (events, _) = whole_run(&m, &machine);
+        if m.code.len() > 400 || events.len() > 3000 {
+            continue;
+        }
+        let last = m.lines.iter().filter(|l| l.file == 0).map(|l| l.line);
+        for line in 1..=last.max().unwrap_or(0) {
+            restarts += usize::from(check_line(&name, &m, &machine, line));
+        }
+    }
+    eprintln!("{restarts} restarts checked");
+    assert!(restarts >= 2000, "only {restarts} restarts checked");
+}
+
+const TWO_TOOLS: &str = "\
+G50 X200 Z100
+T0101
+G97 S1000 M03
+M08
+G00 X52 Z2
+G99 G01 Z-30 F0.2
+X60
+G00 Z2
+T0202
+S800 M04
+G00 X40 Z2
+N100 G01 Z-20 F0.1
+X50
+M09
+G00 X200 Z100
+M30
+";
+
+fn run_from(src: &str, at: &str) -> Result<Vec<String>, RestartError> {
+    let machine = Machine::reference();
+    let m = module(src, &machine);
+    let at: RestartAt = at.parse().expect("a restart point");
+    let mut vm = Vm::new(m, machine);
+    let mut events = Vec::new();
+    search(&mut vm, at, &mut events)?;
+    vm.run(&mut events);
+    Ok(events.iter().map(|e| e.to_string()).collect())
+}
+
+/// By hand: the second tool's state, coolant still on from M08, the feed
+/// the kernel printed last (F0.2, so that the F0.1 of N100 is printed
+/// again), X from the start point X200 at Z100 (G50's zero) to X40, then
+/// Z to 2: N100's start point.
+#[test]
+fn a_restart_at_the_second_tool_s_cut_gives_its_state_and_approach() {
+    let canon = run_from(TWO_TOOLS, "N100").expect("restarts");
+    let expected = [
+        "ORIGIN X=-200 Z=-100",
+        "TOOL T=2 D=2",
+        "SPEED S=800 MODE=RPM",
+        "SPINDLE DIR=CCW",
+        "M CODE=8",
+        "FEED F=0.2 MODE=REV",
+        "RAPID X=40 Z=100",
+        "RAPID X=40 Z=2",
+        "FEED F=0.1 MODE=REV",
+        "LINE X=40 Z=-20",
+        "LINE X=50 Z=-20",
+        "M CODE=9",
+        "RAPID X=200 Z=100",
+        "STOP KIND=M30",
+    ];
+    assert_eq!(canon, expected);
+    // The line of N100 is the same block.
+    assert_eq!(run_from(TWO_TOOLS, "12").expect("restarts"), expected);
+}
+
+#[test]
+fn a_pass_restarts_a_loop_at_its_round() {
+    let src = "\
+#1=0
+G00 X50 Z2
+WHILE[#1LT5]DO1
+G01 X[40-#1] Z-10 F100
+#1=#1+1
+END1
+M30
+";
+    // The third round starts where the second ended, X39 Z-10: from the
+    // machine's start (X0 Z0) X goes there first, then Z. The rounds of
+    // #1 = 2, 3, 4 follow.
+    let canon = run_from(src, "4@3").expect("restarts");
+    let expected = [
+        "FEED F=100 MODE=MIN",
+        "RAPID X=39 Z=0",
+        "RAPID X=39 Z=-10",
+        "LINE X=38 Z=-10",
+        "LINE X=37 Z=-10",
+        "LINE X=36 Z=-10",
+        "STOP KIND=M30",
+    ];
+    assert_eq!(canon, expected);
+    let err = run_from(src, "4@6").expect_err("five rounds");
+    assert_eq!(
+        err,
+        RestartError::NotReached {
+            target: Target::Line(4),
+            pass: 6,
+            reached: 5
+        }
+    );
+}
+
+#[test]
+fn a_restart_is_refused_where_the_run_cannot_resume() {
+    let profile = "\
+G00 X50 Z2
+G71 U1 R0.5
+G71 P10 Q20 U0.2 W0.1 F100
+N10 G00 X30
+G01 Z-20
+N20 X50
+M30
+";
+    assert_eq!(run_from(profile, "5"), Err(RestartError::Profile(5)));
+    assert_eq!(run_from(profile, "3").map(|c| c.len() > 5), Ok(true));
+    assert_eq!(
+        run_from(profile, "N30"),
+        Err(RestartError::NoBlock(Target::Seq(30)))
+    );
+    assert_eq!(
+        run_from("(only a comment)\nG00 X10\nM30\n", "1"),
+        Err(RestartError::NoBlock(Target::Line(1)))
+    );
+    let comp = "T0101\nG00 X50 Z2\nG42 G01 X40 Z0 F100\nZ-10\nG40 G00 X60\nM30\n";
+    assert!(matches!(
+        run_from(comp, "4"),
+        Err(RestartError::Held { line: 4, .. })
+    ));
+    // Before the compensation starts, and after it ends, it restarts.
+    assert!(run_from(comp, "3").is_ok());
+    assert!(run_from(comp, "6").is_ok());
+    // A chain's second block, with and without run-out words before it;
+    // the chain's first block restarts.
+    for chain in [
+        "G00 X40 Z2\nG32 Z-10 F2 J2 K1\nG32 X44 Z-12\nG00 X50\nM30\n",
+        "G00 X40 Z2\nG32 Z-10 F2\nG32 X44 Z-12\nG00 X50\nM30\n",
+    ] {
+        assert!(matches!(
+            run_from(chain, "3"),
+            Err(RestartError::Held { line: 3, .. })
+        ));
+        assert!(run_from(chain, "2").is_ok());
+    }
+}
+
+#[test]
+fn an_alarm_before_the_block_stops_the_search() {
+    let src = "G00 X50 Z2\n#3000=7(NO STOCK)\nG01 Z-10 F100\nM30\n";
+    let Err(RestartError::Alarm(a)) = run_from(src, "3") else {
+        panic!("the alarm stops the search");
+    };
+    assert_eq!((a.code, a.line), (3007, 2));
+}
+
+#[test]
+fn restart_points_parse() {
+    let p = |s: &str| s.parse::<RestartAt>();
+    let at = |target, pass| Ok(RestartAt { target, pass });
+    assert_eq!(p("120"), at(Target::Line(120), 1));
+    assert_eq!(p("N120"), at(Target::Seq(120), 1));
+    assert_eq!(p("n7@3"), at(Target::Seq(7), 3));
+    assert_eq!(p("12@1"), at(Target::Line(12), 1));
+    for bad in ["", "0", "N", "12@0", "12@", "x12", "-3", "N1.5"] {
+        assert!(p(bad).is_err(), "{bad}");
+    }
+}
