@@ -175,8 +175,9 @@ typedef enum GbcStatus {
    */
   GBC_STATUS_LIMIT = 13,
   /**
-   * A manual move while a program runs, stands stopped, ended or in an
-   * alarm: `gbc_reset` first.
+   * A manual move or a program restart while a program runs, stands
+   * stopped, ended or in an alarm (a restart also while a manual move
+   * or a reset runs): `gbc_reset` first.
    */
   GBC_STATUS_NOT_IDLE = 14,
   /**
@@ -184,6 +185,27 @@ typedef enum GbcStatus {
    * follow.
    */
   GBC_STATUS_QUEUE_FULL = 15,
+  /**
+   * A program restart found no block to begin at: the main file has
+   * none on that line or with that N, the line is a cycle's profile,
+   * or the run ends before reaching the block that many times. The
+   * program stays at its start.
+   */
+  GBC_STATUS_RESTART_NOT_FOUND = 16,
+  /**
+   * A program restart reached its block, but what is in force there
+   * cannot be resumed (a thread chain open before the block,
+   * tool-nose compensation, a move waiting for the block, polar or
+   * cylindrical interpolation): restart at an earlier block. The
+   * program stays at its start.
+   */
+  GBC_STATUS_RESTART_HELD = 17,
+  /**
+   * The program raised an alarm before reaching the restart block
+   * (`gbc_last_error` gives it). The controller does not stand in that
+   * alarm, unlike [`GbcStatus::Alarm`]: the program stays at its start.
+   */
+  GBC_STATUS_RESTART_ALARM = 18,
 } GbcStatus;
 
 /**
@@ -357,10 +379,11 @@ typedef struct GbcPlcFunction {
  * callback may be null: a null `plc_done` completes every function at
  * once, null `vars_load`/`vars_store` keep #500–#999 in memory only.
  * The callbacks are called from `gbc_tick` (PLC; they must return at
- * once) and `gbc_run_ahead`/`gbc_controller_load` (variables), on the
- * thread that makes those calls. The `GbcHost` itself is copied by
- * `gbc_controller_new`; the functions and `user` must stay valid until
- * the controller is freed.
+ * once) and `gbc_run_ahead`/`gbc_controller_load` (variables; also
+ * `gbc_restart_from`/`gbc_restart_from_seq`, whose search runs the
+ * blocks before the restart block), on the thread that makes those
+ * calls. The `GbcHost` itself is copied by `gbc_controller_new`; the
+ * functions and `user` must stay valid until the controller is freed.
  */
 typedef struct GbcHost {
   /**
@@ -828,6 +851,48 @@ enum GbcStatus gbc_home(GbcController controller, uint8_t axis);
  * one).
  */
 enum GbcStatus gbc_manual_stop(GbcController controller);
+
+/**
+ * Program restart at the block on source line `line` (1-based) of the
+ * main file, the `pass`-th time the run reaches it (1: the first; a
+ * block in a loop or a subprogram is reached more than once). The
+ * program runs from its start in search mode up to that block: nothing
+ * moves and no PLC function is handed over, but #500–#999 are written
+ * as in a full run (through `vars_store`, from this call: a counter
+ * there counts again). At the next `gbc_cycle_start` the PLC gets the
+ * restored tool, gear or speed, spindle direction and coolant, the axes
+ * go from where they stand to the block's start point (a rapid of X
+ * and C, then one of Z), and the program goes on from the block. Taken
+ * only while the controller is idle: before the first cycle start, or
+ * after `gbc_reset` once `gbc_state` gives `GBC_RUN_STATE_IDLE`.
+ *
+ * The statuses, each with `gbc_last_error`'s text saying why:
+ * - line 0 or pass 0: [`GbcStatus::InvalidArgument`];
+ * - a program runs, stands stopped, ended or in an alarm, a manual move
+ *   runs, or a reset is still running: [`GbcStatus::NotIdle`];
+ * - the main file has no block on the line, the line is a cycle's
+ *   profile, or the run ends before reaching the block `pass` times:
+ *   [`GbcStatus::RestartNotFound`];
+ * - what is in force at the block cannot be resumed there (a thread
+ *   chain open before the block, tool-nose compensation, a move
+ *   waiting for the block, polar or cylindrical interpolation):
+ *   [`GbcStatus::RestartHeld`];
+ * - the program raised an alarm before the block:
+ *   [`GbcStatus::RestartAlarm`].
+ *
+ * A refused restart leaves the program at its start, so cycle start
+ * then runs it from the beginning.
+ */
+enum GbcStatus gbc_restart_from(GbcController controller, uint32_t line, uint32_t pass);
+
+/**
+ * Program restart at the block numbered `seq` (`N<seq>`) in the main
+ * file — the first such block, as `GOTO` finds it — the `pass`-th time
+ * the run reaches it. Otherwise as `gbc_restart_from` (pass 0 is
+ * [`GbcStatus::InvalidArgument`]; no such N in the main file,
+ * [`GbcStatus::RestartNotFound`]).
+ */
+enum GbcStatus gbc_restart_from_seq(GbcController controller, uint32_t seq, uint32_t pass);
 
 #ifdef __cplusplus
 }  // extern "C"

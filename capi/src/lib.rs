@@ -31,6 +31,7 @@
 mod handle;
 mod host;
 mod manual;
+mod restart;
 mod types;
 
 use core::cell::RefCell;
@@ -44,6 +45,7 @@ use runtime::{Config, Controller, RapidOverride, RunState};
 use handle::{Kind, Object};
 use host::{HostPlc, HostStorage};
 pub use manual::*;
+pub use restart::*;
 pub use types::*;
 
 /// A machine handle's object.

@@ -57,12 +57,28 @@ pub enum GbcStatus {
     Panic = 12,
     /// All [`GBC_HANDLE_CAPACITY`] handle slots are in use.
     Limit = 13,
-    /// A manual move while a program runs, stands stopped, ended or in an
-    /// alarm: `gbc_reset` first.
+    /// A manual move or a program restart while a program runs, stands
+    /// stopped, ended or in an alarm (a restart also while a manual move
+    /// or a reset runs): `gbc_reset` first.
     NotIdle = 14,
     /// The motion queue is full: a manual step given faster than the axes
     /// follow.
     QueueFull = 15,
+    /// A program restart found no block to begin at: the main file has
+    /// none on that line or with that N, the line is a cycle's profile,
+    /// or the run ends before reaching the block that many times. The
+    /// program stays at its start.
+    RestartNotFound = 16,
+    /// A program restart reached its block, but what is in force there
+    /// cannot be resumed (a thread chain open before the block,
+    /// tool-nose compensation, a move waiting for the block, polar or
+    /// cylindrical interpolation): restart at an earlier block. The
+    /// program stays at its start.
+    RestartHeld = 17,
+    /// The program raised an alarm before reaching the restart block
+    /// (`gbc_last_error` gives it). The controller does not stand in that
+    /// alarm, unlike [`GbcStatus::Alarm`]: the program stays at its start.
+    RestartAlarm = 18,
 }
 
 impl GbcStatus {
@@ -91,8 +107,15 @@ impl GbcStatus {
                 "all GBC_HANDLE_CAPACITY handle slots are in use \
                  (machines and controllers together): free one first"
             }
-            GbcStatus::NotIdle => "manual moves are made while no program runs",
+            GbcStatus::NotIdle => {
+                "manual moves and program restarts are made while no program runs"
+            }
             GbcStatus::QueueFull => "the motion queue is full",
+            GbcStatus::RestartNotFound => "the program has no block to restart at there",
+            GbcStatus::RestartHeld => "the program cannot be restarted at that block",
+            GbcStatus::RestartAlarm => {
+                "the program raised an alarm before reaching the restart block"
+            }
         }
     }
 }
@@ -438,10 +461,11 @@ impl From<PlcFunction> for GbcPlcFunction {
 /// callback may be null: a null `plc_done` completes every function at
 /// once, null `vars_load`/`vars_store` keep #500–#999 in memory only.
 /// The callbacks are called from `gbc_tick` (PLC; they must return at
-/// once) and `gbc_run_ahead`/`gbc_controller_load` (variables), on the
-/// thread that makes those calls. The `GbcHost` itself is copied by
-/// `gbc_controller_new`; the functions and `user` must stay valid until
-/// the controller is freed.
+/// once) and `gbc_run_ahead`/`gbc_controller_load` (variables; also
+/// `gbc_restart_from`/`gbc_restart_from_seq`, whose search runs the
+/// blocks before the restart block), on the thread that makes those
+/// calls. The `GbcHost` itself is copied by `gbc_controller_new`; the
+/// functions and `user` must stay valid until the controller is freed.
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct GbcHost {

@@ -123,6 +123,15 @@ fn every_failure_sets_a_text_about_itself() {
     fails_with("infinite encoder", arg, "infinite", || {
         gbc_spindle_feedback(c, f64::INFINITY, 0.0)
     });
+    // The restart's arguments are checked before the program is looked for.
+    fails_with("restart pass 0", arg, "pass", || gbc_restart_from(c, 1, 0));
+    fails_with("restart line 0", arg, "line", || gbc_restart_from(c, 0, 1));
+    fails_with(
+        "restart, no program",
+        GbcStatus::NoProgram,
+        "no program",
+        || gbc_restart_from_seq(c, 10, 1),
+    );
     // A bad handle and a bad argument: the status and the text both tell
     // of the handle.
     fails_with("NaN, bad handle", invalid, "handle", || {

@@ -151,6 +151,11 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             "gbc_spindle_simulated",
             Box::new(|h| gbc_spindle_simulated(h)),
         ),
+        ("gbc_restart_from", Box::new(|h| gbc_restart_from(h, 1, 1))),
+        (
+            "gbc_restart_from_seq",
+            Box::new(|h| gbc_restart_from_seq(h, 1, 1)),
+        ),
         ("gbc_controller_free", Box::new(|h| gbc_controller_free(h))),
     ]
 }

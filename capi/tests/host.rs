@@ -552,3 +552,182 @@ fn manual_moves_go_through_the_c_abi() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
 }
+
+/// Two tools: T01 turns X52 down to Z-30; T02, from N100 on line 10,
+/// turns X40 down to Z-20 and faces out to X50.
+const TWO_TOOLS: &str = concat!(
+    "G50 X200 Z100\n",
+    "T0101\n",
+    "G97 S1000 M03\n",
+    "G00 X52 Z2\n",
+    "G99 G01 Z-30 F0.2\n",
+    "G00 X60 Z2\n",
+    "T0202\n",
+    "S800 M04\n",
+    "G00 X40 Z2\n",
+    "N100 G01 Z-20 F0.1\n",
+    "X50\n",
+    "M30\n",
+);
+
+/// The text `gbc_last_error` gives now.
+fn last_error() -> String {
+    let mut buf = [0 as core::ffi::c_char; 256];
+    let s = unsafe { gbc_last_error(buf.as_mut_ptr(), buf.len(), std::ptr::null_mut()) };
+    assert_eq!(s, GbcStatus::Ok);
+    let text = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
+    text.to_string_lossy().into_owned()
+}
+
+/// A restart asked for through the C ABI.
+type Restart = fn(GbcController) -> GbcStatus;
+
+/// The PLC functions the host got, as (kind, code, S).
+fn plc_seen(host: *mut Host) -> Vec<(GbcPlcKind, u32, f64)> {
+    unsafe { &(*host).requests }
+        .iter()
+        .map(|f| (f.kind, f.code, f.s))
+        .collect()
+}
+
+/// Program restart at N100 (and at its line, 10, which is the same run):
+/// the search runs lines 1–9 with nothing moving and no PLC function;
+/// at cycle start the PLC gets only the restored T0202, S800 and M04,
+/// and the axes go from where they stand — X200 Z100, the G50 point — to
+/// N100's start X40 Z2, X first (Z stays at 100), with tool 2 and the
+/// spindle turning backwards. The cut at F0.1 mm/rev and 800 rev/min
+/// runs at 80 mm/min; tool 1's cut (X52 to Z-30) never runs.
+#[test]
+fn a_program_restart_goes_through_the_c_abi() {
+    let prog = module(TWO_TOOLS);
+    let restarts: [Restart; 2] = [
+        |c| gbc_restart_from_seq(c, 100, 1),
+        |c| gbc_restart_from(c, 10, 1),
+    ];
+    let mut runs = Vec::new();
+    for restart in restarts {
+        let host = new_host(Host::default());
+        let (m, c) = new_controller(host, &prog);
+        assert_eq!(restart(c), GbcStatus::Ok);
+        assert_eq!(state(c).state, GbcRunState::Idle);
+        assert_eq!(plc_seen(host), [], "the search hands nothing over");
+        let pts = run(c, |_| {});
+        assert_eq!(state(c).state, GbcRunState::Ended);
+        let want = [
+            (GbcPlcKind::Tool, 2, 0.0),
+            (GbcPlcKind::Speed, 0, 800.0),
+            (GbcPlcKind::SpindleCcw, 0, 0.0),
+        ];
+        assert_eq!(plc_seen(host), want);
+        check_restarted_run(&pts);
+        runs.push(pts.iter().map(|p| (p.x, p.z, p.line)).collect::<Vec<_>>());
+        assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+        assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+        drop(unsafe { Box::from_raw(host) });
+    }
+    assert!(runs[0] == runs[1], "N100 and line 10 run differently");
+}
+
+/// The set points of `TWO_TOOLS` restarted at N100.
+fn check_restarted_run(pts: &[GbcSetPoint]) {
+    let first = pts[0];
+    assert!(first.x < 200.0 && first.z == 100.0, "{first:?}");
+    assert!(pts.iter().all(|p| p.tool == 2));
+    // The approach: a rapid of X to 40 at Z100, then one of Z.
+    let z_moves = pts.iter().position(|p| p.z != 100.0).expect("Z moves");
+    assert_eq!(pts[z_moves - 1].x, 40.0);
+    assert!(pts[..z_moves].iter().all(|p| p.motion != GbcMotion::Feed));
+    // Never forwards; at 800 backwards once up to speed, for every cut.
+    assert!(pts.iter().all(|p| p.spindle_rpm <= 0.0));
+    let cuts: Vec<_> = pts.iter().filter(|p| p.motion == GbcMotion::Feed).collect();
+    assert!(cuts.iter().all(|p| p.spindle_rpm == -800.0));
+    let mid = cuts[cuts.len() / 4];
+    assert_eq!(mid.line, 10);
+    assert!((mid.feed - 80.0).abs() < 1e-6, "feed {}", mid.feed);
+    // Tool 1's cut is skipped: nothing at X52 below Z2, nothing past Z-20.
+    assert!(!pts.iter().any(|p| p.x == 52.0 && p.z <= 2.0));
+    assert!(pts.iter().all(|p| p.z >= -20.0));
+    let end = pts.last().expect("periods");
+    assert_eq!((end.x, end.z), (50.0, -20.0));
+}
+
+/// Refused restarts: pass or line 0 (bad values), a line without a block,
+/// an N the program lacks, a pass the run never reaches, a restart while
+/// the program runs or after it ended. A refused restart leaves the
+/// program at its start, even after one that was taken: cycle start runs
+/// it whole, and tool 1's cut reaches X52 Z-30.
+#[test]
+fn a_refused_restart_leaves_the_program_at_its_start() {
+    let prog = module(TWO_TOOLS);
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    assert_eq!(gbc_restart_from_seq(c, 100, 1), GbcStatus::Ok);
+    assert_ne!(state(c).blocks, 0, "the search ran");
+    assert_eq!(gbc_restart_from_seq(c, 100, 0), GbcStatus::InvalidArgument);
+    assert!(last_error().contains("pass"), "{}", last_error());
+    assert_eq!(gbc_restart_from(c, 0, 1), GbcStatus::InvalidArgument);
+    let not_found: [(Restart, &str); 3] = [
+        (|c| gbc_restart_from(c, 99, 1), "line 99"),
+        (|c| gbc_restart_from_seq(c, 7, 1), "N7"),
+        (|c| gbc_restart_from_seq(c, 100, 2), "N100"),
+    ];
+    for (restart, why) in not_found {
+        assert_eq!(restart(c), GbcStatus::RestartNotFound, "{why}");
+        let text = last_error();
+        assert!(text.contains(why), "{text}");
+    }
+    assert_eq!(state(c).state, GbcRunState::Idle);
+    let mut while_running = None;
+    let pts = run(c, |_| {
+        while_running.get_or_insert_with(|| (gbc_restart_from_seq(c, 100, 1), state(c).state));
+    });
+    assert_eq!(
+        while_running,
+        Some((GbcStatus::NotIdle, GbcRunState::Running))
+    );
+    assert!(pts.iter().any(|p| (p.x, p.z, p.tool) == (52.0, -30.0, 1)));
+    let seen = plc_seen(host);
+    assert_eq!(
+        seen[..2],
+        [(GbcPlcKind::Tool, 1, 0.0), (GbcPlcKind::Speed, 0, 1000.0)]
+    );
+    assert_eq!(gbc_restart_from(c, 10, 1), GbcStatus::NotIdle, "ended");
+    assert!(last_error().contains("gbc_reset"), "{}", last_error());
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}
+
+/// A search that meets an alarm (`#3000`) or a block inside tool-nose
+/// compensation says so, with its own status and text; the controller
+/// stands in no alarm and the program stays at its start.
+#[test]
+fn a_restart_refused_by_its_search_says_why() {
+    let cases = [
+        (
+            "O1\n#3000=1(NO STOCK)\nN10 G00 W-1\nM30\n",
+            GbcStatus::RestartAlarm,
+            "NO STOCK",
+        ),
+        (
+            "O1\nG00 X40 Z2\nG42 G01 X40 Z0 F0.2\nN10 G01 Z-10\nG40 X50\nM30\n",
+            GbcStatus::RestartHeld,
+            "tool-nose compensation",
+        ),
+    ];
+    for (src, status, why) in cases {
+        let prog = module(src);
+        let host = new_host(Host::default());
+        let (m, c) = new_controller(host, &prog);
+        assert_eq!(gbc_restart_from_seq(c, 10, 1), status, "{src}");
+        assert!(last_error().contains(why), "{}", last_error());
+        let st = state(c);
+        assert_eq!(
+            (st.state, st.alarm_code, st.blocks),
+            (GbcRunState::Idle, 0, 0)
+        );
+        assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+        assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+        drop(unsafe { Box::from_raw(host) });
+    }
+}

@@ -34,11 +34,12 @@ use crate::certify::Certifier;
 use crate::config::{Config, RapidOverride};
 use crate::interpolate::{Engine, Manual, ManualRefused, RunState, SetPoint};
 use crate::plc::{AutoAck, Plc};
-use crate::runahead::RunAhead;
+use crate::runahead::{RunAhead, Standing};
 use crate::split::{Interpreter, Realtime};
 use alloc::format;
 use alloc::string::String;
 use nc::{Machine, Sink};
+use vm::restart::{RestartAt, RestartError};
 use vm::Vm;
 
 /// Why a module cannot be run.
@@ -64,6 +65,27 @@ impl core::fmt::Display for LoadError {
 }
 
 impl core::error::Error for LoadError {}
+
+/// Why [`Controller::restart_from`] did not restart.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RestartRefused {
+    /// A program runs, stands stopped, ended or in an alarm, or a manual
+    /// move runs: reset first.
+    NotIdle,
+    /// The search did not reach a block the run can resume at.
+    Search(RestartError),
+}
+
+impl core::fmt::Display for RestartRefused {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            RestartRefused::NotIdle => write!(f, "a restart needs an idle machine: reset first"),
+            RestartRefused::Search(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl core::error::Error for RestartRefused {}
 
 /// An alarm with its place, as `gbvm` reports it.
 #[derive(Debug, Clone, PartialEq)]
@@ -262,6 +284,40 @@ impl<P: Plc> Controller<P> {
     /// the axes stand ([`Engine::manual`]).
     pub fn manual(&mut self, m: Manual) -> Result<(), ManualRefused> {
         self.engine.manual(m)
+    }
+
+    /// Program restart (docs/embedding.md): while idle, the program
+    /// runs from its start in search mode up to `at` (nothing moves),
+    /// then, at cycle start, the restored state (origin, tool, speed,
+    /// spindle, coolant, feed) and an approach from where the axes stand,
+    /// X first, then Z, and the program from `at` on. Call it before
+    /// [`Controller::run_ahead`]. A refused restart leaves the program
+    /// at its start.
+    pub fn restart_from(&mut self, at: RestartAt) -> Result<(), RestartRefused> {
+        self.restart_from_tap(at, &mut nc::Discard)
+    }
+
+    /// As [`Controller::restart_from`], handing the restored state and the
+    /// approach to `tap` too, as [`Controller::run_ahead_tap`] does.
+    pub fn restart_from_tap(
+        &mut self,
+        at: RestartAt,
+        tap: &mut dyn Sink,
+    ) -> Result<(), RestartRefused> {
+        if !self.engine.clear_idle() {
+            return Err(RestartRefused::NotIdle);
+        }
+        // A reset (or manual move) that has just finished would otherwise
+        // start the program afresh at the next run-ahead; the restart
+        // starts it where the axes stand itself.
+        let _ = self.engine.take_reset_done();
+        let stand = Standing {
+            at: self.engine.position(),
+            c: self.engine.c(),
+        };
+        self.ra
+            .restart_from(at, stand, &mut self.engine, tap)
+            .map_err(RestartRefused::Search)
     }
 
     /// Stops a manual move: the axes decelerate and stand.

@@ -605,6 +605,19 @@ impl<P: Plc> Engine<P> {
         self.reset_req = true;
     }
 
+    /// Drops what the program queued ahead while the machine is idle, for
+    /// a run that starts afresh where the axes stand (a program restart).
+    /// `false`, and nothing changes, unless idle.
+    pub fn clear_idle(&mut self) -> bool {
+        if self.state() != RunState::Idle || self.reset_req {
+            return false;
+        }
+        self.q.clear();
+        self.q.set_tail(self.pos);
+        self.q.set_tail_c(self.c);
+        true
+    }
+
     /// The level of the host input wired to the skip signal (№148).
     pub fn set_skip_input(&mut self, level: bool) {
         self.skip_active = level != self.cfg.skip_active_low;

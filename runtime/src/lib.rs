@@ -74,5 +74,6 @@ pub use interpolate::{
 };
 pub use plc::{AutoAck, Plc, PlcFunction};
 
-pub use controller::{AlarmInfo, Controller, LoadError};
+pub use controller::{AlarmInfo, Controller, LoadError, RestartRefused};
 pub use split::{Interpreter, Realtime};
+pub use vm::restart::{RestartAt, RestartError, Target};

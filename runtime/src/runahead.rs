@@ -18,6 +18,7 @@ use alloc::string::String;
 use alloc::vec::Vec;
 use nc::exec::switches::Switch;
 use nc::{Event, Machine, Placed, Sink};
+use vm::restart::{RestartAt, RestartError};
 use vm::{Status, Vm};
 
 /// Where the axes stand after a reset: X and Z in machine coordinates
@@ -444,6 +445,44 @@ impl RunAhead {
         if self.vm_state == VmState::Skip {
             self.vm_state = VmState::Running;
         }
+    }
+
+    /// Program restart: a fresh VM where the axes stand (`stand`), run in
+    /// search mode up to `at`; the restored state and the approach are
+    /// staged, and the run goes on from there. When the search fails the
+    /// VM is fresh again, at the program's start, and `tap` has the
+    /// `ALARM` of a search that stopped on one.
+    pub(crate) fn restart_from<L: Link>(
+        &mut self,
+        at: RestartAt,
+        stand: Standing,
+        link: &mut L,
+        tap: &mut dyn Sink,
+    ) -> Result<(), RestartError> {
+        self.restart(stand, link);
+        self.events.clear();
+        if let Err(e) = vm::restart::search(&mut self.vm, at, &mut self.events) {
+            // (What the search passes on is an alarm's event.)
+            for e in self.events.events.drain(..) {
+                tap.emit(e);
+            }
+            self.events.clear();
+            self.restart(stand, link);
+            return Err(e);
+        }
+        self.blocks += self.charged();
+        let loc = self.vm.loc_at(self.vm.pc());
+        let tag = Tag {
+            file: loc.file,
+            line: loc.line,
+            col: loc.col,
+            block: self.block,
+            block_end: false,
+            no_hold: self.vm.nc.switch(Switch::NoFeedHold),
+            no_fin: self.vm.nc.switch(Switch::NoFinWait),
+        };
+        self.stage_events(tag, (0, tag), tap);
+        Ok(())
     }
 
     /// After a reset: a fresh VM at the start of the program, its

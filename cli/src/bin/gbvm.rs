@@ -32,6 +32,7 @@ struct RunArgs<'a> {
     repeat: u32,
     vars: Option<&'a Path>,
     jit: cli::jit::JitMode,
+    from: Option<vm::restart::RestartAt>,
 }
 
 /// mimalloc (cli::allocator says why).
@@ -165,6 +166,13 @@ struct RunCmd {
     /// may last before it stops with E6006; default run.max_time_s.
     #[arg(long, value_name = "S")]
     max_time: Option<f64>,
+    /// Program restart: run from this block of the main file, a line
+    /// (120) or a sequence number (N120); @PASS for the PASS-th time the
+    /// run reaches it (N120@3). The blocks before it run without motion;
+    /// then the last origin, tool, speed, spindle, coolant and feed are
+    /// given again and the tool goes there, X first, then Z.
+    #[arg(long, value_name = "LINE|N…[@PASS]")]
+    from: Option<vm::restart::RestartAt>,
     /// Passes a main-program M99 makes before the run ends.
     #[arg(long, value_name = "N", default_value_t = 1)]
     repeat: u32,
@@ -299,6 +307,7 @@ fn run_command(cmd: &RunCmd) -> ExitCode {
         repeat: cmd.repeat,
         vars: cmd.vars.as_deref(),
         jit: cmd.jit,
+        from: cmd.from,
     };
     if emit == Some(Emit::Canon) && cmd.plot.is_none() && cmd.stats.is_none() {
         return run(&run_args, cmd.quiet);
@@ -389,18 +398,28 @@ fn run(args: &RunArgs, quiet: bool) -> ExitCode {
     };
     // Block by block (as `Vm::run`), to move the progress bar.
     let mut progress = cli::progress::Progress::bar(main_lines, "run", quiet);
-    let (status, output_error) = cli::canon::on_writer_thread(|sink| loop {
-        match vm.step(1 << 16, sink) {
-            Status::Event | Status::OutOfBudget | Status::Sync => {
-                progress.set_from(|| {
-                    let line = vm.last_loc().line;
-                    (line.into(), format!("line {line}"))
-                });
-            }
-            other => break other,
+    let (status, output_error) = cli::canon::on_writer_thread(|sink| {
+        if let Some(at) = args.from {
+            vm::restart::search(&mut vm, at, sink)?;
         }
+        Ok(loop {
+            match vm.step(1 << 16, sink) {
+                Status::Event | Status::OutOfBudget | Status::Sync => {
+                    progress.set_from(|| {
+                        let line = vm.last_loc().line;
+                        (line.into(), format!("line {line}"))
+                    });
+                }
+                other => break other,
+            }
+        })
     });
     progress.finish();
+    let status = match status {
+        Ok(s) => s,
+        Err(vm::restart::RestartError::Alarm(a)) => Status::Alarm(a),
+        Err(e) => return fail(&format!("--from: {e}")),
+    };
     if let Status::Alarm(a) = &status {
         note(format_args!("{}", printable(&a.header())));
     }

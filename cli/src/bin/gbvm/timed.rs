@@ -103,6 +103,19 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         canon.write(&format!("{}\n", runtime::trace::csv_header(c_axis)));
     }
     let max_time = out.max_time.unwrap_or(ctl.machine().run.max_time_s);
+    if let Some(at) = args.from {
+        if let Err(e) = restart(&mut ctl, at, &mut canon, out) {
+            let output_error = canon.finish();
+            return match (output_error, e) {
+                (Some(e), _) => output_failed(&e),
+                (None, runtime::RestartRefused::Search(runtime::RestartError::Alarm(a))) => {
+                    note(format_args!("{}", printable(&a.header())));
+                    cli::exit::Exit::Alarm.into()
+                }
+                (None, e) => fail(&format!("--from: {e}")),
+            };
+        }
+    }
     let mut rec = Record {
         stats: runtime::stats::Stats::new(ctl.engine().config().period_s),
         plot: out.plot.as_ref().map(|_| runtime::plot::Plot::new()),
@@ -161,6 +174,20 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         (Some(e), _) => output_failed(&e),
         (None, Some(_)) => cli::exit::Exit::Alarm.into(),
         (None, None) => ExitCode::SUCCESS,
+    }
+}
+
+/// `--from`: the restart's search, its restored state and approach told
+/// to the canon when it is printed.
+fn restart(
+    ctl: &mut runtime::Controller<runtime::AutoAck>,
+    at: vm::restart::RestartAt,
+    canon: &mut Canon<BufWriter<StdoutLock<'static>>>,
+    out: &Outputs,
+) -> Result<(), runtime::RestartRefused> {
+    match out.canon {
+        true => ctl.restart_from_tap(at, canon),
+        false => ctl.restart_from(at),
     }
 }
 

@@ -1,0 +1,96 @@
+//! Program restart (`runtime::Controller::restart_from`): a run that
+//! begins at a block in the middle of the program, as after a broken
+//! insert or an interrupted shift.
+
+use crate::{fail, with_ctl, GbcController, GbcStatus, Outcome};
+use runtime::{RestartAt, RestartError, RestartRefused, Target};
+
+/// Program restart at the block on source line `line` (1-based) of the
+/// main file, the `pass`-th time the run reaches it (1: the first; a
+/// block in a loop or a subprogram is reached more than once). The
+/// program runs from its start in search mode up to that block: nothing
+/// moves and no PLC function is handed over, but #500–#999 are written
+/// as in a full run (through `vars_store`, from this call: a counter
+/// there counts again). At the next `gbc_cycle_start` the PLC gets the
+/// restored tool, gear or speed, spindle direction and coolant, the axes
+/// go from where they stand to the block's start point (a rapid of X
+/// and C, then one of Z), and the program goes on from the block. Taken
+/// only while the controller is idle: before the first cycle start, or
+/// after `gbc_reset` once `gbc_state` gives `GBC_RUN_STATE_IDLE`.
+///
+/// The statuses, each with `gbc_last_error`'s text saying why:
+/// - line 0 or pass 0: [`GbcStatus::InvalidArgument`];
+/// - a program runs, stands stopped, ended or in an alarm, a manual move
+///   runs, or a reset is still running: [`GbcStatus::NotIdle`];
+/// - the main file has no block on the line, the line is a cycle's
+///   profile, or the run ends before reaching the block `pass` times:
+///   [`GbcStatus::RestartNotFound`];
+/// - what is in force at the block cannot be resumed there (a thread
+///   chain open before the block, tool-nose compensation, a move
+///   waiting for the block, polar or cylindrical interpolation):
+///   [`GbcStatus::RestartHeld`];
+/// - the program raised an alarm before the block:
+///   [`GbcStatus::RestartAlarm`].
+///
+/// A refused restart leaves the program at its start, so cycle start
+/// then runs it from the beginning.
+#[no_mangle]
+pub extern "C" fn gbc_restart_from(controller: GbcController, line: u32, pass: u32) -> GbcStatus {
+    restart(controller, Target::Line(line), pass)
+}
+
+/// Program restart at the block numbered `seq` (`N<seq>`) in the main
+/// file — the first such block, as `GOTO` finds it — the `pass`-th time
+/// the run reaches it. Otherwise as `gbc_restart_from` (pass 0 is
+/// [`GbcStatus::InvalidArgument`]; no such N in the main file,
+/// [`GbcStatus::RestartNotFound`]).
+#[no_mangle]
+pub extern "C" fn gbc_restart_from_seq(
+    controller: GbcController,
+    seq: u32,
+    pass: u32,
+) -> GbcStatus {
+    restart(controller, Target::Seq(seq), pass)
+}
+
+/// Checks the arguments (after the handle, before the program, as
+/// `gbc_spindle_feedback` does) and asks the controller to restart.
+fn restart(controller: GbcController, target: Target, pass: u32) -> GbcStatus {
+    with_ctl(controller, |c| {
+        if pass == 0 {
+            return Err(fail(
+                GbcStatus::InvalidArgument,
+                "the pass is 0: passes count from 1 (the first time the run reaches the block)",
+            ));
+        }
+        if target == Target::Line(0) {
+            return Err(fail(
+                GbcStatus::InvalidArgument,
+                "the line is 0: source lines count from 1",
+            ));
+        }
+        refused(c.run()?.restart_from(RestartAt { target, pass }))
+    })
+}
+
+/// The status of a refused restart; a failed search keeps its own text
+/// (it names the block, the pass or the alarm).
+fn refused(r: Result<(), RestartRefused>) -> Outcome {
+    r.map_err(|e| match e {
+        RestartRefused::NotIdle => fail(
+            GbcStatus::NotIdle,
+            "a program runs, stands stopped, ended or in an alarm, or a manual move or a \
+             reset runs: gbc_reset first and tick until the state is idle",
+        ),
+        RestartRefused::Search(e) => {
+            let status = match e {
+                RestartError::NoBlock(_)
+                | RestartError::Profile(_)
+                | RestartError::NotReached { .. } => GbcStatus::RestartNotFound,
+                RestartError::Held { .. } => GbcStatus::RestartHeld,
+                RestartError::Alarm(_) => GbcStatus::RestartAlarm,
+            };
+            fail(status, e.to_string())
+        }
+    })
+}

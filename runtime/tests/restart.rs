@@ -1,0 +1,157 @@
+//! Program restart through the controller: the search runs while idle,
+//! and cycle start then gives the restored state, the approach from where
+//! the axes stand (X first, then Z) and the program from the block on.
+
+mod common;
+
+use common::{check_limits, module, Run};
+use nc::Machine;
+use runtime::{
+    Config, Controller, JogRate, Manual, ManualAxis, RestartAt, RestartError, RestartRefused,
+    RunState, SetPoint, Target,
+};
+
+const TWO_TOOLS: &str = "\
+G00 X200 Z100
+T0101
+G97 S1000 M03
+G00 X52 Z2
+G99 G01 Z-30 F0.2
+G00 X60 Z2
+T0202
+S800 M04
+G00 X40 Z2
+N100 G01 Z-20 F0.1
+X50
+G00 X200 Z100
+M30
+";
+
+const N100: RestartAt = RestartAt {
+    target: Target::Seq(100),
+    pass: 1,
+};
+
+fn controller() -> Controller {
+    let machine = Machine::reference();
+    let m = module(TWO_TOOLS, &machine);
+    let mut ctl = Controller::new(m, machine, runtime::AutoAck).expect("loads");
+    // (The queue filled from the start, as a host does before cycle
+    // start: the restart replaces it.)
+    ctl.run_ahead();
+    ctl
+}
+
+/// Cycle start, then every period to the end (at most 120 simulated s).
+fn run_to_end(ctl: &mut Controller, pts: &mut Vec<SetPoint>) {
+    ctl.cycle_start();
+    loop {
+        ctl.run_ahead();
+        let sp = ctl.tick();
+        pts.push(sp);
+        match ctl.state() {
+            RunState::Ended => return,
+            RunState::Stopped(_) => ctl.cycle_start(),
+            RunState::Alarm(a) => panic!("alarm {a}"),
+            _ => {}
+        }
+        assert!(sp.time_s < 120.0, "not done: {:?}", ctl.state());
+    }
+}
+
+fn checked(pts: Vec<SetPoint>) {
+    let machine = Machine::reference();
+    let run = Run {
+        pts,
+        canon: Vec::new(),
+        state: RunState::Ended,
+        alarm: None,
+        cfg: Config::from_machine(&machine),
+    };
+    check_limits(&run, false);
+}
+
+#[test]
+fn a_restart_runs_the_second_tool_s_cut_from_where_the_axes_stand() {
+    let mut ctl = controller();
+    let mut pts = Vec::new();
+    // The operator has jogged Z to -10 from the power-on point X0 Z0
+    // (work and machine coordinates are one on the reference machine).
+    let step = Manual::Step {
+        axis: ManualAxis::Z,
+        distance: -10.0,
+        rate: JogRate::Rapid,
+    };
+    assert_eq!(ctl.manual(step), Ok(()));
+    while ctl.state() != RunState::Idle {
+        ctl.run_ahead();
+        pts.push(ctl.tick());
+    }
+    let manual = pts.len();
+    assert_eq!(ctl.restart_from(N100), Ok(()));
+    run_to_end(&mut ctl, &mut pts);
+    let run = &pts[manual..];
+    // X first, at Z-10, from X0 to 40; then Z.
+    let first_z = run.iter().position(|p| p.z != -10.0).expect("Z moves");
+    assert!(first_z > 0 && run[..first_z].iter().all(|p| p.z == -10.0));
+    assert!(
+        (run[first_z - 1].x - 40.0).abs() < 1e-6,
+        "{:?}",
+        run[first_z - 1]
+    );
+    // The second tool cuts with the spindle reversed at 800 rpm; the
+    // first tool's cut to Z-30 is not run again.
+    assert!(run.iter().all(|p| p.tool == 2));
+    assert!(run.iter().all(|p| p.z >= -20.0 - 1e-9));
+    assert!(run.iter().any(|p| (p.spindle_rpm + 800.0).abs() < 1e-6));
+    assert!(run.iter().all(|p| p.spindle_rpm <= 0.0));
+    let cut = run.iter().filter(|p| (p.z + 20.0).abs() < 1e-9);
+    assert!(cut.clone().any(|p| (p.x - 50.0).abs() < 1e-9));
+    let end = pts.last().expect("periods");
+    assert_eq!((end.x, end.z), (200.0, 100.0));
+    checked(pts);
+}
+
+#[test]
+fn a_restart_is_refused_while_a_program_runs() {
+    let mut ctl = controller();
+    ctl.cycle_start();
+    for _ in 0..10 {
+        ctl.run_ahead();
+        ctl.tick();
+    }
+    assert_eq!(ctl.restart_from(N100), Err(RestartRefused::NotIdle));
+    // Nothing changed: the program runs its first cut.
+    let mut pts = Vec::new();
+    run_to_end(&mut ctl, &mut pts);
+    assert!(pts.iter().any(|p| p.z == -30.0));
+}
+
+#[test]
+fn a_refused_restart_leaves_the_program_at_its_start() {
+    let mut ctl = controller();
+    let at = RestartAt {
+        target: Target::Seq(999),
+        pass: 1,
+    };
+    let refused = Err(RestartRefused::Search(RestartError::NoBlock(at.target)));
+    assert_eq!(ctl.restart_from(at), refused);
+    let twice = RestartAt { pass: 2, ..N100 };
+    assert!(matches!(
+        ctl.restart_from(twice),
+        Err(RestartRefused::Search(RestartError::NotReached {
+            reached: 1,
+            ..
+        }))
+    ));
+    let mut pts = Vec::new();
+    run_to_end(&mut ctl, &mut pts);
+    // The whole program: the first tool's cut reaches X52 Z-30.
+    assert!(pts
+        .iter()
+        .any(|p| (p.x, p.z) == (52.0, -30.0) && p.tool == 1));
+    assert!(pts
+        .iter()
+        .any(|p| (p.x, p.z) == (50.0, -20.0) && p.tool == 2));
+    checked(pts);
+}
