@@ -21,19 +21,18 @@ fn module(src: &str, machine: &Machine) -> isa::Module {
 }
 
 /// The whole run, one instruction at a time: its events, and for each pc
-/// the number of events printed before the run first came to it and the
-/// programmed point there (X a diameter, Z).
-type Arrivals = HashMap<u32, (usize, (f64, f64))>;
+/// every time the run came to it, the number of events printed before
+/// and the programmed point there (X a diameter, Z).
+type Arrivals = HashMap<u32, Vec<(usize, (f64, f64))>>;
 
 fn whole_run(m: &isa::Module, machine: &Machine) -> (Vec<Event>, Arrivals) {
     let mut vm = Vm::new(m.clone(), machine.clone());
     let mut events = Vec::new();
-    let mut first = HashMap::new();
+    let mut first: Arrivals = HashMap::new();
     loop {
         let at = vm.nc.position();
-        first
-            .entry(vm.pc())
-            .or_insert((events.len(), (at.x(), at.z)));
+        let here = (events.len(), (at.x(), at.z));
+        first.entry(vm.pc()).or_default().push(here);
         match vm.step(1, &mut events) {
             Status::Done | Status::Alarm(_) => return (events, first),
             _ => {}
@@ -78,17 +77,31 @@ fn state_before(events: &[Event]) -> Vec<Event> {
     last.into_iter().flatten().cloned().collect()
 }
 
-/// Checks a restart at `line` against the whole run; whether it began.
-fn check_line(name: &str, m: &isa::Module, machine: &Machine, line: u32) -> bool {
+/// The whole run of a module and its arrivals.
+struct Whole {
+    events: Vec<Event>,
+    arrivals: Arrivals,
+}
+
+/// Checks a restart at `line`, pass `pass`, against the whole run;
+/// whether it began.
+fn check_line(
+    name: &str,
+    m: &isa::Module,
+    machine: &Machine,
+    whole: &Whole,
+    line: u32,
+    pass: u32,
+) -> bool {
     let at = RestartAt {
         target: Target::Line(line),
-        pass: 1,
+        pass,
     };
-    let (events, first) = whole_run(m, machine);
     let Ok((prefix, rest, entry)) = restarted(m, machine, at) else {
         return false;
     };
-    let (mark, (x, z)) = first[&entry];
+    let events = &whole.events;
+    let (mark, (x, z)) = whole.arrivals[&entry][pass as usize - 1];
     assert_eq!(
         rest,
         events[mark..],
@@ -132,17 +145,56 @@ fn a_restart_at_any_block_prints_the_rest_of_the_whole_run() {
         let Some(m) = c.module else {
             continue;
         };
-        let (events, _) = whole_run(&m, &machine);
-        if m.code.len() > 400 || events.len() > 3000 {
-            continue;
-        }
-        let last = m.lines.iter().filter(|l| l.file == 0).map(|l| l.line);
-        for line in 1..=last.max().unwrap_or(0) {
-            restarts += usize::from(check_line(&name, &m, &machine, line));
-        }
+        restarts += check_every_line(&name, &m, &machine, 1);
     }
     eprintln!("{restarts} restarts checked");
     assert!(restarts >= 2000, "only {restarts} restarts checked");
+}
+
+/// Restarts at every line of the main file, passes 1 to `passes`, each
+/// checked against the whole run (skipped for a module too long for a
+/// short test); how many began.
+fn check_every_line(name: &str, m: &isa::Module, machine: &Machine, passes: u32) -> usize {
+    let (events, arrivals) = whole_run(m, machine);
+    if m.code.len() > 400 || events.len() > 3000 {
+        return 0;
+    }
+    let whole = Whole { events, arrivals };
+    let last = m.lines.iter().filter(|l| l.file == 0).map(|l| l.line);
+    let mut restarts = 0;
+    for line in 1..=last.max().unwrap_or(0) {
+        for pass in 1..=passes {
+            restarts += usize::from(check_line(name, m, machine, &whole, line, pass));
+        }
+    }
+    restarts
+}
+
+/// The same for random programs of loops, GOTOs, M98 with counts, G66
+/// modal calls and computed moves (`common::random_program`), at the
+/// first three passes of each line.
+#[test]
+fn a_restart_in_random_programs_prints_the_rest_of_the_whole_run() {
+    let mut rng = common::Rng(0x5eed_2026_1207);
+    let machine = Machine::reference();
+    let mut restarts = 0;
+    for i in 0..1000 {
+        let src = common::random_program(&mut rng);
+        let opts = Options {
+            machine: machine.clone(),
+            ..Options::default()
+        };
+        let c = compile("p.nc", src.as_bytes(), &opts);
+        if c.has_errors() {
+            continue;
+        }
+        let Some(m) = c.module else {
+            continue;
+        };
+        restarts += check_every_line(&format!("program {i}:\n{src}"), &m, &machine, 3);
+    }
+    eprintln!("{restarts} restarts checked");
+    assert!(restarts >= 10_000, "only {restarts} restarts checked");
 }
 
 const TWO_TOOLS: &str = "\

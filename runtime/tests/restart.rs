@@ -155,3 +155,50 @@ fn a_refused_restart_leaves_the_program_at_its_start() {
         .any(|p| (p.x, p.z) == (50.0, -20.0) && p.tool == 2));
     checked(pts);
 }
+
+/// A loop whose round starts by reading the position (which waits for the
+/// motion, `Status::Sync`): the controller's restart at the second round
+/// prints the canon the VM's own restart prints, the round of #1 = 1
+/// (X38), not the first.
+#[test]
+fn a_restart_in_the_controller_prints_the_vm_s_canon() {
+    let src = "\
+G00 X50 Z2
+#1=0
+WHILE[#1LT3]DO1
+#2=#5041
+G01 X[40-#1*2] Z-10 F500
+#1=#1+1
+END1
+M30
+";
+    let machine = Machine::reference();
+    let at: RestartAt = "4@2".parse().expect("a restart point");
+    let mut vm = vm::Vm::new(module(src, &machine), machine.clone());
+    let mut expected = Vec::new();
+    vm::restart::search(&mut vm, at, &mut expected).expect("restarts");
+    vm.run(&mut expected);
+    let lines: Vec<String> = expected.iter().map(ToString::to_string).collect();
+    assert_eq!(
+        lines[..4],
+        [
+            "FEED F=500 MODE=MIN",
+            "RAPID X=40 Z=0",
+            "RAPID X=40 Z=-10",
+            "LINE X=38 Z=-10"
+        ]
+    );
+    let mut ctl = Controller::new(module(src, &machine), machine, runtime::AutoAck).expect("loads");
+    let mut canon: Vec<nc::Event> = Vec::new();
+    assert_eq!(ctl.restart_from_tap(at, &mut canon), Ok(()));
+    ctl.cycle_start();
+    for _ in 0..200_000 {
+        ctl.run_ahead_tap(&mut canon);
+        ctl.tick();
+        if ctl.state() == RunState::Ended {
+            break;
+        }
+    }
+    assert_eq!(ctl.state(), RunState::Ended);
+    assert_eq!(canon, expected);
+}

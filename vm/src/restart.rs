@@ -250,14 +250,19 @@ pub fn search(vm: &mut Vm, at: RestartAt, sink: &mut dyn Sink) -> Result<(), Res
 /// Steps the VM up to the `at.pass`-th arrival at `entry`.
 fn reach(vm: &mut Vm, entry: u32, at: RestartAt, sink: &mut Search) -> Result<(), RestartError> {
     let mut reached = 0;
+    // (After `Sync` the VM stands before the same instruction, which has
+    // not run: not a second arrival.)
+    let mut arrived = true;
     loop {
-        if vm.pc() == entry {
+        if arrived && vm.pc() == entry {
             reached += 1;
             if reached == at.pass {
                 return Ok(());
             }
         }
-        match vm.step(1, sink) {
+        let status = vm.step(1, sink);
+        arrived = status != Status::Sync;
+        match status {
             Status::Event | Status::OutOfBudget | Status::Sync => {}
             Status::Done => {
                 let (target, pass) = (at.target, at.pass);
