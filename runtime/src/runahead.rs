@@ -121,6 +121,10 @@ pub(crate) struct RunAhead {
     /// The tag of a G32/G34 block the kernel holds back for its run-out:
     /// its thread legs come with the next block and carry this tag.
     wait_tag: Option<Tag>,
+    /// A program restart for the next reset to begin with (a split
+    /// controller's), and how the last one went.
+    pending_restart: Option<RestartAt>,
+    restart_result: Option<Result<(), RestartError>>,
 }
 
 impl RunAhead {
@@ -144,7 +148,22 @@ impl RunAhead {
             stroke: None,
             kernel_seen: None,
             wait_tag: None,
+            pending_restart: None,
+            restart_result: None,
         }
+    }
+
+    /// The next reset begins a program restart at `at` instead of the
+    /// program's start.
+    pub(crate) fn restart_at_reset(&mut self, at: RestartAt) {
+        self.pending_restart = Some(at);
+        self.restart_result = None;
+    }
+
+    /// How the restart [`RunAhead::restart_at_reset`] asked for went,
+    /// once, after the reset.
+    pub(crate) fn take_restart_result(&mut self) -> Option<Result<(), RestartError>> {
+        self.restart_result.take()
     }
 
     /// The power-on work zero in machine coordinates.
@@ -202,7 +221,10 @@ impl RunAhead {
 
     fn queue<L: Link>(&mut self, link: &mut L, tap: &mut dyn Sink) {
         if let Some(at) = link.take_reset() {
-            self.restart(at, link);
+            match self.pending_restart.take() {
+                Some(r) => self.restart_result = Some(self.restart_from(r, at, link, tap)),
+                None => self.restart(at, link),
+            }
         }
         if let Some(r) = link.take_skip() {
             self.after_skip(r);

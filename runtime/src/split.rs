@@ -36,6 +36,7 @@ use alloc::vec::Vec;
 use core::sync::atomic::{AtomicU32, Ordering};
 use nc::{Machine, Sink};
 use rtrb::{Consumer, Producer, RingBuffer};
+use vm::restart::{RestartAt, RestartError};
 use vm::Vm;
 
 /// Commands the real-time half takes from the ring in one period: bounds
@@ -287,6 +288,23 @@ impl Interpreter {
     /// The machine the program runs on.
     pub fn machine(&self) -> &Machine {
         &self.ra.machine
+    }
+
+    /// Program restart on a split controller ([`crate::Controller::restart_from`]):
+    /// the next reset of the [`Realtime`] half (press it after this call;
+    /// it is one in every state, so a running program stops) starts the
+    /// program at `at` instead of its start. The search runs in
+    /// [`Interpreter::run_ahead`] when the reset has reached this half;
+    /// [`Interpreter::take_restart_result`] tells how it went. A refused
+    /// restart leaves the program at its start, as a plain reset does.
+    pub fn restart_from(&mut self, at: RestartAt) {
+        self.ra.restart_at_reset(at);
+    }
+
+    /// How the restart asked for went, once it has run: `None` until the
+    /// reset has reached this half.
+    pub fn take_restart_result(&mut self) -> Option<Result<(), RestartError>> {
+        self.ra.take_restart_result()
     }
 
     /// Block-skip switch `switch` (1–9), for the blocks this half reads

@@ -202,3 +202,46 @@ M30
     assert_eq!(ctl.state(), RunState::Ended);
     assert_eq!(canon, expected);
 }
+
+/// A split controller, both halves driven from this thread: the
+/// interpreter's restart waits for the real-time half's reset, then the
+/// run prints the VM's canon of the restart. A refused one leaves the
+/// program at its start.
+#[test]
+fn a_split_controller_restarts_at_its_reset() {
+    let machine = Machine::reference();
+    let m = module(TWO_TOOLS, &machine);
+    let mut vm = vm::Vm::new(m.clone(), machine.clone());
+    let mut expected = Vec::new();
+    vm::restart::search(&mut vm, N100, &mut expected).expect("restarts");
+    vm.run(&mut expected);
+    for (at, restarted) in [(N100, true), (RestartAt { pass: 3, ..N100 }, false)] {
+        let ctl = Controller::new(m.clone(), machine.clone(), runtime::AutoAck).expect("loads");
+        let (mut interp, mut rt) = ctl.split();
+        let mut canon: Vec<nc::Event> = Vec::new();
+        interp.run_ahead();
+        interp.restart_from(at);
+        assert_eq!(interp.take_restart_result(), None);
+        rt.reset();
+        let result = loop {
+            rt.tick();
+            interp.run_ahead_tap(&mut canon);
+            if let Some(r) = interp.take_restart_result() {
+                break r;
+            }
+        };
+        assert_eq!(result.is_ok(), restarted, "{result:?}");
+        rt.cycle_start();
+        let mut pts = Vec::new();
+        while rt.state() != RunState::Ended {
+            interp.run_ahead_tap(&mut canon);
+            pts.push(rt.tick());
+            assert!(pts.len() < 200_000, "{:?}", rt.state());
+        }
+        if restarted {
+            assert_eq!(canon, expected);
+        } else {
+            assert!(pts.iter().any(|p| (p.x, p.z) == (52.0, -30.0)));
+        }
+    }
+}
