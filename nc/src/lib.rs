@@ -49,7 +49,10 @@ pub mod exec;
 pub mod modal;
 pub mod plan;
 
-pub use base::{error, event, gcode, geom, machine, mcode, plc, point, thread_room, words};
+pub use base::{
+    error, event, gcode, geom, machine, machine_check, mcode, offset_page, plc, point, thread_room,
+    words,
+};
 pub use block::value;
 pub use exec::{
     comp, compound, contour, cycles, data_setting, measure, params, state, stroke, sysvar,

@@ -38,6 +38,9 @@ use crate::runahead::{RunAhead, Standing};
 use crate::split::{Interpreter, Realtime};
 use alloc::format;
 use alloc::string::String;
+use nc::machine::Xz;
+use nc::machine_check::BadKey;
+use nc::offset_page::{OffsetLengths, WorkOffset};
 use nc::{Machine, Sink};
 use vm::restart::{RestartAt, RestartError};
 use vm::Vm;
@@ -307,17 +310,59 @@ impl<P: Plc> Controller<P> {
         if !self.engine.clear_idle() {
             return Err(RestartRefused::NotIdle);
         }
-        // A reset (or manual move) that has just finished would otherwise
-        // start the program afresh at the next run-ahead; the restart
-        // starts it where the axes stand itself.
-        let _ = self.engine.take_reset_done();
-        let stand = Standing {
-            at: self.engine.position(),
-            c: self.engine.c(),
-        };
+        let stand = self.standing();
         self.ra
             .restart_from(at, stand, &mut self.engine, tap)
             .map_err(RestartRefused::Search)
+    }
+
+    /// Where the axes stand, for a run that starts afresh there. A reset
+    /// (or manual move) that has just finished would otherwise start the
+    /// program afresh at the next run-ahead: its report is taken here.
+    fn standing(&mut self) -> Standing {
+        let _ = self.engine.take_reset_done();
+        Standing {
+            at: self.engine.position(),
+            c: self.engine.c(),
+        }
+    }
+
+    /// The offset page: the lengths of tool offset `number` (geometry and
+    /// wear, X on the diameter) as the runs start with them; `None`
+    /// outside the table.
+    pub fn tool_offset(&self, number: u32) -> Option<OffsetLengths> {
+        self.ra.machine.offset_lengths(number)
+    }
+
+    /// Sets the lengths of tool offset `number` for every run from now
+    /// on (docs/embedding.md, "The offset page"): at once while idle (the
+    /// program, not yet started, starts afresh with them), else from the
+    /// next reset. A value out of the machine file's ranges is refused.
+    pub fn set_tool_offset(&mut self, number: u32, l: OffsetLengths) -> Result<(), BadKey> {
+        self.ra.machine.set_offset_lengths(number, l)?;
+        self.apply_page();
+        Ok(())
+    }
+
+    /// A work offset (EXOFS, G54–G59) as the runs start with it.
+    pub fn work_offset(&self, w: WorkOffset) -> Xz {
+        self.ra.machine.work_offset_of(w)
+    }
+
+    /// Sets a work offset for every run from now on, as
+    /// [`Controller::set_tool_offset`] does.
+    pub fn set_work_offset(&mut self, w: WorkOffset, at: Xz) -> Result<(), BadKey> {
+        self.ra.machine.set_work_offset(w, at)?;
+        self.apply_page();
+        Ok(())
+    }
+
+    /// While idle, the program starts afresh on the edited machine.
+    fn apply_page(&mut self) {
+        if self.engine.clear_idle() {
+            let stand = self.standing();
+            self.ra.restart(stand, &mut self.engine);
+        }
     }
 
     /// Stops a manual move: the axes decelerate and stand.

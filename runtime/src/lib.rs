@@ -75,5 +75,8 @@ pub use interpolate::{
 pub use plc::{AutoAck, Plc, PlcFunction};
 
 pub use controller::{AlarmInfo, Controller, LoadError, RestartRefused};
+pub use nc::machine::Xz;
+pub use nc::machine_check::BadKey;
+pub use nc::offset_page::{OffsetLengths, WorkOffset};
 pub use split::{Interpreter, Realtime};
 pub use vm::restart::{RestartAt, RestartError, Target};

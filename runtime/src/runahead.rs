@@ -509,7 +509,7 @@ impl RunAhead {
 
     /// After a reset: a fresh VM at the start of the program, its
     /// programmed point and C where the axes now stand.
-    fn restart<L: Link>(&mut self, stand: Standing, link: &mut L) {
+    pub(crate) fn restart<L: Link>(&mut self, stand: Standing, link: &mut L) {
         let Standing { at, c } = stand;
         let module = self.vm.module().clone();
         let mut vm = Vm::new(module, self.machine.clone());

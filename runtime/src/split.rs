@@ -34,6 +34,9 @@ use crate::runahead::{is_skip, Link, RunAhead, Standing};
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicU32, Ordering};
+use nc::machine::Xz;
+use nc::machine_check::BadKey;
+use nc::offset_page::{OffsetLengths, WorkOffset};
 use nc::{Machine, Sink};
 use rtrb::{Consumer, Producer, RingBuffer};
 use vm::restart::{RestartAt, RestartError};
@@ -305,6 +308,17 @@ impl Interpreter {
     /// reset has reached this half.
     pub fn take_restart_result(&mut self) -> Option<Result<(), RestartError>> {
         self.ra.take_restart_result()
+    }
+
+    /// The offset page ([`crate::Controller::set_tool_offset`]): the
+    /// lengths of tool offset `number` from the next reset on.
+    pub fn set_tool_offset(&mut self, number: u32, l: OffsetLengths) -> Result<(), BadKey> {
+        self.ra.machine.set_offset_lengths(number, l)
+    }
+
+    /// A work offset from the next reset on.
+    pub fn set_work_offset(&mut self, w: WorkOffset, at: Xz) -> Result<(), BadKey> {
+        self.ra.machine.set_work_offset(w, at)
     }
 
     /// Block-skip switch `switch` (1–9), for the blocks this half reads

@@ -13,6 +13,7 @@ pub mod machine;
 pub mod machine_check;
 pub mod mcode;
 pub mod nesting;
+pub mod offset_page;
 pub mod plc;
 pub mod point;
 pub mod thread_room;
