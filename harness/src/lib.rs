@@ -73,6 +73,7 @@ pub fn compiler(data: &[u8]) {
     if let Some(module) = c.module {
         prediction_holds(&c.diags, &c.files, &module);
         dynamic_run_warns_too(data, (&c.diags, &c.files), &module);
+        restart_holds(data, &module);
         let bytes = module.to_bytes();
         let back = isa::Module::from_bytes(&bytes);
         assert!(back.is_ok(), "a compiled module must verify: {back:?}");
@@ -109,6 +110,69 @@ pub fn compiler(data: &[u8]) {
             }
         }
     }
+}
+
+/// A program restart (`vm::restart`) at a line the input picks: the run
+/// after the restored state and the approach prints what the whole run
+/// prints from its first arrival at that block on. (Skipped for a
+/// program whose whole run is long: it is stepped one instruction at a
+/// time.)
+fn restart_holds(data: &[u8], module: &isa::Module) {
+    use vm::restart::{search, RestartAt, Target};
+    let last = module.lines.iter().filter(|l| l.file == 0).map(|l| l.line);
+    let Some(lines) = last.max().filter(|_| module.code.len() <= 4_000) else {
+        return;
+    };
+    let pick = data
+        .iter()
+        .fold(0u32, |h, &b| h.wrapping_mul(31).wrapping_add(b.into()));
+    let at = RestartAt {
+        target: Target::Line(1 + pick % lines),
+        pass: 1,
+    };
+    let Some((events, first)) = stepped_run(module) else {
+        return;
+    };
+    let mut vm = Vm::new(module.clone(), Machine::reference());
+    vm.max_blocks = MAX_BLOCKS;
+    let mut prefix: Vec<nc::Event> = Vec::new();
+    if search(&mut vm, at, &mut prefix).is_err() {
+        return;
+    }
+    let mark = first.get(&vm.pc()).copied();
+    assert!(
+        mark.is_some(),
+        "the restart begins where the whole run never comes"
+    );
+    let mut rest: Vec<nc::Event> = Vec::new();
+    vm.run(&mut rest);
+    let text = |e: &[nc::Event]| format!("{e:?}");
+    assert!(
+        text(&rest) == text(&events[mark.unwrap_or(0)..]),
+        "a restart at {:?} prints otherwise than the whole run",
+        at.target
+    );
+}
+
+/// The whole run one instruction at a time: its events, and the number
+/// printed before the first arrival at each pc; `None` when it is long.
+fn stepped_run(
+    module: &isa::Module,
+) -> Option<(Vec<nc::Event>, std::collections::HashMap<u32, usize>)> {
+    let mut vm = Vm::new(module.clone(), Machine::reference());
+    vm.max_blocks = MAX_BLOCKS;
+    let mut events: Vec<nc::Event> = Vec::new();
+    let mut first = std::collections::HashMap::new();
+    for _ in 0..200_000 {
+        first.entry(vm.pc()).or_insert(events.len());
+        if let Status::Done | Status::Alarm(_) = vm.step(1, &mut events) {
+            return Some((events, first));
+        }
+        if events.len() > 20_000 {
+            return None;
+        }
+    }
+    None
 }
 
 /// The program compiled and run for radius programming (machine.md
