@@ -66,6 +66,42 @@
 #define GBC_AXIS_C 2
 
 /**
+ * `which` of `gbc_work_offset`/`gbc_set_work_offset`: the external work
+ * offset (EXOFS, #5201/#5202), which shifts every work system.
+ */
+#define GBC_WORK_OFFSET_EXTERNAL 0
+
+/**
+ * `which` of a work offset: G54 (#5221/#5222).
+ */
+#define GBC_WORK_OFFSET_G54 1
+
+/**
+ * `which` of a work offset: G55 (#5241/#5242).
+ */
+#define GBC_WORK_OFFSET_G55 2
+
+/**
+ * `which` of a work offset: G56 (#5261/#5262).
+ */
+#define GBC_WORK_OFFSET_G56 3
+
+/**
+ * `which` of a work offset: G57 (#5281/#5282).
+ */
+#define GBC_WORK_OFFSET_G57 4
+
+/**
+ * `which` of a work offset: G58 (#5301/#5302).
+ */
+#define GBC_WORK_OFFSET_G58 5
+
+/**
+ * `which` of a work offset: G59 (#5321/#5322).
+ */
+#define GBC_WORK_OFFSET_G59 6
+
+/**
  * The version of the interface this header describes; `gbc_abi_version`
  * gives the library's. It changes with every change a host built
  * against an older header would get wrong (a function's parameters, a
@@ -133,7 +169,8 @@ typedef enum GbcStatus {
   GBC_STATUS_WRONG_KIND = 3,
   /**
    * An argument is out of its range (a NaN override, a NaN or
-   * infinite encoder reading, machine file text that is not UTF-8 …).
+   * infinite encoder reading, machine file text that is not UTF-8, a
+   * tool offset number outside the table …).
    */
   GBC_STATUS_INVALID_ARGUMENT = 4,
   /**
@@ -574,6 +611,31 @@ typedef struct GbcAlarm {
   size_t file_len;
 } GbcAlarm;
 
+/**
+ * The lengths of one tool offset on the offset page, mm, X on the
+ * diameter (#2701, #2801, #2001, #2101 for offset 1). The nose radius and
+ * tip direction are not here: they are compiled into the program (change
+ * them in the machine file and compile again).
+ */
+typedef struct GbcOffsetLengths {
+  /**
+   * Geometry along X (diameter).
+   */
+  double x;
+  /**
+   * Geometry along Z.
+   */
+  double z;
+  /**
+   * Wear along X (diameter): −0.04 when the part came out 0.04 large.
+   */
+  double wear_x;
+  /**
+   * Wear along Z.
+   */
+  double wear_z;
+} GbcOffsetLengths;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -851,6 +913,61 @@ enum GbcStatus gbc_home(GbcController controller, uint8_t axis);
  * one).
  */
 enum GbcStatus gbc_manual_stop(GbcController controller);
+
+/**
+ * The lengths of tool offset `number` (1 to the machine's
+ * `tools.offsets`, 32 on the reference machine) as the runs start with
+ * them: the offset page's values, not a program's own writes (`#2001 =
+ * …`, which last for its run). Another number:
+ * [`GbcStatus::InvalidArgument`].
+ *
+ * # Safety
+ * `out` is null or writable.
+ */
+enum GbcStatus gbc_tool_offset(GbcController controller,
+                               uint32_t number,
+                               struct GbcOffsetLengths *out);
+
+/**
+ * Sets the lengths of tool offset `number` on the offset page (the
+ * operator corrects a wear): they hold for every run after the edit —
+ * at once while the controller is idle (a program loaded but not
+ * started starts afresh with them), else from the next `gbc_reset` (a
+ * running program keeps the values it started with). Before a program
+ * is loaded they are kept for it. A program's own writes (`#2001 = …`)
+ * last for its run only. The nose radius and tip stay.
+ *
+ * Refused with [`GbcStatus::InvalidArgument`], changing nothing, for a
+ * number outside 1 … `tools.offsets` or a value that is not finite or
+ * beyond ±10⁶ mm (`gbc_last_error` names the machine-file key and
+ * why); a null `lengths` is [`GbcStatus::NullPointer`].
+ *
+ * # Safety
+ * `lengths` is null or readable.
+ */
+enum GbcStatus gbc_set_tool_offset(GbcController controller,
+                                   uint32_t number,
+                                   const struct GbcOffsetLengths *lengths);
+
+/**
+ * Work offset `which` (a `GBC_WORK_OFFSET_*`) as the runs start with it,
+ * mm (X on the diameter), to `*x` and `*z` (both required). Another
+ * `which`: [`GbcStatus::InvalidArgument`].
+ *
+ * # Safety
+ * `x` and `z` are null or writable.
+ */
+enum GbcStatus gbc_work_offset(GbcController controller, uint32_t which, double *x, double *z);
+
+/**
+ * Sets work offset `which` (a `GBC_WORK_OFFSET_*`) to `x`, `z` (mm, X on
+ * the diameter: the operator touches off a work zero); it holds for the
+ * runs after the edit as `gbc_set_tool_offset`'s lengths do. Refused
+ * with [`GbcStatus::InvalidArgument`], changing nothing, for another
+ * `which` or a value that is not finite or beyond ±10⁶ mm
+ * (`gbc_last_error` says which and why).
+ */
+enum GbcStatus gbc_set_work_offset(GbcController controller, uint32_t which, double x, double z);
 
 /**
  * Program restart at the block on source line `line` (1-based) of the

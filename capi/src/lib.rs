@@ -31,6 +31,7 @@
 mod handle;
 mod host;
 mod manual;
+mod offsets;
 mod restart;
 mod types;
 
@@ -45,6 +46,7 @@ use runtime::{Config, Controller, RapidOverride, RunState};
 use handle::{Kind, Object};
 use host::{HostPlc, HostStorage};
 pub use manual::*;
+pub use offsets::*;
 pub use restart::*;
 pub use types::*;
 

@@ -35,7 +35,8 @@ pub enum GbcStatus {
     /// where a controller is expected, or the reverse).
     WrongKind = 3,
     /// An argument is out of its range (a NaN override, a NaN or
-    /// infinite encoder reading, machine file text that is not UTF-8 …).
+    /// infinite encoder reading, machine file text that is not UTF-8, a
+    /// tool offset number outside the table …).
     InvalidArgument = 4,
     /// The bytes are not a valid `.gbc` module (`gbc_last_error` says why).
     InvalidModule = 5,

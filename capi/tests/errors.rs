@@ -132,12 +132,44 @@ fn every_failure_sets_a_text_about_itself() {
         "no program",
         || gbc_restart_from_seq(c, 10, 1),
     );
+    // The offset page: the refused key and why, after what was edited.
+    fails_with("tool offset 33", arg, "tool offset 33", || {
+        let mut out = std::mem::MaybeUninit::<GbcOffsetLengths>::uninit();
+        unsafe { gbc_tool_offset(c, 33, out.as_mut_ptr()) }
+    });
+    let nan = GbcOffsetLengths {
+        x: 0.0,
+        z: 0.0,
+        wear_x: f64::NAN,
+        wear_z: 0.0,
+    };
+    fails_with("NaN wear", arg, "wear_x: NaN", || unsafe {
+        gbc_set_tool_offset(c, 1, &nan)
+    });
+    fails_with("set tool offset 0", arg, "outside the table", || unsafe {
+        gbc_set_tool_offset(c, 0, &GbcOffsetLengths { wear_x: 0.0, ..nan })
+    });
+    fails_with("set tool offset, null", null, "null", || unsafe {
+        gbc_set_tool_offset(c, 1, std::ptr::null())
+    });
+    fails_with("work offset 7", arg, "GBC_WORK_OFFSET_G59", || {
+        gbc_set_work_offset(c, 7, 0.0, 0.0)
+    });
+    fails_with("infinite work offset", arg, "coords.g56.x", || {
+        gbc_set_work_offset(c, GBC_WORK_OFFSET_G56, f64::INFINITY, 0.0)
+    });
+    fails_with("work offset, null", null, "null", || unsafe {
+        gbc_work_offset(c, GBC_WORK_OFFSET_G54, null_mut(), null_mut())
+    });
     // A bad handle and a bad argument: the status and the text both tell
     // of the handle.
     fails_with("NaN, bad handle", invalid, "handle", || {
         gbc_set_feed_override(0, f64::NAN)
     });
     fails_with("jit 3, bad handle", invalid, "handle", || gbc_set_jit(0, 3));
+    fails_with("work offset 7, bad handle", invalid, "handle", || {
+        gbc_set_work_offset(0, 7, 0.0, 0.0)
+    });
     let prog = module("O1\nM30\n");
     assert_eq!(
         unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },

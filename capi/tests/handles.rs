@@ -70,6 +70,15 @@ fn set_point() -> GbcSetPoint {
     }
 }
 
+fn lengths() -> GbcOffsetLengths {
+    GbcOffsetLengths {
+        x: 0.0,
+        z: 0.0,
+        wear_x: -0.01,
+        wear_z: 0.0,
+    }
+}
+
 /// An entry point called on a controller handle.
 type Call = Box<dyn Fn(GbcController) -> GbcStatus>;
 
@@ -155,6 +164,25 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
         (
             "gbc_restart_from_seq",
             Box::new(|h| gbc_restart_from_seq(h, 1, 1)),
+        ),
+        (
+            "gbc_tool_offset",
+            Box::new(|h| unsafe { gbc_tool_offset(h, 1, &mut lengths()) }),
+        ),
+        (
+            "gbc_set_tool_offset",
+            Box::new(|h| unsafe { gbc_set_tool_offset(h, 1, &lengths()) }),
+        ),
+        (
+            "gbc_work_offset",
+            Box::new(|h| {
+                let (mut x, mut z) = (0.0, 0.0);
+                unsafe { gbc_work_offset(h, GBC_WORK_OFFSET_G54, &mut x, &mut z) }
+            }),
+        ),
+        (
+            "gbc_set_work_offset",
+            Box::new(|h| gbc_set_work_offset(h, GBC_WORK_OFFSET_G54, 0.0, -100.0)),
         ),
         ("gbc_controller_free", Box::new(|h| gbc_controller_free(h))),
     ]
@@ -295,6 +323,33 @@ fn null_pointers_and_bad_arguments_are_refused() {
         // A bad argument with a bad handle: the handle is reported.
         assert_eq!(gbc_set_feed_override(0, f64::NAN), GbcStatus::InvalidHandle);
         assert_eq!(gbc_set_block_skip(0, 0, true), GbcStatus::InvalidHandle);
+        assert_eq!(
+            gbc_set_work_offset(0, 7, f64::NAN, 0.0),
+            GbcStatus::InvalidHandle
+        );
+        assert_eq!(
+            gbc_set_tool_offset(0, 0, std::ptr::null()),
+            GbcStatus::InvalidHandle
+        );
+        // The offset page before a program: kept for it (host.rs); null
+        // pointers and bad arguments refused.
+        assert_eq!(
+            gbc_set_tool_offset(c, 1, std::ptr::null()),
+            GbcStatus::NullPointer
+        );
+        assert_eq!(gbc_tool_offset(c, 1, null_mut()), GbcStatus::NullPointer);
+        assert_eq!(
+            gbc_work_offset(c, GBC_WORK_OFFSET_G54, null_mut(), null_mut()),
+            GbcStatus::NullPointer
+        );
+        assert_eq!(
+            gbc_set_tool_offset(c, 33, &lengths()),
+            GbcStatus::InvalidArgument
+        );
+        assert_eq!(
+            gbc_set_work_offset(c, 7, 0.0, 0.0),
+            GbcStatus::InvalidArgument
+        );
 
         let prog = module("O1\nG00 W-1\nM30\n");
         assert_eq!(

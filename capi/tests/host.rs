@@ -731,3 +731,227 @@ fn a_restart_refused_by_its_search_says_why() {
         drop(unsafe { Box::from_raw(host) });
     }
 }
+
+/// T0101, a rapid to X40 Z2 and a cut to Z-20.
+const WEAR_CUT: &str = "T0101\nG00 X40 Z2\nG01 Z-20 F300\nM30\n";
+
+/// A wear of X −0.04 (the part came out 0.04 large on the diameter) and
+/// Z +0.02 on offset 1.
+const WEAR: GbcOffsetLengths = GbcOffsetLengths {
+    x: 0.0,
+    z: 0.0,
+    wear_x: -0.04,
+    wear_z: 0.02,
+};
+
+/// Tool offset `number` as the page has it.
+fn tool_offset(c: GbcController, number: u32) -> GbcOffsetLengths {
+    let mut out = GbcOffsetLengths {
+        x: f64::NAN,
+        z: f64::NAN,
+        wear_x: f64::NAN,
+        wear_z: f64::NAN,
+    };
+    assert_eq!(
+        unsafe { gbc_tool_offset(c, number, &mut out) },
+        GbcStatus::Ok
+    );
+    out
+}
+
+/// Work offset `which` as the page has it.
+fn work_offset(c: GbcController, which: u32) -> (f64, f64) {
+    let (mut x, mut z) = (f64::NAN, f64::NAN);
+    assert_eq!(
+        unsafe { gbc_work_offset(c, which, &mut x, &mut z) },
+        GbcStatus::Ok
+    );
+    (x, z)
+}
+
+/// Reset, ticked until the controller is idle again.
+fn reset(c: GbcController) {
+    assert_eq!(gbc_reset(c), GbcStatus::Ok);
+    let mut sp = blank();
+    for _ in 0..100_000 {
+        if state(c).state == GbcRunState::Idle {
+            return;
+        }
+        assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
+        assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
+    }
+    panic!("the reset did not finish");
+}
+
+/// The wear set through `gbc_set_tool_offset` while idle: the slide goes
+/// that much further (Fanuc: the offset is added to the commanded
+/// position, so X40 is machine X39.96 and Z-20 machine Z-19.98), the
+/// programmed point stays X40 Z-20, and it holds for the next run too.
+#[test]
+fn a_wear_set_through_c_moves_the_slide() {
+    let prog = module(WEAR_CUT);
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    assert_eq!(
+        tool_offset(c, 1),
+        GbcOffsetLengths {
+            x: 0.0,
+            z: 0.0,
+            wear_x: 0.0,
+            wear_z: 0.0
+        }
+    );
+    assert_eq!(unsafe { gbc_set_tool_offset(c, 1, &WEAR) }, GbcStatus::Ok);
+    assert_eq!(tool_offset(c, 1), WEAR, "read back exactly");
+    for _ in 0..2 {
+        let pts = run(c, |_| {});
+        let end = pts.last().expect("periods");
+        assert_eq!((end.x, end.z), (40.0, -20.0));
+        assert!((end.axis_x - 39.96).abs() < 1e-9, "{end:?}");
+        assert!((end.axis_z + 19.98).abs() < 1e-9, "{end:?}");
+        reset(c);
+    }
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}
+
+/// An edit while the program runs waits for the next reset: this run
+/// keeps the values it started with, the next one has the edit.
+#[test]
+fn a_wear_set_while_running_holds_from_the_reset() {
+    let prog = module(WEAR_CUT);
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    let mut set = false;
+    let pts = run(c, |_| {
+        if !set {
+            assert_eq!(state(c).state, GbcRunState::Running);
+            assert_eq!(unsafe { gbc_set_tool_offset(c, 1, &WEAR) }, GbcStatus::Ok);
+            set = true;
+        }
+    });
+    assert!(set);
+    assert_eq!(tool_offset(c, 1), WEAR, "the page has it at once");
+    let end = pts.last().expect("periods");
+    assert_eq!(
+        (end.axis_x, end.axis_z),
+        (40.0, -20.0),
+        "this run keeps its own"
+    );
+    reset(c);
+    let end = *run(c, |_| {}).last().expect("periods");
+    assert!((end.axis_x - 39.96).abs() < 1e-9, "{end:?}");
+    assert!((end.axis_z + 19.98).abs() < 1e-9, "{end:?}");
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}
+
+/// G55 touched off at Z-250 before the program is loaded: the controller
+/// keeps it for the program, whose Z2 is machine Z-248.
+#[test]
+fn a_work_offset_set_through_c_moves_the_work_zero() {
+    let prog = module("G55 G00 X40 Z2\nM30\n");
+    let host = new_host(Host::default());
+    let cb = GbcHost {
+        user: host.cast(),
+        plc_request: Some(request),
+        plc_done: Some(done),
+        vars_load: Some(load),
+        vars_store: Some(store),
+    };
+    let (mut m, mut c) = (0, 0);
+    unsafe {
+        assert_eq!(gbc_machine_reference(&mut m), GbcStatus::Ok);
+        assert_eq!(gbc_controller_new(m, &cb, &mut c), GbcStatus::Ok);
+    }
+    assert_eq!(work_offset(c, GBC_WORK_OFFSET_G55), (0.0, 0.0));
+    assert_eq!(
+        gbc_set_work_offset(c, GBC_WORK_OFFSET_G55, 0.0, -250.0),
+        GbcStatus::Ok
+    );
+    assert_eq!(work_offset(c, GBC_WORK_OFFSET_G55), (0.0, -250.0));
+    assert_eq!(work_offset(c, GBC_WORK_OFFSET_G54), (0.0, 0.0));
+    assert_eq!(
+        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+        GbcStatus::Ok
+    );
+    assert_eq!(work_offset(c, GBC_WORK_OFFSET_G55), (0.0, -250.0));
+    let end = *run(c, |_| {}).last().expect("periods");
+    assert_eq!((end.x, end.z), (40.0, 2.0));
+    assert_eq!((end.axis_x, end.axis_z), (40.0, -248.0));
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}
+
+/// Refused edits and reads: a NaN or too large value, offsets 0 and 33,
+/// a `which` that is no `GBC_WORK_OFFSET_*`, null pointers. Each says
+/// why, writes no output, and changes nothing: the page keeps the wear
+/// set before, and the run moves by it alone.
+#[test]
+fn a_bad_offset_edit_is_refused_and_changes_nothing() {
+    let prog = module(WEAR_CUT);
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &prog);
+    assert_eq!(unsafe { gbc_set_tool_offset(c, 1, &WEAR) }, GbcStatus::Ok);
+    let arg = GbcStatus::InvalidArgument;
+    let nan = GbcOffsetLengths {
+        wear_x: f64::NAN,
+        ..WEAR
+    };
+    assert_eq!(unsafe { gbc_set_tool_offset(c, 1, &nan) }, arg);
+    let text = last_error();
+    assert!(
+        text.contains("tool offset 1") && text.contains("wear_x"),
+        "{text}"
+    );
+    assert!(text.contains("NaN"), "{text}");
+    let far = GbcOffsetLengths { z: 2.0e6, ..WEAR };
+    assert_eq!(unsafe { gbc_set_tool_offset(c, 1, &far) }, arg);
+    assert!(last_error().contains(".z:"), "{}", last_error());
+    for number in [0, 33, u32::MAX] {
+        assert_eq!(unsafe { gbc_set_tool_offset(c, number, &WEAR) }, arg);
+        let text = last_error();
+        assert!(text.contains(&format!("tool offset {number}")), "{text}");
+        assert!(text.contains("outside the table"), "{text}");
+        let mut out = WEAR;
+        out.x = 7.0;
+        assert_eq!(unsafe { gbc_tool_offset(c, number, &mut out) }, arg);
+        assert!(last_error().contains("1 … 32"), "{}", last_error());
+        assert_eq!(out.x, 7.0, "nothing written");
+    }
+    for which in [7, 0xFFFF_FFFF] {
+        assert_eq!(gbc_set_work_offset(c, which, 0.0, -250.0), arg);
+        assert!(last_error().contains("GBC_WORK_OFFSET"), "{}", last_error());
+        let (mut x, mut z) = (1.0, 2.0);
+        assert_eq!(unsafe { gbc_work_offset(c, which, &mut x, &mut z) }, arg);
+        assert_eq!((x, z), (1.0, 2.0), "nothing written");
+    }
+    for (x, z) in [(0.0, f64::INFINITY), (f64::NAN, 0.0), (0.0, -1.5e6)] {
+        assert_eq!(gbc_set_work_offset(c, GBC_WORK_OFFSET_G55, x, z), arg);
+        assert!(last_error().contains("coords.g55"), "{}", last_error());
+    }
+    let null = GbcStatus::NullPointer;
+    let mut v = 3.0;
+    unsafe {
+        assert_eq!(gbc_set_tool_offset(c, 1, std::ptr::null()), null);
+        assert_eq!(gbc_tool_offset(c, 1, std::ptr::null_mut()), null);
+        let w = GBC_WORK_OFFSET_G54;
+        assert_eq!(gbc_work_offset(c, w, &mut v, std::ptr::null_mut()), null);
+        assert_eq!(gbc_work_offset(c, w, std::ptr::null_mut(), &mut v), null);
+    }
+    assert_eq!(v, 3.0, "nothing written");
+    assert_eq!(tool_offset(c, 1), WEAR);
+    assert_eq!(tool_offset(c, 32).wear_x, 0.0);
+    for which in GBC_WORK_OFFSET_EXTERNAL..=GBC_WORK_OFFSET_G59 {
+        assert_eq!(work_offset(c, which), (0.0, 0.0), "{which}");
+    }
+    let end = *run(c, |_| {}).last().expect("periods");
+    assert!((end.axis_x - 39.96).abs() < 1e-9, "{end:?}");
+    assert!((end.axis_z + 19.98).abs() < 1e-9, "{end:?}");
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

@@ -9,6 +9,8 @@
 //! (the compiler resolves compensation with them), so they change with
 //! the machine file and a new compile.
 
+use alloc::format;
+
 use crate::base::machine::{Machine, ToolOffset, Xz};
 use crate::base::machine_check::{check, BadKey};
 
@@ -54,6 +56,15 @@ impl Machine {
     /// stay. Refused, changing nothing, for a number outside the table or
     /// a value outside the machine file's ranges (±10⁶ mm, finite).
     pub fn set_offset_lengths(&mut self, number: u32, l: OffsetLengths) -> Result<(), BadKey> {
+        if self.offset_lengths(number).is_none() {
+            return Err(BadKey {
+                key: "tools.offsets".into(),
+                msg: format!(
+                    "offset {number} is outside the table: offsets are 1 … {}",
+                    self.tools.offsets
+                ),
+            });
+        }
         let mut edited = self.clone();
         let offsets = &mut edited.tools.offset;
         let i = match offsets.iter().position(|o| o.number == number) {
@@ -142,7 +153,11 @@ mod tests {
         };
         assert!(m.set_offset_lengths(1, far).is_err());
         // Offsets count 1 ..= tools.offsets (32).
-        assert!(m.set_offset_lengths(0, OffsetLengths::default()).is_err());
+        let e = m.set_offset_lengths(0, OffsetLengths::default());
+        assert_eq!(
+            e.map_err(|e| e.msg),
+            Err("offset 0 is outside the table: offsets are 1 … 32".into())
+        );
         assert!(m.set_offset_lengths(33, OffsetLengths::default()).is_err());
         assert_eq!(m.offset_lengths(33), None);
         let inf = Xz {
