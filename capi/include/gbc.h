@@ -212,9 +212,10 @@ typedef enum GbcStatus {
    */
   GBC_STATUS_LIMIT = 13,
   /**
-   * A manual move or a program restart while a program runs, stands
-   * stopped, ended or in an alarm (a restart also while a manual move
-   * or a reset runs): `gbc_reset` first.
+   * A manual move, a program restart or another program selected
+   * while a program runs, stands stopped, ended or in an alarm (a
+   * restart or a select also while a manual move or a reset runs):
+   * `gbc_reset` first.
    */
   GBC_STATUS_NOT_IDLE = 14,
   /**
@@ -705,8 +706,8 @@ enum GbcStatus gbc_controller_free(GbcController controller);
 /**
  * Verifies a `.gbc` module (`len` bytes) and loads it: the controller
  * asks the host for #500–#999 (`vars_load`) and waits for cycle start.
- * A controller runs one program: a second load is
- * [`GbcStatus::AlreadyLoaded`] (free it and make a new one).
+ * A second load is [`GbcStatus::AlreadyLoaded`]: `gbc_controller_select`
+ * replaces the program while idle, keeping where the axes stand.
  *
  * # Safety
  * `gbc` is null or readable for `len` bytes.
@@ -1010,6 +1011,25 @@ enum GbcStatus gbc_restart_from(GbcController controller, uint32_t line, uint32_
  * [`GbcStatus::RestartNotFound`]).
  */
 enum GbcStatus gbc_restart_from_seq(GbcController controller, uint32_t seq, uint32_t pass);
+
+/**
+ * Replaces the loaded program with another `.gbc` (`len` bytes at
+ * `gbc`, copied) while the controller is idle: before its first cycle
+ * start, or after `gbc_reset` once `gbc_state` gives
+ * `GBC_RUN_STATE_IDLE`. The new program starts where the axes stand,
+ * with the power-on modes, at the next `gbc_cycle_start`; the offset
+ * page, #500–#999, the panel's switches and the JIT setting stay.
+ * Without a program loaded, it is `gbc_controller_load`'s
+ * [`GbcStatus::NoProgram`].
+ *
+ * Refused, keeping the program loaded: [`GbcStatus::InvalidModule`]
+ * (not a valid `.gbc`), [`GbcStatus::MachineMismatch`] (compiled for
+ * other compile-time keys), [`GbcStatus::NotIdle`].
+ *
+ * # Safety
+ * `gbc` is null or points at `len` readable bytes.
+ */
+enum GbcStatus gbc_controller_select(GbcController controller, const uint8_t *gbc, size_t len);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -33,6 +33,7 @@ mod host;
 mod manual;
 mod offsets;
 mod restart;
+mod select;
 mod types;
 
 use core::cell::RefCell;
@@ -48,6 +49,7 @@ use host::{HostPlc, HostStorage};
 pub use manual::*;
 pub use offsets::*;
 pub use restart::*;
+pub use select::*;
 pub use types::*;
 
 /// A machine handle's object.
@@ -426,8 +428,8 @@ pub extern "C" fn gbc_controller_free(controller: GbcController) -> GbcStatus {
 
 /// Verifies a `.gbc` module (`len` bytes) and loads it: the controller
 /// asks the host for #500–#999 (`vars_load`) and waits for cycle start.
-/// A controller runs one program: a second load is
-/// [`GbcStatus::AlreadyLoaded`] (free it and make a new one).
+/// A second load is [`GbcStatus::AlreadyLoaded`]: `gbc_controller_select`
+/// replaces the program while idle, keeping where the axes stand.
 ///
 /// # Safety
 /// `gbc` is null or readable for `len` bytes.

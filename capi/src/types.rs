@@ -58,9 +58,10 @@ pub enum GbcStatus {
     Panic = 12,
     /// All [`GBC_HANDLE_CAPACITY`] handle slots are in use.
     Limit = 13,
-    /// A manual move or a program restart while a program runs, stands
-    /// stopped, ended or in an alarm (a restart also while a manual move
-    /// or a reset runs): `gbc_reset` first.
+    /// A manual move, a program restart or another program selected
+    /// while a program runs, stands stopped, ended or in an alarm (a
+    /// restart or a select also while a manual move or a reset runs):
+    /// `gbc_reset` first.
     NotIdle = 14,
     /// The motion queue is full: a manual step given faster than the axes
     /// follow.

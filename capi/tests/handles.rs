@@ -184,6 +184,10 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             "gbc_set_work_offset",
             Box::new(|h| gbc_set_work_offset(h, GBC_WORK_OFFSET_G54, 0.0, -100.0)),
         ),
+        (
+            "gbc_controller_select",
+            Box::new(|h| unsafe { gbc_controller_select(h, [0u8; 4].as_ptr(), 4) }),
+        ),
         ("gbc_controller_free", Box::new(|h| gbc_controller_free(h))),
     ]
 }

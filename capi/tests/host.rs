@@ -955,3 +955,27 @@ fn a_bad_offset_edit_is_refused_and_changes_nothing() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
 }
+
+/// Another program selected after a reset starts where the first left
+/// the axes (X40 Z2): a move of Z alone keeps X40. A module that is not
+/// valid, or a select while the program runs or has ended, is refused
+/// and keeps the program loaded.
+#[test]
+fn another_program_is_selected_where_the_axes_stand() {
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &module("G00 X40 Z2\nM30\n"));
+    let end = *run(c, |_| {}).last().expect("periods");
+    assert_eq!((end.x, end.z), (40.0, 2.0));
+    let second = module("G01 W-12 F300\nM30\n");
+    let select = |bytes: &[u8]| unsafe { gbc_controller_select(c, bytes.as_ptr(), bytes.len()) };
+    assert_eq!(select(&second), GbcStatus::NotIdle, "ended");
+    assert!(last_error().contains("gbc_reset"), "{}", last_error());
+    reset(c);
+    assert_eq!(select(b"not a module"), GbcStatus::InvalidModule);
+    assert_eq!(select(&second), GbcStatus::Ok);
+    let end = *run(c, |_| {}).last().expect("periods");
+    assert_eq!((end.x, end.z), (40.0, -10.0));
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

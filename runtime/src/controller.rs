@@ -69,6 +69,33 @@ impl core::fmt::Display for LoadError {
 
 impl core::error::Error for LoadError {}
 
+/// Why [`Controller::select_program`] kept the program it has.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SelectRefused {
+    /// A program runs, stands stopped, ended or in an alarm, or a manual
+    /// move runs: reset first.
+    NotIdle,
+    /// Compiled for a machine whose compile-time keys differ (the first
+    /// that does, with both values).
+    Machine(String),
+}
+
+impl core::fmt::Display for SelectRefused {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            SelectRefused::NotIdle => {
+                write!(f, "another program needs an idle machine: reset first")
+            }
+            SelectRefused::Machine(key) => write!(
+                f,
+                "compiled for another machine configuration (its compile-time keys differ: {key})"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for SelectRefused {}
+
 /// Why [`Controller::restart_from`] did not restart.
 #[derive(Debug, Clone, PartialEq)]
 pub enum RestartRefused {
@@ -314,6 +341,25 @@ impl<P: Plc> Controller<P> {
         self.ra
             .restart_from(at, stand, &mut self.engine, tap)
             .map_err(RestartRefused::Search)
+    }
+
+    /// Selects another program (a verified module for this machine) while
+    /// idle, as an operator picks one from the control's directory: the
+    /// axes, the spindle, the offset page, #500–#999 and the panel's
+    /// switches stay; the new program starts where the axes stand, with
+    /// the power-on modes, at the next cycle start.
+    pub fn select_program(&mut self, module: isa::Module) -> Result<(), SelectRefused> {
+        if let Some(key) =
+            Machine::compile_keys_differ(&module.machine, &self.ra.machine.compile_keys())
+        {
+            return Err(SelectRefused::Machine(key));
+        }
+        if !self.engine.clear_idle() {
+            return Err(SelectRefused::NotIdle);
+        }
+        let stand = self.standing();
+        self.ra.start(module, stand, &mut self.engine);
+        Ok(())
     }
 
     /// Where the axes stand, for a run that starts afresh there. A reset

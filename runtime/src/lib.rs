@@ -74,7 +74,7 @@ pub use interpolate::{
 };
 pub use plc::{AutoAck, Plc, PlcFunction};
 
-pub use controller::{AlarmInfo, Controller, LoadError, RestartRefused};
+pub use controller::{AlarmInfo, Controller, LoadError, RestartRefused, SelectRefused};
 pub use nc::machine::Xz;
 pub use nc::machine_check::BadKey;
 pub use nc::offset_page::{OffsetLengths, WorkOffset};

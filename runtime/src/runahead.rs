@@ -510,15 +510,23 @@ impl RunAhead {
     /// After a reset: a fresh VM at the start of the program, its
     /// programmed point and C where the axes now stand.
     pub(crate) fn restart<L: Link>(&mut self, stand: Standing, link: &mut L) {
-        let Standing { at, c } = stand;
         let module = self.vm.module().clone();
+        self.start(module, stand, link);
+    }
+
+    /// A fresh VM for `module` at the start of the program, its
+    /// programmed point and C where the axes now stand (a reset, or
+    /// another program selected).
+    pub(crate) fn start<L: Link>(&mut self, module: isa::Module, stand: Standing, link: &mut L) {
+        let Standing { at, c } = stand;
         let mut vm = Vm::new(module, self.machine.clone());
         // #500–#999 and where they are kept survive the reset.
         *vm.persistent_mut() = *self.vm.persistent();
         if let Some(storage) = self.vm.take_storage() {
             vm.set_storage(storage);
         }
-        // So does the loop tier (it compiles the clone afresh).
+        // So does the loop tier (bound to the new VM's module, it keeps
+        // no code made for another).
         if let Some(tier) = self.vm.take_tier() {
             vm.set_tier(tier);
         }

@@ -1,0 +1,47 @@
+//! Selecting another program (`runtime::Controller::select_program`): the
+//! operator picks the next program while the machine stands idle; the
+//! axes, the offset page, #500–#999 and the panel stay.
+
+use crate::{bytes, fail, with_ctl, GbcController, GbcStatus};
+use runtime::SelectRefused;
+
+/// Replaces the loaded program with another `.gbc` (`len` bytes at
+/// `gbc`, copied) while the controller is idle: before its first cycle
+/// start, or after `gbc_reset` once `gbc_state` gives
+/// `GBC_RUN_STATE_IDLE`. The new program starts where the axes stand,
+/// with the power-on modes, at the next `gbc_cycle_start`; the offset
+/// page, #500–#999, the panel's switches and the JIT setting stay.
+/// Without a program loaded, it is `gbc_controller_load`'s
+/// [`GbcStatus::NoProgram`].
+///
+/// Refused, keeping the program loaded: [`GbcStatus::InvalidModule`]
+/// (not a valid `.gbc`), [`GbcStatus::MachineMismatch`] (compiled for
+/// other compile-time keys), [`GbcStatus::NotIdle`].
+///
+/// # Safety
+/// `gbc` is null or points at `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn gbc_controller_select(
+    controller: GbcController,
+    gbc: *const u8,
+    len: usize,
+) -> GbcStatus {
+    with_ctl(controller, |c| {
+        // SAFETY: the caller's promise.
+        let raw = unsafe { bytes(gbc, len)? };
+        let module = isa::Module::from_bytes(raw).map_err(|e| {
+            fail(
+                GbcStatus::InvalidModule,
+                format!("not a valid .gbc module: {e}"),
+            )
+        })?;
+        c.run()?.select_program(module).map_err(|e| match e {
+            SelectRefused::NotIdle => fail(
+                GbcStatus::NotIdle,
+                "another program is selected while no program runs: gbc_reset first, \
+                 and wait for GBC_RUN_STATE_IDLE",
+            ),
+            SelectRefused::Machine(_) => fail(GbcStatus::MachineMismatch, e.to_string()),
+        })
+    })
+}
