@@ -34,16 +34,15 @@ use crate::certify::Certifier;
 use crate::config::{Config, RapidOverride};
 use crate::interpolate::{Engine, Manual, ManualRefused, RunState, SetPoint};
 use crate::plc::{AutoAck, Plc};
-use crate::runahead::{RunAhead, Standing};
+use crate::runahead::RunAhead;
 use crate::split::{Interpreter, Realtime};
 use alloc::format;
 use alloc::string::String;
-use nc::machine::Xz;
-use nc::machine_check::BadKey;
-use nc::offset_page::{OffsetLengths, WorkOffset};
 use nc::{Machine, Sink};
-use vm::restart::{RestartAt, RestartError};
 use vm::Vm;
+
+mod between;
+pub use between::{RestartRefused, SelectRefused};
 
 /// Why a module cannot be run.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,54 +67,6 @@ impl core::fmt::Display for LoadError {
 }
 
 impl core::error::Error for LoadError {}
-
-/// Why [`Controller::select_program`] kept the program it has.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SelectRefused {
-    /// A program runs, stands stopped, ended or in an alarm, or a manual
-    /// move runs: reset first.
-    NotIdle,
-    /// Compiled for a machine whose compile-time keys differ (the first
-    /// that does, with both values).
-    Machine(String),
-}
-
-impl core::fmt::Display for SelectRefused {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            SelectRefused::NotIdle => {
-                write!(f, "another program needs an idle machine: reset first")
-            }
-            SelectRefused::Machine(key) => write!(
-                f,
-                "compiled for another machine configuration (its compile-time keys differ: {key})"
-            ),
-        }
-    }
-}
-
-impl core::error::Error for SelectRefused {}
-
-/// Why [`Controller::restart_from`] did not restart.
-#[derive(Debug, Clone, PartialEq)]
-pub enum RestartRefused {
-    /// A program runs, stands stopped, ended or in an alarm, or a manual
-    /// move runs: reset first.
-    NotIdle,
-    /// The search did not reach a block the run can resume at.
-    Search(RestartError),
-}
-
-impl core::fmt::Display for RestartRefused {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            RestartRefused::NotIdle => write!(f, "a restart needs an idle machine: reset first"),
-            RestartRefused::Search(e) => write!(f, "{e}"),
-        }
-    }
-}
-
-impl core::error::Error for RestartRefused {}
 
 /// An alarm with its place, as `gbvm` reports it.
 #[derive(Debug, Clone, PartialEq)]
@@ -314,101 +265,6 @@ impl<P: Plc> Controller<P> {
     /// the axes stand ([`Engine::manual`]).
     pub fn manual(&mut self, m: Manual) -> Result<(), ManualRefused> {
         self.engine.manual(m)
-    }
-
-    /// Program restart (docs/embedding.md): while idle, the program
-    /// runs from its start in search mode up to `at` (nothing moves),
-    /// then, at cycle start, the restored state (origin, tool, speed,
-    /// spindle, coolant, feed) and an approach from where the axes stand,
-    /// X first, then Z, and the program from `at` on. Call it before
-    /// [`Controller::run_ahead`]. A refused restart leaves the program
-    /// at its start.
-    pub fn restart_from(&mut self, at: RestartAt) -> Result<(), RestartRefused> {
-        self.restart_from_tap(at, &mut nc::Discard)
-    }
-
-    /// As [`Controller::restart_from`], handing the restored state and the
-    /// approach to `tap` too, as [`Controller::run_ahead_tap`] does.
-    pub fn restart_from_tap(
-        &mut self,
-        at: RestartAt,
-        tap: &mut dyn Sink,
-    ) -> Result<(), RestartRefused> {
-        if !self.engine.clear_idle() {
-            return Err(RestartRefused::NotIdle);
-        }
-        let stand = self.standing();
-        self.ra
-            .restart_from(at, stand, &mut self.engine, tap)
-            .map_err(RestartRefused::Search)
-    }
-
-    /// Selects another program (a verified module for this machine) while
-    /// idle, as an operator picks one from the control's directory: the
-    /// axes, the spindle, the offset page, #500–#999 and the panel's
-    /// switches stay; the new program starts where the axes stand, with
-    /// the power-on modes, at the next cycle start.
-    pub fn select_program(&mut self, module: isa::Module) -> Result<(), SelectRefused> {
-        if let Some(key) =
-            Machine::compile_keys_differ(&module.machine, &self.ra.machine.compile_keys())
-        {
-            return Err(SelectRefused::Machine(key));
-        }
-        if !self.engine.clear_idle() {
-            return Err(SelectRefused::NotIdle);
-        }
-        let stand = self.standing();
-        self.ra.start(module, stand, &mut self.engine);
-        Ok(())
-    }
-
-    /// Where the axes stand, for a run that starts afresh there. A reset
-    /// (or manual move) that has just finished would otherwise start the
-    /// program afresh at the next run-ahead: its report is taken here.
-    fn standing(&mut self) -> Standing {
-        let _ = self.engine.take_reset_done();
-        Standing {
-            at: self.engine.position(),
-            c: self.engine.c(),
-        }
-    }
-
-    /// The offset page: the lengths of tool offset `number` (geometry and
-    /// wear, X on the diameter) as the runs start with them; `None`
-    /// outside the table.
-    pub fn tool_offset(&self, number: u32) -> Option<OffsetLengths> {
-        self.ra.machine.offset_lengths(number)
-    }
-
-    /// Sets the lengths of tool offset `number` for every run from now
-    /// on (docs/embedding.md, "The offset page"): at once while idle (the
-    /// program, not yet started, starts afresh with them), else from the
-    /// next reset. A value out of the machine file's ranges is refused.
-    pub fn set_tool_offset(&mut self, number: u32, l: OffsetLengths) -> Result<(), BadKey> {
-        self.ra.machine.set_offset_lengths(number, l)?;
-        self.apply_page();
-        Ok(())
-    }
-
-    /// A work offset (EXOFS, G54–G59) as the runs start with it.
-    pub fn work_offset(&self, w: WorkOffset) -> Xz {
-        self.ra.machine.work_offset_of(w)
-    }
-
-    /// Sets a work offset for every run from now on, as
-    /// [`Controller::set_tool_offset`] does.
-    pub fn set_work_offset(&mut self, w: WorkOffset, at: Xz) -> Result<(), BadKey> {
-        self.ra.machine.set_work_offset(w, at)?;
-        self.apply_page();
-        Ok(())
-    }
-
-    /// While idle, the program starts afresh on the edited machine.
-    fn apply_page(&mut self) {
-        if self.engine.clear_idle() {
-            let stand = self.standing();
-            self.ra.restart(stand, &mut self.engine);
-        }
     }
 
     /// Stops a manual move: the axes decelerate and stand.
