@@ -1013,6 +1013,25 @@ enum GbcStatus gbc_restart_from(GbcController controller, uint32_t line, uint32_
 enum GbcStatus gbc_restart_from_seq(GbcController controller, uint32_t seq, uint32_t pass);
 
 /**
+ * The M codes the blocks before the last restart taken gave, other than
+ * the spindle's and coolant's (a clamp, a C-axis mode, a tailstock: the
+ * machine's meaning), each once, in the order of their last use: a
+ * restart does not give them again, so the host shows them and the
+ * operator gives those the block needs by hand, as a control does after
+ * its search. `*len` gets how many there are and `codes` the first
+ * `cap` of them; `cap` 0 with a null `codes` asks for the count only.
+ * None after a refused restart or before any.
+ *
+ * # Safety
+ * `codes` is null or writable for `cap` values; `len` is null or
+ * writable.
+ */
+enum GbcStatus gbc_restart_m_codes(GbcController controller,
+                                   uint32_t *codes,
+                                   size_t cap,
+                                   size_t *len);
+
+/**
  * Replaces the loaded program with another `.gbc` (`len` bytes at
  * `gbc`, copied) while the controller is idle: before its first cycle
  * start, or after `gbc_reset` once `gbc_state` gives

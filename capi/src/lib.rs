@@ -113,6 +113,9 @@ struct Ctl {
     jit: u8,
     /// A reset was asked for in an alarm: ticks are accepted again.
     reset_pending: bool,
+    /// The M codes the last restart taken did not give again
+    /// (`gbc_restart_m_codes`).
+    restart_m: Vec<u32>,
     /// A panic was caught inside a call on this controller.
     poisoned: bool,
 }
@@ -412,6 +415,7 @@ pub unsafe extern "C" fn gbc_controller_new(
             run: None,
             jit: GBC_JIT_AUTO,
             reset_pending: false,
+            restart_m: Vec::new(),
             poisoned: false,
         };
         let h = handle::insert(ctl)?;

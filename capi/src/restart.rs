@@ -2,7 +2,7 @@
 //! begins at a block in the middle of the program, as after a broken
 //! insert or an interrupted shift.
 
-use crate::{fail, with_ctl, GbcController, GbcStatus, Outcome};
+use crate::{fail, put, with_ctl, GbcController, GbcStatus, Outcome};
 use runtime::{RestartAt, RestartError, RestartRefused, Target};
 
 /// Program restart at the block on source line `line` (1-based) of the
@@ -69,7 +69,46 @@ fn restart(controller: GbcController, target: Target, pass: u32) -> GbcStatus {
                 "the line is 0: source lines count from 1",
             ));
         }
-        refused(c.run()?.restart_from(RestartAt { target, pass }))
+        let r = c.run()?.restart_from(RestartAt { target, pass });
+        c.restart_m = r.as_ref().map(|r| r.m_codes.clone()).unwrap_or_default();
+        refused(r.map(|_| ()))
+    })
+}
+
+/// The M codes the blocks before the last restart taken gave, other than
+/// the spindle's and coolant's (a clamp, a C-axis mode, a tailstock: the
+/// machine's meaning), each once, in the order of their last use: a
+/// restart does not give them again, so the host shows them and the
+/// operator gives those the block needs by hand, as a control does after
+/// its search. `*len` gets how many there are and `codes` the first
+/// `cap` of them; `cap` 0 with a null `codes` asks for the count only.
+/// None after a refused restart or before any.
+///
+/// # Safety
+/// `codes` is null or writable for `cap` values; `len` is null or
+/// writable.
+#[no_mangle]
+pub unsafe extern "C" fn gbc_restart_m_codes(
+    controller: GbcController,
+    codes: *mut u32,
+    cap: usize,
+    len: *mut usize,
+) -> GbcStatus {
+    with_ctl(controller, |c| {
+        if len.is_null() || (codes.is_null() && cap > 0) {
+            return Err(fail(
+                GbcStatus::NullPointer,
+                "len is null, or codes is null while cap is not 0",
+            ));
+        }
+        let n = c.restart_m.len().min(cap);
+        if n > 0 {
+            // SAFETY: non-null and writable for `cap` ≥ n values by the
+            // caller's promise.
+            unsafe { core::ptr::copy_nonoverlapping(c.restart_m.as_ptr(), codes, n) };
+        }
+        // SAFETY: checked non-null; the caller's promise.
+        unsafe { put(len, c.restart_m.len()) }
     })
 }
 

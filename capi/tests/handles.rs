@@ -185,6 +185,13 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             Box::new(|h| gbc_set_work_offset(h, GBC_WORK_OFFSET_G54, 0.0, -100.0)),
         ),
         (
+            "gbc_restart_m_codes",
+            Box::new(|h| {
+                let mut len = 0;
+                unsafe { gbc_restart_m_codes(h, std::ptr::null_mut(), 0, &mut len) }
+            }),
+        ),
+        (
             "gbc_controller_select",
             Box::new(|h| unsafe { gbc_controller_select(h, [0u8; 4].as_ptr(), 4) }),
         ),

@@ -979,3 +979,30 @@ fn another_program_is_selected_where_the_axes_stand() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
 }
+
+/// The M codes of the machine's own before the restart block (M10, then
+/// M14), which the restart does not give again: the count alone, a
+/// buffer that holds one, one that holds both; none after a refusal.
+#[test]
+fn a_restart_tells_the_m_codes_it_does_not_give_again() {
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &module("M10\nG00 X50 Z2\nM14\nN20 G00 X60\nM30\n"));
+    assert_eq!(gbc_restart_from_seq(c, 20, 1), GbcStatus::Ok);
+    let mut len = 0;
+    let count = unsafe { gbc_restart_m_codes(c, std::ptr::null_mut(), 0, &mut len) };
+    assert_eq!((count, len), (GbcStatus::Ok, 2));
+    let mut one = [0u32; 1];
+    let s = unsafe { gbc_restart_m_codes(c, one.as_mut_ptr(), 1, &mut len) };
+    assert_eq!((s, one, len), (GbcStatus::Ok, [10], 2));
+    let mut both = [0u32; 4];
+    let s = unsafe { gbc_restart_m_codes(c, both.as_mut_ptr(), 4, &mut len) };
+    assert_eq!((s, both, len), (GbcStatus::Ok, [10, 14, 0, 0], 2));
+    let null = unsafe { gbc_restart_m_codes(c, both.as_mut_ptr(), 4, std::ptr::null_mut()) };
+    assert_eq!(null, GbcStatus::NullPointer);
+    assert_eq!(gbc_restart_from_seq(c, 30, 1), GbcStatus::RestartNotFound);
+    let s = unsafe { gbc_restart_m_codes(c, both.as_mut_ptr(), 4, &mut len) };
+    assert_eq!((s, len), (GbcStatus::Ok, 0));
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

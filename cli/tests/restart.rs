@@ -128,3 +128,31 @@ fn a_restart_that_cannot_begin_is_an_error() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("give a line (120) or a sequence number"));
 }
+
+/// The M codes of the machine's own before the block are told on
+/// standard error, not given again.
+#[test]
+fn a_restart_names_the_m_codes_it_does_not_give_again() {
+    let dir = std::env::temp_dir().join(format!("gbc-restart-m-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let src = dir.join("clamp.nc");
+    std::fs::write(&src, "M10\nG00 X50 Z2\nM14\nN20 G00 X60\nM30\n").expect("written");
+    let gbc = dir.join("clamp.gbc");
+    let status = Command::new(env!("CARGO_BIN_EXE_gbcc"))
+        .arg(&src)
+        .arg("-o")
+        .arg(&gbc)
+        .status()
+        .expect("gbcc runs");
+    assert!(status.success());
+    let out = gbvm(&gbc, &["--from", "N20"]);
+    assert!(out.status.success(), "{out:?}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(
+            "--from: the blocks before it gave M10, M14, which a restart does not give again"
+        ),
+        "{err}"
+    );
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("M CODE="));
+}

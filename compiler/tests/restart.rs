@@ -334,6 +334,22 @@ M30
     }
 }
 
+/// The M codes of the machine's own the blocks before gave (not the
+/// spindle's, not coolant's), each once, in the order of their last use:
+/// M10, M14, M10 is M14 then M10. They are not given again.
+#[test]
+fn the_search_tells_the_m_codes_it_does_not_give_again() {
+    let src = "M10\nG00 X50 Z2\nM14\nM08 M03 S500\nM10\nN20 G00 X60\nM30\n";
+    let machine = Machine::reference();
+    let mut vm = Vm::new(module(src, &machine), machine);
+    let mut events = Vec::new();
+    let at = "N20".parse().expect("a restart point");
+    let r = search(&mut vm, at, &mut events).expect("restarts");
+    assert_eq!(r.m_codes, [14, 10]);
+    assert!(!events.iter().any(|e| matches!(e, Event::M(10 | 14))));
+    assert!(events.contains(&Event::M(8)));
+}
+
 #[test]
 fn an_alarm_before_the_block_stops_the_search() {
     let src = "G00 X50 Z2\n#3000=7(NO STOCK)\nG01 Z-10 F100\nM30\n";

@@ -79,4 +79,4 @@ pub use nc::machine::Xz;
 pub use nc::machine_check::BadKey;
 pub use nc::offset_page::{OffsetLengths, WorkOffset};
 pub use split::{Interpreter, Realtime};
-pub use vm::restart::{RestartAt, RestartError, Target};
+pub use vm::restart::{RestartAt, RestartError, Restarted, Target};

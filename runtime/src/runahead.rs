@@ -18,7 +18,7 @@ use alloc::string::String;
 use alloc::vec::Vec;
 use nc::exec::switches::Switch;
 use nc::{Event, Machine, Placed, Sink};
-use vm::restart::{RestartAt, RestartError};
+use vm::restart::{RestartAt, RestartError, Restarted};
 use vm::{Status, Vm};
 
 /// Where the axes stand after a reset: X and Z in machine coordinates
@@ -124,7 +124,7 @@ pub(crate) struct RunAhead {
     /// A program restart for the next reset to begin with (a split
     /// controller's), and how the last one went.
     pending_restart: Option<RestartAt>,
-    restart_result: Option<Result<(), RestartError>>,
+    restart_result: Option<Result<Restarted, RestartError>>,
 }
 
 impl RunAhead {
@@ -162,7 +162,7 @@ impl RunAhead {
 
     /// How the restart [`RunAhead::restart_at_reset`] asked for went,
     /// once, after the reset.
-    pub(crate) fn take_restart_result(&mut self) -> Option<Result<(), RestartError>> {
+    pub(crate) fn take_restart_result(&mut self) -> Option<Result<Restarted, RestartError>> {
         self.restart_result.take()
     }
 
@@ -480,18 +480,21 @@ impl RunAhead {
         stand: Standing,
         link: &mut L,
         tap: &mut dyn Sink,
-    ) -> Result<(), RestartError> {
+    ) -> Result<Restarted, RestartError> {
         self.restart(stand, link);
         self.events.clear();
-        if let Err(e) = vm::restart::search(&mut self.vm, at, &mut self.events) {
-            // (What the search passes on is an alarm's event.)
-            for e in self.events.events.drain(..) {
-                tap.emit(e);
+        let restarted = match vm::restart::search(&mut self.vm, at, &mut self.events) {
+            Ok(r) => r,
+            Err(e) => {
+                // (What the search passes on is an alarm's event.)
+                for e in self.events.events.drain(..) {
+                    tap.emit(e);
+                }
+                self.events.clear();
+                self.restart(stand, link);
+                return Err(e);
             }
-            self.events.clear();
-            self.restart(stand, link);
-            return Err(e);
-        }
+        };
         self.blocks += self.charged();
         let loc = self.vm.loc_at(self.vm.pc());
         let tag = Tag {
@@ -504,7 +507,7 @@ impl RunAhead {
             no_fin: self.vm.nc.switch(Switch::NoFinWait),
         };
         self.stage_events(tag, (0, tag), tap);
-        Ok(())
+        Ok(restarted)
     }
 
     /// After a reset: a fresh VM at the start of the program, its

@@ -39,7 +39,7 @@ use nc::machine_check::BadKey;
 use nc::offset_page::{OffsetLengths, WorkOffset};
 use nc::{Machine, Sink};
 use rtrb::{Consumer, Producer, RingBuffer};
-use vm::restart::{RestartAt, RestartError};
+use vm::restart::{RestartAt, RestartError, Restarted};
 use vm::Vm;
 
 /// Commands the real-time half takes from the ring in one period: bounds
@@ -306,7 +306,7 @@ impl Interpreter {
 
     /// How the restart asked for went, once it has run: `None` until the
     /// reset has reached this half.
-    pub fn take_restart_result(&mut self) -> Option<Result<(), RestartError>> {
+    pub fn take_restart_result(&mut self) -> Option<Result<Restarted, RestartError>> {
         self.ra.take_restart_result()
     }
 

@@ -8,7 +8,7 @@ use common::{check_limits, module, Run};
 use nc::Machine;
 use runtime::{
     Config, Controller, JogRate, Manual, ManualAxis, RestartAt, RestartError, RestartRefused,
-    RunState, SetPoint, Target,
+    Restarted, RunState, SetPoint, Target,
 };
 
 const TWO_TOOLS: &str = "\
@@ -88,7 +88,7 @@ fn a_restart_runs_the_second_tool_s_cut_from_where_the_axes_stand() {
         pts.push(ctl.tick());
     }
     let manual = pts.len();
-    assert_eq!(ctl.restart_from(N100), Ok(()));
+    assert_eq!(ctl.restart_from(N100), Ok(Restarted::default()));
     run_to_end(&mut ctl, &mut pts);
     let run = &pts[manual..];
     // X first, at Z-10, from X0 to 40; then Z.
@@ -190,7 +190,10 @@ M30
     );
     let mut ctl = Controller::new(module(src, &machine), machine, runtime::AutoAck).expect("loads");
     let mut canon: Vec<nc::Event> = Vec::new();
-    assert_eq!(ctl.restart_from_tap(at, &mut canon), Ok(()));
+    assert_eq!(
+        ctl.restart_from_tap(at, &mut canon),
+        Ok(Restarted::default())
+    );
     ctl.cycle_start();
     for _ in 0..200_000 {
         ctl.run_ahead_tap(&mut canon);

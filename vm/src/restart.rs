@@ -12,6 +12,7 @@
 
 use alloc::format;
 use alloc::string::String;
+use alloc::vec::Vec;
 use core::fmt;
 use core::str::FromStr;
 use isa::Instr;
@@ -176,6 +177,20 @@ struct Kept {
     feed: Option<Event>,
     /// Polar or cylindrical interpolation in force.
     plane: bool,
+    /// The other M codes, each once, in the order of their last use.
+    others: Vec<u32>,
+}
+
+/// A restart that has begun: what the search saw that it does not give
+/// again.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Restarted {
+    /// The M codes the blocks before the target gave, other than the
+    /// spindle's and coolant's (a clamp, a C-axis mode, a tailstock: the
+    /// machine's meaning), each once, in the order of their last use. A
+    /// control shows them after its search, and the operator gives those
+    /// the block needs by hand.
+    pub m_codes: Vec<u32>,
 }
 
 /// The coolant codes a restart gives again (M07 mist, M08 flood, M09
@@ -198,6 +213,11 @@ impl Sink for Search<'_> {
             Event::Speed { .. } => &mut k.speed,
             Event::Spindle(_) => &mut k.spindle,
             Event::M(code) if COOLANT.contains(code) => &mut k.coolant,
+            Event::M(code) => {
+                k.others.retain(|c| c != code);
+                k.others.push(*code);
+                return;
+            }
             Event::Feed { .. } => &mut k.feed,
             Event::PolarOn | Event::Cylinder(Some(_)) => {
                 k.plane = true;
@@ -222,7 +242,7 @@ impl Sink for Search<'_> {
 /// the run goes on from the target with [`Vm::step`]. The machine stands
 /// where the kernel's programmed point is at the start. A tier is set
 /// aside for the search, whose pc is checked at every instruction.
-pub fn search(vm: &mut Vm, at: RestartAt, sink: &mut dyn Sink) -> Result<(), RestartError> {
+pub fn search(vm: &mut Vm, at: RestartAt, sink: &mut dyn Sink) -> Result<Restarted, RestartError> {
     let (line, entry) = entry(vm, at.target)?;
     let standing = (vm.nc.position().add(vm.nc.origin()), vm.nc.c());
     let tier = vm.take_tier();
@@ -239,12 +259,13 @@ pub fn search(vm: &mut Vm, at: RestartAt, sink: &mut dyn Sink) -> Result<(), Res
     if let Some(e) = why {
         return Err(e);
     }
-    let Search { out, kept } = search;
+    let Search { out, mut kept } = search;
+    let m_codes = core::mem::take(&mut kept.others);
     out.origin(entry);
     restore(kept, out);
     approach(vm, standing, out);
     out.origin(RUNNING);
-    Ok(())
+    Ok(Restarted { m_codes })
 }
 
 /// Steps the VM up to the `at.pass`-th arrival at `entry`.
@@ -305,6 +326,7 @@ fn restore(kept: Kept, sink: &mut dyn Sink) {
         coolant,
         feed,
         plane: _,
+        others: _,
     } = kept;
     for e in [origin, tool, gear, speed, spindle, coolant, feed]
         .into_iter()

@@ -400,7 +400,7 @@ fn run(args: &RunArgs, quiet: bool) -> ExitCode {
     let mut progress = cli::progress::Progress::bar(main_lines, "run", quiet);
     let (status, output_error) = cli::canon::on_writer_thread(|sink| {
         if let Some(at) = args.from {
-            vm::restart::search(&mut vm, at, sink)?;
+            restarted(&vm::restart::search(&mut vm, at, sink)?);
         }
         Ok(loop {
             match vm.step(1 << 16, sink) {
@@ -432,6 +432,20 @@ fn run(args: &RunArgs, quiet: bool) -> ExitCode {
         (None, Status::Alarm(_)) => cli::exit::Exit::Alarm.into(),
         (None, _) => ExitCode::SUCCESS,
     }
+}
+
+/// What a restart (`--from`) does not give again, told on stderr: the M
+/// codes of the machine's own the blocks before it gave, as a control
+/// shows them after its search.
+fn restarted(r: &vm::restart::Restarted) {
+    if r.m_codes.is_empty() {
+        return;
+    }
+    let codes: Vec<String> = r.m_codes.iter().map(|m| format!("M{m:02}")).collect();
+    note(format_args!(
+        "gbvm: note: --from: the blocks before it gave {}, which a restart does not give again: give those the block needs by hand",
+        codes.join(", ")
+    ));
 }
 
 /// The main file's last line: the length of the progress bar.

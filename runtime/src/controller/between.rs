@@ -10,7 +10,7 @@ use nc::machine::Xz;
 use nc::machine_check::BadKey;
 use nc::offset_page::{OffsetLengths, WorkOffset};
 use nc::{Machine, Sink};
-use vm::restart::{RestartAt, RestartError};
+use vm::restart::{RestartAt, RestartError, Restarted};
 
 /// Why [`Controller::select_program`] kept the program it has.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,7 +69,7 @@ impl<P: Plc> Controller<P> {
     /// offset page or another program selected after it starts the
     /// program afresh: make those first. A refused restart leaves the
     /// program at its start.
-    pub fn restart_from(&mut self, at: RestartAt) -> Result<(), RestartRefused> {
+    pub fn restart_from(&mut self, at: RestartAt) -> Result<Restarted, RestartRefused> {
         self.restart_from_tap(at, &mut nc::Discard)
     }
 
@@ -79,7 +79,7 @@ impl<P: Plc> Controller<P> {
         &mut self,
         at: RestartAt,
         tap: &mut dyn Sink,
-    ) -> Result<(), RestartRefused> {
+    ) -> Result<Restarted, RestartRefused> {
         if !self.engine.clear_idle() {
             return Err(RestartRefused::NotIdle);
         }

@@ -104,7 +104,11 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
     }
     let max_time = out.max_time.unwrap_or(ctl.machine().run.max_time_s);
     if let Some(at) = args.from {
-        if let Err(e) = restart(&mut ctl, at, &mut canon, out) {
+        let r = restart(&mut ctl, at, &mut canon, out);
+        if let Ok(r) = &r {
+            super::restarted(r);
+        }
+        if let Err(e) = r {
             let output_error = canon.finish();
             return match (output_error, e) {
                 (Some(e), _) => output_failed(&e),
@@ -184,7 +188,7 @@ fn restart(
     at: vm::restart::RestartAt,
     canon: &mut Canon<BufWriter<StdoutLock<'static>>>,
     out: &Outputs,
-) -> Result<(), runtime::RestartRefused> {
+) -> Result<runtime::Restarted, runtime::RestartRefused> {
     match out.canon {
         true => ctl.restart_from_tap(at, canon),
         false => ctl.restart_from(at),
