@@ -156,3 +156,29 @@ fn a_restart_names_the_m_codes_it_does_not_give_again() {
     );
     assert!(!String::from_utf8_lossy(&out.stdout).contains("M CODE="));
 }
+
+/// `gbvm check --from` certifies the restarted run, the approach
+/// included: its two rapids and the three moves from N100 on are the five
+/// end points.
+#[test]
+fn check_certifies_a_restarted_run() {
+    let gbc = module("check");
+    let out = Command::new(env!("CARGO_BIN_EXE_gbvm"))
+        .args(["check", "--from", "N100"])
+        .arg(&gbc)
+        .output()
+        .expect("gbvm runs");
+    assert!(out.status.success(), "{out:?}");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.starts_with("certified: "), "{text}");
+    assert!(text.contains("end points: 5 of 5 reached"), "{text}");
+    let out = Command::new(env!("CARGO_BIN_EXE_gbvm"))
+        .args(["check", "--from", "N7"])
+        .arg(&gbc)
+        .output()
+        .expect("gbvm runs");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("--from: the main file has no block at N7")
+    );
+}

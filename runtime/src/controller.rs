@@ -43,6 +43,7 @@ use vm::Vm;
 
 mod between;
 pub use between::{RestartRefused, SelectRefused};
+use vm::restart::RestartAt;
 
 /// Why a module cannot be run.
 #[derive(Debug, Clone, PartialEq)]
@@ -369,8 +370,30 @@ impl<P: Plc> Controller<P> {
     /// tells how the run ended (only a run that ended owes every end
     /// point).
     pub fn run_certified(&mut self, max_ticks: u64) -> (Certifier, SetPoint) {
+        let cert = self.certifier();
+        self.certify(cert, max_ticks)
+    }
+
+    /// As [`Controller::run_certified`], the program restarted at `at`
+    /// ([`Controller::restart_from`]): the certifier follows the restored
+    /// state and the approach too.
+    pub fn run_certified_from(
+        &mut self,
+        at: RestartAt,
+        max_ticks: u64,
+    ) -> Result<(Certifier, SetPoint), RestartRefused> {
+        let mut cert = self.certifier();
+        self.restart_from_tap(at, &mut cert)?;
+        Ok(self.certify(cert, max_ticks))
+    }
+
+    /// A certifier that starts where the axes stand.
+    fn certifier(&self) -> Certifier {
         let start = self.engine.position();
-        let mut cert = Certifier::new(self.engine.config(), start.x(), start.z, self.engine.c());
+        Certifier::new(self.engine.config(), start.x(), start.z, self.engine.c())
+    }
+
+    fn certify(&mut self, mut cert: Certifier, max_ticks: u64) -> (Certifier, SetPoint) {
         let mut last = SetPoint::default();
         self.cycle_start();
         for _ in 0..max_ticks {

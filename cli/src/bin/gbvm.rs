@@ -107,6 +107,10 @@ enum Command {
         /// run.max_time_s.
         #[arg(long, value_name = "S")]
         max_time: Option<f64>,
+        /// Certify the run restarted at this block, as `gbvm run --from`
+        /// (the approach included).
+        #[arg(long, value_name = "LINE|N…[@PASS]")]
+        from: Option<vm::restart::RestartAt>,
     },
     /// Print the annotated listing of a module.
     Disasm { file: PathBuf },
@@ -266,8 +270,9 @@ fn main() -> ExitCode {
             file,
             machine,
             max_time,
+            from,
         } => match check_max_time(max_time) {
-            Ok(()) => check::check(&file, machine.as_deref(), max_time),
+            Ok(()) => check::check(&file, machine.as_deref(), max_time, from),
             Err(code) => code,
         },
         Command::Verify { file } => match load(&file) {

@@ -13,7 +13,12 @@ use std::process::ExitCode;
 /// Exit code of a run that breaks the certificate.
 const VIOLATION: u8 = 1;
 
-pub(super) fn check(file: &Path, machine: Option<&Path>, max_time: Option<f64>) -> ExitCode {
+pub(super) fn check(
+    file: &Path,
+    machine: Option<&Path>,
+    max_time: Option<f64>,
+    from: Option<vm::restart::RestartAt>,
+) -> ExitCode {
     let module = match load(file) {
         Ok(m) => m,
         Err(e) => return fail(&e),
@@ -36,7 +41,15 @@ pub(super) fn check(file: &Path, machine: Option<&Path>, max_time: Option<f64>) 
     let period = ctl.engine().config().period_s;
     let max_time = max_time.unwrap_or(ctl.machine().run.max_time_s);
     let max_ticks = (max_time / period).ceil() as u64;
-    let (cert, last) = ctl.run_certified(max_ticks);
+    let (cert, last) = match from.map(|at| ctl.run_certified_from(at, max_ticks)) {
+        None => ctl.run_certified(max_ticks),
+        Some(Ok(run)) => run,
+        Some(Err(runtime::RestartRefused::Search(runtime::RestartError::Alarm(a)))) => {
+            note(format_args!("{}", printable(&a.header())));
+            return cli::exit::Exit::Alarm.into();
+        }
+        Some(Err(e)) => return fail(&format!("--from: {e}")),
+    };
     let ended = ctl.state() == RunState::Ended;
     let name = |i: u16| printable(files.get(usize::from(i)).map_or("", String::as_str));
     let verdict = match (ended, cert.violation()) {
