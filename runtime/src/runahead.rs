@@ -487,8 +487,8 @@ impl RunAhead {
             Ok(r) => r,
             Err(e) => {
                 // (What the search passes on is an alarm's event.)
-                for e in self.events.events.drain(..) {
-                    tap.emit(e);
+                for event in self.events.events.drain(..) {
+                    tap.emit(event);
                 }
                 self.events.clear();
                 self.restart(stand, link);
