@@ -239,6 +239,21 @@ unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> Result<&'a [u8], Failure> {
     Ok(unsafe { core::slice::from_raw_parts(ptr, len) })
 }
 
+/// The verified module of the `len` bytes at `gbc`.
+///
+/// # Safety
+/// `gbc` is null or valid for reads of `len` bytes.
+unsafe fn module_at(gbc: *const u8, len: usize) -> Result<isa::Module, Failure> {
+    // SAFETY: the caller's promise.
+    let raw = unsafe { bytes(gbc, len)? };
+    isa::Module::from_bytes(raw).map_err(|e| {
+        fail(
+            GbcStatus::InvalidModule,
+            format!("not a valid .gbc module: {e}"),
+        )
+    })
+}
+
 /// Gives `text` to the caller as `snprintf` does: `buf` gets as much as
 /// fits in `cap` bytes, NUL-terminated and cut at a character boundary,
 /// and `*len` the full length in bytes, so `*len >= cap` tells of a cut.
@@ -448,13 +463,7 @@ pub unsafe extern "C" fn gbc_controller_load(
             return Err(GbcStatus::AlreadyLoaded.into());
         }
         // SAFETY: the caller's promise.
-        let raw = unsafe { bytes(gbc, len)? };
-        let module = isa::Module::from_bytes(raw).map_err(|e| {
-            fail(
-                GbcStatus::InvalidModule,
-                format!("not a valid .gbc module: {e}"),
-            )
-        })?;
+        let module = unsafe { module_at(gbc, len)? };
         let mut run = Controller::new(module, c.machine.clone(), HostPlc(c.host))
             .map_err(|e| fail(GbcStatus::MachineMismatch, e.to_string()))?;
         let Some(vars) = host::load_vars(&c.host) else {

@@ -2,7 +2,7 @@
 //! operator picks the next program while the machine stands idle; the
 //! axes, the offset page, #500–#999 and the panel stay.
 
-use crate::{bytes, fail, with_ctl, GbcController, GbcStatus};
+use crate::{fail, module_at, with_ctl, GbcController, GbcStatus};
 use runtime::SelectRefused;
 
 /// Replaces the loaded program with another `.gbc` (`len` bytes at
@@ -28,13 +28,7 @@ pub unsafe extern "C" fn gbc_controller_select(
 ) -> GbcStatus {
     with_ctl(controller, |c| {
         // SAFETY: the caller's promise.
-        let raw = unsafe { bytes(gbc, len)? };
-        let module = isa::Module::from_bytes(raw).map_err(|e| {
-            fail(
-                GbcStatus::InvalidModule,
-                format!("not a valid .gbc module: {e}"),
-            )
-        })?;
+        let module = unsafe { module_at(gbc, len)? };
         c.run()?.select_program(module).map_err(|e| match e {
             SelectRefused::NotIdle => fail(
                 GbcStatus::NotIdle,

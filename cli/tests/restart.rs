@@ -23,13 +23,18 @@ G00 X200 Z100
 M30
 ";
 
-/// The program compiled into a fresh folder: the module's path.
+/// `TWO_TOOLS` compiled into a fresh folder: the module's path.
 fn module(tag: &str) -> PathBuf {
+    compiled(tag, TWO_TOOLS)
+}
+
+/// `program` compiled into a fresh folder: the module's path.
+fn compiled(tag: &str, program: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("gbc-restart-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a temporary folder");
-    let src = dir.join("two_tools.nc");
-    std::fs::write(&src, TWO_TOOLS).expect("written");
-    let gbc = dir.join("two_tools.gbc");
+    let src = dir.join("program.nc");
+    std::fs::write(&src, program).expect("written");
+    let gbc = dir.join("program.gbc");
     let status = Command::new(env!("CARGO_BIN_EXE_gbcc"))
         .arg(&src)
         .arg("-o")
@@ -133,18 +138,7 @@ fn a_restart_that_cannot_begin_is_an_error() {
 /// standard error, not given again.
 #[test]
 fn a_restart_names_the_m_codes_it_does_not_give_again() {
-    let dir = std::env::temp_dir().join(format!("gbc-restart-m-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("a temporary folder");
-    let src = dir.join("clamp.nc");
-    std::fs::write(&src, "M10\nG00 X50 Z2\nM14\nN20 G00 X60\nM30\n").expect("written");
-    let gbc = dir.join("clamp.gbc");
-    let status = Command::new(env!("CARGO_BIN_EXE_gbcc"))
-        .arg(&src)
-        .arg("-o")
-        .arg(&gbc)
-        .status()
-        .expect("gbcc runs");
-    assert!(status.success());
+    let gbc = compiled("m", "M10\nG00 X50 Z2\nM14\nN20 G00 X60\nM30\n");
     let out = gbvm(&gbc, &["--from", "N20"]);
     assert!(out.status.success(), "{out:?}");
     let err = String::from_utf8_lossy(&out.stderr);

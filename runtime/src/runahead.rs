@@ -272,16 +272,7 @@ impl RunAhead {
         // Counted as the budget counts: a step that ends the run (M30,
         // M02) or stops it may have run a block too.
         self.blocks += self.charged().saturating_sub(charged);
-        let loc = self.vm.last_loc();
-        let tag = Tag {
-            file: loc.file,
-            line: loc.line,
-            col: loc.col,
-            block: self.block,
-            block_end: false,
-            no_hold: self.vm.nc.switch(Switch::NoFeedHold),
-            no_fin: self.vm.nc.switch(Switch::NoFinWait),
-        };
+        let tag = self.tag_at(self.vm.last_loc());
         self.tr.skip_queued = false;
         let held = self.held_legs(tag, status == Status::OutOfBudget);
         self.stage_events(tag, held, tap);
@@ -302,6 +293,20 @@ impl RunAhead {
                 self.vm_alarm = Some(a);
                 self.vm_state = VmState::Alarm;
             }
+        }
+    }
+
+    /// The tag of the commands of the block at `loc`, with the switches
+    /// the program has set.
+    fn tag_at(&self, loc: isa::SourceLoc) -> Tag {
+        Tag {
+            file: loc.file,
+            line: loc.line,
+            col: loc.col,
+            block: self.block,
+            block_end: false,
+            no_hold: self.vm.nc.switch(Switch::NoFeedHold),
+            no_fin: self.vm.nc.switch(Switch::NoFinWait),
         }
     }
 
@@ -496,16 +501,7 @@ impl RunAhead {
             }
         };
         self.blocks += self.charged();
-        let loc = self.vm.loc_at(self.vm.pc());
-        let tag = Tag {
-            file: loc.file,
-            line: loc.line,
-            col: loc.col,
-            block: self.block,
-            block_end: false,
-            no_hold: self.vm.nc.switch(Switch::NoFeedHold),
-            no_fin: self.vm.nc.switch(Switch::NoFinWait),
-        };
+        let tag = self.tag_at(self.vm.loc_at(self.vm.pc()));
         self.stage_events(tag, (0, tag), tap);
         Ok(restarted)
     }

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::module;
+use common::{module, reset_to_idle, run_to_end};
 use nc::Machine;
 use runtime::{Controller, OffsetLengths, RunState, SetPoint, WorkOffset, Xz};
 
@@ -14,31 +14,6 @@ const CUT: &str = "T0101\nG00 X40 Z2\nG01 Z-20 F300\n#100=#2001\nM30\n";
 fn controller(src: &str) -> Controller {
     let machine = Machine::reference();
     Controller::new(module(src, &machine), machine, runtime::AutoAck).expect("loads")
-}
-
-/// Cycle start, then every period to the end; the last set point.
-fn run(ctl: &mut Controller) -> SetPoint {
-    ctl.cycle_start();
-    let mut last = SetPoint::default();
-    for _ in 0..400_000 {
-        ctl.run_ahead();
-        last = ctl.tick();
-        match ctl.state() {
-            RunState::Ended => return last,
-            RunState::Alarm(a) => panic!("alarm {a}"),
-            _ => {}
-        }
-    }
-    panic!("not done: {:?} at {last:?}", ctl.state());
-}
-
-/// Reset, ticked until it has finished.
-fn reset(ctl: &mut Controller) {
-    ctl.reset();
-    while ctl.state() != RunState::Idle {
-        ctl.run_ahead();
-        ctl.tick();
-    }
 }
 
 const WEAR: OffsetLengths = OffsetLengths {
@@ -54,18 +29,18 @@ const WEAR: OffsetLengths = OffsetLengths {
 #[test]
 fn a_wear_edit_moves_the_slide_in_every_later_run() {
     let mut ctl = controller(CUT);
-    let plain = run(&mut ctl);
+    let plain = run_to_end(&mut ctl);
     assert_eq!((plain.axis_x, plain.axis_z), (40.0, -20.0));
-    reset(&mut ctl);
+    reset_to_idle(&mut ctl);
     assert_eq!(ctl.set_tool_offset(1, WEAR), Ok(()));
     assert_eq!(ctl.tool_offset(1), Some(WEAR));
     for _ in 0..2 {
-        let worn = run(&mut ctl);
+        let worn = run_to_end(&mut ctl);
         assert_eq!((worn.x, worn.z), (40.0, -20.0));
         assert!((worn.axis_x - 39.96).abs() < 1e-9, "{worn:?}");
         assert!((worn.axis_z + 19.98).abs() < 1e-9, "{worn:?}");
         assert_eq!(ctl.vm().variable(100), Ok(-0.04));
-        reset(&mut ctl);
+        reset_to_idle(&mut ctl);
     }
 }
 
@@ -76,7 +51,7 @@ fn an_edit_before_cycle_start_applies_to_that_run() {
     let mut ctl = controller(CUT);
     ctl.run_ahead();
     assert_eq!(ctl.set_tool_offset(1, WEAR), Ok(()));
-    let worn = run(&mut ctl);
+    let worn = run_to_end(&mut ctl);
     assert!((worn.axis_x - 39.96).abs() < 1e-9, "{worn:?}");
 }
 
@@ -90,10 +65,10 @@ fn an_edit_while_running_holds_from_the_next_reset() {
         ctl.tick();
     }
     assert_eq!(ctl.set_tool_offset(1, WEAR), Ok(()));
-    let this_run = run(&mut ctl);
+    let this_run = run_to_end(&mut ctl);
     assert_eq!((this_run.axis_x, this_run.axis_z), (40.0, -20.0));
-    reset(&mut ctl);
-    let next = run(&mut ctl);
+    reset_to_idle(&mut ctl);
+    let next = run_to_end(&mut ctl);
     assert!((next.axis_x - 39.96).abs() < 1e-9, "{next:?}");
 }
 
@@ -105,10 +80,10 @@ fn a_program_s_write_lasts_for_its_run() {
     let mut ctl = controller(src);
     assert_eq!(ctl.set_tool_offset(1, WEAR), Ok(()));
     for _ in 0..2 {
-        let end = run(&mut ctl);
+        let end = run_to_end(&mut ctl);
         assert!((end.axis_x - 40.96).abs() < 1e-9, "{end:?}");
         assert_eq!(ctl.vm().variable(100), Ok(0.96));
-        reset(&mut ctl);
+        reset_to_idle(&mut ctl);
     }
     assert_eq!(ctl.tool_offset(1), Some(WEAR));
 }
@@ -120,7 +95,7 @@ fn a_work_offset_edit_moves_the_work_zero() {
     let at = Xz { x: 0.0, z: -250.0 };
     assert_eq!(ctl.set_work_offset(WorkOffset::G55, at), Ok(()));
     assert_eq!(ctl.work_offset(WorkOffset::G55), at);
-    let end = run(&mut ctl);
+    let end = run_to_end(&mut ctl);
     assert_eq!((end.x, end.z), (40.0, 2.0));
     assert_eq!((end.axis_x, end.axis_z), (40.0, -248.0));
 }
@@ -135,7 +110,7 @@ fn a_bad_edit_is_refused_and_changes_nothing() {
     assert!(ctl.set_tool_offset(1, bad).is_err());
     assert!(ctl.set_tool_offset(33, WEAR).is_err());
     assert_eq!(ctl.tool_offset(1), Some(OffsetLengths::default()));
-    let end = run(&mut ctl);
+    let end = run_to_end(&mut ctl);
     assert_eq!((end.axis_x, end.axis_z), (40.0, -20.0));
 }
 

@@ -3,32 +3,9 @@
 
 mod common;
 
-use common::module;
+use common::{module, reset_to_idle, run_to_end};
 use nc::Machine;
-use runtime::{Controller, OffsetLengths, RunState, SelectRefused, SetPoint};
-
-fn run(ctl: &mut Controller) -> SetPoint {
-    ctl.cycle_start();
-    let mut last = SetPoint::default();
-    for _ in 0..400_000 {
-        ctl.run_ahead();
-        last = ctl.tick();
-        match ctl.state() {
-            RunState::Ended => return last,
-            RunState::Alarm(a) => panic!("alarm {a}"),
-            _ => {}
-        }
-    }
-    panic!("not done: {:?} at {last:?}", ctl.state());
-}
-
-fn reset(ctl: &mut Controller) {
-    ctl.reset();
-    while ctl.state() != RunState::Idle {
-        ctl.run_ahead();
-        ctl.tick();
-    }
-}
+use runtime::{Controller, OffsetLengths, SelectRefused};
 
 const FIRST: &str = "#500=7\nG00 X40 Z2\nM30\n";
 /// Starts with a move of Z alone: X stays where the first program left it.
@@ -44,7 +21,7 @@ fn the_next_program_starts_where_the_axes_stand() {
         ..OffsetLengths::default()
     };
     assert_eq!(ctl.set_tool_offset(1, wear), Ok(()));
-    let end = run(&mut ctl);
+    let end = run_to_end(&mut ctl);
     assert_eq!((end.x, end.z), (40.0, 2.0));
     // Ended: a program is selected after a reset.
     let second = module(SECOND, &machine);
@@ -52,9 +29,9 @@ fn the_next_program_starts_where_the_axes_stand() {
         ctl.select_program(second.clone()),
         Err(SelectRefused::NotIdle)
     );
-    reset(&mut ctl);
+    reset_to_idle(&mut ctl);
     assert_eq!(ctl.select_program(second), Ok(()));
-    let end = run(&mut ctl);
+    let end = run_to_end(&mut ctl);
     // X40 (and its wear, now that T0101 is active), Z from 2 to -10.
     assert_eq!((end.x, end.z), (40.0, -10.0));
     assert!((end.axis_x - 39.96).abs() < 1e-9, "{end:?}");
@@ -62,8 +39,8 @@ fn the_next_program_starts_where_the_axes_stand() {
     // A reset runs the selected program again, from where it ended. (A
     // reset starts with the power-on tool offset, none: the slide at X
     // 39.96 is the programmed X 39.96 until T0101 shifts it once more.)
-    reset(&mut ctl);
-    let again = run(&mut ctl);
+    reset_to_idle(&mut ctl);
+    let again = run_to_end(&mut ctl);
     assert!(
         (again.x - 39.96).abs() < 1e-9 && again.z == -22.0,
         "{again:?}"
@@ -82,6 +59,6 @@ fn a_program_for_another_machine_is_refused() {
         ctl.select_program(other),
         Err(SelectRefused::Machine(_))
     ));
-    let end = run(&mut ctl);
+    let end = run_to_end(&mut ctl);
     assert_eq!((end.x, end.z), (40.0, 2.0));
 }

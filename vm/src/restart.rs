@@ -125,14 +125,13 @@ impl fmt::Display for RestartError {
     }
 }
 
-/// The first instruction of each stretch of the target line's code.
-fn entries(vm: &Vm, line: u32) -> impl Iterator<Item = u32> + '_ {
-    let on_line = move |pc: u32| {
+/// The first instruction of the target line's code: where the run
+/// enters the line.
+fn first_entry(vm: &Vm, line: u32) -> Option<u32> {
+    (0..vm.module().code.len() as u32).find(|&pc| {
         let loc = vm.loc_at(pc);
         loc.file == 0 && loc.line == line
-    };
-    (0..vm.module().code.len() as u32)
-        .filter(move |&pc| on_line(pc) && (pc == 0 || !on_line(pc - 1)))
+    })
 }
 
 /// The target's line and the pc that enters it. A cycle's profile
@@ -160,8 +159,8 @@ fn entry(vm: &Vm, target: Target) -> Result<(u32, u32), RestartError> {
     if profile {
         return Err(RestartError::Profile(line));
     }
-    let pc = entries(vm, line).next();
-    pc.map(|pc| (line, pc)).ok_or(RestartError::NoBlock(target))
+    let pc = first_entry(vm, line).ok_or(RestartError::NoBlock(target))?;
+    Ok((line, pc))
 }
 
 /// What the search keeps of the events it swallows: the last of each

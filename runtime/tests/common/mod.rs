@@ -178,6 +178,32 @@ fn seg_dist(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
 }
 
 /// The end points of the canon's moves, in order (radius, Z).
+/// Cycle start, then every period to the end (at most 400 simulated
+/// s); the last set point. An alarm fails the test.
+pub fn run_to_end(ctl: &mut Controller) -> SetPoint {
+    ctl.cycle_start();
+    let mut last = SetPoint::default();
+    for _ in 0..400_000 {
+        ctl.run_ahead();
+        last = ctl.tick();
+        match ctl.state() {
+            RunState::Ended => return last,
+            RunState::Alarm(a) => panic!("alarm {a}"),
+            _ => {}
+        }
+    }
+    panic!("not done: {:?} at {last:?}", ctl.state());
+}
+
+/// Reset, ticked until it has finished.
+pub fn reset_to_idle(ctl: &mut Controller) {
+    ctl.reset();
+    while ctl.state() != RunState::Idle {
+        ctl.run_ahead();
+        ctl.tick();
+    }
+}
+
 pub fn end_points(canon: &[Event]) -> Vec<(f64, f64)> {
     canon
         .iter()
