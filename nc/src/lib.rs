@@ -55,8 +55,8 @@ pub use base::{
 };
 pub use block::value;
 pub use exec::{
-    comp, compound, contour, cycles, data_setting, measure, params, state, stroke, sysvar,
-    tool_life,
+    comp, compound, contour, counters, cycles, data_setting, measure, params, state, stroke,
+    sysvar, tool_life,
 };
 
 pub use error::NcError;

@@ -179,8 +179,12 @@ pub enum Command {
     Stroke(Option<nc::stroke::Area>),
     /// Polar or cylindrical interpolation on or off (polar.rs).
     Plane(crate::polar::PlaneSwitch),
-    /// The program ends (M02, M30, last M99, past the last block).
-    End,
+    /// The program ends (M02, M30, last M99, past the last block); `m30`:
+    /// by an M30, which a machine may rewind on (`run.m30_rewinds`).
+    End {
+        /// Ended by an M30.
+        m30: bool,
+    },
     /// The program raised an alarm; motion stops here.
     Alarm(u32),
 }

@@ -137,6 +137,9 @@ pub struct Config {
     /// the path limit of cutting feeds (№027), so that the override knob
     /// sets the speed of an air cut as the GSK's manual rate does.
     pub dry_run_feed: f64,
+    /// Cycle start after an M30 runs the program again from its start
+    /// (`run.m30_rewinds`); else a reset must come first.
+    pub m30_rewinds: bool,
     /// The skip signal is active at 0 (№185.7).
     pub skip_active_low: bool,
     /// Positions are commanded in these steps (machine.resolution_mm):
@@ -201,6 +204,7 @@ impl Default for Config {
             optional_stop: true,
             dry_run: false,
             dry_run_feed: min(5000.0),
+            m30_rewinds: false,
             skip_active_low: false,
             resolution_mm: 0.001,
             home_feed: min(4000.0),
@@ -365,6 +369,7 @@ impl Config {
             optional_stop: m.operator.optional_stop,
             dry_run: m.operator.dry_run,
             dry_run_feed: per_s(m.feed.max_mm_min),
+            m30_rewinds: m.run.m30_rewinds,
             skip_active_low: m.measure.signal_active_low,
             resolution_mm: m.machine.resolution_mm,
             home_feed: per_s(m.reference_points.return_feed_mm_min),

@@ -194,7 +194,7 @@ enum Head {
     Pause(PauseKind),
     Stroke(Option<nc::stroke::Area>),
     Plane(crate::polar::PlaneSwitch),
-    End,
+    End { m30: bool },
     Alarm(u32),
 }
 
@@ -357,6 +357,14 @@ pub struct Engine<P: Plc> {
     manual: bool,
     reset_req: bool,
     reset_done: bool,
+    /// The program ended on an M30 and the machine rewinds
+    /// (`run.m30_rewinds`): cycle start runs it again.
+    rewind: bool,
+    /// A rewind's reset runs: cycle start when it has finished.
+    start_after_reset: bool,
+    /// The motion reached the program's end, until the run-ahead takes it
+    /// (it then keeps what the run counted: counters.rs).
+    ended: bool,
     skip_active: bool,
     skip_hit: Option<V2>,
     skip_report: Option<SkipReport>,
@@ -438,6 +446,9 @@ impl<P: Plc> Engine<P> {
             manual: false,
             reset_req: false,
             reset_done: false,
+            rewind: false,
+            start_after_reset: false,
+            ended: false,
             skip_active: false,
             skip_hit: None,
             skip_report: None,
@@ -603,6 +614,7 @@ impl<P: Plc> Engine<P> {
     /// spindle stops, an alarm is cleared; the engine waits for cycle start.
     pub fn reset(&mut self) {
         self.reset_req = true;
+        self.start_after_reset = false;
     }
 
     /// Drops what the program queued ahead while the machine is idle, for
@@ -639,6 +651,13 @@ impl<P: Plc> Engine<P> {
     /// Whether a reset finished since the last call.
     pub fn take_reset_done(&mut self) -> bool {
         core::mem::take(&mut self.reset_done)
+    }
+
+    /// Whether the motion reached the program's end (M02, M30, the last
+    /// M99 or the last block) since the last call; a reset keeps the
+    /// report until it is taken.
+    pub fn take_ended(&mut self) -> bool {
+        core::mem::take(&mut self.ended)
     }
 
     /// Display shift and tail at power-on and after a reset (the host
@@ -698,6 +717,11 @@ impl<P: Plc> Engine<P> {
         match self.state {
             // (Manual is only reported, `state`: a manual move runs as
             // Running, `manual_period`.)
+            RunState::Ended if self.rewind && core::mem::take(&mut self.cycle_start) => {
+                // M30 rewinds: a reset, then the program from its start.
+                self.reset_req = true;
+                self.start_after_reset = true;
+            }
             RunState::Ended | RunState::Alarm(_) | RunState::Manual => self.cycle_start = false,
             RunState::Idle => {
                 if core::mem::take(&mut self.cycle_start) {
@@ -924,8 +948,10 @@ impl<P: Plc> Engine<P> {
                     self.switch_plane(&sw);
                     self.finish_item_now()
                 }
-                Head::End => {
+                Head::End { m30 } => {
                     self.state = RunState::Ended;
+                    self.ended = true;
+                    self.rewind = m30 && self.cfg.m30_rewinds;
                     Flow::Done
                 }
                 Head::Alarm(c) => {
@@ -949,7 +975,7 @@ impl<P: Plc> Engine<P> {
             ItemKind::Pause(k) => Head::Pause(*k),
             ItemKind::Stroke(a) => Head::Stroke(*a),
             ItemKind::Plane(sw) => Head::Plane(*sw),
-            ItemKind::End => Head::End,
+            ItemKind::End { m30 } => Head::End { m30: *m30 },
             ItemKind::Alarm(c) => Head::Alarm(*c),
         };
         Some((head, item.tag, item.shift))
@@ -1618,5 +1644,7 @@ impl<P: Plc> Engine<P> {
         self.manual = false;
         self.reset_req = false;
         self.reset_done = true;
+        self.rewind = false;
+        self.cycle_start |= core::mem::take(&mut self.start_after_reset);
     }
 }

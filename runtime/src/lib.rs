@@ -75,8 +75,10 @@ pub use interpolate::{
 pub use plc::{AutoAck, Plc, PlcFunction};
 
 pub use controller::{AlarmInfo, Controller, LoadError, RestartRefused, SelectRefused};
+pub use nc::counters::{Counters, Parts, MAX_PARTS};
 pub use nc::machine::Xz;
 pub use nc::machine_check::BadKey;
 pub use nc::offset_page::{OffsetLengths, WorkOffset};
+pub use nc::tool_life::{Group as LifeGroup, LifeUnit};
 pub use split::{Interpreter, Realtime};
 pub use vm::restart::{RestartAt, RestartError, Restarted, Target};

@@ -193,8 +193,11 @@ pub enum ItemKind {
     Stroke(Option<nc::stroke::Area>),
     /// Polar or cylindrical interpolation on or off (polar.rs).
     Plane(crate::polar::PlaneSwitch),
-    /// The program ends.
-    End,
+    /// The program ends (`m30`: by an M30).
+    End {
+        /// Ended by an M30.
+        m30: bool,
+    },
     /// The program raised an alarm (its code).
     Alarm(u32),
 }
@@ -290,7 +293,7 @@ pub struct Planner {
 }
 
 const PLACEHOLDER: Item = Item {
-    kind: ItemKind::End,
+    kind: ItemKind::End { m30: false },
     tag: Tag {
         file: 0,
         line: 0,
@@ -653,7 +656,7 @@ impl Planner {
                 self.shift = if sw.map.is_some() { V2::ZERO } else { sw.shift };
                 ItemKind::Plane(sw)
             }
-            Command::End => ItemKind::End,
+            Command::End { m30 } => ItemKind::End { m30 },
             Command::Alarm(c) => ItemKind::Alarm(c),
         })
     }

@@ -14,9 +14,12 @@ use crate::planner::{Full, Pushed};
 use crate::plc::Plc;
 use crate::translate::Translator;
 use alloc::collections::VecDeque;
+use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
+use nc::counters::{Counters, Parts, MAX_PARTS};
 use nc::exec::switches::Switch;
+use nc::machine_check::BadKey;
 use nc::{Event, Machine, Placed, Sink};
 use vm::restart::{RestartAt, RestartError, Restarted};
 use vm::{Status, Vm};
@@ -43,6 +46,9 @@ pub(crate) trait Link {
     fn take_reset(&mut self) -> Option<Standing>;
     /// Once, after a G31 move has ended: how it ended.
     fn take_skip(&mut self) -> Option<SkipReport>;
+    /// Once, after the motion reached the program's end (before the
+    /// reset that may follow it).
+    fn take_ended(&mut self) -> bool;
     /// Sets the display shift and the queue's tail for a restarted run.
     fn reseed(&mut self, origin: V2);
     /// Hands over what `push` may have kept back (the program side is
@@ -77,6 +83,10 @@ impl<P: Plc> Link for Engine<P> {
 
     fn take_skip(&mut self) -> Option<SkipReport> {
         self.take_skip_report()
+    }
+
+    fn take_ended(&mut self) -> bool {
+        Engine::take_ended(self)
     }
 
     fn reseed(&mut self, origin: V2) {
@@ -125,6 +135,10 @@ pub(crate) struct RunAhead {
     /// controller's), and how the last one went.
     pending_restart: Option<RestartAt>,
     restart_result: Option<Result<Restarted, RestartError>>,
+    /// The production counters as the finished runs and the operator
+    /// left them, and what this run started counting from (counters.rs).
+    pub(crate) counters: Counters,
+    run_start: Counters,
 }
 
 impl RunAhead {
@@ -132,6 +146,7 @@ impl RunAhead {
         let mut vm = Vm::new(module, machine.clone());
         vm.sync_positions = true;
         let max_blocks = vm.max_blocks;
+        let counters = vm.nc.counters();
         RunAhead {
             tr: Translator::new(origin_of(&vm)),
             vm,
@@ -150,6 +165,8 @@ impl RunAhead {
             wait_tag: None,
             pending_restart: None,
             restart_result: None,
+            run_start: counters.clone(),
+            counters,
         }
     }
 
@@ -220,6 +237,9 @@ impl RunAhead {
     }
 
     fn queue<L: Link>(&mut self, link: &mut L, tap: &mut dyn Sink) {
+        if link.take_ended() {
+            self.run_ended();
+        }
         if let Some(at) = link.take_reset() {
             match self.pending_restart.take() {
                 Some(r) => self.restart_result = Some(self.restart_from(r, at, link, tap)),
@@ -258,6 +278,56 @@ impl RunAhead {
         }
     }
 
+    /// The operator sets the part counters (counters.rs).
+    pub(crate) fn set_parts(&mut self, parts: Parts) -> Result<(), BadKey> {
+        if !parts.valid() {
+            return Err(BadKey {
+                key: "parts".into(),
+                msg: format!(
+                    "parts machined {} and required {} must be whole numbers 0 … {}",
+                    parts.machined, parts.required, MAX_PARTS
+                ),
+            });
+        }
+        self.counters.parts = parts;
+        Ok(())
+    }
+
+    /// Counters a host kept over a power-off (counters.rs), if they fit.
+    pub(crate) fn restore_counters(&mut self, c: Counters) -> Result<(), BadKey> {
+        if let Some(why) = c.misfit(&self.counters) {
+            return Err(BadKey {
+                key: "counters".into(),
+                msg: why.into(),
+            });
+        }
+        self.counters = c;
+        Ok(())
+    }
+
+    /// The operator renews tool-life group `number` (counters.rs).
+    pub(crate) fn renew_tool_life(&mut self, number: u32) -> Result<(), BadKey> {
+        if self.counters.renew_group(number) {
+            return Ok(());
+        }
+        Err(BadKey {
+            key: "tool_life.group".into(),
+            msg: format!("the machine file has no tool-life group {number}"),
+        })
+    }
+
+    /// The motion reached the end of the run: the counters keep what it
+    /// counted (a run a reset or an alarm abandons counts nothing, so a
+    /// restarted part counts once).
+    pub(crate) fn run_ended(&mut self) {
+        if self.vm_state != VmState::Done {
+            return;
+        }
+        let end = self.vm.nc.counters();
+        self.counters.add_run(&self.run_start, &end);
+        self.run_start = end;
+    }
+
     /// The blocks the VM has executed, as the block budget counts them;
     /// the block that passed the budget (E6005) did not run.
     fn charged(&self) -> u64 {
@@ -281,8 +351,8 @@ impl RunAhead {
             Status::OutOfBudget => {}
             Status::Sync => self.vm_state = VmState::Sync,
             Status::Done => {
-                if !matches!(self.staged.back(), Some((Command::End, _))) {
-                    self.staged.push_back((Command::End, tag));
+                if !matches!(self.staged.back(), Some((Command::End { .. }, _))) {
+                    self.staged.push_back((Command::End { m30: false }, tag));
                 }
                 self.vm_state = VmState::Done;
             }
@@ -529,6 +599,8 @@ impl RunAhead {
         if let Some(tier) = self.vm.take_tier() {
             vm.set_tier(tier);
         }
+        vm.nc.set_counters(&self.counters);
+        self.run_start = self.counters.clone();
         self.vm = vm;
         self.vm.sync_positions = true;
         self.vm.max_blocks = self.max_blocks;

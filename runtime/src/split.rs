@@ -34,6 +34,7 @@ use crate::runahead::{is_skip, Link, RunAhead, Standing};
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 use core::sync::atomic::{AtomicU32, Ordering};
+use nc::counters::{Counters, Parts};
 use nc::machine::Xz;
 use nc::machine_check::BadKey;
 use nc::offset_page::{OffsetLengths, WorkOffset};
@@ -65,6 +66,8 @@ enum Report {
     Reset { epoch: u8, at: Standing },
     /// A G31 move sent in `epoch` ended.
     Skip { epoch: u8, report: SkipReport },
+    /// The motion reached the end of the program sent in `epoch`.
+    Ended { epoch: u8 },
 }
 
 /// Published by the real-time half, read by the interpreter.
@@ -115,6 +118,7 @@ pub(crate) fn split<P: Plc>(ra: RunAhead, engine: Engine<P>) -> (Interpreter, Re
         lookahead: (cfg.lookahead_blocks, cfg.lookahead_s),
         reset: None,
         skip: None,
+        ended: false,
     };
     let rt = Realtime {
         engine,
@@ -126,6 +130,7 @@ pub(crate) fn split<P: Plc>(ra: RunAhead, engine: Engine<P>) -> (Interpreter, Re
         origin,
         reset: None,
         skip: None,
+        ended: None,
         files,
         published: (moves as u32, (secs as f32).to_bits()),
         idle,
@@ -155,6 +160,7 @@ struct RingLink {
     lookahead: (usize, f64),
     reset: Option<Standing>,
     skip: Option<SkipReport>,
+    ended: bool,
 }
 
 impl RingLink {
@@ -181,6 +187,7 @@ impl RingLink {
                 }
                 Report::Skip { epoch, report } if epoch == self.epoch => self.skip = Some(report),
                 Report::Skip { .. } => {}
+                Report::Ended { epoch } => self.ended |= epoch == self.epoch,
             }
         }
     }
@@ -234,6 +241,11 @@ impl Link for RingLink {
     fn take_skip(&mut self) -> Option<SkipReport> {
         self.poll();
         self.skip.take()
+    }
+
+    fn take_ended(&mut self) -> bool {
+        self.poll();
+        core::mem::take(&mut self.ended)
     }
 
     /// The real-time half re-seeded its engine when the reset finished.
@@ -321,6 +333,31 @@ impl Interpreter {
         self.ra.machine.set_work_offset(w, at)
     }
 
+    /// The production counters ([`crate::Controller::counters`]): this
+    /// half runs the program, so it keeps them. A run's end counts at the
+    /// `run_ahead` after the motion reached it.
+    pub fn counters(&self) -> &Counters {
+        &self.ra.counters
+    }
+
+    /// Sets the part counters ([`crate::Controller::set_parts`]) for the
+    /// runs from the next reset on; the running one adds what it counts.
+    pub fn set_parts(&mut self, parts: Parts) -> Result<(), BadKey> {
+        self.ra.set_parts(parts)
+    }
+
+    /// Restores counters the host kept
+    /// ([`crate::Controller::restore_counters`]) from the next reset on.
+    pub fn restore_counters(&mut self, c: Counters) -> Result<(), BadKey> {
+        self.ra.restore_counters(c)
+    }
+
+    /// Renews tool-life group `number`
+    /// ([`crate::Controller::renew_tool_life`]) from the next reset on.
+    pub fn renew_tool_life(&mut self, number: u32) -> Result<(), BadKey> {
+        self.ra.renew_tool_life(number)
+    }
+
     /// Block-skip switch `switch` (1–9), for the blocks this half reads
     /// from now on ([`crate::Controller::set_block_skip`]): the switch
     /// belongs to the interpreter, which reads the blocks.
@@ -345,6 +382,8 @@ pub struct Realtime<P: Plc> {
     /// Reports the ring had no room for yet.
     reset: Option<Standing>,
     skip: Option<SkipReport>,
+    /// The epoch whose program the motion finished, to report.
+    ended: Option<u8>,
     files: Vec<isa::SourceFileInfo>,
     /// What `shared` holds: (moves, seconds' bits) and the idle mark.
     published: (u32, u32),
@@ -398,6 +437,9 @@ impl<P: Plc> Realtime<P> {
         if let Some(r) = self.engine.take_skip_report() {
             self.skip = Some(r);
         }
+        if self.engine.take_ended() {
+            self.ended = Some(self.epoch);
+        }
         if self.engine.take_reset_done() {
             self.epoch = self.epoch.wrapping_add(1);
             self.taken = 0;
@@ -429,8 +471,16 @@ impl<P: Plc> Realtime<P> {
         }
     }
 
-    /// Sends what is pending, the reset first: it makes older reports moot.
+    /// Sends what is pending: the end of a run first (the interpreter
+    /// keeps what it counted before the reset restarts it), then the
+    /// reset, which makes older reports moot.
     fn send_reports(&mut self) {
+        if let Some(epoch) = self.ended {
+            if self.tx.push(Report::Ended { epoch }).is_err() {
+                return;
+            }
+            self.ended = None;
+        }
         let epoch = self.epoch;
         if let Some(at) = self.reset {
             if self.tx.push(Report::Reset { epoch, at }).is_err() {

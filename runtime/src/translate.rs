@@ -221,7 +221,8 @@ impl Translator {
             Event::Stop(k) => out.push(match k {
                 StopKind::M00 => Command::Pause(PauseKind::M00),
                 StopKind::M01 => Command::Pause(PauseKind::M01),
-                StopKind::M02 | StopKind::M30 | StopKind::M99 => Command::End,
+                StopKind::M30 => Command::End { m30: true },
+                StopKind::M02 | StopKind::M99 => Command::End { m30: false },
             }),
             Event::Message { number, text } => {
                 self.messages.push(text.clone());

@@ -329,6 +329,9 @@ section!(Run {
     max_blocks: u64 = 2_000_000,
     // Simulated seconds a timed run (trace, plot, stats) may last: E6006.
     max_time_s: f64 = 3600.0,
+    // Cycle start after M30 runs the program again from its start, as a
+    // reset would leave it (a controller's; a GSK's M30 rewinds).
+    m30_rewinds: bool = false,
 });
 
 section!(

@@ -5,6 +5,7 @@ pub mod caxis;
 pub mod comp;
 pub mod compound;
 pub mod contour;
+pub mod counters;
 pub mod cycles;
 pub mod data_setting;
 pub mod measure;

@@ -1,11 +1,13 @@
 //! What the operator does between programs, while the machine stands
 //! idle: restart the program at a block, select another program, edit
-//! the offset page. Each starts the program afresh where the axes stand.
+//! the offset page and the production counters. Each starts the program
+//! afresh where the axes stand.
 
 use super::Controller;
 use crate::plc::Plc;
 use crate::runahead::Standing;
 use alloc::string::String;
+use nc::counters::{Counters, Parts};
 use nc::machine::Xz;
 use nc::machine_check::BadKey;
 use nc::offset_page::{OffsetLengths, WorkOffset};
@@ -112,6 +114,10 @@ impl<P: Plc> Controller<P> {
     /// (or manual move) that has just finished would otherwise start the
     /// program afresh at the next run-ahead: its report is taken here.
     fn standing(&mut self) -> Standing {
+        // A run whose end the run-ahead has not seen counts first.
+        if self.engine.take_ended() {
+            self.ra.run_ended();
+        }
         let _ = self.engine.take_reset_done();
         Standing {
             at: self.engine.position(),
@@ -145,6 +151,48 @@ impl<P: Plc> Controller<P> {
     /// [`Controller::set_tool_offset`] does.
     pub fn set_work_offset(&mut self, w: WorkOffset, at: Xz) -> Result<(), BadKey> {
         self.ra.machine.set_work_offset(w, at)?;
+        self.apply_page();
+        Ok(())
+    }
+
+    /// The production counters (docs/embedding.md): the parts machined
+    /// and required (#3901, #3902) and the tool life of the machine
+    /// file's groups, as the finished runs and the operator's edits left
+    /// them. A run counts on them as it goes; what it counted is kept
+    /// when the motion reaches its end, seen at the next
+    /// [`Controller::run_ahead`]. A run a reset or an alarm abandons
+    /// counts nothing.
+    pub fn counters(&self) -> &Counters {
+        &self.ra.counters
+    }
+
+    /// Sets the part counters (whole numbers, 0 … 99 999 999), as the
+    /// operator does on the setting page. The running program keeps
+    /// counting from what it started with, and its M30 then adds one to
+    /// this value; while idle the program starts afresh with it.
+    pub fn set_parts(&mut self, parts: Parts) -> Result<(), BadKey> {
+        self.ra.set_parts(parts)?;
+        self.apply_page();
+        Ok(())
+    }
+
+    /// Tool-life group `number` as new (the operator changed its
+    /// inserts): its tools unused and none selected, for the runs that
+    /// start from now on (while idle, at once). Refused for a group the
+    /// machine file does not have.
+    pub fn renew_tool_life(&mut self, number: u32) -> Result<(), BadKey> {
+        self.ra.renew_tool_life(number)?;
+        self.apply_page();
+        Ok(())
+    }
+
+    /// Restores counters the host kept over a power-off (all of
+    /// [`Controller::counters`]), as [`Controller::set_parts`] sets the
+    /// parts. Refused, changing nothing, unless they fit this machine:
+    /// whole parts 0 … 99 999 999, the machine file's tool-life groups,
+    /// uses finite and not negative.
+    pub fn restore_counters(&mut self, c: Counters) -> Result<(), BadKey> {
+        self.ra.restore_counters(c)?;
         self.apply_page();
         Ok(())
     }
