@@ -7,7 +7,7 @@ mod common;
 
 use common::{module, reset_to_idle};
 use nc::Machine;
-use runtime::{Controller, Parts, RestartAt, RunState, SetPoint, Target};
+use runtime::{Controller, Motion, Parts, RestartAt, RunState, SetPoint, Target};
 
 /// Group 1: two tools, each good for two uses.
 const LIFE: &str =
@@ -247,4 +247,37 @@ fn counters_kept_over_a_power_off_are_restored() {
     assert_eq!(ctl.vm().variable(100), Ok(7.0));
     assert_eq!(ctl.counters().parts.machined, 8.0);
     assert_eq!(used(&ctl), [2.0, 1.0]);
+}
+
+/// The periods of the second part, from its first motion on, on a
+/// machine whose M30 rewinds (cycle start alone) and on one whose does
+/// not (reset, then cycle start).
+fn second_part(rewinds: bool) -> Vec<(f64, f64, f64, f64, f64, u32, Motion, u32)> {
+    let mut ctl = controller(common::SHAFT, rewinds);
+    part(&mut ctl);
+    if !rewinds {
+        reset_to_idle(&mut ctl);
+    }
+    ctl.cycle_start();
+    let mut periods = Vec::new();
+    for _ in 0..400_000 {
+        ctl.run_ahead();
+        let sp = ctl.tick();
+        if sp.motion != Motion::None || !periods.is_empty() {
+            periods.push((
+                sp.x, sp.z, sp.axis_x, sp.axis_z, sp.feed, sp.line, sp.motion, sp.tool,
+            ));
+        }
+        if ctl.state() == RunState::Ended && !periods.is_empty() {
+            return periods;
+        }
+    }
+    panic!("not done: {:?}", ctl.state());
+}
+
+#[test]
+fn a_rewind_runs_the_part_as_reset_and_cycle_start_do() {
+    let rewound = second_part(true);
+    assert!(rewound.len() > 1000, "{}", rewound.len());
+    assert_eq!(rewound, second_part(false));
 }

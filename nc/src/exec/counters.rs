@@ -37,7 +37,7 @@ impl Parts {
     pub fn valid(&self) -> bool {
         [self.machined, self.required]
             .iter()
-            .all(|v| (0.0..=MAX_PARTS).contains(v) && v.fract() == 0.0)
+            .all(|v| (0.0..=MAX_PARTS).contains(v) && libm::trunc(*v) == *v)
     }
 }
 
