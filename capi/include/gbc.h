@@ -50,6 +50,18 @@
 #include <stdint.h>
 
 /**
+ * [`GbcToolLife::unit`]: the group's life is a number of uses (each
+ * `Txx99` that selects the tool counts one).
+ */
+#define GBC_LIFE_COUNT 0
+
+/**
+ * [`GbcToolLife::unit`]: the group's life is minutes of cutting (the
+ * feed moves made while the tool is the group's selected one).
+ */
+#define GBC_LIFE_MINUTES 1
+
+/**
  * `axis` of a manual move: the cross slide.
  */
 #define GBC_AXIS_X 0
@@ -613,6 +625,50 @@ typedef struct GbcAlarm {
 } GbcAlarm;
 
 /**
+ * The part counters: parts machined (#3901, which M30 adds one to) and
+ * parts required (#3902; 0: none set). Whole numbers 0 … 99 999 999.
+ */
+typedef struct GbcParts {
+  /**
+   * Parts machined.
+   */
+  double machined;
+  /**
+   * Parts required.
+   */
+  double required;
+} GbcParts;
+
+/**
+ * One tool of a tool-life group (the machine file's
+ * `[[tool_life.group]]`), as the finished runs and the operator's edits
+ * left it.
+ */
+typedef struct GbcToolLife {
+  /**
+   * The tool's T value, tool × 100 + offset (101: tool 1, offset 1).
+   */
+  uint32_t tool;
+  /**
+   * The group's life, in its unit.
+   */
+  double life;
+  /**
+   * What the tool has used, in the group's unit; at `life` it is worn
+   * out and `Txx99` takes the group's next tool.
+   */
+  double used;
+  /**
+   * [`GBC_LIFE_COUNT`] or [`GBC_LIFE_MINUTES`].
+   */
+  uint32_t unit;
+  /**
+   * The tool is the one the group's last `Txx99` selected.
+   */
+  bool current;
+} GbcToolLife;
+
+/**
  * The lengths of one tool offset on the offset page, mm, X on the
  * diameter (#2701, #2801, #2001, #2101 for offset 1). The nose radius and
  * tip direction are not here: they are compiled into the program (change
@@ -706,6 +762,8 @@ enum GbcStatus gbc_controller_free(GbcController controller);
 /**
  * Verifies a `.gbc` module (`len` bytes) and loads it: the controller
  * asks the host for #500–#999 (`vars_load`) and waits for cycle start.
+ * The panel's switches, the offset page and the production counters set
+ * before the load are the program's.
  * A second load is [`GbcStatus::AlreadyLoaded`]: `gbc_controller_select`
  * replaces the program while idle, keeping where the axes stand.
  *
@@ -810,7 +868,10 @@ enum GbcStatus gbc_feed_hold(GbcController controller);
 /**
  * Cycle start: starts the program, resumes after feed hold or a stop.
  * After the program's end it does nothing: `gbc_reset` first (the
- * program then waits at its start for cycle start).
+ * program then waits at its start for cycle start). On a machine whose
+ * file sets `run.m30_rewinds = true`, cycle start after an M30 runs the
+ * program again from its start (the next part), as a reset would leave
+ * it; after M02 it still does nothing.
  */
 enum GbcStatus gbc_cycle_start(GbcController controller);
 
@@ -880,6 +941,78 @@ enum GbcStatus gbc_spindle_feedback(GbcController controller, double position_tu
  * speed and angle).
  */
 enum GbcStatus gbc_spindle_simulated(GbcController controller);
+
+/**
+ * The part counters as the finished runs and the operator's edits left
+ * them: a run's counting is kept when the motion reaches the program's
+ * end (seen at the next `gbc_run_ahead`); a run a reset or an alarm
+ * abandons counts nothing. The program reads #3901 as the counter stood
+ * when its run began.
+ *
+ * # Safety
+ * `out` is null or writable.
+ */
+enum GbcStatus gbc_parts(GbcController controller, struct GbcParts *out);
+
+/**
+ * Sets the part counters, as the operator does on the setting page: at
+ * once while the controller is idle (a program not yet started starts
+ * afresh with them); while a program runs, it keeps counting from what
+ * it started with, and its M30 then adds one to this value (0 set during
+ * a part reads 1 after it). Before a program is loaded they are kept
+ * for it. Refused with [`GbcStatus::InvalidArgument`], changing nothing,
+ * unless both are whole numbers 0 … 99 999 999 (`gbc_last_error` says
+ * why).
+ */
+enum GbcStatus gbc_set_parts(GbcController controller, struct GbcParts parts);
+
+/**
+ * Whether the required count is set and reached (parts required above 0
+ * and parts machined at least that): a control's "parts reached"
+ * signal, to `*out`. What the machine does then is the host's.
+ *
+ * # Safety
+ * `out` is null or writable.
+ */
+enum GbcStatus gbc_parts_reached(GbcController controller, bool *out);
+
+/**
+ * The tool in `slot` (0 for the group's first tool, in the machine
+ * file's order) of tool-life group `group_number`, with its use, as the
+ * finished runs and the operator's edits left it. A group the machine
+ * file does not have, or a slot past its last tool:
+ * [`GbcStatus::InvalidArgument`], so a host reads a group's tools from
+ * slot 0 until it gets that.
+ *
+ * # Safety
+ * `out` is null or writable.
+ */
+enum GbcStatus gbc_tool_life(GbcController controller,
+                             uint32_t group_number,
+                             uint32_t slot,
+                             struct GbcToolLife *out);
+
+/**
+ * Sets what the tool in `slot` of tool-life group `group_number` has
+ * used (in the group's unit): a host gives back, after power-on, the
+ * uses it kept, or the operator corrects one. It holds as
+ * `gbc_set_parts`'s counters do (a running program's use is added to
+ * it when the program ends). Refused with [`GbcStatus::InvalidArgument`],
+ * changing nothing, for a group or slot `gbc_tool_life` refuses or a use
+ * that is negative or not finite.
+ */
+enum GbcStatus gbc_set_tool_life_used(GbcController controller,
+                                      uint32_t group_number,
+                                      uint32_t slot,
+                                      double used);
+
+/**
+ * Renews tool-life group `group_number` (the operator changed its
+ * inserts): its tools unused and none selected, so the next `Txx99`
+ * takes its first tool. It holds as `gbc_set_parts`'s counters do. A
+ * group the machine file does not have: [`GbcStatus::InvalidArgument`].
+ */
+enum GbcStatus gbc_renew_tool_life(GbcController controller, uint32_t group_number);
 
 /**
  * A continuous jog of `axis` ([`GBC_AXIS_X`], [`GBC_AXIS_Z`],

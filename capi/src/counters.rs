@@ -11,7 +11,7 @@
 
 use crate::offsets::refused;
 use crate::{fail, put, with_ctl, Ctl, Failure, GbcController, GbcStatus};
-use runtime::{BadKey, Counters, LifeGroup, LifeUnit, Parts, MAX_PARTS};
+use runtime::{Counters, LifeGroup, LifeUnit, Parts};
 
 /// [`GbcToolLife::unit`]: the group's life is a number of uses (each
 /// `Txx99` that selects the tool counts one).
@@ -97,17 +97,7 @@ pub extern "C" fn gbc_set_parts(controller: GbcController, parts: GbcParts) -> G
         };
         let r = match c.run.as_mut() {
             Some(r) => r.set_parts(parts),
-            None if parts.valid() => {
-                c.counters.parts = parts;
-                Ok(())
-            }
-            None => Err(BadKey {
-                key: "parts".into(),
-                msg: format!(
-                    "parts machined {} and required {} must be whole numbers 0 … {}",
-                    parts.machined, parts.required, MAX_PARTS
-                ),
-            }),
+            None => parts.check().map(|()| c.counters.parts = parts),
         };
         r.map_err(|e| refused("the part counters", e))
     })
@@ -197,16 +187,7 @@ pub extern "C" fn gbc_set_tool_life_used(
         *u = used;
         let r = match c.run.as_mut() {
             Some(r) => r.restore_counters(next),
-            None => match next.misfit(&c.counters) {
-                Some(why) => Err(BadKey {
-                    key: "counters".into(),
-                    msg: why.into(),
-                }),
-                None => {
-                    c.counters = next;
-                    Ok(())
-                }
-            },
+            None => next.check_fits(&c.counters).map(|()| c.counters = next),
         };
         r.map_err(|e| refused(&format!("tool-life group {group_number} slot {slot}"), e))
     })
@@ -221,11 +202,7 @@ pub extern "C" fn gbc_renew_tool_life(controller: GbcController, group_number: u
     with_ctl(controller, |c| {
         let r = match c.run.as_mut() {
             Some(r) => r.renew_tool_life(group_number),
-            None if c.counters.renew_group(group_number) => Ok(()),
-            None => Err(BadKey {
-                key: "tool_life.group".into(),
-                msg: format!("the machine file has no tool-life group {group_number}"),
-            }),
+            None => c.counters.renew_group(group_number),
         };
         r.map_err(|e| refused(&format!("tool-life group {group_number}"), e))
     })

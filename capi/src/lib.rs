@@ -28,6 +28,7 @@
 //! is a few atomic loads), so it may be called from an interrupt or a
 //! real-time thread; `gbc_run_ahead` runs the VM and allocates.
 
+mod counters;
 mod handle;
 mod host;
 mod manual;
@@ -42,8 +43,9 @@ use std::borrow::Cow;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use runtime::command::PauseKind;
-use runtime::{Config, Controller, RapidOverride, RunState};
+use runtime::{Config, Controller, Counters, RapidOverride, RunState};
 
+pub use counters::*;
 use handle::{Kind, Object};
 use host::{HostPlc, HostStorage};
 pub use manual::*;
@@ -108,6 +110,10 @@ struct Ctl {
     machine: nc::Machine,
     host: GbcHost,
     panel: Panel,
+    /// The production counters before a program is loaded (what the
+    /// host set or restored), which the program loaded later starts
+    /// from; once one is, its controller has them.
+    counters: Counters,
     run: Option<Controller<HostPlc>>,
     /// When macro loops are compiled (`gbc_set_jit`'s value).
     jit: u8,
@@ -427,6 +433,7 @@ pub unsafe extern "C" fn gbc_controller_new(
             machine: m.0.clone(),
             host,
             panel: Panel::of(&m.0),
+            counters: Counters::power_on(&m.0),
             run: None,
             jit: GBC_JIT_AUTO,
             reset_pending: false,
@@ -447,6 +454,8 @@ pub extern "C" fn gbc_controller_free(controller: GbcController) -> GbcStatus {
 
 /// Verifies a `.gbc` module (`len` bytes) and loads it: the controller
 /// asks the host for #500–#999 (`vars_load`) and waits for cycle start.
+/// The panel's switches, the offset page and the production counters set
+/// before the load are the program's.
 /// A second load is [`GbcStatus::AlreadyLoaded`]: `gbc_controller_select`
 /// replaces the program while idle, keeping where the axes stand.
 ///
@@ -466,6 +475,13 @@ pub unsafe extern "C" fn gbc_controller_load(
         let module = unsafe { module_at(gbc, len)? };
         let mut run = Controller::new(module, c.machine.clone(), HostPlc(c.host))
             .map_err(|e| fail(GbcStatus::MachineMismatch, e.to_string()))?;
+        // The counters set before the load carry into the program (first,
+        // as the program then starts afresh with them). They fit, being
+        // of this controller's machine; counters that did not would leave
+        // the fresh ones.
+        if *run.counters() != c.counters {
+            let _ = run.restore_counters(c.counters.clone());
+        }
         let Some(vars) = host::load_vars(&c.host) else {
             return Err(fail(GbcStatus::HostFailure, "the host's vars_load refused"));
         };
@@ -704,7 +720,10 @@ pub extern "C" fn gbc_feed_hold(controller: GbcController) -> GbcStatus {
 
 /// Cycle start: starts the program, resumes after feed hold or a stop.
 /// After the program's end it does nothing: `gbc_reset` first (the
-/// program then waits at its start for cycle start).
+/// program then waits at its start for cycle start). On a machine whose
+/// file sets `run.m30_rewinds = true`, cycle start after an M30 runs the
+/// program again from its start (the next part), as a reset would leave
+/// it; after M02 it still does nothing.
 #[no_mangle]
 pub extern "C" fn gbc_cycle_start(controller: GbcController) -> GbcStatus {
     with_run(controller, |r| {

@@ -213,7 +213,7 @@ fn work_offset(which: u32) -> Result<WorkOffset, Failure> {
 }
 
 /// A refused edit: the machine-file key and why, after what was edited.
-fn refused(what: &str, e: BadKey) -> Failure {
+pub(crate) fn refused(what: &str, e: BadKey) -> Failure {
     fail(
         GbcStatus::InvalidArgument,
         format!("{what} refused: {}: {}", e.key, e.msg),

@@ -161,6 +161,24 @@ fn every_failure_sets_a_text_about_itself() {
     fails_with("work offset, null", null, "null", || unsafe {
         gbc_work_offset(c, GBC_WORK_OFFSET_G54, null_mut(), null_mut())
     });
+    // The production counters: what was refused and why.
+    fails_with("parts 1.5", arg, "whole numbers", || {
+        let p = GbcParts {
+            machined: 1.5,
+            required: 0.0,
+        };
+        gbc_set_parts(c, p)
+    });
+    fails_with("tool life group 1", arg, "no tool-life group 1", || {
+        let mut out = std::mem::MaybeUninit::<GbcToolLife>::uninit();
+        unsafe { gbc_tool_life(c, 1, 0, out.as_mut_ptr()) }
+    });
+    fails_with("renew group 1", arg, "no tool-life group 1", || {
+        gbc_renew_tool_life(c, 1)
+    });
+    fails_with("parts, null", null, "null", || unsafe {
+        gbc_parts(c, null_mut())
+    });
     // A bad handle and a bad argument: the status and the text both tell
     // of the handle.
     fails_with("NaN, bad handle", invalid, "handle", || {

@@ -195,6 +195,45 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             "gbc_controller_select",
             Box::new(|h| unsafe { gbc_controller_select(h, [0u8; 4].as_ptr(), 4) }),
         ),
+        (
+            "gbc_parts",
+            Box::new(|h| {
+                let mut p = GbcParts {
+                    machined: 0.0,
+                    required: 0.0,
+                };
+                unsafe { gbc_parts(h, &mut p) }
+            }),
+        ),
+        (
+            "gbc_set_parts",
+            Box::new(|h| {
+                let p = GbcParts {
+                    machined: 1.0,
+                    required: 2.0,
+                };
+                gbc_set_parts(h, p)
+            }),
+        ),
+        (
+            "gbc_parts_reached",
+            Box::new(|h| unsafe { gbc_parts_reached(h, &mut false) }),
+        ),
+        (
+            "gbc_tool_life",
+            Box::new(|h| {
+                let mut t = std::mem::MaybeUninit::<GbcToolLife>::uninit();
+                unsafe { gbc_tool_life(h, 1, 0, t.as_mut_ptr()) }
+            }),
+        ),
+        (
+            "gbc_set_tool_life_used",
+            Box::new(|h| gbc_set_tool_life_used(h, 1, 0, 1.0)),
+        ),
+        (
+            "gbc_renew_tool_life",
+            Box::new(|h| gbc_renew_tool_life(h, 1)),
+        ),
         ("gbc_controller_free", Box::new(|h| gbc_controller_free(h))),
     ]
 }

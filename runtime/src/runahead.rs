@@ -14,10 +14,9 @@ use crate::planner::{Full, Pushed};
 use crate::plc::Plc;
 use crate::translate::Translator;
 use alloc::collections::VecDeque;
-use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
-use nc::counters::{Counters, Parts, MAX_PARTS};
+use nc::counters::{Counters, Parts};
 use nc::exec::switches::Switch;
 use nc::machine_check::BadKey;
 use nc::{Event, Machine, Placed, Sink};
@@ -280,40 +279,21 @@ impl RunAhead {
 
     /// The operator sets the part counters (counters.rs).
     pub(crate) fn set_parts(&mut self, parts: Parts) -> Result<(), BadKey> {
-        if !parts.valid() {
-            return Err(BadKey {
-                key: "parts".into(),
-                msg: format!(
-                    "parts machined {} and required {} must be whole numbers 0 … {}",
-                    parts.machined, parts.required, MAX_PARTS
-                ),
-            });
-        }
+        parts.check()?;
         self.counters.parts = parts;
         Ok(())
     }
 
     /// Counters a host kept over a power-off (counters.rs), if they fit.
     pub(crate) fn restore_counters(&mut self, c: Counters) -> Result<(), BadKey> {
-        if let Some(why) = c.misfit(&self.counters) {
-            return Err(BadKey {
-                key: "counters".into(),
-                msg: why.into(),
-            });
-        }
+        c.check_fits(&self.counters)?;
         self.counters = c;
         Ok(())
     }
 
     /// The operator renews tool-life group `number` (counters.rs).
     pub(crate) fn renew_tool_life(&mut self, number: u32) -> Result<(), BadKey> {
-        if self.counters.renew_group(number) {
-            return Ok(());
-        }
-        Err(BadKey {
-            key: "tool_life.group".into(),
-            msg: format!("the machine file has no tool-life group {number}"),
-        })
+        self.counters.renew_group(number)
     }
 
     /// The motion reached the end of the run: the counters keep what it

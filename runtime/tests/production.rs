@@ -249,10 +249,14 @@ fn counters_kept_over_a_power_off_are_restored() {
     assert_eq!(used(&ctl), [2.0, 1.0]);
 }
 
+/// What a period shows of the path: x, z, axis_x, axis_z, feed, line,
+/// motion, tool (not the time, which a rewind's reset shifts by a period).
+type Period = (f64, f64, f64, f64, f64, u32, Motion, u32);
+
 /// The periods of the second part, from its first motion on, on a
 /// machine whose M30 rewinds (cycle start alone) and on one whose does
 /// not (reset, then cycle start).
-fn second_part(rewinds: bool) -> Vec<(f64, f64, f64, f64, f64, u32, Motion, u32)> {
+fn second_part(rewinds: bool) -> Vec<Period> {
     let mut ctl = controller(common::SHAFT, rewinds);
     part(&mut ctl);
     if !rewinds {
@@ -280,4 +284,16 @@ fn a_rewind_runs_the_part_as_reset_and_cycle_start_do() {
     let rewound = second_part(true);
     assert!(rewound.len() > 1000, "{}", rewound.len());
     assert_eq!(rewound, second_part(false));
+}
+
+#[test]
+fn a_minutes_group_adds_up_its_cutting_time_over_parts() {
+    // One cut of 22 mm (Z2 to Z-20) at 300 mm/min a part: 22/300 min.
+    let text = "[run]\nm30_rewinds = true\n[[tool_life.group]]\nnumber = 1\nlife = 10\nunit = \"minutes\"\ntools = [101]\n";
+    let m = Machine::from_toml(text).expect("a machine file");
+    let mut ctl = Controller::new(module(PART, &m), m, runtime::AutoAck).expect("loads");
+    part(&mut ctl);
+    part(&mut ctl);
+    let minutes = used(&ctl)[0];
+    assert!((minutes - 2.0 * 22.0 / 300.0).abs() < 1e-9, "{minutes}");
 }

@@ -10,9 +10,11 @@
 //! so an operator's edit made while the run went on is kept, and the
 //! run's M30 still counts on it, as a control's part counter does.
 
+use alloc::format;
 use alloc::vec::Vec;
 
 use crate::base::machine::Machine;
+use crate::base::machine_check::BadKey;
 use crate::exec::tool_life::{Group, ToolLife};
 use crate::exec::Nc;
 
@@ -38,6 +40,20 @@ impl Parts {
         [self.machined, self.required]
             .iter()
             .all(|v| (0.0..=MAX_PARTS).contains(v) && libm::trunc(*v) == *v)
+    }
+
+    /// [`Parts::valid`], or why not.
+    pub fn check(&self) -> Result<(), BadKey> {
+        if self.valid() {
+            return Ok(());
+        }
+        Err(BadKey {
+            key: "parts".into(),
+            msg: format!(
+                "parts machined {} and required {} must be whole numbers 0 … {MAX_PARTS}",
+                self.machined, self.required
+            ),
+        })
     }
 }
 
@@ -87,34 +103,41 @@ impl Counters {
             })
     }
 
-    /// Counters a host kept (over a power-off) fit this machine: valid
-    /// parts, the machine file's groups, uses finite and not negative,
-    /// a current tool within its group. The first misfit, if any.
-    pub fn misfit(&self, machine_groups: &Counters) -> Option<&'static str> {
-        if !self.parts.valid() {
-            return Some("parts must be whole numbers 0 … 99999999");
-        }
-        if !self.same_groups(machine_groups) {
-            return Some("the tool-life groups are not the machine file's");
-        }
+    /// Counters a host kept (over a power-off) fit the machine whose
+    /// counters are `now`: valid parts, the machine file's groups, uses
+    /// finite and not negative, a current tool within its group.
+    pub fn check_fits(&self, now: &Counters) -> Result<(), BadKey> {
+        self.parts.check()?;
         let bad_use = |g: &Group| {
             g.used.iter().any(|u| !u.is_finite() || *u < 0.0)
                 || g.current.is_some_and(|c| c >= g.tools.len())
         };
-        self.life.iter().any(bad_use).then_some(
-            "a tool's use is negative or not finite, or its current tool is not in the group",
-        )
+        let why = if !self.same_groups(now) {
+            "the tool-life groups are not the machine file's"
+        } else if self.life.iter().any(bad_use) {
+            "a tool's use is negative or not finite, or its current tool is not in the group"
+        } else {
+            return Ok(());
+        };
+        Err(BadKey {
+            key: "counters".into(),
+            msg: why.into(),
+        })
     }
 
     /// Tool-life group `number` as new: its tools unused, none selected
-    /// (the operator changed the inserts). `false` when there is none.
-    pub fn renew_group(&mut self, number: u32) -> bool {
+    /// (the operator changed the inserts). Refused for a group the
+    /// machine file does not have.
+    pub fn renew_group(&mut self, number: u32) -> Result<(), BadKey> {
         let Some(g) = self.life.iter_mut().find(|g| g.number == number) else {
-            return false;
+            return Err(BadKey {
+                key: "tool_life.group".into(),
+                msg: format!("the machine file has no tool-life group {number}"),
+            });
         };
         g.used.iter_mut().for_each(|u| *u = 0.0);
         g.current = None;
-        true
+        Ok(())
     }
 }
 
@@ -196,10 +219,10 @@ mod tests {
     fn renewing_a_group_clears_its_use() {
         let mut c = counters(0.0, &[3.0, 2.0]);
         c.life[0].current = Some(1);
-        assert!(c.renew_group(1));
+        assert_eq!(c.renew_group(1), Ok(()));
         assert_eq!(c.life[0].used, [0.0, 0.0]);
         assert_eq!(c.life[0].current, None);
-        assert!(!c.renew_group(2));
+        assert!(c.renew_group(2).is_err());
     }
 
     #[test]
