@@ -2,7 +2,7 @@
 //! parts machined and required (#3901, #3902) and what each tool of the
 //! machine file's tool-life groups has used. A run starts with them and
 //! counts on them; a controller keeps what a finished run counted
-//! (docs/embedding.md, "Production counters"). A plain `gbvm run` starts
+//! (docs/embedding.md, "Production runs"). A plain `gbvm run` starts
 //! every run from zero, so that no run depends on an earlier one.
 //!
 //! A run's counting is taken as a change (what the run ended with less
