@@ -180,6 +180,13 @@ struct RunCmd {
     /// Passes a main-program M99 makes before the run ends.
     #[arg(long, value_name = "N", default_value_t = 1)]
     repeat: u32,
+    /// Make N parts in a row, as cycle start after each end makes them
+    /// on a controller: each part from where the one before left the
+    /// axes, the part counter (#3901) and the tool life of the machine
+    /// file's groups carried on. Runs through the runtime; --max-time
+    /// bounds each part.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    parts: Option<u32>,
     /// Keep #500–#999 in FILE (loaded at the start, rewritten
     /// crash-safely whenever the program changes them).
     #[arg(long, value_name = "FILE")]
@@ -314,7 +321,8 @@ fn run_command(cmd: &RunCmd) -> ExitCode {
         jit: cmd.jit,
         from: cmd.from,
     };
-    if emit == Some(Emit::Canon) && cmd.plot.is_none() && cmd.stats.is_none() {
+    let timed = cmd.plot.is_some() || cmd.stats.is_some() || cmd.parts.is_some();
+    if emit == Some(Emit::Canon) && !timed {
         return run(&run_args, cmd.quiet);
     }
     let out = Outputs {
@@ -326,6 +334,7 @@ fn run_command(cmd: &RunCmd) -> ExitCode {
         stats: stats_out,
         quiet: cmd.quiet,
         max_time: cmd.max_time,
+        parts: cmd.parts,
     };
     timed::run_timed(&run_args, &out)
 }

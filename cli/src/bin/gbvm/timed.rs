@@ -33,8 +33,10 @@ pub(crate) struct Outputs {
     pub stock: Option<runtime::plot::Stock>,
     pub stats: Option<(StatsFormat, StatsTo)>,
     pub quiet: bool,
-    /// `--max-time`, else the machine's run.max_time_s.
+    /// `--max-time`, else the machine's run.max_time_s (per part).
     pub max_time: Option<f64>,
+    /// `--parts`: the parts to make in a row.
+    pub parts: Option<u32>,
 }
 
 /// Exit code of a run interrupted by Ctrl-C (128 + SIGINT, as a shell
@@ -130,6 +132,13 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
     };
     let cut = periods(&mut ctl, &mut canon, &mut rec, out, &program, max_time);
     rec.progress.finish();
+    if out.parts.is_some() {
+        if ctl.state() == runtime::RunState::Ended {
+            // The run-ahead keeps what the last part counted.
+            ctl.run_ahead();
+        }
+        counters_note(ctl.counters());
+    }
     rec.stats.blocks = ctl.blocks();
     let alarm = match &cut {
         Some(Cut::TimedOut(sp)) => Some(time_alarm(&program.files, sp, max_time)),
@@ -178,6 +187,43 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         (Some(e), _) => output_failed(&e),
         (None, Some(_)) => cli::exit::Exit::Alarm.into(),
         (None, None) => ExitCode::SUCCESS,
+    }
+}
+
+/// `--parts`: the counters the parts left, on stderr, as a control's
+/// setting page shows them.
+fn counters_note(c: &runtime::Counters) {
+    let p = c.parts;
+    note(format_args!(
+        "gbvm: note: --parts: parts machined (#3901) {}, required (#3902) {}",
+        p.machined, p.required
+    ));
+    for g in &c.life {
+        let unit = match g.unit {
+            runtime::LifeUnit::Count => "uses",
+            runtime::LifeUnit::Minutes => "minutes",
+        };
+        let tools: Vec<String> = (0..g.tools.len())
+            .map(|i| {
+                let used = g.used.get(i).copied().unwrap_or(0.0);
+                let state = match (used >= g.life, g.current == Some(i)) {
+                    (true, _) => " (worn out)",
+                    (false, true) => " (current)",
+                    (false, false) => "",
+                };
+                let used = match g.unit {
+                    runtime::LifeUnit::Count => format!("{used}"),
+                    runtime::LifeUnit::Minutes => format!("{used:.3}"),
+                };
+                format!("T{:04} {used}{state}", g.tools[i])
+            })
+            .collect();
+        note(format_args!(
+            "gbvm: note: --parts: tool-life group {} ({unit}, life {}): {}",
+            g.number,
+            g.life,
+            tools.join(", ")
+        ));
     }
 }
 
@@ -252,6 +298,7 @@ fn periods(
     // rounded times.
     let max_ticks = (max_time / ctl.engine().config().period_s).ceil() as u64;
     let mut ticks = 0u64;
+    let mut part = 1;
     let mut quiet = nc::Discard;
     let mut warned = Vec::new();
     let mut line = String::new();
@@ -284,6 +331,13 @@ fn periods(
         }
         match ctl.state() {
             runtime::RunState::Stopped(_) | runtime::RunState::Idle => ctl.cycle_start(),
+            // The next part: a reset, then (idle) cycle start, as a
+            // rewinding M30's cycle start makes it.
+            runtime::RunState::Ended if part < out.parts.unwrap_or(1) => {
+                part += 1;
+                ticks = 0;
+                ctl.reset();
+            }
             runtime::RunState::Ended | runtime::RunState::Alarm(_) => return None,
             _ => {}
         }
