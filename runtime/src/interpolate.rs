@@ -582,8 +582,16 @@ impl<P: Plc> Engine<P> {
     }
 
     /// Cycle start: starts the program, resumes after feed hold or a stop.
+    /// After an M30 on a machine whose M30 rewinds (`run.m30_rewinds`):
+    /// a reset, then the program from its start, period for period as
+    /// the operator's reset and cycle start would make them.
     pub fn cycle_start(&mut self) {
-        self.cycle_start = true;
+        if self.state == RunState::Ended && self.rewind && !self.reset_req {
+            self.reset_req = true;
+            self.start_after_reset = true;
+        } else {
+            self.cycle_start = true;
+        }
     }
 
     /// Single block: stop at the end of every block.
@@ -717,11 +725,6 @@ impl<P: Plc> Engine<P> {
         match self.state {
             // (Manual is only reported, `state`: a manual move runs as
             // Running, `manual_period`.)
-            RunState::Ended if self.rewind && core::mem::take(&mut self.cycle_start) => {
-                // M30 rewinds: a reset, then the program from its start.
-                self.reset_req = true;
-                self.start_after_reset = true;
-            }
             RunState::Ended | RunState::Alarm(_) | RunState::Manual => self.cycle_start = false,
             RunState::Idle => {
                 if core::mem::take(&mut self.cycle_start) {
