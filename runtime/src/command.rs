@@ -179,12 +179,23 @@ pub enum Command {
     Stroke(Option<nc::stroke::Area>),
     /// Polar or cylindrical interpolation on or off (polar.rs).
     Plane(crate::polar::PlaneSwitch),
-    /// The program ends (M02, M30, last M99, past the last block); `m30`:
-    /// by an M30, which a machine may rewind on (`run.m30_rewinds`).
-    End {
-        /// Ended by an M30.
-        m30: bool,
-    },
+    /// The program ends (M02, M30, last M99, past the last block).
+    End(Ending),
     /// The program raised an alarm; motion stops here.
     Alarm(u32),
+}
+
+/// How a run ends, for what the machine does next.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ending {
+    /// M02, the last M99 or the last block: the program stands ended
+    /// until a reset.
+    Stop,
+    /// M30: as `Stop`, except that on a machine whose M30 rewinds
+    /// (`run.m30_rewinds`) cycle start runs the program again.
+    M30,
+    /// The end of MDI blocks: the machine is idle again at once, the
+    /// spindle and coolant as the blocks left them, and the program
+    /// comes back at its start (docs/embedding.md, "MDI").
+    Mdi,
 }

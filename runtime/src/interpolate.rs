@@ -12,7 +12,7 @@
 //! later, so the velocity passes through zero and no axis sees more than
 //! its acceleration.
 
-use crate::command::{MoveKind, PauseKind, Tag};
+use crate::command::{Ending, MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
 use crate::counts::Counts;
 use crate::follow::{Ahead, FollowAxes, Follower};
@@ -194,7 +194,7 @@ enum Head {
     Pause(PauseKind),
     Stroke(Option<nc::stroke::Area>),
     Plane(crate::polar::PlaneSwitch),
-    End { m30: bool },
+    End(Ending),
     Alarm(u32),
 }
 
@@ -951,10 +951,15 @@ impl<P: Plc> Engine<P> {
                     self.switch_plane(&sw);
                     self.finish_item_now()
                 }
-                Head::End { m30 } => {
-                    self.state = RunState::Ended;
+                Head::End(ending) => {
                     self.ended = true;
-                    self.rewind = m30 && self.cfg.m30_rewinds;
+                    match ending {
+                        Ending::Mdi => self.back_from_mdi(),
+                        _ => {
+                            self.state = RunState::Ended;
+                            self.rewind = ending == Ending::M30 && self.cfg.m30_rewinds;
+                        }
+                    }
                     Flow::Done
                 }
                 Head::Alarm(c) => {
@@ -978,7 +983,7 @@ impl<P: Plc> Engine<P> {
             ItemKind::Pause(k) => Head::Pause(*k),
             ItemKind::Stroke(a) => Head::Stroke(*a),
             ItemKind::Plane(sw) => Head::Plane(*sw),
-            ItemKind::End { m30 } => Head::End { m30: *m30 },
+            ItemKind::End(e) => Head::End(*e),
             ItemKind::Alarm(c) => Head::Alarm(*c),
         };
         Some((head, item.tag, item.shift))
@@ -1619,6 +1624,23 @@ impl<P: Plc> Engine<P> {
                 return;
             }
         }
+        self.spindle.reset();
+        self.alarm = None;
+        self.run_dropped();
+        self.reset_req = false;
+        self.cycle_start |= core::mem::take(&mut self.start_after_reset);
+    }
+
+    /// The end of MDI blocks: idle at once where the axes stand, the
+    /// spindle and coolant as the blocks left them; reported as a reset
+    /// is, so the program comes back at its start from here.
+    fn back_from_mdi(&mut self) {
+        self.run_dropped();
+    }
+
+    /// What a reset drops, the spindle aside: the queue, the motion's
+    /// state, a plane's mapping; the engine is idle and says so.
+    fn run_dropped(&mut self) {
         self.q.clear();
         if let Some(run) = self.plane.take() {
             // A reset ends polar and cylindrical interpolation: the point
@@ -1639,15 +1661,11 @@ impl<P: Plc> Engine<P> {
         self.rapid_v = [0.0; 3];
         self.skip_hit = None;
         self.fixed_work = None;
-        self.spindle.reset();
-        self.alarm = None;
         // Reset is power-on for group 09: G23.
         self.stroke = None;
         self.state = RunState::Idle;
         self.manual = false;
-        self.reset_req = false;
         self.reset_done = true;
         self.rewind = false;
-        self.cycle_start |= core::mem::take(&mut self.start_after_reset);
     }
 }

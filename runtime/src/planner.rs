@@ -29,7 +29,7 @@
 //! the corner rule knows only the XZ plane). A rapid turns C at its own
 //! rapid rate, like every axis of a G00.
 
-use crate::command::{Command, Feed, Move, MoveKind, PauseKind, Tag};
+use crate::command::{Command, Ending, Feed, Move, MoveKind, PauseKind, Tag};
 use crate::config::Config;
 use crate::geom::Curve;
 use crate::math::{sqrt, PI, V2};
@@ -193,11 +193,8 @@ pub enum ItemKind {
     Stroke(Option<nc::stroke::Area>),
     /// Polar or cylindrical interpolation on or off (polar.rs).
     Plane(crate::polar::PlaneSwitch),
-    /// The program ends (`m30`: by an M30).
-    End {
-        /// Ended by an M30.
-        m30: bool,
-    },
+    /// The program ends.
+    End(Ending),
     /// The program raised an alarm (its code).
     Alarm(u32),
 }
@@ -293,7 +290,7 @@ pub struct Planner {
 }
 
 const PLACEHOLDER: Item = Item {
-    kind: ItemKind::End { m30: false },
+    kind: ItemKind::End(Ending::Stop),
     tag: Tag {
         file: 0,
         line: 0,
@@ -656,7 +653,7 @@ impl Planner {
                 self.shift = if sw.map.is_some() { V2::ZERO } else { sw.shift };
                 ItemKind::Plane(sw)
             }
-            Command::End { m30 } => ItemKind::End { m30 },
+            Command::End(e) => ItemKind::End(e),
             Command::Alarm(c) => ItemKind::Alarm(c),
         })
     }

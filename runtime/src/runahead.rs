@@ -6,7 +6,7 @@
 //! calls both sides); [`crate::split`] links it to an engine on another
 //! thread through lock-free queues.
 
-use crate::command::{Command, Feed, Move, MoveKind, Path, Tag};
+use crate::command::{Command, Ending, Feed, Move, MoveKind, Path, Tag};
 use crate::controller::AlarmInfo;
 use crate::interpolate::{Engine, SkipReport};
 use crate::math::V2;
@@ -138,6 +138,11 @@ pub(crate) struct RunAhead {
     /// left them, and what this run started counting from (counters.rs).
     pub(crate) counters: Counters,
     run_start: Counters,
+    /// While MDI blocks are loaded or run: the program they replaced,
+    /// which comes back when they end or at a reset.
+    pub(crate) after_mdi: Option<isa::Module>,
+    /// MDI blocks for the next reset to begin with (a split controller's).
+    pending_mdi: Option<isa::Module>,
 }
 
 impl RunAhead {
@@ -166,6 +171,8 @@ impl RunAhead {
             restart_result: None,
             run_start: counters.clone(),
             counters,
+            after_mdi: None,
+            pending_mdi: None,
         }
     }
 
@@ -240,9 +247,13 @@ impl RunAhead {
             self.run_ended();
         }
         if let Some(at) = link.take_reset() {
-            match self.pending_restart.take() {
-                Some(r) => self.restart_result = Some(self.restart_from(r, at, link, tap)),
-                None => self.restart(at, link),
+            if let Some(m) = self.pending_mdi.take() {
+                self.start_mdi(m, at, link);
+            } else {
+                match self.pending_restart.take() {
+                    Some(r) => self.restart_result = Some(self.restart_from(r, at, link, tap)),
+                    None => self.restart(at, link),
+                }
             }
         }
         if let Some(r) = link.take_skip() {
@@ -331,8 +342,9 @@ impl RunAhead {
             Status::OutOfBudget => {}
             Status::Sync => self.vm_state = VmState::Sync,
             Status::Done => {
-                if !matches!(self.staged.back(), Some((Command::End { .. }, _))) {
-                    self.staged.push_back((Command::End { m30: false }, tag));
+                if !matches!(self.staged.back(), Some((Command::End(_), _))) {
+                    let end = Command::End(self.tr.ending(Ending::Stop));
+                    self.staged.push_back((end, tag));
                 }
                 self.vm_state = VmState::Done;
             }
@@ -556,11 +568,32 @@ impl RunAhead {
         Ok(restarted)
     }
 
-    /// After a reset: a fresh VM at the start of the program, its
-    /// programmed point and C where the axes now stand.
+    /// After a reset: a fresh VM at the start of the program (the one MDI
+    /// blocks replaced, if they did), its programmed point and C where
+    /// the axes now stand.
     pub(crate) fn restart<L: Link>(&mut self, stand: Standing, link: &mut L) {
-        let module = self.vm.module().clone();
+        let module = match self.after_mdi.take() {
+            Some(main) => main,
+            None => self.vm.module().clone(),
+        };
         self.start(module, stand, link);
+    }
+
+    /// MDI blocks, compiled, in place of the program until they end (or
+    /// a reset), where the axes stand.
+    pub(crate) fn start_mdi<L: Link>(&mut self, mdi: isa::Module, stand: Standing, link: &mut L) {
+        let main = match self.after_mdi.take() {
+            Some(main) => main,
+            None => self.vm.module().clone(),
+        };
+        self.start(mdi, stand, link);
+        self.tr.mdi = true;
+        self.after_mdi = Some(main);
+    }
+
+    /// MDI blocks for the next reset to begin with, instead of the program.
+    pub(crate) fn mdi_at_reset(&mut self, mdi: isa::Module) {
+        self.pending_mdi = Some(mdi);
     }
 
     /// A fresh VM for `module` at the start of the program, its
@@ -568,6 +601,7 @@ impl RunAhead {
     /// another program selected).
     pub(crate) fn start<L: Link>(&mut self, module: isa::Module, stand: Standing, link: &mut L) {
         let Standing { at, c } = stand;
+        self.after_mdi = None;
         let mut vm = Vm::new(module, self.machine.clone());
         // #500–#999 and where they are kept survive the reset.
         *vm.persistent_mut() = *self.vm.persistent();

@@ -25,7 +25,7 @@
 
 use crate::command::{Command, Tag};
 use crate::config::RapidOverride;
-use crate::controller::{engine_alarm, AlarmInfo};
+use crate::controller::{engine_alarm, AlarmInfo, SelectRefused};
 use crate::interpolate::{Engine, Manual, ManualRefused, RunState, SetPoint, SkipReport};
 use crate::math::V2;
 use crate::planner::{Full, Pushed};
@@ -344,6 +344,20 @@ impl Interpreter {
     /// runs from the next reset on; the running one adds what it counts.
     pub fn set_parts(&mut self, parts: Parts) -> Result<(), BadKey> {
         self.ra.set_parts(parts)
+    }
+
+    /// MDI blocks ([`crate::Controller::mdi`]) for the next reset of the
+    /// [`Realtime`] half to begin with (press it after this call); they
+    /// run at the cycle start after it, and when they end the program is
+    /// back at its start. Refused for blocks compiled for another machine.
+    pub fn mdi(&mut self, blocks: isa::Module) -> Result<(), SelectRefused> {
+        if let Some(key) =
+            Machine::compile_keys_differ(&blocks.machine, &self.ra.machine.compile_keys())
+        {
+            return Err(SelectRefused::Machine(key));
+        }
+        self.ra.mdi_at_reset(blocks);
+        Ok(())
     }
 
     /// Restores counters the host kept

@@ -8,7 +8,7 @@
 //! by comparing the kernel's programmed point with this one, and reached
 //! by a line.
 
-use crate::command::{Command, Feed, Move, MoveKind, Path, PauseKind, Thread};
+use crate::command::{Command, Ending, Feed, Move, MoveKind, Path, PauseKind, Thread};
 use crate::math::V2;
 use crate::plc::{PlcFunction, SpindleDir};
 use crate::polar::{PlaneMap, PlaneSwitch};
@@ -43,6 +43,8 @@ pub struct Translator {
     plane: Option<crate::polar::PlaneMap>,
     /// The plane point the last plane move ended at.
     plane_at: V2,
+    /// The run is of MDI blocks: it ends as MDI does ([`Ending::Mdi`]).
+    pub mdi: bool,
 }
 
 impl Translator {
@@ -64,6 +66,16 @@ impl Translator {
             c_now: 0.0,
             plane: None,
             plane_at: V2::ZERO,
+            mdi: false,
+        }
+    }
+
+    /// How the run ends at a program end of kind `k`.
+    pub fn ending(&self, k: Ending) -> Ending {
+        if self.mdi {
+            Ending::Mdi
+        } else {
+            k
         }
     }
 
@@ -221,8 +233,8 @@ impl Translator {
             Event::Stop(k) => out.push(match k {
                 StopKind::M00 => Command::Pause(PauseKind::M00),
                 StopKind::M01 => Command::Pause(PauseKind::M01),
-                StopKind::M30 => Command::End { m30: true },
-                StopKind::M02 | StopKind::M99 => Command::End { m30: false },
+                StopKind::M30 => Command::End(self.ending(Ending::M30)),
+                StopKind::M02 | StopKind::M99 => Command::End(self.ending(Ending::Stop)),
             }),
             Event::Message { number, text } => {
                 self.messages.push(text.clone());

@@ -507,7 +507,8 @@ fn ellipse_and_parabola_follow_the_exact_curve() {
         },
     )
     .unwrap();
-    e.push(Command::End { m30: false }, Tag::default()).unwrap();
+    e.push(Command::End(runtime::command::Ending::Stop), Tag::default())
+        .unwrap();
     e.replan();
     let ellipse = *e.planner().seg(1).unwrap();
     let parabola = e.planner().seg(2).unwrap().curve;

@@ -110,6 +110,31 @@ impl<P: Plc> Controller<P> {
         Ok(())
     }
 
+    /// MDI (docs/embedding.md, "MDI"): while idle, blocks the operator
+    /// typed, compiled for this machine, take the program's place where
+    /// the axes stand; cycle start runs them. When they end, the machine
+    /// is idle at once, the spindle and coolant as they left them, and
+    /// the program is back at its start; a reset, a program restart or
+    /// another program selected brings it back too.
+    pub fn mdi(&mut self, blocks: isa::Module) -> Result<(), SelectRefused> {
+        if let Some(key) =
+            Machine::compile_keys_differ(&blocks.machine, &self.ra.machine.compile_keys())
+        {
+            return Err(SelectRefused::Machine(key));
+        }
+        if !self.engine.clear_idle() {
+            return Err(SelectRefused::NotIdle);
+        }
+        let stand = self.standing();
+        self.ra.start_mdi(blocks, stand, &mut self.engine);
+        Ok(())
+    }
+
+    /// MDI blocks are loaded or run (the program comes back when they end).
+    pub fn in_mdi(&self) -> bool {
+        self.ra.after_mdi.is_some()
+    }
+
     /// Where the axes stand, for a run that starts afresh there. A reset
     /// (or manual move) that has just finished would otherwise start the
     /// program afresh at the next run-ahead: its report is taken here.
