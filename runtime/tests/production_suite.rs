@@ -123,6 +123,7 @@ fn every_rewound_second_part_is_a_reset_and_cycle_start() {
         assert!(counters.parts.machined >= 2.0, "{}", path.display());
         rewound += 1;
     }
+    println!("{rewound} of {} programs rewound", names.len());
     // Most cases end with M30 (counted when the suite was written: 60
     // and more of them).
     assert!(rewound >= 60, "{rewound} of {} rewound", names.len());
