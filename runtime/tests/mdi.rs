@@ -160,3 +160,21 @@ fn a_split_controller_runs_mdi_blocks_after_its_reset() {
     assert_eq!((sp.x, sp.z), (60.0, 2.0));
     assert!(sp.spindle_rpm == 500.0, "{sp:?}");
 }
+
+#[test]
+fn blocks_not_started_give_way_to_an_edit_or_new_blocks() {
+    let m = Machine::reference();
+    let mut ctl = controller(&m);
+    assert_eq!(ctl.mdi(module("G00 X80 Z20\n", &m)), Ok(()));
+    // New blocks replace them; the program still comes back after.
+    assert_eq!(ctl.mdi(module("G00 X70 Z30\n", &m)), Ok(()));
+    let sp = run_mdi(&mut ctl);
+    assert_eq!((sp.x, sp.z), (70.0, 30.0));
+    // An edit of the offset page starts the program afresh.
+    assert_eq!(ctl.mdi(module("G00 X80 Z20\n", &m)), Ok(()));
+    let wear = runtime::OffsetLengths::default();
+    assert_eq!(ctl.set_tool_offset(1, wear), Ok(()));
+    assert!(!ctl.in_mdi());
+    let end = run_to_end(&mut ctl);
+    assert_eq!((end.x, end.z), (60.0, 2.0));
+}
