@@ -78,6 +78,12 @@
 #define GBC_AXIS_C 2
 
 /**
+ * The most bytes of text `gbc_mdi` takes: MDI is typed by hand, and
+ * the bound keeps the compiler's memory bounded too.
+ */
+#define GBC_MDI_CAPACITY (1 << 20)
+
+/**
  * `which` of `gbc_work_offset`/`gbc_set_work_offset`: the external work
  * offset (EXOFS, #5201/#5202), which shifts every work system.
  */
@@ -224,10 +230,10 @@ typedef enum GbcStatus {
    */
   GBC_STATUS_LIMIT = 13,
   /**
-   * A manual move, a program restart or another program selected
+   * A manual move, a program restart, another program selected or MDI
    * while a program runs, stands stopped, ended or in an alarm (a
-   * restart or a select also while a manual move or a reset runs):
-   * `gbc_reset` first.
+   * restart, a select or MDI also while a manual move or a reset
+   * runs): `gbc_reset` first.
    */
   GBC_STATUS_NOT_IDLE = 14,
   /**
@@ -256,6 +262,12 @@ typedef enum GbcStatus {
    * alarm, unlike [`GbcStatus::Alarm`]: the program stays at its start.
    */
   GBC_STATUS_RESTART_ALARM = 18,
+  /**
+   * The MDI text given to `gbc_mdi` does not compile (`gbc_last_error`
+   * gives the compiler's diagnostic of its first error). Nothing
+   * changed.
+   */
+  GBC_STATUS_COMPILE_ERROR = 19,
 } GbcStatus;
 
 /**
@@ -1047,6 +1059,65 @@ enum GbcStatus gbc_home(GbcController controller, uint8_t axis);
  * one).
  */
 enum GbcStatus gbc_manual_stop(GbcController controller);
+
+/**
+ * Compiles the blocks the operator typed — `len` bytes of G-code at
+ * `text`, one or more blocks (no NUL needed, a final newline neither;
+ * read during the call only) — for the controller's machine (with the
+ * offset page as it stands) and hands them over while the controller is
+ * idle: before the program's first cycle start, or after `gbc_reset`
+ * once `gbc_state` gives `GBC_RUN_STATE_IDLE`. They take the program's
+ * place where the axes stand, with the power-on modes; the next
+ * `gbc_cycle_start` runs them, with every rule of a run (limits,
+ * alarms, which name the file "MDI" and its line; tool life). When they
+ * end the controller is idle at once — no reset: the spindle keeps
+ * turning and the coolant stays as the blocks left them — and the
+ * program is back at its start, where the axes stand, for the next
+ * cycle start (`gbc_in_mdi` turns false at the `gbc_run_ahead` after
+ * the end). A `gbc_reset` during them ends them (the spindle stops) and
+ * brings the program back; so do a program restart and
+ * `gbc_controller_select`. MDI given again before a cycle start replaces
+ * the blocks given before. The program that comes back starts with the
+ * power-on modes: a `G99` or `T0303` given in MDI does not carry into
+ * it. An empty text (`len` 0, `text` then may be null) is blocks that do
+ * nothing, as the compiler takes it.
+ *
+ * The statuses, each with `gbc_last_error`'s text saying why; a refusal
+ * changes nothing (the program, or the MDI blocks given before, stay):
+ * - `text` null while `len` is not 0: [`GbcStatus::NullPointer`];
+ * - `len` above [`GBC_MDI_CAPACITY`]: [`GbcStatus::InvalidArgument`];
+ * - no program loaded: [`GbcStatus::NoProgram`] (MDI takes the place of
+ *   one: load it first);
+ * - the text does not compile: [`GbcStatus::CompileError`], with the
+ *   compiler's diagnostic of its first error as `gbcc` prints it
+ *   without colour: a first line `MDI:line:column: error[Ennnn]:
+ *   message`, then a few lines with the source and the place marked (a
+ *   host showing one line takes the text up to the first newline).
+ *   Warnings do not refuse. A call of a program the text does not hold
+ *   (`M98 P1234`) is an error: no library folder is searched. The text
+ *   is compiled before the state is looked at, so it is this status
+ *   even while a program runs;
+ * - a program runs, stands stopped, ended or in an alarm, or a manual
+ *   move or a reset runs: [`GbcStatus::NotIdle`];
+ * - blocks for another machine configuration would be
+ *   [`GbcStatus::MachineMismatch`], as for `gbc_controller_select`;
+ *   compiled for the controller's own machine, they never are.
+ *
+ * # Safety
+ * `text` is null or readable for `len` bytes.
+ */
+enum GbcStatus gbc_mdi(GbcController controller, const char *text, size_t len);
+
+/**
+ * Whether MDI blocks are loaded or running, to `*out`: true from a
+ * `gbc_mdi` taken until the `gbc_run_ahead` that sees their end (or a
+ * reset, restart or `gbc_controller_select` that ends them); the program
+ * is back when it turns false. False without a program.
+ *
+ * # Safety
+ * `out` is null or writable.
+ */
+enum GbcStatus gbc_in_mdi(GbcController controller, bool *out);
 
 /**
  * The lengths of tool offset `number` (1 to the machine's

@@ -58,10 +58,10 @@ pub enum GbcStatus {
     Panic = 12,
     /// All [`GBC_HANDLE_CAPACITY`] handle slots are in use.
     Limit = 13,
-    /// A manual move, a program restart or another program selected
+    /// A manual move, a program restart, another program selected or MDI
     /// while a program runs, stands stopped, ended or in an alarm (a
-    /// restart or a select also while a manual move or a reset runs):
-    /// `gbc_reset` first.
+    /// restart, a select or MDI also while a manual move or a reset
+    /// runs): `gbc_reset` first.
     NotIdle = 14,
     /// The motion queue is full: a manual step given faster than the axes
     /// follow.
@@ -81,6 +81,10 @@ pub enum GbcStatus {
     /// (`gbc_last_error` gives it). The controller does not stand in that
     /// alarm, unlike [`GbcStatus::Alarm`]: the program stays at its start.
     RestartAlarm = 18,
+    /// The MDI text given to `gbc_mdi` does not compile (`gbc_last_error`
+    /// gives the compiler's diagnostic of its first error). Nothing
+    /// changed.
+    CompileError = 19,
 }
 
 impl GbcStatus {
@@ -110,7 +114,7 @@ impl GbcStatus {
                  (machines and controllers together): free one first"
             }
             GbcStatus::NotIdle => {
-                "manual moves and program restarts are made while no program runs"
+                "manual moves, program restarts and MDI are made while no program runs"
             }
             GbcStatus::QueueFull => "the motion queue is full",
             GbcStatus::RestartNotFound => "the program has no block to restart at there",
@@ -118,6 +122,7 @@ impl GbcStatus {
             GbcStatus::RestartAlarm => {
                 "the program raised an alarm before reaching the restart block"
             }
+            GbcStatus::CompileError => "the MDI text does not compile",
         }
     }
 }

@@ -179,6 +179,26 @@ fn every_failure_sets_a_text_about_itself() {
     fails_with("parts, null", null, "null", || unsafe {
         gbc_parts(c, null_mut())
     });
+    // MDI: its arguments are checked before the program is looked for.
+    fails_with("mdi, null text", null, "null", || unsafe {
+        gbc_mdi(c, std::ptr::null(), 8)
+    });
+    fails_with("mdi, too long", arg, "GBC_MDI_CAPACITY", || {
+        let long = vec![b' '; GBC_MDI_CAPACITY + 1];
+        unsafe { gbc_mdi(c, long.as_ptr().cast(), long.len()) }
+    });
+    fails_with(
+        "mdi, no program",
+        GbcStatus::NoProgram,
+        "no program",
+        || {
+            let text = b"M03 S500";
+            unsafe { gbc_mdi(c, text.as_ptr().cast(), text.len()) }
+        },
+    );
+    fails_with("in_mdi, null", null, "null", || unsafe {
+        gbc_in_mdi(c, null_mut())
+    });
     // A bad handle and a bad argument: the status and the text both tell
     // of the handle.
     fails_with("NaN, bad handle", invalid, "handle", || {
@@ -198,6 +218,17 @@ fn every_failure_sets_a_text_about_itself() {
         GbcStatus::AlreadyLoaded,
         "already",
         || unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+    );
+    // An MDI text that does not compile: the compiler's diagnostic, its
+    // file, line, column and code.
+    fails_with(
+        "mdi, compile error",
+        GbcStatus::CompileError,
+        "MDI:1:1: error[E2001]",
+        || {
+            let text = b"G999";
+            unsafe { gbc_mdi(c, text.as_ptr().cast(), text.len()) }
+        },
     );
     let mut buf = [0 as c_char; 8];
     fails_with("message, cap 0, no len", null, "nothing", || unsafe {

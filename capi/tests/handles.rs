@@ -234,6 +234,14 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             "gbc_renew_tool_life",
             Box::new(|h| gbc_renew_tool_life(h, 1)),
         ),
+        (
+            "gbc_mdi",
+            Box::new(|h| unsafe { gbc_mdi(h, c"M03 S500".as_ptr(), 8) }),
+        ),
+        (
+            "gbc_in_mdi",
+            Box::new(|h| unsafe { gbc_in_mdi(h, &mut false) }),
+        ),
         ("gbc_controller_free", Box::new(|h| gbc_controller_free(h))),
     ]
 }
