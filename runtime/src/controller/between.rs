@@ -97,15 +97,7 @@ impl<P: Plc> Controller<P> {
     /// switches stay; the new program starts where the axes stand, with
     /// the power-on modes, at the next cycle start.
     pub fn select_program(&mut self, module: isa::Module) -> Result<(), SelectRefused> {
-        if let Some(key) =
-            Machine::compile_keys_differ(&module.machine, &self.ra.machine.compile_keys())
-        {
-            return Err(SelectRefused::Machine(key));
-        }
-        if !self.engine.clear_idle() {
-            return Err(SelectRefused::NotIdle);
-        }
-        let stand = self.standing();
+        let stand = self.place_for(&module)?;
         self.ra.start(module, stand, &mut self.engine);
         Ok(())
     }
@@ -117,17 +109,23 @@ impl<P: Plc> Controller<P> {
     /// the program is back at its start; a reset, a program restart or
     /// another program selected brings it back too.
     pub fn mdi(&mut self, blocks: isa::Module) -> Result<(), SelectRefused> {
+        let stand = self.place_for(&blocks)?;
+        self.ra.start_mdi(blocks, stand, &mut self.engine);
+        Ok(())
+    }
+
+    /// Whether `module` may take the program's place now (compiled for
+    /// this machine, the machine idle): where the axes stand, if so.
+    fn place_for(&mut self, module: &isa::Module) -> Result<Standing, SelectRefused> {
         if let Some(key) =
-            Machine::compile_keys_differ(&blocks.machine, &self.ra.machine.compile_keys())
+            Machine::compile_keys_differ(&module.machine, &self.ra.machine.compile_keys())
         {
             return Err(SelectRefused::Machine(key));
         }
         if !self.engine.clear_idle() {
             return Err(SelectRefused::NotIdle);
         }
-        let stand = self.standing();
-        self.ra.start_mdi(blocks, stand, &mut self.engine);
-        Ok(())
+        Ok(self.standing())
     }
 
     /// MDI blocks are loaded or run (the program comes back when they end).
