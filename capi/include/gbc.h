@@ -120,6 +120,14 @@
 #define GBC_WORK_OFFSET_G59 6
 
 /**
+ * The most bytes of text `gbc_controller_load_source` and
+ * `gbc_controller_select_source` take (256 MiB): far above any program
+ * a control keeps, it keeps a wrong `len` from making the library read
+ * and allocate without bound.
+ */
+#define GBC_SOURCE_CAPACITY (1 << 28)
+
+/**
  * The version of the interface this header describes; `gbc_abi_version`
  * gives the library's. It changes with every change a host built
  * against an older header would get wrong (a function's parameters, a
@@ -263,7 +271,8 @@ typedef enum GbcStatus {
    */
   GBC_STATUS_RESTART_ALARM = 18,
   /**
-   * The MDI text given to `gbc_mdi` does not compile (`gbc_last_error`
+   * The G-code text given to `gbc_mdi`, `gbc_controller_load_source` or
+   * `gbc_controller_select_source` does not compile (`gbc_last_error`
    * gives the compiler's diagnostic of its first error). Nothing
    * changed.
    */
@@ -778,6 +787,7 @@ enum GbcStatus gbc_controller_free(GbcController controller);
  * before the load are the program's.
  * A second load is [`GbcStatus::AlreadyLoaded`]: `gbc_controller_select`
  * replaces the program while idle, keeping where the axes stand.
+ * `gbc_controller_load_source` loads G-code text, compiled here.
  *
  * # Safety
  * `gbc` is null or readable for `len` bytes.
@@ -1093,10 +1103,11 @@ enum GbcStatus gbc_manual_stop(GbcController controller);
  *   without colour: a first line `MDI:line:column: error[Ennnn]:
  *   message`, then a few lines with the source and the place marked (a
  *   host showing one line takes the text up to the first newline).
- *   Warnings do not refuse. A call of a program the text does not hold
- *   (`M98 P1234`) is an error: no library folder is searched. The text
- *   is compiled before the state is looked at, so it is this status
- *   even while a program runs;
+ *   Warnings do not refuse. A call (`M98 P1234`) of a program that
+ *   neither the text nor the machine file's library folders
+ *   (`macro.library_dirs`) hold is an error. The text is compiled
+ *   before the state is looked at, so it is this status even while a
+ *   program runs;
  * - a program runs, stands stopped, ended or in an alarm, or a manual
  *   move or a reset runs: [`GbcStatus::NotIdle`];
  * - blocks for another machine configuration would be
@@ -1248,11 +1259,110 @@ enum GbcStatus gbc_restart_m_codes(GbcController controller,
  * Refused, keeping the program loaded: [`GbcStatus::InvalidModule`]
  * (not a valid `.gbc`), [`GbcStatus::MachineMismatch`] (compiled for
  * other compile-time keys), [`GbcStatus::NotIdle`].
+ * `gbc_controller_select_source` selects G-code text, compiled here.
  *
  * # Safety
  * `gbc` is null or points at `len` readable bytes.
  */
 enum GbcStatus gbc_controller_select(GbcController controller, const uint8_t *gbc, size_t len);
+
+/**
+ * Compiles `len` bytes of G-code at `text` — a program file's contents,
+ * no NUL needed (read during the call only) — for the controller's
+ * machine, and loads the module as `gbc_controller_load` loads a `.gbc`:
+ * the controller asks the host for #500–#999 (`vars_load`) and waits for
+ * cycle start; the panel's switches, the offset page and the production
+ * counters set before are the program's.
+ *
+ * `name` is the program's file name, a NUL-terminated string (read
+ * during the call only; bytes that are not UTF-8 become U+FFFD): the
+ * diagnostics, a `GbcAlarm`'s file and `gbc_file_name` give it. Null or
+ * empty, it is "program.nc".
+ *
+ * The compile is `gbcc`'s for the machine file the controller was made
+ * from (`gbcc --machine FILE`, no other option): a program the text
+ * calls (`M98 P1234`, `G65 P1234`) and does not hold is looked for in
+ * the machine file's library folders (`macro.library_dirs`; a relative
+ * folder is taken from the host process's working directory, as `gbcc`
+ * takes it from its own). Warnings do not refuse and are not given.
+ *
+ * The compile runs in this call, on the calling thread: call it from
+ * the ordinary context, never the real-time one. It takes what the
+ * text takes (100 000 blocks, 1.5 MB: 20 to 40 ms on a PC), and the
+ * controller is busy meanwhile: one call at a time per handle, so no
+ * `gbc_tick` on it until this returns. Long texts bring helper threads:
+ * a text of plain blocks (no macro statement, computed word, call,
+ * G70–G73 cycle or `/`) longer than 64 KiB is compiled a chunk at a
+ * time, parsed and dry-run on a second thread while the calling one
+ * builds the module; a program without macros of 10 000 blocks or more
+ * compiled whole is dry-run on a second thread beside the building.
+ * Both are joined before the call returns; the syntax trees of a
+ * program of 10 000 blocks or more are then freed on a thread of their
+ * own, which may outlive the call briefly. Where a thread cannot be
+ * started, its work is done on the calling one.
+ *
+ * The statuses, each with `gbc_last_error`'s text saying why; a refusal
+ * loads nothing:
+ * - a program already loaded: [`GbcStatus::AlreadyLoaded`], as for
+ *   `gbc_controller_load` (before the arguments are looked at);
+ * - `text` null while `len` is not 0: [`GbcStatus::NullPointer`]
+ *   (`len` 0 is an empty program, `text` then may be null);
+ * - `len` above [`GBC_SOURCE_CAPACITY`]: [`GbcStatus::InvalidArgument`],
+ *   before a byte is read;
+ * - the text does not compile: [`GbcStatus::CompileError`], with the
+ *   compiler's diagnostic of its first error as `gbcc` prints it
+ *   without colour: a first line `name:line:column: error[Ennnn]:
+ *   message`, then a few lines with the source and the place marked (a
+ *   host showing one line takes the text up to the first newline);
+ * - `vars_load` refuses or gives an infinite value:
+ *   [`GbcStatus::HostFailure`], as for `gbc_controller_load`.
+ *
+ * # Safety
+ * `name` is null or a NUL-terminated string; `text` is null or readable
+ * for `len` bytes.
+ */
+enum GbcStatus gbc_controller_load_source(GbcController controller,
+                                          const char *name,
+                                          const char *text,
+                                          size_t len);
+
+/**
+ * Compiles `len` bytes of G-code at `text` as
+ * `gbc_controller_load_source` does (`name`, the library folders, the
+ * calling thread and the time it takes the same; the machine with the
+ * offset page as it stands) and selects the module as
+ * `gbc_controller_select` selects a `.gbc`: it replaces the loaded
+ * program while the controller is idle, before its first cycle start or
+ * after `gbc_reset` once `gbc_state` gives `GBC_RUN_STATE_IDLE`. The new
+ * program starts where the axes stand, with the power-on modes, at the
+ * next `gbc_cycle_start`; the offset page, #500–#999, the panel's
+ * switches and the JIT setting stay.
+ *
+ * The statuses, each with `gbc_last_error`'s text saying why; a refusal
+ * keeps the program loaded:
+ * - `text` null while `len` is not 0: [`GbcStatus::NullPointer`];
+ * - `len` above [`GBC_SOURCE_CAPACITY`]: [`GbcStatus::InvalidArgument`],
+ *   before a byte is read;
+ * - no program loaded: [`GbcStatus::NoProgram`], as for
+ *   `gbc_controller_select` (`gbc_controller_load_source` loads the
+ *   first);
+ * - the text does not compile: [`GbcStatus::CompileError`], as for
+ *   `gbc_controller_load_source`. The text is compiled before the state
+ *   is looked at, so it is this status even while a program runs;
+ * - a program runs, stands stopped, ended or in an alarm, or a manual
+ *   move or a reset runs: [`GbcStatus::NotIdle`] (after the compile);
+ * - a module for another machine configuration would be
+ *   [`GbcStatus::MachineMismatch`]; compiled for the controller's own
+ *   machine, it never is.
+ *
+ * # Safety
+ * `name` is null or a NUL-terminated string; `text` is null or readable
+ * for `len` bytes.
+ */
+enum GbcStatus gbc_controller_select_source(GbcController controller,
+                                            const char *name,
+                                            const char *text,
+                                            size_t len);
 
 #ifdef __cplusplus
 }  // extern "C"

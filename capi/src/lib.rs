@@ -36,6 +36,7 @@ mod mdi;
 mod offsets;
 mod restart;
 mod select;
+mod source;
 mod types;
 
 use core::cell::RefCell;
@@ -54,6 +55,7 @@ pub use mdi::*;
 pub use offsets::*;
 pub use restart::*;
 pub use select::*;
+pub use source::*;
 pub use types::*;
 
 /// A machine handle's object.
@@ -460,6 +462,7 @@ pub extern "C" fn gbc_controller_free(controller: GbcController) -> GbcStatus {
 /// before the load are the program's.
 /// A second load is [`GbcStatus::AlreadyLoaded`]: `gbc_controller_select`
 /// replaces the program while idle, keeping where the axes stand.
+/// `gbc_controller_load_source` loads G-code text, compiled here.
 ///
 /// # Safety
 /// `gbc` is null or readable for `len` bytes.
@@ -475,33 +478,42 @@ pub unsafe extern "C" fn gbc_controller_load(
         }
         // SAFETY: the caller's promise.
         let module = unsafe { module_at(gbc, len)? };
-        let mut run = Controller::new(module, c.machine.clone(), HostPlc(c.host))
-            .map_err(|e| fail(GbcStatus::MachineMismatch, e.to_string()))?;
-        // The counters set before the load carry into the program (first,
-        // as the program then starts afresh with them). They fit, being
-        // of this controller's machine; counters that did not would leave
-        // the fresh ones.
-        if *run.counters() != c.counters {
-            let _ = run.restore_counters(c.counters.clone());
-        }
-        let Some(vars) = host::load_vars(&c.host) else {
-            return Err(fail(GbcStatus::HostFailure, "the host's vars_load refused"));
-        };
-        if let Some(bad) = vars.iter().position(|v| v.is_infinite()) {
-            return Err(fail(
-                GbcStatus::HostFailure,
-                format!("vars_load gave an infinite #{}", bad + 500),
-            ));
-        }
-        *run.vm_mut().persistent_mut() = vars;
-        if c.host.vars_store.is_some() {
-            run.vm_mut().set_storage(Box::new(HostStorage(c.host)));
-        }
-        c.panel.apply(&mut run);
-        attach_jit(c.jit, &mut run);
-        c.run = Some(run);
-        Ok(())
+        install(c, module)
     })
+}
+
+/// Loads a verified `module` into `c`, which has no program yet: what
+/// `gbc_controller_load` and `gbc_controller_load_source` do once they
+/// have one. [`GbcStatus::MachineMismatch`] when it was compiled for other
+/// compile-time keys, [`GbcStatus::HostFailure`] when `vars_load` refuses
+/// or gives an infinite value; either leaves no program loaded.
+fn install(c: &mut Ctl, module: isa::Module) -> Outcome {
+    let mut run = Controller::new(module, c.machine.clone(), HostPlc(c.host))
+        .map_err(|e| fail(GbcStatus::MachineMismatch, e.to_string()))?;
+    // The counters set before the load carry into the program (first,
+    // as the program then starts afresh with them). They fit, being
+    // of this controller's machine; counters that did not would leave
+    // the fresh ones.
+    if *run.counters() != c.counters {
+        let _ = run.restore_counters(c.counters.clone());
+    }
+    let Some(vars) = host::load_vars(&c.host) else {
+        return Err(fail(GbcStatus::HostFailure, "the host's vars_load refused"));
+    };
+    if let Some(bad) = vars.iter().position(|v| v.is_infinite()) {
+        return Err(fail(
+            GbcStatus::HostFailure,
+            format!("vars_load gave an infinite #{}", bad + 500),
+        ));
+    }
+    *run.vm_mut().persistent_mut() = vars;
+    if c.host.vars_store.is_some() {
+        run.vm_mut().set_storage(Box::new(HostStorage(c.host)));
+    }
+    c.panel.apply(&mut run);
+    attach_jit(c.jit, &mut run);
+    c.run = Some(run);
+    Ok(())
 }
 
 /// Runs the VM ahead of the motion and fills the planner up to its

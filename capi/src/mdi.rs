@@ -3,13 +3,17 @@
 //! controller's machine and run in the program's place while the machine
 //! stands idle; when they end the program is back.
 
-use crate::{fail, put, with_ctl, Failure, GbcController, GbcStatus};
+use crate::source::{compile, text_at};
+use crate::{fail, put, with_ctl, GbcController, GbcStatus};
 use core::ffi::c_char;
 use runtime::SelectRefused;
 
 /// The most bytes of text `gbc_mdi` takes: MDI is typed by hand, and
 /// the bound keeps the compiler's memory bounded too.
 pub const GBC_MDI_CAPACITY: usize = 1 << 20;
+
+/// [`GBC_MDI_CAPACITY`] and its name, for `text_at`.
+const MDI_CAPACITY: (usize, &str) = (GBC_MDI_CAPACITY, "GBC_MDI_CAPACITY");
 
 /// The name the MDI text is compiled under: `gbc_last_error`'s
 /// diagnostics, a `GbcAlarm`'s file and `gbc_file_name` give it.
@@ -47,10 +51,11 @@ const SOURCE: &str = "MDI";
 ///   without colour: a first line `MDI:line:column: error[Ennnn]:
 ///   message`, then a few lines with the source and the place marked (a
 ///   host showing one line takes the text up to the first newline).
-///   Warnings do not refuse. A call of a program the text does not hold
-///   (`M98 P1234`) is an error: no library folder is searched. The text
-///   is compiled before the state is looked at, so it is this status
-///   even while a program runs;
+///   Warnings do not refuse. A call (`M98 P1234`) of a program that
+///   neither the text nor the machine file's library folders
+///   (`macro.library_dirs`) hold is an error. The text is compiled
+///   before the state is looked at, so it is this status even while a
+///   program runs;
 /// - a program runs, stands stopped, ended or in an alarm, or a manual
 ///   move or a reset runs: [`GbcStatus::NotIdle`];
 /// - blocks for another machine configuration would be
@@ -68,30 +73,10 @@ pub unsafe extern "C" fn gbc_mdi(
     with_ctl(controller, |c| {
         // The arguments first, after the handle and before the program,
         // as `gbc_restart_from` checks them.
-        if text.is_null() && len > 0 {
-            return Err(fail(
-                GbcStatus::NullPointer,
-                "the MDI text is null while len is not 0",
-            ));
-        }
-        if len > GBC_MDI_CAPACITY {
-            return Err(fail(
-                GbcStatus::InvalidArgument,
-                format!(
-                    "the MDI text is {len} bytes: at most GBC_MDI_CAPACITY \
-                     ({GBC_MDI_CAPACITY}) are taken"
-                ),
-            ));
-        }
-        let src: &[u8] = if len == 0 {
-            &[]
-        } else {
-            // SAFETY: non-null (checked) and readable for `len` bytes by
-            // the caller's promise.
-            unsafe { core::slice::from_raw_parts(text.cast::<u8>(), len) }
-        };
+        // SAFETY: the caller's promise.
+        let src = unsafe { text_at(text, len, "the MDI text", MDI_CAPACITY)? };
         let r = c.run()?;
-        let blocks = compile(src, r.machine())?;
+        let blocks = compile(SOURCE, src, &options(r.machine()))?;
         r.mdi(blocks).map_err(|e| match e {
             SelectRefused::NotIdle => fail(
                 GbcStatus::NotIdle,
@@ -119,31 +104,17 @@ pub unsafe extern "C" fn gbc_in_mdi(controller: GbcController, out: *mut bool) -
     })
 }
 
-/// The module of the MDI text for `machine`, or the first error's
-/// diagnostic as the compiler renders it (`gbcc`'s text without colour):
-/// its gcc-style header line, then the source line with the place
-/// marked and the compiler's note, a few lines in all.
-fn compile(src: &[u8], machine: &nc::Machine) -> Result<isa::Module, Failure> {
-    let opts = compiler::Options {
+/// `compiler::compile`'s options for MDI blocks on `machine`.
+fn options(machine: &nc::Machine) -> compiler::Options {
+    compiler::Options {
         machine: machine.clone(),
-        // Whole, on the calling thread: a long plain text would else be
-        // compiled a chunk at a time on a second thread, and `gbc_mdi`
-        // starts no thread in the host's process. (The text is at most
-        // GBC_MDI_CAPACITY, so its tree stays bounded.)
+        // Whole, not a chunk at a time: the chunked compile of a long
+        // plain text parses it on a second thread, which text typed by
+        // hand (at most GBC_MDI_CAPACITY, so its tree stays bounded) has
+        // no need of. (A text of 10 000 blocks or more may still be
+        // dry-run, and has its trees freed, on threads of their own, as
+        // `gbc_controller_load_source` tells.)
         chunk_bytes: usize::MAX,
         ..compiler::Options::default()
-    };
-    let out = compiler::compile(SOURCE, src, &opts);
-    if let Some(module) = out.module {
-        return Ok(module);
     }
-    let first = out
-        .diags
-        .iter()
-        .find(|(_, d)| d.is_error())
-        .and_then(|(f, d)| Some(out.files.get(*f)?.render(d).trim_end().to_string()));
-    Err(fail(
-        GbcStatus::CompileError,
-        first.unwrap_or_else(|| "the MDI text does not compile".to_string()),
-    ))
 }

@@ -2,8 +2,9 @@
 //! operator picks the next program while the machine stands idle; the
 //! axes, the offset page, #500–#999 and the panel stay.
 
-use crate::{fail, module_at, with_ctl, GbcController, GbcStatus};
-use runtime::SelectRefused;
+use crate::host::HostPlc;
+use crate::{fail, module_at, with_ctl, GbcController, GbcStatus, Outcome};
+use runtime::{Controller, SelectRefused};
 
 /// Replaces the loaded program with another `.gbc` (`len` bytes at
 /// `gbc`, copied) while the controller is idle: before its first cycle
@@ -17,6 +18,7 @@ use runtime::SelectRefused;
 /// Refused, keeping the program loaded: [`GbcStatus::InvalidModule`]
 /// (not a valid `.gbc`), [`GbcStatus::MachineMismatch`] (compiled for
 /// other compile-time keys), [`GbcStatus::NotIdle`].
+/// `gbc_controller_select_source` selects G-code text, compiled here.
 ///
 /// # Safety
 /// `gbc` is null or points at `len` readable bytes.
@@ -29,13 +31,21 @@ pub unsafe extern "C" fn gbc_controller_select(
     with_ctl(controller, |c| {
         // SAFETY: the caller's promise.
         let module = unsafe { module_at(gbc, len)? };
-        c.run()?.select_program(module).map_err(|e| match e {
-            SelectRefused::NotIdle => fail(
-                GbcStatus::NotIdle,
-                "another program is selected while no program runs: gbc_reset first, \
-                 and wait for GBC_RUN_STATE_IDLE",
-            ),
-            SelectRefused::Machine(_) => fail(GbcStatus::MachineMismatch, e.to_string()),
-        })
+        select(c.run()?, module)
+    })
+}
+
+/// Puts the verified `module` in the loaded program's place: what
+/// `gbc_controller_select` and `gbc_controller_select_source` do once
+/// they have one. [`GbcStatus::NotIdle`] or
+/// [`GbcStatus::MachineMismatch`], keeping the program loaded.
+pub(crate) fn select(r: &mut Controller<HostPlc>, module: isa::Module) -> Outcome {
+    r.select_program(module).map_err(|e| match e {
+        SelectRefused::NotIdle => fail(
+            GbcStatus::NotIdle,
+            "another program is selected while no program runs: gbc_reset first, \
+             and wait for GBC_RUN_STATE_IDLE",
+        ),
+        SelectRefused::Machine(_) => fail(GbcStatus::MachineMismatch, e.to_string()),
     })
 }

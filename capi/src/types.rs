@@ -81,7 +81,8 @@ pub enum GbcStatus {
     /// (`gbc_last_error` gives it). The controller does not stand in that
     /// alarm, unlike [`GbcStatus::Alarm`]: the program stays at its start.
     RestartAlarm = 18,
-    /// The MDI text given to `gbc_mdi` does not compile (`gbc_last_error`
+    /// The G-code text given to `gbc_mdi`, `gbc_controller_load_source` or
+    /// `gbc_controller_select_source` does not compile (`gbc_last_error`
     /// gives the compiler's diagnostic of its first error). Nothing
     /// changed.
     CompileError = 19,
@@ -122,7 +123,7 @@ impl GbcStatus {
             GbcStatus::RestartAlarm => {
                 "the program raised an alarm before reaching the restart block"
             }
-            GbcStatus::CompileError => "the MDI text does not compile",
+            GbcStatus::CompileError => "the G-code text does not compile",
         }
     }
 }

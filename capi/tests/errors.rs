@@ -199,6 +199,58 @@ fn every_failure_sets_a_text_about_itself() {
     fails_with("in_mdi, null", null, "null", || unsafe {
         gbc_in_mdi(c, null_mut())
     });
+    // Program text: its arguments before the program is looked for, by
+    // select_source; the bound before a byte is read.
+    fails_with("load_source, null text", null, "null", || unsafe {
+        gbc_controller_load_source(c, std::ptr::null(), std::ptr::null(), 8)
+    });
+    fails_with("load_source, too long", arg, "GBC_SOURCE_CAPACITY", || {
+        let text = b"M30\n";
+        unsafe { gbc_controller_load_source(c, std::ptr::null(), text.as_ptr().cast(), usize::MAX) }
+    });
+    fails_with("select_source, null text", null, "null", || unsafe {
+        gbc_controller_select_source(c, std::ptr::null(), std::ptr::null(), 8)
+    });
+    fails_with(
+        "select_source, too long",
+        arg,
+        "GBC_SOURCE_CAPACITY",
+        || {
+            let text = b"M30\n";
+            let len = GBC_SOURCE_CAPACITY + 1;
+            unsafe { gbc_controller_select_source(c, std::ptr::null(), text.as_ptr().cast(), len) }
+        },
+    );
+    fails_with(
+        "select_source, no program",
+        GbcStatus::NoProgram,
+        "no program",
+        || {
+            let text = b"M30\n";
+            unsafe {
+                gbc_controller_select_source(c, c"t.nc".as_ptr(), text.as_ptr().cast(), text.len())
+            }
+        },
+    );
+    // A program text that does not compile: the compiler's diagnostic
+    // under the name given, its line and code; nothing loaded.
+    fails_with(
+        "load_source, compile error",
+        GbcStatus::CompileError,
+        "part.nc:2:1: error[E2001]",
+        || {
+            let text = b"G00 X40 Z2\nG999\nM30\n";
+            unsafe {
+                gbc_controller_load_source(c, c"part.nc".as_ptr(), text.as_ptr().cast(), text.len())
+            }
+        },
+    );
+    fails_with(
+        "nothing loaded by it",
+        GbcStatus::NoProgram,
+        "no program",
+        || gbc_run_ahead(c),
+    );
     // A bad handle and a bad argument: the status and the text both tell
     // of the handle.
     fails_with("NaN, bad handle", invalid, "handle", || {
@@ -218,6 +270,18 @@ fn every_failure_sets_a_text_about_itself() {
         GbcStatus::AlreadyLoaded,
         "already",
         || unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+    );
+    fails_with(
+        "second load, from text",
+        GbcStatus::AlreadyLoaded,
+        "already",
+        || unsafe { gbc_controller_load_source(c, std::ptr::null(), c"M30".as_ptr(), 3) },
+    );
+    fails_with(
+        "select_source, compile error",
+        GbcStatus::CompileError,
+        "program.nc:1:1: error[E2001]",
+        || unsafe { gbc_controller_select_source(c, std::ptr::null(), c"G999".as_ptr(), 4) },
     );
     // An MDI text that does not compile: the compiler's diagnostic, its
     // file, line, column and code.

@@ -242,6 +242,18 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             "gbc_in_mdi",
             Box::new(|h| unsafe { gbc_in_mdi(h, &mut false) }),
         ),
+        (
+            "gbc_controller_load_source",
+            Box::new(|h| unsafe {
+                gbc_controller_load_source(h, c"t.nc".as_ptr(), c"M30".as_ptr(), 3)
+            }),
+        ),
+        (
+            "gbc_controller_select_source",
+            Box::new(|h| unsafe {
+                gbc_controller_select_source(h, c"t.nc".as_ptr(), c"M30".as_ptr(), 3)
+            }),
+        ),
         ("gbc_controller_free", Box::new(|h| gbc_controller_free(h))),
     ]
 }
