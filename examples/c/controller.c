@@ -1,10 +1,11 @@
 /*
- * A controller loop in C over libgbc: load a compiled program, tick it once
- * per interpolation period until it ends, and print one line per period in
- * the format of `gbvm run FILE --emit trace`
+ * A controller loop in C over libgbc: load a program (compiled by gbcc, or
+ * G-code text the library compiles), tick it once per interpolation period
+ * until it ends, and print one line per period in the format of
+ * `gbvm run FILE --emit trace`
  * (time_s,x,z,spindle_rpm,feed,line,motion,tool,file).
  *
- *   controller PROGRAM.gbc [MACHINE.toml] > trace.csv
+ *   controller PROGRAM.gbc|PROGRAM.nc [MACHINE.toml] > trace.csv
  *
  * The PLC completes every function at once and cycle start is pressed at
  * every stop, as gbvm's reference host does, so the two traces are the
@@ -137,7 +138,7 @@ static int fail(const char *what, GbcStatus s) {
 
 int main(int argc, char **argv) {
     if (argc < 2 || argc > 3) {
-        fprintf(stderr, "usage: controller PROGRAM.gbc [MACHINE.toml]\n");
+        fprintf(stderr, "usage: controller PROGRAM.gbc|PROGRAM.nc [MACHINE.toml]\n");
         return 1;
     }
     /* The library loaded must be the one this header describes. */
@@ -190,7 +191,12 @@ int main(int argc, char **argv) {
         free(program);
         return fail("controller", s);
     }
-    s = gbc_controller_load(ctl, program, len);
+    /* G-code text (.nc) is compiled by the library for the machine. */
+    size_t name_len = strlen(argv[1]);
+    if (name_len > 3 && strcmp(argv[1] + name_len - 3, ".nc") == 0)
+        s = gbc_controller_load_source(ctl, argv[1], (const char *)program, len);
+    else
+        s = gbc_controller_load(ctl, program, len);
     free(program);
     if (s != GBC_STATUS_OK) {
         gbc_controller_free(ctl);
