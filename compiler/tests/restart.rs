@@ -255,6 +255,53 @@ fn a_restart_at_the_second_tool_s_cut_gives_its_state_and_approach() {
     assert_eq!(run_from(TWO_TOOLS, "12").expect("restarts"), expected);
 }
 
+/// By hand, on a machine whose restart moves Z first
+/// (`run.restart_approach = "z_then_x"`): from X200 Z100 to Z2, then X
+/// to 40: N100's start point again.
+#[test]
+fn a_restart_approaches_z_first_where_the_machine_says_so() {
+    let mut machine = Machine::reference();
+    machine.run.restart_approach = nc::machine::RestartApproach::ZThenX;
+    let m = module(TWO_TOOLS, &machine);
+    let mut vm = Vm::new(m, machine);
+    let mut events = Vec::new();
+    search(
+        &mut vm,
+        "N100".parse().expect("a restart point"),
+        &mut events,
+    )
+    .expect("restarts");
+    let rapids: Vec<String> = events
+        .iter()
+        .filter(|e| matches!(e, Event::Rapid { .. }))
+        .map(|e| e.to_string())
+        .collect();
+    assert_eq!(rapids, ["RAPID X=200 Z=2", "RAPID X=40 Z=2"]);
+}
+
+/// The suite again, restarts approaching Z first: each still ends where
+/// the whole run stood and prints the rest of it.
+#[test]
+fn a_restart_approaching_z_first_prints_the_rest_of_the_whole_run() {
+    let mut restarts = 0;
+    for (name, src, mut machine) in common::suite() {
+        machine.run.restart_approach = nc::machine::RestartApproach::ZThenX;
+        let opts = Options {
+            machine: machine.clone(),
+            ..Options::default()
+        };
+        let c = compile(&name, &src, &opts);
+        if c.has_errors() {
+            continue;
+        }
+        let Some(m) = c.module else {
+            continue;
+        };
+        restarts += check_every_line(&name, &m, &machine, 1);
+    }
+    assert!(restarts >= 2000, "only {restarts} restarts checked");
+}
+
 #[test]
 fn a_pass_restarts_a_loop_at_its_round() {
     let src = "\

@@ -16,6 +16,7 @@ use alloc::vec::Vec;
 use core::fmt;
 use core::str::FromStr;
 use isa::Instr;
+use nc::base::machine::RestartApproach;
 use nc::base::point::Pt;
 use nc::Event;
 use nc::{Sink, RUNNING};
@@ -336,25 +337,37 @@ fn restore(kept: Kept, sink: &mut dyn Sink) {
 }
 
 /// From `standing` (machine coordinates, and C) to the kernel's
-/// programmed point: X and C first, then Z, each left out when it does
-/// not move.
+/// programmed point: X and C first, then Z, or Z first, as the machine's
+/// `run.restart_approach` says; each leg left out when it does not move.
 fn approach(vm: &Vm, (standing, standing_c): (Pt, f64), sink: &mut dyn Sink) {
     let to = vm.nc.position();
     let from = standing.sub(vm.nc.origin());
     let turns = vm.nc.machine.axes.c.enabled && (vm.nc.c() - standing_c).abs() > 1e-9;
     let c = turns.then(|| vm.nc.c());
-    if (to.r - from.r).abs() > 1e-9 || c.is_some() {
+    let x_moves = (to.r - from.r).abs() > 1e-9 || c.is_some();
+    let z_moves = (to.z - from.z).abs() > 1e-9;
+    // The corner between the two legs.
+    let corner = match vm.nc.machine.run.restart_approach {
+        RestartApproach::XThenZ => Pt::new(to.r, from.z),
+        RestartApproach::ZThenX => Pt::new(from.r, to.z),
+    };
+    let first_is_x = vm.nc.machine.run.restart_approach == RestartApproach::XThenZ;
+    let (first, second) = match first_is_x {
+        true => (x_moves.then_some(c), z_moves.then_some(None)),
+        false => (z_moves.then_some(None), x_moves.then_some(c)),
+    };
+    if let Some(c) = first {
         sink.emit(Event::Rapid {
-            x: to.x(),
-            z: from.z,
+            x: corner.x(),
+            z: corner.z,
             c,
         });
     }
-    if (to.z - from.z).abs() > 1e-9 {
+    if let Some(c) = second {
         sink.emit(Event::Rapid {
             x: to.x(),
             z: to.z,
-            c: None,
+            c,
         });
     }
 }

@@ -80,6 +80,18 @@ pub enum ArcWithoutCenter {
     Line,
 }
 
+/// The order of a program restart's approach (`run.restart_approach`):
+/// which axis moves first from where the tool stands, as a control's
+/// parameter sets it (Fanuc №7310).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RestartApproach {
+    /// X (and C), then Z: the tool stands clear in +Z (the default).
+    XThenZ,
+    /// Z, then X (and C): the tool stands clear in X.
+    ZThenX,
+}
+
 section!(LinearAxis {
     diameter: bool = true,
     rapid_mm_min: f64 = 6000.0,
@@ -332,6 +344,8 @@ section!(Run {
     // Cycle start after M30 runs the program again from its start, as a
     // reset would leave it (a controller's; a GSK's M30 rewinds).
     m30_rewinds: bool = false,
+    // Which axis a program restart's approach moves first.
+    restart_approach: RestartApproach = RestartApproach::XThenZ,
 });
 
 section!(
@@ -542,6 +556,16 @@ mod tests {
     fn unknown_key_is_an_error() {
         assert!(Machine::from_toml("[machine]\ndecimal_pont = \"increment\"").is_err());
         assert!(Machine::from_toml("[nosuch]\n").is_err());
+    }
+
+    #[test]
+    fn the_restart_approach_is_one_of_two_orders() {
+        let m = Machine::from_toml("[run]\nrestart_approach = \"z_then_x\"\n").unwrap();
+        assert_eq!(m.run.restart_approach, RestartApproach::ZThenX);
+        assert_eq!(m.run.max_blocks, 2_000_000);
+        let m = Machine::reference();
+        assert_eq!(m.run.restart_approach, RestartApproach::XThenZ);
+        assert!(Machine::from_toml("[run]\nrestart_approach = \"diagonal\"\n").is_err());
     }
 
     #[test]

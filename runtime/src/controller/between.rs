@@ -67,7 +67,8 @@ impl<P: Plc> Controller<P> {
     /// runs from its start in search mode up to `at` (nothing moves),
     /// then, at cycle start, the restored state (origin, tool, speed,
     /// spindle, coolant, feed) and an approach from where the axes stand,
-    /// X first, then Z, and the program from `at` on. An edit of the
+    /// X first, then Z (or as `run.restart_approach` says), and the
+    /// program from `at` on. An edit of the
     /// offset page or another program selected after it starts the
     /// program afresh: make those first. A refused restart leaves the
     /// program at its start.
