@@ -5,8 +5,11 @@
 //! is one `T0199` (one use of group 1's current tool) and one M30 (one
 //! part).
 
+mod periods;
+
 use core::ffi::c_char;
 use gbc::*;
+use periods::*;
 use std::ptr::null_mut;
 
 /// Group 1: tools 101 and 202, each good for two uses.
@@ -59,53 +62,6 @@ fn loaded(rewinds: bool) -> (GbcMachine, GbcController) {
     let (m, c) = controller(rewinds);
     load(c, PART, rewinds);
     (m, c)
-}
-
-fn free(m: GbcMachine, c: GbcController) {
-    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
-    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
-}
-
-fn blank() -> GbcSetPoint {
-    GbcSetPoint {
-        time_s: 0.0,
-        x: 0.0,
-        z: 0.0,
-        axis_x: 0.0,
-        axis_z: 0.0,
-        count_x: 0,
-        count_z: 0,
-        count_c: 0,
-        c: 0.0,
-        has_c: false,
-        spindle_rpm: 0.0,
-        spindle_turns: 0.0,
-        feed: 0.0,
-        line: 0,
-        file: 0,
-        tool: 0,
-        motion: GbcMotion::None,
-    }
-}
-
-fn state(c: GbcController) -> GbcRunState {
-    let mut st = GbcStateInfo {
-        state: GbcRunState::Alarm,
-        stop: GbcStopKind::None,
-        message: 0,
-        alarm_code: 0,
-        blocks: 0,
-    };
-    assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
-    st.state
-}
-
-/// One period: run-ahead, tick, the state after it.
-fn period(c: GbcController) -> (GbcSetPoint, GbcRunState) {
-    let mut sp = blank();
-    assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
-    assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
-    (sp, state(c))
 }
 
 /// Cycle start, then every period until the program has ended (after

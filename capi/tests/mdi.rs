@@ -3,8 +3,11 @@
 //! idle at once, the spindle as they left it, and the program is back at
 //! its start where the axes stand. Refusals change nothing.
 
+mod periods;
+
 use core::ffi::c_char;
 use gbc::*;
+use periods::*;
 use std::ptr::{null, null_mut};
 
 /// The program loaded: to X40 Z2, a cut to Z-20, out to X60 Z2.
@@ -36,11 +39,6 @@ fn loaded() -> (GbcMachine, GbcController) {
     (m, c)
 }
 
-fn free(m: GbcMachine, c: GbcController) {
-    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
-    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
-}
-
 fn mdi(c: GbcController, text: &str) -> GbcStatus {
     unsafe { gbc_mdi(c, text.as_ptr().cast(), text.len()) }
 }
@@ -49,52 +47,6 @@ fn in_mdi(c: GbcController) -> bool {
     let mut out = false;
     assert_eq!(unsafe { gbc_in_mdi(c, &mut out) }, GbcStatus::Ok);
     out
-}
-
-fn blank() -> GbcSetPoint {
-    GbcSetPoint {
-        time_s: 0.0,
-        x: 0.0,
-        z: 0.0,
-        axis_x: 0.0,
-        axis_z: 0.0,
-        count_x: 0,
-        count_z: 0,
-        count_c: 0,
-        c: 0.0,
-        has_c: false,
-        spindle_rpm: 0.0,
-        spindle_turns: 0.0,
-        feed: 0.0,
-        line: 0,
-        file: 0,
-        tool: 0,
-        motion: GbcMotion::None,
-    }
-}
-
-fn state_info(c: GbcController) -> GbcStateInfo {
-    let mut st = GbcStateInfo {
-        state: GbcRunState::Alarm,
-        stop: GbcStopKind::None,
-        message: 0,
-        alarm_code: 0,
-        blocks: 0,
-    };
-    assert_eq!(unsafe { gbc_state(c, &mut st) }, GbcStatus::Ok);
-    st
-}
-
-fn state(c: GbcController) -> GbcRunState {
-    state_info(c).state
-}
-
-/// One period: run-ahead, tick, the state after it.
-fn period(c: GbcController) -> (GbcSetPoint, GbcRunState) {
-    let mut sp = blank();
-    assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
-    assert_eq!(unsafe { gbc_tick(c, &mut sp) }, GbcStatus::Ok);
-    (sp, state(c))
 }
 
 /// Cycle start, then every period until the MDI blocks have ended (a

@@ -41,7 +41,7 @@ use alloc::string::String;
 use nc::{Machine, Sink};
 use vm::Vm;
 
-mod between;
+pub(crate) mod between;
 pub use between::{RestartRefused, SelectRefused};
 use vm::restart::RestartAt;
 

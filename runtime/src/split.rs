@@ -351,11 +351,7 @@ impl Interpreter {
     /// run at the cycle start after it, and when they end the program is
     /// back at its start. Refused for blocks compiled for another machine.
     pub fn mdi(&mut self, blocks: isa::Module) -> Result<(), SelectRefused> {
-        if let Some(key) =
-            Machine::compile_keys_differ(&blocks.machine, &self.ra.machine.compile_keys())
-        {
-            return Err(SelectRefused::Machine(key));
-        }
+        crate::controller::between::compiled_for(&self.ra.machine, &blocks)?;
         self.ra.mdi_at_reset(blocks);
         Ok(())
     }

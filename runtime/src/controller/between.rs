@@ -62,6 +62,15 @@ impl core::fmt::Display for RestartRefused {
 
 impl core::error::Error for RestartRefused {}
 
+/// `module` was compiled for `machine`'s compile-time keys, or the first
+/// that differs.
+pub(crate) fn compiled_for(machine: &Machine, module: &isa::Module) -> Result<(), SelectRefused> {
+    match Machine::compile_keys_differ(&module.machine, &machine.compile_keys()) {
+        Some(key) => Err(SelectRefused::Machine(key)),
+        None => Ok(()),
+    }
+}
+
 impl<P: Plc> Controller<P> {
     /// Program restart (docs/embedding.md): while idle, the program
     /// runs from its start in search mode up to `at` (nothing moves),
@@ -118,11 +127,7 @@ impl<P: Plc> Controller<P> {
     /// Whether `module` may take the program's place now (compiled for
     /// this machine, the machine idle): where the axes stand, if so.
     fn place_for(&mut self, module: &isa::Module) -> Result<Standing, SelectRefused> {
-        if let Some(key) =
-            Machine::compile_keys_differ(&module.machine, &self.ra.machine.compile_keys())
-        {
-            return Err(SelectRefused::Machine(key));
-        }
+        compiled_for(&self.ra.machine, module)?;
         if !self.engine.clear_idle() {
             return Err(SelectRefused::NotIdle);
         }
