@@ -258,8 +258,7 @@ typedef enum GbcStatus {
   GBC_STATUS_RESTART_NOT_FOUND = 16,
   /**
    * A program restart reached its block, but what is in force there
-   * cannot be resumed (a thread chain open before the block,
-   * tool-nose compensation, a move waiting for the block, polar or
+   * cannot be resumed (a thread chain open before the block, polar or
    * cylindrical interpolation): restart at an earlier block. The
    * program stays at its start.
    */
@@ -1207,8 +1206,7 @@ enum GbcStatus gbc_set_work_offset(GbcController controller, uint32_t which, dou
  *   profile, or the run ends before reaching the block `pass` times:
  *   [`GbcStatus::RestartNotFound`];
  * - what is in force at the block cannot be resumed there (a thread
- *   chain open before the block, tool-nose compensation, a move
- *   waiting for the block, polar or cylindrical interpolation):
+ *   chain open before the block, polar or cylindrical interpolation):
  *   [`GbcStatus::RestartHeld`];
  * - the program raised an alarm before the block:
  *   [`GbcStatus::RestartAlarm`].

@@ -26,8 +26,7 @@ use runtime::{RestartAt, RestartError, RestartRefused, Target};
 ///   profile, or the run ends before reaching the block `pass` times:
 ///   [`GbcStatus::RestartNotFound`];
 /// - what is in force at the block cannot be resumed there (a thread
-///   chain open before the block, tool-nose compensation, a move
-///   waiting for the block, polar or cylindrical interpolation):
+///   chain open before the block, polar or cylindrical interpolation):
 ///   [`GbcStatus::RestartHeld`];
 /// - the program raised an alarm before the block:
 ///   [`GbcStatus::RestartAlarm`].

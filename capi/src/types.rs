@@ -72,8 +72,7 @@ pub enum GbcStatus {
     /// program stays at its start.
     RestartNotFound = 16,
     /// A program restart reached its block, but what is in force there
-    /// cannot be resumed (a thread chain open before the block,
-    /// tool-nose compensation, a move waiting for the block, polar or
+    /// cannot be resumed (a thread chain open before the block, polar or
     /// cylindrical interpolation): restart at an earlier block. The
     /// program stays at its start.
     RestartHeld = 17,

@@ -698,8 +698,8 @@ fn a_refused_restart_leaves_the_program_at_its_start() {
     drop(unsafe { Box::from_raw(host) });
 }
 
-/// A search that meets an alarm (`#3000`) or a block inside tool-nose
-/// compensation says so, with its own status and text; the controller
+/// A search that meets an alarm (`#3000`) or a block a thread chain
+/// continues says so, with its own status and text; the controller
 /// stands in no alarm and the program stays at its start.
 #[test]
 fn a_restart_refused_by_its_search_says_why() {
@@ -710,9 +710,9 @@ fn a_restart_refused_by_its_search_says_why() {
             "NO STOCK",
         ),
         (
-            "O1\nG00 X40 Z2\nG42 G01 X40 Z0 F0.2\nN10 G01 Z-10\nG40 X50\nM30\n",
+            "O1\nG00 X40 Z2\nG32 Z-10 F2\nN10 G32 X44 Z-12\nG00 X50\nM30\n",
             GbcStatus::RestartHeld,
-            "tool-nose compensation",
+            "thread chain",
         ),
     ];
     for (src, status, why) in cases {

@@ -176,3 +176,46 @@ fn check_certifies_a_restarted_run() {
         String::from_utf8_lossy(&out.stderr).contains("--from: the main file has no block at N7")
     );
 }
+
+/// Inside nose-radius compensation (G42, tool 1: R 0.8, tip 3): the
+/// restart at the taper approaches the compensated point X20 Z-20.4686
+/// (compiler/tests/restart.rs works it out by hand), and `gbvm check`
+/// certifies the run: the two rapids, the taper, the corner's arc, the
+/// last element and the cancel are its six end points.
+#[test]
+fn a_restart_inside_compensation_approaches_the_compensated_point() {
+    let program =
+        "T0101\nG00 X50 Z2\nG42 G01 X20 Z0 F100\nZ-20\nX40 Z-30\nZ-40\nG40 G00 X60\nM30\n";
+    let dir = std::env::temp_dir().join(format!("gbc-restart-comp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let (src, machine, gbc) = (dir.join("p.nc"), dir.join("m.toml"), dir.join("p.gbc"));
+    std::fs::write(&src, program).expect("written");
+    std::fs::write(
+        &machine,
+        "[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n",
+    )
+    .expect("written");
+    let status = Command::new(env!("CARGO_BIN_EXE_gbcc"))
+        .arg(&src)
+        .arg("--machine")
+        .arg(&machine)
+        .arg("-o")
+        .arg(&gbc)
+        .status()
+        .expect("gbcc runs");
+    assert!(status.success());
+    let machine = machine.to_str().expect("a path");
+    let out = gbvm(&gbc, &["--from", "5", "--machine", machine]);
+    assert!(out.status.success(), "{out:?}");
+    let canon = String::from_utf8_lossy(&out.stdout);
+    let rapids: Vec<&str> = canon.lines().filter(|l| l.starts_with("RAPID")).collect();
+    assert_eq!(rapids[..2], ["RAPID X=20 Z=0", "RAPID X=20 Z=-20.4686"]);
+    let out = Command::new(env!("CARGO_BIN_EXE_gbvm"))
+        .args(["check", "--from", "5", "--machine", machine])
+        .arg(&gbc)
+        .output()
+        .expect("gbvm runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("end points: 6 of 6 reached"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

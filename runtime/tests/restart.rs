@@ -248,3 +248,58 @@ fn a_split_controller_restarts_at_its_reset() {
         }
     }
 }
+
+/// A profile under G42 (tool 1: R 0.8, tip 3), restarted at its taper
+/// (line 5): the controller prints the VM's canon of the restart, the
+/// approach ends on the compensated point X20 Z-20.4686
+/// (compiler/tests/restart.rs works it out), and the periods after it
+/// name the lines the whole run's periods name from the taper on.
+#[test]
+fn a_restart_inside_compensation_runs_as_the_whole_run_from_the_compensated_point() {
+    let src = "T0101\nG00 X50 Z2\nG42 G01 X20 Z0 F100\nZ-20\nX40 Z-30\nZ-40\nG40 G00 X60\nM30\n";
+    let machine = Machine::from_toml("[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n")
+        .expect("a machine");
+    let at: RestartAt = "5".parse().expect("a restart point");
+    let mut vm = vm::Vm::new(module(src, &machine), machine.clone());
+    let mut expected = Vec::new();
+    vm::restart::search(&mut vm, at, &mut expected).expect("restarts");
+    vm.run(&mut expected);
+    let lines = |pts: &[SetPoint]| {
+        let mut l: Vec<u32> = pts.iter().map(|p| p.line).collect();
+        l.dedup();
+        l
+    };
+    let mut whole =
+        Controller::new(module(src, &machine), machine.clone(), runtime::AutoAck).expect("loads");
+    let mut whole_pts = Vec::new();
+    run_to_end(&mut whole, &mut whole_pts);
+    let mut ctl = Controller::new(module(src, &machine), machine, runtime::AutoAck).expect("loads");
+    let mut canon: Vec<nc::Event> = Vec::new();
+    assert_eq!(
+        ctl.restart_from_tap(at, &mut canon),
+        Ok(Restarted::default())
+    );
+    ctl.cycle_start();
+    let mut pts = Vec::new();
+    while ctl.state() != RunState::Ended {
+        ctl.run_ahead_tap(&mut canon);
+        pts.push(ctl.tick());
+        assert!(pts.len() < 200_000, "{:?}", ctl.state());
+    }
+    assert_eq!(canon, expected);
+    let approach_end = pts.iter().position(|p| p.motion == runtime::Motion::Feed);
+    let approach_end = approach_end.expect("moves after the approach") - 1;
+    let p = pts[approach_end];
+    assert!(
+        (p.x - 20.0).abs() < 1e-9 && (p.z + 20.468_629).abs() < 1e-6,
+        "{p:?}"
+    );
+    // The approach is the taper's line's; then the whole run's lines.
+    let whole_lines = lines(&whole_pts);
+    let from_taper = whole_lines
+        .iter()
+        .position(|&l| l == 5)
+        .expect("line 5 runs");
+    assert_eq!(lines(&pts), whole_lines[from_taper..]);
+    assert_eq!((pts.last().map(|p| (p.x, p.z))), Some((60.0, -40.0)));
+}

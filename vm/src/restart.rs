@@ -9,6 +9,12 @@
 //! tool, gear or speed, spindle direction, coolant code and feed), then
 //! the approach: a rapid of X (and C) to the target's start point, then
 //! one of Z. The run goes on from there as usual.
+//!
+//! Under nose-radius compensation the start point is the compensated
+//! tool's, which depends on the target's own move: the element of the
+//! block before waits for it. The search then reads on past the target
+//! until that element is printed (`catch_up`), and what the run printed
+//! after it follows the approach.
 
 use alloc::format;
 use alloc::string::String;
@@ -19,7 +25,7 @@ use isa::Instr;
 use nc::base::machine::RestartApproach;
 use nc::base::point::Pt;
 use nc::Event;
-use nc::{Sink, RUNNING};
+use nc::{Placed, Sink, RUNNING};
 
 use crate::{Alarm, Status, Vm};
 
@@ -177,6 +183,9 @@ struct Kept {
     feed: Option<Event>,
     /// Polar or cylindrical interpolation in force.
     plane: bool,
+    /// Where the last move printed ends (none after a reference return
+    /// or an origin, whose frame it is not in).
+    end: Option<Pt>,
     /// The other M codes, each once, in the order of their last use.
     others: Vec<u32>,
 }
@@ -197,43 +206,111 @@ pub struct Restarted {
 /// off); the meaning of any other M code is the machine's.
 const COOLANT: [u32; 3] = [7, 8, 9];
 
+/// The tag the restart gives the elements that wait at the target for
+/// the blocks after it (a compensated element, a corner word, an angle
+/// pair's first block): no pc has it, so the search sees where their
+/// printing ends even when the target is their own block on a later pass.
+const WAITING: u32 = RUNNING - 1;
+
 /// The sink of the search: keeps, and passes an alarm on.
 struct Search<'a> {
     out: &'a mut dyn Sink,
     kept: Kept,
+    /// Past the target, while the elements of earlier blocks wait.
+    catch: Option<CatchUp>,
+}
+
+/// The search past the target (`catch_up`): what the waiting elements of
+/// the blocks before print is kept as the search keeps; what follows is
+/// the run after the restart, given after the approach.
+#[derive(Default)]
+struct CatchUp {
+    /// The sink is told [`WAITING`]: the events are the earlier blocks'.
+    earlier: bool,
+    /// The earlier blocks' elements are printed.
+    done: bool,
+    /// The run from there on.
+    after: Placed,
 }
 
 impl Sink for Search<'_> {
     fn emit(&mut self, event: Event) {
-        let k = &mut self.kept;
+        match &mut self.catch {
+            _ if matches!(event, Event::Alarm { .. }) => self.out.emit(event),
+            Some(c) if !c.earlier => c.after.emit(event),
+            _ => self.kept.keep(event),
+        }
+    }
+
+    fn origin(&mut self, block: u32) {
+        // (Before the target the search places nothing.)
+        let Some(c) = &mut self.catch else {
+            return;
+        };
+        if block == WAITING {
+            c.earlier = true;
+            return;
+        }
+        c.done |= c.earlier;
+        c.earlier = false;
+        c.after.origin(block);
+    }
+}
+
+impl Kept {
+    /// Keeps `event` if it sets a state or ends a move.
+    fn keep(&mut self, event: Event) {
         let slot = match &event {
-            Event::Origin { .. } => &mut k.origin,
-            Event::Tool { .. } => &mut k.tool,
-            Event::Gear { .. } => &mut k.gear,
-            Event::Speed { .. } => &mut k.speed,
-            Event::Spindle(_) => &mut k.spindle,
-            Event::M(code) if COOLANT.contains(code) => &mut k.coolant,
+            Event::Origin { .. } => {
+                // (The last end is in the old frame.)
+                self.end = None;
+                &mut self.origin
+            }
+            Event::Tool { .. } => &mut self.tool,
+            Event::Gear { .. } => &mut self.gear,
+            Event::Speed { .. } => &mut self.speed,
+            Event::Spindle(_) => &mut self.spindle,
+            Event::M(code) if COOLANT.contains(code) => &mut self.coolant,
             Event::M(code) => {
-                k.others.retain(|c| c != code);
-                k.others.push(*code);
+                self.others.retain(|c| c != code);
+                self.others.push(*code);
                 return;
             }
-            Event::Feed { .. } => &mut k.feed,
+            Event::Feed { .. } => &mut self.feed,
             Event::PolarOn | Event::Cylinder(Some(_)) => {
-                k.plane = true;
+                self.plane = true;
                 return;
             }
             Event::PolarOff { .. } | Event::Cylinder(None) => {
-                k.plane = false;
+                self.plane = false;
                 return;
             }
-            Event::Alarm { .. } => {
-                self.out.emit(event);
+            Event::Home { .. } => {
+                self.end = None;
                 return;
             }
-            _ => return,
+            _ => {
+                self.end = end_of(&event).or(self.end);
+                return;
+            }
         };
         *slot = Some(event);
+    }
+}
+
+/// Where a printed move ends (work coordinates); `None` for any other
+/// event.
+fn end_of(event: &Event) -> Option<Pt> {
+    match *event {
+        Event::Rapid { x, z, .. }
+        | Event::Line { x, z, .. }
+        | Event::Arc { x, z, .. }
+        | Event::Ellipse { x, z, .. }
+        | Event::Parabola { x, z, .. }
+        | Event::Thread { x, z, .. }
+        | Event::ArcThread { x, z, .. }
+        | Event::Skip { x, z } => Some(Pt::xz(x, z)),
+        _ => None,
     }
 }
 
@@ -249,23 +326,104 @@ pub fn search(vm: &mut Vm, at: RestartAt, sink: &mut dyn Sink) -> Result<Restart
     let mut search = Search {
         out: sink,
         kept: Kept::default(),
+        catch: None,
     };
-    let found = reach(vm, entry, at, &mut search);
+    let found = reach(vm, entry, at, &mut search).and_then(|()| resume(vm, line, &mut search));
     if let Some(t) = tier {
         vm.set_tier(t);
     }
-    found?;
-    let why = held(vm, &search.kept).map(|why| RestartError::Held { line, why });
-    if let Some(e) = why {
-        return Err(e);
-    }
-    let Search { out, mut kept } = search;
+    let resume = found?;
+    let Search {
+        out,
+        mut kept,
+        catch,
+    } = search;
     let m_codes = core::mem::take(&mut kept.others);
     out.origin(entry);
     restore(kept, out);
-    approach(vm, standing, out);
+    approach(vm, standing, resume, out);
     out.origin(RUNNING);
+    if let Some(c) = catch {
+        replay(c.after, out);
+    }
     Ok(Restarted { m_codes })
+}
+
+/// Where the run resumes, with the work zero and C the blocks before the
+/// target left.
+struct Resume {
+    /// The approach's end: where the tool stands when the target's
+    /// output begins (work coordinates).
+    to: Pt,
+    origin: Pt,
+    c: f64,
+}
+
+/// At the target: refused if the run cannot resume there; otherwise
+/// where it does. Under nose-radius compensation that is where the whole
+/// run's compensated tool stands, not the programmed point: when an
+/// element of the blocks before waits for the target's move (or a corner
+/// word or an angle does), the search reads on until it is printed.
+fn resume(vm: &mut Vm, line: u32, search: &mut Search) -> Result<Resume, RestartError> {
+    if let Some(why) = held(vm, &search.kept) {
+        return Err(RestartError::Held { line, why });
+    }
+    let (programmed, origin, c) = (vm.nc.position(), vm.nc.origin(), vm.nc.c());
+    let offset = vm.nc.nose_offset_running();
+    let waiting = vm.nc.waiting_block();
+    if let Some(block) = waiting {
+        catch_up(vm, search, block)?;
+    }
+    let to = match search.kept.end {
+        Some(end) if offset || waiting.is_some() => end,
+        _ => programmed,
+    };
+    Ok(Resume { to, origin, c })
+}
+
+/// Steps the VM past the target until the elements waiting there
+/// (`block`'s last) are printed, or the run ends. An alarm about one of
+/// them names `block`, as the whole run's would.
+fn catch_up(vm: &mut Vm, search: &mut Search, block: u32) -> Result<(), RestartError> {
+    vm.nc.retag_waiting(WAITING);
+    search.catch = Some(CatchUp::default());
+    loop {
+        match vm.step(1, search) {
+            Status::Alarm(a) => return Err(RestartError::Alarm(named(vm, a, block))),
+            Status::Done => return Ok(()),
+            _ if search.catch.as_ref().is_some_and(|c| c.done) => return Ok(()),
+            _ => {}
+        }
+    }
+}
+
+/// An alarm about an element tagged [`WAITING`] (which names no line)
+/// names `block` instead.
+fn named(vm: &Vm, mut a: Alarm, block: u32) -> Alarm {
+    if a.line == 0 {
+        let loc = vm.loc_at(block);
+        a.line = loc.line;
+        a.col = loc.col;
+        a.file = vm
+            .module()
+            .files
+            .get(loc.file as usize)
+            .map_or_else(String::new, |f| f.name.clone());
+    }
+    a
+}
+
+/// Gives what the run printed past the target, each event under its
+/// block's tag, then the running block's.
+fn replay(after: Placed, out: &mut dyn Sink) {
+    let mut origins = after.origins.into_iter().peekable();
+    for (i, e) in after.events.into_iter().enumerate() {
+        while let Some((_, tag)) = origins.next_if(|&(at, _)| at <= i) {
+            out.origin(tag);
+        }
+        out.emit(e);
+    }
+    out.origin(RUNNING);
 }
 
 /// Steps the VM up to the `at.pass`-th arrival at `entry`.
@@ -298,16 +456,14 @@ fn reach(vm: &mut Vm, entry: u32, at: RestartAt, sink: &mut Search) -> Result<()
     }
 }
 
-/// What at the target keeps the run from resuming there: moves the
-/// kernel holds back, or a plane mode.
+/// What at the target keeps the run from resuming there: a thread chain
+/// open, or a plane mode.
 fn held(vm: &Vm, kept: &Kept) -> Option<&'static str> {
     if vm.nc.thread_waiting() || vm.nc.thread_chain_open() {
         // (A thread block continues the chain of the one before it
         // without a new spindle sync: started on its own it would cut
         // out of phase.)
         Some("a thread chain is open (the block before is a G32/G34 move)")
-    } else if vm.nc.contour_held() {
-        Some("tool-nose compensation is in force, or a move waits for this block (a corner word, an angle)")
     } else if kept.plane {
         Some("polar or cylindrical interpolation is in force")
     } else {
@@ -327,6 +483,7 @@ fn restore(kept: Kept, sink: &mut dyn Sink) {
         feed,
         plane: _,
         others: _,
+        end: _,
     } = kept;
     for e in [origin, tool, gear, speed, spindle, coolant, feed]
         .into_iter()
@@ -336,14 +493,14 @@ fn restore(kept: Kept, sink: &mut dyn Sink) {
     }
 }
 
-/// From `standing` (machine coordinates, and C) to the kernel's
-/// programmed point: X and C first, then Z, or Z first, as the machine's
+/// From `standing` (machine coordinates, and C) to where the run
+/// resumes: X and C first, then Z, or Z first, as the machine's
 /// `run.restart_approach` says; each leg left out when it does not move.
-fn approach(vm: &Vm, (standing, standing_c): (Pt, f64), sink: &mut dyn Sink) {
-    let to = vm.nc.position();
-    let from = standing.sub(vm.nc.origin());
-    let turns = vm.nc.machine.axes.c.enabled && (vm.nc.c() - standing_c).abs() > 1e-9;
-    let c = turns.then(|| vm.nc.c());
+fn approach(vm: &Vm, (standing, standing_c): (Pt, f64), resume: Resume, sink: &mut dyn Sink) {
+    let Resume { to, origin, c } = resume;
+    let from = standing.sub(origin);
+    let turns = vm.nc.machine.axes.c.enabled && (c - standing_c).abs() > 1e-9;
+    let c = turns.then_some(c);
     let x_moves = (to.r - from.r).abs() > 1e-9 || c.is_some();
     let z_moves = (to.z - from.z).abs() > 1e-9;
     // The corner between the two legs.

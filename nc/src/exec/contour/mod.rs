@@ -245,6 +245,13 @@ impl Nc {
         self.map_waiting_tags(&mut |_| tag);
     }
 
+    /// The tag of the block whose element waits last for a next move (a
+    /// compensated element, a corner word, the first block of an angle
+    /// pair), if one waits: the block an error at its join names.
+    pub fn waiting_block(&self) -> Option<u32> {
+        queue::last_waiting_tag(self)
+    }
+
     /// Gives what waits for a next move the tag `f` makes of its own: for
     /// a host that keeps the blocks it still names under new tags (the
     /// compiler's dry run of a program in chunks).

@@ -223,6 +223,16 @@ fn last_waiting(items: &[Item]) -> Option<usize> {
     items.iter().rposition(|i| !matches!(i, Item::Event(..)))
 }
 
+/// The tag of the last waiting element's block (`Nc::waiting_block`).
+pub(crate) fn last_waiting_tag(nc: &Nc) -> Option<u32> {
+    let items = &nc.st.contour.items;
+    match items.get(last_waiting(items)?)? {
+        Item::Move(m) => Some(m.origin),
+        Item::Angle(a) => Some(a.origin),
+        Item::Event(..) => None,
+    }
+}
+
 /// Applies `prev`'s corner word to the join with `next`: both are
 /// shortened and the inserted element returned (at `prev`'s feed: the
 /// chamfer or rounding belongs to the block that carries the word).
