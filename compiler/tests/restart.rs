@@ -584,3 +584,61 @@ fn an_alarm_at_the_join_with_the_target_names_the_block_before() {
         (4007, "p.nc", 3, 1)
     );
 }
+
+/// A random profile under nose-radius compensation: a start-up, then
+/// elements going towards the chuck (lines, tapers, arcs, chamfers and
+/// roundings, a loop of computed tapers, blocks without a move), then the
+/// cancel.
+fn random_profile(rng: &mut common::Rng) -> String {
+    let side = rng.pick(&["G41", "G42"]);
+    let mut src = format!("O0001\nT0101\n#1=0\nG00 X60 Z5\n{side} G01 X20 Z0 F100\n");
+    let (mut x, mut z) = (20, 0);
+    for _ in 0..rng.below(6) + 2 {
+        let corner = rng.pick(&["", "", " L1", " D1"]);
+        match rng.below(6) {
+            0 => {
+                src += "#2=0\nWHILE[#2LT3]DO1\nG01 X[#5041+2] W-[2+#2]\n#2=#2+1\nEND1\n";
+                (x, z) = (x + 6, z - 9);
+            }
+            1 => src += rng.pick(&["M08\n", "#1=#1+1\n", "G04 X0.1\n"]),
+            2 => {
+                let dir = rng.pick(&["G02", "G03"]);
+                (x, z) = (x + 8, z - 4);
+                src += &format!("{dir} X{x} Z{z} R{}{corner}\n", 4 + rng.below(3));
+            }
+            _ => {
+                x += 2 * rng.below(4) as i32;
+                z -= 3 + rng.below(6) as i32;
+                src += &format!("G01 X{x} Z{z}{corner}\n");
+            }
+        }
+    }
+    src + "G40 G00 X80\nM30\n"
+}
+
+/// Restarts at every line, passes 1 to 3, of 1 000 random compensated
+/// profiles, each checked against the whole run as the suite's are;
+/// most of them begin past an element that waited for the block.
+#[test]
+fn a_restart_in_random_compensated_profiles_prints_the_rest_of_the_whole_run() {
+    let mut rng = common::Rng(0x5eed_6412_0726);
+    let machine = nose_08();
+    let mut restarts = Restarts::default();
+    for i in 0..1000 {
+        let src = random_profile(&mut rng);
+        let opts = Options {
+            machine: machine.clone(),
+            ..Options::default()
+        };
+        let c = compile("p.nc", src.as_bytes(), &opts);
+        if c.has_errors() {
+            continue;
+        }
+        let Some(m) = c.module else {
+            continue;
+        };
+        restarts += check_every_line(&format!("profile {i}:\n{src}"), &m, &machine, 3);
+    }
+    eprintln!("{restarts:?}");
+    assert!(restarts.past_waiting >= 5000, "{restarts:?}");
+}
