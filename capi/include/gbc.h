@@ -50,6 +50,11 @@
 #include <stdint.h>
 
 /**
+ * The number of modal groups in [`GbcActiveCodes::g`].
+ */
+#define GBC_ACTIVE_GROUPS 13
+
+/**
  * [`GbcToolLife::unit`]: the group's life is a number of uses (each
  * `Txx99` that selects the tool counts one).
  */
@@ -645,6 +650,37 @@ typedef struct GbcAlarm {
 } GbcAlarm;
 
 /**
+ * The codes in force for the block the motion runs (or last ran).
+ */
+typedef struct GbcActiveCodes {
+  /**
+   * The G code in force in each modal group, in tenths (G01 is 10,
+   * G96 is 960, G12.1 is 121), the groups in this order: 1 motion,
+   * 2 speed mode (G96/G97), 3 feed mode (G98/G99), 6 units (G20/G21),
+   * 7 nose-radius compensation, 9 stroke check (G22/G23), 10 drilling
+   * cycle, 12 modal call (G66/G67), 14 work system (G54–G59), 15 exact
+   * stop (G61/G64), 16 plane, 17 polar command (G15/G16), 21 polar
+   * interpolation (G12.1/G13.1).
+   */
+  uint16_t g[GBC_ACTIVE_GROUPS];
+  /**
+   * F as last programmed (mm/min under G98, mm/rev under G99, inch
+   * units under G20); 0 before any.
+   */
+  double f;
+  /**
+   * S as last programmed (rev/min under G97, m/min under G96); 0
+   * before any.
+   */
+  double s;
+  /**
+   * The T word as last programmed, tool × 100 + offset (101: tool 1,
+   * offset 1); 0 before any.
+   */
+  uint32_t t;
+} GbcActiveCodes;
+
+/**
  * The part counters: parts machined (#3901, which M30 adds one to) and
  * parts required (#3902; 0: none set). Whole numbers 0 … 99 999 999.
  */
@@ -962,6 +998,19 @@ enum GbcStatus gbc_spindle_feedback(GbcController controller, double position_tu
  * speed and angle).
  */
 enum GbcStatus gbc_spindle_simulated(GbcController controller);
+
+/**
+ * The codes in force for the block whose motion runs, as a control's
+ * screen shows them: before the first block and after a reset, those a
+ * run starts with (the machine's power-on codes, F, S and T 0), as also
+ * before a program is loaded. A move that waited in the kernel for the
+ * next block (nose-radius compensation, a corner word) shows the codes
+ * after that block.
+ *
+ * # Safety
+ * `out` is null or writable.
+ */
+enum GbcStatus gbc_active_codes(GbcController controller, struct GbcActiveCodes *out);
 
 /**
  * The part counters as the finished runs and the operator's edits left

@@ -28,6 +28,7 @@
 //! is a few atomic loads), so it may be called from an interrupt or a
 //! real-time thread; `gbc_run_ahead` runs the VM and allocates.
 
+mod active;
 mod counters;
 mod handle;
 mod host;
@@ -47,6 +48,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use runtime::command::PauseKind;
 use runtime::{Config, Controller, Counters, RapidOverride, RunState};
 
+pub use active::*;
 pub use counters::*;
 use handle::{Kind, Object};
 use host::{HostPlc, HostStorage};

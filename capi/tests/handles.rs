@@ -196,6 +196,18 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             Box::new(|h| unsafe { gbc_controller_select(h, [0u8; 4].as_ptr(), 4) }),
         ),
         (
+            "gbc_active_codes",
+            Box::new(|h| {
+                let mut a = GbcActiveCodes {
+                    g: [0; GBC_ACTIVE_GROUPS],
+                    f: 0.0,
+                    s: 0.0,
+                    t: 0,
+                };
+                unsafe { gbc_active_codes(h, &mut a) }
+            }),
+        ),
+        (
             "gbc_parts",
             Box::new(|h| {
                 let mut p = GbcParts {

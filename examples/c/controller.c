@@ -136,6 +136,23 @@ static int fail(const char *what, GbcStatus s) {
     return 1;
 }
 
+/* The codes in force, as a control's screen lists them (G00 G97 ... F S
+ * T): those of the block the motion ran last. */
+static void print_active(GbcController ctl) {
+    GbcActiveCodes a;
+    if (gbc_active_codes(ctl, &a) != GBC_STATUS_OK)
+        return;
+    fprintf(stderr, "controller: in force:");
+    for (size_t i = 0; i < GBC_ACTIVE_GROUPS; i++) {
+        unsigned g = a.g[i];
+        if (g % 10)
+            fprintf(stderr, " G%u.%u", g / 10, g % 10);
+        else
+            fprintf(stderr, " G%02u", g / 10);
+    }
+    fprintf(stderr, " F%g S%g T%04u\n", a.f, a.s, a.t);
+}
+
 int main(int argc, char **argv) {
     if (argc < 2 || argc > 3) {
         fprintf(stderr, "usage: controller PROGRAM.gbc|PROGRAM.nc [MACHINE.toml]\n");
@@ -283,6 +300,7 @@ int main(int argc, char **argv) {
     }
     fprintf(stderr, "controller: %u PLC functions, %u stores of #500-#999\n",
             host.plc_functions, host.stores);
+    print_active(ctl);
     gbc_controller_free(ctl);
     return status;
 }

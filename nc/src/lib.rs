@@ -55,11 +55,12 @@ pub use base::{
 };
 pub use block::value;
 pub use exec::{
-    comp, compound, contour, counters, cycles, data_setting, measure, params, state, stroke,
-    sysvar, tool_life,
+    active, comp, compound, contour, counters, cycles, data_setting, measure, params, state,
+    stroke, sysvar, tool_life,
 };
 
 pub use error::NcError;
 pub use event::Event;
+pub use exec::active::ActiveCodes;
 pub use exec::{Discard, Nc, Outcome, Placed, Sink, WordCall, RUNNING};
 pub use machine::Machine;

@@ -7,7 +7,7 @@ use crate::plc::PlcFunction;
 
 /// Where a command comes from: its source place, and whether it is the
 /// last command of its NC block (single block stops there).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Tag {
     /// Index of the source file in the module's file table.
     pub file: u16,
@@ -25,6 +25,9 @@ pub struct Tag {
     /// Its block ran under `#3003` bit 1: its M, S or T function is
     /// requested and the program goes on without waiting for FIN.
     pub no_fin: bool,
+    /// The codes in force after its block, for the operator's screen
+    /// ([`crate::Engine::active_codes`]).
+    pub active: nc::ActiveCodes,
 }
 
 /// The shape of a move; its start is where the previous move ended.

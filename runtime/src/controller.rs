@@ -162,9 +162,11 @@ impl<P: Plc> Controller<P> {
         if let Some(key) = Machine::compile_keys_differ(&module.machine, &machine.compile_keys()) {
             return Err(LoadError::Machine(key));
         }
+        let power_on = nc::ActiveCodes::power_on(&machine);
         let ra = RunAhead::new(module, machine);
         let mut engine = Engine::new(cfg, plc);
         engine.reseed(ra.origin());
+        engine.set_power_on_codes(power_on);
         Ok(Controller { engine, ra })
     }
 
@@ -221,6 +223,12 @@ impl<P: Plc> Controller<P> {
     /// What the machine is doing.
     pub fn state(&self) -> RunState {
         self.engine.state()
+    }
+
+    /// The codes in force for the block the motion runs, for the
+    /// operator's screen ([`Engine::active_codes`]).
+    pub fn active_codes(&self) -> nc::ActiveCodes {
+        self.engine.active_codes()
     }
 
     /// The text of a `MESSAGE` stop: `index` is its

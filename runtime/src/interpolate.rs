@@ -309,6 +309,9 @@ pub struct Engine<P: Plc> {
     /// period that ends exactly on a corner ran the move before it, and
     /// the trace names that one (formats.md, `line`).
     ran: Option<Tag>,
+    /// The codes shown before a block runs and after a reset: those a
+    /// run starts with.
+    power_on_codes: nc::ActiveCodes,
     tool: u32,
     state: RunState,
     /// The head item has begun.
@@ -411,6 +414,7 @@ impl<P: Plc> Engine<P> {
             fixed_work: None,
             tag: Tag::default(),
             ran: None,
+            power_on_codes: nc::ActiveCodes::NONE,
             tool: 1,
             state: RunState::Idle,
             started: false,
@@ -527,6 +531,34 @@ impl<P: Plc> Engine<P> {
     /// The code and place of the alarm that stopped the run.
     pub fn alarm(&self) -> Option<(u32, Tag)> {
         self.alarm
+    }
+
+    /// The codes in force for the block whose motion runs (or last ran),
+    /// for the operator's screen: the G code of each modal group, F, S
+    /// and the T word, as they stood after that block. The VM reads
+    /// ahead of the motion; these go with the commands, so that the
+    /// screen follows the motion. A move that waited in the kernel for
+    /// the next block (nose-radius compensation, a corner word) shows
+    /// the codes after that block. Before the first block and after a
+    /// reset: those of [`set_power_on_codes`](Engine::set_power_on_codes).
+    pub fn active_codes(&self) -> nc::ActiveCodes {
+        self.ran_tag().active
+    }
+
+    /// The tag of the block this period's motion ran (`ran`, else the
+    /// head item's).
+    fn ran_tag(&self) -> &Tag {
+        self.ran.as_ref().unwrap_or(&self.tag)
+    }
+
+    /// The codes a run starts with (the controller gives
+    /// [`nc::ActiveCodes::power_on`] of its machine), shown until a
+    /// block runs and again after every reset.
+    pub fn set_power_on_codes(&mut self, codes: nc::ActiveCodes) {
+        self.power_on_codes = codes;
+        if self.ticks == 0 {
+            self.tag.active = codes;
+        }
     }
 
     /// The programmed point the axes are at, slide units. The set points
@@ -791,6 +823,7 @@ impl<P: Plc> Engine<P> {
                 self.c,
             ),
         };
+        let ran = self.ran_tag();
         SetPoint {
             time_s: self.ticks as f64 * self.dt,
             x: work.x(),
@@ -802,8 +835,8 @@ impl<P: Plc> Engine<P> {
             spindle_turns: self.spindle.turns(),
             c: self.cfg.c.map(|_| c),
             feed: self.path_step() / self.dt * 60.0,
-            line: self.ran.unwrap_or(self.tag).line,
-            file: self.ran.unwrap_or(self.tag).file,
+            line: ran.line,
+            file: ran.file,
             motion: self.motion,
             tool: self.tool,
         }
@@ -1665,6 +1698,7 @@ impl<P: Plc> Engine<P> {
         self.stroke = None;
         self.state = RunState::Idle;
         self.manual = false;
+        self.tag.active = self.power_on_codes;
         self.reset_done = true;
         self.rewind = false;
     }

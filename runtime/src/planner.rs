@@ -299,6 +299,7 @@ const PLACEHOLDER: Item = Item {
         block_end: false,
         no_hold: false,
         no_fin: false,
+        active: nc::ActiveCodes::NONE,
     },
     shift: V2::ZERO,
 };

@@ -369,6 +369,7 @@ impl RunAhead {
             block_end: false,
             no_hold: self.vm.nc.switch(Switch::NoFeedHold),
             no_fin: self.vm.nc.switch(Switch::NoFinWait),
+            active: self.vm.nc.active_codes(),
         }
     }
 

@@ -510,6 +510,12 @@ impl<P: Plc> Realtime<P> {
         self.engine.state()
     }
 
+    /// The codes in force for the block the motion runs, for the
+    /// operator's screen ([`crate::Engine::active_codes`]).
+    pub fn active_codes(&self) -> nc::ActiveCodes {
+        self.engine.active_codes()
+    }
+
     /// The engine's alarm with its place; for the VM's own alarms ask
     /// [`Interpreter::alarm`].
     pub fn alarm(&self) -> Option<AlarmInfo> {

@@ -1,6 +1,7 @@
 //! Executing one block: its events in the order of canon.md, and the state
 //! it leaves behind.
 
+pub mod active;
 pub mod caxis;
 pub mod comp;
 pub mod compound;

@@ -1,0 +1,97 @@
+//! The codes in force through the C interface: the screen follows the
+//! motion, not the VM (which reads ahead), and shows the power-on codes
+//! before a program is loaded, before it runs and after a reset. The
+//! expected codes are read by hand from the program and dialect.md §3.
+
+mod periods;
+
+use gbc::*;
+use periods::*;
+
+const PROGRAM: &str = "\
+G00 X60 Z5
+T0101
+G96 S150 M03
+G99 G01 X40 Z2 F0.2
+Z-30
+G97 S800
+G98 G01 X50 F100
+G00 X60 Z5
+M30
+";
+
+/// G00, G97, G98, G21, G40, G23, G80, G67, G54, G64, G18, G15, G13.1.
+const POWER_ON: [u16; GBC_ACTIVE_GROUPS] = [
+    0, 970, 980, 210, 400, 230, 800, 670, 540, 640, 180, 150, 131,
+];
+
+fn active(c: GbcController) -> GbcActiveCodes {
+    let mut a = GbcActiveCodes {
+        g: [9999; GBC_ACTIVE_GROUPS],
+        f: -1.0,
+        s: -1.0,
+        t: 9999,
+    };
+    assert_eq!(unsafe { gbc_active_codes(c, &mut a) }, GbcStatus::Ok);
+    a
+}
+
+/// Periods until the motion runs `line`.
+fn until_line(c: GbcController, line: u32) {
+    for _ in 0..200_000 {
+        if period(c).0.line == line {
+            return;
+        }
+    }
+    panic!("line {line} never ran");
+}
+
+#[test]
+fn the_codes_in_force_follow_the_motion() {
+    let text = "";
+    let (mut m, mut c) = (0, 0);
+    unsafe {
+        assert_eq!(
+            gbc_machine_from_toml(text.as_ptr().cast(), text.len(), &mut m),
+            GbcStatus::Ok
+        );
+        assert_eq!(
+            gbc_controller_new(m, std::ptr::null(), &mut c),
+            GbcStatus::Ok
+        );
+    }
+    let unloaded = active(c);
+    assert_eq!(
+        (unloaded.g, unloaded.f, unloaded.s, unloaded.t),
+        (POWER_ON, 0.0, 0.0, 0)
+    );
+    let opts = compiler::Options::default();
+    let prog = compiler::compile("p.nc", PROGRAM.as_bytes(), &opts);
+    let prog = prog.module.expect("compiles").to_bytes();
+    assert_eq!(
+        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+        GbcStatus::Ok
+    );
+    assert_eq!(active(c).g, POWER_ON);
+    assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
+    until_line(c, 5);
+    // G01, G96, G99 (groups 1–3), F0.2 S150 T0101: line 5's, though the
+    // VM has read G97 S800 and G98 F100 by now.
+    let cut = active(c);
+    assert_eq!((cut.g[0], cut.g[1], cut.g[2]), (10, 960, 990));
+    assert_eq!((cut.f, cut.s, cut.t), (0.2, 150.0, 101));
+    until_line(c, 7);
+    let face = active(c);
+    assert_eq!(
+        (face.g[1], face.g[2], face.f, face.s),
+        (970, 980, 100.0, 800.0)
+    );
+    assert_eq!(gbc_reset(c), GbcStatus::Ok);
+    for _ in 0..10_000 {
+        if period(c).1 == GbcRunState::Idle {
+            break;
+        }
+    }
+    assert_eq!(active(c).g, POWER_ON);
+    free(m, c);
+}

@@ -1,0 +1,111 @@
+//! The codes in force on the operator's screen follow the motion, not
+//! the VM, which reads ahead: while the cut of line 5 runs, the screen
+//! shows G96 G99 F0.2 although the VM has already read the G97 and G98
+//! of lines 6 and 7 (docs/embedding.md, "Operator and PLC").
+
+mod common;
+
+use common::module;
+use nc::Machine;
+use runtime::{ActiveCodes, Controller, RunState, ACTIVE_GROUPS};
+
+const PROGRAM: &str = "\
+G00 X60 Z5
+T0101
+G96 S150 M03
+G99 G01 X40 Z2 F0.2
+Z-30
+G97 S800
+G98 G01 X50 F100
+G00 X60 Z5
+M30
+";
+
+/// The code of group `g` (its number, as #4001–#4021 count them), in
+/// tenths.
+fn group(a: &ActiveCodes, g: u8) -> u16 {
+    let i = ACTIVE_GROUPS.iter().position(|&x| x == g).expect("a group");
+    a.g[i]
+}
+
+/// Ticks until the motion runs line `line`.
+fn until_line(ctl: &mut Controller, line: u32) {
+    for _ in 0..200_000 {
+        ctl.run_ahead();
+        if ctl.tick().line == line {
+            return;
+        }
+    }
+    panic!("line {line} never ran: {:?}", ctl.state());
+}
+
+/// By hand from dialect.md §3's power-on codes: G00, G97, G98, G21, G40,
+/// G23, G80, G67, G54, G64, G18, G15 (group 17), G13.1 (group 21).
+const POWER_ON: [u16; 13] = [
+    0, 970, 980, 210, 400, 230, 800, 670, 540, 640, 180, 150, 131,
+];
+
+#[test]
+fn the_screen_shows_the_codes_of_the_block_the_motion_runs() {
+    let machine = Machine::reference();
+    let mut ctl =
+        Controller::new(module(PROGRAM, &machine), machine, runtime::AutoAck).expect("loads");
+    let idle = ctl.active_codes();
+    assert_eq!((idle.g, idle.f, idle.s, idle.t), (POWER_ON, 0.0, 0.0, 0));
+    ctl.cycle_start();
+    until_line(&mut ctl, 5);
+    let cut = ctl.active_codes();
+    assert_eq!(
+        (group(&cut, 1), group(&cut, 2), group(&cut, 3)),
+        (10, 960, 990)
+    );
+    assert_eq!((cut.f, cut.s, cut.t), (0.2, 150.0, 101));
+    // The VM is past lines 6 and 7 already.
+    let read = ctl.vm().nc.active_codes();
+    assert_eq!(
+        (group(&read, 2), group(&read, 3), read.f),
+        (970, 980, 100.0)
+    );
+    until_line(&mut ctl, 7);
+    let face = ctl.active_codes();
+    assert_eq!(
+        (group(&face, 1), group(&face, 2), group(&face, 3)),
+        (10, 970, 980)
+    );
+    assert_eq!((face.f, face.s), (100.0, 800.0));
+    until_line(&mut ctl, 8);
+    assert_eq!(group(&ctl.active_codes(), 1), 0);
+    ctl.reset();
+    for _ in 0..10_000 {
+        ctl.tick();
+        if ctl.state() == RunState::Idle {
+            break;
+        }
+    }
+    assert_eq!(ctl.active_codes().g, POWER_ON);
+}
+
+/// The split controller: the real-time half shows the same, the
+/// interpreter's VM ahead of it.
+#[test]
+fn the_real_time_half_shows_the_codes_of_its_motion() {
+    let machine = Machine::reference();
+    let ctl = Controller::new(module(PROGRAM, &machine), machine, runtime::AutoAck).expect("loads");
+    let (mut interp, mut rt) = ctl.split();
+    assert_eq!(rt.active_codes().g, POWER_ON);
+    rt.cycle_start();
+    let mut line = 0;
+    for _ in 0..200_000 {
+        interp.run_ahead();
+        line = rt.tick().line;
+        if line == 5 {
+            break;
+        }
+    }
+    assert_eq!(line, 5);
+    let cut = rt.active_codes();
+    assert_eq!(
+        (group(&cut, 2), group(&cut, 3), cut.f, cut.s),
+        (960, 990, 0.2, 150.0)
+    );
+}
