@@ -86,6 +86,9 @@ enum Cut {
     TimedOut(runtime::SetPoint),
 }
 
+/// The canon, the trace and the statistics share stdout.
+type Stdout = Canon<BufWriter<StdoutLock<'static>>>;
+
 /// Runs the module through the interpolation runtime.
 pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
     catch_interrupt();
@@ -98,28 +101,14 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         Err(e) => return fail(&e),
     };
     let info = source_info(out, &program.files);
-    // The canon, the trace and the statistics share stdout.
     let mut canon = Canon::new(BufWriter::new(std::io::stdout().lock()));
     if out.trace == Some(Format::Csv) {
         let c_axis = ctl.engine().config().c.is_some();
         canon.write(&format!("{}\n", runtime::trace::csv_header(c_axis)));
     }
-    let max_time = out.max_time.unwrap_or(ctl.machine().run.max_time_s);
     if let Some(at) = args.from {
-        let r = restart(&mut ctl, at, &mut canon, out);
-        if let Ok(r) = &r {
-            super::restarted(r);
-        }
-        if let Err(e) = r {
-            let output_error = canon.finish();
-            return match (output_error, e) {
-                (Some(e), _) => output_failed(&e),
-                (None, runtime::RestartRefused::Search(runtime::RestartError::Alarm(a))) => {
-                    note(format_args!("{}", printable(&a.header())));
-                    cli::exit::Exit::Alarm.into()
-                }
-                (None, e) => fail(&format!("--from: {e}")),
-            };
+        if let Err(e) = restart(&mut ctl, at, &mut canon, out) {
+            return refused(e, canon);
         }
     }
     let mut rec = Record {
@@ -130,6 +119,7 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         progress: cli::progress::Progress::bar(main_lines, "run", out.quiet),
         info: &info,
     };
+    let max_time = out.max_time.unwrap_or(ctl.machine().run.max_time_s);
     let cut = periods(&mut ctl, &mut canon, &mut rec, out, &program, max_time);
     rec.progress.finish();
     if out.parts.is_some() {
@@ -145,7 +135,40 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         _ => ctl.alarm(),
     };
     end_canon(&mut canon, alarm.as_ref(), out);
-    let stopped_at = matches!(cut, Some(Cut::Interrupted)).then(|| cli::stats_json::Stopped {
+    let ran = Ran {
+        ctl: &ctl,
+        program: &program,
+        interrupted: matches!(cut, Some(Cut::Interrupted)),
+        alarm,
+    };
+    finish(ran, rec, canon, vars_file, args, out)
+}
+
+/// How the run went, for [`finish`].
+struct Ran<'a> {
+    ctl: &'a runtime::Controller<runtime::AutoAck>,
+    program: &'a Program,
+    /// Ctrl-C stopped it.
+    interrupted: bool,
+    alarm: Option<runtime::AlarmInfo>,
+}
+
+/// Writes the statistics, #500–#999 and the plot; the exit code.
+fn finish(
+    ran: Ran,
+    mut rec: Record,
+    mut canon: Stdout,
+    vars_file: Option<cli::vars::VarsFile>,
+    args: &RunArgs,
+    out: &Outputs,
+) -> ExitCode {
+    let Ran {
+        ctl,
+        program,
+        interrupted,
+        alarm,
+    } = ran;
+    let stopped_at = interrupted.then(|| cli::stats_json::Stopped {
         file: program
             .files
             .get(usize::from(rec.last.file))
@@ -170,7 +193,7 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         info: rec.info,
     };
     // The plot is an output: one that could not be written is exit 3.
-    if let Err(e) = write_plot(plot, out, args, &program) {
+    if let Err(e) = write_plot(plot, out, args, program) {
         note(format_args!("gbvm: error: {e}"));
         return cli::exit::Exit::Write.into();
     }
@@ -178,7 +201,7 @@ pub(crate) fn run_timed(args: &RunArgs, out: &Outputs) -> ExitCode {
         let _ = write!(std::io::stderr().lock(), "{}", stats(format));
     }
     if let Some(at) = &stopped_at {
-        return interrupted(at, out, rec.last.time_s);
+        return interrupted_exit(at, out, rec.last.time_s);
     }
     if let Some(a) = &alarm {
         note(format_args!("{}", printable(&a.header())));
@@ -232,12 +255,26 @@ fn counters_note(c: &runtime::Counters) {
 fn restart(
     ctl: &mut runtime::Controller<runtime::AutoAck>,
     at: vm::restart::RestartAt,
-    canon: &mut Canon<BufWriter<StdoutLock<'static>>>,
+    canon: &mut Stdout,
     out: &Outputs,
-) -> Result<runtime::Restarted, runtime::RestartRefused> {
-    match out.canon {
+) -> Result<(), runtime::RestartRefused> {
+    let r = match out.canon {
         true => ctl.restart_from_tap(at, canon),
         false => ctl.restart_from(at),
+    }?;
+    super::restarted(&r);
+    Ok(())
+}
+
+/// A refused restart's exit code, after what the canon holds.
+fn refused(e: runtime::RestartRefused, canon: Stdout) -> ExitCode {
+    match (canon.finish(), e) {
+        (Some(e), _) => output_failed(&e),
+        (None, runtime::RestartRefused::Search(runtime::RestartError::Alarm(a))) => {
+            note(format_args!("{}", printable(&a.header())));
+            cli::exit::Exit::Alarm.into()
+        }
+        (None, e) => fail(&format!("--from: {e}")),
     }
 }
 
@@ -288,7 +325,7 @@ fn source_info(out: &Outputs, files: &[String]) -> cli::program_info::ProgramInf
 /// the time bound or a failed output; `None` for the first two.
 fn periods(
     ctl: &mut runtime::Controller<runtime::AutoAck>,
-    canon: &mut Canon<BufWriter<StdoutLock<'static>>>,
+    canon: &mut Stdout,
     rec: &mut Record,
     out: &Outputs,
     program: &Program,
@@ -422,7 +459,7 @@ struct PlotOutput<'a> {
 }
 
 /// Says where Ctrl-C stopped the run and what holds the run so far.
-fn interrupted(at: &cli::stats_json::Stopped, out: &Outputs, time_s: f64) -> ExitCode {
+fn interrupted_exit(at: &cli::stats_json::Stopped, out: &Outputs, time_s: f64) -> ExitCode {
     let wrote = match (&out.plot, out.stats.is_some()) {
         (Some(p), true) => format!(
             "; the plot ({}) and the statistics hold the run so far",
