@@ -1013,6 +1013,20 @@ enum GbcStatus gbc_spindle_simulated(GbcController controller);
 enum GbcStatus gbc_active_codes(GbcController controller, struct GbcActiveCodes *out);
 
 /**
+ * How far the move that runs still has to go, mm, X on the diameter (as
+ * positions are shown), to `*x` and `*z` (both required): its end point
+ * less the programmed point the axes are at; in polar or cylindrical
+ * interpolation, the joints at its end less the joints now. 0 and 0
+ * while no program move runs (idle, at a stop or the end, in an alarm,
+ * in a dwell or a PLC function, during a reset or a manual move) and
+ * before a program is loaded.
+ *
+ * # Safety
+ * `x` and `z` are null or writable.
+ */
+enum GbcStatus gbc_distance_to_go(GbcController controller, double *x, double *z);
+
+/**
  * The part counters as the finished runs and the operator's edits left
  * them: a run's counting is kept when the motion reaches the program's
  * end (seen at the next `gbc_run_ahead`); a run a reset or an alarm

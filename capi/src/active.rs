@@ -1,9 +1,10 @@
-//! The codes in force for the operator's screen
-//! (`runtime::Controller::active_codes`): the G code of each modal group,
-//! F, S and the T word, as they stood after the block whose motion runs.
-//! The VM reads ahead of the motion; these follow the motion.
+//! What the operator's screen shows of the block the motion runs: the
+//! codes in force (`runtime::Controller::active_codes`: the G code of
+//! each modal group, F, S and the T word, as they stood after the block)
+//! and the distance its move has to go. The VM reads ahead of the motion;
+//! these follow the motion.
 
-use crate::{put, with_ctl, GbcController, GbcStatus};
+use crate::{fail, put, with_ctl, GbcController, GbcStatus};
 use runtime::ActiveCodes;
 
 /// The number of modal groups in [`GbcActiveCodes::g`].
@@ -64,5 +65,35 @@ pub unsafe extern "C" fn gbc_active_codes(
         };
         // SAFETY: the caller's promise.
         unsafe { put(out, GbcActiveCodes::from(codes)) }
+    })
+}
+
+/// How far the move that runs still has to go, mm, X on the diameter (as
+/// positions are shown), to `*x` and `*z` (both required): its end point
+/// less the programmed point the axes are at; in polar or cylindrical
+/// interpolation, the joints at its end less the joints now. 0 and 0
+/// while no program move runs (idle, at a stop or the end, in an alarm,
+/// in a dwell or a PLC function, during a reset or a manual move) and
+/// before a program is loaded.
+///
+/// # Safety
+/// `x` and `z` are null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn gbc_distance_to_go(
+    controller: GbcController,
+    x: *mut f64,
+    z: *mut f64,
+) -> GbcStatus {
+    with_ctl(controller, |c| {
+        if x.is_null() || z.is_null() {
+            return Err(fail(GbcStatus::NullPointer, "an output pointer is null"));
+        }
+        let d = c.run.as_ref().map(|r| r.distance_to_go());
+        let d = d.unwrap_or(runtime::Xz { x: 0.0, z: 0.0 });
+        // SAFETY: both checked non-null; the caller's promise.
+        unsafe {
+            put(x, d.x)?;
+            put(z, d.z)
+        }
     })
 }

@@ -80,6 +80,23 @@ fn the_codes_in_force_follow_the_motion() {
     let cut = active(c);
     assert_eq!((cut.g[0], cut.g[1], cut.g[2]), (10, 960, 990));
     assert_eq!((cut.f, cut.s, cut.t), (0.2, 150.0, 101));
+    // Line 5 runs from Z2 to Z-30 at X40: -30 less where Z is to go.
+    let (sp, _) = period(c);
+    let (mut x, mut z) = (f64::NAN, f64::NAN);
+    assert_eq!(
+        unsafe { gbc_distance_to_go(c, &mut x, &mut z) },
+        GbcStatus::Ok
+    );
+    assert_eq!(sp.line, 5);
+    assert!(
+        x == 0.0 && (z - (-30.0 - sp.z)).abs() < 1e-9,
+        "{x} {z} at Z{}",
+        sp.z
+    );
+    assert_eq!(
+        unsafe { gbc_distance_to_go(c, std::ptr::null_mut(), &mut z) },
+        GbcStatus::NullPointer
+    );
     until_line(c, 7);
     let face = active(c);
     assert_eq!(

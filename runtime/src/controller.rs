@@ -231,6 +231,12 @@ impl<P: Plc> Controller<P> {
         self.engine.active_codes()
     }
 
+    /// How far the move that runs still has to go, X on the diameter
+    /// and Z, for the operator's screen ([`Engine::distance_to_go`]).
+    pub fn distance_to_go(&self) -> nc::machine::Xz {
+        self.engine.distance_to_go()
+    }
+
     /// The text of a `MESSAGE` stop: `index` is its
     /// [`PauseKind::Message`](crate::command::PauseKind::Message)'s.
     pub fn message(&self, index: u32) -> Option<&str> {

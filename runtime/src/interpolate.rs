@@ -545,6 +545,28 @@ impl<P: Plc> Engine<P> {
         self.ran_tag().active
     }
 
+    /// How far the move that runs still has to go along X (on the
+    /// diameter, as positions are shown) and Z, mm: its end point less
+    /// the programmed point the axes are at; in a plane of polar or
+    /// cylindrical interpolation, the joints at its end less the joints
+    /// now. Zero while no program move runs: idle, at a stop or the end,
+    /// in an alarm, in a dwell or a PLC function, during a reset or a
+    /// manual move.
+    pub fn distance_to_go(&self) -> nc::machine::Xz {
+        let moving = matches!(
+            self.state,
+            RunState::Running | RunState::Held | RunState::Starved
+        );
+        if !moving || self.reset_req {
+            return nc::machine::Xz { x: 0.0, z: 0.0 };
+        }
+        let d = match &self.plane {
+            Some(run) => run.joints_at(self.cur.to, self.cur.c1).sub(run.work()),
+            None => self.cur.to.sub(self.pos),
+        };
+        nc::machine::Xz { x: d.x(), z: d.z }
+    }
+
     /// The tag of the block this period's motion ran (`ran`, else the
     /// head item's).
     fn ran_tag(&self) -> &Tag {

@@ -173,6 +173,12 @@ impl PlaneRun {
         }
     }
 
+    /// The joints (work coordinates) at plane point `p` with the axis
+    /// outside the plane at `held`.
+    pub fn joints_at(&self, p: V2, held: f64) -> V2 {
+        self.map.with_held(held).joints(p).0
+    }
+
     /// The joints in work coordinates (X as a radius).
     pub fn work(&self) -> V2 {
         self.work

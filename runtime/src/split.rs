@@ -516,6 +516,12 @@ impl<P: Plc> Realtime<P> {
         self.engine.active_codes()
     }
 
+    /// How far the move that runs still has to go, X on the diameter
+    /// and Z, for the operator's screen ([`crate::Engine::distance_to_go`]).
+    pub fn distance_to_go(&self) -> nc::machine::Xz {
+        self.engine.distance_to_go()
+    }
+
     /// The engine's alarm with its place; for the VM's own alarms ask
     /// [`Interpreter::alarm`].
     pub fn alarm(&self) -> Option<AlarmInfo> {

@@ -109,3 +109,55 @@ fn the_real_time_half_shows_the_codes_of_its_motion() {
         (960, 990, 0.2, 150.0)
     );
 }
+
+/// Distance to go: the cut of line 5 (Z2 to Z-30 at X40) has -30 less
+/// where Z is to go, and none in X; the move of line 7 (X40 to X50 at
+/// Z-30) has 50 less where X is, on the diameter. None while idle, in a
+/// feed hold it stays as it was, none after the end.
+#[test]
+fn the_screen_shows_the_distance_the_move_has_to_go() {
+    let machine = Machine::reference();
+    let mut ctl =
+        Controller::new(module(PROGRAM, &machine), machine, runtime::AutoAck).expect("loads");
+    let none = runtime::Xz { x: 0.0, z: 0.0 };
+    assert_eq!(ctl.distance_to_go(), none);
+    ctl.cycle_start();
+    until_line(&mut ctl, 5);
+    let mut cut = Vec::new();
+    for _ in 0..200 {
+        ctl.run_ahead();
+        let sp = ctl.tick();
+        let d = ctl.distance_to_go();
+        assert_eq!(d.x, 0.0);
+        assert!((d.z - (-30.0 - sp.z)).abs() < 1e-9, "{d:?} at Z{}", sp.z);
+        cut.push(d.z);
+    }
+    assert!(cut.windows(2).all(|w| w[1] > w[0]), "it shrinks as Z goes");
+    ctl.feed_hold();
+    for _ in 0..2_000 {
+        ctl.run_ahead();
+        ctl.tick();
+    }
+    assert_eq!(ctl.state(), RunState::Held);
+    let held = ctl.distance_to_go();
+    assert!(held.z < -1.0, "{held:?}");
+    ctl.run_ahead();
+    ctl.tick();
+    assert_eq!(ctl.distance_to_go(), held);
+    ctl.cycle_start();
+    until_line(&mut ctl, 7);
+    ctl.run_ahead();
+    let sp = ctl.tick();
+    let d = ctl.distance_to_go();
+    assert!(
+        (d.x - (50.0 - sp.x)).abs() < 1e-9 && d.x > 0.0,
+        "{d:?} at X{}",
+        sp.x
+    );
+    assert!(d.z.abs() < 1e-9, "{d:?}");
+    while ctl.state() != RunState::Ended {
+        ctl.run_ahead();
+        ctl.tick();
+    }
+    assert_eq!(ctl.distance_to_go(), none);
+}
