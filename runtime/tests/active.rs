@@ -161,3 +161,24 @@ fn the_screen_shows_the_distance_the_move_has_to_go() {
     }
     assert_eq!(ctl.distance_to_go(), none);
 }
+
+/// In polar interpolation the distance is in the joints: the line of
+/// line 4 ends at plane point (10, 10), X = 2·√(10² + 10²) = 28.2843 on
+/// the diameter, Z staying at -2.
+#[test]
+fn in_polar_interpolation_the_distance_to_go_is_the_joints() {
+    let src = "G98\nG00 X40 Z-2 C0\nG12.1\nG01 X20 C10 F300\nG01 X40 C0\nG13.1\nM30\n";
+    let mut machine = Machine::reference();
+    machine.axes.c.enabled = true;
+    let mut ctl = Controller::new(module(src, &machine), machine, runtime::AutoAck).expect("loads");
+    ctl.cycle_start();
+    until_line(&mut ctl, 4);
+    let end_x = 2.0 * 200f64.sqrt();
+    for _ in 0..100 {
+        ctl.run_ahead();
+        let sp = ctl.tick();
+        let d = ctl.distance_to_go();
+        assert!((d.x - (end_x - sp.x)).abs() < 1e-9, "{d:?} at X{}", sp.x);
+        assert!(d.z.abs() < 1e-12, "{d:?}");
+    }
+}
