@@ -1308,6 +1308,18 @@ enum GbcStatus gbc_restart_m_codes(GbcController controller,
                                    size_t *len);
 
 /**
+ * Where the approach of the last restart taken goes, mm, work
+ * coordinates (X on the diameter), to `*x` and `*z` (both required): the
+ * block's start point, under nose-radius compensation the compensated
+ * tool's, as a control's restart page shows it before the cycle start
+ * that moves there. NaN and NaN after a refused restart or before any.
+ *
+ * # Safety
+ * `x` and `z` are null or writable.
+ */
+enum GbcStatus gbc_restart_destination(GbcController controller, double *x, double *z);
+
+/**
  * Replaces the loaded program with another `.gbc` (`len` bytes at
  * `gbc`, copied) while the controller is idle: before its first cycle
  * start, or after `gbc_reset` once `gbc_state` gives

@@ -125,9 +125,10 @@ struct Ctl {
     jit: u8,
     /// A reset was asked for in an alarm: ticks are accepted again.
     reset_pending: bool,
-    /// The M codes the last restart taken did not give again
-    /// (`gbc_restart_m_codes`).
-    restart_m: Vec<u32>,
+    /// The last restart taken: the M codes it did not give again
+    /// (`gbc_restart_m_codes`) and where its approach goes
+    /// (`gbc_restart_destination`).
+    restarted: Option<runtime::Restarted>,
     /// A panic was caught inside a call on this controller.
     poisoned: bool,
 }
@@ -443,7 +444,7 @@ pub unsafe extern "C" fn gbc_controller_new(
             run: None,
             jit: GBC_JIT_AUTO,
             reset_pending: false,
-            restart_m: Vec::new(),
+            restarted: None,
             poisoned: false,
         };
         let h = handle::insert(ctl)?;

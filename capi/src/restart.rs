@@ -69,7 +69,7 @@ fn restart(controller: GbcController, target: Target, pass: u32) -> GbcStatus {
             ));
         }
         let r = c.run()?.restart_from(RestartAt { target, pass });
-        c.restart_m = r.as_ref().map(|r| r.m_codes.clone()).unwrap_or_default();
+        c.restarted = r.as_ref().ok().cloned();
         refused(r.map(|_| ()))
     })
 }
@@ -100,14 +100,46 @@ pub unsafe extern "C" fn gbc_restart_m_codes(
                 "len is null, or codes is null while cap is not 0",
             ));
         }
-        let n = c.restart_m.len().min(cap);
+        let m = c.restarted.as_ref().map_or(&[][..], |r| &r.m_codes[..]);
+        let n = m.len().min(cap);
         if n > 0 {
             // SAFETY: non-null and writable for `cap` ≥ n values by the
             // caller's promise.
-            unsafe { core::ptr::copy_nonoverlapping(c.restart_m.as_ptr(), codes, n) };
+            unsafe { core::ptr::copy_nonoverlapping(m.as_ptr(), codes, n) };
         }
         // SAFETY: checked non-null; the caller's promise.
-        unsafe { put(len, c.restart_m.len()) }
+        unsafe { put(len, m.len()) }
+    })
+}
+
+/// Where the approach of the last restart taken goes, mm, work
+/// coordinates (X on the diameter), to `*x` and `*z` (both required): the
+/// block's start point, under nose-radius compensation the compensated
+/// tool's, as a control's restart page shows it before the cycle start
+/// that moves there. NaN and NaN after a refused restart or before any.
+///
+/// # Safety
+/// `x` and `z` are null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn gbc_restart_destination(
+    controller: GbcController,
+    x: *mut f64,
+    z: *mut f64,
+) -> GbcStatus {
+    with_ctl(controller, |c| {
+        if x.is_null() || z.is_null() {
+            return Err(fail(GbcStatus::NullPointer, "an output pointer is null"));
+        }
+        let to = c.restarted.as_ref().map(|r| r.destination);
+        let to = to.unwrap_or(runtime::Xz {
+            x: f64::NAN,
+            z: f64::NAN,
+        });
+        // SAFETY: both checked non-null; the caller's promise.
+        unsafe {
+            put(x, to.x)?;
+            put(z, to.z)
+        }
     })
 }
 

@@ -208,6 +208,13 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             }),
         ),
         (
+            "gbc_restart_destination",
+            Box::new(|h| {
+                let (mut x, mut z) = (0.0, 0.0);
+                unsafe { gbc_restart_destination(h, &mut x, &mut z) }
+            }),
+        ),
+        (
             "gbc_distance_to_go",
             Box::new(|h| {
                 let (mut x, mut z) = (0.0, 0.0);

@@ -1006,3 +1006,30 @@ fn a_restart_tells_the_m_codes_it_does_not_give_again() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
 }
+
+/// The destination of a restart: N20 starts where the block before left
+/// the tool, X50 Z2 (work coordinates); NaN before any restart and after
+/// a refused one.
+#[test]
+fn a_restart_tells_where_its_approach_goes() {
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &module("M10\nG00 X50 Z2\nM14\nN20 G00 X60\nM30\n"));
+    let destination = |c| {
+        let (mut x, mut z) = (0.0, 0.0);
+        let s = unsafe { gbc_restart_destination(c, &mut x, &mut z) };
+        assert_eq!(s, GbcStatus::Ok);
+        (x, z)
+    };
+    let (x, z) = destination(c);
+    assert!(x.is_nan() && z.is_nan());
+    assert_eq!(gbc_restart_from_seq(c, 20, 1), GbcStatus::Ok);
+    assert_eq!(destination(c), (50.0, 2.0));
+    let mut z = 0.0;
+    let null = unsafe { gbc_restart_destination(c, std::ptr::null_mut(), &mut z) };
+    assert_eq!(null, GbcStatus::NullPointer);
+    assert_eq!(gbc_restart_from_seq(c, 30, 1), GbcStatus::RestartNotFound);
+    assert!(destination(c).0.is_nan());
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

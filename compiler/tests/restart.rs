@@ -42,22 +42,22 @@ fn whole_run(m: &isa::Module, machine: &Machine) -> (Vec<Event>, Arrivals) {
 
 /// A restarted run: what the search printed before the run's own events
 /// (the restored state and the approach: the events before the search's
-/// last `origin(RUNNING)`), and the run after them (what the search read
-/// past the target, then the steps after it).
+/// last `origin(RUNNING)`), the run after them (what the search read
+/// past the target, then the steps after it), and the destination it
+/// told.
 fn restarted(
     m: &isa::Module,
     machine: &Machine,
     at: RestartAt,
-) -> Result<(Vec<Event>, Vec<Event>, u32), RestartError> {
+) -> Result<(Vec<Event>, Vec<Event>, nc::machine::Xz), RestartError> {
     let mut vm = Vm::new(m.clone(), machine.clone());
     let mut placed = Placed::default();
-    search(&mut vm, at, &mut placed)?;
+    let destination = search(&mut vm, at, &mut placed)?.destination;
     let running = placed.origins.iter().position(|&(_, t)| t == RUNNING);
     let split = running.map_or(placed.events.len(), |i| placed.origins[i].0);
     let mut rest = placed.events.split_off(split);
-    let entry = vm.pc();
     vm.run(&mut rest);
-    Ok((placed.events, rest, entry))
+    Ok((placed.events, rest, destination))
 }
 
 /// What a restart must give again: the last event of each kind that sets
@@ -126,7 +126,7 @@ fn check_line(
         target: Target::Line(line),
         pass,
     };
-    let Ok((prefix, rest, _)) = restarted(m, machine, at) else {
+    let Ok((prefix, rest, destination)) = restarted(m, machine, at) else {
         return Began::Refused;
     };
     let events = &whole.events;
@@ -155,13 +155,18 @@ fn check_line(
         true => last_end(&events[..k]),
         false => Some((x, z)),
     };
+    // (A leg shorter than 1e-9 mm is left out.)
+    let near =
+        |(x, z): (f64, f64), (ex, ez): (f64, f64)| (x - ex).abs() <= 2e-9 && (z - ez).abs() <= 1e-9;
     if let Some(Event::Rapid { x: rx, z: rz, .. }) = rapids.last() {
-        // (A leg shorter than 1e-9 mm is left out.)
-        let near = |(x, z): (f64, f64)| (x - rx).abs() <= 2e-9 && (z - rz).abs() <= 1e-9;
         assert!(
-            expected.is_some_and(near),
+            expected.is_some_and(|e| near((*rx, *rz), e)),
             "{name}: the approach ends at {rx} {rz}, not at {expected:?}"
         );
+    }
+    if let Some(e) = expected {
+        let to = (destination.x, destination.z);
+        assert!(near(to, e), "{name}: the destination {to:?}, not {e:?}");
     }
     match k > mark {
         true => Began::PastWaiting,

@@ -88,7 +88,12 @@ fn a_restart_runs_the_second_tool_s_cut_from_where_the_axes_stand() {
         pts.push(ctl.tick());
     }
     let manual = pts.len();
-    assert_eq!(ctl.restart_from(N100), Ok(Restarted::default()));
+    // N100 starts where the block before left the tool: X40 Z2.
+    let to_n100 = Restarted {
+        m_codes: Vec::new(),
+        destination: runtime::Xz { x: 40.0, z: 2.0 },
+    };
+    assert_eq!(ctl.restart_from(N100), Ok(to_n100));
     run_to_end(&mut ctl, &mut pts);
     let run = &pts[manual..];
     // X first, at Z-10, from X0 to 40; then Z.
@@ -190,10 +195,12 @@ M30
     );
     let mut ctl = Controller::new(module(src, &machine), machine, runtime::AutoAck).expect("loads");
     let mut canon: Vec<nc::Event> = Vec::new();
-    assert_eq!(
-        ctl.restart_from_tap(at, &mut canon),
-        Ok(Restarted::default())
-    );
+    // The second round starts where the first ended: X40 Z-10.
+    let round = Restarted {
+        m_codes: Vec::new(),
+        destination: runtime::Xz { x: 40.0, z: -10.0 },
+    };
+    assert_eq!(ctl.restart_from_tap(at, &mut canon), Ok(round));
     ctl.cycle_start();
     for _ in 0..200_000 {
         ctl.run_ahead_tap(&mut canon);
@@ -275,9 +282,11 @@ fn a_restart_inside_compensation_runs_as_the_whole_run_from_the_compensated_poin
     run_to_end(&mut whole, &mut whole_pts);
     let mut ctl = Controller::new(module(src, &machine), machine, runtime::AutoAck).expect("loads");
     let mut canon: Vec<nc::Event> = Vec::new();
-    assert_eq!(
-        ctl.restart_from_tap(at, &mut canon),
-        Ok(Restarted::default())
+    let r = ctl.restart_from_tap(at, &mut canon).expect("restarts");
+    let to = r.destination;
+    assert!(
+        (to.x - 20.0).abs() < 1e-12 && (to.z + 20.468_629).abs() < 1e-6,
+        "{to:?}"
     );
     ctl.cycle_start();
     let mut pts = Vec::new();

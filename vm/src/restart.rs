@@ -22,7 +22,7 @@ use alloc::vec::Vec;
 use core::fmt;
 use core::str::FromStr;
 use isa::Instr;
-use nc::base::machine::RestartApproach;
+use nc::base::machine::{RestartApproach, Xz};
 use nc::base::point::Pt;
 use nc::Event;
 use nc::{Placed, Sink, RUNNING};
@@ -190,9 +190,9 @@ struct Kept {
     others: Vec<u32>,
 }
 
-/// A restart that has begun: what the search saw that it does not give
-/// again.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+/// A restart that has begun: where its approach goes, and what the
+/// search saw that it does not give again.
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Restarted {
     /// The M codes the blocks before the target gave, other than the
     /// spindle's and coolant's (a clamp, a C-axis mode, a tailstock: the
@@ -200,6 +200,11 @@ pub struct Restarted {
     /// control shows them after its search, and the operator gives those
     /// the block needs by hand.
     pub m_codes: Vec<u32>,
+    /// Where the approach ends, work coordinates (X on the diameter): the
+    /// block's start point, under nose-radius compensation the
+    /// compensated tool's. A control's restart page shows it before the
+    /// cycle start that moves there.
+    pub destination: Xz,
 }
 
 /// The coolant codes a restart gives again (M07 mist, M08 flood, M09
@@ -338,7 +343,13 @@ pub fn search(vm: &mut Vm, at: RestartAt, sink: &mut dyn Sink) -> Result<Restart
         mut kept,
         catch,
     } = search;
-    let m_codes = core::mem::take(&mut kept.others);
+    let restarted = Restarted {
+        m_codes: core::mem::take(&mut kept.others),
+        destination: Xz {
+            x: resume.to.x(),
+            z: resume.to.z,
+        },
+    };
     out.origin(entry);
     restore(kept, out);
     approach(vm, standing, resume, out);
@@ -346,7 +357,7 @@ pub fn search(vm: &mut Vm, at: RestartAt, sink: &mut dyn Sink) -> Result<Restart
     if let Some(c) = catch {
         replay(c.after, out);
     }
-    Ok(Restarted { m_codes })
+    Ok(restarted)
 }
 
 /// Where the run resumes, with the work zero and C the blocks before the
