@@ -230,7 +230,8 @@ typedef enum GbcStatus {
    */
   GBC_STATUS_ALARM = 10,
   /**
-   * A host callback reported a failure (`vars_load` returned non-zero).
+   * A host callback reported a failure (`vars_load` returned non-zero,
+   * or `vars_store` did for `gbc_set_variable`).
    */
   GBC_STATUS_HOST_FAILURE = 11,
   /**
@@ -1436,6 +1437,29 @@ enum GbcStatus gbc_controller_select_source(GbcController controller,
                                             const char *name,
                                             const char *text,
                                             size_t len);
+
+/**
+ * Variable `n` as the program would read it now, to `*value` (NaN:
+ * vacant). The controller reads ahead of the motion: it is the value
+ * after the blocks read so far. A number the dialect does not have:
+ * [`GbcStatus::InvalidArgument`]; no program loaded:
+ * [`GbcStatus::NoProgram`].
+ *
+ * # Safety
+ * `value` is null or writable.
+ */
+enum GbcStatus gbc_variable(GbcController controller, uint32_t n, double *value);
+
+/**
+ * Sets #500–#999 variable `n` to `value` (NaN: vacant), as the
+ * operator's macro-variable page does: kept over resets and program
+ * selections, handed to `vars_store` at once, read by the blocks the
+ * controller reads from now on. Another number or an infinite value:
+ * [`GbcStatus::InvalidArgument`]; `vars_store` failing:
+ * [`GbcStatus::HostFailure`] (the value is set nonetheless); no program
+ * loaded: [`GbcStatus::NoProgram`].
+ */
+enum GbcStatus gbc_set_variable(GbcController controller, uint32_t n, double value);
 
 #ifdef __cplusplus
 }  // extern "C"

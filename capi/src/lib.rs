@@ -39,6 +39,7 @@ mod restart;
 mod select;
 mod source;
 mod types;
+mod variables;
 
 use core::cell::RefCell;
 use core::ffi::c_char;
@@ -59,6 +60,7 @@ pub use restart::*;
 pub use select::*;
 pub use source::*;
 pub use types::*;
+pub use variables::*;
 
 /// A machine handle's object.
 struct MachineObj(nc::Machine);

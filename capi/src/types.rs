@@ -51,7 +51,8 @@ pub enum GbcStatus {
     /// The controller stands in an alarm: read it with `gbc_alarm`, clear
     /// it with `gbc_reset` (ticks are then accepted again).
     Alarm = 10,
-    /// A host callback reported a failure (`vars_load` returned non-zero).
+    /// A host callback reported a failure (`vars_load` returned non-zero,
+    /// or `vars_store` did for `gbc_set_variable`).
     HostFailure = 11,
     /// The library caught an internal panic; the controller is unusable
     /// from now on (free it).

@@ -215,6 +215,17 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             }),
         ),
         (
+            "gbc_variable",
+            Box::new(|h| {
+                let mut v = 0.0;
+                unsafe { gbc_variable(h, 500, &mut v) }
+            }),
+        ),
+        (
+            "gbc_set_variable",
+            Box::new(|h| gbc_set_variable(h, 500, 1.0)),
+        ),
+        (
             "gbc_distance_to_go",
             Box::new(|h| {
                 let (mut x, mut z) = (0.0, 0.0);

@@ -1033,3 +1033,45 @@ fn a_restart_tells_where_its_approach_goes() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
 }
+
+/// The macro-variable page through C: #500–#999 set (handed to
+/// `vars_store` at once) and read back; what the program set read as it
+/// stands after the blocks read; other numbers and infinity refused.
+#[test]
+fn the_macro_variable_page_goes_through_the_c_abi() {
+    let host = new_host(Host {
+        start: vec![(0, 3.0)],
+        ..Host::default()
+    });
+    let (m, c) = new_controller(host, &module("#100=#500+4\nG00 X[#510] Z5\nM30\n"));
+    let read = |n| {
+        let mut v = f64::NAN;
+        let s = unsafe { gbc_variable(c, n, &mut v) };
+        (s, v)
+    };
+    assert_eq!(read(500), (GbcStatus::Ok, 3.0));
+    assert_eq!(gbc_set_variable(c, 510, 42.0), GbcStatus::Ok);
+    assert_eq!(read(510), (GbcStatus::Ok, 42.0));
+    let stores = unsafe { &(*host).stores };
+    assert_eq!(stores.last().map(|s| (s[0], s[10])), Some((3.0, 42.0)));
+    for n in [1, 100, 499, 1000, 5001] {
+        assert_eq!(
+            gbc_set_variable(c, n, 1.0),
+            GbcStatus::InvalidArgument,
+            "#{n}"
+        );
+        assert!(last_error().contains("only #500–#999"), "{}", last_error());
+    }
+    assert_eq!(
+        gbc_set_variable(c, 520, f64::INFINITY),
+        GbcStatus::InvalidArgument
+    );
+    assert_eq!(read(7777).0, GbcStatus::InvalidArgument);
+    let null = unsafe { gbc_variable(c, 500, std::ptr::null_mut()) };
+    assert_eq!(null, GbcStatus::NullPointer);
+    assert_eq!(gbc_run_ahead(c), GbcStatus::Ok);
+    assert_eq!(read(100), (GbcStatus::Ok, 7.0));
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

@@ -83,3 +83,4 @@ pub use nc::offset_page::{OffsetLengths, WorkOffset};
 pub use nc::tool_life::{Group as LifeGroup, LifeUnit};
 pub use split::{Interpreter, Realtime};
 pub use vm::restart::{RestartAt, RestartError, Restarted, Target};
+pub use vm::VariableRefused;

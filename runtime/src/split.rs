@@ -374,6 +374,22 @@ impl Interpreter {
     pub fn set_block_skip(&mut self, switch: u8, on: bool) {
         self.ra.set_block_skip(switch, on);
     }
+
+    /// The value of variable `n` as the program would read it now (vacant
+    /// as NaN), for the operator's macro-variable page. The VM reads
+    /// ahead of the motion: it is the value after the blocks read so far.
+    /// A number the dialect does not have: the error the program would
+    /// get.
+    pub fn variable(&self, n: u32) -> Result<f64, nc::NcError> {
+        self.ra.vm.variable(n)
+    }
+
+    /// Sets #500–#999 variable `n` (NaN: vacant) as the macro-variable
+    /// page does: kept over resets, handed to the storage at once, read
+    /// by the blocks the VM reads from now on ([`crate::Controller::set_variable`]).
+    pub fn set_variable(&mut self, n: u32, value: f64) -> Result<(), vm::VariableRefused> {
+        self.ra.vm.set_persistent(n, value)
+    }
 }
 
 /// The half of a split controller that moves the axes: call

@@ -1191,6 +1191,50 @@ impl Vm {
     pub fn persistent_mut(&mut self) -> &mut [f64; 500] {
         &mut self.vars.persistent
     }
+
+    /// Sets #500–#999 variable `n` as the operator's macro-variable page
+    /// does: NaN makes it vacant; the storage gets the set at once. The
+    /// VM reads ahead of the motion, so the value counts for the blocks
+    /// it reads from now on. Other variables are refused: #1–#33 and
+    /// #100–#199 belong to the run (and start vacant in each), system
+    /// variables act on the machine (the offset page has its own calls).
+    pub fn set_persistent(&mut self, n: u32, value: f64) -> Result<(), VariableRefused> {
+        let Some(crate::vars::Slot::Persistent(i)) = crate::vars::slot(n) else {
+            return Err(VariableRefused::NotPersistent(n));
+        };
+        if value.is_infinite() {
+            return Err(VariableRefused::NotFinite(n));
+        }
+        self.vars.persistent[i] = value;
+        self.vars.persistent_dirty = true;
+        self.store_persistent()
+            .map_err(|e| VariableRefused::Storage(e.message))
+    }
+}
+
+/// Why [`Vm::set_persistent`] refused a value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum VariableRefused {
+    /// The variable is not one of #500–#999.
+    NotPersistent(u32),
+    /// The value is infinite.
+    NotFinite(u32),
+    /// The storage failed (the value is set nonetheless, as a run's
+    /// would be before its E5007).
+    Storage(String),
+}
+
+impl core::fmt::Display for VariableRefused {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            VariableRefused::NotPersistent(n) => write!(
+                f,
+                "#{n}: only #500–#999 can be set from outside the program (#1–#33 and #100–#199 belong to the run, system variables act on the machine)"
+            ),
+            VariableRefused::NotFinite(n) => write!(f, "#{n}: the value is infinite"),
+            VariableRefused::Storage(e) => write!(f, "{e}"),
+        }
+    }
 }
 
 /// The sink of a statement between blocks ([`Vm::between`]): told its

@@ -27,6 +27,6 @@ pub mod restart;
 mod tier;
 mod vars;
 
-pub use interp::{Alarm, Status, Storage, Vm, PROFILE};
+pub use interp::{Alarm, Status, Storage, VariableRefused, Vm, PROFILE};
 pub use nc::{Event, Sink};
 pub use tier::{Entry, Kernel, LoopState, Ran, Tier, TierStats};
