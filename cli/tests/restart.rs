@@ -210,6 +210,11 @@ fn a_restart_inside_compensation_approaches_the_compensated_point() {
     let canon = String::from_utf8_lossy(&out.stdout);
     let rapids: Vec<&str> = canon.lines().filter(|l| l.starts_with("RAPID")).collect();
     assert_eq!(rapids[..2], ["RAPID X=20 Z=0", "RAPID X=20 Z=-20.4686"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--from: the approach goes to X20 Z-20.4686 (work coordinates)"),
+        "{err}"
+    );
     let out = Command::new(env!("CARGO_BIN_EXE_gbvm"))
         .args(["check", "--from", "5", "--machine", machine])
         .arg(&gbc)

@@ -449,10 +449,16 @@ fn run(args: &RunArgs, quiet: bool) -> ExitCode {
     }
 }
 
-/// What a restart (`--from`) does not give again, told on stderr: the M
-/// codes of the machine's own the blocks before it gave, as a control
-/// shows them after its search.
+/// What a restart (`--from`) does, told on stderr as a control's restart
+/// page shows it: where the approach goes, and the M codes of the
+/// machine's own the blocks before gave, which it does not give again.
 fn restarted(r: &vm::restart::Restarted) {
+    let to = r.destination;
+    note(format_args!(
+        "gbvm: note: --from: the approach goes to X{} Z{} (work coordinates)",
+        nc::event::Num(to.x),
+        nc::event::Num(to.z)
+    ));
     if r.m_codes.is_empty() {
         return;
     }
