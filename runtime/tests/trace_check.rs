@@ -797,3 +797,15 @@ fn a_period_ending_on_a_short_move_names_its_block() {
         );
     }
 }
+
+/// Moves of a µm or two that turn back (a 0.001 mm line, a 0.002 mm one
+/// back, an arc of R0.0011 to a point 0.001 mm from where the first
+/// began): the tool stands within the 0.001 mm tolerance of several end
+/// points at once, one of them exactly at it. Found by the bounded fuzz
+/// target `contours_on_random_bytes`: the distance came out 1.2e-15 mm
+/// over the tolerance, and the end point was reported missed.
+#[test]
+fn end_points_a_micrometre_apart_are_reached_at_the_tolerance() {
+    let src = "G00 X60 Z2\nM03 S1000\nG64\nG98 F100\nG01 X60.000 Z1.999\nG01 X60.000 Z2.001\nG03 X59.998 Z1.999 R0.0011\nG01 X60.424 Z2.318\nM30\n";
+    assert_eq!(certify(src, &Machine::reference(), false), Some(Ok(())));
+}

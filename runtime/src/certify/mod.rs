@@ -81,6 +81,10 @@ pub const TRAVEL_MM: f64 = 1e-6;
 /// A canon end point is reached when the path passes within this distance
 /// (the 0.001 mm resolution), mm.
 pub const END_POINT_MM: f64 = 0.001;
+/// What a distance computed from set points may carry of rounding, mm: a
+/// point exactly at a tolerance is within it (1e-15 mm over did fail a
+/// µm move's end point once).
+const ROUNDING_MM: f64 = 1e-9;
 /// A set point of a straight or circular feed lies within this distance of
 /// its canon move (the 0.001 mm resolution: set points lie on the path,
 /// only the chord between two of them cuts a corner or an arc), mm.
@@ -234,7 +238,7 @@ impl Certifier {
         // its tolerance, that move may have a step to go).
         let here = V2::from_xz(p.x, p.z);
         let running = match self.done {
-            Some(d) if (d.end - here).norm() <= END_POINT_MM => Some(d),
+            Some(d) if (d.end - here).norm() <= END_POINT_MM + ROUNDING_MM => Some(d),
             _ => self.pending.front().copied(),
         };
         if let Some(m) = running {

@@ -54,7 +54,8 @@ impl Certifier {
                 self.nearer(d, p);
                 break;
             }
-            if d <= m.tol || m.nearest <= m.tol {
+            let within = m.tol + super::ROUNDING_MM;
+            if d <= within || m.nearest <= within {
                 if way.joined() {
                     from += (1.0 - from) * way.param(from).clamp(0.0, 1.0);
                 }
