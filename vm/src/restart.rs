@@ -371,24 +371,22 @@ struct Resume {
 }
 
 /// At the target: refused if the run cannot resume there; otherwise
-/// where it does. Under nose-radius compensation that is where the whole
-/// run's compensated tool stands, not the programmed point: when an
-/// element of the blocks before waits for the target's move (or a corner
-/// word or an angle does), the search reads on until it is printed.
+/// where it does: where the whole run's tool stands when the target's
+/// output begins, the end of the last move printed before it. Under
+/// nose-radius compensation that is the compensated tool's point, not
+/// the programmed one; when an element of the blocks before waits for
+/// the target's move (or a corner word or an angle does), the search
+/// reads on until it is printed. When no move was printed since the
+/// start, a reference return or a new origin, the programmed point.
 fn resume(vm: &mut Vm, line: u32, search: &mut Search) -> Result<Resume, RestartError> {
     if let Some(why) = held(vm, &search.kept) {
         return Err(RestartError::Held { line, why });
     }
     let (programmed, origin, c) = (vm.nc.position(), vm.nc.origin(), vm.nc.c());
-    let offset = vm.nc.nose_offset_running();
-    let waiting = vm.nc.waiting_block();
-    if let Some(block) = waiting {
+    if let Some(block) = vm.nc.waiting_block() {
         catch_up(vm, search, block)?;
     }
-    let to = match search.kept.end {
-        Some(end) if offset || waiting.is_some() => end,
-        _ => programmed,
-    };
+    let to = search.kept.end.unwrap_or(programmed);
     Ok(Resume { to, origin, c })
 }
 

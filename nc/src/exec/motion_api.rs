@@ -34,13 +34,6 @@ impl Nc {
         self.st.contour.is_holding() || crate::exec::comp::compensating(self)
     }
 
-    /// Tool-nose compensation runs (started by a G41/G42 move and not yet
-    /// cancelled): the printed points are the compensated tool's, apart
-    /// from the programmed ones.
-    pub fn nose_offset_running(&self) -> bool {
-        crate::exec::comp::running(self)
-    }
-
     /// The last block was a G32/G34 move, so that the next one may
     /// continue its chain. Read after a block that found a block waiting
     /// ([`thread_waiting`](Nc::thread_waiting)): when it continues the
