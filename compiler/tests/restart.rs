@@ -89,9 +89,10 @@ struct Whole {
 }
 
 /// Where the tool stood after `events` (X a diameter, Z): the end of the
-/// last move printed, unless a reference return or a new origin came
-/// after it (their events name no point in this frame), or none was
-/// printed; then `programmed`, the kernel's point.
+/// last move printed, unless a reference return, a new origin or a plane
+/// of polar or cylindrical interpolation came after it (their events name
+/// no point in X and Z of this frame), or none was printed; then
+/// `programmed`, the kernel's point.
 fn stood(events: &[Event], programmed: (f64, f64)) -> (f64, f64) {
     let mut at = None;
     for e in events {
@@ -104,7 +105,11 @@ fn stood(events: &[Event], programmed: (f64, f64)) -> (f64, f64) {
             | Event::Thread { x, z, .. }
             | Event::ArcThread { x, z, .. }
             | Event::Skip { x, z } => Some((x, z)),
-            Event::Home { .. } | Event::Origin { .. } => None,
+            Event::Home { .. }
+            | Event::Origin { .. }
+            | Event::PolarOn
+            | Event::PolarOff { .. }
+            | Event::Cylinder(_) => None,
             _ => at,
         };
     }
@@ -718,4 +723,25 @@ M30
     assert!(whole[arc].contains("X=36.4 Z=-20.6"), "{whole:?}");
     assert_eq!(canon[3], "RAPID X=36.4 Z=-20.6");
     assert_eq!(canon[4..], whole[arc + 1..]);
+}
+
+/// After polar interpolation the tool stands where the plane left the
+/// joints, not at the last X/Z move before it. By hand: the line ends at
+/// plane point (10, 10), so X = 2·√(10² + 10²) = 28.2843 and C = 45°, Z
+/// staying at -2. A restart at the block after G13.1 approaches there
+/// (X with C first, then Z), not X40 Z-2.
+#[test]
+fn a_restart_after_polar_interpolation_approaches_where_the_plane_left_the_tool() {
+    let mut machine = Machine::reference();
+    machine.axes.c.enabled = true;
+    let src = "G98\nG00 X40 Z-2 C0\nG12.1\nG01 X20 C10 F300\nG13.1\nG00 X60\nM30\n";
+    let canon = run_on(&machine, src, "6").expect("restarts");
+    let expected = [
+        "FEED F=300 MODE=MIN",
+        "RAPID X=28.2843 Z=0 C=45",
+        "RAPID X=28.2843 Z=-2",
+        "RAPID X=60 Z=-2",
+        "STOP KIND=M30",
+    ];
+    assert_eq!(canon, expected);
 }

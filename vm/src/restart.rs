@@ -183,8 +183,9 @@ struct Kept {
     feed: Option<Event>,
     /// Polar or cylindrical interpolation in force.
     plane: bool,
-    /// Where the last move printed ends (none after a reference return
-    /// or an origin, whose frame it is not in).
+    /// Where the last move printed ends (none after a reference return,
+    /// an origin or a plane of polar or cylindrical interpolation, whose
+    /// frame it is not in).
     end: Option<Pt>,
     /// The other M codes, each once, in the order of their last use.
     others: Vec<u32>,
@@ -282,12 +283,16 @@ impl Kept {
                 return;
             }
             Event::Feed { .. } => &mut self.feed,
+            // (A plane's moves are not in X and Z: where the tool stands
+            // after one is the kernel's point.)
             Event::PolarOn | Event::Cylinder(Some(_)) => {
                 self.plane = true;
+                self.end = None;
                 return;
             }
             Event::PolarOff { .. } | Event::Cylinder(None) => {
                 self.plane = false;
+                self.end = None;
                 return;
             }
             Event::Home { .. } => {
