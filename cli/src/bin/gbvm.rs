@@ -174,8 +174,10 @@ struct RunCmd {
     /// (120) or a sequence number (N120); @PASS for the PASS-th time the
     /// run reaches it (N120@3). The blocks before it run without motion;
     /// then the last origin, tool, speed, spindle, coolant and feed are
-    /// given again and the tool goes there, X first, then Z (Z first
-    /// with the machine file's run.restart_approach = "z_then_x").
+    /// given again and the tool goes where the whole run's tool stands
+    /// there (under G41/G42, on the compensated path), X first, then Z
+    /// (Z first with the machine file's run.restart_approach =
+    /// "z_then_x").
     #[arg(long, value_name = "LINE|N…[@PASS]")]
     from: Option<vm::restart::RestartAt>,
     /// Passes a main-program M99 makes before the run ends.
