@@ -4,7 +4,7 @@
 //! and the distance its move has to go. The VM reads ahead of the motion;
 //! these follow the motion.
 
-use crate::{fail, put, with_ctl, GbcController, GbcStatus};
+use crate::{put, put_xz, with_ctl, GbcController, GbcStatus};
 use runtime::ActiveCodes;
 
 /// The number of modal groups in [`GbcActiveCodes::g`].
@@ -85,15 +85,9 @@ pub unsafe extern "C" fn gbc_distance_to_go(
     z: *mut f64,
 ) -> GbcStatus {
     with_ctl(controller, |c| {
-        if x.is_null() || z.is_null() {
-            return Err(fail(GbcStatus::NullPointer, "an output pointer is null"));
-        }
         let d = c.run.as_ref().map(|r| r.distance_to_go());
         let d = d.unwrap_or(runtime::Xz { x: 0.0, z: 0.0 });
-        // SAFETY: both checked non-null; the caller's promise.
-        unsafe {
-            put(x, d.x)?;
-            put(z, d.z)
-        }
+        // SAFETY: the caller's promise.
+        unsafe { put_xz(x, z, d) }
     })
 }

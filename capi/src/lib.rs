@@ -242,6 +242,22 @@ unsafe fn put<T>(out: *mut T, v: T) -> Outcome {
     Ok(())
 }
 
+/// Writes an X/Z pair through two out-pointers, both required.
+///
+/// # Safety
+/// `x` and `z` are null or valid for a write of `f64`.
+unsafe fn put_xz(x: *mut f64, z: *mut f64, v: runtime::Xz) -> Outcome {
+    if x.is_null() || z.is_null() {
+        return Err(fail(GbcStatus::NullPointer, "an output pointer is null"));
+    }
+    // SAFETY: both non-null; the caller's promise.
+    unsafe {
+        x.write(v.x);
+        z.write(v.z);
+    }
+    Ok(())
+}
+
 /// `len` bytes at `ptr` (null only with `len` 0 is refused as well).
 ///
 /// # Safety

@@ -7,7 +7,7 @@
 //! switches are kept for it); once one is loaded, that program's
 //! controller has it.
 
-use crate::{fail, put, with_ctl, Failure, GbcController, GbcStatus};
+use crate::{fail, put, put_xz, with_ctl, Failure, GbcController, GbcStatus};
 use runtime::{BadKey, OffsetLengths, WorkOffset, Xz};
 
 /// `which` of `gbc_work_offset`/`gbc_set_work_offset`: the external work
@@ -151,6 +151,7 @@ pub unsafe extern "C" fn gbc_work_offset(
     z: *mut f64,
 ) -> GbcStatus {
     with_ctl(controller, |c| {
+        // (A null pointer is told before a bad `which`.)
         if x.is_null() || z.is_null() {
             return Err(fail(GbcStatus::NullPointer, "an output pointer is null"));
         }
@@ -159,11 +160,8 @@ pub unsafe extern "C" fn gbc_work_offset(
             Some(r) => r.work_offset(w),
             None => c.machine.work_offset_of(w),
         };
-        // SAFETY: both checked non-null; the caller's promise.
-        unsafe {
-            put(x, at.x)?;
-            put(z, at.z)
-        }
+        // SAFETY: the caller's promise.
+        unsafe { put_xz(x, z, at) }
     })
 }
 

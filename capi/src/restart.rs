@@ -2,7 +2,7 @@
 //! begins at a block in the middle of the program, as after a broken
 //! insert or an interrupted shift.
 
-use crate::{fail, put, with_ctl, GbcController, GbcStatus, Outcome};
+use crate::{fail, put, put_xz, with_ctl, GbcController, GbcStatus, Outcome};
 use runtime::{RestartAt, RestartError, RestartRefused, Target};
 
 /// Program restart at the block on source line `line` (1-based) of the
@@ -127,19 +127,13 @@ pub unsafe extern "C" fn gbc_restart_destination(
     z: *mut f64,
 ) -> GbcStatus {
     with_ctl(controller, |c| {
-        if x.is_null() || z.is_null() {
-            return Err(fail(GbcStatus::NullPointer, "an output pointer is null"));
-        }
         let to = c.restarted.as_ref().map(|r| r.destination);
         let to = to.unwrap_or(runtime::Xz {
             x: f64::NAN,
             z: f64::NAN,
         });
-        // SAFETY: both checked non-null; the caller's promise.
-        unsafe {
-            put(x, to.x)?;
-            put(z, to.z)
-        }
+        // SAFETY: the caller's promise.
+        unsafe { put_xz(x, z, to) }
     })
 }
 

@@ -48,18 +48,7 @@ fn until_line(c: GbcController, line: u32) {
 
 #[test]
 fn the_codes_in_force_follow_the_motion() {
-    let text = "";
-    let (mut m, mut c) = (0, 0);
-    unsafe {
-        assert_eq!(
-            gbc_machine_from_toml(text.as_ptr().cast(), text.len(), &mut m),
-            GbcStatus::Ok
-        );
-        assert_eq!(
-            gbc_controller_new(m, std::ptr::null(), &mut c),
-            GbcStatus::Ok
-        );
-    }
+    let (m, c) = controller_on("");
     let unloaded = active(c);
     assert_eq!(
         (unloaded.g, unloaded.f, unloaded.s, unloaded.t),

@@ -7,7 +7,6 @@
 
 mod periods;
 
-use core::ffi::c_char;
 use gbc::*;
 use periods::*;
 use std::ptr::null_mut;
@@ -34,19 +33,7 @@ fn module(src: &str, machine: &str) -> Vec<u8> {
 
 /// A controller of the machine (M30 rewinding or not), no program yet.
 fn controller(rewinds: bool) -> (GbcMachine, GbcController) {
-    let text = machine_text(rewinds);
-    let (mut m, mut c) = (0, 0);
-    unsafe {
-        assert_eq!(
-            gbc_machine_from_toml(text.as_ptr().cast(), text.len(), &mut m),
-            GbcStatus::Ok
-        );
-        assert_eq!(
-            gbc_controller_new(m, std::ptr::null(), &mut c),
-            GbcStatus::Ok
-        );
-    }
-    (m, c)
+    controller_on(&machine_text(rewinds))
 }
 
 fn load(c: GbcController, src: &str, rewinds: bool) {
@@ -161,17 +148,6 @@ fn used(c: GbcController) -> ([f64; 2], Option<u32>) {
         }
     }
     (u, current)
-}
-
-fn last_error() -> String {
-    let mut buf = [0 as c_char; 512];
-    let mut len = 0;
-    assert_eq!(
-        unsafe { gbc_last_error(buf.as_mut_ptr(), buf.len(), &mut len) },
-        GbcStatus::Ok
-    );
-    let text = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
-    text.to_string_lossy().into_owned()
 }
 
 #[test]
@@ -302,17 +278,7 @@ fn tool_life_is_read_slot_by_slot_until_refused() {
 #[test]
 fn a_minutes_group_says_its_unit() {
     let text = "[[tool_life.group]]\nnumber = 3\nlife = 45.5\nunit = \"minutes\"\ntools = [505]\n";
-    let (mut m, mut c) = (0, 0);
-    unsafe {
-        assert_eq!(
-            gbc_machine_from_toml(text.as_ptr().cast(), text.len(), &mut m),
-            GbcStatus::Ok
-        );
-        assert_eq!(
-            gbc_controller_new(m, std::ptr::null(), &mut c),
-            GbcStatus::Ok
-        );
-    }
+    let (m, c) = controller_on(text);
     let t = tool_life(c, 3, 0).expect("before a program too");
     assert_eq!((t.tool, t.life, t.unit), (505, 45.5, GBC_LIFE_MINUTES));
     assert_eq!(tool_life(c, 1, 0), Err(GbcStatus::InvalidArgument));

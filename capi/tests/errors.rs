@@ -3,8 +3,11 @@
 //! earlier call), a successful call leaves it, and it is per thread. The
 //! text is given as `snprintf` would: the full length, a cut detectable.
 
+mod periods;
+
 use core::ffi::c_char;
 use gbc::*;
+use periods::blank;
 use std::ptr::null_mut;
 
 /// The text `gbc_last_error` gives now, read with a length query first.
@@ -52,28 +55,6 @@ fn module(src: &str) -> Vec<u8> {
     out.module.expect("compiles").to_bytes()
 }
 
-fn set_point() -> GbcSetPoint {
-    GbcSetPoint {
-        time_s: 0.0,
-        x: 0.0,
-        z: 0.0,
-        axis_x: 0.0,
-        axis_z: 0.0,
-        count_x: 0,
-        count_z: 0,
-        count_c: 0,
-        c: 0.0,
-        has_c: false,
-        spindle_rpm: 0.0,
-        spindle_turns: 0.0,
-        feed: 0.0,
-        line: 0,
-        file: 0,
-        tool: 0,
-        motion: GbcMotion::None,
-    }
-}
-
 #[test]
 fn every_failure_sets_a_text_about_itself() {
     let (mut m, mut c) = (0, 0);
@@ -84,7 +65,7 @@ fn every_failure_sets_a_text_about_itself() {
             GbcStatus::Ok
         );
     }
-    let mut sp = set_point();
+    let mut sp = blank();
     let null = GbcStatus::NullPointer;
     fails_with("tick, null out", null, "null", || unsafe {
         gbc_tick(c, null_mut())

@@ -3,7 +3,10 @@
 //! touches nothing; null out-pointers and misuse (no program, a second
 //! load, a tick in an alarm) are reported too.
 
+mod periods;
+
 use gbc::*;
+use periods::blank;
 use std::ptr::null_mut;
 
 fn reference() -> GbcMachine {
@@ -48,28 +51,6 @@ fn state_info() -> GbcStateInfo {
     }
 }
 
-fn set_point() -> GbcSetPoint {
-    GbcSetPoint {
-        time_s: 0.0,
-        x: 0.0,
-        z: 0.0,
-        axis_x: 0.0,
-        axis_z: 0.0,
-        count_x: 0,
-        count_z: 0,
-        count_c: 0,
-        c: 0.0,
-        has_c: false,
-        spindle_rpm: 0.0,
-        spindle_turns: 0.0,
-        feed: 0.0,
-        line: 0,
-        file: 0,
-        tool: 0,
-        motion: GbcMotion::None,
-    }
-}
-
 fn lengths() -> GbcOffsetLengths {
     GbcOffsetLengths {
         x: 0.0,
@@ -93,7 +74,7 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
         ("gbc_run_ahead", Box::new(|h| gbc_run_ahead(h))),
         (
             "gbc_tick",
-            Box::new(|h| unsafe { gbc_tick(h, &mut set_point()) }),
+            Box::new(|h| unsafe { gbc_tick(h, &mut blank()) }),
         ),
         (
             "gbc_state",
@@ -415,7 +396,7 @@ fn null_pointers_and_bad_arguments_are_refused() {
             gbc_spindle_feedback(c, f64::NAN, 1.0),
             GbcStatus::InvalidArgument
         );
-        assert_eq!(gbc_tick(c, &mut set_point()), GbcStatus::NoProgram);
+        assert_eq!(gbc_tick(c, &mut blank()), GbcStatus::NoProgram);
         assert_eq!(gbc_run_ahead(c), GbcStatus::NoProgram);
         assert_eq!(gbc_cycle_start(c), GbcStatus::NoProgram);
         let mut st = state_info();
@@ -495,7 +476,7 @@ fn a_tick_in_an_alarm_is_refused_until_reset() {
     let c = controller(m);
     // #3000 = 7 raises alarm 3007 with its text on line 3.
     let prog = module("O1\nG00 W-1\n#3000 = 7 (TOOL BROKEN)\nM30\n");
-    let mut sp = set_point();
+    let mut sp = blank();
     let mut st = state_info();
     unsafe {
         assert_eq!(

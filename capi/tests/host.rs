@@ -2,8 +2,11 @@
 //! FIN, #500–#999 loaded and stored through callbacks (and kept over a
 //! reset), the skip signal of G31.
 
+mod periods;
+
 use core::ffi::c_void;
 use gbc::*;
+use periods::{blank, last_error};
 
 #[derive(Default)]
 struct Host {
@@ -75,28 +78,6 @@ fn new_controller(host: *mut Host, prog: &[u8]) -> (GbcMachine, GbcController) {
         );
     }
     (m, c)
-}
-
-fn blank() -> GbcSetPoint {
-    GbcSetPoint {
-        time_s: 0.0,
-        x: 0.0,
-        z: 0.0,
-        axis_x: 0.0,
-        axis_z: 0.0,
-        count_x: 0,
-        count_z: 0,
-        count_c: 0,
-        c: 0.0,
-        has_c: false,
-        spindle_rpm: 0.0,
-        spindle_turns: 0.0,
-        feed: 0.0,
-        line: 0,
-        file: 0,
-        tool: 0,
-        motion: GbcMotion::None,
-    }
 }
 
 /// Ticks to the end (pressing cycle start at stops); calls `each` after
@@ -569,15 +550,6 @@ const TWO_TOOLS: &str = concat!(
     "X50\n",
     "M30\n",
 );
-
-/// The text `gbc_last_error` gives now.
-fn last_error() -> String {
-    let mut buf = [0 as core::ffi::c_char; 256];
-    let s = unsafe { gbc_last_error(buf.as_mut_ptr(), buf.len(), std::ptr::null_mut()) };
-    assert_eq!(s, GbcStatus::Ok);
-    let text = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
-    text.to_string_lossy().into_owned()
-}
 
 /// A restart asked for through the C ABI.
 type Restart = fn(GbcController) -> GbcStatus;

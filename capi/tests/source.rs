@@ -90,21 +90,6 @@ fn reset(c: GbcController) {
     panic!("no idle after the reset: {:?}", state(c));
 }
 
-fn last_error() -> String {
-    let mut len = 0;
-    assert_eq!(
-        unsafe { gbc_last_error(null_mut(), 0, &mut len) },
-        GbcStatus::Ok
-    );
-    let mut buf = vec![0 as c_char; len + 1];
-    assert_eq!(
-        unsafe { gbc_last_error(buf.as_mut_ptr(), buf.len(), null_mut()) },
-        GbcStatus::Ok
-    );
-    let text = unsafe { CStr::from_ptr(buf.as_ptr()) };
-    text.to_string_lossy().into_owned()
-}
-
 fn file_name(c: GbcController, index: u16) -> String {
     let mut len = 0;
     assert_eq!(

@@ -201,18 +201,7 @@ fn first_arrival_pc(m: &isa::Module, line: u32) -> u32 {
 fn a_restart_at_any_block_prints_the_rest_of_the_whole_run() {
     let mut restarts = Restarts::default();
     for (name, src, machine) in common::suite() {
-        let opts = Options {
-            machine: machine.clone(),
-            ..Options::default()
-        };
-        let c = compile(&name, &src, &opts);
-        if c.has_errors() {
-            continue;
-        }
-        let Some(m) = c.module else {
-            continue;
-        };
-        restarts += check_every_line(&name, &m, &machine, 1);
+        restarts += check_program(&name, &name, &src, &machine, 1);
     }
     eprintln!("{restarts:?}");
     assert!(restarts.began >= 2000, "{restarts:?}");
@@ -231,6 +220,23 @@ impl std::ops::AddAssign for Restarts {
     fn add_assign(&mut self, o: Restarts) {
         self.began += o.began;
         self.past_waiting += o.past_waiting;
+    }
+}
+
+/// [`check_every_line`] of `src` compiled as `file` for `machine`
+/// (`name` in the messages); none when it does not compile.
+fn check_program(file: &str, name: &str, src: &[u8], machine: &Machine, passes: u32) -> Restarts {
+    let opts = Options {
+        machine: machine.clone(),
+        ..Options::default()
+    };
+    let c = compile(file, src, &opts);
+    if c.has_errors() {
+        return Restarts::default();
+    }
+    match c.module {
+        Some(m) => check_every_line(name, &m, machine, passes),
+        None => Restarts::default(),
     }
 }
 
@@ -265,18 +271,8 @@ fn a_restart_in_random_programs_prints_the_rest_of_the_whole_run() {
     let mut restarts = Restarts::default();
     for i in 0..1000 {
         let src = common::random_program(&mut rng);
-        let opts = Options {
-            machine: machine.clone(),
-            ..Options::default()
-        };
-        let c = compile("p.nc", src.as_bytes(), &opts);
-        if c.has_errors() {
-            continue;
-        }
-        let Some(m) = c.module else {
-            continue;
-        };
-        restarts += check_every_line(&format!("program {i}:\n{src}"), &m, &machine, 3);
+        let name = format!("program {i}:\n{src}");
+        restarts += check_program("p.nc", &name, src.as_bytes(), &machine, 3);
     }
     eprintln!("{restarts:?}");
     assert!(restarts.began >= 10_000, "{restarts:?}");
@@ -376,18 +372,7 @@ fn a_restart_approaching_z_first_prints_the_rest_of_the_whole_run() {
     let mut restarts = Restarts::default();
     for (name, src, mut machine) in common::suite() {
         machine.run.restart_approach = nc::machine::RestartApproach::ZThenX;
-        let opts = Options {
-            machine: machine.clone(),
-            ..Options::default()
-        };
-        let c = compile(&name, &src, &opts);
-        if c.has_errors() {
-            continue;
-        }
-        let Some(m) = c.module else {
-            continue;
-        };
-        restarts += check_every_line(&name, &m, &machine, 1);
+        restarts += check_program(&name, &name, &src, &machine, 1);
     }
     assert!(restarts.began >= 2000, "{restarts:?}");
 }
@@ -676,18 +661,8 @@ fn a_restart_in_random_compensated_profiles_prints_the_rest_of_the_whole_run() {
     let mut restarts = Restarts::default();
     for i in 0..n {
         let src = random_profile(&mut rng);
-        let opts = Options {
-            machine: machine.clone(),
-            ..Options::default()
-        };
-        let c = compile("p.nc", src.as_bytes(), &opts);
-        if c.has_errors() {
-            continue;
-        }
-        let Some(m) = c.module else {
-            continue;
-        };
-        restarts += check_every_line(&format!("profile {i}:\n{src}"), &m, &machine, 3);
+        let name = format!("profile {i}:\n{src}");
+        restarts += check_program("p.nc", &name, src.as_bytes(), &machine, 3);
     }
     eprintln!("{restarts:?}");
     assert!(restarts.past_waiting >= 5000, "{restarts:?}");

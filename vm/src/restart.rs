@@ -300,27 +300,11 @@ impl Kept {
                 return;
             }
             _ => {
-                self.end = end_of(&event).or(self.end);
+                self.end = event.end().map(|(x, z)| Pt::xz(x, z)).or(self.end);
                 return;
             }
         };
         *slot = Some(event);
-    }
-}
-
-/// Where a printed move ends (work coordinates); `None` for any other
-/// event.
-fn end_of(event: &Event) -> Option<Pt> {
-    match *event {
-        Event::Rapid { x, z, .. }
-        | Event::Line { x, z, .. }
-        | Event::Arc { x, z, .. }
-        | Event::Ellipse { x, z, .. }
-        | Event::Parabola { x, z, .. }
-        | Event::Thread { x, z, .. }
-        | Event::ArcThread { x, z, .. }
-        | Event::Skip { x, z } => Some(Pt::xz(x, z)),
-        _ => None,
     }
 }
 

@@ -1,5 +1,6 @@
 //! What the tests that drive a controller period by period through the C
-//! functions share: a zeroed set point, the state, one period, freeing.
+//! functions share: a zeroed set point, the state, one period, freeing,
+//! a controller on a machine file, the last error text.
 #![allow(dead_code)]
 
 use gbc::*;
@@ -54,4 +55,36 @@ pub fn period(c: GbcController) -> (GbcSetPoint, GbcRunState) {
 pub fn free(m: GbcMachine, c: GbcController) {
     assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+}
+
+/// A controller with no program on the machine of TOML `text`.
+pub fn controller_on(text: &str) -> (GbcMachine, GbcController) {
+    let (mut m, mut c) = (0, 0);
+    unsafe {
+        assert_eq!(
+            gbc_machine_from_toml(text.as_ptr().cast(), text.len(), &mut m),
+            GbcStatus::Ok
+        );
+        assert_eq!(
+            gbc_controller_new(m, std::ptr::null(), &mut c),
+            GbcStatus::Ok
+        );
+    }
+    (m, c)
+}
+
+/// `gbc_last_error`'s whole text.
+pub fn last_error() -> String {
+    let mut len = 0;
+    assert_eq!(
+        unsafe { gbc_last_error(std::ptr::null_mut(), 0, &mut len) },
+        GbcStatus::Ok
+    );
+    let mut buf = vec![0 as core::ffi::c_char; len + 1];
+    assert_eq!(
+        unsafe { gbc_last_error(buf.as_mut_ptr(), buf.len(), std::ptr::null_mut()) },
+        GbcStatus::Ok
+    );
+    let text = unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) };
+    text.to_string_lossy().into_owned()
 }

@@ -237,6 +237,22 @@ impl Event {
         )
     }
 
+    /// Where a move in X and Z ends (X a diameter, Z; work coordinates);
+    /// `None` for any other event, a plane's moves included.
+    pub fn end(&self) -> Option<(f64, f64)> {
+        match *self {
+            Event::Rapid { x, z, .. }
+            | Event::Line { x, z, .. }
+            | Event::Arc { x, z, .. }
+            | Event::Ellipse { x, z, .. }
+            | Event::Parabola { x, z, .. }
+            | Event::Thread { x, z, .. }
+            | Event::ArcThread { x, z, .. }
+            | Event::Skip { x, z } => Some((x, z)),
+            _ => None,
+        }
+    }
+
     /// A motion of the tool (for G66 and the block counter).
     pub fn is_motion(&self) -> bool {
         matches!(

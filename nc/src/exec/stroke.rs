@@ -123,21 +123,6 @@ pub fn select(nc: &mut Nc, code: Stroke, p: &Parsed) {
     nc.st.stroke2 = Some(area);
 }
 
-/// The end point (X diameter, Z; work coordinates) of a motion event.
-fn end_of(e: &Event) -> Option<(f64, f64)> {
-    match *e {
-        Event::Rapid { x, z, .. }
-        | Event::Line { x, z, .. }
-        | Event::Arc { x, z, .. }
-        | Event::Ellipse { x, z, .. }
-        | Event::Parabola { x, z, .. }
-        | Event::Thread { x, z, .. }
-        | Event::ArcThread { x, z, .. }
-        | Event::Skip { x, z, .. } => Some((x, z)),
-        _ => None,
-    }
-}
-
 /// Points along the path of a motion event, its end last: an arc's every
 /// degree or finer (chords of the circle); any other move's end alone.
 struct PathPoints {
@@ -284,7 +269,7 @@ impl<'a> Guard<'a> {
             // The plane's moves print no work point to follow.
             Event::Cylinder(None) => self.at_known = false,
             _ => {
-                if let Some((x, z)) = end_of(e) {
+                if let Some((x, z)) = e.end() {
                     let to = Pt::xz(x, z);
                     self.check_move(e, to)?;
                     self.at = to;

@@ -89,23 +89,12 @@ impl Sink for Watch<'_> {
         if self.fault.is_some() {
             return;
         }
-        let end = match e {
-            Event::Feed { f, .. } => {
-                self.zero = f == 0.0;
-                None
-            }
-            Event::Rapid { x, z, .. }
-            | Event::Line { x, z, .. }
-            | Event::Arc { x, z, .. }
-            | Event::Ellipse { x, z, .. }
-            | Event::Parabola { x, z, .. }
-            | Event::Thread { x, z, .. }
-            | Event::ArcThread { x, z, .. }
-            | Event::Skip { x, z } => Some(Pt::new(x / 2.0, z)),
-            _ => None,
-        };
+        if let Event::Feed { f, .. } = e {
+            self.zero = f == 0.0;
+        }
+        let end = e.end().map(|(x, z)| Pt::xz(x, z));
         // Only a feed move after `FEED F=0` can fault: the usual event
-        // costs the match above and nothing more.
+        // costs the matches above and nothing more.
         let zero_move = self.zero && e.is_feed() && self.moves(&e, end);
         self.inner.emit(e);
         if let Some(p) = end {
