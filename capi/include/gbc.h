@@ -1004,14 +1004,16 @@ enum GbcStatus gbc_spindle_simulated(GbcController controller);
  * The codes in force for the block whose motion runs, as a control's
  * screen shows them: before the first block and after a reset, those a
  * run starts with (the machine's power-on codes, F, S and T 0), as also
- * before a program is loaded. A move that waited in the kernel for the
+ * before a program is loaded; after a program restart's search, until
+ * the cycle start runs its approach, those the run resumes with. A move that waited in the kernel for the
  * next block (nose-radius compensation, a corner word) shows the codes
  * after that block.
  *
  * # Safety
  * `out` is null or writable.
  */
-enum GbcStatus gbc_active_codes(GbcController controller, struct GbcActiveCodes *out);
+enum GbcStatus gbc_active_codes(GbcController controller,
+                                struct GbcActiveCodes *out);
 
 /**
  * How far the move that runs still has to go, mm, X on the diameter (as

@@ -101,3 +101,35 @@ fn the_codes_in_force_follow_the_motion() {
     assert_eq!(active(c).g, POWER_ON);
     free(m, c);
 }
+
+/// After a program restart's search, before the cycle start, the screen
+/// shows the codes the run resumes with (a control's restart page): at
+/// line 5, line 4's G01 G96 G99 F0.2 S150 and line 2's T0101; after a
+/// reset, the power-on codes again.
+#[test]
+fn a_restart_shows_the_codes_it_resumes_with() {
+    let (m, c) = controller_on("");
+    let opts = compiler::Options::default();
+    let prog = compiler::compile("p.nc", PROGRAM.as_bytes(), &opts);
+    let prog = prog.module.expect("compiles").to_bytes();
+    assert_eq!(
+        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+        GbcStatus::Ok
+    );
+    assert_eq!(gbc_restart_from(c, 5, 1), GbcStatus::Ok);
+    let resumed = active(c);
+    let mut g = POWER_ON;
+    (g[0], g[1], g[2]) = (10, 960, 990);
+    assert_eq!(
+        (resumed.g, resumed.f, resumed.s, resumed.t),
+        (g, 0.2, 150.0, 101)
+    );
+    assert_eq!(gbc_reset(c), GbcStatus::Ok);
+    for _ in 0..10_000 {
+        if period(c).1 == GbcRunState::Idle {
+            break;
+        }
+    }
+    assert_eq!(active(c).g, POWER_ON);
+    free(m, c);
+}

@@ -215,6 +215,14 @@ fn a_restart_inside_compensation_approaches_the_compensated_point() {
         err.contains("--from: the approach goes to X20 Z-20.4686 (work coordinates)"),
         "{err}"
     );
+    // By hand: G01 and G42 from line 3, T0101 and F100 before; the rest
+    // power-on (dialect.md §3).
+    assert!(
+        err.contains(
+            "--from: the run resumes with G01 G97 G98 G21 G42 G23 G80 G67 G54 G64 G18 G15 G13.1 F100 S0 T0101\n"
+        ),
+        "{err}"
+    );
     let out = Command::new(env!("CARGO_BIN_EXE_gbvm"))
         .args(["check", "--from", "5", "--machine", machine])
         .arg(&gbc)

@@ -226,7 +226,9 @@ impl<P: Plc> Controller<P> {
     }
 
     /// The codes in force for the block the motion runs, for the
-    /// operator's screen ([`Engine::active_codes`]).
+    /// operator's screen ([`Engine::active_codes`]); after a program
+    /// restart's search, until a block runs, the codes the run resumes
+    /// with ([`Restarted::codes`](crate::Restarted::codes)).
     pub fn active_codes(&self) -> nc::ActiveCodes {
         self.engine.active_codes()
     }

@@ -583,6 +583,15 @@ impl<P: Plc> Engine<P> {
         }
     }
 
+    /// While idle, the screen shows `codes` until a block runs: those a
+    /// program restart's search found ([`crate::Restarted::codes`]), or
+    /// a new program's power-on codes. Ignored while a run is under way.
+    pub fn show_codes(&mut self, codes: nc::ActiveCodes) {
+        if self.state == RunState::Idle && !self.reset_req {
+            self.tag.active = codes;
+        }
+    }
+
     /// The programmed point the axes are at, slide units. The set points
     /// differ from it only while an axis still follows a thread chain's
     /// corner ([`crate::follow`]); a new move waits until they meet.

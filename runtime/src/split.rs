@@ -527,7 +527,10 @@ impl<P: Plc> Realtime<P> {
     }
 
     /// The codes in force for the block the motion runs, for the
-    /// operator's screen ([`crate::Engine::active_codes`]).
+    /// operator's screen ([`crate::Engine::active_codes`]). After a
+    /// program restart, the power-on codes until the approach runs: the
+    /// codes the run resumes with are the interpreter's
+    /// ([`Interpreter::take_restart_result`]'s `Restarted::codes`).
     pub fn active_codes(&self) -> nc::ActiveCodes {
         self.engine.active_codes()
     }

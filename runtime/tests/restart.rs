@@ -7,8 +7,8 @@ mod common;
 use common::{check_limits, module, Run};
 use nc::Machine;
 use runtime::{
-    Config, Controller, JogRate, Manual, ManualAxis, RestartAt, RestartError, RestartRefused,
-    Restarted, RunState, SetPoint, Target,
+    ActiveCodes, Config, Controller, JogRate, Manual, ManualAxis, RestartAt, RestartError,
+    RestartRefused, Restarted, RunState, SetPoint, Target,
 };
 
 const TWO_TOOLS: &str = "\
@@ -40,6 +40,20 @@ fn controller() -> Controller {
     // start: the restart replaces it.)
     ctl.run_ahead();
     ctl
+}
+
+/// By hand, the codes in force at N100, before it runs: G00 from the
+/// block before, G97 from line 3, G99 and F0.2 from line 5, S800 and
+/// T0202 from lines 7 and 8; the rest power-on (dialect.md §3).
+fn at_n100() -> ActiveCodes {
+    ActiveCodes {
+        g: [
+            0, 970, 990, 210, 400, 230, 800, 670, 540, 640, 180, 150, 131,
+        ],
+        f: 0.2,
+        s: 800.0,
+        t: 202,
+    }
 }
 
 /// Cycle start, then every period to the end (at most 120 simulated s).
@@ -92,6 +106,7 @@ fn a_restart_runs_the_second_tool_s_cut_from_where_the_axes_stand() {
     let to_n100 = Restarted {
         m_codes: Vec::new(),
         destination: runtime::Xz { x: 40.0, z: 2.0 },
+        codes: at_n100(),
     };
     assert_eq!(ctl.restart_from(N100), Ok(to_n100));
     run_to_end(&mut ctl, &mut pts);
@@ -196,9 +211,18 @@ M30
     let mut ctl = Controller::new(module(src, &machine), machine, runtime::AutoAck).expect("loads");
     let mut canon: Vec<nc::Event> = Vec::new();
     // The second round starts where the first ended: X40 Z-10.
+    // The first round left G01 and F500; the rest is power-on.
     let round = Restarted {
         m_codes: Vec::new(),
         destination: runtime::Xz { x: 40.0, z: -10.0 },
+        codes: ActiveCodes {
+            g: [
+                10, 970, 980, 210, 400, 230, 800, 670, 540, 640, 180, 150, 131,
+            ],
+            f: 500.0,
+            s: 0.0,
+            t: 0,
+        },
     };
     assert_eq!(ctl.restart_from_tap(at, &mut canon), Ok(round));
     ctl.cycle_start();
@@ -311,4 +335,60 @@ fn a_restart_inside_compensation_runs_as_the_whole_run_from_the_compensated_poin
         .expect("line 5 runs");
     assert_eq!(lines(&pts), whole_lines[from_taper..]);
     assert_eq!((pts.last().map(|p| (p.x, p.z))), Some((60.0, -40.0)));
+}
+
+/// The operator's screen after a restart's search shows the codes the run
+/// resumes with, as a control's does, until a block runs; a refused
+/// restart and another program selected bring back the power-on codes.
+#[test]
+fn the_screen_shows_the_codes_a_restart_resumes_with() {
+    let mut ctl = controller();
+    let power_on = ctl.active_codes();
+    assert_eq!(
+        power_on.to_string(),
+        "G00 G97 G98 G21 G40 G23 G80 G67 G54 G64 G18 G15 G13.1 F0 S0 T0000"
+    );
+    let restarted = ctl.restart_from(N100).expect("restarts");
+    assert_eq!(restarted.codes, at_n100());
+    assert_eq!(ctl.active_codes(), at_n100());
+    assert_eq!(
+        at_n100().to_string(),
+        "G00 G97 G99 G21 G40 G23 G80 G67 G54 G64 G18 G15 G13.1 F0.2 S800 T0202"
+    );
+    let never = RestartAt {
+        target: Target::Seq(999),
+        pass: 1,
+    };
+    assert!(ctl.restart_from(never).is_err());
+    assert_eq!(ctl.active_codes(), power_on);
+    // Restarted, then another program selected: it starts at power-on.
+    ctl.restart_from(N100).expect("restarts");
+    let machine = Machine::reference();
+    assert_eq!(ctl.select_program(module(TWO_TOOLS, &machine)), Ok(()));
+    assert_eq!(ctl.active_codes(), power_on);
+    // Again, and the run: the approach shows them, N100's cut its own
+    // G01 F0.1.
+    ctl.restart_from(N100).expect("restarts");
+    ctl.cycle_start();
+    let mut seen = Vec::new();
+    for _ in 0..100_000 {
+        ctl.run_ahead();
+        let p = ctl.tick();
+        let codes = ctl.active_codes();
+        if seen.last() != Some(&(p.line, codes)) {
+            seen.push((p.line, codes));
+        }
+        if p.line == 11 {
+            break;
+        }
+    }
+    let cut = ActiveCodes {
+        g: [
+            10, 970, 990, 210, 400, 230, 800, 670, 540, 640, 180, 150, 131,
+        ],
+        f: 0.1,
+        ..at_n100()
+    };
+    assert_eq!(seen.first(), Some(&(10, at_n100())), "{seen:?}");
+    assert!(seen.contains(&(10, cut)), "{seen:?}");
 }

@@ -25,7 +25,7 @@ use isa::Instr;
 use nc::base::machine::{RestartApproach, Xz};
 use nc::base::point::Pt;
 use nc::Event;
-use nc::{Placed, Sink, RUNNING};
+use nc::{ActiveCodes, Placed, Sink, RUNNING};
 
 use crate::{Alarm, Status, Vm};
 
@@ -206,6 +206,11 @@ pub struct Restarted {
     /// compensated tool's. A control's restart page shows it before the
     /// cycle start that moves there.
     pub destination: Xz,
+    /// The codes in force at the block, before it runs: each modal
+    /// group's G code, F, S and the T word the blocks before left. A
+    /// control's restart page shows them with the destination, and the
+    /// operator's screen until the approach runs.
+    pub codes: ActiveCodes,
 }
 
 /// The coolant codes a restart gives again (M07 mist, M08 flood, M09
@@ -338,6 +343,7 @@ pub fn search(vm: &mut Vm, at: RestartAt, sink: &mut dyn Sink) -> Result<Restart
             x: resume.to.x(),
             z: resume.to.z,
         },
+        codes: resume.codes,
     };
     out.origin(entry);
     restore(kept, out);
@@ -357,6 +363,8 @@ struct Resume {
     to: Pt,
     origin: Pt,
     c: f64,
+    /// The codes in force at the target, before it is read.
+    codes: ActiveCodes,
 }
 
 /// At the target: refused if the run cannot resume there; otherwise
@@ -372,11 +380,17 @@ fn resume(vm: &mut Vm, line: u32, search: &mut Search) -> Result<Resume, Restart
         return Err(RestartError::Held { line, why });
     }
     let (programmed, origin, c) = (vm.nc.position(), vm.nc.origin(), vm.nc.c());
+    let codes = vm.nc.active_codes();
     if let Some(block) = vm.nc.waiting_block() {
         catch_up(vm, search, block)?;
     }
     let to = search.kept.end.unwrap_or(programmed);
-    Ok(Resume { to, origin, c })
+    Ok(Resume {
+        to,
+        origin,
+        c,
+        codes,
+    })
 }
 
 /// Steps the VM past the target until the elements waiting there
@@ -495,7 +509,7 @@ fn restore(kept: Kept, sink: &mut dyn Sink) {
 /// resumes: X and C first, then Z, or Z first, as the machine's
 /// `run.restart_approach` says; each leg left out when it does not move.
 fn approach(vm: &Vm, (standing, standing_c): (Pt, f64), resume: Resume, sink: &mut dyn Sink) {
-    let Resume { to, origin, c } = resume;
+    let Resume { to, origin, c, .. } = resume;
     let from = standing.sub(origin);
     let turns = vm.nc.machine.axes.c.enabled && (c - standing_c).abs() > 1e-9;
     let c = turns.then_some(c);

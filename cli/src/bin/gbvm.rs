@@ -452,14 +452,19 @@ fn run(args: &RunArgs, quiet: bool) -> ExitCode {
 }
 
 /// What a restart (`--from`) does, told on stderr as a control's restart
-/// page shows it: where the approach goes, and the M codes of the
-/// machine's own the blocks before gave, which it does not give again.
+/// page shows it: where the approach goes, the codes in force it resumes
+/// with, and the M codes of the machine's own the blocks before gave,
+/// which it does not give again.
 fn restarted(r: &vm::restart::Restarted) {
     let to = r.destination;
     note(format_args!(
         "gbvm: note: --from: the approach goes to X{} Z{} (work coordinates)",
         nc::event::Num(to.x),
         nc::event::Num(to.z)
+    ));
+    note(format_args!(
+        "gbvm: note: --from: the run resumes with {}",
+        r.codes
     ));
     if r.m_codes.is_empty() {
         return;

@@ -3,6 +3,9 @@
 //! shows): the G code of each modal group, and F, S and the T word as the
 //! program last gave them (#4001–#4021, #4109, #4119, #4120).
 
+use core::fmt;
+
+use crate::base::event::Num;
 use crate::base::gcode::{self, Code};
 use crate::base::machine::Machine;
 use crate::exec::Nc;
@@ -61,6 +64,17 @@ impl ActiveCodes {
             g: groups(&Modal::power_on(machine)),
             ..ActiveCodes::default()
         }
+    }
+}
+
+/// As a control's screen lists them: `G00 G97 G99 … F0.2 S800 T0202`
+/// (each group's G code in [`GROUPS`]' order, then F, S and the T word).
+impl fmt::Display for ActiveCodes {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for code in self.g {
+            write!(f, "{} ", gcode::name(code))?;
+        }
+        write!(f, "F{} S{} T{:04}", Num(self.f), Num(self.s), self.t)
     }
 }
 

@@ -96,9 +96,16 @@ impl<P: Plc> Controller<P> {
             return Err(RestartRefused::NotIdle);
         }
         let stand = self.standing();
-        self.ra
-            .restart_from(at, stand, &mut self.engine, tap)
-            .map_err(RestartRefused::Search)
+        let found = self.ra.restart_from(at, stand, &mut self.engine, tap);
+        // (The screen shows the codes the run resumes with, as a control
+        // does after its search; a refused restart leaves the program at
+        // its start.)
+        let shown = match &found {
+            Ok(r) => r.codes,
+            Err(_) => nc::ActiveCodes::power_on(&self.ra.machine),
+        };
+        self.engine.show_codes(shown);
+        found.map_err(RestartRefused::Search)
     }
 
     /// Selects another program (a verified module for this machine) while
@@ -109,6 +116,8 @@ impl<P: Plc> Controller<P> {
     pub fn select_program(&mut self, module: isa::Module) -> Result<(), SelectRefused> {
         let stand = self.place_for(&module)?;
         self.ra.start(module, stand, &mut self.engine);
+        self.engine
+            .show_codes(nc::ActiveCodes::power_on(&self.ra.machine));
         Ok(())
     }
 
