@@ -526,12 +526,14 @@ typedef struct GbcSetPoint {
   /**
    * `axis_x` in whole steps of the machine's resolution (a diameter:
    * one count moves the slide half a step), rounded to the nearest,
-   * halves away from zero: what a position-command or pulse interface
-   * sends. Each period is rounded on its own, so the counts never drift.
+   * halves away from zero, with the machine file's backlash
+   * compensation (`backlash_mm`) added where the axis has turned back:
+   * what a position-command or pulse interface sends. Each period is
+   * rounded on its own, so the counts never drift.
    */
   int64_t count_x;
   /**
-   * `axis_z` in whole steps of the resolution.
+   * `axis_z` in whole steps of the resolution, as `count_x`.
    */
   int64_t count_z;
   /**

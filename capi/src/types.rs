@@ -222,10 +222,12 @@ pub struct GbcSetPoint {
     pub axis_z: f64,
     /// `axis_x` in whole steps of the machine's resolution (a diameter:
     /// one count moves the slide half a step), rounded to the nearest,
-    /// halves away from zero: what a position-command or pulse interface
-    /// sends. Each period is rounded on its own, so the counts never drift.
+    /// halves away from zero, with the machine file's backlash
+    /// compensation (`backlash_mm`) added where the axis has turned back:
+    /// what a position-command or pulse interface sends. Each period is
+    /// rounded on its own, so the counts never drift.
     pub count_x: i64,
-    /// `axis_z` in whole steps of the resolution.
+    /// `axis_z` in whole steps of the resolution, as `count_x`.
     pub count_z: i64,
     /// `c` in steps of 0.001° (0 without a C axis).
     pub count_c: i64,

@@ -322,6 +322,45 @@ fn the_counts_frame_quantizes_the_machine_set_points() {
     let _ = std::fs::remove_dir_all(d);
 }
 
+/// With `backlash_mm` the counts are the drive's command: Z has moved
+/// in −, so its 0.03 mm of lost motion is taken up below the set point
+/// (−5 000.6 − 30 = −5 030.6 steps, rounded to −5 031); X has moved in +,
+/// the power-on direction, and keeps its count. The set points, which
+/// `gbvm check` certifies, are the slide's and unchanged.
+#[test]
+fn the_counts_frame_carries_the_backlash_compensation() {
+    let src = "O0001\nG98 G01 X20.0004 Z-5.0006 F600\nM30\n";
+    let (d, gbc) = compiled("lash", src);
+    let machine = d.join("m.toml");
+    std::fs::write(
+        &machine,
+        "[axes.x]\nbacklash_mm = 0.02\n[axes.z]\nbacklash_mm = 0.03\n",
+    )
+    .unwrap();
+    let (gbc, machine) = (gbc.to_str().unwrap(), machine.to_str().unwrap());
+    let last = |frame: &str| -> String {
+        let o = gbvm(&[
+            "run",
+            gbc,
+            "--emit",
+            "trace",
+            "--frame",
+            frame,
+            "--machine",
+            machine,
+        ]);
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        let t = text(&o.stdout);
+        let l = t.lines().last().unwrap_or_default();
+        l.split(',').skip(1).take(2).collect::<Vec<_>>().join(",")
+    };
+    assert_eq!(last("counts"), "20000,-5031");
+    assert_eq!(last("machine"), "20.000400,-5.000600");
+    let o = gbvm(&["check", gbc, "--machine", machine]);
+    assert!(o.status.success(), "{}", text(&o.stdout));
+    let _ = std::fs::remove_dir_all(d);
+}
+
 /// The trace names the motion of each period and the tool.
 #[test]
 fn the_trace_has_motion_words_and_the_tool() {

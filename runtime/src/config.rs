@@ -20,6 +20,10 @@ pub struct Axis {
     pub min: f64,
     /// Upper travel limit, slide units.
     pub max: f64,
+    /// The lost motion of the screw and nut, slide units: what the
+    /// drive's command takes up where the axis turns back (backlash.rs);
+    /// 0 on a machine without compensation.
+    pub backlash: f64,
 }
 
 /// The simulated spindle.
@@ -171,6 +175,7 @@ impl Default for Config {
                 soft_limits: false,
                 min: -130.0,
                 max: 1.0,
+                backlash: 0.0,
             },
             z: Axis {
                 rapid: min(10000.0),
@@ -180,6 +185,7 @@ impl Default for Config {
                 soft_limits: false,
                 min: -510.0,
                 max: 2.0,
+                backlash: 0.0,
             },
             c: None,
             path_max_feed: min(5000.0),
@@ -323,6 +329,7 @@ fn rotary(c: &nc::machine::RotaryAxis) -> Axis {
         soft_limits: false,
         min: f64::NEG_INFINITY,
         max: f64::INFINITY,
+        backlash: 0.0,
     }
 }
 
@@ -340,6 +347,7 @@ impl Config {
                 soft_limits: a.soft_limits,
                 min: a.min_mm * k,
                 max: a.max_mm * k,
+                backlash: a.backlash_mm * k,
             }
         };
         let d = Config::default();

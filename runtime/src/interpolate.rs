@@ -12,6 +12,7 @@
 //! later, so the velocity passes through zero and no axis sees more than
 //! its acceleration.
 
+use crate::backlash::Backlash;
 use crate::command::{Ending, MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
 use crate::counts::Counts;
@@ -106,7 +107,10 @@ pub struct SetPoint {
     /// The Z axis set point in machine coordinates.
     pub axis_z: f64,
     /// The machine set points in whole steps of the resolution (C in
-    /// 0.001°): what a position-command or pulse interface sends.
+    /// 0.001°), with the backlash compensation of a machine file's
+    /// `backlash_mm` added where an axis has turned back: what a
+    /// position-command or pulse interface sends (the drive's command;
+    /// `axis_x`/`axis_z` are where the slide is to be).
     pub counts: Counts,
     /// Signed actual spindle speed (+ for M03), rev/min.
     pub spindle_rpm: f64,
@@ -280,6 +284,10 @@ fn turn(v0: f64, v: f64) -> i8 {
 /// operator's signals, for one machine.
 pub struct Engine<P: Plc> {
     cfg: Config,
+    /// The drives' backlash compensation, following the set points (none
+    /// on a machine without lost motion, the usual case, which then pays
+    /// nothing for it).
+    backlash: Option<Backlash>,
     dt: f64,
     plc: P,
     q: Planner,
@@ -396,7 +404,11 @@ impl<P: Plc> Engine<P> {
     pub fn new(cfg: Config, plc: P) -> Engine<P> {
         let q = Planner::new(&cfg);
         let spindle = Spindle::new(cfg.spindle, cfg.spindle_override_pct);
+        let lost = V2::new(cfg.x.backlash, cfg.z.backlash);
+        let backlash =
+            (lost != V2::ZERO).then(|| Backlash::new(lost, V2::new(cfg.x.accel, cfg.z.accel)));
         Engine {
+            backlash,
             dt: cfg.period_s,
             plc,
             q,
@@ -779,7 +791,12 @@ impl<P: Plc> Engine<P> {
             false => 0,
         };
         self.check_stroke();
-        self.setpoint()
+        let (work, axes, c) = self.frames();
+        let drive = match &mut self.backlash {
+            Some(b) => axes + b.period(axes, self.dt),
+            None => axes,
+        };
+        self.setpoint(work, axes, c, drive)
     }
 
     /// Cycle start and feed hold against the run state, and this
@@ -845,15 +862,22 @@ impl<P: Plc> Engine<P> {
         }
     }
 
-    fn setpoint(&self) -> SetPoint {
-        let (work, axes, c) = match &self.plane {
+    /// This period's point in work coordinates, the machine set point
+    /// and C.
+    fn frames(&self) -> (V2, V2, f64) {
+        match &self.plane {
             Some(run) => (run.work(), run.axes(), run.c()),
             None => (
                 self.fixed_work.unwrap_or(self.out - self.shift),
                 self.out,
                 self.c,
             ),
-        };
+        }
+    }
+
+    /// The period's set point; `drive` is the machine set point with the
+    /// backlash compensation added, which the counts command.
+    fn setpoint(&self, work: V2, axes: V2, c: f64, drive: V2) -> SetPoint {
         let ran = self.ran_tag();
         SetPoint {
             time_s: self.ticks as f64 * self.dt,
@@ -861,7 +885,7 @@ impl<P: Plc> Engine<P> {
             z: work.z,
             axis_x: axes.x(),
             axis_z: axes.z,
-            counts: Counts::of(axes.x(), axes.z, c, self.cfg.resolution_mm),
+            counts: Counts::of(drive.x(), drive.z, c, self.cfg.resolution_mm),
             spindle_rpm: self.spindle.rpm(),
             spindle_turns: self.spindle.turns(),
             c: self.cfg.c.map(|_| c),

@@ -42,6 +42,7 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+mod backlash;
 pub mod certify;
 pub mod command;
 pub mod config;

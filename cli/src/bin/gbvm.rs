@@ -135,8 +135,9 @@ struct RunCmd {
     /// Coordinates of the trace's x and z (and c): work (the programmed
     /// point, as the canon), machine (the axis set points from machine
     /// zero, work zero and tool offset applied) or counts (the machine
-    /// set points as whole steps of the resolution, C in 0.001°: what a
-    /// position-command or pulse interface sends). Default: work.
+    /// set points as whole steps of the resolution, C in 0.001°, backlash
+    /// compensation added: what a position-command or pulse interface
+    /// sends). Default: work.
     #[arg(long, value_enum, value_name = "work|machine|counts")]
     frame: Option<FrameArg>,
     /// Draw the XZ toolpath into an SVG file, framed on the cutting

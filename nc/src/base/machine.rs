@@ -101,6 +101,7 @@ section!(LinearAxis {
     soft_limits: bool = false,
     min_mm: f64 = -260.0,
     max_mm: f64 = 2.0,
+    backlash_mm: f64 = 0.0,
 });
 
 section!(
@@ -114,6 +115,7 @@ section!(
         soft_limits: bool = false,
         min_mm: f64 = -510.0,
         max_mm: f64 = 2.0,
+        backlash_mm: f64 = 0.0,
     }
 );
 
@@ -128,6 +130,7 @@ impl From<ZAxisFile> for LinearAxis {
             soft_limits: z.soft_limits,
             min_mm: z.min_mm,
             max_mm: z.max_mm,
+            backlash_mm: z.backlash_mm,
         }
     }
 }

@@ -72,6 +72,10 @@ const MAX_DEG_JERK: f64 = 1.0e10;
 pub const MAX_LOOKAHEAD: u64 = 16384;
 /// The offset table of the kernel (#2001…#2032, #2701…#2732).
 pub const MAX_OFFSETS: u64 = 32;
+/// The most lost motion a slide's compensation takes up, mm: far more
+/// than any screw worth compensating has.
+pub const MAX_BACKLASH_MM: f64 = 2.0;
+
 /// A T word is tool × 100 + offset: two digits of tool.
 pub const MAX_TOOLS: u64 = 99;
 
@@ -88,6 +92,7 @@ fn linear_axis(name: &str, a: &LinearAxis) -> Check {
     positive(&k("jerk_mm_s3"), a.jerk_mm_s3, MAX_JERK)?;
     within(&k("min_mm"), a.min_mm, -MAX_MM, MAX_MM)?;
     within(&k("max_mm"), a.max_mm, -MAX_MM, MAX_MM)?;
+    within(&k("backlash_mm"), a.backlash_mm, 0.0, MAX_BACKLASH_MM)?;
     if a.min_mm >= a.max_mm {
         return bad(
             &k("min_mm"),

@@ -1,0 +1,61 @@
+//! Backlash compensation through the controller: the counts, the drives'
+//! command, take up a slide's lost motion once its axis has turned back;
+//! the set points stay the slide's. The expected counts are by hand.
+
+mod common;
+
+use common::{run_with, Run};
+use nc::Machine;
+use runtime::counts::quantize;
+
+/// From the power-on point X0 Z0 (work and machine coordinates are one):
+/// X goes + to 40 (the power-on direction: nothing to take up) while Z
+/// goes − to -5 (0.03 mm taken up); Z back + to -2 (given back); X − to
+/// 20 (0.02 mm of diameter taken up); a dwell standing there.
+const PROGRAM: &str = "G00 X40 Z-5\nG01 Z-2 F200\nG00 X20\nG04 X0.1\nM30\n";
+
+fn run_on(toml: &str) -> Run {
+    let machine = Machine::from_toml(toml).expect("a machine file");
+    run_with(PROGRAM, machine, runtime::AutoAck, |_| {}, |_, _| {}, 60.0)
+}
+
+/// The counts of the periods of `line` standing at X`x` Z`z`.
+fn standing(run: &Run, line: u32, x: f64, z: f64) -> Vec<(i64, i64)> {
+    let at = run
+        .pts
+        .iter()
+        .filter(|p| p.line == line && p.axis_x == x && p.axis_z == z);
+    at.map(|p| (p.counts.x, p.counts.z)).collect()
+}
+
+#[test]
+fn the_counts_take_up_the_lost_motion_where_an_axis_turns_back() {
+    let run = run_on("[axes.x]\nbacklash_mm = 0.02\n[axes.z]\nbacklash_mm = 0.03\n");
+    assert_eq!(run.alarm, None);
+    let first = standing(&run, 1, 40.0, -5.0);
+    assert!(!first.is_empty());
+    assert!(first.iter().all(|&c| c == (40_000, -5_030)), "{first:?}");
+    let back = standing(&run, 2, 40.0, -2.0);
+    assert!(back.iter().all(|&c| c == (40_000, -2_000)), "{back:?}");
+    let dwell = standing(&run, 4, 20.0, -2.0);
+    assert!(dwell.len() >= 100, "{}", dwell.len());
+    assert!(dwell.iter().all(|&c| c == (19_980, -2_000)), "{dwell:?}");
+    // On the way, the command is never further from the set point than
+    // the lost motion and half a count.
+    for p in &run.pts {
+        let dx = p.counts.x as f64 * 0.001 - p.axis_x;
+        let dz = p.counts.z as f64 * 0.001 - p.axis_z;
+        assert!((-0.0205..=0.0005).contains(&dx), "{dx} at {p:?}");
+        assert!((-0.0305..=0.0005).contains(&dz), "{dz} at {p:?}");
+    }
+}
+
+/// Without `backlash_mm` (the default), every count is its set point's.
+#[test]
+fn without_lost_motion_the_counts_are_the_set_points() {
+    let run = run_on("");
+    assert!(run.pts.iter().all(|p| {
+        p.counts.x == quantize(p.axis_x, 0.001) && p.counts.z == quantize(p.axis_z, 0.001)
+    }));
+    assert_eq!(standing(&run, 4, 20.0, -2.0)[0], (20_000, -2_000));
+}
