@@ -95,7 +95,7 @@ impl Panel {
             optional_stop: m.operator.optional_stop,
             dry_run: m.operator.dry_run,
             skip_level: cfg.skip_active_low,
-            block_skip: m.operator.block_skip,
+            block_skip: *m.operator.block_skip,
         }
     }
 

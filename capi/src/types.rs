@@ -222,8 +222,9 @@ pub struct GbcSetPoint {
     pub axis_z: f64,
     /// `axis_x` in whole steps of the machine's resolution (a diameter:
     /// one count moves the slide half a step), rounded to the nearest,
-    /// halves away from zero, with the machine file's backlash
-    /// compensation (`backlash_mm`) added where the axis has turned back:
+    /// halves away from zero, with the machine file's axis compensation
+    /// added (`backlash_mm` where the axis has turned back, the correction
+    /// of `pitch_comp_mm` where it stands):
     /// what a position-command or pulse interface sends. Each period is
     /// rounded on its own, so the counts never drift.
     pub count_x: i64,

@@ -293,7 +293,7 @@ const EXTRA_STEPS: u64 = 200_000;
 /// block is found) and with every switch on (the modal state without those
 /// blocks).
 pub fn dry_run(units: &[Unit], programs: &[Program], m: &Machine) -> Vec<(usize, Diagnostic)> {
-    let mut states = vec![m.operator.block_skip];
+    let mut states = vec![*m.operator.block_skip];
     if has_deleted_blocks(units, programs) {
         for state in [[false; 9], crate::profile::ALL_ON] {
             if !states.contains(&state) {

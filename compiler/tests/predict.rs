@@ -364,7 +364,7 @@ fn the_run_is_the_one_the_machine_file_makes() {
     assert_eq!(codes(src, &reference), []);
     assert_eq!(vm_alarm(src, &reference, None), None);
     let mut switches_off = Options::default();
-    switches_off.machine.operator.block_skip = [false; 9];
+    *switches_off.machine.operator.block_skip = [false; 9];
     assert_eq!(codes(src, &switches_off), [("W124", 2)]);
     assert_eq!(vm_alarm(src, &switches_off, None), Some((3002, 2)));
 }

@@ -2,6 +2,8 @@
 //! rev/min), taken from a machine file (machine.md §3–§4) plus a few
 //! runtime choices that have no key there.
 
+use crate::pitch::PitchTable;
+
 /// One linear axis, in slide units: X values are radial (machine.md §1:
 /// "an X rate is the radial speed"), so a diameter travel is halved.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,6 +92,9 @@ pub struct Config {
     pub x: Axis,
     /// The Z slide.
     pub z: Axis,
+    /// The pitch error tables of X (radial units) and Z, which the
+    /// drive's command adds ([`crate::pitch`]); empty for none.
+    pub pitch: [PitchTable; 2],
     /// The optional C axis in degrees (deg/s, deg/s², deg/s³); `None`
     /// on a machine without one.
     pub c: Option<Axis>,
@@ -187,6 +192,7 @@ impl Default for Config {
                 max: 2.0,
                 backlash: 0.0,
             },
+            pitch: Default::default(),
             c: None,
             path_max_feed: min(5000.0),
             spindle: SpindleConfig {
@@ -319,6 +325,17 @@ impl Config {
     }
 }
 
+/// An axis's pitch error table in slide units (`k` 0.5 for X, which the
+/// machine file gives on the diameter).
+fn table(a: &nc::machine::LinearAxis, k: f64) -> PitchTable {
+    // (machine_check has made each point a pair.)
+    let pairs = a.pitch_comp_mm.iter().filter_map(|p| match p.as_slice() {
+        &[at, add] => Some((at * k, add * k)),
+        _ => None,
+    });
+    PitchTable::new(pairs.collect())
+}
+
 /// The C axis of a machine file, per second; it turns without limits.
 fn rotary(c: &nc::machine::RotaryAxis) -> Axis {
     Axis {
@@ -357,6 +374,7 @@ impl Config {
             // radius programming too: machine.md.)
             x: axis(&m.axes.x, true),
             z: axis(&m.axes.z, false),
+            pitch: [table(&m.axes.x, 0.5), table(&m.axes.z, 1.0)],
             c: m.axes.c.enabled.then(|| rotary(&m.axes.c)),
             path_max_feed: per_s(m.feed.max_mm_min),
             spindle: SpindleConfig {

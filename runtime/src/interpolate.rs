@@ -18,6 +18,7 @@ use crate::config::{Config, RapidOverride};
 use crate::counts::Counts;
 use crate::follow::{Ahead, FollowAxes, Follower};
 use crate::math::{sqrt, V2};
+use crate::pitch::PitchTable;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
 use crate::plc::{Plc, PlcFunction};
 use crate::profile::{approach, brake_limit, brake_limit_above, stopping_distance};
@@ -107,8 +108,9 @@ pub struct SetPoint {
     /// The Z axis set point in machine coordinates.
     pub axis_z: f64,
     /// The machine set points in whole steps of the resolution (C in
-    /// 0.001°), with the backlash compensation of a machine file's
-    /// `backlash_mm` added where an axis has turned back: what a
+    /// 0.001°), with the axis compensation of a machine file added (the
+    /// lost motion of `backlash_mm` where an axis has turned back, the
+    /// correction of `pitch_comp_mm` where it stands): what a
     /// position-command or pulse interface sends (the drive's command;
     /// `axis_x`/`axis_z` are where the slide is to be).
     pub counts: Counts,
@@ -288,6 +290,8 @@ pub struct Engine<P: Plc> {
     /// on a machine without lost motion, the usual case, which then pays
     /// nothing for it).
     backlash: Option<Backlash>,
+    /// The pitch error tables of X and Z (none on a machine without).
+    pitch: Option<[PitchTable; 2]>,
     dt: f64,
     plc: P,
     q: Planner,
@@ -407,8 +411,14 @@ impl<P: Plc> Engine<P> {
         let lost = V2::new(cfg.x.backlash, cfg.z.backlash);
         let backlash =
             (lost != V2::ZERO).then(|| Backlash::new(lost, V2::new(cfg.x.accel, cfg.z.accel)));
+        let pitch = cfg
+            .pitch
+            .iter()
+            .any(|t| !t.is_empty())
+            .then(|| cfg.pitch.clone());
         Engine {
             backlash,
+            pitch,
             dt: cfg.period_s,
             plc,
             q,
@@ -792,10 +802,7 @@ impl<P: Plc> Engine<P> {
         };
         self.check_stroke();
         let (work, axes, c) = self.frames();
-        let drive = match &mut self.backlash {
-            Some(b) => axes + b.period(axes, self.dt),
-            None => axes,
-        };
+        let drive = self.drive_command(axes);
         self.setpoint(work, axes, c, drive)
     }
 
@@ -862,6 +869,20 @@ impl<P: Plc> Engine<P> {
         }
     }
 
+    /// What the drives are commanded for the machine set point `axes`:
+    /// it, plus the backlash and pitch error compensation of a machine
+    /// that has them.
+    fn drive_command(&mut self, axes: V2) -> V2 {
+        let mut drive = axes;
+        if let Some(b) = &mut self.backlash {
+            drive = drive + b.period(axes, self.dt);
+        }
+        if let Some([x, z]) = &self.pitch {
+            drive = drive + V2::new(x.at(axes.r), z.at(axes.z));
+        }
+        drive
+    }
+
     /// This period's point in work coordinates, the machine set point
     /// and C.
     fn frames(&self) -> (V2, V2, f64) {
@@ -876,7 +897,8 @@ impl<P: Plc> Engine<P> {
     }
 
     /// The period's set point; `drive` is the machine set point with the
-    /// backlash compensation added, which the counts command.
+    /// backlash and pitch error compensation added, which the counts
+    /// command.
     fn setpoint(&self, work: V2, axes: V2, c: f64, drive: V2) -> SetPoint {
         let ran = self.ran_tag();
         SetPoint {

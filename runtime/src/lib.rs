@@ -51,6 +51,7 @@ pub mod follow;
 pub mod geom;
 pub mod interpolate;
 pub mod math;
+pub mod pitch;
 pub mod planner;
 pub mod plc;
 pub mod plot;

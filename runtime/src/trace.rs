@@ -35,7 +35,7 @@ pub enum Frame {
     /// change, what the drives follow.
     Machine,
     /// The machine set points in whole steps of the resolution (C in
-    /// 0.001°), as integers, backlash compensation added: what a
+    /// 0.001°), as integers, the axis compensation added: what a
     /// position-command or pulse interface sends ([`crate::counts`]).
     Counts,
 }

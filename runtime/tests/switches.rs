@@ -212,7 +212,7 @@ fn block_skip_is_read_when_the_block_is_read() {
 #[test]
 fn the_machine_file_sets_block_skip_at_load_and_a_reset_keeps_it() {
     let mut machine = Machine::reference();
-    machine.operator.block_skip = [false; 9];
+    *machine.operator.block_skip = [false; 9];
     let m = module(SKIPS, &machine);
     let mut ctl = Controller::new(m, machine, runtime::AutoAck).expect("loads");
     assert!(!ctl.block_skip(1));

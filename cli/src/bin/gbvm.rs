@@ -135,7 +135,7 @@ struct RunCmd {
     /// Coordinates of the trace's x and z (and c): work (the programmed
     /// point, as the canon), machine (the axis set points from machine
     /// zero, work zero and tool offset applied) or counts (the machine
-    /// set points as whole steps of the resolution, C in 0.001°, backlash
+    /// set points as whole steps of the resolution, C in 0.001°, the axis
     /// compensation added: what a position-command or pulse interface
     /// sends). Default: work.
     #[arg(long, value_enum, value_name = "work|machine|counts")]
@@ -377,7 +377,7 @@ fn check_max_time(max_time: Option<f64>) -> Result<(), ExitCode> {
 fn load_machine((path, block_skip): (Option<&Path>, Option<Switch>)) -> Result<Machine, String> {
     let mut machine = cli::load_machine(path)?;
     if let Some(s) = block_skip {
-        machine.operator.block_skip = [s == Switch::On; 9];
+        *machine.operator.block_skip = [s == Switch::On; 9];
     }
     Ok(machine)
 }

@@ -102,6 +102,7 @@ section!(LinearAxis {
     min_mm: f64 = -260.0,
     max_mm: f64 = 2.0,
     backlash_mm: f64 = 0.0,
+    pitch_comp_mm: Vec<Vec<f64>> = Vec::new(),
 });
 
 section!(
@@ -116,6 +117,7 @@ section!(
         min_mm: f64 = -510.0,
         max_mm: f64 = 2.0,
         backlash_mm: f64 = 0.0,
+        pitch_comp_mm: Vec<Vec<f64>> = Vec::new(),
     }
 );
 
@@ -131,6 +133,7 @@ impl From<ZAxisFile> for LinearAxis {
             min_mm: z.min_mm,
             max_mm: z.max_mm,
             backlash_mm: z.backlash_mm,
+            pitch_comp_mm: z.pitch_comp_mm,
         }
     }
 }
@@ -246,34 +249,37 @@ section!(Measure {
 });
 
 section!(Skip {
-    inputs: SkipInputs = SkipInputs([0, 1, 2, 3])
+    inputs: SkipInputs = Exactly([0, 1, 2, 3])
 });
 
-/// №148–151: the input of each skip signal 1–4. Exactly four: a list of
-/// another length is refused (serde's array would take a longer one).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SkipInputs(pub [u32; 4]);
+/// №148–151: the input of each skip signal 1–4.
+pub type SkipInputs = Exactly<u32, 4>;
 
-impl<'de> Deserialize<'de> for SkipInputs {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<SkipInputs, D::Error> {
-        let v = Vec::<u32>::deserialize(d)?;
+/// A list of exactly `N` values: one of another length is refused, where
+/// serde's array would drop the values past `N` of a longer one unseen.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Exactly<T, const N: usize>(pub [T; N]);
+
+impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exactly<T, N> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Exactly<T, N>, D::Error> {
+        let v = Vec::<T>::deserialize(d)?;
         let n = v.len();
-        let four: [u32; 4] = v.try_into().map_err(|_| {
-            serde::de::Error::invalid_length(n, &"4 inputs, one per skip signal 1–4")
+        let all: [T; N] = v.try_into().map_err(|_| {
+            serde::de::Error::invalid_length(n, &format!("exactly {N} values").as_str())
         })?;
-        Ok(SkipInputs(four))
+        Ok(Exactly(all))
     }
 }
 
-impl core::ops::Deref for SkipInputs {
-    type Target = [u32; 4];
-    fn deref(&self) -> &[u32; 4] {
+impl<T, const N: usize> core::ops::Deref for Exactly<T, N> {
+    type Target = [T; N];
+    fn deref(&self) -> &[T; N] {
         &self.0
     }
 }
 
-impl core::ops::DerefMut for SkipInputs {
-    fn deref_mut(&mut self) -> &mut [u32; 4] {
+impl<T, const N: usize> core::ops::DerefMut for Exactly<T, N> {
+    fn deref_mut(&mut self) -> &mut [T; N] {
         &mut self.0
     }
 }
@@ -317,13 +323,13 @@ section!(ToolLifeGroup {
 section!(ToolLife { group: Vec<ToolLifeGroup> = Vec::new() });
 
 section!(Macro {
-    g_code_macros: [u32; 10] = [0; 10],
+    g_code_macros: Exactly<u32, 10> = Exactly([0; 10]),
     persistent_file: String = String::new(),
     library_dirs: Vec<String> = Vec::new(),
 });
 
 section!(Operator {
-    block_skip: [bool; 9] = [true; 9],
+    block_skip: Exactly<bool, 9> = Exactly([true; 9]),
     optional_stop: bool = true,
     single_block: bool = false,
     dry_run: bool = false,
@@ -514,7 +520,7 @@ impl Machine {
             self.tools.count,
             self.tools.offsets,
             offsets.join(","),
-            self.r#macro.g_code_macros,
+            self.r#macro.g_code_macros.0,
         )
     }
 
@@ -593,6 +599,18 @@ mod tests {
         // Four skip inputs, no more and no fewer.
         assert!(Machine::from_toml("[skip]\ninputs = [0, 1, 2, 3, 4]\n").is_err());
         assert!(Machine::from_toml("[skip]\ninputs = [0, 1, 2]\n").is_err());
+        // Longer lists too, which serde's arrays would cut short unseen.
+        let nine = "true, true, true, true, true, true, true, true, true";
+        let skips =
+            |list: &str| Machine::from_toml(&format!("[operator]\nblock_skip = [{list}]\n"));
+        assert!(skips(nine).is_ok());
+        assert!(skips(&format!("{nine}, false")).is_err());
+        let macros = |n: usize| {
+            let list = alloc::vec!["0"; n].join(", ");
+            Machine::from_toml(&format!("[macro]\ng_code_macros = [{list}]\n"))
+        };
+        assert!(macros(10).is_ok());
+        assert!(macros(11).is_err() && macros(9).is_err());
         assert_eq!(
             Machine::from_toml("[skip]\ninputs = [3, 2, 1, 0]\n")
                 .unwrap()
@@ -636,6 +654,31 @@ mod tests {
         assert!(group("number = 1\nlife = 0\n").is_err());
         assert!(group("number = 1\nlife = 5\nunit = \"hours\"\n").is_err());
         assert!(group("number = 1\nlife = 5\ntools = [3301]\n").is_err());
+    }
+
+    /// The axis compensation: the lost motion within 0 … 2 mm; a pitch
+    /// table of none or two points and more, ascending, gentle.
+    #[test]
+    fn axis_compensation_is_checked() {
+        let z = |body: &str| Machine::from_toml(&format!("[axes.z]\n{body}\n"));
+        assert!(z("backlash_mm = 0.03").is_ok());
+        assert!(z("backlash_mm = -0.01").is_err());
+        assert!(z("backlash_mm = 2.5").is_err());
+        assert!(z("pitch_comp_mm = [[-300.0, -0.004], [0.0, 0.0]]").is_ok());
+        assert!(z("pitch_comp_mm = []").is_ok());
+        let err = |body: &str| {
+            z(body)
+                .err()
+                .map(|e| alloc::format!("{e}"))
+                .unwrap_or_default()
+        };
+        assert!(err("pitch_comp_mm = [[0.0, 0.0]]").contains("1 points"));
+        assert!(err("pitch_comp_mm = [[0.0, 0.0, 3.0], [1.0, 0.0]]").contains("3 number(s)"));
+        assert!(err("pitch_comp_mm = [[0.0], [1.0, 0.0]]").contains("1 number(s)"));
+        assert!(err("pitch_comp_mm = [[0.0, 0.0], [0.0, 0.001]]").contains("ascending"));
+        // 0.002 mm over 1 mm is twice the steepest allowed.
+        assert!(err("pitch_comp_mm = [[0.0, 0.0], [1.0, 0.002]]").contains("0.002 mm a mm"));
+        assert!(err("pitch_comp_mm = [[0.0, 0.0], [1000.0, 3.0]]").contains("correction"));
     }
 
     #[test]

@@ -72,9 +72,61 @@ const MAX_DEG_JERK: f64 = 1.0e10;
 pub const MAX_LOOKAHEAD: u64 = 16384;
 /// The offset table of the kernel (#2001…#2032, #2701…#2732).
 pub const MAX_OFFSETS: u64 = 32;
-/// The most lost motion a slide's compensation takes up, mm: far more
-/// than any screw worth compensating has.
-pub const MAX_BACKLASH_MM: f64 = 2.0;
+/// The most a slide's compensation adds to the drive's command, mm (its
+/// lost motion, a pitch correction): far more than any screw worth
+/// compensating needs.
+pub const MAX_COMP_MM: f64 = 2.0;
+
+/// The most points of a pitch error table (a laser calibration takes one
+/// every 10–50 mm of a stroke of at most a few metres).
+pub const MAX_PITCH_POINTS: usize = 1024;
+
+/// The steepest a pitch error table may change between two points: a
+/// micrometre a millimetre. A screw is far straighter; the drive's
+/// command then moves within 0.1 % of the set point's speed.
+pub const MAX_PITCH_SLOPE: f64 = 1e-3;
+
+/// A pitch error table: none, or at least two points in ascending
+/// position, each correction within [`MAX_COMP_MM`], the slope
+/// between two within [`MAX_PITCH_SLOPE`].
+fn pitch_comp(key: &str, table: &[Vec<f64>]) -> Check {
+    if table.len() == 1 || table.len() > MAX_PITCH_POINTS {
+        let n = table.len();
+        return bad(
+            key,
+            format!("{n} points: give none, or 2 … {MAX_PITCH_POINTS}"),
+        );
+    }
+    let mut points = Vec::with_capacity(table.len());
+    for (i, point) in table.iter().enumerate() {
+        let &[at, add] = point.as_slice() else {
+            let n = point.len();
+            return bad(
+                key,
+                format!("point {i} gives {n} number(s): give [position, correction]"),
+            );
+        };
+        within(&format!("{key}[{i}] position"), at, -MAX_MM, MAX_MM)?;
+        within(
+            &format!("{key}[{i}] correction"),
+            add,
+            -MAX_COMP_MM,
+            MAX_COMP_MM,
+        )?;
+        points.push([at, add]);
+    }
+    for (i, w) in points.windows(2).enumerate() {
+        let ([a, ca], [b, cb]) = (w[0], w[1]);
+        if b <= a {
+            return bad(key, format!("point {} at {b} is not past point {i} at {a}: give the points in ascending position", i + 1));
+        }
+        let slope = (cb - ca) / (b - a);
+        if slope.abs() > MAX_PITCH_SLOPE {
+            return bad(key, format!("from {a} to {b} the correction changes {} mm a mm, more than {MAX_PITCH_SLOPE}", libm::round(slope * 1e6) / 1e6));
+        }
+    }
+    Ok(())
+}
 
 /// A T word is tool × 100 + offset: two digits of tool.
 pub const MAX_TOOLS: u64 = 99;
@@ -92,7 +144,8 @@ fn linear_axis(name: &str, a: &LinearAxis) -> Check {
     positive(&k("jerk_mm_s3"), a.jerk_mm_s3, MAX_JERK)?;
     within(&k("min_mm"), a.min_mm, -MAX_MM, MAX_MM)?;
     within(&k("max_mm"), a.max_mm, -MAX_MM, MAX_MM)?;
-    within(&k("backlash_mm"), a.backlash_mm, 0.0, MAX_BACKLASH_MM)?;
+    within(&k("backlash_mm"), a.backlash_mm, 0.0, MAX_COMP_MM)?;
+    pitch_comp(&k("pitch_comp_mm"), &a.pitch_comp_mm)?;
     if a.min_mm >= a.max_mm {
         return bad(
             &k("min_mm"),

@@ -1,6 +1,8 @@
-//! Backlash compensation through the controller: the counts, the drives'
-//! command, take up a slide's lost motion once its axis has turned back;
-//! the set points stay the slide's. The expected counts are by hand.
+//! Backlash and pitch error compensation through the controller: the
+//! counts, the drives' command, take up a slide's lost motion once its
+//! axis has turned back and add the pitch table's correction where it
+//! stands; the set points stay the slide's. The expected counts are by
+//! hand.
 
 mod common;
 
@@ -15,8 +17,12 @@ use runtime::counts::quantize;
 const PROGRAM: &str = "G00 X40 Z-5\nG01 Z-2 F200\nG00 X20\nG04 X0.1\nM30\n";
 
 fn run_on(toml: &str) -> Run {
+    run_program(PROGRAM, toml)
+}
+
+fn run_program(src: &str, toml: &str) -> Run {
     let machine = Machine::from_toml(toml).expect("a machine file");
-    run_with(PROGRAM, machine, runtime::AutoAck, |_| {}, |_, _| {}, 60.0)
+    run_with(src, machine, runtime::AutoAck, |_| {}, |_, _| {}, 60.0)
 }
 
 /// The counts of the periods of `line` standing at X`x` Z`z`.
@@ -58,4 +64,28 @@ fn without_lost_motion_the_counts_are_the_set_points() {
         p.counts.x == quantize(p.axis_x, 0.001) && p.counts.z == quantize(p.axis_z, 0.001)
     }));
     assert_eq!(standing(&run, 4, 20.0, -2.0)[0], (20_000, -2_000));
+}
+
+/// X's table gives +0.02 of diameter at X100, so +0.008 at X40; Z's gives
+/// −0.004 at −300, so −0.002 at −150 and −0.0013 at −100; Z's lost motion
+/// 0.03 is taken up at −150 (Z came in −) and given back at −100 (in +).
+/// By hand: standing at X40 Z-150, 40 008 and −150 000 − 30 − 2 steps;
+/// at X40 Z-100, 40 008 and −100 001.33 rounded to −100 001.
+#[test]
+fn the_counts_add_the_pitch_correction_where_the_slide_stands() {
+    let toml = "[axes.x]\npitch_comp_mm = [[0.0, 0.0], [100.0, 0.02]]\n\
+        [axes.z]\nbacklash_mm = 0.03\npitch_comp_mm = [[-300.0, -0.004], [0.0, 0.0]]\n";
+    let src = "G00 X40 Z-150\nG04 X0.1\nG01 Z-100 F500\nG04 X0.1\nM30\n";
+    let run = run_program(src, toml);
+    assert_eq!(run.alarm, None);
+    let far = standing(&run, 2, 40.0, -150.0);
+    assert!(
+        far.len() >= 100 && far.iter().all(|&c| c == (40_008, -150_032)),
+        "{far:?}"
+    );
+    let near = standing(&run, 4, 40.0, -100.0);
+    assert!(
+        near.len() >= 100 && near.iter().all(|&c| c == (40_008, -100_001)),
+        "{near:?}"
+    );
 }
