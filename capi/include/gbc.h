@@ -528,9 +528,9 @@ typedef struct GbcSetPoint {
    * one count moves the slide half a step), rounded to the nearest,
    * halves away from zero, with the machine file's axis compensation
    * added (`backlash_mm` where the axis has turned back, the correction
-   * of `pitch_comp_mm` where it stands):
-   * what a position-command or pulse interface sends. Each period is
-   * rounded on its own, so the counts never drift.
+   * of `pitch_comp_mm` where it stands): what a position-command or
+   * pulse interface sends. Each period is rounded on its own, so the
+   * counts never drift.
    */
   int64_t count_x;
   /**
@@ -1008,15 +1008,14 @@ enum GbcStatus gbc_spindle_simulated(GbcController controller);
  * screen shows them: before the first block and after a reset, those a
  * run starts with (the machine's power-on codes, F, S and T 0), as also
  * before a program is loaded; after a program restart's search, until
- * the cycle start runs its approach, those the run resumes with. A move that waited in the kernel for the
- * next block (nose-radius compensation, a corner word) shows the codes
- * after that block.
+ * the cycle start runs its approach, those the run resumes with. A move
+ * that waited in the kernel for the next block (nose-radius
+ * compensation, a corner word) shows the codes after that block.
  *
  * # Safety
  * `out` is null or writable.
  */
-enum GbcStatus gbc_active_codes(GbcController controller,
-                                struct GbcActiveCodes *out);
+enum GbcStatus gbc_active_codes(GbcController controller, struct GbcActiveCodes *out);
 
 /**
  * How far the move that runs still has to go, mm, X on the diameter (as

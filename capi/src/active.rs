@@ -48,9 +48,9 @@ impl From<ActiveCodes> for GbcActiveCodes {
 /// screen shows them: before the first block and after a reset, those a
 /// run starts with (the machine's power-on codes, F, S and T 0), as also
 /// before a program is loaded; after a program restart's search, until
-/// the cycle start runs its approach, those the run resumes with. A move that waited in the kernel for the
-/// next block (nose-radius compensation, a corner word) shows the codes
-/// after that block.
+/// the cycle start runs its approach, those the run resumes with. A move
+/// that waited in the kernel for the next block (nose-radius
+/// compensation, a corner word) shows the codes after that block.
 ///
 /// # Safety
 /// `out` is null or writable.

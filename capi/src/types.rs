@@ -224,9 +224,9 @@ pub struct GbcSetPoint {
     /// one count moves the slide half a step), rounded to the nearest,
     /// halves away from zero, with the machine file's axis compensation
     /// added (`backlash_mm` where the axis has turned back, the correction
-    /// of `pitch_comp_mm` where it stands):
-    /// what a position-command or pulse interface sends. Each period is
-    /// rounded on its own, so the counts never drift.
+    /// of `pitch_comp_mm` where it stands): what a position-command or
+    /// pulse interface sends. Each period is rounded on its own, so the
+    /// counts never drift.
     pub count_x: i64,
     /// `axis_z` in whole steps of the resolution, as `count_x`.
     pub count_z: i64,

@@ -36,6 +36,28 @@ fn active(c: GbcController) -> GbcActiveCodes {
     a
 }
 
+/// `PROGRAM`, compiled, loaded into `c`.
+fn load(c: GbcController) {
+    let opts = compiler::Options::default();
+    let prog = compiler::compile("p.nc", PROGRAM.as_bytes(), &opts);
+    let prog = prog.module.expect("compiles").to_bytes();
+    assert_eq!(
+        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+        GbcStatus::Ok
+    );
+}
+
+/// A reset, ticked until idle: the power-on codes again.
+fn reset_shows_power_on(c: GbcController) {
+    assert_eq!(gbc_reset(c), GbcStatus::Ok);
+    for _ in 0..10_000 {
+        if period(c).1 == GbcRunState::Idle {
+            break;
+        }
+    }
+    assert_eq!(active(c).g, POWER_ON);
+}
+
 /// Periods until the motion runs `line`.
 fn until_line(c: GbcController, line: u32) {
     for _ in 0..200_000 {
@@ -54,13 +76,7 @@ fn the_codes_in_force_follow_the_motion() {
         (unloaded.g, unloaded.f, unloaded.s, unloaded.t),
         (POWER_ON, 0.0, 0.0, 0)
     );
-    let opts = compiler::Options::default();
-    let prog = compiler::compile("p.nc", PROGRAM.as_bytes(), &opts);
-    let prog = prog.module.expect("compiles").to_bytes();
-    assert_eq!(
-        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
-        GbcStatus::Ok
-    );
+    load(c);
     assert_eq!(active(c).g, POWER_ON);
     assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
     until_line(c, 5);
@@ -92,13 +108,7 @@ fn the_codes_in_force_follow_the_motion() {
         (face.g[1], face.g[2], face.f, face.s),
         (970, 980, 100.0, 800.0)
     );
-    assert_eq!(gbc_reset(c), GbcStatus::Ok);
-    for _ in 0..10_000 {
-        if period(c).1 == GbcRunState::Idle {
-            break;
-        }
-    }
-    assert_eq!(active(c).g, POWER_ON);
+    reset_shows_power_on(c);
     free(m, c);
 }
 
@@ -109,13 +119,7 @@ fn the_codes_in_force_follow_the_motion() {
 #[test]
 fn a_restart_shows_the_codes_it_resumes_with() {
     let (m, c) = controller_on("");
-    let opts = compiler::Options::default();
-    let prog = compiler::compile("p.nc", PROGRAM.as_bytes(), &opts);
-    let prog = prog.module.expect("compiles").to_bytes();
-    assert_eq!(
-        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
-        GbcStatus::Ok
-    );
+    load(c);
     assert_eq!(gbc_restart_from(c, 5, 1), GbcStatus::Ok);
     let resumed = active(c);
     let mut g = POWER_ON;
@@ -124,12 +128,6 @@ fn a_restart_shows_the_codes_it_resumes_with() {
         (resumed.g, resumed.f, resumed.s, resumed.t),
         (g, 0.2, 150.0, 101)
     );
-    assert_eq!(gbc_reset(c), GbcStatus::Ok);
-    for _ in 0..10_000 {
-        if period(c).1 == GbcRunState::Idle {
-            break;
-        }
-    }
-    assert_eq!(active(c).g, POWER_ON);
+    reset_shows_power_on(c);
     free(m, c);
 }

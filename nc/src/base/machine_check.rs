@@ -117,12 +117,15 @@ fn pitch_comp(key: &str, table: &[Vec<f64>]) -> Check {
     }
     for (i, w) in points.windows(2).enumerate() {
         let ([a, ca], [b, cb]) = (w[0], w[1]);
+        let next = i + 1;
         if b <= a {
-            return bad(key, format!("point {} at {b} is not past point {i} at {a}: give the points in ascending position", i + 1));
+            let why = format!("point {next} at {b} is not past point {i} at {a}");
+            return bad(key, format!("{why}: give the points in ascending position"));
         }
-        let slope = (cb - ca) / (b - a);
+        let slope = libm::round((cb - ca) / (b - a) * 1e6) / 1e6;
         if slope.abs() > MAX_PITCH_SLOPE {
-            return bad(key, format!("from {a} to {b} the correction changes {} mm a mm, more than {MAX_PITCH_SLOPE}", libm::round(slope * 1e6) / 1e6));
+            let why = format!("from {a} to {b} the correction changes {slope} mm a mm");
+            return bad(key, format!("{why}, more than {MAX_PITCH_SLOPE}"));
         }
     }
     Ok(())
