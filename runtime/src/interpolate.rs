@@ -877,7 +877,7 @@ impl<P: Plc> Engine<P> {
         if let Some(b) = &mut self.backlash {
             drive = drive + b.period(axes, self.dt);
         }
-        if let Some([x, z]) = &self.pitch {
+        if let Some([x, z]) = &mut self.pitch {
             drive = drive + V2::new(x.at(axes.r), z.at(axes.z));
         }
         drive
