@@ -298,7 +298,44 @@ pub fn machine(data: &[u8]) {
     };
     if let Ok(m) = Machine::from_toml(text) {
         let _ = m.compile_keys();
-        let _ = runtime::Config::from_machine(&m);
+        compensated_moves(m);
+    }
+}
+
+/// Moves that turn each axis back, run on `m` for at most a few simulated
+/// seconds: the drives' command (the counts) never lies further from
+/// the set point than the machine's backlash and largest pitch
+/// correction, and half a count.
+fn compensated_moves(m: Machine) {
+    let src = "G00 X40 Z-5\nG01 Z-2 F3000\nG00 X20\nG01 X30 Z-4\nM30\n";
+    let options = Options {
+        machine: m.clone(),
+        ..Options::default()
+    };
+    let Some(module) = compile("fuzz.nc", src.as_bytes(), &options).module else {
+        return;
+    };
+    let res = m.machine.resolution_mm;
+    let bound = |a: &nc::machine::LinearAxis| {
+        let pitch = a.pitch_comp_mm.iter().flatten().skip(1).step_by(2);
+        a.backlash_mm + pitch.fold(0.0, |w: f64, c| w.max(c.abs())) + res / 2.0 + 1e-9
+    };
+    let (bx, bz) = (bound(&m.axes.x), bound(&m.axes.z));
+    let Ok(mut ctl) = runtime::Controller::new(module, m, runtime::AutoAck) else {
+        return;
+    };
+    ctl.cycle_start();
+    for _ in 0..5_000 {
+        ctl.run_ahead();
+        let p = ctl.tick();
+        let (dx, dz) = (
+            p.counts.x as f64 * res - p.axis_x,
+            p.counts.z as f64 * res - p.axis_z,
+        );
+        assert!(dx.abs() <= bx && dz.abs() <= bz, "{dx} {dz} at {p:?}");
+        if ctl.state() != runtime::RunState::Running {
+            return;
+        }
     }
 }
 
