@@ -8,7 +8,8 @@
 //! controller has it.
 
 use crate::{fail, put, put_xz, with_ctl, Failure, GbcController, GbcStatus};
-use runtime::{BadKey, OffsetLengths, WorkOffset, Xz};
+use crate::{GBC_AXIS_X, GBC_AXIS_Z};
+use runtime::{BadKey, MeasureRefused, MeasuredAxis, OffsetLengths, WorkOffset, Xz};
 
 /// `which` of `gbc_work_offset`/`gbc_set_work_offset`: the external work
 /// offset (EXOFS, #5201/#5202), which shifts every work system.
@@ -211,6 +212,68 @@ fn work_offset(which: u32) -> Result<WorkOffset, Failure> {
 }
 
 /// A refused edit: the machine-file key and why, after what was edited.
+/// Tool setting by a measured cut (`runtime::Controller::
+/// measure_tool_offset`): after cutting with the tool whose offset is in
+/// force, the operator measured `measured` mm on `axis` ([`GBC_AXIS_X`]:
+/// the diameter, [`GBC_AXIS_Z`]: the face), in work coordinates. That
+/// offset's geometry moves by the programmed point less the measurement,
+/// on the page, for every run from now on (the wear stays); its number
+/// goes to `*number` when `number` is not null.
+///
+/// Refused, changing nothing: [`GbcStatus::NoProgram`] before a program
+/// is loaded; [`GbcStatus::NotIdle`] unless the axes stand idle or at the
+/// program's end (not in polar or cylindrical interpolation);
+/// [`GbcStatus::NoOffset`] with no offset in force;
+/// [`GbcStatus::InvalidArgument`] for another axis, a value that is not
+/// finite, or a geometry beyond the page's range (`gbc_last_error` says
+/// which).
+///
+/// # Safety
+/// `number` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn gbc_measure_tool_offset(
+    controller: GbcController,
+    axis: u8,
+    measured: f64,
+    number: *mut u32,
+) -> GbcStatus {
+    with_ctl(controller, |c| {
+        let axis = match axis {
+            GBC_AXIS_X => MeasuredAxis::X,
+            GBC_AXIS_Z => MeasuredAxis::Z,
+            _ => {
+                return Err(fail(
+                    GbcStatus::InvalidArgument,
+                    "the axis is not GBC_AXIS_X or GBC_AXIS_Z",
+                ))
+            }
+        };
+        if !measured.is_finite() {
+            return Err(fail(
+                GbcStatus::InvalidArgument,
+                "the measurement is not finite",
+            ));
+        }
+        let run = c
+            .run
+            .as_mut()
+            .ok_or_else(|| fail(GbcStatus::NoProgram, GbcStatus::NoProgram.text()))?;
+        let (n, _) = run.measure_tool_offset(axis, measured).map_err(|e| {
+            let status = match &e {
+                MeasureRefused::NotStanding => GbcStatus::NotIdle,
+                MeasureRefused::NoOffset => GbcStatus::NoOffset,
+                MeasureRefused::Page(_) => GbcStatus::InvalidArgument,
+            };
+            fail(status, e.to_string())
+        })?;
+        if !number.is_null() {
+            // SAFETY: non-null and writable by the caller's promise.
+            unsafe { number.write(n) };
+        }
+        Ok(())
+    })
+}
+
 pub(crate) fn refused(what: &str, e: BadKey) -> Failure {
     fail(
         GbcStatus::InvalidArgument,

@@ -207,6 +207,13 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             Box::new(|h| gbc_set_variable(h, 500, 1.0)),
         ),
         (
+            "gbc_measure_tool_offset",
+            Box::new(|h| {
+                let mut n = 0;
+                unsafe { gbc_measure_tool_offset(h, GBC_AXIS_X, 50.0, &mut n) }
+            }),
+        ),
+        (
             "gbc_distance_to_go",
             Box::new(|h| {
                 let (mut x, mut z) = (0.0, 0.0);

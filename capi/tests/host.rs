@@ -1047,3 +1047,39 @@ fn the_macro_variable_page_goes_through_the_c_abi() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
 }
+
+/// Tool setting by a measured cut through C: on the reference machine
+/// offset 1 is all 0; the cut ends at X50 Z-10 and measures 49.96, so
+/// its X geometry becomes 50 − 49.96 = 0.04 (by hand). Refused before a
+/// cut (no offset in force), for another axis and for NaN.
+#[test]
+fn a_measured_cut_sets_the_tool_offset_through_c() {
+    let host = new_host(Host::default());
+    let (m, c) = new_controller(host, &module("T0101\nG00 X50 Z2\nG01 Z-10 F500\nM30\n"));
+    let mut n = 0;
+    let measure = |axis, v, n: &mut u32| unsafe { gbc_measure_tool_offset(c, axis, v, n) };
+    assert_eq!(measure(GBC_AXIS_X, 49.96, &mut n), GbcStatus::NoOffset);
+    run(c, |_| {});
+    assert_eq!(
+        measure(GBC_AXIS_C, 49.96, &mut n),
+        GbcStatus::InvalidArgument
+    );
+    assert_eq!(
+        measure(GBC_AXIS_X, f64::NAN, &mut n),
+        GbcStatus::InvalidArgument
+    );
+    assert_eq!(measure(GBC_AXIS_X, 49.96, &mut n), GbcStatus::Ok);
+    assert_eq!(n, 1);
+    let mut l = GbcOffsetLengths {
+        x: f64::NAN,
+        z: f64::NAN,
+        wear_x: f64::NAN,
+        wear_z: f64::NAN,
+    };
+    assert_eq!(unsafe { gbc_tool_offset(c, 1, &mut l) }, GbcStatus::Ok);
+    assert!((l.x - 0.04).abs() < 1e-12, "{l:?}");
+    assert_eq!((l.z, l.wear_x, l.wear_z), (0.0, 0.0, 0.0));
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    drop(unsafe { Box::from_raw(host) });
+}

@@ -42,7 +42,9 @@ use nc::{Machine, Sink};
 use vm::Vm;
 
 pub(crate) mod between;
+mod measure;
 pub use between::{RestartRefused, SelectRefused};
+pub use measure::{MeasureRefused, MeasuredAxis};
 use vm::restart::RestartAt;
 
 /// Why a module cannot be run.

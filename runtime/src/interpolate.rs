@@ -883,6 +883,20 @@ impl<P: Plc> Engine<P> {
         drive
     }
 
+    /// The programmed point the axes stand at in work coordinates, X on
+    /// the diameter, as the last period gave it; `None` in a plane of
+    /// polar or cylindrical interpolation, whose point is not in X and Z.
+    pub fn work_point(&self) -> Option<nc::machine::Xz> {
+        if self.plane.is_some() {
+            return None;
+        }
+        let (work, _, _) = self.frames();
+        Some(nc::machine::Xz {
+            x: work.x(),
+            z: work.z,
+        })
+    }
+
     /// This period's point in work coordinates, the machine set point
     /// and C.
     fn frames(&self) -> (V2, V2, f64) {

@@ -76,7 +76,9 @@ pub use interpolate::{
 };
 pub use plc::{AutoAck, Plc, PlcFunction};
 
-pub use controller::{AlarmInfo, Controller, LoadError, RestartRefused, SelectRefused};
+pub use controller::{
+    AlarmInfo, Controller, LoadError, MeasureRefused, MeasuredAxis, RestartRefused, SelectRefused,
+};
 pub use nc::active::{ActiveCodes, GROUPS as ACTIVE_GROUPS};
 pub use nc::counters::{Counters, Parts, MAX_PARTS};
 pub use nc::machine::Xz;
