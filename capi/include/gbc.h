@@ -282,12 +282,6 @@ typedef enum GbcStatus {
    * changed.
    */
   GBC_STATUS_COMPILE_ERROR = 19,
-  /**
-   * `gbc_measure_tool_offset`: no tool offset is in force (no T word
-   * yet, `T..00`, or a reset since): call the tool with its offset and
-   * cut first. Nothing changed.
-   */
-  GBC_STATUS_NO_OFFSET = 20,
 } GbcStatus;
 
 /**
@@ -1261,28 +1255,24 @@ enum GbcStatus gbc_set_work_offset(GbcController controller, uint32_t which, dou
 /**
  * A refused edit: the machine-file key and why, after what was edited.
  * Tool setting by a measured cut (`runtime::Controller::
- * measure_tool_offset`): after cutting with the tool whose offset is in
- * force, the operator measured `measured` mm on `axis` ([`GBC_AXIS_X`]:
- * the diameter, [`GBC_AXIS_Z`]: the face), in work coordinates. That
- * offset's geometry moves by the programmed point less the measurement,
- * on the page, for every run from now on (the wear stays); its number
- * goes to `*number` when `number` is not null.
+ * measure_tool_offset`): after cutting with the tool of offset `number`,
+ * the operator measured `measured` mm on `axis` ([`GBC_AXIS_X`]: the
+ * diameter, [`GBC_AXIS_Z`]: the face), in the work system a run starts in
+ * (G54 shifted by EXOFS). The offset's geometry on that axis becomes the
+ * slide's position less that work origin, the measurement and the wear,
+ * on the page, for every run from now on; `gbc_tool_offset` reads it.
  *
  * Refused, changing nothing: [`GbcStatus::NoProgram`] before a program
  * is loaded; [`GbcStatus::NotIdle`] unless the axes stand idle or at the
  * program's end (not in polar or cylindrical interpolation);
- * [`GbcStatus::NoOffset`] with no offset in force;
  * [`GbcStatus::InvalidArgument`] for another axis, a value that is not
- * finite, or a geometry beyond the page's range (`gbc_last_error` says
- * which).
- *
- * # Safety
- * `number` is null or writable.
+ * finite, an offset outside the table or a geometry beyond the page's
+ * range (`gbc_last_error` says which).
  */
 enum GbcStatus gbc_measure_tool_offset(GbcController controller,
+                                       uint32_t number,
                                        uint8_t axis,
-                                       double measured,
-                                       uint32_t *number);
+                                       double measured);
 
 /**
  * Program restart at the block on source line `line` (1-based) of the

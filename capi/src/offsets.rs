@@ -213,29 +213,25 @@ fn work_offset(which: u32) -> Result<WorkOffset, Failure> {
 
 /// A refused edit: the machine-file key and why, after what was edited.
 /// Tool setting by a measured cut (`runtime::Controller::
-/// measure_tool_offset`): after cutting with the tool whose offset is in
-/// force, the operator measured `measured` mm on `axis` ([`GBC_AXIS_X`]:
-/// the diameter, [`GBC_AXIS_Z`]: the face), in work coordinates. That
-/// offset's geometry moves by the programmed point less the measurement,
-/// on the page, for every run from now on (the wear stays); its number
-/// goes to `*number` when `number` is not null.
+/// measure_tool_offset`): after cutting with the tool of offset `number`,
+/// the operator measured `measured` mm on `axis` ([`GBC_AXIS_X`]: the
+/// diameter, [`GBC_AXIS_Z`]: the face), in the work system a run starts in
+/// (G54 shifted by EXOFS). The offset's geometry on that axis becomes the
+/// slide's position less that work origin, the measurement and the wear,
+/// on the page, for every run from now on; `gbc_tool_offset` reads it.
 ///
 /// Refused, changing nothing: [`GbcStatus::NoProgram`] before a program
 /// is loaded; [`GbcStatus::NotIdle`] unless the axes stand idle or at the
 /// program's end (not in polar or cylindrical interpolation);
-/// [`GbcStatus::NoOffset`] with no offset in force;
 /// [`GbcStatus::InvalidArgument`] for another axis, a value that is not
-/// finite, or a geometry beyond the page's range (`gbc_last_error` says
-/// which).
-///
-/// # Safety
-/// `number` is null or writable.
+/// finite, an offset outside the table or a geometry beyond the page's
+/// range (`gbc_last_error` says which).
 #[no_mangle]
-pub unsafe extern "C" fn gbc_measure_tool_offset(
+pub extern "C" fn gbc_measure_tool_offset(
     controller: GbcController,
+    number: u32,
     axis: u8,
     measured: f64,
-    number: *mut u32,
 ) -> GbcStatus {
     with_ctl(controller, |c| {
         let axis = match axis {
@@ -258,18 +254,14 @@ pub unsafe extern "C" fn gbc_measure_tool_offset(
             .run
             .as_mut()
             .ok_or_else(|| fail(GbcStatus::NoProgram, GbcStatus::NoProgram.text()))?;
-        let (n, _) = run.measure_tool_offset(axis, measured).map_err(|e| {
-            let status = match &e {
-                MeasureRefused::NotStanding => GbcStatus::NotIdle,
-                MeasureRefused::NoOffset => GbcStatus::NoOffset,
-                MeasureRefused::Page(_) => GbcStatus::InvalidArgument,
-            };
-            fail(status, e.to_string())
-        })?;
-        if !number.is_null() {
-            // SAFETY: non-null and writable by the caller's promise.
-            unsafe { number.write(n) };
-        }
+        run.measure_tool_offset(number, axis, measured)
+            .map_err(|e| {
+                let status = match &e {
+                    MeasureRefused::NotStanding => GbcStatus::NotIdle,
+                    MeasureRefused::Page(_) => GbcStatus::InvalidArgument,
+                };
+                fail(status, e.to_string())
+            })?;
         Ok(())
     })
 }

@@ -86,10 +86,6 @@ pub enum GbcStatus {
     /// gives the compiler's diagnostic of its first error). Nothing
     /// changed.
     CompileError = 19,
-    /// `gbc_measure_tool_offset`: no tool offset is in force (no T word
-    /// yet, `T..00`, or a reset since): call the tool with its offset and
-    /// cut first. Nothing changed.
-    NoOffset = 20,
 }
 
 impl GbcStatus {
@@ -128,7 +124,6 @@ impl GbcStatus {
                 "the program raised an alarm before reaching the restart block"
             }
             GbcStatus::CompileError => "the G-code text does not compile",
-            GbcStatus::NoOffset => "no tool offset is in force",
         }
     }
 }

@@ -208,10 +208,7 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
         ),
         (
             "gbc_measure_tool_offset",
-            Box::new(|h| {
-                let mut n = 0;
-                unsafe { gbc_measure_tool_offset(h, GBC_AXIS_X, 50.0, &mut n) }
-            }),
+            Box::new(|h| gbc_measure_tool_offset(h, 1, GBC_AXIS_X, 50.0)),
         ),
         (
             "gbc_distance_to_go",

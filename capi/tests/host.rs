@@ -1049,27 +1049,20 @@ fn the_macro_variable_page_goes_through_the_c_abi() {
 }
 
 /// Tool setting by a measured cut through C: on the reference machine
-/// offset 1 is all 0; the cut ends at X50 Z-10 and measures 49.96, so
-/// its X geometry becomes 50 − 49.96 = 0.04 (by hand). Refused before a
-/// cut (no offset in force), for another axis and for NaN.
+/// offset 1 is all 0 and work zero is machine zero; the cut ends at X50
+/// Z-10 and measures 49.96, so by hand its X geometry becomes
+/// 50 − 49.96 = 0.04. Refused before a program is loaded, for another
+/// axis, for NaN and for an offset outside the table (1 … 32).
 #[test]
 fn a_measured_cut_sets_the_tool_offset_through_c() {
     let host = new_host(Host::default());
     let (m, c) = new_controller(host, &module("T0101\nG00 X50 Z2\nG01 Z-10 F500\nM30\n"));
-    let mut n = 0;
-    let measure = |axis, v, n: &mut u32| unsafe { gbc_measure_tool_offset(c, axis, v, n) };
-    assert_eq!(measure(GBC_AXIS_X, 49.96, &mut n), GbcStatus::NoOffset);
     run(c, |_| {});
-    assert_eq!(
-        measure(GBC_AXIS_C, 49.96, &mut n),
-        GbcStatus::InvalidArgument
-    );
-    assert_eq!(
-        measure(GBC_AXIS_X, f64::NAN, &mut n),
-        GbcStatus::InvalidArgument
-    );
-    assert_eq!(measure(GBC_AXIS_X, 49.96, &mut n), GbcStatus::Ok);
-    assert_eq!(n, 1);
+    let measure = |n, axis, v| gbc_measure_tool_offset(c, n, axis, v);
+    assert_eq!(measure(1, GBC_AXIS_C, 49.96), GbcStatus::InvalidArgument);
+    assert_eq!(measure(1, GBC_AXIS_X, f64::NAN), GbcStatus::InvalidArgument);
+    assert_eq!(measure(33, GBC_AXIS_X, 49.96), GbcStatus::InvalidArgument);
+    assert_eq!(measure(1, GBC_AXIS_X, 49.96), GbcStatus::Ok);
     let mut l = GbcOffsetLengths {
         x: f64::NAN,
         z: f64::NAN,
@@ -1082,4 +1075,19 @@ fn a_measured_cut_sets_the_tool_offset_through_c() {
     assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
+    // No program: no slide position to measure from.
+    let (mut m, mut c) = (0, 0);
+    unsafe {
+        assert_eq!(gbc_machine_reference(&mut m), GbcStatus::Ok);
+        assert_eq!(
+            gbc_controller_new(m, std::ptr::null(), &mut c),
+            GbcStatus::Ok
+        );
+    }
+    assert_eq!(
+        gbc_measure_tool_offset(c, 1, GBC_AXIS_X, 50.0),
+        GbcStatus::NoProgram
+    );
+    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
+    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
 }

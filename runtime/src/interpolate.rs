@@ -883,17 +883,18 @@ impl<P: Plc> Engine<P> {
         drive
     }
 
-    /// The programmed point the axes stand at in work coordinates, X on
-    /// the diameter, as the last period gave it; `None` in a plane of
-    /// polar or cylindrical interpolation, whose point is not in X and Z.
-    pub fn work_point(&self) -> Option<nc::machine::Xz> {
+    /// The machine set point the axes stand at, X on the diameter, tool
+    /// offset included (the last period's `axis_x`, `axis_z`); `None` in
+    /// a plane of polar or cylindrical interpolation, whose joints are
+    /// not X and Z.
+    pub fn machine_point(&self) -> Option<nc::machine::Xz> {
         if self.plane.is_some() {
             return None;
         }
-        let (work, _, _) = self.frames();
+        let (_, axes, _) = self.frames();
         Some(nc::machine::Xz {
-            x: work.x(),
-            z: work.z,
+            x: axes.x(),
+            z: axes.z,
         })
     }
 

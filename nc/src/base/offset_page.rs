@@ -52,19 +52,23 @@ impl Machine {
         }))
     }
 
+    /// Offset `number`'s lengths, or the refusal of a number outside
+    /// the table (naming its size).
+    pub fn offset_row(&self, number: u32) -> Result<OffsetLengths, BadKey> {
+        self.offset_lengths(number).ok_or_else(|| BadKey {
+            key: "tools.offsets".into(),
+            msg: format!(
+                "offset {number} is outside the table: offsets are 1 … {}",
+                self.tools.offsets
+            ),
+        })
+    }
+
     /// Sets the lengths of tool offset `number`; its nose radius and tip
     /// stay. Refused, changing nothing, for a number outside the table or
     /// a value outside the machine file's ranges (±10⁶ mm, finite).
     pub fn set_offset_lengths(&mut self, number: u32, l: OffsetLengths) -> Result<(), BadKey> {
-        if self.offset_lengths(number).is_none() {
-            return Err(BadKey {
-                key: "tools.offsets".into(),
-                msg: format!(
-                    "offset {number} is outside the table: offsets are 1 … {}",
-                    self.tools.offsets
-                ),
-            });
-        }
+        self.offset_row(number)?;
         let mut edited = self.clone();
         let offsets = &mut edited.tools.offset;
         let i = match offsets.iter().position(|o| o.number == number) {

@@ -1,21 +1,21 @@
 //! Tool setting by a measured cut: the operator cuts a diameter (or
-//! faces) with the tool whose offset is in force, measures the part and
-//! enters the measurement, as on a GSK980TDi's trial-cut tool setting or
-//! a Fanuc's "measured value direct input". The control moves the
-//! offset's geometry by what the programmed point and the measurement
-//! differ, so that the same program cuts the measured size next time.
+//! faces) with a tool, measures the part and enters the measurement on
+//! that tool's offset, as on a GSK980TDi's trial-cut tool setting or a
+//! Fanuc's "measured value direct input". The control works out the
+//! offset's geometry from where the slide stands, so that a program cuts
+//! the measured size with it.
 //!
-//! The slide stands at the programmed point plus the work origin plus the
-//! offset in force (geometry and wear); the tool's tip, at the measured
-//! point plus the work origin plus its true offset. So the true offset is
-//! the one in force plus the programmed point less the measurement, and
-//! the wear stays as it was.
+//! The slide stands at the tool's tip plus its offset (geometry and
+//! wear), and the tip at the measured point plus the work origin a run
+//! starts in (G54, shifted by EXOFS). So the geometry is the slide's
+//! position less the work origin, the measurement and the wear, whatever
+//! offset moved the slide there.
 
 use super::Controller;
 use crate::interpolate::RunState;
 use crate::plc::Plc;
 use nc::machine_check::BadKey;
-use nc::offset_page::OffsetLengths;
+use nc::offset_page::{OffsetLengths, WorkOffset};
 
 /// The axis a measurement was taken on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -33,10 +33,8 @@ pub enum MeasureRefused {
     /// plane of polar or cylindrical interpolation is in force: measure
     /// with the machine idle or at the program's end.
     NotStanding,
-    /// No tool offset is in force (no T word yet, T..00, or a reset
-    /// since): call the tool with its offset (`T0101`) and cut first.
-    NoOffset,
-    /// The new geometry is out of the offset page's range.
+    /// The offset number is outside the table, or the new geometry out
+    /// of the page's range.
     Page(BadKey),
 }
 
@@ -47,10 +45,6 @@ impl core::fmt::Display for MeasureRefused {
                 f,
                 "a measurement needs the axes standing, idle or at the program's end"
             ),
-            MeasureRefused::NoOffset => write!(
-                f,
-                "no tool offset is in force: call the tool with its offset (T0101) and cut first"
-            ),
             MeasureRefused::Page(e) => write!(f, "{}: {}", e.key, e.msg),
         }
     }
@@ -60,32 +54,37 @@ impl core::error::Error for MeasureRefused {}
 
 impl<P: Plc> Controller<P> {
     /// Tool setting by a measured cut (docs/embedding.md, "The offset
-    /// page"): `measured` is the diameter (X) or face (Z) the operator
-    /// measured, in work coordinates, after cutting with the tool whose
-    /// offset is in force (the T word the last block left). That
-    /// offset's geometry moves by the programmed point less the
-    /// measurement, on the page, for every run from now on; the wear
-    /// stays. Gives the offset's number and its new lengths.
+    /// page"): after cutting with the tool of offset `number`, the
+    /// operator measured `measured`, the diameter (X) or the face (Z) in
+    /// the work system a run starts in (G54 shifted by EXOFS). The
+    /// offset's geometry on that axis becomes the slide's position less
+    /// that work origin, the measurement and the wear, on the page, for
+    /// every run from now on. Gives the offset's new lengths.
     pub fn measure_tool_offset(
         &mut self,
+        number: u32,
         axis: MeasuredAxis,
         measured: f64,
-    ) -> Result<(u32, OffsetLengths), MeasureRefused> {
+    ) -> Result<OffsetLengths, MeasureRefused> {
         let standing = matches!(self.engine.state(), RunState::Idle | RunState::Ended);
-        let at = self.engine.work_point();
-        let (true, Some(at)) = (standing, at) else {
+        let (true, Some(slide)) = (standing, self.engine.machine_point()) else {
             return Err(MeasureRefused::NotStanding);
         };
-        let number = self.engine.active_codes().t % 100;
-        let Some(mut lengths) = self.tool_offset(number).filter(|_| number > 0) else {
-            return Err(MeasureRefused::NoOffset);
-        };
-        match axis {
-            MeasuredAxis::X => lengths.x += at.x - measured,
-            MeasuredAxis::Z => lengths.z += at.z - measured,
-        }
-        self.set_tool_offset(number, lengths)
+        let mut l = self
+            .ra
+            .machine
+            .offset_row(number)
             .map_err(MeasureRefused::Page)?;
-        Ok((number, lengths))
+        let (shift, g54) = (
+            self.work_offset(WorkOffset::External),
+            self.work_offset(WorkOffset::G54),
+        );
+        match axis {
+            MeasuredAxis::X => l.x = slide.x - shift.x - g54.x - measured - l.wear_x,
+            MeasuredAxis::Z => l.z = slide.z - shift.z - g54.z - measured - l.wear_z,
+        }
+        self.set_tool_offset(number, l)
+            .map_err(MeasureRefused::Page)?;
+        Ok(l)
     }
 }
