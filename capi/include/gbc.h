@@ -1253,7 +1253,6 @@ enum GbcStatus gbc_work_offset(GbcController controller, uint32_t which, double 
 enum GbcStatus gbc_set_work_offset(GbcController controller, uint32_t which, double x, double z);
 
 /**
- * A refused edit: the machine-file key and why, after what was edited.
  * Tool setting by a measured cut (`runtime::Controller::
  * measure_tool_offset`): after cutting with the tool of offset `number`,
  * the operator measured `measured` mm on `axis` ([`GBC_AXIS_X`]: the

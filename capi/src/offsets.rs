@@ -211,7 +211,6 @@ fn work_offset(which: u32) -> Result<WorkOffset, Failure> {
     })
 }
 
-/// A refused edit: the machine-file key and why, after what was edited.
 /// Tool setting by a measured cut (`runtime::Controller::
 /// measure_tool_offset`): after cutting with the tool of offset `number`,
 /// the operator measured `measured` mm on `axis` ([`GBC_AXIS_X`]: the
@@ -266,6 +265,7 @@ pub extern "C" fn gbc_measure_tool_offset(
     })
 }
 
+/// A refused edit: the machine-file key and why, after what was edited.
 pub(crate) fn refused(what: &str, e: BadKey) -> Failure {
     fail(
         GbcStatus::InvalidArgument,
