@@ -6,7 +6,7 @@ mod periods;
 
 use core::ffi::c_void;
 use gbc::*;
-use periods::{blank, last_error};
+use periods::{blank, controller_on, free, last_error};
 
 #[derive(Default)]
 struct Host {
@@ -1076,18 +1076,10 @@ fn a_measured_cut_sets_the_tool_offset_through_c() {
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
     drop(unsafe { Box::from_raw(host) });
     // No program: no slide position to measure from.
-    let (mut m, mut c) = (0, 0);
-    unsafe {
-        assert_eq!(gbc_machine_reference(&mut m), GbcStatus::Ok);
-        assert_eq!(
-            gbc_controller_new(m, std::ptr::null(), &mut c),
-            GbcStatus::Ok
-        );
-    }
+    let (m, c) = controller_on("");
     assert_eq!(
         gbc_measure_tool_offset(c, 1, GBC_AXIS_X, 50.0),
         GbcStatus::NoProgram
     );
-    assert_eq!(gbc_controller_free(c), GbcStatus::Ok);
-    assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+    free(m, c);
 }

@@ -96,21 +96,13 @@ struct Whole {
 fn stood(events: &[Event], programmed: (f64, f64)) -> (f64, f64) {
     let mut at = None;
     for e in events {
-        at = match *e {
-            Event::Rapid { x, z, .. }
-            | Event::Line { x, z, .. }
-            | Event::Arc { x, z, .. }
-            | Event::Ellipse { x, z, .. }
-            | Event::Parabola { x, z, .. }
-            | Event::Thread { x, z, .. }
-            | Event::ArcThread { x, z, .. }
-            | Event::Skip { x, z } => Some((x, z)),
+        at = match e {
             Event::Home { .. }
             | Event::Origin { .. }
             | Event::PolarOn
             | Event::PolarOff { .. }
             | Event::Cylinder(_) => None,
-            _ => at,
+            e => e.end().or(at),
         };
     }
     at.unwrap_or(programmed)
