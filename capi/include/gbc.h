@@ -972,6 +972,16 @@ enum GbcStatus gbc_set_optional_stop(GbcController controller, bool on);
 enum GbcStatus gbc_set_dry_run(GbcController controller, bool on);
 
 /**
+ * Machine lock: the program runs (its positions, time and alarms as
+ * ever), the axes stand: `axis_x`, `axis_z`, C and the counts keep the
+ * values they had when the run started. The switch is read when a run
+ * or a manual move starts from idle; switched mid-run, it waits for the
+ * next start. The reset (or the end of MDI) that ends a locked run
+ * brings the programmed point back to where the axes stand.
+ */
+enum GbcStatus gbc_set_machine_lock(GbcController controller, bool on);
+
+/**
  * Block-skip switch `switch_number` (1–9; `/` is 1, `/n` is n), the
  * panel's block-delete key: a `/n` block is skipped when its switch is on
  * as the program reads it. The program is read ahead of the motion (by

@@ -79,6 +79,7 @@ struct Panel {
     single_block: bool,
     optional_stop: bool,
     dry_run: bool,
+    machine_lock: bool,
     skip_level: bool,
     /// Block-skip switches 1–9.
     block_skip: [bool; 9],
@@ -94,6 +95,7 @@ impl Panel {
             single_block: cfg.single_block,
             optional_stop: m.operator.optional_stop,
             dry_run: m.operator.dry_run,
+            machine_lock: m.operator.machine_lock,
             skip_level: cfg.skip_active_low,
             block_skip: *m.operator.block_skip,
         }
@@ -106,6 +108,7 @@ impl Panel {
         c.set_single_block(self.single_block);
         c.set_optional_stop(self.optional_stop);
         c.set_dry_run(self.dry_run);
+        c.set_machine_lock(self.machine_lock);
         c.set_skip_input(self.skip_level);
         for (n, &on) in (1..).zip(&self.block_skip) {
             c.set_block_skip(n, on);
@@ -861,6 +864,24 @@ pub extern "C" fn gbc_set_dry_run(controller: GbcController, on: bool) -> GbcSta
             Ok(())
         },
         |p, r| r.set_dry_run(p.dry_run),
+    )
+}
+
+/// Machine lock: the program runs (its positions, time and alarms as
+/// ever), the axes stand: `axis_x`, `axis_z`, C and the counts keep the
+/// values they had when the run started. The switch is read when a run
+/// or a manual move starts from idle; switched mid-run, it waits for the
+/// next start. The reset (or the end of MDI) that ends a locked run
+/// brings the programmed point back to where the axes stand.
+#[no_mangle]
+pub extern "C" fn gbc_set_machine_lock(controller: GbcController, on: bool) -> GbcStatus {
+    panel(
+        controller,
+        |p| {
+            p.machine_lock = on;
+            Ok(())
+        },
+        |p, r| r.set_machine_lock(p.machine_lock),
     )
 }
 

@@ -126,6 +126,10 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
         ),
         ("gbc_set_dry_run", Box::new(|h| gbc_set_dry_run(h, true))),
         (
+            "gbc_set_machine_lock",
+            Box::new(|h| gbc_set_machine_lock(h, true)),
+        ),
+        (
             "gbc_set_block_skip",
             Box::new(|h| gbc_set_block_skip(h, 1, false)),
         ),

@@ -361,6 +361,32 @@ fn the_counts_frame_carries_the_backlash_compensation() {
     let _ = std::fs::remove_dir_all(d);
 }
 
+/// A machine file with `operator.machine_lock`: the work frame runs the
+/// program to X20 Z-5, the machine and counts frames stand at the
+/// power-on point, machine zero, every period.
+#[test]
+fn machine_lock_holds_the_machine_frame_and_the_counts() {
+    let src = "O0001\nG98 G01 X20 Z-5 F600\nM30\n";
+    let (d, gbc) = compiled("lock", src);
+    let machine = d.join("m.toml");
+    std::fs::write(&machine, "[operator]\nmachine_lock = true\n").unwrap();
+    let (gbc, machine) = (gbc.to_str().unwrap(), machine.to_str().unwrap());
+    let xz = |frame: &str| -> Vec<String> {
+        let args = ["run", gbc, "--emit", "trace", "--frame", frame];
+        let o = gbvm(&[&args[..], &["--machine", machine]].concat());
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        let t = text(&o.stdout);
+        let xz = |l: &str| l.split(',').skip(1).take(2).collect::<Vec<_>>().join(",");
+        t.lines().skip(1).map(xz).collect()
+    };
+    let work = xz("work");
+    assert!(work.len() > 100, "{} periods", work.len());
+    assert_eq!(work.last().map(String::as_str), Some("20.000000,-5.000000"));
+    assert!(xz("machine").iter().all(|p| p == "0.000000,0.000000"));
+    assert!(xz("counts").iter().all(|p| p == "0,0"));
+    let _ = std::fs::remove_dir_all(d);
+}
+
 /// The trace names the motion of each period and the tool.
 #[test]
 fn the_trace_has_motion_words_and_the_tool() {

@@ -142,6 +142,9 @@ pub struct Config {
     /// override instead of F (a live switch,
     /// [`crate::Engine::set_dry_run`]).
     pub dry_run: bool,
+    /// Machine lock: the program runs, the axes stand (read when a run
+    /// starts, [`crate::Engine::set_machine_lock`]).
+    pub machine_lock: bool,
     /// The dry-run rate, mm/s. The machine file has no key for it; it is
     /// the path limit of cutting feeds (№027), so that the override knob
     /// sets the speed of an air cut as the GSK's manual rate does.
@@ -215,6 +218,7 @@ impl Default for Config {
             single_block: false,
             optional_stop: true,
             dry_run: false,
+            machine_lock: false,
             dry_run_feed: min(5000.0),
             m30_rewinds: false,
             skip_active_low: false,
@@ -394,6 +398,7 @@ impl Config {
             single_block: m.operator.single_block,
             optional_stop: m.operator.optional_stop,
             dry_run: m.operator.dry_run,
+            machine_lock: m.operator.machine_lock,
             dry_run_feed: per_s(m.feed.max_mm_min),
             m30_rewinds: m.run.m30_rewinds,
             skip_active_low: m.measure.signal_active_low,

@@ -350,6 +350,12 @@ impl<P: Plc> Controller<P> {
         self.engine.set_dry_run(on);
     }
 
+    /// Machine lock: the program runs, the axes stand; read when a run
+    /// or a manual move starts ([`Engine::set_machine_lock`]).
+    pub fn set_machine_lock(&mut self, on: bool) {
+        self.engine.set_machine_lock(on);
+    }
+
     /// The measured spindle for the coming period, from the host's
     /// encoder ([`Engine::set_spindle_feedback`]).
     pub fn set_spindle_feedback(&mut self, position_turns: f64, rpm: f64) {

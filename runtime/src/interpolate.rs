@@ -17,6 +17,7 @@ use crate::command::{Ending, MoveKind, PauseKind, Tag};
 use crate::config::{Config, RapidOverride};
 use crate::counts::Counts;
 use crate::follow::{Ahead, FollowAxes, Follower};
+use crate::machine_lock::MachineLock;
 use crate::math::{sqrt, V2};
 use crate::pitch::PitchTable;
 use crate::planner::{Full, Item, ItemKind, Planner, Pushed, Segment};
@@ -292,6 +293,8 @@ pub struct Engine<P: Plc> {
     backlash: Option<Backlash>,
     /// The pitch error tables of X and Z (none on a machine without).
     pitch: Option<[PitchTable; 2]>,
+    /// Machine lock: the switch, and where it holds the axes.
+    lock: MachineLock,
     dt: f64,
     plc: P,
     q: Planner,
@@ -419,6 +422,7 @@ impl<P: Plc> Engine<P> {
         Engine {
             backlash,
             pitch,
+            lock: MachineLock::new(cfg.machine_lock),
             dt: cfg.period_s,
             plc,
             q,
@@ -616,7 +620,9 @@ impl<P: Plc> Engine<P> {
 
     /// The programmed point the axes are at, slide units. The set points
     /// differ from it only while an axis still follows a thread chain's
-    /// corner ([`crate::follow`]); a new move waits until they meet.
+    /// corner ([`crate::follow`]), a new move waiting until they meet,
+    /// and under machine lock, which holds them
+    /// ([`machine_point`](Engine::machine_point) is where they stand).
     pub fn position(&self) -> V2 {
         self.pos
     }
@@ -701,6 +707,27 @@ impl<P: Plc> Engine<P> {
     pub fn set_dry_run(&mut self, on: bool) {
         self.dry_run = on;
         self.q.set_dry_run(on);
+    }
+
+    /// Machine lock (docs/machine.md): the program runs, the axes stand.
+    /// The switch is read when a run or a manual move starts from idle,
+    /// and holds the axes until the reset that ends it, which brings the
+    /// programmed point back to where they stand; switched mid-run, it
+    /// waits for the next start.
+    pub fn set_machine_lock(&mut self, on: bool) {
+        self.lock.switch = on;
+    }
+
+    /// Machine lock holds the axes for the run or manual move under way.
+    pub fn axes_locked(&self) -> bool {
+        self.lock.holds()
+    }
+
+    /// A run or a manual move starts: machine lock, if on, holds the
+    /// axes where they stand.
+    fn lock_axes(&mut self) {
+        let (_, axes, c) = self.frames();
+        self.lock.start(axes, c);
     }
 
     /// Reset: the motion decelerates to a stop, the queue is dropped, the
@@ -815,6 +842,7 @@ impl<P: Plc> Engine<P> {
             RunState::Ended | RunState::Alarm(_) | RunState::Manual => self.cycle_start = false,
             RunState::Idle => {
                 if core::mem::take(&mut self.cycle_start) {
+                    self.lock_axes();
                     self.state = RunState::Running;
                     self.run();
                 }
@@ -899,16 +927,18 @@ impl<P: Plc> Engine<P> {
     }
 
     /// This period's point in work coordinates, the machine set point
-    /// and C.
+    /// and C (where machine lock holds them, while it does).
     fn frames(&self) -> (V2, V2, f64) {
-        match &self.plane {
+        let (work, axes, c) = match &self.plane {
             Some(run) => (run.work(), run.axes(), run.c()),
             None => (
                 self.fixed_work.unwrap_or(self.out - self.shift),
                 self.out,
                 self.c,
             ),
-        }
+        };
+        let (axes, c) = self.lock.axes(axes, c);
+        (work, axes, c)
     }
 
     /// The period's set point; `drive` is the machine set point with the
@@ -1776,6 +1806,12 @@ impl<P: Plc> Engine<P> {
             self.smooth.reset(self.pos);
             self.rapid_avg.reset(self.pos);
             self.rapid_avg_c.reset(V2::new(self.c, 0.0));
+        }
+        if let Some((axes, c)) = self.lock.release() {
+            // Machine lock held the axes: the point is theirs again.
+            self.switched = true;
+            (self.pos, self.out, self.c) = (axes, axes, c);
+            self.follow.snap(axes);
         }
         self.q.set_tail(self.pos);
         self.q.set_tail_c(self.c);

@@ -50,6 +50,7 @@ pub mod counts;
 pub mod follow;
 pub mod geom;
 pub mod interpolate;
+mod machine_lock;
 pub mod math;
 pub mod pitch;
 pub mod planner;

@@ -179,6 +179,7 @@ impl<P: Plc> Engine<P> {
     /// A manual session starts: the queue the interpreter filled ahead is
     /// dropped (the reset at the end queues it again).
     fn begin_manual(&mut self) {
+        self.lock_axes();
         self.q.clear();
         self.q.set_tail(self.pos);
         self.q.set_tail_c(self.c);
