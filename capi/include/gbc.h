@@ -16,26 +16,30 @@
  * - Handles (GbcMachine, GbcController) are numbers, never pointers: 0, a
  *   freed handle or any value the library did not return is
  *   GBC_STATUS_INVALID_HANDLE, a machine where a controller belongs (or
- *   the reverse) GBC_STATUS_WRONG_KIND. At most GBC_HANDLE_CAPACITY (256)
+ *   the reverse, or a call on the half of a split controller that does
+ *   not take it) GBC_STATUS_WRONG_KIND. At most GBC_HANDLE_CAPACITY (256)
  *   handles are alive at once in a process, machines and controllers
  *   together; one more is GBC_STATUS_LIMIT.
  * - Ownership: what you make you free (gbc_machine_free,
- *   gbc_controller_free). A controller keeps its own copy of the machine
- *   (free the machine when you like) and of the GbcHost struct; the host's
- *   callbacks and its user pointer must stay valid until the controller
- *   is freed. Pointers passed to a call are not kept after it returns
- *   (GbcHost's callbacks and user excepted); a pointer the library passes
- *   to a callback is valid during that callback only.
+ *   gbc_controller_free, gbc_realtime_free). A controller keeps its own
+ *   copy of the machine (free the machine when you like) and of the
+ *   GbcHost struct; the host's callbacks and its user pointer must stay
+ *   valid until the controller is freed. Pointers passed to a call are
+ *   not kept after it returns (GbcHost's callbacks and user excepted); a
+ *   pointer the library passes to a callback is valid during that
+ *   callback only.
  * - Threads: a handle is not bound to a thread. One call at a time per
  *   handle: the host serialises all calls on one controller (gbc_tick and
  *   gbc_run_ahead included) and on one machine (gbc_controller_new reads
  *   it), and frees no handle while another call on it runs. Different
- *   controllers may run on different threads at the same time. Callbacks
+ *   controllers may run on different threads at the same time, and so may
+ *   the two halves of a split controller (gbc_controller_split). Callbacks
  *   run on the thread of the call that triggers them.
  * - Real time: gbc_tick allocates, locks and blocks on nothing. gbc_run_ahead
- *   runs the NC program and allocates (ordinary context). As they may not
- *   overlap on one controller, a host calling them from two threads puts
- *   its own lock around the controller.
+ *   runs the NC program and allocates (ordinary context), and may take long
+ *   (a macro loop). To run the two on two threads, split the controller:
+ *   gbc_run_ahead on the interpreter half never waits for gbc_tick on the
+ *   real-time half, nor the reverse.
  * - A panic inside the library is caught (GBC_STATUS_PANIC): it never
  *   unwinds into C; the controller it happened in is unusable afterwards.
  * - bool parameters take true or false only (from another language's FFI:
@@ -851,7 +855,8 @@ enum GbcStatus gbc_run_ahead(GbcController controller);
 enum GbcStatus gbc_tick(GbcController controller, struct GbcSetPoint *out);
 
 /**
- * The controller's status.
+ * The controller's status. On the real-time half of a split controller
+ * `blocks` is 0: the interpreter half counts them.
  *
  * # Safety
  * `out` is null or writable.
@@ -860,7 +865,11 @@ enum GbcStatus gbc_state(GbcController controller, struct GbcStateInfo *out);
 
 /**
  * The alarm that stopped the run, with its source place; `code` 0 when
- * there is none.
+ * there is none. On a split controller the real-time half gives the
+ * alarm the machine stands in, with the motion's text; the interpreter
+ * half the alarm its VM raised, with the program's own text (the VM
+ * runs ahead: the machine stands in it once the real-time half's
+ * `gbc_state` gives its code).
  *
  * # Safety
  * `out` is null or writable.
@@ -1472,6 +1481,59 @@ enum GbcStatus gbc_controller_select_source(GbcController controller,
                                             const char *name,
                                             const char *text,
                                             size_t len);
+
+/**
+ * Splits a controller with a program loaded into two halves for two
+ * threads: `controller` becomes the interpreter half (call
+ * `gbc_run_ahead` on it from an ordinary thread, as often as it likes:
+ * it never waits for the other half), and `*realtime` names the
+ * real-time half (call `gbc_tick` on it once a period from the
+ * real-time thread: it allocates, locks and blocks on nothing, and
+ * never waits for the VM). The rule "one call at a time per handle"
+ * holds for each half on its own: calls on the two halves may run at
+ * the same time. Which half takes which call is in the README ("Two
+ * threads"); a call on the other half is [`GbcStatus::WrongKind`].
+ * Free both; either may be freed first. Without a program:
+ * [`GbcStatus::NoProgram`]; a second split: [`GbcStatus::WrongKind`].
+ *
+ * # Safety
+ * `realtime` is null or writable.
+ */
+enum GbcStatus gbc_controller_split(GbcController controller, GbcController *realtime);
+
+/**
+ * Frees the real-time half of a split controller (the interpreter half
+ * is freed with `gbc_controller_free`).
+ */
+enum GbcStatus gbc_realtime_free(GbcController realtime);
+
+/**
+ * The message stop the motion stands at, for a split controller's
+ * screen: its index in the run (counted from 0), which
+ * `gbc_message_at` on the interpreter half turns into its text;
+ * `UINT32_MAX` when the motion stands at none. (`GbcStateInfo::message`
+ * is the program's number, `#3006 = n`, not this index; on a whole
+ * controller `gbc_message` gives the text at once.)
+ *
+ * # Safety
+ * `out` is null or writable.
+ */
+enum GbcStatus gbc_message_index(GbcController controller, uint32_t *out);
+
+/**
+ * The text of message stop `index` of the run (`gbc_message_index`)
+ * into `buf`, as `gbc_message` gives it; on the interpreter half of a
+ * split controller or a whole one. An empty text for an index the run
+ * has not reached.
+ *
+ * # Safety
+ * `buf` is null or writable for `cap` bytes; `len` null or writable.
+ */
+enum GbcStatus gbc_message_at(GbcController controller,
+                              uint32_t index,
+                              char *buf,
+                              size_t cap,
+                              size_t *len);
 
 /**
  * Variable `n` as the program would read it now, to `*value` (NaN:

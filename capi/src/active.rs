@@ -4,7 +4,8 @@
 //! and the distance its move has to go. The VM reads ahead of the motion;
 //! these follow the motion.
 
-use crate::{put, put_xz, with_ctl, GbcController, GbcStatus};
+use crate::split::with_motion;
+use crate::{put, put_xz, GbcController, GbcStatus};
 use runtime::ActiveCodes;
 
 /// The number of modal groups in [`GbcActiveCodes::g`].
@@ -59,10 +60,10 @@ pub unsafe extern "C" fn gbc_active_codes(
     controller: GbcController,
     out: *mut GbcActiveCodes,
 ) -> GbcStatus {
-    with_ctl(controller, |c| {
-        let codes = match &c.run {
-            Some(r) => r.active_codes(),
-            None => ActiveCodes::power_on(&c.machine),
+    with_motion(controller, |s| {
+        let codes = match s.motion {
+            Some(m) => m.engine().active_codes(),
+            None => ActiveCodes::power_on(s.machine),
         };
         // SAFETY: the caller's promise.
         unsafe { put(out, GbcActiveCodes::from(codes)) }
@@ -85,8 +86,8 @@ pub unsafe extern "C" fn gbc_distance_to_go(
     x: *mut f64,
     z: *mut f64,
 ) -> GbcStatus {
-    with_ctl(controller, |c| {
-        let d = c.run.as_ref().map(|r| r.distance_to_go());
+    with_motion(controller, |s| {
+        let d = s.motion.map(|m| m.engine().distance_to_go());
         let d = d.unwrap_or(runtime::Xz { x: 0.0, z: 0.0 });
         // SAFETY: the caller's promise.
         unsafe { put_xz(x, z, d) }

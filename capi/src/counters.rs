@@ -53,9 +53,10 @@ pub struct GbcToolLife {
 /// The counters as the runs start with them: the program's, or the
 /// controller's own before one is loaded.
 fn counters(c: &Ctl) -> &Counters {
-    match &c.run {
-        Some(r) => r.counters(),
-        None => &c.counters,
+    match (&c.interp, &c.run) {
+        (Some(i), _) => i.counters(),
+        (None, Some(r)) => r.counters(),
+        (None, None) => &c.counters,
     }
 }
 
@@ -95,9 +96,9 @@ pub extern "C" fn gbc_set_parts(controller: GbcController, parts: GbcParts) -> G
             machined: parts.machined,
             required: parts.required,
         };
-        let r = match c.run.as_mut() {
-            Some(r) => r.set_parts(parts),
-            None => parts.check().map(|()| c.counters.parts = parts),
+        let r = match c.program() {
+            Ok(mut p) => p.set_parts(parts),
+            Err(_) => parts.check().map(|()| c.counters.parts = parts),
         };
         r.map_err(|e| refused("the part counters", e))
     })
@@ -185,9 +186,9 @@ pub extern "C" fn gbc_set_tool_life_used(
             return Err(no_slot(g, slot));
         };
         *u = used;
-        let r = match c.run.as_mut() {
-            Some(r) => r.restore_counters(next),
-            None => next.check_fits(&c.counters).map(|()| c.counters = next),
+        let r = match c.program() {
+            Ok(mut p) => p.restore_counters(next),
+            Err(_) => next.check_fits(&c.counters).map(|()| c.counters = next),
         };
         r.map_err(|e| refused(&format!("tool-life group {group_number} slot {slot}"), e))
     })
@@ -200,9 +201,9 @@ pub extern "C" fn gbc_set_tool_life_used(
 #[no_mangle]
 pub extern "C" fn gbc_renew_tool_life(controller: GbcController, group_number: u32) -> GbcStatus {
     with_ctl(controller, |c| {
-        let r = match c.run.as_mut() {
-            Some(r) => r.renew_tool_life(group_number),
-            None => c.counters.renew_group(group_number),
+        let r = match c.program() {
+            Ok(mut p) => p.renew_tool_life(group_number),
+            Err(_) => c.counters.renew_group(group_number),
         };
         r.map_err(|e| refused(&format!("tool-life group {group_number}"), e))
     })

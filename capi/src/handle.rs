@@ -24,6 +24,8 @@ pub(crate) const CAPACITY: usize = crate::types::GBC_HANDLE_CAPACITY;
 pub enum Kind {
     Machine = 1,
     Controller = 2,
+    /// The real-time half of a split controller.
+    Realtime = 3,
 }
 
 /// A type that lives behind a handle.
@@ -62,6 +64,7 @@ fn decode(h: u64) -> Option<(usize, u32, Kind)> {
     let kind = match (h >> 16) & 0xff {
         1 => Kind::Machine,
         2 => Kind::Controller,
+        3 => Kind::Realtime,
         _ => return None,
     };
     let generation = (h >> 32) as u32;
@@ -103,6 +106,11 @@ fn find(h: u64) -> Result<(&'static Slot, Kind, *mut ()), GbcStatus> {
         return Err(GbcStatus::InvalidHandle);
     }
     Ok((s, kind, ptr))
+}
+
+/// The kind of the live object a handle names.
+pub fn kind_of(h: u64) -> Result<Kind, GbcStatus> {
+    find(h).map(|(_, kind, _)| kind)
 }
 
 /// The object behind a handle of kind `T`.
@@ -210,7 +218,7 @@ mod tests {
         }
         for bad in [
             encode(1, Kind::Machine, 0) | (1 << 24),
-            (1 << 32) | (3 << 16) | 1,
+            (1 << 32) | (4 << 16) | 1,
             (1 << 32) | (1 << 16) | (CAPACITY as u64 + 1),
             (1 << 32) | (1 << 16),
         ] {

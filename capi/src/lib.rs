@@ -21,8 +21,9 @@
 //!   leaves that controller unusable; it never unwinds into C;
 //! - one call at a time per handle: the host serialises `gbc_tick`
 //!   (real-time context) and `gbc_run_ahead` (ordinary context) of one
-//!   controller, e.g. by calling both from its period loop's thread, and
-//!   frees no handle while another call on it runs.
+//!   controller, e.g. by calling both from its period loop's thread, or
+//!   splits it (`gbc_controller_split`) and calls each half from its own
+//!   thread; it frees no handle while another call on it runs.
 //!
 //! `gbc_tick` allocates, locks and blocks on nothing (the registry look-up
 //! is a few atomic loads), so it may be called from an interrupt or a
@@ -38,6 +39,7 @@ mod offsets;
 mod restart;
 mod select;
 mod source;
+mod split;
 mod types;
 mod variables;
 
@@ -47,7 +49,7 @@ use std::borrow::Cow;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use runtime::command::PauseKind;
-use runtime::{Config, Controller, Counters, RapidOverride, RunState};
+use runtime::{Config, Controller, Counters, Engine, Interpreter, RapidOverride, RunState};
 
 pub use active::*;
 pub use counters::*;
@@ -59,6 +61,7 @@ pub use offsets::*;
 pub use restart::*;
 pub use select::*;
 pub use source::*;
+pub use split::*;
 pub use types::*;
 pub use variables::*;
 
@@ -126,6 +129,9 @@ struct Ctl {
     /// from; once one is, its controller has them.
     counters: Counters,
     run: Option<Controller<HostPlc>>,
+    /// The interpreter half, once `gbc_controller_split` has split the
+    /// controller (`run` is then `None`).
+    interp: Option<Interpreter>,
     /// When macro loops are compiled (`gbc_set_jit`'s value).
     jit: u8,
     /// A reset was asked for in an alarm: ticks are accepted again.
@@ -143,8 +149,20 @@ impl Object for Ctl {
 }
 
 impl Ctl {
+    /// The whole controller, for the calls a split one does not have.
     fn run(&mut self) -> Result<&mut Controller<HostPlc>, Failure> {
+        if self.interp.is_some() {
+            return Err(fail(
+                GbcStatus::WrongKind,
+                "a split controller does not take this call (README, \"Two threads\")",
+            ));
+        }
         Ok(self.run.as_mut().ok_or(GbcStatus::NoProgram)?)
+    }
+
+    /// A program is loaded (whole or split).
+    fn loaded(&self) -> bool {
+        self.run.is_some() || self.interp.is_some()
     }
 }
 
@@ -463,6 +481,7 @@ pub unsafe extern "C" fn gbc_controller_new(
             panel: Panel::of(&m.0),
             counters: Counters::power_on(&m.0),
             run: None,
+            interp: None,
             jit: GBC_JIT_AUTO,
             reset_pending: false,
             restarted: None,
@@ -497,7 +516,7 @@ pub unsafe extern "C" fn gbc_controller_load(
     len: usize,
 ) -> GbcStatus {
     with_ctl(controller, |c| {
-        if c.run.is_some() {
+        if c.loaded() {
             return Err(GbcStatus::AlreadyLoaded.into());
         }
         // SAFETY: the caller's promise.
@@ -535,7 +554,7 @@ fn install(c: &mut Ctl, module: isa::Module) -> Outcome {
         run.vm_mut().set_storage(Box::new(HostStorage(c.host)));
     }
     c.panel.apply(&mut run);
-    attach_jit(c.jit, &mut run);
+    attach_jit(c.jit, run.vm_mut());
     c.run = Some(run);
     Ok(())
 }
@@ -545,8 +564,8 @@ fn install(c: &mut Ctl, module: isa::Module) -> Outcome {
 /// between ticks, as often as the host likes: it allocates.
 #[no_mangle]
 pub extern "C" fn gbc_run_ahead(controller: GbcController) -> GbcStatus {
-    with_run(controller, |r| {
-        r.run_ahead();
+    with_ctl(controller, |c| {
+        c.program()?.run_ahead();
         Ok(())
     })
 }
@@ -559,34 +578,35 @@ pub extern "C" fn gbc_run_ahead(controller: GbcController) -> GbcStatus {
 /// `out` is null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn gbc_tick(controller: GbcController, out: *mut GbcSetPoint) -> GbcStatus {
-    with_ctl(controller, |c| {
+    with_motion(controller, |mut s| {
         if out.is_null() {
             return Err(fail(GbcStatus::NullPointer, "the output pointer is null"));
         }
-        let pending = c.reset_pending;
-        let r = c.run()?;
-        if matches!(r.state(), RunState::Alarm(_)) && !pending {
+        let pending = *s.reset_pending;
+        let r = s.motion()?;
+        if matches!(r.engine().state(), RunState::Alarm(_)) && !pending {
             return Err(GbcStatus::Alarm.into());
         }
         let sp = r.tick();
-        let alarm = matches!(r.state(), RunState::Alarm(_));
+        let alarm = matches!(r.engine().state(), RunState::Alarm(_));
         if !alarm {
-            c.reset_pending = false;
+            *s.reset_pending = false;
         }
         // SAFETY: checked non-null; the caller's promise.
         unsafe { put(out, GbcSetPoint::from(&sp)) }
     })
 }
 
-/// The controller's status.
+/// The controller's status. On the real-time half of a split controller
+/// `blocks` is 0: the interpreter half counts them.
 ///
 /// # Safety
 /// `out` is null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn gbc_state(controller: GbcController, out: *mut GbcStateInfo) -> GbcStatus {
-    with_ctl(controller, |c| {
-        let info = match &c.run {
-            Some(r) => GbcStateInfo::new(r.state(), r.blocks()),
+    with_motion(controller, |s| {
+        let info = match s.motion {
+            Some(r) => GbcStateInfo::new(r.engine().state(), r.blocks()),
             None => GbcStateInfo::EMPTY,
         };
         // SAFETY: the caller's promise.
@@ -595,37 +615,61 @@ pub unsafe extern "C" fn gbc_state(controller: GbcController, out: *mut GbcState
 }
 
 /// The alarm that stopped the run, with its source place; `code` 0 when
-/// there is none.
+/// there is none. On a split controller the real-time half gives the
+/// alarm the machine stands in, with the motion's text; the interpreter
+/// half the alarm its VM raised, with the program's own text (the VM
+/// runs ahead: the machine stands in it once the real-time half's
+/// `gbc_state` gives its code).
 ///
 /// # Safety
 /// `out` is null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn gbc_alarm(controller: GbcController, out: *mut GbcAlarm) -> GbcStatus {
+    if handle::kind_of(controller) == Ok(Kind::Realtime) {
+        // SAFETY: the caller's promise.
+        return with_motion(controller, |s| unsafe {
+            put_alarm(out, s.motion.and_then(|m| m.alarm()))
+        });
+    }
     with_ctl(controller, |c| {
-        if out.is_null() {
-            return Err(fail(GbcStatus::NullPointer, "the output pointer is null"));
-        }
-        let mut a = GbcAlarm {
-            code: 0,
-            line: 0,
-            column: 0,
-            message: [0; GBC_TEXT_CAPACITY],
-            file: [0; GBC_TEXT_CAPACITY],
-            message_len: 0,
-            file_len: 0,
+        let info = match (&c.interp, &c.run) {
+            (Some(i), _) => i.vm_alarm(),
+            (None, Some(r)) => r.alarm(),
+            (None, None) => None,
         };
-        if let Some(info) = c.run.as_ref().and_then(|r| r.alarm()) {
-            a.code = info.code;
-            a.line = info.line;
-            a.column = info.col;
-            copy_text(&info.message, &mut a.message);
-            copy_text(&info.file, &mut a.file);
-            a.message_len = info.message.len();
-            a.file_len = info.file.len();
-        }
-        // SAFETY: checked non-null; the caller's promise.
-        unsafe { put(out, a) }
+        // SAFETY: the caller's promise.
+        unsafe { put_alarm(out, info) }
     })
+}
+
+/// Writes `info` (code 0 for none) through `out`.
+///
+/// # Safety
+/// `out` is null or writable.
+unsafe fn put_alarm(out: *mut GbcAlarm, info: Option<runtime::AlarmInfo>) -> Outcome {
+    if out.is_null() {
+        return Err(fail(GbcStatus::NullPointer, "the output pointer is null"));
+    }
+    let mut a = GbcAlarm {
+        code: 0,
+        line: 0,
+        column: 0,
+        message: [0; GBC_TEXT_CAPACITY],
+        file: [0; GBC_TEXT_CAPACITY],
+        message_len: 0,
+        file_len: 0,
+    };
+    if let Some(info) = info {
+        a.code = info.code;
+        a.line = info.line;
+        a.column = info.col;
+        copy_text(&info.message, &mut a.message);
+        copy_text(&info.file, &mut a.file);
+        a.message_len = info.message.len();
+        a.file_len = info.file.len();
+    }
+    // SAFETY: checked non-null; the caller's promise.
+    unsafe { put(out, a) }
 }
 
 /// The text of the message stop the controller stands at (`#3006 = n
@@ -678,9 +722,10 @@ pub unsafe extern "C" fn gbc_file_name(
     cap: usize,
     len: *mut usize,
 ) -> GbcStatus {
-    with_run(controller, |r| {
+    with_ctl(controller, |c| {
+        let p = c.program()?;
         // SAFETY: the caller's promise.
-        unsafe { give_text(r.file_name(index).unwrap_or(""), buf, cap, len) }
+        unsafe { give_text(p.file_name(index).unwrap_or(""), buf, cap, len) }
     })
 }
 
@@ -693,12 +738,12 @@ pub unsafe extern "C" fn gbc_file_name(
 fn panel(
     h: GbcController,
     set: impl FnOnce(&mut Panel) -> Outcome,
-    apply: impl FnOnce(&Panel, &mut Controller<HostPlc>),
+    apply: impl FnOnce(&Panel, &mut Engine<HostPlc>),
 ) -> GbcStatus {
-    with_ctl(h, |c| {
-        set(&mut c.panel)?;
-        if let Some(r) = c.run.as_mut() {
-            apply(&c.panel, r);
+    with_motion(h, |s| {
+        set(s.panel)?;
+        if let Some(m) = s.motion {
+            apply(s.panel, m.engine_mut());
         }
         Ok(())
     })
@@ -714,7 +759,7 @@ pub extern "C" fn gbc_set_feed_override(controller: GbcController, pct: f64) -> 
             p.feed_pct = not_nan(pct)?.clamp(0.0, 150.0);
             Ok(())
         },
-        |p, r| r.set_feed_override(p.feed_pct),
+        |p, e| e.set_feed_override(p.feed_pct),
     )
 }
 
@@ -729,7 +774,7 @@ pub extern "C" fn gbc_set_rapid_override(controller: GbcController, pct: f64) ->
             p.rapid = RapidOverride::from_pct(not_nan(pct)?);
             Ok(())
         },
-        |p, r| r.set_rapid_override(p.rapid),
+        |p, e| e.set_rapid_override(p.rapid),
     )
 }
 
@@ -743,15 +788,15 @@ pub extern "C" fn gbc_set_spindle_override(controller: GbcController, pct: f64) 
             p.spindle_pct = not_nan(pct)?.clamp(0.0, 200.0);
             Ok(())
         },
-        |p, r| r.set_spindle_override(p.spindle_pct),
+        |p, e| e.set_spindle_override(p.spindle_pct),
     )
 }
 
 /// Feed hold: the motion decelerates on its path and stands.
 #[no_mangle]
 pub extern "C" fn gbc_feed_hold(controller: GbcController) -> GbcStatus {
-    with_run(controller, |r| {
-        r.feed_hold();
+    with_motion(controller, |mut s| {
+        s.motion()?.engine_mut().feed_hold();
         Ok(())
     })
 }
@@ -764,8 +809,8 @@ pub extern "C" fn gbc_feed_hold(controller: GbcController) -> GbcStatus {
 /// it; after M02 it still does nothing.
 #[no_mangle]
 pub extern "C" fn gbc_cycle_start(controller: GbcController) -> GbcStatus {
-    with_run(controller, |r| {
-        r.cycle_start();
+    with_motion(controller, |mut s| {
+        s.motion()?.engine_mut().cycle_start();
         Ok(())
     })
 }
@@ -775,17 +820,16 @@ pub extern "C" fn gbc_cycle_start(controller: GbcController) -> GbcStatus {
 /// ticks); then it waits for cycle start.
 #[no_mangle]
 pub extern "C" fn gbc_reset(controller: GbcController) -> GbcStatus {
-    with_ctl(controller, |c| {
-        c.run()?.reset();
-        c.reset_pending = true;
+    with_motion(controller, |mut s| {
+        s.motion()?.engine_mut().reset();
+        *s.reset_pending = true;
         Ok(())
     })
 }
 
 /// Gives the controller's VM the loop JIT for `mode` (or takes it away).
 /// Without the `jit` feature every loop is interpreted.
-fn attach_jit(mode: u8, run: &mut Controller<HostPlc>) {
-    let vm = run.vm_mut();
+fn attach_jit(mode: u8, vm: &mut vm::Vm) {
     let _ = vm.take_tier();
     #[cfg(feature = "jit")]
     {
@@ -817,8 +861,8 @@ pub extern "C" fn gbc_set_jit(controller: GbcController, mode: u8) -> GbcStatus 
             ));
         }
         c.jit = mode;
-        if let Some(run) = c.run.as_mut() {
-            attach_jit(mode, run);
+        if let Ok(mut p) = c.program() {
+            attach_jit(mode, p.vm_mut());
         }
         Ok(())
     })
@@ -835,7 +879,7 @@ pub extern "C" fn gbc_set_single_block(controller: GbcController, on: bool) -> G
             p.single_block = on;
             Ok(())
         },
-        |p, r| r.set_single_block(p.single_block),
+        |p, e| e.set_single_block(p.single_block),
     )
 }
 
@@ -848,7 +892,7 @@ pub extern "C" fn gbc_set_optional_stop(controller: GbcController, on: bool) -> 
             p.optional_stop = on;
             Ok(())
         },
-        |p, r| r.set_optional_stop(p.optional_stop),
+        |p, e| e.set_optional_stop(p.optional_stop),
     )
 }
 
@@ -863,7 +907,7 @@ pub extern "C" fn gbc_set_dry_run(controller: GbcController, on: bool) -> GbcSta
             p.dry_run = on;
             Ok(())
         },
-        |p, r| r.set_dry_run(p.dry_run),
+        |p, e| e.set_dry_run(p.dry_run),
     )
 }
 
@@ -881,7 +925,7 @@ pub extern "C" fn gbc_set_machine_lock(controller: GbcController, on: bool) -> G
             p.machine_lock = on;
             Ok(())
         },
-        |p, r| r.set_machine_lock(p.machine_lock),
+        |p, e| e.set_machine_lock(p.machine_lock),
     )
 }
 
@@ -898,21 +942,21 @@ pub extern "C" fn gbc_set_block_skip(
     switch_number: u8,
     on: bool,
 ) -> GbcStatus {
-    panel(
-        controller,
-        |p| {
-            let index = usize::from(switch_number).wrapping_sub(1);
-            let Some(switch) = p.block_skip.get_mut(index) else {
-                return Err(fail(
-                    GbcStatus::InvalidArgument,
-                    "the block-skip switch number is not 1-9",
-                ));
-            };
-            *switch = on;
-            Ok(())
-        },
-        |_, r| r.set_block_skip(switch_number, on),
-    )
+    // The switch is the interpreter's, which reads the blocks.
+    with_ctl(controller, |c| {
+        let index = usize::from(switch_number).wrapping_sub(1);
+        let Some(switch) = c.panel.block_skip.get_mut(index) else {
+            return Err(fail(
+                GbcStatus::InvalidArgument,
+                "the block-skip switch number is not 1-9",
+            ));
+        };
+        *switch = on;
+        if let Ok(mut p) = c.program() {
+            p.set_block_skip(switch_number, on);
+        }
+        Ok(())
+    })
 }
 
 /// The level of the input wired to the skip signal (G31).
@@ -924,7 +968,7 @@ pub extern "C" fn gbc_set_skip_input(controller: GbcController, level: bool) -> 
             p.skip_level = level;
             Ok(())
         },
-        |p, r| r.set_skip_input(p.skip_level),
+        |p, e| e.set_skip_input(p.skip_level),
     )
 }
 
@@ -940,7 +984,7 @@ pub extern "C" fn gbc_spindle_feedback(
     position_turns: f64,
     rpm: f64,
 ) -> GbcStatus {
-    with_ctl(controller, |c| {
+    with_motion(controller, |mut s| {
         // The argument first: a bad reading is reported even before a
         // program is loaded.
         if !(position_turns.is_finite() && rpm.is_finite()) {
@@ -949,7 +993,8 @@ pub extern "C" fn gbc_spindle_feedback(
                 "a spindle feedback value is NaN or infinite",
             ));
         }
-        c.run()?.set_spindle_feedback(position_turns, rpm);
+        let e = s.motion()?.engine_mut();
+        e.set_spindle_feedback(position_turns, rpm);
         Ok(())
     })
 }
@@ -958,8 +1003,8 @@ pub extern "C" fn gbc_spindle_feedback(
 /// speed and angle).
 #[no_mangle]
 pub extern "C" fn gbc_spindle_simulated(controller: GbcController) -> GbcStatus {
-    with_run(controller, |r| {
-        r.set_spindle_simulated();
+    with_motion(controller, |mut s| {
+        s.motion()?.engine_mut().set_spindle_simulated();
         Ok(())
     })
 }

@@ -1,7 +1,8 @@
 //! Manual moves between programs (`runtime::Manual`): jog, step or
 //! handwheel, reference return, and their stop.
 
-use crate::{fail, with_run, GbcController, GbcStatus, Outcome};
+use crate::split::with_motion;
+use crate::{fail, GbcController, GbcStatus, Outcome};
 use runtime::{JogRate, Manual, ManualAxis, ManualRefused};
 
 /// `axis` of a manual move: the cross slide.
@@ -62,8 +63,8 @@ pub extern "C" fn gbc_home(controller: GbcController, axis: u8) -> GbcStatus {
 /// one).
 #[no_mangle]
 pub extern "C" fn gbc_manual_stop(controller: GbcController) -> GbcStatus {
-    with_run(controller, |r| {
-        r.manual_stop();
+    with_motion(controller, |mut s| {
+        s.motion()?.engine_mut().manual_stop();
         Ok(())
     })
 }
@@ -76,7 +77,8 @@ fn manual(
     feed_mm_min: f64,
     make: impl FnOnce(ManualAxis, JogRate) -> Manual,
 ) -> GbcStatus {
-    with_run(controller, |r| {
+    with_motion(controller, |mut s| {
+        let r = s.motion()?.engine_mut();
         let axis = match axis {
             GBC_AXIS_X => ManualAxis::X,
             GBC_AXIS_Z => ManualAxis::Z,

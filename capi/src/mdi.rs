@@ -75,9 +75,9 @@ pub unsafe extern "C" fn gbc_mdi(
         // as `gbc_restart_from` checks them.
         // SAFETY: the caller's promise.
         let src = unsafe { text_at(text, len, "the MDI text", MDI_CAPACITY)? };
-        let r = c.run()?;
-        let blocks = compile(SOURCE, src, &options(r.machine()))?;
-        r.mdi(blocks).map_err(|e| match e {
+        let mut p = c.program()?;
+        let blocks = compile(SOURCE, src, &options(p.machine()))?;
+        p.mdi(blocks).map_err(|e| match e {
             SelectRefused::NotIdle => fail(
                 GbcStatus::NotIdle,
                 "MDI is taken only while the machine is idle: gbc_reset first, and wait \
@@ -98,7 +98,7 @@ pub unsafe extern "C" fn gbc_mdi(
 #[no_mangle]
 pub unsafe extern "C" fn gbc_in_mdi(controller: GbcController, out: *mut bool) -> GbcStatus {
     with_ctl(controller, |c| {
-        let on = c.run.as_ref().is_some_and(|r| r.in_mdi());
+        let on = c.program().is_ok_and(|p| p.in_mdi());
         // SAFETY: the caller's promise.
         unsafe { put(out, on) }
     })

@@ -84,9 +84,9 @@ pub unsafe extern "C" fn gbc_tool_offset(
         if out.is_null() {
             return Err(fail(GbcStatus::NullPointer, "the output pointer is null"));
         }
-        let lengths = match &c.run {
-            Some(r) => r.tool_offset(number),
-            None => c.machine.offset_lengths(number),
+        let lengths = match c.program() {
+            Ok(p) => p.tool_offset(number),
+            Err(_) => c.machine.offset_lengths(number),
         };
         let Some(lengths) = lengths else {
             return Err(fail(
@@ -130,9 +130,9 @@ pub unsafe extern "C" fn gbc_set_tool_offset(
         }
         // SAFETY: non-null and readable by the caller's promise.
         let l = OffsetLengths::from(unsafe { lengths.read() });
-        let r = match c.run.as_mut() {
-            Some(r) => r.set_tool_offset(number, l),
-            None => c.machine.set_offset_lengths(number, l),
+        let r = match c.program() {
+            Ok(mut p) => p.set_tool_offset(number, l),
+            Err(_) => c.machine.set_offset_lengths(number, l),
         };
         r.map_err(|e| refused(&format!("tool offset {number}"), e))
     })
@@ -157,9 +157,9 @@ pub unsafe extern "C" fn gbc_work_offset(
             return Err(fail(GbcStatus::NullPointer, "an output pointer is null"));
         }
         let w = work_offset(which)?;
-        let at = match &c.run {
-            Some(r) => r.work_offset(w),
-            None => c.machine.work_offset_of(w),
+        let at = match c.program() {
+            Ok(p) => p.work_offset(w),
+            Err(_) => c.machine.work_offset_of(w),
         };
         // SAFETY: the caller's promise.
         unsafe { put_xz(x, z, at) }
@@ -182,9 +182,9 @@ pub extern "C" fn gbc_set_work_offset(
     with_ctl(controller, |c| {
         let w = work_offset(which)?;
         let at = Xz { x, z };
-        let r = match c.run.as_mut() {
-            Some(r) => r.set_work_offset(w, at),
-            None => c.machine.set_work_offset(w, at),
+        let r = match c.program() {
+            Ok(mut p) => p.set_work_offset(w, at),
+            Err(_) => c.machine.set_work_offset(w, at),
         };
         r.map_err(|e| refused(&format!("work offset {w:?}"), e))
     })
@@ -249,11 +249,8 @@ pub extern "C" fn gbc_measure_tool_offset(
                 "the measurement is not finite",
             ));
         }
-        let run = c
-            .run
-            .as_mut()
-            .ok_or_else(|| fail(GbcStatus::NoProgram, GbcStatus::NoProgram.text()))?;
-        run.measure_tool_offset(number, axis, measured)
+        c.run()?
+            .measure_tool_offset(number, axis, measured)
             .map_err(|e| {
                 let status = match &e {
                     MeasureRefused::NotStanding => GbcStatus::NotIdle,

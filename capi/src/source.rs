@@ -79,7 +79,7 @@ pub unsafe extern "C" fn gbc_controller_load_source(
     len: usize,
 ) -> GbcStatus {
     with_ctl(controller, |c| {
-        if c.run.is_some() {
+        if c.loaded() {
             return Err(GbcStatus::AlreadyLoaded.into());
         }
         // SAFETY: the caller's promise.

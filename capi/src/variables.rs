@@ -21,7 +21,7 @@ pub unsafe extern "C" fn gbc_variable(
 ) -> GbcStatus {
     with_ctl(controller, |c| {
         let v = c
-            .run()?
+            .program()?
             .variable(n)
             .map_err(|e| fail(GbcStatus::InvalidArgument, format!("#{n}: {}", e.message)))?;
         // SAFETY: the caller's promise.
@@ -39,7 +39,7 @@ pub unsafe extern "C" fn gbc_variable(
 #[no_mangle]
 pub extern "C" fn gbc_set_variable(controller: GbcController, n: u32, value: f64) -> GbcStatus {
     with_ctl(controller, |c| {
-        c.run()?.set_variable(n, value).map_err(|e| {
+        c.program()?.set_variable(n, value).map_err(|e| {
             let status = match e {
                 VariableRefused::Storage(_) => GbcStatus::HostFailure,
                 VariableRefused::NotPersistent(_) | VariableRefused::NotFinite(_) => {

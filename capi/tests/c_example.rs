@@ -133,6 +133,27 @@ fn block_skip_turned_off_from_c_decides_for_the_blocks_read_after_it() {
     assert_eq!(moved, [2, 5, 6], "{text}");
 }
 
+/// 100 000 rounds of a macro loop, then two moves; the last ends at X40
+/// Z-30 (40 000 and −30 000 steps of 0.001 mm).
+const LOOP_THEN_MOVES: &str =
+    "#1=0\nWHILE[#1LT100000]DO1\n#1=#1+1\nEND1\nG00 X40 Z-20\nG98 G01 Z-30 F300\nM30\n";
+
+#[test]
+fn a_c_host_runs_a_split_controller_on_two_threads() {
+    let profile = profile_dir();
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_split");
+    std::fs::create_dir_all(&out).expect("a scratch directory");
+    let exe = build_c(&profile, &repo().join("capi/tests/c/split.c"), &out);
+    let src = out.join("loop.nc");
+    std::fs::write(&src, LOOP_THEN_MOVES).expect("write loop.nc");
+    let gbc = compile(&src, &out);
+    let c = Command::new(&exe).arg(&gbc).output().expect("split runs");
+    let stderr = String::from_utf8_lossy(&c.stderr);
+    assert!(c.status.success(), "the C host failed: {stderr}");
+    let text = String::from_utf8(c.stdout).expect("UTF-8");
+    assert_eq!(text, "40.000000 -30.000000 40000 -30000\n", "{stderr}");
+}
+
 /// The first C code block of `capi/README.md`.
 fn readme_loop() -> String {
     let readme = std::fs::read_to_string(repo().join("capi/README.md")).expect("capi/README.md");

@@ -280,6 +280,27 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
                 gbc_controller_select_source(h, c"t.nc".as_ptr(), c"M30".as_ptr(), 3)
             }),
         ),
+        (
+            "gbc_controller_split",
+            Box::new(|h| {
+                let mut rt = 0;
+                unsafe { gbc_controller_split(h, &mut rt) }
+            }),
+        ),
+        (
+            "gbc_message_index",
+            Box::new(|h| {
+                let mut i = 0;
+                unsafe { gbc_message_index(h, &mut i) }
+            }),
+        ),
+        (
+            "gbc_message_at",
+            Box::new(|h| {
+                let mut buf = [0 as core::ffi::c_char; 64];
+                unsafe { gbc_message_at(h, 0, buf.as_mut_ptr(), buf.len(), null_mut()) }
+            }),
+        ),
         ("gbc_controller_free", Box::new(|h| gbc_controller_free(h))),
     ]
 }
@@ -324,6 +345,8 @@ fn bad_handles_are_reported_by_every_entry_point() {
         GbcStatus::WrongKind
     );
     assert_eq!(gbc_machine_free(live), GbcStatus::WrongKind);
+    assert_eq!(gbc_realtime_free(live), GbcStatus::WrongKind);
+    assert_eq!(gbc_realtime_free(0), GbcStatus::InvalidHandle);
     assert_eq!(gbc_machine_free(0), GbcStatus::InvalidHandle);
     assert_eq!(out, 0, "nothing written on failure");
     // Nothing was freed by the wrong-kind calls.

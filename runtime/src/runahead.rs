@@ -224,6 +224,16 @@ impl RunAhead {
         matches!(self.vm_state, VmState::Done | VmState::Alarm) && self.staged.is_empty()
     }
 
+    /// The code of the alarm the VM raised, if it did.
+    pub(crate) fn vm_alarm_code(&self) -> Option<u32> {
+        self.vm_alarm.as_ref().map(|a| a.code)
+    }
+
+    /// MDI blocks wait for the next reset.
+    pub(crate) fn mdi_pending(&self) -> bool {
+        self.pending_mdi.is_some()
+    }
+
     /// The VM's alarm, if `code` is the one it raised.
     pub(crate) fn vm_alarm(&self, code: u32) -> Option<AlarmInfo> {
         let a = self.vm_alarm.as_ref().filter(|a| a.code == code)?;

@@ -300,6 +300,40 @@ impl Interpreter {
         &self.ra.vm
     }
 
+    /// The VM, for its settings (the loop tier, its storage).
+    pub fn vm_mut(&mut self) -> &mut Vm {
+        &mut self.ra.vm
+    }
+
+    /// The VM's alarm, if it stopped on one: it runs ahead of the motion,
+    /// so the machine stands in it once [`Realtime::state`] says
+    /// `Alarm` with its code.
+    pub fn vm_alarm(&self) -> Option<AlarmInfo> {
+        self.ra.vm_alarm(self.ra.vm_alarm_code()?)
+    }
+
+    /// The name of source file `index` ([`crate::Controller::file_name`]).
+    pub fn file_name(&self, index: u16) -> Option<&str> {
+        let files = &self.ra.vm.module().files;
+        files.get(usize::from(index)).map(|f| f.name.as_str())
+    }
+
+    /// MDI blocks run, or wait for the reset that starts them, in the
+    /// program's place ([`crate::Controller::in_mdi`]).
+    pub fn in_mdi(&self) -> bool {
+        self.ra.after_mdi.is_some() || self.ra.mdi_pending()
+    }
+
+    /// The lengths of tool offset `number` ([`crate::Controller::tool_offset`]).
+    pub fn tool_offset(&self, number: u32) -> Option<OffsetLengths> {
+        self.ra.machine.offset_lengths(number)
+    }
+
+    /// A work offset ([`crate::Controller::work_offset`]).
+    pub fn work_offset(&self, w: WorkOffset) -> Xz {
+        self.ra.machine.work_offset_of(w)
+    }
+
     /// The machine the program runs on.
     pub fn machine(&self) -> &Machine {
         &self.ra.machine
