@@ -199,7 +199,8 @@ typedef enum GbcStatus {
   GBC_STATUS_INVALID_HANDLE = 2,
   /**
    * The handle is live but names another kind of object (a machine
-   * where a controller is expected, or the reverse).
+   * where a controller is expected, or the reverse), or the half of a
+   * split controller that does not take the call.
    */
   GBC_STATUS_WRONG_KIND = 3,
   /**
@@ -286,6 +287,12 @@ typedef enum GbcStatus {
    * changed.
    */
   GBC_STATUS_COMPILE_ERROR = 19,
+  /**
+   * `gbc_restart_result` on a split controller: the restart asked for
+   * waits for `gbc_reset` on the real-time half and the
+   * `gbc_run_ahead` after it, which runs its search.
+   */
+  GBC_STATUS_RESTART_PENDING = 20,
 } GbcStatus;
 
 /**
@@ -1321,6 +1328,12 @@ enum GbcStatus gbc_measure_tool_offset(GbcController controller,
  *
  * A refused restart leaves the program at its start, so cycle start
  * then runs it from the beginning.
+ *
+ * On the interpreter half of a split controller the call only asks for
+ * the restart (after the argument checks): give `gbc_reset` on the
+ * real-time half, as the operator's reset goes with a restart; the
+ * `gbc_run_ahead` after it runs the search, and `gbc_restart_result`
+ * then tells how it went.
  */
 enum GbcStatus gbc_restart_from(GbcController controller, uint32_t line, uint32_t pass);
 
@@ -1332,6 +1345,16 @@ enum GbcStatus gbc_restart_from(GbcController controller, uint32_t line, uint32_
  * [`GbcStatus::RestartNotFound`]).
  */
 enum GbcStatus gbc_restart_from_seq(GbcController controller, uint32_t seq, uint32_t pass);
+
+/**
+ * How the last program restart asked for went: [`GbcStatus::Ok`] when
+ * it was taken (`gbc_restart_m_codes` and `gbc_restart_destination`
+ * give its page), the status `gbc_restart_from` gave when it was
+ * refused (with its `gbc_last_error` text), and on a split controller
+ * [`GbcStatus::RestartPending`] until its search has run. No restart
+ * asked for: [`GbcStatus::RestartNotFound`].
+ */
+enum GbcStatus gbc_restart_result(GbcController controller);
 
 /**
  * The M codes the blocks before the last restart taken gave, other than

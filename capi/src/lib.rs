@@ -139,7 +139,7 @@ struct Ctl {
     /// The last restart taken: the M codes it did not give again
     /// (`gbc_restart_m_codes`) and where its approach goes
     /// (`gbc_restart_destination`).
-    restarted: Option<runtime::Restarted>,
+    restart: restart::LastRestart,
     /// A panic was caught inside a call on this controller.
     poisoned: bool,
 }
@@ -484,7 +484,7 @@ pub unsafe extern "C" fn gbc_controller_new(
             interp: None,
             jit: GBC_JIT_AUTO,
             reset_pending: false,
-            restarted: None,
+            restart: restart::LastRestart::None,
             poisoned: false,
         };
         let h = handle::insert(ctl)?;
@@ -566,6 +566,7 @@ fn install(c: &mut Ctl, module: isa::Module) -> Outcome {
 pub extern "C" fn gbc_run_ahead(controller: GbcController) -> GbcStatus {
     with_ctl(controller, |c| {
         c.program()?.run_ahead();
+        restart::take_split_result(c);
         Ok(())
     })
 }

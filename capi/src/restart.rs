@@ -2,8 +2,30 @@
 //! begins at a block in the middle of the program, as after a broken
 //! insert or an interrupted shift.
 
-use crate::{fail, put, put_xz, with_ctl, GbcController, GbcStatus, Outcome};
-use runtime::{RestartAt, RestartError, RestartRefused, Target};
+use std::borrow::Cow;
+
+use crate::{fail, put, put_xz, with_ctl, Ctl, Failure, GbcController, GbcStatus, Outcome};
+use runtime::{RestartAt, RestartError, RestartRefused, Restarted, Target};
+
+/// The last program restart asked for on a controller.
+pub(crate) enum LastRestart {
+    None,
+    /// On a split controller: asked, its search not yet run (it runs in
+    /// the `gbc_run_ahead` after the real-time half's reset).
+    Pending,
+    Taken(Restarted),
+    /// Refused: the status and text the refusal gave.
+    Refused(GbcStatus, Cow<'static, str>),
+}
+
+impl LastRestart {
+    fn taken(&self) -> Option<&Restarted> {
+        match self {
+            LastRestart::Taken(r) => Some(r),
+            _ => None,
+        }
+    }
+}
 
 /// Program restart at the block on source line `line` (1-based) of the
 /// main file, the `pass`-th time the run reaches it (1: the first; a
@@ -33,6 +55,12 @@ use runtime::{RestartAt, RestartError, RestartRefused, Target};
 ///
 /// A refused restart leaves the program at its start, so cycle start
 /// then runs it from the beginning.
+///
+/// On the interpreter half of a split controller the call only asks for
+/// the restart (after the argument checks): give `gbc_reset` on the
+/// real-time half, as the operator's reset goes with a restart; the
+/// `gbc_run_ahead` after it runs the search, and `gbc_restart_result`
+/// then tells how it went.
 #[no_mangle]
 pub extern "C" fn gbc_restart_from(controller: GbcController, line: u32, pass: u32) -> GbcStatus {
     restart(controller, Target::Line(line), pass)
@@ -68,9 +96,55 @@ fn restart(controller: GbcController, target: Target, pass: u32) -> GbcStatus {
                 "the line is 0: source lines count from 1",
             ));
         }
-        let r = c.run()?.restart_from(RestartAt { target, pass });
-        c.restarted = r.as_ref().ok().cloned();
+        let at = RestartAt { target, pass };
+        if let Some(i) = c.interp.as_mut() {
+            i.restart_from(at);
+            c.restart = LastRestart::Pending;
+            return Ok(());
+        }
+        let r = c.run()?.restart_from(at);
+        c.restart = outcome(r.clone());
         refused(r.map(|_| ()))
+    })
+}
+
+/// What the last restart came to, kept for `gbc_restart_result` and the
+/// restart page's calls.
+fn outcome(r: Result<Restarted, RestartRefused>) -> LastRestart {
+    match r {
+        Ok(r) => LastRestart::Taken(r),
+        Err(e) => {
+            let Failure { status, message } = refusal(e);
+            LastRestart::Refused(status, message)
+        }
+    }
+}
+
+/// On a split controller, after a `gbc_run_ahead`: the outcome of the
+/// restart asked for, once its search has run.
+pub(crate) fn take_split_result(c: &mut Ctl) {
+    let Some(i) = c.interp.as_mut() else { return };
+    if let Some(r) = i.take_restart_result() {
+        c.restart = outcome(r.map_err(RestartRefused::Search));
+    }
+}
+
+/// How the last program restart asked for went: [`GbcStatus::Ok`] when
+/// it was taken (`gbc_restart_m_codes` and `gbc_restart_destination`
+/// give its page), the status `gbc_restart_from` gave when it was
+/// refused (with its `gbc_last_error` text), and on a split controller
+/// [`GbcStatus::RestartPending`] until its search has run. No restart
+/// asked for: [`GbcStatus::RestartNotFound`].
+#[no_mangle]
+pub extern "C" fn gbc_restart_result(controller: GbcController) -> GbcStatus {
+    with_ctl(controller, |c| match &c.restart {
+        LastRestart::Taken(_) => Ok(()),
+        LastRestart::Pending => Err(GbcStatus::RestartPending.into()),
+        LastRestart::Refused(status, text) => Err(fail(*status, text.clone())),
+        LastRestart::None => Err(fail(
+            GbcStatus::RestartNotFound,
+            "no program restart has been asked for",
+        )),
     })
 }
 
@@ -100,7 +174,7 @@ pub unsafe extern "C" fn gbc_restart_m_codes(
                 "len is null, or codes is null while cap is not 0",
             ));
         }
-        let m = c.restarted.as_ref().map_or(&[][..], |r| &r.m_codes[..]);
+        let m = c.restart.taken().map_or(&[][..], |r| &r.m_codes[..]);
         let n = m.len().min(cap);
         if n > 0 {
             // SAFETY: non-null and writable for `cap` ≥ n values by the
@@ -127,7 +201,7 @@ pub unsafe extern "C" fn gbc_restart_destination(
     z: *mut f64,
 ) -> GbcStatus {
     with_ctl(controller, |c| {
-        let to = c.restarted.as_ref().map(|r| r.destination);
+        let to = c.restart.taken().map(|r| r.destination);
         let to = to.unwrap_or(runtime::Xz {
             x: f64::NAN,
             z: f64::NAN,
@@ -140,7 +214,12 @@ pub unsafe extern "C" fn gbc_restart_destination(
 /// The status of a refused restart; a failed search keeps its own text
 /// (it names the block, the pass or the alarm).
 fn refused(r: Result<(), RestartRefused>) -> Outcome {
-    r.map_err(|e| match e {
+    r.map_err(refusal)
+}
+
+/// The failure of a refused restart.
+fn refusal(e: RestartRefused) -> Failure {
+    match e {
         RestartRefused::NotIdle => fail(
             GbcStatus::NotIdle,
             "a program runs, stands stopped, ended or in an alarm, or a manual move or a \
@@ -156,5 +235,5 @@ fn refused(r: Result<(), RestartRefused>) -> Outcome {
             };
             fail(status, e.to_string())
         }
-    })
+    }
 }

@@ -32,7 +32,8 @@ pub enum GbcStatus {
     /// The handle is null (0), freed, or was never made by this library.
     InvalidHandle = 2,
     /// The handle is live but names another kind of object (a machine
-    /// where a controller is expected, or the reverse).
+    /// where a controller is expected, or the reverse), or the half of a
+    /// split controller that does not take the call.
     WrongKind = 3,
     /// An argument is out of its range (a NaN override, a NaN or
     /// infinite encoder reading, machine file text that is not UTF-8, a
@@ -86,6 +87,10 @@ pub enum GbcStatus {
     /// gives the compiler's diagnostic of its first error). Nothing
     /// changed.
     CompileError = 19,
+    /// `gbc_restart_result` on a split controller: the restart asked for
+    /// waits for `gbc_reset` on the real-time half and the
+    /// `gbc_run_ahead` after it, which runs its search.
+    RestartPending = 20,
 }
 
 impl GbcStatus {
@@ -96,8 +101,8 @@ impl GbcStatus {
             GbcStatus::NullPointer => "a required pointer argument is null",
             GbcStatus::InvalidHandle => "the handle is 0, freed, or was not made by this library",
             GbcStatus::WrongKind => {
-                "the handle names the other kind of object \
-                 (a machine where a controller belongs, or the reverse)"
+                "the handle names another kind of object than this call takes \
+                 (a machine, a controller, or a split controller's real-time half)"
             }
             GbcStatus::InvalidArgument => "an argument is out of its range",
             GbcStatus::InvalidModule => "not a valid .gbc module",
@@ -124,6 +129,10 @@ impl GbcStatus {
                 "the program raised an alarm before reaching the restart block"
             }
             GbcStatus::CompileError => "the G-code text does not compile",
+            GbcStatus::RestartPending => {
+                "the restart waits for gbc_reset on the real-time half and the \
+                 gbc_run_ahead after it"
+            }
         }
     }
 }

@@ -146,6 +146,7 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             Box::new(|h| gbc_spindle_simulated(h)),
         ),
         ("gbc_restart_from", Box::new(|h| gbc_restart_from(h, 1, 1))),
+        ("gbc_restart_result", Box::new(|h| gbc_restart_result(h))),
         (
             "gbc_restart_from_seq",
             Box::new(|h| gbc_restart_from_seq(h, 1, 1)),

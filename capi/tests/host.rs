@@ -633,7 +633,9 @@ fn a_refused_restart_leaves_the_program_at_its_start() {
     let prog = module(TWO_TOOLS);
     let host = new_host(Host::default());
     let (m, c) = new_controller(host, &prog);
+    assert_eq!(gbc_restart_result(c), GbcStatus::RestartNotFound);
     assert_eq!(gbc_restart_from_seq(c, 100, 1), GbcStatus::Ok);
+    assert_eq!(gbc_restart_result(c), GbcStatus::Ok);
     assert_ne!(state(c).blocks, 0, "the search ran");
     assert_eq!(gbc_restart_from_seq(c, 100, 0), GbcStatus::InvalidArgument);
     assert!(last_error().contains("pass"), "{}", last_error());
@@ -647,6 +649,9 @@ fn a_refused_restart_leaves_the_program_at_its_start() {
         assert_eq!(restart(c), GbcStatus::RestartNotFound, "{why}");
         let text = last_error();
         assert!(text.contains(why), "{text}");
+        // The result tells the same again, with the same text.
+        assert_eq!(gbc_restart_result(c), GbcStatus::RestartNotFound);
+        assert_eq!(last_error(), text);
     }
     assert_eq!(state(c).state, GbcRunState::Idle);
     let mut while_running = None;

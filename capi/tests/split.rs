@@ -121,7 +121,6 @@ fn each_call_goes_to_its_half() {
         gbc_measure_tool_offset(interp, 1, GBC_AXIS_X, 50.0),
         GbcStatus::WrongKind
     );
-    assert_eq!(gbc_restart_from(interp, 1, 1), GbcStatus::WrongKind);
     let mut again = 0;
     assert_eq!(
         unsafe { gbc_controller_split(interp, &mut again) },
@@ -227,4 +226,60 @@ fn either_half_may_be_freed_first() {
     assert!(last.x > 0.0, "the queued moves ran: {last:?}");
     assert_eq!(gbc_realtime_free(rt), GbcStatus::Ok);
     assert_eq!(gbc_machine_free(m), GbcStatus::Ok);
+}
+
+/// A program restart on a split controller: asked on the interpreter
+/// half, run by the real-time half's reset and the run-ahead after it.
+/// At line 4 the approach goes from machine zero to the end of line 3,
+/// X60 Z-10, and lines 1–3 never move the axes; at line 4's third pass,
+/// which never comes, the restart is refused and the program runs from
+/// its start.
+#[test]
+fn a_restart_goes_with_the_real_time_half_s_reset() {
+    const SRC: &str = "G00 X50 Z2\nG98 G01 Z-10 F500\nG00 X60\nG00 X30 Z2\nG01 Z-20\nM30\n";
+    for (pass, taken) in [(1, true), (3, false)] {
+        let (m, interp, rt) = split(SRC);
+        assert_eq!(gbc_restart_result(interp), GbcStatus::RestartNotFound);
+        assert_eq!(gbc_restart_from(interp, 4, pass), GbcStatus::Ok);
+        assert_eq!(gbc_restart_result(interp), GbcStatus::RestartPending);
+        assert_eq!(gbc_restart_result(rt), GbcStatus::WrongKind);
+        assert_eq!(gbc_reset(rt), GbcStatus::Ok);
+        let mut result = GbcStatus::RestartPending;
+        for _ in 0..10_000 {
+            period(interp, rt);
+            result = gbc_restart_result(interp);
+            if result != GbcStatus::RestartPending {
+                break;
+            }
+        }
+        let (mut x, mut z) = (0.0, 0.0);
+        assert_eq!(
+            unsafe { gbc_restart_destination(interp, &mut x, &mut z) },
+            GbcStatus::Ok
+        );
+        if taken {
+            assert_eq!(result, GbcStatus::Ok);
+            assert_eq!((x, z), (60.0, -10.0));
+        } else {
+            assert_eq!(result, GbcStatus::RestartNotFound);
+            assert!(x.is_nan() && z.is_nan());
+        }
+        assert_eq!(gbc_cycle_start(rt), GbcStatus::Ok);
+        let mut lines = Vec::new();
+        let mut last = blank();
+        for _ in 0..200_000 {
+            assert_eq!(gbc_run_ahead(interp), GbcStatus::Ok);
+            assert_eq!(unsafe { gbc_tick(rt, &mut last) }, GbcStatus::Ok);
+            if last.motion != GbcMotion::None {
+                lines.push(last.line);
+            }
+            if state(rt).state == GbcRunState::Ended {
+                break;
+            }
+        }
+        assert_eq!(state(rt).state, GbcRunState::Ended);
+        assert_eq!((last.x, last.z), (30.0, -20.0));
+        assert_eq!(lines.iter().any(|&l| l < 4), !taken, "{pass}");
+        free(m, interp, rt);
+    }
 }
