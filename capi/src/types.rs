@@ -239,7 +239,8 @@ pub struct GbcSetPoint {
     pub count_x: i64,
     /// `axis_z` in whole steps of the resolution, as `count_x`.
     pub count_z: i64,
-    /// `c` in steps of 0.001° (0 without a C axis).
+    /// `c` in steps of 0.001° (0 without a C axis), with the machine
+    /// file's `backlash_deg` where C has turned back, as `count_x`.
     pub count_c: i64,
     /// The C axis angle, degrees (0 without a C axis; see `has_c`).
     pub c: f64,

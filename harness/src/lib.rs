@@ -302,12 +302,15 @@ pub fn machine(data: &[u8]) {
     }
 }
 
-/// Moves that turn each axis back, run on `m` for at most a few simulated
-/// seconds: the drives' command (the counts) never lies further from
-/// the set point than the machine's backlash and largest pitch
-/// correction, and half a count.
+/// Moves that turn each axis back (C too, on a machine with one), run on
+/// `m` for at most a few simulated seconds: the drives' command (the
+/// counts) never lies further from the set point than the machine's
+/// backlash and largest pitch correction, and half a count.
 fn compensated_moves(m: Machine) {
-    let src = "G00 X40 Z-5\nG01 Z-2 F3000\nG00 X20\nG01 X30 Z-4\nM30\n";
+    let src = match m.axes.c.enabled {
+        false => "G00 X40 Z-5\nG01 Z-2 F3000\nG00 X20\nG01 X30 Z-4\nM30\n",
+        true => "G00 X40 Z-5 C-20\nG01 Z-2 C5 F3000\nG00 X20 C-3\nG01 X30 Z-4\nM30\n",
+    };
     let options = Options {
         machine: m.clone(),
         ..Options::default()
@@ -321,6 +324,7 @@ fn compensated_moves(m: Machine) {
         a.backlash_mm + pitch.fold(0.0, |w: f64, c| w.max(c.abs())) + res / 2.0 + 1e-9
     };
     let (bx, bz) = (bound(&m.axes.x), bound(&m.axes.z));
+    let bc = m.axes.c.backlash_deg + runtime::counts::C_STEP_DEG / 2.0 + 1e-9;
     let Ok(mut ctl) = runtime::Controller::new(module, m, runtime::AutoAck) else {
         return;
     };
@@ -333,6 +337,8 @@ fn compensated_moves(m: Machine) {
             p.counts.z as f64 * res - p.axis_z,
         );
         assert!(dx.abs() <= bx && dz.abs() <= bz, "{dx} {dz} at {p:?}");
+        let dc = p.counts.c as f64 * runtime::counts::C_STEP_DEG - p.c.unwrap_or(0.0);
+        assert!(dc.abs() <= bc, "{dc} at {p:?}");
         if ctl.state() != runtime::RunState::Running {
             return;
         }

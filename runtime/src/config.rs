@@ -350,7 +350,7 @@ fn rotary(c: &nc::machine::RotaryAxis) -> Axis {
         soft_limits: false,
         min: f64::NEG_INFINITY,
         max: f64::INFINITY,
-        backlash: 0.0,
+        backlash: c.backlash_deg,
     }
 }
 

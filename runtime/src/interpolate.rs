@@ -412,8 +412,10 @@ impl<P: Plc> Engine<P> {
         let q = Planner::new(&cfg);
         let spindle = Spindle::new(cfg.spindle, cfg.spindle_override_pct);
         let lost = V2::new(cfg.x.backlash, cfg.z.backlash);
-        let backlash =
-            (lost != V2::ZERO).then(|| Backlash::new(lost, V2::new(cfg.x.accel, cfg.z.accel)));
+        let (lost_c, accel_c) = cfg.c.as_ref().map_or((0.0, 1.0), |c| (c.backlash, c.accel));
+        let backlash = (lost != V2::ZERO || lost_c != 0.0).then(|| {
+            Backlash::new(lost, V2::new(cfg.x.accel, cfg.z.accel)).with_c(lost_c, accel_c)
+        });
         let pitch = cfg
             .pitch
             .iter()
@@ -829,7 +831,7 @@ impl<P: Plc> Engine<P> {
         };
         self.check_stroke();
         let (work, axes, c) = self.frames();
-        let drive = self.drive_command(axes);
+        let drive = self.drive_command(axes, c);
         self.setpoint(work, axes, c, drive)
     }
 
@@ -897,18 +899,19 @@ impl<P: Plc> Engine<P> {
         }
     }
 
-    /// What the drives are commanded for the machine set point `axes`:
-    /// it, plus the backlash and pitch error compensation of a machine
-    /// that has them.
-    fn drive_command(&mut self, axes: V2) -> V2 {
-        let mut drive = axes;
+    /// What the drives are commanded for the machine set point `axes`
+    /// and C angle `c`: they, plus the backlash and pitch error
+    /// compensation of a machine that has them.
+    fn drive_command(&mut self, axes: V2, c: f64) -> (V2, f64) {
+        let (mut drive, mut drive_c) = (axes, c);
         if let Some(b) = &mut self.backlash {
             drive = drive + b.period(axes, self.dt);
+            drive_c += b.period_c(c, self.dt);
         }
         if let Some([x, z]) = &mut self.pitch {
             drive = drive + V2::new(x.at(axes.r), z.at(axes.z));
         }
-        drive
+        (drive, drive_c)
     }
 
     /// The machine set point the axes stand at, X on the diameter, tool
@@ -941,10 +944,10 @@ impl<P: Plc> Engine<P> {
         (work, axes, c)
     }
 
-    /// The period's set point; `drive` is the machine set point with the
-    /// backlash and pitch error compensation added, which the counts
-    /// command.
-    fn setpoint(&self, work: V2, axes: V2, c: f64, drive: V2) -> SetPoint {
+    /// The period's set point; `drive` is the machine set point and C
+    /// with the backlash and pitch error compensation added, which the
+    /// counts command.
+    fn setpoint(&self, work: V2, axes: V2, c: f64, (drive, drive_c): (V2, f64)) -> SetPoint {
         let ran = self.ran_tag();
         SetPoint {
             time_s: self.ticks as f64 * self.dt,
@@ -952,7 +955,7 @@ impl<P: Plc> Engine<P> {
             z: work.z,
             axis_x: axes.x(),
             axis_z: axes.z,
-            counts: Counts::of(drive.x(), drive.z, c, self.cfg.resolution_mm),
+            counts: Counts::of(drive.x(), drive.z, drive_c, self.cfg.resolution_mm),
             spindle_rpm: self.spindle.rpm(),
             spindle_turns: self.spindle.turns(),
             c: self.cfg.c.map(|_| c),

@@ -89,3 +89,29 @@ fn the_counts_add_the_pitch_correction_where_the_slide_stands() {
         "{near:?}"
     );
 }
+
+/// A rotary C with 0.05° of lost motion (`[axes.c] backlash_deg`): C
+/// turns − to −90 and stands (the command 0.05° below: −90 050 steps of
+/// 0.001°), then + to −30 (given back: −30 000); the set point stays
+/// the table's angle throughout.
+#[test]
+fn a_rotary_axis_s_counts_take_up_its_lost_motion() {
+    let toml = "[axes.c]\nenabled = true\nbacklash_deg = 0.05\n";
+    let src = "G00 C-90\nG04 X0.1\nG00 C-30\nG04 X0.1\nM30\n";
+    let run = run_program(src, toml);
+    assert_eq!(run.alarm, None);
+    let at = |line: u32, c: f64| -> Vec<i64> {
+        let pts = run.pts.iter().filter(|p| p.line == line && p.c == Some(c));
+        pts.map(|p| p.counts.c).collect()
+    };
+    let minus = at(2, -90.0);
+    assert!(
+        minus.len() >= 100 && minus.iter().all(|&n| n == -90_050),
+        "{minus:?}"
+    );
+    let plus = at(4, -30.0);
+    assert!(
+        plus.len() >= 100 && plus.iter().all(|&n| n == -30_000),
+        "{plus:?}"
+    );
+}

@@ -150,6 +150,7 @@ section!(RotaryAxis {
     max_feed_deg_min: f64 = 1800.0,
     accel_deg_s2: f64 = 3600.0,
     jerk_deg_s3: f64 = 36000.0,
+    backlash_deg: f64 = 0.0,
 });
 
 /// `[axes]`: by hand rather than by `section!`, for Z's own reader.
@@ -657,7 +658,8 @@ mod tests {
         assert!(group("number = 1\nlife = 5\ntools = [3301]\n").is_err());
     }
 
-    /// The axis compensation: the lost motion within 0 … 2 mm; a pitch
+    /// The axis compensation: the lost motion within 0 … 2 mm (C's
+    /// within 0 … 2°); a pitch
     /// table of none or two points and more, ascending, gentle.
     #[test]
     fn axis_compensation_is_checked() {
@@ -665,6 +667,10 @@ mod tests {
         assert!(z("backlash_mm = 0.03").is_ok());
         assert!(z("backlash_mm = -0.01").is_err());
         assert!(z("backlash_mm = 2.5").is_err());
+        let c = |body: &str| Machine::from_toml(&format!("[axes.c]\nenabled = true\n{body}\n"));
+        assert!(c("backlash_deg = 0.05").is_ok());
+        assert!(c("backlash_deg = -0.01").is_err());
+        assert!(c("backlash_deg = 2.5").is_err());
         assert!(z("pitch_comp_mm = [[-300.0, -0.004], [0.0, 0.0]]").is_ok());
         assert!(z("pitch_comp_mm = []").is_ok());
         let err = |body: &str| {

@@ -76,6 +76,9 @@ pub const MAX_OFFSETS: u64 = 32;
 /// lost motion, a pitch correction): far more than any screw worth
 /// compensating needs.
 pub const MAX_COMP_MM: f64 = 2.0;
+/// The most a rotary axis's lost motion may be, degrees: far more than
+/// any worm gear worth compensating has.
+pub const MAX_COMP_DEG: f64 = 2.0;
 
 /// The most points of a pitch error table (a laser calibration takes one
 /// every 10–50 mm of a stroke of at most a few metres).
@@ -183,6 +186,7 @@ pub fn check(m: &Machine) -> Check {
     positive("axes.c.max_feed_deg_min", c.max_feed_deg_min, MAX_DEG_RATE)?;
     positive("axes.c.accel_deg_s2", c.accel_deg_s2, MAX_DEG_RATE)?;
     positive("axes.c.jerk_deg_s3", c.jerk_deg_s3, MAX_DEG_JERK)?;
+    within("axes.c.backlash_deg", c.backlash_deg, 0.0, MAX_COMP_DEG)?;
     if !(c.name.len() == 1 && c.name.bytes().all(|b| b.is_ascii_uppercase())) {
         return bad(
             "axes.c.name",
