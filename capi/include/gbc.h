@@ -999,6 +999,18 @@ enum GbcStatus gbc_set_dry_run(GbcController controller, bool on);
 enum GbcStatus gbc_set_machine_lock(GbcController controller, bool on);
 
 /**
+ * Auxiliary function lock: the M, S and T functions the motion reaches
+ * pass without being executed. The PLC callbacks are not called for
+ * them; the simulated spindle and the tool stay as they are. M00, M01,
+ * M02, M30, M98 and M99 are the program's, not the PLC's, and act as
+ * ever. Live: read as the motion reaches each function. Feed per
+ * revolution and threads need the spindle turning: with dry run, feeds
+ * per revolution move at the dry-run rate; a thread, and a feed per
+ * revolution without dry run, stop with E7003 unless the spindle turns.
+ */
+enum GbcStatus gbc_set_aux_lock(GbcController controller, bool on);
+
+/**
  * Block-skip switch `switch_number` (1–9; `/` is 1, `/n` is n), the
  * panel's block-delete key: a `/n` block is skipped when its switch is on
  * as the program reads it. The program is read ahead of the motion (by

@@ -83,6 +83,7 @@ struct Panel {
     optional_stop: bool,
     dry_run: bool,
     machine_lock: bool,
+    aux_lock: bool,
     skip_level: bool,
     /// Block-skip switches 1–9.
     block_skip: [bool; 9],
@@ -99,6 +100,7 @@ impl Panel {
             optional_stop: m.operator.optional_stop,
             dry_run: m.operator.dry_run,
             machine_lock: m.operator.machine_lock,
+            aux_lock: m.operator.aux_lock,
             skip_level: cfg.skip_active_low,
             block_skip: *m.operator.block_skip,
         }
@@ -112,6 +114,7 @@ impl Panel {
         c.set_optional_stop(self.optional_stop);
         c.set_dry_run(self.dry_run);
         c.set_machine_lock(self.machine_lock);
+        c.set_aux_lock(self.aux_lock);
         c.set_skip_input(self.skip_level);
         for (n, &on) in (1..).zip(&self.block_skip) {
             c.set_block_skip(n, on);
@@ -927,6 +930,26 @@ pub extern "C" fn gbc_set_machine_lock(controller: GbcController, on: bool) -> G
             Ok(())
         },
         |p, e| e.set_machine_lock(p.machine_lock),
+    )
+}
+
+/// Auxiliary function lock: the M, S and T functions the motion reaches
+/// pass without being executed. The PLC callbacks are not called for
+/// them; the simulated spindle and the tool stay as they are. M00, M01,
+/// M02, M30, M98 and M99 are the program's, not the PLC's, and act as
+/// ever. Live: read as the motion reaches each function. Feed per
+/// revolution and threads need the spindle turning: with dry run, feeds
+/// per revolution move at the dry-run rate; a thread, and a feed per
+/// revolution without dry run, stop with E7003 unless the spindle turns.
+#[no_mangle]
+pub extern "C" fn gbc_set_aux_lock(controller: GbcController, on: bool) -> GbcStatus {
+    panel(
+        controller,
+        |p| {
+            p.aux_lock = on;
+            Ok(())
+        },
+        |p, e| e.set_aux_lock(p.aux_lock),
     )
 }
 

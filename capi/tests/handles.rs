@@ -129,6 +129,7 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
             "gbc_set_machine_lock",
             Box::new(|h| gbc_set_machine_lock(h, true)),
         ),
+        ("gbc_set_aux_lock", Box::new(|h| gbc_set_aux_lock(h, true))),
         (
             "gbc_set_block_skip",
             Box::new(|h| gbc_set_block_skip(h, 1, false)),

@@ -145,6 +145,9 @@ pub struct Config {
     /// Machine lock: the program runs, the axes stand (read when a run
     /// starts, [`crate::Engine::set_machine_lock`]).
     pub machine_lock: bool,
+    /// Auxiliary function lock: M, S and T functions are not executed
+    /// (live, [`crate::Engine::set_aux_lock`]).
+    pub aux_lock: bool,
     /// The dry-run rate, mm/s. The machine file has no key for it; it is
     /// the path limit of cutting feeds (№027), so that the override knob
     /// sets the speed of an air cut as the GSK's manual rate does.
@@ -219,6 +222,7 @@ impl Default for Config {
             optional_stop: true,
             dry_run: false,
             machine_lock: false,
+            aux_lock: false,
             dry_run_feed: min(5000.0),
             m30_rewinds: false,
             skip_active_low: false,
@@ -399,6 +403,7 @@ impl Config {
             optional_stop: m.operator.optional_stop,
             dry_run: m.operator.dry_run,
             machine_lock: m.operator.machine_lock,
+            aux_lock: m.operator.aux_lock,
             dry_run_feed: per_s(m.feed.max_mm_min),
             m30_rewinds: m.run.m30_rewinds,
             skip_active_low: m.measure.signal_active_low,

@@ -350,6 +350,12 @@ impl<P: Plc> Controller<P> {
         self.engine.set_dry_run(on);
     }
 
+    /// Auxiliary function lock: M, S and T functions pass unexecuted
+    /// ([`Engine::set_aux_lock`]).
+    pub fn set_aux_lock(&mut self, on: bool) {
+        self.engine.set_aux_lock(on);
+    }
+
     /// Machine lock: the program runs, the axes stand; read when a run
     /// or a manual move starts ([`Engine::set_machine_lock`]).
     pub fn set_machine_lock(&mut self, on: bool) {

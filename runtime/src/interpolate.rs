@@ -370,6 +370,8 @@ pub struct Engine<P: Plc> {
     single_block: bool,
     optional_stop: bool,
     dry_run: bool,
+    /// Auxiliary function lock: PLC functions pass unexecuted.
+    aux_lock: bool,
     cycle_start: bool,
     /// A manual session: its moves are queued or running (manual.rs).
     manual: bool,
@@ -474,6 +476,7 @@ impl<P: Plc> Engine<P> {
             single_block: cfg.single_block,
             optional_stop: cfg.optional_stop,
             dry_run: cfg.dry_run,
+            aux_lock: cfg.aux_lock,
             cycle_start: false,
             manual: false,
             reset_req: false,
@@ -718,6 +721,14 @@ impl<P: Plc> Engine<P> {
     /// waits for the next start.
     pub fn set_machine_lock(&mut self, on: bool) {
         self.lock.switch = on;
+    }
+
+    /// Auxiliary function lock (docs/machine.md, "Machine lock"): the M,
+    /// S and T functions the motion reaches pass without being executed:
+    /// the PLC is not asked, the simulated spindle and the tool stay as
+    /// they are. Read as the motion reaches each function.
+    pub fn set_aux_lock(&mut self, on: bool) {
+        self.aux_lock = on;
     }
 
     /// Machine lock holds the axes for the run or manual move under way.
@@ -1172,6 +1183,9 @@ impl<P: Plc> Engine<P> {
     /// A PLC function is requested once, then waited for (not under
     /// `#3003` bit 1: the host is not polled for its FIN).
     fn step_plc(&mut self, f: PlcFunction) -> Flow {
+        if self.aux_lock && !self.started {
+            return self.finish_item_now();
+        }
         if !self.started {
             self.started = true;
             self.apply_plc(f);

@@ -2,12 +2,15 @@
 //! period as it would unlocked (the oracle: the same program run without
 //! the lock), while the axes, and the drives' counts, stand where they
 //! stood at cycle start; the reset after it brings the program's point
-//! back to the axes, so the next run moves as from a fresh start.
+//! back to the axes, so the next run moves as from a fresh start. And
+//! the auxiliary function lock: the M, S and T functions pass
+//! unexecuted.
 
 mod common;
 
 use common::{module, reset_to_idle, run_to_end};
 use nc::Machine;
+use runtime::plc::PlcFunction;
 use runtime::{Controller, JogRate, Manual, ManualAxis, RunState, SetPoint};
 
 /// Offset 1: X2 (diameter) Z3, wear X0.1; Z has 0.03 mm of backlash,
@@ -157,4 +160,122 @@ fn the_machine_file_locks_a_split_controller() {
     let end = run.pts.last().expect("periods");
     assert_eq!((end.x, end.z), (50.0, -10.0));
     assert!(run.pts.iter().all(|p| slide(p) == (0.0, 0.0, 0, 0)));
+}
+
+/// A PLC that records what it is asked to do.
+#[derive(Default)]
+struct Recorder(Vec<PlcFunction>);
+
+impl runtime::Plc for Recorder {
+    fn request(&mut self, f: PlcFunction) {
+        self.0.push(f);
+    }
+    fn done(&mut self, _: PlcFunction) -> bool {
+        true
+    }
+}
+
+/// Runs `src` to its end or an alarm (at most 60 simulated s); `live` is
+/// called before each period with its index.
+fn run_recorded(
+    src: &str,
+    setup: impl FnOnce(&mut Controller<Recorder>),
+    mut live: impl FnMut(&mut Controller<Recorder>, usize),
+) -> (Vec<SetPoint>, Vec<PlcFunction>, RunState) {
+    let machine = Machine::reference();
+    let m = module(src, &machine);
+    let mut ctl = Controller::new(m, machine, Recorder::default()).expect("loads");
+    setup(&mut ctl);
+    ctl.cycle_start();
+    let mut pts = Vec::new();
+    for i in 0..60_000 {
+        live(&mut ctl, i);
+        ctl.run_ahead();
+        pts.push(ctl.tick());
+        if matches!(ctl.state(), RunState::Ended | RunState::Alarm(_)) {
+            break;
+        }
+    }
+    let asked = core::mem::take(&mut ctl.engine_mut().plc_mut().0);
+    (pts, asked, ctl.state())
+}
+
+const FUNCTIONS: &str = "T0202\nM03 S500\nM08\nG98 G01 W-5 F300\nM09\nM05\nG04 X0.2\nM30\n";
+
+/// Auxiliary function lock: the PLC is asked for nothing, the spindle
+/// never turns and the turret stays on tool 1 (power-on T0100), while
+/// the move runs to its end as unlocked.
+#[test]
+fn aux_lock_passes_the_functions_unexecuted() {
+    let (free, asked, state) = run_recorded(FUNCTIONS, |_| {}, |_, _| {});
+    assert_eq!(state, RunState::Ended);
+    assert!(
+        asked.contains(&PlcFunction::M(8)) && asked.len() >= 6,
+        "{asked:?}"
+    );
+    assert!(free.iter().any(|p| p.spindle_rpm == 500.0 && p.tool == 2));
+
+    let (locked, asked, state) = run_recorded(FUNCTIONS, |c| c.set_aux_lock(true), |_, _| {});
+    assert_eq!(state, RunState::Ended);
+    assert_eq!(asked, []);
+    assert!(locked.iter().all(|p| p.spindle_rpm == 0.0 && p.tool == 1));
+    let (a, b) = (
+        free.last().expect("periods"),
+        locked.last().expect("periods"),
+    );
+    assert_eq!((a.x, a.z), (b.x, b.z));
+    assert_eq!((b.x, b.z), (0.0, -5.0));
+}
+
+/// Switched on while the spindle turns (after the M03 ran, at the cut):
+/// the M05 after it is not executed either, so the spindle turns on
+/// through the dwell; the functions before the switch were.
+#[test]
+fn aux_lock_is_read_as_the_motion_reaches_each_function() {
+    let mut cutting = false;
+    let (pts, asked, state) = run_recorded(
+        FUNCTIONS,
+        |_| {},
+        |c, _| {
+            if !cutting && c.engine().active_codes().f == 300.0 {
+                cutting = true;
+                c.set_aux_lock(true);
+            }
+        },
+    );
+    assert!(cutting);
+    assert_eq!(state, RunState::Ended);
+    assert!(!asked.contains(&PlcFunction::M(9)), "{asked:?}");
+    assert!(asked.contains(&PlcFunction::M(8)), "{asked:?}");
+    let dwell: Vec<f64> = pts
+        .iter()
+        .filter(|p| p.line == 7)
+        .map(|p| p.spindle_rpm)
+        .collect();
+    assert!(
+        dwell.len() >= 100 && dwell.iter().all(|&r| r == 500.0),
+        "{dwell:?}"
+    );
+}
+
+/// Feed per revolution needs the turning spindle the lock keeps from
+/// starting: E7003, as a real control waits for it; with dry run the
+/// feed moves at the dry-run rate and the run ends. A thread needs it
+/// with dry run too.
+#[test]
+fn aux_lock_with_feed_per_revolution_needs_dry_run() {
+    let src = "M03 S500\nG99 G01 W-5 F0.2\nM30\n";
+    let (_, _, state) = run_recorded(src, |c| c.set_aux_lock(true), |_, _| {});
+    assert_eq!(state, RunState::Alarm(7003));
+    let dry = |c: &mut Controller<Recorder>| {
+        c.set_aux_lock(true);
+        c.set_dry_run(true);
+    };
+    let (pts, asked, state) = run_recorded(src, dry, |_, _| {});
+    assert_eq!((state, asked), (RunState::Ended, vec![]));
+    assert_eq!(pts.last().map(|p| p.z), Some(-5.0));
+    // A thread stays on the spindle, dry run or not.
+    let thread = "M03 S500\nG00 X20 Z2\nG32 Z-10 F1.5\nM30\n";
+    let (_, _, state) = run_recorded(thread, dry, |_, _| {});
+    assert_eq!(state, RunState::Alarm(7003));
 }

@@ -335,6 +335,7 @@ section!(Operator {
     single_block: bool = false,
     dry_run: bool = false,
     machine_lock: bool = false,
+    aux_lock: bool = false,
     feed_override_pct: f64 = 100.0,
     rapid_override_pct: f64 = 100.0,
     spindle_override_pct: f64 = 100.0,
