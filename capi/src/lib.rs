@@ -227,12 +227,24 @@ fn guard(f: impl FnOnce() -> Outcome) -> GbcStatus {
     }
 }
 
-/// Runs `f` on the controller behind `h`; a panic poisons it.
-fn with_ctl(h: GbcController, f: impl FnOnce(&mut Ctl) -> Outcome) -> GbcStatus {
+/// A controller object (whole, or a split one's real-time half), which
+/// a panic inside a call leaves unusable.
+trait Poisonable: Object {
+    fn poisoned(&mut self) -> &mut bool;
+}
+
+impl Poisonable for Ctl {
+    fn poisoned(&mut self) -> &mut bool {
+        &mut self.poisoned
+    }
+}
+
+/// Runs `f` on the object of kind `T` behind `h`; a panic poisons it.
+fn with_object<T: Poisonable>(h: GbcController, f: impl FnOnce(&mut T) -> Outcome) -> GbcStatus {
     guard(|| {
         // SAFETY: one call per handle at a time is the C contract.
-        let c = unsafe { handle::get::<Ctl>(h)? };
-        if c.poisoned {
+        let c = unsafe { handle::get::<T>(h)? };
+        if *c.poisoned() {
             return Err(fail(
                 GbcStatus::Panic,
                 "an earlier call on this controller panicked: it is unusable, free it",
@@ -241,11 +253,16 @@ fn with_ctl(h: GbcController, f: impl FnOnce(&mut Ctl) -> Outcome) -> GbcStatus 
         match catch_unwind(AssertUnwindSafe(|| f(&mut *c))) {
             Ok(r) => r,
             Err(_) => {
-                c.poisoned = true;
+                *c.poisoned() = true;
                 Err(GbcStatus::Panic.into())
             }
         }
     })
+}
+
+/// Runs `f` on the controller behind `h`; a panic poisons it.
+fn with_ctl(h: GbcController, f: impl FnOnce(&mut Ctl) -> Outcome) -> GbcStatus {
+    with_object(h, f)
 }
 
 /// As [`with_ctl`] for a call that needs a loaded program.

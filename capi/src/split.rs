@@ -19,7 +19,8 @@ use runtime::{
 use crate::handle::{self, Kind, Object};
 use crate::host::HostPlc;
 use crate::{
-    fail, give_text, guard, put, with_ctl, Ctl, Failure, GbcController, GbcStatus, Outcome, Panel,
+    fail, give_text, guard, put, with_ctl, with_object, Ctl, Failure, GbcController, GbcStatus,
+    Outcome, Panel, Poisonable,
 };
 
 /// What the motion side does, on a whole controller or a real-time half.
@@ -75,6 +76,8 @@ impl Motion for Realtime<HostPlc> {
 /// A real-time half's handle object.
 pub(crate) struct RtObj {
     rt: Realtime<HostPlc>,
+    /// The controller's machine (for the motion side's calls that read
+    /// it without a program, which a real-time half always has).
     machine: nc::Machine,
     panel: Panel,
     reset_pending: bool,
@@ -83,6 +86,12 @@ pub(crate) struct RtObj {
 
 impl Object for RtObj {
     const KIND: Kind = Kind::Realtime;
+}
+
+impl Poisonable for RtObj {
+    fn poisoned(&mut self) -> &mut bool {
+        &mut self.poisoned
+    }
 }
 
 /// The motion side behind a handle, for one call.
@@ -115,7 +124,7 @@ pub(crate) fn with_motion(
     f: impl FnOnce(MotionSide<'_>) -> Outcome,
 ) -> GbcStatus {
     if handle::kind_of(h) == Ok(Kind::Realtime) {
-        return with_rt(h, |r| {
+        return with_object(h, |r: &mut RtObj| {
             f(MotionSide {
                 motion: Some(&mut r.rt),
                 machine: &r.machine,
@@ -134,27 +143,6 @@ pub(crate) fn with_motion(
             panel: &mut c.panel,
             reset_pending: &mut c.reset_pending,
         })
-    })
-}
-
-/// Runs `f` on the real-time half behind `h`; a panic poisons it.
-fn with_rt(h: GbcController, f: impl FnOnce(&mut RtObj) -> Outcome) -> GbcStatus {
-    guard(|| {
-        // SAFETY: one call per handle at a time is the C contract.
-        let r = unsafe { handle::get::<RtObj>(h)? };
-        if r.poisoned {
-            return Err(fail(
-                GbcStatus::Panic,
-                "an earlier call on this controller panicked: it is unusable, free it",
-            ));
-        }
-        match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(&mut *r))) {
-            Ok(r) => r,
-            Err(_) => {
-                r.poisoned = true;
-                Err(GbcStatus::Panic.into())
-            }
-        }
     })
 }
 
