@@ -36,17 +36,6 @@ fn active(c: GbcController) -> GbcActiveCodes {
     a
 }
 
-/// `PROGRAM`, compiled, loaded into `c`.
-fn load(c: GbcController) {
-    let opts = compiler::Options::default();
-    let prog = compiler::compile("p.nc", PROGRAM.as_bytes(), &opts);
-    let prog = prog.module.expect("compiles").to_bytes();
-    assert_eq!(
-        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
-        GbcStatus::Ok
-    );
-}
-
 /// A reset, ticked until idle: the power-on codes again.
 fn reset_shows_power_on(c: GbcController) {
     assert_eq!(gbc_reset(c), GbcStatus::Ok);
@@ -76,7 +65,7 @@ fn the_codes_in_force_follow_the_motion() {
         (unloaded.g, unloaded.f, unloaded.s, unloaded.t),
         (POWER_ON, 0.0, 0.0, 0)
     );
-    load(c);
+    load(c, PROGRAM);
     assert_eq!(active(c).g, POWER_ON);
     assert_eq!(gbc_cycle_start(c), GbcStatus::Ok);
     until_line(c, 5);
@@ -119,7 +108,7 @@ fn the_codes_in_force_follow_the_motion() {
 #[test]
 fn a_restart_shows_the_codes_it_resumes_with() {
     let (m, c) = controller_on("");
-    load(c);
+    load(c, PROGRAM);
     assert_eq!(gbc_restart_from(c, 5, 1), GbcStatus::Ok);
     let resumed = active(c);
     let mut g = POWER_ON;

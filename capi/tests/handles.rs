@@ -6,7 +6,7 @@
 mod periods;
 
 use gbc::*;
-use periods::blank;
+use periods::{blank, no_alarm};
 use std::ptr::null_mut;
 
 fn reference() -> GbcMachine {
@@ -27,18 +27,6 @@ fn controller(m: GbcMachine) -> GbcController {
 fn module(src: &str) -> Vec<u8> {
     let out = compiler::compile("t.nc", src.as_bytes(), &compiler::Options::default());
     out.module.expect("compiles").to_bytes()
-}
-
-fn alarm() -> GbcAlarm {
-    GbcAlarm {
-        code: 0,
-        line: 0,
-        column: 0,
-        message: [0; GBC_TEXT_CAPACITY],
-        file: [0; GBC_TEXT_CAPACITY],
-        message_len: 0,
-        file_len: 0,
-    }
 }
 
 fn state_info() -> GbcStateInfo {
@@ -85,7 +73,7 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
         ),
         (
             "gbc_alarm",
-            Box::new(|h| unsafe { gbc_alarm(h, &mut alarm()) }),
+            Box::new(|h| unsafe { gbc_alarm(h, &mut no_alarm()) }),
         ),
         (
             "gbc_message",
@@ -528,7 +516,7 @@ fn a_tick_in_an_alarm_is_refused_until_reset() {
             }
         }
         assert_eq!((st.state, st.alarm_code), (GbcRunState::Alarm, 3007));
-        let mut a = alarm();
+        let mut a = no_alarm();
         assert_eq!(gbc_alarm(c, &mut a), GbcStatus::Ok);
         assert_eq!((a.code, a.line), (3007, 3));
         let text = std::ffi::CStr::from_bytes_until_nul(&a.message).unwrap();

@@ -6,7 +6,7 @@ mod periods;
 
 use core::ffi::c_void;
 use gbc::*;
-use periods::{blank, controller_on, free, last_error};
+use periods::{blank, controller_on, free, last_error, no_alarm};
 
 #[derive(Default)]
 struct Host {
@@ -462,15 +462,7 @@ fn cut_names_and_alarm_texts_give_their_full_length() {
         }
     }
     assert_eq!(st.alarm_code, 3005);
-    let mut a = GbcAlarm {
-        code: 0,
-        line: 0,
-        column: 0,
-        message: [0; GBC_TEXT_CAPACITY],
-        file: [0; GBC_TEXT_CAPACITY],
-        message_len: 0,
-        file_len: 0,
-    };
+    let mut a = no_alarm();
     assert_eq!(unsafe { gbc_alarm(c, &mut a) }, GbcStatus::Ok);
     let text = std::ffi::CStr::from_bytes_until_nul(&a.message).expect("NUL");
     // The program's text, UTF-8 (the canon's MSG is `TOOL BROKEN ??`).

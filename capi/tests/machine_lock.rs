@@ -6,21 +6,11 @@
 mod periods;
 
 use gbc::*;
-use periods::{controller_on, free, period};
+use periods::{controller_on, free, load, period};
 
 /// From machine zero (the reference machine's power-on point, work zero
 /// there too) to X40 Z-20.
 const PROGRAM: &str = "G00 X40 Z-20\nM30\n";
-
-fn load(c: GbcController) {
-    let opts = compiler::Options::default();
-    let prog = compiler::compile("p.nc", PROGRAM.as_bytes(), &opts);
-    let prog = prog.module.expect("compiles").to_bytes();
-    assert_eq!(
-        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
-        GbcStatus::Ok
-    );
-}
 
 /// Cycle start and every period to the end: the last set point, and
 /// whether the slide (set point and counts) ever left machine zero.
@@ -42,7 +32,7 @@ fn run(c: GbcController) -> (GbcSetPoint, bool) {
 fn a_locked_run_leaves_the_axes_at_power_on() {
     let (m, c) = controller_on("");
     assert_eq!(gbc_set_machine_lock(c, true), GbcStatus::Ok);
-    load(c);
+    load(c, PROGRAM);
     let (end, moved) = run(c);
     assert_eq!((end.x, end.z), (40.0, -20.0));
     assert!(!moved, "{end:?}");

@@ -318,15 +318,7 @@ fn an_alarm_in_mdi_names_the_mdi_line() {
     }
     let st = state_info(c);
     assert_eq!((st.state, st.alarm_code), (GbcRunState::Alarm, 3007));
-    let mut a = GbcAlarm {
-        code: 0,
-        line: 0,
-        column: 0,
-        message: [0; GBC_TEXT_CAPACITY],
-        file: [0; GBC_TEXT_CAPACITY],
-        message_len: 0,
-        file_len: 0,
-    };
+    let mut a = no_alarm();
     assert_eq!(unsafe { gbc_alarm(c, &mut a) }, GbcStatus::Ok);
     assert_eq!((a.code, a.line), (3007, 2));
     let file = std::ffi::CStr::from_bytes_until_nul(&a.file).expect("NUL");

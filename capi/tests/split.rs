@@ -6,20 +6,10 @@
 mod periods;
 
 use gbc::*;
-use periods::{blank, controller_on};
+use periods::{blank, controller_on, load, no_alarm};
 use std::ffi::c_char;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
-
-fn load(c: GbcController, src: &str) {
-    let opts = compiler::Options::default();
-    let prog = compiler::compile("p.nc", src.as_bytes(), &opts);
-    let prog = prog.module.expect("compiles").to_bytes();
-    assert_eq!(
-        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
-        GbcStatus::Ok
-    );
-}
 
 /// A controller with `src` loaded, split: (machine, interpreter, real-time).
 fn split(src: &str) -> (GbcMachine, GbcController, GbcController) {
@@ -188,26 +178,14 @@ fn a_message_stop_and_an_alarm_across_the_halves() {
     }
     let st = state(rt);
     assert_eq!(st.state, GbcRunState::Alarm);
-    let mut a = alarm();
+    let mut a = no_alarm();
     assert_eq!(unsafe { gbc_alarm(interp, &mut a) }, GbcStatus::Ok);
     assert_eq!((a.code, a.line), (st.alarm_code, 4));
     assert!(a.message_len > 0);
-    let mut engine = alarm();
+    let mut engine = no_alarm();
     assert_eq!(unsafe { gbc_alarm(rt, &mut engine) }, GbcStatus::Ok);
     assert_eq!(engine.code, st.alarm_code);
     free(m, interp, rt);
-}
-
-fn alarm() -> GbcAlarm {
-    GbcAlarm {
-        code: 0,
-        line: 0,
-        column: 0,
-        message: [0; GBC_TEXT_CAPACITY],
-        file: [0; GBC_TEXT_CAPACITY],
-        message_len: 0,
-        file_len: 0,
-    }
 }
 
 /// The interpreter half freed first: the real-time half runs what was

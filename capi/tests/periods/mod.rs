@@ -1,6 +1,7 @@
 //! What the tests that drive a controller period by period through the C
-//! functions share: a zeroed set point, the state, one period, freeing,
-//! a controller on a machine file, the last error text.
+//! functions share: a zeroed set point and alarm, the state, one period,
+//! freeing, a controller on a machine file, a program loaded into it,
+//! the last error text.
 #![allow(dead_code)]
 
 use gbc::*;
@@ -25,6 +26,30 @@ pub fn blank() -> GbcSetPoint {
         tool: 0,
         motion: GbcMotion::None,
     }
+}
+
+/// An alarm record with nothing in it, for `gbc_alarm` to fill.
+pub fn no_alarm() -> GbcAlarm {
+    GbcAlarm {
+        code: 0,
+        line: 0,
+        column: 0,
+        message: [0; GBC_TEXT_CAPACITY],
+        file: [0; GBC_TEXT_CAPACITY],
+        message_len: 0,
+        file_len: 0,
+    }
+}
+
+/// `src` compiled for the reference machine and loaded into `c`.
+pub fn load(c: GbcController, src: &str) {
+    let opts = compiler::Options::default();
+    let prog = compiler::compile("p.nc", src.as_bytes(), &opts);
+    let prog = prog.module.expect("compiles").to_bytes();
+    assert_eq!(
+        unsafe { gbc_controller_load(c, prog.as_ptr(), prog.len()) },
+        GbcStatus::Ok
+    );
 }
 
 pub fn state_info(c: GbcController) -> GbcStateInfo {
