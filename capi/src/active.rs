@@ -62,8 +62,8 @@ pub unsafe extern "C" fn gbc_active_codes(
 ) -> GbcStatus {
     with_motion(controller, |s| {
         let codes = match s.motion {
-            Some(m) => m.engine().active_codes(),
-            None => ActiveCodes::power_on(s.machine),
+            Ok(m) => m.engine().active_codes(),
+            Err(machine) => ActiveCodes::power_on(machine),
         };
         // SAFETY: the caller's promise.
         unsafe { put(out, GbcActiveCodes::from(codes)) }
@@ -87,7 +87,7 @@ pub unsafe extern "C" fn gbc_distance_to_go(
     z: *mut f64,
 ) -> GbcStatus {
     with_motion(controller, |s| {
-        let d = s.motion.map(|m| m.engine().distance_to_go());
+        let d = s.motion.ok().map(|m| m.engine().distance_to_go());
         let d = d.unwrap_or(runtime::Xz { x: 0.0, z: 0.0 });
         // SAFETY: the caller's promise.
         unsafe { put_xz(x, z, d) }

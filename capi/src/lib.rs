@@ -627,8 +627,8 @@ pub unsafe extern "C" fn gbc_tick(controller: GbcController, out: *mut GbcSetPoi
 pub unsafe extern "C" fn gbc_state(controller: GbcController, out: *mut GbcStateInfo) -> GbcStatus {
     with_motion(controller, |s| {
         let info = match s.motion {
-            Some(r) => GbcStateInfo::new(r.engine().state(), r.blocks()),
-            None => GbcStateInfo::EMPTY,
+            Ok(r) => GbcStateInfo::new(r.engine().state(), r.blocks()),
+            Err(_) => GbcStateInfo::EMPTY,
         };
         // SAFETY: the caller's promise.
         unsafe { put(out, info) }
@@ -649,7 +649,7 @@ pub unsafe extern "C" fn gbc_alarm(controller: GbcController, out: *mut GbcAlarm
     if handle::kind_of(controller) == Ok(Kind::Realtime) {
         // SAFETY: the caller's promise.
         return with_motion(controller, |s| unsafe {
-            put_alarm(out, s.motion.and_then(|m| m.alarm()))
+            put_alarm(out, s.motion.ok().and_then(|m| m.alarm()))
         });
     }
     with_ctl(controller, |c| {
@@ -763,7 +763,7 @@ fn panel(
 ) -> GbcStatus {
     with_motion(h, |s| {
         set(s.panel)?;
-        if let Some(m) = s.motion {
+        if let Ok(m) = s.motion {
             apply(s.panel, m.engine_mut());
         }
         Ok(())

@@ -76,9 +76,6 @@ impl Motion for Realtime<HostPlc> {
 /// A real-time half's handle object.
 pub(crate) struct RtObj {
     rt: Realtime<HostPlc>,
-    /// The controller's machine (for the motion side's calls that read
-    /// it without a program, which a real-time half always has).
-    machine: nc::Machine,
     panel: Panel,
     reset_pending: bool,
     poisoned: bool,
@@ -96,9 +93,9 @@ impl Poisonable for RtObj {
 
 /// The motion side behind a handle, for one call.
 pub(crate) struct MotionSide<'a> {
-    /// `None` while no program is loaded.
-    pub motion: Option<&'a mut dyn Motion>,
-    pub machine: &'a nc::Machine,
+    /// The motion; while no program is loaded (never on a real-time
+    /// half), the controller's machine instead.
+    pub motion: Result<&'a mut dyn Motion, &'a nc::Machine>,
     pub panel: &'a mut Panel,
     /// A reset was asked for in an alarm: ticks are accepted again.
     pub reset_pending: &'a mut bool,
@@ -106,9 +103,9 @@ pub(crate) struct MotionSide<'a> {
 
 impl MotionSide<'_> {
     pub fn motion(&mut self) -> Result<&mut dyn Motion, Failure> {
-        match self.motion.as_deref_mut() {
-            Some(m) => Ok(m),
-            None => Err(GbcStatus::NoProgram.into()),
+        match &mut self.motion {
+            Ok(m) => Ok(&mut **m),
+            Err(_) => Err(GbcStatus::NoProgram.into()),
         }
     }
 }
@@ -126,8 +123,7 @@ pub(crate) fn with_motion(
     if handle::kind_of(h) == Ok(Kind::Realtime) {
         return with_object(h, |r: &mut RtObj| {
             f(MotionSide {
-                motion: Some(&mut r.rt),
-                machine: &r.machine,
+                motion: Ok(&mut r.rt),
                 panel: &mut r.panel,
                 reset_pending: &mut r.reset_pending,
             })
@@ -138,8 +134,10 @@ pub(crate) fn with_motion(
             return Err(fail(GbcStatus::WrongKind, TO_REALTIME));
         }
         f(MotionSide {
-            motion: c.run.as_mut().map(|r| r as &mut dyn Motion),
-            machine: &c.machine,
+            motion: match c.run.as_mut() {
+                Some(r) => Ok(r),
+                None => Err(&c.machine),
+            },
             panel: &mut c.panel,
             reset_pending: &mut c.reset_pending,
         })
@@ -180,7 +178,6 @@ pub unsafe extern "C" fn gbc_controller_split(
         let (interp, rt) = run.split();
         let obj = RtObj {
             rt,
-            machine: c.machine.clone(),
             panel: c.panel,
             reset_pending: c.reset_pending,
             poisoned: false,
@@ -293,7 +290,7 @@ impl ProgramSide<'_> {
 #[no_mangle]
 pub unsafe extern "C" fn gbc_message_index(controller: GbcController, out: *mut u32) -> GbcStatus {
     with_motion(controller, |s| {
-        let state = s.motion.map(|m| m.engine().state());
+        let state = s.motion.ok().map(|m| m.engine().state());
         let index = match state {
             Some(RunState::Stopped(PauseKind::Message { index, .. })) => index,
             _ => u32::MAX,
