@@ -129,6 +129,11 @@
 #define GBC_WORK_OFFSET_G59 6
 
 /**
+ * The warning's code, as gbcc's W118.
+ */
+#define GBC_ROOM_WARNING_CODE 118
+
+/**
  * The most bytes of text `gbc_controller_load_source` and
  * `gbc_controller_select_source` take (256 MiB): far above any program
  * a control keeps, it keeps a wrong `len` from making the library read
@@ -765,6 +770,49 @@ typedef struct GbcOffsetLengths {
   double wear_z;
 } GbcOffsetLengths;
 
+/**
+ * A thread start without room (`gbc_take_room_warning`).
+ */
+typedef struct GbcRoomWarning {
+  /**
+   * [`GBC_ROOM_WARNING_CODE`] for a warning; 0: none was waiting.
+   */
+  uint32_t code;
+  /**
+   * Source line of the thread block.
+   */
+  uint32_t line;
+  /**
+   * Its source column.
+   */
+  uint32_t column;
+  /**
+   * Its source file, an index for `gbc_file_name` (0: the main program).
+   */
+  uint16_t file;
+  /**
+   * The room to stop at the thread's end is short (else the room to
+   * reach thread speed at its start).
+   */
+  bool exit;
+  /**
+   * The thread's long axis is Z (else X).
+   */
+  bool long_z;
+  /**
+   * The long axis's travel in the block, mm.
+   */
+  double room_mm;
+  /**
+   * The travel the axis needs to reach (or leave) thread speed, mm.
+   */
+  double need_mm;
+  /**
+   * The spindle speed the thread starts at, rev/min.
+   */
+  double rpm;
+} GbcRoomWarning;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1399,6 +1447,36 @@ enum GbcStatus gbc_restart_m_codes(GbcController controller,
  * `x` and `z` are null or writable.
  */
 enum GbcStatus gbc_restart_destination(GbcController controller, double *x, double *z);
+
+/**
+ * Takes the next W118 of the thread starts so far into `*out`, each
+ * once, the entry's before the exit's: `code` 0 when none is waiting.
+ * The motion finds them when a thread starts, so poll once a period
+ * (a later start replaces those not taken). On a whole controller or
+ * the real-time half of a split one; it allocates nothing. Before a
+ * program is loaded: none.
+ *
+ * # Safety
+ * `out` is null or writable.
+ */
+enum GbcStatus gbc_take_room_warning(GbcController controller, struct GbcRoomWarning *out);
+
+/**
+ * The text of `*warning` (from `gbc_take_room_warning`) into `buf` as
+ * `gbc_message` gives a text, worded as gbcc's W118: "thread too short
+ * to reach its lead: at 1500 rpm Z needs 1.442 mm to reach thread
+ * speed, this block gives 1.000 mm". Needs no controller; it
+ * allocates, so call it off the real-time thread. A record with `code`
+ * 0: [`GbcStatus::InvalidArgument`].
+ *
+ * # Safety
+ * `warning` is null or readable; `buf` null or writable for `cap`
+ * bytes; `len` null or writable.
+ */
+enum GbcStatus gbc_room_warning_text(const struct GbcRoomWarning *warning,
+                                     char *buf,
+                                     size_t cap,
+                                     size_t *len);
 
 /**
  * Replaces the loaded program with another `.gbc` (`len` bytes at

@@ -291,6 +291,10 @@ fn controller_calls() -> Vec<(&'static str, Call)> {
                 unsafe { gbc_message_at(h, 0, buf.as_mut_ptr(), buf.len(), null_mut()) }
             }),
         ),
+        (
+            "gbc_take_room_warning",
+            Box::new(|h| unsafe { gbc_take_room_warning(h, &mut std::mem::zeroed()) }),
+        ),
         ("gbc_controller_free", Box::new(|h| gbc_controller_free(h))),
     ]
 }

@@ -83,7 +83,7 @@ fn op() -> impl Strategy<Value = Op> {
         1 => Just(Op::Select),
         1 => Just(Op::Split),
         1 => (0u8..6).prop_map(Op::Crossed),
-        2 => (0u8..6).prop_map(Op::Read),
+        2 => (0u8..7).prop_map(Op::Read),
     ]
 }
 
@@ -211,6 +211,7 @@ impl Host {
                     let (mut x, mut z) = (0.0, 0.0);
                     unsafe { gbc_restart_destination(h, &mut x, &mut z) }
                 }
+                5 => unsafe { gbc_take_room_warning(h, &mut std::mem::zeroed()) },
                 _ => unsafe { gbc_alarm(h, &mut std::mem::zeroed()) },
             });
         }
