@@ -555,7 +555,8 @@ typedef struct GbcSetPoint {
   int64_t count_z;
   /**
    * `c` in steps of 0.001° (0 without a C axis), with the machine
-   * file's `backlash_deg` where C has turned back, as `count_x`.
+   * file's `backlash_deg` where C has turned back and the correction
+   * of `pitch_comp_deg` at its angle, as `count_x`.
    */
   int64_t count_c;
   /**

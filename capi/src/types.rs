@@ -240,7 +240,8 @@ pub struct GbcSetPoint {
     /// `axis_z` in whole steps of the resolution, as `count_x`.
     pub count_z: i64,
     /// `c` in steps of 0.001° (0 without a C axis), with the machine
-    /// file's `backlash_deg` where C has turned back, as `count_x`.
+    /// file's `backlash_deg` where C has turned back and the correction
+    /// of `pitch_comp_deg` at its angle, as `count_x`.
     pub count_c: i64,
     /// The C axis angle, degrees (0 without a C axis; see `has_c`).
     pub c: f64,

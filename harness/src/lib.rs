@@ -319,12 +319,16 @@ fn compensated_moves(m: Machine) {
         return;
     };
     let res = m.machine.resolution_mm;
-    let bound = |a: &nc::machine::LinearAxis| {
-        let pitch = a.pitch_comp_mm.iter().flatten().skip(1).step_by(2);
-        a.backlash_mm + pitch.fold(0.0, |w: f64, c| w.max(c.abs())) + res / 2.0 + 1e-9
+    // The largest correction of a table of [position, correction] pairs.
+    let largest = |t: &[Vec<f64>]| {
+        let adds = t.iter().flatten().skip(1).step_by(2);
+        adds.fold(0.0, |w: f64, c| w.max(c.abs()))
     };
+    let bound =
+        |a: &nc::machine::LinearAxis| a.backlash_mm + largest(&a.pitch_comp_mm) + res / 2.0 + 1e-9;
     let (bx, bz) = (bound(&m.axes.x), bound(&m.axes.z));
-    let bc = m.axes.c.backlash_deg + runtime::counts::C_STEP_DEG / 2.0 + 1e-9;
+    let c = &m.axes.c;
+    let bc = c.backlash_deg + largest(&c.pitch_comp_deg) + runtime::counts::C_STEP_DEG / 2.0 + 1e-9;
     let Ok(mut ctl) = runtime::Controller::new(module, m, runtime::AutoAck) else {
         return;
     };

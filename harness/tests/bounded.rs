@@ -62,7 +62,8 @@ fn modules() -> &'static [Vec<u8>] {
 
 const MACHINES: [&str; 5] = [
     "",
-    "[machine]\nlookahead_blocks = 2048\n[axes.c]\nenabled = true\nbacklash_deg = 0.05\n",
+    "[machine]\nlookahead_blocks = 2048\n[axes.c]\nenabled = true\nbacklash_deg = 0.05\n\
+     pitch_comp_deg = [[0.0, 0.0], [90.0, 0.009], [270.0, -0.009]]\n",
     "[[tools.offset]]\nnumber = 1\nradius = 0.8\ntip = 3\n[reference_points]\nsecond = { x = 1.0, z = 2.0 }\n",
     "[[tool_life.group]]\nnumber = 1\nlife = 5\ntools = [101]\n[operator]\nfeed_override_pct = 50\n",
     "[axes.x]\nbacklash_mm = 0.02\npitch_comp_mm = [[0.0, 0.0], [100.0, 0.02]]\n\

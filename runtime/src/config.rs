@@ -92,9 +92,10 @@ pub struct Config {
     pub x: Axis,
     /// The Z slide.
     pub z: Axis,
-    /// The pitch error tables of X (radial units) and Z, which the
-    /// drive's command adds ([`crate::pitch`]); empty for none.
-    pub pitch: [PitchTable; 2],
+    /// The pitch error tables of X (radial units), Z and C (one turn's
+    /// angular table), which the drive's command adds ([`crate::pitch`]);
+    /// empty for none.
+    pub pitch: [PitchTable; 3],
     /// The optional C axis in degrees (deg/s, deg/s², deg/s³); `None`
     /// on a machine without one.
     pub c: Option<Axis>,
@@ -344,6 +345,15 @@ fn table(a: &nc::machine::LinearAxis, k: f64) -> PitchTable {
     PitchTable::new(pairs.collect())
 }
 
+/// C's angular table (degrees; none without a C axis).
+fn turn_table(c: &nc::machine::RotaryAxis) -> PitchTable {
+    let pairs = c.pitch_comp_deg.iter().filter_map(|p| match p.as_slice() {
+        &[at, add] if c.enabled => Some((at, add)),
+        _ => None,
+    });
+    PitchTable::turn(pairs.collect())
+}
+
 /// The C axis of a machine file, per second; it turns without limits.
 fn rotary(c: &nc::machine::RotaryAxis) -> Axis {
     Axis {
@@ -382,7 +392,11 @@ impl Config {
             // radius programming too: machine.md.)
             x: axis(&m.axes.x, true),
             z: axis(&m.axes.z, false),
-            pitch: [table(&m.axes.x, 0.5), table(&m.axes.z, 1.0)],
+            pitch: [
+                table(&m.axes.x, 0.5),
+                table(&m.axes.z, 1.0),
+                turn_table(&m.axes.c),
+            ],
             c: m.axes.c.enabled.then(|| rotary(&m.axes.c)),
             path_max_feed: per_s(m.feed.max_mm_min),
             spindle: SpindleConfig {

@@ -291,8 +291,8 @@ pub struct Engine<P: Plc> {
     /// on a machine without lost motion, the usual case, which then pays
     /// nothing for it).
     backlash: Option<Backlash>,
-    /// The pitch error tables of X and Z (none on a machine without).
-    pitch: Option<[PitchTable; 2]>,
+    /// The pitch error tables of X, Z and C (none on a machine without).
+    pitch: Option<[PitchTable; 3]>,
     /// Machine lock: the switch, and where it holds the axes.
     lock: MachineLock,
     dt: f64,
@@ -919,8 +919,9 @@ impl<P: Plc> Engine<P> {
             drive = drive + b.period(axes, self.dt);
             drive_c += b.period_c(c, self.dt);
         }
-        if let Some([x, z]) = &mut self.pitch {
+        if let Some([x, z, c_table]) = &mut self.pitch {
             drive = drive + V2::new(x.at(axes.r), z.at(axes.z));
+            drive_c += c_table.at(c);
         }
         (drive, drive_c)
     }

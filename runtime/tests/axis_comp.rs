@@ -115,3 +115,25 @@ fn a_rotary_axis_s_counts_take_up_its_lost_motion() {
         "{plus:?}"
     );
 }
+
+/// C's angular table (`pitch_comp_deg`): −0.009° at 270°, 0 at 0°,
+/// +0.009° at 90°. By hand: at C−60 (300°, a third of the way from 270°
+/// round to 360°) −0.006: −60 006 steps of 0.001°; at C30, 30/90 of the
+/// way to 90°, +0.003: 30 003; at C390, a turn on, the same +0.003:
+/// 390 003. The set point stays the programmed angle.
+#[test]
+fn a_rotary_axis_s_counts_add_its_angular_correction() {
+    let toml = "[axes.c]\nenabled = true\n\
+                pitch_comp_deg = [[0.0, 0.0], [90.0, 0.009], [270.0, -0.009]]\n";
+    let src = "G00 C-60\nG04 X0.1\nG00 C30\nG04 X0.1\nG00 C390\nG04 X0.1\nM30\n";
+    let run = run_program(src, toml);
+    assert_eq!(run.alarm, None);
+    for (line, c, count) in [(2, -60.0, -60_006), (4, 30.0, 30_003), (6, 390.0, 390_003)] {
+        let pts = run.pts.iter().filter(|p| p.line == line && p.c == Some(c));
+        let counts: Vec<i64> = pts.map(|p| p.counts.c).collect();
+        assert!(
+            counts.len() >= 100 && counts.iter().all(|&n| n == count),
+            "line {line}: {counts:?}"
+        );
+    }
+}

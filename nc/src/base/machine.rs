@@ -151,6 +151,7 @@ section!(RotaryAxis {
     accel_deg_s2: f64 = 3600.0,
     jerk_deg_s3: f64 = 36000.0,
     backlash_deg: f64 = 0.0,
+    pitch_comp_deg: Vec<Vec<f64>> = Vec::new(),
 });
 
 /// `[axes]`: by hand rather than by `section!`, for Z's own reader.
@@ -687,6 +688,33 @@ mod tests {
         // 0.002 mm over 1 mm is twice the steepest allowed.
         assert!(err("pitch_comp_mm = [[0.0, 0.0], [1.0, 0.002]]").contains("0.002 mm a mm"));
         assert!(err("pitch_comp_mm = [[0.0, 0.0], [1000.0, 3.0]]").contains("correction"));
+    }
+
+    /// C's angular table: angles within one turn, ascending, gentle, the
+    /// step from the last point round to the first (one turn on)
+    /// included.
+    #[test]
+    fn the_angular_table_is_checked() {
+        let c = |body: &str| {
+            Machine::from_toml(&format!(
+                "[axes.c]\nenabled = true\npitch_comp_deg = {body}\n"
+            ))
+            .err()
+            .map(|e| alloc::format!("{e}"))
+        };
+        assert_eq!(c("[[0.0, 0.0], [180.0, 0.01]]"), None);
+        assert_eq!(c("[]"), None);
+        assert!(c("[[0.0, 0.0], [360.0, 0.0]]").is_some_and(|e| e.contains("one turn")));
+        assert!(c("[[-1.0, 0.0], [90.0, 0.0]]").is_some_and(|e| e.contains("one turn")));
+        assert!(c("[[90.0, 0.0], [45.0, 0.0]]").is_some_and(|e| e.contains("ascending")));
+        assert!(c("[[0.0, 0.0], [90.0, 2.5]]").is_some_and(|e| e.contains("correction")));
+        // 0.18° over 90° is 0.002 a degree: twice the steepest.
+        let steep = c("[[0.0, 0.0], [90.0, 0.18]]");
+        assert!(steep.is_some_and(|e| e.contains("0.002 ° a °")));
+        // Each step gentle (0.09° over 90°), but from 270° back round to
+        // 360° the correction falls by 0.27°: 0.003 a degree.
+        let wrap = c("[[0.0, 0.0], [90.0, 0.09], [180.0, 0.18], [270.0, 0.27]]");
+        assert!(wrap.is_some_and(|e| e.contains("from 270 to 360")), "wrap");
     }
 
     #[test]

@@ -76,8 +76,9 @@ pub const MAX_OFFSETS: u64 = 32;
 /// lost motion, a pitch correction): far more than any screw worth
 /// compensating needs.
 pub const MAX_COMP_MM: f64 = 2.0;
-/// The most a rotary axis's lost motion may be, degrees: far more than
-/// any worm gear worth compensating has.
+/// The most a rotary axis's compensation adds, degrees (its lost motion,
+/// an angular correction): far more than any worm gear worth
+/// compensating needs.
 pub const MAX_COMP_DEG: f64 = 2.0;
 
 /// The most points of a pitch error table (a laser calibration takes one
@@ -85,14 +86,35 @@ pub const MAX_COMP_DEG: f64 = 2.0;
 pub const MAX_PITCH_POINTS: usize = 1024;
 
 /// The steepest a pitch error table may change between two points: a
-/// micrometre a millimetre. A screw is far straighter; the drive's
-/// command then moves within 0.1 % of the set point's speed.
+/// micrometre a millimetre (a thousandth of a degree a degree on C). A
+/// screw is far straighter; the drive's command then moves within 0.1 %
+/// of the set point's speed.
 pub const MAX_PITCH_SLOPE: f64 = 1e-3;
 
+/// The axis a pitch error table corrects.
+#[derive(Clone, Copy, PartialEq)]
+enum TableAxis {
+    /// X or Z: positions within ±[`MAX_MM`], corrections in mm.
+    Slide,
+    /// C: angles in one turn, 0 ≤ angle < 360, corrections in degrees;
+    /// the table repeats every turn, so its last point leads on to its
+    /// first one turn on.
+    Rotary,
+}
+
+impl TableAxis {
+    fn unit(self) -> &'static str {
+        match self {
+            TableAxis::Slide => "mm",
+            TableAxis::Rotary => "°",
+        }
+    }
+}
+
 /// A pitch error table: none, or at least two points in ascending
-/// position, each correction within [`MAX_COMP_MM`], the slope
-/// between two within [`MAX_PITCH_SLOPE`].
-fn pitch_comp(key: &str, table: &[Vec<f64>]) -> Check {
+/// position, each correction within [`MAX_COMP_MM`] ([`MAX_COMP_DEG`]),
+/// the slope between two within [`MAX_PITCH_SLOPE`].
+fn pitch_comp(key: &str, table: &[Vec<f64>], axis: TableAxis) -> Check {
     if table.len() == 1 || table.len() > MAX_PITCH_POINTS {
         let n = table.len();
         return bad(
@@ -100,7 +122,7 @@ fn pitch_comp(key: &str, table: &[Vec<f64>]) -> Check {
             format!("{n} points: give none, or 2 … {MAX_PITCH_POINTS}"),
         );
     }
-    let mut points = Vec::with_capacity(table.len());
+    let mut points = Vec::with_capacity(table.len() + 1);
     for (i, point) in table.iter().enumerate() {
         let &[at, add] = point.as_slice() else {
             let n = point.len();
@@ -109,14 +131,12 @@ fn pitch_comp(key: &str, table: &[Vec<f64>]) -> Check {
                 format!("point {i} gives {n} number(s): give [position, correction]"),
             );
         };
-        within(&format!("{key}[{i}] position"), at, -MAX_MM, MAX_MM)?;
-        within(
-            &format!("{key}[{i}] correction"),
-            add,
-            -MAX_COMP_MM,
-            MAX_COMP_MM,
-        )?;
+        table_point(&format!("{key}[{i}]"), at, add, axis)?;
         points.push([at, add]);
+    }
+    // A turn's table leads on from its last point to its first.
+    if let (TableAxis::Rotary, Some(&[at, add])) = (axis, points.first()) {
+        points.push([at + 360.0, add]);
     }
     for (i, w) in points.windows(2).enumerate() {
         let ([a, ca], [b, cb]) = (w[0], w[1]);
@@ -127,11 +147,30 @@ fn pitch_comp(key: &str, table: &[Vec<f64>]) -> Check {
         }
         let slope = libm::round((cb - ca) / (b - a) * 1e6) / 1e6;
         if slope.abs() > MAX_PITCH_SLOPE {
-            let why = format!("from {a} to {b} the correction changes {slope} mm a mm");
+            let u = axis.unit();
+            let why = format!("from {a} to {b} the correction changes {slope} {u} a {u}");
             return bad(key, format!("{why}, more than {MAX_PITCH_SLOPE}"));
         }
     }
     Ok(())
+}
+
+/// One point of a pitch error table: its position and correction in range.
+fn table_point(key: &str, at: f64, add: f64, axis: TableAxis) -> Check {
+    let max_add = match axis {
+        TableAxis::Slide => {
+            within(&format!("{key} position"), at, -MAX_MM, MAX_MM)?;
+            MAX_COMP_MM
+        }
+        TableAxis::Rotary => {
+            if !(0.0..360.0).contains(&at) {
+                let why = format!("angle {at} is not within one turn");
+                return bad(key, format!("{why}: give 0 ≤ angle < 360 (360 is 0)"));
+            }
+            MAX_COMP_DEG
+        }
+    };
+    within(&format!("{key} correction"), add, -max_add, max_add)
 }
 
 /// A T word is tool × 100 + offset: two digits of tool.
@@ -151,7 +190,7 @@ fn linear_axis(name: &str, a: &LinearAxis) -> Check {
     within(&k("min_mm"), a.min_mm, -MAX_MM, MAX_MM)?;
     within(&k("max_mm"), a.max_mm, -MAX_MM, MAX_MM)?;
     within(&k("backlash_mm"), a.backlash_mm, 0.0, MAX_COMP_MM)?;
-    pitch_comp(&k("pitch_comp_mm"), &a.pitch_comp_mm)?;
+    pitch_comp(&k("pitch_comp_mm"), &a.pitch_comp_mm, TableAxis::Slide)?;
     if a.min_mm >= a.max_mm {
         return bad(
             &k("min_mm"),
@@ -187,6 +226,11 @@ pub fn check(m: &Machine) -> Check {
     positive("axes.c.accel_deg_s2", c.accel_deg_s2, MAX_DEG_RATE)?;
     positive("axes.c.jerk_deg_s3", c.jerk_deg_s3, MAX_DEG_JERK)?;
     within("axes.c.backlash_deg", c.backlash_deg, 0.0, MAX_COMP_DEG)?;
+    pitch_comp(
+        "axes.c.pitch_comp_deg",
+        &c.pitch_comp_deg,
+        TableAxis::Rotary,
+    )?;
     if !(c.name.len() == 1 && c.name.bytes().all(|b| b.is_ascii_uppercase())) {
         return bad(
             "axes.c.name",
