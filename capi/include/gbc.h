@@ -1349,6 +1349,10 @@ enum GbcStatus gbc_set_work_offset(GbcController controller, uint32_t which, dou
  * slide's position less that work origin, the measurement and the wear,
  * on the page, for every run from now on; `gbc_tool_offset` reads it.
  *
+ * On the interpreter half of a split controller, the slide is where the
+ * real-time half last published it standing, and the edit holds from
+ * its next reset (as every edit of the page there).
+ *
  * Refused, changing nothing: [`GbcStatus::NoProgram`] before a program
  * is loaded; [`GbcStatus::NotIdle`] unless the axes stand idle or at the
  * program's end (not in polar or cylindrical interpolation);
@@ -1489,10 +1493,16 @@ enum GbcStatus gbc_room_warning_text(const struct GbcRoomWarning *warning,
  * Without a program loaded, it is `gbc_controller_load`'s
  * [`GbcStatus::NoProgram`].
  *
+ * On the interpreter half of a split controller, in any state: the
+ * program takes the loaded one's place at the real-time half's next
+ * `gbc_reset` (give it after this call), and runs at the cycle start
+ * after it; a program restart asked for before this call is dropped.
+ *
  * Refused, keeping the program loaded: [`GbcStatus::InvalidModule`]
  * (not a valid `.gbc`), [`GbcStatus::MachineMismatch`] (compiled for
- * other compile-time keys), [`GbcStatus::NotIdle`].
- * `gbc_controller_select_source` selects G-code text, compiled here.
+ * other compile-time keys), [`GbcStatus::NotIdle`] (a whole controller
+ * only). `gbc_controller_select_source` selects G-code text, compiled
+ * here.
  *
  * # Safety
  * `gbc` is null or points at `len` readable bytes.
@@ -1569,7 +1579,9 @@ enum GbcStatus gbc_controller_load_source(GbcController controller,
  * after `gbc_reset` once `gbc_state` gives `GBC_RUN_STATE_IDLE`. The new
  * program starts where the axes stand, with the power-on modes, at the
  * next `gbc_cycle_start`; the offset page, #500–#999, the panel's
- * switches and the JIT setting stay.
+ * switches and the JIT setting stay. On the interpreter half of a split
+ * controller it takes the loaded program's place at the real-time
+ * half's next `gbc_reset`, as `gbc_controller_select`'s does.
  *
  * The statuses, each with `gbc_last_error`'s text saying why; a refusal
  * keeps the program loaded:
@@ -1583,7 +1595,8 @@ enum GbcStatus gbc_controller_load_source(GbcController controller,
  *   `gbc_controller_load_source`. The text is compiled before the state
  *   is looked at, so it is this status even while a program runs;
  * - a program runs, stands stopped, ended or in an alarm, or a manual
- *   move or a reset runs: [`GbcStatus::NotIdle`] (after the compile);
+ *   move or a reset runs: [`GbcStatus::NotIdle`] (after the compile; a
+ *   whole controller only);
  * - a module for another machine configuration would be
  *   [`GbcStatus::MachineMismatch`]; compiled for the controller's own
  *   machine, it never is.

@@ -219,6 +219,10 @@ fn work_offset(which: u32) -> Result<WorkOffset, Failure> {
 /// slide's position less that work origin, the measurement and the wear,
 /// on the page, for every run from now on; `gbc_tool_offset` reads it.
 ///
+/// On the interpreter half of a split controller, the slide is where the
+/// real-time half last published it standing, and the edit holds from
+/// its next reset (as every edit of the page there).
+///
 /// Refused, changing nothing: [`GbcStatus::NoProgram`] before a program
 /// is loaded; [`GbcStatus::NotIdle`] unless the axes stand idle or at the
 /// program's end (not in polar or cylindrical interpolation);
@@ -249,7 +253,7 @@ pub extern "C" fn gbc_measure_tool_offset(
                 "the measurement is not finite",
             ));
         }
-        c.run()?
+        c.program()?
             .measure_tool_offset(number, axis, measured)
             .map_err(|e| {
                 let status = match &e {

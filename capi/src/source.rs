@@ -100,7 +100,9 @@ pub unsafe extern "C" fn gbc_controller_load_source(
 /// after `gbc_reset` once `gbc_state` gives `GBC_RUN_STATE_IDLE`. The new
 /// program starts where the axes stand, with the power-on modes, at the
 /// next `gbc_cycle_start`; the offset page, #500–#999, the panel's
-/// switches and the JIT setting stay.
+/// switches and the JIT setting stay. On the interpreter half of a split
+/// controller it takes the loaded program's place at the real-time
+/// half's next `gbc_reset`, as `gbc_controller_select`'s does.
 ///
 /// The statuses, each with `gbc_last_error`'s text saying why; a refusal
 /// keeps the program loaded:
@@ -114,7 +116,8 @@ pub unsafe extern "C" fn gbc_controller_load_source(
 ///   `gbc_controller_load_source`. The text is compiled before the state
 ///   is looked at, so it is this status even while a program runs;
 /// - a program runs, stands stopped, ended or in an alarm, or a manual
-///   move or a reset runs: [`GbcStatus::NotIdle`] (after the compile);
+///   move or a reset runs: [`GbcStatus::NotIdle`] (after the compile; a
+///   whole controller only);
 /// - a module for another machine configuration would be
 ///   [`GbcStatus::MachineMismatch`]; compiled for the controller's own
 ///   machine, it never is.
@@ -135,9 +138,8 @@ pub unsafe extern "C" fn gbc_controller_select_source(
         let src = unsafe { text_at(text, len, "the program text", SOURCE_CAPACITY)? };
         // SAFETY: the caller's promise.
         let name = unsafe { name_at(name) };
-        let r = c.run()?;
-        let module = compile(&name, src, &options(r.machine()))?;
-        select(r, module)
+        let module = compile(&name, src, &options(c.program()?.machine()))?;
+        select(c, module)
     })
 }
 

@@ -12,8 +12,9 @@
 use core::ffi::c_char;
 use runtime::command::PauseKind;
 use runtime::{
-    AlarmInfo, BadKey, Controller, Counters, Engine, Interpreter, OffsetLengths, Parts, Realtime,
-    RunState, SelectRefused, SetPoint, VariableRefused, WorkOffset, Xz,
+    AlarmInfo, BadKey, Controller, Counters, Engine, Interpreter, MeasureRefused, MeasuredAxis,
+    OffsetLengths, Parts, Realtime, RunState, SelectRefused, SetPoint, VariableRefused, WorkOffset,
+    Xz,
 };
 
 use crate::handle::{self, Kind, Object};
@@ -263,6 +264,17 @@ impl ProgramSide<'_> {
     }
     pub fn mdi(&mut self, blocks: isa::Module) -> Result<(), SelectRefused> {
         both!(self, p => p.mdi(blocks))
+    }
+    pub fn select_program(&mut self, module: isa::Module) -> Result<(), SelectRefused> {
+        both!(self, p => p.select_program(module))
+    }
+    pub fn measure_tool_offset(
+        &mut self,
+        number: u32,
+        axis: MeasuredAxis,
+        measured: f64,
+    ) -> Result<OffsetLengths, MeasureRefused> {
+        both!(self, p => p.measure_tool_offset(number, axis, measured))
     }
     pub fn in_mdi(&self) -> bool {
         both!(self, p => p.in_mdi())

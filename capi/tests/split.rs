@@ -106,11 +106,20 @@ fn each_call_goes_to_its_half() {
     assert_eq!(gbc_run_ahead(rt), GbcStatus::WrongKind);
     assert_eq!(gbc_set_variable(rt, 500, 1.0), GbcStatus::WrongKind);
     assert_eq!(gbc_set_block_skip(rt, 1, false), GbcStatus::WrongKind);
-    // What a split controller has no call for, and a second split.
+    // The measured cut is the interpreter's (the real-time half
+    // publishes where it stands: idle at power-on); a second split.
     assert_eq!(
-        gbc_measure_tool_offset(interp, 1, GBC_AXIS_X, 50.0),
+        gbc_measure_tool_offset(rt, 1, GBC_AXIS_X, 50.0),
         GbcStatus::WrongKind
     );
+    assert_eq!(
+        gbc_measure_tool_offset(interp, 1, GBC_AXIS_X, 50.0),
+        GbcStatus::Ok
+    );
+    let mut l = unsafe { std::mem::zeroed() };
+    assert_eq!(unsafe { gbc_tool_offset(interp, 1, &mut l) }, GbcStatus::Ok);
+    // By hand: the slide at machine zero, measured 50: geometry −50.
+    assert_eq!(l.x, -50.0);
     let mut again = 0;
     assert_eq!(
         unsafe { gbc_controller_split(interp, &mut again) },
@@ -260,4 +269,57 @@ fn a_restart_goes_with_the_real_time_half_s_reset() {
         assert_eq!(lines.iter().any(|&l| l < 4), !taken, "{pass}");
         free(m, interp, rt);
     }
+}
+
+/// Runs both halves in turn until the real-time half is in `until`.
+fn until(interp: GbcController, rt: GbcController, until: GbcRunState) -> GbcSetPoint {
+    for _ in 0..100_000 {
+        assert_eq!(gbc_run_ahead(interp), GbcStatus::Ok);
+        let mut sp = blank();
+        assert_eq!(unsafe { gbc_tick(rt, &mut sp) }, GbcStatus::Ok);
+        if state(rt).state == until {
+            return sp;
+        }
+    }
+    panic!("never {until:?}");
+}
+
+/// Another program selected on the interpreter half, as text, while
+/// the first has ended: it takes the first's place at the real-time
+/// half's reset, starts where the axes stand (X40 Z2, then W−12), and
+/// the real-time half's alarm names its file; a restart asked for the
+/// first program is dropped.
+#[test]
+fn another_program_takes_the_place_at_the_reset() {
+    let (m, interp, rt) = split("G00 X40 Z2\nM30\n");
+    assert_eq!(gbc_cycle_start(rt), GbcStatus::Ok);
+    let end = until(interp, rt, GbcRunState::Ended);
+    assert_eq!((end.x, end.z), (40.0, 2.0));
+    assert_eq!(gbc_restart_from(interp, 1, 1), GbcStatus::Ok);
+    let src = "G98 G01 W-12 F300\n#3000=12 (AT THE END)\nM30\n";
+    let status = unsafe {
+        gbc_controller_select_source(
+            interp,
+            c"second.nc".as_ptr(),
+            src.as_ptr().cast(),
+            src.len(),
+        )
+    };
+    assert_eq!(status, GbcStatus::Ok);
+    assert_eq!(gbc_restart_result(interp), GbcStatus::RestartNotFound);
+    // The real-time half does not select.
+    let status = unsafe {
+        gbc_controller_select_source(rt, c"x.nc".as_ptr(), src.as_ptr().cast(), src.len())
+    };
+    assert_eq!(status, GbcStatus::WrongKind);
+    assert_eq!(gbc_reset(rt), GbcStatus::Ok);
+    until(interp, rt, GbcRunState::Idle);
+    assert_eq!(gbc_cycle_start(rt), GbcStatus::Ok);
+    let end = until(interp, rt, GbcRunState::Alarm);
+    assert_eq!((end.x, end.z), (40.0, -10.0));
+    let mut a = no_alarm();
+    assert_eq!(unsafe { gbc_alarm(rt, &mut a) }, GbcStatus::Ok);
+    let file = String::from_utf8_lossy(&a.file[..a.file_len]).into_owned();
+    assert_eq!((a.code, file.as_str(), a.line), (3012, "second.nc", 2));
+    free(m, interp, rt);
 }

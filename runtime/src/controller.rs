@@ -42,7 +42,7 @@ use nc::{Machine, Sink};
 use vm::Vm;
 
 pub(crate) mod between;
-mod measure;
+pub(crate) mod measure;
 pub use between::{RestartRefused, SelectRefused};
 pub use measure::{MeasureRefused, MeasuredAxis};
 use vm::restart::RestartAt;

@@ -50,6 +50,11 @@ pub(crate) trait Link {
     fn take_ended(&mut self) -> bool;
     /// Sets the display shift and the queue's tail for a restarted run.
     fn reseed(&mut self, origin: V2);
+    /// The run about to start is another module's (another program, MDI
+    /// blocks or the program after them), whose source files the
+    /// motion's alarms are to name from now on. (A controller in one
+    /// context reads them from the VM's module when asked.)
+    fn files(&mut self, _files: &[isa::SourceFileInfo]) {}
     /// Hands over what `push` may have kept back (the program side is
     /// about to return).
     fn flush(&mut self) {}
@@ -143,6 +148,9 @@ pub(crate) struct RunAhead {
     pub(crate) after_mdi: Option<isa::Module>,
     /// MDI blocks for the next reset to begin with (a split controller's).
     pending_mdi: Option<isa::Module>,
+    /// A program selected for the next reset to begin with (a split
+    /// controller's).
+    pending_select: Option<isa::Module>,
 }
 
 impl RunAhead {
@@ -173,6 +181,7 @@ impl RunAhead {
             counters,
             after_mdi: None,
             pending_mdi: None,
+            pending_select: None,
         }
     }
 
@@ -359,12 +368,31 @@ impl RunAhead {
                 self.vm_state = VmState::Done;
             }
             Status::Alarm(a) => {
-                if !matches!(self.staged.back(), Some((Command::Alarm(_), _))) {
-                    self.staged.push_back((Command::Alarm(a.code), tag));
+                // (The canon's ALARM event may have staged it already.)
+                let at = self.alarm_tag(&a, tag);
+                match self.staged.back_mut() {
+                    Some((Command::Alarm(_), t)) => *t = at,
+                    _ => self.staged.push_back((Command::Alarm(a.code), at)),
                 }
                 self.vm_alarm = Some(a);
                 self.vm_state = VmState::Alarm;
             }
+        }
+    }
+
+    /// The tag of the VM's alarm `a` for the motion: the alarm's own
+    /// place (the block the VM stopped in, which may have made no
+    /// command), so that the motion's alarm names what the VM's does.
+    fn alarm_tag(&self, a: &vm::Alarm, tag: Tag) -> Tag {
+        let files = &self.vm.module().files;
+        let Some(file) = files.iter().position(|f| f.name == a.file) else {
+            return tag;
+        };
+        Tag {
+            file: u16::try_from(file).unwrap_or(tag.file),
+            line: a.line,
+            col: a.col,
+            ..tag
         }
     }
 
@@ -583,20 +611,27 @@ impl RunAhead {
     /// blocks replaced, if they did), its programmed point and C where
     /// the axes now stand.
     pub(crate) fn restart<L: Link>(&mut self, stand: Standing, link: &mut L) {
-        let module = match self.after_mdi.take() {
+        let module = self.program_after_reset();
+        self.start(module, stand, link);
+    }
+
+    /// The program a reset goes back to: one selected for it, else the
+    /// one MDI blocks replaced, else the program loaded.
+    fn program_after_reset(&mut self) -> isa::Module {
+        if let Some(selected) = self.pending_select.take() {
+            self.after_mdi = None;
+            return selected;
+        }
+        match self.after_mdi.take() {
             Some(main) => main,
             None => self.vm.module().clone(),
-        };
-        self.start(module, stand, link);
+        }
     }
 
     /// MDI blocks, compiled, in place of the program until they end (or
     /// a reset), where the axes stand.
     pub(crate) fn start_mdi<L: Link>(&mut self, mdi: isa::Module, stand: Standing, link: &mut L) {
-        let main = match self.after_mdi.take() {
-            Some(main) => main,
-            None => self.vm.module().clone(),
-        };
+        let main = self.program_after_reset();
         self.start(mdi, stand, link);
         self.tr.mdi = true;
         self.after_mdi = Some(main);
@@ -607,12 +642,29 @@ impl RunAhead {
         self.pending_mdi = Some(mdi);
     }
 
+    /// Another program for the next reset to begin with (MDI blocks
+    /// given for that reset run first, then it). A program restart asked
+    /// for the program it replaces is dropped.
+    pub(crate) fn select_at_reset(&mut self, module: isa::Module) {
+        self.pending_select = Some(module);
+        self.pending_restart = None;
+        self.restart_result = None;
+    }
+
+    /// A program waits for the next reset ([`RunAhead::select_at_reset`]).
+    pub(crate) fn select_pending(&self) -> bool {
+        self.pending_select.is_some()
+    }
+
     /// A fresh VM for `module` at the start of the program, its
     /// programmed point and C where the axes now stand (a reset, or
     /// another program selected).
     pub(crate) fn start<L: Link>(&mut self, module: isa::Module, stand: Standing, link: &mut L) {
         let Standing { at, c } = stand;
         self.after_mdi = None;
+        if module.files != self.vm.module().files {
+            link.files(&module.files);
+        }
         let mut vm = Vm::new(module, self.machine.clone());
         // #500–#999 and where they are kept survive the reset.
         *vm.persistent_mut() = *self.vm.persistent();

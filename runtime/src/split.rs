@@ -25,6 +25,7 @@
 
 use crate::command::{Command, Tag};
 use crate::config::RapidOverride;
+use crate::controller::measure::{set_measured, standing_point, MeasureRefused, MeasuredAxis};
 use crate::controller::{engine_alarm, AlarmInfo, SelectRefused};
 use crate::interpolate::{Engine, Manual, ManualRefused, RunState, SetPoint, SkipReport};
 use crate::math::V2;
@@ -40,8 +41,11 @@ use nc::machine_check::BadKey;
 use nc::offset_page::{OffsetLengths, WorkOffset};
 use nc::{Machine, Sink};
 use rtrb::{Consumer, Producer, RingBuffer};
+use standing::StandingCell;
 use vm::restart::{RestartAt, RestartError, Restarted};
 use vm::Vm;
+
+mod standing;
 
 /// Commands the real-time half takes from the ring in one period: bounds
 /// the planning a period can do.
@@ -49,6 +53,13 @@ pub const DRAIN: usize = 256;
 
 /// Commands in flight between the halves.
 const RING: usize = 1024;
+
+/// File tables in flight to the real-time half, and back to be freed
+/// (it frees none: that would call the allocator).
+const FILES: usize = 4;
+
+/// The source files of a module, which the motion's alarms name.
+type Files = Vec<isa::SourceFileInfo>;
 
 /// A command on its way to the motion, with the epoch it was sent in.
 #[derive(Clone, Copy)]
@@ -79,6 +90,8 @@ struct Shared {
     /// [`mark`] of the epoch and the commands taken from the ring when the
     /// queue was last seen empty.
     idle: AtomicU32,
+    /// Where the axes stand, for a measured cut.
+    standing: StandingCell,
 }
 
 /// The epoch in the high byte, a count of commands (mod 2^24) below: the
@@ -101,8 +114,12 @@ pub(crate) fn split<P: Plc>(ra: RunAhead, engine: Engine<P>) -> (Interpreter, Re
         moves: AtomicU32::new(moves as u32),
         secs: AtomicU32::new((secs as f32).to_bits()),
         idle: AtomicU32::new(idle),
+        standing: StandingCell::new(standing_point(&engine)),
     });
+    let stand = standing_point(&engine);
     let files = ra.vm.module().files.clone();
+    let (files_tx, files_rx) = RingBuffer::new(FILES);
+    let (old_tx, old_rx) = RingBuffer::new(FILES);
     let origin = ra.origin();
     let cfg = engine.config();
     let link = RingLink {
@@ -119,6 +136,8 @@ pub(crate) fn split<P: Plc>(ra: RunAhead, engine: Engine<P>) -> (Interpreter, Re
         reset: None,
         skip: None,
         ended: false,
+        files_tx,
+        old_rx,
     };
     let rt = Realtime {
         engine,
@@ -132,8 +151,11 @@ pub(crate) fn split<P: Plc>(ra: RunAhead, engine: Engine<P>) -> (Interpreter, Re
         skip: None,
         ended: None,
         files,
+        files_rx,
+        old_tx,
         published: (moves as u32, (secs as f32).to_bits()),
         idle,
+        stand,
     };
     (Interpreter { ra, link }, rt)
 }
@@ -161,6 +183,10 @@ struct RingLink {
     reset: Option<Standing>,
     skip: Option<SkipReport>,
     ended: bool,
+    /// The file tables of the modules started, to the real-time half,
+    /// and those it no longer names, back.
+    files_tx: Producer<Files>,
+    old_rx: Consumer<Files>,
 }
 
 impl RingLink {
@@ -176,6 +202,8 @@ impl RingLink {
     }
 
     fn poll(&mut self) {
+        // (Dropped here, on this side.)
+        while self.old_rx.pop().is_ok() {}
         while let Ok(r) = self.rx.pop() {
             match r {
                 Report::Reset { epoch, at } => {
@@ -250,6 +278,14 @@ impl Link for RingLink {
 
     /// The real-time half re-seeded its engine when the reset finished.
     fn reseed(&mut self, _: V2) {}
+
+    /// Sent before the run's first command, which the real-time half
+    /// takes after it. Four tables in flight are far more than resets
+    /// come; were the ring full, the alarms would name the older files.
+    fn files(&mut self, files: &[isa::SourceFileInfo]) {
+        self.poll();
+        let _ = self.files_tx.push(files.to_vec());
+    }
 }
 
 /// The half of a split controller that runs the VM: call
@@ -390,6 +426,42 @@ impl Interpreter {
         Ok(())
     }
 
+    /// Another program ([`crate::Controller::select_program`]) for the
+    /// next reset of the [`Realtime`] half to begin with (press it after
+    /// this call; it is one in every state, so a running program stops):
+    /// from then on it is the program, started where the axes stand,
+    /// with the power-on modes, at the cycle start after the reset. MDI
+    /// blocks given for that reset run first; a program restart asked
+    /// before this call is dropped (ask it again for the new program).
+    /// Refused for a program compiled for another machine.
+    pub fn select_program(&mut self, module: isa::Module) -> Result<(), SelectRefused> {
+        crate::controller::between::compiled_for(&self.ra.machine, &module)?;
+        self.ra.select_at_reset(module);
+        Ok(())
+    }
+
+    /// A program selected waits for the next reset.
+    pub fn select_pending(&self) -> bool {
+        self.ra.select_pending()
+    }
+
+    /// Tool setting by a measured cut
+    /// ([`crate::Controller::measure_tool_offset`]), with the slide where
+    /// the [`Realtime`] half last published it standing (idle or at the
+    /// program's end, outside polar and cylindrical interpolation: else
+    /// [`MeasureRefused::NotStanding`]). As every edit of the page here,
+    /// it holds from the next reset.
+    pub fn measure_tool_offset(
+        &mut self,
+        number: u32,
+        axis: MeasuredAxis,
+        measured: f64,
+    ) -> Result<OffsetLengths, MeasureRefused> {
+        let slide = self.link.shared.standing.load();
+        let slide = slide.ok_or(MeasureRefused::NotStanding)?;
+        set_measured(&mut self.ra.machine, number, axis, measured, slide)
+    }
+
     /// Restores counters the host kept
     /// ([`crate::Controller::restore_counters`]) from the next reset on.
     pub fn restore_counters(&mut self, c: Counters) -> Result<(), BadKey> {
@@ -444,10 +516,17 @@ pub struct Realtime<P: Plc> {
     skip: Option<SkipReport>,
     /// The epoch whose program the motion finished, to report.
     ended: Option<u8>,
-    files: Vec<isa::SourceFileInfo>,
-    /// What `shared` holds: (moves, seconds' bits) and the idle mark.
+    /// The source files of the module whose commands run, which the
+    /// alarms name; the tables of modules started since, and the
+    /// replaced ones on their way back.
+    files: Files,
+    files_rx: Consumer<Files>,
+    old_tx: Producer<Files>,
+    /// What `shared` holds: (moves, seconds' bits), the idle mark and
+    /// the standing point.
     published: (u32, u32),
     idle: u32,
+    stand: Option<Xz>,
 }
 
 impl<P: Plc> Realtime<P> {
@@ -463,6 +542,7 @@ impl<P: Plc> Realtime<P> {
     /// took. `tick` calls it; a host that plans without moving (a cycle
     /// time estimate, a bench) may call it alone.
     pub fn plan_pending(&mut self) -> usize {
+        self.take_files();
         let mut took = 0;
         while took < DRAIN {
             let Ok(&m) = self.rx.peek() else { break };
@@ -493,6 +573,20 @@ impl<P: Plc> Realtime<P> {
         took
     }
 
+    /// The file tables of modules started since the last period (each
+    /// sent before the module's first command), the replaced ones handed
+    /// back to be freed.
+    fn take_files(&mut self) {
+        while self.old_tx.slots() > 0 {
+            let Ok(files) = self.files_rx.pop() else {
+                return;
+            };
+            let old = core::mem::replace(&mut self.files, files);
+            // (It has room: this half is its only writer.)
+            let _ = self.old_tx.push(old);
+        }
+    }
+
     fn after_tick(&mut self) {
         if let Some(r) = self.engine.take_skip_report() {
             self.skip = Some(r);
@@ -511,6 +605,11 @@ impl<P: Plc> Realtime<P> {
             self.skip = None;
         }
         self.publish();
+        let stand = standing_point(&self.engine);
+        if stand != self.stand {
+            self.stand = stand;
+            self.shared.standing.store(stand);
+        }
         self.send_reports();
     }
 

@@ -183,3 +183,83 @@ fn feed_hold_and_single_block_work_across_threads() {
     check_end_points(&r);
     assert_eq!(stops.get(), 3);
 }
+
+/// Both halves driven from this thread, in turn, until the real-time
+/// half is in `until` (at most 60 simulated seconds): the last set point.
+fn drive_until(
+    interp: &mut runtime::Interpreter,
+    rt: &mut runtime::Realtime<runtime::AutoAck>,
+    until: RunState,
+) -> runtime::SetPoint {
+    for _ in 0..60_000 {
+        interp.run_ahead();
+        let sp = rt.tick();
+        match rt.state() {
+            s if s == until => return sp,
+            RunState::Stopped(_) => rt.cycle_start(),
+            _ => {}
+        }
+    }
+    panic!("not {until:?} within 60 s: {:?}", rt.state());
+}
+
+/// Another program on a split controller: selected on the interpreter
+/// half, it takes the program's place at the real-time half's reset and
+/// starts where the axes stand (as `select.rs` on a whole controller:
+/// X40 stays, Z from 2 by W−12 to −10, #500 kept); the motion's alarms
+/// name its file from then on.
+#[test]
+fn another_program_is_selected_for_the_next_reset() {
+    let machine = Machine::reference();
+    let first = common::module("#500=7\nG00 X40 Z2\nM30\n", &machine);
+    let compile = |name: &str, src: &str| {
+        let out = compiler::compile(name, src.as_bytes(), &compiler::Options::default());
+        out.module.expect("compiles")
+    };
+    let second = compile(
+        "second.nc",
+        "#100=#500\nG01 W-12 F300\n#3000=12 (AT THE END)\nM30\n",
+    );
+    let ctl = runtime::Controller::new(first, machine, runtime::AutoAck).expect("loads");
+    let (mut interp, mut rt) = ctl.split();
+    rt.cycle_start();
+    let end = drive_until(&mut interp, &mut rt, RunState::Ended);
+    assert_eq!((end.x, end.z), (40.0, 2.0));
+    assert_eq!(interp.select_program(second), Ok(()));
+    assert!(interp.select_pending());
+    // Until the reset the program loaded stays.
+    assert_eq!(interp.file_name(0), Some("test.nc"));
+    rt.reset();
+    drive_until(&mut interp, &mut rt, RunState::Idle);
+    // The interpreter learns of the reset at its next run-ahead.
+    interp.run_ahead();
+    assert!(!interp.select_pending());
+    assert_eq!(interp.file_name(0), Some("second.nc"));
+    rt.cycle_start();
+    let end = drive_until(&mut interp, &mut rt, RunState::Alarm(3012));
+    assert_eq!((end.x, end.z), (40.0, -10.0));
+    assert_eq!(interp.variable(100), Ok(7.0));
+    let alarm = rt.alarm().expect("an alarm");
+    assert_eq!((alarm.file.as_str(), alarm.line), ("second.nc", 3));
+    let text = interp.vm_alarm().expect("the VM's alarm").message;
+    assert_eq!(text, "AT THE END");
+}
+
+#[test]
+fn a_program_for_another_machine_is_not_selected() {
+    let machine = Machine::reference();
+    let ctl = runtime::Controller::new(
+        common::module("G00 X40 Z2\nM30\n", &machine),
+        machine,
+        runtime::AutoAck,
+    )
+    .expect("loads");
+    let (mut interp, _rt) = ctl.split();
+    let radius = Machine::from_toml("[axes.x]\ndiameter = false\n").expect("a machine file");
+    let other = common::module("G00 X20 Z2\nM30\n", &radius);
+    assert!(matches!(
+        interp.select_program(other),
+        Err(runtime::SelectRefused::Machine(_))
+    ));
+    assert!(!interp.select_pending());
+}

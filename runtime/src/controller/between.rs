@@ -236,7 +236,7 @@ impl<P: Plc> Controller<P> {
     }
 
     /// While idle, the program starts afresh on the edited machine.
-    fn apply_page(&mut self) {
+    pub(super) fn apply_page(&mut self) {
         if self.engine.clear_idle() {
             let stand = self.standing();
             self.ra.restart(stand, &mut self.engine);

@@ -12,10 +12,12 @@
 //! offset moved the slide there.
 
 use super::Controller;
-use crate::interpolate::RunState;
+use crate::interpolate::{Engine, RunState};
 use crate::plc::Plc;
+use nc::machine::Xz;
 use nc::machine_check::BadKey;
 use nc::offset_page::{OffsetLengths, WorkOffset};
+use nc::Machine;
 
 /// The axis a measurement was taken on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -66,25 +68,41 @@ impl<P: Plc> Controller<P> {
         axis: MeasuredAxis,
         measured: f64,
     ) -> Result<OffsetLengths, MeasureRefused> {
-        let standing = matches!(self.engine.state(), RunState::Idle | RunState::Ended);
-        let (true, Some(slide)) = (standing, self.engine.machine_point()) else {
-            return Err(MeasureRefused::NotStanding);
-        };
-        let mut l = self
-            .ra
-            .machine
-            .offset_row(number)
-            .map_err(MeasureRefused::Page)?;
-        let (shift, g54) = (
-            self.work_offset(WorkOffset::External),
-            self.work_offset(WorkOffset::G54),
-        );
-        match axis {
-            MeasuredAxis::X => l.x = slide.x - shift.x - g54.x - measured - l.wear_x,
-            MeasuredAxis::Z => l.z = slide.z - shift.z - g54.z - measured - l.wear_z,
-        }
-        self.set_tool_offset(number, l)
-            .map_err(MeasureRefused::Page)?;
+        let slide = standing_point(&self.engine).ok_or(MeasureRefused::NotStanding)?;
+        let l = set_measured(&mut self.ra.machine, number, axis, measured, slide)?;
+        self.apply_page();
         Ok(l)
     }
+}
+
+/// The machine set point where the axes stand idle or at the program's
+/// end, outside polar and cylindrical interpolation: where a
+/// measurement may be taken.
+pub(crate) fn standing_point<P: Plc>(engine: &Engine<P>) -> Option<Xz> {
+    let standing = matches!(engine.state(), RunState::Idle | RunState::Ended);
+    standing.then(|| engine.machine_point()).flatten()
+}
+
+/// Sets offset `number`'s geometry on `axis` on the page of `machine`
+/// from a measurement taken with the slide at `slide`; its new lengths.
+pub(crate) fn set_measured(
+    machine: &mut Machine,
+    number: u32,
+    axis: MeasuredAxis,
+    measured: f64,
+    slide: Xz,
+) -> Result<OffsetLengths, MeasureRefused> {
+    let mut l = machine.offset_row(number).map_err(MeasureRefused::Page)?;
+    let (shift, g54) = (
+        machine.work_offset_of(WorkOffset::External),
+        machine.work_offset_of(WorkOffset::G54),
+    );
+    match axis {
+        MeasuredAxis::X => l.x = slide.x - shift.x - g54.x - measured - l.wear_x,
+        MeasuredAxis::Z => l.z = slide.z - shift.z - g54.z - measured - l.wear_z,
+    }
+    machine
+        .set_offset_lengths(number, l)
+        .map_err(MeasureRefused::Page)?;
+    Ok(l)
 }
