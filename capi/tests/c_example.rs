@@ -100,6 +100,45 @@ fn the_c_controller_loop_gives_gbvms_trace() {
     }
 }
 
+/// A thread whose S comes from a variable, 1 mm from its block's start
+/// and end (the runtime's own test, thread_motion.rs, derives the
+/// figures): the example prints W118 for both as gbvm's timed runs do,
+/// in gbcc's wording.
+#[test]
+fn the_c_controller_reports_a_thread_without_room() {
+    const SHORT: &str = "#1=1500\nG97 S#1 M03\nG00 X30 Z1\nG32 Z0 F3\nG00 X40\nM30\n";
+    let profile = profile_dir();
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_room");
+    std::fs::create_dir_all(&out).expect("a scratch directory");
+    let exe = build_example(&profile, &out);
+    let src = out.join("short.nc");
+    std::fs::write(&src, SHORT).expect("write short.nc");
+    let gbc = compile(&src, &out);
+    let c = Command::new(&exe)
+        .arg(&gbc)
+        .output()
+        .expect("the example runs");
+    let stderr = String::from_utf8_lossy(&c.stderr);
+    assert!(c.status.success(), "the C controller failed: {stderr}");
+    let warned: Vec<&str> = stderr.lines().filter(|l| l.contains("W118")).collect();
+    assert_eq!(
+        warned,
+        [
+            "part.nc:4:1: warning[W118]: thread too short to reach its lead: at 1500 rpm Z needs 1.442 mm to reach thread speed, this block gives 1.000 mm",
+            "part.nc:4:1: warning[W118]: no room to stop at the thread's end: at 1500 rpm Z needs 1.406 mm to stop from thread speed, this block gives 1.000 mm",
+        ]
+    );
+    let g = Command::new(gbvm(&profile))
+        .args(["run", "--emit", "trace"])
+        .arg(&gbc)
+        .output()
+        .expect("gbvm runs");
+    let g_err = String::from_utf8_lossy(&g.stderr);
+    for w in warned {
+        assert!(g_err.contains(w), "gbvm: {g_err}");
+    }
+}
+
 /// Line 3 is skipped while switch 1 is on; line 4 reads the current
 /// position, so the program is read no further until the motion before it
 /// has ended; line 5 is read after that.

@@ -153,6 +153,22 @@ static void print_active(GbcController ctl) {
     fprintf(stderr, " F%g S%g T%04u\n", a.f, a.s, a.t);
 }
 
+/* W118 at run time: a thread whose block is too short for the axis to
+ * reach (or leave) thread speed at the spindle speed the run really has.
+ * Taking it allocates nothing; its text is made here, off the period
+ * (a real controller would hand it to its screen's thread). */
+static void report_room(GbcController ctl) {
+    GbcRoomWarning w;
+    while (gbc_take_room_warning(ctl, &w) == GBC_STATUS_OK && w.code != 0) {
+        char file[256], text[256];
+        if (gbc_file_name(ctl, w.file, file, sizeof file, NULL) != GBC_STATUS_OK)
+            file[0] = 0;
+        if (gbc_room_warning_text(&w, text, sizeof text, NULL) != GBC_STATUS_OK)
+            text[0] = 0;
+        fprintf(stderr, "%s:%u:%u: warning[W118]: %s\n", file, w.line, w.column, text);
+    }
+}
+
 int main(int argc, char **argv) {
     if (argc < 2 || argc > 3) {
         fprintf(stderr, "usage: controller PROGRAM.gbc|PROGRAM.nc [MACHINE.toml]\n");
@@ -234,6 +250,7 @@ int main(int argc, char **argv) {
             status = fail("tick", s);
             break;
         }
+        report_room(ctl);
         if (!header) {
             header = 1;
             printf(sp.has_c ? "time_s,x,z,c,spindle_rpm,feed,line,motion,tool,file\n"
