@@ -8,8 +8,8 @@
 //! lies within half a step of its set point, and the step from one period
 //! to the next is the set points' own step to within one count. On a
 //! machine with backlash or pitch error compensation (`backlash_mm`,
-//! `pitch_comp_mm`, C's `backlash_deg`, `pitch_comp_deg`) the point rounded is the set point plus the
-//! compensation: the drive's command.
+//! `pitch_comp_mm`, C's `backlash_deg`, `pitch_comp_deg`) the point
+//! rounded is the set point plus the compensation: the drive's command.
 //!
 //! X is a diameter, so one X count is `resolution_mm` of diameter, half of
 //! it on the slide: the least command increment of a diameter-programmed

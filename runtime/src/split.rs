@@ -110,13 +110,13 @@ pub(crate) fn split<P: Plc>(ra: RunAhead, engine: Engine<P>) -> (Interpreter, Re
     } else {
         u32::MAX
     };
+    let stand = standing_point(&engine);
     let shared = Arc::new(Shared {
         moves: AtomicU32::new(moves as u32),
         secs: AtomicU32::new((secs as f32).to_bits()),
         idle: AtomicU32::new(idle),
-        standing: StandingCell::new(standing_point(&engine)),
+        standing: StandingCell::new(stand),
     });
-    let stand = standing_point(&engine);
     let files = ra.vm.module().files.clone();
     let (files_tx, files_rx) = RingBuffer::new(FILES);
     let (old_tx, old_rx) = RingBuffer::new(FILES);
