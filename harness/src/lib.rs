@@ -166,6 +166,10 @@ fn stepped_run(
     for _ in 0..200_000 {
         first.entry(vm.pc()).or_insert(events.len());
         if let Status::Done | Status::Alarm(_) = vm.step(1, &mut events) {
+            // Where the run stopped counts too: a restart whose target's
+            // waiting elements are printed only by the end (M30 under
+            // nose-radius compensation) resumes there, all printed.
+            first.entry(vm.pc()).or_insert(events.len());
             return Some((events, first));
         }
         if events.len() > 20_000 {

@@ -506,6 +506,16 @@ fn the_compiler_target_finding_of_w124_after_w107() {
     harness::compiler(b"G00 X20 Z2\nG01 X10\nT-16\nM30\n");
 }
 
+/// The `compiler` target's finding of stop 67 (a conformance case,
+/// mutated; cut down here): a program restart at M30 under G42 (the
+/// input's bytes pick line 5) reads on past M30 to print the move that
+/// waited there, and resumes at the end of the program, all printed,
+/// which the check's whole run now counts as a place it comes to.
+#[test]
+fn the_compiler_target_finding_of_a_restart_at_the_end() {
+    harness::compiler(b"(2)\nG42 G00 X20 Z2\nG01 Z-10 F100\nG00 X40 Z5\nM30\n");
+}
+
 /// The `thread` target's findings of its first runs (stop 43), each a
 /// chain of legs shorter than an axis needs to catch up with a corner:
 /// leads 3–99 % off and end points missed by 6 µm to 4 mm (a chain that
