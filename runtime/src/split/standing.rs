@@ -11,7 +11,7 @@
 //! [`TRIES`] (reading "not standing": the slide moves if it writes so
 //! often).
 
-use core::sync::atomic::{fence, AtomicU32, AtomicU64, Ordering};
+use core::sync::atomic::{fence, AtomicU32, Ordering};
 use nc::machine::Xz;
 
 /// Reads a reader tries before it takes the point for not standing.
@@ -22,29 +22,27 @@ const NONE: u64 = u64::MAX;
 
 pub(super) struct StandingCell {
     seq: AtomicU32,
-    x: AtomicU64,
-    z: AtomicU64,
+    /// X's and Z's bits, low half first.
+    words: [AtomicU32; 4],
 }
 
 impl StandingCell {
     pub fn new(at: Option<Xz>) -> StandingCell {
-        let (x, z) = bits(at);
         StandingCell {
             seq: AtomicU32::new(0),
-            x: AtomicU64::new(x),
-            z: AtomicU64::new(z),
+            words: halves(at).map(AtomicU32::new),
         }
     }
 
     /// The real-time half's write (its only writer).
     pub fn store(&self, at: Option<Xz>) {
-        let (x, z) = bits(at);
         let s = self.seq.load(Ordering::Relaxed);
         self.seq.store(s.wrapping_add(1), Ordering::Relaxed);
         // The odd count is seen before any of the new values.
         fence(Ordering::Release);
-        self.x.store(x, Ordering::Relaxed);
-        self.z.store(z, Ordering::Relaxed);
+        for (w, v) in self.words.iter().zip(halves(at)) {
+            w.store(v, Ordering::Relaxed);
+        }
         self.seq.store(s.wrapping_add(2), Ordering::Release);
     }
 
@@ -56,10 +54,8 @@ impl StandingCell {
                 core::hint::spin_loop();
                 continue;
             }
-            let (x, z) = (
-                self.x.load(Ordering::Relaxed),
-                self.z.load(Ordering::Relaxed),
-            );
+            let [x0, x1, z0, z1] = self.words.each_ref().map(|w| w.load(Ordering::Relaxed));
+            let (x, z) = (join(x0, x1), join(z0, z1));
             // The values are read before the count again.
             fence(Ordering::Acquire);
             if self.seq.load(Ordering::Relaxed) == before {
@@ -73,8 +69,14 @@ impl StandingCell {
     }
 }
 
-fn bits(at: Option<Xz>) -> (u64, u64) {
-    at.map_or((NONE, NONE), |p| (p.x.to_bits(), p.z.to_bits()))
+/// X's and Z's bits (NONE for none) in 32-bit halves, low first.
+fn halves(at: Option<Xz>) -> [u32; 4] {
+    let (x, z) = at.map_or((NONE, NONE), |p| (p.x.to_bits(), p.z.to_bits()));
+    [x as u32, (x >> 32) as u32, z as u32, (z >> 32) as u32]
+}
+
+fn join(low: u32, high: u32) -> u64 {
+    u64::from(low) | u64::from(high) << 32
 }
 
 #[cfg(test)]
