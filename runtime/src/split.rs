@@ -283,7 +283,9 @@ impl Link for RingLink {
     /// takes after it. Four tables in flight are far more than resets
     /// come; were the ring full, the alarms would name the older files.
     fn files(&mut self, files: &[isa::SourceFileInfo]) {
-        self.poll();
+        // (Room for it: the tables handed back are freed first; the
+        // reports wait for the run-ahead's own poll.)
+        while self.old_rx.pop().is_ok() {}
         let _ = self.files_tx.push(files.to_vec());
     }
 }
